@@ -1,0 +1,70 @@
+"""Command line: ``crankbalance COMMAND ...``.
+
+Each command lives in its own module of this package and is imported only when it
+runs, so that ``crankbalance --help`` and every command start fast. To add a command,
+add one line to :data:`COMMANDS` (name -> "module:function" of a ``click.Command``).
+Commands raise :class:`crankbalance.errors.InputError` for bad input; :func:`main`
+prints its message without a traceback and exits with status 2.
+"""
+
+from __future__ import annotations
+
+import importlib
+import sys
+from typing import Any
+
+import click
+
+from ..errors import InputError
+
+COMMANDS: dict[str, tuple[str, str]] = {
+    # name: ("module:attribute", one-line help)
+    "analyze": ("crankbalance.cli.analyze:analyze", "Free forces and moments of an engine."),
+    "presets": ("crankbalance.cli.analyze:presets", "List the built-in engine library."),
+}
+
+
+class LazyGroup(click.Group):
+    """A click group whose commands are imported on first use."""
+
+    def list_commands(self, ctx: click.Context) -> list[str]:
+        return sorted(COMMANDS)
+
+    def get_command(self, ctx: click.Context, cmd_name: str) -> click.Command | None:
+        if cmd_name not in COMMANDS:
+            return None
+        target, _help = COMMANDS[cmd_name]
+        module_name, attribute = target.split(":")
+        command = getattr(importlib.import_module(module_name), attribute)
+        assert isinstance(command, click.Command)
+        return command
+
+    def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
+        rows = [(name, COMMANDS[name][1]) for name in sorted(COMMANDS)]
+        with formatter.section("Commands"):
+            formatter.write_dl(rows)
+
+
+@click.group(cls=LazyGroup, context_settings={"help_option_names": ["-h", "--help"]})
+@click.version_option(package_name="crankbalance")
+def cli() -> None:
+    """crankbalance: balancing design of reciprocating-engine crank trains."""
+
+
+def main(argv: list[str] | None = None) -> Any:
+    """Entry point of the ``crankbalance`` console script."""
+    try:
+        return cli.main(args=argv, prog_name="crankbalance", standalone_mode=False)
+    except InputError as error:
+        click.echo(f"error: {error}", err=True)
+        sys.exit(2)
+    except click.exceptions.Abort:
+        click.echo("aborted", err=True)
+        sys.exit(1)
+    except click.ClickException as error:
+        error.show()
+        sys.exit(error.exit_code)
+
+
+if __name__ == "__main__":  # pragma: no cover
+    main()

@@ -1,0 +1,44 @@
+"""The one exception type of crankbalance for bad input."""
+
+from __future__ import annotations
+
+from typing import Any
+
+
+class InputError(ValueError):
+    """Bad input: names the field, the value given and what is allowed.
+
+    Parameters
+    ----------
+    field : str
+        Dotted path of the offending field, e.g. ``crank_train.rod_length``.
+    value : Any
+        The value that was given.
+    allowed : str
+        What would have been accepted.
+    """
+
+    def __init__(self, field: str, value: Any, allowed: str) -> None:
+        self.field = field
+        self.value = value
+        self.allowed = allowed
+        super().__init__(f"{field} = {_show(value)}: {allowed}")
+
+
+def _show(value: Any) -> str:
+    text = repr(value)
+    return text if len(text) <= 80 else text[:77] + "..."
+
+
+def check_positive(field: str, value: float) -> float:
+    """Return ``value`` if it is a finite number > 0, else raise :class:`InputError`."""
+    if not (value > 0 and value < float("inf")):
+        raise InputError(field, value, "must be a finite number greater than zero")
+    return float(value)
+
+
+def check_range(field: str, value: float, low: float, high: float) -> float:
+    """Return ``value`` if ``low <= value <= high`` (and finite), else raise."""
+    if not (low <= value <= high):
+        raise InputError(field, value, f"must lie between {low:g} and {high:g}")
+    return float(value)
