@@ -104,7 +104,7 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         )
 
 
-def format_quantity(value: float, kind: str, digits: int = 6) -> str:
+def format_quantity(value: float, kind: str, digits: int = 12) -> str:
     """Write an SI float back as a string in the display unit of its kind."""
     si_unit, display, _ = KINDS[kind]
     factor = _SI_DISPLAY_FACTOR.get(kind)

@@ -1,0 +1,160 @@
+"""Loading and saving engine files (TOML or JSON) and the preset library.
+
+Files are written atomically (a temporary file in the same folder, then renamed), so a
+failed save never destroys what the user had.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import tempfile
+import tomllib
+from importlib import resources
+from pathlib import Path
+from typing import Any
+
+from .errors import InputError
+from .spec import EngineSpec, spec_from_dict
+
+MAX_FILE_BYTES = 2_000_000
+
+
+def list_presets() -> list[str]:
+    """Names of the built-in engines (files ``presets/<name>.toml``)."""
+    folder = resources.files("crankbalance") / "presets"
+    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+
+
+def preset_text(name: str) -> str:
+    """The TOML text of a built-in engine."""
+    if name not in list_presets():
+        raise InputError("preset", name, "unknown preset; `crankbalance presets` lists them: "
+                         + ", ".join(list_presets()))
+    return (resources.files("crankbalance") / "presets" / f"{name}.toml").read_text("utf-8")
+
+
+def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml") -> EngineSpec:
+    """Validate the text of an engine file (TOML, or JSON with the same structure)."""
+    if "\x00" in text:
+        raise InputError(source, "binary data", "must be a text file (TOML or JSON)")
+    if not text.strip():
+        raise InputError(source, "empty file", "must describe an engine (see docs/engine_file.md)")
+    if fmt == "json":
+        try:
+            data = json.loads(text)
+        except json.JSONDecodeError as error:
+            raise InputError(source, f"line {error.lineno}, column {error.colno}",
+                             f"is not valid JSON: {error.msg}") from None
+    else:
+        try:
+            data = tomllib.loads(text)
+        except tomllib.TOMLDecodeError as error:
+            raise InputError(source, "TOML syntax", f"is not valid TOML: {error}") from None
+    return spec_from_dict(data)
+
+
+def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
+    """Load an engine from a file path (``.toml`` or ``.json``) or a preset name."""
+    path = Path(source)
+    if not path.exists():
+        if str(source) in list_presets():
+            return parse_engine_text(preset_text(str(source)), f"preset {source}")
+        raise InputError("engine", str(source), "is neither an engine file nor a preset "
+                         "(`crankbalance presets` lists the presets)")
+    if path.is_dir():
+        raise InputError("engine", str(source), "is a folder; give an engine file (.toml or .json)")
+    try:
+        raw = path.read_bytes()
+    except OSError as error:
+        raise InputError("engine", str(source), f"cannot be read: {error.strerror}") from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise InputError("engine", str(source), f"is larger than {MAX_FILE_BYTES} bytes; "
+                         "an engine file is a few kB of TOML or JSON")
+    try:
+        text = raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(str(source), "binary data", "must be a UTF-8 text file (TOML or JSON)") from None
+    fmt = "json" if path.suffix.lower() == ".json" else "toml"
+    return parse_engine_text(text, str(source), fmt)
+
+
+def engine_to_toml(spec: EngineSpec) -> str:
+    """Write an engine spec as TOML text (quantities as unit strings)."""
+    return dumps_toml(spec.to_file_dict())
+
+
+def save_engine(spec: EngineSpec, path: str | os.PathLike[str]) -> None:
+    """Save an engine file atomically; the format follows the suffix (.json or .toml)."""
+    target = Path(path)
+    if target.suffix.lower() == ".json":
+        text = json.dumps(spec.to_file_dict(), indent=2) + "\n"
+    else:
+        text = engine_to_toml(spec)
+    write_atomic(target, text)
+
+
+def write_atomic(path: str | os.PathLike[str], data: str | bytes) -> None:
+    """Write a file so that it is either wholly the new content or untouched."""
+    target = Path(path)
+    folder = target.parent if str(target.parent) else Path(".")
+    mode = "wb" if isinstance(data, bytes) else "w"
+    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=folder)
+    try:
+        with os.fdopen(fd, mode) as handle:
+            handle.write(data)
+            handle.flush()
+            os.fsync(handle.fileno())
+        os.replace(tmp, target)
+    except BaseException:
+        if os.path.exists(tmp):
+            os.unlink(tmp)
+        raise
+
+
+# --------------------------------------------------------------------------- TOML writer
+def dumps_toml(data: dict[str, Any]) -> str:
+    """A small TOML writer for engine files (tables, arrays of tables, scalars, lists)."""
+    lines: list[str] = []
+    _write_table(lines, data, [])
+    return "\n".join(lines).strip() + "\n"
+
+
+def _write_table(lines: list[str], table: dict[str, Any], path: list[str]) -> None:
+    scalars = {k: v for k, v in table.items() if not _is_table(v) and not _is_table_list(v)}
+    for key, value in scalars.items():
+        lines.append(f"{_key(key)} = {_value(value)}")
+    for key, value in table.items():
+        if _is_table(value):
+            lines.append("")
+            lines.append(f"[{'.'.join(_key(p) for p in path + [key])}]")
+            _write_table(lines, value, path + [key])
+        elif _is_table_list(value):
+            for item in value:
+                lines.append("")
+                lines.append(f"[[{'.'.join(_key(p) for p in path + [key])}]]")
+                _write_table(lines, item, path + [key])
+
+
+def _is_table(value: Any) -> bool:
+    return isinstance(value, dict)
+
+
+def _is_table_list(value: Any) -> bool:
+    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
+
+
+def _key(key: str) -> str:
+    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
+
+
+def _value(value: Any) -> str:
+    if isinstance(value, bool):
+        return "true" if value else "false"
+    if isinstance(value, (int, float)):
+        return repr(value)
+    if isinstance(value, str):
+        return json.dumps(value, ensure_ascii=False)
+    if isinstance(value, list):
+        return "[" + ", ".join(_value(v) for v in value) + "]"
+    raise TypeError(f"cannot write {type(value).__name__} to TOML")

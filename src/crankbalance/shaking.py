@@ -1,0 +1,237 @@
+r"""Free forces and moments of any engine, by order, as rotating phasors and as curves.
+
+Vectors across the crank axis are complex numbers :math:`z + i\,x` (z: cylinder axis of
+an in-line engine, x: across), so a direction at angle :math:`\theta` from z toward x is
+:math:`e^{i\theta}` and the crank turns in the positive sense. The order-n part of a
+force is
+
+.. math:: F_n(\theta) = F_n^{+} e^{in\theta} + F_n^{-} e^{-in\theta}
+
+with a forward (co-rotating) and a backward (counter-rotating) phasor. Its largest
+magnitude over a revolution is :math:`|F_n^+| + |F_n^-|`. Moments are taken about the
+crankshaft mid-point; the *couple* :math:`C = \sum y\,F` carries the same phasors
+weighted by the axial position y, and the moment vector is :math:`M = iC`
+(:math:`M_x = y F_z`, :math:`M_z = -y F_x`).
+
+For cylinder c (throw angle :math:`\varphi_c`, bank angle :math:`\beta_c`, reciprocating
+mass :math:`m_c`) with the normalised inertia harmonics :math:`c_n = a_n - i b_n`
+(:mod:`crankbalance.kinematics`) and :math:`P_c = m_c r\omega^2`:
+
+.. math::
+    F_n^{+} = \sum_c \tfrac{P_c}{2}\,c_n\,e^{i[n(\varphi_c-\beta_c)+\beta_c]},\qquad
+    F_n^{-} = \sum_c \tfrac{P_c}{2}\,\bar c_n\,e^{i[-n(\varphi_c-\beta_c)+\beta_c]}
+
+The rotating masses give a forward first-order phasor only:
+:math:`F_{rot} = \sum_t m_t r\omega^2 e^{i\varphi_t}`.
+
+These are the forces the crank train exerts on the engine block (inertia forces).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .kinematics import KinematicsModel, harmonic_coefficients, piston_acceleration
+from .model import EngineModel
+from .results import ResultMixin
+
+
+@dataclass(frozen=True)
+class FreeForces(ResultMixin):
+    """Free forces and moments of one engine by order (phasors at crank angle 0).
+
+    Forces in N, couples in N·m, complex as :math:`z + i x` (see module docstring).
+    ``force_forward[k]`` belongs to ``orders[k]``.
+    """
+
+    orders: NDArray[np.int64]
+    force_forward: NDArray[np.complex128]
+    force_backward: NDArray[np.complex128]
+    couple_forward: NDArray[np.complex128]
+    couple_backward: NDArray[np.complex128]
+    rotating_force: complex
+    rotating_couple: complex
+
+    @property
+    def force_amplitude(self) -> NDArray[np.float64]:
+        """Largest magnitude of each order's force over a revolution [N]."""
+        return np.abs(self.force_forward) + np.abs(self.force_backward)
+
+    @property
+    def moment_amplitude(self) -> NDArray[np.float64]:
+        """Largest magnitude of each order's moment over a revolution [N·m]."""
+        return np.abs(self.couple_forward) + np.abs(self.couple_backward)
+
+    def order(self, n: int) -> int:
+        """Index of order ``n`` in the arrays."""
+        found = np.flatnonzero(self.orders == n)
+        if not found.size:
+            raise KeyError(f"order {n} not computed (orders {self.orders.tolist()})")
+        return int(found[0])
+
+
+def free_forces(model: EngineModel, orders: int = 8,
+                kinematics: KinematicsModel | None = None) -> FreeForces:
+    """Free forces and moments of an engine, orders 1..``orders``, and of its rotating masses.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    orders : int
+        Highest harmonic order.
+    kinematics : {"exact", "series", "first-order"}, optional
+        Overrides ``model.kinematics``.
+
+    Returns
+    -------
+    FreeForces
+    """
+    mode = kinematics or model.kinematics
+    coeff = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius,
+                                  mode)  # type: ignore[arg-type]
+    fwd, bwd, cfwd, cbwd = reciprocating_phasors(
+        coeff, model.reciprocating_mass, model.cylinder_angle, model.cylinder_bank,
+        model.cylinder_position, model.crank_radius, model.speed)
+    rot = model.throw_rotating_mass * model.crank_radius * model.speed**2 * np.exp(
+        1j * model.throw_angle)
+    return FreeForces(
+        orders=np.arange(1, orders + 1),
+        force_forward=fwd, force_backward=bwd, couple_forward=cfwd, couple_backward=cbwd,
+        rotating_force=complex(rot.sum()),
+        rotating_couple=complex((rot * model.throw_position).sum()),
+    )
+
+
+def reciprocating_phasors(coefficients: ArrayLike, mass: ArrayLike, throw_angle: ArrayLike,
+                          bank: ArrayLike, position: ArrayLike, crank_radius: ArrayLike,
+                          speed: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    r"""Forward and backward phasors of force and couple, by order, for many engines at once.
+
+    Parameters
+    ----------
+    coefficients : array_like of complex, shape (..., K)
+        Harmonic coefficients :math:`c_n` of orders 1..K.
+    mass, throw_angle, bank, position : array_like, shape (..., C)
+        Per cylinder: reciprocating mass [kg], throw angle [rad], bank angle [rad],
+        axial position [m]. Pad absent cylinders of smaller engines with zero mass.
+    crank_radius, speed : array_like, shape (...)
+        [m], [rad/s].
+
+    Returns
+    -------
+    force_forward, force_backward, couple_forward, couple_backward : ndarray, shape (..., K)
+    """
+    c = np.asarray(coefficients)
+    k = c.shape[-1]
+    n = np.arange(1, k + 1, dtype=float)[:, None]  # (K, 1)
+    phi = np.asarray(throw_angle, dtype=float)[..., None, :]
+    beta = np.asarray(bank, dtype=float)[..., None, :]
+    y = np.asarray(position, dtype=float)[..., None, :]
+    p = (np.asarray(mass, dtype=float) * (np.asarray(crank_radius, dtype=float)
+                                          * np.asarray(speed, dtype=float) ** 2)[..., None])
+    half = 0.5 * p[..., None, :]
+    turn = n * (phi - beta)
+    e_fwd = half * np.exp(1j * (turn + beta))
+    e_bwd = half * np.exp(1j * (beta - turn))
+    c_fwd = c[..., :, None]
+    c_bwd = np.conj(c_fwd)
+    fwd = (c_fwd * e_fwd).sum(axis=-1)
+    bwd = (c_bwd * e_bwd).sum(axis=-1)
+    cfwd = (c_fwd * e_fwd * y).sum(axis=-1)
+    cbwd = (c_bwd * e_bwd * y).sum(axis=-1)
+    return fwd, bwd, cfwd, cbwd
+
+
+def batch_amplitudes(crank_radius: ArrayLike, rod_length: ArrayLike, speed: ArrayLike,
+                     mass: ArrayLike, throw_angle: ArrayLike, bank: ArrayLike,
+                     position: ArrayLike, orders: int = 8, offset: ArrayLike = 0.0,
+                     kinematics: KinematicsModel = "exact") -> tuple[NDArray, NDArray]:
+    """Force and moment amplitudes of many engines at once.
+
+    Engine parameters have shape (E,), per-cylinder arrays (E, C) (pad smaller engines
+    with zero mass). Returns force amplitudes [N] and moment amplitudes [N·m], each (E, K).
+    """
+    r = np.asarray(crank_radius, dtype=float)
+    coeff = harmonic_coefficients(r / np.asarray(rod_length, dtype=float), orders,
+                                  np.asarray(offset, dtype=float) / r, kinematics)
+    fwd, bwd, cfwd, cbwd = reciprocating_phasors(coeff, mass, throw_angle, bank, position,
+                                                 r, speed)
+    return np.abs(fwd) + np.abs(bwd), np.abs(cfwd) + np.abs(cbwd)
+
+
+# --------------------------------------------------------------------------- curves
+@dataclass(frozen=True)
+class Curves(ResultMixin):
+    """Forces [N] and moments [N·m] versus crank angle of the first throw [rad].
+
+    Arrays by order have shape (K, M); totals (M,). Components: ``fx``, ``fz`` and
+    ``mx``, ``mz`` (moment about the crankshaft mid-point).
+    """
+
+    angle: NDArray[np.float64]
+    orders: NDArray[np.int64]
+    fx: NDArray[np.float64]
+    fz: NDArray[np.float64]
+    mx: NDArray[np.float64]
+    mz: NDArray[np.float64]
+    total_fx: NDArray[np.float64]
+    total_fz: NDArray[np.float64]
+    total_mx: NDArray[np.float64]
+    total_mz: NDArray[np.float64]
+    rotating_fx: NDArray[np.float64]
+    rotating_fz: NDArray[np.float64]
+    rotating_mx: NDArray[np.float64]
+    rotating_mz: NDArray[np.float64]
+
+
+def phasor_curve(forward: ArrayLike, backward: ArrayLike, orders: ArrayLike,
+                 angle: ArrayLike) -> NDArray[np.complex128]:
+    r"""Evaluate :math:`F^+ e^{in\theta} + F^- e^{-in\theta}` for each order, shape (K, M)."""
+    n = np.asarray(orders, dtype=float)[:, None]
+    theta = np.asarray(angle, dtype=float)[None, :]
+    turn = np.exp(1j * n * theta)
+    return (np.asarray(forward)[:, None] * turn + np.asarray(backward)[:, None] * np.conj(turn))
+
+
+def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = None) -> Curves:
+    """Curves of every order from the phasors, and the exact total from the time domain.
+
+    The total of the reciprocating forces is computed directly from the exact slider-crank
+    motion when ``model.kinematics == "exact"`` (not as a sum of orders); for the series
+    and first-order models it is the sum of the computed orders.
+    """
+    theta = np.linspace(0, 2 * np.pi, 720, endpoint=False) if angle is None else np.asarray(
+        angle, dtype=float)
+    f = phasor_curve(forces.force_forward, forces.force_backward, forces.orders, theta)
+    m = 1j * phasor_curve(forces.couple_forward, forces.couple_backward, forces.orders, theta)
+    if model.kinematics == "exact":
+        total_f, total_c = exact_time_domain(model, theta)
+        total_m = 1j * total_c
+    else:
+        total_f, total_m = f.sum(axis=0), m.sum(axis=0)
+    rot = phasor_curve([forces.rotating_force], [0.0], [1], theta)[0]
+    rot_m = 1j * phasor_curve([forces.rotating_couple], [0.0], [1], theta)[0]
+    return Curves(
+        angle=theta, orders=forces.orders,
+        fx=f.imag, fz=f.real, mx=m.imag, mz=m.real,
+        total_fx=total_f.imag, total_fz=total_f.real, total_mx=total_m.imag, total_mz=total_m.real,
+        rotating_fx=rot.imag, rotating_fz=rot.real, rotating_mx=rot_m.imag, rotating_mz=rot_m.real,
+    )
+
+
+def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, NDArray]:
+    """Reciprocating inertia force and couple versus crank angle, straight from the exact
+    slider-crank acceleration of every cylinder (no harmonic analysis).
+
+    Returns complex force :math:`F_z + iF_x` [N] and couple :math:`\\sum y F` [N·m], shape (M,).
+    """
+    theta = np.asarray(angle, dtype=float)[:, None]
+    psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]
+    acc = piston_acceleration(psi, model.crank_radius, model.rod_length, model.offset,
+                              model.speed)
+    force = -model.reciprocating_mass[None, :] * acc * np.exp(1j * model.cylinder_bank)[None, :]
+    return force.sum(axis=1), (force * model.cylinder_position[None, :]).sum(axis=1)

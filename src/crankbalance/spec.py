@@ -1,0 +1,449 @@
+"""The engine description: pydantic models of the engine file (TOML/JSON), validated.
+
+Quantities are strings with units (``"40 mm"``, ``"2000 rpm"``); they are parsed to SI
+floats on validation and written back with a display unit by ``model_dump()``. Unknown
+keys are errors. One model serves the engine file, the CLI and the web form.
+
+See ``docs/engine_file.md`` for the format and the numbering conventions.
+"""
+
+from __future__ import annotations
+
+import math
+from functools import partial
+from typing import Annotated, Any, Literal
+
+from pydantic import (
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    PlainSerializer,
+    ValidationError,
+    model_validator,
+)
+
+from .errors import InputError
+from .units import format_quantity, parse_quantity
+
+Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
+LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
+Kinematics = Literal["exact", "series", "first-order"]
+
+
+def _quantity(kind: str) -> Any:
+    def parse(value: Any, info: Any = None) -> float:
+        if isinstance(value, float) and info is not None and info.context == "si":
+            return value
+        return parse_quantity(value, kind, "")
+
+    return Annotated[
+        float,
+        BeforeValidator(parse),
+        PlainSerializer(partial(format_quantity, kind=kind), return_type=str, when_used="json"),
+    ]
+
+
+Length = _quantity("length")
+Mass = _quantity("mass")
+Angle = _quantity("angle")
+Speed = _quantity("speed")
+Inertia = _quantity("inertia")
+
+
+def _finite(value: Any) -> Any:
+    if isinstance(value, float) and not math.isfinite(value):
+        raise ValueError("must be a finite number")
+    return value
+
+
+Fraction = Annotated[float, BeforeValidator(_finite)]
+
+
+class _Bad(ValueError):
+    """A validation failure of one named field inside a model validator."""
+
+    def __init__(self, field: str, allowed: str) -> None:
+        super().__init__(allowed)
+        self.field = field
+        self.allowed = allowed
+
+
+class _Strict(BaseModel):
+    model_config = ConfigDict(extra="forbid", frozen=True, strict=False)
+
+
+# --------------------------------------------------------------------------- crank train
+class Throw(_Strict):
+    """One crank throw of a custom layout."""
+
+    position: Length = Field(description="axial position of the throw mid-plane from the crank mid-point")
+    angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
+    banks: list[Angle] = Field(min_length=1, description="bank angle of each cylinder on this pin")
+
+
+class CrankTrain(_Strict):
+    """Layout and geometry of the crank train."""
+
+    layout: Layout
+    cylinders: int | None = Field(default=None, ge=1, le=64)
+    firing_order: list[int] | None = None
+    strokes: Literal[2, 4] = 4
+    crank_radius: Length
+    rod_length: Length
+    crank_pitch: Length | None = None
+    bank_angle: Angle | None = None
+    pin_offset: Length = 0.0
+    crank_offset: Length = 0.0
+    throw_angles: list[Angle] | None = None
+    throw: list[Throw] | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> CrankTrain:
+        r, l = self.crank_radius, self.rod_length
+        if r <= 0:
+            raise _Bad("crank_radius", "must be greater than zero")
+        if l <= r + abs(self.pin_offset + self.crank_offset):
+            raise _Bad(
+                "rod_length", "must exceed crank_radius plus the total offset "
+                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)"
+            )
+        if self.layout == "custom":
+            if not self.throw:
+                raise _Bad("throw", "layout 'custom' needs its throws as [[crank_train.throw]] tables")
+            for key in ("throw_angles", "bank_angle"):
+                if getattr(self, key) is not None:
+                    raise _Bad(key, "is not used with layout 'custom' (give it per throw)")
+            count = sum(len(t.banks) for t in self.throw)
+            if self.cylinders is not None and self.cylinders != count:
+                raise _Bad("cylinders", f"the throws carry {count} cylinders")
+        else:
+            if self.throw is not None:
+                raise _Bad("throw", "[[crank_train.throw]] tables need layout = 'custom'")
+            if self.cylinders is None:
+                raise _Bad("cylinders", f"is required for layout '{self.layout}'")
+            n = self.cylinders
+            if self.layout in ("vee", "boxer") and n % 2:
+                raise _Bad("cylinders", f"a {self.layout} engine needs an even number of cylinders")
+            if self.layout == "w" and n % 3:
+                raise _Bad("cylinders", "a W engine (three banks) needs a multiple of 3 cylinders")
+            if self.layout == "radial" and n < 3:
+                raise _Bad("cylinders", "a radial engine needs at least 3 cylinders")
+            if self.layout in ("vee", "w"):
+                if self.bank_angle is None:
+                    raise _Bad("bank_angle", f"is required for layout '{self.layout}'")
+                limit = 180.0 if self.layout == "vee" else 90.0
+                if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
+                    raise _Bad(
+                        "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
+                    )
+            elif self.bank_angle is not None:
+                raise _Bad("bank_angle", f"is not used with layout '{self.layout}'")
+            throws = throw_count(self.layout, n)
+            if throws > 1 and self.crank_pitch is None:
+                raise _Bad("crank_pitch", "is required for an engine with more than one throw")
+            if self.crank_pitch is not None and self.crank_pitch <= 0:
+                raise _Bad("crank_pitch", "must be greater than zero")
+            if self.throw_angles is not None and len(self.throw_angles) != throws:
+                raise _Bad(
+                    "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
+                )
+        n_cyl = self.cylinder_count
+        if self.firing_order is not None:
+            if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
+                raise _Bad(
+                    "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
+                )
+        return self
+
+    @property
+    def cylinder_count(self) -> int:
+        if self.layout == "custom":
+            return sum(len(t.banks) for t in self.throw or [])
+        assert self.cylinders is not None
+        return self.cylinders
+
+
+def throw_count(layout: str, cylinders: int) -> int:
+    """Number of crank throws of a standard layout."""
+    return {"inline": cylinders, "boxer": cylinders, "vee": cylinders // 2,
+            "w": cylinders // 3, "radial": 1}.get(layout, cylinders)
+
+
+# --------------------------------------------------------------------------- masses
+_CYLINDER_FIELDS = ("piston", "wrist_pin", "conrod", "conrod_rotating_fraction",
+                    "conrod_cg_from_big_end", "conrod_inertia", "reciprocating")
+_THROW_FIELDS = ("crankpin", "crank_web", "crank_web_cg_radius", "rotating")
+
+
+class _MassFields(_Strict):
+    piston: Mass | None = Field(default=None, description="piston with rings and clips")
+    wrist_pin: Mass | None = None
+    conrod: Mass | None = None
+    conrod_rotating_fraction: Fraction | None = Field(default=None, ge=0.0, le=1.0)
+    conrod_cg_from_big_end: Length | None = None
+    conrod_inertia: Inertia | None = Field(default=None, description="conrod inertia about its CG")
+    crankpin: Mass | None = None
+    crank_web: Mass | None = Field(default=None, description="each of the two webs of a throw")
+    crank_web_cg_radius: Length | None = None
+    reciprocating: Mass | None = Field(default=None, description="total per cylinder")
+    rotating: Mass | None = Field(default=None, description="total per throw, big ends included")
+
+    @model_validator(mode="after")
+    def _check_values(self) -> _MassFields:
+        for name in ("piston", "wrist_pin", "conrod", "crankpin", "crank_web", "reciprocating",
+                     "rotating", "conrod_inertia"):
+            value = getattr(self, name)
+            if value is not None and value < 0:
+                raise _Bad(name, "must not be negative")
+        if self.conrod is not None and self.conrod <= 0:
+            raise _Bad("conrod", "must be greater than zero")
+        if self.conrod_rotating_fraction is not None and self.conrod_cg_from_big_end is not None:
+            raise _Bad("conrod_cg_from_big_end", "give conrod_rotating_fraction or conrod_cg_from_big_end, not both")
+        if self.conrod_cg_from_big_end is not None and self.conrod_cg_from_big_end < 0:
+            raise _Bad("conrod_cg_from_big_end", "must not be negative")
+        if self.crank_web_cg_radius is not None and self.crank_web_cg_radius < 0:
+            raise _Bad("crank_web_cg_radius", "must not be negative")
+        return self
+
+
+class MassOverride(_MassFields):
+    """Masses that differ for some cylinders (per-cylinder fields) or throws (per-throw fields)."""
+
+    cylinders: list[int] | None = None
+    throws: list[int] | None = None
+
+    @model_validator(mode="after")
+    def _check_target(self) -> MassOverride:
+        given = {k for k in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(self, k) is not None}
+        if self.cylinders is None and self.throws is None:
+            raise _Bad("cylinders", "an override needs `cylinders = [...]` or `throws = [...]`")
+        if self.cylinders is not None and self.throws is not None:
+            raise _Bad("throws", "an override takes either `cylinders` or `throws`, not both")
+        if self.cylinders is not None and given & set(_THROW_FIELDS):
+            bad = sorted(given & set(_THROW_FIELDS))
+            raise _Bad(bad[0], "is a per-throw mass: override it with `throws = [...]`")
+        if self.throws is not None and given & set(_CYLINDER_FIELDS):
+            bad = sorted(given & set(_CYLINDER_FIELDS))
+            raise _Bad(bad[0], "is a per-cylinder mass: override it with `cylinders = [...]`")
+        if not given:
+            raise _Bad("cylinders", "an override must change at least one mass")
+        return self
+
+
+class Masses(_MassFields):
+    """Masses per cylinder (reciprocating side) and per throw (rotating side).
+
+    Either parts (piston, wrist_pin, conrod with its split; crankpin, crank_web with its
+    CG radius) or totals (``reciprocating`` per cylinder, ``rotating`` per throw).
+    """
+
+    override: list[MassOverride] = Field(default_factory=list)
+
+    @model_validator(mode="after")
+    def _check_complete(self) -> Masses:
+        parts_rec = ("piston", "wrist_pin", "conrod")
+        if self.reciprocating is None:
+            missing = [k for k in parts_rec if getattr(self, k) is None]
+            if missing:
+                raise _Bad(
+                    missing[0], "is required: give the parts (piston, wrist_pin, conrod) "
+                    "or the total `reciprocating`"
+                )
+        elif any(getattr(self, k) is not None for k in ("piston", "wrist_pin")):
+            raise _Bad("reciprocating", "give either `reciprocating` or the parts piston/wrist_pin, not both")
+        if self.conrod is not None and (
+            self.conrod_rotating_fraction is None and self.conrod_cg_from_big_end is None
+        ):
+            raise _Bad(
+                "conrod", "needs its split: conrod_rotating_fraction or conrod_cg_from_big_end"
+            )
+        if self.rotating is None:
+            missing = [k for k in ("crankpin",) if getattr(self, k) is None]
+            if self.crank_web is not None and self.crank_web_cg_radius is None:
+                missing.append("crank_web_cg_radius")
+            if missing:
+                raise _Bad(
+                    missing[0], "is required: give the parts (crankpin, crank_web, "
+                    "crank_web_cg_radius) or the total `rotating`"
+                )
+            if self.conrod is None:
+                raise _Bad("conrod", "is required with the rotating parts (its big end turns with the pin)")
+        elif any(getattr(self, k) is not None for k in ("crankpin", "crank_web")):
+            raise _Bad("rotating", "give either `rotating` or the parts crankpin/crank_web, not both")
+        return self
+
+
+# --------------------------------------------------------------------------- balancing options
+class Counterweights(_Strict):
+    """Crankshaft counterweights (2021 paper, section 3.1)."""
+
+    webs: list[Literal[0, 1]] | None = Field(
+        default=None, description="two webs per throw, 1 = carries a counterweight (default all)"
+    )
+    cg_radius: Length
+    angle: Angle | Literal["optimal"] = 0.0
+    balance_factor: Fraction = Field(default=0.0, ge=0.0, le=2.0)
+    scope: Literal["auto", "whole", "halves"] = "auto"
+
+    @model_validator(mode="after")
+    def _check(self) -> Counterweights:
+        if self.cg_radius <= 0:
+            raise _Bad("cg_radius", "must be greater than zero")
+        if self.webs is not None and not any(self.webs):
+            raise _Bad("webs", "has no counterweight (all zeros)")
+        return self
+
+
+class ShaftSet(_Strict):
+    """A set of balance shafts for one order."""
+
+    arrangement: Literal["pair", "counter-rotating"] = "pair"
+    cg_radius: Length
+    length: Length
+
+    @model_validator(mode="after")
+    def _check(self) -> ShaftSet:
+        if self.cg_radius <= 0:
+            raise _Bad("cg_radius", "must be greater than zero")
+        if self.length <= 0:
+            raise _Bad("length", "must be greater than zero")
+        return self
+
+
+class BalanceShafts(_Strict):
+    primary: ShaftSet | None = None
+    secondary: ShaftSet | None = None
+
+
+class EngineSpec(_Strict):
+    """A whole engine: the contents of one engine file."""
+
+    name: str = "engine"
+    description: str = ""
+    speed: Speed
+    kinematics: Kinematics = "exact"
+    crank_train: CrankTrain
+    masses: Masses
+    counterweights: Counterweights | None = None
+    balance_shafts: BalanceShafts | None = None
+
+    @model_validator(mode="after")
+    def _check(self) -> EngineSpec:
+        if self.speed <= 0:
+            raise _Bad("speed", "must be greater than zero")
+        ct = self.crank_train
+        n_cyl = ct.cylinder_count
+        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl)
+        for k, item in enumerate(self.masses.override):
+            for number in item.cylinders or []:
+                if not 1 <= number <= n_cyl:
+                    raise _Bad(f"masses.override[{k}].cylinders",
+                               f"cylinder {number} does not exist (1..{n_cyl})")
+            for number in item.throws or []:
+                if not 1 <= number <= n_throw:
+                    raise _Bad(f"masses.override[{k}].throws",
+                               f"throw {number} does not exist (1..{n_throw})")
+        if self.counterweights is not None and self.counterweights.webs is not None:
+            if len(self.counterweights.webs) != 2 * n_throw:
+                raise _Bad(
+                    "counterweights.webs", f"needs one entry per web: {2 * n_throw} for {n_throw} throws"
+                )
+        return self
+
+    def to_file_dict(self) -> dict[str, Any]:
+        """The spec as an engine-file dictionary (quantities as unit strings)."""
+        return self.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+
+
+# --------------------------------------------------------------------------- errors
+def spec_from_dict(data: Any) -> EngineSpec:
+    """Validate an engine-file dictionary; raise :class:`InputError` on the first problem."""
+    if not isinstance(data, dict):
+        raise InputError("engine file", type(data).__name__, "must be a table of keys and values")
+    try:
+        return EngineSpec.model_validate(data)
+    except ValidationError as error:
+        raise _input_error(error, data) from None
+
+
+def _input_error(error: ValidationError, data: Any) -> InputError:
+    first = error.errors(include_url=False)[0]
+    loc = list(first["loc"])
+    kind = first["type"]
+    value = first.get("input")
+    ctx = first.get("ctx") or {}
+    inner = ctx.get("error")
+    if isinstance(inner, _Bad):
+        path = inner.field.split(".") if "." in inner.field and not loc else loc + [inner.field]
+        return InputError(_dotted(path), _lookup(data, path), inner.allowed)
+    field = _dotted(loc) or "engine file"
+    if kind == "extra_forbidden":
+        parent = _model_at([str(p) for p in loc[:-1]])
+        allowed = ", ".join(parent.model_fields) if parent is not None else "see docs/engine_file.md"
+        return InputError(field, value, f"unknown key; allowed keys here: {allowed}")
+    if kind == "missing":
+        return InputError(field, None, "is required")
+    if isinstance(inner, InputError):
+        return InputError(field, inner.value, inner.allowed)
+    if kind in ("literal_error", "enum"):
+        return InputError(field, value, f"must be one of {ctx.get('expected', '')}")
+    message = str(first.get("msg", ""))
+    if message.startswith("Value error, "):
+        message = message[len("Value error, "):]
+    return InputError(field, _short_value(value), message)
+
+
+def _lookup(data: Any, path: list[Any]) -> Any:
+    for part in path:
+        if isinstance(data, dict) and part in data:
+            data = data[part]
+        elif isinstance(data, list) and isinstance(part, int) and part < len(data):
+            data = data[part]
+        else:
+            return None
+    return _short_value(data)
+
+
+def _dotted(loc: Any) -> str:
+    out = ""
+    for part in loc:
+        if isinstance(part, int):
+            out += f"[{part}]"
+        elif isinstance(part, str) and part.startswith(("function-", "union[", "literal[")):
+            continue
+        else:
+            out += ("." if out else "") + str(part)
+    return out
+
+
+def _short_value(value: Any) -> Any:
+    if isinstance(value, dict):
+        return "{...}"
+    return value
+
+
+def _model_at(loc: list[str]) -> type[BaseModel] | None:
+    model: Any = EngineSpec
+    for part in loc:
+        if part.isdigit():
+            continue
+        field = model.model_fields.get(part) if hasattr(model, "model_fields") else None
+        if field is None:
+            return None
+        model = _inner_model(field.annotation)
+        if model is None:
+            return None
+    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
+
+
+def _inner_model(annotation: Any) -> Any:
+    import typing
+
+    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
+        return annotation
+    for arg in typing.get_args(annotation):
+        found = _inner_model(arg)
+        if found is not None:
+            return found
+    return None
