@@ -22,7 +22,10 @@ class InputError(ValueError):
         self.field = field
         self.value = value
         self.allowed = allowed
-        super().__init__(f"{field} = {_show(value)}: {allowed}")
+        if value is None:
+            super().__init__(f"{field}: {allowed}")
+        else:
+            super().__init__(f"{field} = {_show(value)}: {allowed}")
 
 
 def _show(value: Any) -> str:

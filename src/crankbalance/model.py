@@ -28,7 +28,7 @@ from .spec import EngineSpec, MassOverride, throw_count
 
 @dataclass(frozen=True)
 class ConrodSplit(ResultMixin):
-    """Two-mass equivalent of one conrod (mass and centre of gravity kept).
+    r"""Two-mass equivalent of one conrod (mass and centre of gravity kept).
 
     ``inertia_two_mass`` is the inertia about the CG the two point masses have,
     :math:`m\,d\,(l-d)`; ``inertia_error`` is that minus the real inertia, when the real

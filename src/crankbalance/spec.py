@@ -383,7 +383,7 @@ def _input_error(error: ValidationError, data: Any) -> InputError:
         allowed = ", ".join(parent.model_fields) if parent is not None else "see docs/engine_file.md"
         return InputError(field, value, f"unknown key; allowed keys here: {allowed}")
     if kind == "missing":
-        return InputError(field, None, "is required")
+        return InputError(field, None, "is missing; it is required (see docs/engine_file.md)")
     if isinstance(inner, InputError):
         return InputError(field, inner.value, inner.allowed)
     if kind in ("literal_error", "enum"):

@@ -1,0 +1,163 @@
+"""Malformed engine files and CLI calls: one clear message naming the field, exit 2,
+no traceback (issue 2)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Callable
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+from crankbalance.io import dumps_toml
+
+from .conftest import paper_inline3_dict, run_cli
+
+
+def edit(change: Callable[[dict[str, Any]], None]) -> dict[str, Any]:
+    data = paper_inline3_dict()
+    change(data)
+    return data
+
+
+def ct(**kw: Any) -> Callable[[dict[str, Any]], None]:
+    return lambda d: d["crank_train"].update(kw)
+
+
+def ms(**kw: Any) -> Callable[[dict[str, Any]], None]:
+    return lambda d: d["masses"].update(kw)
+
+
+def drop(*path: str) -> Callable[[dict[str, Any]], None]:
+    def change(d: dict[str, Any]) -> None:
+        for p in path[:-1]:
+            d = d[p]
+        del d[path[-1]]
+    return change
+
+
+CASES: list[tuple[str, Callable[[dict[str, Any]], None], str]] = [
+    ("negative mass", ms(piston="-500 g"), "masses.piston"),
+    ("zero conrod", ms(conrod="0 g"), "masses.conrod"),
+    ("rod shorter than crank", ct(rod_length="30 mm"), "crank_train.rod_length"),
+    ("firing order repeats", ct(firing_order=[1, 1, 2]), "crank_train.firing_order"),
+    ("firing order too short", ct(firing_order=[1, 2]), "crank_train.firing_order"),
+    ("firing order not integers", ct(firing_order=["a", 2, 3]), "crank_train.firing_order"),
+    ("zero cylinders", ct(cylinders=0), "crank_train.cylinders"),
+    ("odd vee", ct(layout="vee", bank_angle="90 deg"), "crank_train.cylinders"),
+    ("unknown layout", ct(layout="star"), "crank_train.layout"),
+    ("bank angle out of range", lambda d: d["crank_train"].update(
+        layout="vee", cylinders=4, bank_angle="200 deg", firing_order=None), "crank_train.bank_angle"),
+    ("bank angle missing", lambda d: (d["crank_train"].update(layout="vee", cylinders=4),
+                                      d["crank_train"].pop("firing_order")), "crank_train.bank_angle"),
+    ("bank angle on inline", ct(bank_angle="60 deg"), "crank_train.bank_angle"),
+    ("missing unit (number)", ct(crank_radius=40), "crank_train.crank_radius"),
+    ("missing unit (string)", ct(crank_radius="40"), "crank_train.crank_radius"),
+    ("mass for a length", ct(crank_radius="40 kg"), "crank_train.crank_radius"),
+    ("length for a mass", ms(piston="500 mm"), "masses.piston"),
+    ("NaN quantity", ct(crank_radius="nan mm"), "crank_train.crank_radius"),
+    ("NaN fraction", lambda d: (d["masses"].pop("conrod_cg_from_big_end"),
+                                d["masses"].update(conrod_rotating_fraction=float("nan"))),
+     "masses.conrod_rotating_fraction"),
+    ("fraction above one", lambda d: (d["masses"].pop("conrod_cg_from_big_end"),
+                                      d["masses"].update(conrod_rotating_fraction=1.5)),
+     "masses.conrod_rotating_fraction"),
+    ("unknown top-level key", lambda d: d.update(colour="red"), "colour"),
+    ("misspelt nested key", ms(pistn="500 g"), "masses.pistn"),
+    ("missing speed", drop("speed"), "speed"),
+    ("speed in metres", lambda d: d.update(speed="2000 m"), "speed"),
+    ("negative speed", lambda d: d.update(speed="-100 rpm"), "speed"),
+    ("unknown kinematics", lambda d: d.update(kinematics="approx"), "kinematics"),
+    ("three strokes", ct(strokes=3), "crank_train.strokes"),
+    ("throw angles count", ct(throw_angles=["0 deg"]), "crank_train.throw_angles"),
+    ("web pattern length", lambda d: d["counterweights"].update(webs=[1, 1]), "counterweights.webs"),
+    ("conrod without split", drop("masses", "conrod_cg_from_big_end"), "masses.conrod"),
+    ("conrod CG beyond rod", ms(conrod_cg_from_big_end="200 mm"), "masses.conrod_cg_from_big_end"),
+    ("override of a missing cylinder", ms(override=[{"cylinders": [7], "piston": "400 g"}]),
+     "masses.override[0].cylinders"),
+    ("custom without throws", lambda d: d["crank_train"].update(layout="custom"),
+     "crank_train.throw"),
+    ("radial with two cylinders", lambda d: d["crank_train"].update(
+        layout="radial", cylinders=2, firing_order=None), "crank_train.cylinders"),
+    ("missing crank pitch", drop("crank_train", "crank_pitch"), "crank_train.crank_pitch"),
+    ("missing piston", drop("masses", "piston"), "masses.piston"),
+    ("inconsistent vee firing order", lambda d: (d.pop("counterweights"), d["crank_train"].update(
+        layout="vee", cylinders=8, bank_angle="90 deg", firing_order=list(range(1, 9)))),
+     "crank_train.firing_order"),
+    ("counterweight radius zero", lambda d: d["counterweights"].update(cg_radius="0 mm"),
+     "counterweights.cg_radius"),
+    ("shaft length negative", lambda d: d["balance_shafts"]["primary"].update(length="-2 mm"),
+     "balance_shafts.primary.length"),
+    ("string for a number", ct(cylinders="three"), "crank_train.cylinders"),
+]
+
+
+def check_message(code: int, err: str, field: str) -> None:
+    assert code == 2, err
+    assert "Traceback" not in err
+    lines = [line for line in err.strip().splitlines() if line]
+    assert len(lines) == 1, f"one message, got: {err!r}"
+    assert lines[0].startswith("error: ")
+    assert field in lines[0], f"the message names {field}: {lines[0]!r}"
+
+
+@pytest.mark.parametrize("name,change,field", CASES, ids=[c[0] for c in CASES])
+def test_malformed_engine_file(name: str, change: Callable[[dict[str, Any]], None], field: str,
+                               tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    data = edit(change)
+    data = json.loads(json.dumps(data, allow_nan=True))  # drop None values below
+    for section in data.values():
+        if isinstance(section, dict):
+            for k in [k for k, v in section.items() if v is None]:
+                del section[k]
+    path = tmp_path / "engine.json"
+    path.write_text(json.dumps(data, allow_nan=True))
+    code, out, err = run_cli(["analyze", str(path)], capsys)
+    check_message(code, err, field)
+    assert out == ""
+
+
+RAW_FILES = [
+    ("empty file", b"", "engine.toml"),
+    ("only whitespace", b"  \n\n", "engine.toml"),
+    ("binary file", bytes(range(256)), "engine.toml"),
+    ("TOML syntax error", b"name = \"x\"\nspeed = 2000 rpm\n", "engine.toml"),
+    ("JSON syntax error", b"{\"speed\": }", "engine.json"),
+    ("JSON list", b"[1, 2, 3]", "engine.json"),
+]
+
+
+@pytest.mark.parametrize("name,raw,filename", RAW_FILES, ids=[c[0] for c in RAW_FILES])
+def test_unreadable_files(name: str, raw: bytes, filename: str, tmp_path: Path,
+                          capsys: pytest.CaptureFixture[str]) -> None:
+    path = tmp_path / filename
+    path.write_bytes(raw)
+    code, _out, err = run_cli(["analyze", str(path)], capsys)
+    check_message(code, err, str(path) if name != "JSON list" else "engine file")
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["analyze", "no-such-engine"], "engine"),
+    (["analyze", "inline4", "--orders", "0"], "--orders"),
+    (["analyze", "inline4", "--format", "xml"], "--format"),
+    (["analyze"], "ENGINE"),
+    (["frobnicate"], "frobnicate"),
+])
+def test_bad_cli_calls(args: list[str], needle: str, capsys: pytest.CaptureFixture[str]) -> None:
+    code, _out, err = run_cli(args, capsys)
+    assert code == 2
+    assert "Traceback" not in err
+    assert needle in err
+
+
+def test_folder_instead_of_file(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    code, _out, err = run_cli(["analyze", str(tmp_path)], capsys)
+    check_message(code, err, "engine")
+
+
+def test_toml_writer_roundtrip() -> None:
+    import tomllib
+
+    data = paper_inline3_dict()
+    assert tomllib.loads(dumps_toml(data)) == data
