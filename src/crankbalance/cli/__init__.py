@@ -21,6 +21,13 @@ COMMANDS: dict[str, tuple[str, str]] = {
     # name: ("module:attribute", one-line help)
     "analyze": ("crankbalance.cli.analyze:analyze", "Free forces and moments of an engine."),
     "presets": ("crankbalance.cli.analyze:presets", "List the built-in engine library."),
+    "shaft": ("crankbalance.cli.shaft:shaft", "Balance-shaft bearing and unbalance-mass layout."),
+    "balance-factor": ("crankbalance.cli.single:balance_factor",
+                       "Single-cylinder balance factor, bob-weight and force study."),
+    "rebalance": ("crankbalance.cli.single:rebalance_command",
+                  "Rebalance a single-cylinder crank after new parts."),
+    "tolerance": ("crankbalance.cli.single:tolerance_command",
+                  "ISO 21940-11 permissible residual unbalance and verdict."),
 }
 
 

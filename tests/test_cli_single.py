@@ -1,0 +1,115 @@
+"""CLI tests of balance-factor, rebalance and tolerance (in-process)."""
+
+from __future__ import annotations
+
+import json
+from pathlib import Path
+
+import pytest
+
+from crankbalance.cli import main
+
+EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "crf250r_rebalance.toml"
+CRF = ["--reciprocating-mass", "282.12 g", "--crank-radius", "26.9 mm"]
+
+
+def run(capsys, args: list[str]) -> tuple[int, str, str]:
+    try:
+        main(args)
+        code = 0
+    except SystemExit as exit_:
+        code = int(exit_.code or 0)
+    out, err = capsys.readouterr()
+    return code, out, err
+
+
+def test_balance_factor_json(capsys) -> None:
+    code, out, _ = run(capsys, ["balance-factor", *CRF, "--rotating-mass", "282.69 g",
+                                "--cw-mass", "2020.40 g", "--cw-radius", "6.16 mm",
+                                "--speed", "15200 rpm", "--kinematics", "first-order",
+                                "--target", "28%", "--format", "json"])
+    assert code == 0
+    data = json.loads(out)
+    assert data["schema"] == "crankbalance.balance_factor/1"
+    assert data["mass_properties"]["balance_factor"] == pytest.approx(0.6379, abs=1e-4)
+    assert data["bob_weight"]["mass_kg"] == pytest.approx(0.28269 + 0.28 * 0.28212)
+    study = data["study"]
+    p = study["primary_force_N"]
+    fb = data["balance_factor"]
+    assert study["peak_resultant_N"] == pytest.approx(max(fb, 1 - fb) * p, rel=1e-9)
+    assert study["optimum_balance_factor"] == pytest.approx(0.5, abs=1e-6)
+
+
+def test_balance_factor_table(capsys) -> None:
+    code, out, _ = run(capsys, ["balance-factor", *CRF, "--speed", "9000 rpm",
+                                "--rod-length", "105 mm", "--balance-factor", "0.5"])
+    assert code == 0 and "peak resultant" in out and "exact" in out
+    assert "on top of 100 % of the rotating mass" in out
+
+
+@pytest.mark.parametrize("args, field", [
+    (["balance-factor", *CRF, "--balance-factor", "2.5"], "balance_factor"),
+    (["balance-factor", *CRF, "--balance-factor", "-10%"], "balance_factor"),
+    (["balance-factor", "--reciprocating-mass", "-282 g", "--crank-radius", "26.9 mm",
+      "--speed", "1000 rpm"], "reciprocating_mass"),
+    (["balance-factor", "--reciprocating-mass", "282 g", "--crank-radius", "0 mm",
+      "--speed", "1000 rpm"], "crank_radius"),
+    (["balance-factor", *CRF, "--cw-mass", "2 kg"], "cw_mass"),
+    (["tolerance", "--grade", "G7", "--rotor-mass", "2.7 kg", "--speed", "15200 rpm"],
+     "grade"),
+    (["tolerance", "--grade", "G6.3", "--rotor-mass", "2.7", "--speed", "15200 rpm"],
+     "rotor_mass"),
+    (["rebalance", "--parts", str(EXAMPLE), "--target", "250%"], "target"),
+    (["rebalance", "--parts", str(EXAMPLE), "--new-rotating-mass", "-3 g"],
+     "new_rotating_mass"),
+    (["rebalance", "--parts", "no/such/file.toml"], "parts"),
+])
+def test_bad_input_exit_2(capsys, args: list[str], field: str) -> None:
+    code, _, err = run(capsys, args)
+    assert code == 2
+    assert err.startswith("error: ") and field in err
+    assert "Traceback" not in err
+
+
+def test_rebalance_table_and_override(capsys) -> None:
+    code, out, _ = run(capsys, ["rebalance", "--parts", str(EXAMPLE), "--target", "0.5",
+                                "--tolerance", "5 g*mm"])
+    assert code == 0
+    assert "target f_b = 0.5000" in out and "PASS" in out and "5 g*mm" in out
+
+
+def test_rebalance_options_only_holes(capsys) -> None:
+    code, out, _ = run(capsys, [
+        "rebalance", "--crank-radius", "26.9 mm", "--cw-mass", "2020.40 g",
+        "--cw-radius", "6.16 mm", "--old-rotating-mass", "282.69 g",
+        "--old-reciprocating-mass", "282.12 g", "--new-rotating-mass", "248.69 g",
+        "--new-reciprocating-mass", "261.50 g", "--target", "factory", "--method", "holes",
+        "--hole-diameter", "8 mm", "--holes", "2", "--correction-radius", "38 mm",
+        "--hole-direction", "axial", "--grade", "G6.3", "--rotor-mass", "2.7 kg",
+        "--speed", "15200 rpm", "--format", "json"])
+    assert code == 0
+    case = json.loads(out)["cases"][0]
+    assert case["passed"] and case["correction"]["kind"] == "holes"
+
+
+def test_rebalance_unknown_key(tmp_path, capsys) -> None:
+    text = EXAMPLE.read_text().replace("[counterweight]", "colour = 'red'\n[counterweight]")
+    path = tmp_path / "bad.toml"
+    path.write_text(text)
+    code, _, err = run(capsys, ["rebalance", "--parts", str(path)])
+    assert code == 2 and "colour" in err
+
+
+def test_tolerance_json_and_list(capsys) -> None:
+    code, out, _ = run(capsys, ["tolerance", "--grade", "G6.3", "--rotor-mass", "2.7 kg",
+                                "--speed", "15200 rpm", "--residual", "7.39 g*mm",
+                                "--bearing-a", "0 mm", "--bearing-b", "120 mm",
+                                "--center-of-mass", "60 mm", "--format", "json"])
+    assert code == 0
+    data = json.loads(out)
+    assert data["schema"] == "crankbalance.tolerance/1"
+    assert data["permissible_unbalance_gmm"] == pytest.approx(10.69, abs=0.01)
+    assert data["verdict"]["passed"] is True
+    assert data["planes"]["plane_1"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
+    code, out, _ = run(capsys, ["tolerance", "--list"])
+    assert code == 0 and "G 4000" in out and "G 0.4" in out
