@@ -1,0 +1,1439 @@
+r"""Balance-shaft module design: where to put the unbalance masses and the support bearings.
+
+A balance shaft is modelled as a straight beam of uniform circular (solid or hollow)
+section on two or more bearings, loaded by the centrifugal forces of its unbalance
+masses. The state variables of Kim (2018) follow from it for any layout:
+
+* bearing reactions (amplitude of the rotating load on each bearing) and the difference
+  between the most and least loaded bearing,
+* the deflection curve, its integral (the paper's *bending measure*) and its maximum,
+* the largest bending stress,
+* the fundamental bending frequency of the shaft carrying its unbalance masses.
+
+The statics are solved exactly (closed-form beam functions superposed, Euler-Bernoulli or
+Timoshenko, rigid or elastic bearings); the natural frequency comes from a small
+finite-element model (cubic Hermite / Friedman-Kosmatka Timoshenko elements). Both are
+batched over many layouts at once, so a whole placement study (hundreds of positions,
+dozens of objective weights) is one vectorised evaluation.
+
+Coordinates: ``x`` runs along the shaft from one end (0) to the other (``length``).
+Loads are phasors in the frame turning with the shaft: an unbalance ``U = m e`` [kg m]
+at phase ``phi`` gives the force ``U Omega^2 exp(i phi)``. Deflections, reactions and
+moments are phasors too; their magnitudes are the amplitudes seen over one revolution.
+
+References
+----------
+C.-J. Kim, "Location of unbalance mass and supporting bearing for different type of
+balance shaft module", Mech. Sci. 9 (2018) 259 (seed document 003), Eqs. 3-9, 17-25.
+J. M. Gere, S. P. Timoshenko, *Mechanics of Materials* (beam deflection tables).
+Z. Friedman, J. B. Kosmatka, "An improved two-node Timoshenko beam finite element",
+Computers & Structures 47 (1993) 473-481 (element matrices).
+G. R. Cowper, "The shear coefficient in Timoshenko's beam theory", J. Appl. Mech. 33 (1966) 335.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import InputError, check_positive
+from .results import ResultMixin
+
+BeamTheory = Literal["euler-bernoulli", "timoshenko"]
+BEAM_THEORIES: tuple[str, ...] = ("euler-bernoulli", "timoshenko")
+SecondaryMeasure = Literal["reaction-difference", "inverse-frequency"]
+SECONDARY_MEASURES: tuple[str, ...] = ("reaction-difference", "inverse-frequency")
+RotorType = Literal["I", "II", "III"]
+ROTOR_TYPES: tuple[str, ...] = ("I", "II", "III")
+HoldMode = Literal["couple", "unbalance"]
+HOLD_MODES: tuple[str, ...] = ("couple", "unbalance")
+
+#: Default number of beam elements of the frequency model (error < 0.01 % for a
+#: uniform shaft, see tests/test_balance_shaft.py).
+DEFAULT_ELEMENTS = 24
+#: Default number of points of the deflection curve (odd: Simpson's rule).
+DEFAULT_POINTS = 201
+
+
+# --------------------------------------------------------------------------------------
+# Section and material
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class ShaftSection(ResultMixin):
+    """Uniform circular shaft section and its material.
+
+    Parameters
+    ----------
+    outer_diameter : float
+        Outer diameter of the shaft [m].
+    inner_diameter : float
+        Bore diameter, 0 for a solid shaft [m].
+    youngs_modulus : float
+        Young's modulus E [Pa] (steel 210 GPa).
+    density : float
+        Density [kg/m^3] (steel 7850).
+    poisson_ratio : float
+        Poisson's ratio; sets G = E / (2 (1 + nu)) and Cowper's shear coefficient.
+    """
+
+    outer_diameter: float
+    inner_diameter: float = 0.0
+    youngs_modulus: float = 210e9
+    density: float = 7850.0
+    poisson_ratio: float = 0.3
+
+    def __post_init__(self) -> None:
+        check_positive("outer_diameter", self.outer_diameter)
+        if not (0.0 <= self.inner_diameter < self.outer_diameter):
+            raise InputError(
+                "inner_diameter",
+                self.inner_diameter,
+                f"must be >= 0 and smaller than outer_diameter ({self.outer_diameter:g} m)",
+            )
+        check_positive("youngs_modulus", self.youngs_modulus)
+        check_positive("density", self.density)
+        if not (-1.0 < self.poisson_ratio < 0.5):
+            raise InputError("poisson_ratio", self.poisson_ratio, "must lie between -1 and 0.5")
+
+    @property
+    def area(self) -> float:
+        """Cross-section area A [m^2]."""
+        return math.pi / 4 * (self.outer_diameter**2 - self.inner_diameter**2)
+
+    @property
+    def second_moment(self) -> float:
+        """Second moment of area I [m^4]."""
+        return math.pi / 64 * (self.outer_diameter**4 - self.inner_diameter**4)
+
+    @property
+    def shear_modulus(self) -> float:
+        """Shear modulus G = E / (2 (1 + nu)) [Pa]."""
+        return self.youngs_modulus / (2 * (1 + self.poisson_ratio))
+
+    @property
+    def shear_coefficient(self) -> float:
+        r"""Cowper's shear coefficient of a hollow circular section [-].
+
+        .. math:: \kappa = \frac{6 (1+\nu)(1+m^2)^2}{(7+6\nu)(1+m^2)^2 + (20+12\nu) m^2},
+                  \quad m = d_i / d_o
+        """
+        nu = self.poisson_ratio
+        m2 = (self.inner_diameter / self.outer_diameter) ** 2
+        return 6 * (1 + nu) * (1 + m2) ** 2 / ((7 + 6 * nu) * (1 + m2) ** 2 + (20 + 12 * nu) * m2)
+
+    @property
+    def bending_stiffness(self) -> float:
+        """E I [N m^2]."""
+        return self.youngs_modulus * self.second_moment
+
+    @property
+    def shear_stiffness(self) -> float:
+        """kappa G A [N]."""
+        return self.shear_coefficient * self.shear_modulus * self.area
+
+    @property
+    def mass_per_length(self) -> float:
+        """rho A [kg/m]."""
+        return self.density * self.area
+
+    @property
+    def section_modulus(self) -> float:
+        """Bending section modulus I / (d_o / 2) [m^3]."""
+        return self.second_moment / (self.outer_diameter / 2)
+
+
+# --------------------------------------------------------------------------------------
+# Statics: exact superposition of beam functions (batched)
+# --------------------------------------------------------------------------------------
+
+
+def _influence(distance: NDArray, bending_stiffness: float, shear_flexibility: float) -> NDArray:
+    r"""Deflection at distance ``d`` to the right of a unit upward point force.
+
+    .. math:: g(d) = \frac{\langle d\rangle^3}{6 EI} - \frac{\langle d\rangle}{\kappa G A}
+
+    (plus a rigid-body line fixed by the supports). ``<d>`` is ``max(d, 0)``.
+    """
+    d = np.maximum(distance, 0.0)
+    return d**3 / (6.0 * bending_stiffness) - d * shear_flexibility
+
+
+def beam_statics(
+    length: float,
+    bending_stiffness: float,
+    bearing_positions: ArrayLike,
+    force_positions: ArrayLike,
+    forces: ArrayLike,
+    x: ArrayLike,
+    *,
+    shear_stiffness: float | None = None,
+    bearing_stiffness: float | None = None,
+) -> tuple[NDArray, NDArray, NDArray]:
+    r"""Bearing reactions and deflection of a free beam on point supports (batched, exact).
+
+    The beam carries point forces ``F_j`` at ``x_j`` and reactions ``R_k`` at the bearings
+    ``x_k``. With all point loads ``P`` (forces and reactions) the deflection is
+
+    .. math:: w(x) = a + b x + \sum_P P \left(\frac{\langle x - x_P\rangle^3}{6 EI}
+              - \frac{\langle x - x_P\rangle}{\kappa G A}\right)
+
+    (the shear term only for Timoshenko, ``shear_stiffness`` given). The unknowns
+    ``R_k, a, b`` follow from force and moment equilibrium and ``w(x_k) = -R_k / k``
+    (``k`` infinite for rigid bearings), so any number >= 2 of bearings is handled.
+
+    Parameters
+    ----------
+    length : float
+        Shaft length [m] (only used for checks).
+    bending_stiffness : float
+        E I [N m^2].
+    bearing_positions : array_like, shape (..., n_bearings)
+        Bearing positions along the shaft [m].
+    force_positions : array_like, shape (..., n_forces)
+        Positions of the applied forces [m].
+    forces : array_like, shape (..., n_forces)
+        Force phasors [N] (complex allowed: the phase is the angle in the rotating frame).
+    x : array_like, shape (n_points,)
+        Where to evaluate the deflection [m].
+    shear_stiffness : float, optional
+        kappa G A [N]; None for Euler-Bernoulli.
+    bearing_stiffness : float, optional
+        Radial stiffness of each bearing [N/m]; None for rigid bearings.
+
+    Returns
+    -------
+    reactions : ndarray, shape (..., n_bearings)
+        Bearing reaction phasors [N] (force of the bearing on the shaft).
+    deflection : ndarray, shape (..., n_points)
+        Deflection phasors at ``x`` [m].
+    coefficients : ndarray, shape (..., 2)
+        The rigid-body line ``a, b`` [m, -].
+
+    References
+    ----------
+    Gere & Timoshenko, Mechanics of Materials (superposition, singularity functions);
+    003 Eqs. 6-9 are the two-bearing, one-load special case.
+    """
+    xb = np.asarray(bearing_positions, dtype=float)
+    xf = np.asarray(force_positions, dtype=float)
+    f = np.asarray(forces)
+    xs = np.asarray(x, dtype=float)
+    ei = float(bending_stiffness)
+    sf = 0.0 if shear_stiffness is None else 1.0 / float(shear_stiffness)
+    cb = 0.0 if bearing_stiffness is None else 1.0 / float(bearing_stiffness)
+    batch = np.broadcast_shapes(xb.shape[:-1], xf.shape[:-1], f.shape[:-1])
+    xb = np.broadcast_to(xb, batch + xb.shape[-1:])
+    xf = np.broadcast_to(xf, batch + xf.shape[-1:])
+    f = np.broadcast_to(f, batch + f.shape[-1:]).astype(complex)
+    nb = xb.shape[-1]
+    n = nb + 2
+    mat = np.zeros(batch + (n, n))
+    rhs = np.zeros(batch + (n,), dtype=complex)
+    mat[..., 0, :nb] = 1.0
+    rhs[..., 0] = -f.sum(axis=-1)
+    mat[..., 1, :nb] = xb
+    rhs[..., 1] = -(f * xf).sum(axis=-1)
+    g_bb = _influence(xb[..., :, None] - xb[..., None, :], ei, sf)  # (.., i, k)
+    mat[..., 2:, :nb] = g_bb + cb * np.eye(nb)
+    mat[..., 2:, nb] = 1.0
+    mat[..., 2:, nb + 1] = xb
+    rhs[..., 2:] = -(f[..., None, :] * _influence(xb[..., :, None] - xf[..., None, :], ei, sf)).sum(
+        -1
+    )
+    both = np.concatenate([rhs.real[..., None], rhs.imag[..., None]], axis=-1)
+    sol = np.linalg.solve(mat, both)
+    sol = sol[..., 0] + 1j * sol[..., 1]
+    reactions = sol[..., :nb]
+    coefficients = sol[..., nb:]
+    positions = np.concatenate([xf, xb], axis=-1)
+    loads = np.concatenate([f, reactions], axis=-1)
+    deflection = deflection_at(xs, positions, loads, coefficients, ei, sf)
+    return reactions, deflection, coefficients
+
+
+def deflection_at(
+    x: NDArray,
+    load_positions: NDArray,
+    loads: NDArray,
+    coefficients: NDArray,
+    bending_stiffness: float,
+    shear_flexibility: float,
+) -> NDArray:
+    """Deflection phasors at ``x`` (shape (n,) or (..., n)) of a beam in equilibrium."""
+    x = np.asarray(x, dtype=float)
+    xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
+    g = _influence(
+        xx[..., :, None] - load_positions[..., None, :], bending_stiffness, shear_flexibility
+    )
+    return coefficients[..., :1] + coefficients[..., 1:] * xx + (g * loads[..., None, :]).sum(-1)
+
+
+def bending_moment_at(x: NDArray, load_positions: NDArray, loads: NDArray) -> NDArray:
+    r"""Bending-moment phasors :math:`M(x) = \sum_{x_P < x} P (x - x_P)` [N m]."""
+    x = np.asarray(x, dtype=float)
+    xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
+    arm = np.maximum(xx[..., :, None] - load_positions[..., None, :], 0.0)
+    return (arm * loads[..., None, :]).sum(-1)
+
+
+def simpson(values: NDArray, spacing: float) -> NDArray:
+    """Composite Simpson rule along the last axis (odd number of equally spaced samples)."""
+    n = values.shape[-1]
+    if n % 2 == 0 or n < 3:
+        raise InputError("n_points", n, "must be an odd number >= 3")
+    w = np.ones(n)
+    w[1:-1:2] = 4.0
+    w[2:-1:2] = 2.0
+    return (values * w).sum(-1) * spacing / 3.0
+
+
+# --------------------------------------------------------------------------------------
+# Dynamics: beam finite elements (batched)
+# --------------------------------------------------------------------------------------
+
+
+def element_matrices(
+    element_length: float, section: ShaftSection, theory: BeamTheory = "euler-bernoulli"
+) -> tuple[NDArray, NDArray]:
+    r"""Stiffness and mass matrix of one beam element, DOFs (w1, theta1, w2, theta2).
+
+    Euler-Bernoulli: cubic Hermite element, consistent translational mass, no rotary
+    inertia. Timoshenko: Friedman-Kosmatka element (shear parameter
+    :math:`\phi = 12 EI / (\kappa G A h^2)`), translational and rotary inertia.
+
+    .. math:: K = \frac{EI}{(1+\phi)h^3}\begin{bmatrix}12 & 6h & -12 & 6h\\
+              6h & (4+\phi)h^2 & -6h & (2-\phi)h^2\\ -12 & -6h & 12 & -6h\\
+              6h & (2-\phi)h^2 & -6h & (4+\phi)h^2\end{bmatrix}
+
+    References
+    ----------
+    003 Eqs. 20-21 (the stiffness matrix, with e = phi); Friedman & Kosmatka (1993).
+    """
+    h = float(element_length)
+    ei = section.bending_stiffness
+    phi = 0.0 if theory == "euler-bernoulli" else 12 * ei / (section.shear_stiffness * h**2)
+    k = (
+        ei
+        / ((1 + phi) * h**3)
+        * np.array(
+            [
+                [12, 6 * h, -12, 6 * h],
+                [6 * h, (4 + phi) * h**2, -6 * h, (2 - phi) * h**2],
+                [-12, -6 * h, 12, -6 * h],
+                [6 * h, (2 - phi) * h**2, -6 * h, (4 + phi) * h**2],
+            ]
+        )
+    )
+    p2 = phi * phi
+    m1, m2 = 70 * p2 + 147 * phi + 78, (35 * p2 + 77 * phi + 44) / 4
+    m3, m4 = 35 * p2 + 63 * phi + 27, (35 * p2 + 63 * phi + 26) / 4
+    m5, m6 = (7 * p2 + 14 * phi + 8) / 4, (7 * p2 + 14 * phi + 6) / 4
+    mt = (
+        section.mass_per_length
+        * h
+        / (210 * (1 + phi) ** 2)
+        * np.array(
+            [
+                [m1, m2 * h, m3, -m4 * h],
+                [m2 * h, m5 * h**2, m4 * h, -m6 * h**2],
+                [m3, m4 * h, m1, -m2 * h],
+                [-m4 * h, -m6 * h**2, -m2 * h, m5 * h**2],
+            ]
+        )
+    )
+    if theory == "euler-bernoulli":
+        return k, mt
+    c = 15 * phi - 3
+    r1, r2 = (10 * p2 + 5 * phi + 4) * h**2, (5 * p2 - 5 * phi - 1) * h**2
+    mr = (
+        section.density
+        * section.second_moment
+        / (30 * (1 + phi) ** 2 * h)
+        * np.array(
+            [
+                [36, -c * h, -36, -c * h],
+                [-c * h, r1, c * h, r2],
+                [-36, c * h, 36, c * h],
+                [-c * h, r2, c * h, r1],
+            ]
+        )
+    )
+    return k, mt + mr
+
+
+def assemble(
+    length: float, section: ShaftSection, n_elements: int, theory: BeamTheory = "euler-bernoulli"
+) -> tuple[NDArray, NDArray]:
+    """Global stiffness and mass matrices of a uniform free-free shaft, 2 DOFs per node."""
+    ke, me = element_matrices(length / n_elements, section, theory)
+    ndof = 2 * (n_elements + 1)
+    k = np.zeros((ndof, ndof))
+    m = np.zeros((ndof, ndof))
+    for e in range(n_elements):
+        s = slice(2 * e, 2 * e + 4)
+        k[s, s] += ke
+        m[s, s] += me
+    return k, m
+
+
+def shape_vectors(
+    x: ArrayLike,
+    length: float,
+    n_elements: int,
+    section: ShaftSection,
+    theory: BeamTheory = "euler-bernoulli",
+) -> NDArray:
+    """Global interpolation vectors ``n(x)`` with ``w(x) = n(x) . u`` (batched over ``x``)."""
+    xs = np.asarray(x, dtype=float)
+    h = length / n_elements
+    phi = (
+        0.0
+        if theory == "euler-bernoulli"
+        else 12 * section.bending_stiffness / (section.shear_stiffness * h**2)
+    )
+    e = np.clip(np.floor(xs / h).astype(int), 0, n_elements - 1)
+    s = xs / h - e
+    s2, s3 = s * s, s * s * s
+    q = 1.0 / (1.0 + phi)
+    local = np.stack(
+        [
+            q * (2 * s3 - 3 * s2 - phi * s + 1 + phi),
+            q * h * (s3 - (2 + phi / 2) * s2 + (1 + phi / 2) * s),
+            -q * (2 * s3 - 3 * s2 - phi * s),
+            q * h * (s3 - (1 - phi / 2) * s2 - (phi / 2) * s),
+        ],
+        axis=-1,
+    )
+    out = np.zeros(xs.shape + (2 * (n_elements + 1),))
+    idx = 2 * e[..., None] + np.arange(4)
+    np.put_along_axis(out, idx, local, axis=-1)
+    return out
+
+
+def natural_frequencies(
+    length: float,
+    section: ShaftSection,
+    bearing_positions: ArrayLike,
+    mass_positions: ArrayLike,
+    masses: ArrayLike,
+    *,
+    bearing_stiffness: float | None = None,
+    n_elements: int = DEFAULT_ELEMENTS,
+    theory: BeamTheory = "euler-bernoulli",
+    n_modes: int = 1,
+) -> NDArray:
+    r"""Lowest bending natural frequencies [Hz] of the shaft with point masses (batched).
+
+    Uniform beam elements; point masses and bearings may sit anywhere (they act through
+    the element interpolation). Rigid bearings are constraints ``n(x_k) . u = 0``,
+    eliminated with a null-space basis; elastic ones add ``k n n^T``. The generalised
+    problem :math:`K u = \omega^2 M u` is reduced by a Cholesky factor of M and solved
+    with a batched symmetric eigensolver.
+
+    Parameters
+    ----------
+    length : float
+        Shaft length [m].
+    section : ShaftSection
+        Section and material.
+    bearing_positions : array_like, shape (..., n_bearings)
+        Bearing positions [m].
+    mass_positions, masses : array_like, shape (..., n_masses)
+        Positions [m] and masses [kg] of the point masses (the unbalance masses).
+    bearing_stiffness : float, optional
+        Radial bearing stiffness [N/m]; None for rigid bearings.
+    n_elements : int
+        Number of beam elements.
+    theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory.
+    n_modes : int
+        Number of frequencies returned.
+
+    Returns
+    -------
+    ndarray, shape (..., n_modes)
+        Natural frequencies [Hz], ascending.
+    """
+    k0, m0 = assemble(length, section, n_elements, theory)
+    xb = np.asarray(bearing_positions, dtype=float)
+    xm = np.asarray(mass_positions, dtype=float)
+    mm = np.asarray(masses, dtype=float)
+    batch = np.broadcast_shapes(xb.shape[:-1], xm.shape[:-1], mm.shape[:-1])
+    xb = np.broadcast_to(xb, batch + xb.shape[-1:])
+    xm = np.broadcast_to(xm, batch + xm.shape[-1:])
+    mm = np.broadcast_to(mm, batch + mm.shape[-1:])
+    nm = shape_vectors(xm, length, n_elements, section, theory)  # (..., n_masses, ndof)
+    m = m0 + np.einsum("...j,...ja,...jb->...ab", mm, nm, nm)
+    nb = shape_vectors(xb, length, n_elements, section, theory)  # (..., n_bearings, ndof)
+    if bearing_stiffness is None:
+        q, _ = np.linalg.qr(np.swapaxes(nb, -1, -2), mode="complete")
+        z = q[..., :, xb.shape[-1] :]
+        zt = np.swapaxes(z, -1, -2)
+        kr = zt @ k0 @ z
+        mr = zt @ m @ z
+    else:
+        kr = k0 + float(bearing_stiffness) * np.einsum("...ja,...jb->...ab", nb, nb)
+        mr = m
+    low = np.linalg.cholesky(mr)
+    inv = np.linalg.inv(low)
+    a = inv @ kr @ np.swapaxes(inv, -1, -2)
+    a = 0.5 * (a + np.swapaxes(a, -1, -2))
+    lam = np.linalg.eigvalsh(a)[..., :n_modes]
+    return np.sqrt(np.maximum(lam, 0.0)) / (2 * math.pi)
+
+
+# --------------------------------------------------------------------------------------
+# One shaft: design and response
+# --------------------------------------------------------------------------------------
+
+
+def _check_positions(name: str, values: tuple[float, ...], length: float) -> None:
+    for i, v in enumerate(values):
+        if not (0.0 <= v <= length):
+            raise InputError(
+                f"{name}[{i}]", v, f"must lie on the shaft, between 0 and {length:g} m"
+            )
+
+
+@dataclass(frozen=True)
+class BalanceShaft(ResultMixin):
+    """A balance shaft: length, section, bearings and unbalance masses.
+
+    Parameters
+    ----------
+    length : float
+        Shaft length [m].
+    section : ShaftSection
+        Uniform section and material.
+    bearing_positions : tuple of float
+        Bearing positions from the shaft end [m] (at least two distinct ones).
+    mass_positions : tuple of float
+        Positions of the unbalance masses [m].
+    unbalances : tuple of float
+        First moment m e of each unbalance mass [kg m].
+    speed : float
+        Shaft speed [rad/s] (twice the crank speed for a second-order shaft).
+    phases : tuple of float, optional
+        Angular position of each unbalance mass on the shaft [rad] (default all 0).
+    unbalance_radius : float
+        Radius of the centre of gravity of the unbalance masses [m]; sets their mass
+        ``m = U / e`` for the natural frequency.
+    bearing_stiffness : float, optional
+        Radial bearing stiffness [N/m]; None for rigid bearings.
+    """
+
+    length: float
+    section: ShaftSection
+    bearing_positions: tuple[float, ...]
+    mass_positions: tuple[float, ...]
+    unbalances: tuple[float, ...]
+    speed: float
+    phases: tuple[float, ...] = ()
+    unbalance_radius: float = 0.02
+    bearing_stiffness: float | None = None
+
+    def __post_init__(self) -> None:
+        check_positive("length", self.length)
+        object.__setattr__(
+            self, "bearing_positions", tuple(float(v) for v in self.bearing_positions)
+        )
+        object.__setattr__(self, "mass_positions", tuple(float(v) for v in self.mass_positions))
+        object.__setattr__(self, "unbalances", tuple(float(v) for v in self.unbalances))
+        if not self.phases:
+            object.__setattr__(self, "phases", tuple(0.0 for _ in self.mass_positions))
+        object.__setattr__(self, "phases", tuple(float(v) for v in self.phases))
+        if len(set(self.bearing_positions)) < 2:
+            raise InputError(
+                "bearing_positions",
+                self.bearing_positions,
+                "needs at least two bearings at different positions",
+            )
+        _check_positions("bearing_positions", self.bearing_positions, self.length)
+        if not self.mass_positions:
+            raise InputError(
+                "mass_positions", self.mass_positions, "needs at least one unbalance mass"
+            )
+        _check_positions("mass_positions", self.mass_positions, self.length)
+        if len(self.unbalances) != len(self.mass_positions):
+            raise InputError(
+                "unbalances",
+                self.unbalances,
+                f"needs one value per mass ({len(self.mass_positions)})",
+            )
+        if len(self.phases) != len(self.mass_positions):
+            raise InputError(
+                "phases", self.phases, f"needs one value per mass ({len(self.mass_positions)})"
+            )
+        for i, u in enumerate(self.unbalances):
+            if not (0.0 <= u < math.inf):
+                raise InputError(f"unbalances[{i}]", u, "must be a finite first moment >= 0 kg*m")
+        for i, p in enumerate(self.phases):
+            if not math.isfinite(p):
+                raise InputError(f"phases[{i}]", p, "must be a finite angle in rad")
+        check_positive("speed", self.speed)
+        check_positive("unbalance_radius", self.unbalance_radius)
+        if self.bearing_stiffness is not None:
+            check_positive("bearing_stiffness", self.bearing_stiffness)
+
+
+@dataclass(frozen=True)
+class ShaftResponse(ResultMixin):
+    """State variables of one balance shaft at its speed.
+
+    Attributes
+    ----------
+    reactions : ndarray
+        Amplitude of the rotating load on each bearing [N].
+    reaction_phases : ndarray
+        Phase of each bearing load in the shaft frame [rad].
+    reaction_difference : float
+        Largest minus smallest bearing-load amplitude [N] (003 Eq. 19 for two bearings).
+    x : ndarray
+        Stations of the deflection curve [m].
+    deflection : ndarray
+        Deflection amplitude at ``x`` [m].
+    bending_measure : float
+        Integral of the deflection amplitude over the shaft [m^2] (003 Eq. 9).
+    max_deflection : float
+        Largest deflection amplitude [m].
+    max_moment : float
+        Largest bending-moment amplitude [N m].
+    max_stress : float
+        Largest bending stress M / Z [Pa].
+    first_frequency : float
+        Fundamental bending frequency with the unbalance masses [Hz].
+    first_critical_speed : float
+        The same as a shaft speed [rad/s] (no gyroscopic effect).
+    speed : float
+        Shaft speed of the evaluation [rad/s].
+    """
+
+    reactions: NDArray
+    reaction_phases: NDArray
+    reaction_difference: float
+    x: NDArray
+    deflection: NDArray
+    bending_measure: float
+    max_deflection: float
+    max_moment: float
+    max_stress: float
+    first_frequency: float
+    first_critical_speed: float
+    speed: float
+
+    def bearing_forces(self, n_angles: int = 73) -> tuple[NDArray, NDArray]:
+        """Component of each bearing load along a fixed direction over one revolution.
+
+        Returns ``(angle [rad], force [N] of shape (n_angles, n_bearings))``.
+        """
+        angle = np.linspace(0.0, 2 * math.pi, n_angles)
+        force = self.reactions[None, :] * np.cos(angle[:, None] + self.reaction_phases[None, :])
+        return angle, force
+
+
+@dataclass(frozen=True)
+class _Evaluation:
+    reactions: NDArray  # complex (..., nb)
+    x: NDArray
+    deflection: NDArray  # complex (..., G)
+    bending_measure: NDArray
+    max_deflection: NDArray
+    max_moment: NDArray
+    frequency: NDArray | None
+
+
+def _evaluate(
+    length: float,
+    section: ShaftSection,
+    bearing_positions: NDArray,
+    mass_positions: NDArray,
+    unbalances: NDArray,
+    speed: float,
+    unbalance_radius: float,
+    bearing_stiffness: float | None,
+    theory: BeamTheory,
+    n_elements: int,
+    n_points: int,
+    frequency: bool,
+) -> _Evaluation:
+    """All state variables for a batch of layouts (unbalances complex: U exp(i phi))."""
+    x = np.linspace(0.0, length, n_points)
+    forces = unbalances * speed**2
+    shear = section.shear_stiffness if theory == "timoshenko" else None
+    reactions, w, coef = beam_statics(
+        length,
+        section.bending_stiffness,
+        bearing_positions,
+        mass_positions,
+        forces,
+        x,
+        shear_stiffness=shear,
+        bearing_stiffness=bearing_stiffness,
+    )
+    batch = reactions.shape[:-1]
+    positions = np.concatenate(
+        [
+            np.broadcast_to(mass_positions, batch + mass_positions.shape[-1:]),
+            np.broadcast_to(bearing_positions, batch + bearing_positions.shape[-1:]),
+        ],
+        axis=-1,
+    )
+    loads = np.concatenate([np.broadcast_to(forces, batch + forces.shape[-1:]), reactions], axis=-1)
+    amplitude = np.abs(w)
+    bending = simpson(amplitude, length / (n_points - 1))
+    sf = 0.0 if shear is None else 1.0 / shear
+    w_points = deflection_at(positions, positions, loads, coef, section.bending_stiffness, sf)
+    max_w = np.maximum(amplitude.max(-1), np.abs(w_points).max(-1))
+    # |M| is convex between load points (M is linear there), so its maximum is at a load point
+    max_m = np.abs(bending_moment_at(positions, positions, loads)).max(-1)
+    freq = None
+    if frequency:
+        masses = np.abs(unbalances) / unbalance_radius
+        freq = natural_frequencies(
+            length,
+            section,
+            bearing_positions,
+            mass_positions,
+            masses,
+            bearing_stiffness=bearing_stiffness,
+            n_elements=n_elements,
+            theory=theory,
+        )[..., 0]
+    return _Evaluation(reactions, x, w, bending, max_w, max_m, freq)
+
+
+def _check_theory(theory: str) -> None:
+    if theory not in BEAM_THEORIES:
+        raise InputError("theory", theory, f"must be one of {', '.join(BEAM_THEORIES)}")
+
+
+def _check_resolution(n_elements: int, n_points: int) -> None:
+    if not (isinstance(n_elements, (int, np.integer)) and 2 <= n_elements <= 400):
+        raise InputError("n_elements", n_elements, "must be an integer between 2 and 400")
+    if not (isinstance(n_points, (int, np.integer)) and n_points >= 3 and n_points % 2 == 1):
+        raise InputError("n_points", n_points, "must be an odd integer >= 3")
+
+
+def shaft_response(
+    shaft: BalanceShaft,
+    *,
+    theory: BeamTheory = "euler-bernoulli",
+    n_elements: int = DEFAULT_ELEMENTS,
+    n_points: int = DEFAULT_POINTS,
+) -> ShaftResponse:
+    """State variables of one balance shaft: reactions, deflection, stress, first frequency.
+
+    Parameters
+    ----------
+    shaft : BalanceShaft
+        The design.
+    theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory (Timoshenko adds shear deflection and rotary inertia: use it for
+        short, stocky shafts, length/diameter below about 10).
+    n_elements : int
+        Elements of the frequency model.
+    n_points : int
+        Stations of the deflection curve (odd).
+
+    Returns
+    -------
+    ShaftResponse
+    """
+    _check_theory(theory)
+    _check_resolution(n_elements, n_points)
+    u = np.array(shaft.unbalances) * np.exp(1j * np.array(shaft.phases))
+    ev = _evaluate(
+        shaft.length,
+        shaft.section,
+        np.array(shaft.bearing_positions),
+        np.array(shaft.mass_positions),
+        u,
+        shaft.speed,
+        shaft.unbalance_radius,
+        shaft.bearing_stiffness,
+        theory,
+        n_elements,
+        n_points,
+        True,
+    )
+    amp = np.abs(ev.reactions)
+    assert ev.frequency is not None
+    f1 = float(ev.frequency)
+    return ShaftResponse(
+        reactions=amp,
+        reaction_phases=np.where(amp > 0, np.angle(ev.reactions), 0.0),
+        reaction_difference=float(amp.max() - amp.min()),
+        x=ev.x,
+        deflection=np.abs(ev.deflection),
+        bending_measure=float(ev.bending_measure),
+        max_deflection=float(ev.max_deflection),
+        max_moment=float(ev.max_moment),
+        max_stress=float(ev.max_moment / shaft.section.section_modulus),
+        first_frequency=f1,
+        first_critical_speed=2 * math.pi * f1,
+        speed=shaft.speed,
+    )
+
+
+# --------------------------------------------------------------------------------------
+# Design checks
+# --------------------------------------------------------------------------------------
+
+
+@dataclass(frozen=True)
+class DesignChecks(ResultMixin):
+    """Pass/fail of the checks a designer needs, with the numbers behind them.
+
+    Attributes
+    ----------
+    critical_speed_ratio : float
+        First critical speed over the maximum shaft speed [-].
+    required_ratio : float
+        1 + required separation margin [-].
+    critical_speed_ok : bool
+    max_bearing_load : float
+        Largest bearing-load amplitude at the maximum speed [N].
+    bearing_capacity : float or None
+        Allowed bearing load [N]; None if not checked.
+    bearing_ok : bool
+    max_deflection : float
+        Largest deflection at the maximum speed [m].
+    deflection_limit : float or None
+        Allowed deflection [m]; None if not checked.
+    deflection_ok : bool
+    dynamic_amplification : float
+        Single-mode estimate 1 / |1 - (Omega / omega_1)^2| of how much the whirling
+        shaft exceeds the static (rotating-frame) deflection [-].
+    ok : bool
+        All checks pass.
+    """
+
+    critical_speed_ratio: float
+    required_ratio: float
+    critical_speed_ok: bool
+    max_bearing_load: float
+    bearing_capacity: float | None
+    bearing_ok: bool
+    max_deflection: float
+    deflection_limit: float | None
+    deflection_ok: bool
+    dynamic_amplification: float
+    ok: bool = field(init=False)
+
+    def __post_init__(self) -> None:
+        object.__setattr__(
+            self, "ok", self.critical_speed_ok and self.bearing_ok and self.deflection_ok
+        )
+
+
+def design_checks(
+    response: ShaftResponse,
+    *,
+    max_speed: float | None = None,
+    critical_speed_margin: float = 0.25,
+    bearing_capacity: float | None = None,
+    deflection_limit: float | None = None,
+) -> DesignChecks:
+    r"""Check a shaft response against the first critical speed, bearing capacity and deflection.
+
+    Loads and deflections scale with the square of speed, so they are taken to
+    ``max_speed`` (default: the speed of the response).
+
+    .. math:: \omega_1 \ge (1 + \text{margin})\,\Omega_\max, \quad
+              \max_k |R_k| \le C, \quad \max_x |w| \le w_\text{allowed}
+
+    Parameters
+    ----------
+    response : ShaftResponse
+        Result of :func:`shaft_response`.
+    max_speed : float, optional
+        Maximum shaft speed [rad/s].
+    critical_speed_margin : float
+        Required separation of the first critical speed above the maximum speed [-]
+        (0.25: 25 %).
+    bearing_capacity : float, optional
+        Allowed radial load of one bearing [N].
+    deflection_limit : float, optional
+        Allowed deflection [m].
+    """
+    speed = response.speed if max_speed is None else check_positive("max_speed", max_speed)
+    if not (0.0 <= critical_speed_margin < math.inf):
+        raise InputError(
+            "critical_speed_margin", critical_speed_margin, "must be a finite number >= 0"
+        )
+    if bearing_capacity is not None:
+        check_positive("bearing_capacity", bearing_capacity)
+    if deflection_limit is not None:
+        check_positive("deflection_limit", deflection_limit)
+    scale = (speed / response.speed) ** 2
+    ratio = response.first_critical_speed / speed
+    load = float(response.reactions.max() * scale)
+    deflection = response.max_deflection * scale
+    detuning = abs(1.0 - 1.0 / ratio**2)
+    amplification = 1.0 / detuning if detuning > 1e-12 else 1e12
+    return DesignChecks(
+        critical_speed_ratio=ratio,
+        required_ratio=1.0 + critical_speed_margin,
+        critical_speed_ok=bool(ratio >= 1.0 + critical_speed_margin),
+        max_bearing_load=load,
+        bearing_capacity=bearing_capacity,
+        bearing_ok=bool(bearing_capacity is None or load <= bearing_capacity),
+        max_deflection=deflection,
+        deflection_limit=deflection_limit,
+        deflection_ok=bool(deflection_limit is None or deflection <= deflection_limit),
+        dynamic_amplification=amplification,
+    )
+
+
+# --------------------------------------------------------------------------------------
+# Required unbalance from the engine (003 Eqs. 4 and 12)
+# --------------------------------------------------------------------------------------
+
+
+def inline4_secondary_unbalance(
+    reciprocating_mass: float, crank_radius: float, rod_length: float
+) -> float:
+    r"""First moment each shaft of a counter-rotating pair needs for an inline-4 [kg m].
+
+    .. math:: m_b r_b = \frac{m_p r^2}{2 l}
+
+    The shafts turn at twice crank speed; with first-order-series kinematics the four
+    cylinders' second-order force is :math:`4 m_p r^2 \omega^2 / l`.
+
+    References
+    ----------
+    003 Eqs. 2-4.
+    """
+    check_positive("reciprocating_mass", reciprocating_mass)
+    check_positive("crank_radius", crank_radius)
+    check_positive("rod_length", rod_length)
+    return reciprocating_mass * crank_radius**2 / (2 * rod_length)
+
+
+def inline3_couple_unbalance(
+    reciprocating_mass: float, crank_radius: float, cylinder_pitch: float, shaft_length: float
+) -> float:
+    r"""First moment of each of the two opposed masses of an inline-3 primary shaft [kg m].
+
+    One shaft turning at crank speed cancels half the primary couple
+    (:math:`\tfrac{\sqrt3}{2} m_p r \omega^2 a`, the other half is left to the crank
+    counterweights); with its masses ``shaft_length`` apart:
+
+    .. math:: m_B r_B = \frac{\sqrt3\, m_p r a}{2 l_3}
+
+    References
+    ----------
+    003 Eqs. 10-12 (the square root is lost in the text extraction).
+    """
+    check_positive("reciprocating_mass", reciprocating_mass)
+    check_positive("crank_radius", crank_radius)
+    check_positive("cylinder_pitch", cylinder_pitch)
+    check_positive("shaft_length", shaft_length)
+    return math.sqrt(3) * reciprocating_mass * crank_radius * cylinder_pitch / (2 * shaft_length)
+
+
+# --------------------------------------------------------------------------------------
+# Placement studies (003 Sect. 3)
+# --------------------------------------------------------------------------------------
+
+
+def inline4_closed_form(position: ArrayLike) -> tuple[NDArray, NDArray]:
+    r"""Shapes of the inline-4 state variables for a load at :math:`\xi = x/L` on end bearings.
+
+    .. math:: A \propto \int_0^L w\,dx = \frac{W L^4}{24 EI}\,\xi(1-\xi)\,[1 + \xi(1-\xi)],
+              \qquad B = \frac{|f_A - f_B|}{W} = |1 - 2\xi|
+
+    Returns ``(A / (W L^4 / 24 EI), B)``.
+
+    References
+    ----------
+    003 Eqs. 6-9 and 19; seeds/README.md section 003.
+    """
+    xi = np.asarray(position, dtype=float)
+    return xi * (1 - xi) * (1 + xi * (1 - xi)), np.abs(1 - 2 * xi)
+
+
+@dataclass(frozen=True)
+class PlacementStudy(ResultMixin):
+    """State variables, normalised objective and optimum along one design variable.
+
+    Attributes
+    ----------
+    case : str
+        ``"inline4"`` or ``"inline3-I"``, ``"inline3-II"``, ``"inline3-III"``.
+    design_variable : str
+        What ``positions`` is.
+    positions : ndarray
+        Design variable as a fraction of the shaft length [-].
+    bearing_positions, mass_positions : ndarray
+        Layout at each design point [m], shape (n, 2).
+    unbalances : ndarray
+        First moment of each mass at each design point [kg m], shape (n, n_masses).
+    reactions : ndarray
+        Bearing-load amplitudes [N], shape (n, n_bearings).
+    reaction_difference : ndarray
+        Largest minus smallest bearing load [N].
+    bending_measure : ndarray
+        Integral of the deflection amplitude [m^2].
+    max_deflection : ndarray
+        [m]
+    max_stress : ndarray
+        [Pa]
+    first_frequency : ndarray
+        Fundamental bending frequency with the masses [Hz].
+    secondary : str
+        Which measure is B: ``"reaction-difference"`` or ``"inverse-frequency"``.
+    normalised_bending, normalised_secondary : ndarray
+        A / max A and B / max B over the design range [-].
+    weight : float
+        w of the objective.
+    objective : ndarray
+        J = (A/max A)^2 + w (B/max B)^2 along the design variable.
+    optimum_position : float
+        Minimiser of J (refined by a parabola through the three best points) [-].
+    optimum_objective : float
+        J there.
+    weights : ndarray
+        The swept weights.
+    optimum_positions : ndarray
+        Optimum position for each swept weight [-].
+    """
+
+    case: str
+    design_variable: str
+    positions: NDArray
+    bearing_positions: NDArray
+    mass_positions: NDArray
+    unbalances: NDArray
+    reactions: NDArray
+    reaction_difference: NDArray
+    bending_measure: NDArray
+    max_deflection: NDArray
+    max_stress: NDArray
+    first_frequency: NDArray
+    secondary: str
+    normalised_bending: NDArray
+    normalised_secondary: NDArray
+    weight: float
+    objective: NDArray
+    optimum_position: float
+    optimum_objective: float
+    weights: NDArray
+    optimum_positions: NDArray
+
+
+def objective(
+    normalised_bending: ArrayLike, normalised_secondary: ArrayLike, weight: ArrayLike
+) -> NDArray:
+    r"""Kim's objective for one or many weights (weights along a new leading axis).
+
+    .. math:: J = \left(\frac{A}{\operatorname{norm} A}\right)^2
+              + w \left(\frac{B}{\operatorname{norm} B}\right)^2
+
+    References
+    ----------
+    003 Eqs. 17 and 23, as checked in seeds/README.md (norm = maximum over the design range).
+    """
+    a = np.asarray(normalised_bending, dtype=float)
+    b = np.asarray(normalised_secondary, dtype=float)
+    w = np.asarray(weight, dtype=float)
+    return a**2 + w[..., None] * b**2 if w.ndim else a**2 + w * b**2
+
+
+def normalise(values: NDArray) -> NDArray:
+    """Divide by the largest value over the design range (zero stays zero, never NaN)."""
+    top = float(np.max(values))
+    return values / top if top > 0 else np.zeros_like(values)
+
+
+def minimise_on_grid(positions: NDArray, values: NDArray) -> tuple[NDArray, NDArray]:
+    """Minimum of sampled curves (last axis) refined by a parabola through three points.
+
+    Ties between equal minima (a mirror-symmetric shaft has two) go to the larger
+    position, the paper's convention (67 % rather than 33 %).
+    """
+    v = np.atleast_2d(values)
+    n = v.shape[-1]
+    best = v.min(-1, keepdims=True)
+    tol = 1e-9 * np.maximum(np.abs(best), 1e-300)
+    idx = n - 1 - np.argmax((v <= best + tol)[..., ::-1], axis=-1)
+    inner = np.clip(idx, 1, n - 2)
+    x0, x1, x2 = positions[inner - 1], positions[inner], positions[inner + 1]
+    rows = np.arange(v.shape[0])
+    y0, y1, y2 = v[rows, inner - 1], v[rows, inner], v[rows, inner + 1]
+    den = (x0 - x1) * (x0 - x2) * (x1 - x2)
+    a = (x2 * (y1 - y0) + x1 * (y0 - y2) + x0 * (y2 - y1)) / np.where(den == 0, 1, den)
+    b = (x2**2 * (y0 - y1) + x1**2 * (y2 - y0) + x0**2 * (y1 - y2)) / np.where(den == 0, 1, den)
+    c = y1 - a * x1**2 - b * x1
+    interior = (idx == inner) & (a > 0)
+    xv = np.where(interior, -b / np.where(a > 0, 2 * a, 1), positions[idx])
+    xv = np.clip(xv, x0, x2)
+    yv = np.where(interior, a * xv**2 + b * xv + c, v[rows, idx])
+    shape = values.shape[:-1]
+    return xv.reshape(shape), yv.reshape(shape)
+
+
+def _check_study_inputs(
+    unbalance: float,
+    speed: float,
+    length: float,
+    positions: NDArray,
+    weights: NDArray,
+    weight: float,
+    theory: str,
+    secondary: str,
+    n_elements: int,
+    n_points: int,
+) -> None:
+    check_positive("unbalance", unbalance)
+    check_positive("speed", speed)
+    check_positive("length", length)
+    _check_theory(theory)
+    _check_resolution(n_elements, n_points)
+    if secondary not in SECONDARY_MEASURES:
+        raise InputError("secondary", secondary, f"must be one of {', '.join(SECONDARY_MEASURES)}")
+    if positions.ndim != 1 or positions.size < 3:
+        raise InputError("positions", positions.tolist(), "needs at least 3 design points")
+    if not (np.all(np.isfinite(positions)) and positions.min() >= 0 and positions.max() <= 1):
+        raise InputError(
+            "positions", positions.tolist(), "must be fractions of the length in [0, 1]"
+        )
+    if np.any(np.diff(positions) <= 0):
+        raise InputError("positions", positions.tolist(), "must be strictly increasing")
+    if not (0.0 <= weight < math.inf):
+        raise InputError("weight", weight, "must be a finite number >= 0")
+    if (
+        weights.ndim != 1
+        or weights.size < 1
+        or not np.all(np.isfinite(weights))
+        or weights.min() < 0
+    ):
+        raise InputError("weights", weights.tolist(), "must be finite numbers >= 0")
+
+
+def _study(
+    case: str,
+    design_variable: str,
+    positions: NDArray,
+    bearings: NDArray,
+    masses: NDArray,
+    unbalances: NDArray,
+    speed: float,
+    length: float,
+    section: ShaftSection,
+    unbalance_radius: float,
+    bearing_stiffness: float | None,
+    theory: BeamTheory,
+    secondary: SecondaryMeasure,
+    weight: float,
+    weights: NDArray,
+    n_elements: int,
+    n_points: int,
+) -> PlacementStudy:
+    ev = _evaluate(
+        length,
+        section,
+        bearings,
+        masses,
+        unbalances,
+        speed,
+        unbalance_radius,
+        bearing_stiffness,
+        theory,
+        n_elements,
+        n_points,
+        True,
+    )
+    assert ev.frequency is not None
+    amp = np.abs(ev.reactions)
+    difference = amp.max(-1) - amp.min(-1)
+    a_norm = normalise(ev.bending_measure)
+    if secondary == "reaction-difference":
+        b_norm = normalise(difference)
+    else:
+        b_norm = normalise(1.0 / ev.frequency)
+    j = objective(a_norm, b_norm, weight)
+    opt_x, opt_j = minimise_on_grid(positions, j)
+    opt_xs, _ = minimise_on_grid(positions, objective(a_norm, b_norm, weights))
+    return PlacementStudy(
+        case=case,
+        design_variable=design_variable,
+        positions=positions,
+        bearing_positions=np.broadcast_to(bearings, positions.shape + bearings.shape[-1:]).copy(),
+        mass_positions=np.broadcast_to(masses, positions.shape + masses.shape[-1:]).copy(),
+        unbalances=np.abs(np.broadcast_to(unbalances, positions.shape + unbalances.shape[-1:])),
+        reactions=amp,
+        reaction_difference=difference,
+        bending_measure=ev.bending_measure,
+        max_deflection=ev.max_deflection,
+        max_stress=ev.max_moment / section.section_modulus,
+        first_frequency=ev.frequency,
+        secondary=secondary,
+        normalised_bending=a_norm,
+        normalised_secondary=b_norm,
+        weight=float(weight),
+        objective=j,
+        optimum_position=float(opt_x),
+        optimum_objective=float(opt_j),
+        weights=weights,
+        optimum_positions=np.asarray(opt_xs),
+    )
+
+
+def default_weights() -> NDArray:
+    """The default weight sweep: 20 values of w from 0.2 to 4.0."""
+    return np.linspace(0.2, 4.0, 20)
+
+
+def inline4_study(
+    unbalance: float,
+    speed: float,
+    length: float,
+    section: ShaftSection,
+    *,
+    weight: float = 2.0,
+    positions: ArrayLike | None = None,
+    weights: ArrayLike | None = None,
+    unbalance_radius: float = 0.02,
+    bearing_stiffness: float | None = None,
+    theory: BeamTheory = "euler-bernoulli",
+    secondary: SecondaryMeasure = "reaction-difference",
+    n_elements: int = DEFAULT_ELEMENTS,
+    n_points: int = DEFAULT_POINTS,
+) -> PlacementStudy:
+    r"""Where to put the unbalance mass of an inline-4 second-order balance shaft.
+
+    Bearings at both shaft ends, one unbalance mass at :math:`x = \xi L`; the design
+    variable :math:`\xi` is swept over ``positions`` and
+
+    .. math:: J(\xi) = \left(\frac{A}{\max A}\right)^2 + w\left(\frac{B}{\max B}\right)^2
+
+    with A the integral of the deflection and B the difference of the two bearing
+    reactions (or the inverse first natural frequency, ``secondary="inverse-frequency"``).
+
+    Parameters
+    ----------
+    unbalance : float
+        First moment m e the shaft must carry [kg m]
+        (:func:`inline4_secondary_unbalance`).
+    speed : float
+        Shaft speed [rad/s] (twice crank speed).
+    length : float
+        Distance between the two bearings = shaft length [m].
+    section : ShaftSection
+        Shaft section and material.
+    weight : float
+        w of the objective.
+    positions : array_like, optional
+        Design points as fractions of the length (default 200 points over [0, 1]).
+    weights : array_like, optional
+        Weights of the sweep (default :func:`default_weights`).
+    unbalance_radius : float
+        Centre-of-gravity radius of the unbalance mass [m] (its mass for the frequency).
+    bearing_stiffness : float, optional
+        Radial bearing stiffness [N/m]; None for rigid.
+    theory : {"euler-bernoulli", "timoshenko"}
+    secondary : {"reaction-difference", "inverse-frequency"}
+    n_elements, n_points : int
+        Resolution of the frequency model and of the deflection curve.
+
+    Returns
+    -------
+    PlacementStudy
+
+    References
+    ----------
+    003 Sect. 3.1, Eqs. 17-19, Figs. 6-7 (optimum 67 % with w = 2).
+    """
+    xi = np.linspace(0.0, 1.0, 200) if positions is None else np.asarray(positions, dtype=float)
+    ws = default_weights() if weights is None else np.atleast_1d(np.asarray(weights, dtype=float))
+    _check_study_inputs(
+        unbalance, speed, length, xi, ws, weight, theory, secondary, n_elements, n_points
+    )
+    check_positive("unbalance_radius", unbalance_radius)
+    bearings = np.array([0.0, length])
+    masses = (xi * length)[:, None]
+    u = np.full((xi.size, 1), float(unbalance), dtype=complex)
+    return _study(
+        "inline4",
+        "unbalance-mass position x / L (bearings at both ends)",
+        xi,
+        bearings,
+        masses,
+        u,
+        speed,
+        length,
+        section,
+        unbalance_radius,
+        bearing_stiffness,
+        theory,
+        secondary,
+        weight,
+        ws,
+        n_elements,
+        n_points,
+    )
+
+
+def inline3_layout(
+    rotor_type: RotorType, positions: ArrayLike, length: float, bearing_offset: float
+) -> tuple[NDArray, NDArray]:
+    """Bearing and mass positions [m] of the three inline-3 rotor types (assumed geometry).
+
+    The design variable ``z`` (fraction of the length) is the position of the second
+    unbalance mass, as in 003 Figs. 8-9; ``o = bearing_offset`` [m].
+
+    * ``"I"``   bearing - mass - mass - bearing: bearings at 0 and L, masses at o and z
+      (both masses between the bearings).
+    * ``"II"``  mass - bearing - bearing - mass: masses at 0 and z, bearings at o and
+      z - o (both masses overhung by o; the second bearing follows the second mass).
+    * ``"III"`` mass - bearing - mass - bearing: mass at 0, bearing at o (the paper's
+      y, "near the first unbalance mass"), mass at z, bearing at L (003 Fig. 5, "one-end
+      weight"; the paper's representative type).
+
+    The paper does not give these dimensions (Fig. 4 is missing from the text); they are
+    this module's assumptions, see docs/balance_shaft.md.
+    """
+    if rotor_type not in ROTOR_TYPES:
+        raise InputError("rotor_type", rotor_type, f"must be one of {', '.join(ROTOR_TYPES)}")
+    z = np.asarray(positions, dtype=float) * length
+    o = np.full_like(z, bearing_offset)
+    zero, end = np.zeros_like(z), np.full_like(z, length)
+    if rotor_type == "I":
+        bearings, masses = np.stack([zero, end], -1), np.stack([o, z], -1)
+    elif rotor_type == "II":
+        bearings, masses = np.stack([o, z - o], -1), np.stack([zero, z], -1)
+    else:
+        bearings, masses = np.stack([o, end], -1), np.stack([zero, z], -1)
+    return bearings, masses
+
+
+def inline3_study(
+    rotor_type: RotorType,
+    unbalance: float,
+    speed: float,
+    length: float,
+    section: ShaftSection,
+    *,
+    weight: float = 2.0,
+    positions: ArrayLike | None = None,
+    weights: ArrayLike | None = None,
+    bearing_offset: float | None = None,
+    hold: HoldMode = "couple",
+    unbalance_radius: float = 0.02,
+    bearing_stiffness: float | None = None,
+    theory: BeamTheory = "euler-bernoulli",
+    secondary: SecondaryMeasure = "inverse-frequency",
+    n_elements: int = DEFAULT_ELEMENTS,
+    n_points: int = DEFAULT_POINTS,
+) -> PlacementStudy:
+    r"""Where to put the second unbalance mass of an inline-3 primary-couple balance shaft.
+
+    Two opposed unbalance masses (phases 0 and :math:`\pi`) make the couple; the layout of
+    masses and bearings is one of the three rotor types of :func:`inline3_layout`. The
+    second mass position ``z`` is swept and
+
+    .. math:: J(z) = \left(\frac{A}{\max A}\right)^2 + w\left(\frac{B}{\max B}\right)^2,
+              \quad B = 1 / f_1
+
+    with A the integral of the deflection amplitude and f1 the fundamental bending
+    frequency of the shaft with its masses (FE model).
+
+    Parameters
+    ----------
+    rotor_type : {"I", "II", "III"}
+        Order of masses and bearings.
+    unbalance : float
+        First moment of each mass when the masses are ``length`` apart [kg m]
+        (003 Eq. 12, :func:`inline3_couple_unbalance`); the couple to make is
+        ``unbalance * length * speed**2``.
+    speed : float
+        Shaft speed [rad/s] (crank speed for the primary couple).
+    length : float
+        Shaft length [m].
+    section : ShaftSection
+    weight : float
+        w of the objective.
+    positions : array_like, optional
+        z / L design points (default 200 points over [0.3, 1]).
+    weights : array_like, optional
+        Weights of the sweep.
+    bearing_offset : float, optional
+        Distance o between a bearing and the neighbouring mass [m] (default 0.1 L).
+    hold : {"couple", "unbalance"}
+        ``"couple"`` (default, physical): each mass carries ``unbalance * length /
+        spacing`` so the couple stays the one required; ``"unbalance"``: each mass keeps
+        ``unbalance`` as the paper's "same unbalance quantity" (the couple then varies).
+    unbalance_radius, bearing_stiffness, theory, secondary, n_elements, n_points
+        As :func:`inline4_study`.
+
+    Returns
+    -------
+    PlacementStudy
+
+    References
+    ----------
+    003 Sect. 3.2, Eqs. 10-13, 23-25, Figs. 8-9 (the paper's 69 % is not reproducible,
+    see docs/balance_shaft.md).
+    """
+    z = np.linspace(0.3, 1.0, 200) if positions is None else np.asarray(positions, dtype=float)
+    ws = default_weights() if weights is None else np.atleast_1d(np.asarray(weights, dtype=float))
+    _check_study_inputs(
+        unbalance, speed, length, z, ws, weight, theory, secondary, n_elements, n_points
+    )
+    check_positive("unbalance_radius", unbalance_radius)
+    if hold not in HOLD_MODES:
+        raise InputError("hold", hold, f"must be one of {', '.join(HOLD_MODES)}")
+    o = 0.1 * length if bearing_offset is None else float(bearing_offset)
+    if not (0.0 <= o < 0.5 * length):
+        raise InputError("bearing_offset", bearing_offset, f"must lie in [0, {0.5 * length:g}) m")
+    bearings, masses = inline3_layout(rotor_type, z, length, o)
+    spacing = masses[:, 1] - masses[:, 0]
+    lowest = {"I": o, "II": 2 * o, "III": o}[rotor_type] / length
+    if z.min() <= lowest + 1e-9:
+        raise InputError(
+            "positions",
+            float(z.min()),
+            f"type {rotor_type} needs every z / L > {lowest:g} (keeps its order of "
+            "masses and bearings)",
+        )
+    if hold == "couple":
+        per_mass = unbalance * length / spacing
+    else:
+        per_mass = np.full_like(spacing, unbalance)
+    u = per_mass[:, None] * np.array([1.0, -1.0])
+    return _study(
+        f"inline3-{rotor_type}",
+        f"second unbalance-mass position z / L (type {rotor_type})",
+        z,
+        bearings,
+        masses,
+        u.astype(complex),
+        speed,
+        length,
+        section,
+        unbalance_radius,
+        bearing_stiffness,
+        theory,
+        secondary,
+        weight,
+        ws,
+        n_elements,
+        n_points,
+    )
+
+
+def compare_inline3_types(
+    unbalance: float, speed: float, length: float, section: ShaftSection, **options: object
+) -> dict[str, PlacementStudy]:
+    """Run :func:`inline3_study` for the three rotor types with the same options."""
+    return {
+        t: inline3_study(t, unbalance, speed, length, section, **options)  # type: ignore[arg-type]
+        for t in ROTOR_TYPES
+    }

@@ -1,0 +1,560 @@
+"""``crankbalance shaft ...``: balance-shaft bearing and unbalance-mass layout (003, Kim 2018).
+
+Sub-commands:
+
+* ``inline4``: optimum unbalance-mass position of a second-order shaft on end bearings,
+* ``inline3``: optimum second-mass position for the three inline-3 rotor types,
+* ``check``: state variables and design checks of one given layout.
+"""
+
+from __future__ import annotations
+
+import json
+from typing import Any
+
+import click
+
+from ..errors import InputError
+from ._common import echo_table, format_option
+
+SCHEMA = "crankbalance.shaft/1"
+
+
+def _section_options(function: Any) -> Any:
+    options = [
+        click.option("--length", required=True, help='Shaft length, e.g. "300 mm".'),
+        click.option("--diameter", required=True, help='Outer shaft diameter, e.g. "25 mm".'),
+        click.option(
+            "--bore", default="0 mm", show_default=True, help="Bore diameter (hollow shaft)."
+        ),
+        click.option("--modulus", default="210 GPa", show_default=True, help="Young's modulus."),
+        click.option("--density", default="7850 kg/m^3", show_default=True, help="Density."),
+        click.option(
+            "--poisson", type=float, default=0.3, show_default=True, help="Poisson's ratio."
+        ),
+        click.option(
+            "--unbalance-radius",
+            default="20 mm",
+            show_default=True,
+            help="Centre-of-gravity radius of the unbalance masses (their mass m = U / e).",
+        ),
+        click.option(
+            "--bearing-stiffness",
+            default=None,
+            help='Radial bearing stiffness, e.g. "2e8 N/m" (default: rigid).',
+        ),
+        click.option(
+            "--theory",
+            type=click.Choice(["euler-bernoulli", "timoshenko"]),
+            default="euler-bernoulli",
+            show_default=True,
+            help="Beam theory.",
+        ),
+    ]
+    for option in reversed(options):
+        function = option(function)
+    return function
+
+
+def _study_options(function: Any) -> Any:
+    options = [
+        click.option(
+            "--unbalance",
+            required=True,
+            help='Required first moment m*e of the shaft, e.g. "3.3 g*m".',
+        ),
+        click.option(
+            "--speed",
+            required=True,
+            help='Shaft speed (twice crank speed for second order), e.g. "12000 rpm".',
+        ),
+        click.option(
+            "--weight", type=float, default=2.0, show_default=True, help="w of the objective."
+        ),
+        click.option(
+            "--weights",
+            default=None,
+            help="Comma-separated weights of the sweep (default 20 values 0.2 ... 4).",
+        ),
+        click.option(
+            "--points",
+            type=int,
+            default=200,
+            show_default=True,
+            help="Design points along the shaft.",
+        ),
+    ]
+    for option in reversed(options):
+        function = option(function)
+    return function
+
+
+def _parse_section(
+    length: str, diameter: str, bore: str, modulus: str, density: str, poisson: float
+) -> tuple[float, Any]:
+    from ..balance_shaft import ShaftSection
+    from ..units import parse_quantity
+
+    length_m = parse_quantity(length, "length", "length")
+    if length_m <= 0:
+        raise InputError("length", length, "must be a length greater than zero")
+    section = ShaftSection(
+        outer_diameter=_positive(
+            parse_quantity(diameter, "length", "diameter"), "diameter", diameter
+        ),
+        inner_diameter=parse_quantity(bore, "length", "bore"),
+        youngs_modulus=_positive(parse_quantity(modulus, "modulus", "modulus"), "modulus", modulus),
+        density=_positive(parse_quantity(density, "density", "density"), "density", density),
+        poisson_ratio=poisson,
+    )
+    return length_m, section
+
+
+def _positive(value: float, name: str, text: str) -> float:
+    if not value > 0:
+        raise InputError(name, text, "must be greater than zero")
+    return value
+
+
+def _common(
+    unbalance: str,
+    speed: str,
+    unbalance_radius: str,
+    bearing_stiffness: str | None,
+    weights: str | None,
+    points: int,
+) -> dict[str, Any]:
+    import numpy as np
+
+    from ..units import parse_quantity
+
+    if points < 3:
+        raise InputError("points", points, "must be an integer >= 3")
+    out: dict[str, Any] = {
+        "unbalance": _positive(
+            parse_quantity(unbalance, "unbalance", "unbalance"), "unbalance", unbalance
+        ),
+        "speed": _positive(parse_quantity(speed, "speed", "speed"), "speed", speed),
+        "unbalance_radius": _positive(
+            parse_quantity(unbalance_radius, "length", "unbalance_radius"),
+            "unbalance_radius",
+            unbalance_radius,
+        ),
+        "bearing_stiffness": None
+        if bearing_stiffness is None
+        else _positive(
+            parse_quantity(bearing_stiffness, "stiffness", "bearing_stiffness"),
+            "bearing_stiffness",
+            bearing_stiffness,
+        ),
+        "weights": None,
+    }
+    if weights is not None:
+        try:
+            out["weights"] = np.array([float(w) for w in weights.split(",")])
+        except ValueError:
+            raise InputError(
+                "weights", weights, "must be comma-separated numbers >= 0, e.g. 1,2,3"
+            ) from None
+    return out
+
+
+def _verdict(limit: float | None, ok: bool) -> str:
+    return "" if limit is None else ("ok" if ok else "FAIL")
+
+
+def study_json(study: Any) -> dict[str, Any]:
+    """The JSON block of one placement study (optimum, weight sweep, curves)."""
+    d = study.to_dict()
+    return {
+        "case": d["case"],
+        "design_variable": d["design_variable"],
+        "secondary": d["secondary"],
+        "optimum": {
+            "position": d["optimum_position"],
+            "objective": d["optimum_objective"],
+            "weight": d["weight"],
+        },
+        "weight_sweep": [
+            {"weight": w, "position": x}
+            for w, x in zip(d["weights"], d["optimum_positions"], strict=True)
+        ],
+        "curves": {
+            "position": d["positions"],
+            "bearing_positions_m": d["bearing_positions"],
+            "mass_positions_m": d["mass_positions"],
+            "unbalances_kgm": d["unbalances"],
+            "reactions_N": d["reactions"],
+            "reaction_difference_N": d["reaction_difference"],
+            "bending_measure_m2": d["bending_measure"],
+            "max_deflection_m": d["max_deflection"],
+            "max_stress_Pa": d["max_stress"],
+            "first_frequency_Hz": d["first_frequency"],
+            "normalised_bending": d["normalised_bending"],
+            "normalised_secondary": d["normalised_secondary"],
+            "objective": d["objective"],
+        },
+    }
+
+
+def _echo_study(study: Any, every: int) -> None:
+    click.echo(f"{study.case}: {study.design_variable}")
+    click.echo(
+        f"  optimum at {100 * study.optimum_position:.1f} % of the length "
+        f"(w = {study.weight:g}, J = {study.optimum_objective:.4f}, B = {study.secondary})"
+    )
+    rows = []
+    n = study.positions.size
+    for i in sorted(set(range(0, n, max(1, every))) | {n - 1}):
+        rows.append(
+            [
+                f"{100 * study.positions[i]:.1f}",
+                f"{study.reactions[i].max():.4g}",
+                f"{study.reaction_difference[i]:.4g}",
+                f"{1e6 * study.bending_measure[i]:.4g}",
+                f"{1e6 * study.max_deflection[i]:.4g}",
+                f"{study.max_stress[i] / 1e6:.4g}",
+                f"{study.first_frequency[i]:.5g}",
+                f"{study.objective[i]:.4f}",
+            ]
+        )
+    echo_table(["x/L %", "max R N", "dR N", "∫w mm²", "w max µm", "σ MPa", "f1 Hz", "J"], rows)
+    click.echo("  weight sweep:")
+    echo_table(
+        ["w", "optimum %"],
+        [
+            [f"{w:.3g}", f"{100 * x:.1f}"]
+            for w, x in zip(study.weights, study.optimum_positions, strict=True)
+        ],
+    )
+
+
+@click.group()
+def shaft() -> None:
+    """Balance-shaft bearing and unbalance-mass layout (beam model, Kim 2018)."""
+
+
+@shaft.command()
+@_study_options
+@_section_options
+@click.option(
+    "--secondary",
+    type=click.Choice(["reaction-difference", "inverse-frequency"]),
+    default="reaction-difference",
+    show_default=True,
+    help="B of the objective.",
+)
+@format_option(("table", "json"))
+def inline4(
+    unbalance: str,
+    speed: str,
+    weight: float,
+    weights: str | None,
+    points: int,
+    length: str,
+    diameter: str,
+    bore: str,
+    modulus: str,
+    density: str,
+    poisson: float,
+    unbalance_radius: str,
+    bearing_stiffness: str | None,
+    theory: str,
+    secondary: str,
+    fmt: str,
+) -> None:
+    """Optimum unbalance-mass position of an inline-4 second-order shaft on end bearings."""
+    import numpy as np
+
+    from ..balance_shaft import inline4_study
+
+    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
+    c = _common(unbalance, speed, unbalance_radius, bearing_stiffness, weights, points)
+    study = inline4_study(
+        c["unbalance"],
+        c["speed"],
+        length_m,
+        section,
+        weight=weight,
+        positions=np.linspace(0.0, 1.0, points),
+        weights=c["weights"],
+        unbalance_radius=c["unbalance_radius"],
+        bearing_stiffness=c["bearing_stiffness"],
+        theory=theory,  # type: ignore[arg-type]
+        secondary=secondary,
+    )  # type: ignore[arg-type]
+    if fmt == "json":
+        out = {
+            "schema": SCHEMA,
+            **study_json(study),
+            "paper": {"optimum_position": 0.67, "weight": 2.0, "source": "003 Sect. 3.1, Fig. 7"},
+        }
+        click.echo(json.dumps(out, indent=2))
+        return
+    _echo_study(study, max(1, points // 10))
+    click.echo("Paper (003, Fig. 7): 67 % with w = 2.")
+
+
+@shaft.command()
+@_study_options
+@_section_options
+@click.option(
+    "--type",
+    "rotor_type",
+    type=click.Choice(["I", "II", "III", "all"]),
+    default="all",
+    show_default=True,
+    help="Rotor type (order of masses and bearings).",
+)
+@click.option(
+    "--hold",
+    type=click.Choice(["couple", "unbalance"]),
+    default="couple",
+    show_default=True,
+    help="Keep the couple (physical) or each mass's unbalance (paper).",
+)
+@click.option("--bearing-offset", default=None, help="Bearing-to-mass distance (default 0.1 L).")
+@click.option(
+    "--z-min",
+    type=float,
+    default=0.3,
+    show_default=True,
+    help="Smallest second-mass position z / L of the sweep.",
+)
+@format_option(("table", "json"))
+def inline3(
+    unbalance: str,
+    speed: str,
+    weight: float,
+    weights: str | None,
+    points: int,
+    length: str,
+    diameter: str,
+    bore: str,
+    modulus: str,
+    density: str,
+    poisson: float,
+    unbalance_radius: str,
+    bearing_stiffness: str | None,
+    theory: str,
+    rotor_type: str,
+    hold: str,
+    bearing_offset: str | None,
+    z_min: float,
+    fmt: str,
+) -> None:
+    """Optimum second-mass position of an inline-3 primary-couple shaft, per rotor type.
+
+    --unbalance is the first moment of each mass when the two masses are the shaft
+    length apart (003 Eq. 12).
+    """
+    import numpy as np
+
+    from ..balance_shaft import ROTOR_TYPES, inline3_study
+    from ..units import parse_quantity
+
+    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
+    c = _common(unbalance, speed, unbalance_radius, bearing_stiffness, weights, points)
+    if not (0.0 <= z_min < 1.0):
+        raise InputError("z_min", z_min, "must lie in [0, 1)")
+    offset = (
+        None
+        if bearing_offset is None
+        else parse_quantity(bearing_offset, "length", "bearing_offset")
+    )
+    types = ROTOR_TYPES if rotor_type == "all" else (rotor_type,)
+    studies = [
+        inline3_study(
+            t,
+            c["unbalance"],
+            c["speed"],
+            length_m,
+            section,  # type: ignore[arg-type]
+            weight=weight,
+            positions=np.linspace(z_min, 1.0, points),
+            weights=c["weights"],
+            bearing_offset=offset,
+            hold=hold,  # type: ignore[arg-type]
+            unbalance_radius=c["unbalance_radius"],
+            bearing_stiffness=c["bearing_stiffness"],
+            theory=theory,
+        )  # type: ignore[arg-type]
+        for t in types
+    ]
+    if fmt == "json":
+        out = {
+            "schema": SCHEMA,
+            "case": "inline3",
+            "hold": hold,
+            "studies": {s.case.split("-")[1]: study_json(s) for s in studies},
+            "paper": {
+                "optimum_position": 0.69,
+                "weight": 2.0,
+                "rotor_type": "III",
+                "source": "003 Sect. 3.2, Fig. 9",
+                "note": "not reproducible from the text: geometry not given, Eqs. 14-16 "
+                "and 22-25 garbled (seeds/README.md)",
+            },
+        }
+        click.echo(json.dumps(out, indent=2))
+        return
+    for s in studies:
+        _echo_study(s, max(1, points // 10))
+        click.echo("")
+    echo_table(
+        ["type", "model optimum %", "paper %"],
+        [
+            [
+                s.case.split("-")[1],
+                f"{100 * s.optimum_position:.1f}",
+                "69 (type III, not reproducible)" if s.case.endswith("-III") else "-",
+            ]
+            for s in studies
+        ],
+    )
+
+
+@shaft.command()
+@click.option(
+    "--bearing",
+    "bearings",
+    multiple=True,
+    required=True,
+    help="Bearing position from the shaft end (repeat, at least two).",
+)
+@click.option(
+    "--mass",
+    "masses",
+    multiple=True,
+    required=True,
+    help="Unbalance-mass position (repeat; match with --unbalance).",
+)
+@click.option(
+    "--unbalance",
+    "unbalances",
+    multiple=True,
+    required=True,
+    help='First moment m*e of each mass, e.g. "3.3 g*m" (one for all, or one per mass).',
+)
+@click.option(
+    "--phase",
+    "phases",
+    multiple=True,
+    help='Angular position of each mass on the shaft, e.g. "180 deg" (default 0).',
+)
+@click.option("--speed", required=True, help="Shaft speed of the evaluation.")
+@click.option(
+    "--max-speed", default=None, help="Maximum shaft speed for the checks (default --speed)."
+)
+@click.option(
+    "--margin",
+    type=float,
+    default=0.25,
+    show_default=True,
+    help="Required separation of the first critical speed above the maximum speed.",
+)
+@click.option("--bearing-capacity", default=None, help='Allowed bearing load, e.g. "5 kN".')
+@click.option("--deflection-limit", default=None, help='Allowed deflection, e.g. "50 um".')
+@_section_options
+@format_option(("table", "json"))
+def check(
+    bearings: tuple[str, ...],
+    masses: tuple[str, ...],
+    unbalances: tuple[str, ...],
+    phases: tuple[str, ...],
+    speed: str,
+    max_speed: str | None,
+    margin: float,
+    bearing_capacity: str | None,
+    deflection_limit: str | None,
+    length: str,
+    diameter: str,
+    bore: str,
+    modulus: str,
+    density: str,
+    poisson: float,
+    unbalance_radius: str,
+    bearing_stiffness: str | None,
+    theory: str,
+    fmt: str,
+) -> None:
+    """State variables and design checks of one shaft layout."""
+    from ..balance_shaft import BalanceShaft, design_checks, shaft_response
+    from ..units import parse_quantity
+
+    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
+    c = _common(unbalances[0], speed, unbalance_radius, bearing_stiffness, None, 3)
+    u = [parse_quantity(v, "unbalance", f"unbalances[{i}]") for i, v in enumerate(unbalances)]
+    if len(u) == 1:
+        u = u * len(masses)
+    design = BalanceShaft(
+        length=length_m,
+        section=section,
+        bearing_positions=tuple(
+            parse_quantity(b, "length", f"bearing_positions[{i}]") for i, b in enumerate(bearings)
+        ),
+        mass_positions=tuple(
+            parse_quantity(m, "length", f"mass_positions[{i}]") for i, m in enumerate(masses)
+        ),
+        unbalances=tuple(u),
+        speed=c["speed"],
+        phases=tuple(parse_quantity(p, "angle", f"phases[{i}]") for i, p in enumerate(phases)),
+        unbalance_radius=c["unbalance_radius"],
+        bearing_stiffness=c["bearing_stiffness"],
+    )
+    response = shaft_response(design, theory=theory)  # type: ignore[arg-type]
+    checks = design_checks(
+        response,
+        max_speed=None if max_speed is None else parse_quantity(max_speed, "speed", "max_speed"),
+        critical_speed_margin=margin,
+        bearing_capacity=None
+        if bearing_capacity is None
+        else parse_quantity(bearing_capacity, "force", "bearing_capacity"),
+        deflection_limit=None
+        if deflection_limit is None
+        else parse_quantity(deflection_limit, "length", "deflection_limit"),
+    )
+    if fmt == "json":
+        click.echo(
+            json.dumps(
+                {
+                    "schema": SCHEMA,
+                    "case": "check",
+                    "shaft": design.to_dict(),
+                    "response": response.to_dict(),
+                    "checks": checks.to_dict(),
+                },
+                indent=2,
+            )
+        )
+        return
+    rows = [
+        [f"bearing {i + 1} at {1000 * x:.1f} mm", f"{r:.4g} N"]
+        for i, (x, r) in enumerate(zip(design.bearing_positions, response.reactions, strict=True))
+    ]
+    rows += [
+        ["bearing-load difference", f"{response.reaction_difference:.4g} N"],
+        ["integral of deflection", f"{1e6 * response.bending_measure:.4g} mm²"],
+        ["max deflection", f"{1e6 * response.max_deflection:.4g} µm"],
+        ["max bending stress", f"{response.max_stress / 1e6:.4g} MPa"],
+        ["first bending frequency", f"{response.first_frequency:.5g} Hz"],
+        [
+            "critical speed / max speed",
+            f"{checks.critical_speed_ratio:.3f} "
+            f"(need >= {checks.required_ratio:.3f}) "
+            f"{'ok' if checks.critical_speed_ok else 'FAIL'}",
+        ],
+        [
+            "max bearing load",
+            f"{checks.max_bearing_load:.4g} N "
+            + _verdict(checks.bearing_capacity, checks.bearing_ok),
+        ],
+        [
+            "max deflection at max speed",
+            f"{1e6 * checks.max_deflection:.4g} µm "
+            + _verdict(checks.deflection_limit, checks.deflection_ok),
+        ],
+        ["dynamic amplification (1 mode)", f"{checks.dynamic_amplification:.3f}"],
+        ["all checks", "ok" if checks.ok else "FAIL"],
+    ]
+    echo_table(["quantity", "value"], rows)
