@@ -118,9 +118,13 @@ def harmonic_coefficients(rod_ratio: ArrayLike, orders: int = 8, offset_ratio: A
         while n < 4 * orders:
             n *= 2
         psi = 2.0 * np.pi * np.arange(n) / n
-        eps = np.asarray(offset_ratio, dtype=float)[..., None]
-        # crank radius 1, rod length 1/lambda: the normalised inertia is -s''(psi)
-        f = -piston_acceleration(psi, 1.0, 1.0 / lam[..., None], eps)
+        sin, cos = np.sin(psi), np.cos(psi)
+        # the acceleration of piston_acceleration() with r = 1, l = 1/lambda, written out so
+        # that the sines and cosines of the sample angles are shared by all engines
+        u = np.asarray(offset_ratio, dtype=float)[..., None] - sin
+        q = np.sqrt((1.0 / lam[..., None]) ** 2 - u * u)
+        uc = u * cos
+        f = cos + (cos * cos + u * sin) / q + uc * uc / q**3  # = -s''/(r w^2)
         spectrum = np.fft.rfft(f, axis=-1)
         return 2.0 * spectrum[..., 1 : orders + 1] / n
     out = np.zeros(lam.shape + (orders,), dtype=complex)

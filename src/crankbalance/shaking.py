@@ -127,23 +127,21 @@ def reciprocating_phasors(coefficients: ArrayLike, mass: ArrayLike, throw_angle:
     """
     c = np.asarray(coefficients)
     k = c.shape[-1]
-    n = np.arange(1, k + 1, dtype=float)[:, None]  # (K, 1)
-    phi = np.asarray(throw_angle, dtype=float)[..., None, :]
-    beta = np.asarray(bank, dtype=float)[..., None, :]
-    y = np.asarray(position, dtype=float)[..., None, :]
-    p = (np.asarray(mass, dtype=float) * (np.asarray(crank_radius, dtype=float)
-                                          * np.asarray(speed, dtype=float) ** 2)[..., None])
-    half = 0.5 * p[..., None, :]
-    turn = n * (phi - beta)
-    e_fwd = half * np.exp(1j * (turn + beta))
-    e_bwd = half * np.exp(1j * (beta - turn))
-    c_fwd = c[..., :, None]
-    c_bwd = np.conj(c_fwd)
-    fwd = (c_fwd * e_fwd).sum(axis=-1)
-    bwd = (c_bwd * e_bwd).sum(axis=-1)
-    cfwd = (c_fwd * e_fwd * y).sum(axis=-1)
-    cbwd = (c_bwd * e_bwd * y).sum(axis=-1)
-    return fwd, bwd, cfwd, cbwd
+    phi = np.asarray(throw_angle, dtype=float)
+    beta = np.asarray(bank, dtype=float)
+    p = np.asarray(mass, dtype=float) * (np.asarray(crank_radius, dtype=float)
+                                         * np.asarray(speed, dtype=float) ** 2)[..., None]
+    base = 0.5 * p * np.exp(1j * beta)  # (..., C)
+    y = np.asarray(position, dtype=float)
+    # sums over cylinders of z**n * w with z = exp(i (phi - beta)); the backward sums use
+    # sum(conj(z**n) w) = conj(sum(z**n conj(w)))
+    weights = np.stack([base, base * y, np.conj(base), np.conj(base) * y], axis=-1)
+    z = np.exp(1j * (phi - beta))
+    powers = np.cumprod(np.broadcast_to(z[..., None, :], z.shape[:-1] + (k,) + z.shape[-1:]),
+                        axis=-2)  # (..., K, C): z**1 .. z**K
+    sums = powers @ weights  # (..., K, 4)
+    return (c * sums[..., 0], np.conj(c * sums[..., 2]),
+            c * sums[..., 1], np.conj(c * sums[..., 3]))
 
 
 def batch_amplitudes(crank_radius: ArrayLike, rod_length: ArrayLike, speed: ArrayLike,

@@ -1,0 +1,5 @@
+"""python -m crankbalance: the command line."""
+
+from .cli import main
+
+main()
