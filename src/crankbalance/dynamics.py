@@ -1,0 +1,1051 @@
+r"""Rotor test bench and engine-cycle torque simulation.
+
+Three studies, each a pure-physics orchestrator returning a frozen result dataclass:
+
+* :func:`run_bench` -- the simulated rotor test bench of 004 Sec. 5.2.5: a rigid rotor on
+  two bearings with Coulomb friction driven by the actual bearing reaction forces
+  (weight plus the rotating unbalance, split by the bearing positions), driven by a motor
+  whose torque comes from a PI speed controller that follows a ramp to the set speed and
+  holds it. The required torque is the mean motor torque over the hold (as in the thesis).
+* :func:`engine_cycle` -- one working cycle of a single cylinder (or several, phased) at a
+  given mean speed: gas force from a pressure curve (user table or a Wiebe heat-release
+  model), reciprocating inertia with the variable inertia of the crank train, main-bearing
+  loads including the counterweight of a balance factor, friction torque from those loads,
+  net torque, speed fluctuation and crank acceleration.
+* :func:`balance_sensitivity` -- sweep of the balance factor (and a scale on the
+  reciprocating mass) with the indicators of 004 Sec. 1/4.2: mean friction torque and power
+  loss, peak and mean main-bearing load, peak net torque, maximum crank acceleration,
+  shaking forces.
+
+Balance factor (everywhere in this module): the share :math:`f_b` of the reciprocating mass
+per cylinder that the crank counterweight balances *on top of* 100 % of the rotating mass,
+:math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r` (004 Eq. 4.6).
+
+Frames: crank angle :math:`\theta` from the cylinder axis (0 = top dead centre, for the
+firing cylinder the firing TDC); :math:`z` along the cylinder axis away from the crank
+(in-line), :math:`x` across it (transverse), crankpin at :math:`r(\sin\theta, \cos\theta)`.
+Torques are positive in the sense of rotation.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from . import kinematics
+from .errors import InputError, check_positive, check_range
+from .results import ResultMixin
+
+STANDARD_GRAVITY = 9.80665
+GAS_CONSTANT_AIR = 287.0
+
+Strokes = Literal[2, 4]
+
+
+def _finite(field_name: str, value: float) -> float:
+    if not math.isfinite(value):
+        raise InputError(field_name, value, "must be a finite number")
+    return float(value)
+
+
+def _nonnegative(field_name: str, value: float) -> float:
+    if not (value >= 0 and math.isfinite(value)):
+        raise InputError(field_name, value, "must be a finite number, zero or greater")
+    return float(value)
+
+
+# ======================================================================================
+# (a) Rotor test bench
+# ======================================================================================
+
+
+@dataclass(frozen=True)
+class BenchRotor(ResultMixin):
+    """A rigid rotor on two journal bearings with Coulomb friction.
+
+    Parameters
+    ----------
+    mass : float
+        Rotor mass [kg].
+    inertia : float
+        Mass moment of inertia about the spin axis [kg m^2].
+    journal_diameter : float
+        Diameter of the journals in the bearings [m].
+    friction_coefficient : float
+        Coulomb friction coefficient of each bearing [-].
+    unbalance : float
+        Static unbalance :math:`U = m_u r_u` [kg m].
+    bearing_positions : tuple of float
+        Axial positions of the two bearings [m].
+    mass_position : float
+        Axial position of the centre of gravity [m].
+    unbalance_position : float
+        Axial position of the unbalance plane [m].
+    gravity : float
+        Gravitational acceleration, perpendicular to the spin axis [m/s^2].
+    """
+
+    mass: float
+    inertia: float
+    journal_diameter: float
+    friction_coefficient: float
+    unbalance: float = 0.0
+    bearing_positions: tuple[float, float] = (-0.05, 0.05)
+    mass_position: float = 0.0
+    unbalance_position: float = 0.0
+    gravity: float = STANDARD_GRAVITY
+
+    def __post_init__(self) -> None:
+        check_positive("mass", self.mass)
+        check_positive("inertia", self.inertia)
+        check_positive("journal_diameter", self.journal_diameter)
+        _nonnegative("friction_coefficient", self.friction_coefficient)
+        _nonnegative("unbalance", self.unbalance)
+        _nonnegative("gravity", self.gravity)
+        if len(self.bearing_positions) != 2:
+            raise InputError("bearing_positions", self.bearing_positions, "must be two positions")
+        a, b = (_finite("bearing_positions", float(p)) for p in self.bearing_positions)
+        if a == b:
+            raise InputError("bearing_positions", self.bearing_positions,
+                             "must be two different axial positions")
+        _finite("mass_position", self.mass_position)
+        _finite("unbalance_position", self.unbalance_position)
+
+    def load_shares(self, position: float) -> tuple[float, float]:
+        """Shares of a force at an axial position carried by bearings A and B (lever rule)."""
+        a, b = self.bearing_positions
+        share_b = (position - a) / (b - a)
+        return 1.0 - share_b, share_b
+
+
+def disc_rotor(disc_diameter: float, disc_thickness: float, journal_diameter: float,
+               length: float, friction_coefficient: float, density: float = 7850.0,
+               hole_mass: float = 0.0, hole_radius: float = 0.0,
+               bearing_positions: tuple[float, float] | None = None) -> BenchRotor:
+    r"""The simplified test rotor of the thesis: a disc between two journals.
+
+    .. math::
+        m = \rho\frac{\pi}{4}\big(d_1^2 t + d_2^2 (L_1 - t)\big) - m_u,\qquad
+        I = \frac{\rho\pi}{32}\big(d_1^4 t + d_2^4 (L_1 - t)\big) - m_u r_u^2,\qquad
+        U = m_u r_u
+
+    The drilled hole is treated as a point mass removed at its radius.
+
+    Parameters
+    ----------
+    disc_diameter : float
+        Disc diameter :math:`d_1` [m].
+    disc_thickness : float
+        Disc thickness :math:`t` [m].
+    journal_diameter : float
+        Journal diameter :math:`d_2` [m].
+    length : float
+        Overall length :math:`L_1` [m]; each journal is :math:`(L_1 - t)/2` long.
+    friction_coefficient : float
+        Coulomb friction coefficient of each bearing [-].
+    density : float
+        Material density [kg/m^3].
+    hole_mass : float
+        Mass removed to make the unbalance :math:`m_u` [kg].
+    hole_radius : float
+        Radius of the removed mass :math:`r_u` [m].
+    bearing_positions : tuple of float, optional
+        Axial bearing positions from the disc mid-plane [m]; default the journal mid-points,
+        :math:`\pm(L_1 + t)/4`.
+
+    References
+    ----------
+    004 Appendix E, Eqs. 7.6-7.9 and Table 7.2; Table 5.2 (drilled holes).
+    """
+    check_positive("disc_diameter", disc_diameter)
+    check_positive("disc_thickness", disc_thickness)
+    check_positive("journal_diameter", journal_diameter)
+    check_positive("length", length)
+    check_positive("density", density)
+    if disc_thickness >= length:
+        raise InputError("disc_thickness", disc_thickness, f"must be less than length = {length}")
+    _nonnegative("hole_mass", hole_mass)
+    _nonnegative("hole_radius", hole_radius)
+    journals = length - disc_thickness
+    mass = density * np.pi / 4 * (disc_diameter**2 * disc_thickness
+                                  + journal_diameter**2 * journals)
+    inertia = density * np.pi / 32 * (disc_diameter**4 * disc_thickness
+                                      + journal_diameter**4 * journals)
+    if hole_mass >= mass:
+        raise InputError("hole_mass", hole_mass, f"must be less than the rotor mass {mass:.4g} kg")
+    if bearing_positions is None:
+        half = (length + disc_thickness) / 4
+        bearing_positions = (-half, half)
+    return BenchRotor(mass=float(mass - hole_mass),
+                      inertia=float(inertia - hole_mass * hole_radius**2),
+                      journal_diameter=journal_diameter,
+                      friction_coefficient=friction_coefficient,
+                      unbalance=hole_mass * hole_radius,
+                      bearing_positions=bearing_positions)
+
+
+@dataclass(frozen=True)
+class BenchSettings(ResultMixin):
+    """Run settings of the simulated bench.
+
+    Parameters
+    ----------
+    speed : float
+        Set speed [rad/s].
+    ramp_time : float
+        Duration of the linear speed ramp from rest [s] (thesis: 2 s).
+    hold_time : float
+        Duration of the hold at set speed [s] (thesis: 1.5 s); the required torque is the
+        mean motor torque over it.
+    proportional_gain : float
+        PI controller proportional gain :math:`K_p` [N m s/rad].
+    integral_gain : float
+        PI controller integral gain :math:`K_i` [N m/rad].
+    stick_speed : float
+        Speed scale of the regularised Coulomb law
+        :math:`\\operatorname{sgn}\\omega \\approx \\omega/\\sqrt{\\omega^2 + \\omega_s^2}` [rad/s].
+    samples : int
+        Number of time samples in the returned histories.
+    rtol : float
+        Relative tolerance of ``solve_ivp``.
+    """
+
+    speed: float
+    ramp_time: float = 2.0
+    hold_time: float = 1.5
+    proportional_gain: float = 0.2
+    integral_gain: float = 10.0
+    stick_speed: float = 0.1
+    samples: int = 1401
+    rtol: float = 1e-6
+
+    def __post_init__(self) -> None:
+        check_positive("speed", self.speed)
+        check_positive("ramp_time", self.ramp_time)
+        check_positive("hold_time", self.hold_time)
+        check_positive("proportional_gain", self.proportional_gain)
+        _nonnegative("integral_gain", self.integral_gain)
+        check_positive("stick_speed", self.stick_speed)
+        if int(self.samples) < 10:
+            raise InputError("samples", self.samples, "must be at least 10")
+        check_range("rtol", self.rtol, 1e-12, 1e-2)
+
+
+@dataclass(frozen=True)
+class BenchResult(ResultMixin):
+    """Result of :func:`run_bench`.
+
+    Attributes
+    ----------
+    required_torque : float
+        Mean motor torque over the hold [N m] (Table 5.6 of 004).
+    mean_friction_torque : float
+        Mean bearing friction torque over the hold [N m].
+    friction_power : float
+        Mean friction power over the hold [W].
+    final_speed : float
+        Speed at the end of the run [rad/s].
+    speed_ripple : float
+        Peak-to-peak speed over the last revolution-averaged hold [rad/s].
+    time, speed, motor_torque, friction_torque, bearing_load_a, bearing_load_b : ndarray
+        Histories [s], [rad/s], [N m], [N m], [N], [N].
+    """
+
+    settings: BenchSettings
+    required_torque: float
+    mean_friction_torque: float
+    friction_power: float
+    final_speed: float
+    speed_ripple: float
+    time: NDArray = field(repr=False)
+    speed: NDArray = field(repr=False)
+    motor_torque: NDArray = field(repr=False)
+    friction_torque: NDArray = field(repr=False)
+    bearing_load_a: NDArray = field(repr=False)
+    bearing_load_b: NDArray = field(repr=False)
+
+
+def _bench_model(rotor: BenchRotor, settings: BenchSettings):  # noqa: ANN202
+    """Build the right-hand side and the output function of the bench ODE."""
+    inertia = rotor.inertia
+    weight = rotor.mass * rotor.gravity
+    unbalance = rotor.unbalance
+    gravity_torque = unbalance * rotor.gravity
+    wa, wb = rotor.load_shares(rotor.mass_position)
+    ua, ub = rotor.load_shares(rotor.unbalance_position)
+    lever = 0.5 * rotor.journal_diameter * rotor.friction_coefficient
+    kp, ki = settings.proportional_gain, settings.integral_gain
+    w_set, t_ramp = settings.speed, settings.ramp_time
+    ramp_rate = w_set / t_ramp
+    ws2 = settings.stick_speed**2
+    hypot, cos, sin, sqrt = math.hypot, math.cos, math.sin, math.sqrt
+
+    def loads(theta: float, omega: float, alpha: float) -> tuple[float, float]:
+        # bearing reactions on the rotor: weight + U(-w^2 e_r + alpha e_t), e_r = (c, s)
+        c, s = cos(theta), sin(theta)
+        fx = unbalance * (-omega * omega * c - alpha * s)
+        fz = unbalance * (-omega * omega * s + alpha * c)
+        return hypot(ua * fx, wa * weight + ua * fz), hypot(ub * fx, wb * weight + ub * fz)
+
+    def torques(t: float, y: Sequence[float]) -> tuple[float, float, float, float, float]:
+        theta, omega, integral = y[0], y[1], y[2]
+        reference = w_set * t / t_ramp if t < t_ramp else w_set
+        motor = kp * (reference - omega) + ki * integral
+        sign = omega / sqrt(omega * omega + ws2)
+        drive = motor - gravity_torque * cos(theta)
+        load_a, load_b = loads(theta, omega, 0.0)
+        alpha = (drive - lever * sign * (load_a + load_b)) / inertia
+        load_a, load_b = loads(theta, omega, alpha)  # one fixed-point pass for the alpha term
+        friction = lever * sign * (load_a + load_b)
+        alpha = (drive - friction) / inertia
+        return motor, friction, alpha, load_a, load_b
+
+    def rhs(t: float, y: Sequence[float]) -> list[float]:
+        motor, friction, alpha, _, _ = torques(t, y)
+        reference = w_set * t / t_ramp if t < t_ramp else w_set
+        return [y[1], alpha, reference - y[1], motor, friction]
+
+    return rhs, torques, ramp_rate
+
+
+def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
+    r"""Simulate the rotor test bench: PI-controlled spin-up, hold, required torque.
+
+    Equation of motion of the rigid rotor (angle :math:`\theta` of the unbalance from the
+    horizontal, gravity along :math:`-z`):
+
+    .. math::
+        I\ddot\theta = T_m - \operatorname{sgn}(\dot\theta)\,\mu\frac{d}{2}
+            \big(|\mathbf R_A| + |\mathbf R_B|\big) - U g\cos\theta
+
+        \mathbf R_A + \mathbf R_B = m g\,\mathbf e_z
+            + U\big(-\dot\theta^2\mathbf e_r + \ddot\theta\,\mathbf e_t\big)
+
+        T_m = K_p(\omega_{ref} - \dot\theta) + K_i\int(\omega_{ref} - \dot\theta)\,dt,\quad
+        \omega_{ref} = \omega_{set}\min(t/t_{ramp}, 1)
+
+    The reactions are split between the bearings by the lever rule (weight at the centre of
+    gravity, unbalance force in its plane). The required torque is the mean of :math:`T_m`
+    over the hold, computed exactly by integrating :math:`T_m` along with the state.
+
+    Parameters
+    ----------
+    rotor : BenchRotor
+        The rotor and its bearings.
+    settings : BenchSettings
+        Set speed, ramp, hold, controller gains, solver settings.
+
+    Returns
+    -------
+    BenchResult
+
+    References
+    ----------
+    004 Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
+    """
+    from scipy.integrate import solve_ivp
+
+    rhs, torques, _ = _bench_model(rotor, settings)
+    t_ramp = settings.ramp_time
+    t_end = t_ramp + settings.hold_time
+    n_ramp = max(2, int(round(settings.samples * t_ramp / t_end)))
+    n_hold = max(2, settings.samples - n_ramp + 1)
+    grid_ramp = np.linspace(0.0, t_ramp, n_ramp)
+    grid_hold = np.linspace(t_ramp, t_end, n_hold)
+    period = 2 * np.pi / settings.speed
+    atol = [1e-6, 1e-6 * settings.speed, 1e-8, 1e-8, 1e-8]
+    common = dict(method="DOP853", rtol=settings.rtol, atol=atol, max_step=period / 8)
+    first = solve_ivp(rhs, (0.0, t_ramp), [0.0, 0.0, 0.0, 0.0, 0.0], t_eval=grid_ramp, **common)
+    if not first.success:  # pragma: no cover - solver failure is not expected
+        raise RuntimeError(f"bench ramp failed: {first.message}")
+    second = solve_ivp(rhs, (t_ramp, t_end), first.y[:, -1], t_eval=grid_hold, **common)
+    if not second.success:  # pragma: no cover
+        raise RuntimeError(f"bench hold failed: {second.message}")
+    time = np.concatenate([first.t, second.t[1:]])
+    states = np.concatenate([first.y, second.y[:, 1:]], axis=1)
+    outputs = np.array([torques(t, states[:, k]) for k, t in enumerate(time)])
+    hold = settings.hold_time
+    required = (second.y[3, -1] - second.y[3, 0]) / hold
+    friction = (second.y[4, -1] - second.y[4, 0]) / hold
+    omega_hold = second.y[1]
+    return BenchResult(settings=settings, required_torque=float(required),
+                       mean_friction_torque=float(friction),
+                       friction_power=float(friction * settings.speed),
+                       final_speed=float(second.y[1, -1]),
+                       speed_ripple=float(omega_hold[len(omega_hold) // 2:].max()
+                                          - omega_hold[len(omega_hold) // 2:].min()),
+                       time=time, speed=states[1], motor_torque=outputs[:, 0],
+                       friction_torque=outputs[:, 1], bearing_load_a=outputs[:, 3],
+                       bearing_load_b=outputs[:, 4])
+
+
+# ======================================================================================
+# (b) Engine cycle
+# ======================================================================================
+
+
+@dataclass(frozen=True)
+class CylinderSpec(ResultMixin):
+    """One cylinder of a single-cylinder (or per-cylinder) engine-cycle model.
+
+    Parameters
+    ----------
+    bore : float
+        Cylinder bore [m].
+    crank_radius : float
+        Crank throw radius (half the stroke for zero offset) [m].
+    rod_length : float
+        Conrod length, big-end to small-end centre [m].
+    reciprocating_mass : float
+        Reciprocating mass per cylinder (piston assembly + small end) [kg].
+    crank_inertia : float
+        Moment of inertia of everything that purely rotates (crankshaft with counterweights,
+        big end, flywheel, clutch) about the crank axis [kg m^2].
+    balance_factor : float
+        Share of the reciprocating mass balanced by the crank counterweight on top of 100 %
+        of the rotating mass, :math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r` [-].
+    journal_diameter : float
+        Main-journal diameter [m].
+    friction_coefficient : float
+        Coulomb friction coefficient of the main bearings [-].
+    offset : float
+        Lateral offset of the wrist-pin path (desaxé) [m].
+    crankshaft_weight : float
+        Constant load on the main bearings along :math:`-z` (crankshaft weight with a
+        vertical cylinder) [N].
+    crankcase_pressure : float
+        Pressure under the piston [Pa].
+    """
+
+    bore: float
+    crank_radius: float
+    rod_length: float
+    reciprocating_mass: float
+    crank_inertia: float
+    balance_factor: float = 0.0
+    journal_diameter: float = 0.03
+    friction_coefficient: float = 0.005
+    offset: float = 0.0
+    crankshaft_weight: float = 0.0
+    crankcase_pressure: float = 1.0e5
+
+    def __post_init__(self) -> None:
+        check_positive("bore", self.bore)
+        check_positive("crank_radius", self.crank_radius)
+        check_positive("rod_length", self.rod_length)
+        if self.rod_length <= self.crank_radius + abs(self.offset):
+            raise InputError("rod_length", self.rod_length,
+                             "must exceed crank_radius + |offset| "
+                             f"= {self.crank_radius + abs(self.offset):g} m")
+        _nonnegative("reciprocating_mass", self.reciprocating_mass)
+        check_positive("crank_inertia", self.crank_inertia)
+        _finite("balance_factor", self.balance_factor)
+        if not -1.0 <= self.balance_factor <= 2.0:
+            raise InputError("balance_factor", self.balance_factor, "must lie between -1 and 2")
+        check_positive("journal_diameter", self.journal_diameter)
+        _nonnegative("friction_coefficient", self.friction_coefficient)
+        _finite("offset", self.offset)
+        _nonnegative("crankshaft_weight", self.crankshaft_weight)
+        _nonnegative("crankcase_pressure", self.crankcase_pressure)
+
+    @property
+    def piston_area(self) -> float:
+        """Piston crown area [m^2]."""
+        return math.pi * self.bore**2 / 4
+
+    @property
+    def stroke(self) -> float:
+        """Piston stroke, exact with offset [m]."""
+        return stroke_length(self.crank_radius, self.rod_length, self.offset)
+
+    @property
+    def displacement(self) -> float:
+        """Swept volume [m^3]."""
+        return self.piston_area * self.stroke
+
+
+def stroke_length(crank_radius: float, rod_length: float, offset: float = 0.0) -> float:
+    r"""Piston stroke of a slider-crank with offset [m].
+
+    .. math:: S = \sqrt{(l + r)^2 - e^2} - \sqrt{(l - r)^2 - e^2}
+    """
+    return math.sqrt((rod_length + crank_radius) ** 2 - offset**2) - math.sqrt(
+        (rod_length - crank_radius) ** 2 - offset**2)
+
+
+def cylinder_volume(angle: ArrayLike, bore: float, crank_radius: float, rod_length: float,
+                    compression_ratio: float, offset: float = 0.0) -> NDArray:
+    r"""Cylinder volume over the crank angle [m^3].
+
+    .. math:: V = V_c + A_p\,(s_{TDC} - s(\theta)),\qquad V_c = \frac{A_p S}{\varepsilon - 1}
+
+    Parameters
+    ----------
+    angle : array_like
+        Crank angle from the cylinder axis [rad].
+    bore, crank_radius, rod_length : float
+        Geometry [m].
+    compression_ratio : float
+        Geometric compression ratio :math:`\varepsilon` [-].
+    offset : float
+        Wrist-pin path offset [m].
+    """
+    if not compression_ratio > 1:
+        raise InputError("compression_ratio", compression_ratio, "must be greater than 1")
+    area = math.pi * bore**2 / 4
+    top = math.sqrt((rod_length + crank_radius) ** 2 - offset**2)
+    clearance = area * stroke_length(crank_radius, rod_length, offset) / (compression_ratio - 1)
+    return clearance + area * (top - kinematics.piston_position(angle, crank_radius,
+                                                                rod_length, offset))
+
+
+def wiebe_burn_fraction(angle: ArrayLike, ignition_angle: float, burn_duration: float,
+                        efficiency_factor: float = 5.0, form_factor: float = 2.0) -> NDArray:
+    r"""Wiebe mass fraction burnt [-].
+
+    .. math:: x_b = 1 - \exp\!\Big[-a\Big(\frac{\theta - \theta_0}{\Delta\theta}\Big)^{m+1}\Big]
+              \quad (\theta > \theta_0),\qquad 0 \text{ before}
+
+    Parameters
+    ----------
+    angle : array_like
+        Crank angle from firing TDC [rad].
+    ignition_angle : float
+        Start of combustion :math:`\theta_0` [rad] (negative = before TDC).
+    burn_duration : float
+        Burn duration :math:`\Delta\theta` [rad].
+    efficiency_factor : float
+        Wiebe :math:`a` (5 gives 99.3 % burnt at the end of the duration) [-].
+    form_factor : float
+        Wiebe :math:`m` [-].
+
+    References
+    ----------
+    Heywood, Internal Combustion Engine Fundamentals, Eq. 9.23.
+    """
+    check_positive("burn_duration", burn_duration)
+    phase = np.clip((np.asarray(angle, dtype=float) - ignition_angle) / burn_duration, 0, None)
+    return 1.0 - np.exp(-efficiency_factor * phase ** (form_factor + 1.0))
+
+
+@dataclass(frozen=True)
+class WiebeCombustion(ResultMixin):
+    """Single-zone Wiebe heat-release model of the cylinder pressure.
+
+    Parameters
+    ----------
+    compression_ratio : float
+        Geometric compression ratio [-].
+    ignition_angle : float
+        Start of combustion from firing TDC [rad], negative before TDC.
+    burn_duration : float
+        Burn duration [rad].
+    intake_pressure : float
+        Cylinder pressure at the start of compression (sets the load) [Pa].
+    intake_temperature : float
+        Charge temperature at the start of compression [K].
+    air_fuel_ratio : float
+        Air/fuel mass ratio [-].
+    heating_value : float
+        Lower heating value of the fuel [J/kg].
+    combustion_efficiency : float
+        Share of the fuel energy released as heat in the cylinder (lumps wall heat loss) [-].
+    heat_release : float, optional
+        Heat released per cycle [J]; overrides the fuel-based value when given.
+    gamma : float
+        Ratio of specific heats of the charge [-].
+    exhaust_pressure : float, optional
+        Pressure during the exhaust stroke (four-stroke) [Pa]; default the intake pressure.
+    efficiency_factor, form_factor : float
+        Wiebe :math:`a` and :math:`m` [-].
+    """
+
+    compression_ratio: float
+    ignition_angle: float
+    burn_duration: float
+    intake_pressure: float = 1.0e5
+    intake_temperature: float = 320.0
+    air_fuel_ratio: float = 14.7
+    heating_value: float = 44.0e6
+    combustion_efficiency: float = 0.8
+    heat_release: float | None = None
+    gamma: float = 1.3
+    exhaust_pressure: float | None = None
+    efficiency_factor: float = 5.0
+    form_factor: float = 2.0
+
+    def __post_init__(self) -> None:
+        if not (self.compression_ratio > 1 and math.isfinite(self.compression_ratio)):
+            raise InputError("compression_ratio", self.compression_ratio, "must be greater than 1")
+        check_range("ignition_angle", self.ignition_angle, -math.pi / 2, math.pi / 4)
+        check_range("burn_duration", self.burn_duration, 1e-3, math.pi)
+        check_positive("intake_pressure", self.intake_pressure)
+        check_positive("intake_temperature", self.intake_temperature)
+        check_positive("air_fuel_ratio", self.air_fuel_ratio)
+        check_positive("heating_value", self.heating_value)
+        check_range("combustion_efficiency", self.combustion_efficiency, 0.0, 1.0)
+        if self.heat_release is not None:
+            _nonnegative("heat_release", self.heat_release)
+        check_range("gamma", self.gamma, 1.01, 1.67)
+        if self.exhaust_pressure is not None:
+            check_positive("exhaust_pressure", self.exhaust_pressure)
+        check_positive("efficiency_factor", self.efficiency_factor)
+        _nonnegative("form_factor", self.form_factor)
+
+
+def wiebe_pressure(angle: ArrayLike, cylinder: CylinderSpec, combustion: WiebeCombustion,
+                   strokes: Strokes = 4) -> NDArray:
+    r"""Cylinder pressure of the Wiebe single-zone model [Pa].
+
+    Closed cycle from bottom dead centre (:math:`-\pi`) to bottom dead centre (:math:`+\pi`)
+    around firing TDC, with the first law integrated exactly (integrating factor
+    :math:`V^\gamma`):
+
+    .. math::
+        \frac{dp}{d\theta} = -\gamma\frac{p}{V}\frac{dV}{d\theta}
+            + \frac{\gamma - 1}{V} Q\frac{dx_b}{d\theta}
+        \;\Rightarrow\;
+        p V^\gamma = p_1 V_1^\gamma + (\gamma - 1) Q\int_{-\pi}^{\theta}
+            V^{\gamma - 1}\,dx_b
+
+    Valves are taken to open and close at the dead centres: for a four-stroke the exhaust
+    stroke runs at ``exhaust_pressure`` and the intake stroke at ``intake_pressure``; for a
+    two-stroke the cylinder is scavenged at bottom dead centre. The heat released is
+    :math:`Q = \eta_c\,L_{hv}\,p_1 V_1/(R T_1\,\mathrm{AFR})` unless given.
+
+    Parameters
+    ----------
+    angle : array_like
+        Crank angle from firing TDC [rad], any values (wrapped onto the cycle).
+    cylinder : CylinderSpec
+        Geometry (bore, crank radius, rod length, offset).
+    combustion : WiebeCombustion
+        Combustion model parameters.
+    strokes : {2, 4}
+        Cycle type.
+
+    References
+    ----------
+    Heywood, Internal Combustion Engine Fundamentals, Secs. 9.2.1 and 9.2.2 (Wiebe function,
+    single-zone heat release); 004 Sec. 2.3 (the gas torque in the engine torque).
+    """
+    _check_strokes(strokes)
+    theta = np.asarray(angle, dtype=float)
+    cycle = np.pi * strokes / 2  # half cycle: pi (2-stroke) or 2 pi (4-stroke)
+    wrapped = (theta + cycle) % (2 * cycle) - cycle
+    geometry = (cylinder.bore, cylinder.crank_radius, cylinder.rod_length,
+                combustion.compression_ratio, cylinder.offset)
+    # fine grid over the closed part, exact integrating factor, interpolation onto `angle`
+    grid = np.linspace(-np.pi, np.pi, 2881)
+    volume = cylinder_volume(grid, *geometry)
+    gamma = combustion.gamma
+    v1 = float(cylinder_volume(-np.pi, *geometry))
+    heat = _heat_release(combustion, v1)
+    burnt = wiebe_burn_fraction(grid, combustion.ignition_angle, combustion.burn_duration,
+                                combustion.efficiency_factor, combustion.form_factor)
+    integrand = volume ** (gamma - 1.0)
+    source = np.concatenate([[0.0], np.cumsum(0.5 * (integrand[1:] + integrand[:-1])
+                                              * np.diff(burnt))])
+    start = combustion.intake_pressure * v1**gamma
+    closed = (start + (gamma - 1.0) * heat * source) / volume**gamma
+    pressure = np.interp(wrapped, grid, closed)
+    if strokes == 4:
+        exhaust = (combustion.exhaust_pressure if combustion.exhaust_pressure is not None
+                   else combustion.intake_pressure)
+        pressure = np.where(wrapped > np.pi, exhaust, pressure)
+        pressure = np.where(wrapped < -np.pi, combustion.intake_pressure, pressure)
+    return pressure
+
+
+def _heat_release(combustion: WiebeCombustion, bdc_volume: float) -> float:
+    if combustion.heat_release is not None:
+        return combustion.heat_release
+    c = combustion
+    air = c.intake_pressure * bdc_volume / (GAS_CONSTANT_AIR * c.intake_temperature)
+    return c.combustion_efficiency * c.heating_value * air / c.air_fuel_ratio
+
+
+def _check_strokes(strokes: int) -> None:
+    if strokes not in (2, 4):
+        raise InputError("strokes", strokes, "must be 2 or 4")
+
+
+def tabulated_pressure(angle: ArrayLike, table_angle: ArrayLike, table_pressure: ArrayLike,
+                       strokes: Strokes = 4) -> NDArray:
+    """Cylinder pressure from a measured or simulated table, periodic over the cycle [Pa].
+
+    Parameters
+    ----------
+    angle : array_like
+        Crank angles where the pressure is wanted, from firing TDC [rad].
+    table_angle : array_like
+        Crank angles of the table from firing TDC [rad], strictly increasing, spanning
+        less than one cycle (2 pi for two-stroke, 4 pi for four-stroke).
+    table_pressure : array_like
+        Absolute cylinder pressure at those angles [Pa].
+    strokes : {2, 4}
+        Cycle type (sets the period).
+    """
+    _check_strokes(strokes)
+    a = np.asarray(table_angle, dtype=float)
+    p = np.asarray(table_pressure, dtype=float)
+    if a.ndim != 1 or a.shape != p.shape or a.size < 4:
+        raise InputError("pressure table", a.size, "needs matching angle and pressure columns, "
+                         "at least 4 rows")
+    if not (np.all(np.isfinite(a)) and np.all(np.isfinite(p))):
+        raise InputError("pressure table", "non-finite value", "must hold finite numbers only")
+    if np.any(np.diff(a) <= 0):
+        raise InputError("pressure table angle", "not increasing", "must increase strictly")
+    period = np.pi * strokes
+    if a[-1] - a[0] >= period + 1e-9:
+        raise InputError("pressure table angle", float(np.degrees(a[-1] - a[0])),
+                         f"must span less than one cycle ({np.degrees(period):g} deg)")
+    if np.any(p < 0):
+        raise InputError("pressure table pressure", float(p.min()), "must be absolute, >= 0")
+    return np.interp(np.asarray(angle, dtype=float), a, p, period=period)
+
+
+PressureSource = WiebeCombustion | tuple[NDArray, NDArray]
+
+
+@dataclass(frozen=True)
+class CycleResult(ResultMixin):
+    """Result of :func:`engine_cycle` (arrays over the crank angle of one cycle).
+
+    Attributes
+    ----------
+    angle : ndarray
+        Crank angle of the first cylinder from its firing TDC [rad].
+    pressure : ndarray, shape (cylinders, samples)
+        Cylinder pressures [Pa].
+    gas_torque, inertia_torque, friction_torque, net_torque : ndarray
+        Torques summed over the cylinders [N m]; ``net = gas + inertia - friction`` at the mean
+        speed (004 Sec. 2.3).
+    inline_load, transverse_load : ndarray, shape (cylinders, samples)
+        Main-bearing load of each cylinder's crank along and across its cylinder axis [N]
+        (all main bearings of that throw together).
+    bearing_load : ndarray, shape (cylinders, samples)
+        Magnitude of that load [N] (the polar load diagram is ``(transverse, inline)``).
+    shaking_inline, shaking_transverse : ndarray, shape (cylinders, samples)
+        Free inertia force of each cylinder's crank train (no gas force) [N].
+    speed, crank_acceleration : ndarray
+        Crank speed [rad/s] and acceleration [rad/s^2] over the cycle at the given load.
+    load_torque : float
+        Constant brake torque that keeps the mean speed [N m].
+    indicated_work, gas_work : float
+        Closed-loop integral of p dV, and work of the gas torque over the cycle [J].
+    """
+
+    speed_mean: float
+    strokes: int
+    angle: NDArray = field(repr=False)
+    pressure: NDArray = field(repr=False)
+    gas_torque: NDArray = field(repr=False)
+    inertia_torque: NDArray = field(repr=False)
+    friction_torque: NDArray = field(repr=False)
+    net_torque: NDArray = field(repr=False)
+    inline_load: NDArray = field(repr=False)
+    transverse_load: NDArray = field(repr=False)
+    bearing_load: NDArray = field(repr=False)
+    shaking_inline: NDArray = field(repr=False)
+    shaking_transverse: NDArray = field(repr=False)
+    speed: NDArray = field(repr=False)
+    crank_acceleration: NDArray = field(repr=False)
+    load_torque: float
+    indicated_work: float
+    gas_work: float
+    mean_friction_torque: float
+    friction_power: float
+    peak_bearing_load: float
+    mean_bearing_load: float
+    peak_net_torque: float
+    max_crank_acceleration: float
+    speed_fluctuation: float
+    peak_shaking_inline: float
+    peak_shaking_transverse: float
+    peak_shaking_force: float
+
+
+def _cycle_samples(strokes: int, samples_per_revolution: int) -> NDArray:
+    n = samples_per_revolution * strokes // 2
+    half = np.pi * strokes / 2
+    return -half + 2 * half * np.arange(n) / n
+
+
+def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
+                 pressure: PressureSource, strokes: Strokes = 4,
+                 phases: ArrayLike | None = None,
+                 samples_per_revolution: int = 720) -> CycleResult:
+    r"""One working cycle of a single- or multi-cylinder crank train at a mean speed.
+
+    For each cylinder (crank angle :math:`\theta_j = \theta - \varphi_j`), with the exact
+    slider-crank :math:`s(\theta)` of :mod:`crankbalance.kinematics`:
+
+    .. math::
+        F_g = (p - p_{cc})A_p,\qquad
+        F_{rod,z} = m_{rec}\ddot s + F_g,\qquad F_{rod,x} = F_{rod,z}\,u/q
+
+        \mathbf F_{bearing} = -\mathbf F_{rod} - f_b m_{rec} r\omega^2\,\mathbf e_r
+            - W_{crank}\mathbf e_z,\qquad \mathbf e_r = (\sin\theta, \cos\theta)
+
+        T = \mathbf e_\theta\text{-moment of } -\mathbf F_{rod} \text{ at the crankpin}
+          = -(F_g + m_{rec}\ddot s)\,\frac{ds}{d\theta}
+
+        T_f = \mu\frac{d}{2}|\mathbf F_{bearing}|,\qquad
+        T_{net} = T_{gas} + T_{inertia} - T_f
+
+    The speed over the cycle follows from the Lagrange equation of the crank train with the
+    variable inertia :math:`J(\theta) = I_{crank} + \sum_j m_{rec,j}\,s_j'(\theta)^2`,
+    which integrates exactly to an energy balance under a constant brake torque
+    :math:`T_L = \overline{T_{gas} - T_f}`:
+
+    .. math::
+        \tfrac12 J(\theta)\,\omega^2 = E_0 + \int (T_{gas} - T_f - T_L)\,d\theta,\qquad
+        \ddot\theta = \frac{T_{gas} - T_f - T_L - \tfrac12 J'\omega^2}{J}
+
+    with :math:`E_0` set so that the time-mean speed is ``speed``. Loads and friction use the
+    mean speed (the fluctuation is small).
+
+    Parameters
+    ----------
+    cylinders : CylinderSpec or sequence of CylinderSpec
+        One cylinder, or one per cylinder (crank inertias are added).
+    speed : float
+        Mean crank speed [rad/s].
+    pressure : WiebeCombustion or (angle, pressure) arrays
+        Pressure model, or a table over the cycle from firing TDC ([rad], [Pa]).
+    strokes : {2, 4}
+        Cycle type.
+    phases : array_like, optional
+        Firing phase of each cylinder after cylinder 1 [rad]; also its throw angle
+        (in-line engine). Default: even firing.
+    samples_per_revolution : int
+        Angle resolution.
+
+    Returns
+    -------
+    CycleResult
+
+    References
+    ----------
+    004 Sec. 2.3 (engine torque from inertia, gas and friction), Eqs. 4.6-4.8 (balance
+    factor, in-line and transverse forces), Sec. 4.2.1 (friction torque from the bearing
+    load); Den Hartog, Mechanical Vibrations, Sec. 5.3 (inertia torque).
+    """
+    _check_strokes(strokes)
+    specs = [cylinders] if isinstance(cylinders, CylinderSpec) else list(cylinders)
+    if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
+        raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")
+    check_positive("speed", speed)
+    if int(samples_per_revolution) < 36:
+        raise InputError("samples_per_revolution", samples_per_revolution, "must be at least 36")
+    count = len(specs)
+    cycle_angle = np.pi * strokes
+    if phases is None:
+        phase = cycle_angle * np.arange(count) / count
+    else:
+        phase = np.asarray(phases, dtype=float).reshape(-1)
+        if phase.size != count or not np.all(np.isfinite(phase)):
+            raise InputError("phases", phases, f"must give {count} finite angles")
+    theta = _cycle_samples(strokes, int(samples_per_revolution))
+    w = speed
+    pressures, gas_t, inertia_t, inline, transverse, shake_z, shake_x = ([] for _ in range(7))
+    slope_sq, slope_dd = [], []
+    indicated = 0.0
+    for spec, ph in zip(specs, phase, strict=True):
+        local = theta - ph
+        r, l_, e = spec.crank_radius, spec.rod_length, spec.offset
+        p = _pressure(local, spec, pressure, strokes)
+        pressures.append(p)
+        s1 = kinematics.piston_velocity(local, r, l_, e)        # ds/dtheta [m/rad]
+        s2 = kinematics.piston_acceleration(local, r, l_, e)    # d2s/dtheta2 [m/rad^2]
+        u = e - r * np.sin(local)
+        q = np.sqrt(l_**2 - u**2)
+        gas = (p - spec.crankcase_pressure) * spec.piston_area
+        inertial = spec.reciprocating_mass * w**2 * s2
+        rod_z = inertial + gas                                   # rod force on piston, z
+        rod_x = rod_z * u / q
+        pin_x, pin_z = r * np.sin(local), r * np.cos(local)
+        # torque of the force -F_rod at the crankpin, positive with rotation
+        gas_t.append(pin_z * (-gas * u / q) - pin_x * (-gas))
+        inertia_t.append(pin_z * (-inertial * u / q) - pin_x * (-inertial))
+        excess = spec.balance_factor * spec.reciprocating_mass * r * w**2
+        bz = -rod_z - excess * np.cos(local) - spec.crankshaft_weight
+        bx = -rod_x - excess * np.sin(local)
+        inline.append(bz)
+        transverse.append(bx)
+        shake_z.append(-inertial - excess * np.cos(local))
+        shake_x.append(-excess * np.sin(local))
+        slope_sq.append(spec.reciprocating_mass * s1**2)
+        slope_dd.append(2 * spec.reciprocating_mass * s1 * s2)
+        volume = spec.piston_area * (-kinematics.piston_position(local, r, l_, e))
+        indicated += float(np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(volume, -1) - volume)))
+    inline_a, transverse_a = np.array(inline), np.array(transverse)
+    load = np.hypot(inline_a, transverse_a)
+    lever = np.array([0.5 * c.journal_diameter * c.friction_coefficient for c in specs])
+    friction = np.sum(lever[:, None] * load, axis=0)
+    gas_torque = np.sum(gas_t, axis=0)
+    inertia_torque = np.sum(inertia_t, axis=0)
+    net = gas_torque + inertia_torque - friction
+    step = cycle_angle / theta.size
+    gas_work = float(np.sum(gas_torque) * step)
+    load_torque = float(np.mean(gas_torque - friction))
+    inertia_total = sum(c.crank_inertia for c in specs) + np.sum(slope_sq, axis=0)
+    inertia_slope = np.sum(slope_dd, axis=0)
+    driving = gas_torque - friction - load_torque
+    work = np.concatenate([[0.0], np.cumsum(0.5 * (driving[1:] + driving[:-1]) * step)])
+    omega = _speed_from_energy(work, inertia_total, w, step)
+    acceleration = (driving - 0.5 * inertia_slope * omega**2) / inertia_total
+    shake_z_a, shake_x_a = np.array(shake_z), np.array(shake_x)
+    return CycleResult(
+        speed_mean=float(w), strokes=int(strokes), angle=theta, pressure=np.array(pressures),
+        gas_torque=gas_torque, inertia_torque=inertia_torque, friction_torque=friction,
+        net_torque=net, inline_load=inline_a, transverse_load=transverse_a, bearing_load=load,
+        shaking_inline=shake_z_a, shaking_transverse=shake_x_a, speed=omega,
+        crank_acceleration=acceleration, load_torque=load_torque, indicated_work=indicated,
+        gas_work=gas_work, mean_friction_torque=float(np.mean(friction)),
+        friction_power=float(np.mean(friction) * w),
+        peak_bearing_load=float(load.max()), mean_bearing_load=float(load.mean()),
+        peak_net_torque=float(net.max()),
+        max_crank_acceleration=float(np.abs(acceleration).max()),
+        speed_fluctuation=float((omega.max() - omega.min()) / w),
+        peak_shaking_inline=float(np.abs(shake_z_a.sum(axis=0)).max()),
+        peak_shaking_transverse=float(np.abs(shake_x_a.sum(axis=0)).max()),
+        peak_shaking_force=float(np.hypot(shake_z_a.sum(axis=0), shake_x_a.sum(axis=0)).max()))
+
+
+def _pressure(angle: NDArray, spec: CylinderSpec, source: PressureSource, strokes: int) -> NDArray:
+    if isinstance(source, WiebeCombustion):
+        return wiebe_pressure(angle, spec, source, strokes)  # type: ignore[arg-type]
+    if isinstance(source, tuple) and len(source) == 2:
+        return tabulated_pressure(angle, source[0], source[1], strokes)  # type: ignore[arg-type]
+    raise InputError("pressure", type(source).__name__,
+                     "must be a WiebeCombustion or a tuple (angle [rad], pressure [Pa])")
+
+
+def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step: float) -> NDArray:
+    """Speed over the cycle from 1/2 J w^2 = E0 + W with the time-mean speed prescribed."""
+    # Start from E0 = 1/2 J_mean w^2 - mean(W); Newton on the time-mean speed condition.
+    energy0 = 0.5 * float(np.mean(inertia)) * mean_speed**2 - float(np.mean(work))
+    floor = float(np.max(-work)) + 1e-12
+    energy0 = max(energy0, floor * 1.01 + 1e-9)
+    for _ in range(50):
+        kinetic = energy0 + work
+        omega = np.sqrt(2.0 * kinetic / inertia)
+        # time-mean speed = cycle / sum(dtheta / omega)
+        harmonic = 1.0 / np.mean(1.0 / omega)
+        # d(harmonic)/dE0 = harmonic^2 * mean(omega^-2 * d omega/dE0), d omega/dE0 = 1/(J omega)
+        derivative = harmonic**2 * np.mean(1.0 / (omega**3 * inertia))
+        update = (harmonic - mean_speed) / derivative
+        energy0 = max(energy0 - update, 0.5 * (energy0 + floor))
+        if abs(update) < 1e-12 * energy0:
+            break
+    return np.sqrt(2.0 * (energy0 + work) / inertia)
+
+
+# ======================================================================================
+# (c) Performance sensitivity
+# ======================================================================================
+
+
+@dataclass(frozen=True)
+class SensitivityResult(ResultMixin):
+    """Result of :func:`balance_sensitivity`; every indicator has shape
+    ``(len(mass_scales), len(balance_factors))``.
+
+    Attributes
+    ----------
+    balance_factors : ndarray
+        Balance factors swept [-].
+    mass_scales : ndarray
+        Factors on the reciprocating mass (< 1: lighter parts) [-].
+    mean_friction_torque : ndarray [N m]
+    friction_power : ndarray [W]
+    peak_bearing_load, mean_bearing_load : ndarray [N]
+    peak_net_torque : ndarray [N m]
+    max_crank_acceleration : ndarray [rad/s^2]
+    speed_fluctuation : ndarray [-]
+    peak_shaking_inline, peak_shaking_transverse, peak_shaking_force : ndarray [N]
+    """
+
+    speed: float
+    balance_factors: NDArray
+    mass_scales: NDArray
+    mean_friction_torque: NDArray
+    friction_power: NDArray
+    peak_bearing_load: NDArray
+    mean_bearing_load: NDArray
+    peak_net_torque: NDArray
+    max_crank_acceleration: NDArray
+    speed_fluctuation: NDArray
+    peak_shaking_inline: NDArray
+    peak_shaking_transverse: NDArray
+    peak_shaking_force: NDArray
+
+
+SENSITIVITY_INDICATORS: tuple[str, ...] = (
+    "mean_friction_torque", "friction_power", "peak_bearing_load", "mean_bearing_load",
+    "peak_net_torque", "max_crank_acceleration", "speed_fluctuation", "peak_shaking_inline",
+    "peak_shaking_transverse", "peak_shaking_force")
+
+
+def balance_sensitivity(cylinder: CylinderSpec, speed: float, pressure: PressureSource,
+                        balance_factors: ArrayLike, mass_scales: ArrayLike = (1.0,),
+                        strokes: Strokes = 4, samples_per_revolution: int = 360,
+                        progress: Callable[[int, int], None] | None = None) -> SensitivityResult:
+    r"""Sweep the balance factor (and the reciprocating mass) of a single cylinder.
+
+    Each point is one :func:`engine_cycle`; the balance factor is the share of the
+    reciprocating mass balanced by the counterweight on top of 100 % of the rotating mass.
+
+    Parameters
+    ----------
+    cylinder : CylinderSpec
+        Base cylinder; its ``balance_factor`` and ``reciprocating_mass`` are replaced.
+    speed : float
+        Mean crank speed [rad/s].
+    pressure : WiebeCombustion or (angle, pressure) arrays
+        Pressure model.
+    balance_factors : array_like
+        Balance factors to evaluate [-].
+    mass_scales : array_like
+        Factors on the reciprocating mass [-].
+    strokes : {2, 4}
+        Cycle type.
+    samples_per_revolution : int
+        Angle resolution of each cycle.
+    progress : callable, optional
+        Called as ``progress(done, total)`` after each point.
+
+    References
+    ----------
+    004 Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction torque against the
+    balance factor, Figs. 5.2-5.6).
+    """
+    factors = np.atleast_1d(np.asarray(balance_factors, dtype=float))
+    scales = np.atleast_1d(np.asarray(mass_scales, dtype=float))
+    if factors.size == 0 or factors.ndim != 1:
+        raise InputError("balance_factors", balance_factors, "must be a non-empty list")
+    if scales.size == 0 or scales.ndim != 1 or np.any(~(scales > 0)):
+        raise InputError("mass_scales", mass_scales, "must be a non-empty list of numbers > 0")
+    out = {name: np.zeros((scales.size, factors.size)) for name in SENSITIVITY_INDICATORS}
+    total, done = scales.size * factors.size, 0
+    from dataclasses import replace
+    for i, scale in enumerate(scales):
+        for k, factor in enumerate(factors):
+            spec = replace(cylinder, balance_factor=float(factor),
+                           reciprocating_mass=cylinder.reciprocating_mass * float(scale))
+            result = engine_cycle(spec, speed, pressure, strokes,
+                                  samples_per_revolution=samples_per_revolution)
+            for name in SENSITIVITY_INDICATORS:
+                out[name][i, k] = getattr(result, name)
+            done += 1
+            if progress is not None:
+                progress(done, total)
+    return SensitivityResult(speed=float(speed), balance_factors=factors, mass_scales=scales,
+                             **out)
