@@ -113,3 +113,14 @@ def test_tolerance_json_and_list(capsys) -> None:
     assert data["planes"]["plane_1"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
     code, out, _ = run(capsys, ["tolerance", "--list"])
     assert code == 0 and "G 4000" in out and "G 0.4" in out
+
+
+def test_balance_factor_from_engine_preset(capsys) -> None:
+    code, out, _ = run(capsys, ["balance-factor", "--engine", "single", "--format", "json"])
+    assert code == 0
+    data = json.loads(out)
+    # the preset's masses: piston 230 g + pin 60 g + 30 % of the 330 g conrod
+    assert data["reciprocating_mass_kg"] == pytest.approx(0.230 + 0.060 + 0.3 * 0.330)
+    assert data["study"]["speed_rad_s"] == pytest.approx(9000 * 3.141592653589793 / 30)
+    code, _, err = run(capsys, ["balance-factor", "--engine", "single", "--cylinder", "2"])
+    assert code == 2 and "cylinder" in err

@@ -256,3 +256,17 @@ def test_stroking_effect() -> None:
     assert eff.new_balance_factor < eff.balance_factor
     with pytest.raises(InputError, match="new_crankpin_diameter"):
         stroking_effect(0.0269, 0.032, 0.034, 0.11, 0.28, 0.28, 2.0, 0.006)
+
+
+def test_engine_cylinder_study_matches_plain_call() -> None:
+    from crankbalance.io import load_engine
+    from crankbalance.model import build_model
+
+    model = build_model(load_engine("single"))
+    study = sc.cylinder_balance_factor_study(model, 0, 0.4, kinematics="exact")
+    plain = sc.balance_factor_study(float(model.reciprocating_mass[0]), model.crank_radius,
+                                    model.speed, 0.4, rod_length=model.rod_length,
+                                    offset=model.offset)
+    assert study.peak_resultant == pytest.approx(plain.peak_resultant, rel=1e-12)
+    with pytest.raises(InputError, match="cylinder"):
+        sc.cylinder_balance_factor_study(model, 3)

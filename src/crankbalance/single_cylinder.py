@@ -32,7 +32,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Literal
+from typing import Any, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -759,3 +759,38 @@ def rebalance(old_rotating_mass: float, old_reciprocating_mass: float,
         achieved_balance_factor=achieved, tolerance=tolerance,
         passed=abs(residual) <= tolerance, status=status,
         bob_weight=bob_weight(new_rotating_mass, new_reciprocating_mass, target))
+
+
+def cylinder_balance_factor_study(model: Any, cylinder: int = 0, balance_factor: float = 0.5,
+                                  kinematics: KinematicsModel | None = None,
+                                  **options: Any) -> BalanceFactorStudy:
+    r"""The single-cylinder study for one cylinder of any engine model.
+
+    Takes the reciprocating mass of that cylinder and the crank radius, rod length, offset and
+    speed of the engine; the counterweight share :math:`f_b` is per cylinder (the share of
+    *this* cylinder's reciprocating mass on its throw's counterweight, on top of the rotating
+    mass). For a multi-cylinder engine the forces of the other cylinders are not included:
+    this is the per-cylinder view of 004 Sec. 4.1.2, not the engine's free force.
+
+    Parameters
+    ----------
+    model : crankbalance.model.EngineModel
+        Engine as SI arrays (duck-typed: ``reciprocating_mass``, ``crank_radius``,
+        ``rod_length``, ``offset``, ``speed``, ``kinematics``).
+    cylinder : int
+        Zero-based cylinder index.
+    balance_factor : float
+        :math:`f_b` in [0, 2] [-].
+    kinematics : {"exact", "series", "first-order"}, optional
+        Default: the engine's own setting.
+    **options
+        Passed on to :func:`balance_factor_study` (``samples``, ``sweep``).
+    """
+    count = len(model.reciprocating_mass)
+    if not (isinstance(cylinder, int) and 0 <= cylinder < count):
+        raise InputError("cylinder", cylinder, f"must be an index from 0 to {count - 1}")
+    chosen = kinematics or getattr(model, "kinematics", "exact")
+    return balance_factor_study(float(model.reciprocating_mass[cylinder]),
+                                float(model.crank_radius), float(model.speed), balance_factor,
+                                rod_length=float(model.rod_length), offset=float(model.offset),
+                                model=chosen, **options)

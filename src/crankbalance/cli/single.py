@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 import tomllib
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -73,8 +74,8 @@ def _echo_json(payload: dict[str, Any]) -> None:
     click.echo(json.dumps(to_jsonable(payload), indent=2))
 
 
-def _table(rows: list[tuple[str, ...]], header: tuple[str, ...] | None = None) -> str:
-    all_rows = ([header] if header else []) + rows
+def _table(rows: Sequence[tuple[str, ...]], header: tuple[str, ...] | None = None) -> str:
+    all_rows = ([header] if header else []) + list(rows)
     widths = [max(len(row[i]) for row in all_rows) for i in range(len(all_rows[0]))]
     lines = []
     for k, row in enumerate(all_rows):
@@ -226,8 +227,8 @@ def balance_factor(reciprocating_mass: str | None, crank_radius: str | None,
 def _engine_cylinder(engine: str, cylinder: int) -> dict[str, float]:
     """Single-cylinder data of one cylinder of an engine file (needs crankbalance.io/model)."""
     try:
-        from ..io import load_engine  # type: ignore[attr-defined]
-        from ..model import build_model  # type: ignore[attr-defined]
+        from ..io import load_engine
+        from ..model import build_model
     except ImportError:
         raise InputError("engine", engine, "engine files are not available in this "
                          "version; give the masses and geometry as options") from None
