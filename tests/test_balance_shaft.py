@@ -584,3 +584,12 @@ def test_cli_bad_input_exits_2(
 ) -> None:
     code, _out, err = run_cli(args, capsys)
     assert code == 2 and word in err and "Traceback" not in err
+
+
+def test_inline4_critical_weight_closed_form() -> None:
+    # Near mid-length (t = xi - 1/2): A/max A = 1 - 24/5 t^2 + O(t^4), B = 2|t|, so
+    # J = 1 + (4 w - 48/5) t^2: the off-centre optimum exists only for w < 12/5 = 2.4
+    xi = np.linspace(0.0, 1.0, 2001)
+    study = inline4_study(1e-3, 600.0, 0.3, SECTION, positions=xi, weights=[2.3, 2.45, 3.0])
+    assert study.optimum_positions[0] > 0.55, "w = 2.3 < 12/5: optimum off centre"
+    assert np.allclose(study.optimum_positions[1:], 0.5, atol=1e-3), "w > 12/5: mid-length"
