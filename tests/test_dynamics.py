@@ -257,3 +257,76 @@ def test_kinematics_consistency_of_torque_route():
     th = result.angle
     ds = kinematics.piston_velocity(th, cyl.crank_radius, cyl.rod_length, cyl.offset)
     assert np.allclose(result.gas_torque, -3e5 * cyl.piston_area * ds, rtol=1e-9, atol=1e-9)
+
+
+# ----------------------------------------------------------------------------------------
+# CLI: crankbalance friction | bench | cycle | sensitivity
+# ----------------------------------------------------------------------------------------
+
+
+def _run_cli(args):
+    import json as _json
+
+    from click.testing import CliRunner
+
+    from crankbalance.cli import cli
+
+    result = CliRunner().invoke(cli, args)
+    return result, (_json.loads(result.stdout) if "--format" in args and "json" in args
+                    and result.exit_code == 0 else None)
+
+
+def test_cli_friction_back_computes_mu():
+    result, data = _run_cli(["friction", "--load", "25.01 N", "--rotating-load", "42.2 N",
+                             "--journal-diameter", "20 mm", "--torque", "0.2083 N*m",
+                             "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert data["schema"] == "crankbalance.friction/1"
+    approx = next(r for r in data["coulomb"] if r["method"] == "approximate")
+    assert approx["friction_coefficient"] == pytest.approx(0.4044, abs=2e-4), "004 Table 5.5"
+
+
+def test_cli_bench_cycle_sensitivity_outputs(tmp_path):
+    history = tmp_path / "h.csv"
+    result, data = _run_cli(["bench", "--friction-coefficient", "0.5", "--speed", "1000 rpm",
+                             "--ramp-time", "0.3 s", "--hold-time", "0.2 s",
+                             "--history", str(history), "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert data["schema"] == "crankbalance.bench/1"
+    assert data["runs"][0]["required_torque_Nm"] == pytest.approx(0.5 * 2.5464 * 9.80665 * 0.01,
+                                                                  rel=0.01)
+    assert history.read_text().startswith("time_s,")
+    result, data = _run_cli(["cycle", "--speed", "6000 rpm", "--format", "json"])
+    assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/1"
+    assert data["summary"]["energy_check_ratio"] == pytest.approx(1.0, abs=5e-3)
+    result, _ = _run_cli(["cycle", "--format", "csv"])
+    assert result.stdout.splitlines()[0].startswith("angle_deg,pressure_bar")
+    result, data = _run_cli(["sensitivity", "--balance-factors", "0:1:0.5", "--format", "json"])
+    assert result.exit_code == 0 and data["schema"] == "crankbalance.sensitivity/1"
+    assert [p["balance_factor"] for p in data["points"]] == [0.0, 0.5, 1.0]
+
+
+def test_cli_pressure_csv(tmp_path):
+    table = tmp_path / "p.csv"
+    angle = np.arange(-360, 360, 10.0)
+    pressure = 1.0 + 40.0 * np.exp(-((angle - 10) / 30) ** 2)
+    table.write_text("angle_deg,pressure_bar\n" + "\n".join(
+        f"{a},{p}" for a, p in zip(angle, pressure, strict=True)))
+    result, data = _run_cli(["cycle", "--pressure-csv", str(table), "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert max(data["curves"]["pressure_bar"]) == pytest.approx(41.0, rel=0.02)
+
+
+@pytest.mark.parametrize("args,needle", [
+    (["cycle", "--bore", "-3 mm"], "bore"),
+    (["sensitivity", "--balance-factors", "a,b"], "balance_factors"),
+    (["friction", "--journal-diameter", "20 mm"], "friction_coefficient"),
+    (["bench", "--friction-coefficient", "0.1", "--speed", "fast"], "speed"),
+])
+def test_cli_bad_input_exit_2(args, needle, capsys):
+    from crankbalance.cli import main
+
+    with pytest.raises(SystemExit) as info:
+        main(args)
+    assert info.value.code == 2
+    assert needle in capsys.readouterr().err

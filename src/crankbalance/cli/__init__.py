@@ -28,6 +28,11 @@ COMMANDS: dict[str, tuple[str, str]] = {
                   "Rebalance a single-cylinder crank after new parts."),
     "tolerance": ("crankbalance.cli.single:tolerance_command",
                   "ISO 21940-11 permissible residual unbalance and verdict."),
+    "friction": ("crankbalance.cli.performance:friction", "Bearing friction torque with unbalance."),
+    "bench": ("crankbalance.cli.performance:bench", "Simulated rotor test bench (PI spin-up)."),
+    "cycle": ("crankbalance.cli.performance:cycle", "Engine-cycle torque and bearing loads."),
+    "sensitivity": ("crankbalance.cli.performance:sensitivity",
+                    "Performance against the balance factor."),
 }
 
 
