@@ -10,12 +10,15 @@ Sub-commands:
 from __future__ import annotations
 
 import json
-from typing import Any
+from typing import TYPE_CHECKING, Any, cast
 
 import click
 
 from ..errors import InputError
 from ._common import echo_table, format_option
+
+if TYPE_CHECKING:
+    from ..balance_shaft import BeamTheory, HoldMode, RotorType, SecondaryMeasure
 
 SCHEMA = "crankbalance.shaft/1"
 
@@ -280,9 +283,9 @@ def inline4(
         weights=c["weights"],
         unbalance_radius=c["unbalance_radius"],
         bearing_stiffness=c["bearing_stiffness"],
-        theory=theory,  # type: ignore[arg-type]
-        secondary=secondary,
-    )  # type: ignore[arg-type]
+        theory=cast("BeamTheory", theory),
+        secondary=cast("SecondaryMeasure", secondary),
+    )
     if fmt == "json":
         out = {
             "schema": SCHEMA,
@@ -365,20 +368,20 @@ def inline3(
     types = ROTOR_TYPES if rotor_type == "all" else (rotor_type,)
     studies = [
         inline3_study(
-            t,
+            cast("RotorType", t),
             c["unbalance"],
             c["speed"],
             length_m,
-            section,  # type: ignore[arg-type]
+            section,
             weight=weight,
             positions=np.linspace(z_min, 1.0, points),
             weights=c["weights"],
             bearing_offset=offset,
-            hold=hold,  # type: ignore[arg-type]
+            hold=cast("HoldMode", hold),
             unbalance_radius=c["unbalance_radius"],
             bearing_stiffness=c["bearing_stiffness"],
-            theory=theory,
-        )  # type: ignore[arg-type]
+            theory=cast("BeamTheory", theory),
+        )
         for t in types
     ]
     if fmt == "json":
@@ -502,7 +505,7 @@ def check(
         unbalance_radius=c["unbalance_radius"],
         bearing_stiffness=c["bearing_stiffness"],
     )
-    response = shaft_response(design, theory=theory)  # type: ignore[arg-type]
+    response = shaft_response(design, theory=cast("BeamTheory", theory))
     checks = design_checks(
         response,
         max_speed=None if max_speed is None else parse_quantity(max_speed, "speed", "max_speed"),
