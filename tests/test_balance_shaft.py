@@ -386,6 +386,8 @@ def test_compare_types_runs_all_three() -> None:
         (dict(length=-0.3), "length"),
         (dict(bearing_positions=(0.0, 0.5)), "bearing_positions[1]"),
         (dict(bearing_positions=(0.1, 0.1)), "bearing_positions"),
+        (dict(bearing_positions=(0.0, 0.1, 0.1)), "bearing_positions"),
+        (dict(bearing_positions=(0.1,)), "bearing_positions"),
         (dict(mass_positions=(-0.01,)), "mass_positions[0]"),
         (dict(unbalances=(-1e-3,)), "unbalances[0]"),
         (dict(unbalances=(1e-3, 1e-3)), "unbalances"),
@@ -593,3 +595,18 @@ def test_inline4_critical_weight_closed_form() -> None:
     study = inline4_study(1e-3, 600.0, 0.3, SECTION, positions=xi, weights=[2.3, 2.45, 3.0])
     assert study.optimum_positions[0] > 0.55, "w = 2.3 < 12/5: optimum off centre"
     assert np.allclose(study.optimum_positions[1:], 0.5, atol=1e-3), "w > 12/5: mid-length"
+
+
+def test_low_level_functions_refuse_points_off_the_shaft() -> None:
+    with pytest.raises(InputError, match="bearing_positions"):
+        natural_frequencies(0.3, SECTION, [0.0, 0.35], [0.1], [0.1])
+    with pytest.raises(InputError, match="mass_positions"):
+        natural_frequencies(0.3, SECTION, [0.0, 0.3], [-0.1], [0.1])
+    with pytest.raises(InputError, match="masses"):
+        natural_frequencies(0.3, SECTION, [0.0, 0.3], [0.1], [-0.1])
+    with pytest.raises(InputError, match="n_elements"):
+        natural_frequencies(0.3, SECTION, [0.0, 0.3], [0.1], [0.1], n_elements=1)
+    with pytest.raises(InputError, match="force_positions"):
+        beam_statics(0.3, EI, [0.0, 0.3], [0.4], [1.0], [0.1])
+    with pytest.raises(InputError, match="bearing_positions"):
+        beam_statics(0.3, EI, [0.1], [0.2], [1.0], [0.1])

@@ -153,6 +153,16 @@ class ShaftSection(ResultMixin):
 # --------------------------------------------------------------------------------------
 
 
+def _check_on_shaft(name: str, values: NDArray, length: float) -> None:
+    """Raise InputError unless every position lies on the shaft, 0 <= x <= length."""
+    if values.size and not (
+        np.all(np.isfinite(values)) and values.min() >= 0.0 and values.max() <= length
+    ):
+        bad = values[~((values >= 0.0) & (values <= length))]
+        shown = float(bad.flat[0]) if bad.size else values.tolist()
+        raise InputError(name, shown, f"must lie on the shaft, between 0 and {length:g} m")
+
+
 def _influence(distance: NDArray, bending_stiffness: float, shear_flexibility: float) -> NDArray:
     r"""Deflection at distance ``d`` to the right of a unit upward point force.
 
@@ -220,10 +230,16 @@ def beam_statics(
     Gere & Timoshenko, Mechanics of Materials (superposition, singularity functions);
     003 Eqs. 6-9 are the two-bearing, one-load special case.
     """
+    check_positive("length", length)
+    check_positive("bending_stiffness", bending_stiffness)
     xb = np.asarray(bearing_positions, dtype=float)
     xf = np.asarray(force_positions, dtype=float)
     f = np.asarray(forces)
     xs = np.asarray(x, dtype=float)
+    _check_on_shaft("bearing_positions", xb, length)
+    _check_on_shaft("force_positions", xf, length)
+    if xb.shape[-1] < 2:
+        raise InputError("bearing_positions", xb.tolist(), "needs at least two bearings")
     ei = float(bending_stiffness)
     sf = 0.0 if shear_stiffness is None else 1.0 / float(shear_stiffness)
     cb = 0.0 if bearing_stiffness is None else 1.0 / float(bearing_stiffness)
@@ -460,10 +476,19 @@ def natural_frequencies(
     ndarray, shape (..., n_modes)
         Natural frequencies [Hz], ascending.
     """
+    check_positive("length", length)
+    _check_theory(theory)
+    _check_resolution(n_elements, DEFAULT_POINTS)
     k0, m0 = assemble(length, section, n_elements, theory)
     xb = np.asarray(bearing_positions, dtype=float)
     xm = np.asarray(mass_positions, dtype=float)
     mm = np.asarray(masses, dtype=float)
+    _check_on_shaft("bearing_positions", xb, length)
+    _check_on_shaft("mass_positions", xm, length)
+    if xb.shape[-1] < 2:
+        raise InputError("bearing_positions", xb.tolist(), "needs at least two bearings")
+    if not (np.all(np.isfinite(mm)) and (mm.size == 0 or mm.min() >= 0)):
+        raise InputError("masses", mm.tolist(), "must be finite masses >= 0 kg")
     batch = np.broadcast_shapes(xb.shape[:-1], xm.shape[:-1], mm.shape[:-1])
     xb = np.broadcast_to(xb, batch + xb.shape[-1:])
     xm = np.broadcast_to(xm, batch + xm.shape[-1:])
@@ -548,11 +573,13 @@ class BalanceShaft(ResultMixin):
         if not self.phases:
             object.__setattr__(self, "phases", tuple(0.0 for _ in self.mass_positions))
         object.__setattr__(self, "phases", tuple(float(v) for v in self.phases))
-        if len(set(self.bearing_positions)) < 2:
+        if len(self.bearing_positions) < 2 or len(set(self.bearing_positions)) < len(
+            self.bearing_positions
+        ):
             raise InputError(
                 "bearing_positions",
                 self.bearing_positions,
-                "needs at least two bearings at different positions",
+                "needs at least two bearings, each at its own position",
             )
         _check_positions("bearing_positions", self.bearing_positions, self.length)
         if not self.mass_positions:
