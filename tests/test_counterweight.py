@@ -156,7 +156,8 @@ def test_hub_protrusion_breaks_the_paper_forms():
     half = alpha / 2
     lam = float(sec.lam)
     paper_green = big_r**2 * (half - math.sin(half) * math.cos(half)) - r**2 * (
-        lam / 2 - math.sin(lam / 2) * math.cos(lam / 2))  # fmt: skip
+        lam / 2 - math.sin(lam / 2) * math.cos(lam / 2)
+    )
     paper_total = paper_green + float(sec.area_blue + sec.area_orange)
     assert abs(float(sec.area) / a_poly - 1) < 1e-6
     assert abs(paper_total / a_poly - 1) > 1e-3
@@ -340,9 +341,14 @@ def _exhaustive_least_mass(bounds, required, max_radius, n):
 
 
 def test_least_mass_matches_exhaustive_search():
-    bounds = {"web_radius": 0.015, "trapezoid_angle": 0.6, "rectangle_height": (0.0, 0.03),
-              "segment_radius": (0.02, 0.08), "segment_angle": (0.3, math.pi),
-              "thickness": (0.004, 0.03)}  # fmt: skip
+    bounds = {
+        "web_radius": 0.015,
+        "trapezoid_angle": 0.6,
+        "rectangle_height": (0.0, 0.03),
+        "segment_radius": (0.02, 0.08),
+        "segment_angle": (0.3, math.pi),
+        "thickness": (0.004, 0.03),
+    }
     res = optimize_counterweight(REQUIRED, bounds, max_radius=0.075, rng=3)
     exhaustive = _exhaustive_least_mass(bounds, REQUIRED, 0.075, 110)
     assert res.fun <= exhaustive * 1.005, (res.fun, exhaustive)
@@ -350,8 +356,15 @@ def test_least_mass_matches_exhaustive_search():
 
 
 def test_optimum_is_feasible_and_front_non_dominated():
-    res = optimize_counterweight(REQUIRED, {"thickness": (0.004, 0.03)}, max_radius=0.08,
-                                 max_mass=0.4, min_balance=99.0, rng=7, iterations=15)  # fmt: skip
+    res = optimize_counterweight(
+        REQUIRED,
+        {"thickness": (0.004, 0.03)},
+        max_radius=0.08,
+        max_mass=0.4,
+        min_balance=99.0,
+        rng=7,
+        iterations=15,
+    )
     assert len(res.designs) > 1000 and len(res.pareto) > 10
     # every returned design re-evaluated from scratch satisfies the constraints
     sample = res.designs[:: max(1, len(res.designs) // 500)]
@@ -372,18 +385,23 @@ def test_repeatable_with_rng_and_callback_stops():
     b = optimize_counterweight(REQUIRED, rng=11, **kwargs)
     assert a.fun == b.fun and np.array_equal(a.x, b.x)
     seen = []
+
     def stop(state):
         seen.append(state)
         return state.iteration >= 2
 
-    c = optimize_counterweight(REQUIRED, rng=11, callback=stop,
-                               **kwargs)  # fmt: skip
+    c = optimize_counterweight(REQUIRED, rng=11, callback=stop, **kwargs)
     assert c.nit == 2 and [s.iteration for s in seen] == [1, 2] and "callback" in c.message
 
 
 def test_three_objectives_and_paper_radius():
-    res = optimize_counterweight(REQUIRED, objectives=("mass", "radius", "inertia"),
-                                 radius_measure="paper", rng=1, iterations=8)  # fmt: skip
+    res = optimize_counterweight(
+        REQUIRED,
+        objectives=("mass", "radius", "inertia"),
+        radius_measure="paper",
+        rng=1,
+        iterations=8,
+    )
     f = np.c_[res.mass, res.radius_bound, res.inertia]
     front = f[res.pareto]
     # no feasible design dominates a front member
@@ -422,3 +440,114 @@ def test_optimiser_bad_input(kwargs, field):
 def test_hypervolume_2d():
     pts = np.array([[1.0, 3.0], [2.0, 2.0], [3.0, 1.0], [2.5, 2.5]])
     assert hypervolume_2d(pts, (4.0, 4.0)) == pytest.approx(3 * 1 + 2 * 1 + 1 * 1)
+
+
+# ----------------------------------------------------------------------------------- CLI
+
+ROW2 = [
+    "--web-radius",
+    "20 mm",
+    "--rectangle-height",
+    "20 mm",
+    "--trapezoid-angle",
+    "0 deg",
+    "--segment-radius",
+    "50 mm",
+    "--segment-angle",
+    "3.13 rad",
+]
+
+
+def _run(args, capsys):
+    from crankbalance.cli import main
+
+    code = 0
+    try:
+        main(["counterweight", *args])
+    except SystemExit as exit_:
+        code = exit_.code
+    out = capsys.readouterr()
+    return code, out.out, out.err
+
+
+def test_cli_show_json_sizes_thickness(capsys):
+    import json
+
+    code, out, _ = _run(["show", *ROW2, "--first-moment", "7880 g*mm", "--format", "json"], capsys)
+    assert code == 0
+    data = json.loads(out)
+    assert data["schema"] == "crankbalance.counterweight/1"
+    assert abs(data["design"]["balance_percent"] - 100) < 1e-9
+    assert abs(data["design"]["thickness_m"] - 6.05e-3) < 0.01e-3, "Table 3 row 2 thickness"
+
+
+def test_cli_optimize_json_and_progress(capsys):
+    import json
+
+    code, out, err = _run(
+        [
+            "optimize",
+            "--first-moment",
+            "7880 g*mm",
+            "--max-radius",
+            "80 mm",
+            "--web-radius",
+            "15 mm",
+            "--thickness",
+            "4..30 mm",
+            "--iterations",
+            "5",
+            "--population",
+            "1024",
+            "--seed",
+            "1",
+            "--format",
+            "json",
+        ],
+        capsys,
+    )
+    assert code == 0 and "iteration 5/5" in err
+    data = json.loads(out)
+    assert data["schema"] == "crankbalance.counterweight/1" and data["mode"] == "optimize"
+    assert "web_radius" not in data["free"] and len(data["pareto"]) == 10
+    assert data["least_mass"]["mass_kg"] <= min(p["mass_kg"] for p in data["pareto"])
+    assert data["least_mass"]["outer_radius_m"] <= 0.08 + 1e-12
+
+
+def test_cli_export_and_check(tmp_path, capsys):
+    pytest.importorskip("trimesh")
+    path = tmp_path / "cw.stl"
+    code, _, _ = _run(["export", *ROW2, "--thickness", "6.05 mm", "-o", str(path)], capsys)
+    assert code == 0 and path.is_file()
+    code, out, _ = _run(["check", str(path), "--first-moment", "7880 g*mm"], capsys)
+    assert code == 0 and "196.9" in out, "Table 3 row 2 mass read back from the STL"
+
+
+@pytest.mark.parametrize(
+    ("args", "text"),
+    [
+        (["show", *ROW2[:-2], "--segment-angle", "3.13", "--thickness", "5 mm"], "--segment-angle"),
+        (["show", *ROW2], "--thickness"),
+        (["optimize", "--max-radius", "80 mm"], "--first-moment"),
+        (
+            [
+                "optimize",
+                "--first-moment",
+                "7880 g*mm",
+                "--max-radius",
+                "5 mm",
+                "--iterations",
+                "1",
+                "--population",
+                "64",
+                "--quiet",
+            ],
+            "no feasible",
+        ),
+        (["export", *ROW2, "--thickness", "6 mm", "-o", "cw.step"], "crankbalance[cad]"),
+        (["check", "no-such-file.stl"], "path"),
+    ],
+)
+def test_cli_bad_input_exit_2(args, text, capsys):
+    code, _, err = _run(args, capsys)
+    assert code == 2 and text in err and "Traceback" not in err

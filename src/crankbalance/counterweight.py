@@ -303,9 +303,24 @@ def profile_section(
     outer = np.maximum.reduce([arc_top, np.hypot(big_r * s_a, top), np.hypot(r, h_r)])
     bound = h_r + h_t + big_r  # the paper's R_min (Table 3)
     return ProfileSection(
-        area, first_moment, polar, area_green, area_blue, area_orange,
-        cg_green, cg_blue, cg_orange, l_c, gamma, lam, top, centre, outer, bound, hub,
-    )  # fmt: skip
+        area,
+        first_moment,
+        polar,
+        area_green,
+        area_blue,
+        area_orange,
+        cg_green,
+        cg_blue,
+        cg_orange,
+        l_c,
+        gamma,
+        lam,
+        top,
+        centre,
+        outer,
+        bound,
+        hub,
+    )
 
 
 _PROFILE_RULES = (
@@ -333,9 +348,11 @@ def profile_validity(
         0 for valid, else ``1 + index`` of the first failed rule in :data:`PROFILE_REASONS`.
     """
     r, h_r, delta, big_r, alpha = np.broadcast_arrays(
-        *(np.asarray(v, dtype=float) for v in (web_radius, rectangle_height, trapezoid_angle,
-                                               segment_radius, segment_angle))
-    )  # fmt: skip
+        *(
+            np.asarray(v, dtype=float)
+            for v in (web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
+        )
+    )
     with np.errstate(all="ignore"):
         rules = [
             ~(np.isfinite(r) & (r > 0)),
@@ -351,9 +368,12 @@ def profile_validity(
         ok = reason == 0
         if np.any(ok):
             area = profile_section(
-                np.where(ok, r, 1.0), np.where(ok, h_r, 0.0), np.where(ok, delta, 0.0),
-                np.where(ok, big_r, 2.0), np.where(ok, alpha, np.pi),
-            ).area  # fmt: skip
+                np.where(ok, r, 1.0),
+                np.where(ok, h_r, 0.0),
+                np.where(ok, delta, 0.0),
+                np.where(ok, big_r, 2.0),
+                np.where(ok, alpha, np.pi),
+            ).area
             empty = ok & ~(area > 1e-9 * np.where(ok, r, 1.0) ** 2)
             reason = np.where(empty, len(rules) + 1, reason)
     return reason == 0, reason
@@ -390,8 +410,11 @@ def validate_profile(
     flat = np.ravel(reason)
     index = int(np.flatnonzero(flat)[0])
     field_name, allowed = PROFILE_REASONS[flat[index] - 1]
-    value = np.ravel(np.broadcast_to(np.asarray(values[_PROFILE_RULES.index(field_name)],
-                                                dtype=float), reason.shape))[index]  # fmt: skip
+    value = np.ravel(
+        np.broadcast_to(
+            np.asarray(values[_PROFILE_RULES.index(field_name)], dtype=float), reason.shape
+        )
+    )[index]
     where = "" if reason.ndim == 0 else f"[{index}]"
     raise InputError(f"{field_name}{where}", float(value), allowed)
 
@@ -489,8 +512,9 @@ def counterweight_properties(
     _check_material(thickness, density)
     if required_first_moment is not None:
         _check_positive_scalar("required_first_moment", required_first_moment)
-    sec = profile_section(web_radius, rectangle_height, trapezoid_angle, segment_radius,
-                          segment_angle)  # fmt: skip
+    sec = profile_section(
+        web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle
+    )
     return _properties_from_section(sec, thickness, density, required_first_moment)
 
 
@@ -569,8 +593,9 @@ def thickness_for_first_moment(
     rho = _check_positive_scalar("density", density)
     b = _check_positive_scalar("balance", balance)
     validate_profile(web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
-    sec = profile_section(web_radius, rectangle_height, trapezoid_angle, segment_radius,
-                          segment_angle)  # fmt: skip
+    sec = profile_section(
+        web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle
+    )
     t = b / 100.0 * u / (rho * sec.first_moment)
     return t.item() if np.ndim(t) == 0 else t
 
@@ -614,18 +639,25 @@ class CounterweightDesign(ResultMixin):
 
     def profile_parameters(self) -> tuple[float, float, float, float, float]:
         """(r_cw, h_R, delta, R_cw, alpha) in SI."""
-        return (self.web_radius, self.rectangle_height, self.trapezoid_angle,
-                self.segment_radius, self.segment_angle)  # fmt: skip
+        return (
+            self.web_radius,
+            self.rectangle_height,
+            self.trapezoid_angle,
+            self.segment_radius,
+            self.segment_angle,
+        )
 
     def properties(self, required_first_moment: float | None = None) -> CounterweightProperties:
         """Mass properties (see :func:`counterweight_properties`)."""
-        return counterweight_properties(*self.profile_parameters(), self.thickness,
-                                        self.density, required_first_moment)  # fmt: skip
+        return counterweight_properties(
+            *self.profile_parameters(), self.thickness, self.density, required_first_moment
+        )
 
     def with_thickness_for(self, required_first_moment: float, balance: float = 100.0):
         """The same profile with the thickness that gives ``balance`` % of the requirement."""
-        t = thickness_for_first_moment(required_first_moment, *self.profile_parameters(),
-                                       density=self.density, balance=balance)  # fmt: skip
+        t = thickness_for_first_moment(
+            required_first_moment, *self.profile_parameters(), density=self.density, balance=balance
+        )
         return CounterweightDesign(*self.profile_parameters(), float(t), self.density)
 
     def outline(self, tolerance: float = 1e-5) -> list[np.ndarray]:
@@ -658,8 +690,10 @@ class _Arc:
     ccw: bool
 
     def point(self, angle: float) -> tuple[float, float]:
-        return (self.centre[0] + self.radius * math.cos(angle),
-                self.centre[1] + self.radius * math.sin(angle))  # fmt: skip
+        return (
+            self.centre[0] + self.radius * math.cos(angle),
+            self.centre[1] + self.radius * math.sin(angle),
+        )
 
     @property
     def sweep(self) -> float:
@@ -690,8 +724,15 @@ def profile_boundary(design: CounterweightDesign) -> list[list[_Line | _Arc]]:
             if isinstance(it, _Line):
                 out.append(_Line((-it.end[0], it.end[1]), (-it.start[0], it.start[1])))
             else:
-                out.append(_Arc((-it.centre[0], it.centre[1]), it.radius, math.pi - it.end_angle,
-                                math.pi - it.start_angle, it.ccw))  # fmt: skip
+                out.append(
+                    _Arc(
+                        (-it.centre[0], it.centre[1]),
+                        it.radius,
+                        math.pi - it.end_angle,
+                        math.pi - it.start_angle,
+                        it.ccw,
+                    )
+                )
         return out
 
     if not bool(sec.hub_protrusion):
@@ -944,8 +985,17 @@ def hypervolume_2d(points: np.ndarray, reference: Sequence[float]) -> float:
 class _Problem:
     """Vectorised evaluation of designs for the optimiser."""
 
-    def __init__(self, required, bounds, density, max_mass, max_radius, min_balance,
-                 radius_measure, objectives):  # fmt: skip
+    def __init__(
+        self,
+        required,
+        bounds,
+        density,
+        max_mass,
+        max_radius,
+        min_balance,
+        radius_measure,
+        objectives,
+    ):
         self.required = required
         self.bounds = bounds
         self.density = density
@@ -1000,13 +1050,21 @@ class _Problem:
         full = np.column_stack([p, t])
         objs = {"mass": mass, "radius": radius, "inertia": inertia}
         return {
-            "x": x, "params": full, "valid": valid, "feasible": valid & (viol == 0.0),
-            "violation": viol, "mass": mass, "radius": radius, "outer_radius": sec.outer_radius,
-            "radius_bound": sec.radius_bound, "inertia": inertia,
+            "x": x,
+            "params": full,
+            "valid": valid,
+            "feasible": valid & (viol == 0.0),
+            "violation": viol,
+            "mass": mass,
+            "radius": radius,
+            "outer_radius": sec.outer_radius,
+            "radius_bound": sec.radius_bound,
+            "inertia": inertia,
             "cg_radius": np.where(valid, sec.first_moment / np.where(valid, sec.area, 1.0), 0.0),
-            "first_moment": first, "balance": balance,
+            "first_moment": first,
+            "balance": balance,
             "f": np.column_stack([objs[o] for o in self.objectives]),
-        }  # fmt: skip
+        }
 
 
 def _sobol(n: int, d: int, rng: np.random.Generator) -> np.ndarray:
@@ -1132,8 +1190,11 @@ def optimize_counterweight(
             front_x, front_f = cx[keep], cf[keep]
         # keep the least-violating designs to steer the search while nothing is feasible
         cand_x = ev["x"] if best_infeasible is None else np.vstack([best_infeasible[0], ev["x"]])
-        cand_v = ev["violation"] if best_infeasible is None else np.r_[best_infeasible[1],
-                                                                       ev["violation"]]  # fmt: skip
+        cand_v = (
+            ev["violation"]
+            if best_infeasible is None
+            else np.r_[best_infeasible[1], ev["violation"]]
+        )
         order = np.argsort(cand_v, kind="stable")[:64]
         best_infeasible = (cand_x[order], cand_v[order])
 
@@ -1153,8 +1214,12 @@ def optimize_counterweight(
         if len(front_x):
             parents = front_x
             if len(parents) > 256:  # thin evenly along the front (sorted by first objective)
-                pick = np.unique(np.r_[np.linspace(0, len(parents) - 1, 256).round().astype(int),
-                                       np.argmin(front_f, axis=0)])  # fmt: skip
+                pick = np.unique(
+                    np.r_[
+                        np.linspace(0, len(parents) - 1, 256).round().astype(int),
+                        np.argmin(front_f, axis=0),
+                    ]
+                )
                 parents = parents[pick]
         else:
             assert best_infeasible is not None
@@ -1179,8 +1244,9 @@ def optimize_counterweight(
                 if (len(front_f) and "mass" in objs)
                 else None
             )
-            state = OptimizationProgress(nit, iterations, nfev, n_feas, len(front_x), least,
-                                         time.perf_counter() - t0)  # fmt: skip
+            state = OptimizationProgress(
+                nit, iterations, nfev, n_feas, len(front_x), least, time.perf_counter() - t0
+            )
             if callback(state):
                 message = "stopped by the callback"
                 break
@@ -1188,11 +1254,16 @@ def optimize_counterweight(
     if not archive:
         v = None if best_infeasible is None else float(best_infeasible[1][0])
         raise InputError(
-            "constraints", {"max_mass": max_mass, "max_radius": max_radius,
-                            "min_balance": min_balance, "least_violation": v},
+            "constraints",
+            {
+                "max_mass": max_mass,
+                "max_radius": max_radius,
+                "min_balance": min_balance,
+                "least_violation": v,
+            },
             "no feasible counterweight within the bounds: relax max_mass, max_radius, "
             "min_balance or widen the parameter ranges (thickness especially)",
-        )  # fmt: skip
+        )
     allv = {k: np.concatenate([a[k] for a in archive]) for k in archive[0]}
     # remove exact duplicates (snapping and clipping repeat designs)
     _, uniq = np.unique(allv["params"], axis=0, return_index=True)
@@ -1203,14 +1274,30 @@ def optimize_counterweight(
     i_mass = int(np.lexsort((allv["radius"], allv["mass"]))[0])
     i_rad = int(np.lexsort((allv["mass"], allv["radius"]))[0])
     return CounterweightOptimum(
-        designs=allv["params"], mass=allv["mass"], outer_radius=allv["outer_radius"],
-        radius_bound=allv["radius_bound"], inertia=allv["inertia"], cg_radius=allv["cg_radius"],
-        first_moment=allv["first_moment"], balance=allv["balance"], pareto=pareto,
-        least_mass=i_mass, least_radius=i_rad, x=allv["params"][i_mass].copy(),
-        fun=float(allv["mass"][i_mass]), nfev=nfev, nit=nit, success=True, message=message,
-        required_first_moment=required, density=rho, free=prob.free, objectives=objs,
-        radius_measure=radius_measure, elapsed=time.perf_counter() - t0,
-    )  # fmt: skip
+        designs=allv["params"],
+        mass=allv["mass"],
+        outer_radius=allv["outer_radius"],
+        radius_bound=allv["radius_bound"],
+        inertia=allv["inertia"],
+        cg_radius=allv["cg_radius"],
+        first_moment=allv["first_moment"],
+        balance=allv["balance"],
+        pareto=pareto,
+        least_mass=i_mass,
+        least_radius=i_rad,
+        x=allv["params"][i_mass].copy(),
+        fun=float(allv["mass"][i_mass]),
+        nfev=nfev,
+        nit=nit,
+        success=True,
+        message=message,
+        required_first_moment=required,
+        density=rho,
+        free=prob.free,
+        objectives=objs,
+        radius_measure=radius_measure,
+        elapsed=time.perf_counter() - t0,
+    )
 
 
 # --------------------------------------------------------------------------------------
@@ -1241,13 +1328,17 @@ def profile_svg(design: CounterweightDesign, *, show_web: bool = True) -> str:
                 end = it.point(it.end_angle)
                 large = 1 if abs(it.sweep) > math.pi else 0
                 sweep = 1 if it.ccw else 0  # in the flipped (y up) frame
-                d.append(f"A {it.radius * _MM:.6f} {it.radius * _MM:.6f} 0 {large} {sweep} "
-                         f"{end[0] * _MM:.6f} {end[1] * _MM:.6f}")  # fmt: skip
+                d.append(
+                    f"A {it.radius * _MM:.6f} {it.radius * _MM:.6f} 0 {large} {sweep} "
+                    f"{end[0] * _MM:.6f} {end[1] * _MM:.6f}"
+                )
         d.append("Z")
     web = ""
     if show_web:
-        web = (f'<circle cx="0" cy="0" r="{design.web_radius * _MM:.6f}" fill="none" '
-               'stroke="#c0392b" stroke-dasharray="2 1" stroke-width="0.3"/>')  # fmt: skip
+        web = (
+            f'<circle cx="0" cy="0" r="{design.web_radius * _MM:.6f}" fill="none" '
+            'stroke="#c0392b" stroke-dasharray="2 1" stroke-width="0.3"/>'
+        )
     return (
         '<?xml version="1.0" encoding="UTF-8"?>\n'
         f'<svg xmlns="http://www.w3.org/2000/svg" width="{2 * size:.3f}mm" '
@@ -1268,9 +1359,26 @@ def profile_dxf(design: CounterweightDesign) -> str:
 
     Layer ``COUNTERWEIGHT`` holds the closed profile, layer ``WEB`` the web circle.
     """
-    out = ["0", "SECTION", "2", "HEADER", "9", "$ACADVER", "1", "AC1009",
-           "9", "$INSUNITS", "70", "4", "0", "ENDSEC",
-           "0", "SECTION", "2", "ENTITIES"]  # fmt: skip
+    out = [
+        "0",
+        "SECTION",
+        "2",
+        "HEADER",
+        "9",
+        "$ACADVER",
+        "1",
+        "AC1009",
+        "9",
+        "$INSUNITS",
+        "70",
+        "4",
+        "0",
+        "ENDSEC",
+        "0",
+        "SECTION",
+        "2",
+        "ENTITIES",
+    ]
 
     def num(v: float) -> str:
         return f"{v:.9f}"
@@ -1278,21 +1386,64 @@ def profile_dxf(design: CounterweightDesign) -> str:
     for loop in profile_boundary(design):
         for it in loop:
             if isinstance(it, _Line):
-                out += ["0", "LINE", "8", "COUNTERWEIGHT",
-                        "10", num(it.start[0] * _MM), "20", num(it.start[1] * _MM), "30", "0.0",
-                        "11", num(it.end[0] * _MM), "21", num(it.end[1] * _MM),
-                        "31", "0.0"]  # fmt: skip
+                out += [
+                    "0",
+                    "LINE",
+                    "8",
+                    "COUNTERWEIGHT",
+                    "10",
+                    num(it.start[0] * _MM),
+                    "20",
+                    num(it.start[1] * _MM),
+                    "30",
+                    "0.0",
+                    "11",
+                    num(it.end[0] * _MM),
+                    "21",
+                    num(it.end[1] * _MM),
+                    "31",
+                    "0.0",
+                ]
             else:
                 a0, a1 = (
                     (it.start_angle, it.end_angle) if it.ccw else (it.end_angle, it.start_angle)
                 )
-                out += ["0", "ARC", "8", "COUNTERWEIGHT",
-                        "10", num(it.centre[0] * _MM), "20", num(it.centre[1] * _MM), "30", "0.0",
-                        "40", num(it.radius * _MM),
-                        "50", num(math.degrees(a0) % 360.0),
-                        "51", num(math.degrees(a1) % 360.0)]  # fmt: skip
-    out += ["0", "CIRCLE", "8", "WEB", "10", "0.0", "20", "0.0", "30", "0.0",
-            "40", num(design.web_radius * _MM), "0", "ENDSEC", "0", "EOF"]  # fmt: skip
+                out += [
+                    "0",
+                    "ARC",
+                    "8",
+                    "COUNTERWEIGHT",
+                    "10",
+                    num(it.centre[0] * _MM),
+                    "20",
+                    num(it.centre[1] * _MM),
+                    "30",
+                    "0.0",
+                    "40",
+                    num(it.radius * _MM),
+                    "50",
+                    num(math.degrees(a0) % 360.0),
+                    "51",
+                    num(math.degrees(a1) % 360.0),
+                ]
+    out += [
+        "0",
+        "CIRCLE",
+        "8",
+        "WEB",
+        "10",
+        "0.0",
+        "20",
+        "0.0",
+        "30",
+        "0.0",
+        "40",
+        num(design.web_radius * _MM),
+        "0",
+        "ENDSEC",
+        "0",
+        "EOF",
+    ]
     return "\n".join(out) + "\n"
 
 
@@ -1325,9 +1476,15 @@ def profile_mesh(
         dphi = 2.0 * math.acos(max(-1.0, 1.0 - tolerance / radius))
         return np.linspace(0.0, a_max, max(2, math.ceil(a_max / dphi)) + 1)
 
-    levels = np.r_[0.0, h_r, top, y_end, min(r, y_end),
-                   yc + big_r * np.cos(angles(big_r, math.pi)),
-                   r * np.cos(angles(r, math.pi / 2))]  # fmt: skip
+    levels = np.r_[
+        0.0,
+        h_r,
+        top,
+        y_end,
+        min(r, y_end),
+        yc + big_r * np.cos(angles(big_r, math.pi)),
+        r * np.cos(angles(r, math.pi / 2)),
+    ]
     levels = np.unique(np.clip(levels, 0.0, y_end))
     levels = levels[np.r_[True, np.diff(levels) > 1e-12 * max(r, big_r)]]
     y = levels
@@ -1353,8 +1510,9 @@ def profile_mesh(
     tri = tri[(tri[:, 0] != tri[:, 1]) & (tri[:, 1] != tri[:, 2]) & (tri[:, 0] != tri[:, 2])]
     # zero-area triangles (collinear) are kept out as well
     p = v2[tri]
-    area2 = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (
-        p[:, 2, 0] - p[:, 0, 0]) * (p[:, 1, 1] - p[:, 0, 1])  # fmt: skip
+    area2 = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 2, 0] - p[:, 0, 0]) * (
+        p[:, 1, 1] - p[:, 0, 1]
+    )
     tri = tri[np.abs(area2) > 1e-18 * max(r, big_r) ** 2]
     tri = np.where((area2[np.abs(area2) > 1e-18 * max(r, big_r) ** 2] < 0)[:, None],
                    tri[:, ::-1], tri)  # fmt: skip  # all counter-clockwise
@@ -1423,8 +1581,9 @@ def write_step(design: CounterweightDesign, path: str | Path) -> Path:
     return path
 
 
-def export_counterweight(design: CounterweightDesign, path: str | Path,
-                         fmt: ExportFormat | None = None) -> Path:  # fmt: skip
+def export_counterweight(
+    design: CounterweightDesign, path: str | Path, fmt: ExportFormat | None = None
+) -> Path:
     """Write ``design`` to ``path`` as SVG, DXF, STL or STEP (from the suffix unless ``fmt``)."""
     path = Path(path)
     kind = (fmt or path.suffix.lstrip(".")).lower()
@@ -1499,8 +1658,9 @@ def mesh_mass_properties(
     try:
         import trimesh
     except ImportError:
-        raise InputError("path", str(path), "reading meshes needs trimesh: "
-                         "pip install 'crankbalance[geometry]'") from None  # fmt: skip
+        raise InputError(
+            "path", str(path), "reading meshes needs trimesh: pip install 'crankbalance[geometry]'"
+        ) from None
     if path.suffix.lower() in (".step", ".stp"):
         try:
             import build123d as bd

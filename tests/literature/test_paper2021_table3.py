@@ -23,11 +23,35 @@ from crankbalance.counterweight import counterweight_properties, profile_section
 
 ROWS = {
     # printed values of Table 3 [g, mm, %, mm, mm, mm, rad, rad, mm, rad, rad, mm]
-    "least mass": dict(mass=117.46, r_min=161.67, balance=99.90, big_r=50.04, h_r=29.97,
-                       r=10.01, delta=1.46, alpha=0.79, t=5.00, gamma=0.00, lam=0.00, l_c=9.28),
-    "least radius": dict(mass=196.80, r_min=70.00, balance=99.99, big_r=50.00, h_r=20.00,
-                         r=20.00, delta=0.00, alpha=3.13, t=6.05, gamma=0.00, lam=0.00, l_c=30.00),
-}  # fmt: skip
+    "least mass": dict(
+        mass=117.46,
+        r_min=161.67,
+        balance=99.90,
+        big_r=50.04,
+        h_r=29.97,
+        r=10.01,
+        delta=1.46,
+        alpha=0.79,
+        t=5.00,
+        gamma=0.00,
+        lam=0.00,
+        l_c=9.28,
+    ),
+    "least radius": dict(
+        mass=196.80,
+        r_min=70.00,
+        balance=99.99,
+        big_r=50.00,
+        h_r=20.00,
+        r=20.00,
+        delta=0.00,
+        alpha=3.13,
+        t=6.05,
+        gamma=0.00,
+        lam=0.00,
+        l_c=30.00,
+    ),
+}
 DENSITY = 8000.0  # seeds README
 
 
@@ -56,7 +80,8 @@ def test_printed_mass_within_rounding_window(name):
     low, high = p.mass.min() * 1e3, p.mass.max() * 1e3
     assert low <= row["mass"] <= high, (
         f"Table 3 {name}: printed mass {row['mass']} g outside [{low:.2f}, {high:.2f}] g "
-        "at 8000 kg/m^3 (Eqs. 26-29)")  # fmt: skip
+        "at 8000 kg/m^3 (Eqs. 26-29)"
+    )
 
 
 def test_row2_mass_within_one_percent():
@@ -76,7 +101,8 @@ def test_r_min_is_the_paper_bound_and_angles(name):
     assert bounds[0] - 0.01 <= row["r_min"] <= bounds[1] + 0.01, f"Table 3 {name}: R_min"
     assert abs(float(sec.overhang) - row["l_c"]) < 0.15, f"Table 3 {name}: l_c (Eq. 26)"
     assert float(sec.gamma) == row["gamma"] and float(sec.lam) == row["lam"], (
-        f"Table 3 {name}: gamma, lambda (Eqs. 24-25)")  # fmt: skip
+        f"Table 3 {name}: gamma, lambda (Eqs. 24-25)"
+    )
     # the true outer radius is smaller than the printed bound
     assert float(sec.outer_radius) < row["r_min"], f"Table 3 {name}: R_min is a bound"
 

@@ -1,0 +1,432 @@
+"""``crankbalance counterweight``: design, optimise, export and check counterweights.
+
+Subcommands: ``optimize`` (constraints and parameter ranges -> feasible designs, Pareto
+front, least-mass and least-radius designs), ``show`` (one design's mass properties),
+``export`` (SVG, DXF, STL, STEP) and ``check`` (mass properties of an STL/STEP part).
+JSON output is one object with ``"schema": "crankbalance.counterweight/1"``.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from typing import Any
+
+import click
+
+from ..errors import InputError
+from ..units import parse_quantity
+from ._common import echo_table, format_option
+
+SCHEMA = "crankbalance.counterweight/1"
+
+# parameter -> (option, quantity kind, display unit factor, display unit)
+_PARAMS: dict[str, tuple[str, str, float, str]] = {
+    "web_radius": ("--web-radius", "length", 1e3, "mm"),
+    "rectangle_height": ("--rectangle-height", "length", 1e3, "mm"),
+    "trapezoid_angle": ("--trapezoid-angle", "angle", 180 / math.pi, "deg"),
+    "segment_radius": ("--segment-radius", "length", 1e3, "mm"),
+    "segment_angle": ("--segment-angle", "angle", 180 / math.pi, "deg"),
+    "thickness": ("--thickness", "length", 1e3, "mm"),
+}
+_SYMBOL = {
+    "web_radius": "r_cw",
+    "rectangle_height": "h_R",
+    "trapezoid_angle": "delta",
+    "segment_radius": "R_cw",
+    "segment_angle": "alpha",
+    "thickness": "t_cw",
+}
+_SI_UNIT = {"length": "m", "angle": "rad"}
+
+
+def _param_options(help_suffix: str):
+    def decorate(f):
+        for name, (opt, kind, _k, unit) in reversed(_PARAMS.items()):
+            f = click.option(
+                opt,
+                name,
+                default=None,
+                help=f"{_SYMBOL[name]} ({kind}, e.g. '20 {unit}'){help_suffix}",
+            )(f)
+        return f
+
+    return decorate
+
+
+def _value_or_range(text: str, kind: str, field: str) -> float | tuple[float, float]:
+    """'20 mm' -> 0.02; '10..20 mm' or '10 mm..20 mm' -> (0.01, 0.02)."""
+    if ".." not in text:
+        return parse_quantity(text, kind, field)
+    low, high = (part.strip() for part in text.split("..", 1))
+    try:
+        float(low)
+        unit = high.lstrip("0123456789.eE+- ")
+        low = f"{low} {unit}" if unit else low
+    except ValueError:
+        pass
+    return (parse_quantity(low, kind, field), parse_quantity(high, kind, field))
+
+
+def _first_moment(first_moment: str | None, cw_mass: str | None, cg_radius: str | None) -> float:
+    if first_moment is not None:
+        if cw_mass is not None or cg_radius is not None:
+            raise InputError(
+                "--first-moment",
+                first_moment,
+                "give either --first-moment or --cw-mass with --cg-radius",
+            )
+        return parse_quantity(first_moment, "unbalance", "--first-moment")
+    if cw_mass is None or cg_radius is None:
+        raise InputError(
+            "--first-moment",
+            None,
+            "required: e.g. --first-moment '7880 g*mm', or "
+            "--cw-mass '263 g' with --cg-radius '30 mm' (from the balancing)",
+        )
+    return parse_quantity(cw_mass, "mass", "--cw-mass") * parse_quantity(
+        cg_radius, "length", "--cg-radius"
+    )
+
+
+def _requirement_options(f):
+    f = click.option("--cg-radius", default=None, help="with --cw-mass: r_c, e.g. '30 mm'.")(f)
+    f = click.option(
+        "--cw-mass",
+        default=None,
+        help="counterweight mass m_c from the balancing, e.g. '263 g' (with --cg-radius).",
+    )(f)
+    f = click.option(
+        "--first-moment", default=None, help="required first moment m_c*r_c, e.g. '7880 g*mm'."
+    )(f)
+    return f
+
+
+def _design_row(values: dict[str, float]) -> dict[str, float]:
+    keys = {
+        "mass": "mass_kg",
+        "outer_radius": "outer_radius_m",
+        "radius_bound": "r_min_bound_m",
+        "inertia": "inertia_kg_m2",
+        "cg_radius": "cg_radius_m",
+        "first_moment": "first_moment_kg_m",
+        "balance": "balance_percent",
+    }
+    out: dict[str, float] = {}
+    for name, value in values.items():
+        if name in _PARAMS:
+            out[f"{name}_{_SI_UNIT[_PARAMS[name][1]]}"] = float(value)
+        elif name in keys:
+            out[keys[name]] = float(value)
+    return out
+
+
+def _table_rows(rows: list[dict[str, float]], labels: list[str]) -> None:
+    header = ["design", "mass g", "R true mm", "R_min mm", "balance %", "r_c mm", "J kg*mm^2"]
+    header += [f"{_SYMBOL[n]} {_PARAMS[n][3]}" for n in _PARAMS]
+    table = []
+    for label, r in zip(labels, rows, strict=True):
+        cells = [
+            label,
+            f"{r['mass'] * 1e3:.2f}",
+            f"{r['outer_radius'] * 1e3:.2f}",
+            f"{r['radius_bound'] * 1e3:.2f}",
+            f"{r['balance']:.2f}",
+            f"{r['cg_radius'] * 1e3:.2f}",
+            f"{r['inertia'] * 1e6:.1f}",
+        ]
+        cells += [f"{r[n] * _PARAMS[n][2]:.2f}" for n in _PARAMS]
+        table.append(cells)
+    echo_table(header, table)
+
+
+@click.group()
+def counterweight() -> None:
+    """Counterweight shape: optimise, show a design, export it, check a CAD part.
+
+    The profile is the one of the 2021 crankshaft-balancing paper (Sec. 4): web circle
+    r_cw, rectangle h_R, trapezoid of angle delta, circular segment R_cw, alpha; thickness
+    t_cw. Units go with every quantity ('20 mm', '30 deg', '7880 g*mm').
+    """
+
+
+@counterweight.command()
+@_requirement_options
+@_param_options(": a value fixes it, 'LOW..HIGH' leaves it free in that range.")
+@click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
+@click.option("--max-mass", default=None, help="Largest counterweight mass, e.g. '400 g'.")
+@click.option("--max-radius", default=None, help="Largest radial space, e.g. '80 mm'.")
+@click.option(
+    "--min-balance",
+    type=float,
+    default=100.0,
+    show_default=True,
+    help="Smallest balance, achieved / required first moment [%].",
+)
+@click.option(
+    "--radius-measure",
+    type=click.Choice(["true", "paper"]),
+    default="true",
+    show_default=True,
+    help="Radial space: true outer radius, or the paper's R_min bound.",
+)
+@click.option("--inertia", "with_inertia", is_flag=True, help="Inertia as a third objective.")
+@click.option("--iterations", type=click.IntRange(0, 1000), default=40, show_default=True)
+@click.option("--population", type=click.IntRange(16, 10**6), default=4096, show_default=True)
+@click.option("--seed", type=int, default=None, help="Random seed (repeatable runs).")
+@click.option(
+    "--pareto",
+    "n_pareto",
+    type=click.IntRange(0, 10**6),
+    default=10,
+    show_default=True,
+    help="How many Pareto designs to list (evenly spread along the front).",
+)
+@click.option("--quiet", is_flag=True, help="No progress on stderr.")
+@format_option(("table", "json"))
+def optimize(
+    first_moment,
+    cw_mass,
+    cg_radius,
+    density,
+    max_mass,
+    max_radius,
+    min_balance,
+    radius_measure,
+    with_inertia,
+    iterations,
+    population,
+    seed,
+    n_pareto,
+    quiet,
+    fmt,
+    **params: Any,
+) -> None:
+    """Feasible counterweights, Pareto front, least-mass and least-radius designs."""
+    from ..counterweight import DEFAULT_BOUNDS, optimize_counterweight
+
+    required = _first_moment(first_moment, cw_mass, cg_radius)
+    bounds: dict[str, Any] = {}
+    for name, text in params.items():
+        if text is not None:
+            bounds[name] = _value_or_range(text, _PARAMS[name][1], _PARAMS[name][0])
+
+    def progress(state: Any) -> None:
+        if not quiet:
+            least = "-" if state.least_mass is None else f"{state.least_mass * 1e3:.2f} g"
+            click.echo(
+                f"\riteration {state.iteration}/{state.n_iterations}  designs "
+                f"{state.nfev}  feasible {state.n_feasible}  front {state.n_pareto}  "
+                f"least mass {least}",
+                err=True,
+                nl=False,
+            )
+
+    res = optimize_counterweight(
+        required,
+        bounds,
+        density=parse_quantity(density, "density", "--density"),
+        max_mass=None if max_mass is None else parse_quantity(max_mass, "mass", "--max-mass"),
+        max_radius=None
+        if max_radius is None
+        else parse_quantity(max_radius, "length", "--max-radius"),
+        min_balance=min_balance,
+        radius_measure=radius_measure,
+        objectives=("mass", "radius", "inertia") if with_inertia else ("mass", "radius"),
+        population=population,
+        iterations=iterations,
+        rng=seed,
+        callback=progress,
+    )
+    if not quiet:
+        click.echo(
+            f"\n{len(res.designs)} feasible designs, {len(res.pareto)} on the front, "
+            f"{res.nfev} evaluated in {res.elapsed:.2f} s",
+            err=True,
+        )
+    pick = res.pareto
+    if n_pareto < len(pick):
+        pick = pick[sorted({round(k) for k in _spread(len(pick), n_pareto)})] if n_pareto else []
+    if fmt == "json":
+        full = {n: DEFAULT_BOUNDS[n] for n in _PARAMS} | bounds
+        out = {
+            "schema": SCHEMA,
+            "mode": "optimize",
+            "required_first_moment_kg_m": required,
+            "density_kg_m3": res.density,
+            "constraints": {
+                "max_mass_kg": None
+                if max_mass is None
+                else parse_quantity(max_mass, "mass", "--max-mass"),
+                "max_radius_m": None
+                if max_radius is None
+                else parse_quantity(max_radius, "length", "--max-radius"),
+                "min_balance_percent": min_balance,
+                "radius_measure": radius_measure,
+            },
+            "bounds": {
+                f"{n}_{_SI_UNIT[_PARAMS[n][1]]}": list(v) if isinstance(v, tuple) else v
+                for n, v in full.items()
+            },
+            "free": list(res.free),
+            "objectives": list(res.objectives),
+            "n_feasible": len(res.designs),
+            "n_pareto": len(res.pareto),
+            "nfev": res.nfev,
+            "elapsed_s": res.elapsed,
+            "least_mass": _design_row(res.row(res.least_mass)),
+            "least_radius": _design_row(res.row(res.least_radius)),
+            "pareto": [_design_row(res.row(int(i))) for i in pick],
+        }
+        click.echo(json.dumps(out, indent=2))
+        return
+    click.echo(
+        f"required first moment {required * 1e6:.1f} g*mm, density {res.density:g} kg/m^3,"
+        f" free: {', '.join(_SYMBOL[n] for n in res.free) or 'none'}"
+    )
+    rows = [res.row(res.least_mass), res.row(res.least_radius)] + [res.row(int(i)) for i in pick]
+    labels = ["least mass", "least radius"] + [f"front {k + 1}" for k in range(len(pick))]
+    _table_rows(rows, labels)
+
+
+def _spread(n: int, k: int) -> list[float]:
+    return [0.0] if k == 1 else [i * (n - 1) / (k - 1) for i in range(k)]
+
+
+def _design_from(params: dict[str, Any], density: str, required: float | None):
+    from ..counterweight import CounterweightDesign
+
+    values: dict[str, float] = {}
+    for name, text in params.items():
+        opt, kind = _PARAMS[name][0], _PARAMS[name][1]
+        if text is None:
+            if name == "thickness" and required is not None:
+                continue
+            raise InputError(
+                opt,
+                None,
+                f"required ({kind}, e.g. '20 {_PARAMS[name][3]}')"
+                + ("; or give the requirement to size it" if name == "thickness" else ""),
+            )
+        values[name] = parse_quantity(text, kind, opt)
+    rho = parse_quantity(density, "density", "--density")
+    if "thickness" not in values:
+        assert required is not None
+        probe = CounterweightDesign(**values, thickness=1.0, density=rho)
+        return probe.with_thickness_for(required)
+    return CounterweightDesign(**values, density=rho)
+
+
+def _optional_requirement(first_moment, cw_mass, cg_radius) -> float | None:
+    if first_moment is None and cw_mass is None and cg_radius is None:
+        return None
+    return _first_moment(first_moment, cw_mass, cg_radius)
+
+
+@counterweight.command()
+@_requirement_options
+@_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
+@click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
+@format_option(("table", "json"))
+def show(first_moment, cw_mass, cg_radius, density, fmt, **params: Any) -> None:
+    """Mass properties of one counterweight design."""
+    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    design = _design_from(params, density, required)
+    props = design.properties(required)
+    values = {n: getattr(design, n) for n in _PARAMS}
+    values.update(
+        mass=props.mass,
+        outer_radius=props.outer_radius,
+        radius_bound=props.radius_bound,
+        inertia=props.inertia,
+        cg_radius=props.cg_radius,
+        first_moment=props.first_moment,
+        balance=props.balance if props.balance is not None else math.nan,
+    )
+    if fmt == "json":
+        row = _design_row(values)
+        if props.balance is None:
+            row.pop("balance_percent")
+        out = {
+            "schema": SCHEMA,
+            "mode": "design",
+            "density_kg_m3": design.density,
+            "required_first_moment_kg_m": required,
+            "design": row,
+            "area_m2": props.area,
+            "volume_m3": props.volume,
+            "overhang_m": props.overhang,
+            "gamma_rad": props.gamma,
+            "lambda_rad": props.lam,
+            "hub_protrusion": bool(props.hub_protrusion),
+        }
+        click.echo(json.dumps(out, indent=2))
+        return
+    echo_table(
+        ["quantity", "value"],
+        [
+            ["mass", f"{props.mass * 1e3:.3f} g"],
+            ["volume", f"{props.volume * 1e9:.1f} mm^3"],
+            ["centre of gravity r_c", f"{props.cg_radius * 1e3:.3f} mm"],
+            ["first moment m r_c", f"{props.first_moment * 1e6:.1f} g*mm"],
+            ["balance", "-" if props.balance is None else f"{props.balance:.2f} %"],
+            ["inertia about crank axis", f"{props.inertia * 1e6:.2f} kg*mm^2"],
+            ["true outer radius", f"{props.outer_radius * 1e3:.3f} mm"],
+            ["paper R_min (bound)", f"{props.radius_bound * 1e3:.3f} mm"],
+            ["overhang l_c", f"{props.overhang * 1e3:.3f} mm"],
+            ["gamma, lambda", f"{props.gamma:.4f}, {props.lam:.4f} rad"],
+            ["thickness t_cw", f"{design.thickness * 1e3:.3f} mm"],
+        ],
+    )
+
+
+@counterweight.command()
+@_requirement_options
+@_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
+@click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
+@click.option("--output", "-o", required=True, help="File: .svg, .dxf, .stl or .step (mm).")
+def export(first_moment, cw_mass, cg_radius, density, output, **params: Any) -> None:
+    """Write a design as SVG/DXF profile, STL solid or STEP (needs crankbalance[cad])."""
+    from ..counterweight import export_counterweight
+
+    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    design = _design_from(params, density, required)
+    path = export_counterweight(design, output)
+    click.echo(f"wrote {path}", err=True)
+
+
+@counterweight.command()
+@click.argument("part")
+@_requirement_options
+@click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
+@click.option("--unit", default="mm", show_default=True, help="Length unit of the file.")
+@format_option(("table", "json"))
+def check(part, first_moment, cw_mass, cg_radius, density, unit, fmt) -> None:
+    """Mass properties of an STL/STEP PART about the crank axis (the file's z axis)."""
+    from ..counterweight import mesh_mass_properties
+
+    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    scale = parse_quantity(f"1 {unit}", "length", "--unit")
+    m = mesh_mass_properties(
+        part,
+        parse_quantity(density, "density", "--density"),
+        length_unit=scale,
+        required_first_moment=required,
+    )
+    if fmt == "json":
+        out = {"schema": SCHEMA, "mode": "part", "path": str(part), **m.to_dict()}
+        click.echo(json.dumps(out, indent=2))
+        return
+    echo_table(
+        ["quantity", "value"],
+        [
+            ["volume", f"{m.volume * 1e9:.1f} mm^3"],
+            ["mass", f"{m.mass * 1e3:.3f} g"],
+            ["centre of gravity", " ".join(f"{v * 1e3:.3f}" for v in m.centre_of_gravity) + " mm"],
+            ["distance from crank axis", f"{m.cg_radius * 1e3:.3f} mm"],
+            ["first moment", f"{m.first_moment * 1e6:.1f} g*mm"],
+            ["balance", "-" if m.balance is None else f"{m.balance:.2f} %"],
+            ["inertia about crank axis", f"{m.inertia * 1e6:.2f} kg*mm^2"],
+            ["watertight", "yes" if m.watertight else "NO (numbers unreliable)"],
+        ],
+    )
