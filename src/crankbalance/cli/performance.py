@@ -19,10 +19,14 @@ from ._common import echo_table, format_option
 FORMATS = ("table", "json", "csv")
 
 
-def _q(text: str | None, kind: str, field: str) -> float | None:
+def _q(text: str, kind: str, field: str) -> float:
     from ..units import parse_quantity
 
-    return None if text is None else parse_quantity(text, kind, field)
+    return parse_quantity(text, kind, field)
+
+
+def _q_opt(text: str | None, kind: str, field: str) -> float | None:
+    return None if text is None else _q(text, kind, field)
 
 
 def _number_list(text: str, field: str) -> list[float]:
@@ -43,6 +47,10 @@ def _number_list(text: str, field: str) -> list[float]:
     if not values or not all(math.isfinite(v) for v in values):
         raise InputError(field, text, "must hold at least one finite number")
     return values
+
+
+def _cell(value: float | str) -> str:
+    return value if isinstance(value, str) else f"{value:.5g}"
 
 
 def _emit_json(schema: str, payload: dict[str, Any]) -> None:
@@ -93,7 +101,7 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
     from .. import friction as fr
 
     constant = _q(load_text, "force", "load")
-    omega = _q(speed, "speed", "speed")
+    omega = _q_opt(speed, "speed", "speed")
     diameter = _q(journal_diameter, "length", "journal_diameter")
     if rotating_load is not None and unbalance is not None:
         raise InputError("unbalance", unbalance, "give either --rotating-load or --unbalance")
@@ -103,12 +111,13 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
         rotating = _q(unbalance, "unbalance", "unbalance") * omega**2
     else:
         rotating = _q(rotating_load, "force", "rotating_load") if rotating_load else 0.0
-    measured = _q(torque, "torque", "torque")
+    measured = _q_opt(torque, "torque", "torque")
     if measured is None and friction_coefficient is None and viscosity is None:
         raise InputError("friction_coefficient", None,
                          "give --friction-coefficient, --torque or the hydrodynamic options")
     rows: list[dict[str, float | str]] = []
-    for method in fr.MEAN_LOAD_METHODS:
+    methods: tuple[fr.MeanLoadMethod, ...] = ("approximate", "cubic", "arithmetic")
+    for method in methods:
         mean = float(fr.mean_equivalent_load(constant, rotating, method))
         row: dict[str, float | str] = {"method": method, "mean_load_N": mean}
         if friction_coefficient is not None:
@@ -142,8 +151,7 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
         return
     click.echo(f"constant load {constant:.4g} N, rotating load {rotating:.4g} N, "
                f"journal {diameter * 1000:.4g} mm")
-    echo_table(keys, [[r[k] if isinstance(r[k], str) else f"{r[k]:.5g}" for k in keys]
-                      for r in rows])
+    echo_table(keys, [[_cell(r[k]) for k in keys] for r in rows])
     if hydro:
         click.echo(f"Petroff torque {hydro['petroff_torque_Nm']:.5g} N·m; with eccentricity "
                    f"{eccentricity:g}: {hydro['journal_bearing_torque_Nm']:.5g} N·m")
