@@ -136,3 +136,138 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
         raise InputError("orders", orders, "must be a whole number from 1 to 64")
     model = as_model(engine)
     return Analysis(model=model, forces=free_forces(model, orders))
+
+
+# --------------------------------------------------------------------------- balancing study
+BALANCE_SCHEMA = "crankbalance.balance/1"
+
+
+def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
+    """Solver options from an engine spec's [counterweights] and [balance_shafts] tables.
+
+    Without a [counterweights] table the crank gets counterweights on every web at the
+    crank radius, at the optimal angle (least mass), with no balance factor.
+    """
+    from .balancing import CounterweightOptions, ShaftOptions
+
+    c = spec.counterweights
+    if c is None:
+        cw = CounterweightOptions(cg_radius=spec.crank_train.crank_radius, angle="optimal")
+    else:
+        cw = CounterweightOptions(
+            cg_radius=c.cg_radius, webs=tuple(c.webs) if c.webs is not None else None,
+            angle=c.angle, balance_factor=c.balance_factor, scope=c.scope, method=c.method,
+            web_offset=c.web_offset)
+    shafts = spec.balance_shafts
+    primary = secondary = None
+    if shafts is not None and shafts.primary is not None:
+        primary = ShaftOptions(shafts.primary.cg_radius, shafts.primary.length,
+                               shafts.primary.arrangement)
+    if shafts is not None and shafts.secondary is not None:
+        secondary = ShaftOptions(shafts.secondary.cg_radius, shafts.secondary.length,
+                                 shafts.secondary.arrangement)
+    return cw, primary, secondary
+
+
+@dataclass(frozen=True)
+class BalanceStudy:
+    """Counterweights and balance shafts of one engine (see :func:`balance_engine`)."""
+
+    model: EngineModel
+    result: Any  # balancing.BalanceResult
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.balance/1`` of DESIGN.md."""
+        res, m = self.result, self.model
+        components = {c.component: c for c in res.residuals}
+
+        def cw_dict(cw: Any) -> dict[str, Any] | None:
+            if cw is None:
+                return None
+            return {
+                "mass_kg": float(cw.mass.max(initial=0.0)),
+                "angle_deg": None if cw.alpha is None else math.degrees(cw.alpha),
+                "count": cw.count,
+                "method": cw.method,
+                "scope": cw.scope,
+                "cg_radius_m": cw.cg_radius,
+                "total_mass_kg": float(cw.mass.sum()),
+                "webs": [{"web": int(cw.web[k]), "throw": int(cw.throw[k]),
+                          "position_m": float(cw.position[k]), "mass_kg": float(cw.mass[k]),
+                          "direction_deg": math.degrees(cw.direction[k])}
+                         for k in range(cw.count)],
+                "note": cw.note,
+            }
+
+        def shafts_dict(group: Any) -> dict[str, Any] | None:
+            if group is None:
+                return None
+            return {
+                "mass_kg": max((s.mass for s in group.shafts), default=0.0),
+                "order": group.order,
+                "arrangement": group.arrangement,
+                "length_m": group.length,
+                "shafts": [{
+                    "rotation": "co-rotating" if s.sense > 0 else "counter-rotating",
+                    "speed_ratio": s.sense * s.order,
+                    "cg_radius_m": s.cg_radius,
+                    "mass_kg": s.mass,
+                    "masses": [{"position_m": x.position, "mass_kg": x.mass,
+                                "phase_deg": math.degrees(x.phase)} for x in s.masses],
+                    "note": s.note,
+                } for s in group.shafts],
+            }
+
+        rotating, o1, o2 = components["rotating"], components["order1"], components["order2"]
+        unbalanced = [
+            f"{c.component}: force {c.force_after:.4g} N, moment {c.moment_after:.4g} N*m"
+            for c in res.residuals if c.force_after > 0 or c.moment_after > 0]
+        out = {
+            "schema": BALANCE_SCHEMA,
+            "engine": {"name": m.name, "cylinders": m.cylinders, "throws": m.throws,
+                       "speed_rpm": m.speed * 30 / math.pi, "kinematics": m.kinematics},
+            "counterweight": cw_dict(res.counterweights),
+            "extra_counterweights": cw_dict(res.extra_counterweights),
+            "primary_shafts": shafts_dict(res.primary),
+            "secondary_shafts": shafts_dict(res.secondary),
+            "residual": {
+                "rotating_force_N": rotating.force_after,
+                "rotating_moment_Nm": rotating.moment_after,
+                "order1_force_N": o1.force_after,
+                "order1_moment_Nm": o1.moment_after,
+                "order2_force_N": o2.force_after,
+                "order2_moment_Nm": o2.moment_after,
+            },
+            "components": [{
+                "component": c.component, "targeted": c.targeted,
+                "force_before_N": c.force_before, "force_after_N": c.force_after,
+                "moment_before_Nm": c.moment_before, "moment_after_Nm": c.moment_after,
+            } for c in res.residuals],
+            "unbalanced": unbalanced,
+            "notes": list(res.notes),
+        }
+        result = to_jsonable(out)
+        assert isinstance(result, dict)
+        return result
+
+
+def balance_engine(engine: str | os.PathLike[str] | EngineSpec, orders: int = 8,
+                   **overrides: Any) -> BalanceStudy:
+    """Counterweights and balance shafts of an engine, as its file asks for.
+
+    ``overrides`` replace fields of the counterweight options (``angle``,
+    ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``) or give
+    ``primary``/``secondary`` as :class:`~crankbalance.balancing.ShaftOptions` (or None).
+    """
+    import dataclasses
+
+    from .balancing import balance
+
+    spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
+    model = build_model(spec)
+    cw, primary, secondary = balance_options(spec)
+    primary = overrides.pop("primary", primary)
+    secondary = overrides.pop("secondary", secondary)
+    if overrides:
+        cw = dataclasses.replace(cw, **overrides)
+    return BalanceStudy(model, balance(model, cw, primary, secondary, orders))

@@ -285,6 +285,10 @@ class Counterweights(_Strict):
     angle: Angle | Literal["optimal"] = 0.0
     balance_factor: Fraction = Field(default=0.0, ge=0.0, le=2.0)
     scope: Literal["auto", "whole", "halves"] = "auto"
+    method: Literal["pattern", "individual"] = "pattern"
+    web_offset: Length | None = Field(
+        default=None, description="axial distance of each web from its throw mid-plane "
+        "(default: a quarter of the crank pitch, as the 2021 paper)")
 
     @model_validator(mode="after")
     def _check(self) -> Counterweights:
@@ -292,6 +296,8 @@ class Counterweights(_Strict):
             raise _Bad("cg_radius", "must be greater than zero")
         if self.webs is not None and not any(self.webs):
             raise _Bad("webs", "has no counterweight (all zeros)")
+        if self.web_offset is not None and self.web_offset < 0:
+            raise _Bad("web_offset", "must not be negative")
         return self
 
 

@@ -20,6 +20,8 @@ from ..errors import InputError
 COMMANDS: dict[str, tuple[str, str]] = {
     # name: ("module:attribute", one-line help)
     "analyze": ("crankbalance.cli.analyze:analyze", "Free forces and moments of an engine."),
+    "balance": ("crankbalance.cli.balance:balance",
+                "Counterweights and balance shafts of an engine."),
     "counterweight": ("crankbalance.cli.counterweight:counterweight",
                       "Counterweight shape: optimise, show, export, check a CAD part."),
     "presets": ("crankbalance.cli.analyze:presets", "List the built-in engine library."),
