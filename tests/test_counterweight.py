@@ -302,16 +302,22 @@ def test_dxf_and_svg(args):
     assert svg.startswith("<?xml") and '<path d="M' in svg and svg.count(" A ") >= 2
 
 
-def test_step_without_cad_extra(tmp_path):
+@pytest.mark.parametrize("args", DESIGNS)
+def test_step(tmp_path, args):
+    design = CounterweightDesign(*args)
     try:
         import build123d  # noqa: F401
     except ImportError:
         with pytest.raises(InputError, match=r"crankbalance\[cad\]"):
-            export_counterweight(CounterweightDesign(*DESIGNS[0]), tmp_path / "cw.step")
-    else:  # pragma: no cover - only with the cad extra
-        path = export_counterweight(CounterweightDesign(*DESIGNS[0]), tmp_path / "cw.step")
-        back = mesh_mass_properties(path)
-        assert abs(back.volume / CounterweightDesign(*DESIGNS[0]).properties().volume - 1) < 1e-3
+            export_counterweight(design, tmp_path / "cw.step")
+        return
+    pytest.importorskip("trimesh")
+    path = export_counterweight(design, tmp_path / "cw.step")
+    back = mesh_mass_properties(path, design.density)
+    p = design.properties()
+    assert abs(back.volume / p.volume - 1) < 1e-4, "STEP volume"
+    assert abs(back.cg_radius / p.cg_radius - 1) < 1e-4, "STEP centre of gravity"
+    assert abs(back.inertia / p.inertia - 1) < 1e-4, "STEP inertia"
 
 
 def test_unknown_export_format(tmp_path):
@@ -324,23 +330,25 @@ def test_unknown_export_format(tmp_path):
 REQUIRED = 0.00788  # kg m, the first moment of Table 3 row 2
 
 
-def _exhaustive_least_mass(bounds, required, max_radius, n):
-    """Fine grid over the free profile parameters, thickness in closed form, chunked."""
+def _exhaustive(bounds, required, max_radius, n):
+    """Fine grid over the free profile parameters, thickness in closed form, chunked:
+    (least mass, least radius) of the feasible grid points."""
     from crankbalance.counterweight import _Problem
 
     full = parse_bounds(bounds)
     prob = _Problem(required, full, 8000.0, math.inf, max_radius, 100.0, "true", ("mass", "radius"))
     axes = [np.linspace(lo, hi, n) for lo, hi in zip(prob.low, prob.high, strict=True)]
     grid = np.stack(np.meshgrid(*axes, indexing="ij"), axis=-1).reshape(-1, len(axes))
-    best = math.inf
+    mass = radius = math.inf
     for start in range(0, len(grid), 200_000):
         ev = prob.evaluate(grid[start : start + 200_000])
         if np.any(ev["feasible"]):
-            best = min(best, float(ev["mass"][ev["feasible"]].min()))
-    return best
+            mass = min(mass, float(ev["mass"][ev["feasible"]].min()))
+            radius = min(radius, float(ev["radius"][ev["feasible"]].min()))
+    return mass, radius
 
 
-def test_least_mass_matches_exhaustive_search():
+def test_least_mass_and_radius_match_exhaustive_search():
     bounds = {
         "web_radius": 0.015,
         "trapezoid_angle": 0.6,
@@ -350,9 +358,12 @@ def test_least_mass_matches_exhaustive_search():
         "thickness": (0.004, 0.03),
     }
     res = optimize_counterweight(REQUIRED, bounds, max_radius=0.075, rng=3)
-    exhaustive = _exhaustive_least_mass(bounds, REQUIRED, 0.075, 110)
-    assert res.fun <= exhaustive * 1.005, (res.fun, exhaustive)
-    assert res.fun >= exhaustive * 0.98, "cannot be much better than a fine grid"
+    mass, radius = _exhaustive(bounds, REQUIRED, 0.075, 110)
+    assert res.fun <= mass * 1.005, ("least mass vs 110^3 grid", res.fun, mass)
+    assert res.fun >= mass * 0.98, "cannot be much better than a fine grid"
+    least_radius = res.outer_radius[res.least_radius]
+    assert least_radius <= radius * 1.005, ("least radius vs grid", least_radius, radius)
+    assert least_radius >= radius * 0.98
 
 
 def test_optimum_is_feasible_and_front_non_dominated():
@@ -544,10 +555,21 @@ def test_cli_export_and_check(tmp_path, capsys):
             ],
             "no feasible",
         ),
-        (["export", *ROW2, "--thickness", "6 mm", "-o", "cw.step"], "crankbalance[cad]"),
         (["check", "no-such-file.stl"], "path"),
     ],
 )
 def test_cli_bad_input_exit_2(args, text, capsys):
     code, _, err = _run(args, capsys)
     assert code == 2 and text in err and "Traceback" not in err
+
+
+def test_cli_step_needs_cad_extra(tmp_path, capsys):
+    try:
+        import build123d  # noqa: F401
+    except ImportError:
+        code, _, err = _run(
+            ["export", *ROW2, "--thickness", "6 mm", "-o", str(tmp_path / "a.step")], capsys
+        )
+        assert code == 2 and "crankbalance[cad]" in err
+    else:  # pragma: no cover - only with the cad extra
+        pytest.skip("build123d installed: STEP export works")

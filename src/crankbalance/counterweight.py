@@ -882,7 +882,8 @@ class CounterweightOptimum(ResultMixin):
 
     def design(self, index: int) -> CounterweightDesign:
         """The feasible design number ``index`` as a :class:`CounterweightDesign`."""
-        return CounterweightDesign(*(float(v) for v in self.designs[index]), density=self.density)
+        r, h, delta, big_r, alpha, t = (float(v) for v in self.designs[index])
+        return CounterweightDesign(r, h, delta, big_r, alpha, t, self.density)
 
     @property
     def least_mass_design(self) -> CounterweightDesign:
@@ -1037,11 +1038,7 @@ class _Problem:
         # normalised constraint violations (0 where satisfied)
         viol = np.where(valid, 0.0, 1e3)
         viol = viol + np.maximum(t / self.t_high - 1.0, 0.0) * valid
-        viol = (
-            viol
-            + np.maximum(balance / self.min_balance, 0.0).clip(max=1.0) * 0
-            + np.where(valid, np.maximum(1.0 - balance / self.min_balance, 0.0), 0.0)
-        )
+        viol = viol + np.where(valid, np.maximum(1.0 - balance / self.min_balance, 0.0), 0.0)
         if math.isfinite(self.max_mass):
             viol = viol + np.where(valid, np.maximum(mass / self.max_mass - 1.0, 0.0), 0.0)
         if math.isfinite(self.max_radius):
@@ -1224,8 +1221,20 @@ def optimize_counterweight(
         else:
             assert best_infeasible is not None
             parents = best_infeasible[0]
-        reps = math.ceil(children / len(parents))
-        base = np.repeat(parents, reps, axis=0)[:children]
+        if len(front_x):
+            # the extremes of the front (least mass, least radius, ...) get a share of their
+            # own: they sit on active constraints, where progress needs many small steps
+            elites = front_x[np.argmin(front_f, axis=0)]
+            n_elite = children // (4 * len(objs))
+            spread = children - n_elite * len(objs)
+            base = np.vstack(
+                [
+                    np.repeat(elites, n_elite, axis=0),
+                    np.repeat(parents, math.ceil(spread / len(parents)), axis=0)[:spread],
+                ]
+            )
+        else:
+            base = np.repeat(parents, math.ceil(children / len(parents)), axis=0)[:children]
         step = gen.standard_normal(base.shape) * (sigma * span)
         # a quarter of the children move along one coordinate only (line search on bounds)
         one = gen.random(len(base)) < 0.25
@@ -1252,14 +1261,14 @@ def optimize_counterweight(
                 break
 
     if not archive:
-        v = None if best_infeasible is None else float(best_infeasible[1][0])
+        least_violation = None if best_infeasible is None else float(best_infeasible[1][0])
         raise InputError(
             "constraints",
             {
                 "max_mass": max_mass,
                 "max_radius": max_radius,
                 "min_balance": min_balance,
-                "least_violation": v,
+                "least_violation": least_violation,
             },
             "no feasible counterweight within the bounds: relax max_mass, max_radius, "
             "min_balance or widen the parameter ranges (thickness especially)",
@@ -1667,7 +1676,7 @@ def mesh_mass_properties(
         except ImportError:
             raise _cad_missing(path.suffix) from None
         shape = bd.import_step(str(path))
-        verts, tris = shape.tessellate(1e-3)
+        verts, tris = shape.tessellate(1e-4, 0.005)  # [file units], [rad]
         mesh = trimesh.Trimesh(np.array([tuple(v) for v in verts]), np.asarray(tris))
     else:
         try:

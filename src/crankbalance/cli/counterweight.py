@@ -244,9 +244,10 @@ def optimize(
             f"{res.nfev} evaluated in {res.elapsed:.2f} s",
             err=True,
         )
-    pick = res.pareto
+    pick = [int(i) for i in res.pareto]
     if n_pareto < len(pick):
-        pick = pick[sorted({round(k) for k in _spread(len(pick), n_pareto)})] if n_pareto else []
+        pick = [pick[k] for k in sorted({round(x) for x in _spread(len(pick), n_pareto)})]
+        pick = pick if n_pareto else []
     if fmt == "json":
         full = {n: DEFAULT_BOUNDS[n] for n in _PARAMS} | bounds
         out = {
