@@ -159,3 +159,27 @@ def test_spec_counterweight_options() -> None:
                            "web_offset": "15 mm", "balance_factor": 0.5},
     }).to_file_dict()))
     assert data["counterweights"]["web_offset"] == "15 mm"
+
+
+def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -> None:
+    """The balance-shaft designer takes its unbalance from the balancing solver: inline-4
+    Lanchester shafts A2 m r / 2 at 2w; the paper inline-3's single counter-rotating shaft
+    sqrt(3) m r a / (2 l) at w (003 Eq. 12)."""
+    from crankbalance.analysis import shaft_requirement
+    from crankbalance.balance_shaft import inline3_couple_unbalance
+
+    m = model_of("inline4")
+    a2 = harmonic_coefficients(m.rod_ratio, 2)[1].real
+    unbalance, speed = shaft_requirement("inline4", 2, 0.3)
+    assert unbalance == pytest.approx(a2 * m.reciprocating_mass[0] * m.crank_radius / 2)
+    assert speed == pytest.approx(2 * m.speed)
+    unbalance, speed = shaft_requirement(EXAMPLES / "paper_inline3.toml", 1, 0.2)
+    assert unbalance == pytest.approx(inline3_couple_unbalance(0.94, 0.04, 0.09, 0.2))
+    code, out, err = run_cli(["shaft", "inline4", "--engine", "inline4", "--length", "300 mm",
+                              "--diameter", "25 mm", "--format", "json"], capsys)
+    assert code == 0, err
+    assert json.loads(out)["input"]["unbalance_kg_m"] == pytest.approx(
+        a2 * m.reciprocating_mass[0] * m.crank_radius / 2)
+    code, _out, err = run_cli(["shaft", "inline4", "--engine", "v12-60", "--length", "300 mm",
+                               "--diameter", "25 mm"], capsys)
+    assert code == 2 and "no order-2 unbalance" in err

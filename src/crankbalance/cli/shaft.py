@@ -62,13 +62,18 @@ def _section_options(function: Any) -> Any:
 def _study_options(function: Any) -> Any:
     options = [
         click.option(
+            "--engine",
+            default=None,
+            help="Engine file or preset: the balancing solver gives --unbalance and --speed.",
+        ),
+        click.option(
             "--unbalance",
-            required=True,
+            default=None,
             help='Required first moment m*e of the shaft, e.g. "3.3 g*m".',
         ),
         click.option(
             "--speed",
-            required=True,
+            default=None,
             help='Shaft speed (twice crank speed for second order), e.g. "12000 rpm".',
         ),
         click.option(
@@ -120,8 +125,11 @@ def _positive(value: float, name: str, text: str) -> float:
 
 
 def _common(
-    unbalance: str,
-    speed: str,
+    engine: str | None,
+    order: int,
+    length: float,
+    unbalance: str | None,
+    speed: str | None,
     unbalance_radius: str,
     bearing_stiffness: str | None,
     weights: str | None,
@@ -133,16 +141,31 @@ def _common(
 
     if points < 3:
         raise InputError("points", points, "must be an integer >= 3")
-    out: dict[str, Any] = {
-        "unbalance": _positive(
+    radius = _positive(
+        parse_quantity(unbalance_radius, "length", "unbalance_radius"),
+        "unbalance_radius",
+        unbalance_radius,
+    )
+    if engine is not None:
+        if unbalance is not None or speed is not None:
+            raise InputError("--engine", engine, "give --engine or --unbalance/--speed, not both")
+        from ..analysis import shaft_requirement
+
+        required, shaft_speed = shaft_requirement(engine, order, length, radius)
+    else:
+        for name, value in (("--unbalance", unbalance), ("--speed", speed)):
+            if value is None:
+                raise InputError(name, None, "is required (or give --engine to take it from "
+                                 "the balancing solver)")
+        assert unbalance is not None and speed is not None
+        required = _positive(
             parse_quantity(unbalance, "unbalance", "unbalance"), "unbalance", unbalance
-        ),
-        "speed": _positive(parse_quantity(speed, "speed", "speed"), "speed", speed),
-        "unbalance_radius": _positive(
-            parse_quantity(unbalance_radius, "length", "unbalance_radius"),
-            "unbalance_radius",
-            unbalance_radius,
-        ),
+        )
+        shaft_speed = _positive(parse_quantity(speed, "speed", "speed"), "speed", speed)
+    out: dict[str, Any] = {
+        "unbalance": required,
+        "speed": shaft_speed,
+        "unbalance_radius": radius,
         "bearing_stiffness": None
         if bearing_stiffness is None
         else _positive(
@@ -160,6 +183,17 @@ def _common(
                 "weights", weights, "must be comma-separated numbers >= 0, e.g. 1,2,3"
             ) from None
     return out
+
+
+def _input_json(engine: str | None, c: dict[str, Any]) -> dict[str, Any]:
+    return {"unbalance_kg_m": c["unbalance"], "shaft_speed_rad_s": c["speed"],
+            "from_engine": engine}
+
+
+def _echo_input(engine: str | None, c: dict[str, Any]) -> None:
+    source = f" (from the balancing solver of {engine})" if engine else ""
+    click.echo(f"Unbalance {c['unbalance'] * 1e6:.6g} g*mm at "
+               f"{c['speed'] * 30 / 3.141592653589793:.6g} rpm{source}")
 
 
 def _verdict(limit: float | None, ok: bool) -> str:
@@ -249,8 +283,9 @@ def shaft() -> None:
 )
 @format_option(("table", "json"))
 def inline4(
-    unbalance: str,
-    speed: str,
+    engine: str | None,
+    unbalance: str | None,
+    speed: str | None,
     weight: float,
     weights: str | None,
     points: int,
@@ -272,7 +307,8 @@ def inline4(
     from ..balance_shaft import inline4_study
 
     length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(unbalance, speed, unbalance_radius, bearing_stiffness, weights, points)
+    c = _common(engine, 2, length_m, unbalance, speed, unbalance_radius, bearing_stiffness,
+                weights, points)
     study = inline4_study(
         c["unbalance"],
         c["speed"],
@@ -289,11 +325,13 @@ def inline4(
     if fmt == "json":
         out = {
             "schema": SCHEMA,
+            "input": _input_json(engine, c),
             **study_json(study),
             "paper": {"optimum_position": 0.67, "weight": 2.0, "source": "003 Sect. 3.1, Fig. 7"},
         }
         click.echo(json.dumps(out, indent=2))
         return
+    _echo_input(engine, c)
     _echo_study(study, max(1, points // 10))
     click.echo("Paper (003, Fig. 7): 67 % with w = 2.")
 
@@ -326,8 +364,9 @@ def inline4(
 )
 @format_option(("table", "json"))
 def inline3(
-    unbalance: str,
-    speed: str,
+    engine: str | None,
+    unbalance: str | None,
+    speed: str | None,
     weight: float,
     weights: str | None,
     points: int,
@@ -357,7 +396,8 @@ def inline3(
     from ..units import parse_quantity
 
     length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(unbalance, speed, unbalance_radius, bearing_stiffness, weights, points)
+    c = _common(engine, 1, length_m, unbalance, speed, unbalance_radius, bearing_stiffness,
+                weights, points)
     if not (0.0 <= z_min < 1.0):
         raise InputError("z_min", z_min, "must lie in [0, 1)")
     offset = (
@@ -387,6 +427,7 @@ def inline3(
     if fmt == "json":
         out = {
             "schema": SCHEMA,
+            "input": _input_json(engine, c),
             "case": "inline3",
             "hold": hold,
             "studies": {s.case.split("-")[1]: study_json(s) for s in studies},
@@ -401,6 +442,7 @@ def inline3(
         }
         click.echo(json.dumps(out, indent=2))
         return
+    _echo_input(engine, c)
     for s in studies:
         _echo_study(s, max(1, points // 10))
         click.echo("")
@@ -486,7 +528,8 @@ def check(
     from ..units import parse_quantity
 
     length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(unbalances[0], speed, unbalance_radius, bearing_stiffness, None, 3)
+    c = _common(None, 1, length_m, unbalances[0], speed, unbalance_radius, bearing_stiffness,
+                None, 3)
     u = [parse_quantity(v, "unbalance", f"unbalances[{i}]") for i, v in enumerate(unbalances)]
     if len(u) == 1:
         u = u * len(masses)
