@@ -573,3 +573,37 @@ def test_cli_step_needs_cad_extra(tmp_path, capsys):
         assert code == 2 and "crankbalance[cad]" in err
     else:  # pragma: no cover - only with the cad extra
         pytest.skip("build123d installed: STEP export works")
+
+
+def test_requirement_from_the_balancing_solver(capsys):
+    """2021 paper Table 2: m_c = 1.2413 kg at r_c = 30 mm for the inline-3 of Table 1."""
+    from pathlib import Path
+
+    from crankbalance.analysis import balance_engine
+    from crankbalance.counterweight import required_first_moment
+
+    engine = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"
+    cw = balance_engine(engine).result.counterweights
+    assert abs(required_first_moment(cw) - 1.2413 * 0.030) < 1e-6, "Table 2: m_c r_c"
+    assert required_first_moment(cw, web=int(cw.web[0])) == required_first_moment(cw)
+    with pytest.raises(InputError, match="web"):
+        required_first_moment(cw, web=99)
+    code, out, _ = _run(
+        [
+            "show",
+            "--engine",
+            str(engine),
+            "--web-radius",
+            "30 mm",
+            "--rectangle-height",
+            "30 mm",
+            "--trapezoid-angle",
+            "60 deg",
+            "--segment-radius",
+            "80 mm",
+            "--segment-angle",
+            "85 deg",
+        ],
+        capsys,
+    )
+    assert code == 0 and "100.00 %" in out

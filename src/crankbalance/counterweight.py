@@ -600,6 +600,38 @@ def thickness_for_first_moment(
     return t.item() if np.ndim(t) == 0 else t
 
 
+def required_first_moment(counterweights: Any, web: int | None = None) -> float:
+    """The first moment m_c r_c one crank counterweight must provide [kg m].
+
+    Parameters
+    ----------
+    counterweights : crankbalance.balancing.Counterweights
+        The balancing solver's crank counterweights (``mass`` [kg] per web at ``cg_radius`` [m]).
+    web : int, optional
+        Web number (1-based, as in ``counterweights.web``); by default the largest one.
+
+    Returns
+    -------
+    float
+        m_c r_c [kg m].
+
+    References
+    ----------
+    .. [1] 2021 paper (seed 000), Eqs. 9-10 (m_c at r_c) and Sec. 4 (the shape must carry it).
+    """
+    mass = np.abs(np.asarray(counterweights.mass, dtype=float))
+    if mass.size == 0:
+        raise InputError("counterweights", "none", "the balancing found no crank counterweight")
+    if web is None:
+        m = float(mass.max())
+    else:
+        webs = [int(w) for w in np.asarray(counterweights.web).ravel()]
+        if web not in webs:
+            raise InputError("web", web, f"one of the counterweight webs {webs}")
+        m = float(mass[webs.index(web)])
+    return _check_positive_scalar("required_first_moment", m * float(counterweights.cg_radius))
+
+
 # --------------------------------------------------------------------------------------
 # Tier 2: one design
 # --------------------------------------------------------------------------------------

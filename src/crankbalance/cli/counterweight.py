@@ -68,28 +68,56 @@ def _value_or_range(text: str, kind: str, field: str) -> float | tuple[float, fl
     return (parse_quantity(low, kind, field), parse_quantity(high, kind, field))
 
 
-def _first_moment(first_moment: str | None, cw_mass: str | None, cg_radius: str | None) -> float:
-    if first_moment is not None:
-        if cw_mass is not None or cg_radius is not None:
+def _first_moment(
+    first_moment: str | None,
+    cw_mass: str | None,
+    cg_radius: str | None,
+    engine: str | None = None,
+) -> float:
+    given = [
+        first_moment is not None,
+        cw_mass is not None or cg_radius is not None,
+        engine is not None,
+    ]
+    if sum(given) > 1:
+        raise InputError(
+            "--first-moment",
+            first_moment,
+            "give only one of --first-moment, --cw-mass with --cg-radius, or --engine",
+        )
+    if engine is not None:
+        from ..analysis import balance_engine
+        from ..counterweight import required_first_moment
+
+        study = balance_engine(engine)
+        if study.result.counterweights is None:
             raise InputError(
-                "--first-moment",
-                first_moment,
-                "give either --first-moment or --cw-mass with --cg-radius",
+                "--engine",
+                engine,
+                "an engine whose balancing asks for crank "
+                "counterweights (a [counterweights] table)",
             )
+        return required_first_moment(study.result.counterweights)
+    if first_moment is not None:
         return parse_quantity(first_moment, "unbalance", "--first-moment")
     if cw_mass is None or cg_radius is None:
         raise InputError(
             "--first-moment",
             None,
-            "required: e.g. --first-moment '7880 g*mm', or "
-            "--cw-mass '263 g' with --cg-radius '30 mm' (from the balancing)",
+            "required: e.g. --first-moment '7880 g*mm', or --cw-mass '263 g' with "
+            "--cg-radius '30 mm', or --engine FILE (the balancing solver's counterweight)",
         )
-    return parse_quantity(cw_mass, "mass", "--cw-mass") * parse_quantity(
-        cg_radius, "length", "--cg-radius"
-    )
+    mass = parse_quantity(cw_mass, "mass", "--cw-mass")
+    return mass * parse_quantity(cg_radius, "length", "--cg-radius")
 
 
 def _requirement_options(f):
+    f = click.option(
+        "--engine",
+        default=None,
+        help="engine file or preset: the requirement is its balancing's largest "
+        "crank counterweight m_c*r_c.",
+    )(f)
     f = click.option("--cg-radius", default=None, help="with --cw-mass: r_c, e.g. '30 mm'.")(f)
     f = click.option(
         "--cw-mass",
@@ -188,6 +216,7 @@ def optimize(
     first_moment,
     cw_mass,
     cg_radius,
+    engine,
     density,
     max_mass,
     max_radius,
@@ -205,7 +234,7 @@ def optimize(
     """Feasible counterweights, Pareto front, least-mass and least-radius designs."""
     from ..counterweight import DEFAULT_BOUNDS, optimize_counterweight
 
-    required = _first_moment(first_moment, cw_mass, cg_radius)
+    required = _first_moment(first_moment, cw_mass, cg_radius, engine)
     bounds: dict[str, Any] = {}
     for name, text in params.items():
         if text is not None:
@@ -318,10 +347,10 @@ def _design_from(params: dict[str, Any], density: str, required: float | None):
     return CounterweightDesign(**values, density=rho)
 
 
-def _optional_requirement(first_moment, cw_mass, cg_radius) -> float | None:
-    if first_moment is None and cw_mass is None and cg_radius is None:
+def _optional_requirement(first_moment, cw_mass, cg_radius, engine) -> float | None:
+    if first_moment is None and cw_mass is None and cg_radius is None and engine is None:
         return None
-    return _first_moment(first_moment, cw_mass, cg_radius)
+    return _first_moment(first_moment, cw_mass, cg_radius, engine)
 
 
 @counterweight.command()
@@ -329,9 +358,9 @@ def _optional_requirement(first_moment, cw_mass, cg_radius) -> float | None:
 @_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
 @click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
 @format_option(("table", "json"))
-def show(first_moment, cw_mass, cg_radius, density, fmt, **params: Any) -> None:
+def show(first_moment, cw_mass, cg_radius, engine, density, fmt, **params: Any) -> None:
     """Mass properties of one counterweight design."""
-    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     design = _design_from(params, density, required)
     props = design.properties(required)
     values = {n: getattr(design, n) for n in _PARAMS}
@@ -386,11 +415,11 @@ def show(first_moment, cw_mass, cg_radius, density, fmt, **params: Any) -> None:
 @_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
 @click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
 @click.option("--output", "-o", required=True, help="File: .svg, .dxf, .stl or .step (mm).")
-def export(first_moment, cw_mass, cg_radius, density, output, **params: Any) -> None:
+def export(first_moment, cw_mass, cg_radius, engine, density, output, **params: Any) -> None:
     """Write a design as SVG/DXF profile, STL solid or STEP (needs crankbalance[cad])."""
     from ..counterweight import export_counterweight
 
-    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     design = _design_from(params, density, required)
     path = export_counterweight(design, output)
     click.echo(f"wrote {path}", err=True)
@@ -402,11 +431,11 @@ def export(first_moment, cw_mass, cg_radius, density, output, **params: Any) -> 
 @click.option("--density", default="8000 kg/m^3", show_default=True, help="Material density.")
 @click.option("--unit", default="mm", show_default=True, help="Length unit of the file.")
 @format_option(("table", "json"))
-def check(part, first_moment, cw_mass, cg_radius, density, unit, fmt) -> None:
+def check(part, first_moment, cw_mass, cg_radius, engine, density, unit, fmt) -> None:
     """Mass properties of an STL/STEP PART about the crank axis (the file's z axis)."""
     from ..counterweight import mesh_mass_properties
 
-    required = _optional_requirement(first_moment, cw_mass, cg_radius)
+    required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     scale = parse_quantity(f"1 {unit}", "length", "--unit")
     m = mesh_mass_properties(
         part,
