@@ -1554,9 +1554,9 @@ def profile_mesh(
     area2 = (p[:, 1, 0] - p[:, 0, 0]) * (p[:, 2, 1] - p[:, 0, 1]) - (p[:, 2, 0] - p[:, 0, 0]) * (
         p[:, 1, 1] - p[:, 0, 1]
     )
-    tri = tri[np.abs(area2) > 1e-18 * max(r, big_r) ** 2]
-    tri = np.where((area2[np.abs(area2) > 1e-18 * max(r, big_r) ** 2] < 0)[:, None],
-                   tri[:, ::-1], tri)  # fmt: skip  # all counter-clockwise
+    proper = np.abs(area2) > 1e-18 * max(r, big_r) ** 2
+    tri, area2 = tri[proper], area2[proper]
+    tri = np.where((area2 < 0)[:, None], tri[:, ::-1], tri)  # all counter-clockwise
     nv = len(v2)
     t = design.thickness
     vertices = np.vstack([np.c_[v2, np.zeros(nv)], np.c_[v2, np.full(nv, t)]])
