@@ -945,7 +945,15 @@ def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step:
         energy0 = max(energy0 - update, 0.5 * (energy0 + floor))
         if abs(update) < 1e-12 * energy0:
             break
-    return np.sqrt(2.0 * (energy0 + work) / inertia)
+    omega = np.sqrt(2.0 * (energy0 + work) / inertia)
+    achieved = 1.0 / np.mean(1.0 / omega)
+    if abs(achieved - mean_speed) > 1e-6 * mean_speed or np.ptp(omega) > 0.5 * mean_speed:
+        raise InputError(
+            "crank_inertia", float(np.mean(inertia)),
+            f"is too small for this cycle at {mean_speed * 30 / np.pi:.0f} rpm: the speed would "
+            f"swing by more than half its mean within a cycle (the crank would nearly stop); "
+            "give the inertia of crankshaft, flywheel and clutch together")
+    return omega
 
 
 # ======================================================================================

@@ -232,6 +232,11 @@ def bench(mass: str, inertia: str, unbalance: str, journal_diameter: str,
 
 def _engine_options(function: Any) -> Any:
     options = [
+        click.option("--engine", default=None,
+                     help="Engine file or preset: stroke, rod length, offset, reciprocating "
+                     "mass (of --cylinder), speed and stroke count come from it."),
+        click.option("--cylinder", type=click.IntRange(1), default=1, show_default=True,
+                     help="With --engine: the cylinder studied."),
         click.option("--bore", default="76.8 mm", show_default=True),
         click.option("--stroke", default="53.8 mm", show_default=True),
         click.option("--rod-length", default="103.5 mm", show_default=True),
@@ -275,16 +280,28 @@ def _read_pressure_csv(path: str) -> tuple[Any, Any]:
 def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any, Any, float, int]:
     from ..dynamics import CylinderSpec, WiebeCombustion
 
-    stroke = _q(o["stroke"], "length", "stroke")
-    cylinder = CylinderSpec(bore=_q(o["bore"], "length", "bore"), crank_radius=stroke / 2,
-                            rod_length=_q(o["rod_length"], "length", "rod_length"),
-                            reciprocating_mass=_q(o["reciprocating_mass"], "mass",
-                                                  "reciprocating_mass"),
+    geometry = {"crank_radius": _q(o["stroke"], "length", "stroke") / 2,
+                "rod_length": _q(o["rod_length"], "length", "rod_length"),
+                "reciprocating_mass": _q(o["reciprocating_mass"], "mass", "reciprocating_mass"),
+                "offset": 0.0}
+    speed, strokes = _q(o["speed"], "speed", "speed"), int(o["strokes"])
+    if o["engine"] is not None:
+        from ..analysis import as_model
+
+        model = as_model(o["engine"])
+        if o["cylinder"] > model.cylinders:
+            raise InputError("--cylinder", o["cylinder"],
+                             f"this engine has cylinders 1..{model.cylinders}")
+        geometry = {"crank_radius": model.crank_radius, "rod_length": model.rod_length,
+                    "reciprocating_mass": float(model.reciprocating_mass[o["cylinder"] - 1]),
+                    "offset": model.offset}
+        speed, strokes = model.speed, model.strokes
+    cylinder = CylinderSpec(bore=_q(o["bore"], "length", "bore"),
                             crank_inertia=_q(o["crank_inertia"], "inertia", "crank_inertia"),
                             balance_factor=balance_factor,
                             journal_diameter=_q(o["journal_diameter"], "length",
                                                 "journal_diameter"),
-                            friction_coefficient=o["friction_coefficient"])
+                            friction_coefficient=o["friction_coefficient"], **geometry)
     if o["pressure_csv"]:
         pressure: Any = _read_pressure_csv(o["pressure_csv"])
     else:
@@ -293,7 +310,7 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
                                    burn_duration=_q(o["burn_duration"], "angle", "burn_duration"),
                                    intake_pressure=_q(o["intake_pressure"], "pressure",
                                                       "intake_pressure"))
-    return cylinder, pressure, _q(o["speed"], "speed", "speed"), int(o["strokes"])
+    return cylinder, pressure, speed, strokes
 
 
 SUMMARY_KEYS = (
