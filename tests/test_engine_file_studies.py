@@ -32,4 +32,6 @@ def test_too_small_crank_inertia_is_refused() -> None:
     cylinder = CylinderSpec(bore=0.08, crank_radius=0.04, rod_length=0.135,
                             reciprocating_mass=0.94, crank_inertia=0.0005)
     with pytest.raises(InputError, match="crank_inertia"):
-        engine_cycle(cylinder, 2000 * 3.14159 / 30, WiebeCombustion(compression_ratio=12.0))
+        engine_cycle(cylinder, 2000 * 3.14159 / 30,
+                     WiebeCombustion(compression_ratio=12.0, ignition_angle=-0.4,
+                                     burn_duration=0.9))
