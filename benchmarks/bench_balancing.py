@@ -28,17 +28,28 @@ def main() -> None:
     cw, primary, secondary = balance_options(spec)
     rows = []
     t = per_call(lambda: balance(model, cw, primary, secondary))
-    rows.append(("solve paper inline-3: counterweights, 2 shaft pairs, time-domain check",
-                 f"{t * 1e3:.3f} ms", "< 2 ms"))
+    rows.append(
+        (
+            "solve paper inline-3: counterweights, 2 shaft pairs, time-domain check",
+            f"{t * 1e3:.3f} ms",
+            "< 2 ms",
+        )
+    )
     v12 = build_model(load_engine("v12-60"))
     opts = CounterweightOptions(0.05, angle="optimal", balance_factor=0.5)
     t = per_call(lambda: balance(v12, opts))
-    rows.append(("solve V12 60 deg: optimal-angle counterweights, check", f"{t * 1e3:.3f} ms",
-                 "< 2 ms"))
+    rows.append(
+        ("solve V12 60 deg: optimal-angle counterweights, check", f"{t * 1e3:.3f} ms", "< 2 ms")
+    )
     angles = np.radians(np.arange(0.0, 90.0001, 0.1))
     t = per_call(lambda: counterweight_angle_sweep(model, cw, angles))
-    rows.append((f"counterweight angle sweep 0-90 deg in 0.1 deg ({angles.size} angles)",
-                 f"{t * 1e3:.3f} ms", "< 50 ms"))
+    rows.append(
+        (
+            f"counterweight angle sweep 0-90 deg in 0.1 deg ({angles.size} angles)",
+            f"{t * 1e3:.3f} ms",
+            "< 50 ms",
+        )
+    )
     width = max(len(r[0]) for r in rows)
     print(f"{'case'.ljust(width)}  {'measured':>12}  {'target':>8}")
     print(f"{'-' * width}  {'-' * 12}  {'-' * 8}")

@@ -10,10 +10,31 @@ from pathlib import Path
 import crankbalance
 
 SRC = Path(crankbalance.__file__).parent
-PHYSICS = ["kinematics", "shaking", "balancing", "single_cylinder", "counterweight",
-           "balance_shaft", "friction", "dynamics", "tolerance", "rotor"]
-EDGES = {"plots", "report", "io", "cli", "web", "units", "pint", "plotly", "nicegui", "click",
-         "matplotlib"}
+PHYSICS = [
+    "kinematics",
+    "shaking",
+    "balancing",
+    "single_cylinder",
+    "counterweight",
+    "balance_shaft",
+    "friction",
+    "dynamics",
+    "tolerance",
+    "rotor",
+]
+EDGES = {
+    "plots",
+    "report",
+    "io",
+    "cli",
+    "web",
+    "units",
+    "pint",
+    "plotly",
+    "nicegui",
+    "click",
+    "matplotlib",
+}
 
 
 def imported_modules(path: Path) -> set[str]:
@@ -42,8 +63,10 @@ def test_physics_modules_do_not_import_edges() -> None:
 
 
 def test_cli_start_does_not_import_heavy_packages() -> None:
-    code = ("import sys; import crankbalance.cli; "
-            "heavy = [m for m in ('pint', 'scipy', 'plotly', 'nicegui', 'shapely', 'trimesh', "
-            "'pymoo', 'matplotlib') if m in sys.modules]; print(','.join(heavy))")
+    code = (
+        "import sys; import crankbalance.cli; "
+        "heavy = [m for m in ('pint', 'scipy', 'plotly', 'nicegui', 'shapely', 'trimesh', "
+        "'pymoo', 'matplotlib') if m in sys.modules]; print(','.join(heavy))"
+    )
     out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
     assert out.stdout.strip() == "", f"imported at CLI start: {out.stdout.strip()}"

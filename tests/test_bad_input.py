@@ -34,6 +34,7 @@ def drop(*path: str) -> Callable[[dict[str, Any]], None]:
         for p in path[:-1]:
             d = d[p]
         del d[path[-1]]
+
     return change
 
 
@@ -47,22 +48,43 @@ CASES: list[tuple[str, Callable[[dict[str, Any]], None], str]] = [
     ("zero cylinders", ct(cylinders=0), "crank_train.cylinders"),
     ("odd vee", ct(layout="vee", bank_angle="90 deg"), "crank_train.cylinders"),
     ("unknown layout", ct(layout="star"), "crank_train.layout"),
-    ("bank angle out of range", lambda d: d["crank_train"].update(
-        layout="vee", cylinders=4, bank_angle="200 deg", firing_order=None), "crank_train.bank_angle"),
-    ("bank angle missing", lambda d: (d["crank_train"].update(layout="vee", cylinders=4),
-                                      d["crank_train"].pop("firing_order")), "crank_train.bank_angle"),
+    (
+        "bank angle out of range",
+        lambda d: d["crank_train"].update(
+            layout="vee", cylinders=4, bank_angle="200 deg", firing_order=None
+        ),
+        "crank_train.bank_angle",
+    ),
+    (
+        "bank angle missing",
+        lambda d: (
+            d["crank_train"].update(layout="vee", cylinders=4),
+            d["crank_train"].pop("firing_order"),
+        ),
+        "crank_train.bank_angle",
+    ),
     ("bank angle on inline", ct(bank_angle="60 deg"), "crank_train.bank_angle"),
     ("missing unit (number)", ct(crank_radius=40), "crank_train.crank_radius"),
     ("missing unit (string)", ct(crank_radius="40"), "crank_train.crank_radius"),
     ("mass for a length", ct(crank_radius="40 kg"), "crank_train.crank_radius"),
     ("length for a mass", ms(piston="500 mm"), "masses.piston"),
     ("NaN quantity", ct(crank_radius="nan mm"), "crank_train.crank_radius"),
-    ("NaN fraction", lambda d: (d["masses"].pop("conrod_cg_from_big_end"),
-                                d["masses"].update(conrod_rotating_fraction=float("nan"))),
-     "masses.conrod_rotating_fraction"),
-    ("fraction above one", lambda d: (d["masses"].pop("conrod_cg_from_big_end"),
-                                      d["masses"].update(conrod_rotating_fraction=1.5)),
-     "masses.conrod_rotating_fraction"),
+    (
+        "NaN fraction",
+        lambda d: (
+            d["masses"].pop("conrod_cg_from_big_end"),
+            d["masses"].update(conrod_rotating_fraction=float("nan")),
+        ),
+        "masses.conrod_rotating_fraction",
+    ),
+    (
+        "fraction above one",
+        lambda d: (
+            d["masses"].pop("conrod_cg_from_big_end"),
+            d["masses"].update(conrod_rotating_fraction=1.5),
+        ),
+        "masses.conrod_rotating_fraction",
+    ),
     ("unknown top-level key", lambda d: d.update(colour="red"), "colour"),
     ("misspelt nested key", ms(pistn="500 g"), "masses.pistn"),
     ("missing speed", drop("speed"), "speed"),
@@ -71,24 +93,50 @@ CASES: list[tuple[str, Callable[[dict[str, Any]], None], str]] = [
     ("unknown kinematics", lambda d: d.update(kinematics="approx"), "kinematics"),
     ("three strokes", ct(strokes=3), "crank_train.strokes"),
     ("throw angles count", ct(throw_angles=["0 deg"]), "crank_train.throw_angles"),
-    ("web pattern length", lambda d: d["counterweights"].update(webs=[1, 1]), "counterweights.webs"),
+    (
+        "web pattern length",
+        lambda d: d["counterweights"].update(webs=[1, 1]),
+        "counterweights.webs",
+    ),
     ("conrod without split", drop("masses", "conrod_cg_from_big_end"), "masses.conrod"),
     ("conrod CG beyond rod", ms(conrod_cg_from_big_end="200 mm"), "masses.conrod_cg_from_big_end"),
-    ("override of a missing cylinder", ms(override=[{"cylinders": [7], "piston": "400 g"}]),
-     "masses.override[0].cylinders"),
-    ("custom without throws", lambda d: d["crank_train"].update(layout="custom"),
-     "crank_train.throw"),
-    ("radial with two cylinders", lambda d: d["crank_train"].update(
-        layout="radial", cylinders=2, firing_order=None), "crank_train.cylinders"),
+    (
+        "override of a missing cylinder",
+        ms(override=[{"cylinders": [7], "piston": "400 g"}]),
+        "masses.override[0].cylinders",
+    ),
+    (
+        "custom without throws",
+        lambda d: d["crank_train"].update(layout="custom"),
+        "crank_train.throw",
+    ),
+    (
+        "radial with two cylinders",
+        lambda d: d["crank_train"].update(layout="radial", cylinders=2, firing_order=None),
+        "crank_train.cylinders",
+    ),
     ("missing crank pitch", drop("crank_train", "crank_pitch"), "crank_train.crank_pitch"),
     ("missing piston", drop("masses", "piston"), "masses.piston"),
-    ("inconsistent vee firing order", lambda d: (d.pop("counterweights"), d["crank_train"].update(
-        layout="vee", cylinders=8, bank_angle="90 deg", firing_order=list(range(1, 9)))),
-     "crank_train.firing_order"),
-    ("counterweight radius zero", lambda d: d["counterweights"].update(cg_radius="0 mm"),
-     "counterweights.cg_radius"),
-    ("shaft length negative", lambda d: d["balance_shafts"]["primary"].update(length="-2 mm"),
-     "balance_shafts.primary.length"),
+    (
+        "inconsistent vee firing order",
+        lambda d: (
+            d.pop("counterweights"),
+            d["crank_train"].update(
+                layout="vee", cylinders=8, bank_angle="90 deg", firing_order=list(range(1, 9))
+            ),
+        ),
+        "crank_train.firing_order",
+    ),
+    (
+        "counterweight radius zero",
+        lambda d: d["counterweights"].update(cg_radius="0 mm"),
+        "counterweights.cg_radius",
+    ),
+    (
+        "shaft length negative",
+        lambda d: d["balance_shafts"]["primary"].update(length="-2 mm"),
+        "balance_shafts.primary.length",
+    ),
     ("string for a number", ct(cylinders="three"), "crank_train.cylinders"),
 ]
 
@@ -103,8 +151,13 @@ def check_message(code: int, err: str, field: str) -> None:
 
 
 @pytest.mark.parametrize("name,change,field", CASES, ids=[c[0] for c in CASES])
-def test_malformed_engine_file(name: str, change: Callable[[dict[str, Any]], None], field: str,
-                               tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+def test_malformed_engine_file(
+    name: str,
+    change: Callable[[dict[str, Any]], None],
+    field: str,
+    tmp_path: Path,
+    capsys: pytest.CaptureFixture[str],
+) -> None:
     data = edit(change)
     data = json.loads(json.dumps(data, allow_nan=True))  # drop None values below
     for section in data.values():
@@ -122,28 +175,32 @@ RAW_FILES = [
     ("empty file", b"", "engine.toml"),
     ("only whitespace", b"  \n\n", "engine.toml"),
     ("binary file", bytes(range(256)), "engine.toml"),
-    ("TOML syntax error", b"name = \"x\"\nspeed = 2000 rpm\n", "engine.toml"),
-    ("JSON syntax error", b"{\"speed\": }", "engine.json"),
+    ("TOML syntax error", b'name = "x"\nspeed = 2000 rpm\n', "engine.toml"),
+    ("JSON syntax error", b'{"speed": }', "engine.json"),
     ("JSON list", b"[1, 2, 3]", "engine.json"),
 ]
 
 
 @pytest.mark.parametrize("name,raw,filename", RAW_FILES, ids=[c[0] for c in RAW_FILES])
-def test_unreadable_files(name: str, raw: bytes, filename: str, tmp_path: Path,
-                          capsys: pytest.CaptureFixture[str]) -> None:
+def test_unreadable_files(
+    name: str, raw: bytes, filename: str, tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
     path = tmp_path / filename
     path.write_bytes(raw)
     code, _out, err = run_cli(["analyze", str(path)], capsys)
     check_message(code, err, str(path) if name != "JSON list" else "engine file")
 
 
-@pytest.mark.parametrize("args,needle", [
-    (["analyze", "no-such-engine"], "engine"),
-    (["analyze", "inline4", "--orders", "0"], "--orders"),
-    (["analyze", "inline4", "--format", "xml"], "--format"),
-    (["analyze"], "ENGINE"),
-    (["frobnicate"], "frobnicate"),
-])
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["analyze", "no-such-engine"], "engine"),
+        (["analyze", "inline4", "--orders", "0"], "--orders"),
+        (["analyze", "inline4", "--format", "xml"], "--format"),
+        (["analyze"], "ENGINE"),
+        (["frobnicate"], "frobnicate"),
+    ],
+)
 def test_bad_cli_calls(args: list[str], needle: str, capsys: pytest.CaptureFixture[str]) -> None:
     code, _out, err = run_cli(args, capsys)
     assert code == 2

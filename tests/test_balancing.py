@@ -32,8 +32,9 @@ def test_single_cylinder_counter_rotating_shaft_and_half_balance() -> None:
     """Single cylinder: f_b = 0.5 cancels the forward half of the primary on the crank, one
     counter-rotating shaft the backward half (textbook); no primary is left."""
     m = model_of("single")
-    res = balance(m, CounterweightOptions(0.03, balance_factor=0.5),
-                  ShaftOptions(0.03, 0.1, "pair"))
+    res = balance(
+        m, CounterweightOptions(0.03, balance_factor=0.5), ShaftOptions(0.03, 0.1, "pair")
+    )
     co, counter = res.primary.shafts
     assert co.masses == (), "f_b = 0.5 leaves nothing co-rotating"
     p = m.reciprocating_mass[0] * m.crank_radius
@@ -107,8 +108,9 @@ def test_counterweights_in_one_plane_cannot_cancel_a_couple() -> None:
 
 
 def test_no_nan_for_zero_targets() -> None:
-    data = balance_engine("boxer6", primary=ShaftOptions(0.03, 0.2),
-                          secondary=ShaftOptions(0.03, 0.2)).to_dict()
+    data = balance_engine(
+        "boxer6", primary=ShaftOptions(0.03, 0.2), secondary=ShaftOptions(0.03, 0.2)
+    ).to_dict()
     text = json.dumps(data)
     assert "NaN" not in text and "Infinity" not in text
     assert data["primary_shafts"]["mass_kg"] == 0.0
@@ -125,39 +127,67 @@ def test_angle_sweep_matches_solver() -> None:
 
 
 def test_balance_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = run_cli(["balance", str(EXAMPLES / "paper_inline3.toml"), "--format",
-                              "json"], capsys)
+    code, out, err = run_cli(
+        ["balance", str(EXAMPLES / "paper_inline3.toml"), "--format", "json"], capsys
+    )
     assert code == 0, err
     data = json.loads(out)
     assert data["schema"] == "crankbalance.balance/1"
     assert {"mass_kg", "angle_deg", "count"} <= set(data["counterweight"])
-    assert {"rotating_force_N", "rotating_moment_Nm", "order1_force_N", "order1_moment_Nm",
-            "order2_force_N", "order2_moment_Nm"} == set(data["residual"])
+    assert {
+        "rotating_force_N",
+        "rotating_moment_Nm",
+        "order1_force_N",
+        "order1_moment_Nm",
+        "order2_force_N",
+        "order2_moment_Nm",
+    } == set(data["residual"])
     code, out, err = run_cli(["balance", "inline4"], capsys)
     assert code == 0 and "Crank counterweights" in out
 
 
-@pytest.mark.parametrize("args,needle", [
-    (["balance", "inline4", "--angle", "30 kg"], "--angle"),
-    (["balance", "inline4", "--balance-factor", "3"], "--balance-factor"),
-    (["balance", "inline4", "--scope", "thirds"], "--scope"),
-    (["balance", "paper-inline3", "--scope", "halves"], "counterweights.scope"),
-])
-def test_balance_cli_bad_input(args: list[str], needle: str,
-                               capsys: pytest.CaptureFixture[str]) -> None:
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["balance", "inline4", "--angle", "30 kg"], "--angle"),
+        (["balance", "inline4", "--balance-factor", "3"], "--balance-factor"),
+        (["balance", "inline4", "--scope", "thirds"], "--scope"),
+        (["balance", "paper-inline3", "--scope", "halves"], "counterweights.scope"),
+    ],
+)
+def test_balance_cli_bad_input(
+    args: list[str], needle: str, capsys: pytest.CaptureFixture[str]
+) -> None:
     code, _out, err = run_cli(args, capsys)
     assert code == 2 and needle in err and "Traceback" not in err
 
 
 def test_spec_counterweight_options() -> None:
-    data = json.loads(json.dumps(spec_from_dict({
-        "speed": "3000 rpm",
-        "crank_train": {"layout": "inline", "cylinders": 2, "crank_radius": "40 mm",
-                        "rod_length": "130 mm", "crank_pitch": "80 mm", "firing_order": [1, 2]},
-        "masses": {"reciprocating": "500 g", "rotating": "700 g"},
-        "counterweights": {"cg_radius": "35 mm", "angle": "optimal", "method": "individual",
-                           "web_offset": "15 mm", "balance_factor": 0.5},
-    }).to_file_dict()))
+    data = json.loads(
+        json.dumps(
+            spec_from_dict(
+                {
+                    "speed": "3000 rpm",
+                    "crank_train": {
+                        "layout": "inline",
+                        "cylinders": 2,
+                        "crank_radius": "40 mm",
+                        "rod_length": "130 mm",
+                        "crank_pitch": "80 mm",
+                        "firing_order": [1, 2],
+                    },
+                    "masses": {"reciprocating": "500 g", "rotating": "700 g"},
+                    "counterweights": {
+                        "cg_radius": "35 mm",
+                        "angle": "optimal",
+                        "method": "individual",
+                        "web_offset": "15 mm",
+                        "balance_factor": 0.5,
+                    },
+                }
+            ).to_file_dict()
+        )
+    )
     assert data["counterweights"]["web_offset"] == "15 mm"
 
 
@@ -175,11 +205,27 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
     assert speed == pytest.approx(2 * m.speed)
     unbalance, speed = shaft_requirement(EXAMPLES / "paper_inline3.toml", 1, 0.2)
     assert unbalance == pytest.approx(inline3_couple_unbalance(0.94, 0.04, 0.09, 0.2))
-    code, out, err = run_cli(["shaft", "inline4", "--engine", "inline4", "--length", "300 mm",
-                              "--diameter", "25 mm", "--format", "json"], capsys)
+    code, out, err = run_cli(
+        [
+            "shaft",
+            "inline4",
+            "--engine",
+            "inline4",
+            "--length",
+            "300 mm",
+            "--diameter",
+            "25 mm",
+            "--format",
+            "json",
+        ],
+        capsys,
+    )
     assert code == 0, err
     assert json.loads(out)["input"]["unbalance_kg_m"] == pytest.approx(
-        a2 * m.reciprocating_mass[0] * m.crank_radius / 2)
-    code, _out, err = run_cli(["shaft", "inline4", "--engine", "v12-60", "--length", "300 mm",
-                               "--diameter", "25 mm"], capsys)
+        a2 * m.reciprocating_mass[0] * m.crank_radius / 2
+    )
+    code, _out, err = run_cli(
+        ["shaft", "inline4", "--engine", "v12-60", "--length", "300 mm", "--diameter", "25 mm"],
+        capsys,
+    )
     assert code == 2 and "no order-2 unbalance" in err

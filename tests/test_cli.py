@@ -13,8 +13,9 @@ from .conftest import EXAMPLES, run_cli
 
 
 def test_analyze_json_contract(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = run_cli(["analyze", str(EXAMPLES / "paper_inline3.toml"),
-                              "--format", "json"], capsys)
+    code, out, err = run_cli(
+        ["analyze", str(EXAMPLES / "paper_inline3.toml"), "--format", "json"], capsys
+    )
     assert code == 0, err
     data = json.loads(out)
     assert data["schema"] == "crankbalance.analysis/1"
@@ -29,7 +30,8 @@ def test_analyze_json_contract(capsys: pytest.CaptureFixture[str]) -> None:
     p = 0.94 * 0.04 * w**2
     assert data["free_moments"][0]["amplitude_Nm"] == pytest.approx(math.sqrt(3) * 0.09 * p)
     assert data["free_moments"][1]["amplitude_Nm"] == pytest.approx(
-        math.sqrt(3) * 0.09 * p * 0.04 / 0.135)
+        math.sqrt(3) * 0.09 * p * 0.04 / 0.135
+    )
     assert data["masses"]["rotating_kg"] == pytest.approx([2.15] * 3), "seeds README: m_rot"
     assert data["masses"]["reciprocating_kg"] == pytest.approx([0.94] * 3), "seeds README: m_alt"
 
@@ -40,7 +42,7 @@ def test_analyze_table(capsys: pytest.CaptureFixture[str]) -> None:
     assert "order" in out and "force N" in out
     lines = out.splitlines()
     start = next(k for k, line in enumerate(lines) if line.startswith("-----")) + 1
-    assert [line.split()[0] for line in lines[start:start + 4]] == ["1", "2", "3", "4"]
+    assert [line.split()[0] for line in lines[start : start + 4]] == ["1", "2", "3", "4"]
 
 
 def test_analyze_csv_curves(capsys: pytest.CaptureFixture[str]) -> None:

@@ -14,8 +14,9 @@ from .conftest import run_cli
 
 
 def test_cycle_from_engine_file(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = run_cli(["cycle", "--engine", "single", "--format", "json",
-                              "--balance-factor", "0.5"], capsys)
+    code, out, err = run_cli(
+        ["cycle", "--engine", "single", "--format", "json", "--balance-factor", "0.5"], capsys
+    )
     assert code == 0, err
     data = json.loads(out)
     model = as_model("single")
@@ -29,9 +30,16 @@ def test_cycle_from_engine_file(capsys: pytest.CaptureFixture[str]) -> None:
 def test_too_small_crank_inertia_is_refused() -> None:
     """A crank inertia far too small for the cycle would make the speed swing through zero:
     refused with a message naming the field instead of a meaningless result."""
-    cylinder = CylinderSpec(bore=0.08, crank_radius=0.04, rod_length=0.135,
-                            reciprocating_mass=0.94, crank_inertia=0.0005)
+    cylinder = CylinderSpec(
+        bore=0.08,
+        crank_radius=0.04,
+        rod_length=0.135,
+        reciprocating_mass=0.94,
+        crank_inertia=0.0005,
+    )
     with pytest.raises(InputError, match="crank_inertia"):
-        engine_cycle(cylinder, 2000 * 3.14159 / 30,
-                     WiebeCombustion(compression_ratio=12.0, ignition_angle=-0.4,
-                                     burn_duration=0.9))
+        engine_cycle(
+            cylinder,
+            2000 * 3.14159 / 30,
+            WiebeCombustion(compression_ratio=12.0, ignition_angle=-0.4, burn_duration=0.9),
+        )

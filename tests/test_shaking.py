@@ -10,8 +10,9 @@ from crankbalance.io import list_presets
 from crankbalance.shaking import batch_amplitudes, exact_time_domain, phasor_curve
 
 
-@pytest.mark.parametrize("preset", ["single", "inline3", "v8-crossplane", "w12", "radial5",
-                                    "v6-60", "boxer4"])
+@pytest.mark.parametrize(
+    "preset", ["single", "inline3", "v8-crossplane", "w12", "radial5", "v6-60", "boxer4"]
+)
 def test_sum_of_orders_equals_exact_time_domain(preset: str) -> None:
     """Second method: the exact inertia forces summed cylinder by cylinder in the time
     domain equal the sum of the harmonic phasors (to the truncation of 16 orders)."""
@@ -46,10 +47,14 @@ def test_batch_equals_single_engines() -> None:
         return out
 
     fa, ma = batch_amplitudes(
-        [m.crank_radius for m in models], [m.rod_length for m in models],
-        [m.speed for m in models], pad([m.reciprocating_mass for m in models]),
-        pad([m.cylinder_angle for m in models]), pad([m.cylinder_bank for m in models]),
-        pad([m.cylinder_position for m in models]))
+        [m.crank_radius for m in models],
+        [m.rod_length for m in models],
+        [m.speed for m in models],
+        pad([m.reciprocating_mass for m in models]),
+        pad([m.cylinder_angle for m in models]),
+        pad([m.cylinder_bank for m in models]),
+        pad([m.cylinder_position for m in models]),
+    )
     for k, name in enumerate(names):
         single = analyze(name).forces
         assert np.allclose(fa[k], single.force_amplitude, rtol=1e-12, atol=1e-9)
@@ -59,10 +64,32 @@ def test_batch_equals_single_engines() -> None:
 def test_preset_library() -> None:
     names = list_presets()
     assert len(names) >= 20, "issue 2: a library of at least 20 engines"
-    for required in ("single", "inline2-180", "inline2-270", "inline2-360", "inline3", "inline4",
-                     "inline5", "inline6", "inline8", "v2-45", "v2-60", "v2-90", "v4-90",
-                     "v6-60", "v6-90", "v8-crossplane", "v8-flatplane", "v12-60", "boxer2",
-                     "boxer4", "boxer6", "w12", "radial5", "radial9"):
+    for required in (
+        "single",
+        "inline2-180",
+        "inline2-270",
+        "inline2-360",
+        "inline3",
+        "inline4",
+        "inline5",
+        "inline6",
+        "inline8",
+        "v2-45",
+        "v2-60",
+        "v2-90",
+        "v4-90",
+        "v6-60",
+        "v6-90",
+        "v8-crossplane",
+        "v8-flatplane",
+        "v12-60",
+        "boxer2",
+        "boxer4",
+        "boxer6",
+        "w12",
+        "radial5",
+        "radial9",
+    ):
         assert required in names
     for name in names:
         data = analyze(name).to_dict()
@@ -70,14 +97,17 @@ def test_preset_library() -> None:
         assert len(data["free_forces"]) == 8
 
 
-@pytest.mark.parametrize("preset,balanced", [
-    ("inline6", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
-    ("v12-60", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
-    ("boxer6", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
-    ("v8-flatplane", [(1, "F"), (1, "M"), (2, "M")]),
-    ("boxer4", [(1, "F"), (1, "M"), (2, "F")]),
-    ("inline5", [(1, "F"), (2, "F")]),
-])
+@pytest.mark.parametrize(
+    "preset,balanced",
+    [
+        ("inline6", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
+        ("v12-60", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
+        ("boxer6", [(1, "F"), (1, "M"), (2, "F"), (2, "M")]),
+        ("v8-flatplane", [(1, "F"), (1, "M"), (2, "M")]),
+        ("boxer4", [(1, "F"), (1, "M"), (2, "F")]),
+        ("inline5", [(1, "F"), (2, "F")]),
+    ],
+)
 def test_known_balanced_components(preset: str, balanced: list[tuple[int, str]]) -> None:
     """Textbook balance of classic layouts (e.g. Taylor vol. 2, ch. 8, tables of engine
     balance): the listed components are zero."""

@@ -43,38 +43,47 @@ class Analysis:
     def to_dict(self) -> dict[str, Any]:
         m, f = self.model, self.forces
         # what is below round-off of the engine's force scale is reported as exactly zero
-        scale = float(np.sum(m.reciprocating_mass) + np.sum(m.throw_rotating_mass)) * (
-            m.crank_radius * m.speed**2) * max(1.0, float(np.ptp(m.throw_position)))
+        scale = (
+            float(np.sum(m.reciprocating_mass) + np.sum(m.throw_rotating_mass))
+            * (m.crank_radius * m.speed**2)
+            * max(1.0, float(np.ptp(m.throw_position)))
+        )
         tiny = 1e-12 * scale
 
         def clean(value: complex) -> complex:
             return 0j if abs(value) < tiny else complex(value)
 
-        f = FreeForces(orders=f.orders,
-                       force_forward=np.array([clean(v) for v in f.force_forward]),
-                       force_backward=np.array([clean(v) for v in f.force_backward]),
-                       couple_forward=np.array([clean(v) for v in f.couple_forward]),
-                       couple_backward=np.array([clean(v) for v in f.couple_backward]),
-                       rotating_force=clean(f.rotating_force),
-                       rotating_couple=clean(f.rotating_couple))
+        f = FreeForces(
+            orders=f.orders,
+            force_forward=np.array([clean(v) for v in f.force_forward]),
+            force_backward=np.array([clean(v) for v in f.force_backward]),
+            couple_forward=np.array([clean(v) for v in f.couple_forward]),
+            couple_backward=np.array([clean(v) for v in f.couple_backward]),
+            rotating_force=clean(f.rotating_force),
+            rotating_couple=clean(f.rotating_couple),
+        )
         rows_f, rows_m = [], []
         for k, order in enumerate(f.orders):
-            rows_f.append({
-                "order": int(order),
-                "amplitude_N": float(f.force_amplitude[k]),
-                "forward_N": float(abs(f.force_forward[k])),
-                "backward_N": float(abs(f.force_backward[k])),
-                "forward_phase_deg": _phase(f.force_forward[k]),
-                "backward_phase_deg": _phase(f.force_backward[k]),
-            })
-            rows_m.append({
-                "order": int(order),
-                "amplitude_Nm": float(f.moment_amplitude[k]),
-                "forward_Nm": float(abs(f.couple_forward[k])),
-                "backward_Nm": float(abs(f.couple_backward[k])),
-                "forward_phase_deg": _phase(1j * f.couple_forward[k]),
-                "backward_phase_deg": _phase(1j * f.couple_backward[k]),
-            })
+            rows_f.append(
+                {
+                    "order": int(order),
+                    "amplitude_N": float(f.force_amplitude[k]),
+                    "forward_N": float(abs(f.force_forward[k])),
+                    "backward_N": float(abs(f.force_backward[k])),
+                    "forward_phase_deg": _phase(f.force_forward[k]),
+                    "backward_phase_deg": _phase(f.force_backward[k]),
+                }
+            )
+            rows_m.append(
+                {
+                    "order": int(order),
+                    "amplitude_Nm": float(f.moment_amplitude[k]),
+                    "forward_Nm": float(abs(f.couple_forward[k])),
+                    "backward_Nm": float(abs(f.couple_backward[k])),
+                    "forward_phase_deg": _phase(1j * f.couple_forward[k]),
+                    "backward_phase_deg": _phase(1j * f.couple_backward[k]),
+                }
+            )
         out = {
             "schema": SCHEMA,
             "engine": {
@@ -106,7 +115,7 @@ class Analysis:
                 "moment_phase_deg": _phase(1j * f.rotating_couple),
             },
             "conventions": "phases: direction at crank angle 0, degrees from +z toward +x; "
-                           "moments about the crankshaft mid-point",
+            "moments about the crankshaft mid-point",
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)
@@ -155,17 +164,24 @@ def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
         cw = CounterweightOptions(cg_radius=spec.crank_train.crank_radius, angle="optimal")
     else:
         cw = CounterweightOptions(
-            cg_radius=c.cg_radius, webs=tuple(c.webs) if c.webs is not None else None,
-            angle=c.angle, balance_factor=c.balance_factor, scope=c.scope, method=c.method,
-            web_offset=c.web_offset)
+            cg_radius=c.cg_radius,
+            webs=tuple(c.webs) if c.webs is not None else None,
+            angle=c.angle,
+            balance_factor=c.balance_factor,
+            scope=c.scope,
+            method=c.method,
+            web_offset=c.web_offset,
+        )
     shafts = spec.balance_shafts
     primary = secondary = None
     if shafts is not None and shafts.primary is not None:
-        primary = ShaftOptions(shafts.primary.cg_radius, shafts.primary.length,
-                               shafts.primary.arrangement)
+        primary = ShaftOptions(
+            shafts.primary.cg_radius, shafts.primary.length, shafts.primary.arrangement
+        )
     if shafts is not None and shafts.secondary is not None:
-        secondary = ShaftOptions(shafts.secondary.cg_radius, shafts.secondary.length,
-                                 shafts.secondary.arrangement)
+        secondary = ShaftOptions(
+            shafts.secondary.cg_radius, shafts.secondary.length, shafts.secondary.arrangement
+        )
     return cw, primary, secondary
 
 
@@ -192,10 +208,16 @@ class BalanceStudy:
                 "scope": cw.scope,
                 "cg_radius_m": cw.cg_radius,
                 "total_mass_kg": float(cw.mass.sum()),
-                "webs": [{"web": int(cw.web[k]), "throw": int(cw.throw[k]),
-                          "position_m": float(cw.position[k]), "mass_kg": float(cw.mass[k]),
-                          "direction_deg": math.degrees(cw.direction[k])}
-                         for k in range(cw.count)],
+                "webs": [
+                    {
+                        "web": int(cw.web[k]),
+                        "throw": int(cw.throw[k]),
+                        "position_m": float(cw.position[k]),
+                        "mass_kg": float(cw.mass[k]),
+                        "direction_deg": math.degrees(cw.direction[k]),
+                    }
+                    for k in range(cw.count)
+                ],
                 "note": cw.note,
             }
 
@@ -207,25 +229,41 @@ class BalanceStudy:
                 "order": group.order,
                 "arrangement": group.arrangement,
                 "length_m": group.length,
-                "shafts": [{
-                    "rotation": "co-rotating" if s.sense > 0 else "counter-rotating",
-                    "speed_ratio": s.sense * s.order,
-                    "cg_radius_m": s.cg_radius,
-                    "mass_kg": s.mass,
-                    "masses": [{"position_m": x.position, "mass_kg": x.mass,
-                                "phase_deg": math.degrees(x.phase)} for x in s.masses],
-                    "note": s.note,
-                } for s in group.shafts],
+                "shafts": [
+                    {
+                        "rotation": "co-rotating" if s.sense > 0 else "counter-rotating",
+                        "speed_ratio": s.sense * s.order,
+                        "cg_radius_m": s.cg_radius,
+                        "mass_kg": s.mass,
+                        "masses": [
+                            {
+                                "position_m": x.position,
+                                "mass_kg": x.mass,
+                                "phase_deg": math.degrees(x.phase),
+                            }
+                            for x in s.masses
+                        ],
+                        "note": s.note,
+                    }
+                    for s in group.shafts
+                ],
             }
 
         rotating, o1, o2 = components["rotating"], components["order1"], components["order2"]
         unbalanced = [
             f"{c.component}: force {c.force_after:.4g} N, moment {c.moment_after:.4g} N*m"
-            for c in res.residuals if c.force_after > 0 or c.moment_after > 0]
+            for c in res.residuals
+            if c.force_after > 0 or c.moment_after > 0
+        ]
         out = {
             "schema": BALANCE_SCHEMA,
-            "engine": {"name": m.name, "cylinders": m.cylinders, "throws": m.throws,
-                       "speed_rpm": m.speed * 30 / math.pi, "kinematics": m.kinematics},
+            "engine": {
+                "name": m.name,
+                "cylinders": m.cylinders,
+                "throws": m.throws,
+                "speed_rpm": m.speed * 30 / math.pi,
+                "kinematics": m.kinematics,
+            },
             "counterweight": cw_dict(res.counterweights),
             "extra_counterweights": cw_dict(res.extra_counterweights),
             "primary_shafts": shafts_dict(res.primary),
@@ -238,11 +276,17 @@ class BalanceStudy:
                 "order2_force_N": o2.force_after,
                 "order2_moment_Nm": o2.moment_after,
             },
-            "components": [{
-                "component": c.component, "targeted": c.targeted,
-                "force_before_N": c.force_before, "force_after_N": c.force_after,
-                "moment_before_Nm": c.moment_before, "moment_after_Nm": c.moment_after,
-            } for c in res.residuals],
+            "components": [
+                {
+                    "component": c.component,
+                    "targeted": c.targeted,
+                    "force_before_N": c.force_before,
+                    "force_after_N": c.force_after,
+                    "moment_before_Nm": c.moment_before,
+                    "moment_after_Nm": c.moment_after,
+                }
+                for c in res.residuals
+            ],
             "unbalanced": unbalanced,
             "notes": list(res.notes),
         }
@@ -251,8 +295,9 @@ class BalanceStudy:
         return result
 
 
-def balance_engine(engine: str | os.PathLike[str] | EngineSpec, orders: int = 8,
-                   **overrides: Any) -> BalanceStudy:
+def balance_engine(
+    engine: str | os.PathLike[str] | EngineSpec, orders: int = 8, **overrides: Any
+) -> BalanceStudy:
     """Counterweights and balance shafts of an engine, as its file asks for.
 
     ``overrides`` replace fields of the counterweight options (``angle``,
@@ -273,8 +318,9 @@ def balance_engine(engine: str | os.PathLike[str] | EngineSpec, orders: int = 8,
     return BalanceStudy(model, balance(model, cw, primary, secondary, orders))
 
 
-def shaft_requirement(engine: str | os.PathLike[str] | EngineSpec, order: int,
-                      length: float, cg_radius: float = 0.02) -> tuple[float, float]:
+def shaft_requirement(
+    engine: str | os.PathLike[str] | EngineSpec, order: int, length: float, cg_radius: float = 0.02
+) -> tuple[float, float]:
     """The unbalance one balance shaft of an engine must carry, from the balancing solver.
 
     Order 1: a single counter-rotating shaft, its co-rotating half on the crank (the
@@ -288,12 +334,17 @@ def shaft_requirement(engine: str | os.PathLike[str] | EngineSpec, order: int,
     if order not in (1, 2):
         raise InputError("order", order, "must be 1 (primary) or 2 (secondary)")
     shafts = ShaftOptions(cg_radius, length, "counter-rotating" if order == 1 else "pair")
-    study = balance_engine(engine, **({"primary": shafts, "secondary": None} if order == 1
-                                      else {"primary": None, "secondary": shafts}))
+    if order == 1:
+        study = balance_engine(engine, primary=shafts, secondary=None)
+    else:
+        study = balance_engine(engine, primary=None, secondary=shafts)
     group = study.result.primary if order == 1 else study.result.secondary
     assert group is not None
     unbalance = max((m.mass * cg_radius for s in group.shafts for m in s.masses), default=0.0)
     if unbalance <= 0.0:
-        raise InputError("engine", study.model.name,
-                         f"has no order-{order} unbalance for a balance shaft to carry")
+        raise InputError(
+            "engine",
+            study.model.name,
+            f"has no order-{order} unbalance for a balance shaft to carry",
+        )
     return unbalance, order * study.model.speed

@@ -167,8 +167,9 @@ class BalanceResult(ResultMixin):
 
 
 # --------------------------------------------------------------------------- helpers
-def web_layout(model: EngineModel, web_offset: float | None = None,
-               webs: tuple[int, ...] | None = None) -> tuple[NDArray, NDArray]:
+def web_layout(
+    model: EngineModel, web_offset: float | None = None, webs: tuple[int, ...] | None = None
+) -> tuple[NDArray, NDArray]:
     """Throw index and axial position of every web that carries a counterweight.
 
     Webs are numbered two per throw from the y < 0 end; each sits ``web_offset`` from its
@@ -179,7 +180,9 @@ def web_layout(model: EngineModel, web_offset: float | None = None,
         web_offset = default_web_offset(model)
     flags = np.ones(2 * t, dtype=int) if webs is None else np.asarray(webs, dtype=int)
     if flags.size != 2 * t:
-        raise InputError("counterweights.webs", list(flags), f"needs {2 * t} entries (two per throw)")
+        raise InputError(
+            "counterweights.webs", list(flags), f"needs {2 * t} entries (two per throw)"
+        )
     index = np.flatnonzero(flags)
     throw = index // 2
     side = np.where(index % 2 == 0, -1.0, 1.0)
@@ -202,8 +205,11 @@ def _parts(model: EngineModel, scope: str, throw_of_web: NDArray) -> list[tuple[
         return [(np.ones(model.throws, bool), np.ones(throw_of_web.size, bool))]
     y = model.throw_position
     if np.any(np.abs(y) < 1e-12) or model.throws < 2:
-        raise InputError("counterweights.scope", "halves",
-                         "balancing each half needs an even number of throws off the mid-plane")
+        raise InputError(
+            "counterweights.scope",
+            "halves",
+            "balancing each half needs an even number of throws off the mid-plane",
+        )
     lower = y < 0
     return [(lower, lower[throw_of_web]), (~lower, ~lower[throw_of_web])]
 
@@ -217,10 +223,13 @@ def _scale(model: EngineModel) -> tuple[float, float]:
 
 
 # --------------------------------------------------------------------------- counterweights
-def solve_counterweights(model: EngineModel, options: CounterweightOptions,
-                         target_force: complex, target_couple: NDArray | complex,
-                         part_targets: list[tuple[complex, complex]] | None = None,
-                         ) -> Counterweights:
+def solve_counterweights(
+    model: EngineModel,
+    options: CounterweightOptions,
+    target_force: complex,
+    target_couple: NDArray | complex,
+    part_targets: list[tuple[complex, complex]] | None = None,
+) -> Counterweights:
     """Counterweights whose forward first-order phasors cancel the given targets.
 
     ``part_targets`` gives (force, couple) per part for ``scope="halves"``; otherwise
@@ -243,31 +252,59 @@ def solve_counterweights(model: EngineModel, options: CounterweightOptions,
         rhs.append(-couple / length)
     a = np.array(rows, dtype=complex)
     b = np.array(rhs, dtype=complex)
-    webs_numbered = np.flatnonzero(np.ones(2 * model.throws) if options.webs is None
-                                   else np.asarray(options.webs)) + 1
+    webs_numbered = (
+        np.flatnonzero(
+            np.ones(2 * model.throws) if options.webs is None else np.asarray(options.webs)
+        )
+        + 1
+    )
     if np.abs(b).max(initial=0.0) < ZERO * size:
         zero = np.zeros(throw_of_web.size)
-        return Counterweights(options.method, scope, options.cg_radius, None, webs_numbered,
-                              throw_of_web + 1, y, zero, np.zeros_like(zero),
-                              "already balanced: no counterweight mass needed")
+        return Counterweights(
+            options.method,
+            scope,
+            options.cg_radius,
+            None,
+            webs_numbered,
+            throw_of_web + 1,
+            y,
+            zero,
+            np.zeros_like(zero),
+            "already balanced: no counterweight mass needed",
+        )
     # a couple can only be cancelled by counterweights in more than one plane
     for (_, web_mask), (force, couple) in zip(parts, targets, strict=True):
         planes = np.unique(np.round(y[web_mask], 12))
         if planes.size == 0:
-            raise InputError("counterweights.webs", list(options.webs or []),
-                             "a part of the crank that needs balancing has no counterweight")
+            raise InputError(
+                "counterweights.webs",
+                list(options.webs or []),
+                "a part of the crank that needs balancing has no counterweight",
+            )
         moment_about_plane = couple - planes[0] * force
         if planes.size == 1 and abs(moment_about_plane) > ZERO * size * length:
             raise InputError(
-                "counterweights.webs", list(options.webs or []),
+                "counterweights.webs",
+                list(options.webs or []),
                 f"all counterweights lie in one plane (y = {planes[0] * 1e3:g} mm): they cannot "
-                "cancel the couple of the rotating masses; put counterweights on webs in two planes")
+                "cancel the couple of the rotating masses; put counterweights on webs in two "
+                "planes",
+            )
     if options.method == "individual":
         v, *_ = np.linalg.lstsq(a, b, rcond=None)  # least sum |v|^2 among exact solutions
         mass = np.abs(v) / options.cg_radius
         direction = np.angle(v)
-        return Counterweights("individual", scope, options.cg_radius, None, webs_numbered,
-                              throw_of_web + 1, y, mass, np.where(mass > 0, direction, 0.0))
+        return Counterweights(
+            "individual",
+            scope,
+            options.cg_radius,
+            None,
+            webs_numbered,
+            throw_of_web + 1,
+            y,
+            mass,
+            np.where(mass > 0, direction, 0.0),
+        )
     opposite = model.throw_angle[throw_of_web] + np.pi
     side = np.sign(np.round(y / length, 12))
     if options.angle == "optimal":
@@ -281,12 +318,23 @@ def solve_counterweights(model: EngineModel, options: CounterweightOptions,
         m_c, direction = -m_c, direction + np.pi
         note = "the counterweights point toward their crankpins (the pattern was flipped)"
     mass = np.full(throw_of_web.size, m_c / options.cg_radius)
-    return Counterweights("pattern", scope, options.cg_radius, alpha, webs_numbered,
-                          throw_of_web + 1, y, mass, np.mod(direction, 2 * np.pi), note)
+    return Counterweights(
+        "pattern",
+        scope,
+        options.cg_radius,
+        alpha,
+        webs_numbered,
+        throw_of_web + 1,
+        y,
+        mass,
+        np.mod(direction, 2 * np.pi),
+        note,
+    )
 
 
-def pattern_masses(a: NDArray, b: NDArray, opposite: NDArray, side: NDArray,
-                   alphas: ArrayLike) -> tuple[NDArray, NDArray]:
+def pattern_masses(
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray, alphas: ArrayLike
+) -> tuple[NDArray, NDArray]:
     """First moment :math:`m_c r_c` [kg·m] of the equal counterweights of the paper's
     pattern and the residual of the equations, for many angles :math:`\\alpha` at once.
 
@@ -303,8 +351,9 @@ def pattern_masses(a: NDArray, b: NDArray, opposite: NDArray, side: NDArray,
     return moment, residual
 
 
-def _optimal_pattern(a: NDArray, b: NDArray, opposite: NDArray,
-                     side: NDArray) -> tuple[float, float]:
+def _optimal_pattern(
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray
+) -> tuple[float, float]:
     """Turn angle and first moment of the least-mass pattern that balances.
 
     Without counterweights in the mid-plane the pattern is linear in
@@ -317,8 +366,9 @@ def _optimal_pattern(a: NDArray, b: NDArray, opposite: NDArray,
         # direction e^{i(opposite + side*alpha)} = base (cos a + i side sin a)
         cx = a @ base
         cy = a @ (1j * side * base)
-        matrix = np.vstack([np.column_stack([cx.real, cy.real]),
-                            np.column_stack([cx.imag, cy.imag])])
+        matrix = np.vstack(
+            [np.column_stack([cx.real, cy.real]), np.column_stack([cx.imag, cy.imag])]
+        )
         rhs = np.concatenate([b.real, b.imag])
         (x, yv), *_ = np.linalg.lstsq(matrix, rhs, rcond=None)
         return float(np.arctan2(yv, x)), float(np.hypot(x, yv))
@@ -329,15 +379,27 @@ def _optimal_pattern(a: NDArray, b: NDArray, opposite: NDArray,
     score = residual + 1e-9 * np.abs(moment)
     k = int(np.argmin(score))
     lo, hi = grid[max(k - 1, 0)], grid[min(k + 1, grid.size - 1)]
-    best = minimize_scalar(lambda t: float(np.sum(pattern_masses(a, b, opposite, side, [t])[1])),
-                           bounds=(lo, hi), method="bounded", options={"xatol": 1e-12})
+    best = minimize_scalar(
+        lambda t: float(np.sum(pattern_masses(a, b, opposite, side, [t])[1])),
+        bounds=(lo, hi),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     alpha = float(best.x)
     return alpha, float(pattern_masses(a, b, opposite, side, [alpha])[0][0])
 
 
 # --------------------------------------------------------------------------- shafts
-def solve_shaft(order: int, sense: int, force: complex, couple: complex, cg_radius: float,
-                length: float, speed: float, scale: float) -> Shaft:
+def solve_shaft(
+    order: int,
+    sense: int,
+    force: complex,
+    couple: complex,
+    cg_radius: float,
+    length: float,
+    speed: float,
+    scale: float,
+) -> Shaft:
     """Masses of one balance shaft that cancel a phasor pair (force [N], couple [N·m]).
 
     Force only: one mass mid-shaft; couple only: two masses in opposite phase at
@@ -355,8 +417,12 @@ def solve_shaft(order: int, sense: int, force: complex, couple: complex, cg_radi
     # v1 + v2 = -F/g ; -h v1 + h v2 = -C/g
     v2 = (-force / gain - couple / (gain * half)) / 2 if has_force else -couple / (gain * length)
     v1 = -force / gain - v2 if has_force else -v2
-    return Shaft(order, sense, cg_radius,
-                 (ShaftMass(-half, abs(v1), _phase(v1)), ShaftMass(half, abs(v2), _phase(v2))))
+    return Shaft(
+        order,
+        sense,
+        cg_radius,
+        (ShaftMass(-half, abs(v1), _phase(v1)), ShaftMass(half, abs(v2), _phase(v2))),
+    )
 
 
 def _phase(v: complex) -> float:
@@ -364,9 +430,13 @@ def _phase(v: complex) -> float:
 
 
 # --------------------------------------------------------------------------- the study
-def balance(model: EngineModel, counterweights: CounterweightOptions | None = None,
-            primary: ShaftOptions | None = None, secondary: ShaftOptions | None = None,
-            orders: int = 8) -> BalanceResult:
+def balance(
+    model: EngineModel,
+    counterweights: CounterweightOptions | None = None,
+    primary: ShaftOptions | None = None,
+    secondary: ShaftOptions | None = None,
+    orders: int = 8,
+) -> BalanceResult:
     """Counterweights and balance shafts for an engine, checked in the time domain.
 
     Parameters
@@ -393,8 +463,9 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
     force_scale, length = _scale(model)
     notes: list[str] = []
     rot_moment = model.throw_rotating_mass * r * np.exp(1j * model.throw_angle)  # kg·m
-    pin_rec = np.bincount(model.cylinder_throw, weights=model.reciprocating_mass,
-                          minlength=model.throws)
+    pin_rec = np.bincount(
+        model.cylinder_throw, weights=model.reciprocating_mass, minlength=model.throws
+    )
     rec_moment = pin_rec * r * np.exp(1j * model.throw_angle)
     fb = counterweights.balance_factor if counterweights else 0.0
     target = rot_moment + fb * rec_moment  # per throw: what the crank counterweights carry
@@ -407,17 +478,25 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
         size = force_scale / w2
         if scope == "auto":
             balanced = abs(whole_f) < ZERO * size and abs(whole_c) < ZERO * size * length
-            scope = "halves" if balanced and model.throws % 2 == 0 and model.throws >= 2 else "whole"
+            scope = (
+                "halves" if balanced and model.throws % 2 == 0 and model.throws >= 2 else "whole"
+            )
             if scope == "halves":
-                notes.append("the crank is balanced as a whole; each half is balanced on its own "
-                             "(paper section 3.1)")
+                notes.append(
+                    "the crank is balanced as a whole; each half is balanced on its own "
+                    "(paper section 3.1)"
+                )
         opts = CounterweightOptions(**{**counterweights.__dict__, "scope": scope})
         part_targets = None
         if scope == "halves":
             throw_of_web, _ = web_layout(model, opts.web_offset, opts.webs)
-            part_targets = [(complex(target[mask].sum()),
-                             complex((target[mask] * model.throw_position[mask]).sum()))
-                            for mask, _ in _parts(model, "halves", throw_of_web)]
+            part_targets = [
+                (
+                    complex(target[mask].sum()),
+                    complex((target[mask] * model.throw_position[mask]).sum()),
+                )
+                for mask, _ in _parts(model, "halves", throw_of_web)
+            ]
         cw = solve_counterweights(model, opts, complex(whole_f), complex(whole_c), part_targets)
         if cw.note:
             notes.append(cw.note)
@@ -429,12 +508,20 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
             rot_parts = None
             if part_targets is not None:
                 throw_of_web, _ = web_layout(model, opts.web_offset, opts.webs)
-                rot_parts = [(complex(rot_moment[mask].sum()),
-                              complex((rot_moment[mask] * model.throw_position[mask]).sum()))
-                             for mask, _ in _parts(model, "halves", throw_of_web)]
+                rot_parts = [
+                    (
+                        complex(rot_moment[mask].sum()),
+                        complex((rot_moment[mask] * model.throw_position[mask]).sum()),
+                    )
+                    for mask, _ in _parts(model, "halves", throw_of_web)
+                ]
             cw_rotating = solve_counterweights(
-                model, fixed, complex(rot_moment.sum()),
-                complex((rot_moment * model.throw_position).sum()), rot_parts).moments
+                model,
+                fixed,
+                complex(rot_moment.sum()),
+                complex((rot_moment * model.throw_position).sum()),
+                rot_parts,
+            ).moments
 
     # first order left after the crank counterweights: the forward reciprocating phasors
     # plus what the counterweights do beyond the rotating masses (balance-factor share)
@@ -450,23 +537,42 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
     if primary is not None:
         shafts = []
         if primary.arrangement == "pair":
-            shafts.append(solve_shaft(1, +1, fwd1_f, fwd1_c, primary.cg_radius, primary.length,
-                                      w, force_scale))
+            shafts.append(
+                solve_shaft(
+                    1, +1, fwd1_f, fwd1_c, primary.cg_radius, primary.length, w, force_scale
+                )
+            )
         else:
             # Eq. 17 done right: the co-rotating shaft's first moment and couple go onto the
             # crank counterweights as an extra set of masses
             if counterweights is None:
-                raise InputError("balance_shafts.primary.arrangement", "counter-rotating",
-                                 "a single counter-rotating shaft needs [counterweights] on the "
-                                 "crank to take the co-rotating half")
-            opts = CounterweightOptions(**{**counterweights.__dict__, "scope": "whole",
-                                           "method": "individual"})
+                raise InputError(
+                    "balance_shafts.primary.arrangement",
+                    "counter-rotating",
+                    "a single counter-rotating shaft needs [counterweights] on the "
+                    "crank to take the co-rotating half",
+                )
+            opts = CounterweightOptions(
+                **{**counterweights.__dict__, "scope": "whole", "method": "individual"}
+            )
             extra = solve_counterweights(model, opts, fwd1_f / w2, fwd1_c / w2)
-            notes.append("single counter-rotating primary shaft: the forward primary phasors "
-                         "are carried by extra crank counterweight masses (same first moment "
-                         "and couple as the co-rotating shaft they replace)")
-        shafts.append(solve_shaft(1, -1, forces.force_backward[k1], forces.couple_backward[k1],
-                                  primary.cg_radius, primary.length, w, force_scale))
+            notes.append(
+                "single counter-rotating primary shaft: the forward primary phasors "
+                "are carried by extra crank counterweight masses (same first moment "
+                "and couple as the co-rotating shaft they replace)"
+            )
+        shafts.append(
+            solve_shaft(
+                1,
+                -1,
+                forces.force_backward[k1],
+                forces.couple_backward[k1],
+                primary.cg_radius,
+                primary.length,
+                w,
+                force_scale,
+            )
+        )
         primary_set = ShaftSet(1, primary.arrangement, primary.length, tuple(shafts))
 
     secondary_set: ShaftSet | None = None
@@ -474,13 +580,35 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
         k2 = forces.order(2)
         shafts = []
         if secondary.arrangement == "pair":
-            shafts.append(solve_shaft(2, +1, forces.force_forward[k2], forces.couple_forward[k2],
-                                      secondary.cg_radius, secondary.length, w, force_scale))
+            shafts.append(
+                solve_shaft(
+                    2,
+                    +1,
+                    forces.force_forward[k2],
+                    forces.couple_forward[k2],
+                    secondary.cg_radius,
+                    secondary.length,
+                    w,
+                    force_scale,
+                )
+            )
         else:
-            notes.append("secondary: a single counter-rotating shaft leaves the forward "
-                         "second-order phasors unbalanced (nothing on the crank turns at 2w)")
-        shafts.append(solve_shaft(2, -1, forces.force_backward[k2], forces.couple_backward[k2],
-                                  secondary.cg_radius, secondary.length, w, force_scale))
+            notes.append(
+                "secondary: a single counter-rotating shaft leaves the forward "
+                "second-order phasors unbalanced (nothing on the crank turns at 2w)"
+            )
+        shafts.append(
+            solve_shaft(
+                2,
+                -1,
+                forces.force_backward[k2],
+                forces.couple_backward[k2],
+                secondary.cg_radius,
+                secondary.length,
+                w,
+                force_scale,
+            )
+        )
         secondary_set = ShaftSet(2, secondary.arrangement, secondary.length, tuple(shafts))
 
     residuals = verify(model, forces, cw, cw_rotating, extra, primary_set, secondary_set, orders)
@@ -488,15 +616,23 @@ def balance(model: EngineModel, counterweights: CounterweightOptions | None = No
         notes.append(
             "the counterweights do not cancel the rotating masses (see the residual): with "
             "equal counterweights this angle cannot balance both force and couple; "
-            "angle = \"optimal\" or method = \"individual\" can")
+            'angle = "optimal" or method = "individual" can'
+        )
     return BalanceResult(cw, extra, primary_set, secondary_set, residuals, tuple(notes))
 
 
 # --------------------------------------------------------------------------- verification
-def verify(model: EngineModel, forces: FreeForces, cw: Counterweights | None,
-           cw_rotating: NDArray | None, extra: Counterweights | None,
-           primary: ShaftSet | None, secondary: ShaftSet | None,
-           orders: int = 8, samples: int = 256) -> tuple[ComponentResidual, ...]:
+def verify(
+    model: EngineModel,
+    forces: FreeForces,
+    cw: Counterweights | None,
+    cw_rotating: NDArray | None,
+    extra: Counterweights | None,
+    primary: ShaftSet | None,
+    secondary: ShaftSet | None,
+    orders: int = 8,
+    samples: int = 256,
+) -> tuple[ComponentResidual, ...]:
     """Rebuild the time history of every mass and measure what is left, order by order.
 
     The crank train's reciprocating forces come straight from the slider-crank motion
@@ -521,10 +657,13 @@ def verify(model: EngineModel, forces: FreeForces, cw: Counterweights | None,
     else:
         from .shaking import phasor_curve
 
-        rec_f = phasor_curve(forces.force_forward, forces.force_backward, forces.orders,
-                             theta).sum(axis=0)
-        rec_c = phasor_curve(forces.couple_forward, forces.couple_backward, forces.orders,
-                             theta).sum(axis=0)
+        rec_f = phasor_curve(forces.force_forward, forces.force_backward, forces.orders, theta).sum(
+            axis=0
+        )
+        rec_c = phasor_curve(
+            forces.couple_forward, forces.couple_backward, forces.orders, theta
+        ).sum(axis=0)
+
     def mass_history(moments: NDArray, position: NDArray) -> tuple[NDArray, NDArray]:
         each = (moments * w**2)[:, None] * crank_turn
         return each.sum(axis=0), (position[:, None] * each).sum(axis=0)
@@ -544,8 +683,12 @@ def verify(model: EngineModel, forces: FreeForces, cw: Counterweights | None,
             continue
         for shaft in group.shafts:
             for mass in shaft.masses:
-                f = (mass.mass * shaft.cg_radius * (shaft.order * w) ** 2
-                     * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta)))
+                f = (
+                    mass.mass
+                    * shaft.cg_radius
+                    * (shaft.order * w) ** 2
+                    * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta))
+                )
                 shaft_f[shaft.order] += f
                 shaft_c[shaft.order] += mass.position * f
 
@@ -554,18 +697,30 @@ def verify(model: EngineModel, forces: FreeForces, cw: Counterweights | None,
         return float(abs(spectrum[order]) + abs(spectrum[-order]))
 
     force_scale, length = _scale(model)
-    out = [ComponentResidual(
-        "rotating", cw is not None,
-        amplitude(rot_f, 1), _clean(amplitude(rot_f + cw_rot_f, 1), force_scale),
-        amplitude(rot_c, 1), _clean(amplitude(rot_c + cw_rot_c, 1), force_scale * length))]
+    out = [
+        ComponentResidual(
+            "rotating",
+            cw is not None,
+            amplitude(rot_f, 1),
+            _clean(amplitude(rot_f + cw_rot_f, 1), force_scale),
+            amplitude(rot_c, 1),
+            _clean(amplitude(rot_c + cw_rot_c, 1), force_scale * length),
+        )
+    ]
     for order in range(1, orders + 1):
         after_f = rec_f + (cw_rec_f if order == 1 else 0) + shaft_f.get(order, 0)
         after_c = rec_c + (cw_rec_c if order == 1 else 0) + shaft_c.get(order, 0)
         targeted = (order == 1 and primary is not None) or (order == 2 and secondary is not None)
-        out.append(ComponentResidual(
-            f"order{order}", targeted,
-            amplitude(rec_f, order), _clean(amplitude(after_f, order), force_scale),
-            amplitude(rec_c, order), _clean(amplitude(after_c, order), force_scale * length)))
+        out.append(
+            ComponentResidual(
+                f"order{order}",
+                targeted,
+                amplitude(rec_f, order),
+                _clean(amplitude(after_f, order), force_scale),
+                amplitude(rec_c, order),
+                _clean(amplitude(after_c, order), force_scale * length),
+            )
+        )
     return tuple(out)
 
 
@@ -588,21 +743,25 @@ class AngleSweep(ResultMixin):
     residual: NDArray[np.float64]
 
 
-def counterweight_angle_sweep(model: EngineModel, options: CounterweightOptions,
-                              angles: ArrayLike) -> AngleSweep:
+def counterweight_angle_sweep(
+    model: EngineModel, options: CounterweightOptions, angles: ArrayLike
+) -> AngleSweep:
     """Mass of the equal counterweights and the residual for every angle in ``angles``
     [rad] at once (the rotating masses plus the balance-factor share, whole crank)."""
     throw_of_web, y = web_layout(model, options.web_offset, options.webs)
     _, length = _scale(model)
     r = model.crank_radius
-    pin_rec = np.bincount(model.cylinder_throw, weights=model.reciprocating_mass,
-                          minlength=model.throws)
-    target = (model.throw_rotating_mass + options.balance_factor * pin_rec) * r * np.exp(
-        1j * model.throw_angle)
+    pin_rec = np.bincount(
+        model.cylinder_throw, weights=model.reciprocating_mass, minlength=model.throws
+    )
+    target = (
+        (model.throw_rotating_mass + options.balance_factor * pin_rec)
+        * r
+        * np.exp(1j * model.throw_angle)
+    )
     a = np.array([np.ones_like(y), y / length], dtype=complex)
     b = -np.array([target.sum(), (target * model.throw_position).sum() / length])
     opposite = model.throw_angle[throw_of_web] + np.pi
     side = np.sign(np.round(y / length, 12))
     moment, residual = pattern_masses(a, b, opposite, side, angles)
-    return AngleSweep(np.asarray(angles, dtype=float), np.abs(moment) / options.cg_radius,
-                      residual)
+    return AngleSweep(np.asarray(angles, dtype=float), np.abs(moment) / options.cg_radius, residual)

@@ -29,8 +29,11 @@ def list_presets() -> list[str]:
 def preset_text(name: str) -> str:
     """The TOML text of a built-in engine."""
     if name not in list_presets():
-        raise InputError("preset", name, "unknown preset; `crankbalance presets` lists them: "
-                         + ", ".join(list_presets()))
+        raise InputError(
+            "preset",
+            name,
+            "unknown preset; `crankbalance presets` lists them: " + ", ".join(list_presets()),
+        )
     return (resources.files("crankbalance") / "presets" / f"{name}.toml").read_text("utf-8")
 
 
@@ -44,8 +47,11 @@ def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml")
         try:
             data = json.loads(text)
         except json.JSONDecodeError as error:
-            raise InputError(source, f"line {error.lineno}, column {error.colno}",
-                             f"is not valid JSON: {error.msg}") from None
+            raise InputError(
+                source,
+                f"line {error.lineno}, column {error.colno}",
+                f"is not valid JSON: {error.msg}",
+            ) from None
     else:
         try:
             data = tomllib.loads(text)
@@ -60,8 +66,11 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
     if not path.exists():
         if str(source) in list_presets():
             return parse_engine_text(preset_text(str(source)), f"preset {source}")
-        raise InputError("engine", str(source), "is neither an engine file nor a preset "
-                         "(`crankbalance presets` lists the presets)")
+        raise InputError(
+            "engine",
+            str(source),
+            "is neither an engine file nor a preset (`crankbalance presets` lists the presets)",
+        )
     if path.is_dir():
         raise InputError("engine", str(source), "is a folder; give an engine file (.toml or .json)")
     try:
@@ -69,12 +78,17 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
     except OSError as error:
         raise InputError("engine", str(source), f"cannot be read: {error.strerror}") from None
     if len(raw) > MAX_FILE_BYTES:
-        raise InputError("engine", str(source), f"is larger than {MAX_FILE_BYTES} bytes; "
-                         "an engine file is a few kB of TOML or JSON")
+        raise InputError(
+            "engine",
+            str(source),
+            f"is larger than {MAX_FILE_BYTES} bytes; an engine file is a few kB of TOML or JSON",
+        )
     try:
         text = raw.decode("utf-8")
     except UnicodeDecodeError:
-        raise InputError(str(source), "binary data", "must be a UTF-8 text file (TOML or JSON)") from None
+        raise InputError(
+            str(source), "binary data", "must be a UTF-8 text file (TOML or JSON)"
+        ) from None
     fmt = "json" if path.suffix.lower() == ".json" else "toml"
     return parse_engine_text(text, str(source), fmt)
 

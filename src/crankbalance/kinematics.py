@@ -27,8 +27,9 @@ KINEMATICS_MODELS: tuple[str, ...] = ("exact", "series", "first-order")
 FOURIER_SAMPLES = 64
 
 
-def _rod_terms(angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike,
-               offset: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+def _rod_terms(
+    angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike, offset: ArrayLike
+) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     psi = np.asarray(angle, dtype=float)
     r = np.asarray(crank_radius, dtype=float)
     u = np.asarray(offset, dtype=float) - r * np.sin(psi)
@@ -36,8 +37,9 @@ def _rod_terms(angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike,
     return psi, r, u, q
 
 
-def piston_position(angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike,
-                    offset: ArrayLike = 0.0) -> NDArray:
+def piston_position(
+    angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike, offset: ArrayLike = 0.0
+) -> NDArray:
     r"""Wrist-pin distance from the crank axis along the cylinder axis [m].
 
     Parameters
@@ -61,8 +63,13 @@ def piston_position(angle: ArrayLike, crank_radius: ArrayLike, rod_length: Array
     return r * np.cos(psi) + q
 
 
-def piston_velocity(angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike,
-                    offset: ArrayLike = 0.0, speed: ArrayLike = 1.0) -> NDArray:
+def piston_velocity(
+    angle: ArrayLike,
+    crank_radius: ArrayLike,
+    rod_length: ArrayLike,
+    offset: ArrayLike = 0.0,
+    speed: ArrayLike = 1.0,
+) -> NDArray:
     r"""Piston velocity along the cylinder axis [m/s] at constant crank speed [rad/s].
 
     .. math:: \dot s = \omega\left(-r\sin\psi + \frac{u\,r\cos\psi}{q}\right),\quad
@@ -72,8 +79,13 @@ def piston_velocity(angle: ArrayLike, crank_radius: ArrayLike, rod_length: Array
     return np.asarray(speed) * (-r * np.sin(psi) + u * r * np.cos(psi) / q)
 
 
-def piston_acceleration(angle: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike,
-                        offset: ArrayLike = 0.0, speed: ArrayLike = 1.0) -> NDArray:
+def piston_acceleration(
+    angle: ArrayLike,
+    crank_radius: ArrayLike,
+    rod_length: ArrayLike,
+    offset: ArrayLike = 0.0,
+    speed: ArrayLike = 1.0,
+) -> NDArray:
     r"""Piston acceleration along the cylinder axis [m/s²] at constant crank speed.
 
     .. math:: \ddot s = \omega^2\left(-r\cos\psi - \frac{r^2\cos^2\psi + u\,r\sin\psi}{q}
@@ -85,8 +97,12 @@ def piston_acceleration(angle: ArrayLike, crank_radius: ArrayLike, rod_length: A
     return np.asarray(speed) ** 2 * d2
 
 
-def harmonic_coefficients(rod_ratio: ArrayLike, orders: int = 8, offset_ratio: ArrayLike = 0.0,
-                          model: KinematicsModel = "exact") -> NDArray[np.complex128]:
+def harmonic_coefficients(
+    rod_ratio: ArrayLike,
+    orders: int = 8,
+    offset_ratio: ArrayLike = 0.0,
+    model: KinematicsModel = "exact",
+) -> NDArray[np.complex128]:
     r"""Harmonic coefficients of the piston inertia (normalised acceleration).
 
     The normalised inertia :math:`f(\psi) = -\ddot s/(r\omega^2)` is written as

@@ -139,14 +139,18 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
     if ct.layout == "custom":
         assert ct.throw is not None
         positions = np.array([t.position for t in ct.throw])
-        throw_of = [k for k, t in enumerate(ct.throw) for _ in t.banks]
-        banks = [b for t in ct.throw for b in t.banks]
-        return positions, np.array(throw_of, dtype=np.int64), np.array(banks, dtype=float)
+        return (
+            positions,
+            np.array([k for k, t in enumerate(ct.throw) for _ in t.banks]),
+            np.array([b for t in ct.throw for b in t.banks], dtype=float),
+        )
     n = ct.cylinder_count
     t = throw_count(ct.layout, n)
     pitch = ct.crank_pitch or 0.0
     positions = (np.arange(t) - (t - 1) / 2.0) * pitch
     v = ct.bank_angle or 0.0
+    throw_of: NDArray
+    banks: NDArray
     if ct.layout == "inline":
         throw_of, banks = np.arange(n), np.zeros(n)
     elif ct.layout == "boxer":
@@ -164,7 +168,9 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
     return positions, throw_of.astype(np.int64), banks.astype(float)
 
 
-def _throw_angles(spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int) -> NDArray:
+def _throw_angles(
+    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int
+) -> NDArray:
     ct = spec.crank_train
     if ct.layout == "custom":
         assert ct.throw is not None
@@ -189,7 +195,8 @@ def _throw_angles(spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, thr
         gap = math.remainder(cyl_angle[c] - angles[t], 2 * np.pi)
         if abs(gap) > 1e-9:
             raise InputError(
-                "crank_train.firing_order", list(order),
+                "crank_train.firing_order",
+                list(order),
                 f"with even firing intervals of {math.degrees(interval):g} deg this order puts the "
                 f"cylinders on throw {t + 1} at different throw angles; give the crank as "
                 "crank_train.throw_angles (the firing order then only names the sequence)",
@@ -206,8 +213,11 @@ def _overrides(spec: EngineSpec, kind: str, count: int) -> list[dict[str, float]
         targets = item.cylinders if kind == "cylinders" else item.throws
         if not targets:
             continue
-        changed = {k: v for k, v in item.model_dump(exclude={"cylinders", "throws"}).items()
-                   if v is not None and k in MassOverride.model_fields}
+        changed = {
+            k: v
+            for k, v in item.model_dump(exclude={"cylinders", "throws"}).items()
+            if v is not None and k in MassOverride.model_fields
+        }
         for number in targets:
             rows[number - 1].update(changed)
             if kind == "cylinders" and "conrod_rotating_fraction" in changed:
@@ -228,18 +238,28 @@ def _cylinder_masses(spec: EngineSpec, n: int) -> tuple[NDArray, NDArray, list[C
             if row["conrod_cg_from_big_end"] is not None:
                 d = row["conrod_cg_from_big_end"]
                 if d > rod:
-                    raise InputError("masses.conrod_cg_from_big_end", f"{d * 1e3:g} mm",
-                                     f"must not exceed the rod length ({rod * 1e3:g} mm)")
+                    raise InputError(
+                        "masses.conrod_cg_from_big_end",
+                        f"{d * 1e3:g} mm",
+                        f"must not exceed the rod length ({rod * 1e3:g} mm)",
+                    )
             else:
                 d = rod * (1.0 - row["conrod_rotating_fraction"])
             rotating = conrod * (rod - d) / rod
             two_mass = conrod * d * (rod - d)
             given = row["conrod_inertia"]
-            conrods.append(ConrodSplit(
-                cylinder=c + 1, mass=conrod, rotating=rotating, reciprocating=conrod - rotating,
-                cg_from_big_end=d, inertia_two_mass=two_mass, inertia_given=given,
-                inertia_error=None if given is None else two_mass - given,
-            ))
+            conrods.append(
+                ConrodSplit(
+                    cylinder=c + 1,
+                    mass=conrod,
+                    rotating=rotating,
+                    reciprocating=conrod - rotating,
+                    cg_from_big_end=d,
+                    inertia_two_mass=two_mass,
+                    inertia_given=given,
+                    inertia_error=None if given is None else two_mass - given,
+                )
+            )
             big_end[c] = rotating
         if row["reciprocating"] is not None:
             rec[c] = row["reciprocating"]
@@ -259,8 +279,11 @@ def _throw_masses(spec: EngineSpec, t: int) -> tuple[NDArray, NDArray]:
         else:
             from_parts[k] = True
             if row["crankpin"] is None:
-                raise InputError(f"masses.override (throw {k + 1})", None,
-                                 "the rotating side needs crankpin (and crank_web) or `rotating`")
+                raise InputError(
+                    f"masses.override (throw {k + 1})",
+                    None,
+                    "the rotating side needs crankpin (and crank_web) or `rotating`",
+                )
             web = row["crank_web"] or 0.0
             web_r = row["crank_web_cg_radius"] or 0.0
             rot[k] = row["crankpin"] + 2.0 * web * web_r / r

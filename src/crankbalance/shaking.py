@@ -73,8 +73,9 @@ class FreeForces(ResultMixin):
         return int(found[0])
 
 
-def free_forces(model: EngineModel, orders: int = 8,
-                kinematics: KinematicsModel | None = None) -> FreeForces:
+def free_forces(
+    model: EngineModel, orders: int = 8, kinematics: KinematicsModel | None = None
+) -> FreeForces:
     """Free forces and moments of an engine, orders 1..``orders``, and of its rotating masses.
 
     Parameters
@@ -91,24 +92,42 @@ def free_forces(model: EngineModel, orders: int = 8,
     FreeForces
     """
     mode = kinematics or model.kinematics
-    coeff = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius,
-                                  mode)  # type: ignore[arg-type]
+    coeff = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius, mode)  # type: ignore[arg-type]
     fwd, bwd, cfwd, cbwd = reciprocating_phasors(
-        coeff, model.reciprocating_mass, model.cylinder_angle, model.cylinder_bank,
-        model.cylinder_position, model.crank_radius, model.speed)
-    rot = model.throw_rotating_mass * model.crank_radius * model.speed**2 * np.exp(
-        1j * model.throw_angle)
+        coeff,
+        model.reciprocating_mass,
+        model.cylinder_angle,
+        model.cylinder_bank,
+        model.cylinder_position,
+        model.crank_radius,
+        model.speed,
+    )
+    rot = (
+        model.throw_rotating_mass
+        * model.crank_radius
+        * model.speed**2
+        * np.exp(1j * model.throw_angle)
+    )
     return FreeForces(
         orders=np.arange(1, orders + 1),
-        force_forward=fwd, force_backward=bwd, couple_forward=cfwd, couple_backward=cbwd,
+        force_forward=fwd,
+        force_backward=bwd,
+        couple_forward=cfwd,
+        couple_backward=cbwd,
         rotating_force=complex(rot.sum()),
         rotating_couple=complex((rot * model.throw_position).sum()),
     )
 
 
-def reciprocating_phasors(coefficients: ArrayLike, mass: ArrayLike, throw_angle: ArrayLike,
-                          bank: ArrayLike, position: ArrayLike, crank_radius: ArrayLike,
-                          speed: ArrayLike) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+def reciprocating_phasors(
+    coefficients: ArrayLike,
+    mass: ArrayLike,
+    throw_angle: ArrayLike,
+    bank: ArrayLike,
+    position: ArrayLike,
+    crank_radius: ArrayLike,
+    speed: ArrayLike,
+) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     r"""Forward and backward phasors of force and couple, by order, for many engines at once.
 
     Parameters
@@ -129,35 +148,53 @@ def reciprocating_phasors(coefficients: ArrayLike, mass: ArrayLike, throw_angle:
     k = c.shape[-1]
     phi = np.asarray(throw_angle, dtype=float)
     beta = np.asarray(bank, dtype=float)
-    p = np.asarray(mass, dtype=float) * (np.asarray(crank_radius, dtype=float)
-                                         * np.asarray(speed, dtype=float) ** 2)[..., None]
+    p = (
+        np.asarray(mass, dtype=float)
+        * (np.asarray(crank_radius, dtype=float) * np.asarray(speed, dtype=float) ** 2)[..., None]
+    )
     base = 0.5 * p * np.exp(1j * beta)  # (..., C)
     y = np.asarray(position, dtype=float)
     # sums over cylinders of z**n * w with z = exp(i (phi - beta)); the backward sums use
     # sum(conj(z**n) w) = conj(sum(z**n conj(w)))
     weights = np.stack([base, base * y, np.conj(base), np.conj(base) * y], axis=-1)
     z = np.exp(1j * (phi - beta))
-    powers = np.cumprod(np.broadcast_to(z[..., None, :], z.shape[:-1] + (k,) + z.shape[-1:]),
-                        axis=-2)  # (..., K, C): z**1 .. z**K
+    powers = np.cumprod(
+        np.broadcast_to(z[..., None, :], z.shape[:-1] + (k,) + z.shape[-1:]), axis=-2
+    )  # (..., K, C): z**1 .. z**K
     sums = powers @ weights  # (..., K, 4)
-    return (c * sums[..., 0], np.conj(c * sums[..., 2]),
-            c * sums[..., 1], np.conj(c * sums[..., 3]))
+    return (
+        c * sums[..., 0],
+        np.conj(c * sums[..., 2]),
+        c * sums[..., 1],
+        np.conj(c * sums[..., 3]),
+    )
 
 
-def batch_amplitudes(crank_radius: ArrayLike, rod_length: ArrayLike, speed: ArrayLike,
-                     mass: ArrayLike, throw_angle: ArrayLike, bank: ArrayLike,
-                     position: ArrayLike, orders: int = 8, offset: ArrayLike = 0.0,
-                     kinematics: KinematicsModel = "exact") -> tuple[NDArray, NDArray]:
+def batch_amplitudes(
+    crank_radius: ArrayLike,
+    rod_length: ArrayLike,
+    speed: ArrayLike,
+    mass: ArrayLike,
+    throw_angle: ArrayLike,
+    bank: ArrayLike,
+    position: ArrayLike,
+    orders: int = 8,
+    offset: ArrayLike = 0.0,
+    kinematics: KinematicsModel = "exact",
+) -> tuple[NDArray, NDArray]:
     """Force and moment amplitudes of many engines at once.
 
     Engine parameters have shape (E,), per-cylinder arrays (E, C) (pad smaller engines
     with zero mass). Returns force amplitudes [N] and moment amplitudes [N·m], each (E, K).
     """
     r = np.asarray(crank_radius, dtype=float)
-    coeff = harmonic_coefficients(r / np.asarray(rod_length, dtype=float), orders,
-                                  np.asarray(offset, dtype=float) / r, kinematics)
-    fwd, bwd, cfwd, cbwd = reciprocating_phasors(coeff, mass, throw_angle, bank, position,
-                                                 r, speed)
+    coeff = harmonic_coefficients(
+        r / np.asarray(rod_length, dtype=float),
+        orders,
+        np.asarray(offset, dtype=float) / r,
+        kinematics,
+    )
+    fwd, bwd, cfwd, cbwd = reciprocating_phasors(coeff, mass, throw_angle, bank, position, r, speed)
     return np.abs(fwd) + np.abs(bwd), np.abs(cfwd) + np.abs(cbwd)
 
 
@@ -186,13 +223,14 @@ class Curves(ResultMixin):
     rotating_mz: NDArray[np.float64]
 
 
-def phasor_curve(forward: ArrayLike, backward: ArrayLike, orders: ArrayLike,
-                 angle: ArrayLike) -> NDArray[np.complex128]:
+def phasor_curve(
+    forward: ArrayLike, backward: ArrayLike, orders: ArrayLike, angle: ArrayLike
+) -> NDArray[np.complex128]:
     r"""Evaluate :math:`F^+ e^{in\theta} + F^- e^{-in\theta}` for each order, shape (K, M)."""
     n = np.asarray(orders, dtype=float)[:, None]
     theta = np.asarray(angle, dtype=float)[None, :]
     turn = np.exp(1j * n * theta)
-    return (np.asarray(forward)[:, None] * turn + np.asarray(backward)[:, None] * np.conj(turn))
+    return np.asarray(forward)[:, None] * turn + np.asarray(backward)[:, None] * np.conj(turn)
 
 
 def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = None) -> Curves:
@@ -202,8 +240,11 @@ def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = Non
     motion when ``model.kinematics == "exact"`` (not as a sum of orders); for the series
     and first-order models it is the sum of the computed orders.
     """
-    theta = np.linspace(0, 2 * np.pi, 720, endpoint=False) if angle is None else np.asarray(
-        angle, dtype=float)
+    theta = (
+        np.linspace(0, 2 * np.pi, 720, endpoint=False)
+        if angle is None
+        else np.asarray(angle, dtype=float)
+    )
     f = phasor_curve(forces.force_forward, forces.force_backward, forces.orders, theta)
     m = 1j * phasor_curve(forces.couple_forward, forces.couple_backward, forces.orders, theta)
     if model.kinematics == "exact":
@@ -214,10 +255,20 @@ def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = Non
     rot = phasor_curve([forces.rotating_force], [0.0], [1], theta)[0]
     rot_m = 1j * phasor_curve([forces.rotating_couple], [0.0], [1], theta)[0]
     return Curves(
-        angle=theta, orders=forces.orders,
-        fx=f.imag, fz=f.real, mx=m.imag, mz=m.real,
-        total_fx=total_f.imag, total_fz=total_f.real, total_mx=total_m.imag, total_mz=total_m.real,
-        rotating_fx=rot.imag, rotating_fz=rot.real, rotating_mx=rot_m.imag, rotating_mz=rot_m.real,
+        angle=theta,
+        orders=forces.orders,
+        fx=f.imag,
+        fz=f.real,
+        mx=m.imag,
+        mz=m.real,
+        total_fx=total_f.imag,
+        total_fz=total_f.real,
+        total_mx=total_m.imag,
+        total_mz=total_m.real,
+        rotating_fx=rot.imag,
+        rotating_fz=rot.real,
+        rotating_mx=rot_m.imag,
+        rotating_mz=rot_m.real,
     )
 
 
@@ -229,7 +280,6 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
     """
     theta = np.asarray(angle, dtype=float)[:, None]
     psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]
-    acc = piston_acceleration(psi, model.crank_radius, model.rod_length, model.offset,
-                              model.speed)
+    acc = piston_acceleration(psi, model.crank_radius, model.rod_length, model.offset, model.speed)
     force = -model.reciprocating_mass[None, :] * acc * np.exp(1j * model.cylinder_bank)[None, :]
     return force.sum(axis=1), (force * model.cylinder_position[None, :]).sum(axis=1)

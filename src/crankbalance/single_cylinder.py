@@ -789,7 +789,7 @@ def cylinder_balance_factor_study(model: Any, cylinder: int = 0, balance_factor:
     count = len(model.reciprocating_mass)
     if not (isinstance(cylinder, int) and 0 <= cylinder < count):
         raise InputError("cylinder", cylinder, f"must be an index from 0 to {count - 1}")
-    chosen = kinematics or getattr(model, "kinematics", "exact")
+    chosen: KinematicsModel = kinematics or model.kinematics
     return balance_factor_study(float(model.reciprocating_mass[cylinder]),
                                 float(model.crank_radius), float(model.speed), balance_factor,
                                 rod_length=float(model.rod_length), offset=float(model.offset),

@@ -31,24 +31,20 @@ LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
 Kinematics = Literal["exact", "series", "first-order"]
 
 
-def _quantity(kind: str) -> Any:
-    def parse(value: Any, info: Any = None) -> float:
-        if isinstance(value, float) and info is not None and info.context == "si":
-            return value
-        return parse_quantity(value, kind, "")
-
-    return Annotated[
-        float,
-        BeforeValidator(parse),
-        PlainSerializer(partial(format_quantity, kind=kind), return_type=str, when_used="json"),
-    ]
+def _parser(kind: str) -> BeforeValidator:
+    return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
 
 
-Length = _quantity("length")
-Mass = _quantity("mass")
-Angle = _quantity("angle")
-Speed = _quantity("speed")
-Inertia = _quantity("inertia")
+def _writer(kind: str) -> PlainSerializer:
+    return PlainSerializer(partial(format_quantity, kind=kind), return_type=str, when_used="json")
+
+
+# quantities: unit strings in the file, SI floats once validated
+Length = Annotated[float, _parser("length"), _writer("length")]
+Mass = Annotated[float, _parser("mass"), _writer("mass")]
+Angle = Annotated[float, _parser("angle"), _writer("angle")]
+Speed = Annotated[float, _parser("speed"), _writer("speed")]
+Inertia = Annotated[float, _parser("inertia"), _writer("inertia")]
 
 
 def _finite(value: Any) -> Any:
@@ -77,7 +73,9 @@ class _Strict(BaseModel):
 class Throw(_Strict):
     """One crank throw of a custom layout."""
 
-    position: Length = Field(description="axial position of the throw mid-plane from the crank mid-point")
+    position: Length = Field(
+        description="axial position of the throw mid-plane from the crank mid-point"
+    )
     angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
     banks: list[Angle] = Field(min_length=1, description="bank angle of each cylinder on this pin")
 
@@ -105,12 +103,15 @@ class CrankTrain(_Strict):
             raise _Bad("crank_radius", "must be greater than zero")
         if l <= r + abs(self.pin_offset + self.crank_offset):
             raise _Bad(
-                "rod_length", "must exceed crank_radius plus the total offset "
-                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)"
+                "rod_length",
+                "must exceed crank_radius plus the total offset "
+                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)",
             )
         if self.layout == "custom":
             if not self.throw:
-                raise _Bad("throw", "layout 'custom' needs its throws as [[crank_train.throw]] tables")
+                raise _Bad(
+                    "throw", "layout 'custom' needs its throws as [[crank_train.throw]] tables"
+                )
             for key in ("throw_angles", "bank_angle"):
                 if getattr(self, key) is not None:
                     raise _Bad(key, "is not used with layout 'custom' (give it per throw)")
@@ -166,13 +167,25 @@ class CrankTrain(_Strict):
 
 def throw_count(layout: str, cylinders: int) -> int:
     """Number of crank throws of a standard layout."""
-    return {"inline": cylinders, "boxer": cylinders, "vee": cylinders // 2,
-            "w": cylinders // 3, "radial": 1}.get(layout, cylinders)
+    return {
+        "inline": cylinders,
+        "boxer": cylinders,
+        "vee": cylinders // 2,
+        "w": cylinders // 3,
+        "radial": 1,
+    }.get(layout, cylinders)
 
 
 # --------------------------------------------------------------------------- masses
-_CYLINDER_FIELDS = ("piston", "wrist_pin", "conrod", "conrod_rotating_fraction",
-                    "conrod_cg_from_big_end", "conrod_inertia", "reciprocating")
+_CYLINDER_FIELDS = (
+    "piston",
+    "wrist_pin",
+    "conrod",
+    "conrod_rotating_fraction",
+    "conrod_cg_from_big_end",
+    "conrod_inertia",
+    "reciprocating",
+)
 _THROW_FIELDS = ("crankpin", "crank_web", "crank_web_cg_radius", "rotating")
 
 
@@ -191,15 +204,26 @@ class _MassFields(_Strict):
 
     @model_validator(mode="after")
     def _check_values(self) -> _MassFields:
-        for name in ("piston", "wrist_pin", "conrod", "crankpin", "crank_web", "reciprocating",
-                     "rotating", "conrod_inertia"):
+        for name in (
+            "piston",
+            "wrist_pin",
+            "conrod",
+            "crankpin",
+            "crank_web",
+            "reciprocating",
+            "rotating",
+            "conrod_inertia",
+        ):
             value = getattr(self, name)
             if value is not None and value < 0:
                 raise _Bad(name, "must not be negative")
         if self.conrod is not None and self.conrod <= 0:
             raise _Bad("conrod", "must be greater than zero")
         if self.conrod_rotating_fraction is not None and self.conrod_cg_from_big_end is not None:
-            raise _Bad("conrod_cg_from_big_end", "give conrod_rotating_fraction or conrod_cg_from_big_end, not both")
+            raise _Bad(
+                "conrod_cg_from_big_end",
+                "give conrod_rotating_fraction or conrod_cg_from_big_end, not both",
+            )
         if self.conrod_cg_from_big_end is not None and self.conrod_cg_from_big_end < 0:
             raise _Bad("conrod_cg_from_big_end", "must not be negative")
         if self.crank_web_cg_radius is not None and self.crank_web_cg_radius < 0:
@@ -247,11 +271,15 @@ class Masses(_MassFields):
             missing = [k for k in parts_rec if getattr(self, k) is None]
             if missing:
                 raise _Bad(
-                    missing[0], "is required: give the parts (piston, wrist_pin, conrod) "
-                    "or the total `reciprocating`"
+                    missing[0],
+                    "is required: give the parts (piston, wrist_pin, conrod) "
+                    "or the total `reciprocating`",
                 )
         elif any(getattr(self, k) is not None for k in ("piston", "wrist_pin")):
-            raise _Bad("reciprocating", "give either `reciprocating` or the parts piston/wrist_pin, not both")
+            raise _Bad(
+                "reciprocating",
+                "give either `reciprocating` or the parts piston/wrist_pin, not both",
+            )
         if self.conrod is not None and (
             self.conrod_rotating_fraction is None and self.conrod_cg_from_big_end is None
         ):
@@ -264,13 +292,18 @@ class Masses(_MassFields):
                 missing.append("crank_web_cg_radius")
             if missing:
                 raise _Bad(
-                    missing[0], "is required: give the parts (crankpin, crank_web, "
-                    "crank_web_cg_radius) or the total `rotating`"
+                    missing[0],
+                    "is required: give the parts (crankpin, crank_web, "
+                    "crank_web_cg_radius) or the total `rotating`",
                 )
             if self.conrod is None:
-                raise _Bad("conrod", "is required with the rotating parts (its big end turns with the pin)")
+                raise _Bad(
+                    "conrod", "is required with the rotating parts (its big end turns with the pin)"
+                )
         elif any(getattr(self, k) is not None for k in ("crankpin", "crank_web")):
-            raise _Bad("rotating", "give either `rotating` or the parts crankpin/crank_web, not both")
+            raise _Bad(
+                "rotating", "give either `rotating` or the parts crankpin/crank_web, not both"
+            )
         return self
 
 
@@ -287,8 +320,10 @@ class Counterweights(_Strict):
     scope: Literal["auto", "whole", "halves"] = "auto"
     method: Literal["pattern", "individual"] = "pattern"
     web_offset: Length | None = Field(
-        default=None, description="axial distance of each web from its throw mid-plane "
-        "(default: a quarter of the crank pitch, as the 2021 paper)")
+        default=None,
+        description="axial distance of each web from its throw mid-plane "
+        "(default: a quarter of the crank pitch, as the 2021 paper)",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> Counterweights:
@@ -344,16 +379,21 @@ class EngineSpec(_Strict):
         for k, item in enumerate(self.masses.override):
             for number in item.cylinders or []:
                 if not 1 <= number <= n_cyl:
-                    raise _Bad(f"masses.override[{k}].cylinders",
-                               f"cylinder {number} does not exist (1..{n_cyl})")
+                    raise _Bad(
+                        f"masses.override[{k}].cylinders",
+                        f"cylinder {number} does not exist (1..{n_cyl})",
+                    )
             for number in item.throws or []:
                 if not 1 <= number <= n_throw:
-                    raise _Bad(f"masses.override[{k}].throws",
-                               f"throw {number} does not exist (1..{n_throw})")
+                    raise _Bad(
+                        f"masses.override[{k}].throws",
+                        f"throw {number} does not exist (1..{n_throw})",
+                    )
         if self.counterweights is not None and self.counterweights.webs is not None:
             if len(self.counterweights.webs) != 2 * n_throw:
                 raise _Bad(
-                    "counterweights.webs", f"needs one entry per web: {2 * n_throw} for {n_throw} throws"
+                    "counterweights.webs",
+                    f"needs one entry per web: {2 * n_throw} for {n_throw} throws",
                 )
         return self
 
@@ -386,7 +426,9 @@ def _input_error(error: ValidationError, data: Any) -> InputError:
     field = _dotted(loc) or "engine file"
     if kind == "extra_forbidden":
         parent = _model_at([str(p) for p in loc[:-1]])
-        allowed = ", ".join(parent.model_fields) if parent is not None else "see docs/engine_file.md"
+        allowed = (
+            ", ".join(parent.model_fields) if parent is not None else "see docs/engine_file.md"
+        )
         return InputError(field, value, f"unknown key; allowed keys here: {allowed}")
     if kind == "missing":
         return InputError(field, None, "is missing; it is required (see docs/engine_file.md)")
@@ -396,7 +438,7 @@ def _input_error(error: ValidationError, data: Any) -> InputError:
         return InputError(field, value, f"must be one of {ctx.get('expected', '')}")
     message = str(first.get("msg", ""))
     if message.startswith("Value error, "):
-        message = message[len("Value error, "):]
+        message = message[len("Value error, ") :]
     return InputError(field, _short_value(value), message)
 
 

@@ -41,8 +41,7 @@ def registry() -> Any:
     """The shared pint unit registry (created on first use)."""
     import pint
 
-    ureg = pint.UnitRegistry()
-    return ureg
+    return pint.UnitRegistry()
 
 
 def _a(kind: str) -> str:
@@ -78,7 +77,9 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
     try:
         quantity = ureg.Quantity(text.replace("°", " deg").replace("^", "**"))
     except Exception:
-        raise InputError(field, value, f"is not a quantity; write {_a(kind)} such as {example!r}")
+        raise InputError(
+            field, value, f"is not a quantity; write {_a(kind)} such as {example!r}"
+        ) from None
     if not isinstance(quantity, ureg.Quantity) or quantity.unitless:
         raise InputError(field, value, f"{_a(kind)} needs a unit, e.g. {example!r}")
     magnitude = quantity.magnitude
@@ -95,13 +96,15 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         if names == {"hertz"}:  # a frequency of revolution: 1 Hz = 1 rev/s
             quantity = quantity.magnitude * ureg.revolution / ureg.second
         elif not (names & {"revolution", "radian", "degree", "turn", "revolutions_per_minute"}):
-            raise InputError(field, value, f"must be a rotational speed (rpm, rad/s, Hz), e.g. {example!r}")
+            raise InputError(
+                field, value, f"must be a rotational speed (rpm, rad/s, Hz), e.g. {example!r}"
+            )
     try:
         return float(quantity.to(si_unit).magnitude)
     except Exception:
         raise InputError(
             field, value, f"has the wrong unit for {_a(kind)}; write e.g. {example!r}"
-        )
+        ) from None
 
 
 def format_quantity(value: float, kind: str, digits: int = 12) -> str:

@@ -9,7 +9,6 @@ from __future__ import annotations
 
 import math
 
-import numpy as np
 import pytest
 
 from crankbalance.analysis import analyze
@@ -20,15 +19,28 @@ R, L, PITCH, RPM = 0.043, 0.145, 0.092, 6000.0
 W = RPM * math.pi / 30
 
 
-def inline(cylinders: int, firing: list[int], kinematics: str = "exact",
-           throw_angles: list[float] | None = None) -> dict:
-    ct = {"layout": "inline", "cylinders": cylinders, "firing_order": firing,
-          "crank_radius": f"{R * 1e3} mm", "rod_length": f"{L * 1e3} mm",
-          "crank_pitch": f"{PITCH * 1e3} mm"}
+def inline(
+    cylinders: int,
+    firing: list[int],
+    kinematics: str = "exact",
+    throw_angles: list[float] | None = None,
+) -> dict:
+    ct = {
+        "layout": "inline",
+        "cylinders": cylinders,
+        "firing_order": firing,
+        "crank_radius": f"{R * 1e3} mm",
+        "rod_length": f"{L * 1e3} mm",
+        "crank_pitch": f"{PITCH * 1e3} mm",
+    }
     if throw_angles is not None:
         ct["throw_angles"] = [f"{a} deg" for a in throw_angles]
-    return {"speed": f"{RPM} rpm", "kinematics": kinematics, "crank_train": ct,
-            "masses": {"reciprocating": "600 g", "rotating": "900 g"}}
+    return {
+        "speed": f"{RPM} rpm",
+        "kinematics": kinematics,
+        "crank_train": ct,
+        "masses": {"reciprocating": "600 g", "rotating": "900 g"},
+    }
 
 
 def primary(mass: float = 0.6) -> float:
@@ -54,8 +66,9 @@ def test_inline3_primary_couple() -> None:
     f, p = result.forces, primary()
     assert f.force_amplitude[0] < 1e-9 * p, "inline-3: F1 = 0 (textbook)"
     assert f.force_amplitude[1] < 1e-9 * p, "inline-3: F2 = 0 (textbook)"
-    assert f.moment_amplitude[0] == pytest.approx(math.sqrt(3) * PITCH * p, rel=1e-12), \
+    assert f.moment_amplitude[0] == pytest.approx(math.sqrt(3) * PITCH * p, rel=1e-12), (
         "inline-3: M1 = sqrt(3) a P (textbook)"
+    )
     # the primary couple of an inline-3 splits equally into forward and backward phasors
     assert abs(f.couple_forward[0]) == pytest.approx(abs(f.couple_backward[0]), rel=1e-12)
 
@@ -76,8 +89,9 @@ def test_single_cylinder(kinematics: str) -> None:
     data = inline(1, [1], kinematics)
     result = analyze(spec_from_dict(data))
     f, p, lam = result.forces, primary(), R / L
-    a2 = {"exact": None, "series": lam + lam**3 / 4 + 15 * lam**5 / 128,
-          "first-order": lam}[kinematics]
+    a2 = {"exact": None, "series": lam + lam**3 / 4 + 15 * lam**5 / 128, "first-order": lam}[
+        kinematics
+    ]
     assert f.force_amplitude[0] == pytest.approx(p, rel=1e-12), "single: primary force P"
     if a2 is not None:
         assert f.force_amplitude[1] == pytest.approx(a2 * p, rel=1e-12), "single: secondary A2 P"
@@ -90,8 +104,9 @@ def test_vee90_twin_primary_is_a_constant_rotating_force() -> None:
     """90-degree V-twin on one pin: the primary is a forward phasor of P, no backward one
     (textbook; the reason a counterweight of one cylinder's reciprocating mass balances it)."""
     data = inline(1, [1])
-    data["crank_train"] = dict(data["crank_train"], layout="vee", cylinders=2,
-                               bank_angle="90 deg", firing_order=None)
+    data["crank_train"] = dict(
+        data["crank_train"], layout="vee", cylinders=2, bank_angle="90 deg", firing_order=None
+    )
     del data["crank_train"]["firing_order"]
     f = analyze(spec_from_dict(data)).forces
     assert abs(f.force_forward[0]) == pytest.approx(primary(), rel=1e-12)
@@ -102,8 +117,12 @@ def test_radial_primary_is_n_over_2_forward() -> None:
     """Radial engine of n >= 3 cylinders on one pin: primary = n P / 2, forward only;
     no second order (textbook)."""
     data = inline(1, [1])
-    data["crank_train"] = {"layout": "radial", "cylinders": 5, "crank_radius": f"{R * 1e3} mm",
-                           "rod_length": f"{L * 1e3} mm"}
+    data["crank_train"] = {
+        "layout": "radial",
+        "cylinders": 5,
+        "crank_radius": f"{R * 1e3} mm",
+        "rod_length": f"{L * 1e3} mm",
+    }
     f = analyze(spec_from_dict(data)).forces
     assert abs(f.force_forward[0]) == pytest.approx(2.5 * primary(), rel=1e-12)
     assert abs(f.force_backward[0]) < 1e-9 * primary()
@@ -113,8 +132,11 @@ def test_radial_primary_is_n_over_2_forward() -> None:
 def test_crossplane_v8_has_primary_couple_only() -> None:
     result = analyze("v8-crossplane")
     f = result.forces
-    scale = float(result.model.reciprocating_mass.sum()) * result.model.crank_radius * \
-        result.model.speed**2
+    scale = (
+        float(result.model.reciprocating_mass.sum())
+        * result.model.crank_radius
+        * result.model.speed**2
+    )
     assert f.force_amplitude[0] < 1e-9 * scale and f.force_amplitude[1] < 1e-9 * scale
     assert f.moment_amplitude[1] < 1e-9 * scale, "crossplane V8: no secondary couple"
     assert f.moment_amplitude[0] > 0.01 * scale * 0.1

@@ -33,11 +33,14 @@ def test_inline3_closed_forms() -> None:
     m_rot, m_alt, r, a, rc, l_sh, lam = 2.15, 0.94, 0.04, 0.09, 0.03, 0.2, 0.04 / 0.135
     data = balance_engine(EXAMPLES / "paper_inline3.toml").to_dict()
     assert data["counterweight"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_rot * r / (4 * rc), rel=1e-12)
+        math.sqrt(3) * m_rot * r / (4 * rc), rel=1e-12
+    )
     assert data["primary_shafts"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_alt * r * a / (2 * rc * l_sh), rel=1e-12)
+        math.sqrt(3) * m_alt * r * a / (2 * rc * l_sh), rel=1e-12
+    )
     assert data["secondary_shafts"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_alt * lam * r * a / (8 * rc * l_sh), rel=1e-12)
+        math.sqrt(3) * m_alt * lam * r * a / (8 * rc * l_sh), rel=1e-12
+    )
 
 
 def test_inline3_optimal_angle_is_30_degrees() -> None:
@@ -65,9 +68,11 @@ def test_v4_table5() -> None:
     assert secondary["mass_kg"] == pytest.approx(0.1299, rel=0.015), (
         "000 Table 5: m_c2 = 0.1299 kg within 1.5 %: we get sqrt(2) lam m_alt r/(4 r_c2) = "
         "0.1313 (each shaft one mass mid-shaft, the force case); seeds/README finds no "
-        "reading that gives the printed digits, so 1 % is what the print supports")
+        "reading that gives the printed digits, so 1 % is what the print supports"
+    )
     assert secondary["mass_kg"] == pytest.approx(
-        math.sqrt(2) * (0.04 / 0.135) * 0.94 * 0.04 / (4 * 0.03), rel=1e-12)
+        math.sqrt(2) * (0.04 / 0.135) * 0.94 * 0.04 / (4 * 0.03), rel=1e-12
+    )
 
 
 def test_v4_primary_shafts_erratum() -> None:

@@ -21,24 +21,33 @@ def custom_engines(draw: Any) -> dict[str, Any]:
     for _ in range(throws):
         position += draw(st.floats(0.02, 0.12))
         banks = draw(st.lists(st.floats(-180, 180), min_size=1, max_size=3))
-        throw_list.append({"position": f"{position * 1e3:.6f} mm",
-                           "angle": f"{draw(st.floats(0, 360)):.6f} deg",
-                           "banks": [f"{b:.6f} deg" for b in banks]})
+        throw_list.append(
+            {
+                "position": f"{position * 1e3:.6f} mm",
+                "angle": f"{draw(st.floats(0, 360)):.6f} deg",
+                "banks": [f"{b:.6f} deg" for b in banks],
+            }
+        )
     r = draw(st.floats(0.02, 0.08))
     lam = draw(st.floats(0.15, 0.4))
     return {
         "speed": f"{draw(st.floats(500, 15000)):.3f} rpm",
-        "crank_train": {"layout": "custom", "crank_radius": f"{r * 1e3:.6f} mm",
-                        "rod_length": f"{r / lam * 1e3:.6f} mm", "throw": throw_list},
-        "masses": {"reciprocating": f"{draw(st.floats(50, 3000)):.3f} g",
-                   "rotating": f"{draw(st.floats(50, 5000)):.3f} g"},
+        "crank_train": {
+            "layout": "custom",
+            "crank_radius": f"{r * 1e3:.6f} mm",
+            "rod_length": f"{r / lam * 1e3:.6f} mm",
+            "throw": throw_list,
+        },
+        "masses": {
+            "reciprocating": f"{draw(st.floats(50, 3000)):.3f} g",
+            "rotating": f"{draw(st.floats(50, 5000)):.3f} g",
+        },
     }
 
 
 def amplitudes(data: dict[str, Any]) -> tuple[np.ndarray, np.ndarray, float, float]:
     f = analyze(spec_from_dict(data)).forces
-    return (f.force_amplitude, f.moment_amplitude, abs(f.rotating_force),
-            abs(f.rotating_couple))
+    return (f.force_amplitude, f.moment_amplitude, abs(f.rotating_force), abs(f.rotating_couple))
 
 
 def close(a: Any, b: Any, scale: float) -> bool:
@@ -96,12 +105,22 @@ def test_inline_renumbered_from_the_other_end(cylinders: int, data: Any) -> None
     def engine(numbering: list[int]) -> dict[str, Any]:
         return {
             "speed": "3000 rpm",
-            "crank_train": {"layout": "inline", "cylinders": cylinders, "crank_radius": "40 mm",
-                            "rod_length": "140 mm", "crank_pitch": "90 mm",
-                            "firing_order": [numbering[c - 1] for c in order]},
-            "masses": {"reciprocating": "500 g", "rotating": "800 g", "override": [
-                {"cylinders": [numbering[c]], "reciprocating": f"{masses[c] * 1e3!r} g"}
-                for c in range(cylinders)]},
+            "crank_train": {
+                "layout": "inline",
+                "cylinders": cylinders,
+                "crank_radius": "40 mm",
+                "rod_length": "140 mm",
+                "crank_pitch": "90 mm",
+                "firing_order": [numbering[c - 1] for c in order],
+            },
+            "masses": {
+                "reciprocating": "500 g",
+                "rotating": "800 g",
+                "override": [
+                    {"cylinders": [numbering[c]], "reciprocating": f"{masses[c] * 1e3!r} g"}
+                    for c in range(cylinders)
+                ],
+            },
         }
 
     a = amplitudes(engine(list(range(1, cylinders + 1))))

@@ -20,23 +20,38 @@ from ..errors import InputError
 COMMANDS: dict[str, tuple[str, str]] = {
     # name: ("module:attribute", one-line help)
     "analyze": ("crankbalance.cli.analyze:analyze", "Free forces and moments of an engine."),
-    "balance": ("crankbalance.cli.balance:balance",
-                "Counterweights and balance shafts of an engine."),
-    "counterweight": ("crankbalance.cli.counterweight:counterweight",
-                      "Counterweight shape: optimise, show, export, check a CAD part."),
+    "balance": (
+        "crankbalance.cli.balance:balance",
+        "Counterweights and balance shafts of an engine.",
+    ),
+    "counterweight": (
+        "crankbalance.cli.counterweight:counterweight",
+        "Counterweight shape: optimise, show, export, check a CAD part.",
+    ),
     "presets": ("crankbalance.cli.analyze:presets", "List the built-in engine library."),
     "shaft": ("crankbalance.cli.shaft:shaft", "Balance-shaft bearing and unbalance-mass layout."),
-    "balance-factor": ("crankbalance.cli.single:balance_factor",
-                       "Single-cylinder balance factor, bob-weight and force study."),
-    "rebalance": ("crankbalance.cli.single:rebalance_command",
-                  "Rebalance a single-cylinder crank after new parts."),
-    "tolerance": ("crankbalance.cli.single:tolerance_command",
-                  "ISO 21940-11 permissible residual unbalance and verdict."),
-    "friction": ("crankbalance.cli.performance:friction", "Bearing friction torque with unbalance."),
+    "balance-factor": (
+        "crankbalance.cli.single:balance_factor",
+        "Single-cylinder balance factor, bob-weight and force study.",
+    ),
+    "rebalance": (
+        "crankbalance.cli.single:rebalance_command",
+        "Rebalance a single-cylinder crank after new parts.",
+    ),
+    "tolerance": (
+        "crankbalance.cli.single:tolerance_command",
+        "ISO 21940-11 permissible residual unbalance and verdict.",
+    ),
+    "friction": (
+        "crankbalance.cli.performance:friction",
+        "Bearing friction torque with unbalance.",
+    ),
     "bench": ("crankbalance.cli.performance:bench", "Simulated rotor test bench (PI spin-up)."),
     "cycle": ("crankbalance.cli.performance:cycle", "Engine-cycle torque and bearing loads."),
-    "sensitivity": ("crankbalance.cli.performance:sensitivity",
-                    "Performance against the balance factor."),
+    "sensitivity": (
+        "crankbalance.cli.performance:sensitivity",
+        "Performance against the balance factor.",
+    ),
 }
 
 

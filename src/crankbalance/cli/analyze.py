@@ -12,8 +12,13 @@ from ._common import echo_table, format_option
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option("--orders", type=click.IntRange(1, 64), default=8, show_default=True,
-              help="Highest harmonic order.")
+@click.option(
+    "--orders",
+    type=click.IntRange(1, 64),
+    default=8,
+    show_default=True,
+    help="Highest harmonic order.",
+)
 def analyze(engine: str, fmt: str, orders: int) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
     from ..analysis import analyze as run
@@ -28,18 +33,32 @@ def analyze(engine: str, fmt: str, orders: int) -> None:
     data = result.to_dict()
     e = data["engine"]
     click.echo(f"{e['name']}")
-    click.echo(f"{e['cylinders']} cylinders on {e['throws']} throws, {e['speed_rpm']:.0f} rpm, "
-               f"r/l = {e['rod_ratio']:.4f}, kinematics: {e['kinematics']}")
-    click.echo("Free forces and moments of the reciprocating masses "
-               "(moments about the crankshaft mid-point):")
-    rows = [[str(f["order"]), f"{f['amplitude_N']:.4g}", f"{f['forward_N']:.4g}",
-             f"{f['backward_N']:.4g}", f"{m['amplitude_Nm']:.4g}", f"{m['forward_Nm']:.4g}",
-             f"{m['backward_Nm']:.4g}"]
-            for f, m in zip(data["free_forces"], data["free_moments"], strict=True)]
+    click.echo(
+        f"{e['cylinders']} cylinders on {e['throws']} throws, {e['speed_rpm']:.0f} rpm, "
+        f"r/l = {e['rod_ratio']:.4f}, kinematics: {e['kinematics']}"
+    )
+    click.echo(
+        "Free forces and moments of the reciprocating masses "
+        "(moments about the crankshaft mid-point):"
+    )
+    rows = [
+        [
+            str(f["order"]),
+            f"{f['amplitude_N']:.4g}",
+            f"{f['forward_N']:.4g}",
+            f"{f['backward_N']:.4g}",
+            f"{m['amplitude_Nm']:.4g}",
+            f"{m['forward_Nm']:.4g}",
+            f"{m['backward_Nm']:.4g}",
+        ]
+        for f, m in zip(data["free_forces"], data["free_moments"], strict=True)
+    ]
     echo_table(["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m"], rows)
     rot = data["rotating"]
-    click.echo(f"Rotating masses (bare crank, no counterweights): force {rot['force_N']:.4g} N, "
-               f"moment {rot['moment_Nm']:.4g} N·m")
+    click.echo(
+        f"Rotating masses (bare crank, no counterweights): force {rot['force_N']:.4g} N, "
+        f"moment {rot['moment_Nm']:.4g} N·m"
+    )
 
 
 def curves_csv(result: object) -> str:
@@ -53,10 +72,26 @@ def curves_csv(result: object) -> str:
     for k, order in enumerate(c.orders):
         header += [f"fx_{order}_N", f"fz_{order}_N", f"mx_{order}_Nm", f"mz_{order}_Nm"]
         columns += [c.fx[k], c.fz[k], c.mx[k], c.mz[k]]
-    header += ["fx_total_N", "fz_total_N", "mx_total_Nm", "mz_total_Nm",
-               "fx_rotating_N", "fz_rotating_N", "mx_rotating_Nm", "mz_rotating_Nm"]
-    columns += [c.total_fx, c.total_fz, c.total_mx, c.total_mz,
-                c.rotating_fx, c.rotating_fz, c.rotating_mx, c.rotating_mz]
+    header += [
+        "fx_total_N",
+        "fz_total_N",
+        "mx_total_Nm",
+        "mz_total_Nm",
+        "fx_rotating_N",
+        "fz_rotating_N",
+        "mx_rotating_Nm",
+        "mz_rotating_Nm",
+    ]
+    columns += [
+        c.total_fx,
+        c.total_fz,
+        c.total_mx,
+        c.total_mz,
+        c.rotating_fx,
+        c.rotating_fz,
+        c.rotating_mx,
+        c.rotating_mz,
+    ]
     lines = [",".join(header)]
     for row in zip(*columns, strict=True):
         lines.append(",".join(f"{v:.9g}" for v in row))
@@ -71,7 +106,14 @@ def presets(fmt: str) -> None:
 
     names = list_presets()
     if fmt == "json":
-        click.echo(json.dumps({"schema": "crankbalance.presets/1", "presets": [
-            {"name": n, "title": load_engine(n).name} for n in names]}, indent=2))
+        click.echo(
+            json.dumps(
+                {
+                    "schema": "crankbalance.presets/1",
+                    "presets": [{"name": n, "title": load_engine(n).name} for n in names],
+                },
+                indent=2,
+            )
+        )
         return
     echo_table(["preset", "engine"], [[n, load_engine(n).name] for n in names])

@@ -13,18 +13,38 @@ from ._common import echo_table, format_option
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json"))
-@click.option("--angle", default=None,
-              help='Counterweight angle from the position opposite the crankpin ("30 deg") '
-                   'or "optimal"; default: the engine file, else optimal.')
-@click.option("--balance-factor", type=click.FloatRange(0.0, 2.0), default=None,
-              help="Share of the pin's reciprocating mass put on the crank counterweights.")
-@click.option("--method", type=click.Choice(["pattern", "individual"]), default=None,
-              help="pattern: equal counterweights (2021 paper); individual: each its own mass "
-                   "and angle.")
-@click.option("--scope", type=click.Choice(["auto", "whole", "halves"]), default=None,
-              help="Balance the whole crank or each half on its own.")
-def balance(engine: str, fmt: str, angle: str | None, balance_factor: float | None,
-            method: str | None, scope: str | None) -> None:
+@click.option(
+    "--angle",
+    default=None,
+    help='Counterweight angle from the position opposite the crankpin ("30 deg") '
+    'or "optimal"; default: the engine file, else optimal.',
+)
+@click.option(
+    "--balance-factor",
+    type=click.FloatRange(0.0, 2.0),
+    default=None,
+    help="Share of the pin's reciprocating mass put on the crank counterweights.",
+)
+@click.option(
+    "--method",
+    type=click.Choice(["pattern", "individual"]),
+    default=None,
+    help="pattern: equal counterweights (2021 paper); individual: each its own mass and angle.",
+)
+@click.option(
+    "--scope",
+    type=click.Choice(["auto", "whole", "halves"]),
+    default=None,
+    help="Balance the whole crank or each half on its own.",
+)
+def balance(
+    engine: str,
+    fmt: str,
+    angle: str | None,
+    balance_factor: float | None,
+    method: str | None,
+    scope: str | None,
+) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
     The [counterweights] and [balance_shafts] tables of the engine file set what is
@@ -35,8 +55,9 @@ def balance(engine: str, fmt: str, angle: str | None, balance_factor: float | No
 
     overrides: dict[str, Any] = {}
     if angle is not None:
-        overrides["angle"] = "optimal" if angle.strip() == "optimal" else parse_quantity(
-            angle, "angle", "--angle")
+        overrides["angle"] = (
+            "optimal" if angle.strip() == "optimal" else parse_quantity(angle, "angle", "--angle")
+        )
     if balance_factor is not None:
         overrides["balance_factor"] = balance_factor
     if method is not None:
@@ -55,23 +76,43 @@ def print_table(data: dict[str, Any]) -> None:
     click.echo(f"{e['name']} ({e['speed_rpm']:.0f} rpm, kinematics: {e['kinematics']})")
     cw = data["counterweight"]
     if cw is not None:
-        angle = "individual angles" if cw["angle_deg"] is None else f"alpha = {cw['angle_deg']:.3f} deg"
-        click.echo(f"\nCrank counterweights ({cw['method']}, {cw['scope']} crank, {angle}, "
-                   f"CG radius {cw['cg_radius_m'] * 1e3:.4g} mm): {cw['count']} counterweights, "
-                   f"{cw['total_mass_kg']:.4f} kg in all")
-        echo_table(["web", "throw", "y mm", "mass kg", "direction deg"],
-                   [[str(w["web"]), str(w["throw"]), f"{w['position_m'] * 1e3:.2f}",
-                     f"{w['mass_kg']:.4f}", f"{w['direction_deg']:.2f}"] for w in cw["webs"]])
+        angle = (
+            "individual angles" if cw["angle_deg"] is None else f"alpha = {cw['angle_deg']:.3f} deg"
+        )
+        click.echo(
+            f"\nCrank counterweights ({cw['method']}, {cw['scope']} crank, {angle}, "
+            f"CG radius {cw['cg_radius_m'] * 1e3:.4g} mm): {cw['count']} counterweights, "
+            f"{cw['total_mass_kg']:.4f} kg in all"
+        )
+        echo_table(
+            ["web", "throw", "y mm", "mass kg", "direction deg"],
+            [
+                [
+                    str(w["web"]),
+                    str(w["throw"]),
+                    f"{w['position_m'] * 1e3:.2f}",
+                    f"{w['mass_kg']:.4f}",
+                    f"{w['direction_deg']:.2f}",
+                ]
+                for w in cw["webs"]
+            ],
+        )
         if cw["note"]:
             click.echo(f"note: {cw['note']}")
     extra = data["extra_counterweights"]
     if extra is not None:
         click.echo("\nExtra crank counterweight masses replacing the co-rotating primary shaft:")
-        echo_table(["web", "mass kg", "direction deg"],
-                   [[str(w["web"]), f"{w['mass_kg']:.4f}", f"{w['direction_deg']:.2f}"]
-                    for w in extra["webs"]])
-    for key, title in (("primary_shafts", "Primary balance shafts (crank speed)"),
-                       ("secondary_shafts", "Secondary balance shafts (twice crank speed)")):
+        echo_table(
+            ["web", "mass kg", "direction deg"],
+            [
+                [str(w["web"]), f"{w['mass_kg']:.4f}", f"{w['direction_deg']:.2f}"]
+                for w in extra["webs"]
+            ],
+        )
+    for key, title in (
+        ("primary_shafts", "Primary balance shafts (crank speed)"),
+        ("secondary_shafts", "Secondary balance shafts (twice crank speed)"),
+    ):
         group = data[key]
         if group is None:
             continue
@@ -81,16 +122,30 @@ def print_table(data: dict[str, Any]) -> None:
             if not shaft["masses"]:
                 rows.append([shaft["rotation"], "-", "0", "-"])
             for mass in shaft["masses"]:
-                rows.append([shaft["rotation"], f"{mass['position_m'] * 1e3:.1f}",
-                             f"{mass['mass_kg']:.4f}", f"{mass['phase_deg']:.2f}"])
+                rows.append(
+                    [
+                        shaft["rotation"],
+                        f"{mass['position_m'] * 1e3:.1f}",
+                        f"{mass['mass_kg']:.4f}",
+                        f"{mass['phase_deg']:.2f}",
+                    ]
+                )
         echo_table(["shaft", "y mm", "mass kg", "phase deg"], rows)
     click.echo("\nTime-domain check (amplitudes before -> after):")
-    echo_table(["component", "targeted", "force N", "after", "moment N*m", "after"],
-               [[c["component"], "yes" if c["targeted"] else "no",
-                 f"{c['force_before_N']:.4g}", f"{c['force_after_N']:.4g}",
-                 f"{c['moment_before_Nm']:.4g}", f"{c['moment_after_Nm']:.4g}"]
-                for c in data["components"]
-                if c["force_before_N"] > 1e-9 or c["moment_before_Nm"] > 1e-9
-                or c["targeted"]])
+    echo_table(
+        ["component", "targeted", "force N", "after", "moment N*m", "after"],
+        [
+            [
+                c["component"],
+                "yes" if c["targeted"] else "no",
+                f"{c['force_before_N']:.4g}",
+                f"{c['force_after_N']:.4g}",
+                f"{c['moment_before_Nm']:.4g}",
+                f"{c['moment_after_Nm']:.4g}",
+            ]
+            for c in data["components"]
+            if c["force_before_N"] > 1e-9 or c["moment_before_Nm"] > 1e-9 or c["targeted"]
+        ],
+    )
     for note in data["notes"]:
         click.echo(f"note: {note}")
