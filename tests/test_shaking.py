@@ -117,3 +117,33 @@ def test_known_balanced_components(preset: str, balanced: list[tuple[int, str]])
     for order, kind in balanced:
         value = (f.force_amplitude if kind == "F" else f.moment_amplitude)[f.order(order)]
         assert value < 1e-9 * scale, f"{preset}: {kind}{order} should be zero"
+
+
+def test_conrod_two_mass_split() -> None:
+    """The two point masses keep the conrod's mass and centre of gravity; their inertia
+    about the CG is m d (l - d) (textbook), and the error against a given inertia is
+    reported (issue 2, mass model)."""
+    from crankbalance.spec import spec_from_dict
+
+    data = {
+        "speed": "3000 rpm",
+        "crank_train": {"layout": "inline", "cylinders": 1, "crank_radius": "40 mm",
+                        "rod_length": "140 mm"},
+        "masses": {"piston": "400 g", "wrist_pin": "100 g", "conrod": "600 g",
+                   "conrod_cg_from_big_end": "40 mm", "conrod_inertia": "0.0021 kg*m^2",
+                   "crankpin": "300 g", "crank_web": "900 g", "crank_web_cg_radius": "20 mm"},
+    }
+    result = analyze(spec_from_dict(data))
+    (rod,) = result.model.conrods
+    d, l, m = 0.04, 0.14, 0.6
+    assert rod.rotating + rod.reciprocating == pytest.approx(m)
+    # the CG of the two point masses (big end at 0, small end at l) is at d
+    assert rod.reciprocating * l / m == pytest.approx(d)
+    point_inertia = rod.rotating * d**2 + rod.reciprocating * (l - d) ** 2
+    assert rod.inertia_two_mass == pytest.approx(point_inertia)
+    assert rod.inertia_error == pytest.approx(point_inertia - 0.0021)
+    assert result.model.reciprocating_mass[0] == pytest.approx(0.4 + 0.1 + m * d / l)
+    assert result.model.throw_rotating_mass[0] == pytest.approx(
+        0.3 + 2 * 0.9 * 0.02 / 0.04 + m * (l - d) / l)
+    conrods = result.to_dict()["masses"]["conrods"]
+    assert conrods[0]["inertia_error"] == pytest.approx(point_inertia - 0.0021)
