@@ -37,6 +37,27 @@ def analyze(engine: str, fmt: str, orders: int) -> None:
         f"{e['cylinders']} cylinders on {e['throws']} throws, {e['speed_rpm']:.0f} rpm, "
         f"r/l = {e['rod_ratio']:.4f}, kinematics: {e['kinematics']}"
     )
+    masses = data["masses"]
+    click.echo(
+        "Masses: reciprocating per cylinder "
+        + _distinct(masses["reciprocating_kg"])
+        + " kg; rotating per throw (at the crank radius, big ends included) "
+        + _distinct(masses["rotating_kg"])
+        + " kg"
+    )
+    rods = masses["conrods"]
+    if len({(r["mass"], r["rotating"], r["inertia_error"]) for r in rods}) == 1:
+        rods = rods[:1]  # all conrods alike: show one
+    for rod in rods:
+        line = (
+            f"Conrod {rod['cylinder']}: {rod['mass'] * 1e3:.1f} g = "
+            f"{rod['rotating'] * 1e3:.1f} g at the big end + "
+            f"{rod['reciprocating'] * 1e3:.1f} g at the small end; two-mass inertia "
+            f"{rod['inertia_two_mass'] * 1e6:.0f} kg*mm^2"
+        )
+        if rod["inertia_error"] is not None:
+            line += f" (error {rod['inertia_error'] * 1e6:+.0f} kg*mm^2 against the real one)"
+        click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "
         "(moments about the crankshaft mid-point):"
@@ -59,6 +80,13 @@ def analyze(engine: str, fmt: str, orders: int) -> None:
         f"Rotating masses (bare crank, no counterweights): force {rot['force_N']:.4g} N, "
         f"moment {rot['moment_Nm']:.4g} N·m"
     )
+
+
+def _distinct(values: list[float]) -> str:
+    """One value if all are equal, else the list (for per-cylinder masses)."""
+    if max(values) - min(values) <= 1e-12 * max(abs(v) for v in values):
+        return f"{values[0]:.4g}"
+    return "[" + ", ".join(f"{v:.4g}" for v in values) + "]"
 
 
 def curves_csv(result: object) -> str:
