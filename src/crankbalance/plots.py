@@ -1,0 +1,612 @@
+r"""Figure builders: one function per figure, shared by the web app, the report and
+``crankbalance plot``. Each takes a result object (compute apart from plot) and returns a
+``plotly.graph_objects.Figure``; plotly is imported inside the functions.
+
+Public functions
+----------------
+Engine analysis and balancing (:mod:`crankbalance.analysis`):
+
+- ``orders_bar(analysis) -> Figure``
+    Force and moment amplitudes per order, forward/backward phasor magnitudes stacked.
+- ``curves_figure(analysis, balance_study=None, quantity="force") -> Figure``
+    x and z components versus crank angle: reciprocating total, each order, rotating
+    masses, and the whole engine after balancing when a BalanceStudy is given.
+    ``quantity`` in {"force", "moment"}.
+- ``balanced_curves(analysis, balance_study, angle=None) -> BalancedCurves``
+    The numbers behind the "after balancing" traces (also for CSV export).
+- ``polar_figure(analysis, order, quantity="force") -> Figure``
+    Rotating-vector diagram of one order: locus and the forward/backward phasors at
+    crank angle 0.
+- ``crank_3d(model, balance_study=None) -> Figure``
+    3-D view of the crankshaft: journals, throws, webs, cylinder axes, counterweights
+    (marker size from mass), balance shafts with their masses (schematic positions).
+- ``residuals_bar(balance_study) -> Figure``
+    Amplitude of every component before and after balancing (force and moment).
+
+Other studies:
+
+- ``single_cylinder_forces(study) -> Figure``       (single_cylinder.BalanceFactorStudy)
+- ``single_cylinder_polar(study) -> Figure``
+- ``balance_factor_sweep(study) -> Figure``
+- ``pareto_front(optimum) -> Figure``               (counterweight.CounterweightOptimum)
+- ``counterweight_profile(design) -> Figure``       (counterweight.CounterweightDesign)
+- ``shaft_study(study) -> Figure``                  (balance_shaft placement studies)
+- ``shaft_response_figure(response) -> Figure``     (balance_shaft.ShaftResponse)
+- ``sensitivity_figure(result) -> Figure``          (dynamics.SensitivityResult)
+- ``bench_figure(result) -> Figure``                (dynamics.BenchResult)
+- ``cycle_figure(result) -> Figure``                (dynamics.CycleResult)
+
+Export:
+
+- ``to_image(fig, fmt="png", width=None, height=None, scale=1.0) -> bytes``
+    Static PNG or SVG through kaleido (Chromium: found by kaleido, else /usr/bin/chromium).
+- ``to_html(fig, include_plotlyjs=True, full_html=True) -> str``
+    Interactive HTML; plotly.js inlined by default (no network needed).
+
+Conventions
+-----------
+Vectors across the crank axis are complex ``z + i x`` (:mod:`crankbalance.shaking`); the
+diagrams draw x horizontally and z (cylinder axis of an in-line engine) vertically. The 3-D
+view puts the crank axis y horizontally. Angles are shown in degrees, forces in N,
+moments in N·m, lengths in mm, masses in kg.
+"""
+
+from __future__ import annotations
+
+import atexit
+import math
+import os
+import shutil
+import threading
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any, Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from .errors import InputError
+from .results import ResultMixin
+
+if TYPE_CHECKING:  # pragma: no cover
+    import plotly.graph_objects as go
+
+    from .analysis import Analysis, BalanceStudy
+    from .model import EngineModel
+
+Quantity = Literal["force", "moment"]
+ImageFormat = Literal["png", "svg"]
+
+#: colours used consistently across figures
+COLORS = {
+    "forward": "#1f77b4",
+    "backward": "#ff7f0e",
+    "total": "#222222",
+    "rotating": "#9467bd",
+    "after": "#d62728",
+    "before": "#7f7f7f",
+    "counterweight": "#2ca02c",
+    "shaft1": "#17becf",
+    "shaft2": "#bcbd22",
+    "crank": "#555555",
+}
+ORDER_COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
+                "#7f7f7f", "#bcbd22", "#17becf"]
+TEMPLATE = "plotly_white"
+
+
+def _go() -> Any:
+    import plotly.graph_objects as go
+
+    return go
+
+
+def _subplots(**kwargs: Any) -> Any:
+    from plotly.subplots import make_subplots
+
+    return make_subplots(**kwargs)
+
+
+def _check_quantity(quantity: str) -> None:
+    if quantity not in ("force", "moment"):
+        raise InputError("quantity", quantity, "'force' or 'moment'")
+
+
+def _tiny(model: EngineModel, relative: float = 1e-10) -> tuple[float, float]:
+    """Round-off levels of an engine's forces [N] and moments [N·m]: values below are
+    drawn as zero (sums of phasors that cancel leave ~1e-12 N of noise)."""
+    mass = float(np.sum(model.reciprocating_mass) + np.sum(model.throw_rotating_mass))
+    force = mass * model.crank_radius * model.speed**2
+    length = max(float(np.ptp(model.throw_position)), model.crank_radius)
+    return relative * force, relative * force * length
+
+
+def _clean(values: ArrayLike, tiny: float) -> NDArray[np.float64]:
+    out = np.array(values, dtype=float)
+    out[np.abs(out) < tiny] = 0.0
+    return out
+
+
+def _unit(quantity: str) -> str:
+    return "N" if quantity == "force" else "N·m"
+
+
+# --------------------------------------------------------------------------- orders
+def orders_bar(analysis: Analysis) -> go.Figure:
+    """Force and moment amplitudes per order, forward and backward phasors stacked.
+
+    The stacked bar height is the amplitude :math:`|F_n^+| + |F_n^-|` (the largest
+    magnitude over a revolution, ``analysis.forces.force_amplitude``); the rotating masses
+    of the bare crank are shown as an extra forward bar labelled "rot".
+    """
+    f = analysis.forces
+    fig = _subplots(rows=1, cols=2, subplot_titles=("Free forces", "Free moments"),
+                    horizontal_spacing=0.12)
+    labels = [str(int(n)) for n in f.orders] + ["rot"]
+    tf, tm = _tiny(analysis.model, 1e-12)  # as Analysis.to_dict
+    parts = (
+        (1, _clean(np.abs(f.force_forward), tf), _clean(np.abs(f.force_backward), tf),
+         _clean([abs(f.rotating_force)], tf)[0]),
+        (2, _clean(np.abs(f.couple_forward), tm), _clean(np.abs(f.couple_backward), tm),
+         _clean([abs(f.rotating_couple)], tm)[0]),
+    )
+    for col, fwd, bwd, rot in parts:
+        unit = "N" if col == 1 else "N·m"
+        fig.add_trace(_go().Bar(
+            x=labels, y=np.append(fwd, rot), name="forward (co-rotating)",
+            marker_color=COLORS["forward"], legendgroup="forward", showlegend=col == 1,
+            hovertemplate="order %{x}<br>forward %{y:.4g} " + unit + "<extra></extra>"),
+            row=1, col=col)
+        fig.add_trace(_go().Bar(
+            x=labels, y=np.append(bwd, 0.0), name="backward (counter-rotating)",
+            marker_color=COLORS["backward"], legendgroup="backward", showlegend=col == 1,
+            hovertemplate="order %{x}<br>backward %{y:.4g} " + unit + "<extra></extra>"),
+            row=1, col=col)
+        fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
+        fig.update_xaxes(title_text="order", type="category", row=1, col=col)
+    fig.update_layout(barmode="stack", template=TEMPLATE,
+                      title=f"{analysis.model.name}: free forces and moments by order",
+                      legend={"orientation": "h", "y": -0.2})
+    return fig
+
+
+# --------------------------------------------------------------------------- curves
+@dataclass(frozen=True)
+class BalancedCurves(ResultMixin):
+    """Whole-engine force [N] and moment [N·m] versus crank angle [rad], before and after
+    balancing: reciprocating masses (exact or series, as the model says), rotating masses,
+    and, after, every counterweight and balance-shaft mass as a point mass."""
+
+    angle: NDArray[np.float64]
+    before_fx: NDArray[np.float64]
+    before_fz: NDArray[np.float64]
+    before_mx: NDArray[np.float64]
+    before_mz: NDArray[np.float64]
+    after_fx: NDArray[np.float64]
+    after_fz: NDArray[np.float64]
+    after_mx: NDArray[np.float64]
+    after_mz: NDArray[np.float64]
+
+
+def balance_mass_history(model: EngineModel, result: Any,
+                         angle: ArrayLike) -> tuple[NDArray, NDArray]:
+    r"""Force (complex :math:`F_z + iF_x`) [N] and couple :math:`\sum y F` [N·m] of all
+    counterweights and balance-shaft masses of a :class:`~crankbalance.balancing.BalanceResult`
+    versus crank angle.
+
+    A mass :math:`m` at radius :math:`\rho`, axial position :math:`y`, turning at
+    :math:`s k\omega` with phase :math:`\psi` gives :math:`m\rho(k\omega)^2
+    e^{i(\psi + s k \theta)}`.
+    """
+    theta = np.asarray(angle, dtype=float)
+    w = model.speed
+    force = np.zeros(theta.shape, complex)
+    couple = np.zeros(theta.shape, complex)
+    for cw in (result.counterweights, result.extra_counterweights):
+        if cw is None or cw.count == 0:
+            continue
+        each = (cw.moments * w**2)[:, None] * np.exp(1j * theta)[None, :]
+        force += each.sum(axis=0)
+        couple += (np.asarray(cw.position)[:, None] * each).sum(axis=0)
+    for group in (result.primary, result.secondary):
+        if group is None:
+            continue
+        for shaft in group.shafts:
+            for mass in shaft.masses:
+                f = (mass.mass * shaft.cg_radius * (shaft.order * w) ** 2
+                     * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta)))
+                force += f
+                couple += mass.position * f
+    return force, couple
+
+
+def balanced_curves(analysis: Analysis, balance_study: BalanceStudy,
+                    angle: ArrayLike | None = None) -> BalancedCurves:
+    """Whole-engine force and moment versus crank angle before and after balancing.
+
+    "Before" is the reciprocating total of ``analysis`` plus the rotating masses of the
+    bare crank; "after" adds every counterweight and shaft mass of ``balance_study``.
+    Moments about the crankshaft mid-point, :math:`M = iC` (``M_x = y F_z``,
+    ``M_z = -y F_x``).
+    """
+    _check_same_engine(analysis, balance_study)
+    c = analysis.curves(angle)
+    force, couple = balance_mass_history(balance_study.model, balance_study.result, c.angle)
+    moment = 1j * couple
+    bfx = c.total_fx + c.rotating_fx
+    bfz = c.total_fz + c.rotating_fz
+    bmx = c.total_mx + c.rotating_mx
+    bmz = c.total_mz + c.rotating_mz
+    return BalancedCurves(angle=c.angle, before_fx=bfx, before_fz=bfz, before_mx=bmx,
+                          before_mz=bmz, after_fx=bfx + force.imag, after_fz=bfz + force.real,
+                          after_mx=bmx + moment.imag, after_mz=bmz + moment.real)
+
+
+def _check_same_engine(analysis: Analysis, balance_study: BalanceStudy) -> None:
+    a, b = analysis.model, balance_study.model
+    same = (a.throws == b.throws and a.cylinders == b.cylinders
+            and math.isclose(a.speed, b.speed, rel_tol=1e-9)
+            and np.allclose(a.throw_angle, b.throw_angle)
+            and np.allclose(a.throw_position, b.throw_position))
+    if not same:
+        raise InputError("balance_study", b.name,
+                         f"a balancing study of the analysed engine ({a.name})")
+
+
+def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
+                  quantity: Quantity = "force", orders: int | None = None) -> go.Figure:
+    """x and z components of the free force (or moment) versus crank angle.
+
+    Traces: the reciprocating total (exact slider-crank when the model is exact), each
+    order (orders above 2 hidden until clicked in the legend), the rotating masses of the
+    bare crank and, with ``balance_study``, the whole engine before and after balancing.
+
+    Parameters
+    ----------
+    analysis : Analysis
+    balance_study : BalanceStudy, optional
+    quantity : {"force", "moment"}
+    orders : int, optional
+        Highest order drawn (all computed orders by default).
+    """
+    _check_quantity(quantity)
+    go = _go()
+    c = analysis.curves()
+    deg = np.degrees(c.angle)
+    unit = _unit(quantity)
+    key = "f" if quantity == "force" else "m"
+    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08,
+                    subplot_titles=(f"{quantity} x (across)", f"{quantity} z (cylinder axis)"))
+    after = balanced_curves(analysis, balance_study, c.angle) if balance_study else None
+    amplitude = (analysis.forces.force_amplitude if quantity == "force"
+                 else analysis.forces.moment_amplitude)
+    top = len(c.orders) if orders is None else orders
+    tiny = _tiny(analysis.model)[0 if quantity == "force" else 1]
+
+    def y(source: Any, name: str, k: int | None = None) -> NDArray[np.float64]:
+        values = getattr(source, name)
+        return _clean(values if k is None else values[k], tiny)
+
+    for row, comp in ((1, "x"), (2, "z")):
+        first = row == 1
+        fig.add_trace(go.Scatter(
+            x=deg, y=y(c, f"total_{key}{comp}"), name="reciprocating total",
+            line={"color": COLORS["total"], "width": 2.5}, legendgroup="total",
+            showlegend=first), row=row, col=1)
+        for k, n in enumerate(c.orders):
+            if n > top or amplitude[k] < tiny:
+                continue
+            fig.add_trace(go.Scatter(
+                x=deg, y=y(c, f"{key}{comp}", k), name=f"order {int(n)}",
+                line={"color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)], "width": 1.2,
+                      "dash": "dot"},
+                legendgroup=f"order{n}", showlegend=first,
+                visible=True if n <= 2 else "legendonly"), row=row, col=1)
+        fig.add_trace(go.Scatter(
+            x=deg, y=y(c, f"rotating_{key}{comp}"), name="rotating masses (bare crank)",
+            line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
+            legendgroup="rotating", showlegend=first,
+            visible=True if after is None else "legendonly"), row=row, col=1)
+        if after is not None:
+            fig.add_trace(go.Scatter(
+                x=deg, y=y(after, f"before_{key}{comp}"),
+                name="engine before balancing", line={"color": COLORS["before"], "width": 2},
+                legendgroup="before", showlegend=first), row=row, col=1)
+            fig.add_trace(go.Scatter(
+                x=deg, y=y(after, f"after_{key}{comp}"),
+                name="engine after balancing", line={"color": COLORS["after"], "width": 2.5},
+                legendgroup="after", showlegend=first), row=row, col=1)
+        fig.update_yaxes(title_text=f"{quantity} {comp} [{unit}]", row=row, col=1)
+    fig.update_xaxes(title_text="crank angle [deg]", tickvals=list(range(0, 361, 45)),
+                     range=[0, 360], row=2, col=1)
+    fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
+    name = "moments about the mid-point" if quantity == "moment" else "forces"
+    fig.update_layout(template=TEMPLATE, title=f"{analysis.model.name}: free {name}",
+                      legend={"orientation": "h", "y": -0.15}, hovermode="x unified")
+    return fig
+
+
+# --------------------------------------------------------------------------- polar
+def _order_phasors(analysis: Analysis, order: int | str,
+                   quantity: str) -> tuple[complex, complex, int, str]:
+    """Forward and backward phasor (complex z + i x, moment as iC) of one order."""
+    f = analysis.forces
+    if order in ("rotating", "rot", 0):
+        if quantity == "force":
+            return complex(f.rotating_force), 0j, 1, "rotating masses"
+        return 1j * complex(f.rotating_couple), 0j, 1, "rotating masses"
+    if isinstance(order, bool) or not isinstance(order, int | np.integer):
+        raise InputError("order", order, f"a whole number in {f.orders.tolist()} or 'rotating'")
+    try:
+        k = f.order(int(order))
+    except KeyError:
+        raise InputError("order", order,
+                         f"an order computed: {int(f.orders[0])}..{int(f.orders[-1])} "
+                         "or 'rotating'") from None
+    if quantity == "force":
+        return complex(f.force_forward[k]), complex(f.force_backward[k]), int(order), \
+            f"order {order}"
+    return (1j * complex(f.couple_forward[k]), 1j * complex(f.couple_backward[k]), int(order),
+            f"order {order}")
+
+
+def polar_figure(analysis: Analysis, order: int | str = 1,
+                 quantity: Quantity = "force") -> go.Figure:
+    r"""Rotating-vector diagram of one order: :math:`F_n(\theta) = F^+e^{in\theta} +
+    F^-e^{-in\theta}` traced over a revolution (an ellipse; a circle when one phasor is
+    zero, a line when both are equal), with the forward and backward phasors drawn at crank
+    angle 0 (head to tail) and their resultant.
+
+    x is drawn horizontally, z (cylinder axis of an in-line engine) vertically.
+    ``order`` may be ``"rotating"`` for the rotating masses of the bare crank.
+    """
+    _check_quantity(quantity)
+    go = _go()
+    fwd, bwd, n, label = _order_phasors(analysis, order, quantity)
+    tiny = _tiny(analysis.model, 1e-12)[0 if quantity == "force" else 1]
+    fwd, bwd = (0j if abs(fwd) < tiny else fwd), (0j if abs(bwd) < tiny else bwd)
+    unit = _unit(quantity)
+    theta = np.linspace(0.0, 2 * np.pi / max(n, 1), 361)
+    locus = fwd * np.exp(1j * n * theta) + bwd * np.exp(-1j * n * theta)
+    fig = go.Figure()
+    fig.add_trace(go.Scatter(x=locus.imag, y=locus.real, mode="lines", name="locus",
+                             line={"color": COLORS["total"], "width": 2},
+                             hovertemplate="x %{x:.4g}<br>z %{y:.4g}<extra></extra>"))
+
+    def arrow(start: complex, end: complex, name: str, color: str) -> None:
+        fig.add_trace(go.Scatter(x=[start.imag, end.imag], y=[start.real, end.real],
+                                 mode="lines+markers", name=name,
+                                 line={"color": color, "width": 3},
+                                 marker={"size": [0, 10], "symbol": "arrow",
+                                         "angleref": "previous", "color": color}))
+
+    arrow(0j, fwd, f"forward |F+| = {abs(fwd):.4g} {unit}", COLORS["forward"])
+    arrow(fwd, fwd + bwd, f"backward |F-| = {abs(bwd):.4g} {unit}", COLORS["backward"])
+    arrow(0j, fwd + bwd, f"at crank angle 0: {abs(fwd + bwd):.4g} {unit}", COLORS["after"])
+    reach = max(abs(fwd) + abs(bwd), 1e-12) * 1.15
+    fig.update_xaxes(title_text=f"x [{unit}]", range=[-reach, reach], zeroline=True)
+    fig.update_yaxes(title_text=f"z [{unit}]", range=[-reach, reach], zeroline=True,
+                     scaleanchor="x", scaleratio=1)
+    word = "force" if quantity == "force" else "moment"
+    fig.update_layout(template=TEMPLATE, width=None,
+                      title=f"{analysis.model.name}: {label} {word}, amplitude "
+                            f"{abs(fwd) + abs(bwd):.4g} {unit}",
+                      legend={"orientation": "h", "y": -0.15})
+    return fig
+
+
+# --------------------------------------------------------------------------- 3-D crank
+def crank_3d(model: EngineModel | Analysis | BalanceStudy,
+             balance_study: BalanceStudy | None = None) -> go.Figure:
+    """3-D view of the crankshaft at crank angle 0 (lengths in mm).
+
+    Crank axis y drawn horizontally. Main journals on the axis, each throw's crankpin at
+    the crank radius in its direction, two webs per throw (a quarter pitch from the throw
+    mid-plane, as the balancing solver assumes), the cylinder axes as thin lines, and with
+    ``balance_study`` the counterweights (at their CG radius and direction; marker size
+    grows with the square root of the mass) and the balance-shaft masses. Shafts are drawn
+    beside the crank at a schematic distance (their position across the crank does not
+    enter the balance).
+    """
+    from .balancing import default_web_offset
+
+    go = _go()
+    m: Any = model
+    if hasattr(m, "model"):
+        if balance_study is None and hasattr(m, "result"):
+            balance_study = m
+        m = m.model
+    mm = 1e3
+    r = m.crank_radius
+    web = default_web_offset(m)
+    pos = m.throw_position
+    span = float(np.ptp(pos)) if m.throws > 1 else 0.0
+    end = span / 2 + 2 * web
+    fig = go.Figure()
+
+    def line(ys: list[float], xs: list[float], zs: list[float], name: str, color: str,
+             width: float, group: str, show: bool, dash: str = "solid",
+             text: str | None = None) -> None:
+        fig.add_trace(go.Scatter3d(
+            x=np.asarray(ys) * mm, y=np.asarray(xs) * mm, z=np.asarray(zs) * mm, mode="lines",
+            line={"color": color, "width": width, "dash": dash}, name=name,
+            legendgroup=group, showlegend=bool(show), hoverinfo="text" if text else "name",
+            text=text))
+
+    # main journals: the crank axis between and beyond the throws
+    line([-end, end], [0, 0], [0, 0], "crank axis / main journals", COLORS["crank"], 8,
+         "axis", True)
+    for t in range(m.throws):
+        phi = m.throw_angle[t]
+        px, pz = r * math.sin(phi), r * math.cos(phi)
+        y0, y1 = pos[t] - web, pos[t] + web
+        text = (f"throw {t + 1}: angle {math.degrees(phi) % 360:.1f} deg, y {pos[t] * mm:.1f} mm,"
+                f" rotating mass {m.throw_rotating_mass[t]:.3f} kg")
+        line([y0, y1], [px, px], [pz, pz], "crankpins", "#1f3b73", 12, "pin", t == 0,
+             text=text)
+        for yw in (y0, y1):
+            line([yw, yw], [0, px], [0, pz], "webs", "#6b6b6b", 6, "web", t == 0 and yw == y0)
+    # cylinder axes from the crankpin's top-dead-centre circle outward
+    for c in range(m.cylinders):
+        beta = m.cylinder_bank[c]
+        y = m.cylinder_position[c]
+        r0, r1 = r + m.rod_length, r + m.rod_length + 2 * r
+        line([y, y], [r0 * math.sin(beta), r1 * math.sin(beta)],
+             [r0 * math.cos(beta), r1 * math.cos(beta)], "cylinder axes (stroke)", "#c7c7c7",
+             10, "cyl", c == 0, text=f"cylinder {c + 1}: bank {math.degrees(beta):.1f} deg")
+    if balance_study is not None:
+        res = balance_study.result
+        masses = [cw.mass for cw in (res.counterweights, res.extra_counterweights)
+                  if cw is not None]
+        for group in (res.primary, res.secondary):
+            if group is not None:
+                masses += [np.array([x.mass for s in group.shafts for x in s.masses])]
+        biggest = max((float(np.max(a, initial=0.0)) for a in masses), default=0.0)
+
+        def size(mass: float) -> float:
+            return 4.0 + 14.0 * math.sqrt(mass / biggest) if biggest > 0 else 4.0
+
+        for label, cw, color in (("counterweights", res.counterweights, COLORS["counterweight"]),
+                                 ("extra counterweights (Eq. 17)", res.extra_counterweights,
+                                  "#98df8a")):
+            if cw is None or cw.count == 0:
+                continue
+            for j in range(cw.count):
+                d, rho = float(cw.direction[j]), cw.cg_radius
+                cx, cz, y = rho * math.sin(d), rho * math.cos(d), float(cw.position[j])
+                line([y, y], [0, cx], [0, cz], label, color, 5, label, False)
+                fig.add_trace(go.Scatter3d(
+                    x=[y * mm], y=[cx * mm], z=[cz * mm], mode="markers", name=label,
+                    legendgroup=label, showlegend=j == 0,
+                    marker={"size": size(float(cw.mass[j])), "color": color, "opacity": 0.9},
+                    hoverinfo="text",
+                    text=f"{label}: web {int(cw.web[j])}, {cw.mass[j]:.4g} kg at "
+                         f"{rho * mm:.1f} mm, {math.degrees(d) % 360:.1f} deg"))
+        # balance shafts beside the crank (schematic): primary left/right of the crank at
+        # the height of the axis, secondary below; co-rotating on one side
+        gap = 2.5 * r + 0.02
+        for group, zc, color in ((res.primary, 0.0, COLORS["shaft1"]),
+                                 (res.secondary, -(r + 0.5 * m.rod_length), COLORS["shaft2"])):
+            if group is None:
+                continue
+            half = group.length / 2
+            for s in group.shafts:
+                xc = -gap if s.sense > 0 else gap
+                sense = "co-rotating" if s.sense > 0 else "counter-rotating"
+                label = f"order-{group.order} shaft, {sense}"
+                line([-half, half], [xc, xc], [zc, zc], label, color, 6, label, True,
+                     dash="solid" if s.sense > 0 else "dash")
+                for x in s.masses:
+                    rho = s.cg_radius
+                    mx, mz = xc + rho * math.sin(x.phase), zc + rho * math.cos(x.phase)
+                    line([x.position, x.position], [xc, mx], [zc, mz], label, color, 4, label,
+                         False)
+                    fig.add_trace(go.Scatter3d(
+                        x=[x.position * mm], y=[mx * mm], z=[mz * mm], mode="markers",
+                        name=label, legendgroup=label, showlegend=False,
+                        marker={"size": size(x.mass), "color": color, "opacity": 0.9},
+                        hoverinfo="text",
+                        text=f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
+                             f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg"))
+    fig.update_layout(
+        template=TEMPLATE, title=f"{m.name}: crankshaft at crank angle 0",
+        scene={"xaxis_title": "y, crank axis [mm]", "yaxis_title": "x [mm]",
+               "zaxis_title": "z [mm]", "aspectmode": "data",
+               "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}}},
+        legend={"orientation": "h", "y": -0.05}, margin={"l": 0, "r": 0, "t": 50, "b": 0})
+    return fig
+
+
+# --------------------------------------------------------------------------- residuals
+def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
+    """Amplitude of every component (rotating masses, orders 1..K) before and after
+    balancing, force and moment, from the solver's time-domain check
+    (``balance_study.result.residuals``)."""
+    go = _go()
+    res = balance_study.result.residuals
+    names = [("rotating" if c.component == "rotating" else c.component.replace("order", "order "))
+             + (" *" if c.targeted else "") for c in res]
+    fig = _subplots(rows=1, cols=2, subplot_titles=("Force", "Moment"), horizontal_spacing=0.12)
+    for col, attr, unit in ((1, "force", "N"), (2, "moment", "N·m")):
+        for when, color in (("before", COLORS["before"]), ("after", COLORS["after"])):
+            fig.add_trace(go.Bar(
+                x=names, y=[getattr(c, f"{attr}_{when}") for c in res],
+                name=f"{when} balancing", marker_color=color, legendgroup=when,
+                showlegend=col == 1,
+                hovertemplate="%{x}<br>" + when + " %{y:.4g} " + unit + "<extra></extra>"),
+                row=1, col=col)
+        fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
+        fig.update_xaxes(type="category", row=1, col=col)
+    fig.update_layout(barmode="group", template=TEMPLATE,
+                      title=f"{balance_study.model.name}: residuals (* targeted by shafts)",
+                      legend={"orientation": "h", "y": -0.2})
+    return fig
+
+
+# --------------------------------------------------------------------------- export
+def _ensure_browser() -> None:
+    """Point kaleido (choreographer) at Debian's chromium when it finds no browser."""
+    if os.environ.get("BROWSER_PATH"):
+        return
+    for candidate in ("/usr/bin/chromium", "/usr/bin/chromium-browser",
+                      shutil.which("chromium") or "", shutil.which("google-chrome") or ""):
+        if candidate and os.path.exists(candidate):
+            os.environ["BROWSER_PATH"] = candidate
+            return
+
+
+def to_image(fig: go.Figure, fmt: ImageFormat = "png", width: int | None = None,
+             height: int | None = None, scale: float = 1.0) -> bytes:
+    """Static image of a figure (PNG or SVG bytes) through kaleido and a headless Chromium.
+
+    The first call starts one kaleido server (a headless Chromium, closed at exit) that
+    later calls reuse (about 0.1 s per image instead of 2-3 s). MathJax is switched off so
+    that no network access is needed. Width and height default to the figure's own
+    layout size, else 1000 x 600 px.
+    """
+    if fmt not in ("png", "svg"):
+        raise InputError("format", fmt, "'png' or 'svg'")
+    import kaleido
+
+    _ensure_browser()
+    layout = fig.layout
+    opts = {"format": fmt, "width": width or layout.width or 1000,
+            "height": height or layout.height or 600, "scale": scale}
+    fig_dict = fig.to_dict()
+    with _SERVER_LOCK:
+        _start_server()
+        data = kaleido.calc_fig_sync(fig_dict, opts=opts)
+    return data if isinstance(data, bytes) else str(data).encode()
+
+
+_SERVER_LOCK = threading.Lock()
+_SERVER: dict[str, bool] = {"running": False}
+
+
+def _start_server() -> None:
+    import kaleido
+
+    if _SERVER["running"]:
+        return
+    kaleido.start_sync_server(mathjax=False, silence_warnings=True)
+    _SERVER["running"] = True
+    atexit.register(_stop_server)
+
+
+def _stop_server() -> None:
+    import kaleido
+
+    if _SERVER["running"]:
+        _SERVER["running"] = False
+        try:
+            kaleido.stop_sync_server(silence_warnings=True)
+        except Exception:  # noqa: BLE001 - at exit, a browser that is already gone is fine
+            pass
+
+
+def to_html(fig: go.Figure, include_plotlyjs: bool | str = True, full_html: bool = True,
+            div_id: str | None = None) -> str:
+    """Interactive HTML of a figure; plotly.js inlined by default (works offline)."""
+    import plotly.io as pio
+
+    return str(pio.to_html(fig, include_plotlyjs=include_plotlyjs, full_html=full_html,
+                           div_id=div_id, config={"displaylogo": False}))
