@@ -202,3 +202,98 @@ def test_to_html_is_self_contained(inline4: tuple) -> None:
     assert html.lstrip().lower().startswith("<!doctype html>")
     assert not re.search(r"<script[^>]*\ssrc=", html), "plotly.js must be inlined"
     assert "Plotly.newPlot" in html
+
+
+# --------------------------------------------------------------------------- other studies
+def test_single_cylinder_figures_match_study() -> None:
+    from crankbalance.single_cylinder import balance_factor_study
+
+    s = balance_factor_study(0.3, 0.03, 900.0, 0.5, rod_length=0.12)
+    fig = plots.single_cylinder_forces(s)
+    assert np.asarray(traces(fig, "in-line (cylinder axis)")[0].y) == pytest.approx(s.in_line)
+    assert np.asarray(traces(fig, "transverse")[0].y) == pytest.approx(s.transverse)
+    polar = plots.single_cylinder_polar(s)
+    locus = traces(polar, "residual force")[0]
+    # the locus is the force vector: its largest length is the study's peak resultant
+    assert np.hypot(locus.x, locus.y).max() == pytest.approx(s.peak_resultant, rel=1e-3)
+    sweep = plots.balance_factor_sweep(s)
+    assert np.asarray(sweep.data[0].y) == pytest.approx(s.sweep_peak_resultant)
+    best = [t for t in sweep.data if t.name.startswith("optimum")][0]
+    assert best.y[0] == pytest.approx(np.min(s.sweep_peak_resultant), rel=1e-2)
+
+
+def test_counterweight_figures_match_optimum() -> None:
+    pytest.importorskip("shapely")
+    from shapely.geometry import Polygon
+
+    from crankbalance.counterweight import optimize_counterweight
+
+    o = optimize_counterweight(0.036, rng=1, population=256, iterations=4, children=256)
+    fig = plots.pareto_front(o)
+    front = [t for t in fig.data if t.name.startswith("Pareto")][0]
+    assert np.asarray(front.y) == pytest.approx(o.mass[o.pareto] * 1e3)
+    least = [t for t in fig.data if t.name.startswith("least mass")][0]
+    assert least.y[0] == pytest.approx(o.mass.min() * 1e3)
+    least_r = [t for t in fig.data if t.name.startswith("least radius")][0]
+    assert least_r.x[0] == pytest.approx(o.radius.min() * 1e3)
+    design = o.least_mass_design
+    prof = plots.counterweight_profile(design)
+    outline = [t for t in prof.data if t.name == "profile"]
+    area = sum(Polygon(np.column_stack([t.x, t.y])).area for t in outline)  # mm^2
+    props = design.properties()
+    assert area == pytest.approx(float(props.area) * 1e6, rel=1e-3), "drawn to scale"
+    cg = [t for t in prof.data if t.name.startswith("CG")][0]
+    assert cg.y[0] == pytest.approx(float(props.cg_radius) * 1e3)
+
+
+def test_shaft_figures_match_study() -> None:
+    from crankbalance.balance_shaft import (
+        BalanceShaft,
+        ShaftSection,
+        inline4_study,
+        shaft_response,
+    )
+
+    section = ShaftSection(outer_diameter=0.028)
+    st = inline4_study(2e-4, 1300.0, 0.3, section)
+    fig = plots.shaft_study(st)
+    j = [t for t in fig.data if t.name.startswith("J (")][0]
+    assert np.asarray(j.y) == pytest.approx(st.objective)
+    opt = [t for t in fig.data if t.name.startswith("optimum")][0]
+    assert opt.x[0] == pytest.approx(100 * st.optimum_position)
+    shaft = BalanceShaft(0.3, section, (0.0, 0.3), (0.2,), (2e-4,), 1300.0)
+    resp = shaft_response(shaft)
+    f2 = plots.shaft_response_figure(resp, shaft)
+    assert np.max(f2.data[0].y) == pytest.approx(resp.max_deflection * 1e6, rel=1e-6)
+
+
+def test_performance_figures_match_results() -> None:
+    from crankbalance.dynamics import (
+        BenchSettings,
+        CylinderSpec,
+        balance_sensitivity,
+        disc_rotor,
+        engine_cycle,
+        run_bench,
+    )
+
+    cyl = CylinderSpec(bore=0.0768, crank_radius=0.0269, rod_length=0.1076,
+                       reciprocating_mass=0.282, crank_inertia=6e-3, balance_factor=0.5)
+    angle = np.radians(np.arange(0.0, 720.0, 10.0)) - 2 * np.pi
+    pressure = (angle, np.full_like(angle, 1e5))
+    sens = balance_sensitivity(cyl, 900.0, pressure, [0.0, 0.5, 1.0], mass_scales=[1.0, 0.8],
+                               samples_per_revolution=72)
+    fig = plots.sensitivity_figure(sens, ("peak_bearing_load", "friction_power"))
+    lines = [t for t in fig.data if t.xaxis == "x"]
+    assert len(lines) == 2
+    assert np.asarray(lines[1].y) == pytest.approx(sens.peak_bearing_load[1])
+    with pytest.raises(InputError, match="indicators"):
+        plots.sensitivity_figure(sens, ("colour",))
+    cyc = engine_cycle(cyl, 900.0, pressure, samples_per_revolution=72)
+    cf = plots.cycle_figure(cyc)
+    assert np.asarray(traces(cf, "net torque")[0].y) == pytest.approx(cyc.net_torque)
+    bench = run_bench(disc_rotor(0.098, 0.036704, 0.020, 0.188, 0.4, hole_mass=0.0146,
+                                 hole_radius=0.0293),
+                      BenchSettings(speed=300.0, ramp_time=0.2, hold_time=0.2, samples=100))
+    bf = plots.bench_figure(bench)
+    assert np.asarray(traces(bf, "bearing A")[0].y) == pytest.approx(bench.bearing_load_a)

@@ -542,6 +542,330 @@ def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
     return fig
 
 
+# --------------------------------------------------------------------------- single cylinder
+def single_cylinder_forces(study: Any) -> go.Figure:
+    """In-line, transverse and resultant shaking force of one cylinder versus crank angle
+    (:class:`~crankbalance.single_cylinder.BalanceFactorStudy`)."""
+    go = _go()
+    deg = np.degrees(study.crank_angle)
+    fig = go.Figure()
+    for name, values, color, dash in (
+            ("in-line (cylinder axis)", study.in_line, COLORS["forward"], "solid"),
+            ("transverse", study.transverse, COLORS["backward"], "solid"),
+            ("resultant", study.resultant, COLORS["total"], "dash")):
+        fig.add_trace(go.Scatter(x=deg, y=values, name=name,
+                                 line={"color": color, "width": 2, "dash": dash}))
+    fig.update_xaxes(title_text="crank angle from top dead centre [deg]",
+                     tickvals=list(range(0, 361, 45)))
+    fig.update_yaxes(title_text="force [N]")
+    fig.update_layout(template=TEMPLATE, hovermode="x unified",
+                      title=f"Single cylinder, balance factor {study.balance_factor:.0%}: "
+                            f"peak resultant {study.peak_resultant:.4g} N",
+                      legend={"orientation": "h", "y": -0.2})
+    return fig
+
+
+def single_cylinder_polar(study: Any) -> go.Figure:
+    """Polar diagram of the residual shaking force of one cylinder: the tip of the force
+    vector over a revolution (transverse horizontal, in-line vertical), with the circle of
+    the peak resultant."""
+    go = _go()
+    fig = go.Figure()
+    fig.add_trace(go.Scatter(x=study.transverse, y=study.in_line, mode="lines",
+                             name="residual force", line={"color": COLORS["after"], "width": 2.5},
+                             text=[f"{a:.0f} deg" for a in np.degrees(study.crank_angle)],
+                             hovertemplate="crank %{text}<br>transverse %{x:.4g} N<br>"
+                                           "in-line %{y:.4g} N<extra></extra>"))
+    ring = np.linspace(0, 2 * np.pi, 181)
+    peak = study.peak_resultant
+    fig.add_trace(go.Scatter(x=peak * np.sin(ring), y=peak * np.cos(ring), mode="lines",
+                             name=f"peak resultant {peak:.4g} N",
+                             line={"color": COLORS["before"], "dash": "dot"}))
+    p = study.primary_force
+    fig.add_trace(go.Scatter(x=p * np.sin(ring), y=p * np.cos(ring), mode="lines",
+                             name=f"primary force P = {p:.4g} N (no balance)",
+                             line={"color": COLORS["forward"], "dash": "dash", "width": 1}))
+    reach = 1.1 * max(peak, p)
+    fig.update_xaxes(title_text="transverse [N]", range=[-reach, reach])
+    fig.update_yaxes(title_text="in-line [N]", range=[-reach, reach], scaleanchor="x",
+                     scaleratio=1)
+    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
+                      title=f"Residual force, balance factor {study.balance_factor:.0%}")
+    return fig
+
+
+def balance_factor_sweep(study: Any) -> go.Figure:
+    """Peak resultant shaking force versus balance factor, with the studied factor and the
+    optimum marked."""
+    go = _go()
+    fig = go.Figure()
+    fig.add_trace(go.Scatter(x=100 * np.asarray(study.sweep_balance_factor),
+                             y=study.sweep_peak_resultant, mode="lines", name="peak resultant",
+                             line={"color": COLORS["total"], "width": 2}))
+    fig.add_trace(go.Scatter(x=[100 * study.optimum_balance_factor],
+                             y=[study.optimum_peak_resultant], mode="markers",
+                             name=f"optimum {study.optimum_balance_factor:.1%}: "
+                                  f"{study.optimum_peak_resultant:.4g} N",
+                             marker={"color": COLORS["counterweight"], "size": 12}))
+    fig.add_trace(go.Scatter(x=[100 * study.balance_factor], y=[study.peak_resultant],
+                             mode="markers", name=f"studied {study.balance_factor:.1%}: "
+                                                  f"{study.peak_resultant:.4g} N",
+                             marker={"color": COLORS["after"], "size": 12, "symbol": "diamond"}))
+    fig.update_xaxes(title_text="balance factor [%]")
+    fig.update_yaxes(title_text="peak resultant force [N]", rangemode="tozero")
+    fig.update_layout(template=TEMPLATE, title="Peak shaking force versus balance factor",
+                      legend={"orientation": "h", "y": -0.2})
+    return fig
+
+
+# --------------------------------------------------------------------------- counterweight
+def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
+    """Counterweight designs: every feasible design found (a sample of at most
+    ``max_points``), the Pareto front of mass versus radial space, and the least-mass and
+    least-radius designs (:class:`~crankbalance.counterweight.CounterweightOptimum`)."""
+    go = _go()
+    radius = np.asarray(optimum.radius) * 1e3
+    mass = np.asarray(optimum.mass) * 1e3
+    fig = go.Figure()
+    n = mass.size
+    if n:
+        pick = np.arange(n) if n <= max_points else np.random.default_rng(0).choice(
+            n, max_points, replace=False)
+        fig.add_trace(go.Scattergl(x=radius[pick], y=mass[pick], mode="markers",
+                                   name=f"feasible designs ({n})",
+                                   marker={"color": "#c7c7c7", "size": 3}))
+    front = np.asarray(optimum.pareto, dtype=int)
+    fig.add_trace(go.Scatter(x=radius[front], y=mass[front], mode="lines+markers",
+                             name=f"Pareto front ({front.size})",
+                             line={"color": COLORS["forward"], "width": 2},
+                             marker={"size": 5}))
+    for idx, label, color, symbol in ((optimum.least_mass, "least mass", COLORS["counterweight"],
+                                       "star"),
+                                      (optimum.least_radius, "least radius", COLORS["after"],
+                                       "diamond")):
+        fig.add_trace(go.Scatter(
+            x=[radius[idx]], y=[mass[idx]], mode="markers",
+            name=f"{label}: {mass[idx]:.1f} g, {radius[idx]:.2f} mm",
+            marker={"color": color, "size": 15, "symbol": symbol}))
+    measure = "outer radius" if optimum.radius_measure == "true" else "R_min bound (paper)"
+    fig.update_xaxes(title_text=f"radial space, {measure} [mm]")
+    fig.update_yaxes(title_text="counterweight mass [g]")
+    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
+                      title=f"Counterweight designs for m r = "
+                            f"{optimum.required_first_moment * 1e6:.4g} g·mm")
+    return fig
+
+
+def counterweight_profile(design: Any) -> go.Figure:
+    """The counterweight profile drawn to scale (mm): the outline, the web circle it sits on,
+    the crank axis and the centre of gravity
+    (:class:`~crankbalance.counterweight.CounterweightDesign`)."""
+    go = _go()
+    props = design.properties()
+    fig = go.Figure()
+    for k, loop in enumerate(design.outline(tolerance=2e-6)):
+        closed = np.vstack([loop, loop[:1]]) * 1e3
+        fig.add_trace(go.Scatter(x=closed[:, 0], y=closed[:, 1], mode="lines", fill="toself",
+                                 fillcolor="rgba(127,140,141,0.6)", name="profile",
+                                 legendgroup="profile", showlegend=k == 0,
+                                 line={"color": "black", "width": 1.5}))
+    ring = np.linspace(0, 2 * np.pi, 181)
+    r = design.web_radius * 1e3
+    fig.add_trace(go.Scatter(x=r * np.cos(ring), y=r * np.sin(ring), mode="lines",
+                             name=f"web circle r_cw = {r:.2f} mm",
+                             line={"color": "#c0392b", "dash": "dash", "width": 1}))
+    cg = float(props.cg_radius) * 1e3
+    fig.add_trace(go.Scatter(x=[0.0], y=[cg], mode="markers", name=f"CG at {cg:.2f} mm",
+                             marker={"color": COLORS["after"], "size": 10, "symbol": "x"}))
+    fig.add_trace(go.Scatter(x=[0.0], y=[0.0], mode="markers", name="crank axis",
+                             marker={"color": "black", "size": 10, "symbol": "cross-thin",
+                                     "line": {"width": 2}}))
+    reach = 1.1 * max(float(props.outer_radius) * 1e3, r)
+    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
+    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x",
+                     scaleratio=1)
+    fig.update_layout(
+        template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
+        title=f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
+              f"{design.thickness * 1e3:.2f} mm, outer radius "
+              f"{float(props.outer_radius) * 1e3:.2f} mm")
+    return fig
+
+
+# --------------------------------------------------------------------------- balance shaft
+def shaft_study(study: Any) -> go.Figure:
+    """Balance-shaft placement study (Kim 2018, Figs. 6-9): bearing loads, bending measure
+    and first bending frequency along the design variable, and the normalised measures with
+    the objective J and its optimum (:class:`~crankbalance.balance_shaft.PlacementStudy`)."""
+    go = _go()
+    x = 100 * np.asarray(study.positions)
+    fig = _subplots(rows=2, cols=2, horizontal_spacing=0.12, vertical_spacing=0.16,
+                    subplot_titles=("Bearing loads", "Bending (integral of deflection)",
+                                    "First bending frequency", "Objective J"))
+    reactions = np.atleast_2d(np.asarray(study.reactions))
+    for b in range(reactions.shape[1]):
+        fig.add_trace(go.Scatter(x=x, y=reactions[:, b], name=f"bearing {b + 1}",
+                                 line={"color": ORDER_COLORS[b % len(ORDER_COLORS)]}),
+                      row=1, col=1)
+    fig.add_trace(go.Scatter(x=x, y=study.reaction_difference, name="largest - smallest",
+                             line={"color": COLORS["total"], "dash": "dot"}), row=1, col=1)
+    fig.add_trace(go.Scatter(x=x, y=np.asarray(study.bending_measure) * 1e6,
+                             name="bending measure A", line={"color": COLORS["forward"]}),
+                  row=1, col=2)
+    fig.add_trace(go.Scatter(x=x, y=study.first_frequency, name="first frequency",
+                             line={"color": COLORS["rotating"]}), row=2, col=1)
+    fig.add_trace(go.Scatter(x=x, y=study.normalised_bending, name="A / max A",
+                             line={"color": COLORS["forward"], "dash": "dash"}), row=2, col=2)
+    fig.add_trace(go.Scatter(x=x, y=study.normalised_secondary,
+                             name=f"B / max B ({study.secondary})",
+                             line={"color": COLORS["backward"], "dash": "dash"}), row=2, col=2)
+    fig.add_trace(go.Scatter(x=x, y=study.objective, name=f"J (w = {study.weight:g})",
+                             line={"color": COLORS["total"], "width": 2.5}), row=2, col=2)
+    fig.add_trace(go.Scatter(x=[100 * study.optimum_position], y=[study.optimum_objective],
+                             mode="markers", name=f"optimum {study.optimum_position:.1%}",
+                             marker={"color": COLORS["after"], "size": 12}), row=2, col=2)
+    fig.update_yaxes(title_text="load [N]", row=1, col=1)
+    fig.update_yaxes(title_text="A [mm²]", row=1, col=2)
+    fig.update_yaxes(title_text="frequency [Hz]", row=2, col=1)
+    fig.update_yaxes(title_text="J [-]", row=2, col=2)
+    for row in (1, 2):
+        for col in (1, 2):
+            fig.update_xaxes(title_text=f"{study.design_variable} [% of length]", row=row,
+                             col=col)
+    fig.update_layout(template=TEMPLATE, height=700, legend={"orientation": "h", "y": -0.15},
+                      title=f"Balance-shaft placement study ({study.case})")
+    return fig
+
+
+def shaft_response_figure(response: Any, shaft: Any = None) -> go.Figure:
+    """Deflection amplitude along a balance shaft
+    (:class:`~crankbalance.balance_shaft.ShaftResponse`); with ``shaft``
+    (:class:`~crankbalance.balance_shaft.BalanceShaft`) the bearings and masses are marked."""
+    go = _go()
+    x = np.asarray(response.x) * 1e3
+    deflection = np.abs(np.asarray(response.deflection)) * 1e6
+    fig = go.Figure(go.Scatter(x=x, y=deflection, name="deflection amplitude",
+                               line={"color": COLORS["forward"], "width": 2.5}))
+    if shaft is not None:
+        fig.add_trace(go.Scatter(
+            x=np.asarray(shaft.bearing_positions) * 1e3, y=np.zeros(len(shaft.bearing_positions)),
+            mode="markers", name="bearings",
+            marker={"symbol": "triangle-up", "size": 14, "color": COLORS["total"]}))
+        fig.add_trace(go.Scatter(
+            x=np.asarray(shaft.mass_positions) * 1e3, y=np.zeros(len(shaft.mass_positions)),
+            mode="markers", name="unbalance masses",
+            marker={"size": 14, "color": COLORS["after"]}))
+    fig.update_xaxes(title_text="position along the shaft [mm]")
+    fig.update_yaxes(title_text="deflection [µm]")
+    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
+                      title=f"Balance shaft: max deflection {response.max_deflection * 1e6:.1f} µm,"
+                            f" first bending frequency {response.first_frequency:.0f} Hz")
+    return fig
+
+
+# --------------------------------------------------------------------------- performance
+SENSITIVITY_LABELS = {
+    "mean_friction_torque": ("mean friction torque", "N·m", 1.0),
+    "friction_power": ("friction power", "W", 1.0),
+    "peak_bearing_load": ("peak bearing load", "N", 1.0),
+    "mean_bearing_load": ("mean bearing load", "N", 1.0),
+    "peak_net_torque": ("peak net torque", "N·m", 1.0),
+    "max_crank_acceleration": ("max crank acceleration", "rad/s²", 1.0),
+    "speed_fluctuation": ("speed fluctuation", "%", 100.0),
+    "peak_shaking_force": ("peak shaking force", "N", 1.0),
+}
+
+
+def sensitivity_figure(result: Any,
+                       indicators: tuple[str, ...] | None = None) -> go.Figure:
+    """Performance indicators versus balance factor, one line per reciprocating-mass scale
+    (:class:`~crankbalance.dynamics.SensitivityResult`)."""
+    go = _go()
+    names = indicators or ("mean_friction_torque", "peak_bearing_load", "friction_power",
+                           "peak_shaking_force", "speed_fluctuation", "peak_net_torque")
+    for name in names:
+        if name not in SENSITIVITY_LABELS:
+            raise InputError("indicators", name, f"one of {sorted(SENSITIVITY_LABELS)}")
+    cols = 2
+    rows = math.ceil(len(names) / cols)
+    fig = _subplots(rows=rows, cols=cols, horizontal_spacing=0.12, vertical_spacing=0.12,
+                    subplot_titles=[SENSITIVITY_LABELS[n][0] for n in names])
+    bf = 100 * np.asarray(result.balance_factors)
+    scales = np.asarray(result.mass_scales)
+    for k, name in enumerate(names):
+        label, unit, factor = SENSITIVITY_LABELS[name]
+        values = np.atleast_2d(np.asarray(getattr(result, name))) * factor
+        row, col = k // cols + 1, k % cols + 1
+        for j, scale in enumerate(scales):
+            fig.add_trace(go.Scatter(
+                x=bf, y=values[j], mode="lines+markers", name=f"reciprocating mass x {scale:g}",
+                legendgroup=f"scale{j}", showlegend=k == 0,
+                line={"color": ORDER_COLORS[j % len(ORDER_COLORS)]}), row=row, col=col)
+        fig.update_yaxes(title_text=f"[{unit}]", row=row, col=col)
+        fig.update_xaxes(title_text="balance factor [%]", row=row, col=col)
+    fig.update_layout(template=TEMPLATE, height=320 * rows,
+                      legend={"orientation": "h", "y": -0.08},
+                      title=f"Performance versus balance factor at "
+                            f"{result.speed * 30 / math.pi:.0f} rpm")
+    return fig
+
+
+def bench_figure(result: Any) -> go.Figure:
+    """Rotor test bench time histories: speed, motor and friction torque, bearing loads
+    (:class:`~crankbalance.dynamics.BenchResult`)."""
+    go = _go()
+    t = np.asarray(result.time)
+    fig = _subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
+                    subplot_titles=("Speed", "Torque", "Bearing loads"))
+    fig.add_trace(go.Scatter(x=t, y=np.asarray(result.speed) * 30 / math.pi, name="speed",
+                             line={"color": COLORS["total"]}), row=1, col=1)
+    fig.add_trace(go.Scatter(x=t, y=result.motor_torque, name="motor torque",
+                             line={"color": COLORS["forward"]}), row=2, col=1)
+    fig.add_trace(go.Scatter(x=t, y=result.friction_torque, name="friction torque",
+                             line={"color": COLORS["backward"]}), row=2, col=1)
+    fig.add_trace(go.Scatter(x=t, y=result.bearing_load_a, name="bearing A",
+                             line={"color": COLORS["counterweight"]}), row=3, col=1)
+    fig.add_trace(go.Scatter(x=t, y=result.bearing_load_b, name="bearing B",
+                             line={"color": COLORS["after"]}), row=3, col=1)
+    fig.update_yaxes(title_text="[rpm]", row=1, col=1)
+    fig.update_yaxes(title_text="[N·m]", row=2, col=1)
+    fig.update_yaxes(title_text="[N]", row=3, col=1)
+    fig.update_xaxes(title_text="time [s]", row=3, col=1)
+    fig.update_layout(template=TEMPLATE, height=750, legend={"orientation": "h", "y": -0.08},
+                      title=f"Test bench: required torque {result.required_torque:.4g} N·m, "
+                            f"friction power {result.friction_power:.4g} W")
+    return fig
+
+
+def cycle_figure(result: Any) -> go.Figure:
+    """Engine-cycle histories versus crank angle: torques, bearing load and shaking forces
+    (:class:`~crankbalance.dynamics.CycleResult`)."""
+    go = _go()
+    deg = np.degrees(np.asarray(result.angle))
+    fig = _subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
+                    subplot_titles=("Torques", "Main-bearing load", "Shaking forces"))
+    for name, values, color in (("gas", result.gas_torque, COLORS["backward"]),
+                                ("inertia", result.inertia_torque, COLORS["forward"]),
+                                ("friction", result.friction_torque, COLORS["rotating"]),
+                                ("net", result.net_torque, COLORS["total"])):
+        fig.add_trace(go.Scatter(x=deg, y=values, name=f"{name} torque",
+                                 line={"color": color}), row=1, col=1)
+    fig.add_trace(go.Scatter(x=deg, y=result.bearing_load, name="bearing load",
+                             line={"color": COLORS["after"]}), row=2, col=1)
+    fig.add_trace(go.Scatter(x=deg, y=result.shaking_inline, name="shaking in-line",
+                             line={"color": COLORS["forward"], "dash": "dash"}), row=3, col=1)
+    fig.add_trace(go.Scatter(x=deg, y=result.shaking_transverse, name="shaking transverse",
+                             line={"color": COLORS["backward"], "dash": "dash"}), row=3, col=1)
+    fig.update_yaxes(title_text="[N·m]", row=1, col=1)
+    fig.update_yaxes(title_text="[N]", row=2, col=1)
+    fig.update_yaxes(title_text="[N]", row=3, col=1)
+    fig.update_xaxes(title_text="crank angle [deg]", row=3, col=1)
+    fig.update_layout(template=TEMPLATE, height=750, legend={"orientation": "h", "y": -0.08},
+                      title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
+                            f"friction power {result.friction_power:.4g} W")
+    return fig
+
+
 # --------------------------------------------------------------------------- export
 def _ensure_browser() -> None:
     """Point kaleido (choreographer) at Debian's chromium when it finds no browser."""
