@@ -52,6 +52,9 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "crankbalance.cli.performance:sensitivity",
         "Performance against the balance factor.",
     ),
+    "web": ("crankbalance.cli.web:web", "Serve the web application on 127.0.0.1."),
+    "plot": ("crankbalance.cli.plot:plot", "Draw a figure of an engine (PNG, SVG, HTML)."),
+    "report": ("crankbalance.cli.report:report", "Engine balancing report (HTML or PDF)."),
 }
 
 

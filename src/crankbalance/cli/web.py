@@ -1,0 +1,40 @@
+"""``crankbalance web``: serve the web application on 127.0.0.1."""
+
+from __future__ import annotations
+
+import click
+
+from ..errors import InputError
+
+
+@click.command()
+@click.option(
+    "--port",
+    type=click.IntRange(1, 65535),
+    default=8080,
+    show_default=True,
+    help="TCP port on 127.0.0.1.",
+)
+@click.option(
+    "--preset",
+    default="paper-inline3",
+    show_default=True,
+    help="Engine loaded when a page opens without ?preset=NAME.",
+)
+@click.option("--show/--no-show", default=False, show_default=True, help="Open a browser window.")
+def web(port: int, preset: str, show: bool) -> None:
+    """Serve the web application (NiceGUI) on http://127.0.0.1:PORT.
+
+    Each browser tab keeps its own project; ``/?preset=v8-crossplane`` opens a preset.
+    """
+    from ..io import list_presets
+
+    if preset not in list_presets():
+        raise InputError("--preset", preset, "unknown preset; `crankbalance presets` lists them")
+    try:
+        from ..web.server import serve
+    except ImportError as error:  # pragma: no cover - depends on the installed extras
+        raise InputError(
+            "web", None, f"needs the web extra: pip install 'crankbalance[web]' ({error})"
+        ) from None
+    serve(port=port, preset=preset, show=show)

@@ -1,0 +1,571 @@
+"""The web application's project: form texts -> engine-file dictionary -> validated spec.
+
+Nothing here imports NiceGUI: a :class:`Project` is one user's state (the texts of the
+form fields, the settings of the study tabs and the last results) and is tested on its
+own. The web page keeps one Project per browser tab (client); there is no module state.
+
+Every form field is bound to one key path of the engine file (``docs/engine_file.md``),
+so the one validated model of :mod:`crankbalance.spec` checks the form exactly as it
+checks a file; its :class:`~crankbalance.errors.InputError` names the field, which is
+how a message finds its way beside the field it concerns.
+"""
+
+from __future__ import annotations
+
+import copy
+import json
+import math
+import time
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+from ..errors import InputError
+from ..spec import LAYOUTS, EngineSpec, spec_from_dict
+from ..units import parse_quantity
+
+Kind = Literal["text", "quantity", "int", "float", "intlist", "choice", "angle_or_optimal"]
+SETTINGS_TAG = "# crankbalance-web settings: "
+
+
+@dataclass(frozen=True)
+class FormField:
+    """One input of the form, bound to ``path`` in the engine file."""
+
+    key: str
+    path: tuple[str, ...]
+    label: str
+    kind: Kind = "quantity"
+    unit: str = "length"  # quantity kind for kind == "quantity"
+    options: tuple[str, ...] = ()
+    hint: str = ""
+    group: str = ""  # "parts", "totals", "fraction", "cg", "primary", "secondary", ...
+
+    @property
+    def dotted(self) -> str:
+        return ".".join(self.path)
+
+
+F = FormField
+ENGINE_FIELDS: tuple[FormField, ...] = (
+    F("name", ("name",), "Engine name", "text"),
+    F("layout", ("crank_train", "layout"), "Layout", "choice", options=LAYOUTS),
+    F("cylinders", ("crank_train", "cylinders"), "Cylinders", "int"),
+    F(
+        "firing_order",
+        ("crank_train", "firing_order"),
+        "Firing order",
+        "intlist",
+        hint="e.g. 1, 3, 2 (empty: cylinder order)",
+    ),
+    F("strokes", ("crank_train", "strokes"), "Strokes per cycle", "choice", options=("4", "2")),
+    F(
+        "bank_angle",
+        ("crank_train", "bank_angle"),
+        "Bank angle",
+        unit="angle",
+        hint="vee / W only, e.g. 90 deg",
+    ),
+    F("crank_pitch", ("crank_train", "crank_pitch"), "Crank pitch", hint="e.g. 90 mm"),
+    F("crank_radius", ("crank_train", "crank_radius"), "Crank radius", hint="e.g. 40 mm"),
+    F("rod_length", ("crank_train", "rod_length"), "Rod length", hint="e.g. 135 mm"),
+    F("pin_offset", ("crank_train", "pin_offset"), "Wrist-pin offset", hint="e.g. 0 mm"),
+    F("speed", ("speed",), "Speed", unit="speed", hint="e.g. 2000 rpm"),
+    F(
+        "kinematics",
+        ("kinematics",),
+        "Kinematics",
+        "choice",
+        options=("exact", "series", "first-order"),
+    ),
+)
+BALANCING_FIELDS: tuple[FormField, ...] = (
+    F(
+        "cw_webs",
+        ("counterweights", "webs"),
+        "Webs with a counterweight",
+        "intlist",
+        hint="0/1, two per throw, e.g. 1, 1, 0, 0, 1, 1 (empty: all)",
+        group="cw",
+    ),
+    F(
+        "cw_cg_radius",
+        ("counterweights", "cg_radius"),
+        "Counterweight CG radius",
+        hint="e.g. 30 mm (empty: no counterweight table, defaults)",
+        group="cw",
+    ),
+    F(
+        "cw_angle",
+        ("counterweights", "angle"),
+        "Counterweight angle",
+        "angle_or_optimal",
+        hint="e.g. 30 deg, or optimal",
+        group="cw",
+    ),
+    F(
+        "cw_balance_factor",
+        ("counterweights", "balance_factor"),
+        "Balance factor",
+        "float",
+        hint="0..2, share of the primary reciprocating force",
+        group="cw",
+    ),
+    F(
+        "cw_method",
+        ("counterweights", "method"),
+        "Counterweight method",
+        "choice",
+        options=("pattern", "individual"),
+        group="cw",
+    ),
+    F(
+        "primary_arrangement",
+        ("balance_shafts", "primary", "arrangement"),
+        "Primary shafts",
+        "choice",
+        options=("none", "pair", "counter-rotating"),
+        group="primary",
+    ),
+    F(
+        "primary_cg_radius",
+        ("balance_shafts", "primary", "cg_radius"),
+        "Primary shaft CG radius",
+        hint="e.g. 30 mm",
+        group="primary",
+    ),
+    F(
+        "primary_length",
+        ("balance_shafts", "primary", "length"),
+        "Primary shaft length",
+        hint="e.g. 200 mm",
+        group="primary",
+    ),
+    F(
+        "secondary_arrangement",
+        ("balance_shafts", "secondary", "arrangement"),
+        "Secondary shafts",
+        "choice",
+        options=("none", "pair", "counter-rotating"),
+        group="secondary",
+    ),
+    F(
+        "secondary_cg_radius",
+        ("balance_shafts", "secondary", "cg_radius"),
+        "Secondary shaft CG radius",
+        hint="e.g. 30 mm",
+        group="secondary",
+    ),
+    F(
+        "secondary_length",
+        ("balance_shafts", "secondary", "length"),
+        "Secondary shaft length",
+        hint="e.g. 200 mm",
+        group="secondary",
+    ),
+)
+MASS_FIELDS: tuple[FormField, ...] = (
+    F(
+        "piston",
+        ("masses", "piston"),
+        "Piston (with rings)",
+        unit="mass",
+        hint="e.g. 500 g",
+        group="parts",
+    ),
+    F("wrist_pin", ("masses", "wrist_pin"), "Wrist pin", unit="mass", group="parts"),
+    F("conrod", ("masses", "conrod"), "Conrod", unit="mass", group="parts"),
+    F(
+        "conrod_rotating_fraction",
+        ("masses", "conrod_rotating_fraction"),
+        "Conrod rotating fraction",
+        "float",
+        hint="0..1, e.g. 0.6667",
+        group="fraction",
+    ),
+    F(
+        "conrod_cg_from_big_end",
+        ("masses", "conrod_cg_from_big_end"),
+        "Conrod CG from big end",
+        hint="e.g. 45 mm",
+        group="cg",
+    ),
+    F(
+        "conrod_inertia",
+        ("masses", "conrod_inertia"),
+        "Conrod inertia about its CG",
+        unit="inertia",
+        hint="optional, e.g. 2000 kg*mm^2",
+        group="parts",
+    ),
+    F("crankpin", ("masses", "crankpin"), "Crankpin", unit="mass", group="parts"),
+    F("crank_web", ("masses", "crank_web"), "Crank web (each)", unit="mass", group="parts"),
+    F(
+        "crank_web_cg_radius",
+        ("masses", "crank_web_cg_radius"),
+        "Crank web CG radius",
+        group="parts",
+    ),
+    F(
+        "reciprocating",
+        ("masses", "reciprocating"),
+        "Reciprocating mass per cylinder",
+        unit="mass",
+        group="totals",
+    ),
+    F(
+        "rotating",
+        ("masses", "rotating"),
+        "Rotating mass per throw (big ends incl.)",
+        unit="mass",
+        group="totals",
+    ),
+)
+FIELDS: tuple[FormField, ...] = ENGINE_FIELDS + BALANCING_FIELDS + MASS_FIELDS
+FIELD_BY_KEY: dict[str, FormField] = {f.key: f for f in FIELDS}
+FIELD_BY_PATH: dict[str, FormField] = {f.dotted: f for f in FIELDS}
+DEFAULTS: dict[str, str] = {
+    "strokes": "4",
+    "kinematics": "exact",
+    "cw_method": "pattern",
+    "primary_arrangement": "none",
+    "secondary_arrangement": "none",
+    "layout": "inline",
+}
+
+#: settings of the study tabs (saved with the project as a comment line of the engine file)
+DEFAULT_SETTINGS: dict[str, Any] = {
+    "mass_mode": "parts",  # parts | totals
+    "conrod_split": "cg",  # fraction | cg
+    "orders": 8,
+    "curve_quantity": "force",
+    "polar_order": 1,
+    # counterweight design
+    "cw_density": "8000 kg/m^3",
+    "cw_max_mass": "",
+    "cw_max_radius": "",
+    "cw_min_balance": "100",
+    "cw_iterations": "12",
+    "cw_population": "1024",
+    "cw_seed": "1",
+    # single cylinder
+    "sc_cylinder": "1",
+    "sc_balance_factor": "0.5",
+    "sc_grade": "G6.3",
+    "sc_rotor_mass": "",
+    "sc_residual": "",
+    "rb_new_reciprocating": "",
+    "rb_new_rotating": "",
+    "rb_cw_mass": "",
+    "rb_cw_radius": "",
+    "rb_hole_diameter": "8 mm",
+    "rb_hole_radius": "",
+    # balance shaft
+    "bs_length": "300 mm",
+    "bs_diameter": "25 mm",
+    "bs_weight": "2",
+    # performance
+    "pf_bore": "",
+    "pf_balance_factors": "0, 0.25, 0.5, 0.75, 1",
+    "pf_crank_inertia": "0.1 kg*m^2",
+    "pf_friction_coefficient": "0.005",
+    "pf_journal_diameter": "30 mm",
+}
+
+
+def _format_value(value: Any) -> str:
+    if isinstance(value, list):
+        return ", ".join(str(v) for v in value)
+    if isinstance(value, float):
+        return f"{value:g}"
+    return str(value)
+
+
+def check_field(f: FormField, text: str) -> Any:
+    """Parse the text of one field on its own; raise InputError naming the field."""
+    text = text.strip()
+    where = f.dotted
+    if f.kind == "text":
+        return text
+    if f.kind == "choice":
+        if text not in f.options:
+            raise InputError(where, text, f"must be one of {', '.join(f.options)}")
+        return int(text) if f.key == "strokes" else text
+    if f.kind == "int":
+        try:
+            return int(text)
+        except ValueError:
+            raise InputError(where, text, "must be a whole number, e.g. 3") from None
+    if f.kind == "float":
+        try:
+            value = float(text)
+        except ValueError:
+            raise InputError(where, text, "must be a number, e.g. 0.5") from None
+        if not math.isfinite(value):
+            raise InputError(where, text, "must be a finite number")
+        return value
+    if f.kind == "intlist":
+        parts = [p for p in text.replace(";", ",").replace(" ", ",").split(",") if p]
+        try:
+            return [int(p) for p in parts]
+        except ValueError:
+            raise InputError(
+                where, text, "must be whole numbers separated by commas, e.g. 1, 3, 2"
+            ) from None
+    if f.kind == "angle_or_optimal":
+        if text.lower() == "optimal":
+            return "optimal"
+        parse_quantity(text, "angle", where)
+        return text
+    parse_quantity(text, f.unit, where)
+    return text
+
+
+@dataclass
+class Computed:
+    """The results of one computation (None where a study failed)."""
+
+    spec: EngineSpec
+    analysis: Any
+    study: Any
+    elapsed: float
+    error: str = ""
+
+
+@dataclass
+class Project:
+    """One user's project: form texts, settings, unknown engine-file keys kept as they are."""
+
+    texts: dict[str, str] = field(default_factory=dict)
+    settings: dict[str, Any] = field(default_factory=lambda: dict(DEFAULT_SETTINGS))
+    extras: dict[str, Any] = field(default_factory=dict)
+    errors: dict[str, str] = field(default_factory=dict)
+    general_error: str = ""
+    spec: EngineSpec | None = None
+    computed: Computed | None = None
+
+    # ------------------------------------------------------------------ loading
+    @classmethod
+    def from_spec(cls, spec: EngineSpec, settings: dict[str, Any] | None = None) -> Project:
+        project = cls()
+        project.load_spec(spec, settings)
+        return project
+
+    @classmethod
+    def from_preset(cls, name: str) -> Project:
+        from ..io import preset_text
+
+        return cls.from_text(preset_text(name), f"preset {name}")
+
+    @classmethod
+    def from_text(cls, text: str, source: str = "project file", fmt: str = "toml") -> Project:
+        project = cls()
+        project.load_text(text, source, fmt)
+        return project
+
+    def load_text(self, text: str, source: str = "project file", fmt: str = "toml") -> None:
+        """Replace the project by the content of an engine file; on error raise InputError
+        and leave the project as it was."""
+        from ..io import parse_engine_text
+
+        spec = parse_engine_text(text, source, fmt)
+        settings = _settings_from_text(text)
+        self.load_spec(spec, settings)
+
+    def load_spec(self, spec: EngineSpec, settings: dict[str, Any] | None = None) -> None:
+        data = spec.to_file_dict()
+        texts: dict[str, str] = {}
+        extras = copy.deepcopy(data)
+        for f in FIELDS:
+            value = _pop_path(extras, f.path)
+            if value is not None:
+                texts[f.key] = _format_value(value)
+        _prune(extras)
+        for key, value in DEFAULTS.items():
+            texts.setdefault(key, value)
+        masses = data.get("masses", {})
+        for name in ("primary", "secondary"):
+            table = data.get("balance_shafts", {}).get(name)
+            if table is not None and f"{name}_arrangement" not in texts:
+                texts[f"{name}_arrangement"] = "pair"
+            if table is not None and texts.get(f"{name}_arrangement") == "none":
+                texts[f"{name}_arrangement"] = "pair"
+        new_settings = dict(DEFAULT_SETTINGS)
+        new_settings["mass_mode"] = "parts" if "piston" in masses else "totals"
+        new_settings["conrod_split"] = "fraction" if "conrod_rotating_fraction" in masses else "cg"
+        if settings:
+            new_settings.update({k: v for k, v in settings.items() if k in DEFAULT_SETTINGS})
+        self.texts, self.extras, self.settings = texts, extras, new_settings
+        self.validate()
+
+    # ------------------------------------------------------------------ editing
+    def set(self, key: str, text: str) -> dict[str, str]:
+        """Change one field and validate the whole engine; return the errors by field key."""
+        if key not in FIELD_BY_KEY:
+            raise KeyError(key)
+        self.texts[key] = "" if text is None else str(text)
+        return self.validate()
+
+    def set_setting(self, key: str, value: Any) -> dict[str, str]:
+        if key not in DEFAULT_SETTINGS:
+            raise KeyError(key)
+        self.settings[key] = value
+        if key in ("mass_mode", "conrod_split"):
+            return self.validate()
+        return self.errors
+
+    def active(self, f: FormField) -> bool:
+        """Whether a field takes part in the engine (parts/totals, conrod split, shafts)."""
+        s = self.settings
+        if f.group in ("parts", "fraction", "cg") and s["mass_mode"] != "parts":
+            return False
+        if f.group == "totals" and s["mass_mode"] != "totals":
+            return False
+        if f.group in ("fraction", "cg") and s["conrod_split"] != f.group:
+            return False
+        if f.group in ("primary", "secondary") and not f.key.endswith("arrangement"):
+            return self.texts.get(f"{f.group}_arrangement", "none") != "none"
+        return True
+
+    def file_dict(self) -> tuple[dict[str, Any], dict[str, str]]:
+        """The engine-file dictionary of the form, and the errors of single fields."""
+        data = copy.deepcopy(self.extras)
+        errors: dict[str, str] = {}
+        for f in FIELDS:
+            text = self.texts.get(f.key, "").strip()
+            if not self.active(f) or not text:
+                continue
+            if (f.key.endswith("_arrangement") and text == "none") or (
+                f.key == "cw_method" and text == "pattern"
+            ):
+                continue  # no shaft set / the default method needs no counterweight table
+            try:
+                value = check_field(f, text)
+            except InputError as error:
+                errors[f.key] = str(error)
+                continue
+            _set_path(data, f.path, value)
+        return data, errors
+
+    def validate(self) -> dict[str, str]:
+        """Check every field, then the whole engine through the spec model."""
+        data, errors = self.file_dict()
+        self.general_error = ""
+        self.spec = None
+        if not errors:
+            try:
+                self.spec = spec_from_dict(data)
+            except InputError as error:
+                f = self.field_for(error.field)
+                if f is not None:
+                    errors[f.key] = str(error)
+                else:
+                    self.general_error = str(error)
+        self.errors = errors
+        return errors
+
+    def field_for(self, dotted: str) -> FormField | None:
+        """The visible form field an InputError belongs to (None: a general message)."""
+        f = _field_for(dotted)
+        if f is not None and self.active(f):
+            return f
+        if dotted.split(".")[0].split("[")[0] == "masses":
+            rotating_side = any(k in dotted for k in ("crankpin", "crank_web", "rotating"))
+            if self.settings["mass_mode"] == "totals":
+                wanted = "rotating" if rotating_side else "reciprocating"
+            else:
+                wanted = "crankpin" if rotating_side else "piston"
+            return FIELD_BY_KEY[wanted]
+        return None
+
+    # ------------------------------------------------------------------ computing
+    def compute(self) -> Computed | None:
+        """Free forces and moments and the balancing study of the current engine."""
+        from ..analysis import analyze, balance_engine
+
+        if self.spec is None:
+            return None
+        t0 = time.perf_counter()
+        orders = int(self.settings.get("orders", 8))
+        try:
+            analysis = analyze(self.spec, orders=orders)
+            study = balance_engine(self.spec, orders=max(orders, 2))
+            error = ""
+        except InputError as exc:
+            f = self.field_for(exc.field)
+            if f is not None:
+                self.errors[f.key] = str(exc)
+            else:
+                self.general_error = str(exc)
+            return None
+        self.computed = Computed(self.spec, analysis, study, time.perf_counter() - t0, error)
+        return self.computed
+
+    # ------------------------------------------------------------------ saving
+    def to_toml(self) -> str:
+        """The project as an engine file (its settings in a comment line the CLI ignores)."""
+        from ..io import engine_to_toml
+
+        if self.spec is None:
+            raise InputError(
+                "project", None, "has errors; correct the fields marked in red before saving"
+            )
+        settings = json.dumps(self.settings, separators=(",", ":"), sort_keys=True)
+        return f"{SETTINGS_TAG}{settings}\n" + engine_to_toml(self.spec)
+
+    def to_json(self) -> str:
+        if self.spec is None:
+            raise InputError(
+                "project", None, "has errors; correct the fields marked in red before saving"
+            )
+        return json.dumps(self.spec.to_file_dict(), indent=2) + "\n"
+
+
+# --------------------------------------------------------------------------- helpers
+def _field_for(dotted: str) -> FormField | None:
+    """The form field an InputError's field path points at (the nearest one above it)."""
+    path = dotted.replace("[", ".[").split(".")
+    while path:
+        f = FIELD_BY_PATH.get(".".join(path))
+        if f is not None:
+            return f
+        path = path[:-1]
+    return None
+
+
+def _settings_from_text(text: str) -> dict[str, Any]:
+    for line in text.splitlines()[:5]:
+        if line.startswith(SETTINGS_TAG):
+            try:
+                value = json.loads(line[len(SETTINGS_TAG) :])
+            except json.JSONDecodeError:
+                return {}
+            return value if isinstance(value, dict) else {}
+    return {}
+
+
+def _pop_path(data: dict[str, Any], path: tuple[str, ...]) -> Any:
+    node: Any = data
+    for part in path[:-1]:
+        if not isinstance(node, dict) or part not in node:
+            return None
+        node = node[part]
+    if isinstance(node, dict):
+        return node.pop(path[-1], None)
+    return None
+
+
+def _set_path(data: dict[str, Any], path: tuple[str, ...], value: Any) -> None:
+    node = data
+    for part in path[:-1]:
+        node = node.setdefault(part, {})
+    node[path[-1]] = value
+
+
+def _prune(data: dict[str, Any]) -> None:
+    """Drop empty tables left after the form's keys were taken out."""
+    for key in list(data):
+        value = data[key]
+        if isinstance(value, dict):
+            _prune(value)
+            if not value:
+                del data[key]
