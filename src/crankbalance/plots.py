@@ -111,7 +111,7 @@ def _check_quantity(quantity: str) -> None:
         raise InputError("quantity", quantity, "'force' or 'moment'")
 
 
-def _tiny(model: EngineModel, relative: float = 1e-10) -> tuple[float, float]:
+def roundoff_levels(model: EngineModel, relative: float = 1e-10) -> tuple[float, float]:
     """Round-off levels of an engine's forces [N] and moments [N·m]: values below are
     drawn as zero (sums of phasors that cancel leave ~1e-12 N of noise)."""
     mass = float(np.sum(model.reciprocating_mass) + np.sum(model.throw_rotating_mass))
@@ -142,7 +142,7 @@ def orders_bar(analysis: Analysis) -> go.Figure:
     fig = _subplots(rows=1, cols=2, subplot_titles=("Free forces", "Free moments"),
                     horizontal_spacing=0.12)
     labels = [str(int(n)) for n in f.orders] + ["rot"]
-    tf, tm = _tiny(analysis.model, 1e-12)  # as Analysis.to_dict
+    tf, tm = roundoff_levels(analysis.model, 1e-12)  # as Analysis.to_dict
     parts = (
         (1, _clean(np.abs(f.force_forward), tf), _clean(np.abs(f.force_backward), tf),
          _clean([abs(f.rotating_force)], tf)[0]),
@@ -280,7 +280,7 @@ def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
     amplitude = (analysis.forces.force_amplitude if quantity == "force"
                  else analysis.forces.moment_amplitude)
     top = len(c.orders) if orders is None else orders
-    tiny = _tiny(analysis.model)[0 if quantity == "force" else 1]
+    tiny = roundoff_levels(analysis.model)[0 if quantity == "force" else 1]
 
     def y(source: Any, name: str, k: int | None = None) -> NDArray[np.float64]:
         values = getattr(source, name)
@@ -362,7 +362,7 @@ def polar_figure(analysis: Analysis, order: int | str = 1,
     _check_quantity(quantity)
     go = _go()
     fwd, bwd, n, label = _order_phasors(analysis, order, quantity)
-    tiny = _tiny(analysis.model, 1e-12)[0 if quantity == "force" else 1]
+    tiny = roundoff_levels(analysis.model, 1e-12)[0 if quantity == "force" else 1]
     fwd, bwd = (0j if abs(fwd) < tiny else fwd), (0j if abs(bwd) < tiny else bwd)
     unit = _unit(quantity)
     theta = np.linspace(0.0, 2 * np.pi / max(n, 1), 361)
@@ -520,16 +520,18 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
 def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
     """Amplitude of every component (rotating masses, orders 1..K) before and after
     balancing, force and moment, from the solver's time-domain check
-    (``balance_study.result.residuals``)."""
+    (``balance_study.result.residuals``); values below round-off of the engine's force
+    scale (:func:`roundoff_levels`) are drawn as zero."""
     go = _go()
     res = balance_study.result.residuals
+    tiny = dict(zip(("force", "moment"), roundoff_levels(balance_study.model), strict=True))
     names = [("rotating" if c.component == "rotating" else c.component.replace("order", "order "))
              + (" *" if c.targeted else "") for c in res]
     fig = _subplots(rows=1, cols=2, subplot_titles=("Force", "Moment"), horizontal_spacing=0.12)
     for col, attr, unit in ((1, "force", "N"), (2, "moment", "N·m")):
         for when, color in (("before", COLORS["before"]), ("after", COLORS["after"])):
             fig.add_trace(go.Bar(
-                x=names, y=[getattr(c, f"{attr}_{when}") for c in res],
+                x=names, y=_clean([getattr(c, f"{attr}_{when}") for c in res], tiny[attr]),
                 name=f"{when} balancing", marker_color=color, legendgroup=when,
                 showlegend=col == 1,
                 hovertemplate="%{x}<br>" + when + " %{y:.4g} " + unit + "<extra></extra>"),
