@@ -76,11 +76,9 @@ def test_point_load_reactions_deflection_and_integral(a_frac: float) -> None:
     curve = p * b * r.x[left] * (length**2 - b**2 - r.x[left] ** 2) / (6 * EI * length)
     assert np.allclose(r.deflection[left], curve, rtol=1e-10, atol=1e-15), "Gere: y1 (003 Eq. 7)"
     # maximum deflection (in the longer segment)
-    c = max(a, b)
     d = min(a, b)
     exact_max = p * d * (length**2 - d**2) ** 1.5 / (9 * math.sqrt(3) * EI * length)
     assert abs(r.max_deflection - exact_max) < 1e-4 * exact_max, "Gere: max deflection"
-    assert c >= d
     # integral of the deflection: P a b (L^2 + a b) / (24 E I)  (003 Eq. 9; by Maxwell's
     # reciprocity it is P times the deflection at a under a unit uniform load)
     exact_int = p * a * b * (length**2 + a * b) / (24 * EI)
@@ -365,15 +363,15 @@ def test_inline3_layouts_keep_their_order() -> None:
             assert "".join(s for _, s in items) == order, f"type {kind}"
 
 
-def test_compare_types_runs_all_three() -> None:
-    result = compare_inline3_types(2e-3, 600.0, 0.3, SECTION)
+def test_compare_types_passes_the_options_to_each_type() -> None:
+    z = np.linspace(0.4, 1.0, 31)
+    result = compare_inline3_types(2e-3, 600.0, 0.3, SECTION, weight=1.5, positions=z)
     assert set(result) == {"I", "II", "III"}
-    for study in result.values():
-        assert (
-            study.objective.min() <= study.optimum_objective + 1e-9
-            or study.optimum_objective <= study.objective.min() + 1e-9
-        )
-        assert 0.3 <= study.optimum_position <= 1.0
+    for kind, study in result.items():
+        alone = inline3_study(kind, 2e-3, 600.0, 0.3, SECTION, weight=1.5, positions=z)  # type: ignore[arg-type]
+        assert study.case == f"inline3-{kind}" and study.weight == 1.5
+        assert np.array_equal(study.objective, alone.objective), f"type {kind}: same study"
+        assert study.optimum_position == alone.optimum_position
         json.dumps(study.to_dict())
 
 
@@ -436,163 +434,74 @@ def test_bad_section_and_study_input() -> None:
 # --------------------------------------------------------------------------- CLI
 
 
+SHAFT = ["--length", "300 mm", "--diameter", "25 mm"]
+INLINE4 = ["shaft", "inline4", "--unbalance", "3.3 g*m", "--speed", "12000 rpm", *SHAFT]
+CHECK = ["shaft", "check", *SHAFT, "--bearing", "0 mm", "--unbalance", "3.3 g*m"]
+CHECK += ["--speed", "12000 rpm", "--mass", "200 mm"]
+
+
 def test_cli_shaft_json(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = run_cli(
-        [
-            "shaft",
-            "inline4",
-            "--unbalance",
-            "3.3 g*m",
-            "--speed",
-            "12000 rpm",
-            "--length",
-            "300 mm",
-            "--diameter",
-            "25 mm",
-            "--format",
-            "json",
-        ],
-        capsys,
-    )
+    code, out, err = run_cli([*INLINE4, "--format", "json"], capsys)
     assert code == 0, err
     data = json.loads(out)
     assert data["schema"] == "crankbalance.shaft/1"
-    assert abs(data["optimum"]["position"] - 0.67) < 0.01
+    assert abs(data["optimum"]["position"] - 0.67) < 0.01, "003 Fig. 7: 67 % with w = 2"
     assert len(data["weight_sweep"]) == 20
 
 
 def test_cli_shaft_tables(capsys: pytest.CaptureFixture[str]) -> None:
-    code, out, err = run_cli(
-        [
-            "shaft",
-            "inline4",
-            "--unbalance",
-            "3.3 g*m",
-            "--speed",
-            "12000 rpm",
-            "--length",
-            "300 mm",
-            "--diameter",
-            "25 mm",
-        ],
-        capsys,
-    )
-    assert code == 0, err and "optimum" in out
-    code, out, err = run_cli(
-        [
-            "shaft",
-            "inline3",
-            "--unbalance",
-            "10 g*m",
-            "--speed",
-            "6000 rpm",
-            "--length",
-            "300 mm",
-            "--diameter",
-            "25 mm",
-        ],
-        capsys,
-    )
+    code, out, err = run_cli(INLINE4, capsys)
     assert code == 0, err
-    assert "III" in out
+    assert "optimum at 66.9 % of the length" in out, "seeds README 003: 66.9 % with w = 2"
+    inline3 = ["shaft", "inline3", "--unbalance", "10 g*m", "--speed", "6000 rpm", *SHAFT]
+    code, out, err = run_cli([*inline3, "--points", "41"], capsys)
+    assert code == 0, err
+    assert "III" in out and "B = inverse-frequency" in out
+    code, out, err = run_cli([*inline3, "--points", "41", "--type", "I", "--secondary",
+                              "reaction-difference"], capsys)  # fmt: skip
+    assert code == 0 and "B = reaction-difference" in out, "--secondary reaches inline3"
     code, out, err = run_cli(
-        [
-            "shaft",
-            "check",
-            "--length",
-            "300 mm",
-            "--diameter",
-            "25 mm",
-            "--bearing",
-            "0 mm",
-            "--bearing",
-            "300 mm",
-            "--mass",
-            "200 mm",
-            "--unbalance",
-            "3.3 g*m",
-            "--speed",
-            "12000 rpm",
-            "--bearing-capacity",
-            "5 kN",
-            "--format",
-            "json",
-        ],
-        capsys,
+        [*CHECK, "--bearing", "300 mm", "--bearing-capacity", "5 kN", "--format", "json"], capsys
     )
     assert code == 0, err
     data = json.loads(out)
     assert data["schema"] == "crankbalance.shaft/1" and "checks" in data
+    # Gere: R = P a / L on the bearing near the load, P = U Omega^2 (x = 200 of 300 mm)
+    p = 3.3e-3 * (12000 * math.pi / 30) ** 2
+    assert np.allclose(data["response"]["reactions"], [p / 3, 2 * p / 3], rtol=1e-9)
 
 
 @pytest.mark.parametrize(
     "args, word",
     [
-        (
-            [
-                "shaft",
-                "inline4",
-                "--unbalance",
-                "3 g*m",
-                "--speed",
-                "1000 rpm",
-                "--length",
-                "-300 mm",
-                "--diameter",
-                "25 mm",
-            ],
-            "length",
-        ),
-        (
-            [
-                "shaft",
-                "check",
-                "--length",
-                "300 mm",
-                "--diameter",
-                "25 mm",
-                "--bearing",
-                "0 mm",
-                "--bearing",
-                "400 mm",
-                "--mass",
-                "100 mm",
-                "--unbalance",
-                "3 g*m",
-                "--speed",
-                "1000 rpm",
-            ],
-            "bearing_positions",
-        ),
-        (
-            [
-                "shaft",
-                "inline4",
-                "--unbalance",
-                "3 kg",
-                "--speed",
-                "1000 rpm",
-                "--length",
-                "300 mm",
-                "--diameter",
-                "25 mm",
-            ],
-            "unbalance",
-        ),
+        ([*INLINE4[:-4], "--length", "-300 mm", "--diameter", "25 mm"], "length"),
+        ([*INLINE4[:-4], "--length", "300..200 mm", "--diameter", "25 mm"], "not a range"),
+        ([*INLINE4, "--points", "100000"], "points"),
+        ([*INLINE4, "--weights", "1,nan"], "weights"),
+        ([*INLINE4, "--bore", "25 mm"], "inner_diameter"),
+        ([*INLINE4[:-6], "--speed", "0 rpm", *SHAFT], "speed"),
+        (["shaft", "inline4", *SHAFT, "--unbalance", "3 kg", "--speed", "1 rpm"], "unbalance"),
+        (["shaft", "inline4", *SHAFT, "--unbalance", "3 g*m"], "--speed"),
+        ([*CHECK, "--bearing", "400 mm"], "bearing_positions"),
+        ([*CHECK, "--bearing", "0 mm"], "bearing_positions"),
+        ([*CHECK, "--bearing", "300 mm", "--phase", "1 deg", "--mass", "100 mm"], "phases"),
+        ([*CHECK, "--bearing", "300 mm", "--margin", "nan"], "critical_speed_margin"),
     ],
 )
 def test_cli_bad_input_exits_2(
     args: list[str], word: str, capsys: pytest.CaptureFixture[str]
 ) -> None:
     code, _out, err = run_cli(args, capsys)
-    assert code == 2 and word in err and "Traceback" not in err
+    assert code == 2 and word in err and "Traceback" not in err, err
 
 
 def test_inline4_critical_weight_closed_form() -> None:
     # Near mid-length (t = xi - 1/2): A/max A = 1 - 24/5 t^2 + O(t^4), B = 2|t|, so
     # J = 1 + (4 w - 48/5) t^2: the off-centre optimum exists only for w < 12/5 = 2.4
     xi = np.linspace(0.0, 1.0, 2001)
-    study = inline4_study(1e-3, 600.0, 0.3, SECTION, positions=xi, weights=[2.3, 2.45, 3.0])
+    study = inline4_study(
+        1e-3, 600.0, 0.3, SECTION, positions=xi, weights=[2.3, 2.45, 3.0], n_elements=2
+    )
     assert study.optimum_positions[0] > 0.55, "w = 2.3 < 12/5: optimum off centre"
     assert np.allclose(study.optimum_positions[1:], 0.5, atol=1e-3), "w > 12/5: mid-length"
 
@@ -610,3 +519,13 @@ def test_low_level_functions_refuse_points_off_the_shaft() -> None:
         beam_statics(0.3, EI, [0.0, 0.3], [0.4], [1.0], [0.1])
     with pytest.raises(InputError, match="bearing_positions"):
         beam_statics(0.3, EI, [0.1], [0.2], [1.0], [0.1])
+
+
+@pytest.mark.parametrize("bearings", [[0.1, 0.1], [0.0, 0.2, 0.2], [[0.0, 0.3], [0.15, 0.15]]])
+def test_low_level_functions_refuse_coincident_bearings(bearings: list[float]) -> None:
+    # two bearings at one point carry no moment: the statics are singular (a LinAlgError
+    # before) and the rigid constraints rank-deficient (a silently wrong frequency before)
+    with pytest.raises(InputError, match="its own position"):
+        beam_statics(0.3, EI, bearings, [0.25], [1.0], [0.1])
+    with pytest.raises(InputError, match="its own position"):
+        natural_frequencies(0.3, SECTION, bearings, [0.25], [0.1])

@@ -163,6 +163,22 @@ def _check_on_shaft(name: str, values: NDArray, length: float) -> None:
         raise InputError(name, shown, f"must lie on the shaft, between 0 and {length:g} m")
 
 
+def _check_bearings(positions: NDArray, length: float) -> None:
+    """Raise InputError unless there are at least two bearings, all on the shaft and distinct.
+
+    Two bearings at one point carry no moment: the statics would be singular and the
+    rigid-bearing constraints of the frequency model rank-deficient (a wrong frequency).
+    """
+    _check_on_shaft("bearing_positions", positions, length)
+    if positions.ndim == 0 or positions.shape[-1] < 2:
+        raise InputError("bearing_positions", positions.tolist(), "needs at least two bearings")
+    gaps = np.diff(np.sort(positions, axis=-1), axis=-1)
+    if np.any(gaps <= 1e-12 * length):
+        raise InputError(
+            "bearing_positions", positions.tolist(), "needs each bearing at its own position"
+        )
+
+
 def _influence(distance: NDArray, bending_stiffness: float, shear_flexibility: float) -> NDArray:
     r"""Deflection at distance ``d`` to the right of a unit upward point force.
 
@@ -236,10 +252,8 @@ def beam_statics(
     xf = np.asarray(force_positions, dtype=float)
     f = np.asarray(forces)
     xs = np.asarray(x, dtype=float)
-    _check_on_shaft("bearing_positions", xb, length)
+    _check_bearings(xb, length)
     _check_on_shaft("force_positions", xf, length)
-    if xb.shape[-1] < 2:
-        raise InputError("bearing_positions", xb.tolist(), "needs at least two bearings")
     ei = float(bending_stiffness)
     sf = 0.0 if shear_stiffness is None else 1.0 / float(shear_stiffness)
     cb = 0.0 if bearing_stiffness is None else 1.0 / float(bearing_stiffness)
@@ -483,10 +497,8 @@ def natural_frequencies(
     xb = np.asarray(bearing_positions, dtype=float)
     xm = np.asarray(mass_positions, dtype=float)
     mm = np.asarray(masses, dtype=float)
-    _check_on_shaft("bearing_positions", xb, length)
+    _check_bearings(xb, length)
     _check_on_shaft("mass_positions", xm, length)
-    if xb.shape[-1] < 2:
-        raise InputError("bearing_positions", xb.tolist(), "needs at least two bearings")
     if not (np.all(np.isfinite(mm)) and (mm.size == 0 or mm.min() >= 0)):
         raise InputError("masses", mm.tolist(), "must be finite masses >= 0 kg")
     batch = np.broadcast_shapes(xb.shape[:-1], xm.shape[:-1], mm.shape[:-1])

@@ -91,28 +91,47 @@ def _study_options(function: Any) -> Any:
             show_default=True,
             help="Design points along the shaft.",
         ),
+        click.option(
+            "--secondary",
+            type=click.Choice(["reaction-difference", "inverse-frequency"]),
+            default=None,
+            help="B of the objective (default: reaction-difference for inline4, "
+            "inverse-frequency for inline3).",
+        ),
     ]
     for option in reversed(options):
         function = option(function)
-    return function
+    return _section_options(function)
+
+
+#: Most design points of a sweep (each one is a beam solve and an FE eigenproblem).
+MAX_POINTS = 5001
+
+
+def _quantity(text: str, kind: str, field: str) -> float:
+    """:func:`crankbalance.units.parse_quantity` that refuses ranges ('LOW..HIGH').
+
+    The unit parser reads '300..200 mm' as the product 300. x .200 mm; no option of
+    this command takes a range, so it is an error here, not a silent 60 mm.
+    """
+    from ..units import parse_quantity
+
+    if ".." in text:
+        raise InputError(field, text, "must be a single quantity, not a range")
+    return parse_quantity(text, kind, field)
 
 
 def _parse_section(
     length: str, diameter: str, bore: str, modulus: str, density: str, poisson: float
 ) -> tuple[float, Any]:
     from ..balance_shaft import ShaftSection
-    from ..units import parse_quantity
 
-    length_m = parse_quantity(length, "length", "length")
-    if length_m <= 0:
-        raise InputError("length", length, "must be a length greater than zero")
+    length_m = _positive(_quantity(length, "length", "length"), "length", length)
     section = ShaftSection(
-        outer_diameter=_positive(
-            parse_quantity(diameter, "length", "diameter"), "diameter", diameter
-        ),
-        inner_diameter=parse_quantity(bore, "length", "bore"),
-        youngs_modulus=_positive(parse_quantity(modulus, "modulus", "modulus"), "modulus", modulus),
-        density=_positive(parse_quantity(density, "density", "density"), "density", density),
+        outer_diameter=_positive(_quantity(diameter, "length", "diameter"), "diameter", diameter),
+        inner_diameter=_quantity(bore, "length", "bore"),
+        youngs_modulus=_positive(_quantity(modulus, "modulus", "modulus"), "modulus", modulus),
+        density=_positive(_quantity(density, "density", "density"), "density", density),
         poisson_ratio=poisson,
     )
     return length_m, section
@@ -122,6 +141,19 @@ def _positive(value: float, name: str, text: str) -> float:
     if not value > 0:
         raise InputError(name, text, "must be greater than zero")
     return value
+
+
+def _material(unbalance_radius: str, bearing_stiffness: str | None) -> tuple[float, float | None]:
+    """Unbalance-mass radius [m] and bearing stiffness [N/m] (None: rigid)."""
+    radius = _positive(
+        _quantity(unbalance_radius, "length", "unbalance_radius"),
+        "unbalance_radius",
+        unbalance_radius,
+    )
+    if bearing_stiffness is None:
+        return radius, None
+    stiffness = _quantity(bearing_stiffness, "stiffness", "bearing_stiffness")
+    return radius, _positive(stiffness, "bearing_stiffness", bearing_stiffness)
 
 
 def _common(
@@ -135,17 +167,12 @@ def _common(
     weights: str | None,
     points: int,
 ) -> dict[str, Any]:
+    """Requirement (from --engine or --unbalance/--speed) and the sweep options, in SI."""
     import numpy as np
 
-    from ..units import parse_quantity
-
-    if points < 3:
-        raise InputError("points", points, "must be an integer >= 3")
-    radius = _positive(
-        parse_quantity(unbalance_radius, "length", "unbalance_radius"),
-        "unbalance_radius",
-        unbalance_radius,
-    )
+    if not 3 <= points <= MAX_POINTS:
+        raise InputError("points", points, f"must be an integer from 3 to {MAX_POINTS}")
+    radius, stiffness = _material(unbalance_radius, bearing_stiffness)
     if engine is not None:
         if unbalance is not None or speed is not None:
             raise InputError("--engine", engine, "give --engine or --unbalance/--speed, not both")
@@ -153,26 +180,19 @@ def _common(
 
         required, shaft_speed = shaft_requirement(engine, order, length, radius)
     else:
-        for name, value in (("--unbalance", unbalance), ("--speed", speed)):
-            if value is None:
-                raise InputError(name, None, "is required (or give --engine to take it from "
-                                 "the balancing solver)")
-        assert unbalance is not None and speed is not None
-        required = _positive(
-            parse_quantity(unbalance, "unbalance", "unbalance"), "unbalance", unbalance
-        )
-        shaft_speed = _positive(parse_quantity(speed, "speed", "speed"), "speed", speed)
+        if unbalance is None or speed is None:
+            raise InputError(
+                "--unbalance" if unbalance is None else "--speed",
+                None,
+                "is required (or give --engine to take it from the balancing solver)",
+            )
+        required = _positive(_quantity(unbalance, "unbalance", "unbalance"), "unbalance", unbalance)
+        shaft_speed = _positive(_quantity(speed, "speed", "speed"), "speed", speed)
     out: dict[str, Any] = {
         "unbalance": required,
         "speed": shaft_speed,
         "unbalance_radius": radius,
-        "bearing_stiffness": None
-        if bearing_stiffness is None
-        else _positive(
-            parse_quantity(bearing_stiffness, "stiffness", "bearing_stiffness"),
-            "bearing_stiffness",
-            bearing_stiffness,
-        ),
+        "bearing_stiffness": stiffness,
         "weights": None,
     }
     if weights is not None:
@@ -185,15 +205,62 @@ def _common(
     return out
 
 
+def _study_setup(order: int, options: dict[str, Any]) -> tuple[dict[str, Any], Any, dict[str, Any]]:
+    """Parse the options shared by ``inline4`` and ``inline3``.
+
+    Returns the requirement block of :func:`_common`, the design-point count and the
+    keyword arguments common to :func:`inline4_study` and :func:`inline3_study`
+    (length and section included).
+    """
+    length_m, section = _parse_section(
+        options["length"],
+        options["diameter"],
+        options["bore"],
+        options["modulus"],
+        options["density"],
+        options["poisson"],
+    )
+    c = _common(
+        options["engine"],
+        order,
+        length_m,
+        options["unbalance"],
+        options["speed"],
+        options["unbalance_radius"],
+        options["bearing_stiffness"],
+        options["weights"],
+        options["points"],
+    )
+    kwargs: dict[str, Any] = {
+        "unbalance": c["unbalance"],
+        "speed": c["speed"],
+        "length": length_m,
+        "section": section,
+        "weight": options["weight"],
+        "weights": c["weights"],
+        "unbalance_radius": c["unbalance_radius"],
+        "bearing_stiffness": c["bearing_stiffness"],
+        "theory": cast("BeamTheory", options["theory"]),
+    }
+    if options["secondary"] is not None:
+        kwargs["secondary"] = cast("SecondaryMeasure", options["secondary"])
+    return c, options["points"], kwargs
+
+
 def _input_json(engine: str | None, c: dict[str, Any]) -> dict[str, Any]:
-    return {"unbalance_kg_m": c["unbalance"], "shaft_speed_rad_s": c["speed"],
-            "from_engine": engine}
+    return {
+        "unbalance_kg_m": c["unbalance"],
+        "shaft_speed_rad_s": c["speed"],
+        "from_engine": engine,
+    }
 
 
 def _echo_input(engine: str | None, c: dict[str, Any]) -> None:
     source = f" (from the balancing solver of {engine})" if engine else ""
-    click.echo(f"Unbalance {c['unbalance'] * 1e6:.6g} g*mm at "
-               f"{c['speed'] * 30 / 3.141592653589793:.6g} rpm{source}")
+    click.echo(
+        f"Unbalance {c['unbalance'] * 1e6:.6g} g*mm at "
+        f"{c['speed'] * 30 / 3.141592653589793:.6g} rpm{source}"
+    )
 
 
 def _verdict(limit: float | None, ok: bool) -> str:
@@ -273,72 +340,31 @@ def shaft() -> None:
 
 @shaft.command()
 @_study_options
-@_section_options
-@click.option(
-    "--secondary",
-    type=click.Choice(["reaction-difference", "inverse-frequency"]),
-    default="reaction-difference",
-    show_default=True,
-    help="B of the objective.",
-)
 @format_option(("table", "json"))
-def inline4(
-    engine: str | None,
-    unbalance: str | None,
-    speed: str | None,
-    weight: float,
-    weights: str | None,
-    points: int,
-    length: str,
-    diameter: str,
-    bore: str,
-    modulus: str,
-    density: str,
-    poisson: float,
-    unbalance_radius: str,
-    bearing_stiffness: str | None,
-    theory: str,
-    secondary: str,
-    fmt: str,
-) -> None:
+def inline4(fmt: str, **options: Any) -> None:
     """Optimum unbalance-mass position of an inline-4 second-order shaft on end bearings."""
     import numpy as np
 
     from ..balance_shaft import inline4_study
 
-    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(engine, 2, length_m, unbalance, speed, unbalance_radius, bearing_stiffness,
-                weights, points)
-    study = inline4_study(
-        c["unbalance"],
-        c["speed"],
-        length_m,
-        section,
-        weight=weight,
-        positions=np.linspace(0.0, 1.0, points),
-        weights=c["weights"],
-        unbalance_radius=c["unbalance_radius"],
-        bearing_stiffness=c["bearing_stiffness"],
-        theory=cast("BeamTheory", theory),
-        secondary=cast("SecondaryMeasure", secondary),
-    )
+    c, points, kwargs = _study_setup(2, options)
+    study = inline4_study(positions=np.linspace(0.0, 1.0, points), **kwargs)
     if fmt == "json":
         out = {
             "schema": SCHEMA,
-            "input": _input_json(engine, c),
+            "input": _input_json(options["engine"], c),
             **study_json(study),
             "paper": {"optimum_position": 0.67, "weight": 2.0, "source": "003 Sect. 3.1, Fig. 7"},
         }
         click.echo(json.dumps(out, indent=2))
         return
-    _echo_input(engine, c)
+    _echo_input(options["engine"], c)
     _echo_study(study, max(1, points // 10))
     click.echo("Paper (003, Fig. 7): 67 % with w = 2.")
 
 
 @shaft.command()
 @_study_options
-@_section_options
 @click.option(
     "--type",
     "rotor_type",
@@ -364,26 +390,12 @@ def inline4(
 )
 @format_option(("table", "json"))
 def inline3(
-    engine: str | None,
-    unbalance: str | None,
-    speed: str | None,
-    weight: float,
-    weights: str | None,
-    points: int,
-    length: str,
-    diameter: str,
-    bore: str,
-    modulus: str,
-    density: str,
-    poisson: float,
-    unbalance_radius: str,
-    bearing_stiffness: str | None,
-    theory: str,
     rotor_type: str,
     hold: str,
     bearing_offset: str | None,
     z_min: float,
     fmt: str,
+    **options: Any,
 ) -> None:
     """Optimum second-mass position of an inline-3 primary-couple shaft, per rotor type.
 
@@ -393,41 +405,28 @@ def inline3(
     import numpy as np
 
     from ..balance_shaft import ROTOR_TYPES, inline3_study
-    from ..units import parse_quantity
 
-    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(engine, 1, length_m, unbalance, speed, unbalance_radius, bearing_stiffness,
-                weights, points)
+    c, points, kwargs = _study_setup(1, options)
     if not (0.0 <= z_min < 1.0):
         raise InputError("z_min", z_min, "must lie in [0, 1)")
     offset = (
-        None
-        if bearing_offset is None
-        else parse_quantity(bearing_offset, "length", "bearing_offset")
+        None if bearing_offset is None else _quantity(bearing_offset, "length", "bearing_offset")
     )
     types = ROTOR_TYPES if rotor_type == "all" else (rotor_type,)
     studies = [
         inline3_study(
             cast("RotorType", t),
-            c["unbalance"],
-            c["speed"],
-            length_m,
-            section,
-            weight=weight,
             positions=np.linspace(z_min, 1.0, points),
-            weights=c["weights"],
             bearing_offset=offset,
             hold=cast("HoldMode", hold),
-            unbalance_radius=c["unbalance_radius"],
-            bearing_stiffness=c["bearing_stiffness"],
-            theory=cast("BeamTheory", theory),
+            **kwargs,
         )
         for t in types
     ]
     if fmt == "json":
         out = {
             "schema": SCHEMA,
-            "input": _input_json(engine, c),
+            "input": _input_json(options["engine"], c),
             "case": "inline3",
             "hold": hold,
             "studies": {s.case.split("-")[1]: study_json(s) for s in studies},
@@ -442,7 +441,7 @@ def inline3(
         }
         click.echo(json.dumps(out, indent=2))
         return
-    _echo_input(engine, c)
+    _echo_input(options["engine"], c)
     for s in studies:
         _echo_study(s, max(1, points // 10))
         click.echo("")
@@ -525,40 +524,39 @@ def check(
 ) -> None:
     """State variables and design checks of one shaft layout."""
     from ..balance_shaft import BalanceShaft, design_checks, shaft_response
-    from ..units import parse_quantity
 
     length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    c = _common(None, 1, length_m, unbalances[0], speed, unbalance_radius, bearing_stiffness,
-                None, 3)
-    u = [parse_quantity(v, "unbalance", f"unbalances[{i}]") for i, v in enumerate(unbalances)]
+    radius, stiffness = _material(unbalance_radius, bearing_stiffness)
+    shaft_speed = _positive(_quantity(speed, "speed", "speed"), "speed", speed)
+    u = [_quantity(v, "unbalance", f"unbalances[{i}]") for i, v in enumerate(unbalances)]
     if len(u) == 1:
         u = u * len(masses)
     design = BalanceShaft(
         length=length_m,
         section=section,
         bearing_positions=tuple(
-            parse_quantity(b, "length", f"bearing_positions[{i}]") for i, b in enumerate(bearings)
+            _quantity(b, "length", f"bearing_positions[{i}]") for i, b in enumerate(bearings)
         ),
         mass_positions=tuple(
-            parse_quantity(m, "length", f"mass_positions[{i}]") for i, m in enumerate(masses)
+            _quantity(m, "length", f"mass_positions[{i}]") for i, m in enumerate(masses)
         ),
         unbalances=tuple(u),
-        speed=c["speed"],
-        phases=tuple(parse_quantity(p, "angle", f"phases[{i}]") for i, p in enumerate(phases)),
-        unbalance_radius=c["unbalance_radius"],
-        bearing_stiffness=c["bearing_stiffness"],
+        speed=shaft_speed,
+        phases=tuple(_quantity(p, "angle", f"phases[{i}]") for i, p in enumerate(phases)),
+        unbalance_radius=radius,
+        bearing_stiffness=stiffness,
     )
     response = shaft_response(design, theory=cast("BeamTheory", theory))
     checks = design_checks(
         response,
-        max_speed=None if max_speed is None else parse_quantity(max_speed, "speed", "max_speed"),
+        max_speed=None if max_speed is None else _quantity(max_speed, "speed", "max_speed"),
         critical_speed_margin=margin,
         bearing_capacity=None
         if bearing_capacity is None
-        else parse_quantity(bearing_capacity, "force", "bearing_capacity"),
+        else _quantity(bearing_capacity, "force", "bearing_capacity"),
         deflection_limit=None
         if deflection_limit is None
-        else parse_quantity(deflection_limit, "length", "deflection_limit"),
+        else _quantity(deflection_limit, "length", "deflection_limit"),
     )
     if fmt == "json":
         click.echo(
