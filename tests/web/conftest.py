@@ -6,6 +6,7 @@ backend. Each test gets a fresh NiceGUI app (``user_simulation`` resets NiceGUI'
 
 from __future__ import annotations
 
+import asyncio
 from collections.abc import AsyncIterator
 from typing import Any
 
@@ -65,6 +66,14 @@ class Form:
                 if marker.startswith("field-"):
                     found[marker] = item
         return found
+
+    async def until(self, condition: Any, timeout: float = 20.0) -> None:
+        """Wait until background work of the page (async handlers) makes ``condition`` true."""
+        for _ in range(int(timeout / 0.05)):
+            if condition():
+                return
+            await asyncio.sleep(0.05)
+        raise AssertionError("the page did not finish in time")
 
     def rows(self, marker: str) -> list[dict[str, Any]]:
         return list(self.element(marker).rows)

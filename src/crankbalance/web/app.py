@@ -207,7 +207,9 @@ class Page:
             element = ui.select(options, value=value or None, label=f.label, on_change=handler)
         else:
             element = ui.input(label=f.label, value=value, placeholder=f.hint, on_change=handler)
-        element.classes("w-64").props(f'hint="{f.hint}"' if f.hint else "").mark(f"field-{f.key}")
+        element.classes("w-64").props(f'hint="{f.hint}"' if f.hint else "").mark(
+            f"field-{f.key}"
+        ).without_auto_validation()
         self.inputs[f.key] = element
 
     def _setting(self, key: str, on_change: Callable[[], None] | None = None) -> None:
@@ -229,6 +231,7 @@ class Page:
             .classes("w-64")
             .props(f'hint="{hint}"')
             .mark(f"setting-{key}")
+            .without_auto_validation()
         )
         self.setting_inputs[key] = element
 
@@ -529,6 +532,14 @@ class Page:
                         "balance_factor_sweep", self.study_results.get("single")
                     ),
                 ),
+                FigureCard(
+                    self,
+                    "single-polar",
+                    "Polar diagram of the residual force",
+                    lambda: self._plot_or_none(
+                        "single_cylinder_polar", self.study_results.get("single")
+                    ),
+                ),
             ]
 
     # ------------------------------------------------------------------ Balance shaft
@@ -653,7 +664,7 @@ class Page:
             fmt = "json" if name.lower().endswith(".json") else "toml"
             project = Project.from_text(text, name, fmt)
         except InputError as error:
-            message = f"Upload refused, the current project is kept: {error}"
+            message = f"Upload of {name} refused, the current project is kept: {error}"
             self.general.set_text(message)
             ui.notify(message, type="negative", multi_line=True)
             return

@@ -142,11 +142,11 @@ def run_counterweight(computed: Computed, settings: dict[str, Any], callback: An
 def pick_design(optimum: Any, choice: str) -> Any:
     """A design of an optimum: "least mass", "least radius" or "front k" (1-based)."""
     if choice == "least radius":
-        return optimum.least_radius_design()
+        return optimum.least_radius_design
     if choice.startswith("front "):
         k = int(choice.split()[1]) - 1
         return optimum.design(int(optimum.pareto[k]))
-    return optimum.least_mass_design()
+    return optimum.least_mass_design
 
 
 def design_choices(optimum: Any, count: int = 10) -> list[str]:

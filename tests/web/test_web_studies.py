@@ -1,0 +1,120 @@
+"""Web app, study tabs (Counterweight design, Single cylinder, Balance shaft, Performance)
+through NiceGUI's simulated User: enter values, compute, read results against the API."""
+
+from __future__ import annotations
+
+import asyncio
+
+import pytest
+from nicegui.testing.user import User
+
+from crankbalance.analysis import balance_engine
+from crankbalance.single_cylinder import cylinder_balance_factor_study
+from crankbalance.tolerance import permissible_unbalance
+
+pytestmark = pytest.mark.anyio
+
+
+async def _settle(condition, timeout: float = 20.0) -> None:
+    """Wait for background work (run.io_bound) to finish."""
+    for _ in range(int(timeout / 0.05)):
+        if condition():
+            return
+        await asyncio.sleep(0.05)
+    raise AssertionError("the page did not finish in time")
+
+
+async def test_counterweight_design_tab(user: User, form) -> None:
+    await user.open("/")
+    required = form.text("cw-requirement")
+    cw = balance_engine("paper-inline3").result.counterweights
+    # first moment m_c r_c of Table 2's counterweight: 1.2413 kg x 30 mm = 37239 g*mm
+    assert f"{cw.mass.max() * cw.cg_radius * 1e6:.0f} g·mm" in required, required
+    form.set("setting-cw_iterations", "3")
+    form.set("setting-cw_population", "256")
+    form.set("setting-cw_max_radius", "120 mm")
+    user.find(marker="optimise").click()
+    await _settle(
+        lambda: "feasible designs" in form.text("cw-summary") or "Error" in form.text("cw-summary")
+    )
+    summary = form.text("cw-summary")
+    assert "Least mass" in summary and "Pareto front" in summary, summary
+    assert form.element("figure-pareto").visible
+    assert form.element("figure-profile").visible
+    user.find(marker="export-svg").click()
+    svg = (await user.download.next()).content.decode()
+    assert svg.lstrip().startswith("<") and "svg" in svg[:200]
+    user.find(marker="export-dxf").click()
+    dxf = (await user.download.next()).content.decode()
+    assert "SECTION" in dxf
+    user.find(marker="export-stl").click()
+    stl = (await user.download.next(timeout=10)).content
+    assert len(stl) > 84
+
+
+async def test_counterweight_bad_constraint(user: User, form) -> None:
+    await user.open("/")
+    form.set("setting-cw_density", "8000 kg")
+    assert "density" in (form.error("setting-cw_density") or "")
+    form.set("setting-cw_iterations", "many")
+    assert form.error("setting-cw_iterations")
+    user.find(marker="optimise").click()
+    await _settle(lambda: form.text("cw-summary") not in ("", "optimising …"))
+    assert "cw_density" in form.text("cw-summary") or "cw_iterations" in form.text("cw-summary")
+
+
+async def test_single_cylinder_tab(user: User, form) -> None:
+    await user.open("/?preset=single")
+    form.set("setting-sc_balance_factor", "0.6")
+    form.set("setting-sc_residual", "5 g*mm")
+    user.find(marker="run-single").click()
+    await _settle(lambda: "Primary force" in form.text("single-summary"))
+    spec_study = balance_engine("single")
+    ref = cylinder_balance_factor_study(spec_study.model, 0, 0.6)
+    summary = form.text("single-summary")
+    assert f"{ref.peak_resultant:.1f} N" in summary, (summary, ref.peak_resultant)
+    assert f"{ref.optimum_balance_factor:.3f}" in summary
+    iso = form.text("iso-summary")
+    mass = float(spec_study.model.throw_rotating_mass.sum())
+    u_per = permissible_unbalance("G6.3", mass, spec_study.model.speed)
+    assert f"{u_per * 1e6:.2f} g·mm" in iso, (iso, u_per)
+    assert ("PASS" in iso) == (5e-6 <= u_per)
+    assert "Unbalance to remove" in form.text("rebalance-summary")
+    assert form.element("figure-single-forces").visible
+
+
+async def test_single_cylinder_bad_inputs(user: User, form) -> None:
+    await user.open("/?preset=single")
+    form.set("setting-sc_cylinder", "2")
+    user.find(marker="run-single").click()
+    await _settle(lambda: form.error("setting-sc_cylinder"))
+    assert "1 to 1" in (form.error("setting-sc_cylinder") or "")
+    form.set("setting-sc_cylinder", "1")
+    form.set("setting-sc_grade", "G7")
+    user.find(marker="run-single").click()
+    await _settle(lambda: form.error("setting-sc_grade"))
+    assert "G6.3" in (form.error("setting-sc_grade") or "")
+
+
+async def test_balance_shaft_tab(user: User, form) -> None:
+    await user.open("/?preset=inline4")
+    user.find(marker="run-shaft").click()
+    await _settle(lambda: "optimum" in form.text("shaft-summary"))
+    assert "of the shaft length" in form.text("shaft-summary")
+    assert form.element("figure-shaft").visible
+    form.set("setting-bs_diameter", "-3 mm")
+    user.find(marker="run-shaft").click()
+    await _settle(lambda: form.error("setting-bs_diameter"))
+
+
+async def test_performance_tab(user: User, form) -> None:
+    await user.open("/?preset=single")
+    form.set("setting-pf_balance_factors", "0, 0.5, 1")
+    user.find(marker="run-performance").click()
+    await _settle(lambda: len(form.rows("performance-table")) == 3)
+    rows = form.rows("performance-table")
+    assert [r["balance_factor"] for r in rows] == ["0", "0.5", "1"]
+    assert all(float(r["friction_torque"]) > 0 for r in rows)
+    assert form.element("figure-sensitivity").visible
+    form.set("setting-pf_balance_factors", "0, x")
+    assert form.error("setting-pf_balance_factors")
