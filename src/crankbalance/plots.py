@@ -539,7 +539,8 @@ def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(type="category", row=1, col=col)
     fig.update_layout(barmode="group", template=TEMPLATE,
-                      title=f"{balance_study.model.name}: residuals (* targeted by shafts)",
+                      title=f"{balance_study.model.name}: residuals "
+                            "(* targeted by counterweights or shafts)",
                       legend={"orientation": "h", "y": -0.2})
     return fig
 
