@@ -218,3 +218,19 @@ def test_toml_writer_roundtrip() -> None:
 
     data = paper_inline3_dict()
     assert tomllib.loads(dumps_toml(data)) == data
+
+
+def test_atomic_write_keeps_normal_permissions(tmp_path: Path) -> None:
+    import os
+    import stat
+
+    from crankbalance.io import write_atomic
+
+    target = tmp_path / "report.html"
+    write_atomic(target, "x")
+    umask = os.umask(0)
+    os.umask(umask)
+    assert stat.S_IMODE(target.stat().st_mode) == 0o666 & ~umask
+    os.chmod(target, 0o640)
+    write_atomic(target, "y")
+    assert stat.S_IMODE(target.stat().st_mode) == 0o640 and target.read_text() == "y"

@@ -701,9 +701,9 @@ def verify(
         ComponentResidual(
             "rotating",
             cw is not None,
-            amplitude(rot_f, 1),
+            _clean(amplitude(rot_f, 1), force_scale),
             _clean(amplitude(rot_f + cw_rot_f, 1), force_scale),
-            amplitude(rot_c, 1),
+            _clean(amplitude(rot_c, 1), force_scale * length),
             _clean(amplitude(rot_c + cw_rot_c, 1), force_scale * length),
         )
     ]
@@ -715,9 +715,9 @@ def verify(
             ComponentResidual(
                 f"order{order}",
                 targeted,
-                amplitude(rec_f, order),
+                _clean(amplitude(rec_f, order), force_scale),
                 _clean(amplitude(after_f, order), force_scale),
-                amplitude(rec_c, order),
+                _clean(amplitude(rec_c, order), force_scale * length),
                 _clean(amplitude(after_c, order), force_scale * length),
             )
         )
