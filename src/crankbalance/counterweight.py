@@ -1293,17 +1293,20 @@ def optimize_counterweight(
                 break
 
     if not archive:
-        least_violation = None if best_infeasible is None else float(best_infeasible[1][0])
+        given = [f"required first moment {required:.6g} kg m", f"min_balance {b_min:g} %"]
+        if max_mass is not None:
+            given.append(f"max_mass {m_max:.6g} kg")
+        if max_radius is not None:
+            given.append(f"max_radius {r_max:.6g} m ({radius_measure})")
+        closest = (
+            "" if best_infeasible is None else f"; least violation {best_infeasible[1][0]:.3g}"
+        )
         raise InputError(
             "constraints",
-            {
-                "max_mass": max_mass,
-                "max_radius": max_radius,
-                "min_balance": min_balance,
-                "least_violation": least_violation,
-            },
-            "no feasible counterweight within the bounds: relax max_mass, max_radius, "
-            "min_balance or widen the parameter ranges (thickness especially)",
+            None,
+            f"infeasible: no counterweight within the parameter ranges meets "
+            f"{', '.join(given)} ({nfev} designs tried{closest}). Relax max_mass, max_radius "
+            "or min_balance, or widen the parameter ranges (thickness especially)",
         )
     allv = {k: np.concatenate([a[k] for a in archive]) for k in archive[0]}
     # remove exact duplicates (snapping and clipping repeat designs)
@@ -1630,16 +1633,19 @@ def export_counterweight(
     kind = (fmt or path.suffix.lstrip(".")).lower()
     if kind in ("stp",):
         kind = "step"
-    if kind == "svg":
-        path.write_text(profile_svg(design))
-    elif kind == "dxf":
-        path.write_text(profile_dxf(design))
-    elif kind == "stl":
-        write_stl(design, path)
-    elif kind == "step":
-        write_step(design, path)
-    else:
+    if kind not in ("svg", "dxf", "stl", "step"):
         raise InputError("format", kind, "one of svg, dxf, stl, step")
+    try:
+        if kind == "svg":
+            path.write_text(profile_svg(design))
+        elif kind == "dxf":
+            path.write_text(profile_dxf(design))
+        elif kind == "stl":
+            write_stl(design, path)
+        else:
+            write_step(design, path)
+    except OSError as error:
+        raise InputError("path", str(path), f"must be a writable file ({error.strerror})") from None
     return path
 
 
@@ -1726,8 +1732,12 @@ def mesh_mass_properties(
         np.asarray(mesh.moment_inertia, dtype=float) * rho * sign
     )  # unit density in trimesh
     n = np.asarray(axis_direction, dtype=float)
-    n = n / np.linalg.norm(n)
     p0 = np.asarray(axis_point, dtype=float) * scale
+    if n.shape != (3,) or not (np.all(np.isfinite(n)) and np.linalg.norm(n) > 0):
+        raise InputError("axis_direction", axis_direction, "three finite numbers, not all zero")
+    if p0.shape != (3,) or not np.all(np.isfinite(p0)):
+        raise InputError("axis_point", axis_point, "three finite numbers")
+    n = n / np.linalg.norm(n)
     rel = cg - p0
     perp = rel - np.dot(rel, n) * n
     dist = float(np.linalg.norm(perp))

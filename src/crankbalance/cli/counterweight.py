@@ -14,8 +14,9 @@ from typing import Any
 
 import click
 
+from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
-from ..units import parse_quantity
+from ..units import parse_quantity as _parse
 from ._common import echo_table, format_option
 
 SCHEMA = "crankbalance.counterweight/1"
@@ -29,15 +30,15 @@ _PARAMS: dict[str, tuple[str, str, float, str]] = {
     "segment_angle": ("--segment-angle", "angle", 180 / math.pi, "deg"),
     "thickness": ("--thickness", "length", 1e3, "mm"),
 }
-_SYMBOL = {
-    "web_radius": "r_cw",
-    "rectangle_height": "h_R",
-    "trapezoid_angle": "delta",
-    "segment_radius": "R_cw",
-    "segment_angle": "alpha",
-    "thickness": "t_cw",
-}
 _SI_UNIT = {"length": "m", "angle": "rad"}
+
+
+def parse_quantity(text: str, kind: str, field: str) -> float:
+    """One quantity; 'LOW..HIGH' is refused (the unit parser would read '20..30 mm' as
+    the product 20. x .30 mm = 6 mm). Ranges go through :func:`_value_or_range`."""
+    if ".." in text:
+        raise InputError(field, text, "must be a single quantity here, not a range")
+    return _parse(text, kind, field)
 
 
 def _param_options(help_suffix: str):
@@ -59,6 +60,8 @@ def _value_or_range(text: str, kind: str, field: str) -> float | tuple[float, fl
     if ".." not in text:
         return parse_quantity(text, kind, field)
     low, high = (part.strip() for part in text.split("..", 1))
+    if ".." in high:
+        raise InputError(field, text, "a value or one range 'LOW..HIGH', e.g. '10..20 mm'")
     try:
         float(low)
         unit = high.lstrip("0123456789.eE+- ")
