@@ -117,7 +117,7 @@ def single_cylinder_forces(angle: ArrayLike, balance_factor: ArrayLike,
     rod_length : float, optional
         Conrod length [m]; needed for ``"exact"`` and ``"series"``.
     offset : float
-        Lateral offset of the wrist-pin path [m] (``"exact"`` only).
+        Lateral offset of the wrist-pin path [m]; must be 0 unless ``model="exact"``.
     model : {"exact", "series", "first-order"}
         Piston kinematics.
 
@@ -135,6 +135,12 @@ def single_cylinder_forces(angle: ArrayLike, balance_factor: ArrayLike,
     004 (NTNU thesis) Eq. 4.7 and 4.8 (first-order model, :math:`r' = r`).
     """
     _check_model(model)
+    if not math.isfinite(offset):
+        raise InputError("offset", offset, "must be a finite length [m]")
+    if offset != 0.0 and model != "exact":
+        raise InputError("offset", offset,
+                         f"the {model!r} kinematics has no wrist-pin offset; use model='exact' "
+                         "(with the conrod length) or offset = 0")
     psi = np.asarray(angle, dtype=float)
     fb = np.asarray(balance_factor, dtype=float)
     p = primary_force(reciprocating_mass, crank_radius, speed)
@@ -349,7 +355,7 @@ def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: 
     rod_length : float, optional
         Conrod length [m]; needed unless ``model="first-order"``.
     offset : float
-        Lateral wrist-pin path offset [m].
+        Lateral wrist-pin path offset [m]; must be 0 unless ``model="exact"``.
     model : {"exact", "series", "first-order"}
         Piston kinematics.
     samples : int
@@ -424,8 +430,46 @@ def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: 
 # tier 2: corrections (how the unbalance is taken off the counterweights)
 # ---------------------------------------------------------------------------------------
 
+class _Layer:
+    """What both corrections share: material taken off all webs alike, in a layer of a depth.
+
+    Subclasses are frozen dataclasses with ``radius``, ``webs``, ``density`` and
+    ``depth_resolution`` fields; they give :attr:`mass_per_depth` and say whether the cut goes
+    inward from ``radius`` (radial holes, the shoulder) or keeps its centroid there.
+    """
+
+    radius: float
+    webs: int
+    density: float
+    depth_resolution: float
+
+    @property
+    def mass_per_depth(self) -> float:  # pragma: no cover - overridden
+        """Mass removed per metre of depth, all webs [kg/m]."""
+        raise NotImplementedError
+
+    @property
+    def _cuts_inward(self) -> bool:  # pragma: no cover - overridden
+        raise NotImplementedError
+
+    def _check_layer(self) -> None:
+        check_positive("correction_radius", self.radius)
+        _check_count("webs", self.webs)
+        check_positive("density", self.density)
+        if not (self.depth_resolution >= 0 and math.isfinite(self.depth_resolution)):
+            raise InputError("depth_resolution", self.depth_resolution, "must be >= 0 [m]")
+
+    def centroid_radius(self, depth: float) -> float:
+        """Radius of the centroid of the removed material at that depth [m]."""
+        return self.radius - depth / 2.0 if self._cuts_inward else self.radius
+
+    def removed_unbalance(self, depth: float) -> float:
+        """First moment taken off all webs [kg m]."""
+        return self.mass_per_depth * depth * self.centroid_radius(depth)
+
+
 @dataclass(frozen=True)
-class DrilledHoles(ResultMixin):
+class DrilledHoles(_Layer, ResultMixin):
     r"""Holes drilled into the counterweights, the same set on each web.
 
     Attributes
@@ -462,31 +506,23 @@ class DrilledHoles(ResultMixin):
 
     def __post_init__(self) -> None:
         check_positive("hole_diameter", self.diameter)
-        check_positive("correction_radius", self.radius)
         _check_count("holes", self.number)
-        _check_count("webs", self.webs)
-        check_positive("density", self.density)
         if self.direction not in ("axial", "radial"):
             raise InputError("hole_direction", self.direction, "must be 'axial' or 'radial'")
-        if not self.depth_resolution >= 0:
-            raise InputError("depth_resolution", self.depth_resolution, "must be >= 0 [m]")
+        self._check_layer()
 
     @property
     def mass_per_depth(self) -> float:
         """Mass removed per metre of depth, all holes on all webs [kg/m]."""
         return self.density * math.pi * self.diameter**2 / 4.0 * self.number * self.webs
 
-    def centroid_radius(self, depth: float) -> float:
-        """Radius of the centroid of the removed material at that depth [m]."""
-        return self.radius if self.direction == "axial" else self.radius - depth / 2.0
-
-    def removed_unbalance(self, depth: float) -> float:
-        """First moment taken off all webs [kg m]."""
-        return self.mass_per_depth * depth * self.centroid_radius(depth)
+    @property
+    def _cuts_inward(self) -> bool:
+        return self.direction == "radial"
 
 
 @dataclass(frozen=True)
-class FaceRemoval(ResultMixin):
+class FaceRemoval(_Layer, ResultMixin):
     r"""A layer ground off a counterweight face, the same on each web.
 
     Attributes
@@ -517,27 +553,19 @@ class FaceRemoval(ResultMixin):
 
     def __post_init__(self) -> None:
         check_positive("face_area", self.area)
-        check_positive("correction_radius", self.radius)
-        _check_count("webs", self.webs)
-        check_positive("density", self.density)
         if self.orientation not in ("axial", "radial"):
             raise InputError("face_orientation", self.orientation,
                              "must be 'axial' or 'radial'")
-        if not self.depth_resolution >= 0:
-            raise InputError("depth_resolution", self.depth_resolution, "must be >= 0 [m]")
+        self._check_layer()
 
     @property
     def mass_per_depth(self) -> float:
         """Mass removed per metre of depth on all webs [kg/m]."""
         return self.density * self.area * self.webs
 
-    def centroid_radius(self, depth: float) -> float:
-        """Radius of the centroid of the removed layer at that depth [m]."""
-        return self.radius if self.orientation == "axial" else self.radius - depth / 2.0
-
-    def removed_unbalance(self, depth: float) -> float:
-        """First moment taken off all webs [kg m]."""
-        return self.mass_per_depth * depth * self.centroid_radius(depth)
+    @property
+    def _cuts_inward(self) -> bool:
+        return self.orientation == "radial"
 
 
 Correction = DrilledHoles | FaceRemoval
@@ -712,11 +740,15 @@ def rebalance(old_rotating_mass: float, old_reciprocating_mass: float,
     # step 2
     unbalance = original_moment - required
     if unbalance < -tolerance:
+        reachable = ((original_moment / crank_radius - new_rotating_mass)
+                     / new_reciprocating_mass)
+        advice = (f"choose at most {reachable:.4f}" if reachable >= 0 else
+                  f"the counterweights are too light even for f_b = 0 with the new parts "
+                  f"(the crank would have f_b = {reachable:.4f})")
         raise InputError(
             "target_balance_factor", target,
             f"needs {-unbalance * 1e6:.4g} g*mm added to the counterweights; removing "
-            "material (holes, grinding) can only lower the balance factor; choose at most "
-            f"{(original_moment / crank_radius - new_rotating_mass) / new_reciprocating_mass:.4f}")
+            f"material (holes, grinding) can only lower the balance factor; {advice}")
     iterations: list[RebalanceIteration] = []
     depth = 0.0
     residual = unbalance
