@@ -63,6 +63,21 @@ def test_balance_factor_table(capsys) -> None:
     (["rebalance", "--parts", str(EXAMPLE), "--new-rotating-mass", "-3 g"],
      "new_rotating_mass"),
     (["rebalance", "--parts", "no/such/file.toml"], "parts"),
+    # checked even without --speed (no force study): was silently accepted
+    (["balance-factor", "--reciprocating-mass", "-282 g", "--crank-radius", "26.9 mm"],
+     "reciprocating_mass"),
+    (["balance-factor", "--reciprocating-mass", "282 g", "--crank-radius", "0 mm"],
+     "crank_radius"),
+    # options that would be ignored
+    (["balance-factor", *CRF, "--speed", "1000 rpm", "--offset", "5 mm"], "offset"),
+    (["balance-factor", *CRF, "--rod-length", "105 mm"], "rod_length"),
+    (["balance-factor", *CRF, "--target", "0.3"], "target"),
+    (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "correction.diameter"),
+    # the option at fault is named, not a derived quantity
+    (["balance-factor", *CRF, "--rotating-mass", "282 g", "--target", "5"], "target"),
+    (["balance-factor", *CRF, "--rotating-mass", "280 g", "--cw-mass", "0.1 kg",
+      "--cw-radius", "6 mm"], "cw_mass"),
+    (["rebalance", "--parts", str(EXAMPLE), "--cw-mass", "1 kg"], "too light"),
 ])
 def test_bad_input_exit_2(capsys, args: list[str], field: str) -> None:
     code, _, err = run(capsys, args)
@@ -124,3 +139,13 @@ def test_balance_factor_from_engine_preset(capsys) -> None:
     assert data["study"]["speed_rad_s"] == pytest.approx(9000 * 3.141592653589793 / 30)
     code, _, err = run(capsys, ["balance-factor", "--engine", "single", "--cylinder", "2"])
     assert code == 2 and "cylinder" in err
+
+
+def test_rebalance_method_option_replaces_the_files_correction(capsys) -> None:
+    """--method holes on a file with a face correction drops the file's face keys."""
+    code, out, err = run(capsys, ["rebalance", "--parts", str(EXAMPLE), "--method", "holes",
+                                  "--hole-diameter", "8 mm", "--holes", "2",
+                                  "--format", "json"])
+    assert code == 0, err
+    cases = json.loads(out)["cases"]
+    assert all(case["correction"]["kind"] == "holes" and case["passed"] for case in cases)

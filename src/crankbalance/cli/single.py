@@ -15,7 +15,7 @@ from typing import Any
 
 import click
 
-from ..errors import InputError
+from ..errors import InputError, check_positive
 from ..units import format_quantity as _format_quantity
 from ..units import parse_quantity, registry
 
@@ -150,6 +150,15 @@ def balance_factor(reciprocating_mass: str | None, crank_radius: str | None,
         raise InputError("reciprocating_mass", None, "is required, e.g. '282.12 g'")
     if r is None:
         raise InputError("crank_radius", None, "is required, e.g. '26.9 mm'")
+    check_positive("reciprocating_mass", m_rec)
+    check_positive("crank_radius", r)
+    if w is None:
+        for name, value in (("rod_length", rod_length), ("offset", offset),
+                            ("kinematics", kinematics)):
+            if value is not None:
+                raise InputError(name, value, "only acts on the force study: give --speed too")
+    if target is not None and m_rot is None:
+        raise InputError("target", target, "sizes the bob-weight: give --rotating-mass too")
     given = [x is not None for x in (cw_mass, cw_radius)]
     mass_properties = None
     if any(given):
@@ -163,13 +172,19 @@ def balance_factor(reciprocating_mass: str | None, crank_radius: str | None,
                            "rotating_mass_kg": m_rot, "balance_factor": fb_crank,
                            "counterweight_moment_kgm": m_cw * r_cw}
     if balance_factor is not None:
-        fb = parse_factor(balance_factor, "balance_factor")
+        fb = sc._check_balance_factor(parse_factor(balance_factor, "balance_factor"))
     elif mass_properties is not None:
         fb = mass_properties["balance_factor"]
+        low, high = sc.BALANCE_FACTOR_RANGE
+        if not low <= fb <= high:
+            raise InputError("cw_mass", cw_mass,
+                             f"with --cw-radius and --rotating-mass gives the crank a balance "
+                             f"factor of {fb:.4f}, outside [{low:g}, {high:g}]; check the mass "
+                             "properties, or give --balance-factor for the study")
     else:
         fb = 0.5
-    sc._check_balance_factor(fb)
-    fb_target = fb if target is None else parse_factor(target, "target")
+    fb_target = (fb if target is None
+                 else sc._check_balance_factor(parse_factor(target, "target"), "target"))
     bob = None
     if m_rot is not None:
         bob = sc.bob_weight(m_rot, m_rec, fb_target)
@@ -257,6 +272,8 @@ _CW_KEYS = {"mass", "cg_radius"}
 _CORRECTION_KEYS = {"method", "radius", "area", "orientation", "diameter", "number",
                     "direction", "webs", "density", "depth_resolution"}
 _TOL_KEYS = {"grade", "rotor_mass", "speed", "unbalance"}
+#: [correction] keys that belong to one method only
+_METHOD_KEYS = {"face": ("area", "orientation"), "holes": ("diameter", "number", "direction")}
 
 
 def _check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
@@ -340,6 +357,12 @@ def build_correction(spec: dict[str, Any]) -> Any:
                                  "correction.depth_resolution")
                   if "depth_resolution" in spec else 1e-6)
     webs = spec.get("webs", 2)
+    other = [key for name, keys in _METHOD_KEYS.items() if name != method for key in keys]
+    for key in other:
+        if key in spec:
+            raise InputError(f"correction.{key}", spec[key],
+                             f"does not apply to method {method!r}; remove it or set the "
+                             "method (--method face|holes)")
     if method == "face":
         if "area" not in spec:
             raise InputError("correction.area", None, "is required for method 'face', "
@@ -465,6 +488,10 @@ def rebalance_command(parts_file: str | None, crank_radius: str | None, cw_mass:
             if key not in entry:
                 raise InputError(f"{side}_{key}", None, "is required (option or file)")
     corr = spec.setdefault("correction", {})
+    if method is not None and method != corr.get("method", "face"):
+        # --method switches the file's correction: its keys of the other method no longer apply
+        for key in _METHOD_KEYS[corr.get("method", "face")]:
+            corr.pop(key, None)
     for key, value in (("method", method), ("radius", correction_radius), ("area", face_area),
                        ("orientation", face_orientation), ("diameter", hole_diameter),
                        ("number", holes), ("direction", hole_direction), ("density", density),
