@@ -227,6 +227,10 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
 @pytest.mark.parametrize("make,field", [
     (lambda: CylinderSpec(0.08, 0.03, 0.02, 0.3, 1e-3), "rod_length"),
     (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=5.0), "balance_factor"),
+    (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=-0.5), "balance_factor"),
+    (lambda: BenchSettings(speed=10.0, samples=float("nan")), "samples"),
+    (lambda: engine_cycle(_cylinder(), 100.0, _no_gas(), strokes=2,
+                          samples_per_revolution=float("nan")), "samples_per_revolution"),
     (lambda: CylinderSpec(-0.08, 0.03, 0.1, 0.3, 1e-3), "bore"),
     (lambda: WiebeCombustion(compression_ratio=0.9, ignition_angle=0.0, burn_duration=0.8),
      "compression_ratio"),
@@ -322,6 +326,18 @@ def test_cli_pressure_csv(tmp_path):
     (["sensitivity", "--balance-factors", "a,b"], "balance_factors"),
     (["friction", "--journal-diameter", "20 mm"], "friction_coefficient"),
     (["bench", "--friction-coefficient", "0.1", "--speed", "fast"], "speed"),
+    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1"], "load"),
+    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
+      "--load", "-5 N"], "load"),
+    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
+      "--load", "5 N", "--eccentricity", "0.5"], "eccentricity"),
+    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
+      "--load", "5 N", "--speed", "100 rpm"], "speed"),
+    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
+      "--load", "5 N", "--unbalance", "3 g*mm", "--speed", "-100 rpm"], "speed"),
+    (["bench", "--friction-coefficient", "0.1", "--history", "/no/such/dir/h.csv"], "history"),
+    (["cycle", "--balance-factor", "-0.5"], "balance_factor"),
+    (["sensitivity", "--balance-factors", "0,5"], "balance_factors"),
 ])
 def test_cli_bad_input_exit_2(args, needle, capsys):
     from crankbalance.cli import main
@@ -330,3 +346,22 @@ def test_cli_bad_input_exit_2(args, needle, capsys):
         main(args)
     assert info.value.code == 2
     assert needle in capsys.readouterr().err
+
+
+def test_sensitivity_refuses_bad_factors_before_computing():
+    calls = []
+    with pytest.raises(InputError, match="balance_factors"):
+        balance_sensitivity(_cylinder(), 900.0, _no_gas(2), [0.0, 0.5, 2.5], strokes=2,
+                            progress=lambda d, t: calls.append(d))
+    assert calls == []
+
+
+def test_cli_cycle_engine_options_given_override_the_engine():
+    result, data = _run_cli(["cycle", "--engine", "single", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    from_engine = data["cylinder"]["crank_radius"]
+    result, data = _run_cli(["cycle", "--engine", "single", "--stroke", "60 mm",
+                             "--reciprocating-mass", "300 g", "--format", "json"])
+    assert result.exit_code == 0, result.output
+    assert data["cylinder"]["crank_radius"] == pytest.approx(0.030) != from_engine
+    assert data["cylinder"]["reciprocating_mass"] == pytest.approx(0.300)

@@ -52,13 +52,21 @@ def test_transducer_conversion():
     assert friction.torque_from_transducer_voltage(0.44) == pytest.approx(0.25), "004 Fig. 5.10"
 
 
-def test_petroff_against_couette_integration():
+def test_petroff_against_textbook_forms():
     eta, d, length, c, w = 0.01, 0.04, 0.02, 20e-6, 600.0
-    # numerical: shear stress eta*U/c integrated over the journal surface, times radius
-    circumference = np.linspace(0, np.pi * d, 1001)
-    stress = eta * (w * d / 2) / c * np.ones_like(circumference)
-    force = np.trapezoid(stress, circumference) * length
-    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(force * d / 2, rel=1e-9)
+    r, n = d / 2, w / (2 * np.pi)  # journal radius [m], speed [rev/s]
+    # Petroff's equation as in Shigley (Eq. 12-6): f = 2 pi^2 (mu N / P)(r / c) with the
+    # projected-area pressure P = W / (2 r L); torque T = f W r (any load W)
+    load = 1234.0
+    f = 2 * np.pi**2 * eta * n / (load / (2 * r * length)) * r / c
+    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(f * load * r,
+                                                                          rel=1e-12), \
+        "Petroff equation (Shigley 12-6)"
+    # Heywood's form printed in 004 Eq. 7.2 with N in rev/s: F = pi^2 eta D^2 L N / h
+    heywood = np.pi**2 * eta * d**2 * length * n / c
+    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(heywood * r,
+                                                                          rel=1e-12), \
+        "004 App. A Eq. 7.2 (Heywood) with eps = 0, N in rev/s"
     # eccentricity raises the shear term by 1/sqrt(1 - eps^2) (004 Eq. 7.2)
     t0 = friction.journal_bearing_torque(eta, d, length, c, w)
     t6 = friction.journal_bearing_torque(eta, d, length, c, w, eccentricity_ratio=0.6)

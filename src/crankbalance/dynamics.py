@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 from . import kinematics
 from .errors import InputError, check_positive, check_range
 from .results import ResultMixin
+from .single_cylinder import BALANCE_FACTOR_RANGE
 
 STANDARD_GRAVITY = 9.80665
 GAS_CONSTANT_AIR = 287.0
@@ -231,8 +232,9 @@ class BenchSettings(ResultMixin):
         check_positive("proportional_gain", self.proportional_gain)
         _nonnegative("integral_gain", self.integral_gain)
         check_positive("stick_speed", self.stick_speed)
-        if int(self.samples) < 10:
-            raise InputError("samples", self.samples, "must be at least 10")
+        if isinstance(self.samples, bool) or not isinstance(self.samples, (int, np.integer)) \
+                or self.samples < 10:
+            raise InputError("samples", self.samples, "must be a whole number, at least 10")
         check_range("rtol", self.rtol, 1e-12, 1e-2)
 
 
@@ -251,7 +253,7 @@ class BenchResult(ResultMixin):
     final_speed : float
         Speed at the end of the run [rad/s].
     speed_ripple : float
-        Peak-to-peak speed over the last revolution-averaged hold [rad/s].
+        Peak-to-peak speed over the second half of the hold [rad/s].
     time, speed, motor_torque, friction_torque, bearing_load_a, bearing_load_b : ndarray
         Histories [s], [rad/s], [N m], [N m], [N], [N].
     """
@@ -408,7 +410,7 @@ class CylinderSpec(ResultMixin):
         big end, flywheel, clutch) about the crank axis [kg m^2].
     balance_factor : float
         Share of the reciprocating mass balanced by the crank counterweight on top of 100 %
-        of the rotating mass, :math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r` [-].
+        of the rotating mass, :math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r`, in [0, 2] [-].
     journal_diameter : float
         Main-journal diameter [m].
     friction_coefficient : float
@@ -444,9 +446,7 @@ class CylinderSpec(ResultMixin):
                              f"= {self.crank_radius + abs(self.offset):g} m")
         _nonnegative("reciprocating_mass", self.reciprocating_mass)
         check_positive("crank_inertia", self.crank_inertia)
-        _finite("balance_factor", self.balance_factor)
-        if not -1.0 <= self.balance_factor <= 2.0:
-            raise InputError("balance_factor", self.balance_factor, "must lie between -1 and 2")
+        check_range("balance_factor", self.balance_factor, *BALANCE_FACTOR_RANGE)
         check_positive("journal_diameter", self.journal_diameter)
         _nonnegative("friction_coefficient", self.friction_coefficient)
         _finite("offset", self.offset)
@@ -842,8 +842,10 @@ def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
     if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
         raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")
     check_positive("speed", speed)
-    if int(samples_per_revolution) < 36:
-        raise InputError("samples_per_revolution", samples_per_revolution, "must be at least 36")
+    if isinstance(samples_per_revolution, bool) or not isinstance(
+            samples_per_revolution, (int, np.integer)) or samples_per_revolution < 36:
+        raise InputError("samples_per_revolution", samples_per_revolution,
+                         "must be a whole number, at least 36")
     count = len(specs)
     cycle_angle = np.pi * strokes
     if phases is None:
@@ -1020,7 +1022,7 @@ def balance_sensitivity(cylinder: CylinderSpec, speed: float, pressure: Pressure
     pressure : WiebeCombustion or (angle, pressure) arrays
         Pressure model.
     balance_factors : array_like
-        Balance factors to evaluate [-].
+        Balance factors to evaluate, each in [0, 2] [-].
     mass_scales : array_like
         Factors on the reciprocating mass [-].
     strokes : {2, 4}
@@ -1039,8 +1041,14 @@ def balance_sensitivity(cylinder: CylinderSpec, speed: float, pressure: Pressure
     scales = np.atleast_1d(np.asarray(mass_scales, dtype=float))
     if factors.size == 0 or factors.ndim != 1:
         raise InputError("balance_factors", balance_factors, "must be a non-empty list")
-    if scales.size == 0 or scales.ndim != 1 or np.any(~(scales > 0)):
-        raise InputError("mass_scales", mass_scales, "must be a non-empty list of numbers > 0")
+    if scales.size == 0 or scales.ndim != 1 or np.any(~(scales > 0) | ~np.isfinite(scales)):
+        raise InputError("mass_scales", mass_scales,
+                         "must be a non-empty list of finite numbers > 0")
+    low, high = BALANCE_FACTOR_RANGE
+    outside = factors[~((factors >= low) & (factors <= high))]
+    if outside.size:  # refuse before the first (possibly long) cycle is computed
+        raise InputError("balance_factors", float(outside[0]),
+                         f"each must lie between {low:g} and {high:g}")
     out = {name: np.zeros((scales.size, factors.size)) for name in SENSITIVITY_INDICATORS}
     total, done = scales.size * factors.size, 0
     from dataclasses import replace

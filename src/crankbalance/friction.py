@@ -90,7 +90,8 @@ def mean_load_factor(constant_load: ArrayLike, rotating_load: ArrayLike) -> NDAr
     u = _nonnegative("rotating_load", rotating_load)
     total = w + u
     if np.any(total <= 0):
-        raise InputError("constant_load + rotating_load", total, "must be greater than zero")
+        raise InputError("constant_load + rotating_load", total.tolist(),
+                         "must be greater than zero (the bearing carries no load)")
     x = w / total
     return x * x - x + 1.0
 
@@ -230,7 +231,8 @@ def friction_coefficient_from_torque(torque: ArrayLike, constant_load: ArrayLike
     load = mean_equivalent_load(constant_load, rotating_load, method)
     d = _positive("journal_diameter", journal_diameter)
     if np.any(load <= 0):
-        raise InputError("constant_load + rotating_load", load, "must be greater than zero")
+        raise InputError("constant_load + rotating_load", np.asarray(load).tolist(),
+                         "must be greater than zero (the bearing carries no load)")
     return t / (load * 0.5 * d)
 
 

@@ -9,6 +9,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Sequence
+from pathlib import Path
 from typing import Any
 
 import click
@@ -99,10 +100,14 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
              clearance: str | None, eccentricity: float, attitude_angle: str, fmt: str) -> None:
     """Bearing friction torque under a constant plus a rotating load (004 Sec. 4.2.1)."""
     from .. import friction as fr
+    from ..errors import check_positive
 
     constant = _q(load_text, "force", "load")
     omega = _q_opt(speed, "speed", "speed")
-    diameter = _q(journal_diameter, "length", "journal_diameter")
+    if omega is not None:
+        check_positive("speed", omega)
+    diameter = check_positive("journal_diameter",
+                              _q(journal_diameter, "length", "journal_diameter"))
     if rotating_load is not None and unbalance is not None:
         raise InputError("unbalance", unbalance, "give either --rotating-load or --unbalance")
     if unbalance is not None:
@@ -111,14 +116,34 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
         rotating = _q(unbalance, "unbalance", "unbalance") * omega**2
     else:
         rotating = _q(rotating_load, "force", "rotating_load") if rotating_load else 0.0
+    for name, value, text in (("load", constant, load_text),
+                              ("rotating_load", rotating, rotating_load or unbalance),
+                              ("friction_coefficient", friction_coefficient,
+                               friction_coefficient)):
+        if value is not None and not (value >= 0 and math.isfinite(value)):
+            raise InputError(name, text, "must be finite and not negative")
     measured = _q_opt(torque, "torque", "torque")
     if measured is None and friction_coefficient is None and viscosity is None:
         raise InputError("friction_coefficient", None,
                          "give --friction-coefficient, --torque or the hydrodynamic options")
+    if viscosity is None:
+        given = _given_options()
+        hydrodynamic = ("bearing_length", "clearance", "eccentricity", "attitude_angle")
+        unused: list[str] = [name for name in hydrodynamic if name in given]
+        if speed is not None and unbalance is None:
+            unused.append("speed")
+        for name in unused:
+            raise InputError(name, locals()[name], "only acts on the hydrodynamic bearing "
+                             "(with --viscosity), or for --speed with --unbalance")
+    if (measured is not None or friction_coefficient is not None) and not (
+            constant > 0 or rotating > 0):
+        raise InputError("load", load_text, "the bearing carries no load: give --load (e.g. "
+                         "the rotor weight) and/or --rotating-load or --unbalance")
     rows: list[dict[str, float | str]] = []
     methods: tuple[fr.MeanLoadMethod, ...] = ("approximate", "cubic", "arithmetic")
     for method in methods:
-        mean = float(fr.mean_equivalent_load(constant, rotating, method))
+        mean = (float(fr.mean_equivalent_load(constant, rotating, method))
+                if constant + rotating > 0 else 0.0)
         row: dict[str, float | str] = {"method": method, "mean_load_N": mean}
         if friction_coefficient is not None:
             row["torque_Nm"] = float(fr.friction_torque(friction_coefficient, mean, diameter))
@@ -147,7 +172,9 @@ def friction(load_text: str, rotating_load: str | None, unbalance: str | None,
         return
     keys = [k for k in rows[0]]
     if fmt == "csv":
-        _emit_csv(keys, [[r[k] for k in keys] for r in rows])
+        extra = list(hydro) if hydro else []  # the hydrodynamic torques, same on each row
+        _emit_csv(keys + extra, [[r[k] for k in keys] + [hydro[k] for k in extra]  # type: ignore[index]
+                                 for r in rows])
         return
     click.echo(f"constant load {constant:.4g} N, rotating load {rotating:.4g} N, "
                f"journal {diameter * 1000:.4g} mm")
@@ -194,18 +221,25 @@ def bench(mass: str, inertia: str, unbalance: str, journal_diameter: str,
                        journal_diameter=_q(journal_diameter, "length", "journal_diameter"),
                        friction_coefficient=friction_coefficient,
                        unbalance=_q(unbalance, "unbalance", "unbalance"))
+    # everything is checked before the first (slow) run
+    runs = [BenchSettings(speed=_q(text, "speed", "speed"),
+                          ramp_time=_q(ramp_time, "time", "ramp_time"),
+                          hold_time=_q(hold_time, "time", "hold_time"),
+                          proportional_gain=kp, integral_gain=ki) for text in speeds]
+    if history and not Path(history).resolve().parent.is_dir():
+        raise InputError("history", history, "must be a file in an existing directory")
     results = []
     report = _progress("bench")
-    for k, text in enumerate(speeds):
-        settings = BenchSettings(speed=_q(text, "speed", "speed"),
-                                 ramp_time=_q(ramp_time, "time", "ramp_time"),
-                                 hold_time=_q(hold_time, "time", "hold_time"),
-                                 proportional_gain=kp, integral_gain=ki)
+    for k, settings in enumerate(runs):
         results.append(run_bench(rotor, settings))
-        report(k + 1, len(speeds))
+        report(k + 1, len(runs))
     if history:
         last = results[-1]
-        with open(history, "w", encoding="utf-8") as handle:
+        try:
+            handle = open(history, "w", encoding="utf-8")  # noqa: SIM115
+        except OSError as error:
+            raise InputError("history", history, f"cannot be written ({error.strerror})") from None
+        with handle:
             handle.write("time_s,speed_rpm,motor_torque_Nm,friction_torque_Nm,"
                          "bearing_load_a_N,bearing_load_b_N\n")
             for row in zip(last.time, last.speed * 30 / math.pi, last.motor_torque,
@@ -234,7 +268,8 @@ def _engine_options(function: Any) -> Any:
     options = [
         click.option("--engine", default=None,
                      help="Engine file or preset: stroke, rod length, offset, reciprocating "
-                     "mass (of --cylinder), speed and stroke count come from it."),
+                     "mass (of --cylinder), speed and stroke count come from it unless "
+                     "given as options."),
         click.option("--cylinder", type=click.IntRange(1), default=1, show_default=True,
                      help="With --engine: the cylinder studied."),
         click.option("--bore", default="76.8 mm", show_default=True),
@@ -277,6 +312,15 @@ def _read_pressure_csv(path: str) -> tuple[Any, Any]:
     return np.radians(data[:, 0]), data[:, 1] * 1e5
 
 
+def _given_options() -> set[str]:
+    """Names of the options the user typed (not defaults) in the running command."""
+    context = click.get_current_context(silent=True)
+    if context is None:
+        return set()
+    return {name for name in context.params
+            if context.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE}
+
+
 def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any, Any, float, int]:
     from ..dynamics import CylinderSpec, WiebeCombustion
 
@@ -292,10 +336,19 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
         if o["cylinder"] > model.cylinders:
             raise InputError("--cylinder", o["cylinder"],
                              f"this engine has cylinders 1..{model.cylinders}")
-        geometry = {"crank_radius": model.crank_radius, "rod_length": model.rod_length,
-                    "reciprocating_mass": float(model.reciprocating_mass[o["cylinder"] - 1]),
-                    "offset": model.offset}
-        speed, strokes = model.speed, model.strokes
+        # the engine's values, except where an option was given on the command line
+        given = _given_options()
+        engine_values = {"crank_radius": ("stroke", model.crank_radius),
+                         "rod_length": ("rod_length", model.rod_length),
+                         "reciprocating_mass": (
+                             "reciprocating_mass",
+                             float(model.reciprocating_mass[o["cylinder"] - 1]))}
+        for key, (option, value) in engine_values.items():
+            if option not in given:
+                geometry[key] = float(value)
+        geometry["offset"] = float(model.offset)
+        speed = speed if "speed" in given else float(model.speed)
+        strokes = strokes if "strokes" in given else int(model.strokes)
     cylinder = CylinderSpec(bore=_q(o["bore"], "length", "bore"),
                             crank_inertia=_q(o["crank_inertia"], "inertia", "crank_inertia"),
                             balance_factor=balance_factor,
