@@ -51,11 +51,13 @@ def test_file_matches_table_6_1() -> None:
     assert spec["new"]["reciprocating_mass"] == pytest.approx(0.26150), "004 Table 6.1 MXRR"
 
 
-@pytest.mark.parametrize("m_rot", [0.28296, 0.28269])
-def test_factory_balance_factor(m_rot: float) -> None:
+@pytest.mark.parametrize("m_rot, checked", [(0.28296, 0.6370), (0.28269, 0.6379)])
+def test_factory_balance_factor(m_rot: float, checked: float) -> None:
     fb = sc.balance_factor_from_mass_properties(2.02040, 0.00616, 0.0269, m_rot, 0.28212)
     assert abs(fb - 0.6375) < 0.002, \
         "004 Sec. 6.3.3 / Eq. 6.2: f_b = 63.75 % (r' rounded in print, seeds README: +-0.002)"
+    assert abs(fb - checked) < 5e-5, \
+        "seeds README (004 Eq. 6.2): 0.6370 with m_rot = 282.96 g, 0.6379 with 282.69 g"
 
 
 def test_permissible_unbalance_crf250r() -> None:
