@@ -234,3 +234,14 @@ def test_atomic_write_keeps_normal_permissions(tmp_path: Path) -> None:
     os.chmod(target, 0o640)
     write_atomic(target, "y")
     assert stat.S_IMODE(target.stat().st_mode) == 0o640 and target.read_text() == "y"
+
+
+@pytest.mark.parametrize("text", ["20..30 mm", "20 30 mm", "2 * 3 mm", "40 mm*2", "nan mm"])
+def test_quantity_must_be_one_number_and_a_unit(text: str) -> None:
+    """pint reads '20..30 mm' as 20. x .30 mm = 6 mm and '20 30 mm' as 600 mm; a quantity
+    field takes one number and a unit, anything else is refused."""
+    from crankbalance.errors import InputError
+    from crankbalance.units import parse_quantity
+
+    with pytest.raises(InputError, match="crank_radius"):
+        parse_quantity(text, "length", "crank_radius")

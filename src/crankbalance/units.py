@@ -7,10 +7,18 @@ pint is imported lazily so that importing crankbalance stays fast.
 from __future__ import annotations
 
 import math
+import re
 from functools import lru_cache
 from typing import Any
 
 from .errors import InputError
+
+# one number, then a unit expression whose only digits are exponents ("kg*m^2", "m**3")
+_QUANTITY = re.compile(
+    r"^\s*[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?\s*"
+    r"(?P<unit>[A-Za-z°µμ%][A-Za-z°µμ%_/*^.\s\d()-]*)?$"
+)
+_EXPONENT = re.compile(r"(\^|\*\*)\s*\(?-?\d+(\.\d+)?\)?")
 
 # kind -> (SI unit pint understands, unit used when writing a value back, example)
 KINDS: dict[str, tuple[str, str, str]] = {
@@ -73,6 +81,12 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
     text = value.strip()
     if not text:
         raise InputError(field, value, f"must be {_a(kind)}, e.g. {example!r}")
+    match = _QUANTITY.match(text)
+    unit = (match.group("unit") or "") if match else ""
+    if match is None or ".." in text or re.search(r"\d", _EXPONENT.sub("", unit)):
+        raise InputError(
+            field, value, f"must be one number and a unit, e.g. {example!r} (not a range or product)"
+        )
     ureg = registry()
     try:
         quantity = ureg.Quantity(text.replace("°", " deg").replace("^", "**"))
