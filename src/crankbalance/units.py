@@ -85,7 +85,7 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
     unit = (match.group("unit") or "") if match else ""
     if match is None or ".." in text or re.search(r"\d", _EXPONENT.sub("", unit)):
         raise InputError(
-            field, value, f"must be one number and a unit, e.g. {example!r} (not a range or product)"
+            field, value, f"must be one number and a unit, e.g. {example!r} (not a range)"
         )
     ureg = registry()
     try:
