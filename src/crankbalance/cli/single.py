@@ -9,7 +9,6 @@ from __future__ import annotations
 import json
 import math
 import tomllib
-from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -18,6 +17,7 @@ import click
 from ..errors import InputError, check_positive
 from ..units import format_quantity as _format_quantity
 from ..units import parse_quantity, registry
+from ._common import format_table
 
 FORMATS = click.Choice(["table", "json"])
 BALANCE_FACTOR_NOTE = ("balance factor = share of the reciprocating mass per cylinder balanced by "
@@ -72,18 +72,6 @@ def _echo_json(payload: dict[str, Any]) -> None:
     from ..results import to_jsonable
 
     click.echo(json.dumps(to_jsonable(payload), indent=2))
-
-
-def _table(rows: Sequence[tuple[str, ...]], header: tuple[str, ...] | None = None) -> str:
-    all_rows = ([header] if header else []) + list(rows)
-    widths = [max(len(row[i]) for row in all_rows) for i in range(len(all_rows[0]))]
-    lines = []
-    for k, row in enumerate(all_rows):
-        lines.append("  ".join(cell.ljust(w) if i == 0 else cell.rjust(w)
-                               for i, (cell, w) in enumerate(zip(row, widths, strict=True))))
-        if header and k == 0:
-            lines.append("  ".join("-" * w for w in widths))
-    return "\n".join(lines)
 
 
 def format_quantity(value: float, kind: str) -> str:
@@ -235,7 +223,7 @@ def balance_factor(reciprocating_mass: str | None, crank_radius: str | None,
                  ("optimum balance factor", f"{study.optimum_balance_factor:.4f}"),
                  ("peak resultant at optimum",
                   format_quantity(study.optimum_peak_resultant, "force"))]
-    click.echo(_table(rows))
+    click.echo(format_table(None, rows))
     click.echo(f"({BALANCE_FACTOR_NOTE})")
 
 
@@ -533,8 +521,9 @@ def rebalance_command(parts_file: str | None, crank_radius: str | None, cw_mass:
                  f"{it.removed_mass * 1e3:.3f}", f"{it.residual * 1e6:.3f}",
                  "yes" if it.within_tolerance else "no") for it in res.iterations]
         if rows:
-            click.echo(_table(rows, ("iter", "r_corr [mm]", "m_corr [g]", "depth [mm]",
-                                     "removed [g]", "residual [g*mm]", "within")))
+            header = ("iter", "r_corr [mm]", "m_corr [g]", "depth [mm]", "removed [g]",
+                      "residual [g*mm]", "within")
+            click.echo(format_table(header, rows))
         click.echo(f"status {res.status}; residual {_gmm(abs(res.residual))} "
                    f"{'<=' if res.passed else '>'} {_gmm(res.tolerance)}: "
                    f"{'PASS' if res.passed else 'FAIL'}; achieved f_b = "
@@ -570,8 +559,8 @@ def tolerance_command(grade: str | None, rotor_mass: str | None, speed: str | No
             _echo_json({"schema": "crankbalance.grades/1",
                         "grades": [g.to_dict() for g in tl.GRADES]})
         else:
-            click.echo(_table([(g.name, g.examples) for g in tl.GRADES],
-                              ("grade", "example rotor types")))
+            click.echo(format_table(("grade", "example rotor types"),
+                                    [(g.name, g.examples) for g in tl.GRADES]))
         return
     for name, value in (("grade", grade), ("rotor_mass", rotor_mass), ("speed", speed)):
         if value is None:
@@ -615,7 +604,7 @@ def tolerance_command(grade: str | None, rotor_mass: str | None, speed: str | No
         rows += [("residual", _gmm(verdict.residual)),
                  ("verdict", f"{'PASS' if verdict.passed else 'FAIL'} "
                   f"({verdict.ratio * 100:.1f} % of U_per)")]
-    click.echo(_table(rows))
+    click.echo(format_table(None, rows))
     click.echo(f"({item.name}: {item.examples})")
     if allocation is not None:
         click.echo(f"(rule: {allocation.rule})")
