@@ -61,7 +61,7 @@ class FigureCard:
         self.page, self.name, self.title, self.builder = page, name, title, builder
         self.figure: Any | None = None
         self.stale = True
-        with ui.card().classes("w-full"):
+        with ui.card().classes("w-full") as self.card:
             with ui.row().classes("w-full items-center justify-between"):
                 ui.label(title).classes("text-subtitle1")
                 with ui.row().classes("gap-1"):
@@ -118,6 +118,7 @@ class Page:
         self.setting_inputs: dict[str, Any] = {}
         self.cards: dict[str, list[FigureCard]] = {name: [] for name, _ in TABS}
         self.last_update_ms = 0.0
+        self.updates = 0
         self.optimum: Any = None
         self.study_results: dict[str, Any] = {}
         message = ""
@@ -207,9 +208,9 @@ class Page:
             element = ui.select(options, value=value or None, label=f.label, on_change=handler)
         else:
             element = ui.input(label=f.label, value=value, placeholder=f.hint, on_change=handler)
-        element.classes("w-64").props(f'hint="{f.hint}"' if f.hint else "").mark(
-            f"field-{f.key}"
-        ).without_auto_validation()
+        element.classes("w-64").props(f'hint="{f.hint}"' if f.hint else "")
+        element.props(f"data-testid=field-{f.key}").mark(f"field-{f.key}")
+        element.without_auto_validation()
         self.inputs[f.key] = element
 
     def _setting(self, key: str, on_change: Callable[[], None] | None = None) -> None:
@@ -230,6 +231,7 @@ class Page:
             )
             .classes("w-64")
             .props(f'hint="{hint}"')
+            .props(f"data-testid=setting-{key}")
             .mark(f"setting-{key}")
             .without_auto_validation()
         )
@@ -249,9 +251,21 @@ class Page:
                     for f in BALANCING_FIELDS:
                         self._field(f)
             with ui.column().classes("grow min-w-[420px]"):
-                self.cards["engine"].append(
-                    FigureCard(self, "crank3d", "Crankshaft (3-D)", self._crank_figure)
+                self.show_3d = (
+                    ui.switch("Live 3-D view", value=True, on_change=self._toggle_3d)
+                    .props("data-testid=show-3d")
+                    .mark("show-3d")
                 )
+                self.crank_card = FigureCard(
+                    self, "crank3d", "Crankshaft (3-D)", self._crank_figure
+                )
+                self.cards["engine"].append(self.crank_card)
+
+    def _toggle_3d(self) -> None:
+        """The 3-D view can be switched off (software WebGL is heavy on small machines)."""
+        self.crank_card.card.set_visibility(self.show_3d.value)
+        if self.show_3d.value:
+            self.crank_card.refresh()
 
     def _crank_figure(self) -> Any | None:
         c = self.project.computed
@@ -747,9 +761,10 @@ class Page:
         self.last_update_ms = (time.perf_counter() - t0) * 1e3
         c = self.project.computed
         if self.project.spec is not None and c is not None:
+            self.updates += 1
             self.status.set_text(
-                f"computed in {c.elapsed * 1e3:.0f} ms, page updated in "
-                f"{self.last_update_ms:.0f} ms"
+                f"update {self.updates}: computed in {c.elapsed * 1e3:.0f} ms, page updated "
+                f"in {self.last_update_ms:.0f} ms"
             )
         else:
             self.status.set_text("engine has errors: see the fields marked in red")
@@ -778,7 +793,7 @@ class Page:
 
     def refresh_cards(self, tab: str) -> None:
         for card in self.cards.get(tab, []):
-            if card.stale:
+            if card.stale and card.card.visible:
                 card.refresh()
 
     def show_errors(self) -> None:
@@ -1038,11 +1053,8 @@ def _has_report() -> bool:
 
 
 def _report_html(report: Any, spec: Any) -> str:
-    for name in ("report_html", "html_report", "build_html"):
-        function = getattr(report, name, None)
-        if function is not None:
-            return str(function(spec))
-    raise RuntimeError("crankbalance.report has no HTML builder")
+    """The self-contained HTML report of :mod:`crankbalance.report` for the current engine."""
+    return str(report.report_html(report.build_report(spec)))
 
 
 def _download(content: str | bytes, filename: str, media_type: str) -> None:

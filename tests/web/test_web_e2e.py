@@ -1,0 +1,213 @@
+"""End-to-end: ``crankbalance web`` in a subprocess, driven by Playwright in Debian's
+chromium (never a downloaded browser). Load a preset, change an input, compute, download
+the report and check its numbers against the API; screenshots of every tab go to
+``artifacts/screenshots/``; a load test runs 20 concurrent sessions of 20 engines each.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+import re
+import socket
+import subprocess
+import sys
+import time
+import urllib.request
+from collections.abc import Iterator
+from pathlib import Path
+
+import pytest
+
+pytest.importorskip("nicegui")
+playwright_api = pytest.importorskip("playwright.sync_api")
+
+CHROMIUM = "/usr/bin/chromium"
+ARGS = [
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+]
+ROOT = Path(__file__).resolve().parents[2]
+SHOTS = ROOT / "artifacts" / "screenshots"
+TABS = [
+    "Engine",
+    "Masses",
+    "Results",
+    "Counterweight design",
+    "Single cylinder",
+    "Balance shaft",
+    "Performance",
+]
+#: plotly complains when a figure in a hidden tab panel is resized; harmless
+BENIGN = ("Resize must be passed a displayed plot div element",)
+
+pytestmark = pytest.mark.skipif(not os.path.exists(CHROMIUM), reason="needs Debian's chromium")
+
+
+def _free_port() -> int:
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return int(s.getsockname()[1])
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[str]:
+    port = _free_port()
+    env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+    log = (
+        open(ROOT / "artifacts" / "web-server.log", "w")
+        if (ROOT / "artifacts").is_dir()
+        else subprocess.DEVNULL
+    )
+    proc = subprocess.Popen(
+        [sys.executable, "-m", "crankbalance", "web", "--port", str(port)],
+        env=env,
+        stdout=log,
+        stderr=subprocess.STDOUT,
+    )
+    url = f"http://127.0.0.1:{port}"
+    try:
+        for _ in range(200):
+            try:
+                with urllib.request.urlopen(url + "/", timeout=2) as response:
+                    if response.status == 200:
+                        break
+            except OSError:
+                time.sleep(0.1)
+            if proc.poll() is not None:
+                raise RuntimeError("crankbalance web exited at start")
+        else:
+            raise RuntimeError("crankbalance web did not answer")
+        yield url
+    finally:
+        proc.terminate()
+        try:
+            proc.wait(10)
+        except subprocess.TimeoutExpired:
+            proc.kill()
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[object]:
+    with playwright_api.sync_playwright() as p:
+        chromium = p.chromium.launch(executable_path=CHROMIUM, args=ARGS)
+        yield chromium
+        chromium.close()
+
+
+def _field(page, key: str):
+    return page.locator(f"[data-testid=field-{key}]").first
+
+
+def _wait_text(page, selector: str, pattern: str, timeout: float = 15.0) -> str:
+    deadline = time.time() + timeout
+    text = ""
+    while time.time() < deadline:
+        text = page.locator(selector).first.inner_text()
+        if re.search(pattern, text):
+            return text
+        page.wait_for_timeout(100)
+    raise AssertionError(f"{pattern!r} not found in {text!r}")
+
+
+def test_preset_change_compute_report(server: str, browser, tmp_path: Path) -> None:
+    from crankbalance.analysis import analyze, balance_engine
+    from crankbalance.io import load_engine
+
+    page = browser.new_page(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(server + "/?preset=v8-crossplane")
+    page.get_by_text("V8 90 deg, crossplane crank").first.wait_for(timeout=15000)
+    speed = _field(page, "speed")
+    assert speed.input_value() == "5500 rpm"
+    t0 = time.perf_counter()
+    speed.fill("6000 rpm")
+    status = _wait_text(page, ".q-header", r"computed in \d+ ms")
+    latency = time.perf_counter() - t0
+    page.get_by_role("tab", name="Masses").click()
+    page.get_by_role("button", name="Compute results").click()
+    _wait_text(page, "body", r"Counterweight mass:")
+    # the same engine through the API
+    spec = load_engine("v8-crossplane").model_copy(update={"speed": 6000 * 3.141592653589793 / 30})
+    api = analyze(spec).to_dict()
+    study = balance_engine(spec).to_dict()
+    with page.expect_download() as info:
+        page.get_by_role("button", name=re.compile("Report HTML|Balance JSON")).first.click()
+    path = tmp_path / info.value.suggested_filename
+    info.value.save_as(path)
+    text = path.read_text()
+    if path.suffix == ".html":
+        moment1 = api["free_moments"][0]["amplitude_Nm"]
+        cw = study["counterweight"]["mass_kg"]
+        assert "6000" in text, "the report is of the changed engine (6000 rpm)"
+        assert f"{moment1:.4g}"[:4] in text, f"first-order moment {moment1} (API) in report"
+        assert f"{cw:.4g}"[:4] in text, f"counterweight {cw} kg (API) in the report"
+    else:
+        data = json.loads(text)
+        assert abs(data["counterweight"]["mass_kg"] - study["counterweight"]["mass_kg"]) < 1e-9
+    with page.expect_download() as info:
+        page.get_by_role("button", name="Analysis JSON").click()
+    info.value.save_as(tmp_path / "analysis.json")
+    data = json.loads((tmp_path / "analysis.json").read_text())
+    for got, ref in zip(data["free_moments"], api["free_moments"], strict=True):
+        assert abs(got["amplitude_Nm"] - ref["amplitude_Nm"]) <= 1e-9 * max(1, ref["amplitude_Nm"])
+    assert abs(data["engine"]["speed_rpm"] - 6000) < 1e-9
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+    print(f"input-to-update latency in the browser: {latency * 1e3:.0f} ms ({status})")
+    page.close()
+
+
+def test_screenshots_of_every_tab(server: str, browser) -> None:
+    SHOTS.mkdir(parents=True, exist_ok=True)
+    page = browser.new_page(viewport={"width": 1500, "height": 1000})
+    page.goto(server + "/")
+    page.get_by_text("Inline-3, Table 1").first.wait_for(timeout=15000)
+    _field(page, "rod_length").fill("30 mm")  # a bad value: message beside the field
+    page.get_by_text("must exceed crank_radius").first.wait_for(timeout=10000)
+    page.screenshot(path=str(SHOTS / "engine_bad_input.png"))
+    _field(page, "rod_length").fill("135 mm")
+    _wait_text(page, ".q-header", r"computed in")
+    actions = {
+        "Counterweight design": "Optimise",
+        "Single cylinder": "Compute study",
+        "Balance shaft": "Find the optimum",
+        "Performance": "Run the sweep",
+    }
+    for k, tab in enumerate(TABS):
+        page.get_by_role("tab", name=tab).click()
+        if tab in actions:
+            page.get_by_role("button", name=actions[tab]).click()
+        page.wait_for_timeout(2500 if tab in actions else 1200)
+        page.screenshot(
+            path=str(SHOTS / f"{k + 1}_{tab.lower().replace(' ', '_')}.png"), full_page=True
+        )
+    assert len(list(SHOTS.glob("*.png"))) >= len(TABS)
+    page.close()
+
+
+def test_load_20_sessions_20_engines(server: str) -> None:
+    """20 concurrent sessions, each typing 20 engines (60 recomputes), without an error."""
+    import asyncio
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location("bench_web", ROOT / "benchmarks" / "bench_web.py")
+    assert spec is not None and spec.loader is not None
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    from concurrent.futures import ThreadPoolExecutor
+
+    with ThreadPoolExecutor(1) as pool:  # its own event loop, apart from the sync browser's
+        result = pool.submit(asyncio.run, bench.run_load(server, sessions=20, count=20)).result()
+    assert not result["errors"], result["errors"][:5]
+    assert len(result["times"]) == 20 * 20 * 3, "every input of every session was answered"
+    times = sorted(result["times"])
+    print(
+        f"load: p95 {times[int(0.95 * (len(times) - 1))] * 1e3:.0f} ms, wall {result['wall']:.1f} s"
+    )
