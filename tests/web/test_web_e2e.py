@@ -171,6 +171,9 @@ def test_screenshots_of_every_tab(server: str, browser) -> None:
     page.get_by_text("Inline-3, Table 1").first.wait_for(timeout=15000)
     _field(page, "rod_length").fill("30 mm")  # a bad value: message beside the field
     page.get_by_text("must exceed crank_radius").first.wait_for(timeout=10000)
+    page.wait_for_timeout(800)  # Quasar's hint-to-message transition
+    bottom = page.locator(".q-field--error .q-field__bottom").first.inner_text()
+    assert "rod_length = '30 mm': must exceed crank_radius" in bottom, bottom
     page.screenshot(path=str(SHOTS / "engine_bad_input.png"))
     _field(page, "rod_length").fill("135 mm")
     _wait_text(page, ".q-header", r"computed in")
@@ -192,6 +195,12 @@ def test_screenshots_of_every_tab(server: str, browser) -> None:
     page.close()
 
 
+@pytest.mark.slow
+@pytest.mark.skipif(
+    os.environ.get("CRANKBALANCE_WEB_LOAD") != "1",
+    reason="20 browser pages on a small machine take minutes and may lose "
+    "their websocket; run with CRANKBALANCE_WEB_LOAD=1",
+)
 def test_load_20_sessions_20_engines(server: str) -> None:
     """20 concurrent sessions, each typing 20 engines (60 recomputes), without an error."""
     import asyncio
