@@ -16,15 +16,10 @@ from __future__ import annotations
 
 import argparse
 import asyncio
-import os
 import re
-import socket
 import subprocess
-import sys
 import time
-import urllib.request
 from collections.abc import Iterator
-from contextlib import contextmanager
 
 CHROMIUM = "/usr/bin/chromium"
 ARGS = [
@@ -40,43 +35,11 @@ ARGS = [
 STATUS = re.compile(r"update (\d+): computed in (\d+) ms, page updated in (\d+) ms")
 
 
-def free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
-@contextmanager
 def web_server(log: object = subprocess.DEVNULL) -> Iterator[str]:
-    """``crankbalance web`` on a free port (PYTEST_CURRENT_TEST removed from its env)."""
-    port = free_port()
-    env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "crankbalance", "web", "--port", str(port)],
-        env=env,
-        stdout=log,
-        stderr=subprocess.STDOUT,
-    )
-    url = f"http://127.0.0.1:{port}"
-    try:
-        for _ in range(300):
-            if proc.poll() is not None:
-                raise RuntimeError("crankbalance web exited at start")
-            try:
-                with urllib.request.urlopen(url + "/", timeout=2) as response:
-                    if response.status == 200:
-                        break
-            except OSError:
-                time.sleep(0.1)
-        else:
-            raise RuntimeError("crankbalance web did not answer")
-        yield url
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
+    """``crankbalance web`` on a free port."""
+    from crankbalance.web.server import running_server
+
+    return running_server(log)
 
 
 def engines(count: int) -> list[dict[str, str]]:

@@ -1,7 +1,7 @@
 """End-to-end: ``crankbalance web`` in a subprocess, driven by Playwright in Debian's
 chromium (never a downloaded browser). Load a preset, change an input, compute, download
 the report and check its numbers against the API; screenshots of every tab go to
-``artifacts/screenshots/``; a load test runs 20 concurrent sessions of 20 engines each.
+``artifacts/screenshots/``. The load test is in ``test_web_load.py``.
 """
 
 from __future__ import annotations
@@ -9,11 +9,8 @@ from __future__ import annotations
 import json
 import os
 import re
-import socket
 import subprocess
-import sys
 import time
-import urllib.request
 from collections.abc import Iterator
 from pathlib import Path
 
@@ -50,47 +47,17 @@ BENIGN = ("Resize must be passed a displayed plot div element",)
 pytestmark = pytest.mark.skipif(not os.path.exists(CHROMIUM), reason="needs Debian's chromium")
 
 
-def _free_port() -> int:
-    with socket.socket() as s:
-        s.bind(("127.0.0.1", 0))
-        return int(s.getsockname()[1])
-
-
 @pytest.fixture(scope="module")
 def server() -> Iterator[str]:
-    port = _free_port()
-    env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+    from crankbalance.web.server import running_server
+
     log = (
         open(ROOT / "artifacts" / "web-server.log", "w")
         if (ROOT / "artifacts").is_dir()
         else subprocess.DEVNULL
     )
-    proc = subprocess.Popen(
-        [sys.executable, "-m", "crankbalance", "web", "--port", str(port)],
-        env=env,
-        stdout=log,
-        stderr=subprocess.STDOUT,
-    )
-    url = f"http://127.0.0.1:{port}"
-    try:
-        for _ in range(200):
-            try:
-                with urllib.request.urlopen(url + "/", timeout=2) as response:
-                    if response.status == 200:
-                        break
-            except OSError:
-                time.sleep(0.1)
-            if proc.poll() is not None:
-                raise RuntimeError("crankbalance web exited at start")
-        else:
-            raise RuntimeError("crankbalance web did not answer")
+    with running_server(log) as url:
         yield url
-    finally:
-        proc.terminate()
-        try:
-            proc.wait(10)
-        except subprocess.TimeoutExpired:
-            proc.kill()
 
 
 @pytest.fixture(scope="module")
@@ -193,30 +160,3 @@ def test_screenshots_of_every_tab(server: str, browser) -> None:
         )
     assert len(list(SHOTS.glob("*.png"))) >= len(TABS)
     page.close()
-
-
-@pytest.mark.slow
-@pytest.mark.skipif(
-    os.environ.get("CRANKBALANCE_WEB_LOAD") != "1",
-    reason="20 browser pages on a small machine take minutes and may lose "
-    "their websocket; run with CRANKBALANCE_WEB_LOAD=1",
-)
-def test_load_20_sessions_20_engines(server: str) -> None:
-    """20 concurrent sessions, each typing 20 engines (60 recomputes), without an error."""
-    import asyncio
-    import importlib.util
-
-    spec = importlib.util.spec_from_file_location("bench_web", ROOT / "benchmarks" / "bench_web.py")
-    assert spec is not None and spec.loader is not None
-    bench = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(bench)
-    from concurrent.futures import ThreadPoolExecutor
-
-    with ThreadPoolExecutor(1) as pool:  # its own event loop, apart from the sync browser's
-        result = pool.submit(asyncio.run, bench.run_load(server, sessions=20, count=20)).result()
-    assert not result["errors"], result["errors"][:5]
-    assert len(result["times"]) == 20 * 20 * 3, "every input of every session was answered"
-    times = sorted(result["times"])
-    print(
-        f"load: p95 {times[int(0.95 * (len(times) - 1))] * 1e3:.0f} ms, wall {result['wall']:.1f} s"
-    )

@@ -1,0 +1,61 @@
+"""Load test (issue 8): 20 concurrent sessions, each computing 20 engines against one local
+server, without an error, and each session getting its own engine's numbers back.
+
+Each session opens the web page (its own NiceGUI client and project), then posts 20
+different engines to the JSON API of the same server (``/api/balance``) over its own
+connection. Every answer is compared with the in-process API for that very engine, so a
+result that leaked from another session would fail. ``benchmarks/bench_web_load.py``
+reports the p95 response time of the same load.
+"""
+
+from __future__ import annotations
+
+import json
+import urllib.request
+from collections.abc import Iterator
+from concurrent.futures import ThreadPoolExecutor
+
+import pytest
+
+from crankbalance.analysis import balance_engine
+from crankbalance.io import parse_engine_text
+from crankbalance.web.loadgen import engine_text, run_session
+
+pytest.importorskip("nicegui")
+
+SESSIONS, ENGINES = 20, 20
+
+
+@pytest.fixture(scope="module")
+def server() -> Iterator[str]:
+    from crankbalance.web.server import running_server
+
+    with running_server() as url:
+        yield url
+
+
+def test_20_sessions_of_20_engines(server: str) -> None:
+    with ThreadPoolExecutor(SESSIONS) as pool:
+        results = list(pool.map(lambda s: run_session(server, s, ENGINES), range(SESSIONS)))
+    errors = [e for r in results for e in r.errors]
+    assert not errors, errors[:5]
+    for session, result in enumerate(results):
+        assert len(result.answers) == ENGINES
+        for k, answer in enumerate(result.answers):
+            expected = balance_engine(parse_engine_text(engine_text(session, k))).to_dict()
+            assert answer["engine"] == expected["engine"]
+            assert answer["counterweight"]["mass_kg"] == pytest.approx(
+                expected["counterweight"]["mass_kg"], rel=1e-12
+            )
+            assert answer["residual"] == expected["residual"]
+
+
+def test_api_bad_input_is_a_422_naming_the_field(server: str) -> None:
+    request = urllib.request.Request(
+        server + "/api/analyze", data=b'speed = "2000 kg"', method="POST"
+    )
+    with pytest.raises(urllib.error.HTTPError) as caught:
+        urllib.request.urlopen(request, timeout=30)
+    assert caught.value.code == 422
+    body = json.loads(caught.value.read())
+    assert body["field"] == "speed" and "rotational speed" in body["error"]
