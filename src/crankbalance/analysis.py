@@ -87,11 +87,7 @@ class Analysis:
         out = {
             "schema": SCHEMA,
             "engine": {
-                "name": m.name,
-                "cylinders": m.cylinders,
-                "throws": m.throws,
-                "speed_rpm": m.speed * 30 / math.pi,
-                "kinematics": m.kinematics,
+                **engine_summary(m),
                 "crank_radius_m": m.crank_radius,
                 "rod_length_m": m.rod_length,
                 "rod_ratio": m.rod_ratio,
@@ -120,6 +116,17 @@ class Analysis:
         result = to_jsonable(out)
         assert isinstance(result, dict)
         return result
+
+
+def engine_summary(m: EngineModel) -> dict[str, Any]:
+    """Name, size, speed and kinematics of an engine, as every JSON output starts."""
+    return {
+        "name": m.name,
+        "cylinders": m.cylinders,
+        "throws": m.throws,
+        "speed_rpm": m.speed * 30 / math.pi,
+        "kinematics": m.kinematics,
+    }
 
 
 def _phase(value: complex) -> float:
@@ -257,13 +264,7 @@ class BalanceStudy:
         ]
         out = {
             "schema": BALANCE_SCHEMA,
-            "engine": {
-                "name": m.name,
-                "cylinders": m.cylinders,
-                "throws": m.throws,
-                "speed_rpm": m.speed * 30 / math.pi,
-                "kinematics": m.kinematics,
-            },
+            "engine": engine_summary(m),
             "counterweight": cw_dict(res.counterweights),
             "extra_counterweights": cw_dict(res.extra_counterweights),
             "primary_shafts": shafts_dict(res.primary),
