@@ -16,7 +16,7 @@ import tempfile
 import time
 from collections.abc import Callable
 from pathlib import Path
-from typing import Any
+from typing import Any, Literal
 
 from nicegui import run, ui
 
@@ -35,6 +35,8 @@ from .project import (
 )
 
 log = logging.getLogger("crankbalance.web")
+#: download formats of a figure card
+FigureFormat = Literal["png", "svg", "csv", "json"]
 DEFAULT_PRESET = "paper-inline3"
 TABS = (
     ("engine", "Engine"),
@@ -65,7 +67,8 @@ class FigureCard:
             with ui.row().classes("w-full items-center justify-between"):
                 ui.label(title).classes("text-subtitle1")
                 with ui.row().classes("gap-1"):
-                    for fmt in ("png", "svg", "csv", "json"):
+                    formats: tuple[FigureFormat, ...] = ("png", "svg", "csv", "json")
+                    for fmt in formats:
                         ui.button(fmt.upper(), on_click=lambda f=fmt: self.download(f)).props(
                             "flat dense size=sm"
                         ).mark(f"download-{name}-{fmt}")
@@ -88,7 +91,7 @@ class FigureCard:
         self.plot.update_figure(self.figure)
         self.stale = False
 
-    async def download(self, fmt: str) -> None:
+    async def download(self, fmt: FigureFormat) -> None:
         if self.figure is None or self.stale:
             self.refresh()
         if self.figure is None:
@@ -104,6 +107,9 @@ class FigureCard:
             except Exception as error:  # kaleido / browser problems must not kill the page
                 log.warning("image export failed: %s", error)
                 ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
+                return
+            if data is None:  # NiceGUI is shutting down: the export was cancelled
+                ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
                 return
             media = "image/png" if fmt == "png" else "image/svg+xml"
             _download(data, f"{self.name}.{fmt}", media)
@@ -201,6 +207,7 @@ class Page:
     def _field(self, f: FormField) -> None:
         value = self.project.texts.get(f.key, "")
         handler = self._on_field(f.key)
+        element: ui.select | ui.input
         if f.kind == "choice":
             options = list(f.options)
             if value and value not in options:
@@ -735,7 +742,7 @@ class Page:
             _download(table_csv(self._order_rows()), "orders.csv", "text/csv")
 
     async def download_report(self) -> None:
-        from .. import report  # type: ignore[attr-defined]
+        from .. import report
 
         c = self.project.computed
         if c is None or self.project.spec is None:
@@ -746,6 +753,9 @@ class Page:
         except Exception as error:  # the report must never take the page down
             log.warning("report failed: %s", error)
             ui.notify(f"report failed: {error}", type="negative")
+            return
+        if html is None:
+            ui.notify("report cancelled (server stopping)", type="warning")
             return
         _download(html, "report.html", "text/html")
 
@@ -914,6 +924,9 @@ class Page:
             self.cw_summary.set_content(str(error))
             self._study_error(error)
             return
+        if optimum is None:
+            self.cw_summary.set_content("optimisation cancelled (server stopping): no result")
+            return
         self.optimum = optimum
         self.cw_choice.set_options(studies.design_choices(optimum), value="least mass")
         rows = [optimum.row(optimum.least_mass), optimum.row(optimum.least_radius)]
@@ -1022,6 +1035,9 @@ class Page:
             result = await run.io_bound(studies.performance_study, c, settings)
         except InputError as error:
             self._study_error(error)
+            return
+        if result is None:
+            ui.notify("sweep cancelled (server stopping): no result", type="warning")
             return
         self.study_results["performance"] = result
         rows = []

@@ -37,6 +37,8 @@ def run_session(url: str, session: int, engines: int, timeout: float = 120.0) ->
     connection; every answer and every error is kept."""
     out = SessionResult()
     parts = urlsplit(url)
+    if not parts.hostname:
+        raise ValueError(f"server url {url!r} has no host name (expected http://host:port)")
     connection = http.client.HTTPConnection(parts.hostname, parts.port, timeout=timeout)
     try:
         connection.request("GET", "/?preset=inline4")

@@ -9,7 +9,7 @@ that the page shows the message beside that input.
 from __future__ import annotations
 
 import math
-from typing import Any
+from typing import Any, Literal
 
 import numpy as np
 
@@ -71,21 +71,21 @@ def setting(settings: dict[str, Any], key: str, optional: bool = False) -> Any:
         return text
     if kind == "int":
         try:
-            value = int(text)
+            whole = int(text)
         except ValueError:
             raise InputError(key, text, f"{label} must be a whole number ({hint})") from None
         low, high = INT_LIMITS.get(key, (-(2**31), 2**31))
-        if not low <= value <= high:
-            raise InputError(key, value, f"{label} must lie between {low} and {high}")
-        return value
+        if not low <= whole <= high:
+            raise InputError(key, whole, f"{label} must lie between {low} and {high}")
+        return whole
     if kind == "float":
         try:
-            value = float(text)
+            number = float(text)
         except ValueError:
             raise InputError(key, text, f"{label} must be a number ({hint})") from None
-        if not math.isfinite(value):
+        if not math.isfinite(number):
             raise InputError(key, text, f"{label} must be a finite number")
-        return value
+        return number
     if kind == "list":
         try:
             values = [float(p) for p in text.replace(";", ",").split(",") if p.strip()]
@@ -327,11 +327,21 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
             float(model.speed),
             pressure,
             factors,
-            strokes=int(model.strokes),
+            strokes=_strokes(model.strokes),
             samples_per_revolution=180,
         )
     except InputError as error:
         raise InputError(fields.get(error.field, error.field), error.value, error.allowed) from None
+
+
+def _strokes(value: Any) -> Literal[2, 4]:
+    """The engine's strokes per cycle as the Literal the dynamics API takes."""
+    strokes = int(value)
+    if strokes == 2:
+        return 2
+    if strokes == 4:
+        return 4
+    raise InputError("strokes", value, "2 or 4 strokes per cycle")
 
 
 def _positive(settings: dict[str, Any], key: str) -> float:
