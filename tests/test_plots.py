@@ -142,6 +142,55 @@ def test_polar_rotating_and_bad_order(inline4: tuple) -> None:
             plots.polar_figure(a, bad)  # type: ignore[arg-type]
 
 
+def test_polar_of_a_balanced_order_is_exactly_zero(paper: tuple, inline4: tuple) -> None:
+    """Inline-3: the order-1 force cancels (2021 paper, Table 2: no primary force to balance);
+    the diagram draws exact zeros on axes in the engine's own scale, not pico-newtons of
+    round-off, and says so in the title."""
+    a, _ = paper
+    fig = plots.polar_figure(a, 1, "force")
+    for trace in fig.data:
+        assert np.all(np.asarray(trace.x) == 0.0) and np.all(np.asarray(trace.y) == 0.0)
+    assert "0 N (balanced)" in fig.layout.title.text
+    # every force of the inline-3 is zero: the axes span +-1 N
+    assert tuple(fig.layout.yaxis.range) == (-1.0, 1.0)
+    # a balanced order among unbalanced ones reads against the largest amplitude
+    b, _ = inline4
+    k = b.forces.order(1)
+    assert b.forces.force_amplitude[k] < plots.roundoff_levels(b.model, 1e-12)[0]
+    fig = plots.polar_figure(b, 1, "force")
+    largest = max(b.forces.force_amplitude.max(), abs(b.forces.rotating_force))
+    assert fig.layout.yaxis.range[1] == pytest.approx(1.15 * largest)
+    assert "0 N (balanced)" in fig.layout.title.text
+
+
+def test_leading_quantity(paper: tuple, inline4: tuple) -> None:
+    """Inline-3: forces cancel, moments do not (2021 paper, Table 2); inline-4 has a free
+    second-order force."""
+    assert plots.leading_quantity(paper[0]) == "moment"
+    assert plots.leading_quantity(inline4[0]) == "force"
+
+
+def test_titles_fit_a_panel(paper: tuple) -> None:
+    """The engine name goes to a second, smaller line, shortened when very long."""
+    a, s = paper
+    for fig in (plots.orders_bar(a), plots.curves_figure(a, s), plots.polar_figure(a, 1),
+                plots.residuals_bar(s), plots.crank_3d(a.model)):
+        first, second = fig.layout.title.text.split("<br>")
+        assert len(first) <= 60, first
+        assert second.startswith("<sup>Inline-3, Table 1") and second.endswith("</sup>")
+    title = plots.figure_title("Free forces", "x" * 200, "note")
+    assert f"{'x' * (plots.TITLE_NAME_CHARS - 1)}… · note</sup>" in title, title
+
+
+def test_zero_bars_say_balanced(paper: tuple, inline4: tuple) -> None:
+    texts = [n.text for n in plots.orders_bar(paper[0]).layout.annotations]
+    assert any("0 N everywhere" in t for t in texts), texts
+    # inline-4 (flat crank): free 2nd-order force, no free moment (mirror-symmetric crank)
+    texts = [n.text for n in plots.orders_bar(inline4[0]).layout.annotations]
+    assert not any("0 N everywhere" in t for t in texts), texts
+    assert any("0 N·m everywhere" in t for t in texts), texts
+
+
 # --------------------------------------------------------------------------- 3-D
 def test_crank_3d_has_every_mass(paper: tuple) -> None:
     a, b = paper
@@ -261,6 +310,9 @@ def test_shaft_figures_match_study() -> None:
     section = ShaftSection(outer_diameter=0.028)
     st = inline4_study(2e-4, 1300.0, 0.3, section)
     fig = plots.shaft_study(st)
+    # legend at the bottom of the figure, below every axis title; x titles on the lower row
+    assert fig.layout.legend.yref == "container" and fig.layout.legend.yanchor == "bottom"
+    assert fig.layout.xaxis.title.text is None and fig.layout.xaxis3.title.text
     j = [t for t in fig.data if t.name.startswith("J (")][0]
     assert np.asarray(j.y) == pytest.approx(st.objective)
     opt = [t for t in fig.data if t.name.startswith("optimum")][0]

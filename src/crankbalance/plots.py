@@ -130,6 +130,51 @@ def _unit(quantity: str) -> str:
     return "N" if quantity == "force" else "N·m"
 
 
+#: longest engine name shown under a figure title (longer names end in "…")
+TITLE_NAME_CHARS = 70
+
+
+def figure_title(main: str, engine: str | None = None, note: str | None = None) -> str:
+    """A figure title that fits a half-width web panel: what the figure shows on the first
+    line, the engine name (shortened to :data:`TITLE_NAME_CHARS`) and a note on a second
+    line in smaller type."""
+    second = []
+    if engine:
+        name = " ".join(str(engine).split())
+        if len(name) > TITLE_NAME_CHARS:
+            name = name[: TITLE_NAME_CHARS - 1].rstrip(" ,;:-") + "…"
+        second.append(name)
+    if note:
+        second.append(note)
+    if not second:
+        return main
+    return f"{main}<br><sup>{' · '.join(second)}</sup>"
+
+
+def leading_quantity(analysis: Analysis) -> Quantity:
+    """The quantity a user should see first: ``"moment"`` when every free force (every
+    order and the bare crank's rotating masses) is below round-off but a moment is not
+    (e.g. an in-line 3), else ``"force"``."""
+    f = analysis.forces
+    tf, tm = roundoff_levels(analysis.model, 1e-12)
+    forces = np.append(np.asarray(f.force_amplitude, dtype=float), abs(f.rotating_force))
+    moments = np.append(np.asarray(f.moment_amplitude, dtype=float), abs(f.rotating_couple))
+    if np.all(forces < tf) and np.any(moments >= tm):
+        return "moment"
+    return "force"
+
+
+def _note_if_zero(fig: Any, values: ArrayLike, unit: str, row: int, col: int,
+                  ref: str) -> None:
+    """Say so in a subplot whose bars are all exactly zero (instead of an empty -1..1 axis)."""
+    if np.any(np.asarray(values, dtype=float) != 0.0):
+        return
+    fig.update_yaxes(range=[0, 1], row=row, col=col)
+    fig.add_annotation(text=f"0 {unit} everywhere<br>(balanced)", showarrow=False,
+                       xref=f"x{ref} domain", yref=f"y{ref} domain", x=0.5, y=0.5,
+                       font={"size": 14, "color": COLORS["before"]})
+
+
 # --------------------------------------------------------------------------- orders
 def orders_bar(analysis: Analysis) -> go.Figure:
     """Force and moment amplitudes per order, forward and backward phasors stacked.
@@ -151,6 +196,7 @@ def orders_bar(analysis: Analysis) -> go.Figure:
     )
     for col, fwd, bwd, rot in parts:
         unit = "N" if col == 1 else "N·m"
+        _note_if_zero(fig, np.append(fwd + bwd, rot), unit, 1, col, "" if col == 1 else "2")
         fig.add_trace(_go().Bar(
             x=labels, y=np.append(fwd, rot), name="forward (co-rotating)",
             marker_color=COLORS["forward"], legendgroup="forward", showlegend=col == 1,
@@ -164,7 +210,8 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(title_text="order", type="category", row=1, col=col)
     fig.update_layout(barmode="stack", template=TEMPLATE,
-                      title=f"{analysis.model.name}: free forces and moments by order",
+                      title=figure_title("Free forces and moments by order",
+                                         analysis.model.name),
                       legend={"orientation": "h", "y": -0.2})
     return fig
 
@@ -320,7 +367,7 @@ def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
                      range=[0, 360], row=2, col=1)
     fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
     name = "moments about the mid-point" if quantity == "moment" else "forces"
-    fig.update_layout(template=TEMPLATE, title=f"{analysis.model.name}: free {name}",
+    fig.update_layout(template=TEMPLATE, title=figure_title(f"Free {name}", analysis.model.name),
                       legend={"orientation": "h", "y": -0.15}, hovermode="x unified")
     return fig
 
@@ -382,16 +429,31 @@ def polar_figure(analysis: Analysis, order: int | str = 1,
     arrow(0j, fwd, f"forward |F+| = {abs(fwd):.4g} {unit}", COLORS["forward"])
     arrow(fwd, fwd + bwd, f"backward |F-| = {abs(bwd):.4g} {unit}", COLORS["backward"])
     arrow(0j, fwd + bwd, f"at crank angle 0: {abs(fwd + bwd):.4g} {unit}", COLORS["after"])
-    reach = max(abs(fwd) + abs(bwd), 1e-12) * 1.15
+    amplitude = abs(fwd) + abs(bwd)
+    reach = 1.15 * amplitude if amplitude > 0 else _zero_reach(analysis, quantity, tiny)
     fig.update_xaxes(title_text=f"x [{unit}]", range=[-reach, reach], zeroline=True)
     fig.update_yaxes(title_text=f"z [{unit}]", range=[-reach, reach], zeroline=True,
                      scaleanchor="x", scaleratio=1)
     word = "force" if quantity == "force" else "moment"
+    size = f"{amplitude:.4g} {unit}" if amplitude > 0 else f"0 {unit} (balanced)"
     fig.update_layout(template=TEMPLATE, width=None,
-                      title=f"{analysis.model.name}: {label} {word}, amplitude "
-                            f"{abs(fwd) + abs(bwd):.4g} {unit}",
+                      title=figure_title(f"{label.capitalize()} {word}: amplitude {size}",
+                                         analysis.model.name),
                       legend={"orientation": "h", "y": -0.15})
     return fig
+
+
+def _zero_reach(analysis: Analysis, quantity: str, tiny: float) -> float:
+    """Axis half-range [N or N·m] of a polar diagram whose order is balanced: the largest
+    amplitude of that quantity at any order (so the zero reads against the engine's own
+    scale), else 1 N (1 N·m) when the whole quantity is balanced."""
+    f = analysis.forces
+    if quantity == "force":
+        values = np.append(np.asarray(f.force_amplitude, dtype=float), abs(f.rotating_force))
+    else:
+        values = np.append(np.asarray(f.moment_amplitude, dtype=float), abs(f.rotating_couple))
+    largest = float(np.max(values))
+    return 1.15 * largest if largest >= tiny else 1.0
 
 
 # --------------------------------------------------------------------------- 3-D crank
@@ -508,7 +570,7 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
                         text=f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
                              f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg"))
     fig.update_layout(
-        template=TEMPLATE, title=f"{m.name}: crankshaft at crank angle 0",
+        template=TEMPLATE, title=figure_title("Crankshaft at crank angle 0", m.name),
         scene={"xaxis_title": "y, crank axis [mm]", "yaxis_title": "x [mm]",
                "zaxis_title": "z [mm]", "aspectmode": "data",
                "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}}},
@@ -529,6 +591,9 @@ def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
              + (" *" if c.targeted else "") for c in res]
     fig = _subplots(rows=1, cols=2, subplot_titles=("Force", "Moment"), horizontal_spacing=0.12)
     for col, attr, unit in ((1, "force", "N"), (2, "moment", "N·m")):
+        _note_if_zero(fig, _clean([getattr(c, f"{attr}_{when}") for c in res
+                                   for when in ("before", "after")], tiny[attr]),
+                      unit, 1, col, "" if col == 1 else "2")
         for when, color in (("before", COLORS["before"]), ("after", COLORS["after"])):
             fig.add_trace(go.Bar(
                 x=names, y=_clean([getattr(c, f"{attr}_{when}") for c in res], tiny[attr]),
@@ -539,8 +604,9 @@ def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(type="category", row=1, col=col)
     fig.update_layout(barmode="group", template=TEMPLATE,
-                      title=f"{balance_study.model.name}: residuals "
-                            "(* targeted by counterweights or shafts)",
+                      title=figure_title("Residuals before and after balancing",
+                                         balance_study.model.name,
+                                         "* targeted by counterweights or shafts"),
                       legend={"orientation": "h", "y": -0.2})
     return fig
 
@@ -559,7 +625,7 @@ def single_cylinder_forces(study: Any) -> go.Figure:
         fig.add_trace(go.Scatter(x=deg, y=values, name=name,
                                  line={"color": color, "width": 2, "dash": dash}))
     fig.update_xaxes(title_text="crank angle from top dead centre [deg]",
-                     tickvals=list(range(0, 361, 45)))
+                     tickvals=list(range(0, 361, 45)), range=[0, 360])
     fig.update_yaxes(title_text="force [N]")
     fig.update_layout(template=TEMPLATE, hovermode="x unified",
                       title=f"Single cylinder, balance factor {study.balance_factor:.0%}: "
@@ -655,7 +721,7 @@ def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
     fig.update_yaxes(title_text="counterweight mass [g]")
     fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
                       title=f"Counterweight designs for m r = "
-                            f"{optimum.required_first_moment * 1e6:.4g} g·mm")
+                            f"{optimum.required_first_moment * 1e6:.5g} g·mm")
     return fig
 
 
@@ -702,7 +768,8 @@ def shaft_study(study: Any) -> go.Figure:
     the objective J and its optimum (:class:`~crankbalance.balance_shaft.PlacementStudy`)."""
     go = _go()
     x = 100 * np.asarray(study.positions)
-    fig = _subplots(rows=2, cols=2, horizontal_spacing=0.12, vertical_spacing=0.16,
+    fig = _subplots(rows=2, cols=2, horizontal_spacing=0.12, vertical_spacing=0.1,
+                    shared_xaxes=True,
                     subplot_titles=("Bearing loads", "Bending (integral of deflection)",
                                     "First bending frequency", "Objective J"))
     reactions = np.atleast_2d(np.asarray(study.reactions))
@@ -731,11 +798,13 @@ def shaft_study(study: Any) -> go.Figure:
     fig.update_yaxes(title_text="A [mm²]", row=1, col=2)
     fig.update_yaxes(title_text="frequency [Hz]", row=2, col=1)
     fig.update_yaxes(title_text="J [-]", row=2, col=2)
-    for row in (1, 2):
-        for col in (1, 2):
-            fig.update_xaxes(title_text=f"{study.design_variable} [% of length]", row=row,
-                             col=col)
-    fig.update_layout(template=TEMPLATE, height=700, legend={"orientation": "h", "y": -0.15},
+    for col in (1, 2):  # the columns share x: one axis title under each
+        fig.update_xaxes(title_text=f"{study.design_variable} [% of length]", row=2, col=col)
+    # the legend sits at the bottom of the whole figure, below the axis titles (a legend
+    # placed in plot coordinates overlapped the lower-left axis title)
+    fig.update_layout(template=TEMPLATE, height=760, margin={"b": 150},
+                      legend={"orientation": "h", "yref": "container", "y": 0.01,
+                              "yanchor": "bottom", "x": 0.5, "xanchor": "center"},
                       title=f"Balance-shaft placement study ({study.case})")
     return fig
 
