@@ -155,6 +155,10 @@ def test_screenshots_of_every_tab(server: str, browser) -> None:
         if tab in actions:
             page.get_by_role("button", name=actions[tab]).click()
         page.wait_for_timeout(2500 if tab in actions else 1200)
+        # the header is fixed: scrolled (after clicking a button low on the page) it would
+        # be drawn across the middle of a full-page screenshot
+        page.evaluate("window.scrollTo(0, 0)")
+        page.wait_for_timeout(200)
         page.screenshot(
             path=str(SHOTS / f"{k + 1}_{tab.lower().replace(' ', '_')}.png"), full_page=True
         )

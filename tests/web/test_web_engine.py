@@ -144,3 +144,20 @@ async def test_unknown_preset_in_url_is_reported(user: User, form) -> None:
     await user.open("/?preset=no-such-engine")
     assert "no-such-engine" in form.text("general-error")
     await user.should_see("Inline-3, Table 1")
+
+
+async def test_results_start_on_the_quantity_that_is_not_zero(user: User, form) -> None:
+    """Inline-3: every free force is zero (2021 paper, Table 2 has no force to balance),
+    so the curves and polar diagram start on the moment; an inline-4 (free 2nd-order
+    force) starts on the force, also after switching presets."""
+    await user.open("/?preset=paper-inline3")
+    await user.should_see("Inline-3, Table 1")
+    assert form.element("curve-quantity").value == "moment"
+    user.find(marker="tab-results").click()
+    await form.until(lambda: "title" in form.element("figure-polar").figure["layout"])
+    title = str(form.element("figure-polar").figure["layout"]["title"]["text"])
+    assert title.startswith("Order 1 moment: amplitude 257.1 N·m"), title
+    form.set("preset", "inline4")
+    assert form.element("curve-quantity").value == "force"
+    form.set("preset", "paper-inline3")
+    assert form.element("curve-quantity").value == "moment"

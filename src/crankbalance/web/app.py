@@ -383,7 +383,7 @@ class Page:
             self.curve_quantity = (
                 ui.select(
                     ["force", "moment"],
-                    value="force",
+                    value=self._leading_quantity(),
                     label="Curves and polar: quantity",
                     on_change=self.refresh_results,
                 )
@@ -426,6 +426,14 @@ class Page:
                 ),
                 FigureCard(self, "polar", "Polar rotating-vector diagram", self._fig(self._polar)),
             ]
+
+    def _leading_quantity(self) -> plots.Quantity:
+        """Start the curves and polar diagram on the moment when every free force is zero
+        but a moment is not (an in-line 3): the first thing shown is then not a flat line."""
+        c = self.project.computed
+        if c is None:
+            c = self.project.compute() if self.project.spec is not None else None
+        return "force" if c is None else plots.leading_quantity(c.analysis)
 
     def _polar(self, c: Any) -> Any:
         order: Any = self.polar_order.value
@@ -611,7 +619,7 @@ class Page:
                                 ("friction_power", "Friction W"),
                                 ("peak_load", "Peak bearing N"),
                                 ("shaking", "Peak shaking N"),
-                                ("fluctuation", "Speed fluct."),
+                                ("fluctuation", "Speed fluct. %"),
                             )
                         ],
                         rows=[],
@@ -708,6 +716,7 @@ class Page:
         for key, element in self.setting_inputs.items():
             element.set_value(str(project.settings.get(key, "")))
         self.update_all()
+        self.curve_quantity.set_value(self._leading_quantity())
 
     def save(self, fmt: str) -> None:
         try:
@@ -1049,7 +1058,7 @@ class Page:
                     "friction_power": _g(result.friction_power[0, k]),
                     "peak_load": _g(result.peak_bearing_load[0, k]),
                     "shaking": _g(result.peak_shaking_force[0, k]),
-                    "fluctuation": _g(result.speed_fluctuation[0, k]),
+                    "fluctuation": _g(100 * result.speed_fluctuation[0, k]),
                 }
             )
         self.performance_table.rows = rows
