@@ -30,6 +30,7 @@ moves to just after top dead centre. SI units throughout.
 from __future__ import annotations
 
 import math
+from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Any, Literal
@@ -430,7 +431,7 @@ def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: 
 # tier 2: corrections (how the unbalance is taken off the counterweights)
 # ---------------------------------------------------------------------------------------
 
-class _Layer:
+class _Layer(ABC):
     """What both corrections share: material taken off all webs alike, in a layer of a depth.
 
     Subclasses are frozen dataclasses with ``radius``, ``webs``, ``density`` and
@@ -444,13 +445,14 @@ class _Layer:
     depth_resolution: float
 
     @property
-    def mass_per_depth(self) -> float:  # pragma: no cover - overridden
+    @abstractmethod
+    def mass_per_depth(self) -> float:
         """Mass removed per metre of depth, all webs [kg/m]."""
-        raise NotImplementedError
 
     @property
-    def _cuts_inward(self) -> bool:  # pragma: no cover - overridden
-        raise NotImplementedError
+    @abstractmethod
+    def _cuts_inward(self) -> bool:
+        """Whether the cut goes inward from ``radius`` (else its centroid stays there)."""
 
     def _check_layer(self) -> None:
         check_positive("correction_radius", self.radius)
