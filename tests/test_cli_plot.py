@@ -52,6 +52,18 @@ def test_plot_png_and_svg(tmp_path: Path, capsys: pytest.CaptureFixture[str]) ->
     (["report", "inline4", "-o", "x.html", "--balance-factor", "3"], "--balance-factor"),
     (["report", "inline4", "-o", "x.html", "--angle", "thirty"], "--angle"),
     (["report", "inline4", "-o", "x.pdf", "--chromium", "/no/such/chromium"], "chromium"),
+    # unwritable outputs, unknown kinds and options that the figure would ignore
+    (["plot", "orders", "inline4", "-o", "missing/x.html"], "error: --output = 'missing/x.html'"),
+    (["plot", "orders", "inline4", "-o", "."], "error: --output"),
+    (["report", "inline4", "-o", "missing/r.html"], "error: --output = 'missing/r.html'"),
+    (["plot", "bars", "inline4", "-o", "x.html"], "error: KIND = 'bars'"),
+    (["plot", "polar", "inline4", "--order", "0", "-o", "x.html"], "error: --order"),
+    (["plot", "orders", "inline4", "--order", "2", "-o", "x.html"], "error: --order"),
+    (["plot", "residuals", "inline4", "--no-balance", "-o", "x.html"], "error: --balance"),
+    (["plot", "curves", "inline4", "--cylinder", "2", "-o", "x.html"], "error: --cylinder"),
+    (["plot", "polar", "inline4", "--balance-factor", "0.3", "-o", "x.html"],
+     "error: --balance-factor"),
+    (["plot", "orders", "inline4", "--width", "400", "-o", "x.html"], "error: --width"),
 ])
 def test_bad_input_exits_2(args: list[str], message: str, tmp_path: Path,
                            capsys: pytest.CaptureFixture[str],
@@ -60,6 +72,7 @@ def test_bad_input_exits_2(args: list[str], message: str, tmp_path: Path,
     code, _, err = run_cli(args, capsys)
     assert code == 2, err
     assert message in err and "Traceback" not in err
+    assert len(err.strip().splitlines()) == 1, f"one error line, got {err!r}"
     assert not any(tmp_path.iterdir()), "nothing written on bad input"
 
 
@@ -73,3 +86,14 @@ def test_report_html_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
     mass = balance_engine("inline4", angle="optimal", balance_factor=0.5).to_dict()[
         "counterweight"]["mass_kg"]
     assert f"<td>{mass:.5g}</td>" in out.read_text()
+
+
+def test_report_with_one_order(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
+    """--orders 1 is allowed: the balancing still reports orders 1 and 2 (was a KeyError)."""
+    from crankbalance.analysis import analyze
+
+    out = tmp_path / "r.html"
+    code, _, err = run_cli(["report", "inline3", "-o", str(out), "--orders", "1"], capsys)
+    assert code == 0, err
+    moment = analyze("inline3", orders=1).to_dict()["free_moments"][0]["amplitude_Nm"]
+    assert f"<td>{moment:.5g}</td>" in out.read_text()

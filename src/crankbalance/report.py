@@ -25,7 +25,6 @@ import base64
 import datetime as _dt
 import html as _html
 import json
-import math
 import os
 import shutil
 import subprocess
@@ -74,7 +73,8 @@ def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
     from .spec import EngineSpec
 
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
-    study = balance_engine(spec, orders, **overrides)
+    # the balancing contract always reports orders 1 and 2 (balance_engine needs both)
+    study = balance_engine(spec, max(orders, 2), **overrides)
     analysis = analyze(study.model, orders)
     cw, primary, secondary = balance_options(spec)
     extra = dict(overrides)
@@ -175,7 +175,7 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
          plots.curves_figure(a, s, "moment")),
     ]
     amp = a.forces.force_amplitude + a.forces.moment_amplitude
-    for n in (1, 2):
+    for n in (int(n) for n in a.forces.orders if n <= 2):
         k = a.forces.order(n)
         if amp[k] > 0:
             quantity = "force" if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[
@@ -358,8 +358,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
 
 
 def _json_default(value: Any) -> Any:
-    if isinstance(value, float) and not math.isfinite(value):
-        return str(value)
+    """Settings values JSON does not know (paths, enums) as their text."""
     return str(value)
 
 
@@ -413,7 +412,12 @@ def write_report(engine: Any, path: str | os.PathLike[str], orders: int = 8,
     report = build_report(engine, orders, **overrides)
     if suffix == ".pdf":
         exe = find_chromium(chromium)  # fail before the figures are drawn
-        write_atomic(target, html_to_pdf(report_html(report, static=True), exe))
+        data: str | bytes = html_to_pdf(report_html(report, static=True), exe)
     else:
-        write_atomic(target, report_html(report))
+        data = report_html(report)
+    try:
+        write_atomic(target, data)
+    except OSError as error:
+        raise InputError("output", str(path),
+                         f"a file that can be written ({error.strerror})") from None
     return target

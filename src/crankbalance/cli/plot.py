@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import os
+from collections.abc import Sequence
 from pathlib import Path
 from typing import Any
 
@@ -9,6 +11,45 @@ import click
 
 KINDS = ("orders", "curves", "polar", "crank", "residuals", "single")
 SUFFIXES = {".png": "png", ".svg": "svg", ".html": "html", ".htm": "html"}
+#: the options that change each kind of figure (any other one given is refused, not ignored)
+KIND_OPTIONS = {
+    "orders": (),
+    "curves": ("quantity", "balance"),
+    "polar": ("order", "quantity"),
+    "crank": ("balance",),
+    "residuals": (),
+    "single": ("cylinder", "balance_factor"),
+}
+
+
+def check_output(output: str, suffixes: Sequence[str], field: str = "--output") -> Path:
+    """The output file, refused (InputError) before any work when it cannot be written: a
+    suffix not in ``suffixes``, a directory, or a folder that is missing or read-only."""
+    from ..errors import InputError
+
+    target = Path(output)
+    if target.suffix.lower() not in suffixes:
+        raise InputError(field, output, "a file name ending in " + ", ".join(suffixes))
+    folder = target.parent
+    if target.is_dir():
+        raise InputError(field, output, "a file name, not a directory")
+    if not folder.is_dir():
+        raise InputError(field, output, f"a file in an existing directory (no {folder}/)")
+    if not os.access(folder, os.W_OK | os.X_OK) or (
+            target.exists() and not os.access(target, os.W_OK)):
+        raise InputError(field, output, "a file that can be written (permission denied)")
+    return target
+
+
+def write_output(output: str, data: str | bytes, field: str = "--output") -> None:
+    """Write ``data`` atomically; an OS error (disk full, permissions) is an InputError."""
+    from ..errors import InputError
+    from ..io import write_atomic
+
+    try:
+        write_atomic(output, data)
+    except OSError as error:
+        raise InputError(field, output, f"a file that can be written ({error.strerror})") from None
 
 
 def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "force",
@@ -21,22 +62,26 @@ def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "forc
 
     if kind not in KINDS:
         raise InputError("KIND", kind, f"one of {', '.join(KINDS)}")
-    if kind in ("residuals", "crank") or (kind == "curves" and balance):
+    if kind == "residuals" or (kind in ("crank", "curves") and balance):
         study = balance_engine(engine)
         if kind == "residuals":
             return plots.residuals_bar(study)
         if kind == "crank":
-            return plots.crank_3d(study.model, study if balance else None)
+            return plots.crank_3d(study.model, study)
         return plots.curves_figure(analyze(study.model), study, quantity)  # type: ignore[arg-type]
     analysis = analyze(engine)
+    if kind == "crank":
+        return plots.crank_3d(analysis.model)
     if kind == "orders":
         return plots.orders_bar(analysis)
     if kind == "curves":
         return plots.curves_figure(analysis, None, quantity)  # type: ignore[arg-type]
     if kind == "polar":
-        chosen: int | str = order
-        if order.strip().lstrip("+").isdigit():
+        chosen: int | str = order.strip()
+        if order.strip().isdigit():
             chosen = int(order)
+            if chosen < 1:  # plots.polar_figure takes 0 for the rotating masses
+                raise InputError("--order", order, "a harmonic order from 1, or 'rotating'")
         return plots.polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
     from ..single_cylinder import cylinder_balance_factor_study
 
@@ -51,9 +96,9 @@ def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "forc
 
 
 @click.command()
-@click.argument("kind", type=click.Choice(KINDS))
+@click.argument("kind", metavar="KIND")
 @click.argument("engine")
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+@click.option("-o", "--output", required=True,
               help="Output file: .png, .svg or .html (self-contained, works offline).")
 @click.option("--order", default="1", show_default=True,
               help="polar: the harmonic order, or 'rotating' for the bare crank's masses.")
@@ -70,8 +115,9 @@ def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "forc
               help="Image width [px] (PNG/SVG).")
 @click.option("--height", type=click.IntRange(100, 8000), default=None,
               help="Image height [px] (PNG/SVG).")
-def plot(kind: str, engine: str, output: str, order: str, quantity: str, balance: bool,
-         cylinder: int, balance_factor: float, width: int | None,
+@click.pass_context
+def plot(ctx: click.Context, kind: str, engine: str, output: str, order: str, quantity: str,
+         balance: bool, cylinder: int, balance_factor: float, width: int | None,
          height: int | None) -> None:
     """Draw figure KIND of ENGINE (an engine file or a preset name).
 
@@ -80,18 +126,30 @@ def plot(kind: str, engine: str, output: str, order: str, quantity: str, balance
     with counterweights and balance shafts), residuals (before/after balancing),
     single (one cylinder's shaking forces for a balance factor).
     """
-    from ..errors import InputError
-    from ..io import write_atomic
+    from click.core import ParameterSource
 
-    suffix = Path(output).suffix.lower()
-    if suffix not in SUFFIXES:
-        raise InputError("--output", output, "a file name ending in .png, .svg or .html")
-    fmt = SUFFIXES[suffix]
+    from ..errors import InputError
+
+    if kind not in KINDS:
+        raise InputError("KIND", kind, f"one of {', '.join(KINDS)}")
+    fmt = SUFFIXES[check_output(output, tuple(SUFFIXES)).suffix.lower()]
+    given = [name for name in ("order", "quantity", "balance", "cylinder", "balance_factor",
+                               "width", "height")
+             if ctx.get_parameter_source(name) is not ParameterSource.DEFAULT]
+    for name in given:
+        if name in ("width", "height"):
+            if fmt == "html":
+                raise InputError(f"--{name}", ctx.params[name],
+                                 "only for .png/.svg output (HTML figures fill the window)")
+        elif name not in KIND_OPTIONS[kind]:
+            used = " or ".join(k for k, v in KIND_OPTIONS.items() if name in v)
+            raise InputError("--" + name.replace("_", "-"), ctx.params[name],
+                             f"only for the {used} figure, not {kind}")
     fig = build_figure(kind, engine, order, quantity, balance, cylinder, balance_factor)
     from .. import plots
 
     if fmt == "html":
-        write_atomic(output, plots.to_html(fig))
+        write_output(output, plots.to_html(fig))
     else:
-        write_atomic(output, plots.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
+        write_output(output, plots.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
     click.echo(f"wrote {output}", err=True)

@@ -7,7 +7,7 @@ import click
 
 @click.command()
 @click.argument("engine")
-@click.option("-o", "--output", required=True, type=click.Path(dir_okay=False),
+@click.option("-o", "--output", required=True,
               help="report.html (self-contained, interactive, works offline) or report.pdf "
                    "(printed by headless Chromium).")
 @click.option("--orders", type=click.IntRange(1, 64), default=8, show_default=True,
@@ -25,7 +25,9 @@ def report(engine: str, output: str, orders: int, balance_factor: float | None,
     """Balancing report of ENGINE (an engine file or a preset name): engine data, mass split,
     free forces and moments, balancing masses, residuals, figures and the settings used."""
     from ..report import write_report
+    from .plot import check_output
 
+    check_output(output, (".html", ".htm", ".pdf"))
     overrides: dict[str, object] = {}
     if balance_factor is not None:
         from ..errors import check_range
