@@ -352,10 +352,9 @@ class Page:
                     ui.button("Engine TOML", on_click=lambda: self.save("toml")).props(
                         "outline dense"
                     )
-                    if _has_report():
-                        ui.button("Report HTML", on_click=self.download_report).props(
-                            "outline dense"
-                        ).mark("download-report")
+                    ui.button("Report HTML", on_click=self.download_report).props(
+                        "outline dense"
+                    ).mark("download-report")
                 self._setting("orders", self.recompute)
             with ui.card().classes("grow"):
                 ui.label("Free forces and moments by order").classes("text-subtitle1")
@@ -758,7 +757,9 @@ class Page:
             ui.notify("no valid engine to report", type="warning")
             return
         try:
-            html = await run.io_bound(_report_html, report, self.project.spec)
+            html = await run.io_bound(
+                _report_html, report, self.project.spec, len(c.analysis.forces.orders)
+            )
         except Exception as error:  # the report must never take the page down
             log.warning("report failed: %s", error)
             ui.notify(f"report failed: {error}", type="negative")
@@ -867,8 +868,8 @@ class Page:
             for r in model.conrods[:1]
         ]
         self.mass_summary.set_content(
-            f"**Reciprocating mass per cylinder:** {model.reciprocating_mass.max():.4f} kg  \n"
-            f"**Rotating mass per throw:** {model.throw_rotating_mass.max():.4f} kg  \n"
+            f"**Reciprocating mass per cylinder:** {_distinct(model.reciprocating_mass)} kg  \n"
+            f"**Rotating mass per throw:** {_distinct(model.throw_rotating_mass)} kg  \n"
             + ("  \n".join(conrods))
         )
         self.orders_table.rows = self._order_rows()
@@ -1071,15 +1072,16 @@ def _g(value: float) -> str:
     return f"{float(value):.5g}"
 
 
-def _has_report() -> bool:
-    import importlib.util
+def _distinct(values: Any) -> str:
+    """Masses [kg] as shown: one value when all cylinders (throws) agree, else each in turn
+    (an engine file may override the masses of some cylinders)."""
+    return ", ".join(dict.fromkeys(f"{float(v):.4f}" for v in values))
 
-    return importlib.util.find_spec("crankbalance.report") is not None
 
-
-def _report_html(report: Any, spec: Any) -> str:
-    """The self-contained HTML report of :mod:`crankbalance.report` for the current engine."""
-    return str(report.report_html(report.build_report(spec)))
+def _report_html(report: Any, spec: Any, orders: int) -> str:
+    """The self-contained HTML report of :mod:`crankbalance.report` for the current engine,
+    with the orders of the Results tab."""
+    return str(report.report_html(report.build_report(spec, orders)))
 
 
 def _download(content: str | bytes, filename: str, media_type: str) -> None:
