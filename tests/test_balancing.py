@@ -229,3 +229,10 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
         capsys,
     )
     assert code == 2 and "no order-2 unbalance" in err
+
+
+def test_balance_with_one_order_still_checks_orders_1_and_2() -> None:
+    data = balance_engine("inline4", 1).to_dict()
+    assert data["residual"]["order2_force_N"] > 0, "inline-4 second order, no shafts"
+    with pytest.raises(InputError, match="orders"):
+        balance_engine("inline4", 0)

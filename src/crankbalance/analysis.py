@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from .errors import InputError
 from .io import load_engine
 from .model import EngineModel, build_model
 from .results import to_jsonable
@@ -146,7 +147,6 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
     orders : int
         Highest harmonic order (1..64).
     """
-    from .errors import InputError
 
     if not isinstance(orders, int) or not 1 <= orders <= 64:
         raise InputError("orders", orders, "must be a whole number from 1 to 64")
@@ -309,6 +309,9 @@ def balance_engine(
 
     from .balancing import balance
 
+
+    if not isinstance(orders, int) or not 1 <= orders <= 64:
+        raise InputError("orders", orders, "must be a whole number from 1 to 64")
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
     model = build_model(spec)
     cw, primary, secondary = balance_options(spec)
@@ -330,7 +333,6 @@ def shaft_requirement(
     [kg·m] and the shaft speed [rad/s].
     """
     from .balancing import ShaftOptions
-    from .errors import InputError
 
     if order not in (1, 2):
         raise InputError("order", order, "must be 1 (primary) or 2 (secondary)")

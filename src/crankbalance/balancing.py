@@ -611,7 +611,10 @@ def balance(
         )
         secondary_set = ShaftSet(2, secondary.arrangement, secondary.length, tuple(shafts))
 
-    residuals = verify(model, forces, cw, cw_rotating, extra, primary_set, secondary_set, orders)
+    # the check always covers orders 1 and 2, the ones the shafts can target
+    residuals = verify(
+        model, forces, cw, cw_rotating, extra, primary_set, secondary_set, max(orders, 2)
+    )
     if cw is not None and residuals[0].force_after + residuals[0].moment_after / length > 0:
         notes.append(
             "the counterweights do not cancel the rotating masses (see the residual): with "

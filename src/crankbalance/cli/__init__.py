@@ -95,8 +95,8 @@ def main(argv: list[str] | None = None) -> Any:
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         sys.exit(1)
-    except click.ClickException as error:
-        error.show()
+    except click.ClickException as error:  # usage errors: one line, like InputError
+        click.echo(f"error: {error.format_message()}", err=True)
         sys.exit(error.exit_code)
 
 

@@ -16,15 +16,24 @@ import copy
 import json
 import math
 import time
+import typing
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from ..errors import InputError
-from ..spec import LAYOUTS, EngineSpec, spec_from_dict
+from ..spec import LAYOUTS, Counterweights, CrankTrain, EngineSpec, ShaftSet, spec_from_dict
 from ..units import parse_quantity
 
 Kind = Literal["text", "quantity", "int", "float", "intlist", "choice", "angle_or_optimal"]
 SETTINGS_TAG = "# crankbalance-web settings: "
+
+
+def _choices(model: Any, name: str, first: str | None = None) -> tuple[str, ...]:
+    """The allowed values of a ``Literal`` field of the spec model, as form options."""
+    values = [str(v) for v in typing.get_args(model.model_fields[name].annotation)]
+    if first is not None:
+        values.sort(key=lambda v: v != first)
+    return tuple(values)
 
 
 @dataclass(frozen=True)
@@ -57,7 +66,13 @@ ENGINE_FIELDS: tuple[FormField, ...] = (
         "intlist",
         hint="e.g. 1, 3, 2 (empty: cylinder order)",
     ),
-    F("strokes", ("crank_train", "strokes"), "Strokes per cycle", "choice", options=("4", "2")),
+    F(
+        "strokes",
+        ("crank_train", "strokes"),
+        "Strokes per cycle",
+        "choice",
+        options=_choices(CrankTrain, "strokes", first="4"),
+    ),
     F(
         "bank_angle",
         ("crank_train", "bank_angle"),
@@ -75,7 +90,7 @@ ENGINE_FIELDS: tuple[FormField, ...] = (
         ("kinematics",),
         "Kinematics",
         "choice",
-        options=("exact", "series", "first-order"),
+        options=_choices(EngineSpec, "kinematics"),
     ),
 )
 BALANCING_FIELDS: tuple[FormField, ...] = (
@@ -115,7 +130,7 @@ BALANCING_FIELDS: tuple[FormField, ...] = (
         ("counterweights", "method"),
         "Counterweight method",
         "choice",
-        options=("pattern", "individual"),
+        options=_choices(Counterweights, "method"),
         group="cw",
     ),
     F(
@@ -123,7 +138,7 @@ BALANCING_FIELDS: tuple[FormField, ...] = (
         ("balance_shafts", "primary", "arrangement"),
         "Primary shafts",
         "choice",
-        options=("none", "pair", "counter-rotating"),
+        options=("none", *_choices(ShaftSet, "arrangement")),
         group="primary",
     ),
     F(
@@ -145,7 +160,7 @@ BALANCING_FIELDS: tuple[FormField, ...] = (
         ("balance_shafts", "secondary", "arrangement"),
         "Secondary shafts",
         "choice",
-        options=("none", "pair", "counter-rotating"),
+        options=("none", *_choices(ShaftSet, "arrangement")),
         group="secondary",
     ),
     F(
