@@ -21,17 +21,10 @@ import subprocess
 import time
 from collections.abc import Iterator
 
+from crankbalance.report import CHROMIUM_FLAGS
+
 CHROMIUM = "/usr/bin/chromium"
-ARGS = [
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-]
+ARGS = list(CHROMIUM_FLAGS)
 STATUS = re.compile(r"update (\d+): computed in (\d+) ms, page updated in (\d+) ms")
 
 

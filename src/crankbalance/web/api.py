@@ -10,7 +10,6 @@ command line prints. Every request is computed on its own; nothing is shared bet
 requests or users.
 """
 
-
 from typing import Any
 
 from ..analysis import analyze, balance_engine

@@ -49,14 +49,16 @@ def run_session(url: str, session: int, engines: int, timeout: float = 120.0) ->
         for index in range(engines):
             body = engine_text(session, index).encode()
             start = time.perf_counter()
-            connection.request("POST", "/api/balance", body=body,
-                               headers={"Content-Type": "application/toml"})
+            connection.request(
+                "POST", "/api/balance", body=body, headers={"Content-Type": "application/toml"}
+            )
             response = connection.getresponse()
             data = response.read()
             out.times.append(time.perf_counter() - start)
             if response.status != 200:
-                out.errors.append(f"session {session} engine {index}: {response.status} "
-                                  f"{data[:200]!r}")
+                out.errors.append(
+                    f"session {session} engine {index}: {response.status} {data[:200]!r}"
+                )
                 continue
             out.answers.append(json.loads(data))
     except OSError as error:
