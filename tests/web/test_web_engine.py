@@ -89,6 +89,9 @@ async def test_results_table_matches_api(user: User, form) -> None:
         ), (row, ref)
     form.set("setting-orders", "4")
     assert len(form.rows("orders-table")) == 4
+    assert list(form.element("polar-order").options) == ["rotating", "1", "2", "3", "4"]
+    form.set("setting-orders", "12")
+    assert list(form.element("polar-order").options)[-1] == "12", "polar menu follows the orders"
 
 
 async def test_totals_mode_and_layout_change(user: User, form) -> None:

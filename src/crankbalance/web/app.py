@@ -874,6 +874,10 @@ class Page:
         )
         self.orders_table.rows = self._order_rows()
         self.orders_table.update()
+        choices = ["rotating", *(str(int(k)) for k in c.analysis.forces.orders)]
+        if list(self.polar_order.options) != choices:  # follow the "Highest order" setting
+            keep = self.polar_order.value if self.polar_order.value in choices else "1"
+            self.polar_order.set_options(choices, value=keep)
         b = c.study.to_dict()
         lines = []
         cw = b["counterweight"]
