@@ -79,6 +79,7 @@ class EngineModel:
     reciprocating_mass: NDArray[np.float64]
     firing_order: tuple[int, ...]
     conrods: tuple[ConrodSplit, ...] = field(default=())
+    firing_order_given: bool = True
 
     @property
     def rod_ratio(self) -> float:
@@ -130,6 +131,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         reciprocating_mass=rec,
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
         conrods=tuple(conrods),
+        firing_order_given=ct.firing_order is not None,
     )
 
 

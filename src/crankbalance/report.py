@@ -229,7 +229,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         ["speed [rpm]", e["speed_rpm"]], ["crank radius [mm]", e["crank_radius_m"] * 1e3],
         ["rod length [mm]", e["rod_length_m"] * 1e3], ["rod ratio r/l", e["rod_ratio"]],
         ["offset [mm]", e["offset_m"] * 1e3], ["kinematics", e["kinematics"]],
-        ["firing order", "-".join(str(c) for c in report.study.model.firing_order)],
+        ["firing order", "-".join(str(c) for c in report.study.model.firing_order)
+         + ("" if report.study.model.firing_order_given else " (not given: cylinder order)")],
     ]
     parts.append(_table(["quantity", "value"], rows))
     throw_rows = [[t + 1, e["throw_angle_deg"][t] % 360.0, e["throw_position_m"][t] * 1e3,
