@@ -54,6 +54,7 @@ moments in N·m, lengths in mm, masses in kg.
 from __future__ import annotations
 
 import atexit
+import contextlib
 import math
 import os
 import shutil
@@ -993,10 +994,9 @@ def _stop_server() -> None:
 
     if _SERVER["running"]:
         _SERVER["running"] = False
-        try:
+        # at exit, a browser that is already gone is fine
+        with contextlib.suppress(Exception):
             kaleido.stop_sync_server(silence_warnings=True)
-        except Exception:  # noqa: BLE001 - at exit, a browser that is already gone is fine
-            pass
 
 
 def to_html(fig: go.Figure, include_plotlyjs: bool | str = True, full_html: bool = True,

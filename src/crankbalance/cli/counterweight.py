@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from typing import Any
 
 import click
@@ -62,12 +63,10 @@ def _value_or_range(text: str, kind: str, field: str) -> float | tuple[float, fl
     low, high = (part.strip() for part in text.split("..", 1))
     if ".." in high:
         raise InputError(field, text, "a value or one range 'LOW..HIGH', e.g. '10..20 mm'")
-    try:
-        float(low)
+    if re.fullmatch(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", low):
+        # a bare lower number takes the unit of the upper value: '10..20 mm'
         unit = high.lstrip("0123456789.eE+- ")
         low = f"{low} {unit}" if unit else low
-    except ValueError:
-        pass
     return (parse_quantity(low, kind, field), parse_quantity(high, kind, field))
 
 
