@@ -29,17 +29,33 @@ G = 1e-3  # kg per gram
 MM = 1e-3  # m per millimetre
 
 # 004 Table 6.1 [g]
-OEM = {"rotating": {"big end": 129.04, "big-end bearing": 39.00, "crankpin": 114.65},
-       "reciprocating": {"small end": 46.62, "small-end bearing": 12.50, "piston": 158.00,
-                         "clips, rings, oil": 30.00, "wrist pin": 35.00}}
-MXRR = {"rotating": {"big end": 95.04, "big-end bearing": 39.00, "crankpin": 114.65},
-        "reciprocating": {"small end": 34.00, "small-end bearing": 12.50, "piston": 158.00,
-                          "clips, rings, oil": 30.00, "wrist pin": 27.00}}
+OEM = {
+    "rotating": {"big end": 129.04, "big-end bearing": 39.00, "crankpin": 114.65},
+    "reciprocating": {
+        "small end": 46.62,
+        "small-end bearing": 12.50,
+        "piston": 158.00,
+        "clips, rings, oil": 30.00,
+        "wrist pin": 35.00,
+    },
+}
+MXRR = {
+    "rotating": {"big end": 95.04, "big-end bearing": 39.00, "crankpin": 114.65},
+    "reciprocating": {
+        "small end": 34.00,
+        "small-end bearing": 12.50,
+        "piston": 158.00,
+        "clips, rings, oil": 30.00,
+        "wrist pin": 27.00,
+    },
+}
 
 
 def masses(parts: dict[str, dict[str, float]]) -> tuple[float, float]:
-    return tuple(sum_parts({k: v * G for k, v in parts[kind].items()}, kind)
-                 for kind in ("rotating", "reciprocating"))  # type: ignore[return-value]
+    return tuple(
+        sum_parts({k: v * G for k, v in parts[kind].items()}, kind)
+        for kind in ("rotating", "reciprocating")
+    )  # type: ignore[return-value]
 
 
 def main() -> None:
@@ -48,14 +64,18 @@ def main() -> None:
     print("004 Table 6.1          m_rot [g]   m_rec [g]")
     print(f"OEM                    {oem_rot / G:9.2f}   {oem_rec / G:9.2f}")
     print(f"MXRR                   {mx_rot / G:9.2f}   {mx_rec / G:9.2f}")
-    print("Note: the OEM rotating parts sum to 282.69 g; the thesis prints 282.96 g, a "
-          "transposition of the digits.\n")
+    print(
+        "Note: the OEM rotating parts sum to 282.69 g; the thesis prints 282.96 g, a "
+        "transposition of the digits.\n"
+    )
 
-    m_cw, r_cw, r = 2020.40 * G, 6.16 * MM, 26.9 * MM       # 004 Sec. 6.3.3
+    m_cw, r_cw, r = 2020.40 * G, 6.16 * MM, 26.9 * MM  # 004 Sec. 6.3.3
     factory = balance_factor_from_mass_properties(m_cw, r_cw, r, oem_rot, oem_rec)
     printed = balance_factor_from_mass_properties(m_cw, r_cw, r, 282.96 * G, oem_rec)
-    print(f"factory balance factor (Eq. 6.2): {factory:.4f} with 282.69 g, {printed:.4f} "
-          "with the printed 282.96 g; thesis 0.6375 (r' = 6.16 mm is rounded)")
+    print(
+        f"factory balance factor (Eq. 6.2): {factory:.4f} with 282.69 g, {printed:.4f} "
+        "with the printed 282.96 g; thesis 0.6375 (r' = 6.16 mm is rounded)"
+    )
 
     speed = 15200 * 2 * math.pi / 60
     u_per = permissible_unbalance("G6.3", 2.7, speed)
@@ -64,31 +84,49 @@ def main() -> None:
     # Grinding the counterweight shoulders alike on both webs. Shoulder radius 40 mm is an
     # assumption; the area per web, 2157 mm^2, makes the factory case need the thesis'
     # 0.948 mm, so only the 28 % depth and the iteration counts are predictions.
-    shoulder = FaceRemoval(area=2157 * MM**2, radius=40 * MM, orientation="radial",
-                           depth_resolution=0.001 * MM)
-    print("target   unbalance   iterations   depth [mm]   residual [g*mm]   verdict   "
-          "thesis (Table 6.2)")
-    thesis = {0.28: "2.807 mm, 2 corrections, 7.39 g*mm",
-              None: "0.948 mm, 1 correction, 8.01 g*mm"}
+    shoulder = FaceRemoval(
+        area=2157 * MM**2, radius=40 * MM, orientation="radial", depth_resolution=0.001 * MM
+    )
+    print(
+        "target   unbalance   iterations   depth [mm]   residual [g*mm]   verdict   "
+        "thesis (Table 6.2)"
+    )
+    thesis = {0.28: "2.807 mm, 2 corrections, 7.39 g*mm", None: "0.948 mm, 1 correction, 8.01 g*mm"}
     for target in (0.28, None):
-        res = rebalance(oem_rot, oem_rec, mx_rot, mx_rec, m_cw, r_cw, r, shoulder, u_per,
-                        target_balance_factor=target)
+        res = rebalance(
+            oem_rot,
+            oem_rec,
+            mx_rot,
+            mx_rec,
+            m_cw,
+            r_cw,
+            r,
+            shoulder,
+            u_per,
+            target_balance_factor=target,
+        )
         last = res.iterations[-1]
-        print(f"{res.target_balance_factor:6.4f}   {res.unbalance * 1e6:6.0f} g*mm   "
-              f"{len(res.iterations):10d}   {last.depth / MM:10.3f}   "
-              f"{abs(res.residual) * 1e6:15.2f}   {'PASS' if res.passed else 'FAIL':7s}   "
-              f"{thesis[target]}")
+        print(
+            f"{res.target_balance_factor:6.4f}   {res.unbalance * 1e6:6.0f} g*mm   "
+            f"{len(res.iterations):10d}   {last.depth / MM:10.3f}   "
+            f"{abs(res.residual) * 1e6:15.2f}   {'PASS' if res.passed else 'FAIL':7s}   "
+            f"{thesis[target]}"
+        )
 
     study = balance_factor_study(mx_rec, r, speed, 0.28, model="first-order")
-    print(f"\nfirst-order forces at 28 %: in-line {study.in_line_amplitude:.0f} N, transverse "
-          f"{study.transverse_amplitude:.0f} N, peak {study.peak_resultant:.0f} N "
-          f"(least, {study.optimum_peak_resultant:.0f} N, at f_b = "
-          f"{study.optimum_balance_factor:.2f})")
+    print(
+        f"\nfirst-order forces at 28 %: in-line {study.in_line_amplitude:.0f} N, transverse "
+        f"{study.transverse_amplitude:.0f} N, peak {study.peak_resultant:.0f} N "
+        f"(least, {study.optimum_peak_resultant:.0f} N, at f_b = "
+        f"{study.optimum_balance_factor:.2f})"
+    )
 
     rotor = equal_inertia_test_rotor(2847.335e-6, 100 * MM, 20 * MM, 188 * MM)
-    print(f"Appendix E test rotor: t = {rotor.disc_thickness / MM:.3f} mm, L2 = "
-          f"{rotor.shaft_end_length / MM:.3f} mm with d1 = 100 mm (Table 7.2 prints 98 mm, "
-          "which gives t = 39.80 mm: inconsistent)")
+    print(
+        f"Appendix E test rotor: t = {rotor.disc_thickness / MM:.3f} mm, L2 = "
+        f"{rotor.shaft_end_length / MM:.3f} mm with d1 = 100 mm (Table 7.2 prints 98 mm, "
+        "which gives t = 39.80 mm: inconsistent)"
+    )
 
 
 if __name__ == "__main__":

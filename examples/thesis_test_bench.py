@@ -20,19 +20,21 @@ SPEEDS = (3000, 6000, 9000)
 HOLE = {1: 0.0, 2: 0.0146, 3: 0.0584}
 MU = {1: (0.7773, 1.2771, 1.4718), 2: (0.4044, 0.2138, 0.1027), 3: (0.1170, 0.0526, 0.0254)}
 FEDEM = {1: (0.1949, 0.3204, 0.3696), 2: (0.1897, 0.3670, 0.3948), 3: (0.1988, 0.3555, 0.3861)}
-MEASURED = {1: (0.1944, 0.3194, 0.3681), 2: (0.2083, 0.3715, 0.3958),
-            3: (0.2031, 0.3594, 0.3906)}
+MEASURED = {1: (0.1944, 0.3194, 0.3681), 2: (0.2083, 0.3715, 0.3958), 3: (0.2031, 0.3594, 0.3906)}
 
 
 def main() -> None:
     print("Required torque to hold speed [N m]: this bench vs 004 Table 5.6")
-    print(f"{'case':>4} {'rpm':>5} {'bench':>8} {'FEDEM':>8} {'diff':>7} {'measured':>9} "
-          f"{'diff':>7} {'f_m model':>9}")
+    print(
+        f"{'case':>4} {'rpm':>5} {'bench':>8} {'FEDEM':>8} {'diff':>7} {'measured':>9} "
+        f"{'diff':>7} {'f_m model':>9}"
+    )
     worst = 0.0
     for case in (1, 2, 3):
         for k, rpm in enumerate(SPEEDS):
-            rotor = disc_rotor(0.098, 0.036704, 0.020, 0.188, MU[case][k],
-                               hole_mass=HOLE[case], hole_radius=0.0293)
+            rotor = disc_rotor(
+                0.098, 0.036704, 0.020, 0.188, MU[case][k], hole_mass=HOLE[case], hole_radius=0.0293
+            )
             omega = rpm * math.pi / 30
             result = run_bench(rotor, BenchSettings(speed=omega, samples=200))
             weight, force = rotor.mass * rotor.gravity, rotor.unbalance * omega**2
@@ -40,8 +42,10 @@ def main() -> None:
             d_fedem = result.required_torque / FEDEM[case][k] - 1
             d_meas = result.required_torque / MEASURED[case][k] - 1
             worst = max(worst, abs(d_fedem))
-            print(f"{case:>4} {rpm:>5} {result.required_torque:8.4f} {FEDEM[case][k]:8.4f} "
-                  f"{d_fedem:+7.2%} {MEASURED[case][k]:9.4f} {d_meas:+7.2%} {model:9.4f}")
+            print(
+                f"{case:>4} {rpm:>5} {result.required_torque:8.4f} {FEDEM[case][k]:8.4f} "
+                f"{d_fedem:+7.2%} {MEASURED[case][k]:9.4f} {d_meas:+7.2%} {model:9.4f}"
+            )
     print(f"largest difference to the FEDEM simulations: {worst:.2%} (issue target 5 %)")
     print("""
 Why the numbers differ:
@@ -69,8 +73,10 @@ Why the numbers differ:
             same = f"{mu:.3g}" == f"{MU[case][k]:.3g}"
             cells.append(f"{mu:.4f} ({MU[case][k]:.4f}{'' if same else ' *'})")
         print(f"  case {case}: " + "  ".join(cells))
-    print("  * differs at 3 significant figures: case 1 needs W = 25.01 N (all three case-1\n"
-          "    entries imply it), case 2 at 3000 rpm used the 42.2 N of Table 5.2 (r = 29.3 mm).")
+    print(
+        "  * differs at 3 significant figures: case 1 needs W = 25.01 N (all three case-1\n"
+        "    entries imply it), case 2 at 3000 rpm used the 42.2 N of Table 5.2 (r = 29.3 mm)."
+    )
 
 
 if __name__ == "__main__":

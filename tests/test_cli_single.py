@@ -24,10 +24,27 @@ def run(capsys, args: list[str]) -> tuple[int, str, str]:
 
 
 def test_balance_factor_json(capsys) -> None:
-    code, out, _ = run(capsys, ["balance-factor", *CRF, "--rotating-mass", "282.69 g",
-                                "--cw-mass", "2020.40 g", "--cw-radius", "6.16 mm",
-                                "--speed", "15200 rpm", "--kinematics", "first-order",
-                                "--target", "28%", "--format", "json"])
+    code, out, _ = run(
+        capsys,
+        [
+            "balance-factor",
+            *CRF,
+            "--rotating-mass",
+            "282.69 g",
+            "--cw-mass",
+            "2020.40 g",
+            "--cw-radius",
+            "6.16 mm",
+            "--speed",
+            "15200 rpm",
+            "--kinematics",
+            "first-order",
+            "--target",
+            "28%",
+            "--format",
+            "json",
+        ],
+    )
     assert code == 0
     data = json.loads(out)
     assert data["schema"] == "crankbalance.balance_factor/1"
@@ -41,44 +58,96 @@ def test_balance_factor_json(capsys) -> None:
 
 
 def test_balance_factor_table(capsys) -> None:
-    code, out, _ = run(capsys, ["balance-factor", *CRF, "--speed", "9000 rpm",
-                                "--rod-length", "105 mm", "--balance-factor", "0.5"])
+    code, out, _ = run(
+        capsys,
+        [
+            "balance-factor",
+            *CRF,
+            "--speed",
+            "9000 rpm",
+            "--rod-length",
+            "105 mm",
+            "--balance-factor",
+            "0.5",
+        ],
+    )
     assert code == 0 and "peak resultant" in out and "exact" in out
     assert "on top of 100 % of the rotating mass" in out
 
 
-@pytest.mark.parametrize("args, field", [
-    (["balance-factor", *CRF, "--balance-factor", "2.5"], "balance_factor"),
-    (["balance-factor", *CRF, "--balance-factor", "-10%"], "balance_factor"),
-    (["balance-factor", "--reciprocating-mass", "-282 g", "--crank-radius", "26.9 mm",
-      "--speed", "1000 rpm"], "reciprocating_mass"),
-    (["balance-factor", "--reciprocating-mass", "282 g", "--crank-radius", "0 mm",
-      "--speed", "1000 rpm"], "crank_radius"),
-    (["balance-factor", *CRF, "--cw-mass", "2 kg"], "cw_mass"),
-    (["tolerance", "--grade", "G7", "--rotor-mass", "2.7 kg", "--speed", "15200 rpm"],
-     "grade"),
-    (["tolerance", "--grade", "G6.3", "--rotor-mass", "2.7", "--speed", "15200 rpm"],
-     "rotor_mass"),
-    (["rebalance", "--parts", str(EXAMPLE), "--target", "250%"], "target"),
-    (["rebalance", "--parts", str(EXAMPLE), "--new-rotating-mass", "-3 g"],
-     "new_rotating_mass"),
-    (["rebalance", "--parts", "no/such/file.toml"], "parts"),
-    # checked even without --speed (no force study): was silently accepted
-    (["balance-factor", "--reciprocating-mass", "-282 g", "--crank-radius", "26.9 mm"],
-     "reciprocating_mass"),
-    (["balance-factor", "--reciprocating-mass", "282 g", "--crank-radius", "0 mm"],
-     "crank_radius"),
-    # options that would be ignored
-    (["balance-factor", *CRF, "--speed", "1000 rpm", "--offset", "5 mm"], "offset"),
-    (["balance-factor", *CRF, "--rod-length", "105 mm"], "rod_length"),
-    (["balance-factor", *CRF, "--target", "0.3"], "target"),
-    (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "correction.diameter"),
-    # the option at fault is named, not a derived quantity
-    (["balance-factor", *CRF, "--rotating-mass", "282 g", "--target", "5"], "target"),
-    (["balance-factor", *CRF, "--rotating-mass", "280 g", "--cw-mass", "0.1 kg",
-      "--cw-radius", "6 mm"], "cw_mass"),
-    (["rebalance", "--parts", str(EXAMPLE), "--cw-mass", "1 kg"], "too light"),
-])
+@pytest.mark.parametrize(
+    "args, field",
+    [
+        (["balance-factor", *CRF, "--balance-factor", "2.5"], "balance_factor"),
+        (["balance-factor", *CRF, "--balance-factor", "-10%"], "balance_factor"),
+        (
+            [
+                "balance-factor",
+                "--reciprocating-mass",
+                "-282 g",
+                "--crank-radius",
+                "26.9 mm",
+                "--speed",
+                "1000 rpm",
+            ],
+            "reciprocating_mass",
+        ),
+        (
+            [
+                "balance-factor",
+                "--reciprocating-mass",
+                "282 g",
+                "--crank-radius",
+                "0 mm",
+                "--speed",
+                "1000 rpm",
+            ],
+            "crank_radius",
+        ),
+        (["balance-factor", *CRF, "--cw-mass", "2 kg"], "cw_mass"),
+        (["tolerance", "--grade", "G7", "--rotor-mass", "2.7 kg", "--speed", "15200 rpm"], "grade"),
+        (
+            ["tolerance", "--grade", "G6.3", "--rotor-mass", "2.7", "--speed", "15200 rpm"],
+            "rotor_mass",
+        ),
+        (["rebalance", "--parts", str(EXAMPLE), "--target", "250%"], "target"),
+        (
+            ["rebalance", "--parts", str(EXAMPLE), "--new-rotating-mass", "-3 g"],
+            "new_rotating_mass",
+        ),
+        (["rebalance", "--parts", "no/such/file.toml"], "parts"),
+        # checked even without --speed (no force study): was silently accepted
+        (
+            ["balance-factor", "--reciprocating-mass", "-282 g", "--crank-radius", "26.9 mm"],
+            "reciprocating_mass",
+        ),
+        (
+            ["balance-factor", "--reciprocating-mass", "282 g", "--crank-radius", "0 mm"],
+            "crank_radius",
+        ),
+        # options that would be ignored
+        (["balance-factor", *CRF, "--speed", "1000 rpm", "--offset", "5 mm"], "offset"),
+        (["balance-factor", *CRF, "--rod-length", "105 mm"], "rod_length"),
+        (["balance-factor", *CRF, "--target", "0.3"], "target"),
+        (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "correction.diameter"),
+        # the option at fault is named, not a derived quantity
+        (["balance-factor", *CRF, "--rotating-mass", "282 g", "--target", "5"], "target"),
+        (
+            [
+                "balance-factor",
+                *CRF,
+                "--rotating-mass",
+                "280 g",
+                "--cw-mass",
+                "0.1 kg",
+                "--cw-radius",
+                "6 mm",
+            ],
+            "cw_mass",
+        ),
+        (["rebalance", "--parts", str(EXAMPLE), "--cw-mass", "1 kg"], "too light"),
+    ],
+)
 def test_bad_input_exit_2(capsys, args: list[str], field: str) -> None:
     code, _, err = run(capsys, args)
     assert code == 2
@@ -87,21 +156,54 @@ def test_bad_input_exit_2(capsys, args: list[str], field: str) -> None:
 
 
 def test_rebalance_table_and_override(capsys) -> None:
-    code, out, _ = run(capsys, ["rebalance", "--parts", str(EXAMPLE), "--target", "0.5",
-                                "--tolerance", "5 g*mm"])
+    code, out, _ = run(
+        capsys, ["rebalance", "--parts", str(EXAMPLE), "--target", "0.5", "--tolerance", "5 g*mm"]
+    )
     assert code == 0
     assert "target f_b = 0.5000" in out and "PASS" in out and "5 g*mm" in out
 
 
 def test_rebalance_options_only_holes(capsys) -> None:
-    code, out, _ = run(capsys, [
-        "rebalance", "--crank-radius", "26.9 mm", "--cw-mass", "2020.40 g",
-        "--cw-radius", "6.16 mm", "--old-rotating-mass", "282.69 g",
-        "--old-reciprocating-mass", "282.12 g", "--new-rotating-mass", "248.69 g",
-        "--new-reciprocating-mass", "261.50 g", "--target", "factory", "--method", "holes",
-        "--hole-diameter", "8 mm", "--holes", "2", "--correction-radius", "38 mm",
-        "--hole-direction", "axial", "--grade", "G6.3", "--rotor-mass", "2.7 kg",
-        "--speed", "15200 rpm", "--format", "json"])
+    code, out, _ = run(
+        capsys,
+        [
+            "rebalance",
+            "--crank-radius",
+            "26.9 mm",
+            "--cw-mass",
+            "2020.40 g",
+            "--cw-radius",
+            "6.16 mm",
+            "--old-rotating-mass",
+            "282.69 g",
+            "--old-reciprocating-mass",
+            "282.12 g",
+            "--new-rotating-mass",
+            "248.69 g",
+            "--new-reciprocating-mass",
+            "261.50 g",
+            "--target",
+            "factory",
+            "--method",
+            "holes",
+            "--hole-diameter",
+            "8 mm",
+            "--holes",
+            "2",
+            "--correction-radius",
+            "38 mm",
+            "--hole-direction",
+            "axial",
+            "--grade",
+            "G6.3",
+            "--rotor-mass",
+            "2.7 kg",
+            "--speed",
+            "15200 rpm",
+            "--format",
+            "json",
+        ],
+    )
     assert code == 0
     case = json.loads(out)["cases"][0]
     assert case["passed"] and case["correction"]["kind"] == "holes"
@@ -116,10 +218,28 @@ def test_rebalance_unknown_key(tmp_path, capsys) -> None:
 
 
 def test_tolerance_json_and_list(capsys) -> None:
-    code, out, _ = run(capsys, ["tolerance", "--grade", "G6.3", "--rotor-mass", "2.7 kg",
-                                "--speed", "15200 rpm", "--residual", "7.39 g*mm",
-                                "--bearing-a", "0 mm", "--bearing-b", "120 mm",
-                                "--center-of-mass", "60 mm", "--format", "json"])
+    code, out, _ = run(
+        capsys,
+        [
+            "tolerance",
+            "--grade",
+            "G6.3",
+            "--rotor-mass",
+            "2.7 kg",
+            "--speed",
+            "15200 rpm",
+            "--residual",
+            "7.39 g*mm",
+            "--bearing-a",
+            "0 mm",
+            "--bearing-b",
+            "120 mm",
+            "--center-of-mass",
+            "60 mm",
+            "--format",
+            "json",
+        ],
+    )
     assert code == 0
     data = json.loads(out)
     assert data["schema"] == "crankbalance.tolerance/1"
@@ -143,9 +263,22 @@ def test_balance_factor_from_engine_preset(capsys) -> None:
 
 def test_rebalance_method_option_replaces_the_files_correction(capsys) -> None:
     """--method holes on a file with a face correction drops the file's face keys."""
-    code, out, err = run(capsys, ["rebalance", "--parts", str(EXAMPLE), "--method", "holes",
-                                  "--hole-diameter", "8 mm", "--holes", "2",
-                                  "--format", "json"])
+    code, out, err = run(
+        capsys,
+        [
+            "rebalance",
+            "--parts",
+            str(EXAMPLE),
+            "--method",
+            "holes",
+            "--hole-diameter",
+            "8 mm",
+            "--holes",
+            "2",
+            "--format",
+            "json",
+        ],
+    )
     assert code == 0, err
     cases = json.loads(out)["cases"]
     assert all(case["correction"]["kind"] == "holes" and case["passed"] for case in cases)

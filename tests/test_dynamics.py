@@ -57,16 +57,24 @@ def _closed_form_bench(inertia, friction, kp, ki, speed, ramp, hold, times):
 def test_bench_against_closed_form_constant_friction():
     rotor = BenchRotor(mass=2.5, inertia=2.6e-3, journal_diameter=0.02, friction_coefficient=1.0)
     friction = 1.0 * 2.5 * rotor.gravity * 0.01
-    settings = BenchSettings(speed=3000 * math.pi / 30, ramp_time=0.5, hold_time=0.3,
-                             proportional_gain=0.02, integral_gain=0.05, stick_speed=0.01,
-                             rtol=1e-8)
+    settings = BenchSettings(
+        speed=3000 * math.pi / 30,
+        ramp_time=0.5,
+        hold_time=0.3,
+        proportional_gain=0.02,
+        integral_gain=0.05,
+        stick_speed=0.01,
+        rtol=1e-8,
+    )
     result = run_bench(rotor, settings)
     times = np.array([0.1, 0.3, 0.5, 0.55, 0.7, 0.8])
-    expected, hold_torque = _closed_form_bench(2.6e-3, friction, 0.02, 0.05, settings.speed,
-                                               0.5, 0.3, times)
+    expected, hold_torque = _closed_form_bench(
+        2.6e-3, friction, 0.02, 0.05, settings.speed, 0.5, 0.3, times
+    )
     simulated = np.interp(times, result.time, result.speed)
     assert np.max(np.abs(simulated - expected)) < 2e-3 * settings.speed, (
-        "spin-up speed against the closed form")
+        "spin-up speed against the closed form"
+    )
     assert result.required_torque == pytest.approx(hold_torque, rel=5e-3), "hold torque"
     # the hold here is too short for the overshoot to decay: the closed form says so too
     assert abs(hold_torque - friction) > 0.02 * friction
@@ -77,25 +85,32 @@ def test_bench_unbalance_friction_is_coulomb_on_mean_reaction():
     """With unbalance the mean friction torque is mu d/2 times the mean reaction magnitude."""
     from crankbalance.friction import mean_equivalent_load
 
-    rotor = BenchRotor(mass=2.5, inertia=2.6e-3, journal_diameter=0.02, friction_coefficient=0.1,
-                       unbalance=1e-3)
+    rotor = BenchRotor(
+        mass=2.5, inertia=2.6e-3, journal_diameter=0.02, friction_coefficient=0.1, unbalance=1e-3
+    )
     speed = 3000 * math.pi / 30
-    settings = BenchSettings(speed=speed, ramp_time=1.0, hold_time=0.5, proportional_gain=0.5,
-                             integral_gain=20.0)
+    settings = BenchSettings(
+        speed=speed, ramp_time=1.0, hold_time=0.5, proportional_gain=0.5, integral_gain=20.0
+    )
     result = run_bench(rotor, settings)
     # the PI integrator unwinds I*a after the ramp: on average over the hold the speed runs
     # above the set value by I a / (K_i t_hold)
     mean_speed = np.mean(result.speed[result.time > 1.0])
     assert mean_speed - speed == pytest.approx(2.6e-3 * speed / 20.0 / 0.5, rel=0.05)
-    expected = 0.1 * 0.01 * mean_equivalent_load(2.5 * rotor.gravity, 1e-3 * speed**2,
-                                                 "arithmetic")
+    expected = 0.1 * 0.01 * mean_equivalent_load(2.5 * rotor.gravity, 1e-3 * speed**2, "arithmetic")
     assert result.mean_friction_torque == pytest.approx(expected, rel=5e-3)
     assert result.final_speed == pytest.approx(speed, rel=1e-3)
 
 
 def test_bench_lever_rule_split():
-    rotor = BenchRotor(mass=2.0, inertia=1e-3, journal_diameter=0.02, friction_coefficient=0.2,
-                       bearing_positions=(0.0, 0.1), mass_position=0.025)
+    rotor = BenchRotor(
+        mass=2.0,
+        inertia=1e-3,
+        journal_diameter=0.02,
+        friction_coefficient=0.2,
+        bearing_positions=(0.0, 0.1),
+        mass_position=0.025,
+    )
     assert rotor.load_shares(0.025) == pytest.approx((0.75, 0.25))
     result = run_bench(rotor, BenchSettings(speed=100.0, ramp_time=0.2, hold_time=0.2))
     weight = 2.0 * rotor.gravity
@@ -112,9 +127,16 @@ LAMBDA = 0.25
 
 
 def _cylinder(**changes):
-    base = dict(bore=0.0768, crank_radius=0.0269, rod_length=0.0269 / LAMBDA,
-                reciprocating_mass=0.282, crank_inertia=6e-3, balance_factor=0.5,
-                journal_diameter=0.03, friction_coefficient=0.005)
+    base = dict(
+        bore=0.0768,
+        crank_radius=0.0269,
+        rod_length=0.0269 / LAMBDA,
+        reciprocating_mass=0.282,
+        crank_inertia=6e-3,
+        balance_factor=0.5,
+        journal_diameter=0.03,
+        friction_coefficient=0.005,
+    )
     base.update(changes)
     return CylinderSpec(**base)
 
@@ -135,15 +157,16 @@ def test_inertia_torque_against_den_hartog_series():
     exact = [0.0635, -0.5001, -0.1921, -0.0161]
     assert np.allclose(b[1:5], exact, atol=6e-5), "Den Hartog harmonics at lambda = 0.25 (issue 7)"
     assert np.max(np.abs(a[1:6])) < 1e-12, "no cosine terms without offset"
-    series = [LAMBDA / 4, -0.5, -3 * LAMBDA / 4, -LAMBDA**2 / 4]
+    series = [LAMBDA / 4, -0.5, -3 * LAMBDA / 4, -(LAMBDA**2) / 4]
     assert np.allclose(b[1:5], series, atol=5e-3), "Den Hartog series (terms to lambda^2)"
 
 
 def test_energy_check_gas_work_equals_indicated_work():
     cyl = _cylinder()
     for strokes in (2, 4):
-        combustion = WiebeCombustion(compression_ratio=12.0, ignition_angle=np.radians(-20),
-                                     burn_duration=np.radians(50))
+        combustion = WiebeCombustion(
+            compression_ratio=12.0, ignition_angle=np.radians(-20), burn_duration=np.radians(50)
+        )
         result = engine_cycle(cyl, 900.0, combustion, strokes=strokes)
         # indicated work from an independent p-V integration on a finer grid
         theta = np.linspace(-np.pi, np.pi, 20001)
@@ -158,14 +181,19 @@ def test_energy_check_gas_work_equals_indicated_work():
 
 def test_wiebe_pressure_compression_is_polytropic():
     cyl = _cylinder()
-    combustion = WiebeCombustion(compression_ratio=10.0, ignition_angle=np.radians(-10),
-                                 burn_duration=np.radians(40), gamma=1.35)
+    combustion = WiebeCombustion(
+        compression_ratio=10.0,
+        ignition_angle=np.radians(-10),
+        burn_duration=np.radians(40),
+        gamma=1.35,
+    )
     theta = np.radians([-180.0, -90.0, -30.0])
     p = dynamics.wiebe_pressure(theta, cyl, combustion, 4)
     v = dynamics.cylinder_volume(theta, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0)
     assert p == pytest.approx(1e5 * (v[0] / v) ** 1.35, rel=1e-9), "p V^gamma = const before"
     assert dynamics.cylinder_volume(0.0, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0) == (
-        pytest.approx(cyl.displacement / 9.0)), "clearance volume V_d/(CR - 1)"
+        pytest.approx(cyl.displacement / 9.0)
+    ), "clearance volume V_d/(CR - 1)"
 
 
 def test_bearing_loads_reduce_to_thesis_forces_first_order():
@@ -181,8 +209,9 @@ def test_bearing_loads_reduce_to_thesis_forces_first_order():
 
 def test_speed_fluctuation_consistent_with_equation_of_motion():
     cyl = _cylinder()
-    combustion = WiebeCombustion(compression_ratio=12.0, ignition_angle=np.radians(-20),
-                                 burn_duration=np.radians(50))
+    combustion = WiebeCombustion(
+        compression_ratio=12.0, ignition_angle=np.radians(-20), burn_duration=np.radians(50)
+    )
     result = engine_cycle(cyl, 700.0, combustion, samples_per_revolution=1440)
     # time-mean speed
     assert 1 / np.mean(1 / result.speed) == pytest.approx(700.0, rel=1e-9)
@@ -190,11 +219,15 @@ def test_speed_fluctuation_consistent_with_equation_of_motion():
     dtheta = result.angle[1] - result.angle[0]
     fd = result.speed * np.gradient(result.speed, dtheta)
     inner = slice(10, -10)
-    assert np.allclose(fd[inner], result.crank_acceleration[inner],
-                       atol=1e-3 * np.max(np.abs(result.crank_acceleration)))
+    assert np.allclose(
+        fd[inner],
+        result.crank_acceleration[inner],
+        atol=1e-3 * np.max(np.abs(result.crank_acceleration)),
+    )
     # load torque is the cycle mean of gas minus friction torque
-    assert result.load_torque == pytest.approx(result.indicated_work / (4 * np.pi)
-                                               - result.mean_friction_torque, rel=1e-2)
+    assert result.load_torque == pytest.approx(
+        result.indicated_work / (4 * np.pi) - result.mean_friction_torque, rel=1e-2
+    )
 
 
 def test_multi_cylinder_phases_sum():
@@ -214,8 +247,15 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
     cyl = _cylinder(rod_length=1.0)
     factors = np.linspace(0, 1, 11)
     calls = []
-    result = balance_sensitivity(cyl, 900.0, _no_gas(2), factors, mass_scales=[1.0, 0.8],
-                                 strokes=2, progress=lambda d, t: calls.append((d, t)))
+    result = balance_sensitivity(
+        cyl,
+        900.0,
+        _no_gas(2),
+        factors,
+        mass_scales=[1.0, 0.8],
+        strokes=2,
+        progress=lambda d, t: calls.append((d, t)),
+    )
     assert calls[-1] == (22, 22)
     # 004 Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force (first-order forces)
     assert factors[np.argmin(result.peak_shaking_force[0])] == pytest.approx(0.5)
@@ -224,29 +264,54 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
     assert result.to_dict()["mean_friction_torque"][0][0] > 0
 
 
-@pytest.mark.parametrize("make,field", [
-    (lambda: CylinderSpec(0.08, 0.03, 0.02, 0.3, 1e-3), "rod_length"),
-    (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=5.0), "balance_factor"),
-    (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=-0.5), "balance_factor"),
-    (lambda: BenchSettings(speed=10.0, samples=float("nan")), "samples"),
-    (lambda: engine_cycle(_cylinder(), 100.0, _no_gas(), strokes=2,
-                          samples_per_revolution=float("nan")), "samples_per_revolution"),
-    (lambda: CylinderSpec(-0.08, 0.03, 0.1, 0.3, 1e-3), "bore"),
-    (lambda: WiebeCombustion(compression_ratio=0.9, ignition_angle=0.0, burn_duration=0.8),
-     "compression_ratio"),
-    (lambda: engine_cycle(_cylinder(), 100.0, _no_gas(), strokes=3), "strokes"),
-    (lambda: engine_cycle(_cylinder(), -1.0, _no_gas()), "speed"),
-    (lambda: engine_cycle(_cylinder(), 100.0, (np.array([0.0, 1.0]), np.array([1.0, 2.0]))),
-     "pressure table"),
-    (lambda: BenchRotor(mass=1.0, inertia=1e-3, journal_diameter=0.02, friction_coefficient=-1),
-     "friction_coefficient"),
-    (lambda: BenchRotor(mass=1.0, inertia=1e-3, journal_diameter=0.02, friction_coefficient=0.1,
-                        bearing_positions=(0.1, 0.1)), "bearing_positions"),
-    (lambda: BenchSettings(speed=0.0), "speed"),
-    (lambda: dynamics.disc_rotor(0.1, 0.2, 0.02, 0.188, 0.1), "disc_thickness"),
-    (lambda: balance_sensitivity(_cylinder(), 100.0, _no_gas(), [], strokes=2),
-     "balance_factors"),
-])
+@pytest.mark.parametrize(
+    "make,field",
+    [
+        (lambda: CylinderSpec(0.08, 0.03, 0.02, 0.3, 1e-3), "rod_length"),
+        (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=5.0), "balance_factor"),
+        (lambda: CylinderSpec(0.08, 0.03, 0.1, 0.3, 1e-3, balance_factor=-0.5), "balance_factor"),
+        (lambda: BenchSettings(speed=10.0, samples=float("nan")), "samples"),
+        (
+            lambda: engine_cycle(
+                _cylinder(), 100.0, _no_gas(), strokes=2, samples_per_revolution=float("nan")
+            ),
+            "samples_per_revolution",
+        ),
+        (lambda: CylinderSpec(-0.08, 0.03, 0.1, 0.3, 1e-3), "bore"),
+        (
+            lambda: WiebeCombustion(compression_ratio=0.9, ignition_angle=0.0, burn_duration=0.8),
+            "compression_ratio",
+        ),
+        (lambda: engine_cycle(_cylinder(), 100.0, _no_gas(), strokes=3), "strokes"),
+        (lambda: engine_cycle(_cylinder(), -1.0, _no_gas()), "speed"),
+        (
+            lambda: engine_cycle(_cylinder(), 100.0, (np.array([0.0, 1.0]), np.array([1.0, 2.0]))),
+            "pressure table",
+        ),
+        (
+            lambda: BenchRotor(
+                mass=1.0, inertia=1e-3, journal_diameter=0.02, friction_coefficient=-1
+            ),
+            "friction_coefficient",
+        ),
+        (
+            lambda: BenchRotor(
+                mass=1.0,
+                inertia=1e-3,
+                journal_diameter=0.02,
+                friction_coefficient=0.1,
+                bearing_positions=(0.1, 0.1),
+            ),
+            "bearing_positions",
+        ),
+        (lambda: BenchSettings(speed=0.0), "speed"),
+        (lambda: dynamics.disc_rotor(0.1, 0.2, 0.02, 0.188, 0.1), "disc_thickness"),
+        (
+            lambda: balance_sensitivity(_cylinder(), 100.0, _no_gas(), [], strokes=2),
+            "balance_factors",
+        ),
+    ],
+)
 def test_bad_input(make, field):
     with pytest.raises(InputError) as info:
         make()
@@ -276,14 +341,29 @@ def _run_cli(args):
     from crankbalance.cli import cli
 
     result = CliRunner().invoke(cli, args)
-    return result, (_json.loads(result.stdout) if "--format" in args and "json" in args
-                    and result.exit_code == 0 else None)
+    return result, (
+        _json.loads(result.stdout)
+        if "--format" in args and "json" in args and result.exit_code == 0
+        else None
+    )
 
 
 def test_cli_friction_back_computes_mu():
-    result, data = _run_cli(["friction", "--load", "25.01 N", "--rotating-load", "42.2 N",
-                             "--journal-diameter", "20 mm", "--torque", "0.2083 N*m",
-                             "--format", "json"])
+    result, data = _run_cli(
+        [
+            "friction",
+            "--load",
+            "25.01 N",
+            "--rotating-load",
+            "42.2 N",
+            "--journal-diameter",
+            "20 mm",
+            "--torque",
+            "0.2083 N*m",
+            "--format",
+            "json",
+        ]
+    )
     assert result.exit_code == 0, result.output
     assert data["schema"] == "crankbalance.friction/1"
     approx = next(r for r in data["coulomb"] if r["method"] == "approximate")
@@ -292,13 +372,28 @@ def test_cli_friction_back_computes_mu():
 
 def test_cli_bench_cycle_sensitivity_outputs(tmp_path):
     history = tmp_path / "h.csv"
-    result, data = _run_cli(["bench", "--friction-coefficient", "0.5", "--speed", "1000 rpm",
-                             "--ramp-time", "0.3 s", "--hold-time", "0.2 s",
-                             "--history", str(history), "--format", "json"])
+    result, data = _run_cli(
+        [
+            "bench",
+            "--friction-coefficient",
+            "0.5",
+            "--speed",
+            "1000 rpm",
+            "--ramp-time",
+            "0.3 s",
+            "--hold-time",
+            "0.2 s",
+            "--history",
+            str(history),
+            "--format",
+            "json",
+        ]
+    )
     assert result.exit_code == 0, result.output
     assert data["schema"] == "crankbalance.bench/1"
-    assert data["runs"][0]["required_torque_Nm"] == pytest.approx(0.5 * 2.5464 * 9.80665 * 0.01,
-                                                                  rel=0.01)
+    assert data["runs"][0]["required_torque_Nm"] == pytest.approx(
+        0.5 * 2.5464 * 9.80665 * 0.01, rel=0.01
+    )
     assert history.read_text().startswith("time_s,")
     result, data = _run_cli(["cycle", "--speed", "6000 rpm", "--format", "json"])
     assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/1"
@@ -313,32 +408,85 @@ def test_cli_bench_cycle_sensitivity_outputs(tmp_path):
 def test_cli_pressure_csv(tmp_path):
     table = tmp_path / "p.csv"
     angle = np.arange(-360, 360, 10.0)
-    pressure = 1.0 + 40.0 * np.exp(-((angle - 10) / 30) ** 2)
-    table.write_text("angle_deg,pressure_bar\n" + "\n".join(
-        f"{a},{p}" for a, p in zip(angle, pressure, strict=True)))
+    pressure = 1.0 + 40.0 * np.exp(-(((angle - 10) / 30) ** 2))
+    table.write_text(
+        "angle_deg,pressure_bar\n"
+        + "\n".join(f"{a},{p}" for a, p in zip(angle, pressure, strict=True))
+    )
     result, data = _run_cli(["cycle", "--pressure-csv", str(table), "--format", "json"])
     assert result.exit_code == 0, result.output
     assert max(data["curves"]["pressure_bar"]) == pytest.approx(41.0, rel=0.02)
 
 
-@pytest.mark.parametrize("args,needle", [
-    (["cycle", "--bore", "-3 mm"], "bore"),
-    (["sensitivity", "--balance-factors", "a,b"], "balance_factors"),
-    (["friction", "--journal-diameter", "20 mm"], "friction_coefficient"),
-    (["bench", "--friction-coefficient", "0.1", "--speed", "fast"], "speed"),
-    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1"], "load"),
-    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
-      "--load", "-5 N"], "load"),
-    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
-      "--load", "5 N", "--eccentricity", "0.5"], "eccentricity"),
-    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
-      "--load", "5 N", "--speed", "100 rpm"], "speed"),
-    (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1",
-      "--load", "5 N", "--unbalance", "3 g*mm", "--speed", "-100 rpm"], "speed"),
-    (["bench", "--friction-coefficient", "0.1", "--history", "/no/such/dir/h.csv"], "history"),
-    (["cycle", "--balance-factor", "-0.5"], "balance_factor"),
-    (["sensitivity", "--balance-factors", "0,5"], "balance_factors"),
-])
+@pytest.mark.parametrize(
+    "args,needle",
+    [
+        (["cycle", "--bore", "-3 mm"], "bore"),
+        (["sensitivity", "--balance-factors", "a,b"], "balance_factors"),
+        (["friction", "--journal-diameter", "20 mm"], "friction_coefficient"),
+        (["bench", "--friction-coefficient", "0.1", "--speed", "fast"], "speed"),
+        (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1"], "load"),
+        (
+            [
+                "friction",
+                "--journal-diameter",
+                "20 mm",
+                "--friction-coefficient",
+                "0.1",
+                "--load",
+                "-5 N",
+            ],
+            "load",
+        ),
+        (
+            [
+                "friction",
+                "--journal-diameter",
+                "20 mm",
+                "--friction-coefficient",
+                "0.1",
+                "--load",
+                "5 N",
+                "--eccentricity",
+                "0.5",
+            ],
+            "eccentricity",
+        ),
+        (
+            [
+                "friction",
+                "--journal-diameter",
+                "20 mm",
+                "--friction-coefficient",
+                "0.1",
+                "--load",
+                "5 N",
+                "--speed",
+                "100 rpm",
+            ],
+            "speed",
+        ),
+        (
+            [
+                "friction",
+                "--journal-diameter",
+                "20 mm",
+                "--friction-coefficient",
+                "0.1",
+                "--load",
+                "5 N",
+                "--unbalance",
+                "3 g*mm",
+                "--speed",
+                "-100 rpm",
+            ],
+            "speed",
+        ),
+        (["bench", "--friction-coefficient", "0.1", "--history", "/no/such/dir/h.csv"], "history"),
+        (["cycle", "--balance-factor", "-0.5"], "balance_factor"),
+        (["sensitivity", "--balance-factors", "0,5"], "balance_factors"),
+    ],
+)
 def test_cli_bad_input_exit_2(args, needle, capsys):
     from crankbalance.cli import main
 
@@ -351,8 +499,14 @@ def test_cli_bad_input_exit_2(args, needle, capsys):
 def test_sensitivity_refuses_bad_factors_before_computing():
     calls = []
     with pytest.raises(InputError, match="balance_factors"):
-        balance_sensitivity(_cylinder(), 900.0, _no_gas(2), [0.0, 0.5, 2.5], strokes=2,
-                            progress=lambda d, t: calls.append(d))
+        balance_sensitivity(
+            _cylinder(),
+            900.0,
+            _no_gas(2),
+            [0.0, 0.5, 2.5],
+            strokes=2,
+            progress=lambda d, t: calls.append(d),
+        )
     assert calls == []
 
 
@@ -360,8 +514,19 @@ def test_cli_cycle_engine_options_given_override_the_engine():
     result, data = _run_cli(["cycle", "--engine", "single", "--format", "json"])
     assert result.exit_code == 0, result.output
     from_engine = data["cylinder"]["crank_radius"]
-    result, data = _run_cli(["cycle", "--engine", "single", "--stroke", "60 mm",
-                             "--reciprocating-mass", "300 g", "--format", "json"])
+    result, data = _run_cli(
+        [
+            "cycle",
+            "--engine",
+            "single",
+            "--stroke",
+            "60 mm",
+            "--reciprocating-mass",
+            "300 g",
+            "--format",
+            "json",
+        ]
+    )
     assert result.exit_code == 0, result.output
     assert data["cylinder"]["crank_radius"] == pytest.approx(0.030) != from_engine
     assert data["cylinder"]["reciprocating_mass"] == pytest.approx(0.300)

@@ -11,13 +11,15 @@ from crankbalance.errors import InputError
 
 
 def _mean_magnitude(w: float, u: float, power: float) -> float:
-    value, _ = quad(lambda t: np.hypot(w + u * np.cos(t), u * np.sin(t)) ** power, 0, 2 * np.pi,
-                    limit=200)
+    value, _ = quad(
+        lambda t: np.hypot(w + u * np.cos(t), u * np.sin(t)) ** power, 0, 2 * np.pi, limit=200
+    )
     return (value / (2 * np.pi)) ** (1 / power)
 
 
-@pytest.mark.parametrize("w,u", [(25.0, 0.0), (0.0, 40.0), (25.0, 42.2), (25.0, 25.0),
-                                 (25.0, 1519.9), (300.0, 12.0)])
+@pytest.mark.parametrize(
+    "w,u", [(25.0, 0.0), (0.0, 40.0), (25.0, 42.2), (25.0, 25.0), (25.0, 1519.9), (300.0, 12.0)]
+)
 def test_arithmetic_and_cubic_means_match_quadrature(w, u):
     arith = friction.mean_equivalent_load(w, u, "arithmetic")
     cubic = friction.mean_equivalent_load(w, u, "cubic")
@@ -59,14 +61,14 @@ def test_petroff_against_textbook_forms():
     # projected-area pressure P = W / (2 r L); torque T = f W r (any load W)
     load = 1234.0
     f = 2 * np.pi**2 * eta * n / (load / (2 * r * length)) * r / c
-    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(f * load * r,
-                                                                          rel=1e-12), \
-        "Petroff equation (Shigley 12-6)"
+    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(
+        f * load * r, rel=1e-12
+    ), "Petroff equation (Shigley 12-6)"
     # Heywood's form printed in 004 Eq. 7.2 with N in rev/s: F = pi^2 eta D^2 L N / h
     heywood = np.pi**2 * eta * d**2 * length * n / c
-    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(heywood * r,
-                                                                          rel=1e-12), \
+    assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(heywood * r, rel=1e-12), (
         "004 App. A Eq. 7.2 (Heywood) with eps = 0, N in rev/s"
+    )
     # eccentricity raises the shear term by 1/sqrt(1 - eps^2) (004 Eq. 7.2)
     t0 = friction.journal_bearing_torque(eta, d, length, c, w)
     t6 = friction.journal_bearing_torque(eta, d, length, c, w, eccentricity_ratio=0.6)
@@ -110,14 +112,17 @@ def test_squeeze_film_thesis_formula_properties():
     assert friction.squeeze_film_stiffness(w0, gap) == pytest.approx(slope, rel=1e-3)
 
 
-@pytest.mark.parametrize("call,field", [
-    (lambda: friction.mean_equivalent_load(-1.0, 2.0), "constant_load"),
-    (lambda: friction.mean_equivalent_load(1.0, 2.0, "median"), "method"),
-    (lambda: friction.friction_torque(0.1, 10.0, 0.0), "journal_diameter"),
-    (lambda: friction.mean_load_factor(0.0, 0.0), "constant_load + rotating_load"),
-    (lambda: friction.journal_bearing_torque(0.01, 0.04, 0.02, 2e-5, 100, 1.0), "eccentricity"),
-    (lambda: friction.friction_coefficient_from_torque(float("nan"), 1.0, 1.0, 0.02), "torque"),
-])
+@pytest.mark.parametrize(
+    "call,field",
+    [
+        (lambda: friction.mean_equivalent_load(-1.0, 2.0), "constant_load"),
+        (lambda: friction.mean_equivalent_load(1.0, 2.0, "median"), "method"),
+        (lambda: friction.friction_torque(0.1, 10.0, 0.0), "journal_diameter"),
+        (lambda: friction.mean_load_factor(0.0, 0.0), "constant_load + rotating_load"),
+        (lambda: friction.journal_bearing_torque(0.01, 0.04, 0.02, 2e-5, 100, 1.0), "eccentricity"),
+        (lambda: friction.friction_coefficient_from_torque(float("nan"), 1.0, 1.0, 0.02), "torque"),
+    ],
+)
 def test_bad_input(call, field):
     with pytest.raises(InputError) as info:
         call()

@@ -41,8 +41,7 @@ def test_orders_bar_heights_equal_api(inline4: tuple) -> None:
     assert height_f[:-1] == pytest.approx([r["amplitude_N"] for r in data["free_forces"]])
     assert height_m[:-1] == pytest.approx([r["amplitude_Nm"] for r in data["free_moments"]])
     assert np.asarray(fwd_f.y)[:-1] == pytest.approx([r["forward_N"] for r in data["free_forces"]])
-    assert np.asarray(bwd_f.y)[:-1] == pytest.approx(
-        [r["backward_N"] for r in data["free_forces"]])
+    assert np.asarray(bwd_f.y)[:-1] == pytest.approx([r["backward_N"] for r in data["free_forces"]])
     assert height_f[-1] == pytest.approx(data["rotating"]["force_N"])
     assert height_m[-1] == pytest.approx(data["rotating"]["moment_Nm"])
     # inline-4: second order force is the largest free force (textbook: 4 m r w^2 lambda)
@@ -129,14 +128,16 @@ def test_polar_phasors_and_locus(paper: tuple) -> None:
     # the direction at crank angle 0 agrees with the phase the JSON reports
     data = a.to_dict()["free_moments"][0]
     assert np.degrees(np.arctan2(arrow_f.x[1], arrow_f.y[1])) == pytest.approx(
-        data["forward_phase_deg"])
+        data["forward_phase_deg"]
+    )
 
 
 def test_polar_rotating_and_bad_order(inline4: tuple) -> None:
     a, _ = inline4
     fig = plots.polar_figure(a, "rotating", "force")
     assert np.hypot(fig.data[0].x, fig.data[0].y).max() == pytest.approx(
-        abs(a.forces.rotating_force), rel=1e-6, abs=1e-9)
+        abs(a.forces.rotating_force), rel=1e-6, abs=1e-9
+    )
     for bad in (0.5, 99, "two"):
         with pytest.raises(InputError, match="order"):
             plots.polar_figure(a, bad)  # type: ignore[arg-type]
@@ -173,8 +174,13 @@ def test_leading_quantity(paper: tuple, inline4: tuple) -> None:
 def test_titles_fit_a_panel(paper: tuple) -> None:
     """The engine name goes to a second, smaller line, shortened when very long."""
     a, s = paper
-    for fig in (plots.orders_bar(a), plots.curves_figure(a, s), plots.polar_figure(a, 1),
-                plots.residuals_bar(s), plots.crank_3d(a.model)):
+    for fig in (
+        plots.orders_bar(a),
+        plots.curves_figure(a, s),
+        plots.polar_figure(a, 1),
+        plots.residuals_bar(s),
+        plots.crank_3d(a.model),
+    ):
         first, second = fig.layout.title.text.split("<br>")
         assert len(first) <= 60, first
         assert second.startswith("<sup>Inline-3, Table 1") and second.endswith("</sup>")
@@ -208,8 +214,7 @@ def test_crank_3d_has_every_mass(paper: tuple) -> None:
     assert len(pins) == 3
     r = a.model.crank_radius * 1e3
     for t, phi in zip(pins, a.model.throw_angle, strict=True):
-        assert t.z[0] == pytest.approx(r * np.cos(phi)) and t.y[0] == pytest.approx(
-            r * np.sin(phi))
+        assert t.z[0] == pytest.approx(r * np.cos(phi)) and t.y[0] == pytest.approx(r * np.sin(phi))
     # bare crank from a model alone
     assert not [t for t in plots.crank_3d(a.model).data if t.legendgroup == "counterweights"]
 
@@ -234,7 +239,8 @@ def test_residuals_bar_equals_solver(inline4: tuple) -> None:
 # --------------------------------------------------------------------------- export
 chromium = pytest.mark.skipif(
     not (shutil.which("chromium") or shutil.which("google-chrome")),
-    reason="static export needs a Chromium for kaleido (apt package chromium)")
+    reason="static export needs a Chromium for kaleido (apt package chromium)",
+)
 
 
 @chromium
@@ -333,12 +339,19 @@ def test_performance_figures_match_results() -> None:
         run_bench,
     )
 
-    cyl = CylinderSpec(bore=0.0768, crank_radius=0.0269, rod_length=0.1076,
-                       reciprocating_mass=0.282, crank_inertia=6e-3, balance_factor=0.5)
+    cyl = CylinderSpec(
+        bore=0.0768,
+        crank_radius=0.0269,
+        rod_length=0.1076,
+        reciprocating_mass=0.282,
+        crank_inertia=6e-3,
+        balance_factor=0.5,
+    )
     angle = np.radians(np.arange(0.0, 720.0, 10.0)) - 2 * np.pi
     pressure = (angle, np.full_like(angle, 1e5))
-    sens = balance_sensitivity(cyl, 900.0, pressure, [0.0, 0.5, 1.0], mass_scales=[1.0, 0.8],
-                               samples_per_revolution=72)
+    sens = balance_sensitivity(
+        cyl, 900.0, pressure, [0.0, 0.5, 1.0], mass_scales=[1.0, 0.8], samples_per_revolution=72
+    )
     fig = plots.sensitivity_figure(sens, ("peak_bearing_load", "friction_power"))
     lines = [t for t in fig.data if t.xaxis == "x"]
     assert len(lines) == 2
@@ -348,8 +361,9 @@ def test_performance_figures_match_results() -> None:
     cyc = engine_cycle(cyl, 900.0, pressure, samples_per_revolution=72)
     cf = plots.cycle_figure(cyc)
     assert np.asarray(traces(cf, "net torque")[0].y) == pytest.approx(cyc.net_torque)
-    bench = run_bench(disc_rotor(0.098, 0.036704, 0.020, 0.188, 0.4, hole_mass=0.0146,
-                                 hole_radius=0.0293),
-                      BenchSettings(speed=300.0, ramp_time=0.2, hold_time=0.2, samples=100))
+    bench = run_bench(
+        disc_rotor(0.098, 0.036704, 0.020, 0.188, 0.4, hole_mass=0.0146, hole_radius=0.0293),
+        BenchSettings(speed=300.0, ramp_time=0.2, hold_time=0.2, samples=100),
+    )
     bf = plots.bench_figure(bench)
     assert np.asarray(traces(bf, "bearing A")[0].y) == pytest.approx(bench.bearing_load_a)

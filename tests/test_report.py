@@ -47,8 +47,9 @@ def test_html_shows_balance_numbers(paper_html: str) -> None:
 
 
 def test_html_embeds_the_api_json(paper_html: str) -> None:
-    match = re.search(r'<script type="application/json" id="crankbalance-data">(.*?)</script>',
-                      paper_html, re.S)
+    match = re.search(
+        r'<script type="application/json" id="crankbalance-data">(.*?)</script>', paper_html, re.S
+    )
     assert match
     data = json.loads(match.group(1))
     assert data["schema"] == "crankbalance.report/1"
@@ -82,16 +83,18 @@ def test_write_report_html_and_bad_suffix(tmp_path: Path) -> None:
     assert not (tmp_path / "r.docx").exists()
 
 
-@pytest.mark.skipif(not HAS_CHROMIUM, reason="printing the PDF needs Chromium "
-                                             "(apt package chromium)")
+@pytest.mark.skipif(
+    not HAS_CHROMIUM, reason="printing the PDF needs Chromium (apt package chromium)"
+)
 def test_pdf_has_the_numbers(tmp_path: Path) -> None:
     out = write_report("paper-inline3", tmp_path / "r.pdf")
     pdf = out.read_bytes()
     assert pdf.startswith(b"%PDF")
     if not shutil.which("pdftotext"):
         pytest.skip("pdftotext (apt package poppler-utils) is needed to read the PDF text")
-    text = subprocess.run(["pdftotext", "-layout", str(out), "-"], capture_output=True,
-                          text=True, check=True).stdout
+    text = subprocess.run(
+        ["pdftotext", "-layout", str(out), "-"], capture_output=True, text=True, check=True
+    ).stdout
     data = balance_engine("paper-inline3").to_dict()
     assert g5(data["counterweight"]["mass_kg"]) in text, "000 Table 2: m_c = 1.2413 kg"
     assert g5(data["primary_shafts"]["mass_kg"]) in text, "000 Table 2: m_c1 = 0.4884 kg"

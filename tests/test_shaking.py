@@ -127,11 +127,22 @@ def test_conrod_two_mass_split() -> None:
 
     data = {
         "speed": "3000 rpm",
-        "crank_train": {"layout": "inline", "cylinders": 1, "crank_radius": "40 mm",
-                        "rod_length": "140 mm"},
-        "masses": {"piston": "400 g", "wrist_pin": "100 g", "conrod": "600 g",
-                   "conrod_cg_from_big_end": "40 mm", "conrod_inertia": "0.0021 kg*m^2",
-                   "crankpin": "300 g", "crank_web": "900 g", "crank_web_cg_radius": "20 mm"},
+        "crank_train": {
+            "layout": "inline",
+            "cylinders": 1,
+            "crank_radius": "40 mm",
+            "rod_length": "140 mm",
+        },
+        "masses": {
+            "piston": "400 g",
+            "wrist_pin": "100 g",
+            "conrod": "600 g",
+            "conrod_cg_from_big_end": "40 mm",
+            "conrod_inertia": "0.0021 kg*m^2",
+            "crankpin": "300 g",
+            "crank_web": "900 g",
+            "crank_web_cg_radius": "20 mm",
+        },
     }
     result = analyze(spec_from_dict(data))
     (rod,) = result.model.conrods
@@ -144,6 +155,7 @@ def test_conrod_two_mass_split() -> None:
     assert rod.inertia_error == pytest.approx(point_inertia - 0.0021)
     assert result.model.reciprocating_mass[0] == pytest.approx(0.4 + 0.1 + m * d / l)
     assert result.model.throw_rotating_mass[0] == pytest.approx(
-        0.3 + 2 * 0.9 * 0.02 / 0.04 + m * (l - d) / l)
+        0.3 + 2 * 0.9 * 0.02 / 0.04 + m * (l - d) / l
+    )
     conrods = result.to_dict()["masses"]["conrods"]
     assert conrods[0]["inertia_error"] == pytest.approx(point_inertia - 0.0021)

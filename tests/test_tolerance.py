@@ -53,8 +53,9 @@ def test_allocation_lever_rule_and_limits() -> None:
     a = tl.allocate_to_planes(1.0, 0.0, 0.2, 0.08)
     assert a.bearing_a == pytest.approx(0.6) and a.bearing_b == pytest.approx(0.4)
     far = tl.allocate_to_planes(1.0, 0.0, 0.2, 0.01)
-    assert far.bearing_a == pytest.approx(0.7) and far.bearing_b == pytest.approx(0.3), \
+    assert far.bearing_a == pytest.approx(0.7) and far.bearing_b == pytest.approx(0.3), (
         "ISO 21940-11 cl. 7: each bearing share within 30-70 % of U_per"
+    )
 
 
 def test_allocation_inboard_symmetric_is_half() -> None:
@@ -69,9 +70,10 @@ def test_allocation_outboard_symmetric_reduced_by_l_over_b() -> None:
     assert a.plane_2 == pytest.approx(0.5 * 0.2 / 0.3)
 
 
-@pytest.mark.parametrize("geometry", [(0.0, 0.2, 0.07, -0.03, 0.12),
-                                      (0.0, 0.25, 0.15, 0.05, 0.3),
-                                      (0.1, 0.4, 0.2, 0.0, 0.5)])
+@pytest.mark.parametrize(
+    "geometry",
+    [(0.0, 0.2, 0.07, -0.03, 0.12), (0.0, 0.25, 0.15, 0.05, 0.3), (0.1, 0.4, 0.2, 0.0, 0.5)],
+)
 def test_allocation_worst_phase_by_brute_force(geometry) -> None:
     za, zb, zc, z1, z2 = geometry
     a = tl.allocate_to_planes(1.0, za, zb, zc, z1, z2)

@@ -309,7 +309,6 @@ def balance_engine(
 
     from .balancing import balance
 
-
     if not isinstance(orders, int) or not 1 <= orders <= 64:
         raise InputError("orders", orders, "must be a whole number from 1 to 64")
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)

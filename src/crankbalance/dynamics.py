@@ -112,8 +112,9 @@ class BenchRotor(ResultMixin):
             raise InputError("bearing_positions", self.bearing_positions, "must be two positions")
         a, b = (_finite("bearing_positions", float(p)) for p in self.bearing_positions)
         if a == b:
-            raise InputError("bearing_positions", self.bearing_positions,
-                             "must be two different axial positions")
+            raise InputError(
+                "bearing_positions", self.bearing_positions, "must be two different axial positions"
+            )
         _finite("mass_position", self.mass_position)
         _finite("unbalance_position", self.unbalance_position)
 
@@ -124,10 +125,17 @@ class BenchRotor(ResultMixin):
         return 1.0 - share_b, share_b
 
 
-def disc_rotor(disc_diameter: float, disc_thickness: float, journal_diameter: float,
-               length: float, friction_coefficient: float, density: float = 7850.0,
-               hole_mass: float = 0.0, hole_radius: float = 0.0,
-               bearing_positions: tuple[float, float] | None = None) -> BenchRotor:
+def disc_rotor(
+    disc_diameter: float,
+    disc_thickness: float,
+    journal_diameter: float,
+    length: float,
+    friction_coefficient: float,
+    density: float = 7850.0,
+    hole_mass: float = 0.0,
+    hole_radius: float = 0.0,
+    bearing_positions: tuple[float, float] | None = None,
+) -> BenchRotor:
     r"""The simplified test rotor of the thesis: a disc between two journals.
 
     .. math::
@@ -173,21 +181,25 @@ def disc_rotor(disc_diameter: float, disc_thickness: float, journal_diameter: fl
     _nonnegative("hole_mass", hole_mass)
     _nonnegative("hole_radius", hole_radius)
     journals = length - disc_thickness
-    mass = density * np.pi / 4 * (disc_diameter**2 * disc_thickness
-                                  + journal_diameter**2 * journals)
-    inertia = density * np.pi / 32 * (disc_diameter**4 * disc_thickness
-                                      + journal_diameter**4 * journals)
+    mass = (
+        density * np.pi / 4 * (disc_diameter**2 * disc_thickness + journal_diameter**2 * journals)
+    )
+    inertia = (
+        density * np.pi / 32 * (disc_diameter**4 * disc_thickness + journal_diameter**4 * journals)
+    )
     if hole_mass >= mass:
         raise InputError("hole_mass", hole_mass, f"must be less than the rotor mass {mass:.4g} kg")
     if bearing_positions is None:
         half = (length + disc_thickness) / 4
         bearing_positions = (-half, half)
-    return BenchRotor(mass=float(mass - hole_mass),
-                      inertia=float(inertia - hole_mass * hole_radius**2),
-                      journal_diameter=journal_diameter,
-                      friction_coefficient=friction_coefficient,
-                      unbalance=hole_mass * hole_radius,
-                      bearing_positions=bearing_positions)
+    return BenchRotor(
+        mass=float(mass - hole_mass),
+        inertia=float(inertia - hole_mass * hole_radius**2),
+        journal_diameter=journal_diameter,
+        friction_coefficient=friction_coefficient,
+        unbalance=hole_mass * hole_radius,
+        bearing_positions=bearing_positions,
+    )
 
 
 @dataclass(frozen=True)
@@ -232,8 +244,11 @@ class BenchSettings(ResultMixin):
         check_positive("proportional_gain", self.proportional_gain)
         _nonnegative("integral_gain", self.integral_gain)
         check_positive("stick_speed", self.stick_speed)
-        if isinstance(self.samples, bool) or not isinstance(self.samples, (int, np.integer)) \
-                or self.samples < 10:
+        if (
+            isinstance(self.samples, bool)
+            or not isinstance(self.samples, (int, np.integer))
+            or self.samples < 10
+        ):
             raise InputError("samples", self.samples, "must be a whole number, at least 10")
         check_range("rtol", self.rtol, 1e-12, 1e-2)
 
@@ -375,15 +390,22 @@ def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
     required = (second.y[3, -1] - second.y[3, 0]) / hold
     friction = (second.y[4, -1] - second.y[4, 0]) / hold
     omega_hold = second.y[1]
-    return BenchResult(settings=settings, required_torque=float(required),
-                       mean_friction_torque=float(friction),
-                       friction_power=float(friction * settings.speed),
-                       final_speed=float(second.y[1, -1]),
-                       speed_ripple=float(omega_hold[len(omega_hold) // 2:].max()
-                                          - omega_hold[len(omega_hold) // 2:].min()),
-                       time=time, speed=states[1], motor_torque=outputs[:, 0],
-                       friction_torque=outputs[:, 1], bearing_load_a=outputs[:, 3],
-                       bearing_load_b=outputs[:, 4])
+    return BenchResult(
+        settings=settings,
+        required_torque=float(required),
+        mean_friction_torque=float(friction),
+        friction_power=float(friction * settings.speed),
+        final_speed=float(second.y[1, -1]),
+        speed_ripple=float(
+            omega_hold[len(omega_hold) // 2 :].max() - omega_hold[len(omega_hold) // 2 :].min()
+        ),
+        time=time,
+        speed=states[1],
+        motor_torque=outputs[:, 0],
+        friction_torque=outputs[:, 1],
+        bearing_load_a=outputs[:, 3],
+        bearing_load_b=outputs[:, 4],
+    )
 
 
 # ======================================================================================
@@ -441,9 +463,11 @@ class CylinderSpec(ResultMixin):
         check_positive("crank_radius", self.crank_radius)
         check_positive("rod_length", self.rod_length)
         if self.rod_length <= self.crank_radius + abs(self.offset):
-            raise InputError("rod_length", self.rod_length,
-                             "must exceed crank_radius + |offset| "
-                             f"= {self.crank_radius + abs(self.offset):g} m")
+            raise InputError(
+                "rod_length",
+                self.rod_length,
+                f"must exceed crank_radius + |offset| = {self.crank_radius + abs(self.offset):g} m",
+            )
         _nonnegative("reciprocating_mass", self.reciprocating_mass)
         check_positive("crank_inertia", self.crank_inertia)
         check_range("balance_factor", self.balance_factor, *BALANCE_FACTOR_RANGE)
@@ -475,11 +499,18 @@ def stroke_length(crank_radius: float, rod_length: float, offset: float = 0.0) -
     .. math:: S = \sqrt{(l + r)^2 - e^2} - \sqrt{(l - r)^2 - e^2}
     """
     return math.sqrt((rod_length + crank_radius) ** 2 - offset**2) - math.sqrt(
-        (rod_length - crank_radius) ** 2 - offset**2)
+        (rod_length - crank_radius) ** 2 - offset**2
+    )
 
 
-def cylinder_volume(angle: ArrayLike, bore: float, crank_radius: float, rod_length: float,
-                    compression_ratio: float, offset: float = 0.0) -> NDArray:
+def cylinder_volume(
+    angle: ArrayLike,
+    bore: float,
+    crank_radius: float,
+    rod_length: float,
+    compression_ratio: float,
+    offset: float = 0.0,
+) -> NDArray:
     r"""Cylinder volume over the crank angle [m^3].
 
     .. math:: V = V_c + A_p\,(s_{TDC} - s(\theta)),\qquad V_c = \frac{A_p S}{\varepsilon - 1}
@@ -500,12 +531,18 @@ def cylinder_volume(angle: ArrayLike, bore: float, crank_radius: float, rod_leng
     area = math.pi * bore**2 / 4
     top = math.sqrt((rod_length + crank_radius) ** 2 - offset**2)
     clearance = area * stroke_length(crank_radius, rod_length, offset) / (compression_ratio - 1)
-    return clearance + area * (top - kinematics.piston_position(angle, crank_radius,
-                                                                rod_length, offset))
+    return clearance + area * (
+        top - kinematics.piston_position(angle, crank_radius, rod_length, offset)
+    )
 
 
-def wiebe_burn_fraction(angle: ArrayLike, ignition_angle: float, burn_duration: float,
-                        efficiency_factor: float = 5.0, form_factor: float = 2.0) -> NDArray:
+def wiebe_burn_fraction(
+    angle: ArrayLike,
+    ignition_angle: float,
+    burn_duration: float,
+    efficiency_factor: float = 5.0,
+    form_factor: float = 2.0,
+) -> NDArray:
     r"""Wiebe mass fraction burnt [-].
 
     .. math:: x_b = 1 - \exp\!\Big[-a\Big(\frac{\theta - \theta_0}{\Delta\theta}\Big)^{m+1}\Big]
@@ -598,8 +635,9 @@ class WiebeCombustion(ResultMixin):
         _nonnegative("form_factor", self.form_factor)
 
 
-def wiebe_pressure(angle: ArrayLike, cylinder: CylinderSpec, combustion: WiebeCombustion,
-                   strokes: Strokes = 4) -> NDArray:
+def wiebe_pressure(
+    angle: ArrayLike, cylinder: CylinderSpec, combustion: WiebeCombustion, strokes: Strokes = 4
+) -> NDArray:
     r"""Cylinder pressure of the Wiebe single-zone model [Pa].
 
     Closed cycle from bottom dead centre (:math:`-\pi`) to bottom dead centre (:math:`+\pi`)
@@ -638,25 +676,39 @@ def wiebe_pressure(angle: ArrayLike, cylinder: CylinderSpec, combustion: WiebeCo
     theta = np.asarray(angle, dtype=float)
     cycle = np.pi * strokes / 2  # half cycle: pi (2-stroke) or 2 pi (4-stroke)
     wrapped = (theta + cycle) % (2 * cycle) - cycle
-    geometry = (cylinder.bore, cylinder.crank_radius, cylinder.rod_length,
-                combustion.compression_ratio, cylinder.offset)
+    geometry = (
+        cylinder.bore,
+        cylinder.crank_radius,
+        cylinder.rod_length,
+        combustion.compression_ratio,
+        cylinder.offset,
+    )
     # fine grid over the closed part, exact integrating factor, interpolation onto `angle`
     grid = np.linspace(-np.pi, np.pi, 2881)
     volume = cylinder_volume(grid, *geometry)
     gamma = combustion.gamma
     v1 = float(cylinder_volume(-np.pi, *geometry))
     heat = _heat_release(combustion, v1)
-    burnt = wiebe_burn_fraction(grid, combustion.ignition_angle, combustion.burn_duration,
-                                combustion.efficiency_factor, combustion.form_factor)
+    burnt = wiebe_burn_fraction(
+        grid,
+        combustion.ignition_angle,
+        combustion.burn_duration,
+        combustion.efficiency_factor,
+        combustion.form_factor,
+    )
     integrand = volume ** (gamma - 1.0)
-    source = np.concatenate([[0.0], np.cumsum(0.5 * (integrand[1:] + integrand[:-1])
-                                              * np.diff(burnt))])
+    source = np.concatenate(
+        [[0.0], np.cumsum(0.5 * (integrand[1:] + integrand[:-1]) * np.diff(burnt))]
+    )
     start = combustion.intake_pressure * v1**gamma
     closed = (start + (gamma - 1.0) * heat * source) / volume**gamma
     pressure = np.interp(wrapped, grid, closed)
     if strokes == 4:
-        exhaust = (combustion.exhaust_pressure if combustion.exhaust_pressure is not None
-                   else combustion.intake_pressure)
+        exhaust = (
+            combustion.exhaust_pressure
+            if combustion.exhaust_pressure is not None
+            else combustion.intake_pressure
+        )
         pressure = np.where(wrapped > np.pi, exhaust, pressure)
         pressure = np.where(wrapped < -np.pi, combustion.intake_pressure, pressure)
     return pressure
@@ -675,8 +727,9 @@ def _check_strokes(strokes: int) -> None:
         raise InputError("strokes", strokes, "must be 2 or 4")
 
 
-def tabulated_pressure(angle: ArrayLike, table_angle: ArrayLike, table_pressure: ArrayLike,
-                       strokes: Strokes = 4) -> NDArray:
+def tabulated_pressure(
+    angle: ArrayLike, table_angle: ArrayLike, table_pressure: ArrayLike, strokes: Strokes = 4
+) -> NDArray:
     """Cylinder pressure from a measured or simulated table, periodic over the cycle [Pa].
 
     Parameters
@@ -695,16 +748,20 @@ def tabulated_pressure(angle: ArrayLike, table_angle: ArrayLike, table_pressure:
     a = np.asarray(table_angle, dtype=float)
     p = np.asarray(table_pressure, dtype=float)
     if a.ndim != 1 or a.shape != p.shape or a.size < 4:
-        raise InputError("pressure table", a.size, "needs matching angle and pressure columns, "
-                         "at least 4 rows")
+        raise InputError(
+            "pressure table", a.size, "needs matching angle and pressure columns, at least 4 rows"
+        )
     if not (np.all(np.isfinite(a)) and np.all(np.isfinite(p))):
         raise InputError("pressure table", "non-finite value", "must hold finite numbers only")
     if np.any(np.diff(a) <= 0):
         raise InputError("pressure table angle", "not increasing", "must increase strictly")
     period = np.pi * strokes
     if a[-1] - a[0] >= period + 1e-9:
-        raise InputError("pressure table angle", float(np.degrees(a[-1] - a[0])),
-                         f"must span less than one cycle ({np.degrees(period):g} deg)")
+        raise InputError(
+            "pressure table angle",
+            float(np.degrees(a[-1] - a[0])),
+            f"must span less than one cycle ({np.degrees(period):g} deg)",
+        )
     if np.any(p < 0):
         raise InputError("pressure table pressure", float(p.min()), "must be absolute, >= 0")
     return np.interp(np.asarray(angle, dtype=float), a, p, period=period)
@@ -777,10 +834,14 @@ def _cycle_samples(strokes: int, samples_per_revolution: int) -> NDArray:
     return -half + 2 * half * np.arange(n) / n
 
 
-def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
-                 pressure: PressureSource, strokes: Strokes = 4,
-                 phases: ArrayLike | None = None,
-                 samples_per_revolution: int = 720) -> CycleResult:
+def engine_cycle(
+    cylinders: CylinderSpec | Sequence[CylinderSpec],
+    speed: float,
+    pressure: PressureSource,
+    strokes: Strokes = 4,
+    phases: ArrayLike | None = None,
+    samples_per_revolution: int = 720,
+) -> CycleResult:
     r"""One working cycle of a single- or multi-cylinder crank train at a mean speed.
 
     For each cylinder (crank angle :math:`\theta_j = \theta - \varphi_j`), with the exact
@@ -842,10 +903,14 @@ def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
     if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
         raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")
     check_positive("speed", speed)
-    if isinstance(samples_per_revolution, bool) or not isinstance(
-            samples_per_revolution, (int, np.integer)) or samples_per_revolution < 36:
-        raise InputError("samples_per_revolution", samples_per_revolution,
-                         "must be a whole number, at least 36")
+    if (
+        isinstance(samples_per_revolution, bool)
+        or not isinstance(samples_per_revolution, (int, np.integer))
+        or samples_per_revolution < 36
+    ):
+        raise InputError(
+            "samples_per_revolution", samples_per_revolution, "must be a whole number, at least 36"
+        )
     count = len(specs)
     cycle_angle = np.pi * strokes
     if phases is None:
@@ -864,13 +929,13 @@ def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
         r, l_, e = spec.crank_radius, spec.rod_length, spec.offset
         p = _pressure(local, spec, pressure, strokes)
         pressures.append(p)
-        s1 = kinematics.piston_velocity(local, r, l_, e)        # ds/dtheta [m/rad]
-        s2 = kinematics.piston_acceleration(local, r, l_, e)    # d2s/dtheta2 [m/rad^2]
+        s1 = kinematics.piston_velocity(local, r, l_, e)  # ds/dtheta [m/rad]
+        s2 = kinematics.piston_acceleration(local, r, l_, e)  # d2s/dtheta2 [m/rad^2]
         u = e - r * np.sin(local)
         q = np.sqrt(l_**2 - u**2)
         gas = (p - spec.crankcase_pressure) * spec.piston_area
         inertial = spec.reciprocating_mass * w**2 * s2
-        rod_z = inertial + gas                                   # rod force on piston, z
+        rod_z = inertial + gas  # rod force on piston, z
         rod_x = rod_z * u / q
         pin_x, pin_z = r * np.sin(local), r * np.cos(local)
         # torque of the force -F_rod at the crankpin, positive with rotation
@@ -905,20 +970,35 @@ def engine_cycle(cylinders: CylinderSpec | Sequence[CylinderSpec], speed: float,
     acceleration = (driving - 0.5 * inertia_slope * omega**2) / inertia_total
     shake_z_a, shake_x_a = np.array(shake_z), np.array(shake_x)
     return CycleResult(
-        speed_mean=float(w), strokes=int(strokes), angle=theta, pressure=np.array(pressures),
-        gas_torque=gas_torque, inertia_torque=inertia_torque, friction_torque=friction,
-        net_torque=net, inline_load=inline_a, transverse_load=transverse_a, bearing_load=load,
-        shaking_inline=shake_z_a, shaking_transverse=shake_x_a, speed=omega,
-        crank_acceleration=acceleration, load_torque=load_torque, indicated_work=indicated,
-        gas_work=gas_work, mean_friction_torque=float(np.mean(friction)),
+        speed_mean=float(w),
+        strokes=int(strokes),
+        angle=theta,
+        pressure=np.array(pressures),
+        gas_torque=gas_torque,
+        inertia_torque=inertia_torque,
+        friction_torque=friction,
+        net_torque=net,
+        inline_load=inline_a,
+        transverse_load=transverse_a,
+        bearing_load=load,
+        shaking_inline=shake_z_a,
+        shaking_transverse=shake_x_a,
+        speed=omega,
+        crank_acceleration=acceleration,
+        load_torque=load_torque,
+        indicated_work=indicated,
+        gas_work=gas_work,
+        mean_friction_torque=float(np.mean(friction)),
         friction_power=float(np.mean(friction) * w),
-        peak_bearing_load=float(load.max()), mean_bearing_load=float(load.mean()),
+        peak_bearing_load=float(load.max()),
+        mean_bearing_load=float(load.mean()),
         peak_net_torque=float(net.max()),
         max_crank_acceleration=float(np.abs(acceleration).max()),
         speed_fluctuation=float((omega.max() - omega.min()) / w),
         peak_shaking_inline=float(np.abs(shake_z_a.sum(axis=0)).max()),
         peak_shaking_transverse=float(np.abs(shake_x_a.sum(axis=0)).max()),
-        peak_shaking_force=float(np.hypot(shake_z_a.sum(axis=0), shake_x_a.sum(axis=0)).max()))
+        peak_shaking_force=float(np.hypot(shake_z_a.sum(axis=0), shake_x_a.sum(axis=0)).max()),
+    )
 
 
 def _pressure(angle: NDArray, spec: CylinderSpec, source: PressureSource, strokes: int) -> NDArray:
@@ -926,8 +1006,11 @@ def _pressure(angle: NDArray, spec: CylinderSpec, source: PressureSource, stroke
         return wiebe_pressure(angle, spec, source, strokes)  # type: ignore[arg-type]
     if isinstance(source, tuple) and len(source) == 2:
         return tabulated_pressure(angle, source[0], source[1], strokes)  # type: ignore[arg-type]
-    raise InputError("pressure", type(source).__name__,
-                     "must be a WiebeCombustion or a tuple (angle [rad], pressure [Pa])")
+    raise InputError(
+        "pressure",
+        type(source).__name__,
+        "must be a WiebeCombustion or a tuple (angle [rad], pressure [Pa])",
+    )
 
 
 def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step: float) -> NDArray:
@@ -951,10 +1034,12 @@ def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step:
     achieved = 1.0 / np.mean(1.0 / omega)
     if abs(achieved - mean_speed) > 1e-6 * mean_speed or np.ptp(omega) > 0.5 * mean_speed:
         raise InputError(
-            "crank_inertia", float(np.mean(inertia)),
+            "crank_inertia",
+            float(np.mean(inertia)),
             f"is too small for this cycle at {mean_speed * 30 / np.pi:.0f} rpm: the speed would "
             f"swing by more than half its mean within a cycle (the crank would nearly stop); "
-            "give the inertia of crankshaft, flywheel and clutch together")
+            "give the inertia of crankshaft, flywheel and clutch together",
+        )
     return omega
 
 
@@ -999,15 +1084,29 @@ class SensitivityResult(ResultMixin):
 
 
 SENSITIVITY_INDICATORS: tuple[str, ...] = (
-    "mean_friction_torque", "friction_power", "peak_bearing_load", "mean_bearing_load",
-    "peak_net_torque", "max_crank_acceleration", "speed_fluctuation", "peak_shaking_inline",
-    "peak_shaking_transverse", "peak_shaking_force")
+    "mean_friction_torque",
+    "friction_power",
+    "peak_bearing_load",
+    "mean_bearing_load",
+    "peak_net_torque",
+    "max_crank_acceleration",
+    "speed_fluctuation",
+    "peak_shaking_inline",
+    "peak_shaking_transverse",
+    "peak_shaking_force",
+)
 
 
-def balance_sensitivity(cylinder: CylinderSpec, speed: float, pressure: PressureSource,
-                        balance_factors: ArrayLike, mass_scales: ArrayLike = (1.0,),
-                        strokes: Strokes = 4, samples_per_revolution: int = 360,
-                        progress: Callable[[int, int], None] | None = None) -> SensitivityResult:
+def balance_sensitivity(
+    cylinder: CylinderSpec,
+    speed: float,
+    pressure: PressureSource,
+    balance_factors: ArrayLike,
+    mass_scales: ArrayLike = (1.0,),
+    strokes: Strokes = 4,
+    samples_per_revolution: int = 360,
+    progress: Callable[[int, int], None] | None = None,
+) -> SensitivityResult:
     r"""Sweep the balance factor (and the reciprocating mass) of a single cylinder.
 
     Each point is one :func:`engine_cycle`; the balance factor is the share of the
@@ -1042,26 +1141,32 @@ def balance_sensitivity(cylinder: CylinderSpec, speed: float, pressure: Pressure
     if factors.size == 0 or factors.ndim != 1:
         raise InputError("balance_factors", balance_factors, "must be a non-empty list")
     if scales.size == 0 or scales.ndim != 1 or np.any(~(scales > 0) | ~np.isfinite(scales)):
-        raise InputError("mass_scales", mass_scales,
-                         "must be a non-empty list of finite numbers > 0")
+        raise InputError(
+            "mass_scales", mass_scales, "must be a non-empty list of finite numbers > 0"
+        )
     low, high = BALANCE_FACTOR_RANGE
     outside = factors[~((factors >= low) & (factors <= high))]
     if outside.size:  # refuse before the first (possibly long) cycle is computed
-        raise InputError("balance_factors", float(outside[0]),
-                         f"each must lie between {low:g} and {high:g}")
+        raise InputError(
+            "balance_factors", float(outside[0]), f"each must lie between {low:g} and {high:g}"
+        )
     out = {name: np.zeros((scales.size, factors.size)) for name in SENSITIVITY_INDICATORS}
     total, done = scales.size * factors.size, 0
     from dataclasses import replace
+
     for i, scale in enumerate(scales):
         for k, factor in enumerate(factors):
-            spec = replace(cylinder, balance_factor=float(factor),
-                           reciprocating_mass=cylinder.reciprocating_mass * float(scale))
-            result = engine_cycle(spec, speed, pressure, strokes,
-                                  samples_per_revolution=samples_per_revolution)
+            spec = replace(
+                cylinder,
+                balance_factor=float(factor),
+                reciprocating_mass=cylinder.reciprocating_mass * float(scale),
+            )
+            result = engine_cycle(
+                spec, speed, pressure, strokes, samples_per_revolution=samples_per_revolution
+            )
             for name in SENSITIVITY_INDICATORS:
                 out[name][i, k] = getattr(result, name)
             done += 1
             if progress is not None:
                 progress(done, total)
-    return SensitivityResult(speed=float(speed), balance_factors=factors, mass_scales=scales,
-                             **out)
+    return SensitivityResult(speed=float(speed), balance_factors=factors, mass_scales=scales, **out)

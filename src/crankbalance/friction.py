@@ -90,14 +90,18 @@ def mean_load_factor(constant_load: ArrayLike, rotating_load: ArrayLike) -> NDAr
     u = _nonnegative("rotating_load", rotating_load)
     total = w + u
     if np.any(total <= 0):
-        raise InputError("constant_load + rotating_load", total.tolist(),
-                         "must be greater than zero (the bearing carries no load)")
+        raise InputError(
+            "constant_load + rotating_load",
+            total.tolist(),
+            "must be greater than zero (the bearing carries no load)",
+        )
     x = w / total
     return x * x - x + 1.0
 
 
-def mean_equivalent_load(constant_load: ArrayLike, rotating_load: ArrayLike,
-                         method: MeanLoadMethod = "approximate") -> NDArray:
+def mean_equivalent_load(
+    constant_load: ArrayLike, rotating_load: ArrayLike, method: MeanLoadMethod = "approximate"
+) -> NDArray:
     r"""Mean equivalent bearing load of a constant plus a rotating load [N].
 
     .. math::
@@ -145,13 +149,17 @@ def mean_equivalent_load(constant_load: ArrayLike, rotating_load: ArrayLike,
         return 2.0 / np.pi * total * ellipe(np.clip(m, 0.0, 1.0))
     theta = 2.0 * np.pi * np.arange(CUBIC_MEAN_SAMPLES) / CUBIC_MEAN_SAMPLES
     w_, u_ = np.broadcast_arrays(w, u)
-    magnitude_sq = (w_[..., None] ** 2 + u_[..., None] ** 2
-                    + 2.0 * w_[..., None] * u_[..., None] * np.cos(theta))
+    magnitude_sq = (
+        w_[..., None] ** 2
+        + u_[..., None] ** 2
+        + 2.0 * w_[..., None] * u_[..., None] * np.cos(theta)
+    )
     return np.mean(np.clip(magnitude_sq, 0.0, None) ** 1.5, axis=-1) ** (1.0 / 3.0)
 
 
-def friction_torque(friction_coefficient: ArrayLike, load: ArrayLike,
-                    journal_diameter: ArrayLike) -> NDArray:
+def friction_torque(
+    friction_coefficient: ArrayLike, load: ArrayLike, journal_diameter: ArrayLike
+) -> NDArray:
     r"""Coulomb friction torque of a journal under a load [N m].
 
     .. math:: T = \mu F \frac{d}{2}
@@ -175,9 +183,13 @@ def friction_torque(friction_coefficient: ArrayLike, load: ArrayLike,
     return mu * load_ * 0.5 * d
 
 
-def unbalanced_friction_torque(friction_coefficient: ArrayLike, constant_load: ArrayLike,
-                               rotating_load: ArrayLike, journal_diameter: ArrayLike,
-                               method: MeanLoadMethod = "approximate") -> NDArray:
+def unbalanced_friction_torque(
+    friction_coefficient: ArrayLike,
+    constant_load: ArrayLike,
+    rotating_load: ArrayLike,
+    journal_diameter: ArrayLike,
+    method: MeanLoadMethod = "approximate",
+) -> NDArray:
     r"""Friction torque of a bearing under a constant plus a rotating load [N m].
 
     .. math:: T = \mu F_m \frac{d}{2},\qquad F_m \text{ from } :func:`mean_equivalent_load`
@@ -203,9 +215,13 @@ def unbalanced_friction_torque(friction_coefficient: ArrayLike, constant_load: A
     return friction_torque(friction_coefficient, load, journal_diameter)
 
 
-def friction_coefficient_from_torque(torque: ArrayLike, constant_load: ArrayLike,
-                                     rotating_load: ArrayLike, journal_diameter: ArrayLike,
-                                     method: MeanLoadMethod = "approximate") -> NDArray:
+def friction_coefficient_from_torque(
+    torque: ArrayLike,
+    constant_load: ArrayLike,
+    rotating_load: ArrayLike,
+    journal_diameter: ArrayLike,
+    method: MeanLoadMethod = "approximate",
+) -> NDArray:
     r"""Coulomb friction coefficient back-computed from a measured friction torque [-].
 
     .. math:: \mu = \frac{T_{friction}}{F_m \cdot 0.5\,d}
@@ -231,13 +247,17 @@ def friction_coefficient_from_torque(torque: ArrayLike, constant_load: ArrayLike
     load = mean_equivalent_load(constant_load, rotating_load, method)
     d = _positive("journal_diameter", journal_diameter)
     if np.any(load <= 0):
-        raise InputError("constant_load + rotating_load", np.asarray(load).tolist(),
-                         "must be greater than zero (the bearing carries no load)")
+        raise InputError(
+            "constant_load + rotating_load",
+            np.asarray(load).tolist(),
+            "must be greater than zero (the bearing carries no load)",
+        )
     return t / (load * 0.5 * d)
 
 
-def torque_from_transducer_voltage(voltage: ArrayLike, zero_voltage: float = 0.2,
-                                   volts_per_newton_metre: float = 4.8 / 5.0) -> NDArray:
+def torque_from_transducer_voltage(
+    voltage: ArrayLike, zero_voltage: float = 0.2, volts_per_newton_metre: float = 4.8 / 5.0
+) -> NDArray:
     r"""Torque from the HBM T22 transducer reading of the thesis rig [N m].
 
     .. math:: T = \frac{V - V_0}{k},\qquad V_0 = 0.2\ \text{V},\ k = 4.8/5\ \text{V/(N m)}
@@ -268,8 +288,13 @@ def torque_from_transducer_voltage(voltage: ArrayLike, zero_voltage: float = 0.2
 # --------------------------------------------------------------------------------------
 
 
-def petroff_torque(viscosity: ArrayLike, journal_diameter: ArrayLike, bearing_length: ArrayLike,
-                   radial_clearance: ArrayLike, speed: ArrayLike) -> NDArray:
+def petroff_torque(
+    viscosity: ArrayLike,
+    journal_diameter: ArrayLike,
+    bearing_length: ArrayLike,
+    radial_clearance: ArrayLike,
+    speed: ArrayLike,
+) -> NDArray:
     r"""Petroff friction torque of a concentric, fully flooded journal bearing [N m].
 
     Couette shear :math:`\tau = \eta\,\omega r/c` over the area :math:`\pi D L`, lever :math:`D/2`:
@@ -294,14 +319,21 @@ def petroff_torque(viscosity: ArrayLike, journal_diameter: ArrayLike, bearing_le
     Petroff (1883); Heywood, Internal Combustion Engine Fundamentals, Sec. 13.4;
     004 Appendix A Eq. 7.2 with :math:`\varepsilon = 0`.
     """
-    return journal_bearing_torque(viscosity, journal_diameter, bearing_length,
-                                  radial_clearance, speed)
+    return journal_bearing_torque(
+        viscosity, journal_diameter, bearing_length, radial_clearance, speed
+    )
 
 
-def journal_bearing_torque(viscosity: ArrayLike, journal_diameter: ArrayLike,
-                           bearing_length: ArrayLike, radial_clearance: ArrayLike,
-                           speed: ArrayLike, eccentricity_ratio: ArrayLike = 0.0,
-                           load: ArrayLike = 0.0, attitude_angle: ArrayLike = 0.0) -> NDArray:
+def journal_bearing_torque(
+    viscosity: ArrayLike,
+    journal_diameter: ArrayLike,
+    bearing_length: ArrayLike,
+    radial_clearance: ArrayLike,
+    speed: ArrayLike,
+    eccentricity_ratio: ArrayLike = 0.0,
+    load: ArrayLike = 0.0,
+    attitude_angle: ArrayLike = 0.0,
+) -> NDArray:
     r"""Friction torque on the journal of an eccentric hydrodynamic bearing [N m].
 
     .. math::
@@ -376,8 +408,13 @@ def squeeze_film_stiffness(load: ArrayLike, gap: ArrayLike) -> NDArray:
     return 3.0 * _nonnegative("load", load) / _positive("gap", gap)
 
 
-def squeeze_film_damping(viscosity: ArrayLike, squeeze_area: ArrayLike, gap: ArrayLike,
-                         bearing_length: ArrayLike, bearing_width: ArrayLike) -> NDArray:
+def squeeze_film_damping(
+    viscosity: ArrayLike,
+    squeeze_area: ArrayLike,
+    gap: ArrayLike,
+    bearing_length: ArrayLike,
+    bearing_width: ArrayLike,
+) -> NDArray:
     r"""Squeeze-film damping coefficient of a bearing as given in the thesis [N s/m].
 
     .. math:: C_D = \frac{3\,\eta\,A_E^2}{H^3\,(Z/L + L/Z)}
@@ -412,9 +449,13 @@ def squeeze_film_damping(viscosity: ArrayLike, squeeze_area: ArrayLike, gap: Arr
     return 3.0 * eta * area**2 / (h**3 * (width / length + length / width))
 
 
-def rectangular_squeeze_film_damping(viscosity: ArrayLike, gap: ArrayLike,
-                                     bearing_length: ArrayLike, bearing_width: ArrayLike,
-                                     terms: int = 50) -> NDArray:
+def rectangular_squeeze_film_damping(
+    viscosity: ArrayLike,
+    gap: ArrayLike,
+    bearing_length: ArrayLike,
+    bearing_width: ArrayLike,
+    terms: int = 50,
+) -> NDArray:
     r"""Exact squeeze-film damping of a flat rectangular film (Reynolds equation) [N s/m].
 
     The Reynolds equation :math:`\nabla^2 p = 12\eta\dot h/h^3` with :math:`p = 0` on the

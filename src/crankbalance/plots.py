@@ -90,8 +90,18 @@ COLORS = {
     "shaft2": "#bcbd22",
     "crank": "#555555",
 }
-ORDER_COLORS = ["#1f77b4", "#ff7f0e", "#2ca02c", "#d62728", "#9467bd", "#8c564b", "#e377c2",
-                "#7f7f7f", "#bcbd22", "#17becf"]
+ORDER_COLORS = [
+    "#1f77b4",
+    "#ff7f0e",
+    "#2ca02c",
+    "#d62728",
+    "#9467bd",
+    "#8c564b",
+    "#e377c2",
+    "#7f7f7f",
+    "#bcbd22",
+    "#17becf",
+]
 TEMPLATE = "plotly_white"
 
 
@@ -165,15 +175,20 @@ def leading_quantity(analysis: Analysis) -> Quantity:
     return "force"
 
 
-def _note_if_zero(fig: Any, values: ArrayLike, unit: str, row: int, col: int,
-                  ref: str) -> None:
+def _note_if_zero(fig: Any, values: ArrayLike, unit: str, row: int, col: int, ref: str) -> None:
     """Say so in a subplot whose bars are all exactly zero (instead of an empty -1..1 axis)."""
     if np.any(np.asarray(values, dtype=float) != 0.0):
         return
     fig.update_yaxes(range=[0, 1], row=row, col=col)
-    fig.add_annotation(text=f"0 {unit} everywhere<br>(balanced)", showarrow=False,
-                       xref=f"x{ref} domain", yref=f"y{ref} domain", x=0.5, y=0.5,
-                       font={"size": 14, "color": COLORS["before"]})
+    fig.add_annotation(
+        text=f"0 {unit} everywhere<br>(balanced)",
+        showarrow=False,
+        xref=f"x{ref} domain",
+        yref=f"y{ref} domain",
+        x=0.5,
+        y=0.5,
+        font={"size": 14, "color": COLORS["before"]},
+    )
 
 
 # --------------------------------------------------------------------------- orders
@@ -185,35 +200,62 @@ def orders_bar(analysis: Analysis) -> go.Figure:
     of the bare crank are shown as an extra forward bar labelled "rot".
     """
     f = analysis.forces
-    fig = _subplots(rows=1, cols=2, subplot_titles=("Free forces", "Free moments"),
-                    horizontal_spacing=0.12)
+    fig = _subplots(
+        rows=1, cols=2, subplot_titles=("Free forces", "Free moments"), horizontal_spacing=0.12
+    )
     labels = [str(int(n)) for n in f.orders] + ["rot"]
     tf, tm = roundoff_levels(analysis.model, 1e-12)  # as Analysis.to_dict
     parts = (
-        (1, _clean(np.abs(f.force_forward), tf), _clean(np.abs(f.force_backward), tf),
-         _clean([abs(f.rotating_force)], tf)[0]),
-        (2, _clean(np.abs(f.couple_forward), tm), _clean(np.abs(f.couple_backward), tm),
-         _clean([abs(f.rotating_couple)], tm)[0]),
+        (
+            1,
+            _clean(np.abs(f.force_forward), tf),
+            _clean(np.abs(f.force_backward), tf),
+            _clean([abs(f.rotating_force)], tf)[0],
+        ),
+        (
+            2,
+            _clean(np.abs(f.couple_forward), tm),
+            _clean(np.abs(f.couple_backward), tm),
+            _clean([abs(f.rotating_couple)], tm)[0],
+        ),
     )
     for col, fwd, bwd, rot in parts:
         unit = "N" if col == 1 else "N·m"
         _note_if_zero(fig, np.append(fwd + bwd, rot), unit, 1, col, "" if col == 1 else "2")
-        fig.add_trace(_go().Bar(
-            x=labels, y=np.append(fwd, rot), name="forward (co-rotating)",
-            marker_color=COLORS["forward"], legendgroup="forward", showlegend=col == 1,
-            hovertemplate="order %{x}<br>forward %{y:.4g} " + unit + "<extra></extra>"),
-            row=1, col=col)
-        fig.add_trace(_go().Bar(
-            x=labels, y=np.append(bwd, 0.0), name="backward (counter-rotating)",
-            marker_color=COLORS["backward"], legendgroup="backward", showlegend=col == 1,
-            hovertemplate="order %{x}<br>backward %{y:.4g} " + unit + "<extra></extra>"),
-            row=1, col=col)
+        fig.add_trace(
+            _go().Bar(
+                x=labels,
+                y=np.append(fwd, rot),
+                name="forward (co-rotating)",
+                marker_color=COLORS["forward"],
+                legendgroup="forward",
+                showlegend=col == 1,
+                hovertemplate="order %{x}<br>forward %{y:.4g} " + unit + "<extra></extra>",
+            ),
+            row=1,
+            col=col,
+        )
+        fig.add_trace(
+            _go().Bar(
+                x=labels,
+                y=np.append(bwd, 0.0),
+                name="backward (counter-rotating)",
+                marker_color=COLORS["backward"],
+                legendgroup="backward",
+                showlegend=col == 1,
+                hovertemplate="order %{x}<br>backward %{y:.4g} " + unit + "<extra></extra>",
+            ),
+            row=1,
+            col=col,
+        )
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(title_text="order", type="category", row=1, col=col)
-    fig.update_layout(barmode="stack", template=TEMPLATE,
-                      title=figure_title("Free forces and moments by order",
-                                         analysis.model.name),
-                      legend={"orientation": "h", "y": -0.2})
+    fig.update_layout(
+        barmode="stack",
+        template=TEMPLATE,
+        title=figure_title("Free forces and moments by order", analysis.model.name),
+        legend={"orientation": "h", "y": -0.2},
+    )
     return fig
 
 
@@ -235,8 +277,9 @@ class BalancedCurves(ResultMixin):
     after_mz: NDArray[np.float64]
 
 
-def balance_mass_history(model: EngineModel, result: Any,
-                         angle: ArrayLike) -> tuple[NDArray, NDArray]:
+def balance_mass_history(
+    model: EngineModel, result: Any, angle: ArrayLike
+) -> tuple[NDArray, NDArray]:
     r"""Force (complex :math:`F_z + iF_x`) [N] and couple :math:`\sum y F` [N·m] of all
     counterweights and balance-shaft masses of a :class:`~crankbalance.balancing.BalanceResult`
     versus crank angle.
@@ -260,15 +303,20 @@ def balance_mass_history(model: EngineModel, result: Any,
             continue
         for shaft in group.shafts:
             for mass in shaft.masses:
-                f = (mass.mass * shaft.cg_radius * (shaft.order * w) ** 2
-                     * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta)))
+                f = (
+                    mass.mass
+                    * shaft.cg_radius
+                    * (shaft.order * w) ** 2
+                    * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta))
+                )
                 force += f
                 couple += mass.position * f
     return force, couple
 
 
-def balanced_curves(analysis: Analysis, balance_study: BalanceStudy,
-                    angle: ArrayLike | None = None) -> BalancedCurves:
+def balanced_curves(
+    analysis: Analysis, balance_study: BalanceStudy, angle: ArrayLike | None = None
+) -> BalancedCurves:
     """Whole-engine force and moment versus crank angle before and after balancing.
 
     "Before" is the reciprocating total of ``analysis`` plus the rotating masses of the
@@ -284,24 +332,40 @@ def balanced_curves(analysis: Analysis, balance_study: BalanceStudy,
     bfz = c.total_fz + c.rotating_fz
     bmx = c.total_mx + c.rotating_mx
     bmz = c.total_mz + c.rotating_mz
-    return BalancedCurves(angle=c.angle, before_fx=bfx, before_fz=bfz, before_mx=bmx,
-                          before_mz=bmz, after_fx=bfx + force.imag, after_fz=bfz + force.real,
-                          after_mx=bmx + moment.imag, after_mz=bmz + moment.real)
+    return BalancedCurves(
+        angle=c.angle,
+        before_fx=bfx,
+        before_fz=bfz,
+        before_mx=bmx,
+        before_mz=bmz,
+        after_fx=bfx + force.imag,
+        after_fz=bfz + force.real,
+        after_mx=bmx + moment.imag,
+        after_mz=bmz + moment.real,
+    )
 
 
 def _check_same_engine(analysis: Analysis, balance_study: BalanceStudy) -> None:
     a, b = analysis.model, balance_study.model
-    same = (a.throws == b.throws and a.cylinders == b.cylinders
-            and math.isclose(a.speed, b.speed, rel_tol=1e-9)
-            and np.allclose(a.throw_angle, b.throw_angle)
-            and np.allclose(a.throw_position, b.throw_position))
+    same = (
+        a.throws == b.throws
+        and a.cylinders == b.cylinders
+        and math.isclose(a.speed, b.speed, rel_tol=1e-9)
+        and np.allclose(a.throw_angle, b.throw_angle)
+        and np.allclose(a.throw_position, b.throw_position)
+    )
     if not same:
-        raise InputError("balance_study", b.name,
-                         f"a balancing study of the analysed engine ({a.name})")
+        raise InputError(
+            "balance_study", b.name, f"a balancing study of the analysed engine ({a.name})"
+        )
 
 
-def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
-                  quantity: Quantity = "force", orders: int | None = None) -> go.Figure:
+def curves_figure(
+    analysis: Analysis,
+    balance_study: BalanceStudy | None = None,
+    quantity: Quantity = "force",
+    orders: int | None = None,
+) -> go.Figure:
     """x and z components of the free force (or moment) versus crank angle.
 
     Traces: the reciprocating total (exact slider-crank when the model is exact), each
@@ -322,11 +386,17 @@ def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
     deg = np.degrees(c.angle)
     unit = _unit(quantity)
     key = "f" if quantity == "force" else "m"
-    fig = _subplots(rows=2, cols=1, shared_xaxes=True, vertical_spacing=0.08,
-                    subplot_titles=(f"{quantity} x (across)", f"{quantity} z (cylinder axis)"))
+    fig = _subplots(
+        rows=2,
+        cols=1,
+        shared_xaxes=True,
+        vertical_spacing=0.08,
+        subplot_titles=(f"{quantity} x (across)", f"{quantity} z (cylinder axis)"),
+    )
     after = balanced_curves(analysis, balance_study, c.angle) if balance_study else None
-    amplitude = (analysis.forces.force_amplitude if quantity == "force"
-                 else analysis.forces.moment_amplitude)
+    amplitude = (
+        analysis.forces.force_amplitude if quantity == "force" else analysis.forces.moment_amplitude
+    )
     top = len(c.orders) if orders is None else orders
     tiny = roundoff_levels(analysis.model)[0 if quantity == "force" else 1]
 
@@ -336,46 +406,99 @@ def curves_figure(analysis: Analysis, balance_study: BalanceStudy | None = None,
 
     for row, comp in ((1, "x"), (2, "z")):
         first = row == 1
-        fig.add_trace(go.Scatter(
-            x=deg, y=y(c, f"total_{key}{comp}"), name="reciprocating total",
-            line={"color": COLORS["total"], "width": 2.5}, legendgroup="total",
-            showlegend=first), row=row, col=1)
+        fig.add_trace(
+            go.Scatter(
+                x=deg,
+                y=y(c, f"total_{key}{comp}"),
+                name="reciprocating total",
+                line={"color": COLORS["total"], "width": 2.5},
+                legendgroup="total",
+                showlegend=first,
+            ),
+            row=row,
+            col=1,
+        )
         for k, n in enumerate(c.orders):
             if n > top or amplitude[k] < tiny:
                 continue
-            fig.add_trace(go.Scatter(
-                x=deg, y=y(c, f"{key}{comp}", k), name=f"order {int(n)}",
-                line={"color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)], "width": 1.2,
-                      "dash": "dot"},
-                legendgroup=f"order{n}", showlegend=first,
-                visible=True if n <= 2 else "legendonly"), row=row, col=1)
-        fig.add_trace(go.Scatter(
-            x=deg, y=y(c, f"rotating_{key}{comp}"), name="rotating masses (bare crank)",
-            line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
-            legendgroup="rotating", showlegend=first,
-            visible=True if after is None else "legendonly"), row=row, col=1)
+            fig.add_trace(
+                go.Scatter(
+                    x=deg,
+                    y=y(c, f"{key}{comp}", k),
+                    name=f"order {int(n)}",
+                    line={
+                        "color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)],
+                        "width": 1.2,
+                        "dash": "dot",
+                    },
+                    legendgroup=f"order{n}",
+                    showlegend=first,
+                    visible=True if n <= 2 else "legendonly",
+                ),
+                row=row,
+                col=1,
+            )
+        fig.add_trace(
+            go.Scatter(
+                x=deg,
+                y=y(c, f"rotating_{key}{comp}"),
+                name="rotating masses (bare crank)",
+                line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
+                legendgroup="rotating",
+                showlegend=first,
+                visible=True if after is None else "legendonly",
+            ),
+            row=row,
+            col=1,
+        )
         if after is not None:
-            fig.add_trace(go.Scatter(
-                x=deg, y=y(after, f"before_{key}{comp}"),
-                name="engine before balancing", line={"color": COLORS["before"], "width": 2},
-                legendgroup="before", showlegend=first), row=row, col=1)
-            fig.add_trace(go.Scatter(
-                x=deg, y=y(after, f"after_{key}{comp}"),
-                name="engine after balancing", line={"color": COLORS["after"], "width": 2.5},
-                legendgroup="after", showlegend=first), row=row, col=1)
+            fig.add_trace(
+                go.Scatter(
+                    x=deg,
+                    y=y(after, f"before_{key}{comp}"),
+                    name="engine before balancing",
+                    line={"color": COLORS["before"], "width": 2},
+                    legendgroup="before",
+                    showlegend=first,
+                ),
+                row=row,
+                col=1,
+            )
+            fig.add_trace(
+                go.Scatter(
+                    x=deg,
+                    y=y(after, f"after_{key}{comp}"),
+                    name="engine after balancing",
+                    line={"color": COLORS["after"], "width": 2.5},
+                    legendgroup="after",
+                    showlegend=first,
+                ),
+                row=row,
+                col=1,
+            )
         fig.update_yaxes(title_text=f"{quantity} {comp} [{unit}]", row=row, col=1)
-    fig.update_xaxes(title_text="crank angle [deg]", tickvals=list(range(0, 361, 45)),
-                     range=[0, 360], row=2, col=1)
+    fig.update_xaxes(
+        title_text="crank angle [deg]",
+        tickvals=list(range(0, 361, 45)),
+        range=[0, 360],
+        row=2,
+        col=1,
+    )
     fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
     name = "moments about the mid-point" if quantity == "moment" else "forces"
-    fig.update_layout(template=TEMPLATE, title=figure_title(f"Free {name}", analysis.model.name),
-                      legend={"orientation": "h", "y": -0.15}, hovermode="x unified")
+    fig.update_layout(
+        template=TEMPLATE,
+        title=figure_title(f"Free {name}", analysis.model.name),
+        legend={"orientation": "h", "y": -0.15},
+        hovermode="x unified",
+    )
     return fig
 
 
 # --------------------------------------------------------------------------- polar
-def _order_phasors(analysis: Analysis, order: int | str,
-                   quantity: str) -> tuple[complex, complex, int, str]:
+def _order_phasors(
+    analysis: Analysis, order: int | str, quantity: str
+) -> tuple[complex, complex, int, str]:
     """Forward and backward phasor (complex z + i x, moment as iC) of one order."""
     f = analysis.forces
     if order in ("rotating", "rot", 0):
@@ -387,18 +510,29 @@ def _order_phasors(analysis: Analysis, order: int | str,
     try:
         k = f.order(int(order))
     except KeyError:
-        raise InputError("order", order,
-                         f"an order computed: {int(f.orders[0])}..{int(f.orders[-1])} "
-                         "or 'rotating'") from None
+        raise InputError(
+            "order",
+            order,
+            f"an order computed: {int(f.orders[0])}..{int(f.orders[-1])} or 'rotating'",
+        ) from None
     if quantity == "force":
-        return complex(f.force_forward[k]), complex(f.force_backward[k]), int(order), \
-            f"order {order}"
-    return (1j * complex(f.couple_forward[k]), 1j * complex(f.couple_backward[k]), int(order),
-            f"order {order}")
+        return (
+            complex(f.force_forward[k]),
+            complex(f.force_backward[k]),
+            int(order),
+            f"order {order}",
+        )
+    return (
+        1j * complex(f.couple_forward[k]),
+        1j * complex(f.couple_backward[k]),
+        int(order),
+        f"order {order}",
+    )
 
 
-def polar_figure(analysis: Analysis, order: int | str = 1,
-                 quantity: Quantity = "force") -> go.Figure:
+def polar_figure(
+    analysis: Analysis, order: int | str = 1, quantity: Quantity = "force"
+) -> go.Figure:
     r"""Rotating-vector diagram of one order: :math:`F_n(\theta) = F^+e^{in\theta} +
     F^-e^{-in\theta}` traced over a revolution (an ellipse; a circle when one phasor is
     zero, a line when both are equal), with the forward and backward phasors drawn at crank
@@ -416,16 +550,28 @@ def polar_figure(analysis: Analysis, order: int | str = 1,
     theta = np.linspace(0.0, 2 * np.pi / max(n, 1), 361)
     locus = fwd * np.exp(1j * n * theta) + bwd * np.exp(-1j * n * theta)
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=locus.imag, y=locus.real, mode="lines", name="locus",
-                             line={"color": COLORS["total"], "width": 2},
-                             hovertemplate="x %{x:.4g}<br>z %{y:.4g}<extra></extra>"))
+    fig.add_trace(
+        go.Scatter(
+            x=locus.imag,
+            y=locus.real,
+            mode="lines",
+            name="locus",
+            line={"color": COLORS["total"], "width": 2},
+            hovertemplate="x %{x:.4g}<br>z %{y:.4g}<extra></extra>",
+        )
+    )
 
     def arrow(start: complex, end: complex, name: str, color: str) -> None:
-        fig.add_trace(go.Scatter(x=[start.imag, end.imag], y=[start.real, end.real],
-                                 mode="lines+markers", name=name,
-                                 line={"color": color, "width": 3},
-                                 marker={"size": [0, 10], "symbol": "arrow",
-                                         "angleref": "previous", "color": color}))
+        fig.add_trace(
+            go.Scatter(
+                x=[start.imag, end.imag],
+                y=[start.real, end.real],
+                mode="lines+markers",
+                name=name,
+                line={"color": color, "width": 3},
+                marker={"size": [0, 10], "symbol": "arrow", "angleref": "previous", "color": color},
+            )
+        )
 
     arrow(0j, fwd, f"forward |F+| = {abs(fwd):.4g} {unit}", COLORS["forward"])
     arrow(fwd, fwd + bwd, f"backward |F-| = {abs(bwd):.4g} {unit}", COLORS["backward"])
@@ -433,14 +579,21 @@ def polar_figure(analysis: Analysis, order: int | str = 1,
     amplitude = abs(fwd) + abs(bwd)
     reach = 1.15 * amplitude if amplitude > 0 else _zero_reach(analysis, quantity, tiny)
     fig.update_xaxes(title_text=f"x [{unit}]", range=[-reach, reach], zeroline=True)
-    fig.update_yaxes(title_text=f"z [{unit}]", range=[-reach, reach], zeroline=True,
-                     scaleanchor="x", scaleratio=1)
+    fig.update_yaxes(
+        title_text=f"z [{unit}]",
+        range=[-reach, reach],
+        zeroline=True,
+        scaleanchor="x",
+        scaleratio=1,
+    )
     word = "force" if quantity == "force" else "moment"
     size = f"{amplitude:.4g} {unit}" if amplitude > 0 else f"0 {unit} (balanced)"
-    fig.update_layout(template=TEMPLATE, width=None,
-                      title=figure_title(f"{label.capitalize()} {word}: amplitude {size}",
-                                         analysis.model.name),
-                      legend={"orientation": "h", "y": -0.15})
+    fig.update_layout(
+        template=TEMPLATE,
+        width=None,
+        title=figure_title(f"{label.capitalize()} {word}: amplitude {size}", analysis.model.name),
+        legend={"orientation": "h", "y": -0.15},
+    )
     return fig
 
 
@@ -458,8 +611,9 @@ def _zero_reach(analysis: Analysis, quantity: str, tiny: float) -> float:
 
 
 # --------------------------------------------------------------------------- 3-D crank
-def crank_3d(model: EngineModel | Analysis | BalanceStudy,
-             balance_study: BalanceStudy | None = None) -> go.Figure:
+def crank_3d(
+    model: EngineModel | Analysis | BalanceStudy, balance_study: BalanceStudy | None = None
+) -> go.Figure:
     """3-D view of the crankshaft at crank angle 0 (lengths in mm).
 
     Crank axis y drawn horizontally. Main journals on the axis, each throw's crankpin at
@@ -486,26 +640,46 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
     end = span / 2 + 2 * web
     fig = go.Figure()
 
-    def line(ys: list[float], xs: list[float], zs: list[float], name: str, color: str,
-             width: float, group: str, show: bool, dash: str = "solid",
-             text: str | None = None) -> None:
-        fig.add_trace(go.Scatter3d(
-            x=np.asarray(ys) * mm, y=np.asarray(xs) * mm, z=np.asarray(zs) * mm, mode="lines",
-            line={"color": color, "width": width, "dash": dash}, name=name,
-            legendgroup=group, showlegend=bool(show), hoverinfo="text" if text else "name",
-            text=text))
+    def line(
+        ys: list[float],
+        xs: list[float],
+        zs: list[float],
+        name: str,
+        color: str,
+        width: float,
+        group: str,
+        show: bool,
+        dash: str = "solid",
+        text: str | None = None,
+    ) -> None:
+        fig.add_trace(
+            go.Scatter3d(
+                x=np.asarray(ys) * mm,
+                y=np.asarray(xs) * mm,
+                z=np.asarray(zs) * mm,
+                mode="lines",
+                line={"color": color, "width": width, "dash": dash},
+                name=name,
+                legendgroup=group,
+                showlegend=bool(show),
+                hoverinfo="text" if text else "name",
+                text=text,
+            )
+        )
 
     # main journals: the crank axis between and beyond the throws
-    line([-end, end], [0, 0], [0, 0], "crank axis / main journals", COLORS["crank"], 8,
-         "axis", True)
+    line(
+        [-end, end], [0, 0], [0, 0], "crank axis / main journals", COLORS["crank"], 8, "axis", True
+    )
     for t in range(m.throws):
         phi = m.throw_angle[t]
         px, pz = r * math.sin(phi), r * math.cos(phi)
         y0, y1 = pos[t] - web, pos[t] + web
-        text = (f"throw {t + 1}: angle {math.degrees(phi) % 360:.1f} deg, y {pos[t] * mm:.1f} mm,"
-                f" rotating mass {m.throw_rotating_mass[t]:.3f} kg")
-        line([y0, y1], [px, px], [pz, pz], "crankpins", "#1f3b73", 12, "pin", t == 0,
-             text=text)
+        text = (
+            f"throw {t + 1}: angle {math.degrees(phi) % 360:.1f} deg, y {pos[t] * mm:.1f} mm,"
+            f" rotating mass {m.throw_rotating_mass[t]:.3f} kg"
+        )
+        line([y0, y1], [px, px], [pz, pz], "crankpins", "#1f3b73", 12, "pin", t == 0, text=text)
         for yw in (y0, y1):
             line([yw, yw], [0, px], [0, pz], "webs", "#6b6b6b", 6, "web", t == 0 and yw == y0)
     # cylinder axes from the crankpin's top-dead-centre circle outward
@@ -513,13 +687,22 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
         beta = m.cylinder_bank[c]
         y = m.cylinder_position[c]
         r0, r1 = r + m.rod_length, r + m.rod_length + 2 * r
-        line([y, y], [r0 * math.sin(beta), r1 * math.sin(beta)],
-             [r0 * math.cos(beta), r1 * math.cos(beta)], "cylinder axes (stroke)", "#c7c7c7",
-             10, "cyl", c == 0, text=f"cylinder {c + 1}: bank {math.degrees(beta):.1f} deg")
+        line(
+            [y, y],
+            [r0 * math.sin(beta), r1 * math.sin(beta)],
+            [r0 * math.cos(beta), r1 * math.cos(beta)],
+            "cylinder axes (stroke)",
+            "#c7c7c7",
+            10,
+            "cyl",
+            c == 0,
+            text=f"cylinder {c + 1}: bank {math.degrees(beta):.1f} deg",
+        )
     if balance_study is not None:
         res = balance_study.result
-        masses = [cw.mass for cw in (res.counterweights, res.extra_counterweights)
-                  if cw is not None]
+        masses = [
+            cw.mass for cw in (res.counterweights, res.extra_counterweights) if cw is not None
+        ]
         for group in (res.primary, res.secondary):
             if group is not None:
                 masses += [np.array([x.mass for s in group.shafts for x in s.masses])]
@@ -528,27 +711,38 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
         def size(mass: float) -> float:
             return 4.0 + 14.0 * math.sqrt(mass / biggest) if biggest > 0 else 4.0
 
-        for label, cw, color in (("counterweights", res.counterweights, COLORS["counterweight"]),
-                                 ("extra counterweights (Eq. 17)", res.extra_counterweights,
-                                  "#98df8a")):
+        for label, cw, color in (
+            ("counterweights", res.counterweights, COLORS["counterweight"]),
+            ("extra counterweights (Eq. 17)", res.extra_counterweights, "#98df8a"),
+        ):
             if cw is None or cw.count == 0:
                 continue
             for j in range(cw.count):
                 d, rho = float(cw.direction[j]), cw.cg_radius
                 cx, cz, y = rho * math.sin(d), rho * math.cos(d), float(cw.position[j])
                 line([y, y], [0, cx], [0, cz], label, color, 5, label, False)
-                fig.add_trace(go.Scatter3d(
-                    x=[y * mm], y=[cx * mm], z=[cz * mm], mode="markers", name=label,
-                    legendgroup=label, showlegend=j == 0,
-                    marker={"size": size(float(cw.mass[j])), "color": color, "opacity": 0.9},
-                    hoverinfo="text",
-                    text=f"{label}: web {int(cw.web[j])}, {cw.mass[j]:.4g} kg at "
-                         f"{rho * mm:.1f} mm, {math.degrees(d) % 360:.1f} deg"))
+                fig.add_trace(
+                    go.Scatter3d(
+                        x=[y * mm],
+                        y=[cx * mm],
+                        z=[cz * mm],
+                        mode="markers",
+                        name=label,
+                        legendgroup=label,
+                        showlegend=j == 0,
+                        marker={"size": size(float(cw.mass[j])), "color": color, "opacity": 0.9},
+                        hoverinfo="text",
+                        text=f"{label}: web {int(cw.web[j])}, {cw.mass[j]:.4g} kg at "
+                        f"{rho * mm:.1f} mm, {math.degrees(d) % 360:.1f} deg",
+                    )
+                )
         # balance shafts beside the crank (schematic): primary left/right of the crank at
         # the height of the axis, secondary below; co-rotating on one side
         gap = 2.5 * r + 0.02
-        for group, zc, color in ((res.primary, 0.0, COLORS["shaft1"]),
-                                 (res.secondary, -(r + 0.5 * m.rod_length), COLORS["shaft2"])):
+        for group, zc, color in (
+            (res.primary, 0.0, COLORS["shaft1"]),
+            (res.secondary, -(r + 0.5 * m.rod_length), COLORS["shaft2"]),
+        ):
             if group is None:
                 continue
             half = group.length / 2
@@ -556,26 +750,51 @@ def crank_3d(model: EngineModel | Analysis | BalanceStudy,
                 xc = -gap if s.sense > 0 else gap
                 sense = "co-rotating" if s.sense > 0 else "counter-rotating"
                 label = f"order-{group.order} shaft, {sense}"
-                line([-half, half], [xc, xc], [zc, zc], label, color, 6, label, True,
-                     dash="solid" if s.sense > 0 else "dash")
+                line(
+                    [-half, half],
+                    [xc, xc],
+                    [zc, zc],
+                    label,
+                    color,
+                    6,
+                    label,
+                    True,
+                    dash="solid" if s.sense > 0 else "dash",
+                )
                 for x in s.masses:
                     rho = s.cg_radius
                     mx, mz = xc + rho * math.sin(x.phase), zc + rho * math.cos(x.phase)
-                    line([x.position, x.position], [xc, mx], [zc, mz], label, color, 4, label,
-                         False)
-                    fig.add_trace(go.Scatter3d(
-                        x=[x.position * mm], y=[mx * mm], z=[mz * mm], mode="markers",
-                        name=label, legendgroup=label, showlegend=False,
-                        marker={"size": size(x.mass), "color": color, "opacity": 0.9},
-                        hoverinfo="text",
-                        text=f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
-                             f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg"))
+                    line(
+                        [x.position, x.position], [xc, mx], [zc, mz], label, color, 4, label, False
+                    )
+                    fig.add_trace(
+                        go.Scatter3d(
+                            x=[x.position * mm],
+                            y=[mx * mm],
+                            z=[mz * mm],
+                            mode="markers",
+                            name=label,
+                            legendgroup=label,
+                            showlegend=False,
+                            marker={"size": size(x.mass), "color": color, "opacity": 0.9},
+                            hoverinfo="text",
+                            text=f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
+                            f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg",
+                        )
+                    )
     fig.update_layout(
-        template=TEMPLATE, title=figure_title("Crankshaft at crank angle 0", m.name),
-        scene={"xaxis_title": "y, crank axis [mm]", "yaxis_title": "x [mm]",
-               "zaxis_title": "z [mm]", "aspectmode": "data",
-               "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}}},
-        legend={"orientation": "h", "y": -0.05}, margin={"l": 0, "r": 0, "t": 50, "b": 0})
+        template=TEMPLATE,
+        title=figure_title("Crankshaft at crank angle 0", m.name),
+        scene={
+            "xaxis_title": "y, crank axis [mm]",
+            "yaxis_title": "x [mm]",
+            "zaxis_title": "z [mm]",
+            "aspectmode": "data",
+            "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}},
+        },
+        legend={"orientation": "h", "y": -0.05},
+        margin={"l": 0, "r": 0, "t": 50, "b": 0},
+    )
     return fig
 
 
@@ -588,27 +807,50 @@ def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
     go = _go()
     res = balance_study.result.residuals
     tiny = dict(zip(("force", "moment"), roundoff_levels(balance_study.model), strict=True))
-    names = [("rotating" if c.component == "rotating" else c.component.replace("order", "order "))
-             + (" *" if c.targeted else "") for c in res]
+    names = [
+        ("rotating" if c.component == "rotating" else c.component.replace("order", "order "))
+        + (" *" if c.targeted else "")
+        for c in res
+    ]
     fig = _subplots(rows=1, cols=2, subplot_titles=("Force", "Moment"), horizontal_spacing=0.12)
     for col, attr, unit in ((1, "force", "N"), (2, "moment", "N·m")):
-        _note_if_zero(fig, _clean([getattr(c, f"{attr}_{when}") for c in res
-                                   for when in ("before", "after")], tiny[attr]),
-                      unit, 1, col, "" if col == 1 else "2")
+        _note_if_zero(
+            fig,
+            _clean(
+                [getattr(c, f"{attr}_{when}") for c in res for when in ("before", "after")],
+                tiny[attr],
+            ),
+            unit,
+            1,
+            col,
+            "" if col == 1 else "2",
+        )
         for when, color in (("before", COLORS["before"]), ("after", COLORS["after"])):
-            fig.add_trace(go.Bar(
-                x=names, y=_clean([getattr(c, f"{attr}_{when}") for c in res], tiny[attr]),
-                name=f"{when} balancing", marker_color=color, legendgroup=when,
-                showlegend=col == 1,
-                hovertemplate="%{x}<br>" + when + " %{y:.4g} " + unit + "<extra></extra>"),
-                row=1, col=col)
+            fig.add_trace(
+                go.Bar(
+                    x=names,
+                    y=_clean([getattr(c, f"{attr}_{when}") for c in res], tiny[attr]),
+                    name=f"{when} balancing",
+                    marker_color=color,
+                    legendgroup=when,
+                    showlegend=col == 1,
+                    hovertemplate="%{x}<br>" + when + " %{y:.4g} " + unit + "<extra></extra>",
+                ),
+                row=1,
+                col=col,
+            )
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(type="category", row=1, col=col)
-    fig.update_layout(barmode="group", template=TEMPLATE,
-                      title=figure_title("Residuals before and after balancing",
-                                         balance_study.model.name,
-                                         "* targeted by counterweights or shafts"),
-                      legend={"orientation": "h", "y": -0.2})
+    fig.update_layout(
+        barmode="group",
+        template=TEMPLATE,
+        title=figure_title(
+            "Residuals before and after balancing",
+            balance_study.model.name,
+            "* targeted by counterweights or shafts",
+        ),
+        legend={"orientation": "h", "y": -0.2},
+    )
     return fig
 
 
@@ -620,18 +862,26 @@ def single_cylinder_forces(study: Any) -> go.Figure:
     deg = np.degrees(study.crank_angle)
     fig = go.Figure()
     for name, values, color, dash in (
-            ("in-line (cylinder axis)", study.in_line, COLORS["forward"], "solid"),
-            ("transverse", study.transverse, COLORS["backward"], "solid"),
-            ("resultant", study.resultant, COLORS["total"], "dash")):
-        fig.add_trace(go.Scatter(x=deg, y=values, name=name,
-                                 line={"color": color, "width": 2, "dash": dash}))
-    fig.update_xaxes(title_text="crank angle from top dead centre [deg]",
-                     tickvals=list(range(0, 361, 45)), range=[0, 360])
+        ("in-line (cylinder axis)", study.in_line, COLORS["forward"], "solid"),
+        ("transverse", study.transverse, COLORS["backward"], "solid"),
+        ("resultant", study.resultant, COLORS["total"], "dash"),
+    ):
+        fig.add_trace(
+            go.Scatter(x=deg, y=values, name=name, line={"color": color, "width": 2, "dash": dash})
+        )
+    fig.update_xaxes(
+        title_text="crank angle from top dead centre [deg]",
+        tickvals=list(range(0, 361, 45)),
+        range=[0, 360],
+    )
     fig.update_yaxes(title_text="force [N]")
-    fig.update_layout(template=TEMPLATE, hovermode="x unified",
-                      title=f"Single cylinder, balance factor {study.balance_factor:.0%}: "
-                            f"peak resultant {study.peak_resultant:.4g} N",
-                      legend={"orientation": "h", "y": -0.2})
+    fig.update_layout(
+        template=TEMPLATE,
+        hovermode="x unified",
+        title=f"Single cylinder, balance factor {study.balance_factor:.0%}: "
+        f"peak resultant {study.peak_resultant:.4g} N",
+        legend={"orientation": "h", "y": -0.2},
+    )
     return fig
 
 
@@ -641,26 +891,47 @@ def single_cylinder_polar(study: Any) -> go.Figure:
     the peak resultant."""
     go = _go()
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=study.transverse, y=study.in_line, mode="lines",
-                             name="residual force", line={"color": COLORS["after"], "width": 2.5},
-                             text=[f"{a:.0f} deg" for a in np.degrees(study.crank_angle)],
-                             hovertemplate="crank %{text}<br>transverse %{x:.4g} N<br>"
-                                           "in-line %{y:.4g} N<extra></extra>"))
+    fig.add_trace(
+        go.Scatter(
+            x=study.transverse,
+            y=study.in_line,
+            mode="lines",
+            name="residual force",
+            line={"color": COLORS["after"], "width": 2.5},
+            text=[f"{a:.0f} deg" for a in np.degrees(study.crank_angle)],
+            hovertemplate="crank %{text}<br>transverse %{x:.4g} N<br>"
+            "in-line %{y:.4g} N<extra></extra>",
+        )
+    )
     ring = np.linspace(0, 2 * np.pi, 181)
     peak = study.peak_resultant
-    fig.add_trace(go.Scatter(x=peak * np.sin(ring), y=peak * np.cos(ring), mode="lines",
-                             name=f"peak resultant {peak:.4g} N",
-                             line={"color": COLORS["before"], "dash": "dot"}))
+    fig.add_trace(
+        go.Scatter(
+            x=peak * np.sin(ring),
+            y=peak * np.cos(ring),
+            mode="lines",
+            name=f"peak resultant {peak:.4g} N",
+            line={"color": COLORS["before"], "dash": "dot"},
+        )
+    )
     p = study.primary_force
-    fig.add_trace(go.Scatter(x=p * np.sin(ring), y=p * np.cos(ring), mode="lines",
-                             name=f"primary force P = {p:.4g} N (no balance)",
-                             line={"color": COLORS["forward"], "dash": "dash", "width": 1}))
+    fig.add_trace(
+        go.Scatter(
+            x=p * np.sin(ring),
+            y=p * np.cos(ring),
+            mode="lines",
+            name=f"primary force P = {p:.4g} N (no balance)",
+            line={"color": COLORS["forward"], "dash": "dash", "width": 1},
+        )
+    )
     reach = 1.1 * max(peak, p)
     fig.update_xaxes(title_text="transverse [N]", range=[-reach, reach])
-    fig.update_yaxes(title_text="in-line [N]", range=[-reach, reach], scaleanchor="x",
-                     scaleratio=1)
-    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
-                      title=f"Residual force, balance factor {study.balance_factor:.0%}")
+    fig.update_yaxes(title_text="in-line [N]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=f"Residual force, balance factor {study.balance_factor:.0%}",
+    )
     return fig
 
 
@@ -669,22 +940,41 @@ def balance_factor_sweep(study: Any) -> go.Figure:
     optimum marked."""
     go = _go()
     fig = go.Figure()
-    fig.add_trace(go.Scatter(x=100 * np.asarray(study.sweep_balance_factor),
-                             y=study.sweep_peak_resultant, mode="lines", name="peak resultant",
-                             line={"color": COLORS["total"], "width": 2}))
-    fig.add_trace(go.Scatter(x=[100 * study.optimum_balance_factor],
-                             y=[study.optimum_peak_resultant], mode="markers",
-                             name=f"optimum {study.optimum_balance_factor:.1%}: "
-                                  f"{study.optimum_peak_resultant:.4g} N",
-                             marker={"color": COLORS["counterweight"], "size": 12}))
-    fig.add_trace(go.Scatter(x=[100 * study.balance_factor], y=[study.peak_resultant],
-                             mode="markers", name=f"studied {study.balance_factor:.1%}: "
-                                                  f"{study.peak_resultant:.4g} N",
-                             marker={"color": COLORS["after"], "size": 12, "symbol": "diamond"}))
+    fig.add_trace(
+        go.Scatter(
+            x=100 * np.asarray(study.sweep_balance_factor),
+            y=study.sweep_peak_resultant,
+            mode="lines",
+            name="peak resultant",
+            line={"color": COLORS["total"], "width": 2},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[100 * study.optimum_balance_factor],
+            y=[study.optimum_peak_resultant],
+            mode="markers",
+            name=f"optimum {study.optimum_balance_factor:.1%}: "
+            f"{study.optimum_peak_resultant:.4g} N",
+            marker={"color": COLORS["counterweight"], "size": 12},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[100 * study.balance_factor],
+            y=[study.peak_resultant],
+            mode="markers",
+            name=f"studied {study.balance_factor:.1%}: {study.peak_resultant:.4g} N",
+            marker={"color": COLORS["after"], "size": 12, "symbol": "diamond"},
+        )
+    )
     fig.update_xaxes(title_text="balance factor [%]")
     fig.update_yaxes(title_text="peak resultant force [N]", rangemode="tozero")
-    fig.update_layout(template=TEMPLATE, title="Peak shaking force versus balance factor",
-                      legend={"orientation": "h", "y": -0.2})
+    fig.update_layout(
+        template=TEMPLATE,
+        title="Peak shaking force versus balance factor",
+        legend={"orientation": "h", "y": -0.2},
+    )
     return fig
 
 
@@ -699,30 +989,52 @@ def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
     fig = go.Figure()
     n = mass.size
     if n:
-        pick = np.arange(n) if n <= max_points else np.random.default_rng(0).choice(
-            n, max_points, replace=False)
-        fig.add_trace(go.Scattergl(x=radius[pick], y=mass[pick], mode="markers",
-                                   name=f"feasible designs ({n})",
-                                   marker={"color": "#c7c7c7", "size": 3}))
+        pick = (
+            np.arange(n)
+            if n <= max_points
+            else np.random.default_rng(0).choice(n, max_points, replace=False)
+        )
+        fig.add_trace(
+            go.Scattergl(
+                x=radius[pick],
+                y=mass[pick],
+                mode="markers",
+                name=f"feasible designs ({n})",
+                marker={"color": "#c7c7c7", "size": 3},
+            )
+        )
     front = np.asarray(optimum.pareto, dtype=int)
-    fig.add_trace(go.Scatter(x=radius[front], y=mass[front], mode="lines+markers",
-                             name=f"Pareto front ({front.size})",
-                             line={"color": COLORS["forward"], "width": 2},
-                             marker={"size": 5}))
-    for idx, label, color, symbol in ((optimum.least_mass, "least mass", COLORS["counterweight"],
-                                       "star"),
-                                      (optimum.least_radius, "least radius", COLORS["after"],
-                                       "diamond")):
-        fig.add_trace(go.Scatter(
-            x=[radius[idx]], y=[mass[idx]], mode="markers",
-            name=f"{label}: {mass[idx]:.1f} g, {radius[idx]:.2f} mm",
-            marker={"color": color, "size": 15, "symbol": symbol}))
+    fig.add_trace(
+        go.Scatter(
+            x=radius[front],
+            y=mass[front],
+            mode="lines+markers",
+            name=f"Pareto front ({front.size})",
+            line={"color": COLORS["forward"], "width": 2},
+            marker={"size": 5},
+        )
+    )
+    for idx, label, color, symbol in (
+        (optimum.least_mass, "least mass", COLORS["counterweight"], "star"),
+        (optimum.least_radius, "least radius", COLORS["after"], "diamond"),
+    ):
+        fig.add_trace(
+            go.Scatter(
+                x=[radius[idx]],
+                y=[mass[idx]],
+                mode="markers",
+                name=f"{label}: {mass[idx]:.1f} g, {radius[idx]:.2f} mm",
+                marker={"color": color, "size": 15, "symbol": symbol},
+            )
+        )
     measure = "outer radius" if optimum.radius_measure == "true" else "R_min bound (paper)"
     fig.update_xaxes(title_text=f"radial space, {measure} [mm]")
     fig.update_yaxes(title_text="counterweight mass [g]")
-    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
-                      title=f"Counterweight designs for m r = "
-                            f"{optimum.required_first_moment * 1e6:.5g} g·mm")
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=f"Counterweight designs for m r = {optimum.required_first_moment * 1e6:.5g} g·mm",
+    )
     return fig
 
 
@@ -735,30 +1047,59 @@ def counterweight_profile(design: Any) -> go.Figure:
     fig = go.Figure()
     for k, loop in enumerate(design.outline(tolerance=2e-6)):
         closed = np.vstack([loop, loop[:1]]) * 1e3
-        fig.add_trace(go.Scatter(x=closed[:, 0], y=closed[:, 1], mode="lines", fill="toself",
-                                 fillcolor="rgba(127,140,141,0.6)", name="profile",
-                                 legendgroup="profile", showlegend=k == 0,
-                                 line={"color": "black", "width": 1.5}))
+        fig.add_trace(
+            go.Scatter(
+                x=closed[:, 0],
+                y=closed[:, 1],
+                mode="lines",
+                fill="toself",
+                fillcolor="rgba(127,140,141,0.6)",
+                name="profile",
+                legendgroup="profile",
+                showlegend=k == 0,
+                line={"color": "black", "width": 1.5},
+            )
+        )
     ring = np.linspace(0, 2 * np.pi, 181)
     r = design.web_radius * 1e3
-    fig.add_trace(go.Scatter(x=r * np.cos(ring), y=r * np.sin(ring), mode="lines",
-                             name=f"web circle r_cw = {r:.2f} mm",
-                             line={"color": "#c0392b", "dash": "dash", "width": 1}))
+    fig.add_trace(
+        go.Scatter(
+            x=r * np.cos(ring),
+            y=r * np.sin(ring),
+            mode="lines",
+            name=f"web circle r_cw = {r:.2f} mm",
+            line={"color": "#c0392b", "dash": "dash", "width": 1},
+        )
+    )
     cg = float(props.cg_radius) * 1e3
-    fig.add_trace(go.Scatter(x=[0.0], y=[cg], mode="markers", name=f"CG at {cg:.2f} mm",
-                             marker={"color": COLORS["after"], "size": 10, "symbol": "x"}))
-    fig.add_trace(go.Scatter(x=[0.0], y=[0.0], mode="markers", name="crank axis",
-                             marker={"color": "black", "size": 10, "symbol": "cross-thin",
-                                     "line": {"width": 2}}))
+    fig.add_trace(
+        go.Scatter(
+            x=[0.0],
+            y=[cg],
+            mode="markers",
+            name=f"CG at {cg:.2f} mm",
+            marker={"color": COLORS["after"], "size": 10, "symbol": "x"},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[0.0],
+            y=[0.0],
+            mode="markers",
+            name="crank axis",
+            marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
+        )
+    )
     reach = 1.1 * max(float(props.outer_radius) * 1e3, r)
     fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
-    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x",
-                     scaleratio=1)
+    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
     fig.update_layout(
-        template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
         title=f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
-              f"{design.thickness * 1e3:.2f} mm, outer radius "
-              f"{float(props.outer_radius) * 1e3:.2f} mm")
+        f"{design.thickness * 1e3:.2f} mm, outer radius "
+        f"{float(props.outer_radius) * 1e3:.2f} mm",
+    )
     return fig
 
 
@@ -769,32 +1110,99 @@ def shaft_study(study: Any) -> go.Figure:
     the objective J and its optimum (:class:`~crankbalance.balance_shaft.PlacementStudy`)."""
     go = _go()
     x = 100 * np.asarray(study.positions)
-    fig = _subplots(rows=2, cols=2, horizontal_spacing=0.12, vertical_spacing=0.1,
-                    shared_xaxes=True,
-                    subplot_titles=("Bearing loads", "Bending (integral of deflection)",
-                                    "First bending frequency", "Objective J"))
+    fig = _subplots(
+        rows=2,
+        cols=2,
+        horizontal_spacing=0.12,
+        vertical_spacing=0.1,
+        shared_xaxes=True,
+        subplot_titles=(
+            "Bearing loads",
+            "Bending (integral of deflection)",
+            "First bending frequency",
+            "Objective J",
+        ),
+    )
     reactions = np.atleast_2d(np.asarray(study.reactions))
     for b in range(reactions.shape[1]):
-        fig.add_trace(go.Scatter(x=x, y=reactions[:, b], name=f"bearing {b + 1}",
-                                 line={"color": ORDER_COLORS[b % len(ORDER_COLORS)]}),
-                      row=1, col=1)
-    fig.add_trace(go.Scatter(x=x, y=study.reaction_difference, name="largest - smallest",
-                             line={"color": COLORS["total"], "dash": "dot"}), row=1, col=1)
-    fig.add_trace(go.Scatter(x=x, y=np.asarray(study.bending_measure) * 1e6,
-                             name="bending measure A", line={"color": COLORS["forward"]}),
-                  row=1, col=2)
-    fig.add_trace(go.Scatter(x=x, y=study.first_frequency, name="first frequency",
-                             line={"color": COLORS["rotating"]}), row=2, col=1)
-    fig.add_trace(go.Scatter(x=x, y=study.normalised_bending, name="A / max A",
-                             line={"color": COLORS["forward"], "dash": "dash"}), row=2, col=2)
-    fig.add_trace(go.Scatter(x=x, y=study.normalised_secondary,
-                             name=f"B / max B ({study.secondary})",
-                             line={"color": COLORS["backward"], "dash": "dash"}), row=2, col=2)
-    fig.add_trace(go.Scatter(x=x, y=study.objective, name=f"J (w = {study.weight:g})",
-                             line={"color": COLORS["total"], "width": 2.5}), row=2, col=2)
-    fig.add_trace(go.Scatter(x=[100 * study.optimum_position], y=[study.optimum_objective],
-                             mode="markers", name=f"optimum {study.optimum_position:.1%}",
-                             marker={"color": COLORS["after"], "size": 12}), row=2, col=2)
+        fig.add_trace(
+            go.Scatter(
+                x=x,
+                y=reactions[:, b],
+                name=f"bearing {b + 1}",
+                line={"color": ORDER_COLORS[b % len(ORDER_COLORS)]},
+            ),
+            row=1,
+            col=1,
+        )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=study.reaction_difference,
+            name="largest - smallest",
+            line={"color": COLORS["total"], "dash": "dot"},
+        ),
+        row=1,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=np.asarray(study.bending_measure) * 1e6,
+            name="bending measure A",
+            line={"color": COLORS["forward"]},
+        ),
+        row=1,
+        col=2,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x, y=study.first_frequency, name="first frequency", line={"color": COLORS["rotating"]}
+        ),
+        row=2,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=study.normalised_bending,
+            name="A / max A",
+            line={"color": COLORS["forward"], "dash": "dash"},
+        ),
+        row=2,
+        col=2,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=study.normalised_secondary,
+            name=f"B / max B ({study.secondary})",
+            line={"color": COLORS["backward"], "dash": "dash"},
+        ),
+        row=2,
+        col=2,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=x,
+            y=study.objective,
+            name=f"J (w = {study.weight:g})",
+            line={"color": COLORS["total"], "width": 2.5},
+        ),
+        row=2,
+        col=2,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[100 * study.optimum_position],
+            y=[study.optimum_objective],
+            mode="markers",
+            name=f"optimum {study.optimum_position:.1%}",
+            marker={"color": COLORS["after"], "size": 12},
+        ),
+        row=2,
+        col=2,
+    )
     fig.update_yaxes(title_text="load [N]", row=1, col=1)
     fig.update_yaxes(title_text="A [mm²]", row=1, col=2)
     fig.update_yaxes(title_text="frequency [Hz]", row=2, col=1)
@@ -803,10 +1211,20 @@ def shaft_study(study: Any) -> go.Figure:
         fig.update_xaxes(title_text=f"{study.design_variable} [% of length]", row=2, col=col)
     # the legend sits at the bottom of the whole figure, below the axis titles (a legend
     # placed in plot coordinates overlapped the lower-left axis title)
-    fig.update_layout(template=TEMPLATE, height=760, margin={"b": 150},
-                      legend={"orientation": "h", "yref": "container", "y": 0.01,
-                              "yanchor": "bottom", "x": 0.5, "xanchor": "center"},
-                      title=f"Balance-shaft placement study ({study.case})")
+    fig.update_layout(
+        template=TEMPLATE,
+        height=760,
+        margin={"b": 150},
+        legend={
+            "orientation": "h",
+            "yref": "container",
+            "y": 0.01,
+            "yanchor": "bottom",
+            "x": 0.5,
+            "xanchor": "center",
+        },
+        title=f"Balance-shaft placement study ({study.case})",
+    )
     return fig
 
 
@@ -817,22 +1235,41 @@ def shaft_response_figure(response: Any, shaft: Any = None) -> go.Figure:
     go = _go()
     x = np.asarray(response.x) * 1e3
     deflection = np.abs(np.asarray(response.deflection)) * 1e6
-    fig = go.Figure(go.Scatter(x=x, y=deflection, name="deflection amplitude",
-                               line={"color": COLORS["forward"], "width": 2.5}))
+    fig = go.Figure(
+        go.Scatter(
+            x=x,
+            y=deflection,
+            name="deflection amplitude",
+            line={"color": COLORS["forward"], "width": 2.5},
+        )
+    )
     if shaft is not None:
-        fig.add_trace(go.Scatter(
-            x=np.asarray(shaft.bearing_positions) * 1e3, y=np.zeros(len(shaft.bearing_positions)),
-            mode="markers", name="bearings",
-            marker={"symbol": "triangle-up", "size": 14, "color": COLORS["total"]}))
-        fig.add_trace(go.Scatter(
-            x=np.asarray(shaft.mass_positions) * 1e3, y=np.zeros(len(shaft.mass_positions)),
-            mode="markers", name="unbalance masses",
-            marker={"size": 14, "color": COLORS["after"]}))
+        fig.add_trace(
+            go.Scatter(
+                x=np.asarray(shaft.bearing_positions) * 1e3,
+                y=np.zeros(len(shaft.bearing_positions)),
+                mode="markers",
+                name="bearings",
+                marker={"symbol": "triangle-up", "size": 14, "color": COLORS["total"]},
+            )
+        )
+        fig.add_trace(
+            go.Scatter(
+                x=np.asarray(shaft.mass_positions) * 1e3,
+                y=np.zeros(len(shaft.mass_positions)),
+                mode="markers",
+                name="unbalance masses",
+                marker={"size": 14, "color": COLORS["after"]},
+            )
+        )
     fig.update_xaxes(title_text="position along the shaft [mm]")
     fig.update_yaxes(title_text="deflection [µm]")
-    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2},
-                      title=f"Balance shaft: max deflection {response.max_deflection * 1e6:.1f} µm,"
-                            f" first bending frequency {response.first_frequency:.0f} Hz")
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=f"Balance shaft: max deflection {response.max_deflection * 1e6:.1f} µm,"
+        f" first bending frequency {response.first_frequency:.0f} Hz",
+    )
     return fig
 
 
@@ -849,20 +1286,30 @@ SENSITIVITY_LABELS = {
 }
 
 
-def sensitivity_figure(result: Any,
-                       indicators: tuple[str, ...] | None = None) -> go.Figure:
+def sensitivity_figure(result: Any, indicators: tuple[str, ...] | None = None) -> go.Figure:
     """Performance indicators versus balance factor, one line per reciprocating-mass scale
     (:class:`~crankbalance.dynamics.SensitivityResult`)."""
     go = _go()
-    names = indicators or ("mean_friction_torque", "peak_bearing_load", "friction_power",
-                           "peak_shaking_force", "speed_fluctuation", "peak_net_torque")
+    names = indicators or (
+        "mean_friction_torque",
+        "peak_bearing_load",
+        "friction_power",
+        "peak_shaking_force",
+        "speed_fluctuation",
+        "peak_net_torque",
+    )
     for name in names:
         if name not in SENSITIVITY_LABELS:
             raise InputError("indicators", name, f"one of {sorted(SENSITIVITY_LABELS)}")
     cols = 2
     rows = math.ceil(len(names) / cols)
-    fig = _subplots(rows=rows, cols=cols, horizontal_spacing=0.12, vertical_spacing=0.12,
-                    subplot_titles=[SENSITIVITY_LABELS[n][0] for n in names])
+    fig = _subplots(
+        rows=rows,
+        cols=cols,
+        horizontal_spacing=0.12,
+        vertical_spacing=0.12,
+        subplot_titles=[SENSITIVITY_LABELS[n][0] for n in names],
+    )
     bf = 100 * np.asarray(result.balance_factors)
     scales = np.asarray(result.mass_scales)
     for k, name in enumerate(names):
@@ -870,16 +1317,27 @@ def sensitivity_figure(result: Any,
         values = np.atleast_2d(np.asarray(getattr(result, name))) * factor
         row, col = k // cols + 1, k % cols + 1
         for j, scale in enumerate(scales):
-            fig.add_trace(go.Scatter(
-                x=bf, y=values[j], mode="lines+markers", name=f"reciprocating mass x {scale:g}",
-                legendgroup=f"scale{j}", showlegend=k == 0,
-                line={"color": ORDER_COLORS[j % len(ORDER_COLORS)]}), row=row, col=col)
+            fig.add_trace(
+                go.Scatter(
+                    x=bf,
+                    y=values[j],
+                    mode="lines+markers",
+                    name=f"reciprocating mass x {scale:g}",
+                    legendgroup=f"scale{j}",
+                    showlegend=k == 0,
+                    line={"color": ORDER_COLORS[j % len(ORDER_COLORS)]},
+                ),
+                row=row,
+                col=col,
+            )
         fig.update_yaxes(title_text=f"[{unit}]", row=row, col=col)
         fig.update_xaxes(title_text="balance factor [%]", row=row, col=col)
-    fig.update_layout(template=TEMPLATE, height=320 * rows,
-                      legend={"orientation": "h", "y": -0.08},
-                      title=f"Performance versus balance factor at "
-                            f"{result.speed * 30 / math.pi:.0f} rpm")
+    fig.update_layout(
+        template=TEMPLATE,
+        height=320 * rows,
+        legend={"orientation": "h", "y": -0.08},
+        title=f"Performance versus balance factor at {result.speed * 30 / math.pi:.0f} rpm",
+    )
     return fig
 
 
@@ -888,25 +1346,63 @@ def bench_figure(result: Any) -> go.Figure:
     (:class:`~crankbalance.dynamics.BenchResult`)."""
     go = _go()
     t = np.asarray(result.time)
-    fig = _subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
-                    subplot_titles=("Speed", "Torque", "Bearing loads"))
-    fig.add_trace(go.Scatter(x=t, y=np.asarray(result.speed) * 30 / math.pi, name="speed",
-                             line={"color": COLORS["total"]}), row=1, col=1)
-    fig.add_trace(go.Scatter(x=t, y=result.motor_torque, name="motor torque",
-                             line={"color": COLORS["forward"]}), row=2, col=1)
-    fig.add_trace(go.Scatter(x=t, y=result.friction_torque, name="friction torque",
-                             line={"color": COLORS["backward"]}), row=2, col=1)
-    fig.add_trace(go.Scatter(x=t, y=result.bearing_load_a, name="bearing A",
-                             line={"color": COLORS["counterweight"]}), row=3, col=1)
-    fig.add_trace(go.Scatter(x=t, y=result.bearing_load_b, name="bearing B",
-                             line={"color": COLORS["after"]}), row=3, col=1)
+    fig = _subplots(
+        rows=3,
+        cols=1,
+        shared_xaxes=True,
+        vertical_spacing=0.06,
+        subplot_titles=("Speed", "Torque", "Bearing loads"),
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=t,
+            y=np.asarray(result.speed) * 30 / math.pi,
+            name="speed",
+            line={"color": COLORS["total"]},
+        ),
+        row=1,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=t, y=result.motor_torque, name="motor torque", line={"color": COLORS["forward"]}
+        ),
+        row=2,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=t,
+            y=result.friction_torque,
+            name="friction torque",
+            line={"color": COLORS["backward"]},
+        ),
+        row=2,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=t, y=result.bearing_load_a, name="bearing A", line={"color": COLORS["counterweight"]}
+        ),
+        row=3,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(x=t, y=result.bearing_load_b, name="bearing B", line={"color": COLORS["after"]}),
+        row=3,
+        col=1,
+    )
     fig.update_yaxes(title_text="[rpm]", row=1, col=1)
     fig.update_yaxes(title_text="[N·m]", row=2, col=1)
     fig.update_yaxes(title_text="[N]", row=3, col=1)
     fig.update_xaxes(title_text="time [s]", row=3, col=1)
-    fig.update_layout(template=TEMPLATE, height=750, legend={"orientation": "h", "y": -0.08},
-                      title=f"Test bench: required torque {result.required_torque:.4g} N·m, "
-                            f"friction power {result.friction_power:.4g} W")
+    fig.update_layout(
+        template=TEMPLATE,
+        height=750,
+        legend={"orientation": "h", "y": -0.08},
+        title=f"Test bench: required torque {result.required_torque:.4g} N·m, "
+        f"friction power {result.friction_power:.4g} W",
+    )
     return fig
 
 
@@ -915,27 +1411,60 @@ def cycle_figure(result: Any) -> go.Figure:
     (:class:`~crankbalance.dynamics.CycleResult`)."""
     go = _go()
     deg = np.degrees(np.asarray(result.angle))
-    fig = _subplots(rows=3, cols=1, shared_xaxes=True, vertical_spacing=0.06,
-                    subplot_titles=("Torques", "Main-bearing load", "Shaking forces"))
-    for name, values, color in (("gas", result.gas_torque, COLORS["backward"]),
-                                ("inertia", result.inertia_torque, COLORS["forward"]),
-                                ("friction", result.friction_torque, COLORS["rotating"]),
-                                ("net", result.net_torque, COLORS["total"])):
-        fig.add_trace(go.Scatter(x=deg, y=values, name=f"{name} torque",
-                                 line={"color": color}), row=1, col=1)
-    fig.add_trace(go.Scatter(x=deg, y=result.bearing_load, name="bearing load",
-                             line={"color": COLORS["after"]}), row=2, col=1)
-    fig.add_trace(go.Scatter(x=deg, y=result.shaking_inline, name="shaking in-line",
-                             line={"color": COLORS["forward"], "dash": "dash"}), row=3, col=1)
-    fig.add_trace(go.Scatter(x=deg, y=result.shaking_transverse, name="shaking transverse",
-                             line={"color": COLORS["backward"], "dash": "dash"}), row=3, col=1)
+    fig = _subplots(
+        rows=3,
+        cols=1,
+        shared_xaxes=True,
+        vertical_spacing=0.06,
+        subplot_titles=("Torques", "Main-bearing load", "Shaking forces"),
+    )
+    for name, values, color in (
+        ("gas", result.gas_torque, COLORS["backward"]),
+        ("inertia", result.inertia_torque, COLORS["forward"]),
+        ("friction", result.friction_torque, COLORS["rotating"]),
+        ("net", result.net_torque, COLORS["total"]),
+    ):
+        fig.add_trace(
+            go.Scatter(x=deg, y=values, name=f"{name} torque", line={"color": color}), row=1, col=1
+        )
+    fig.add_trace(
+        go.Scatter(
+            x=deg, y=result.bearing_load, name="bearing load", line={"color": COLORS["after"]}
+        ),
+        row=2,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=deg,
+            y=result.shaking_inline,
+            name="shaking in-line",
+            line={"color": COLORS["forward"], "dash": "dash"},
+        ),
+        row=3,
+        col=1,
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=deg,
+            y=result.shaking_transverse,
+            name="shaking transverse",
+            line={"color": COLORS["backward"], "dash": "dash"},
+        ),
+        row=3,
+        col=1,
+    )
     fig.update_yaxes(title_text="[N·m]", row=1, col=1)
     fig.update_yaxes(title_text="[N]", row=2, col=1)
     fig.update_yaxes(title_text="[N]", row=3, col=1)
     fig.update_xaxes(title_text="crank angle [deg]", row=3, col=1)
-    fig.update_layout(template=TEMPLATE, height=750, legend={"orientation": "h", "y": -0.08},
-                      title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
-                            f"friction power {result.friction_power:.4g} W")
+    fig.update_layout(
+        template=TEMPLATE,
+        height=750,
+        legend={"orientation": "h", "y": -0.08},
+        title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
+        f"friction power {result.friction_power:.4g} W",
+    )
     return fig
 
 
@@ -944,15 +1473,24 @@ def _ensure_browser() -> None:
     """Point kaleido (choreographer) at Debian's chromium when it finds no browser."""
     if os.environ.get("BROWSER_PATH"):
         return
-    for candidate in ("/usr/bin/chromium", "/usr/bin/chromium-browser",
-                      shutil.which("chromium") or "", shutil.which("google-chrome") or ""):
+    for candidate in (
+        "/usr/bin/chromium",
+        "/usr/bin/chromium-browser",
+        shutil.which("chromium") or "",
+        shutil.which("google-chrome") or "",
+    ):
         if candidate and os.path.exists(candidate):
             os.environ["BROWSER_PATH"] = candidate
             return
 
 
-def to_image(fig: go.Figure, fmt: ImageFormat = "png", width: int | None = None,
-             height: int | None = None, scale: float = 1.0) -> bytes:
+def to_image(
+    fig: go.Figure,
+    fmt: ImageFormat = "png",
+    width: int | None = None,
+    height: int | None = None,
+    scale: float = 1.0,
+) -> bytes:
     """Static image of a figure (PNG or SVG bytes) through kaleido and a headless Chromium.
 
     The first call starts one kaleido server (a headless Chromium, closed at exit) that
@@ -966,8 +1504,12 @@ def to_image(fig: go.Figure, fmt: ImageFormat = "png", width: int | None = None,
 
     _ensure_browser()
     layout = fig.layout
-    opts = {"format": fmt, "width": width or layout.width or 1000,
-            "height": height or layout.height or 600, "scale": scale}
+    opts = {
+        "format": fmt,
+        "width": width or layout.width or 1000,
+        "height": height or layout.height or 600,
+        "scale": scale,
+    }
     fig_dict = fig.to_dict()
     with _SERVER_LOCK:
         _start_server()
@@ -999,10 +1541,21 @@ def _stop_server() -> None:
             kaleido.stop_sync_server(silence_warnings=True)
 
 
-def to_html(fig: go.Figure, include_plotlyjs: bool | str = True, full_html: bool = True,
-            div_id: str | None = None) -> str:
+def to_html(
+    fig: go.Figure,
+    include_plotlyjs: bool | str = True,
+    full_html: bool = True,
+    div_id: str | None = None,
+) -> str:
     """Interactive HTML of a figure; plotly.js inlined by default (works offline)."""
     import plotly.io as pio
 
-    return str(pio.to_html(fig, include_plotlyjs=include_plotlyjs, full_html=full_html,
-                           div_id=div_id, config={"displaylogo": False}))
+    return str(
+        pio.to_html(
+            fig,
+            include_plotlyjs=include_plotlyjs,
+            full_html=full_html,
+            div_id=div_id,
+            config={"displaylogo": False},
+        )
+    )

@@ -36,9 +36,17 @@ from typing import Any
 from .errors import InputError
 
 REPORT_SCHEMA = "crankbalance.report/1"
-CHROMIUM_FLAGS = ("--headless", "--no-sandbox", "--disable-gpu", "--disable-quic",
-                  "--no-first-run", "--disable-background-networking",
-                  "--disable-component-update", "--disable-sync", "--no-pdf-header-footer")
+CHROMIUM_FLAGS = (
+    "--headless",
+    "--no-sandbox",
+    "--disable-gpu",
+    "--disable-quic",
+    "--no-first-run",
+    "--disable-background-networking",
+    "--disable-component-update",
+    "--disable-sync",
+    "--no-pdf-header-footer",
+)
 
 
 @dataclass(frozen=True)
@@ -53,9 +61,13 @@ class Report:
 
     def data(self) -> dict[str, Any]:
         """The numbers of the report (the API's JSON contracts) and its settings."""
-        return {"schema": REPORT_SCHEMA, "created": self.created,
-                "analysis": self.analysis.to_dict(), "balance": self.study.to_dict(),
-                "settings": self.settings}
+        return {
+            "schema": REPORT_SCHEMA,
+            "created": self.created,
+            "analysis": self.analysis.to_dict(),
+            "balance": self.study.to_dict(),
+            "settings": self.settings,
+        }
 
 
 def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
@@ -98,8 +110,9 @@ def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
         "counterweights": options(cw),
         "primary_shafts": options(primary),
         "secondary_shafts": options(secondary),
-        "overrides": {k: (options(v) if dataclasses.is_dataclass(v) else v)
-                      for k, v in overrides.items()},
+        "overrides": {
+            k: (options(v) if dataclasses.is_dataclass(v) else v) for k, v in overrides.items()
+        },
         "units": "SI (m, kg, rad) in the options; angles in the tables in degrees",
     }
     created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
@@ -166,29 +179,54 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
 
     a, s = report.analysis, report.study
     figs: list[tuple[str, str, Any]] = [
-        ("orders", "Free force and moment amplitudes by order (forward and backward phasors "
-                   "stacked; 'rot' is the bare crank's rotating masses).", plots.orders_bar(a)),
-        ("curves-force", "Free forces versus crank angle: reciprocating total, orders, and the "
-                         "whole engine before and after balancing.",
-         plots.curves_figure(a, s, "force")),
-        ("curves-moment", "Free moments about the crankshaft mid-point versus crank angle.",
-         plots.curves_figure(a, s, "moment")),
+        (
+            "orders",
+            "Free force and moment amplitudes by order (forward and backward phasors "
+            "stacked; 'rot' is the bare crank's rotating masses).",
+            plots.orders_bar(a),
+        ),
+        (
+            "curves-force",
+            "Free forces versus crank angle: reciprocating total, orders, and the "
+            "whole engine before and after balancing.",
+            plots.curves_figure(a, s, "force"),
+        ),
+        (
+            "curves-moment",
+            "Free moments about the crankshaft mid-point versus crank angle.",
+            plots.curves_figure(a, s, "moment"),
+        ),
     ]
     amp = a.forces.force_amplitude + a.forces.moment_amplitude
     for n in (int(n) for n in a.forces.orders if n <= 2):
         k = a.forces.order(n)
         if amp[k] > 0:
-            quantity = "force" if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[
-                k] * 1e-12 and a.forces.force_amplitude[k] > 0 else "moment"
-            figs.append((f"polar-{n}-{quantity}",
-                         f"Rotating-vector diagram of order {n} ({quantity}).",
-                         plots.polar_figure(a, n, quantity)))  # type: ignore[arg-type]
+            quantity = (
+                "force"
+                if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[k] * 1e-12
+                and a.forces.force_amplitude[k] > 0
+                else "moment"
+            )
+            figs.append(
+                (
+                    f"polar-{n}-{quantity}",
+                    f"Rotating-vector diagram of order {n} ({quantity}).",
+                    plots.polar_figure(a, n, quantity),
+                )
+            )  # type: ignore[arg-type]
     figs += [
-        ("crank", "The crankshaft at crank angle 0 with its counterweights and balance shafts "
-                  "(shafts beside the crank at a schematic distance).",
-         plots.crank_3d(s.model, s)),
-        ("residuals", "Amplitude of every component before and after balancing (time-domain "
-                      "check of the solver).", plots.residuals_bar(s)),
+        (
+            "crank",
+            "The crankshaft at crank angle 0 with its counterweights and balance shafts "
+            "(shafts beside the crank at a schematic distance).",
+            plots.crank_3d(s.model, s),
+        ),
+        (
+            "residuals",
+            "Amplitude of every component before and after balancing (time-domain "
+            "check of the solver).",
+            plots.residuals_bar(s),
+        ),
     ]
     return figs
 
@@ -202,8 +240,10 @@ def _figure_html(fig_id: str, caption: str, fig: Any, static: bool, first: bool)
         body = f'<img alt="{_html.escape(caption)}" src="data:image/svg+xml;base64,{data}"/>'
     else:
         body = plots.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
-    return (f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
-            "</figcaption></figure>")
+    return (
+        f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
+        "</figcaption></figure>"
+    )
 
 
 # --------------------------------------------------------------------------- HTML
@@ -219,103 +259,216 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     esc = _html.escape
     parts: list[str] = []
     parts.append(f"<h1>{esc(e['name'])}</h1>")
-    parts.append(f'<p class="meta">crankbalance {esc(report.settings["crankbalance_version"])}'
-                 f" balancing report, {esc(report.created)}</p>")
+    parts.append(
+        f'<p class="meta">crankbalance {esc(report.settings["crankbalance_version"])}'
+        f" balancing report, {esc(report.created)}</p>"
+    )
 
     # engine data
     parts.append("<h2>Engine</h2>")
     rows = [
-        ["cylinders", e["cylinders"]], ["throws", e["throws"]],
-        ["speed [rpm]", e["speed_rpm"]], ["crank radius [mm]", e["crank_radius_m"] * 1e3],
-        ["rod length [mm]", e["rod_length_m"] * 1e3], ["rod ratio r/l", e["rod_ratio"]],
-        ["offset [mm]", e["offset_m"] * 1e3], ["kinematics", e["kinematics"]],
-        ["firing order", "-".join(str(c) for c in report.study.model.firing_order)
-         + ("" if report.study.model.firing_order_given else " (not given: cylinder order)")],
+        ["cylinders", e["cylinders"]],
+        ["throws", e["throws"]],
+        ["speed [rpm]", e["speed_rpm"]],
+        ["crank radius [mm]", e["crank_radius_m"] * 1e3],
+        ["rod length [mm]", e["rod_length_m"] * 1e3],
+        ["rod ratio r/l", e["rod_ratio"]],
+        ["offset [mm]", e["offset_m"] * 1e3],
+        ["kinematics", e["kinematics"]],
+        [
+            "firing order",
+            "-".join(str(c) for c in report.study.model.firing_order)
+            + ("" if report.study.model.firing_order_given else " (not given: cylinder order)"),
+        ],
     ]
     parts.append(_table(["quantity", "value"], rows))
-    throw_rows = [[t + 1, e["throw_angle_deg"][t] % 360.0, e["throw_position_m"][t] * 1e3,
-                   a["masses"]["rotating_kg"][t]] for t in range(e["throws"])]
+    throw_rows = [
+        [
+            t + 1,
+            e["throw_angle_deg"][t] % 360.0,
+            e["throw_position_m"][t] * 1e3,
+            a["masses"]["rotating_kg"][t],
+        ]
+        for t in range(e["throws"])
+    ]
     parts.append("<h3>Throws</h3>")
-    parts.append(_table(["throw", "angle [deg]", "position y [mm]",
-                         "rotating mass [kg]"], throw_rows))
-    cyl_rows = [[c + 1, e["cylinder_throw"][c], e["cylinder_bank_deg"][c],
-                 a["masses"]["reciprocating_kg"][c]] for c in range(e["cylinders"])]
+    parts.append(
+        _table(["throw", "angle [deg]", "position y [mm]", "rotating mass [kg]"], throw_rows)
+    )
+    cyl_rows = [
+        [
+            c + 1,
+            e["cylinder_throw"][c],
+            e["cylinder_bank_deg"][c],
+            a["masses"]["reciprocating_kg"][c],
+        ]
+        for c in range(e["cylinders"])
+    ]
     parts.append("<h3>Cylinders</h3>")
-    parts.append(_table(["cylinder", "throw", "bank angle [deg]", "reciprocating mass [kg]"],
-                        cyl_rows))
+    parts.append(
+        _table(["cylinder", "throw", "bank angle [deg]", "reciprocating mass [kg]"], cyl_rows)
+    )
 
     # mass split
     parts.append("<h2>Mass split</h2>")
     m = a["masses"]
-    parts.append(f"<p>Reciprocating mass per cylinder: {_distinct(m['reciprocating_kg'])} kg; "
-                 f"rotating mass per throw (at the crank radius, big ends included): "
-                 f"{_distinct(m['rotating_kg'])} kg.</p>")
+    parts.append(
+        f"<p>Reciprocating mass per cylinder: {_distinct(m['reciprocating_kg'])} kg; "
+        f"rotating mass per throw (at the crank radius, big ends included): "
+        f"{_distinct(m['rotating_kg'])} kg.</p>"
+    )
     if m["conrods"]:
         rods = m["conrods"]
-        parts.append(_table(
-            ["conrod", "mass [kg]", "rotating [kg]", "reciprocating [kg]",
-             "CG from big end [mm]", "two-mass inertia [kg·mm²]", "inertia error [kg·mm²]"],
-            [[r["cylinder"], r["mass"], r["rotating"], r["reciprocating"],
-              r["cg_from_big_end"] * 1e3, r["inertia_two_mass"] * 1e6,
-              None if r["inertia_error"] is None else r["inertia_error"] * 1e6] for r in rods]))
+        parts.append(
+            _table(
+                [
+                    "conrod",
+                    "mass [kg]",
+                    "rotating [kg]",
+                    "reciprocating [kg]",
+                    "CG from big end [mm]",
+                    "two-mass inertia [kg·mm²]",
+                    "inertia error [kg·mm²]",
+                ],
+                [
+                    [
+                        r["cylinder"],
+                        r["mass"],
+                        r["rotating"],
+                        r["reciprocating"],
+                        r["cg_from_big_end"] * 1e3,
+                        r["inertia_two_mass"] * 1e6,
+                        None if r["inertia_error"] is None else r["inertia_error"] * 1e6,
+                    ]
+                    for r in rods
+                ],
+            )
+        )
 
     # free forces and moments
     parts.append("<h2>Free forces and moments</h2>")
-    parts.append("<p>Reciprocating masses, by order; amplitude = largest magnitude over a "
-                 "revolution = |forward| + |backward|; moments about the crankshaft mid-point; "
-                 "phases at crank angle 0 from +z toward +x.</p>")
-    rows = [[f["order"], f["amplitude_N"], f["forward_N"], f["backward_N"],
-             mo["amplitude_Nm"], mo["forward_Nm"], mo["backward_Nm"]]
-            for f, mo in zip(a["free_forces"], a["free_moments"], strict=True)]
-    parts.append(_table(["order", "force [N]", "forward [N]", "backward [N]", "moment [N·m]",
-                         "forward [N·m]", "backward [N·m]"], rows, "free"))
+    parts.append(
+        "<p>Reciprocating masses, by order; amplitude = largest magnitude over a "
+        "revolution = |forward| + |backward|; moments about the crankshaft mid-point; "
+        "phases at crank angle 0 from +z toward +x.</p>"
+    )
+    rows = [
+        [
+            f["order"],
+            f["amplitude_N"],
+            f["forward_N"],
+            f["backward_N"],
+            mo["amplitude_Nm"],
+            mo["forward_Nm"],
+            mo["backward_Nm"],
+        ]
+        for f, mo in zip(a["free_forces"], a["free_moments"], strict=True)
+    ]
+    parts.append(
+        _table(
+            [
+                "order",
+                "force [N]",
+                "forward [N]",
+                "backward [N]",
+                "moment [N·m]",
+                "forward [N·m]",
+                "backward [N·m]",
+            ],
+            rows,
+            "free",
+        )
+    )
     rot = a["rotating"]
-    parts.append(f"<p>Rotating masses of the bare crank (no counterweights): force "
-                 f"{fmt(rot['force_N'])} N, moment {fmt(rot['moment_Nm'])} N·m.</p>")
+    parts.append(
+        f"<p>Rotating masses of the bare crank (no counterweights): force "
+        f"{fmt(rot['force_N'])} N, moment {fmt(rot['moment_Nm'])} N·m.</p>"
+    )
 
     # balancing masses
     parts.append("<h2>Balancing masses</h2>")
-    for key, title in (("counterweight", "Crank counterweights"),
-                       ("extra_counterweights", "Extra counterweights (Eq. 17)")):
+    for key, title in (
+        ("counterweight", "Crank counterweights"),
+        ("extra_counterweights", "Extra counterweights (Eq. 17)"),
+    ):
         cw = b[key]
         if cw is None:
             continue
         parts.append(f"<h3>{title}</h3>")
-        parts.append(f"<p>{cw['count']} counterweights, method {esc(cw['method'])}, scope "
-                     f"{esc(cw['scope'])}, CG radius {fmt(cw['cg_radius_m'] * 1e3)} mm"
-                     + ("" if cw["angle_deg"] is None else
-                        f", angle {fmt(_angle(cw['angle_deg']))} deg")
-                     + f"; largest mass {fmt(cw['mass_kg'])} kg, total "
-                       f"{fmt(cw['total_mass_kg'])} kg.</p>")
-        parts.append(_table(["web", "throw", "position y [mm]", "mass [kg]", "direction [deg]"],
-                            [[w["web"], w["throw"], w["position_m"] * 1e3, w["mass_kg"],
-                              _angle(w["direction_deg"])] for w in cw["webs"]]))
+        parts.append(
+            f"<p>{cw['count']} counterweights, method {esc(cw['method'])}, scope "
+            f"{esc(cw['scope'])}, CG radius {fmt(cw['cg_radius_m'] * 1e3)} mm"
+            + ("" if cw["angle_deg"] is None else f", angle {fmt(_angle(cw['angle_deg']))} deg")
+            + f"; largest mass {fmt(cw['mass_kg'])} kg, total "
+            f"{fmt(cw['total_mass_kg'])} kg.</p>"
+        )
+        parts.append(
+            _table(
+                ["web", "throw", "position y [mm]", "mass [kg]", "direction [deg]"],
+                [
+                    [
+                        w["web"],
+                        w["throw"],
+                        w["position_m"] * 1e3,
+                        w["mass_kg"],
+                        _angle(w["direction_deg"]),
+                    ]
+                    for w in cw["webs"]
+                ],
+            )
+        )
         if cw["note"]:
             parts.append(f'<p class="note">{esc(cw["note"])}</p>')
-    for key, title in (("primary_shafts", "Primary balance shafts (crank speed)"),
-                       ("secondary_shafts", "Secondary balance shafts (twice crank speed)")):
+    for key, title in (
+        ("primary_shafts", "Primary balance shafts (crank speed)"),
+        ("secondary_shafts", "Secondary balance shafts (twice crank speed)"),
+    ):
         group = b[key]
         if group is None:
             parts.append(f"<h3>{title}</h3><p>none</p>")
             continue
         parts.append(f"<h3>{title}</h3>")
-        parts.append(f"<p>Arrangement {esc(group['arrangement'])}, distance between the outer "
-                     f"masses {fmt(group['length_m'] * 1e3)} mm; largest mass "
-                     f"{fmt(group['mass_kg'])} kg.</p>")
-        rows = [[s["rotation"], s["speed_ratio"], s["cg_radius_m"] * 1e3,
-                 x["position_m"] * 1e3, x["mass_kg"], _angle(x["phase_deg"])]
-                for s in group["shafts"] for x in s["masses"]]
+        parts.append(
+            f"<p>Arrangement {esc(group['arrangement'])}, distance between the outer "
+            f"masses {fmt(group['length_m'] * 1e3)} mm; largest mass "
+            f"{fmt(group['mass_kg'])} kg.</p>"
+        )
+        rows = [
+            [
+                s["rotation"],
+                s["speed_ratio"],
+                s["cg_radius_m"] * 1e3,
+                x["position_m"] * 1e3,
+                x["mass_kg"],
+                _angle(x["phase_deg"]),
+            ]
+            for s in group["shafts"]
+            for x in s["masses"]
+        ]
         if rows:
-            parts.append(_table(["shaft", "speed ratio", "CG radius [mm]", "position y [mm]",
-                                 "mass [kg]", "phase [deg]"], rows))
+            parts.append(
+                _table(
+                    [
+                        "shaft",
+                        "speed ratio",
+                        "CG radius [mm]",
+                        "position y [mm]",
+                        "mass [kg]",
+                        "phase [deg]",
+                    ],
+                    rows,
+                )
+            )
         for s in group["shafts"]:
             if s["note"]:
                 parts.append(f'<p class="note">{esc(s["rotation"])}: {esc(s["note"])}</p>')
 
     # residuals
     parts.append("<h2>Residuals</h2>")
-    parts.append("<p>Amplitude of every component before and after balancing, from a "
-                 "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>")
+    parts.append(
+        "<p>Amplitude of every component before and after balancing, from a "
+        "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>"
+    )
     from .plots import roundoff_levels
 
     tiny_f, tiny_m = roundoff_levels(report.study.model)
@@ -323,17 +476,35 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     def clean(value: float, tiny: float) -> float:
         return 0.0 if abs(value) < tiny else value
 
-    parts.append(_table(["component", "targeted", "force before [N]", "force after [N]",
-                         "moment before [N·m]", "moment after [N·m]"],
-                        [[c["component"], c["targeted"], clean(c["force_before_N"], tiny_f),
-                          clean(c["force_after_N"], tiny_f), clean(c["moment_before_Nm"], tiny_m),
-                          clean(c["moment_after_Nm"], tiny_m)]
-                         for c in b["components"]], "residuals"))
-    parts.append(f"<p>Values below round-off ({fmt(tiny_f)} N, {fmt(tiny_m)} N·m) are shown "
-                 "as 0.</p>")
+    parts.append(
+        _table(
+            [
+                "component",
+                "targeted",
+                "force before [N]",
+                "force after [N]",
+                "moment before [N·m]",
+                "moment after [N·m]",
+            ],
+            [
+                [
+                    c["component"],
+                    c["targeted"],
+                    clean(c["force_before_N"], tiny_f),
+                    clean(c["force_after_N"], tiny_f),
+                    clean(c["moment_before_Nm"], tiny_m),
+                    clean(c["moment_after_Nm"], tiny_m),
+                ]
+                for c in b["components"]
+            ],
+            "residuals",
+        )
+    )
+    parts.append(
+        f"<p>Values below round-off ({fmt(tiny_f)} N, {fmt(tiny_m)} N·m) are shown as 0.</p>"
+    )
     if b["unbalanced"]:
-        parts.append("<p>Left unbalanced: " + "; ".join(esc(u) for u in b["unbalanced"])
-                     + ".</p>")
+        parts.append("<p>Left unbalanced: " + "; ".join(esc(u) for u in b["unbalanced"]) + ".</p>")
     for note in b["notes"]:
         parts.append(f'<p class="note">{esc(note)}</p>')
 
@@ -345,17 +516,21 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
 
     # settings
     parts.append("<h2>Settings used</h2>")
-    parts.append("<pre>" + esc(json.dumps(report.settings, indent=2, default=_json_default))
-                 + "</pre>")
+    parts.append(
+        "<pre>" + esc(json.dumps(report.settings, indent=2, default=_json_default)) + "</pre>"
+    )
     parts.append("<h3>Engine file</h3>")
     parts.append("<pre>" + esc(report.engine_file) + "</pre>")
 
     data = json.dumps(report.data(), default=_json_default).replace("</", "<\\/")
-    return ("<!DOCTYPE html>\n<html lang=\"en\">\n<head>\n<meta charset=\"utf-8\"/>\n"
-            f"<title>{esc(e['name'])}: balancing report</title>\n<style>{CSS}</style>\n"
-            "</head>\n<body>\n" + "\n".join(parts)
-            + f'\n<script type="application/json" id="crankbalance-data">{data}</script>\n'
-            "</body>\n</html>\n")
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
+        f"<title>{esc(e['name'])}: balancing report</title>\n<style>{CSS}</style>\n"
+        "</head>\n<body>\n"
+        + "\n".join(parts)
+        + f'\n<script type="application/json" id="crankbalance-data">{data}</script>\n'
+        "</body>\n</html>\n"
+    )
 
 
 def _json_default(value: Any) -> Any:
@@ -369,15 +544,23 @@ def find_chromium(chromium: str | None = None) -> str:
     /usr/bin/chromium or chromium/google-chrome on the PATH."""
     if chromium is not None and not (os.path.isfile(chromium) and os.access(chromium, os.X_OK)):
         raise InputError("chromium", chromium, "an executable Chromium (e.g. /usr/bin/chromium)")
-    for candidate in (chromium, os.environ.get("CRANKBALANCE_CHROMIUM"),
-                      os.environ.get("BROWSER_PATH"), "/usr/bin/chromium",
-                      shutil.which("chromium"), shutil.which("chromium-browser"),
-                      shutil.which("google-chrome")):
+    for candidate in (
+        chromium,
+        os.environ.get("CRANKBALANCE_CHROMIUM"),
+        os.environ.get("BROWSER_PATH"),
+        "/usr/bin/chromium",
+        shutil.which("chromium"),
+        shutil.which("chromium-browser"),
+        shutil.which("google-chrome"),
+    ):
         if candidate and os.path.exists(candidate):
             return candidate
-    raise InputError("chromium", chromium or "not found",
-                     "a Chromium executable to print the PDF (apt package chromium, or set "
-                     "CRANKBALANCE_CHROMIUM)")
+    raise InputError(
+        "chromium",
+        chromium or "not found",
+        "a Chromium executable to print the PDF (apt package chromium, or set "
+        "CRANKBALANCE_CHROMIUM)",
+    )
 
 
 def html_to_pdf(html: str, chromium: str | None = None, timeout: float = 120.0) -> bytes:
@@ -387,21 +570,32 @@ def html_to_pdf(html: str, chromium: str | None = None, timeout: float = 120.0) 
         page = Path(tmp) / "report.html"
         out = Path(tmp) / "report.pdf"
         page.write_text(html, encoding="utf-8")
-        command = [exe, *CHROMIUM_FLAGS, f"--user-data-dir={Path(tmp) / 'profile'}",
-                   f"--print-to-pdf={out}", page.as_uri()]
+        command = [
+            exe,
+            *CHROMIUM_FLAGS,
+            f"--user-data-dir={Path(tmp) / 'profile'}",
+            f"--print-to-pdf={out}",
+            page.as_uri(),
+        ]
         try:
             done = subprocess.run(command, capture_output=True, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             raise InputError("chromium", exe, f"to print the PDF within {timeout:g} s") from None
         if not out.exists() or out.stat().st_size == 0:
             tail = done.stderr.decode(errors="replace").strip().splitlines()[-3:]
-            raise InputError("chromium", exe, "a Chromium that prints PDFs (it failed: "
-                             + " | ".join(tail) + ")")
+            raise InputError(
+                "chromium", exe, "a Chromium that prints PDFs (it failed: " + " | ".join(tail) + ")"
+            )
         return out.read_bytes()
 
 
-def write_report(engine: Any, path: str | os.PathLike[str], orders: int = 8,
-                 chromium: str | None = None, **overrides: Any) -> Path:
+def write_report(
+    engine: Any,
+    path: str | os.PathLike[str],
+    orders: int = 8,
+    chromium: str | None = None,
+    **overrides: Any,
+) -> Path:
     """Write the report of ``engine`` to ``path`` (``.html``/``.htm`` or ``.pdf``),
     atomically."""
     from .io import write_atomic
@@ -419,6 +613,7 @@ def write_report(engine: Any, path: str | os.PathLike[str], orders: int = 8,
     try:
         write_atomic(target, data)
     except OSError as error:
-        raise InputError("output", str(path),
-                         f"a file that can be written ({error.strerror})") from None
+        raise InputError(
+            "output", str(path), f"a file that can be written ({error.strerror})"
+        ) from None
     return target

@@ -18,8 +18,9 @@ from .single_cylinder import (
 )
 
 
-def cylinder_inertia(diameter: float, length: float, density: float = STEEL_DENSITY,
-                     bore: float = 0.0) -> float:
+def cylinder_inertia(
+    diameter: float, length: float, density: float = STEEL_DENSITY, bore: float = 0.0
+) -> float:
     r"""Mass moment of inertia of a (hollow) cylinder about its own axis [kg m^2].
 
     Parameters
@@ -67,8 +68,13 @@ def point_mass_inertia(mass: float, radius: float) -> float:
     return mass * radius**2
 
 
-def stepped_rotor_inertia(disc_diameter: float, disc_thickness: float, shaft_diameter: float,
-                          overall_length: float, density: float = STEEL_DENSITY) -> float:
+def stepped_rotor_inertia(
+    disc_diameter: float,
+    disc_thickness: float,
+    shaft_diameter: float,
+    overall_length: float,
+    density: float = STEEL_DENSITY,
+) -> float:
     r"""Inertia of a central disc on a shaft (the thesis' simplified crank) [kg m^2].
 
     Parameters
@@ -92,10 +98,14 @@ def stepped_rotor_inertia(disc_diameter: float, disc_thickness: float, shaft_dia
     """
     check_positive("disc_thickness", disc_thickness)
     if not disc_thickness < overall_length:
-        raise InputError("disc_thickness", disc_thickness,
-                         f"must be shorter than overall_length = {overall_length:g} m")
-    return (cylinder_inertia(disc_diameter, disc_thickness, density)
-            + cylinder_inertia(shaft_diameter, overall_length - disc_thickness, density))
+        raise InputError(
+            "disc_thickness",
+            disc_thickness,
+            f"must be shorter than overall_length = {overall_length:g} m",
+        )
+    return cylinder_inertia(disc_diameter, disc_thickness, density) + cylinder_inertia(
+        shaft_diameter, overall_length - disc_thickness, density
+    )
 
 
 @dataclass(frozen=True)
@@ -130,9 +140,13 @@ class TestRotor(ResultMixin):
     density: float
 
 
-def equal_inertia_test_rotor(inertia: float, disc_diameter: float, shaft_diameter: float,
-                             overall_length: float,
-                             density: float = STEEL_DENSITY) -> TestRotor:
+def equal_inertia_test_rotor(
+    inertia: float,
+    disc_diameter: float,
+    shaft_diameter: float,
+    overall_length: float,
+    density: float = STEEL_DENSITY,
+) -> TestRotor:
     r"""Disc thickness giving a disc-on-shaft rotor the inertia of a real crank.
 
     Parameters
@@ -159,28 +173,46 @@ def equal_inertia_test_rotor(inertia: float, disc_diameter: float, shaft_diamete
     check_positive("overall_length", overall_length)
     check_positive("density", density)
     if not shaft_diameter < disc_diameter:
-        raise InputError("shaft_diameter", shaft_diameter,
-                         f"must be smaller than disc_diameter = {disc_diameter:g} m")
-    thickness = ((32.0 * inertia / (density * math.pi) - shaft_diameter**4 * overall_length)
-                 / (disc_diameter**4 - shaft_diameter**4))
+        raise InputError(
+            "shaft_diameter",
+            shaft_diameter,
+            f"must be smaller than disc_diameter = {disc_diameter:g} m",
+        )
+    thickness = (32.0 * inertia / (density * math.pi) - shaft_diameter**4 * overall_length) / (
+        disc_diameter**4 - shaft_diameter**4
+    )
     if not 0 < thickness < overall_length:
         low = cylinder_inertia(shaft_diameter, overall_length, density)
         high = cylinder_inertia(disc_diameter, overall_length, density)
-        raise InputError("inertia", inertia,
-                         f"cannot be reached with these diameters and length: must lie "
-                         f"between {low:.6g} and {high:.6g} kg*m^2")
-    mass = density * math.pi / 4.0 * (disc_diameter**2 * thickness
-                                      + shaft_diameter**2 * (overall_length - thickness))
-    return TestRotor(disc_diameter=disc_diameter, shaft_diameter=shaft_diameter,
-                     overall_length=overall_length, disc_thickness=thickness,
-                     shaft_end_length=(overall_length - thickness) / 2.0,
-                     inertia=stepped_rotor_inertia(disc_diameter, thickness, shaft_diameter,
-                                                   overall_length, density),
-                     mass=mass, density=density)
+        raise InputError(
+            "inertia",
+            inertia,
+            f"cannot be reached with these diameters and length: must lie "
+            f"between {low:.6g} and {high:.6g} kg*m^2",
+        )
+    mass = (
+        density
+        * math.pi
+        / 4.0
+        * (disc_diameter**2 * thickness + shaft_diameter**2 * (overall_length - thickness))
+    )
+    return TestRotor(
+        disc_diameter=disc_diameter,
+        shaft_diameter=shaft_diameter,
+        overall_length=overall_length,
+        disc_thickness=thickness,
+        shaft_end_length=(overall_length - thickness) / 2.0,
+        inertia=stepped_rotor_inertia(
+            disc_diameter, thickness, shaft_diameter, overall_length, density
+        ),
+        mass=mass,
+        density=density,
+    )
 
 
-def crankpin_overlap(main_journal_diameter: float, crankpin_diameter: float,
-                     stroke: float) -> float:
+def crankpin_overlap(
+    main_journal_diameter: float, crankpin_diameter: float, stroke: float
+) -> float:
     r"""Crankpin overlap [m]: how far the crankpin overlaps the main journal.
 
     Negative values mean no overlap (a gap).
@@ -242,11 +274,19 @@ class StrokingEffect(ResultMixin):
     new_crankpin_overlap: float | None
 
 
-def stroking_effect(crank_radius: float, crankpin_diameter: float, new_crankpin_diameter: float,
-                    crankpin_mass: float, rotating_mass: float, reciprocating_mass: float,
-                    counterweight_mass: float, counterweight_radius: float,
-                    crankpin_bore: float = 0.0, bore: float = 0.0,
-                    main_journal_diameter: float | None = None) -> StrokingEffect:
+def stroking_effect(
+    crank_radius: float,
+    crankpin_diameter: float,
+    new_crankpin_diameter: float,
+    crankpin_mass: float,
+    rotating_mass: float,
+    reciprocating_mass: float,
+    counterweight_mass: float,
+    counterweight_radius: float,
+    crankpin_bore: float = 0.0,
+    bore: float = 0.0,
+    main_journal_diameter: float | None = None,
+) -> StrokingEffect:
     r"""Stroking by offset grinding: a smaller crankpin whose outermost fibre stays put.
 
     Parameters
@@ -286,38 +326,52 @@ def stroking_effect(crank_radius: float, crankpin_diameter: float, new_crankpin_
     check_positive("crankpin_diameter", crankpin_diameter)
     check_positive("new_crankpin_diameter", new_crankpin_diameter)
     if not crankpin_bore < new_crankpin_diameter <= crankpin_diameter:
-        raise InputError("new_crankpin_diameter", new_crankpin_diameter,
-                         f"must lie in ({crankpin_bore:g}, {crankpin_diameter:g}] m "
-                         "(stroking makes the crankpin smaller, not below its bore)")
+        raise InputError(
+            "new_crankpin_diameter",
+            new_crankpin_diameter,
+            f"must lie in ({crankpin_bore:g}, {crankpin_diameter:g}] m "
+            "(stroking makes the crankpin smaller, not below its bore)",
+        )
     _check_mass("crankpin_mass", crankpin_mass)
     _check_mass("rotating_mass", rotating_mass)
     if crankpin_mass > rotating_mass:
-        raise InputError("crankpin_mass", crankpin_mass,
-                         f"must not exceed rotating_mass = {rotating_mass:g} kg")
+        raise InputError(
+            "crankpin_mass", crankpin_mass, f"must not exceed rotating_mass = {rotating_mass:g} kg"
+        )
     if not bore >= 0:
         raise InputError("bore", bore, "must be >= 0 [m]")
     new_radius = crank_radius + (crankpin_diameter - new_crankpin_diameter) / 2.0
-    new_pin = crankpin_mass * ((new_crankpin_diameter**2 - crankpin_bore**2)
-                               / (crankpin_diameter**2 - crankpin_bore**2))
+    new_pin = crankpin_mass * (
+        (new_crankpin_diameter**2 - crankpin_bore**2) / (crankpin_diameter**2 - crankpin_bore**2)
+    )
     new_rotating = rotating_mass - crankpin_mass + new_pin
-    fb = balance_factor_from_mass_properties(counterweight_mass, counterweight_radius,
-                                             crank_radius, rotating_mass, reciprocating_mass)
-    fb_new = balance_factor_from_mass_properties(counterweight_mass, counterweight_radius,
-                                                 new_radius, new_rotating, reciprocating_mass)
+    fb = balance_factor_from_mass_properties(
+        counterweight_mass, counterweight_radius, crank_radius, rotating_mass, reciprocating_mass
+    )
+    fb_new = balance_factor_from_mass_properties(
+        counterweight_mass, counterweight_radius, new_radius, new_rotating, reciprocating_mass
+    )
     keep = (new_rotating + fb * reciprocating_mass) * new_radius
     area = math.pi * bore**2 / 4.0
     cpo = cpo_new = None
     if main_journal_diameter is not None:
         cpo = crankpin_overlap(main_journal_diameter, crankpin_diameter, 2 * crank_radius)
-        cpo_new = crankpin_overlap(main_journal_diameter, new_crankpin_diameter,
-                                   2 * new_radius)
+        cpo_new = crankpin_overlap(main_journal_diameter, new_crankpin_diameter, 2 * new_radius)
     return StrokingEffect(
-        crank_radius=crank_radius, new_crank_radius=new_radius, stroke=2 * crank_radius,
-        new_stroke=2 * new_radius, crankpin_mass=crankpin_mass, new_crankpin_mass=new_pin,
-        rotating_mass=rotating_mass, new_rotating_mass=new_rotating,
+        crank_radius=crank_radius,
+        new_crank_radius=new_radius,
+        stroke=2 * crank_radius,
+        new_stroke=2 * new_radius,
+        crankpin_mass=crankpin_mass,
+        new_crankpin_mass=new_pin,
+        rotating_mass=rotating_mass,
+        new_rotating_mass=new_rotating,
         rotating_unbalance=rotating_mass * crank_radius,
-        new_rotating_unbalance=new_rotating * new_radius, balance_factor=fb,
+        new_rotating_unbalance=new_rotating * new_radius,
+        balance_factor=fb,
         new_balance_factor=fb_new,
         counterweight_correction=counterweight_mass * counterweight_radius - keep,
         displacement_change=area * 2 * (new_radius - crank_radius),
-        crankpin_overlap=cpo, new_crankpin_overlap=cpo_new)
+        crankpin_overlap=cpo,
+        new_crankpin_overlap=cpo_new,
+    )

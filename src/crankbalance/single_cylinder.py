@@ -57,6 +57,7 @@ FaceOrientation = Literal["axial", "radial"]
 # validation helpers
 # ---------------------------------------------------------------------------------------
 
+
 def _check_balance_factor(value: float, field_name: str = "balance_factor") -> float:
     low, high = BALANCE_FACTOR_RANGE
     return check_range(field_name, value, low, high)
@@ -77,6 +78,7 @@ def _check_model(model: str) -> None:
 # tier 1: pure functions
 # ---------------------------------------------------------------------------------------
 
+
 def primary_force(reciprocating_mass: float, crank_radius: float, speed: float) -> float:
     r"""Amplitude of the primary reciprocating force :math:`P = m_{rec} r \omega^2` [N].
 
@@ -96,10 +98,16 @@ def primary_force(reciprocating_mass: float, crank_radius: float, speed: float) 
     return reciprocating_mass * crank_radius * speed**2
 
 
-def single_cylinder_forces(angle: ArrayLike, balance_factor: ArrayLike,
-                           reciprocating_mass: float, crank_radius: float, speed: float,
-                           rod_length: float | None = None, offset: float = 0.0,
-                           model: KinematicsModel = "exact") -> tuple[NDArray, NDArray]:
+def single_cylinder_forces(
+    angle: ArrayLike,
+    balance_factor: ArrayLike,
+    reciprocating_mass: float,
+    crank_radius: float,
+    speed: float,
+    rod_length: float | None = None,
+    offset: float = 0.0,
+    model: KinematicsModel = "exact",
+) -> tuple[NDArray, NDArray]:
     r"""In-line and transverse shaking force of one cylinder [N] with the rotating mass balanced.
 
     Parameters
@@ -139,9 +147,12 @@ def single_cylinder_forces(angle: ArrayLike, balance_factor: ArrayLike,
     if not math.isfinite(offset):
         raise InputError("offset", offset, "must be a finite length [m]")
     if offset != 0.0 and model != "exact":
-        raise InputError("offset", offset,
-                         f"the {model!r} kinematics has no wrist-pin offset; use model='exact' "
-                         "(with the conrod length) or offset = 0")
+        raise InputError(
+            "offset",
+            offset,
+            f"the {model!r} kinematics has no wrist-pin offset; use model='exact' "
+            "(with the conrod length) or offset = 0",
+        )
     psi = np.asarray(angle, dtype=float)
     fb = np.asarray(balance_factor, dtype=float)
     p = primary_force(reciprocating_mass, crank_radius, speed)
@@ -149,17 +160,21 @@ def single_cylinder_forces(angle: ArrayLike, balance_factor: ArrayLike,
         inertia = np.cos(psi)
     else:
         if rod_length is None:
-            raise InputError("rod_length", rod_length,
-                             f"the {model!r} kinematics needs the conrod length; "
-                             "give it or use model='first-order'")
+            raise InputError(
+                "rod_length",
+                rod_length,
+                f"the {model!r} kinematics needs the conrod length; "
+                "give it or use model='first-order'",
+            )
         if model == "exact":
             inertia = -piston_acceleration(psi, crank_radius, rod_length, offset) / crank_radius
         else:
             from .kinematics import series_coefficients
 
             a2, a4, a6 = series_coefficients(crank_radius / rod_length)
-            inertia = (np.cos(psi) + a2 * np.cos(2 * psi) + a4 * np.cos(4 * psi)
-                       + a6 * np.cos(6 * psi))
+            inertia = (
+                np.cos(psi) + a2 * np.cos(2 * psi) + a4 * np.cos(4 * psi) + a6 * np.cos(6 * psi)
+            )
     in_line = p * (inertia - fb * np.cos(psi))
     transverse = -p * fb * np.sin(psi) * np.ones_like(in_line)
     return in_line, transverse
@@ -176,8 +191,9 @@ def first_order_peak_resultant(balance_factor: ArrayLike) -> NDArray:
     return np.maximum(fb, np.abs(1.0 - fb))
 
 
-def counterweight_moment(rotating_mass: float, reciprocating_mass: float,
-                         balance_factor: float, crank_radius: float) -> float:
+def counterweight_moment(
+    rotating_mass: float, reciprocating_mass: float, balance_factor: float, crank_radius: float
+) -> float:
     r"""First moment the counterweight (webs included) must have [kg m].
 
     .. math:: m_{cw}\,r' = (m_{rot} + f_b\,m_{rec})\,r
@@ -194,9 +210,13 @@ def counterweight_moment(rotating_mass: float, reciprocating_mass: float,
     return (rotating_mass + balance_factor * reciprocating_mass) * crank_radius
 
 
-def balance_factor_from_mass_properties(counterweight_mass: float, counterweight_radius: float,
-                                        crank_radius: float, rotating_mass: float,
-                                        reciprocating_mass: float) -> float:
+def balance_factor_from_mass_properties(
+    counterweight_mass: float,
+    counterweight_radius: float,
+    crank_radius: float,
+    rotating_mass: float,
+    reciprocating_mass: float,
+) -> float:
     r"""Balance factor of an existing crank from its mass properties [-].
 
     Parameters
@@ -223,8 +243,9 @@ def balance_factor_from_mass_properties(counterweight_mass: float, counterweight
     check_positive("crank_radius", crank_radius)
     _check_mass("rotating_mass", rotating_mass)
     check_positive("reciprocating_mass", reciprocating_mass)
-    return (counterweight_mass * counterweight_radius / crank_radius
-            - rotating_mass) / reciprocating_mass
+    return (
+        counterweight_mass * counterweight_radius / crank_radius - rotating_mass
+    ) / reciprocating_mass
 
 
 def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: float) -> float:
@@ -256,6 +277,7 @@ def sum_parts(parts: dict[str, float], field_name: str = "parts") -> float:
 # ---------------------------------------------------------------------------------------
 # tier 3 orchestrator: balance factor study
 # ---------------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class BalanceFactorStudy(ResultMixin):
@@ -310,15 +332,24 @@ def _refined_peak(fun, samples: int = 720) -> float:
     values = fun(grid)
     k = int(np.argmax(values))
     step = 2.0 * np.pi / samples
-    best = minimize_scalar(lambda x: -float(fun(np.array([x]))[0]),
-                           bounds=(grid[k] - step, grid[k] + step), method="bounded",
-                           options={"xatol": 1e-12})
+    best = minimize_scalar(
+        lambda x: -float(fun(np.array([x]))[0]),
+        bounds=(grid[k] - step, grid[k] + step),
+        method="bounded",
+        options={"xatol": 1e-12},
+    )
     return max(float(values[k]), -float(best.fun))
 
 
-def peak_resultant(balance_factor: float, reciprocating_mass: float, crank_radius: float,
-                   speed: float, rod_length: float | None = None, offset: float = 0.0,
-                   model: KinematicsModel = "exact") -> float:
+def peak_resultant(
+    balance_factor: float,
+    reciprocating_mass: float,
+    crank_radius: float,
+    speed: float,
+    rod_length: float | None = None,
+    offset: float = 0.0,
+    model: KinematicsModel = "exact",
+) -> float:
     r"""Largest magnitude of the residual shaking force over one revolution [N].
 
     .. math:: \max_\theta \sqrt{F_i(\theta)^2 + F_t(\theta)^2}
@@ -327,19 +358,27 @@ def peak_resultant(balance_factor: float, reciprocating_mass: float, crank_radiu
     ----------
     004 (NTNU thesis) Fig. 4.8.
     """
+
     def magnitude(psi: NDArray) -> NDArray:
-        fi, ft = single_cylinder_forces(psi, balance_factor, reciprocating_mass, crank_radius,
-                                        speed, rod_length, offset, model)
+        fi, ft = single_cylinder_forces(
+            psi, balance_factor, reciprocating_mass, crank_radius, speed, rod_length, offset, model
+        )
         return np.hypot(fi, ft)
 
     return _refined_peak(magnitude)
 
 
-def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: float,
-                         balance_factor: float = 0.5, rod_length: float | None = None,
-                         offset: float = 0.0, model: KinematicsModel = "exact",
-                         samples: int = 360,
-                         sweep: Sequence[float] | NDArray | None = None) -> BalanceFactorStudy:
+def balance_factor_study(
+    reciprocating_mass: float,
+    crank_radius: float,
+    speed: float,
+    balance_factor: float = 0.5,
+    rod_length: float | None = None,
+    offset: float = 0.0,
+    model: KinematicsModel = "exact",
+    samples: int = 360,
+    sweep: Sequence[float] | NDArray | None = None,
+) -> BalanceFactorStudy:
     r"""Forces versus crank angle for one balance factor, and the peak resultant versus f_b.
 
     Parameters
@@ -386,12 +425,15 @@ def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: 
     if rod_length is not None:
         check_positive("rod_length", rod_length)
         if rod_length <= crank_radius + abs(offset):
-            raise InputError("rod_length", rod_length,
-                             "must exceed the crank radius plus the offset")
+            raise InputError(
+                "rod_length", rod_length, "must exceed the crank radius plus the offset"
+            )
     if model != "first-order" and rod_length is None:
-        raise InputError("rod_length", rod_length,
-                         f"the {model!r} kinematics needs the conrod length; "
-                         "give it or use model='first-order'")
+        raise InputError(
+            "rod_length",
+            rod_length,
+            f"the {model!r} kinematics needs the conrod length; give it or use model='first-order'",
+        )
     if not (isinstance(samples, int) and samples >= 8):
         raise InputError("samples", samples, "must be an integer >= 8")
     args = (reciprocating_mass, crank_radius, speed, rod_length, offset, model)
@@ -406,30 +448,41 @@ def balance_factor_study(reciprocating_mass: float, crank_radius: float, speed: 
     def amplitude(fun) -> float:
         return _refined_peak(lambda psi: np.abs(fun(psi)))
 
-    in_line_amplitude = amplitude(
-        lambda psi: single_cylinder_forces(psi, balance_factor, *args)[0])
+    in_line_amplitude = amplitude(lambda psi: single_cylinder_forces(psi, balance_factor, *args)[0])
     transverse_amplitude = amplitude(
-        lambda psi: single_cylinder_forces(psi, balance_factor, *args)[1])
+        lambda psi: single_cylinder_forces(psi, balance_factor, *args)[1]
+    )
     fbs = np.linspace(0.0, 1.0, 101) if sweep is None else np.asarray(sweep, dtype=float)
     for value in fbs:
         _check_balance_factor(float(value), "sweep")
     sweep_peak = np.array([peak(float(fb)) for fb in fbs])
     # the peak is a maximum of norms of functions affine in f_b, hence convex in f_b
-    best = minimize_scalar(peak, bounds=BALANCE_FACTOR_RANGE, method="bounded",
-                           options={"xatol": 1e-9})
+    best = minimize_scalar(
+        peak, bounds=BALANCE_FACTOR_RANGE, method="bounded", options={"xatol": 1e-9}
+    )
     return BalanceFactorStudy(
-        balance_factor=float(balance_factor), model=model,
+        balance_factor=float(balance_factor),
+        model=model,
         primary_force=primary_force(reciprocating_mass, crank_radius, speed),
-        crank_angle=theta, in_line=fi, transverse=ft, resultant=resultant,
-        direction=direction, in_line_amplitude=in_line_amplitude,
-        transverse_amplitude=transverse_amplitude, peak_resultant=peak(balance_factor),
-        sweep_balance_factor=fbs, sweep_peak_resultant=sweep_peak,
-        optimum_balance_factor=float(best.x), optimum_peak_resultant=float(best.fun))
+        crank_angle=theta,
+        in_line=fi,
+        transverse=ft,
+        resultant=resultant,
+        direction=direction,
+        in_line_amplitude=in_line_amplitude,
+        transverse_amplitude=transverse_amplitude,
+        peak_resultant=peak(balance_factor),
+        sweep_balance_factor=fbs,
+        sweep_peak_resultant=sweep_peak,
+        optimum_balance_factor=float(best.x),
+        optimum_peak_resultant=float(best.fun),
+    )
 
 
 # ---------------------------------------------------------------------------------------
 # tier 2: corrections (how the unbalance is taken off the counterweights)
 # ---------------------------------------------------------------------------------------
+
 
 class _Layer(ABC):
     """What both corrections share: material taken off all webs alike, in a layer of a depth.
@@ -556,8 +609,7 @@ class FaceRemoval(_Layer, ResultMixin):
     def __post_init__(self) -> None:
         check_positive("face_area", self.area)
         if self.orientation not in ("axial", "radial"):
-            raise InputError("face_orientation", self.orientation,
-                             "must be 'axial' or 'radial'")
+            raise InputError("face_orientation", self.orientation, "must be 'axial' or 'radial'")
         self._check_layer()
 
     @property
@@ -586,6 +638,7 @@ def _round(depth: float, resolution: float) -> float:
 # ---------------------------------------------------------------------------------------
 # tier 3 orchestrator: the eight-step rebalancing procedure
 # ---------------------------------------------------------------------------------------
+
 
 @dataclass(frozen=True)
 class RebalanceIteration(ResultMixin):
@@ -674,12 +727,19 @@ class RebalanceResult(ResultMixin):
     bob_weight: float
 
 
-def rebalance(old_rotating_mass: float, old_reciprocating_mass: float,
-              new_rotating_mass: float, new_reciprocating_mass: float,
-              counterweight_mass: float, counterweight_radius: float, crank_radius: float,
-              correction: DrilledHoles | FaceRemoval, tolerance: float,
-              target_balance_factor: float | None = None,
-              max_iterations: int = 10) -> RebalanceResult:
+def rebalance(
+    old_rotating_mass: float,
+    old_reciprocating_mass: float,
+    new_rotating_mass: float,
+    new_reciprocating_mass: float,
+    counterweight_mass: float,
+    counterweight_radius: float,
+    crank_radius: float,
+    correction: DrilledHoles | FaceRemoval,
+    tolerance: float,
+    target_balance_factor: float | None = None,
+    max_iterations: int = 10,
+) -> RebalanceResult:
     r"""Rebalance a single-cylinder crank after new parts (the thesis' eight steps).
 
     Parameters
@@ -722,35 +782,44 @@ def rebalance(old_rotating_mass: float, old_reciprocating_mass: float,
     ----------
     004 (NTNU thesis) Sec. 6.4, Eq. 6.1 (corrected), 6.3-6.5; Table 6.2.
     """
-    for name, value in (("old_rotating_mass", old_rotating_mass),
-                        ("new_rotating_mass", new_rotating_mass)):
+    for name, value in (
+        ("old_rotating_mass", old_rotating_mass),
+        ("new_rotating_mass", new_rotating_mass),
+    ):
         _check_mass(name, value)
     check_positive("old_reciprocating_mass", old_reciprocating_mass)
     check_positive("new_reciprocating_mass", new_reciprocating_mass)
     check_positive("tolerance", tolerance)
     if not (isinstance(max_iterations, int) and max_iterations >= 1):
         raise InputError("max_iterations", max_iterations, "must be an integer >= 1")
-    original = balance_factor_from_mass_properties(counterweight_mass, counterweight_radius,
-                                                   crank_radius, old_rotating_mass,
-                                                   old_reciprocating_mass)
+    original = balance_factor_from_mass_properties(
+        counterweight_mass,
+        counterweight_radius,
+        crank_radius,
+        old_rotating_mass,
+        old_reciprocating_mass,
+    )
     target = original if target_balance_factor is None else target_balance_factor
     _check_balance_factor(target, "target_balance_factor")
     # step 1
     original_moment = counterweight_mass * counterweight_radius
-    required = counterweight_moment(new_rotating_mass, new_reciprocating_mass, target,
-                                    crank_radius)
+    required = counterweight_moment(new_rotating_mass, new_reciprocating_mass, target, crank_radius)
     # step 2
     unbalance = original_moment - required
     if unbalance < -tolerance:
-        reachable = ((original_moment / crank_radius - new_rotating_mass)
-                     / new_reciprocating_mass)
-        advice = (f"choose at most {reachable:.4f}" if reachable >= 0 else
-                  f"the counterweights are too light even for f_b = 0 with the new parts "
-                  f"(the crank would have f_b = {reachable:.4f})")
+        reachable = (original_moment / crank_radius - new_rotating_mass) / new_reciprocating_mass
+        advice = (
+            f"choose at most {reachable:.4f}"
+            if reachable >= 0
+            else f"the counterweights are too light even for f_b = 0 with the new parts "
+            f"(the crank would have f_b = {reachable:.4f})"
+        )
         raise InputError(
-            "target_balance_factor", target,
+            "target_balance_factor",
+            target,
             f"needs {-unbalance * 1e6:.4g} g*mm added to the counterweights; removing "
-            f"material (holes, grinding) can only lower the balance factor; {advice}")
+            f"material (holes, grinding) can only lower the balance factor; {advice}",
+        )
     iterations: list[RebalanceIteration] = []
     depth = 0.0
     residual = unbalance
@@ -761,43 +830,67 @@ def rebalance(old_rotating_mass: float, old_reciprocating_mass: float,
             to_correct = residual
             # step 3: the next layer starts at the present depth
             radius = correction.centroid_radius(2.0 * depth)
-            mass = to_correct / radius                      # step 4
-            depth = _round(depth + mass / correction.mass_per_depth,
-                           correction.depth_resolution)      # step 5
+            mass = to_correct / radius  # step 4
+            depth = _round(
+                depth + mass / correction.mass_per_depth, correction.depth_resolution
+            )  # step 5
             if not correction.centroid_radius(2.0 * depth) > 0:
                 raise InputError(
-                    "correction", correction.kind,
+                    "correction",
+                    correction.kind,
                     f"needs a cut {depth * 1e3:.4g} mm deep from radius "
                     f"{correction.radius * 1e3:.4g} mm, through the crank axis; use a larger "
-                    "face area, more or larger holes, or axial holes")
-            removed = correction.removed_unbalance(depth)    # step 6
-            residual = unbalance - removed                   # step 7
-            ok = abs(residual) <= tolerance                  # step 8
-            iterations.append(RebalanceIteration(
-                iteration=k, unbalance_to_correct=to_correct, correction_radius=radius,
-                correction_mass=mass, depth=depth,
-                removed_mass=correction.mass_per_depth * depth, removed_unbalance=removed,
-                residual=residual, within_tolerance=ok))
+                    "face area, more or larger holes, or axial holes",
+                )
+            removed = correction.removed_unbalance(depth)  # step 6
+            residual = unbalance - removed  # step 7
+            ok = abs(residual) <= tolerance  # step 8
+            iterations.append(
+                RebalanceIteration(
+                    iteration=k,
+                    unbalance_to_correct=to_correct,
+                    correction_radius=radius,
+                    correction_mass=mass,
+                    depth=depth,
+                    removed_mass=correction.mass_per_depth * depth,
+                    removed_unbalance=removed,
+                    residual=residual,
+                    within_tolerance=ok,
+                )
+            )
             if ok:
                 status = "converged"
                 break
             if residual < 0:
                 status = "overcorrected"
                 break
-    achieved = ((original_moment - (unbalance - residual)) / crank_radius
-                - new_rotating_mass) / new_reciprocating_mass
+    achieved = (
+        (original_moment - (unbalance - residual)) / crank_radius - new_rotating_mass
+    ) / new_reciprocating_mass
     return RebalanceResult(
-        original_balance_factor=original, target_balance_factor=target,
-        original_moment=original_moment, required_moment=required, unbalance=unbalance,
-        correction=correction, iterations=iterations, residual=residual,
-        achieved_balance_factor=achieved, tolerance=tolerance,
-        passed=abs(residual) <= tolerance, status=status,
-        bob_weight=bob_weight(new_rotating_mass, new_reciprocating_mass, target))
+        original_balance_factor=original,
+        target_balance_factor=target,
+        original_moment=original_moment,
+        required_moment=required,
+        unbalance=unbalance,
+        correction=correction,
+        iterations=iterations,
+        residual=residual,
+        achieved_balance_factor=achieved,
+        tolerance=tolerance,
+        passed=abs(residual) <= tolerance,
+        status=status,
+        bob_weight=bob_weight(new_rotating_mass, new_reciprocating_mass, target),
+    )
 
 
-def cylinder_balance_factor_study(model: Any, cylinder: int = 0, balance_factor: float = 0.5,
-                                  kinematics: KinematicsModel | None = None,
-                                  **options: Any) -> BalanceFactorStudy:
+def cylinder_balance_factor_study(
+    model: Any,
+    cylinder: int = 0,
+    balance_factor: float = 0.5,
+    kinematics: KinematicsModel | None = None,
+    **options: Any,
+) -> BalanceFactorStudy:
     r"""The single-cylinder study for one cylinder of any engine model.
 
     Takes the reciprocating mass of that cylinder and the crank radius, rod length, offset and
@@ -824,7 +917,13 @@ def cylinder_balance_factor_study(model: Any, cylinder: int = 0, balance_factor:
     if not (isinstance(cylinder, int) and 0 <= cylinder < count):
         raise InputError("cylinder", cylinder, f"must be an index from 0 to {count - 1}")
     chosen: KinematicsModel = kinematics or model.kinematics
-    return balance_factor_study(float(model.reciprocating_mass[cylinder]),
-                                float(model.crank_radius), float(model.speed), balance_factor,
-                                rod_length=float(model.rod_length), offset=float(model.offset),
-                                model=chosen, **options)
+    return balance_factor_study(
+        float(model.reciprocating_mass[cylinder]),
+        float(model.crank_radius),
+        float(model.speed),
+        balance_factor,
+        rod_length=float(model.rod_length),
+        offset=float(model.offset),
+        model=chosen,
+        **options,
+    )

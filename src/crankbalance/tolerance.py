@@ -64,39 +64,78 @@ class BalanceGrade(ResultMixin):
 
 
 _GRADES: tuple[tuple[str, float, str, bool], ...] = (
-    ("G 4000", 4000.0,
-     "Crankshaft drives of rigidly mounted slow marine diesel engines with an uneven number "
-     "of cylinders (inherently unbalanced).", True),
-    ("G 1600", 1600.0,
-     "Crankshaft drives of rigidly mounted large two-stroke engines (large slow marine "
-     "diesels, inherently balanced).", True),
-    ("G 630", 630.0,
-     "Crankshaft drives of rigidly mounted large four-stroke engines; crankshaft drives of "
-     "elastically mounted marine diesel engines (inherently unbalanced, elastically mounted).",
-     True),
-    ("G 250", 250.0,
-     "Crankshaft drives of rigidly mounted fast four-cylinder diesel engines (inherently "
-     "unbalanced, rigidly mounted).", True),
-    ("G 100", 100.0,
-     "Crankshaft drives of fast diesel engines with six or more cylinders; complete "
-     "reciprocating engines (petrol or diesel) for cars, trucks and locomotives.", True),
-    ("G 40", 40.0,
-     "Crankshaft drives of elastically mounted fast four-stroke engines with six or more "
-     "cylinders (inherently balanced, elastically mounted); car wheels, rims, drive shafts.",
-     True),
-    ("G 16", 16.0,
-     "Crankshaft drives of engines with six or more cylinders under special requirements "
-     "(inherently balanced, rigidly mounted); individual engine components for cars, trucks "
-     "and locomotives; drive shafts; agricultural machinery; crushers.", True),
-    ("G 6.3", 6.3,
-     "Individual engine components under special requirements (004 uses it for a racing "
-     "crankshaft); flywheels, fans, pump impellers, centrifuges, general machinery, "
-     "electric motors up to 950 rpm.", True),
-    ("G 2.5", 2.5,
-     "Gas and steam turbines, turbo-compressors, machine-tool drives, electric motors above "
-     "950 rpm, turbine-driven pumps.", False),
-    ("G 1", 1.0, "Grinding-machine drives, audio and video drives, small armatures with "
-     "special requirements.", False),
+    (
+        "G 4000",
+        4000.0,
+        "Crankshaft drives of rigidly mounted slow marine diesel engines with an uneven number "
+        "of cylinders (inherently unbalanced).",
+        True,
+    ),
+    (
+        "G 1600",
+        1600.0,
+        "Crankshaft drives of rigidly mounted large two-stroke engines (large slow marine "
+        "diesels, inherently balanced).",
+        True,
+    ),
+    (
+        "G 630",
+        630.0,
+        "Crankshaft drives of rigidly mounted large four-stroke engines; crankshaft drives of "
+        "elastically mounted marine diesel engines (inherently unbalanced, elastically mounted).",
+        True,
+    ),
+    (
+        "G 250",
+        250.0,
+        "Crankshaft drives of rigidly mounted fast four-cylinder diesel engines (inherently "
+        "unbalanced, rigidly mounted).",
+        True,
+    ),
+    (
+        "G 100",
+        100.0,
+        "Crankshaft drives of fast diesel engines with six or more cylinders; complete "
+        "reciprocating engines (petrol or diesel) for cars, trucks and locomotives.",
+        True,
+    ),
+    (
+        "G 40",
+        40.0,
+        "Crankshaft drives of elastically mounted fast four-stroke engines with six or more "
+        "cylinders (inherently balanced, elastically mounted); car wheels, rims, drive shafts.",
+        True,
+    ),
+    (
+        "G 16",
+        16.0,
+        "Crankshaft drives of engines with six or more cylinders under special requirements "
+        "(inherently balanced, rigidly mounted); individual engine components for cars, trucks "
+        "and locomotives; drive shafts; agricultural machinery; crushers.",
+        True,
+    ),
+    (
+        "G 6.3",
+        6.3,
+        "Individual engine components under special requirements (004 uses it for a racing "
+        "crankshaft); flywheels, fans, pump impellers, centrifuges, general machinery, "
+        "electric motors up to 950 rpm.",
+        True,
+    ),
+    (
+        "G 2.5",
+        2.5,
+        "Gas and steam turbines, turbo-compressors, machine-tool drives, electric motors above "
+        "950 rpm, turbine-driven pumps.",
+        False,
+    ),
+    (
+        "G 1",
+        1.0,
+        "Grinding-machine drives, audio and video drives, small armatures with "
+        "special requirements.",
+        False,
+    ),
     ("G 0.4", 0.4, "Spindles, discs and armatures of precision grinders; gyroscopes.", False),
 )
 
@@ -207,9 +246,14 @@ def _clip_share(share: float) -> float:
     return min(max(share, low), high)
 
 
-def allocate_to_planes(total: float, bearing_a: float, bearing_b: float, center_of_mass: float,
-                       plane_1: float | None = None,
-                       plane_2: float | None = None) -> PlaneAllocation:
+def allocate_to_planes(
+    total: float,
+    bearing_a: float,
+    bearing_b: float,
+    center_of_mass: float,
+    plane_1: float | None = None,
+    plane_2: float | None = None,
+) -> PlaneAllocation:
     r"""Split a permissible residual unbalance between two bearing and two correction planes.
 
     Parameters
@@ -248,8 +292,11 @@ def allocate_to_planes(total: float, bearing_a: float, bearing_b: float, center_
     check_positive("total", total)
     span = bearing_b - bearing_a
     if not span > 0:
-        raise InputError("bearing_b", bearing_b,
-                         f"must lie beyond bearing_a = {bearing_a:g} m (positive bearing span)")
+        raise InputError(
+            "bearing_b",
+            bearing_b,
+            f"must lie beyond bearing_a = {bearing_a:g} m (positive bearing span)",
+        )
     share_a = _clip_share((bearing_b - center_of_mass) / span)
     u_a = total * share_a
     u_b = total - u_a
@@ -263,11 +310,20 @@ def allocate_to_planes(total: float, bearing_a: float, bearing_b: float, center_
     load_b = (a1 * abs(z1 - bearing_a) + a2 * abs(z2 - bearing_a)) / span
     limits = [u / load for u, load in ((u_a, load_a), (u_b, load_b)) if load > 0]
     scale = min(limits)
-    rule = ("bearing planes: lever rule of the centre of mass, each share held in 30-70 % of "
-            "U_per (ISO 21940-11 cl. 7); correction planes: same ratio, scaled so that both "
-            "residuals in the worst relative phase keep each bearing plane within its share")
-    return PlaneAllocation(total=total, bearing_a=u_a, bearing_b=u_b, plane_1=scale * a1,
-                           plane_2=scale * a2, share_a=share_a, rule=rule)
+    rule = (
+        "bearing planes: lever rule of the centre of mass, each share held in 30-70 % of "
+        "U_per (ISO 21940-11 cl. 7); correction planes: same ratio, scaled so that both "
+        "residuals in the worst relative phase keep each bearing plane within its share"
+    )
+    return PlaneAllocation(
+        total=total,
+        bearing_a=u_a,
+        bearing_b=u_b,
+        plane_1=scale * a1,
+        plane_2=scale * a2,
+        share_a=share_a,
+        rule=rule,
+    )
 
 
 @dataclass(frozen=True)
@@ -298,5 +354,6 @@ def check_residual(residual: float, permissible: float) -> ToleranceVerdict:
         raise InputError("residual", residual, "must be a finite unbalance >= 0 (a magnitude)")
     check_positive("permissible", permissible)
     ratio = residual / permissible
-    return ToleranceVerdict(residual=residual, permissible=permissible, ratio=ratio,
-                            passed=ratio <= 1.0)
+    return ToleranceVerdict(
+        residual=residual, permissible=permissible, ratio=ratio, passed=ratio <= 1.0
+    )

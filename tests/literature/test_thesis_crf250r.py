@@ -20,11 +20,21 @@ from crankbalance.tolerance import permissible_unbalance
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "crf250r_rebalance.toml"
 
 OEM_ROTATING = {"big_end": 129.04, "big_end_bearing": 39.00, "crankpin": 114.65}
-OEM_RECIPROCATING = {"small_end": 46.62, "small_end_bearing": 12.50, "piston": 158.00,
-                     "clips_rings_oil": 30.00, "wrist_pin": 35.00}
+OEM_RECIPROCATING = {
+    "small_end": 46.62,
+    "small_end_bearing": 12.50,
+    "piston": 158.00,
+    "clips_rings_oil": 30.00,
+    "wrist_pin": 35.00,
+}
 MXRR_ROTATING = {"big_end": 95.04, "big_end_bearing": 39.00, "crankpin": 114.65}
-MXRR_RECIPROCATING = {"small_end": 34.00, "small_end_bearing": 12.50, "piston": 158.00,
-                      "clips_rings_oil": 30.00, "wrist_pin": 27.00}
+MXRR_RECIPROCATING = {
+    "small_end": 34.00,
+    "small_end_bearing": 12.50,
+    "piston": 158.00,
+    "clips_rings_oil": 30.00,
+    "wrist_pin": 27.00,
+}
 
 
 def _g(parts: dict[str, float]) -> float:
@@ -33,14 +43,15 @@ def _g(parts: dict[str, float]) -> float:
 
 def test_table_6_1_sums() -> None:
     assert _g(OEM_RECIPROCATING) == pytest.approx(282.12, abs=1e-9), "004 Table 6.1: OEM m_rec"
-    assert _g(MXRR_RECIPROCATING) == pytest.approx(261.50, abs=1e-9), \
-        "004 Table 6.1: MXRR m_rec"
+    assert _g(MXRR_RECIPROCATING) == pytest.approx(261.50, abs=1e-9), "004 Table 6.1: MXRR m_rec"
     assert _g(MXRR_ROTATING) == pytest.approx(248.69, abs=1e-9), "004 Table 6.1: MXRR m_rot"
     oem_rot = _g(OEM_ROTATING)
-    assert oem_rot == pytest.approx(282.69, abs=1e-9), \
+    assert oem_rot == pytest.approx(282.69, abs=1e-9), (
         "004 Table 6.1: OEM m_rot sums to 282.69 g (seeds README)"
-    assert abs(oem_rot - 282.96) > 0.2, \
+    )
+    assert abs(oem_rot - 282.96) > 0.2, (
         "004 Table 6.1 prints 282.96 g: a transposition of 282.69 g (seeds README)"
+    )
 
 
 def test_file_matches_table_6_1() -> None:
@@ -54,10 +65,12 @@ def test_file_matches_table_6_1() -> None:
 @pytest.mark.parametrize("m_rot, checked", [(0.28296, 0.6370), (0.28269, 0.6379)])
 def test_factory_balance_factor(m_rot: float, checked: float) -> None:
     fb = sc.balance_factor_from_mass_properties(2.02040, 0.00616, 0.0269, m_rot, 0.28212)
-    assert abs(fb - 0.6375) < 0.002, \
+    assert abs(fb - 0.6375) < 0.002, (
         "004 Sec. 6.3.3 / Eq. 6.2: f_b = 63.75 % (r' rounded in print, seeds README: +-0.002)"
-    assert abs(fb - checked) < 5e-5, \
+    )
+    assert abs(fb - checked) < 5e-5, (
         "seeds README (004 Eq. 6.2): 0.6370 with m_rot = 282.96 g, 0.6379 with 282.69 g"
+    )
 
 
 def test_permissible_unbalance_crf250r() -> None:
@@ -67,13 +80,16 @@ def test_permissible_unbalance_crf250r() -> None:
 
 def test_appendix_e_test_rotor() -> None:
     rotor = equal_inertia_test_rotor(2847.335e-6, 0.100, 0.020, 0.188, 7850.0)
-    assert abs(rotor.disc_thickness * 1e3 - 36.704) < 5e-4, \
+    assert abs(rotor.disc_thickness * 1e3 - 36.704) < 5e-4, (
         "004 Appendix E Table 7.2: t = 36.704 mm (with d1 = 100 mm, seeds README)"
-    assert abs(rotor.shaft_end_length * 1e3 - 75.648) < 5e-4, \
+    )
+    assert abs(rotor.shaft_end_length * 1e3 - 75.648) < 5e-4, (
         "004 Appendix E Table 7.2: L2 = 75.648 mm"
+    )
     printed = equal_inertia_test_rotor(2847.335e-6, 0.098, 0.020, 0.188, 7850.0)
-    assert abs(printed.disc_thickness * 1e3 - 36.704) > 1.0, \
+    assert abs(printed.disc_thickness * 1e3 - 36.704) > 1.0, (
         "004 Table 7.2 prints d1 = 98 mm, which does not give t = 36.704 mm (erratum)"
+    )
 
 
 def test_rebalance_cases_within_iso_tolerance() -> None:
@@ -82,16 +98,18 @@ def test_rebalance_cases_within_iso_tolerance() -> None:
     u_per = 10.686e-6
     low, factory = results
     for res in results:
-        assert res.passed and abs(res.residual) < u_per, \
+        assert res.passed and abs(res.residual) < u_per, (
             "004 Sec. 6.5.1 / Table 6.2: residual below U_per = 10.69 g*mm"
+        )
     # step 2 of Sec. 6.4 recomputed by hand with Eq. 6.1 (corrected)
     old = 2.02040 * 0.00616
     assert low.unbalance == pytest.approx(old - (0.24869 + 0.28 * 0.2615) * 0.0269)
     assert factory.target_balance_factor == pytest.approx(factory.original_balance_factor)
     # Table 6.2: the 28 % case takes about three times the material of the factory case
     ratio = low.iterations[-1].depth / factory.iterations[-1].depth
-    assert ratio == pytest.approx(2.807 / 0.948, rel=0.05), \
+    assert ratio == pytest.approx(2.807 / 0.948, rel=0.05), (
         "004 Table 6.2: material removed 2.807 mm (28 %) vs 0.948 mm (63.75 %)"
+    )
     assert len(low.iterations) == 2, "004 Table 6.2: two corrections for 28 %"
 
 

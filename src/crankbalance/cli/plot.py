@@ -36,7 +36,8 @@ def check_output(output: str, suffixes: Sequence[str], field: str = "--output") 
     if not folder.is_dir():
         raise InputError(field, output, f"a file in an existing directory (no {folder}/)")
     if not os.access(folder, os.W_OK | os.X_OK) or (
-            target.exists() and not os.access(target, os.W_OK)):
+        target.exists() and not os.access(target, os.W_OK)
+    ):
         raise InputError(field, output, "a file that can be written (permission denied)")
     return target
 
@@ -52,9 +53,15 @@ def write_output(output: str, data: str | bytes, field: str = "--output") -> Non
         raise InputError(field, output, f"a file that can be written ({error.strerror})") from None
 
 
-def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "force",
-                 balance: bool = True, cylinder: int = 1,
-                 balance_factor: float = 0.5) -> Any:
+def build_figure(
+    kind: str,
+    engine: str,
+    order: str = "1",
+    quantity: str = "force",
+    balance: bool = True,
+    cylinder: int = 1,
+    balance_factor: float = 0.5,
+) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
     from .. import plots
     from ..analysis import analyze, balance_engine
@@ -90,35 +97,71 @@ def build_figure(kind: str, engine: str, order: str = "1", quantity: str = "forc
         raise InputError("--cylinder", cylinder, f"a cylinder number from 1 to {count}")
     single = cylinder_balance_factor_study(analysis.model, cylinder - 1, balance_factor)
     fig = plots.single_cylinder_forces(single)
-    fig.update_layout(title=f"{analysis.model.name}, cylinder {cylinder} alone: "
-                            f"{fig.layout.title.text}")
+    fig.update_layout(
+        title=f"{analysis.model.name}, cylinder {cylinder} alone: {fig.layout.title.text}"
+    )
     return fig
 
 
 @click.command()
 @click.argument("kind", metavar="KIND")
 @click.argument("engine")
-@click.option("-o", "--output", required=True,
-              help="Output file: .png, .svg or .html (self-contained, works offline).")
-@click.option("--order", default="1", show_default=True,
-              help="polar: the harmonic order, or 'rotating' for the bare crank's masses.")
-@click.option("--quantity", type=click.Choice(["force", "moment"]), default="force",
-              show_default=True, help="curves/polar: force or moment.")
-@click.option("--balance/--no-balance", default=True, show_default=True,
-              help="curves/crank: include the engine after balancing (counterweights, shafts "
-                   "as the engine file asks).")
-@click.option("--cylinder", type=int, default=1, show_default=True,
-              help="single: cylinder number (1-based).")
-@click.option("--balance-factor", type=float, default=0.5, show_default=True,
-              help="single: balance factor (0 = rotating mass only, 0.5 = 50 %).")
-@click.option("--width", type=click.IntRange(100, 8000), default=None,
-              help="Image width [px] (PNG/SVG).")
-@click.option("--height", type=click.IntRange(100, 8000), default=None,
-              help="Image height [px] (PNG/SVG).")
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    help="Output file: .png, .svg or .html (self-contained, works offline).",
+)
+@click.option(
+    "--order",
+    default="1",
+    show_default=True,
+    help="polar: the harmonic order, or 'rotating' for the bare crank's masses.",
+)
+@click.option(
+    "--quantity",
+    type=click.Choice(["force", "moment"]),
+    default="force",
+    show_default=True,
+    help="curves/polar: force or moment.",
+)
+@click.option(
+    "--balance/--no-balance",
+    default=True,
+    show_default=True,
+    help="curves/crank: include the engine after balancing (counterweights, shafts "
+    "as the engine file asks).",
+)
+@click.option(
+    "--cylinder", type=int, default=1, show_default=True, help="single: cylinder number (1-based)."
+)
+@click.option(
+    "--balance-factor",
+    type=float,
+    default=0.5,
+    show_default=True,
+    help="single: balance factor (0 = rotating mass only, 0.5 = 50 %).",
+)
+@click.option(
+    "--width", type=click.IntRange(100, 8000), default=None, help="Image width [px] (PNG/SVG)."
+)
+@click.option(
+    "--height", type=click.IntRange(100, 8000), default=None, help="Image height [px] (PNG/SVG)."
+)
 @click.pass_context
-def plot(ctx: click.Context, kind: str, engine: str, output: str, order: str, quantity: str,
-         balance: bool, cylinder: int, balance_factor: float, width: int | None,
-         height: int | None) -> None:
+def plot(
+    ctx: click.Context,
+    kind: str,
+    engine: str,
+    output: str,
+    order: str,
+    quantity: str,
+    balance: bool,
+    cylinder: int,
+    balance_factor: float,
+    width: int | None,
+    height: int | None,
+) -> None:
     """Draw figure KIND of ENGINE (an engine file or a preset name).
 
     KIND: orders (free forces/moments by order), curves (versus crank angle, before and
@@ -133,18 +176,34 @@ def plot(ctx: click.Context, kind: str, engine: str, output: str, order: str, qu
     if kind not in KINDS:
         raise InputError("KIND", kind, f"one of {', '.join(KINDS)}")
     fmt = SUFFIXES[check_output(output, tuple(SUFFIXES)).suffix.lower()]
-    given = [name for name in ("order", "quantity", "balance", "cylinder", "balance_factor",
-                               "width", "height")
-             if ctx.get_parameter_source(name) is not ParameterSource.DEFAULT]
+    given = [
+        name
+        for name in (
+            "order",
+            "quantity",
+            "balance",
+            "cylinder",
+            "balance_factor",
+            "width",
+            "height",
+        )
+        if ctx.get_parameter_source(name) is not ParameterSource.DEFAULT
+    ]
     for name in given:
         if name in ("width", "height"):
             if fmt == "html":
-                raise InputError(f"--{name}", ctx.params[name],
-                                 "only for .png/.svg output (HTML figures fill the window)")
+                raise InputError(
+                    f"--{name}",
+                    ctx.params[name],
+                    "only for .png/.svg output (HTML figures fill the window)",
+                )
         elif name not in KIND_OPTIONS[kind]:
             used = " or ".join(k for k, v in KIND_OPTIONS.items() if name in v)
-            raise InputError("--" + name.replace("_", "-"), ctx.params[name],
-                             f"only for the {used} figure, not {kind}")
+            raise InputError(
+                "--" + name.replace("_", "-"),
+                ctx.params[name],
+                f"only for the {used} figure, not {kind}",
+            )
     fig = build_figure(kind, engine, order, quantity, balance, cylinder, balance_factor)
     from .. import plots
 

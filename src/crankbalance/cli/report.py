@@ -7,21 +7,45 @@ import click
 
 @click.command()
 @click.argument("engine")
-@click.option("-o", "--output", required=True,
-              help="report.html (self-contained, interactive, works offline) or report.pdf "
-                   "(printed by headless Chromium).")
-@click.option("--orders", type=click.IntRange(1, 64), default=8, show_default=True,
-              help="Highest harmonic order.")
-@click.option("--balance-factor", type=float, default=None,
-              help="Override the engine file's counterweight balance factor (0 = rotating "
-                   "masses only).")
-@click.option("--angle", default=None,
-              help="Override the counterweight angle: 'optimal' or an angle such as '30 deg'.")
-@click.option("--chromium", default=None, type=click.Path(dir_okay=False),
-              help="Chromium executable for the PDF (default: /usr/bin/chromium or "
-                   "$CRANKBALANCE_CHROMIUM).")
-def report(engine: str, output: str, orders: int, balance_factor: float | None,
-           angle: str | None, chromium: str | None) -> None:
+@click.option(
+    "-o",
+    "--output",
+    required=True,
+    help="report.html (self-contained, interactive, works offline) or report.pdf "
+    "(printed by headless Chromium).",
+)
+@click.option(
+    "--orders",
+    type=click.IntRange(1, 64),
+    default=8,
+    show_default=True,
+    help="Highest harmonic order.",
+)
+@click.option(
+    "--balance-factor",
+    type=float,
+    default=None,
+    help="Override the engine file's counterweight balance factor (0 = rotating masses only).",
+)
+@click.option(
+    "--angle",
+    default=None,
+    help="Override the counterweight angle: 'optimal' or an angle such as '30 deg'.",
+)
+@click.option(
+    "--chromium",
+    default=None,
+    type=click.Path(dir_okay=False),
+    help="Chromium executable for the PDF (default: /usr/bin/chromium or $CRANKBALANCE_CHROMIUM).",
+)
+def report(
+    engine: str,
+    output: str,
+    orders: int,
+    balance_factor: float | None,
+    angle: str | None,
+    chromium: str | None,
+) -> None:
     """Balancing report of ENGINE (an engine file or a preset name): engine data, mass split,
     free forces and moments, balancing masses, residuals, figures and the settings used."""
     from ..report import write_report
