@@ -1,0 +1,96 @@
+"""Golden tier: the JSON of every preset's analysis and balance, and of one run of each
+other study, compared value by value with the files in ``tests/golden/data``.
+
+The files were written before the restructuring of the package; a change of layout must
+not change a number. Where the output vocabulary renamed a key or changed its unit, the
+map below names the old key (and the factor from the new unit to the old one); where a
+value changed on purpose, ``DELIBERATE`` names the key and says why. Regenerate with
+``python tests/golden/regenerate.py`` only for a deliberate change of results.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+import re
+from typing import Any
+
+import pytest
+
+from .cases import DATA, cases, run
+
+#: (pattern on the new dotted key, the old key it replaces, factor new -> old unit)
+RENAMED: list[tuple[str, str, float]] = []
+
+#: keys whose value depends on the run, not on the engine
+VOLATILE = re.compile(r"(^|\.)elapsed_s$")
+
+#: case -> {dotted key pattern: why its value changed on purpose}
+DELIBERATE: dict[str, dict[str, str]] = {}
+
+REL, ABS = 1e-9, 1e-12
+
+
+def flatten(value: Any, prefix: str = "") -> dict[str, Any]:
+    """{"a": {"b": [1, 2]}} -> {"a.b.0": 1, "a.b.1": 2}."""
+    if isinstance(value, dict):
+        out: dict[str, Any] = {}
+        for key, item in value.items():
+            out.update(flatten(item, f"{prefix}{key}."))
+        return out
+    if isinstance(value, list):
+        out = {}
+        for k, item in enumerate(value):
+            out.update(flatten(item, f"{prefix}{k}."))
+        return out if value else {prefix[:-1]: []}
+    return {prefix[:-1]: value}
+
+
+def old_key(key: str) -> tuple[str, float]:
+    """The key this value had in the golden file, and the factor to its old unit."""
+    for pattern, old, factor in RENAMED:
+        if re.search(pattern, key):
+            return re.sub(pattern, old, key), factor
+    return key, 1.0
+
+
+def same(key: str, new: Any, old: Any) -> bool:
+    if isinstance(new, bool) or isinstance(old, bool) or not isinstance(new, int | float):
+        return bool(new == old)
+    if not isinstance(old, int | float):
+        return False
+    if key.endswith("_deg"):  # one angle range was chosen: compare modulo a turn
+        turn = (new - old) / 360.0
+        return abs(turn - round(turn)) * 360.0 <= 1e-9 * max(1.0, abs(old))
+    return math.isclose(new, old, rel_tol=REL, abs_tol=ABS)
+
+
+@pytest.mark.parametrize("name", sorted(cases()))
+def test_golden(name: str) -> None:
+    path = DATA / f"{name}.json"
+    assert path.exists(), f"no golden file for {name}: run python tests/golden/regenerate.py"
+    golden = flatten(json.loads(path.read_text()))
+    now = flatten(run(cases()[name]))
+    deliberate = DELIBERATE.get(name, {})
+    seen: set[str] = set()
+    problems = []
+    for key, value in now.items():
+        if VOLATILE.search(key) or key.endswith("schema"):
+            continue
+        old, factor = old_key(key)
+        if old not in golden:
+            problems.append(f"{key}: new key (not in the golden file as {old})")
+            continue
+        seen.add(old)
+        if any(re.search(p, key) for p in deliberate):
+            continue
+        expected = golden[old]
+        if isinstance(value, int | float) and not isinstance(value, bool) and factor != 1.0:
+            value = value * factor
+        if not same(key, value, expected):
+            problems.append(f"{key}: {value!r} != golden {old} = {expected!r}")
+    missing = [
+        k for k in golden if k not in seen and not VOLATILE.search(k) and not k.endswith("schema")
+    ]
+    problems += [f"{k}: in the golden file, no longer printed" for k in missing]
+    assert not problems, f"{name} differs from its golden file:\n" + "\n".join(problems[:40])
