@@ -1,4 +1,4 @@
-"""Honda CRF250R rebalanced for MXRR conrod and wrist pin (004, NTNU thesis 2016, ch. 4 and 6).
+"""Honda CRF250R rebalanced for MXRR conrod and wrist pin (Hoem and Røsholm 2016, ch. 4 and 6).
 
 Reproduces: the rotating and reciprocating masses of Table 6.1, the factory balance factor
 (Sec. 6.3.3), the ISO 1940 permissible unbalance (Sec. 4.3) and the rebalancing to 28 % and to
@@ -28,7 +28,7 @@ from crankbalance.tolerance import permissible_unbalance
 G = 1e-3  # kg per gram
 MM = 1e-3  # m per millimetre
 
-# 004 Table 6.1 [g]
+# Hoem and Røsholm (2016), Table 6.1 [g]
 OEM = {
     "rotating": {"big end": 129.04, "big-end bearing": 39.00, "crankpin": 114.65},
     "reciprocating": {
@@ -61,7 +61,7 @@ def masses(parts: dict[str, dict[str, float]]) -> tuple[float, float]:
 def main() -> None:
     oem_rot, oem_rec = masses(OEM)
     mx_rot, mx_rec = masses(MXRR)
-    print("004 Table 6.1          m_rot [g]   m_rec [g]")
+    print("Hoem and Røsholm (2016), Table 6.1          m_rot [g]   m_rec [g]")
     print(f"OEM                    {oem_rot / G:9.2f}   {oem_rec / G:9.2f}")
     print(f"MXRR                   {mx_rot / G:9.2f}   {mx_rec / G:9.2f}")
     print(
@@ -69,7 +69,7 @@ def main() -> None:
         "transposition of the digits.\n"
     )
 
-    m_cw, r_cw, r = 2020.40 * G, 6.16 * MM, 26.9 * MM  # 004 Sec. 6.3.3
+    m_cw, r_cw, r = 2020.40 * G, 6.16 * MM, 26.9 * MM  # Hoem and Røsholm (2016), Sec. 6.3.3
     factory = balance_factor_from_mass_properties(m_cw, r_cw, r, oem_rot, oem_rec)
     printed = balance_factor_from_mass_properties(m_cw, r_cw, r, 282.96 * G, oem_rec)
     print(

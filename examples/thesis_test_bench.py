@@ -1,4 +1,4 @@
-"""The NTNU thesis' test rotor on the simulated bench (004 chapter 5, Tables 5.5 and 5.6).
+"""The NTNU thesis' test rotor on the simulated bench (Hoem and Røsholm 2016, chapter 5, Tables 5.5 and 5.6).
 
 The rotor of Appendix E (disc 98 x 36.704 mm between 20 mm journals, 188 mm long, steel)
 is run up to 3000, 6000 and 9000 rpm in 2 s by a PI-controlled motor and held for 1.5 s;
@@ -24,7 +24,7 @@ MEASURED = {1: (0.1944, 0.3194, 0.3681), 2: (0.2083, 0.3715, 0.3958), 3: (0.2031
 
 
 def main() -> None:
-    print("Required torque to hold speed [N m]: this bench vs 004 Table 5.6")
+    print("Required torque to hold speed [N m]: this bench vs Hoem and Røsholm (2016), Table 5.6")
     print(
         f"{'case':>4} {'rpm':>5} {'bench':>8} {'FEDEM':>8} {'diff':>7} {'measured':>9} "
         f"{'diff':>7} {'f_m model':>9}"
@@ -59,7 +59,7 @@ Why the numbers differ:
   both fall below it. The gap is largest where F_u is comparable to F_w (case 2, 3000 rpm:
   F_u = 42 N, W = 25 N; bench 0.1859 vs 0.2083 N m measured): that is FEDEM's 9.8 % miss
   in Table 5.7. Its 6.3 % at 9000 rpm is the misprint 0.3715 in Table 5.6 (the volts give
-  0.3958, seeds/README), not physics.
+  0.3958, docs/references.md), not physics.
 - Table 5.5 itself was computed with r = 29.6 mm (the radius printed under Table 5.2), while
   the holes (and FEDEM's model, which case 3 reproduces to 0.1 %) sit at 29.3 mm; in case 2
   the bench is 1-2 % below FEDEM, case 3 within 0.2 %.""")

@@ -74,16 +74,18 @@ def test_point_load_reactions_deflection_and_integral(a_frac: float) -> None:
     # the whole curve on the loaded side: P b x (L^2 - b^2 - x^2) / (6 E I L)
     left = r.x <= a
     curve = p * b * r.x[left] * (length**2 - b**2 - r.x[left] ** 2) / (6 * EI * length)
-    assert np.allclose(r.deflection[left], curve, rtol=1e-10, atol=1e-15), "Gere: y1 (003 Eq. 7)"
+    assert np.allclose(r.deflection[left], curve, rtol=1e-10, atol=1e-15), (
+        "Gere: y1 (Kim (2018), Eq. 7)"
+    )
     # maximum deflection (in the longer segment)
     d = min(a, b)
     exact_max = p * d * (length**2 - d**2) ** 1.5 / (9 * math.sqrt(3) * EI * length)
     assert abs(r.max_deflection - exact_max) < 1e-4 * exact_max, "Gere: max deflection"
-    # integral of the deflection: P a b (L^2 + a b) / (24 E I)  (003 Eq. 9; by Maxwell's
+    # integral of the deflection: P a b (L^2 + a b) / (24 E I)  (Kim (2018), Eq. 9; by Maxwell's
     # reciprocity it is P times the deflection at a under a unit uniform load)
     exact_int = p * a * b * (length**2 + a * b) / (24 * EI)
     assert abs(r.bending_measure - exact_int) < 1e-5 * exact_int, (
-        "003 Eq. 9: integral of deflection"
+        "Kim (2018), Eq. 9: integral of deflection"
     )
     # maximum moment and stress P a b / L
     assert abs(r.max_moment - p * a * b / length) < 1e-9 * p * length, "M_max = P a b / L"
@@ -95,13 +97,17 @@ def test_inline4_shapes_match_closed_form() -> None:
     study = inline4_study(1e-3, 600.0, 0.35, SECTION, positions=xi)
     a, b = inline4_closed_form(xi)
     assert np.allclose(study.normalised_bending, a / a.max(), atol=1e-8), (
-        "seeds README 003: A shape"
+        "docs/references.md Kim (2018): A shape"
     )
-    assert np.allclose(study.normalised_secondary, b, atol=1e-12), "003 Eq. 19: B = |1 - 2 xi|"
+    assert np.allclose(study.normalised_secondary, b, atol=1e-12), (
+        "Kim (2018), Eq. 19: B = |1 - 2 xi|"
+    )
     w = 1e-3 * 600.0**2
-    assert np.allclose(study.reaction_difference, w * b, rtol=1e-10, atol=1e-9), "003 Eq. 19"
+    assert np.allclose(study.reaction_difference, w * b, rtol=1e-10, atol=1e-9), (
+        "Kim (2018), Eq. 19"
+    )
     scale = w * 0.35**4 / (24 * EI)
-    assert np.allclose(study.bending_measure, scale * a, rtol=1e-5, atol=1e-15), "003 Eq. 9"
+    assert np.allclose(study.bending_measure, scale * a, rtol=1e-5, atol=1e-15), "Kim (2018), Eq. 9"
 
 
 def test_two_span_continuous_beam_against_textbook_and_fe() -> None:
@@ -165,7 +171,7 @@ def test_bearing_forces_over_a_revolution() -> None:
     assert np.allclose(np.abs(force).max(0), r.reactions, rtol=1e-4), "amplitude over a revolution"
     diff = np.abs(force[:, 0] - force[:, 1]).max()
     assert abs(diff - r.reaction_difference) < 1e-4 * r.reactions.max(), (
-        "003 Eq. 19 at theta = n pi"
+        "Kim (2018), Eq. 19 at theta = n pi"
     )
     assert angle[0] == 0 and abs(angle[-1] - 2 * math.pi) < 1e-12
 
@@ -330,15 +336,15 @@ def test_design_checks() -> None:
 
 
 def test_required_unbalance_helpers() -> None:
-    # 003 Eq. 4: m_b r_b = m_p r^2 / (2 l); with Eq. 3 the pair cancels 4 m_p r^2 w^2 / l
+    # Kim (2018), Eq. 4: m_b r_b = m_p r^2 / (2 l); with Eq. 3 the pair cancels 4 m_p r^2 w^2 / l
     u = inline4_secondary_unbalance(0.5, 0.04, 0.14)
     omega = 300.0
     assert math.isclose(2 * u * (2 * omega) ** 2, 4 * 0.5 * 0.04**2 * omega**2 / 0.14), (
-        "003 Eqs. 2-3"
+        "Kim (2018), Eqs. 2-3"
     )
     # half the inline-3 primary couple sqrt(3) m r w^2 a, made by two masses L apart
     u3 = inline3_couple_unbalance(0.94, 0.04, 0.09, 0.25)
-    assert math.isclose(u3 * 0.25, math.sqrt(3) / 2 * 0.94 * 0.04 * 0.09), "003 Eq. 12"
+    assert math.isclose(u3 * 0.25, math.sqrt(3) / 2 * 0.94 * 0.04 * 0.09), "Kim (2018), Eq. 12"
 
 
 def test_inline3_couple_is_held_and_reactions_cancel() -> None:
@@ -348,7 +354,7 @@ def test_inline3_couple_is_held_and_reactions_cancel() -> None:
     # a pure couple on two bearings: equal and opposite reactions M / bearing distance
     gap = study.bearing_positions[:, 1] - study.bearing_positions[:, 0]
     assert np.allclose(study.reactions, (2e-3 * 0.3 * 600.0**2 / gap)[:, None], rtol=1e-10), (
-        "003 Eq. 13"
+        "Kim (2018), Eq. 13"
     )
     same = inline3_study("III", 2e-3, 600.0, 0.3, SECTION, hold="unbalance")
     assert np.allclose(same.unbalances, 2e-3)
@@ -445,14 +451,16 @@ def test_cli_shaft_json(capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 0, err
     data = json.loads(out)
     assert data["schema"] == "crankbalance.shaft/1"
-    assert abs(data["optimum"]["position"] - 0.67) < 0.01, "003 Fig. 7: 67 % with w = 2"
+    assert abs(data["optimum"]["position"] - 0.67) < 0.01, "Kim (2018), Fig. 7: 67 % with w = 2"
     assert len(data["weight_sweep"]) == 20
 
 
 def test_cli_shaft_tables(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli(INLINE4, capsys)
     assert code == 0, err
-    assert "optimum at 66.9 % of the length" in out, "seeds README 003: 66.9 % with w = 2"
+    assert "optimum at 66.9 % of the length" in out, (
+        "docs/references.md Kim (2018): 66.9 % with w = 2"
+    )
     inline3 = ["shaft", "inline3", "--unbalance", "10 g*m", "--speed", "6000 rpm", *SHAFT]
     code, out, err = run_cli([*inline3, "--points", "41"], capsys)
     assert code == 0, err

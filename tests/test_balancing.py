@@ -194,7 +194,7 @@ def test_spec_counterweight_options() -> None:
 def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -> None:
     """The balance-shaft designer takes its unbalance from the balancing solver: inline-4
     Lanchester shafts A2 m r / 2 at 2w; the paper inline-3's single counter-rotating shaft
-    sqrt(3) m r a / (2 l) at w (003 Eq. 12)."""
+    sqrt(3) m r a / (2 l) at w (Kim (2018), Eq. 12)."""
     from crankbalance.analysis import shaft_requirement
     from crankbalance.balance_shaft import inline3_couple_unbalance
 

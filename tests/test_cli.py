@@ -32,8 +32,10 @@ def test_analyze_json_contract(capsys: pytest.CaptureFixture[str]) -> None:
     assert data["free_moments"][1]["amplitude_Nm"] == pytest.approx(
         math.sqrt(3) * 0.09 * p * 0.04 / 0.135
     )
-    assert data["masses"]["rotating_kg"] == pytest.approx([2.15] * 3), "seeds README: m_rot"
-    assert data["masses"]["reciprocating_kg"] == pytest.approx([0.94] * 3), "seeds README: m_alt"
+    assert data["masses"]["rotating_kg"] == pytest.approx([2.15] * 3), "docs/references.md: m_rot"
+    assert data["masses"]["reciprocating_kg"] == pytest.approx([0.94] * 3), (
+        "docs/references.md: m_alt"
+    )
 
 
 def test_analyze_table(capsys: pytest.CaptureFixture[str]) -> None:

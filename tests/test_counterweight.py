@@ -133,7 +133,7 @@ def test_closed_forms_match_shapely_polygons(random_sets):
 
 
 def test_printed_orange_centroid_term_is_wrong():
-    """seeds README erratum: the printed r_cw^3 (1/3 - 2/3 sin^3(gamma/2)) misses the
+    """docs/references.md erratum: the printed r_cw^3 (1/3 - 2/3 sin^3(gamma/2)) misses the
     centroid; (2/3) r_cw^3 (1 - sin^3(gamma/2)) reproduces the polygon."""
     r, h = 20.0, 8.0  # rectangle cuts the web circle
     sec = profile_section(r, h, 0.6, 60.0, 1.8)

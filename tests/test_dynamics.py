@@ -197,7 +197,7 @@ def test_wiebe_pressure_compression_is_polytropic():
 
 
 def test_bearing_loads_reduce_to_thesis_forces_first_order():
-    """Without gas and with a very long rod, loads are 004 Eqs. 4.7 and 4.8."""
+    """Without gas and with a very long rod, loads are Hoem and Røsholm (2016), Eqs. 4.7 and 4.8."""
     cyl = _cylinder(rod_length=5.0, balance_factor=0.28)
     w = 500.0
     result = engine_cycle(cyl, w, _no_gas(), strokes=2, samples_per_revolution=72)
@@ -257,7 +257,7 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
         progress=lambda d, t: calls.append((d, t)),
     )
     assert calls[-1] == (22, 22)
-    # 004 Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force (first-order forces)
+    # Hoem and Røsholm (2016), Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force (first-order forces)
     assert factors[np.argmin(result.peak_shaking_force[0])] == pytest.approx(0.5)
     # lighter reciprocating parts -> lower shaking force everywhere
     assert np.all(result.peak_shaking_force[1] < result.peak_shaking_force[0])
@@ -367,7 +367,9 @@ def test_cli_friction_back_computes_mu():
     assert result.exit_code == 0, result.output
     assert data["schema"] == "crankbalance.friction/1"
     approx = next(r for r in data["coulomb"] if r["method"] == "approximate")
-    assert approx["friction_coefficient"] == pytest.approx(0.4044, abs=2e-4), "004 Table 5.5"
+    assert approx["friction_coefficient"] == pytest.approx(0.4044, abs=2e-4), (
+        "Hoem and Røsholm (2016), Table 5.5"
+    )
 
 
 def test_cli_bench_cycle_sensitivity_outputs(tmp_path):

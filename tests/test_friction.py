@@ -28,7 +28,7 @@ def test_arithmetic_and_cubic_means_match_quadrature(w, u):
 
 
 def test_fm_limits_and_fit_of_cubic_mean():
-    # f_m = 1 for one load alone, 0.75 for equal loads (004 Fig. 4.12)
+    # f_m = 1 for one load alone, 0.75 for equal loads (Hoem and Røsholm (2016), Fig. 4.12)
     assert friction.mean_load_factor(10.0, 0.0) == pytest.approx(1.0)
     assert friction.mean_load_factor(0.0, 10.0) == pytest.approx(1.0)
     assert friction.mean_load_factor(10.0, 10.0) == pytest.approx(0.75)
@@ -37,7 +37,9 @@ def test_fm_limits_and_fit_of_cubic_mean():
     w, u = 100 * x, 100 * (1 - x)
     approx = friction.mean_equivalent_load(w, u)
     cubic = friction.mean_equivalent_load(w, u, "cubic")
-    assert np.max(np.abs(approx / cubic - 1)) < 0.02, "004 Eq. 4.14 fits the cubic mean"
+    assert np.max(np.abs(approx / cubic - 1)) < 0.02, (
+        "Hoem and Røsholm (2016), Eq. 4.14 fits the cubic mean"
+    )
     # the arithmetic mean is never larger than the cubic one (power-mean inequality)
     assert np.all(friction.mean_equivalent_load(w, u, "arithmetic") <= cubic + 1e-9)
 
@@ -46,12 +48,16 @@ def test_friction_torque_and_back_computation_are_inverse():
     mu = friction.friction_coefficient_from_torque(0.2083, 24.98, 42.2, 0.020)
     torque = friction.unbalanced_friction_torque(mu, 24.98, 42.2, 0.020)
     assert torque == pytest.approx(0.2083, rel=1e-12)
-    assert friction.friction_torque(0.5, 20.0, 0.02) == pytest.approx(0.1), "004 Eq. 4.10"
+    assert friction.friction_torque(0.5, 20.0, 0.02) == pytest.approx(0.1), (
+        "Hoem and Røsholm (2016), Eq. 4.10"
+    )
 
 
 def test_transducer_conversion():
-    # 004 Fig. 5.10: 0.44 V corresponds to 0.25 N m
-    assert friction.torque_from_transducer_voltage(0.44) == pytest.approx(0.25), "004 Fig. 5.10"
+    # Hoem and Røsholm (2016), Fig. 5.10: 0.44 V corresponds to 0.25 N m
+    assert friction.torque_from_transducer_voltage(0.44) == pytest.approx(0.25), (
+        "Hoem and Røsholm (2016), Fig. 5.10"
+    )
 
 
 def test_petroff_against_textbook_forms():
@@ -64,12 +70,12 @@ def test_petroff_against_textbook_forms():
     assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(
         f * load * r, rel=1e-12
     ), "Petroff equation (Shigley 12-6)"
-    # Heywood's form printed in 004 Eq. 7.2 with N in rev/s: F = pi^2 eta D^2 L N / h
+    # Heywood's form printed in Hoem and Røsholm (2016), Eq. 7.2 with N in rev/s: F = pi^2 eta D^2 L N / h
     heywood = np.pi**2 * eta * d**2 * length * n / c
     assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(heywood * r, rel=1e-12), (
-        "004 App. A Eq. 7.2 (Heywood) with eps = 0, N in rev/s"
+        "Hoem and Røsholm (2016), App. A Eq. 7.2 (Heywood) with eps = 0, N in rev/s"
     )
-    # eccentricity raises the shear term by 1/sqrt(1 - eps^2) (004 Eq. 7.2)
+    # eccentricity raises the shear term by 1/sqrt(1 - eps^2) (Hoem and Røsholm (2016), Eq. 7.2)
     t0 = friction.journal_bearing_torque(eta, d, length, c, w)
     t6 = friction.journal_bearing_torque(eta, d, length, c, w, eccentricity_ratio=0.6)
     assert t6 / t0 == pytest.approx(1 / 0.8)
@@ -103,8 +109,10 @@ def test_squeeze_film_thesis_formula_properties():
     eta, gap, z, length = 0.02, 50e-6, 0.01, 0.01
     thesis = friction.squeeze_film_damping(eta, z * length, gap, length, z)
     reynolds = friction.rectangular_squeeze_film_damping(eta, gap, length, z)
-    assert thesis / reynolds == pytest.approx(3.555, rel=2e-3), "004 Eq. 7.5 vs Reynolds, square"
-    # stiffness 3W/H equals -dW/dH of a film force W ~ H^-3 (004 Eq. 7.4)
+    assert thesis / reynolds == pytest.approx(3.555, rel=2e-3), (
+        "Hoem and Røsholm (2016), Eq. 7.5 vs Reynolds, square"
+    )
+    # stiffness 3W/H equals -dW/dH of a film force W ~ H^-3 (Hoem and Røsholm (2016), Eq. 7.4)
     h = np.array([0.99, 1.01]) * gap
     force = friction.rectangular_squeeze_film_damping(eta, h, length, z) * 1e-3
     w0 = friction.rectangular_squeeze_film_damping(eta, gap, length, z) * 1e-3

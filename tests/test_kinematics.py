@@ -36,8 +36,8 @@ def test_position_at_dead_centres() -> None:
 
 def test_exact_harmonics_at_lambda_03() -> None:
     c = harmonic_coefficients(0.3, 8)
-    assert c[1].real == pytest.approx(0.307051, abs=5e-7), "issue 2 / seeds README: A2(0.3)"
-    assert c[3].real == pytest.approx(-0.007238, abs=5e-7), "issue 2 / seeds README: A4(0.3)"
+    assert c[1].real == pytest.approx(0.307051, abs=5e-7), "issue 2 / docs/references.md: A2(0.3)"
+    assert c[3].real == pytest.approx(-0.007238, abs=5e-7), "issue 2 / docs/references.md: A4(0.3)"
     assert c[0].real == pytest.approx(1.0, abs=1e-14), "A1 = 1"
     assert np.all(np.abs(c[2::2]) < 1e-14), "no odd orders above 1 without offset"
     assert np.all(np.abs(c.imag) < 1e-14), "no sine terms without offset"
@@ -49,9 +49,13 @@ def test_exact_harmonics_within_series_truncation(lam: float) -> None:
     a2, a4, a6 = series_coefficients(lam)
     # the series is truncated after lambda**5: the next terms are O(lambda**7)
     tol = lam**7
-    assert abs(c[1] - a2) < tol, "A2 = lam + lam^3/4 + 15 lam^5/128 (004 Eq. 2.6)"
-    assert abs(c[3] - a4) < tol, "A4 = -(lam^3/4 + 3 lam^5/16) (004 Eq. 2.6)"
-    assert abs(c[5] - a6) < tol, "A6 = 9 lam^5/128 (seeds README erratum of 004)"
+    assert abs(c[1] - a2) < tol, (
+        "A2 = lam + lam^3/4 + 15 lam^5/128 (Hoem and Røsholm (2016), Eq. 2.6)"
+    )
+    assert abs(c[3] - a4) < tol, "A4 = -(lam^3/4 + 3 lam^5/16) (Hoem and Røsholm (2016), Eq. 2.6)"
+    assert abs(c[5] - a6) < tol, (
+        "A6 = 9 lam^5/128 (docs/references.md erratum of Hoem and Røsholm 2016)"
+    )
 
 
 def test_fourier_reconstructs_the_exact_acceleration_with_offset() -> None:

@@ -30,20 +30,20 @@ def test_first_order_closed_forms(fb: float) -> None:
     p = M_REC * R * W**2
     assert study.primary_force == pytest.approx(p, rel=1e-12)
     assert study.peak_resultant == pytest.approx(max(fb, abs(1 - fb)) * p, rel=1e-9), (
-        "004 Fig. 4.8: peak resultant max(f_b, 1 - f_b) P"
+        "Hoem and Røsholm (2016), Fig. 4.8: peak resultant max(f_b, 1 - f_b) P"
     )
     assert study.in_line_amplitude == pytest.approx(abs(1 - fb) * p, rel=1e-9, abs=1e-9), (
-        "004 Eq. 4.7: in-line amplitude (1 - f_b) P"
+        "Hoem and Røsholm (2016), Eq. 4.7: in-line amplitude (1 - f_b) P"
     )
     assert study.transverse_amplitude == pytest.approx(fb * p, rel=1e-9, abs=1e-9), (
-        "004 Eq. 4.8: transverse amplitude f_b P"
+        "Hoem and Røsholm (2016), Eq. 4.8: transverse amplitude f_b P"
     )
 
 
 def test_first_order_optimum_is_half() -> None:
     study = sc.balance_factor_study(M_REC, R, W, 0.3, model="first-order")
     assert study.optimum_balance_factor == pytest.approx(0.5, abs=1e-6), (
-        "004 Sec. 4.1.2: least resultant at f_b = 0.5"
+        "Hoem and Røsholm (2016), Sec. 4.1.2: least resultant at f_b = 0.5"
     )
     assert study.optimum_peak_resultant == pytest.approx(0.5 * study.primary_force, rel=1e-8)
     np.testing.assert_allclose(

@@ -24,7 +24,7 @@ moments are phasors too; their magnitudes are the amplitudes seen over one revol
 References
 ----------
 C.-J. Kim, "Location of unbalance mass and supporting bearing for different type of
-balance shaft module", Mech. Sci. 9 (2018) 259 (seed document 003), Eqs. 3-9, 17-25.
+balance shaft module", Mech. Sci. 9 (2018) 259 , Eqs. 3-9, 17-25.
 J. M. Gere, S. P. Timoshenko, *Mechanics of Materials* (beam deflection tables).
 Z. Friedman, J. B. Kosmatka, "An improved two-node Timoshenko beam finite element",
 Computers & Structures 47 (1993) 473-481 (element matrices).
@@ -244,7 +244,7 @@ def beam_statics(
     References
     ----------
     Gere & Timoshenko, Mechanics of Materials (superposition, singularity functions);
-    003 Eqs. 6-9 are the two-bearing, one-load special case.
+    Kim (2018), Eqs. 6-9 are the two-bearing, one-load special case.
     """
     check_positive("length", length)
     check_positive("bending_stiffness", bending_stiffness)
@@ -343,7 +343,7 @@ def element_matrices(
 
     References
     ----------
-    003 Eqs. 20-21 (the stiffness matrix, with e = phi); Friedman & Kosmatka (1993).
+    Kim (2018), Eqs. 20-21 (the stiffness matrix, with e = phi); Friedman & Kosmatka (1993).
     """
     h = float(element_length)
     ei = section.bending_stiffness
@@ -632,13 +632,13 @@ class ShaftResponse(ResultMixin):
     reaction_phases : ndarray
         Phase of each bearing load in the shaft frame [rad].
     reaction_difference : float
-        Largest minus smallest bearing-load amplitude [N] (003 Eq. 19 for two bearings).
+        Largest minus smallest bearing-load amplitude [N] (Kim (2018), Eq. 19 for two bearings).
     x : ndarray
         Stations of the deflection curve [m].
     deflection : ndarray
         Deflection amplitude at ``x`` [m].
     bending_measure : float
-        Integral of the deflection amplitude over the shaft [m^2] (003 Eq. 9).
+        Integral of the deflection amplitude over the shaft [m^2] (Kim (2018), Eq. 9).
     max_deflection : float
         Largest deflection amplitude [m].
     max_moment : float
@@ -931,7 +931,7 @@ def design_checks(
 
 
 # --------------------------------------------------------------------------------------
-# Required unbalance from the engine (003 Eqs. 4 and 12)
+# Required unbalance from the engine (Kim (2018), Eqs. 4 and 12)
 # --------------------------------------------------------------------------------------
 
 
@@ -947,7 +947,7 @@ def inline4_secondary_unbalance(
 
     References
     ----------
-    003 Eqs. 2-4.
+    Kim (2018), Eqs. 2-4.
     """
     check_positive("reciprocating_mass", reciprocating_mass)
     check_positive("crank_radius", crank_radius)
@@ -968,7 +968,7 @@ def inline3_couple_unbalance(
 
     References
     ----------
-    003 Eqs. 10-12 (the square root is lost in the text extraction).
+    Kim (2018), Eqs. 10-12 (the square root is lost in the text extraction).
     """
     check_positive("reciprocating_mass", reciprocating_mass)
     check_positive("crank_radius", crank_radius)
@@ -978,7 +978,7 @@ def inline3_couple_unbalance(
 
 
 # --------------------------------------------------------------------------------------
-# Placement studies (003 Sect. 3)
+# Placement studies (Kim (2018), Sect. 3)
 # --------------------------------------------------------------------------------------
 
 
@@ -992,7 +992,7 @@ def inline4_closed_form(position: ArrayLike) -> tuple[NDArray, NDArray]:
 
     References
     ----------
-    003 Eqs. 6-9 and 19; seeds/README.md section 003.
+    Kim (2018), Eqs. 6-9 and 19; docs/references.md, Kim (2018).
     """
     xi = np.asarray(position, dtype=float)
     return xi * (1 - xi) * (1 + xi * (1 - xi)), np.abs(1 - 2 * xi)
@@ -1077,7 +1077,7 @@ def objective(
 
     References
     ----------
-    003 Eqs. 17 and 23, as checked in seeds/README.md (norm = maximum over the design range).
+    Kim (2018), Eqs. 17 and 23, as checked in docs/references.md (norm = maximum over the design range).
     """
     a = np.asarray(normalised_bending, dtype=float)
     b = np.asarray(normalised_secondary, dtype=float)
@@ -1288,7 +1288,7 @@ def inline4_study(
 
     References
     ----------
-    003 Sect. 3.1, Eqs. 17-19, Figs. 6-7 (optimum 67 % with w = 2).
+    Kim (2018), Sect. 3.1, Eqs. 17-19, Figs. 6-7 (optimum 67 % with w = 2).
     """
     xi = np.linspace(0.0, 1.0, 200) if positions is None else np.asarray(positions, dtype=float)
     ws = default_weights() if weights is None else np.atleast_1d(np.asarray(weights, dtype=float))
@@ -1326,14 +1326,14 @@ def inline3_layout(
     """Bearing and mass positions [m] of the three inline-3 rotor types (assumed geometry).
 
     The design variable ``z`` (fraction of the length) is the position of the second
-    unbalance mass, as in 003 Figs. 8-9; ``o = bearing_offset`` [m].
+    unbalance mass, as in Kim (2018), Figs. 8-9; ``o = bearing_offset`` [m].
 
     * ``"I"``   bearing - mass - mass - bearing: bearings at 0 and L, masses at o and z
       (both masses between the bearings).
     * ``"II"``  mass - bearing - bearing - mass: masses at 0 and z, bearings at o and
       z - o (both masses overhung by o; the second bearing follows the second mass).
     * ``"III"`` mass - bearing - mass - bearing: mass at 0, bearing at o (the paper's
-      y, "near the first unbalance mass"), mass at z, bearing at L (003 Fig. 5, "one-end
+      y, "near the first unbalance mass"), mass at z, bearing at L (Kim (2018), Fig. 5, "one-end
       weight"; the paper's representative type).
 
     The paper does not give these dimensions (Fig. 4 is missing from the text); they are
@@ -1390,7 +1390,7 @@ def inline3_study(
         Order of masses and bearings.
     unbalance : float
         First moment of each mass when the masses are ``length`` apart [kg m]
-        (003 Eq. 12, :func:`inline3_couple_unbalance`); the couple to make is
+        (Kim (2018), Eq. 12, :func:`inline3_couple_unbalance`); the couple to make is
         ``unbalance * length * speed**2``.
     speed : float
         Shaft speed [rad/s] (crank speed for the primary couple).
@@ -1418,7 +1418,7 @@ def inline3_study(
 
     References
     ----------
-    003 Sect. 3.2, Eqs. 10-13, 23-25, Figs. 8-9 (the paper's 69 % is not reproducible,
+    Kim (2018), Sect. 3.2, Eqs. 10-13, 23-25, Figs. 8-9 (the paper's 69 % is not reproducible,
     see docs/balance_shaft.md).
     """
     z = np.linspace(0.3, 1.0, 200) if positions is None else np.asarray(positions, dtype=float)

@@ -14,7 +14,7 @@ that to the couple. So:
 
 Counterweights follow the paper's pattern (all of equal mass :math:`m_c` at radius
 :math:`r_c`, each opposite its crankpin turned by :math:`\pm\alpha`, the sign following
-the side of the mid-plane, Eqs. 6-11 with the seeds-README reading of the sign rule) or,
+the side of the mid-plane, Eqs. 6-11 with the docs/references.md reading of the sign rule) or,
 ``method="individual"``, each its own mass and angle (least :math:`\sum m_j^2`). The
 equations are the paper's Eq. 10: force and couple, x and z, solved together in the least
 squares sense; the residual of each is reported, never hidden.
@@ -455,7 +455,7 @@ def balance(
 
     References
     ----------
-    2021 paper (000), Eqs. 1-23, with the errata of ``seeds/README.md``.
+    2021 paper, Eqs. 1-23, with the errata of docs/references.md.
     """
     forces = free_forces(model, max(orders, 2))
     r, w = model.crank_radius, model.speed

@@ -24,8 +24,7 @@ live at the end of this module; trimesh and build123d are imported lazily.
 
 References
 ----------
-.. [1] Applied Sciences 11 (2021) 8997, Sec. 4, Eqs. 24-30, Table 3 (seed document
-   ``000``); errata in ``seeds/README.md``: the orange centroid term is
+.. [1] Applied Sciences 11 (2021) 8997, Sec. 4, Eqs. 24-30, Table 3; errata in docs/references.md: the orange centroid term is
    ``(2/3) r_cw^3 (1 - sin^3(gamma/2))``; the printed ``R_min`` is the bound
    ``h_R + l_c tan(delta) + R_cw``.
 """
@@ -76,7 +75,7 @@ DEFAULT_BOUNDS: dict[str, tuple[float, float]] = {
     "segment_angle": (0.2, math.pi),
     "thickness": (0.005, 0.030),
 }
-#: Steel, as Table 3 of the paper implies (seeds README).
+#: Steel, as Table 3 of the paper implies (docs/references.md).
 DEFAULT_DENSITY = 8000.0
 
 
@@ -206,7 +205,7 @@ def profile_section(
 
     Notes
     -----
-    Paper Eqs. 24-26 and 30 with the corrected orange term (seeds README):
+    Paper Eqs. 24-26 and 30 with the corrected orange term (docs/references.md):
 
     .. math::
         l_c = R_{cw}\\sin\\tfrac{\\alpha}{2} - r_{cw},\\quad
@@ -232,7 +231,7 @@ def profile_section(
 
     References
     ----------
-    .. [1] 2021 paper (seed 000), Sec. 4, Eqs. 24-30; seeds README errata.
+    .. [1] 2021 paper, Sec. 4, Eqs. 24-30; errata in docs/references.md.
     """
     r = np.asarray(web_radius, dtype=float)
     h_r = np.asarray(rectangle_height, dtype=float)
@@ -506,7 +505,7 @@ def counterweight_properties(
 
     References
     ----------
-    .. [1] 2021 paper (seed 000), Sec. 4, Eqs. 26-30.
+    .. [1] 2021 paper, Sec. 4, Eqs. 26-30.
     """
     validate_profile(web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
     _check_material(thickness, density)
@@ -617,7 +616,7 @@ def required_first_moment(counterweights: Any, web: int | None = None) -> float:
 
     References
     ----------
-    .. [1] 2021 paper (seed 000), Eqs. 9-10 (m_c at r_c) and Sec. 4 (the shape must carry it).
+    .. [1] 2021 paper, Eqs. 9-10 (m_c at r_c) and Sec. 4 (the shape must carry it).
     """
     mass = np.abs(np.asarray(counterweights.mass, dtype=float))
     if mass.size == 0:
@@ -1168,7 +1167,7 @@ def optimize_counterweight(
 
     References
     ----------
-    .. [1] 2021 paper (seed 000), Sec. 5 (fourth tab: constraints, parameter ranges,
+    .. [1] 2021 paper, Sec. 5 (fourth tab: constraints, parameter ranges,
        fixed/free selectors) and Table 3 (least mass, least radial space).
     """
     t0 = time.perf_counter()

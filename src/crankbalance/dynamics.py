@@ -2,7 +2,7 @@ r"""Rotor test bench and engine-cycle torque simulation.
 
 Three studies, each a pure-physics orchestrator returning a frozen result dataclass:
 
-* :func:`run_bench` -- the simulated rotor test bench of 004 Sec. 5.2.5: a rigid rotor on
+* :func:`run_bench` -- the simulated rotor test bench of Hoem and Røsholm (2016), Sec. 5.2.5: a rigid rotor on
   two bearings with Coulomb friction driven by the actual bearing reaction forces
   (weight plus the rotating unbalance, split by the bearing positions), driven by a motor
   whose torque comes from a PI speed controller that follows a ramp to the set speed and
@@ -13,13 +13,13 @@ Three studies, each a pure-physics orchestrator returning a frozen result datacl
   loads including the counterweight of a balance factor, friction torque from those loads,
   net torque, speed fluctuation and crank acceleration.
 * :func:`balance_sensitivity` -- sweep of the balance factor (and a scale on the
-  reciprocating mass) with the indicators of 004 Sec. 1/4.2: mean friction torque and power
+  reciprocating mass) with the indicators of Hoem and Røsholm (2016), Sec. 1/4.2: mean friction torque and power
   loss, peak and mean main-bearing load, peak net torque, maximum crank acceleration,
   shaking forces.
 
 Balance factor (everywhere in this module): the share :math:`f_b` of the reciprocating mass
 per cylinder that the crank counterweight balances *on top of* 100 % of the rotating mass,
-:math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r` (004 Eq. 4.6).
+:math:`m_{cw} r' = (m_{rot} + f_b m_{rec}) r` (Hoem and Røsholm (2016), Eq. 4.6).
 
 Frames: crank angle :math:`\theta` from the cylinder axis (0 = top dead centre, for the
 firing cylinder the firing TDC); :math:`z` along the cylinder axis away from the crank
@@ -169,7 +169,7 @@ def disc_rotor(
 
     References
     ----------
-    004 Appendix E, Eqs. 7.6-7.9 and Table 7.2; Table 5.2 (drilled holes).
+    Hoem and Røsholm (2016), Appendix E, Eqs. 7.6-7.9 and Table 7.2; Table 5.2 (drilled holes).
     """
     check_positive("disc_diameter", disc_diameter)
     check_positive("disc_thickness", disc_thickness)
@@ -260,7 +260,7 @@ class BenchResult(ResultMixin):
     Attributes
     ----------
     required_torque : float
-        Mean motor torque over the hold [N m] (Table 5.6 of 004).
+        Mean motor torque over the hold [N m] (Hoem and Røsholm 2016, Table 5.6).
     mean_friction_torque : float
         Mean bearing friction torque over the hold [N m].
     friction_power : float
@@ -363,7 +363,7 @@ def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
 
     References
     ----------
-    004 Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
+    Hoem and Røsholm (2016), Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
     """
     from scipy.integrate import solve_ivp
 
@@ -670,7 +670,7 @@ def wiebe_pressure(
     References
     ----------
     Heywood, Internal Combustion Engine Fundamentals, Secs. 9.2.1 and 9.2.2 (Wiebe function,
-    single-zone heat release); 004 Sec. 2.3 (the gas torque in the engine torque).
+    single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine torque).
     """
     _check_strokes(strokes)
     theta = np.asarray(angle, dtype=float)
@@ -782,7 +782,7 @@ class CycleResult(ResultMixin):
         Cylinder pressures [Pa].
     gas_torque, inertia_torque, friction_torque, net_torque : ndarray
         Torques summed over the cylinders [N m]; ``net = gas + inertia - friction`` at the mean
-        speed (004 Sec. 2.3).
+        speed (Hoem and Røsholm (2016), Sec. 2.3).
     inline_load, transverse_load : ndarray, shape (cylinders, samples)
         Main-bearing load of each cylinder's crank along and across its cylinder axis [N]
         (all main bearings of that throw together).
@@ -894,7 +894,7 @@ def engine_cycle(
 
     References
     ----------
-    004 Sec. 2.3 (engine torque from inertia, gas and friction), Eqs. 4.6-4.8 (balance
+    Hoem and Røsholm (2016), Sec. 2.3 (engine torque from inertia, gas and friction), Eqs. 4.6-4.8 (balance
     factor, in-line and transverse forces), Sec. 4.2.1 (friction torque from the bearing
     load); Den Hartog, Mechanical Vibrations, Sec. 5.3 (inertia torque).
     """
@@ -1133,7 +1133,7 @@ def balance_sensitivity(
 
     References
     ----------
-    004 Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction torque against the
+    Hoem and Røsholm (2016), Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction torque against the
     balance factor, Figs. 5.2-5.6).
     """
     factors = np.atleast_1d(np.asarray(balance_factors, dtype=float))

@@ -3,17 +3,17 @@ r"""Bearing friction models.
 Three families, all pure numpy functions of SI floats (arrays broadcast):
 
 * Coulomb friction of a bearing carrying a constant load plus a rotating unbalance load
-  (004 Sec. 4.2.1): :math:`T = \mu F_m d/2` with the *mean equivalent load* :math:`F_m`.
+  (Hoem and Røsholm (2016), Sec. 4.2.1): :math:`T = \mu F_m d/2` with the *mean equivalent load* :math:`F_m`.
   Three means are offered: the thesis' approximation
   :math:`F_m = f_m (F_w + F_u)`, :math:`f_m = x^2 - x + 1`, :math:`x = F_w/(F_w + F_u)`
-  (Eq. 4.13/4.14 as corrected in ``seeds/README.md``), the exact cubic mean it
+  (Eq. 4.13/4.14 as corrected in docs/references.md), the exact cubic mean it
   approximates (the rolling-bearing mean load), and the arithmetic mean of the load
   magnitude over a revolution (what a Coulomb joint driven by the actual reaction force
   dissipates on average; closed form with the complete elliptic integral).
-* The friction coefficient back-computed from a measured torque (004 Eq. 5.1), to reduce
+* The friction coefficient back-computed from a measured torque (Hoem and Røsholm (2016), Eq. 5.1), to reduce
   test-rig data as the thesis did.
 * A hydrodynamic journal bearing: Petroff's torque and the eccentricity-corrected form of
-  004 Appendix A (Eq. 7.2, after Heywood), and squeeze-film stiffness and damping
+  Hoem and Røsholm (2016), Appendix A (Eq. 7.2, after Heywood), and squeeze-film stiffness and damping
   (Eqs. 7.4, 7.5), with the exact Reynolds solution of a rectangular squeeze film for
   comparison.
 
@@ -84,7 +84,7 @@ def mean_load_factor(constant_load: ArrayLike, rotating_load: ArrayLike) -> NDAr
 
     References
     ----------
-    004 (NTNU thesis) Eq. 4.14, garbled in the text; checked reading in ``seeds/README.md``.
+    Hoem and Røsholm (2016) Eq. 4.14, garbled in the text; checked reading in docs/references.md.
     """
     w = _nonnegative("constant_load", constant_load)
     u = _nonnegative("rotating_load", rotating_load)
@@ -116,7 +116,7 @@ def mean_equivalent_load(
     The thesis' :math:`f_m` is a fit of the cubic mean (the dynamic equivalent load of
     rolling bearings, which governs fatigue); the arithmetic mean is the one that sets the
     average Coulomb friction torque of a joint whose friction follows the actual reaction
-    force, as in the simulated bench of 004 Sec. 5.2.5 and :func:`crankbalance.dynamics.run_bench`.
+    force, as in the simulated bench of Hoem and Røsholm (2016), Sec. 5.2.5 and :func:`crankbalance.dynamics.run_bench`.
 
     Parameters
     ----------
@@ -134,7 +134,7 @@ def mean_equivalent_load(
 
     References
     ----------
-    004 Eqs. 4.13, 4.14 (``seeds/README.md`` reading); SKF/ISO 281 mean load of a constant
+    Hoem and Røsholm (2016), Eqs. 4.13, 4.14 (docs/references.md reading); SKF/ISO 281 mean load of a constant
     plus a rotating load (cubic mean); Byrd & Friedman, complete elliptic integral E.
     """
     _method(method)
@@ -175,7 +175,7 @@ def friction_torque(
 
     References
     ----------
-    004 Eqs. 4.10 and 4.12.
+    Hoem and Røsholm (2016), Eqs. 4.10 and 4.12.
     """
     mu = _nonnegative("friction_coefficient", friction_coefficient)
     load_ = _nonnegative("load", load)
@@ -209,7 +209,7 @@ def unbalanced_friction_torque(
 
     References
     ----------
-    004 Eq. 4.12 with Eqs. 4.13, 4.14.
+    Hoem and Røsholm (2016), Eq. 4.12 with Eqs. 4.13, 4.14.
     """
     load = mean_equivalent_load(constant_load, rotating_load, method)
     return friction_torque(friction_coefficient, load, journal_diameter)
@@ -241,7 +241,7 @@ def friction_coefficient_from_torque(
 
     References
     ----------
-    004 Eq. 5.1 and Table 5.5.
+    Hoem and Røsholm (2016), Eq. 5.1 and Table 5.5.
     """
     t = _nonnegative("torque", torque)
     load = mean_equivalent_load(constant_load, rotating_load, method)
@@ -275,7 +275,7 @@ def torque_from_transducer_voltage(
 
     References
     ----------
-    004 Sec. 5.2.1; Table 5.6 reading in ``seeds/README.md``: torque = (V - 0.2) 5/4.8.
+    Hoem and Røsholm (2016), Sec. 5.2.1; Table 5.6 reading in docs/references.md: torque = (V - 0.2) 5/4.8.
     """
     v = np.asarray(voltage, dtype=float)
     if not np.all(np.isfinite(v)):
@@ -317,7 +317,7 @@ def petroff_torque(
     References
     ----------
     Petroff (1883); Heywood, Internal Combustion Engine Fundamentals, Sec. 13.4;
-    004 Appendix A Eq. 7.2 with :math:`\varepsilon = 0`.
+    Hoem and Røsholm (2016), Appendix A Eq. 7.2 with :math:`\varepsilon = 0`.
     """
     return journal_bearing_torque(
         viscosity, journal_diameter, bearing_length, radial_clearance, speed
@@ -367,7 +367,7 @@ def journal_bearing_torque(
 
     References
     ----------
-    004 Appendix A Eq. 7.2 (after Heywood); the friction coefficient is Eq. 7.3, ``F_f / W``.
+    Hoem and Røsholm (2016), Appendix A Eq. 7.2 (after Heywood); the friction coefficient is Eq. 7.3, ``F_f / W``.
     """
     eta = _nonnegative("viscosity", viscosity)
     d = _positive("journal_diameter", journal_diameter)
@@ -403,7 +403,7 @@ def squeeze_film_stiffness(load: ArrayLike, gap: ArrayLike) -> NDArray:
 
     References
     ----------
-    004 Appendix A Eq. 7.4 (after Weston et al.).
+    Hoem and Røsholm (2016), Appendix A Eq. 7.4 (after Weston et al.).
     """
     return 3.0 * _nonnegative("load", load) / _positive("gap", gap)
 
@@ -439,7 +439,7 @@ def squeeze_film_damping(
 
     References
     ----------
-    004 Appendix A Eq. 7.5 (after Weston et al.).
+    Hoem and Røsholm (2016), Appendix A Eq. 7.5 (after Weston et al.).
     """
     eta = _nonnegative("viscosity", viscosity)
     area = _positive("squeeze_area", squeeze_area)

@@ -57,7 +57,7 @@ def piston_position(
 
     References
     ----------
-    Any machine-dynamics text; 004 (NTNU thesis) section 2.1 for :math:`e = 0`.
+    Any machine-dynamics text; Hoem and Røsholm (2016) section 2.1 for :math:`e = 0`.
     """
     psi, r, _u, q = _rod_terms(angle, crank_radius, rod_length, offset)
     return r * np.cos(psi) + q
@@ -168,8 +168,8 @@ def series_coefficients(rod_ratio: ArrayLike) -> tuple[NDArray, NDArray, NDArray
 
     References
     ----------
-    004 (NTNU thesis) Eq. 2.6, with the A6 misprint (9/28) corrected to 9/128 as in
-    ``seeds/README.md``.
+    Hoem and Røsholm (2016) Eq. 2.6, with the A6 misprint (9/28) corrected to 9/128 as in
+    docs/references.md.
     """
     lam = np.asarray(rod_ratio, dtype=float)
     a2 = lam + lam**3 / 4 + 15 * lam**5 / 128

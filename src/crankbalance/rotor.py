@@ -38,7 +38,7 @@ def cylinder_inertia(
 
     References
     ----------
-    004 (NTNU thesis) Appendix E, Eq. 7.6.
+    Hoem and Røsholm (2016) Appendix E, Eq. 7.6.
     """
     check_positive("diameter", diameter)
     check_positive("length", length)
@@ -53,7 +53,7 @@ def disc_inertia(mass: float, diameter: float) -> float:
 
     References
     ----------
-    004 (NTNU thesis) Appendix E, Eq. 7.6.
+    Hoem and Røsholm (2016) Appendix E, Eq. 7.6.
     """
     _check_mass("mass", mass)
     check_positive("diameter", diameter)
@@ -94,7 +94,7 @@ def stepped_rotor_inertia(
 
     References
     ----------
-    004 (NTNU thesis) Appendix E, Eq. 7.7.
+    Hoem and Røsholm (2016) Appendix E, Eq. 7.7.
     """
     check_positive("disc_thickness", disc_thickness)
     if not disc_thickness < overall_length:
@@ -110,7 +110,7 @@ def stepped_rotor_inertia(
 
 @dataclass(frozen=True)
 class TestRotor(ResultMixin):
-    """Disc-on-shaft test rotor with a prescribed inertia (004 Appendix E).
+    """Disc-on-shaft test rotor with a prescribed inertia (Hoem and Røsholm (2016), Appendix E).
 
     Attributes
     ----------
@@ -163,7 +163,7 @@ def equal_inertia_test_rotor(
 
     References
     ----------
-    004 (NTNU thesis) Appendix E, Eq. 7.8 and 7.9, Table 7.2: 2847.335 kg mm^2,
+    Hoem and Røsholm (2016) Appendix E, Eq. 7.8 and 7.9, Table 7.2: 2847.335 kg mm^2,
     d_1 = 100 mm (the table prints 98 mm, which gives t = 39.80 mm, not the printed
     36.704 mm), d_2 = 20 mm, L_1 = 188 mm -> t = 36.704 mm, L_2 = 75.648 mm.
     """
@@ -221,7 +221,7 @@ def crankpin_overlap(
 
     References
     ----------
-    004 (NTNU thesis) Sec. 4.3, Fig. 4.13.
+    Hoem and Røsholm (2016) Sec. 4.3, Fig. 4.13.
     """
     check_positive("main_journal_diameter", main_journal_diameter)
     check_positive("crankpin_diameter", crankpin_diameter)
@@ -231,7 +231,7 @@ def crankpin_overlap(
 
 @dataclass(frozen=True)
 class StrokingEffect(ResultMixin):
-    """Effect of offset-grinding the crankpin to a smaller diameter (004 Appendix C).
+    """Effect of offset-grinding the crankpin to a smaller diameter (Hoem and Røsholm (2016), Appendix C).
 
     Attributes
     ----------
@@ -319,7 +319,7 @@ def stroking_effect(
 
     References
     ----------
-    004 (NTNU thesis) Appendix C (qualitative: a smaller crankpin lightens the top half of
+    Hoem and Røsholm (2016) Appendix C (qualitative: a smaller crankpin lightens the top half of
     the crank and lengthens the stroke); Eq. 6.2 for the balance factor.
     """
     check_positive("crank_radius", crank_radius)

@@ -2,7 +2,7 @@ r"""Single-cylinder balance factor, in-line and transverse forces, and rebalanci
 
 **Balance factor.** The balance factor :math:`f_b` is the share of the reciprocating mass
 *of one cylinder* that the crank counterweight balances, *on top of 100 % of the rotating
-mass*. The counterweight's first moment is therefore (004 Eq. 4.6 and 6.1, corrected)
+mass*. The counterweight's first moment is therefore (Hoem and Røsholm (2016), Eq. 4.6 and 6.1, corrected)
 
 .. math:: m_{cw}\,r' = (m_{rot} + f_b\,m_{rec})\,r
 
@@ -18,7 +18,7 @@ extra counterweight :math:`f_b m_{rec}` (at the crank radius, opposite the crank
     F_i = -m_{rec}\,\ddot s - f_b\,P\cos\theta,\qquad F_t = -f_b\,P\sin\theta,
     \qquad P = m_{rec}\,r\,\omega^2
 
-With the first-order model :math:`-\ddot s = r\omega^2\cos\theta` this is 004 Eq. 4.7/4.8:
+With the first-order model :math:`-\ddot s = r\omega^2\cos\theta` this is Hoem and Røsholm (2016), Eq. 4.7/4.8:
 :math:`F_i = (1-f_b)P\cos\theta`, :math:`F_t = -f_b P\sin\theta`, whose peak resultant is
 :math:`\max(f_b, |1-f_b|)\,P`, least at :math:`f_b = 0.5`.
 
@@ -45,7 +45,7 @@ from .results import ResultMixin
 #: Range of balance factors accepted as input (0 = rotating mass only, 2 = 200 %).
 BALANCE_FACTOR_RANGE: tuple[float, float] = (0.0, 2.0)
 
-#: Density of crankshaft steel used when none is given [kg/m^3] (004 Appendix E).
+#: Density of crankshaft steel used when none is given [kg/m^3] (Hoem and Røsholm (2016), Appendix E).
 STEEL_DENSITY = 7850.0
 
 CorrectionKind = Literal["holes", "face"]
@@ -93,7 +93,7 @@ def primary_force(reciprocating_mass: float, crank_radius: float, speed: float) 
 
     References
     ----------
-    004 (NTNU thesis) Eq. 4.5.
+    Hoem and Røsholm (2016) Eq. 4.5.
     """
     return reciprocating_mass * crank_radius * speed**2
 
@@ -141,7 +141,7 @@ def single_cylinder_forces(
 
     References
     ----------
-    004 (NTNU thesis) Eq. 4.7 and 4.8 (first-order model, :math:`r' = r`).
+    Hoem and Røsholm (2016) Eq. 4.7 and 4.8 (first-order model, :math:`r' = r`).
     """
     _check_model(model)
     if not math.isfinite(offset):
@@ -185,7 +185,7 @@ def first_order_peak_resultant(balance_factor: ArrayLike) -> NDArray:
 
     References
     ----------
-    004 (NTNU thesis) Fig. 4.8 (least at :math:`f_b = 0.5`).
+    Hoem and Røsholm (2016) Fig. 4.8 (least at :math:`f_b = 0.5`).
     """
     fb = np.asarray(balance_factor, dtype=float)
     return np.maximum(fb, np.abs(1.0 - fb))
@@ -200,7 +200,7 @@ def counterweight_moment(
 
     References
     ----------
-    004 (NTNU thesis) Eq. 6.1, corrected: the print reads :math:`(m_{rec} + f_b m_{rec})`;
+    Hoem and Røsholm (2016) Eq. 6.1, corrected: the print reads :math:`(m_{rec} + f_b m_{rec})`;
     the rotating mass belongs in the first term (cf. Eq. 4.6 and 6.2).
     """
     _check_mass("rotating_mass", rotating_mass)
@@ -236,7 +236,7 @@ def balance_factor_from_mass_properties(
 
     References
     ----------
-    004 (NTNU thesis) Eq. 6.2; Sec. 6.3.3: 2020.40 g, 6.16 mm, 26.9 mm -> 0.6375.
+    Hoem and Røsholm (2016) Eq. 6.2; Sec. 6.3.3: 2020.40 g, 6.16 mm, 26.9 mm -> 0.6375.
     """
     _check_mass("counterweight_mass", counterweight_mass)
     check_positive("counterweight_radius", counterweight_radius)
@@ -258,7 +258,7 @@ def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: 
 
     References
     ----------
-    004 (NTNU thesis) Sec. 3.2 and 6.3.2 (force balance before Eq. 6.1).
+    Hoem and Røsholm (2016) Sec. 3.2 and 6.3.2 (force balance before Eq. 6.1).
     """
     _check_mass("rotating_mass", rotating_mass)
     _check_mass("reciprocating_mass", reciprocating_mass)
@@ -356,7 +356,7 @@ def peak_resultant(
 
     References
     ----------
-    004 (NTNU thesis) Fig. 4.8.
+    Hoem and Røsholm (2016) Fig. 4.8.
     """
 
     def magnitude(psi: NDArray) -> NDArray:
@@ -413,7 +413,7 @@ def balance_factor_study(
 
     References
     ----------
-    004 (NTNU thesis) Sec. 4.1.2, Eq. 4.7-4.8, Fig. 4.4-4.8.
+    Hoem and Røsholm (2016) Sec. 4.1.2, Eq. 4.7-4.8, Fig. 4.4-4.8.
     """
     from scipy.optimize import minimize_scalar
 
@@ -541,7 +541,7 @@ class DrilledHoles(_Layer, ResultMixin):
         holes drilled inward from the rim have their centroid at ``radius - depth/2``.
     webs : int
         Webs carrying the same correction (2 keeps a single-cylinder crank dynamically
-        balanced, 004 Sec. 4.1.3).
+        balanced, Hoem and Røsholm (2016), Sec. 4.1.3).
     density : float
         Crank material density [kg/m^3].
     depth_resolution : float
@@ -780,7 +780,7 @@ def rebalance(
 
     References
     ----------
-    004 (NTNU thesis) Sec. 6.4, Eq. 6.1 (corrected), 6.3-6.5; Table 6.2.
+    Hoem and Røsholm (2016) Sec. 6.4, Eq. 6.1 (corrected), 6.3-6.5; Table 6.2.
     """
     for name, value in (
         ("old_rotating_mass", old_rotating_mass),
@@ -897,7 +897,7 @@ def cylinder_balance_factor_study(
     speed of the engine; the counterweight share :math:`f_b` is per cylinder (the share of
     *this* cylinder's reciprocating mass on its throw's counterweight, on top of the rotating
     mass). For a multi-cylinder engine the forces of the other cylinders are not included:
-    this is the per-cylinder view of 004 Sec. 4.1.2, not the engine's free force.
+    this is the per-cylinder view of Hoem and Røsholm (2016), Sec. 4.1.2, not the engine's free force.
 
     Parameters
     ----------

@@ -117,7 +117,7 @@ _GRADES: tuple[tuple[str, float, str, bool], ...] = (
     (
         "G 6.3",
         6.3,
-        "Individual engine components under special requirements (004 uses it for a racing "
+        "Individual engine components under special requirements (Hoem and Røsholm 2016 use it for a racing "
         "crankshaft); flywheels, fans, pump impellers, centrifuges, general machinery, "
         "electric motors up to 950 rpm.",
         True,
@@ -198,7 +198,7 @@ def permissible_unbalance(grade: str | float, rotor_mass: float, speed: float) -
 
     References
     ----------
-    ISO 21940-11:2016 (formerly ISO 1940-1), Eq. for :math:`U_{per}`; 004 (NTNU thesis)
+    ISO 21940-11:2016 (formerly ISO 1940-1), Eq. for :math:`U_{per}`; Hoem and Røsholm (2016)
     Eq. 4.15: G 6.3, 2.7 kg, 15200 rpm -> 10.69 g mm.
     """
     item = balance_grade(grade)

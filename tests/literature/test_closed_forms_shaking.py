@@ -2,7 +2,7 @@
 
 References: any machine-dynamics text (e.g. Den Hartog, Mechanical Vibrations, ch. 5;
 Taylor, The Internal-Combustion Engine in Theory and Practice, vol. 2, ch. 8);
-2021 paper (000) Eqs. 1-3 for the inline-3 crank.
+2021 paper Eqs. 1-3 for the inline-3 crank.
 """
 
 from __future__ import annotations

@@ -1,6 +1,6 @@
-"""The 2021 crankshaft-balancing paper (000): Tables 2 and 5, through the general solver.
+"""The 2021 crankshaft-balancing paper: Tables 2 and 5, through the general solver.
 
-Reference values and readings: shared/seeds/README.md, section "000, Tables 1, 2 and 4, 5".
+Reference values and readings: docs/references.md, Appl. Sci. 2021.
 """
 
 from __future__ import annotations
@@ -16,9 +16,15 @@ from ..conftest import EXAMPLES
 
 def test_inline3_table2() -> None:
     data = balance_engine(EXAMPLES / "paper_inline3.toml").to_dict()
-    assert round(data["counterweight"]["mass_kg"], 4) == 1.2413, "000 Table 2: m_c = 1.2413 kg"
-    assert round(data["primary_shafts"]["mass_kg"], 4) == 0.4884, "000 Table 2: m_c1 = 0.4884 kg"
-    assert round(data["secondary_shafts"]["mass_kg"], 4) == 0.0362, "000 Table 2: m_c2 = 0.0362 kg"
+    assert round(data["counterweight"]["mass_kg"], 4) == 1.2413, (
+        "Appl. Sci. 2021, Table 2: m_c = 1.2413 kg"
+    )
+    assert round(data["primary_shafts"]["mass_kg"], 4) == 0.4884, (
+        "Appl. Sci. 2021, Table 2: m_c1 = 0.4884 kg"
+    )
+    assert round(data["secondary_shafts"]["mass_kg"], 4) == 0.0362, (
+        "Appl. Sci. 2021, Table 2: m_c2 = 0.0362 kg"
+    )
     # every shaft mass is the same (pairs in opposite phase at +-l_sh/2, Eq. 13)
     for key in ("primary_shafts", "secondary_shafts"):
         for shaft in data[key]["shafts"]:
@@ -28,7 +34,7 @@ def test_inline3_table2() -> None:
 
 
 def test_inline3_closed_forms() -> None:
-    """Closed forms of seeds/README for this inline-3: m_c = sqrt(3) m_rot r/(4 r_c cos(a-30)),
+    """Closed forms of docs/references.md for this inline-3: m_c = sqrt(3) m_rot r/(4 r_c cos(a-30)),
     m_c1 = sqrt(3) m_alt r a/(2 r_c1 l_sh1), m_c2 = sqrt(3) m_alt L r a/(8 r_c2 l_sh2)."""
     m_rot, m_alt, r, a, rc, l_sh, lam = 2.15, 0.94, 0.04, 0.09, 0.03, 0.2, 0.04 / 0.135
     data = balance_engine(EXAMPLES / "paper_inline3.toml").to_dict()
@@ -44,7 +50,7 @@ def test_inline3_closed_forms() -> None:
 
 
 def test_inline3_optimal_angle_is_30_degrees() -> None:
-    """seeds/README: the alpha that gives Table 2 is 30 deg, the optimum for 120-deg cranks."""
+    """docs/references.md: the alpha that gives Table 2 is 30 deg, the optimum for 120-deg cranks."""
     data = balance_engine(EXAMPLES / "paper_inline3.toml", angle="optimal").to_dict()
     assert data["counterweight"]["angle_deg"] == pytest.approx(30.0, abs=1e-9)
     assert round(data["counterweight"]["mass_kg"], 4) == 1.2413
@@ -63,11 +69,13 @@ def test_inline3_other_angle_leaves_a_force() -> None:
 
 def test_v4_table5() -> None:
     data = balance_engine(EXAMPLES / "paper_v4.toml").to_dict()
-    assert round(data["counterweight"]["mass_kg"], 3) == 1.700, "000 Table 5: m_c = 1.700 kg"
+    assert round(data["counterweight"]["mass_kg"], 3) == 1.700, (
+        "Appl. Sci. 2021, Table 5: m_c = 1.700 kg"
+    )
     secondary = data["secondary_shafts"]
     assert secondary["mass_kg"] == pytest.approx(0.1299, rel=0.015), (
-        "000 Table 5: m_c2 = 0.1299 kg within 1.5 %: we get sqrt(2) lam m_alt r/(4 r_c2) = "
-        "0.1313 (each shaft one mass mid-shaft, the force case); seeds/README finds no "
+        "Appl. Sci. 2021, Table 5: m_c2 = 0.1299 kg within 1.5 %: we get sqrt(2) lam m_alt r/(4 r_c2) = "
+        "0.1313 (each shaft one mass mid-shaft, the force case); docs/references.md finds no "
         "reading that gives the printed digits, so 1 % is what the print supports"
     )
     assert secondary["mass_kg"] == pytest.approx(
@@ -77,7 +85,7 @@ def test_v4_table5() -> None:
 
 def test_v4_primary_shafts_erratum() -> None:
     """Table 5 prints m_c1 = 0.3948 kg on both a co- and a counter-rotating shaft; the
-    seeds reading gives 0.3988 = a m_alt r / (sqrt(2) r_c1 l_sh1). But the primary of a
+    checked reading gives 0.3988 = a m_alt r / (sqrt(2) r_c1 l_sh1). But the primary of a
     90-degree V pair is a purely forward (co-rotating) phasor of one cylinder's force
     (textbook), so the couple of this V4 is a rotating couple of a m_alt r w^2: it needs a
     co-rotating shaft of 0.564 kg per mass and no counter-rotating shaft at all. The pair
@@ -90,7 +98,7 @@ def test_v4_primary_shafts_erratum() -> None:
     assert counter["masses"] == [], "nothing counter-rotating to cancel"
     assert data["residual"]["order1_moment_Nm"] == 0.0
     paper_reading = a * m_alt * r / (math.sqrt(2) * rc * l_sh)
-    assert paper_reading == pytest.approx(0.3948, rel=0.015), "seeds README: 0.3988 vs 0.3948"
+    assert paper_reading == pytest.approx(0.3948, rel=0.015), "docs/references.md: 0.3988 vs 0.3948"
     # what the paper's pair would leave: co-rotating short by (1 - 1/sqrt 2) of the couple,
     # and a new backward couple of 1/sqrt 2 of it
     w = 2000 * math.pi / 30

@@ -1,15 +1,15 @@
-"""Table 3 of the 2021 crankshaft-balancing paper (seed 000): two optimised counterweights.
+"""Table 3 of the 2021 crankshaft-balancing paper : two optimised counterweights.
 
 The rows are in the text extraction (seed 000, lines ~1378-1425), columns: CW mass [g],
 R_min [mm], balance [%], R_cw, h_R, r_cw [mm], delta, alpha [rad], t_cw [mm], gamma,
 lambda (printed as a second "delta") [rad], l_c [mm]. The crank they balance is not
-given (seeds README), so Table 3 is a consistency check: every printed value is rounded
+given (docs/references.md), so Table 3 is a consistency check: every printed value is rounded
 to its last digit, and we propagate that rounding window through the formulas.
 
 Printed-geometry sampling: the lengths and t_cw uniformly within +-0.005 mm of the print,
 l_c and R_min within their print windows, alpha and delta then follow from
 l_c = R_cw sin(alpha/2) - r_cw and R_min = h_R + l_c tan(delta) + R_cw (Eq. 26 and the
-seeds README) and are kept only where they round to the printed alpha and delta.
+docs/references.md) and are kept only where they round to the printed alpha and delta.
 """
 
 from __future__ import annotations
@@ -52,7 +52,7 @@ ROWS = {
         l_c=30.00,
     ),
 }
-DENSITY = 8000.0  # seeds README
+DENSITY = 8000.0  # docs/references.md
 
 
 def _window(row, n=200_000, seed=0):
@@ -94,7 +94,7 @@ def test_row2_mass_within_one_percent():
 def test_r_min_is_the_paper_bound_and_angles(name):
     row = ROWS[name]
     sec = profile_section(row["r"], row["h_r"], row["delta"], row["big_r"], row["alpha"])
-    # R_min = h_R + l_c tan(delta) + R_cw with the printed l_c (seeds README); row 1's delta
+    # R_min = h_R + l_c tan(delta) + R_cw with the printed l_c (docs/references.md); row 1's delta
     # sits where tan is steep, so the window comes from delta's print rounding
     tans = [math.tan(row["delta"] + s) for s in (-0.005, 0.005)]
     bounds = sorted(row["h_r"] + row["l_c"] * tn + row["big_r"] for tn in tans)

@@ -1,10 +1,10 @@
-"""004 (NTNU thesis) chapter 5: the simplified test rotor on the simulated bench.
+"""Hoem and Røsholm (2016) chapter 5: the simplified test rotor on the simulated bench.
 
 Rotor (Appendix E, Table 7.2 as printed): disc d1 = 98 mm, t = 36.704 mm, journals d2 = 20 mm,
 overall L1 = 188 mm, steel 7850 kg/m^3 -> m = 2.546 kg. (t = 36.704 mm follows from the inertia
-with d1 = 100 mm, seeds/README; the thesis' Table 5.5 is reproduced with the printed 98 mm.)
+with d1 = 100 mm, docs/references.md; the thesis' Table 5.5 is reproduced with the printed 98 mm.)
 Unbalance (Table 5.2): 14.6 g (case 2) and 58.4 g (case 3) drilled out at r = 29.3 mm
-(seeds/README: the radius Table 5.2's forces were computed with).
+(docs/references.md: the radius Table 5.2's forces were computed with).
 """
 
 from __future__ import annotations
@@ -35,7 +35,7 @@ FEDEM_TABLE_5_6 = {
     2: (0.1897, 0.3670, 0.3948),
     3: (0.1988, 0.3555, 0.3861),
 }
-# Table 5.6, top: measured torques; case 2 at 9000 rpm corrected to 0.3958 (seeds/README)
+# Table 5.6, top: measured torques; case 2 at 9000 rpm corrected to 0.3958 (docs/references.md)
 MEASURED_TABLE_5_6 = {
     1: (0.1944, 0.3194, 0.3681),
     2: (0.2083, 0.3715, 0.3958),
@@ -60,10 +60,12 @@ def _rotor(case: int, mu: float):
 
 def test_rotor_mass_and_inertia_appendix_e():
     rotor = _rotor(1, 0.1)
-    assert rotor.mass == pytest.approx(2.5464, abs=1e-4), "004 App. E geometry as printed"
+    assert rotor.mass == pytest.approx(2.5464, abs=1e-4), (
+        "Hoem and Røsholm (2016), App. E geometry as printed"
+    )
     wide = disc_rotor(0.100, 0.036704, 0.020, 0.188, 0.1)
     assert wide.inertia == pytest.approx(2847.335e-6, rel=2e-5), (
-        "004 App. E Eq. 7.7: I = 2847.335 kg mm^2 with d1 = 100 mm (seeds/README)"
+        "Hoem and Røsholm (2016), App. E Eq. 7.7: I = 2847.335 kg mm^2 with d1 = 100 mm (docs/references.md)"
     )
 
 
@@ -72,7 +74,7 @@ def test_table_5_6_measured_torques_from_volts():
         for k, volts in enumerate(rows):
             torque = torque_from_transducer_voltage(np.mean(volts))
             assert torque == pytest.approx(MEASURED_TABLE_5_6[case][k], abs=6e-5), (
-                f"004 Table 5.6 top, case {case}, {SPEEDS_RPM[k]} rpm: (V - 0.2) 5/4.8"
+                f"Hoem and Røsholm (2016), Table 5.6 top, case {case}, {SPEEDS_RPM[k]} rpm: (V - 0.2) 5/4.8"
             )
 
 
@@ -83,7 +85,7 @@ def test_bench_required_torque_against_table_5_6(case):
         result = run_bench(rotor, BenchSettings(speed=rpm * math.pi / 30, samples=200))
         reference = FEDEM_TABLE_5_6[case][k]
         assert result.required_torque == pytest.approx(reference, rel=0.05), (
-            f"004 Table 5.6 (FEDEM), case {case}, {rpm} rpm, within 5 %"
+            f"Hoem and Røsholm (2016), Table 5.6 (FEDEM), case {case}, {rpm} rpm, within 5 %"
         )
         # tighter: the bench reproduces the FEDEM values within 2.1 % in all nine runs
         assert result.required_torque == pytest.approx(reference, rel=0.021)
@@ -112,9 +114,11 @@ def test_table_5_5_friction_coefficients_back_computed():
             mu = friction_coefficient_from_torque(MEASURED_TABLE_5_6[case][k], weight, force, 0.020)
             matches.append(f"{mu:.3g}" == f"{MU_TABLE_5_5[case][k]:.3g}")
             assert mu == pytest.approx(MU_TABLE_5_5[case][k], rel=0.008), (
-                f"004 Table 5.5 case {case} {rpm} rpm"
+                f"Hoem and Røsholm (2016), Table 5.5 case {case} {rpm} rpm"
             )
-    assert sum(matches) == 7, "004 Table 5.5: seven of nine to three significant figures"
+    assert sum(matches) == 7, (
+        "Hoem and Røsholm (2016), Table 5.5: seven of nine to three significant figures"
+    )
     assert not matches[0] and not matches[3], "the misfits are case 1 and case 2 at 3000 rpm"
 
 
@@ -126,4 +130,6 @@ def test_table_5_5_misfits_explained():
     # Case 2 at 3000 rpm: the printed 0.4044 follows with the Table 5.2 force 42.2 N
     # (r = 29.3 mm), while the other unbalanced entries need r = 29.6 mm.
     mu = friction_coefficient_from_torque(0.2083, 25.01, 42.2, 0.020)
-    assert mu == pytest.approx(0.4044, abs=2e-4), "004 Table 5.5 case 2, 3000 rpm, with 42.2 N"
+    assert mu == pytest.approx(0.4044, abs=2e-4), (
+        "Hoem and Røsholm (2016), Table 5.5 case 2, 3000 rpm, with 42.2 N"
+    )

@@ -1,7 +1,7 @@
-"""Reference values of 004 (NTNU master thesis 2016): Honda CRF250R balance factor,
+"""Reference values of Hoem and Røsholm (2016): Honda CRF250R balance factor,
 rebalancing after MXRR parts, ISO 1940 tolerance, Appendix E test rotor.
 
-Checked readings and errata: ../shared/seeds/README.md, section 004.
+Checked readings and errata: docs/references.md, Hoem and Røsholm (2016).
 """
 
 from __future__ import annotations
@@ -42,53 +42,69 @@ def _g(parts: dict[str, float]) -> float:
 
 
 def test_table_6_1_sums() -> None:
-    assert _g(OEM_RECIPROCATING) == pytest.approx(282.12, abs=1e-9), "004 Table 6.1: OEM m_rec"
-    assert _g(MXRR_RECIPROCATING) == pytest.approx(261.50, abs=1e-9), "004 Table 6.1: MXRR m_rec"
-    assert _g(MXRR_ROTATING) == pytest.approx(248.69, abs=1e-9), "004 Table 6.1: MXRR m_rot"
+    assert _g(OEM_RECIPROCATING) == pytest.approx(282.12, abs=1e-9), (
+        "Hoem and Røsholm (2016), Table 6.1: OEM m_rec"
+    )
+    assert _g(MXRR_RECIPROCATING) == pytest.approx(261.50, abs=1e-9), (
+        "Hoem and Røsholm (2016), Table 6.1: MXRR m_rec"
+    )
+    assert _g(MXRR_ROTATING) == pytest.approx(248.69, abs=1e-9), (
+        "Hoem and Røsholm (2016), Table 6.1: MXRR m_rot"
+    )
     oem_rot = _g(OEM_ROTATING)
     assert oem_rot == pytest.approx(282.69, abs=1e-9), (
-        "004 Table 6.1: OEM m_rot sums to 282.69 g (seeds README)"
+        "Hoem and Røsholm (2016), Table 6.1: OEM m_rot sums to 282.69 g (docs/references.md)"
     )
     assert abs(oem_rot - 282.96) > 0.2, (
-        "004 Table 6.1 prints 282.96 g: a transposition of 282.69 g (seeds README)"
+        "Hoem and Røsholm (2016), Table 6.1 prints 282.96 g: a transposition of 282.69 g (docs/references.md)"
     )
 
 
 def test_file_matches_table_6_1() -> None:
     spec = load_rebalance_file(EXAMPLE)
-    assert spec["old"]["rotating_mass"] == pytest.approx(0.28269), "004 Table 6.1 OEM m_rot"
-    assert spec["old"]["reciprocating_mass"] == pytest.approx(0.28212), "004 Table 6.1"
-    assert spec["new"]["rotating_mass"] == pytest.approx(0.24869), "004 Table 6.1 MXRR"
-    assert spec["new"]["reciprocating_mass"] == pytest.approx(0.26150), "004 Table 6.1 MXRR"
+    assert spec["old"]["rotating_mass"] == pytest.approx(0.28269), (
+        "Hoem and Røsholm (2016), Table 6.1 OEM m_rot"
+    )
+    assert spec["old"]["reciprocating_mass"] == pytest.approx(0.28212), (
+        "Hoem and Røsholm (2016), Table 6.1"
+    )
+    assert spec["new"]["rotating_mass"] == pytest.approx(0.24869), (
+        "Hoem and Røsholm (2016), Table 6.1 MXRR"
+    )
+    assert spec["new"]["reciprocating_mass"] == pytest.approx(0.26150), (
+        "Hoem and Røsholm (2016), Table 6.1 MXRR"
+    )
 
 
 @pytest.mark.parametrize("m_rot, checked", [(0.28296, 0.6370), (0.28269, 0.6379)])
 def test_factory_balance_factor(m_rot: float, checked: float) -> None:
     fb = sc.balance_factor_from_mass_properties(2.02040, 0.00616, 0.0269, m_rot, 0.28212)
     assert abs(fb - 0.6375) < 0.002, (
-        "004 Sec. 6.3.3 / Eq. 6.2: f_b = 63.75 % (r' rounded in print, seeds README: +-0.002)"
+        "Hoem and Røsholm (2016), Sec. 6.3.3 / Eq. 6.2: f_b = 63.75 % (r' rounded in print, docs/references.md: +-0.002)"
     )
     assert abs(fb - checked) < 5e-5, (
-        "seeds README (004 Eq. 6.2): 0.6370 with m_rot = 282.96 g, 0.6379 with 282.69 g"
+        "docs/references.md (Hoem and Røsholm (2016), Eq. 6.2): 0.6370 with m_rot = 282.96 g, 0.6379 with 282.69 g"
     )
 
 
 def test_permissible_unbalance_crf250r() -> None:
     u = permissible_unbalance("G6.3", 2.7, 15200 * 2 * math.pi / 60)
-    assert abs(u * 1e6 - 10.69) < 0.01, "004 Sec. 4.3 Eq. 4.15 / seeds README: U_per = 10.69 g*mm"
+    assert abs(u * 1e6 - 10.69) < 0.01, (
+        "Hoem and Røsholm (2016), Sec. 4.3 Eq. 4.15 / docs/references.md: U_per = 10.69 g*mm"
+    )
 
 
 def test_appendix_e_test_rotor() -> None:
     rotor = equal_inertia_test_rotor(2847.335e-6, 0.100, 0.020, 0.188, 7850.0)
     assert abs(rotor.disc_thickness * 1e3 - 36.704) < 5e-4, (
-        "004 Appendix E Table 7.2: t = 36.704 mm (with d1 = 100 mm, seeds README)"
+        "Hoem and Røsholm (2016), Appendix E Table 7.2: t = 36.704 mm (with d1 = 100 mm, docs/references.md)"
     )
     assert abs(rotor.shaft_end_length * 1e3 - 75.648) < 5e-4, (
-        "004 Appendix E Table 7.2: L2 = 75.648 mm"
+        "Hoem and Røsholm (2016), Appendix E Table 7.2: L2 = 75.648 mm"
     )
     printed = equal_inertia_test_rotor(2847.335e-6, 0.098, 0.020, 0.188, 7850.0)
     assert abs(printed.disc_thickness * 1e3 - 36.704) > 1.0, (
-        "004 Table 7.2 prints d1 = 98 mm, which does not give t = 36.704 mm (erratum)"
+        "Hoem and Røsholm (2016), Table 7.2 prints d1 = 98 mm, which does not give t = 36.704 mm (erratum)"
     )
 
 
@@ -99,7 +115,7 @@ def test_rebalance_cases_within_iso_tolerance() -> None:
     low, factory = results
     for res in results:
         assert res.passed and abs(res.residual) < u_per, (
-            "004 Sec. 6.5.1 / Table 6.2: residual below U_per = 10.69 g*mm"
+            "Hoem and Røsholm (2016), Sec. 6.5.1 / Table 6.2: residual below U_per = 10.69 g*mm"
         )
     # step 2 of Sec. 6.4 recomputed by hand with Eq. 6.1 (corrected)
     old = 2.02040 * 0.00616
@@ -108,9 +124,9 @@ def test_rebalance_cases_within_iso_tolerance() -> None:
     # Table 6.2: the 28 % case takes about three times the material of the factory case
     ratio = low.iterations[-1].depth / factory.iterations[-1].depth
     assert ratio == pytest.approx(2.807 / 0.948, rel=0.05), (
-        "004 Table 6.2: material removed 2.807 mm (28 %) vs 0.948 mm (63.75 %)"
+        "Hoem and Røsholm (2016), Table 6.2: material removed 2.807 mm (28 %) vs 0.948 mm (63.75 %)"
     )
-    assert len(low.iterations) == 2, "004 Table 6.2: two corrections for 28 %"
+    assert len(low.iterations) == 2, "Hoem and Røsholm (2016), Table 6.2: two corrections for 28 %"
 
 
 def test_cli_rebalance_file(capsys) -> None:

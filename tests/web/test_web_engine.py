@@ -15,7 +15,7 @@ from crankbalance.analysis import analyze
 
 pytestmark = pytest.mark.anyio
 
-PAPER_ENGINE = {  # Table 1 of the 2021 paper (seeds README restores the lost column)
+PAPER_ENGINE = {  # Table 1 of the 2021 paper (docs/references.md restores the lost column)
     "field-layout": "inline",
     "field-cylinders": "3",
     "field-bank_angle": "",

@@ -123,7 +123,7 @@ def friction(
     attitude_angle: str,
     fmt: str,
 ) -> None:
-    """Bearing friction torque under a constant plus a rotating load (004 Sec. 4.2.1)."""
+    """Bearing friction torque under a constant plus a rotating load (Hoem and Røsholm (2016), Sec. 4.2.1)."""
     from .. import friction as fr
     from ..errors import check_positive
 
@@ -307,7 +307,7 @@ def bench(
     history: str | None,
     fmt: str,
 ) -> None:
-    """Simulated rotor test bench: PI spin-up, hold, required torque (004 Sec. 5.2.5).
+    """Simulated rotor test bench: PI spin-up, hold, required torque (Hoem and Røsholm (2016), Sec. 5.2.5).
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """

@@ -1,4 +1,4 @@
-"""``crankbalance shaft ...``: balance-shaft bearing and unbalance-mass layout (003, Kim 2018).
+"""``crankbalance shaft ...``: balance-shaft bearing and unbalance-mass layout (Kim 2018).
 
 Sub-commands:
 
@@ -354,13 +354,17 @@ def inline4(fmt: str, **options: Any) -> None:
             "schema": SCHEMA,
             "input": _input_json(options["engine"], c),
             **study_json(study),
-            "paper": {"optimum_position": 0.67, "weight": 2.0, "source": "003 Sect. 3.1, Fig. 7"},
+            "paper": {
+                "optimum_position": 0.67,
+                "weight": 2.0,
+                "source": "Kim (2018), Sect. 3.1, Fig. 7",
+            },
         }
         click.echo(json.dumps(out, indent=2))
         return
     _echo_input(options["engine"], c)
     _echo_study(study, max(1, points // 10))
-    click.echo("Paper (003, Fig. 7): 67 % with w = 2.")
+    click.echo("Kim (2018), Fig. 7: 67 % with w = 2.")
 
 
 @shaft.command()
@@ -400,7 +404,7 @@ def inline3(
     """Optimum second-mass position of an inline-3 primary-couple shaft, per rotor type.
 
     --unbalance is the first moment of each mass when the two masses are the shaft
-    length apart (003 Eq. 12).
+    length apart (Kim (2018), Eq. 12).
     """
     import numpy as np
 
@@ -434,9 +438,9 @@ def inline3(
                 "optimum_position": 0.69,
                 "weight": 2.0,
                 "rotor_type": "III",
-                "source": "003 Sect. 3.2, Fig. 9",
+                "source": "Kim (2018), Sect. 3.2, Fig. 9",
                 "note": "not reproducible from the text: geometry not given, Eqs. 14-16 "
-                "and 22-25 garbled (seeds/README.md)",
+                "and 22-25 garbled (docs/references.md)",
             },
         }
         click.echo(json.dumps(out, indent=2))

@@ -611,7 +611,7 @@ def rebalance_command(
     tolerance_text: str | None,
     fmt: str,
 ) -> None:
-    """Rebalance a single-cylinder crank after new parts (004 Sec. 6.4, eight steps).
+    """Rebalance a single-cylinder crank after new parts (Hoem and Røsholm (2016), Sec. 6.4, eight steps).
 
     Options override the values of the --parts file.
     """

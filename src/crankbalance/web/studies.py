@@ -171,7 +171,7 @@ def _balance_factor(settings: dict[str, Any]) -> float:
 
 
 def single_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Balance-factor study of one cylinder (004 Sec. 4.1)."""
+    """Balance-factor study of one cylinder (Hoem and Røsholm (2016), Sec. 4.1)."""
     from ..single_cylinder import cylinder_balance_factor_study
 
     return cylinder_balance_factor_study(
@@ -216,7 +216,7 @@ def iso_check(computed: Computed, settings: dict[str, Any]) -> dict[str, Any]:
 
 
 def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Rebalance the cylinder's throw after new parts (004 Sec. 4.1.3, eight steps)."""
+    """Rebalance the cylinder's throw after new parts (Hoem and Røsholm (2016), Sec. 4.1.3, eight steps)."""
     from ..single_cylinder import DrilledHoles, rebalance
 
     model = computed.analysis.model
@@ -255,7 +255,7 @@ def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
 def shaft_requirement(computed: Computed) -> tuple[float, float, str]:
     """(first moment of one shaft's mass [kg m], shaft speed [rad/s], which) for the
     placement study: the engine's secondary shaft if it has one, else its primary shaft,
-    else the inline-4 closed form 003 Eq. 4 for its first cylinder."""
+    else the inline-4 closed form Kim (2018), Eq. 4 for its first cylinder."""
     from ..balance_shaft import inline4_secondary_unbalance
 
     result, model = computed.study.result, computed.analysis.model
@@ -268,11 +268,11 @@ def shaft_requirement(computed: Computed) -> tuple[float, float, str]:
     moment = inline4_secondary_unbalance(
         float(model.reciprocating_mass[0]), float(model.crank_radius), float(model.rod_length)
     )
-    return moment, 2 * float(model.speed), "inline-4 secondary shaft (003 Eq. 4)"
+    return moment, 2 * float(model.speed), "inline-4 secondary shaft (Kim (2018), Eq. 4)"
 
 
 def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, str]:
-    """Unbalance-mass placement on a shaft with end bearings (003 Sec. 3.1)."""
+    """Unbalance-mass placement on a shaft with end bearings (Kim (2018), Sec. 3.1)."""
     from ..balance_shaft import ShaftSection, inline4_study
 
     moment, speed, which = shaft_requirement(computed)
@@ -294,7 +294,7 @@ def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, 
 
 # --------------------------------------------------------------------------- performance
 def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Friction, bearing loads and shaking against the balance factor (004 Sec. 5) for one
+    """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm (2016), Sec. 5) for one
     cylinder of the engine (its reciprocating mass, crank radius, rod length, speed)."""
     from ..dynamics import CylinderSpec, WiebeCombustion, balance_sensitivity
 
