@@ -17,7 +17,7 @@ from pathlib import Path
 import numpy as np
 
 from crankbalance.analysis import Analysis, analyze
-from crankbalance.io import load_engine
+from crankbalance.io.engine_file import load_engine
 from crankbalance.model import build_model
 from crankbalance.shaking import batch_amplitudes, free_forces
 

@@ -17,7 +17,7 @@ from crankbalance.balance_shaft import (
     inline4_study,
     shaft_response,
 )
-from crankbalance.io import load_engine
+from crankbalance.io.engine_file import load_engine
 from crankbalance.model import build_model
 
 engine = build_model(load_engine("inline4"))

@@ -10,7 +10,7 @@ from typing import Any
 
 import pytest
 
-from crankbalance.io import dumps_toml
+from crankbalance.io.engine_file import dumps_toml
 
 from .conftest import paper_inline3_dict, run_cli
 
@@ -224,7 +224,7 @@ def test_atomic_write_keeps_normal_permissions(tmp_path: Path) -> None:
     import os
     import stat
 
-    from crankbalance.io import write_atomic
+    from crankbalance.io.files import write_atomic
 
     target = tmp_path / "report.html"
     write_atomic(target, "x")

@@ -16,7 +16,7 @@ from crankbalance.balancing import (
     counterweight_angle_sweep,
 )
 from crankbalance.errors import InputError
-from crankbalance.io import load_engine
+from crankbalance.io.engine_file import load_engine
 from crankbalance.kinematics import harmonic_coefficients
 from crankbalance.model import build_model
 from crankbalance.spec import spec_from_dict

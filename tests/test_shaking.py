@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from crankbalance.analysis import analyze
-from crankbalance.io import list_presets
+from crankbalance.io.engine_file import list_presets
 from crankbalance.shaking import batch_amplitudes, exact_time_domain, phasor_curve
 
 

@@ -11,7 +11,7 @@ from typing import Any
 import numpy as np
 
 from .errors import InputError
-from .io import load_engine
+from .io.engine_file import load_engine
 from .model import EngineModel, build_model
 from .results import to_jsonable
 from .shaking import Curves, FreeForces, curves, free_forces

@@ -81,7 +81,7 @@ def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
 
     from . import __version__
     from .analysis import analyze, balance_engine, balance_options
-    from .io import engine_to_toml, load_engine
+    from .io.engine_file import engine_to_toml, load_engine
     from .spec import EngineSpec
 
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
@@ -598,7 +598,7 @@ def write_report(
 ) -> Path:
     """Write the report of ``engine`` to ``path`` (``.html``/``.htm`` or ``.pdf``),
     atomically."""
-    from .io import write_atomic
+    from .io.files import write_atomic
 
     target = Path(path)
     suffix = target.suffix.lower()

@@ -24,7 +24,7 @@ EXAMPLES = ROOT / "examples"
 
 def cases() -> dict[str, list[str]]:
     """Case name -> CLI arguments (every case prints one JSON object)."""
-    from crankbalance.io import list_presets
+    from crankbalance.io.engine_file import list_presets
 
     out: dict[str, list[str]] = {}
     for preset in list_presets():

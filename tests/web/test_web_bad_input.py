@@ -11,7 +11,7 @@ from nicegui.elements.upload_files import SmallFileUpload
 from nicegui.testing.user import User
 from nicegui.testing.user_simulation import user_simulation
 
-from crankbalance.io import preset_text
+from crankbalance.io.engine_file import preset_text
 from crankbalance.web.app import root
 from crankbalance.web.project import FIELDS
 

@@ -130,7 +130,7 @@ def curves_csv(result: object) -> str:
 @format_option(("table", "json"))
 def presets(fmt: str) -> None:
     """List the built-in engines (use a name wherever an engine file is expected)."""
-    from ..io import list_presets, load_engine
+    from ..io.engine_file import list_presets, load_engine
 
     names = list_presets()
     if fmt == "json":

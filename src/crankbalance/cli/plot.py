@@ -45,7 +45,7 @@ def check_output(output: str, suffixes: Sequence[str], field: str = "--output") 
 def write_output(output: str, data: str | bytes, field: str = "--output") -> None:
     """Write ``data`` atomically; an OS error (disk full, permissions) is an InputError."""
     from ..errors import InputError
-    from ..io import write_atomic
+    from ..io.files import write_atomic
 
     try:
         write_atomic(output, data)

@@ -286,7 +286,7 @@ def balance_factor(
 def _engine_cylinder(engine: str, cylinder: int) -> dict[str, float]:
     """Single-cylinder data of one cylinder of an engine file (needs crankbalance.io/model)."""
     try:
-        from ..io import load_engine
+        from ..io.engine_file import load_engine
         from ..model import build_model
     except ImportError:
         raise InputError(

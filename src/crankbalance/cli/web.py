@@ -27,7 +27,7 @@ def web(port: int, preset: str, show: bool) -> None:
 
     Each browser tab keeps its own project; ``/?preset=v8-crossplane`` opens a preset.
     """
-    from ..io import list_presets
+    from ..io.engine_file import list_presets
 
     if preset not in list_presets():
         raise InputError("--preset", preset, "unknown preset; `crankbalance presets` lists them")

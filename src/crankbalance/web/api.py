@@ -14,7 +14,7 @@ from typing import Any
 
 from ..analysis import analyze, balance_engine
 from ..errors import InputError
-from ..io import list_presets, load_engine, parse_engine_text
+from ..io.engine_file import list_presets, load_engine, parse_engine_text
 
 MAX_BODY = 200_000
 

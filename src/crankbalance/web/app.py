@@ -22,7 +22,7 @@ from nicegui import run, ui
 
 from .. import plots
 from ..errors import InputError
-from ..io import MAX_FILE_BYTES, list_presets
+from ..io.engine_file import MAX_FILE_BYTES, list_presets
 from . import studies
 from .exports import figure_csv, figure_json, table_csv
 from .project import (

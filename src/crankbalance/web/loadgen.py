@@ -11,7 +11,7 @@ from dataclasses import dataclass, field
 from typing import Any
 from urllib.parse import urlsplit
 
-from ..io import list_presets, preset_text
+from ..io.engine_file import list_presets, preset_text
 
 #: presets cycled through by the sessions (2 to 12 cylinders, every layout)
 PRESETS = [p for p in list_presets() if not p.startswith("paper")]

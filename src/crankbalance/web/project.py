@@ -367,7 +367,7 @@ class Project:
 
     @classmethod
     def from_preset(cls, name: str) -> Project:
-        from ..io import preset_text
+        from ..io.engine_file import preset_text
 
         return cls.from_text(preset_text(name), f"preset {name}")
 
@@ -380,7 +380,7 @@ class Project:
     def load_text(self, text: str, source: str = "project file", fmt: str = "toml") -> None:
         """Replace the project by the content of an engine file; on error raise InputError
         and leave the project as it was."""
-        from ..io import parse_engine_text
+        from ..io.engine_file import parse_engine_text
 
         spec = parse_engine_text(text, source, fmt)
         settings = _settings_from_text(text)
@@ -518,7 +518,7 @@ class Project:
     # ------------------------------------------------------------------ saving
     def to_toml(self) -> str:
         """The project as an engine file (its settings in a comment line the CLI ignores)."""
-        from ..io import engine_to_toml
+        from ..io.engine_file import engine_to_toml
 
         if self.spec is None:
             raise InputError(

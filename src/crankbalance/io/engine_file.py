@@ -1,21 +1,17 @@
-"""Loading and saving engine files (TOML or JSON) and the preset library.
-
-Files are written atomically (a temporary file in the same folder, then renamed), so a
-failed save never destroys what the user had.
-"""
+"""Engine files (TOML or JSON): loading, validating, saving, and the preset library."""
 
 from __future__ import annotations
 
 import json
 import os
-import tempfile
 import tomllib
 from importlib import resources
 from pathlib import Path
 from typing import Any
 
-from .errors import InputError
-from .spec import EngineSpec, spec_from_dict
+from ..errors import InputError
+from ..spec import EngineSpec, spec_from_dict
+from .files import write_atomic
 
 MAX_FILE_BYTES = 2_000_000
 
@@ -106,33 +102,6 @@ def save_engine(spec: EngineSpec, path: str | os.PathLike[str]) -> None:
     else:
         text = engine_to_toml(spec)
     write_atomic(target, text)
-
-
-def write_atomic(path: str | os.PathLike[str], data: str | bytes) -> None:
-    """Write a file so that it is either wholly the new content or untouched."""
-    target = Path(path)
-    folder = target.parent if str(target.parent) else Path(".")
-    mode = "wb" if isinstance(data, bytes) else "w"
-    fd, tmp = tempfile.mkstemp(prefix=f".{target.name}.", dir=folder)
-    # mkstemp makes the file private (0600); give it the mode a plain open() would, or
-    # keep the mode of the file it replaces
-    if target.exists():
-        mode_bits = target.stat().st_mode & 0o777
-    else:
-        umask = os.umask(0)
-        os.umask(umask)
-        mode_bits = 0o666 & ~umask
-    os.chmod(tmp, mode_bits)
-    try:
-        with os.fdopen(fd, mode) as handle:
-            handle.write(data)
-            handle.flush()
-            os.fsync(handle.fileno())
-        os.replace(tmp, target)
-    except BaseException:
-        if os.path.exists(tmp):
-            os.unlink(tmp)
-        raise
 
 
 # --------------------------------------------------------------------------- TOML writer
