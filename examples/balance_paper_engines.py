@@ -6,7 +6,7 @@ Run: python examples/balance_paper_engines.py
 
 from pathlib import Path
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 
 HERE = Path(__file__).resolve().parent
 PRINTED = {

@@ -18,7 +18,7 @@ from crankbalance.balance_shaft import (
     shaft_response,
 )
 from crankbalance.io.engine_file import load_engine
-from crankbalance.model import build_model
+from crankbalance.studies.build import build_model
 
 engine = build_model(load_engine("inline4"))
 unbalance = inline4_secondary_unbalance(

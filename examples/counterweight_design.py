@@ -16,7 +16,7 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 from crankbalance.counterweight import (
     export_counterweight,
     mesh_mass_properties,

@@ -3,7 +3,7 @@
 Run: python examples/free_forces.py
 """
 
-from crankbalance.analysis import analyze
+from crankbalance.studies.engine import analyze
 
 for preset in ("paper-inline3", "inline4", "v8-crossplane", "boxer4"):
     result = analyze(preset, orders=4)

@@ -8,7 +8,7 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 from crankbalance.balancing import (
     CounterweightOptions,
     ShaftOptions,
@@ -18,7 +18,7 @@ from crankbalance.balancing import (
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
 from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.model import build_model
+from crankbalance.studies.build import build_model
 from crankbalance.spec import spec_from_dict
 
 from .conftest import EXAMPLES, run_cli
@@ -195,7 +195,7 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
     """The balance-shaft designer takes its unbalance from the balancing solver: inline-4
     Lanchester shafts A2 m r / 2 at 2w; the paper inline-3's single counter-rotating shaft
     sqrt(3) m r a / (2 l) at w (Kim (2018), Eq. 12)."""
-    from crankbalance.analysis import shaft_requirement
+    from crankbalance.studies.engine import shaft_requirement
     from crankbalance.balance_shaft import inline3_couple_unbalance
 
     m = model_of("inline4")

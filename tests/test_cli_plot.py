@@ -93,7 +93,7 @@ def test_bad_input_exits_2(
 
 
 def test_report_html_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
-    from crankbalance.analysis import balance_engine
+    from crankbalance.studies.engine import balance_engine
 
     out = tmp_path / "r.html"
     code, _, err = run_cli(
@@ -109,7 +109,7 @@ def test_report_html_cli(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> 
 
 def test_report_with_one_order(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> None:
     """--orders 1 is allowed: the balancing still reports orders 1 and 2 (was a KeyError)."""
-    from crankbalance.analysis import analyze
+    from crankbalance.studies.engine import analyze
 
     out = tmp_path / "r.html"
     code, _, err = run_cli(["report", "inline3", "-o", str(out), "--orders", "1"], capsys)

@@ -593,7 +593,7 @@ def test_requirement_from_the_balancing_solver(capsys):
     """2021 paper Table 2: m_c = 1.2413 kg at r_c = 30 mm for the inline-3 of Table 1."""
     from pathlib import Path
 
-    from crankbalance.analysis import balance_engine
+    from crankbalance.studies.engine import balance_engine
     from crankbalance.counterweight import required_first_moment
 
     engine = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"

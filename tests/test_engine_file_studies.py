@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from crankbalance.analysis import as_model
+from crankbalance.studies.engine import as_model
 from crankbalance.dynamics import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.errors import InputError
 

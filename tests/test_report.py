@@ -12,7 +12,7 @@ import pytest
 
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
-from crankbalance.analysis import analyze, balance_engine  # noqa: E402
+from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 from crankbalance.errors import InputError  # noqa: E402
 from crankbalance.report import build_report, report_html, write_report  # noqa: E402
 

@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from crankbalance.analysis import analyze
+from crankbalance.studies.engine import analyze
 from crankbalance.io.engine_file import list_presets
 from crankbalance.shaking import batch_amplitudes, exact_time_domain, phasor_curve
 

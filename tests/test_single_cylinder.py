@@ -307,7 +307,7 @@ def test_stroking_effect() -> None:
 
 def test_engine_cylinder_study_matches_plain_call() -> None:
     from crankbalance.io.engine_file import load_engine
-    from crankbalance.model import build_model
+    from crankbalance.studies.build import build_model
 
     model = build_model(load_engine("single"))
     study = sc.cylinder_balance_factor_study(model, 0, 0.4, kinematics="exact")

@@ -4,7 +4,7 @@ r"""Figure builders: one function per figure, shared by the web app, the report 
 
 Public functions
 ----------------
-Engine analysis and balancing (:mod:`crankbalance.analysis`):
+Engine analysis and balancing (:mod:`crankbalance.studies.engine`):
 
 - ``orders_bar(analysis) -> Figure``
     Force and moment amplitudes per order, forward/backward phasor magnitudes stacked.
@@ -71,7 +71,7 @@ from .results import ResultMixin
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
-    from .analysis import Analysis, BalanceStudy
+    from .studies.engine import Analysis, BalanceStudy
     from .model import EngineModel
 
 Quantity = Literal["force", "moment"]

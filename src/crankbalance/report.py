@@ -5,8 +5,8 @@ Chromium).
 Contents: engine data, mass split, free forces and moments by order, rotating masses,
 balancing masses (counterweights, balance shafts), residuals before/after balancing, the
 figures of :mod:`crankbalance.plots`, and the settings used (solver options and the engine
-file itself). Every number comes from :func:`crankbalance.analysis.analyze` and
-:func:`crankbalance.analysis.balance_engine`; both results are also embedded as JSON
+file itself). Every number comes from :func:`crankbalance.studies.engine.analyze` and
+:func:`crankbalance.studies.engine.balance_engine`; both results are also embedded as JSON
 (``<script type="application/json" id="crankbalance-data">``) so a reader or a test can
 check the page against the API.
 
@@ -73,14 +73,14 @@ class Report:
 def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
     """Analyse and balance ``engine`` (preset name, engine file or EngineSpec).
 
-    ``overrides`` go to :func:`~crankbalance.analysis.balance_engine` (``angle``,
+    ``overrides`` go to :func:`~crankbalance.studies.engine.balance_engine` (``angle``,
     ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``, ``primary``,
     ``secondary``).
     """
     import dataclasses
 
     from . import __version__
-    from .analysis import analyze, balance_engine, balance_options
+    from .studies.engine import analyze, balance_engine, balance_options
     from .io.engine_file import engine_to_toml, load_engine
     from .spec import EngineSpec
 

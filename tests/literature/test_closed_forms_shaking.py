@@ -11,7 +11,7 @@ import math
 
 import pytest
 
-from crankbalance.analysis import analyze
+from crankbalance.studies.engine import analyze
 from crankbalance.kinematics import harmonic_coefficients
 from crankbalance.spec import spec_from_dict
 

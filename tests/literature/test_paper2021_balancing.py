@@ -9,7 +9,7 @@ import math
 
 import pytest
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 
 from ..conftest import EXAMPLES
 

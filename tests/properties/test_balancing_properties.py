@@ -9,7 +9,7 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from crankbalance.balancing import CounterweightOptions, ShaftOptions, balance
-from crankbalance.model import build_model
+from crankbalance.studies.build import build_model
 from crankbalance.spec import spec_from_dict
 
 

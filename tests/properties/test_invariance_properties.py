@@ -9,7 +9,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankbalance.analysis import analyze
+from crankbalance.studies.engine import analyze
 from crankbalance.spec import spec_from_dict
 
 

@@ -11,7 +11,7 @@ import json
 import pytest
 from nicegui.testing.user import User
 
-from crankbalance.analysis import analyze
+from crankbalance.studies.engine import analyze
 
 pytestmark = pytest.mark.anyio
 

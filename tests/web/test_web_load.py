@@ -17,7 +17,7 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 from crankbalance.io.engine_file import parse_engine_text
 from crankbalance.web.loadgen import engine_text, run_session
 

@@ -8,7 +8,7 @@ import asyncio
 import pytest
 from nicegui.testing.user import User
 
-from crankbalance.analysis import balance_engine
+from crankbalance.studies.engine import balance_engine
 from crankbalance.single_cylinder import cylinder_balance_factor_study
 from crankbalance.tolerance import permissible_unbalance
 

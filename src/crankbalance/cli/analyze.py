@@ -21,7 +21,7 @@ from ._common import echo_table, format_option
 )
 def analyze(engine: str, fmt: str, orders: int) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
-    from ..analysis import analyze as run
+    from ..studies.engine import analyze as run
 
     result = run(engine, orders)
     if fmt == "json":
@@ -91,7 +91,7 @@ def _distinct(values: list[float]) -> str:
 
 def curves_csv(result: object) -> str:
     """CSV of the curves: crank angle, each order's components, total and rotating."""
-    from ..analysis import Analysis
+    from ..studies.engine import Analysis
 
     assert isinstance(result, Analysis)
     c = result.curves()

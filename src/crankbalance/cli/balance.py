@@ -50,7 +50,7 @@ def balance(
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    from ..analysis import balance_engine
+    from ..studies.engine import balance_engine
     from ..units import parse_quantity
 
     overrides: dict[str, Any] = {}

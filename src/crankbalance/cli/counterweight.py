@@ -88,7 +88,7 @@ def _first_moment(
             "give only one of --first-moment, --cw-mass with --cg-radius, or --engine",
         )
     if engine is not None:
-        from ..analysis import balance_engine
+        from ..studies.engine import balance_engine
         from ..counterweight import required_first_moment
 
         study = balance_engine(engine)

@@ -478,7 +478,7 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
     }
     speed, strokes = _q(o["speed"], "speed", "speed"), int(o["strokes"])
     if o["engine"] is not None:
-        from ..analysis import as_model
+        from ..studies.engine import as_model
 
         model = as_model(o["engine"])
         if o["cylinder"] > model.cylinders:

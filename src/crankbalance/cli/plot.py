@@ -64,7 +64,7 @@ def build_figure(
 ) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
     from .. import plots
-    from ..analysis import analyze, balance_engine
+    from ..studies.engine import analyze, balance_engine
     from ..errors import InputError
 
     if kind not in KINDS:

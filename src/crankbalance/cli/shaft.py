@@ -176,7 +176,7 @@ def _common(
     if engine is not None:
         if unbalance is not None or speed is not None:
             raise InputError("--engine", engine, "give --engine or --unbalance/--speed, not both")
-        from ..analysis import shaft_requirement
+        from ..studies.engine import shaft_requirement
 
         required, shaft_speed = shaft_requirement(engine, order, length, radius)
     else:

@@ -287,7 +287,7 @@ def _engine_cylinder(engine: str, cylinder: int) -> dict[str, float]:
     """Single-cylinder data of one cylinder of an engine file (needs crankbalance.io/model)."""
     try:
         from ..io.engine_file import load_engine
-        from ..model import build_model
+        from ..studies.build import build_model
     except ImportError:
         raise InputError(
             "engine",

@@ -12,7 +12,7 @@ requests or users.
 
 from typing import Any
 
-from ..analysis import analyze, balance_engine
+from ..studies.engine import analyze, balance_engine
 from ..errors import InputError
 from ..io.engine_file import list_presets, load_engine, parse_engine_text
 

@@ -495,7 +495,7 @@ class Project:
     # ------------------------------------------------------------------ computing
     def compute(self) -> Computed | None:
         """Free forces and moments and the balancing study of the current engine."""
-        from ..analysis import analyze, balance_engine
+        from ..studies.engine import analyze, balance_engine
 
         if self.spec is None:
             return None

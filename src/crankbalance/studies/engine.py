@@ -10,12 +10,13 @@ from typing import Any
 
 import numpy as np
 
-from .errors import InputError
-from .io.engine_file import load_engine
-from .model import EngineModel, build_model
-from .results import to_jsonable
-from .shaking import Curves, FreeForces, curves, free_forces
-from .spec import EngineSpec
+from ..errors import InputError
+from ..io.engine_file import load_engine
+from ..model import EngineModel
+from ..results import to_jsonable
+from ..shaking import Curves, FreeForces, curves, free_forces
+from ..spec import EngineSpec
+from .build import build_model
 
 SCHEMA = "crankbalance.analysis/1"
 EngineLike = str | os.PathLike[str] | EngineSpec | EngineModel
@@ -164,7 +165,7 @@ def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
     Without a [counterweights] table the crank gets counterweights on every web at the
     crank radius, at the optimal angle (least mass), with no balance factor.
     """
-    from .balancing import CounterweightOptions, ShaftOptions
+    from ..balancing import CounterweightOptions, ShaftOptions
 
     c = spec.counterweights
     if c is None:
@@ -307,7 +308,7 @@ def balance_engine(
     """
     import dataclasses
 
-    from .balancing import balance
+    from ..balancing import balance
 
     if not isinstance(orders, int) or not 1 <= orders <= 64:
         raise InputError("orders", orders, "must be a whole number from 1 to 64")
@@ -331,7 +332,7 @@ def shaft_requirement(
     inline-4 Lanchester module). Returns the largest first moment of one shaft mass
     [kg·m] and the shaft speed [rad/s].
     """
-    from .balancing import ShaftOptions
+    from ..balancing import ShaftOptions
 
     if order not in (1, 2):
         raise InputError("order", order, "must be 1 (primary) or 2 (secondary)")
