@@ -8,7 +8,6 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.studies.engine import balance_engine
 from crankbalance.balancing import (
     CounterweightOptions,
     ShaftOptions,
@@ -18,8 +17,9 @@ from crankbalance.balancing import (
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
 from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.studies.build import build_model
 from crankbalance.spec import spec_from_dict
+from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import balance_engine
 
 from .conftest import EXAMPLES, run_cli
 
@@ -195,16 +195,16 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
     """The balance-shaft designer takes its unbalance from the balancing solver: inline-4
     Lanchester shafts A2 m r / 2 at 2w; the paper inline-3's single counter-rotating shaft
     sqrt(3) m r a / (2 l) at w (Kim (2018), Eq. 12)."""
-    from crankbalance.studies.engine import shaft_requirement
     from crankbalance.balance_shaft import inline3_couple_unbalance
+    from crankbalance.studies.requirements import shaft_requirement
 
     m = model_of("inline4")
     a2 = harmonic_coefficients(m.rod_ratio, 2)[1].real
-    unbalance, speed = shaft_requirement("inline4", 2, 0.3)
-    assert unbalance == pytest.approx(a2 * m.reciprocating_mass[0] * m.crank_radius / 2)
-    assert speed == pytest.approx(2 * m.speed)
-    unbalance, speed = shaft_requirement(EXAMPLES / "paper_inline3.toml", 1, 0.2)
-    assert unbalance == pytest.approx(inline3_couple_unbalance(0.94, 0.04, 0.09, 0.2))
+    need = shaft_requirement("inline4", 2, 0.3)
+    assert need.unbalance == pytest.approx(a2 * m.reciprocating_mass[0] * m.crank_radius / 2)
+    assert need.speed == pytest.approx(2 * m.speed)
+    need = shaft_requirement(EXAMPLES / "paper_inline3.toml", 1, 0.2)
+    assert need.unbalance == pytest.approx(inline3_couple_unbalance(0.94, 0.04, 0.09, 0.2))
     code, out, err = run_cli(
         [
             "shaft",

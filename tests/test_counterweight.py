@@ -593,8 +593,8 @@ def test_requirement_from_the_balancing_solver(capsys):
     """2021 paper Table 2: m_c = 1.2413 kg at r_c = 30 mm for the inline-3 of Table 1."""
     from pathlib import Path
 
-    from crankbalance.studies.engine import balance_engine
     from crankbalance.counterweight import required_first_moment
+    from crankbalance.studies.engine import balance_engine
 
     engine = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"
     cw = balance_engine(engine).result.counterweights

@@ -6,9 +6,9 @@ import json
 
 import pytest
 
-from crankbalance.studies.engine import as_model
 from crankbalance.dynamics import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.errors import InputError
+from crankbalance.studies.engine import as_model
 
 from .conftest import run_cli
 

@@ -11,8 +11,8 @@ import pytest
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
 from crankbalance import plots  # noqa: E402
-from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 from crankbalance.errors import InputError  # noqa: E402
+from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 
 
 @pytest.fixture(scope="module")

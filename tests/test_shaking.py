@@ -5,9 +5,9 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from crankbalance.studies.engine import analyze
 from crankbalance.io.engine_file import list_presets
 from crankbalance.shaking import batch_amplitudes, exact_time_domain, phasor_curve
+from crankbalance.studies.engine import analyze
 
 
 @pytest.mark.parametrize(

@@ -308,9 +308,10 @@ def test_stroking_effect() -> None:
 def test_engine_cylinder_study_matches_plain_call() -> None:
     from crankbalance.io.engine_file import load_engine
     from crankbalance.studies.build import build_model
+    from crankbalance.studies.cylinder import cylinder_study
 
     model = build_model(load_engine("single"))
-    study = sc.cylinder_balance_factor_study(model, 0, 0.4, kinematics="exact")
+    study = cylinder_study(model, 1, 0.4, kinematics="exact")
     plain = sc.balance_factor_study(
         float(model.reciprocating_mass[0]),
         model.crank_radius,
@@ -321,4 +322,4 @@ def test_engine_cylinder_study_matches_plain_call() -> None:
     )
     assert study.peak_resultant == pytest.approx(plain.peak_resultant, rel=1e-12)
     with pytest.raises(InputError, match="cylinder"):
-        sc.cylinder_balance_factor_study(model, 3)
+        cylinder_study(model, 3, 0.4)

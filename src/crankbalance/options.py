@@ -21,10 +21,11 @@ from typing import Annotated, Any, Literal, TypeVar, get_args
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
 
 from .errors import InputError
+from .single_cylinder import BALANCE_FACTOR_RANGE
 from .units import KINDS, parse_quantity
 
 #: the balance factors every study accepts (share of the reciprocating mass) [-]
-BALANCE_FACTOR_LIMITS = (0.0, 2.0)
+BALANCE_FACTOR_LIMITS = BALANCE_FACTOR_RANGE
 
 
 def _quantity(kind: str) -> Any:

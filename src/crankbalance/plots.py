@@ -71,8 +71,8 @@ from .results import ResultMixin
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
-    from .studies.engine import Analysis, BalanceStudy
     from .model import EngineModel
+    from .studies.engine import Analysis, BalanceStudy
 
 Quantity = Literal["force", "moment"]
 ImageFormat = Literal["png", "svg"]

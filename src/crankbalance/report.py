@@ -80,9 +80,9 @@ def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
     import dataclasses
 
     from . import __version__
-    from .studies.engine import analyze, balance_engine, balance_options
     from .io.engine_file import engine_to_toml, load_engine
     from .spec import EngineSpec
+    from .studies.engine import analyze, balance_engine, balance_options
 
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
     # the balancing contract always reports orders 1 and 2 (balance_engine needs both)

@@ -33,7 +33,7 @@ import math
 from abc import ABC, abstractmethod
 from collections.abc import Sequence
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -58,7 +58,9 @@ FaceOrientation = Literal["axial", "radial"]
 # ---------------------------------------------------------------------------------------
 
 
-def _check_balance_factor(value: float, field_name: str = "balance_factor") -> float:
+def check_balance_factor(value: float, field_name: str = "balance_factor") -> float:
+    """Return ``value`` if it is a balance factor in :data:`BALANCE_FACTOR_RANGE`, else raise
+    :class:`~crankbalance.errors.InputError` naming ``field_name``."""
     low, high = BALANCE_FACTOR_RANGE
     return check_range(field_name, value, low, high)
 
@@ -205,7 +207,7 @@ def counterweight_moment(
     """
     _check_mass("rotating_mass", rotating_mass)
     _check_mass("reciprocating_mass", reciprocating_mass)
-    _check_balance_factor(balance_factor)
+    check_balance_factor(balance_factor)
     check_positive("crank_radius", crank_radius)
     return (rotating_mass + balance_factor * reciprocating_mass) * crank_radius
 
@@ -262,7 +264,7 @@ def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: 
     """
     _check_mass("rotating_mass", rotating_mass)
     _check_mass("reciprocating_mass", reciprocating_mass)
-    _check_balance_factor(balance_factor)
+    check_balance_factor(balance_factor)
     return rotating_mass + balance_factor * reciprocating_mass
 
 
@@ -421,7 +423,7 @@ def balance_factor_study(
     check_positive("reciprocating_mass", reciprocating_mass)
     check_positive("crank_radius", crank_radius)
     check_positive("speed", speed)
-    _check_balance_factor(balance_factor)
+    check_balance_factor(balance_factor)
     if rod_length is not None:
         check_positive("rod_length", rod_length)
         if rod_length <= crank_radius + abs(offset):
@@ -454,7 +456,7 @@ def balance_factor_study(
     )
     fbs = np.linspace(0.0, 1.0, 101) if sweep is None else np.asarray(sweep, dtype=float)
     for value in fbs:
-        _check_balance_factor(float(value), "sweep")
+        check_balance_factor(float(value), "sweep")
     sweep_peak = np.array([peak(float(fb)) for fb in fbs])
     # the peak is a maximum of norms of functions affine in f_b, hence convex in f_b
     best = minimize_scalar(
@@ -800,7 +802,7 @@ def rebalance(
         old_reciprocating_mass,
     )
     target = original if target_balance_factor is None else target_balance_factor
-    _check_balance_factor(target, "target_balance_factor")
+    check_balance_factor(target, "target_balance_factor")
     # step 1
     original_moment = counterweight_mass * counterweight_radius
     required = counterweight_moment(new_rotating_mass, new_reciprocating_mass, target, crank_radius)
@@ -881,49 +883,4 @@ def rebalance(
         passed=abs(residual) <= tolerance,
         status=status,
         bob_weight=bob_weight(new_rotating_mass, new_reciprocating_mass, target),
-    )
-
-
-def cylinder_balance_factor_study(
-    model: Any,
-    cylinder: int = 0,
-    balance_factor: float = 0.5,
-    kinematics: KinematicsModel | None = None,
-    **options: Any,
-) -> BalanceFactorStudy:
-    r"""The single-cylinder study for one cylinder of any engine model.
-
-    Takes the reciprocating mass of that cylinder and the crank radius, rod length, offset and
-    speed of the engine; the counterweight share :math:`f_b` is per cylinder (the share of
-    *this* cylinder's reciprocating mass on its throw's counterweight, on top of the rotating
-    mass). For a multi-cylinder engine the forces of the other cylinders are not included:
-    this is the per-cylinder view of Hoem and Røsholm (2016), Sec. 4.1.2, not the engine's free force.
-
-    Parameters
-    ----------
-    model : crankbalance.model.EngineModel
-        Engine as SI arrays (duck-typed: ``reciprocating_mass``, ``crank_radius``,
-        ``rod_length``, ``offset``, ``speed``, ``kinematics``).
-    cylinder : int
-        Zero-based cylinder index.
-    balance_factor : float
-        :math:`f_b` in [0, 2] [-].
-    kinematics : {"exact", "series", "first-order"}, optional
-        Default: the engine's own setting.
-    **options
-        Passed on to :func:`balance_factor_study` (``samples``, ``sweep``).
-    """
-    count = len(model.reciprocating_mass)
-    if not (isinstance(cylinder, int) and 0 <= cylinder < count):
-        raise InputError("cylinder", cylinder, f"must be an index from 0 to {count - 1}")
-    chosen: KinematicsModel = kinematics or model.kinematics
-    return balance_factor_study(
-        float(model.reciprocating_mass[cylinder]),
-        float(model.crank_radius),
-        float(model.speed),
-        balance_factor,
-        rod_length=float(model.rod_length),
-        offset=float(model.offset),
-        model=chosen,
-        **options,
     )

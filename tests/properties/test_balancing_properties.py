@@ -9,8 +9,8 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from crankbalance.balancing import CounterweightOptions, ShaftOptions, balance
-from crankbalance.studies.build import build_model
 from crankbalance.spec import spec_from_dict
+from crankbalance.studies.build import build_model
 
 
 @st.composite

@@ -9,8 +9,8 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankbalance.studies.engine import analyze
 from crankbalance.spec import spec_from_dict
+from crankbalance.studies.engine import analyze
 
 
 @st.composite

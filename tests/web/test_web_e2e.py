@@ -81,8 +81,8 @@ def _wait_text(page, selector: str, pattern: str, timeout: float = 15.0) -> str:
 
 
 def test_preset_change_compute_report(server: str, browser, tmp_path: Path) -> None:
-    from crankbalance.studies.engine import analyze, balance_engine
     from crankbalance.io.engine_file import load_engine
+    from crankbalance.studies.engine import analyze, balance_engine
 
     page = browser.new_page(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
     errors: list[str] = []

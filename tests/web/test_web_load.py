@@ -17,8 +17,8 @@ from concurrent.futures import ThreadPoolExecutor
 
 import pytest
 
-from crankbalance.studies.engine import balance_engine
 from crankbalance.io.engine_file import parse_engine_text
+from crankbalance.studies.engine import balance_engine
 from crankbalance.web.loadgen import engine_text, run_session
 
 pytest.importorskip("nicegui")

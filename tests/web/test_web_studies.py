@@ -8,8 +8,8 @@ import asyncio
 import pytest
 from nicegui.testing.user import User
 
+from crankbalance.studies.cylinder import cylinder_study
 from crankbalance.studies.engine import balance_engine
-from crankbalance.single_cylinder import cylinder_balance_factor_study
 from crankbalance.tolerance import permissible_unbalance
 
 pytestmark = pytest.mark.anyio
@@ -70,7 +70,7 @@ async def test_single_cylinder_tab(user: User, form) -> None:
     user.find(marker="run-single").click()
     await _settle(lambda: "Primary force" in form.text("single-summary"))
     spec_study = balance_engine("single")
-    ref = cylinder_balance_factor_study(spec_study.model, 0, 0.6)
+    ref = cylinder_study(spec_study.model, 1, 0.6)
     summary = form.text("single-summary")
     assert f"{ref.peak_resultant:.1f} N" in summary, (summary, ref.peak_resultant)
     assert f"{ref.optimum_balance_factor:.3f}" in summary

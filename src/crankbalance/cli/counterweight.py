@@ -89,17 +89,13 @@ def _first_moment(
         )
     if engine is not None:
         from ..studies.engine import balance_engine
-        from ..counterweight import required_first_moment
+        from ..studies.requirements import counterweight_requirement
 
         study = balance_engine(engine)
-        if study.result.counterweights is None:
-            raise InputError(
-                "--engine",
-                engine,
-                "an engine whose balancing asks for crank "
-                "counterweights (a [counterweights] table)",
-            )
-        return required_first_moment(study.result.counterweights)
+        try:
+            return counterweight_requirement(study)
+        except InputError as error:
+            raise InputError("--engine", engine, error.allowed) from None
     if first_moment is not None:
         return parse_quantity(first_moment, "unbalance", "--first-moment")
     if cw_mass is None or cg_radius is None:

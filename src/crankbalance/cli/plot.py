@@ -64,8 +64,8 @@ def build_figure(
 ) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
     from .. import plots
-    from ..studies.engine import analyze, balance_engine
     from ..errors import InputError
+    from ..studies.engine import analyze, balance_engine
 
     if kind not in KINDS:
         raise InputError("KIND", kind, f"one of {', '.join(KINDS)}")
@@ -90,12 +90,12 @@ def build_figure(
             if chosen < 1:  # plots.polar_figure takes 0 for the rotating masses
                 raise InputError("--order", order, "a harmonic order from 1, or 'rotating'")
         return plots.polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
-    from ..single_cylinder import cylinder_balance_factor_study
+    from ..studies.cylinder import cylinder_study
 
     count = analysis.model.cylinders
     if not 1 <= cylinder <= count:
         raise InputError("--cylinder", cylinder, f"a cylinder number from 1 to {count}")
-    single = cylinder_balance_factor_study(analysis.model, cylinder - 1, balance_factor)
+    single = cylinder_study(analysis.model, cylinder, balance_factor)
     fig = plots.single_cylinder_forces(single)
     fig.update_layout(
         title=f"{analysis.model.name}, cylinder {cylinder} alone: {fig.layout.title.text}"

@@ -176,9 +176,10 @@ def _common(
     if engine is not None:
         if unbalance is not None or speed is not None:
             raise InputError("--engine", engine, "give --engine or --unbalance/--speed, not both")
-        from ..studies.engine import shaft_requirement
+        from ..studies.requirements import shaft_requirement
 
-        required, shaft_speed = shaft_requirement(engine, order, length, radius)
+        need = shaft_requirement(engine, order, length, radius)
+        required, shaft_speed = need.unbalance, need.speed
     else:
         if unbalance is None or speed is None:
             raise InputError(

@@ -202,7 +202,7 @@ def balance_factor(
             "counterweight_moment_kgm": m_cw * r_cw,
         }
     if balance_factor is not None:
-        fb = sc._check_balance_factor(parse_factor(balance_factor, "balance_factor"))
+        fb = sc.check_balance_factor(parse_factor(balance_factor, "balance_factor"))
     elif mass_properties is not None:
         fb = mass_properties["balance_factor"]
         low, high = sc.BALANCE_FACTOR_RANGE
@@ -217,7 +217,7 @@ def balance_factor(
     else:
         fb = 0.5
     fb_target = (
-        fb if target is None else sc._check_balance_factor(parse_factor(target, "target"), "target")
+        fb if target is None else sc.check_balance_factor(parse_factor(target, "target"), "target")
     )
     bob = None
     if m_rot is not None:

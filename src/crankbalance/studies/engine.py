@@ -320,34 +320,3 @@ def balance_engine(
     if overrides:
         cw = dataclasses.replace(cw, **overrides)
     return BalanceStudy(model, balance(model, cw, primary, secondary, orders))
-
-
-def shaft_requirement(
-    engine: str | os.PathLike[str] | EngineSpec, order: int, length: float, cg_radius: float = 0.02
-) -> tuple[float, float]:
-    """The unbalance one balance shaft of an engine must carry, from the balancing solver.
-
-    Order 1: a single counter-rotating shaft, its co-rotating half on the crank (the
-    inline-3 module of Kim 2018); order 2: a pair of shafts at twice crank speed (the
-    inline-4 Lanchester module). Returns the largest first moment of one shaft mass
-    [kg·m] and the shaft speed [rad/s].
-    """
-    from ..balancing import ShaftOptions
-
-    if order not in (1, 2):
-        raise InputError("order", order, "must be 1 (primary) or 2 (secondary)")
-    shafts = ShaftOptions(cg_radius, length, "counter-rotating" if order == 1 else "pair")
-    if order == 1:
-        study = balance_engine(engine, primary=shafts, secondary=None)
-    else:
-        study = balance_engine(engine, primary=None, secondary=shafts)
-    group = study.result.primary if order == 1 else study.result.secondary
-    assert group is not None
-    unbalance = max((m.mass * cg_radius for s in group.shafts for m in s.masses), default=0.0)
-    if unbalance <= 0.0:
-        raise InputError(
-            "engine",
-            study.model.name,
-            f"has no order-{order} unbalance for a balance shaft to carry",
-        )
-    return unbalance, order * study.model.speed

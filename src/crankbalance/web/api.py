@@ -12,9 +12,9 @@ requests or users.
 
 from typing import Any
 
-from ..studies.engine import analyze, balance_engine
 from ..errors import InputError
 from ..io.engine_file import list_presets, load_engine, parse_engine_text
+from ..studies.engine import analyze, balance_engine
 
 MAX_BODY = 200_000
 
