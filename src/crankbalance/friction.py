@@ -3,17 +3,20 @@ r"""Bearing friction models.
 Three families, all pure numpy functions of SI floats (arrays broadcast):
 
 * Coulomb friction of a bearing carrying a constant load plus a rotating unbalance load
-  (Hoem and Røsholm (2016), Sec. 4.2.1): :math:`T = \mu F_m d/2` with the *mean equivalent load* :math:`F_m`.
+  (Hoem and Røsholm (2016), Sec. 4.2.1): :math:`T = \mu F_m d/2` with the *mean equivalent load*
+  :math:`F_m`.
   Three means are offered: the thesis' approximation
   :math:`F_m = f_m (F_w + F_u)`, :math:`f_m = x^2 - x + 1`, :math:`x = F_w/(F_w + F_u)`
   (Eq. 4.13/4.14 as corrected in docs/references.md), the exact cubic mean it
   approximates (the rolling-bearing mean load), and the arithmetic mean of the load
   magnitude over a revolution (what a Coulomb joint driven by the actual reaction force
   dissipates on average; closed form with the complete elliptic integral).
-* The friction coefficient back-computed from a measured torque (Hoem and Røsholm (2016), Eq. 5.1), to reduce
+* The friction coefficient back-computed from a measured torque (Hoem and Røsholm (2016), Eq. 5.1),
+to reduce
   test-rig data as the thesis did.
 * A hydrodynamic journal bearing: Petroff's torque and the eccentricity-corrected form of
-  Hoem and Røsholm (2016), Appendix A (Eq. 7.2, after Heywood), and squeeze-film stiffness and damping
+  Hoem and Røsholm (2016), Appendix A (Eq. 7.2, after Heywood), and squeeze-film stiffness and
+  damping
   (Eqs. 7.4, 7.5), with the exact Reynolds solution of a rectangular squeeze film for
   comparison.
 
@@ -116,7 +119,8 @@ def mean_equivalent_load(
     The thesis' :math:`f_m` is a fit of the cubic mean (the dynamic equivalent load of
     rolling bearings, which governs fatigue); the arithmetic mean is the one that sets the
     average Coulomb friction torque of a joint whose friction follows the actual reaction
-    force, as in the simulated bench of Hoem and Røsholm (2016), Sec. 5.2.5 and :func:`crankbalance.dynamics.run_bench`.
+    force, as in the simulated bench of Hoem and Røsholm (2016), Sec. 5.2.5 and
+    :func:`crankbalance.dynamics.run_bench`.
 
     Parameters
     ----------
@@ -134,7 +138,8 @@ def mean_equivalent_load(
 
     References
     ----------
-    Hoem and Røsholm (2016), Eqs. 4.13, 4.14 (docs/references.md reading); SKF/ISO 281 mean load of a constant
+    Hoem and Røsholm (2016), Eqs. 4.13, 4.14 (docs/references.md reading); SKF/ISO 281 mean load of
+    a constant
     plus a rotating load (cubic mean); Byrd & Friedman, complete elliptic integral E.
     """
     _method(method)
@@ -275,7 +280,8 @@ def torque_from_transducer_voltage(
 
     References
     ----------
-    Hoem and Røsholm (2016), Sec. 5.2.1; Table 5.6 reading in docs/references.md: torque = (V - 0.2) 5/4.8.
+    Hoem and Røsholm (2016), Sec. 5.2.1; Table 5.6 reading in docs/references.md: torque = (V -
+    0.2) 5/4.8.
     """
     v = np.asarray(voltage, dtype=float)
     if not np.all(np.isfinite(v)):
@@ -367,7 +373,8 @@ def journal_bearing_torque(
 
     References
     ----------
-    Hoem and Røsholm (2016), Appendix A Eq. 7.2 (after Heywood); the friction coefficient is Eq. 7.3, ``F_f / W``.
+    Hoem and Røsholm (2016), Appendix A Eq. 7.2 (after Heywood); the friction coefficient is Eq.
+    7.3, ``F_f / W``.
     """
     eta = _nonnegative("viscosity", viscosity)
     d = _positive("journal_diameter", journal_diameter)

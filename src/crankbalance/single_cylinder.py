@@ -2,7 +2,8 @@ r"""Single-cylinder balance factor, in-line and transverse forces, and rebalanci
 
 **Balance factor.** The balance factor :math:`f_b` is the share of the reciprocating mass
 *of one cylinder* that the crank counterweight balances, *on top of 100 % of the rotating
-mass*. The counterweight's first moment is therefore (Hoem and Røsholm (2016), Eq. 4.6 and 6.1, corrected)
+mass*. The counterweight's first moment is therefore (Hoem and Røsholm (2016), Eq. 4.6 and 6.1,
+corrected)
 
 .. math:: m_{cw}\,r' = (m_{rot} + f_b\,m_{rec})\,r
 
@@ -18,7 +19,8 @@ extra counterweight :math:`f_b m_{rec}` (at the crank radius, opposite the crank
     F_i = -m_{rec}\,\ddot s - f_b\,P\cos\theta,\qquad F_t = -f_b\,P\sin\theta,
     \qquad P = m_{rec}\,r\,\omega^2
 
-With the first-order model :math:`-\ddot s = r\omega^2\cos\theta` this is Hoem and Røsholm (2016), Eq. 4.7/4.8:
+With the first-order model :math:`-\ddot s = r\omega^2\cos\theta` this is Hoem and Røsholm (2016),
+Eq. 4.7/4.8:
 :math:`F_i = (1-f_b)P\cos\theta`, :math:`F_t = -f_b P\sin\theta`, whose peak resultant is
 :math:`\max(f_b, |1-f_b|)\,P`, least at :math:`f_b = 0.5`.
 
@@ -45,7 +47,8 @@ from .results import ResultMixin
 #: Range of balance factors accepted as input (0 = rotating mass only, 2 = 200 %).
 BALANCE_FACTOR_RANGE: tuple[float, float] = (0.0, 2.0)
 
-#: Density of crankshaft steel used when none is given [kg/m^3] (Hoem and Røsholm (2016), Appendix E).
+#: Density of crankshaft steel used when none is given [kg/m^3] (Hoem and Røsholm (2016), Appendix
+# E).
 STEEL_DENSITY = 7850.0
 
 CorrectionKind = Literal["holes", "face"]

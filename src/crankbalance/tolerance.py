@@ -117,7 +117,8 @@ _GRADES: tuple[tuple[str, float, str, bool], ...] = (
     (
         "G 6.3",
         6.3,
-        "Individual engine components under special requirements (Hoem and Røsholm 2016 use it for a racing "
+        "Individual engine components under special requirements (Hoem and Røsholm 2016 "
+        "use it for a racing "
         "crankshaft); flywheels, fans, pump impellers, centrifuges, general machinery, "
         "electric motors up to 950 rpm.",
         True,

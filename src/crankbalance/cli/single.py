@@ -225,7 +225,8 @@ def balance_factor(
     study = None
     if w is not None:
         model = kinematics or ("exact" if l_rod is not None else "first-order")
-        study = sc.balance_factor_study(m_rec, r, w, fb, rod_length=l_rod, offset=e, model=model)  # type: ignore[arg-type]
+        study = sc.balance_factor_study(m_rec, r, w, fb, rod_length=l_rod, offset=e, model=model)
+        # type: ignore[arg-type]
     payload: dict[str, Any] = {
         "schema": "crankbalance.balance_factor/1",
         "definition": BALANCE_FACTOR_NOTE,
@@ -611,7 +612,8 @@ def rebalance_command(
     tolerance_text: str | None,
     fmt: str,
 ) -> None:
-    """Rebalance a single-cylinder crank after new parts (Hoem and Røsholm (2016), Sec. 6.4, eight steps).
+    """Rebalance a single-cylinder crank after new parts (Hoem and Røsholm (2016), Sec. 6.4, eight
+    steps).
 
     Options override the values of the --parts file.
     """

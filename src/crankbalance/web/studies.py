@@ -216,7 +216,8 @@ def iso_check(computed: Computed, settings: dict[str, Any]) -> dict[str, Any]:
 
 
 def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Rebalance the cylinder's throw after new parts (Hoem and Røsholm (2016), Sec. 4.1.3, eight steps)."""
+    """Rebalance the cylinder's throw after new parts (Hoem and Røsholm (2016), Sec. 4.1.3, eight
+    steps)."""
     from ..single_cylinder import DrilledHoles, rebalance
 
     model = computed.analysis.model
@@ -294,7 +295,8 @@ def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, 
 
 # --------------------------------------------------------------------------- performance
 def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm (2016), Sec. 5) for one
+    """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm (2016),
+    Sec. 5) for one
     cylinder of the engine (its reciprocating mass, crank radius, rod length, speed)."""
     from ..dynamics import CylinderSpec, WiebeCombustion, balance_sensitivity
 
