@@ -278,6 +278,7 @@ DEFAULT_SETTINGS: dict[str, Any] = {
     "bs_length": "300 mm",
     "bs_diameter": "25 mm",
     "bs_weight": "2",
+    "bs_points": "41",
     # performance
     "pf_bore": "",
     "pf_balance_factors": "0, 0.25, 0.5, 0.75, 1",
