@@ -277,56 +277,33 @@ class BalancedCurves(ResultMixin):
     after_mz: NDArray[np.float64]
 
 
-def balance_mass_history(
-    model: EngineModel, result: Any, angle: ArrayLike
-) -> tuple[NDArray, NDArray]:
-    r"""Force (complex :math:`F_z + iF_x`) [N] and couple :math:`\sum y F` [N·m] of all
-    counterweights and balance-shaft masses of a :class:`~crankbalance.balancing.BalanceResult`
-    versus crank angle.
-
-    A mass :math:`m` at radius :math:`\rho`, axial position :math:`y`, turning at
-    :math:`s k\omega` with phase :math:`\psi` gives :math:`m\rho(k\omega)^2
-    e^{i(\psi + s k \theta)}`.
-    """
-    theta = np.asarray(angle, dtype=float)
-    w = model.speed
-    force = np.zeros(theta.shape, complex)
-    couple = np.zeros(theta.shape, complex)
-    for cw in (result.counterweights, result.extra_counterweights):
-        if cw is None or cw.count == 0:
-            continue
-        each = (cw.moments * w**2)[:, None] * np.exp(1j * theta)[None, :]
-        force += each.sum(axis=0)
-        couple += (np.asarray(cw.position)[:, None] * each).sum(axis=0)
-    for group in (result.primary, result.secondary):
-        if group is None:
-            continue
-        for shaft in group.shafts:
-            for mass in shaft.masses:
-                f = (
-                    mass.mass
-                    * shaft.cg_radius
-                    * (shaft.order * w) ** 2
-                    * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta))
-                )
-                force += f
-                couple += mass.position * f
-    return force, couple
-
-
 def balanced_curves(
     analysis: Analysis, balance_study: BalanceStudy, angle: ArrayLike | None = None
 ) -> BalancedCurves:
     """Whole-engine force and moment versus crank angle before and after balancing.
 
     "Before" is the reciprocating total of ``analysis`` plus the rotating masses of the
-    bare crank; "after" adds every counterweight and shaft mass of ``balance_study``.
+    bare crank; "after" adds every counterweight and shaft mass of ``balance_study``, as
+    point masses (:func:`crankbalance.balancing.point_mass_history`, the history the
+    solver's own time-domain check uses).
     Moments about the crankshaft mid-point, :math:`M = iC` (``M_x = y F_z``,
     ``M_z = -y F_x``).
     """
     _check_same_engine(analysis, balance_study)
     c = analysis.curves(angle)
-    force, couple = balance_mass_history(balance_study.model, balance_study.result, c.angle)
+    from .balancing import point_mass_history
+
+    res = balance_study.result
+    force, couple = point_mass_history(
+        balance_study.model.speed,
+        c.angle,
+        [
+            (cw.moments, cw.position)
+            for cw in (res.counterweights, res.extra_counterweights)
+            if cw is not None
+        ],
+        (res.primary, res.secondary),
+    )
     moment = 1j * couple
     bfx = c.total_fx + c.rotating_fx
     bfz = c.total_fz + c.rotating_fz
