@@ -31,9 +31,12 @@ import json
 import os
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .errors import InputError
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .figures import Quantity
 
 REPORT_SCHEMA = "crankbalance.report/1"
 
@@ -190,7 +193,7 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
     for n in (int(n) for n in a.forces.orders if n <= 2):
         k = a.forces.order(n)
         if amp[k] > 0:
-            quantity = (
+            quantity: Quantity = (
                 "force"
                 if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[k] * 1e-12
                 and a.forces.force_amplitude[k] > 0
@@ -202,7 +205,7 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
                     f"Rotating-vector diagram of order {n} ({quantity}).",
                     figures.polar_figure(a, n, quantity),
                 )
-            )  # type: ignore[arg-type]
+            )
     figs += [
         (
             "crank",
