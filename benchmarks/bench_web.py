@@ -21,7 +21,7 @@ import subprocess
 import time
 from collections.abc import Iterator
 
-from crankbalance.report import CHROMIUM_FLAGS
+from crankbalance.render import CHROMIUM_FLAGS
 
 CHROMIUM = "/usr/bin/chromium"
 ARGS = list(CHROMIUM_FLAGS)

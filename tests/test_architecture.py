@@ -23,7 +23,8 @@ PHYSICS = [
     "rotor",
 ]
 EDGES = {
-    "plots",
+    "figures",
+    "render",
     "report",
     "io",
     "cli",

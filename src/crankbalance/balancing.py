@@ -22,6 +22,7 @@ squares sense; the residual of each is reported, never hidden.
 
 from __future__ import annotations
 
+from collections.abc import Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -625,6 +626,72 @@ def balance(
 
 
 # --------------------------------------------------------------------------- verification
+def point_mass_history(
+    speed: float,
+    angle: ArrayLike,
+    first_moments: Sequence[tuple[ArrayLike, ArrayLike]] = (),
+    shafts: Sequence[ShaftSet | None] = (),
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    r"""Force and couple of balancing point masses versus crank angle.
+
+    A mass :math:`m` at radius :math:`\rho`, axial position :math:`y`, turning at
+    :math:`s k\omega` (order :math:`k`, sense :math:`s = \pm 1`) with phase :math:`\psi` at
+    crank angle 0 gives the force :math:`m\rho(k\omega)^2 e^{i(\psi + s k \theta)}` and
+    :math:`y` times that to the couple. Crank counterweights turn with the crank
+    (:math:`k = 1`, :math:`s = +1`) and are given by their first moments. This is the one
+    place the time histories of the balancing masses are built: the solver's time-domain
+    check (:func:`verify`) and the "after balancing" curves of
+    :func:`crankbalance.figures.balanced_curves` both use it.
+
+    Parameters
+    ----------
+    speed : float
+        Crank speed :math:`\omega` [rad/s].
+    angle : array_like
+        Crank angles :math:`\theta` [rad].
+    first_moments : sequence of (array_like, array_like)
+        Sets of masses turning with the crank, each a pair of complex first moments
+        :math:`m\rho e^{i\psi}` [kg·m] and axial positions :math:`y` [m] (e.g.
+        ``(Counterweights.moments, Counterweights.position)``). Empty sets are skipped.
+    shafts : sequence of ShaftSet or None
+        Balance-shaft sets whose masses are added (None entries are skipped).
+
+    Returns
+    -------
+    force : ndarray of complex
+        :math:`F_z + iF_x` [N] at every angle (complex ``z + i x``, as
+        :mod:`crankbalance.shaking`).
+    couple : ndarray of complex
+        :math:`\sum y F` [N·m] at every angle, about the crankshaft mid-point (the moment is
+        :math:`iC`).
+    """
+    theta = np.asarray(angle, dtype=float)
+    w = speed
+    force = np.zeros(theta.shape, complex)
+    couple = np.zeros(theta.shape, complex)
+    for moments, position in first_moments:
+        m_rho = np.asarray(moments)
+        if m_rho.size == 0:
+            continue
+        each = (m_rho * w**2)[:, None] * np.exp(1j * theta)[None, :]
+        force += each.sum(axis=0)
+        couple += (np.asarray(position)[:, None] * each).sum(axis=0)
+    for group in shafts:
+        if group is None:
+            continue
+        for shaft in group.shafts:
+            for mass in shaft.masses:
+                f = (
+                    mass.mass
+                    * shaft.cg_radius
+                    * (shaft.order * w) ** 2
+                    * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta))
+                )
+                force += f
+                couple += mass.position * f
+    return force, couple
+
+
 def verify(
     model: EngineModel,
     forces: FreeForces,
@@ -667,33 +734,22 @@ def verify(
             forces.couple_forward, forces.couple_backward, forces.orders, theta
         ).sum(axis=0)
 
-    def mass_history(moments: NDArray, position: NDArray) -> tuple[NDArray, NDArray]:
-        each = (moments * w**2)[:, None] * crank_turn
-        return each.sum(axis=0), (position[:, None] * each).sum(axis=0)
-
+    # counterweights: the share that carries the rotating masses, and the rest (balance
+    # factor share and the Eq. 17 extra set) that counts to the first order
     zero = np.zeros(samples, complex)
-    cw_rot_f, cw_rot_c, cw_rec_f, cw_rec_c = zero, zero, zero, zero
+    cw_rot_f, cw_rot_c = zero, zero
+    beyond: list[tuple[ArrayLike, ArrayLike]] = []
     if cw is not None and cw_rotating is not None:
-        cw_rot_f, cw_rot_c = mass_history(cw_rotating, cw.position)
-        cw_rec_f, cw_rec_c = mass_history(cw.moments - cw_rotating, cw.position)
+        cw_rot_f, cw_rot_c = point_mass_history(w, theta, [(cw_rotating, cw.position)])
+        beyond.append((cw.moments - cw_rotating, cw.position))
     if extra is not None:
-        extra_f, extra_c = mass_history(extra.moments, extra.position)
-        cw_rec_f, cw_rec_c = cw_rec_f + extra_f, cw_rec_c + extra_c
-    shaft_f = {1: zero.copy(), 2: zero.copy()}
-    shaft_c = {1: zero.copy(), 2: zero.copy()}
-    for group in (primary, secondary):
-        if group is None:
-            continue
-        for shaft in group.shafts:
-            for mass in shaft.masses:
-                f = (
-                    mass.mass
-                    * shaft.cg_radius
-                    * (shaft.order * w) ** 2
-                    * np.exp(1j * (mass.phase + shaft.sense * shaft.order * theta))
-                )
-                shaft_f[shaft.order] += f
-                shaft_c[shaft.order] += mass.position * f
+        beyond.append((extra.moments, extra.position))
+    cw_rec_f, cw_rec_c = point_mass_history(w, theta, beyond)
+    # balance shafts by order (primary shafts turn at order 1, secondary at order 2)
+    shaft_f: dict[int, NDArray] = {}
+    shaft_c: dict[int, NDArray] = {}
+    for order, group in ((1, primary), (2, secondary)):
+        shaft_f[order], shaft_c[order] = point_mass_history(w, theta, shafts=(group,))
 
     def amplitude(series: NDArray, order: int) -> float:
         spectrum = np.fft.fft(series) / samples

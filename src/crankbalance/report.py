@@ -2,9 +2,13 @@
 inlined, no network) or a PDF (the same page with static SVG figures, printed by a headless
 Chromium).
 
+This module owns the report's content: what it shows, in which order, and the page's
+HTML. The figures come from :mod:`crankbalance.figures`; turning them into SVG or HTML and
+printing the page to PDF is done by :mod:`crankbalance.render`.
+
 Contents: engine data, mass split, free forces and moments by order, rotating masses,
 balancing masses (counterweights, balance shafts), residuals before/after balancing, the
-figures of :mod:`crankbalance.plots`, and the settings used (solver options and the engine
+figures of :mod:`crankbalance.figures`, and the settings used (solver options and the engine
 file itself). Every number comes from :func:`crankbalance.studies.engine.analyze` and
 :func:`crankbalance.studies.engine.balance_engine`; both results are also embedded as JSON
 (``<script type="application/json" id="crankbalance-data">``) so a reader or a test can
@@ -16,7 +20,6 @@ Public functions
 - ``report_html(report, static=False) -> str``
 - ``write_report(engine, path, orders=8, chromium=None, **overrides) -> Path``
   (``.html`` or ``.pdf`` by suffix, written atomically)
-- ``html_to_pdf(html, chromium=None, timeout=120) -> bytes``
 """
 
 from __future__ import annotations
@@ -26,27 +29,16 @@ import datetime as _dt
 import html as _html
 import json
 import os
-import shutil
-import subprocess
-import tempfile
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .errors import InputError
 
+if TYPE_CHECKING:  # pragma: no cover
+    from .figures import Quantity
+
 REPORT_SCHEMA = "crankbalance.report/1"
-CHROMIUM_FLAGS = (
-    "--headless",
-    "--no-sandbox",
-    "--disable-gpu",
-    "--disable-quic",
-    "--no-first-run",
-    "--disable-background-networking",
-    "--disable-component-update",
-    "--disable-sync",
-    "--no-pdf-header-footer",
-)
 
 
 @dataclass(frozen=True)
@@ -175,7 +167,7 @@ pre { background: #f6f6f6; padding: 0.6em; font-size: 0.8em; white-space: pre-wr
 # --------------------------------------------------------------------------- figures
 def report_figures(report: Report) -> list[tuple[str, str, Any]]:
     """(id, caption, figure) of every figure in the report."""
-    from . import plots
+    from . import figures
 
     a, s = report.analysis, report.study
     figs: list[tuple[str, str, Any]] = [
@@ -183,25 +175,25 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
             "orders",
             "Free force and moment amplitudes by order (forward and backward phasors "
             "stacked; 'rot' is the bare crank's rotating masses).",
-            plots.orders_bar(a),
+            figures.orders_bar(a),
         ),
         (
             "curves-force",
             "Free forces versus crank angle: reciprocating total, orders, and the "
             "whole engine before and after balancing.",
-            plots.curves_figure(a, s, "force"),
+            figures.curves_figure(a, s, "force"),
         ),
         (
             "curves-moment",
             "Free moments about the crankshaft mid-point versus crank angle.",
-            plots.curves_figure(a, s, "moment"),
+            figures.curves_figure(a, s, "moment"),
         ),
     ]
     amp = a.forces.force_amplitude + a.forces.moment_amplitude
     for n in (int(n) for n in a.forces.orders if n <= 2):
         k = a.forces.order(n)
         if amp[k] > 0:
-            quantity = (
+            quantity: Quantity = (
                 "force"
                 if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[k] * 1e-12
                 and a.forces.force_amplitude[k] > 0
@@ -211,35 +203,35 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
                 (
                     f"polar-{n}-{quantity}",
                     f"Rotating-vector diagram of order {n} ({quantity}).",
-                    plots.polar_figure(a, n, quantity),
+                    figures.polar_figure(a, n, quantity),
                 )
-            )  # type: ignore[arg-type]
+            )
     figs += [
         (
             "crank",
             "The crankshaft at crank angle 0 with its counterweights and balance shafts "
             "(shafts beside the crank at a schematic distance).",
-            plots.crank_3d(s.model, s),
+            figures.crank_3d(s.model, s),
         ),
         (
             "residuals",
             "Amplitude of every component before and after balancing (time-domain "
             "check of the solver).",
-            plots.residuals_bar(s),
+            figures.residuals_bar(s),
         ),
     ]
     return figs
 
 
 def _figure_html(fig_id: str, caption: str, fig: Any, static: bool, first: bool) -> str:
-    from . import plots
+    from . import render
 
     if static:
-        svg = plots.to_image(fig, "svg", width=1000, height=fig.layout.height or 560)
+        svg = render.to_image(fig, "svg", width=1000, height=fig.layout.height or 560)
         data = base64.b64encode(svg).decode()
         body = f'<img alt="{_html.escape(caption)}" src="data:image/svg+xml;base64,{data}"/>'
     else:
-        body = plots.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
+        body = render.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
     return (
         f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
         "</figcaption></figure>"
@@ -469,7 +461,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         "<p>Amplitude of every component before and after balancing, from a "
         "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>"
     )
-    from .plots import roundoff_levels
+    from .figures import roundoff_levels
 
     tiny_f, tiny_m = roundoff_levels(report.study.model)
 
@@ -538,57 +530,7 @@ def _json_default(value: Any) -> Any:
     return str(value)
 
 
-# --------------------------------------------------------------------------- PDF
-def find_chromium(chromium: str | None = None) -> str:
-    """Path of a Chromium for printing: ``chromium``, $CRANKBALANCE_CHROMIUM, $BROWSER_PATH,
-    /usr/bin/chromium or chromium/google-chrome on the PATH."""
-    if chromium is not None and not (os.path.isfile(chromium) and os.access(chromium, os.X_OK)):
-        raise InputError("chromium", chromium, "an executable Chromium (e.g. /usr/bin/chromium)")
-    for candidate in (
-        chromium,
-        os.environ.get("CRANKBALANCE_CHROMIUM"),
-        os.environ.get("BROWSER_PATH"),
-        "/usr/bin/chromium",
-        shutil.which("chromium"),
-        shutil.which("chromium-browser"),
-        shutil.which("google-chrome"),
-    ):
-        if candidate and os.path.exists(candidate):
-            return candidate
-    raise InputError(
-        "chromium",
-        chromium or "not found",
-        "a Chromium executable to print the PDF (apt package chromium, or set "
-        "CRANKBALANCE_CHROMIUM)",
-    )
-
-
-def html_to_pdf(html: str, chromium: str | None = None, timeout: float = 120.0) -> bytes:
-    """Print an HTML document to PDF with headless Chromium (no network, fresh profile)."""
-    exe = find_chromium(chromium)
-    with tempfile.TemporaryDirectory(prefix="crankbalance-report-") as tmp:
-        page = Path(tmp) / "report.html"
-        out = Path(tmp) / "report.pdf"
-        page.write_text(html, encoding="utf-8")
-        command = [
-            exe,
-            *CHROMIUM_FLAGS,
-            f"--user-data-dir={Path(tmp) / 'profile'}",
-            f"--print-to-pdf={out}",
-            page.as_uri(),
-        ]
-        try:
-            done = subprocess.run(command, capture_output=True, timeout=timeout, check=False)
-        except subprocess.TimeoutExpired:
-            raise InputError("chromium", exe, f"to print the PDF within {timeout:g} s") from None
-        if not out.exists() or out.stat().st_size == 0:
-            tail = done.stderr.decode(errors="replace").strip().splitlines()[-3:]
-            raise InputError(
-                "chromium", exe, "a Chromium that prints PDFs (it failed: " + " | ".join(tail) + ")"
-            )
-        return out.read_bytes()
-
-
+# --------------------------------------------------------------------------- files
 def write_report(
     engine: Any,
     path: str | os.PathLike[str],
@@ -606,6 +548,8 @@ def write_report(
         raise InputError("output", str(path), "a file name ending in .html or .pdf")
     report = build_report(engine, orders, **overrides)
     if suffix == ".pdf":
+        from .render import find_chromium, html_to_pdf
+
         exe = find_chromium(chromium)  # fail before the figures are drawn
         data: str | bytes = html_to_pdf(report_html(report, static=True), exe)
     else:

@@ -16,7 +16,7 @@ from pathlib import Path
 
 import pytest
 
-from crankbalance.report import CHROMIUM_FLAGS
+from crankbalance.render import CHROMIUM_FLAGS
 
 pytest.importorskip("nicegui")
 playwright_api = pytest.importorskip("playwright.sync_api")

@@ -63,7 +63,7 @@ def build_figure(
     balance_factor: float = 0.5,
 ) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
-    from .. import plots
+    from .. import figures
     from ..errors import InputError
     from ..studies.engine import analyze, balance_engine
 
@@ -72,31 +72,31 @@ def build_figure(
     if kind == "residuals" or (kind in ("crank", "curves") and balance):
         study = balance_engine(engine)
         if kind == "residuals":
-            return plots.residuals_bar(study)
+            return figures.residuals_bar(study)
         if kind == "crank":
-            return plots.crank_3d(study.model, study)
-        return plots.curves_figure(analyze(study.model), study, quantity)  # type: ignore[arg-type]
+            return figures.crank_3d(study.model, study)
+        return figures.curves_figure(analyze(study.model), study, quantity)  # type: ignore[arg-type]
     analysis = analyze(engine)
     if kind == "crank":
-        return plots.crank_3d(analysis.model)
+        return figures.crank_3d(analysis.model)
     if kind == "orders":
-        return plots.orders_bar(analysis)
+        return figures.orders_bar(analysis)
     if kind == "curves":
-        return plots.curves_figure(analysis, None, quantity)  # type: ignore[arg-type]
+        return figures.curves_figure(analysis, None, quantity)  # type: ignore[arg-type]
     if kind == "polar":
         chosen: int | str = order.strip()
         if order.strip().isdigit():
             chosen = int(order)
-            if chosen < 1:  # plots.polar_figure takes 0 for the rotating masses
+            if chosen < 1:  # figures.polar_figure takes 0 for the rotating masses
                 raise InputError("--order", order, "a harmonic order from 1, or 'rotating'")
-        return plots.polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
+        return figures.polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
     from ..studies.cylinder import cylinder_study
 
     count = analysis.model.cylinders
     if not 1 <= cylinder <= count:
         raise InputError("--cylinder", cylinder, f"a cylinder number from 1 to {count}")
     single = cylinder_study(analysis.model, cylinder, balance_factor)
-    fig = plots.single_cylinder_forces(single)
+    fig = figures.single_cylinder_forces(single)
     fig.update_layout(
         title=f"{analysis.model.name}, cylinder {cylinder} alone: {fig.layout.title.text}"
     )
@@ -205,10 +205,10 @@ def plot(
                 f"only for the {used} figure, not {kind}",
             )
     fig = build_figure(kind, engine, order, quantity, balance, cylinder, balance_factor)
-    from .. import plots
+    from .. import render
 
     if fmt == "html":
-        write_output(output, plots.to_html(fig))
+        write_output(output, render.to_html(fig))
     else:
-        write_output(output, plots.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
+        write_output(output, render.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
     click.echo(f"wrote {output}", err=True)

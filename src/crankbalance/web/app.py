@@ -6,7 +6,7 @@ and performance studies. :func:`root` builds one page per browser tab; all state
 the :class:`Page` object it creates (one :class:`~.project.Project` per client), never in
 module globals, so several users work side by side without seeing each other's project.
 
-Every figure comes from :mod:`crankbalance.plots`; this module only lays them out.
+Every figure comes from :mod:`crankbalance.figures`; this module only lays them out.
 """
 
 from __future__ import annotations
@@ -20,7 +20,7 @@ from typing import Any, Literal
 
 from nicegui import run, ui
 
-from .. import plots
+from .. import figures, render
 from ..errors import InputError
 from ..io.engine_file import MAX_FILE_BYTES, list_presets
 from . import studies
@@ -55,7 +55,7 @@ def root(preset: str | None = None) -> None:
 
 
 class FigureCard:
-    """A plotly figure from :mod:`crankbalance.plots` with PNG/SVG/CSV/JSON downloads."""
+    """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
 
     def __init__(
         self, page: Page, name: str, title: str, builder: Callable[[], Any | None]
@@ -103,7 +103,7 @@ class FigureCard:
             _download(figure_json(self.figure, self.title), f"{self.name}.json", "application/json")
         else:
             try:
-                data = await run.io_bound(plots.to_image, self.figure, fmt)
+                data = await run.io_bound(render.to_image, self.figure, fmt)
             except Exception as error:  # kaleido / browser problems must not kill the page
                 log.warning("image export failed: %s", error)
                 ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
@@ -278,7 +278,7 @@ class Page:
         c = self.project.computed
         if c is None:
             return None
-        return plots.crank_3d(c.analysis.model, c.study)
+        return figures.crank_3d(c.analysis.model, c.study)
 
     # ------------------------------------------------------------------ Masses
     def _tab_masses(self) -> None:
@@ -405,20 +405,20 @@ class Page:
                     self,
                     "orders",
                     "Free forces and moments by order",
-                    self._fig(lambda c: plots.orders_bar(c.analysis)),
+                    self._fig(lambda c: figures.orders_bar(c.analysis)),
                 ),
                 FigureCard(
                     self,
                     "residuals",
                     "Residuals before/after balancing",
-                    self._fig(lambda c: plots.residuals_bar(c.study)),
+                    self._fig(lambda c: figures.residuals_bar(c.study)),
                 ),
                 FigureCard(
                     self,
                     "curves",
                     "Curves over a revolution, before and after balancing",
                     self._fig(
-                        lambda c: plots.curves_figure(
+                        lambda c: figures.curves_figure(
                             c.analysis, c.study, quantity=self.curve_quantity.value
                         )
                     ),
@@ -426,20 +426,20 @@ class Page:
                 FigureCard(self, "polar", "Polar rotating-vector diagram", self._fig(self._polar)),
             ]
 
-    def _leading_quantity(self) -> plots.Quantity:
+    def _leading_quantity(self) -> figures.Quantity:
         """Start the curves and polar diagram on the moment when every free force is zero
         but a moment is not (an in-line 3): the first thing shown is then not a flat line."""
         c = self.project.computed
         if c is None:
             c = self.project.compute() if self.project.spec is not None else None
-        return "force" if c is None else plots.leading_quantity(c.analysis)
+        return "force" if c is None else figures.leading_quantity(c.analysis)
 
     def _polar(self, c: Any) -> Any:
         order: Any = self.polar_order.value
         order = order if order == "rotating" else int(order)
         if order != "rotating" and order > c.analysis.forces.orders[-1]:
             raise InputError("polar order", order, "is above the highest order computed")
-        return plots.polar_figure(c.analysis, order, quantity=self.curve_quantity.value)
+        return figures.polar_figure(c.analysis, order, quantity=self.curve_quantity.value)
 
     def _fig(self, build: Callable[[Any], Any]) -> Callable[[], Any | None]:
         def builder() -> Any | None:
@@ -509,9 +509,9 @@ class Page:
     def _plot_or_none(self, name: str, *args: Any) -> Any | None:
         if any(a is None for a in args):
             return None
-        builder = getattr(plots, name, None)
+        builder = getattr(figures, name, None)
         if builder is None:
-            raise InputError("figure", name, "is not available in this version of plots.py")
+            raise InputError("figure", name, "is not available in this version of figures.py")
         return builder(*args)
 
     # ------------------------------------------------------------------ Single cylinder
