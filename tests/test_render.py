@@ -10,10 +10,9 @@ import pytest
 
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
-from crankbalance.analysis import analyze  # noqa: E402
-
 from crankbalance import figures, render  # noqa: E402
 from crankbalance.errors import InputError  # noqa: E402
+from crankbalance.studies.engine import analyze  # noqa: E402
 
 
 @pytest.fixture(scope="module")
