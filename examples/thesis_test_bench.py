@@ -13,8 +13,8 @@ from __future__ import annotations
 
 import math
 
-from crankbalance.dynamics import BenchSettings, disc_rotor, run_bench
 from crankbalance.friction import friction_coefficient_from_torque, mean_equivalent_load
+from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 SPEEDS = (3000, 6000, 9000)
 HOLE = {1: 0.0, 2: 0.0146, 3: 0.0584}

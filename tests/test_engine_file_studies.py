@@ -7,7 +7,7 @@ import json
 import pytest
 
 from crankbalance.analysis import as_model
-from crankbalance.dynamics import CylinderSpec, WiebeCombustion, engine_cycle
+from crankbalance.engine_cycle import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.errors import InputError
 
 from .conftest import run_cli

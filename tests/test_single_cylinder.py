@@ -9,7 +9,7 @@ import pytest
 
 from crankbalance import single_cylinder as sc
 from crankbalance.errors import InputError
-from crankbalance.rotor import (
+from crankbalance.rotor_bench import (
     crankpin_overlap,
     cylinder_inertia,
     disc_inertia,

@@ -311,7 +311,7 @@ def bench(
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """
-    from ..dynamics import BenchRotor, BenchSettings, run_bench
+    from ..rotor_bench import BenchRotor, BenchSettings, run_bench
 
     rotor = BenchRotor(
         mass=_q(mass, "mass", "mass"),
@@ -468,7 +468,7 @@ def _given_options() -> set[str]:
 
 
 def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any, Any, float, int]:
-    from ..dynamics import CylinderSpec, WiebeCombustion
+    from ..engine_cycle import CylinderSpec, WiebeCombustion
 
     geometry = {
         "crank_radius": _q(o["stroke"], "length", "stroke") / 2,
@@ -556,7 +556,7 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
     """
     import numpy as np
 
-    from ..dynamics import engine_cycle
+    from ..engine_cycle import engine_cycle
 
     cylinder, pressure, speed, strokes = _engine_from_options(options, balance_factor)
     result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
@@ -616,7 +616,7 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
 @format_option(FORMATS)
 def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any) -> None:
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
-    from ..dynamics import balance_sensitivity
+    from ..engine_cycle import balance_sensitivity
 
     factors = _number_list(balance_factors, "balance_factors")
     scales = _number_list(mass_scales, "mass_scales")
