@@ -1,7 +1,9 @@
 """``crankbalance friction | bench | cycle | sensitivity``: bearing friction and performance.
 
 Quantities are unit strings (``"20 mm"``, ``"9000 rpm"``); the physics lives in
-:mod:`crankbalance.friction` and :mod:`crankbalance.dynamics`, imported when a command runs.
+:mod:`crankbalance.friction`, :mod:`crankbalance.rotor_bench` and
+:mod:`crankbalance.engine_cycle`, imported when a command runs; pressure tables are read by
+:mod:`crankbalance.io.pressure_csv`.
 """
 
 from __future__ import annotations
@@ -439,22 +441,6 @@ def _engine_options(function: Any) -> Any:
     return function
 
 
-def _read_pressure_csv(path: str) -> tuple[Any, Any]:
-    import numpy as np
-
-    try:
-        data = np.genfromtxt(path, delimiter=",", comments="#")
-    except ValueError as error:
-        raise InputError("pressure_csv", path, f"must be two numeric columns ({error})") from None
-    data = np.atleast_2d(data)
-    data = data[~np.isnan(data).any(axis=1)] if data.ndim == 2 else data
-    if data.ndim != 2 or data.shape[1] != 2 or data.shape[0] < 4:
-        raise InputError(
-            "pressure_csv", path, "must hold at least 4 rows of: angle_deg, pressure_bar"
-        )
-    return np.radians(data[:, 0]), data[:, 1] * 1e5
-
-
 def _given_options() -> set[str]:
     """Names of the options the user typed (not defaults) in the running command."""
     context = click.get_current_context(silent=True)
@@ -510,7 +496,9 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
         **geometry,
     )
     if o["pressure_csv"]:
-        pressure: Any = _read_pressure_csv(o["pressure_csv"])
+        from ..io.pressure_csv import read_pressure_csv
+
+        pressure: Any = read_pressure_csv(o["pressure_csv"])
     else:
         pressure = WiebeCombustion(
             compression_ratio=o["compression_ratio"],
