@@ -1,20 +1,30 @@
 r"""Balance-shaft module design: where to put the unbalance masses and the support bearings.
 
-A balance shaft is modelled as a straight beam of uniform circular (solid or hollow)
-section on two or more bearings, loaded by the centrifugal forces of its unbalance
-masses. The state variables of Kim (2018) follow from it for any layout:
+This module owns the design side of a balance shaft; the structural model (section,
+statics, finite elements, natural frequencies) is :mod:`crankbalance.beam`.
 
-* bearing reactions (amplitude of the rotating load on each bearing) and the difference
-  between the most and least loaded bearing,
-* the deflection curve, its integral (the paper's *bending measure*) and its maximum,
-* the largest bending stress,
-* the fundamental bending frequency of the shaft carrying its unbalance masses.
+* :class:`BalanceShaft` -- one design (length, section, bearings, unbalance masses, speed),
+  :func:`shaft_response` -- its state variables (:class:`ShaftResponse`), and
+  :func:`design_checks` -- first critical speed, bearing capacity, deflection
+  (:class:`DesignChecks`).
+* The unbalance the engine requires of the shaft: :func:`inline4_secondary_unbalance`,
+  :func:`inline3_couple_unbalance` (Kim (2018), Eqs. 4 and 12).
+* Placement studies: Kim's objective (:func:`objective`), the inline-4 study
+  (:func:`inline4_study`, :func:`inline4_closed_form`), the inline-3 rotor types
+  (:func:`inline3_layout`, :func:`inline3_study`, :func:`compare_inline3_types`), results
+  in :class:`PlacementStudy`.
 
-The statics are solved exactly (closed-form beam functions superposed, Euler-Bernoulli or
-Timoshenko, rigid or elastic bearings); the natural frequency comes from a small
-finite-element model (cubic Hermite / Friedman-Kosmatka Timoshenko elements). Both are
-batched over many layouts at once, so a whole placement study (hundreds of positions,
-dozens of objective weights) is one vectorised evaluation.
+The state variables of Kim (2018) follow from the beam model for any layout: bearing
+reactions (amplitude of the rotating load on each bearing) and the difference between the
+most and least loaded bearing; the deflection curve, its integral (the paper's *bending
+measure*) and its maximum; the largest bending stress; the fundamental bending frequency of
+the shaft carrying its unbalance masses. All are batched over many layouts at once, so a
+whole placement study (hundreds of positions, dozens of objective weights) is one
+vectorised evaluation.
+
+Why one module over 800 lines: the single response and the placement studies share one
+batched evaluator (``_evaluate``) and one set of input checks; splitting the studies off
+would make that private evaluator a public interface for one caller.
 
 Coordinates: ``x`` runs along the shaft from one end (0) to the other (``length``).
 Loads are phasors in the frame turning with the shaft: an unbalance ``U = m e`` [kg m]
@@ -24,11 +34,7 @@ moments are phasors too; their magnitudes are the amplitudes seen over one revol
 References
 ----------
 C.-J. Kim, "Location of unbalance mass and supporting bearing for different type of
-balance shaft module", Mech. Sci. 9 (2018) 259 , Eqs. 3-9, 17-25.
-J. M. Gere, S. P. Timoshenko, *Mechanics of Materials* (beam deflection tables).
-Z. Friedman, J. B. Kosmatka, "An improved two-node Timoshenko beam finite element",
-Computers & Structures 47 (1993) 473-481 (element matrices).
-G. R. Cowper, "The shear coefficient in Timoshenko's beam theory", J. Appl. Mech. 33 (1966) 335.
+balance shaft module", Mech. Sci. 9 (2018) 259, Eqs. 3-13, 17-25.
 """
 
 from __future__ import annotations
@@ -427,6 +433,11 @@ def design_checks(
         Allowed radial load of one bearing [N].
     deflection_limit : float, optional
         Allowed deflection [m].
+
+    Returns
+    -------
+    DesignChecks
+        Pass/fail of each check with the numbers behind it.
     """
     speed = response.speed if max_speed is None else check_positive("max_speed", max_speed)
     if not (0.0 <= critical_speed_margin < math.inf):
@@ -472,6 +483,20 @@ def inline4_secondary_unbalance(
     The shafts turn at twice crank speed; with first-order-series kinematics the four
     cylinders' second-order force is :math:`4 m_p r^2 \omega^2 / l`.
 
+    Parameters
+    ----------
+    reciprocating_mass : float
+        Reciprocating mass per cylinder m_p [kg].
+    crank_radius : float
+        Crank radius r [m].
+    rod_length : float
+        Conrod length l [m].
+
+    Returns
+    -------
+    float
+        First moment m_b r_b of each shaft [kg m].
+
     References
     ----------
     Kim (2018), Eqs. 2-4.
@@ -492,6 +517,22 @@ def inline3_couple_unbalance(
     counterweights); with its masses ``shaft_length`` apart:
 
     .. math:: m_B r_B = \frac{\sqrt3\, m_p r a}{2 l_3}
+
+    Parameters
+    ----------
+    reciprocating_mass : float
+        Reciprocating mass per cylinder m_p [kg].
+    crank_radius : float
+        Crank radius r [m].
+    cylinder_pitch : float
+        Distance between neighbouring cylinder axes a [m].
+    shaft_length : float
+        Distance between the two shaft masses l_3 [m].
+
+    Returns
+    -------
+    float
+        First moment m_B r_B of each of the two masses [kg m].
 
     References
     ----------
@@ -515,7 +556,17 @@ def inline4_closed_form(position: ArrayLike) -> tuple[NDArray, NDArray]:
     .. math:: A \propto \int_0^L w\,dx = \frac{W L^4}{24 EI}\,\xi(1-\xi)\,[1 + \xi(1-\xi)],
               \qquad B = \frac{|f_A - f_B|}{W} = |1 - 2\xi|
 
-    Returns ``(A / (W L^4 / 24 EI), B)``.
+    Parameters
+    ----------
+    position : array_like
+        Load position as a fraction of the bearing distance, :math:`\xi = x / L` [-].
+
+    Returns
+    -------
+    bending : ndarray
+        Bending measure in units of its scale, :math:`A / (W L^4 / 24 EI)` [-].
+    reaction_difference : ndarray
+        Difference of the two bearing reactions per unit load, B [-].
 
     References
     ----------
@@ -558,7 +609,7 @@ class PlacementStudy(ResultMixin):
     normalised_bending, normalised_secondary : ndarray
         A / max A and B / max B over the design range [-].
     weight : float
-        w of the objective.
+        w of the objective [-].
     objective : ndarray
         J = (A/max A)^2 + w (B/max B)^2 along the design variable.
     optimum_position : float
@@ -602,9 +653,24 @@ def objective(
     .. math:: J = \left(\frac{A}{\operatorname{norm} A}\right)^2
               + w \left(\frac{B}{\operatorname{norm} B}\right)^2
 
+    Parameters
+    ----------
+    normalised_bending : array_like, shape (n,)
+        A / max A along the design variable [-].
+    normalised_secondary : array_like, shape (n,)
+        B / max B along the design variable [-].
+    weight : array_like
+        One weight w [-], or weights of shape (n_weights,).
+
+    Returns
+    -------
+    ndarray, shape (n,) or (n_weights, n)
+        The objective J [-].
+
     References
     ----------
-    Kim (2018), Eqs. 17 and 23, as checked in docs/references.md (norm = maximum over the design range).
+    Kim (2018), Eqs. 17 and 23, as checked in docs/references.md (norm = maximum over the
+    design range).
     """
     a = np.asarray(normalised_bending, dtype=float)
     b = np.asarray(normalised_secondary, dtype=float)
@@ -613,7 +679,22 @@ def objective(
 
 
 def normalise(values: NDArray) -> NDArray:
-    """Divide by the largest value over the design range (zero stays zero, never NaN)."""
+    """Divide by the largest value over the design range (zero stays zero, never NaN).
+
+    Parameters
+    ----------
+    values : ndarray
+        Values of a state variable over the design range [any unit, >= 0].
+
+    Returns
+    -------
+    ndarray
+        ``values / max(values)`` [-], zeros if the maximum is not positive.
+
+    References
+    ----------
+    Kim (2018), Eqs. 17 and 23 (the norm of A and B).
+    """
     top = float(np.max(values))
     return values / top if top > 0 else np.zeros_like(values)
 
@@ -623,6 +704,20 @@ def minimise_on_grid(positions: NDArray, values: NDArray) -> tuple[NDArray, NDAr
 
     Ties between equal minima (a mirror-symmetric shaft has two) go to the larger
     position, the paper's convention (67 % rather than 33 %).
+
+    Parameters
+    ----------
+    positions : ndarray, shape (n,)
+        Design points, strictly increasing [-].
+    values : ndarray, shape (n,) or (m, n)
+        Sampled curve(s) along the last axis [any unit].
+
+    Returns
+    -------
+    position : ndarray, shape values.shape[:-1]
+        Minimiser of each curve [-].
+    value : ndarray, shape values.shape[:-1]
+        The minimum [unit of ``values``].
     """
     v = np.atleast_2d(values)
     n = v.shape[-1]
@@ -753,7 +848,13 @@ def _study(
 
 
 def default_weights() -> NDArray:
-    """The default weight sweep: 20 values of w from 0.2 to 4.0."""
+    """The default weight sweep: 20 values of w from 0.2 to 4.0.
+
+    Returns
+    -------
+    ndarray, shape (20,)
+        Weights w of the objective [-].
+    """
     return np.linspace(0.2, 4.0, 20)
 
 
@@ -795,7 +896,7 @@ def inline4_study(
     section : ShaftSection
         Shaft section and material.
     weight : float
-        w of the objective.
+        w of the objective [-].
     positions : array_like, optional
         Design points as fractions of the length (default 200 points over [0, 1]).
     weights : array_like, optional
@@ -805,7 +906,10 @@ def inline4_study(
     bearing_stiffness : float, optional
         Radial bearing stiffness [N/m]; None for rigid.
     theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory.
     secondary : {"reaction-difference", "inverse-frequency"}
+        What B is: the difference of the bearing reactions [N] or the inverse first
+        natural frequency [s].
     n_elements, n_points : int
         Resolution of the frequency model and of the deflection curve.
 
@@ -865,6 +969,28 @@ def inline3_layout(
 
     The paper does not give these dimensions (Fig. 4 is missing from the text); they are
     this module's assumptions, see docs/balance_shaft.md.
+
+    Parameters
+    ----------
+    rotor_type : {"I", "II", "III"}
+        Order of masses and bearings.
+    positions : array_like, shape (n,)
+        Second mass position z as a fraction of the length [-].
+    length : float
+        Shaft length L [m].
+    bearing_offset : float
+        Distance o between a bearing and the neighbouring mass [m].
+
+    Returns
+    -------
+    bearings : ndarray, shape (n, 2)
+        Bearing positions [m].
+    masses : ndarray, shape (n, 2)
+        Mass positions [m].
+
+    References
+    ----------
+    Kim (2018), Sect. 3.2, Figs. 5 and 8-9.
     """
     if rotor_type not in ROTOR_TYPES:
         raise InputError("rotor_type", rotor_type, f"must be one of {', '.join(ROTOR_TYPES)}")
@@ -924,8 +1050,9 @@ def inline3_study(
     length : float
         Shaft length [m].
     section : ShaftSection
+        Shaft section and material.
     weight : float
-        w of the objective.
+        w of the objective [-].
     positions : array_like, optional
         z / L design points (default 200 points over [0.3, 1]).
     weights : array_like, optional
@@ -998,7 +1125,30 @@ def inline3_study(
 def compare_inline3_types(
     unbalance: float, speed: float, length: float, section: ShaftSection, **options: object
 ) -> dict[str, PlacementStudy]:
-    """Run :func:`inline3_study` for the three rotor types with the same options."""
+    """Run :func:`inline3_study` for the three rotor types with the same options.
+
+    Parameters
+    ----------
+    unbalance : float
+        First moment of each mass when the masses are ``length`` apart [kg m].
+    speed : float
+        Shaft speed [rad/s].
+    length : float
+        Shaft length [m].
+    section : ShaftSection
+        Shaft section and material.
+    **options
+        Keyword options of :func:`inline3_study`.
+
+    Returns
+    -------
+    dict of str to PlacementStudy
+        One study per rotor type, keyed "I", "II", "III".
+
+    References
+    ----------
+    Kim (2018), Sect. 3.2, Fig. 9 (comparison of the rotor types).
+    """
     return {
         t: inline3_study(t, unbalance, speed, length, section, **options)  # type: ignore[arg-type]
         for t in ROTOR_TYPES

@@ -70,7 +70,7 @@ class ShaftSection(ResultMixin):
     density : float
         Density [kg/m^3] (steel 7850).
     poisson_ratio : float
-        Poisson's ratio; sets G = E / (2 (1 + nu)) and Cowper's shear coefficient.
+        Poisson's ratio [-]; sets G = E / (2 (1 + nu)) and Cowper's shear coefficient.
     """
 
     outer_diameter: float
@@ -286,7 +286,35 @@ def deflection_at(
     bending_stiffness: float,
     shear_flexibility: float,
 ) -> NDArray:
-    """Deflection phasors at ``x`` (shape (n,) or (..., n)) of a beam in equilibrium."""
+    r"""Deflection phasors of a beam in equilibrium under point loads (batched).
+
+    .. math:: w(x) = a + b x + \sum_P P \left(\frac{\langle x - x_P\rangle^3}{6 EI}
+              - \frac{\langle x - x_P\rangle}{\kappa G A}\right)
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,) or (..., n)
+        Stations along the shaft [m].
+    load_positions : ndarray, shape (..., n_loads)
+        Positions of all point loads, applied forces and bearing reactions [m].
+    loads : ndarray, shape (..., n_loads)
+        Load phasors [N], in equilibrium.
+    coefficients : ndarray, shape (..., 2)
+        Rigid-body line ``a, b`` [m, -] (from :func:`beam_statics`).
+    bending_stiffness : float
+        E I [N m^2].
+    shear_flexibility : float
+        1 / (kappa G A) [1/N]; 0 for Euler-Bernoulli.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Deflection phasors at ``x`` [m].
+
+    References
+    ----------
+    Gere & Timoshenko, Mechanics of Materials (superposition, singularity functions).
+    """
     x = np.asarray(x, dtype=float)
     xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
     g = _influence(
@@ -296,7 +324,22 @@ def deflection_at(
 
 
 def bending_moment_at(x: NDArray, load_positions: NDArray, loads: NDArray) -> NDArray:
-    r"""Bending-moment phasors :math:`M(x) = \sum_{x_P < x} P (x - x_P)` [N m]."""
+    r"""Bending-moment phasors :math:`M(x) = \sum_{x_P < x} P (x - x_P)` (batched).
+
+    Parameters
+    ----------
+    x : ndarray, shape (n,) or (..., n)
+        Stations along the shaft [m].
+    load_positions : ndarray, shape (..., n_loads)
+        Positions of all point loads, applied forces and bearing reactions [m].
+    loads : ndarray, shape (..., n_loads)
+        Load phasors [N], in equilibrium.
+
+    Returns
+    -------
+    ndarray, shape (..., n)
+        Bending-moment phasors at ``x`` [N m].
+    """
     x = np.asarray(x, dtype=float)
     xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
     arm = np.maximum(xx[..., :, None] - load_positions[..., None, :], 0.0)
@@ -304,7 +347,20 @@ def bending_moment_at(x: NDArray, load_positions: NDArray, loads: NDArray) -> ND
 
 
 def simpson(values: NDArray, spacing: float) -> NDArray:
-    """Composite Simpson rule along the last axis (odd number of equally spaced samples)."""
+    """Composite Simpson rule along the last axis (odd number of equally spaced samples).
+
+    Parameters
+    ----------
+    values : ndarray, shape (..., n)
+        Samples of the integrand, ``n`` odd and at least 3 [any unit].
+    spacing : float
+        Distance between the samples [m].
+
+    Returns
+    -------
+    ndarray, shape (...)
+        The integral [unit of ``values`` times m].
+    """
     n = values.shape[-1]
     if n % 2 == 0 or n < 3:
         raise InputError("n_points", n, "must be an odd number >= 3")
@@ -331,6 +387,22 @@ def element_matrices(
     .. math:: K = \frac{EI}{(1+\phi)h^3}\begin{bmatrix}12 & 6h & -12 & 6h\\
               6h & (4+\phi)h^2 & -6h & (2-\phi)h^2\\ -12 & -6h & 12 & -6h\\
               6h & (2-\phi)h^2 & -6h & (4+\phi)h^2\end{bmatrix}
+
+    Parameters
+    ----------
+    element_length : float
+        Element length h [m].
+    section : ShaftSection
+        Section and material.
+    theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory.
+
+    Returns
+    -------
+    stiffness : ndarray, shape (4, 4)
+        Element stiffness matrix [N/m, N, N m].
+    mass : ndarray, shape (4, 4)
+        Element mass matrix [kg, kg m, kg m^2].
 
     References
     ----------
@@ -391,7 +463,28 @@ def element_matrices(
 def assemble(
     length: float, section: ShaftSection, n_elements: int, theory: BeamTheory = "euler-bernoulli"
 ) -> tuple[NDArray, NDArray]:
-    """Global stiffness and mass matrices of a uniform free-free shaft, 2 DOFs per node."""
+    """Global stiffness and mass matrices of a uniform free-free shaft, 2 DOFs per node.
+
+    Parameters
+    ----------
+    length : float
+        Shaft length [m].
+    section : ShaftSection
+        Section and material.
+    n_elements : int
+        Number of equal beam elements.
+    theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory.
+
+    Returns
+    -------
+    stiffness, mass : ndarray, shape (2 (n_elements + 1), 2 (n_elements + 1))
+        Global matrices, DOFs (w, theta) per node from x = 0 [N/m, kg and mixed].
+
+    References
+    ----------
+    Kim (2018), Eqs. 20-21 (global assembly of the element matrices).
+    """
     ke, me = element_matrices(length / n_elements, section, theory)
     ndof = 2 * (n_elements + 1)
     k = np.zeros((ndof, ndof))
@@ -410,7 +503,30 @@ def shape_vectors(
     section: ShaftSection,
     theory: BeamTheory = "euler-bernoulli",
 ) -> NDArray:
-    """Global interpolation vectors ``n(x)`` with ``w(x) = n(x) . u`` (batched over ``x``)."""
+    """Global interpolation vectors ``n(x)`` with ``w(x) = n(x) . u`` (batched over ``x``).
+
+    Parameters
+    ----------
+    x : array_like
+        Stations along the shaft [m].
+    length : float
+        Shaft length [m].
+    n_elements : int
+        Number of equal beam elements.
+    section : ShaftSection
+        Section and material (the shear parameter of the Timoshenko element).
+    theory : {"euler-bernoulli", "timoshenko"}
+        Beam theory.
+
+    Returns
+    -------
+    ndarray, shape x.shape + (2 (n_elements + 1),)
+        Interpolation vector of each station [-, m].
+
+    References
+    ----------
+    Friedman & Kosmatka (1993) (interpolation functions; cubic Hermite for phi = 0).
+    """
     xs = np.asarray(x, dtype=float)
     h = length / n_elements
     phi = (
@@ -517,11 +633,37 @@ def natural_frequencies(
 
 
 def check_theory(theory: str) -> None:
+    """Refuse an unknown beam theory.
+
+    Parameters
+    ----------
+    theory : str
+        Beam theory, one of :data:`BEAM_THEORIES`.
+
+    Raises
+    ------
+    InputError
+        If ``theory`` is not one of :data:`BEAM_THEORIES`.
+    """
     if theory not in BEAM_THEORIES:
         raise InputError("theory", theory, f"must be one of {', '.join(BEAM_THEORIES)}")
 
 
 def check_resolution(n_elements: int, n_points: int) -> None:
+    """Refuse a resolution the beam model cannot use.
+
+    Parameters
+    ----------
+    n_elements : int
+        Number of beam elements of the frequency model, 2 to 400.
+    n_points : int
+        Number of stations of the deflection curve, odd and at least 3.
+
+    Raises
+    ------
+    InputError
+        If either is outside what is allowed.
+    """
     if not (isinstance(n_elements, (int, np.integer)) and 2 <= n_elements <= 400):
         raise InputError("n_elements", n_elements, "must be an integer between 2 and 400")
     if not (isinstance(n_points, (int, np.integer)) and n_points >= 3 and n_points % 2 == 1):

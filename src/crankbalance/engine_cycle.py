@@ -23,6 +23,11 @@ firing cylinder the firing TDC); :math:`z` along the cylinder axis away from the
 (in-line), :math:`x` across it (transverse), crankpin at :math:`r(\sin\theta, \cos\theta)`.
 Torques are positive in the sense of rotation.
 
+Why one module over 800 lines: the pressure models, the cycle and the sweep are one model
+(the sweep is a loop over :func:`engine_cycle`, the cycle integrates the pressure models
+over the same crank-angle grid, and they share the cylinder and its checks); most of the
+length is the numpydoc of the physics.
+
 References
 ----------
 Hoem and Røsholm (2016), Secs. 2.3, 4.2 and 5.1; Heywood, Internal Combustion Engine
@@ -150,6 +155,24 @@ def stroke_length(crank_radius: float, rod_length: float, offset: float = 0.0) -
     r"""Piston stroke of a slider-crank with offset [m].
 
     .. math:: S = \sqrt{(l + r)^2 - e^2} - \sqrt{(l - r)^2 - e^2}
+
+    Parameters
+    ----------
+    crank_radius : float
+        Crank throw radius r [m].
+    rod_length : float
+        Conrod length l [m].
+    offset : float
+        Wrist-pin path offset e [m].
+
+    Returns
+    -------
+    float
+        Piston stroke S [m].
+
+    References
+    ----------
+    Any machine-dynamics text; Hoem and Røsholm (2016), Sec. 2.1 for e = 0.
     """
     return math.sqrt((rod_length + crank_radius) ** 2 - offset**2) - math.sqrt(
         (rod_length - crank_radius) ** 2 - offset**2
@@ -172,12 +195,21 @@ def cylinder_volume(
     ----------
     angle : array_like
         Crank angle from the cylinder axis [rad].
-    bore, crank_radius, rod_length : float
-        Geometry [m].
+    bore : float
+        Cylinder bore [m].
+    crank_radius : float
+        Crank throw radius [m].
+    rod_length : float
+        Conrod length [m].
     compression_ratio : float
         Geometric compression ratio :math:`\varepsilon` [-].
     offset : float
         Wrist-pin path offset [m].
+
+    Returns
+    -------
+    ndarray
+        Cylinder volume at each angle [m^3].
     """
     if not compression_ratio > 1:
         raise InputError("compression_ratio", compression_ratio, "must be greater than 1")
@@ -213,6 +245,11 @@ def wiebe_burn_fraction(
         Wiebe :math:`a` (5 gives 99.3 % burnt at the end of the duration) [-].
     form_factor : float
         Wiebe :math:`m` [-].
+
+    Returns
+    -------
+    ndarray
+        Mass fraction burnt at each angle [-].
 
     References
     ----------
@@ -320,10 +357,16 @@ def wiebe_pressure(
     strokes : {2, 4}
         Cycle type.
 
+    Returns
+    -------
+    ndarray
+        Absolute cylinder pressure at each angle [Pa].
+
     References
     ----------
     Heywood, Internal Combustion Engine Fundamentals, Secs. 9.2.1 and 9.2.2 (Wiebe function,
-    single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine torque).
+    single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine
+    torque).
     """
     _check_strokes(strokes)
     theta = np.asarray(angle, dtype=float)
@@ -396,6 +439,12 @@ def tabulated_pressure(
         Absolute cylinder pressure at those angles [Pa].
     strokes : {2, 4}
         Cycle type (sets the period).
+
+    Returns
+    -------
+    ndarray
+        Absolute cylinder pressure at each angle [Pa], linear between the table rows and
+        periodic over the cycle.
     """
     _check_strokes(strokes)
     a = np.asarray(table_angle, dtype=float)
@@ -547,8 +596,9 @@ def engine_cycle(
 
     References
     ----------
-    Hoem and Røsholm (2016), Sec. 2.3 (engine torque from inertia, gas and friction), Eqs. 4.6-4.8 (balance
-    factor, in-line and transverse forces), Sec. 4.2.1 (friction torque from the bearing
+    Hoem and Røsholm (2016), Sec. 2.3 (engine torque from inertia, gas and friction),
+    Eqs. 4.6-4.8 (balance factor, in-line and transverse forces), Sec. 4.2.1 (friction
+    torque from the bearing
     load); Den Hartog, Mechanical Vibrations, Sec. 5.3 (inertia torque).
     """
     _check_strokes(strokes)
@@ -784,10 +834,15 @@ def balance_sensitivity(
     progress : callable, optional
         Called as ``progress(done, total)`` after each point.
 
+    Returns
+    -------
+    SensitivityResult
+        Every indicator over (mass scale, balance factor).
+
     References
     ----------
-    Hoem and Røsholm (2016), Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction torque against the
-    balance factor, Figs. 5.2-5.6).
+    Hoem and Røsholm (2016), Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction
+    torque against the balance factor, Figs. 5.2-5.6).
     """
     factors = np.atleast_1d(np.asarray(balance_factors, dtype=float))
     scales = np.atleast_1d(np.asarray(mass_scales, dtype=float))

@@ -165,6 +165,11 @@ def disc_rotor(
         Axial bearing positions from the disc mid-plane [m]; default the journal mid-points,
         :math:`\pm(L_1 + t)/4`.
 
+    Returns
+    -------
+    BenchRotor
+        The rotor with its mass, inertia and unbalance, and the given friction.
+
     References
     ----------
     Hoem and Røsholm (2016), Appendix E, Eqs. 7.6-7.9 and Table 7.2; Table 5.2 (drilled holes).
@@ -414,7 +419,9 @@ def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
 def cylinder_inertia(
     diameter: float, length: float, density: float = STEEL_DENSITY, bore: float = 0.0
 ) -> float:
-    r"""Mass moment of inertia of a (hollow) cylinder about its own axis [kg m^2].
+    r"""Mass moment of inertia of a (hollow) cylinder about its own axis.
+
+    .. math:: I = \frac{\rho\,\pi\,(d^4 - d_i^4)\,L}{32}
 
     Parameters
     ----------
@@ -427,7 +434,10 @@ def cylinder_inertia(
     bore : float
         Inner diameter [m] (0 for a solid cylinder).
 
-    .. math:: I = \frac{\rho\,\pi\,(d^4 - d_i^4)\,L}{32}
+    Returns
+    -------
+    float
+        Inertia about the cylinder axis [kg m^2].
 
     References
     ----------
@@ -442,7 +452,19 @@ def cylinder_inertia(
 
 
 def disc_inertia(mass: float, diameter: float) -> float:
-    r"""Inertia of a solid disc of given mass about its axis [kg m^2]: :math:`m r^2/2`.
+    """Inertia of a solid disc of given mass about its axis: :math:`m r^2/2`.
+
+    Parameters
+    ----------
+    mass : float
+        Disc mass [kg].
+    diameter : float
+        Disc diameter [m].
+
+    Returns
+    -------
+    float
+        Inertia about the disc axis [kg m^2].
 
     References
     ----------
@@ -454,7 +476,20 @@ def disc_inertia(mass: float, diameter: float) -> float:
 
 
 def point_mass_inertia(mass: float, radius: float) -> float:
-    r"""Inertia of a mass concentrated at a radius [kg m^2]: :math:`m r^2`."""
+    """Inertia of a mass concentrated at a radius: :math:`m r^2`.
+
+    Parameters
+    ----------
+    mass : float
+        The mass [kg].
+    radius : float
+        Its distance from the axis [m].
+
+    Returns
+    -------
+    float
+        Inertia about the axis [kg m^2].
+    """
     _check_mass("mass", mass)
     if not radius >= 0:
         raise InputError("radius", radius, "must be >= 0 [m]")
@@ -468,22 +503,27 @@ def stepped_rotor_inertia(
     overall_length: float,
     density: float = STEEL_DENSITY,
 ) -> float:
-    r"""Inertia of a central disc on a shaft (the thesis' simplified crank) [kg m^2].
+    r"""Inertia of a central disc on a shaft (the thesis' simplified crank).
+
+    .. math:: I = \frac{\rho\pi}{32}\left(d_1^4 t + d_2^4 (L_1 - t)\right)
 
     Parameters
     ----------
     disc_diameter : float
-        :math:`d_1` [m].
+        Disc diameter :math:`d_1` [m].
     disc_thickness : float
-        :math:`t` [m].
+        Disc thickness :math:`t` [m].
     shaft_diameter : float
-        :math:`d_2` [m].
+        Shaft diameter :math:`d_2` [m].
     overall_length : float
-        :math:`L_1`, shaft ends included [m].
+        Overall length :math:`L_1`, shaft ends included [m].
     density : float
-        [kg/m^3].
+        Material density [kg/m^3].
 
-    .. math:: I = \frac{\rho\pi}{32}\left(d_1^4 t + d_2^4 (L_1 - t)\right)
+    Returns
+    -------
+    float
+        Inertia about the rotor axis [kg m^2].
 
     References
     ----------
@@ -542,17 +582,26 @@ def equal_inertia_test_rotor(
 ) -> TestRotor:
     r"""Disc thickness giving a disc-on-shaft rotor the inertia of a real crank.
 
+    .. math::
+        t = \frac{32 I/(\rho\pi) - d_2^4 L_1}{d_1^4 - d_2^4},\qquad L_2 = \frac{L_1 - t}{2}
+
     Parameters
     ----------
     inertia : float
         Inertia to match about the crank axis [kg m^2].
-    disc_diameter, shaft_diameter, overall_length : float
-        :math:`d_1`, :math:`d_2`, :math:`L_1` [m].
+    disc_diameter : float
+        Disc diameter :math:`d_1` [m].
+    shaft_diameter : float
+        Shaft diameter :math:`d_2` [m].
+    overall_length : float
+        Overall length :math:`L_1` [m].
     density : float
-        [kg/m^3].
+        Material density [kg/m^3].
 
-    .. math::
-        t = \frac{32 I/(\rho\pi) - d_2^4 L_1}{d_1^4 - d_2^4},\qquad L_2 = \frac{L_1 - t}{2}
+    Returns
+    -------
+    TestRotor
+        The rotor: its disc thickness, shaft-end length, inertia and mass.
 
     References
     ----------
@@ -606,11 +655,25 @@ def equal_inertia_test_rotor(
 def crankpin_overlap(
     main_journal_diameter: float, crankpin_diameter: float, stroke: float
 ) -> float:
-    r"""Crankpin overlap [m]: how far the crankpin overlaps the main journal.
+    r"""Crankpin overlap: how far the crankpin overlaps the main journal.
 
     Negative values mean no overlap (a gap).
 
     .. math:: CPO = \frac{D_{main} + D_{pin} - s}{2}
+
+    Parameters
+    ----------
+    main_journal_diameter : float
+        Main-journal diameter :math:`D_{main}` [m].
+    crankpin_diameter : float
+        Crankpin diameter :math:`D_{pin}` [m].
+    stroke : float
+        Piston stroke :math:`s` [m].
+
+    Returns
+    -------
+    float
+        Crankpin overlap [m].
 
     References
     ----------
@@ -624,7 +687,9 @@ def crankpin_overlap(
 
 @dataclass(frozen=True)
 class StrokingEffect(ResultMixin):
-    """Effect of offset-grinding the crankpin to a smaller diameter (Hoem and Røsholm (2016), Appendix C).
+    """Effect of offset-grinding the crankpin to a smaller diameter.
+
+    Hoem and Røsholm (2016), Appendix C.
 
     Attributes
     ----------
@@ -682,20 +747,31 @@ def stroking_effect(
 ) -> StrokingEffect:
     r"""Stroking by offset grinding: a smaller crankpin whose outermost fibre stays put.
 
+    .. math::
+        r_{new} = r + \frac{d - d_{new}}{2},\quad
+        m_{pin,new} = m_{pin}\frac{d_{new}^2 - d_i^2}{d^2 - d_i^2},\quad
+        m_{rot,new} = m_{rot} - m_{pin} + m_{pin,new}
+
+        f_{b,new} = \frac{m_{cw} r'/r_{new} - m_{rot,new}}{m_{rec}}
+
     Parameters
     ----------
     crank_radius : float
         Throw radius before [m].
-    crankpin_diameter, new_crankpin_diameter : float
-        Crankpin diameter before and after grinding [m].
+    crankpin_diameter : float
+        Crankpin diameter before grinding [m].
+    new_crankpin_diameter : float
+        Crankpin diameter after grinding [m].
     crankpin_mass : float
         Crankpin mass before [kg] (the part of :math:`m_{rot}` that changes).
     rotating_mass : float
         :math:`m_{rot}` before, crankpin included [kg].
     reciprocating_mass : float
         :math:`m_{rec}` [kg].
-    counterweight_mass, counterweight_radius : float
-        :math:`m_{cw}` [kg] and :math:`r'` [m], unchanged by stroking.
+    counterweight_mass : float
+        :math:`m_{cw}` [kg], unchanged by stroking.
+    counterweight_radius : float
+        :math:`r'` [m], unchanged by stroking.
     crankpin_bore : float
         Bore of a hollow crankpin [m].
     bore : float
@@ -703,12 +779,11 @@ def stroking_effect(
     main_journal_diameter : float, optional
         For the crankpin overlap before and after [m].
 
-    .. math::
-        r_{new} = r + \frac{d - d_{new}}{2},\quad
-        m_{pin,new} = m_{pin}\frac{d_{new}^2 - d_i^2}{d^2 - d_i^2},\quad
-        m_{rot,new} = m_{rot} - m_{pin} + m_{pin,new}
-
-        f_{b,new} = \frac{m_{cw} r'/r_{new} - m_{rot,new}}{m_{rec}}
+    Returns
+    -------
+    StrokingEffect
+        Radius, stroke, masses, balance factor and overlap before and after, and the
+        counterweight correction that restores the balance factor.
 
     References
     ----------
