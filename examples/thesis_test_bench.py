@@ -1,4 +1,6 @@
-"""The NTNU thesis' test rotor on the simulated bench (Hoem and Røsholm 2016, chapter 5, Tables 5.5 and 5.6).
+"""The NTNU thesis' test rotor on the simulated bench.
+
+Hoem and Røsholm (2016), chapter 5, Tables 5.5 and 5.6.
 
 The rotor of Appendix E (disc 98 x 36.704 mm between 20 mm journals, 188 mm long, steel)
 is run up to 3000, 6000 and 9000 rpm in 2 s by a PI-controlled motor and held for 1.5 s;

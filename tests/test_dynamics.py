@@ -258,7 +258,8 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
         progress=lambda d, t: calls.append((d, t)),
     )
     assert calls[-1] == (22, 22)
-    # Hoem and Røsholm (2016), Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force (first-order forces)
+    # Hoem and Røsholm (2016), Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force
+    # (first-order forces)
     assert factors[np.argmin(result.peak_shaking_force[0])] == pytest.approx(0.5)
     # lighter reciprocating parts -> lower shaking force everywhere
     assert np.all(result.peak_shaking_force[1] < result.peak_shaking_force[0])

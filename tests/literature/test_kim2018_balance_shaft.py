@@ -33,7 +33,8 @@ SHAFT_SPEED = 2 * 6000 * 2 * np.pi / 60  # second order: twice crank speed
 def test_inline4_optimum_against_paper(weight: float, expected: float) -> None:
     study = inline4_study(UNBALANCE, SHAFT_SPEED, 0.30, SECTION, weight=weight)
     assert abs(study.optimum_position - expected) < 0.01, (
-        f"Kim (2018), Sect. 3.1 / Fig. 7 and docs/references.md Kim (2018): w = {weight} -> {expected:.0%} of the length"
+        f"Kim (2018), Sect. 3.1 / Fig. 7 and docs/references.md Kim (2018): "
+        f"w = {weight} -> {expected:.0%} of the length"
     )
 
 

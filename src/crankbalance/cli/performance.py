@@ -125,7 +125,10 @@ def friction(
     attitude_angle: str,
     fmt: str,
 ) -> None:
-    """Bearing friction torque under a constant plus a rotating load (Hoem and Røsholm (2016), Sec. 4.2.1)."""
+    """Bearing friction torque under a constant plus a rotating load.
+
+    Hoem and Røsholm (2016), Sec. 4.2.1.
+    """
     from .. import friction as fr
     from ..errors import check_positive
 
@@ -309,7 +312,9 @@ def bench(
     history: str | None,
     fmt: str,
 ) -> None:
-    """Simulated rotor test bench: PI spin-up, hold, required torque (Hoem and Røsholm (2016), Sec. 5.2.5).
+    """Simulated rotor test bench: PI spin-up, hold, required torque.
+
+    Hoem and Røsholm (2016), Sec. 5.2.5.
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """
