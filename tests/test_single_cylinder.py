@@ -1,4 +1,4 @@
-"""Unit tests of crankbalance.single_cylinder and crankbalance.rotor."""
+"""Unit tests of crankbalance.single_cylinder and the rotor helpers of crankbalance.rotor_bench."""
 
 from __future__ import annotations
 
