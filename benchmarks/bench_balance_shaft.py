@@ -14,14 +14,12 @@ import numpy as np
 
 from crankbalance.balance_shaft import (
     BalanceShaft,
-    ShaftSection,
-    beam_statics,
     compare_inline3_types,
     inline4_secondary_unbalance,
     inline4_study,
-    natural_frequencies,
     shaft_response,
 )
+from crankbalance.beam import ShaftSection, beam_statics, natural_frequencies
 
 SECTION = ShaftSection(outer_diameter=0.025)
 UNBALANCE = inline4_secondary_unbalance(0.5, 0.043, 0.140)

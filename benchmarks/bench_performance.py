@@ -13,15 +13,13 @@ import time
 
 import numpy as np
 
-from crankbalance.dynamics import (
-    BenchSettings,
+from crankbalance.engine_cycle import (
     CylinderSpec,
     WiebeCombustion,
     balance_sensitivity,
-    disc_rotor,
     engine_cycle,
-    run_bench,
 )
+from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 
 def best_of(function, repeat: int = 3) -> float:

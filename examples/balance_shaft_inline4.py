@@ -11,12 +11,12 @@ import numpy as np
 
 from crankbalance.balance_shaft import (
     BalanceShaft,
-    ShaftSection,
     design_checks,
     inline4_secondary_unbalance,
     inline4_study,
     shaft_response,
 )
+from crankbalance.beam import ShaftSection
 from crankbalance.io.engine_file import load_engine
 from crankbalance.studies.build import build_model
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 
 import math
 
-from crankbalance.rotor import equal_inertia_test_rotor
+from crankbalance.rotor_bench import equal_inertia_test_rotor
 from crankbalance.single_cylinder import (
     FaceRemoval,
     balance_factor_from_mass_properties,

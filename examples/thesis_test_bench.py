@@ -1,4 +1,6 @@
-"""The NTNU thesis' test rotor on the simulated bench (Hoem and Røsholm 2016, chapter 5, Tables 5.5 and 5.6).
+"""The NTNU thesis' test rotor on the simulated bench.
+
+Hoem and Røsholm (2016), chapter 5, Tables 5.5 and 5.6.
 
 The rotor of Appendix E (disc 98 x 36.704 mm between 20 mm journals, 188 mm long, steel)
 is run up to 3000, 6000 and 9000 rpm in 2 s by a PI-controlled motor and held for 1.5 s;
@@ -13,8 +15,8 @@ from __future__ import annotations
 
 import math
 
-from crankbalance.dynamics import BenchSettings, disc_rotor, run_bench
 from crankbalance.friction import friction_coefficient_from_torque, mean_equivalent_load
+from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 SPEEDS = (3000, 6000, 9000)
 HOLE = {1: 0.0, 2: 0.0146, 3: 0.0584}

@@ -16,11 +16,12 @@ PHYSICS = [
     "balancing",
     "single_cylinder",
     "counterweight",
+    "beam",
     "balance_shaft",
     "friction",
-    "dynamics",
+    "rotor_bench",
+    "engine_cycle",
     "tolerance",
-    "rotor",
 ]
 EDGES = {
     "figures",

@@ -11,9 +11,6 @@ import scipy.linalg
 
 from crankbalance.balance_shaft import (
     BalanceShaft,
-    ShaftSection,
-    assemble,
-    beam_statics,
     compare_inline3_types,
     design_checks,
     inline3_couple_unbalance,
@@ -23,8 +20,13 @@ from crankbalance.balance_shaft import (
     inline4_secondary_unbalance,
     inline4_study,
     minimise_on_grid,
-    natural_frequencies,
     shaft_response,
+)
+from crankbalance.beam import (
+    ShaftSection,
+    assemble,
+    beam_statics,
+    natural_frequencies,
     shape_vectors,
 )
 from crankbalance.errors import InputError

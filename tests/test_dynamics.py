@@ -1,4 +1,5 @@
-"""Unit tests of crankbalance.dynamics: bench ODE, engine cycle, sensitivity sweep."""
+"""Unit tests of crankbalance.rotor_bench (bench ODE) and crankbalance.engine_cycle (engine
+cycle, sensitivity sweep)."""
 
 from __future__ import annotations
 
@@ -9,17 +10,17 @@ import pytest
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-from crankbalance import dynamics, kinematics
-from crankbalance.dynamics import (
-    BenchRotor,
-    BenchSettings,
+from crankbalance import kinematics
+from crankbalance.engine_cycle import (
     CylinderSpec,
     WiebeCombustion,
     balance_sensitivity,
+    cylinder_volume,
     engine_cycle,
-    run_bench,
+    wiebe_pressure,
 )
 from crankbalance.errors import InputError
+from crankbalance.rotor_bench import BenchRotor, BenchSettings, disc_rotor, run_bench
 
 # ----------------------------------------------------------------------------------------
 # Bench: constant Coulomb friction, no unbalance -> closed form
@@ -170,8 +171,8 @@ def test_energy_check_gas_work_equals_indicated_work():
         result = engine_cycle(cyl, 900.0, combustion, strokes=strokes)
         # indicated work from an independent p-V integration on a finer grid
         theta = np.linspace(-np.pi, np.pi, 20001)
-        p = dynamics.wiebe_pressure(theta, cyl, combustion, strokes)
-        v = dynamics.cylinder_volume(theta, cyl.bore, cyl.crank_radius, cyl.rod_length, 12.0)
+        p = wiebe_pressure(theta, cyl, combustion, strokes)
+        v = cylinder_volume(theta, cyl.bore, cyl.crank_radius, cyl.rod_length, 12.0)
         work = np.trapezoid(p, v)
         assert result.gas_work == pytest.approx(work, rel=5e-3), "issue 7 energy check, 0.5 %"
         assert result.indicated_work == pytest.approx(work, rel=5e-3)
@@ -188,10 +189,10 @@ def test_wiebe_pressure_compression_is_polytropic():
         gamma=1.35,
     )
     theta = np.radians([-180.0, -90.0, -30.0])
-    p = dynamics.wiebe_pressure(theta, cyl, combustion, 4)
-    v = dynamics.cylinder_volume(theta, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0)
+    p = wiebe_pressure(theta, cyl, combustion, 4)
+    v = cylinder_volume(theta, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0)
     assert p == pytest.approx(1e5 * (v[0] / v) ** 1.35, rel=1e-9), "p V^gamma = const before"
-    assert dynamics.cylinder_volume(0.0, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0) == (
+    assert cylinder_volume(0.0, cyl.bore, cyl.crank_radius, cyl.rod_length, 10.0) == (
         pytest.approx(cyl.displacement / 9.0)
     ), "clearance volume V_d/(CR - 1)"
 
@@ -257,7 +258,8 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
         progress=lambda d, t: calls.append((d, t)),
     )
     assert calls[-1] == (22, 22)
-    # Hoem and Røsholm (2016), Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force (first-order forces)
+    # Hoem and Røsholm (2016), Fig. 4.8: f_b = 0.5 gives the lowest peak resultant force
+    # (first-order forces)
     assert factors[np.argmin(result.peak_shaking_force[0])] == pytest.approx(0.5)
     # lighter reciprocating parts -> lower shaking force everywhere
     assert np.all(result.peak_shaking_force[1] < result.peak_shaking_force[0])
@@ -305,7 +307,7 @@ def test_sensitivity_friction_minimum_near_half_balance_without_gas():
             "bearing_positions",
         ),
         (lambda: BenchSettings(speed=0.0), "speed"),
-        (lambda: dynamics.disc_rotor(0.1, 0.2, 0.02, 0.188, 0.1), "disc_thickness"),
+        (lambda: disc_rotor(0.1, 0.2, 0.02, 0.188, 0.1), "disc_thickness"),
         (
             lambda: balance_sensitivity(_cylinder(), 100.0, _no_gas(), [], strokes=2),
             "balance_factors",

@@ -6,7 +6,7 @@ import json
 
 import pytest
 
-from crankbalance.dynamics import CylinderSpec, WiebeCombustion, engine_cycle
+from crankbalance.engine_cycle import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.errors import InputError
 from crankbalance.studies.engine import as_model
 

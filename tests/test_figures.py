@@ -276,12 +276,8 @@ def test_counterweight_figures_match_optimum() -> None:
 
 
 def test_shaft_figures_match_study() -> None:
-    from crankbalance.balance_shaft import (
-        BalanceShaft,
-        ShaftSection,
-        inline4_study,
-        shaft_response,
-    )
+    from crankbalance.balance_shaft import BalanceShaft, inline4_study, shaft_response
+    from crankbalance.beam import ShaftSection
 
     section = ShaftSection(outer_diameter=0.028)
     st = inline4_study(2e-4, 1300.0, 0.3, section)
@@ -300,14 +296,8 @@ def test_shaft_figures_match_study() -> None:
 
 
 def test_performance_figures_match_results() -> None:
-    from crankbalance.dynamics import (
-        BenchSettings,
-        CylinderSpec,
-        balance_sensitivity,
-        disc_rotor,
-        engine_cycle,
-        run_bench,
-    )
+    from crankbalance.engine_cycle import CylinderSpec, balance_sensitivity, engine_cycle
+    from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
 
     cyl = CylinderSpec(
         bore=0.0768,

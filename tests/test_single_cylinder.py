@@ -1,4 +1,4 @@
-"""Unit tests of crankbalance.single_cylinder and crankbalance.rotor."""
+"""Unit tests of crankbalance.single_cylinder and the rotor helpers of crankbalance.rotor_bench."""
 
 from __future__ import annotations
 
@@ -9,7 +9,7 @@ import pytest
 
 from crankbalance import single_cylinder as sc
 from crankbalance.errors import InputError
-from crankbalance.rotor import (
+from crankbalance.rotor_bench import (
     crankpin_overlap,
     cylinder_inertia,
     disc_inertia,

@@ -1262,7 +1262,7 @@ SENSITIVITY_LABELS = {
 
 def sensitivity_figure(result: Any, indicators: tuple[str, ...] | None = None) -> go.Figure:
     """Performance indicators versus balance factor, one line per reciprocating-mass scale
-    (:class:`~crankbalance.dynamics.SensitivityResult`)."""
+    (:class:`~crankbalance.engine_cycle.SensitivityResult`)."""
     go = _go()
     names = indicators or (
         "mean_friction_torque",
@@ -1317,7 +1317,7 @@ def sensitivity_figure(result: Any, indicators: tuple[str, ...] | None = None) -
 
 def bench_figure(result: Any) -> go.Figure:
     """Rotor test bench time histories: speed, motor and friction torque, bearing loads
-    (:class:`~crankbalance.dynamics.BenchResult`)."""
+    (:class:`~crankbalance.rotor_bench.BenchResult`)."""
     go = _go()
     t = np.asarray(result.time)
     fig = _subplots(
@@ -1382,7 +1382,7 @@ def bench_figure(result: Any) -> go.Figure:
 
 def cycle_figure(result: Any) -> go.Figure:
     """Engine-cycle histories versus crank angle: torques, bearing load and shaking forces
-    (:class:`~crankbalance.dynamics.CycleResult`)."""
+    (:class:`~crankbalance.engine_cycle.CycleResult`)."""
     go = _go()
     deg = np.degrees(np.asarray(result.angle))
     fig = _subplots(

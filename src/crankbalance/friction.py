@@ -20,7 +20,8 @@ to reduce
   (Eqs. 7.4, 7.5), with the exact Reynolds solution of a rectangular squeeze film for
   comparison.
 
-The bench and engine-cycle simulations that use these are in :mod:`crankbalance.dynamics`.
+The bench and engine-cycle simulations that use these are in :mod:`crankbalance.rotor_bench` and
+:mod:`crankbalance.engine_cycle`.
 """
 
 from __future__ import annotations
@@ -120,7 +121,7 @@ def mean_equivalent_load(
     rolling bearings, which governs fatigue); the arithmetic mean is the one that sets the
     average Coulomb friction torque of a joint whose friction follows the actual reaction
     force, as in the simulated bench of Hoem and Røsholm (2016), Sec. 5.2.5 and
-    :func:`crankbalance.dynamics.run_bench`.
+    :func:`crankbalance.rotor_bench.run_bench`.
 
     Parameters
     ----------

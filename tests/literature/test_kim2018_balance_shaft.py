@@ -13,12 +13,12 @@ import numpy as np
 import pytest
 
 from crankbalance.balance_shaft import (
-    ShaftSection,
     compare_inline3_types,
     inline3_study,
     inline4_secondary_unbalance,
     inline4_study,
 )
+from crankbalance.beam import ShaftSection
 
 SECTION = ShaftSection(outer_diameter=0.025)
 # an inline-4 of about 2 litres: m_p = 0.5 kg, r = 43 mm, l = 140 mm, 6000 rpm crank
@@ -33,7 +33,8 @@ SHAFT_SPEED = 2 * 6000 * 2 * np.pi / 60  # second order: twice crank speed
 def test_inline4_optimum_against_paper(weight: float, expected: float) -> None:
     study = inline4_study(UNBALANCE, SHAFT_SPEED, 0.30, SECTION, weight=weight)
     assert abs(study.optimum_position - expected) < 0.01, (
-        f"Kim (2018), Sect. 3.1 / Fig. 7 and docs/references.md Kim (2018): w = {weight} -> {expected:.0%} of the length"
+        f"Kim (2018), Sect. 3.1 / Fig. 7 and docs/references.md Kim (2018): "
+        f"w = {weight} -> {expected:.0%} of the length"
     )
 
 

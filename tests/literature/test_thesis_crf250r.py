@@ -14,7 +14,7 @@ import pytest
 from crankbalance import single_cylinder as sc
 from crankbalance.cli import main
 from crankbalance.cli.single import load_rebalance_file, run_rebalance
-from crankbalance.rotor import equal_inertia_test_rotor
+from crankbalance.rotor_bench import equal_inertia_test_rotor
 from crankbalance.tolerance import permissible_unbalance
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "crf250r_rebalance.toml"

@@ -1,7 +1,9 @@
 """``crankbalance friction | bench | cycle | sensitivity``: bearing friction and performance.
 
 Quantities are unit strings (``"20 mm"``, ``"9000 rpm"``); the physics lives in
-:mod:`crankbalance.friction` and :mod:`crankbalance.dynamics`, imported when a command runs.
+:mod:`crankbalance.friction`, :mod:`crankbalance.rotor_bench` and
+:mod:`crankbalance.engine_cycle`, imported when a command runs; pressure tables are read by
+:mod:`crankbalance.io.pressure_csv`.
 """
 
 from __future__ import annotations
@@ -123,7 +125,10 @@ def friction(
     attitude_angle: str,
     fmt: str,
 ) -> None:
-    """Bearing friction torque under a constant plus a rotating load (Hoem and Røsholm (2016), Sec. 4.2.1)."""
+    """Bearing friction torque under a constant plus a rotating load.
+
+    Hoem and Røsholm (2016), Sec. 4.2.1.
+    """
     from .. import friction as fr
     from ..errors import check_positive
 
@@ -307,11 +312,13 @@ def bench(
     history: str | None,
     fmt: str,
 ) -> None:
-    """Simulated rotor test bench: PI spin-up, hold, required torque (Hoem and Røsholm (2016), Sec. 5.2.5).
+    """Simulated rotor test bench: PI spin-up, hold, required torque.
+
+    Hoem and Røsholm (2016), Sec. 5.2.5.
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """
-    from ..dynamics import BenchRotor, BenchSettings, run_bench
+    from ..rotor_bench import BenchRotor, BenchSettings, run_bench
 
     rotor = BenchRotor(
         mass=_q(mass, "mass", "mass"),
@@ -439,22 +446,6 @@ def _engine_options(function: Any) -> Any:
     return function
 
 
-def _read_pressure_csv(path: str) -> tuple[Any, Any]:
-    import numpy as np
-
-    try:
-        data = np.genfromtxt(path, delimiter=",", comments="#")
-    except ValueError as error:
-        raise InputError("pressure_csv", path, f"must be two numeric columns ({error})") from None
-    data = np.atleast_2d(data)
-    data = data[~np.isnan(data).any(axis=1)] if data.ndim == 2 else data
-    if data.ndim != 2 or data.shape[1] != 2 or data.shape[0] < 4:
-        raise InputError(
-            "pressure_csv", path, "must hold at least 4 rows of: angle_deg, pressure_bar"
-        )
-    return np.radians(data[:, 0]), data[:, 1] * 1e5
-
-
 def _given_options() -> set[str]:
     """Names of the options the user typed (not defaults) in the running command."""
     context = click.get_current_context(silent=True)
@@ -468,7 +459,7 @@ def _given_options() -> set[str]:
 
 
 def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any, Any, float, int]:
-    from ..dynamics import CylinderSpec, WiebeCombustion
+    from ..engine_cycle import CylinderSpec, WiebeCombustion
 
     geometry = {
         "crank_radius": _q(o["stroke"], "length", "stroke") / 2,
@@ -510,7 +501,9 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
         **geometry,
     )
     if o["pressure_csv"]:
-        pressure: Any = _read_pressure_csv(o["pressure_csv"])
+        from ..io.pressure_csv import read_pressure_csv
+
+        pressure: Any = read_pressure_csv(o["pressure_csv"])
     else:
         pressure = WiebeCombustion(
             compression_ratio=o["compression_ratio"],
@@ -556,7 +549,7 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
     """
     import numpy as np
 
-    from ..dynamics import engine_cycle
+    from ..engine_cycle import engine_cycle
 
     cylinder, pressure, speed, strokes = _engine_from_options(options, balance_factor)
     result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
@@ -616,7 +609,7 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
 @format_option(FORMATS)
 def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any) -> None:
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
-    from ..dynamics import balance_sensitivity
+    from ..engine_cycle import balance_sensitivity
 
     factors = _number_list(balance_factors, "balance_factors")
     scales = _number_list(mass_scales, "mass_scales")

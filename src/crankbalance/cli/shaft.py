@@ -18,7 +18,8 @@ from ..errors import InputError
 from ._common import echo_table, format_option
 
 if TYPE_CHECKING:
-    from ..balance_shaft import BeamTheory, HoldMode, RotorType, SecondaryMeasure
+    from ..balance_shaft import HoldMode, RotorType, SecondaryMeasure
+    from ..beam import BeamTheory
 
 SCHEMA = "crankbalance.shaft/1"
 
@@ -124,7 +125,7 @@ def _quantity(text: str, kind: str, field: str) -> float:
 def _parse_section(
     length: str, diameter: str, bore: str, modulus: str, density: str, poisson: float
 ) -> tuple[float, Any]:
-    from ..balance_shaft import ShaftSection
+    from ..beam import ShaftSection
 
     length_m = _positive(_quantity(length, "length", "length"), "length", length)
     section = ShaftSection(

@@ -213,7 +213,8 @@ def shaft_requirement(computed: Computed, settings: dict[str, Any]) -> tuple[flo
 
 def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, str]:
     """Unbalance-mass placement on a shaft with end bearings (Kim 2018, Sec. 3.1)."""
-    from ..balance_shaft import ShaftSection, inline4_study
+    from ..balance_shaft import inline4_study
+    from ..beam import ShaftSection
 
     moment, speed, which = shaft_requirement(computed, settings)
     o = options(settings, ShaftPlacementOptions)
@@ -233,7 +234,7 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5) for one cylinder of the engine (its reciprocating mass, crank radius,
     rod length, speed)."""
-    from ..dynamics import CylinderSpec, WiebeCombustion, balance_sensitivity
+    from ..engine_cycle import CylinderSpec, WiebeCombustion, balance_sensitivity
 
     model = computed.analysis.model
     o = options(settings, PerformanceOptions)

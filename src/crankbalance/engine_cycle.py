@@ -1,21 +1,18 @@
-r"""Rotor test bench and engine-cycle torque simulation.
+r"""Engine-cycle torque simulation and the balance-factor sensitivity sweep.
 
-Three studies, each a pure-physics orchestrator returning a frozen result dataclass:
+This module owns the crank-train cycle model of one or several cylinders:
 
-* :func:`run_bench` -- the simulated rotor test bench of Hoem and Røsholm (2016), Sec. 5.2.5: a rigid rotor on
-  two bearings with Coulomb friction driven by the actual bearing reaction forces
-  (weight plus the rotating unbalance, split by the bearing positions), driven by a motor
-  whose torque comes from a PI speed controller that follows a ramp to the set speed and
-  holds it. The required torque is the mean motor torque over the hold (as in the thesis).
-* :func:`engine_cycle` -- one working cycle of a single cylinder (or several, phased) at a
-  given mean speed: gas force from a pressure curve (user table or a Wiebe heat-release
-  model), reciprocating inertia with the variable inertia of the crank train, main-bearing
-  loads including the counterweight of a balance factor, friction torque from those loads,
-  net torque, speed fluctuation and crank acceleration.
+* the cylinder (:class:`CylinderSpec`, :func:`stroke_length`, :func:`cylinder_volume`);
+* the cylinder pressure, from a Wiebe heat-release model (:func:`wiebe_burn_fraction`,
+  :class:`WiebeCombustion`, :func:`wiebe_pressure`) or a table (:func:`tabulated_pressure`);
+* :func:`engine_cycle` -- one working cycle at a given mean speed: gas force,
+  reciprocating inertia with the variable inertia of the crank train, main-bearing loads
+  including the counterweight of a balance factor, friction torque from those loads, net
+  torque, speed fluctuation and crank acceleration (:class:`CycleResult`);
 * :func:`balance_sensitivity` -- sweep of the balance factor (and a scale on the
-  reciprocating mass) with the indicators of Hoem and Røsholm (2016), Sec. 1/4.2: mean friction torque and power
-  loss, peak and mean main-bearing load, peak net torque, maximum crank acceleration,
-  shaking forces.
+  reciprocating mass) with the indicators of Hoem and Røsholm (2016), Sec. 1/4.2: mean
+  friction torque and power loss, peak and mean main-bearing load, peak net torque,
+  maximum crank acceleration, shaking forces (:class:`SensitivityResult`).
 
 Balance factor (everywhere in this module): the share :math:`f_b` of the reciprocating mass
 per cylinder that the crank counterweight balances *on top of* 100 % of the rotating mass,
@@ -25,6 +22,16 @@ Frames: crank angle :math:`\theta` from the cylinder axis (0 = top dead centre, 
 firing cylinder the firing TDC); :math:`z` along the cylinder axis away from the crank
 (in-line), :math:`x` across it (transverse), crankpin at :math:`r(\sin\theta, \cos\theta)`.
 Torques are positive in the sense of rotation.
+
+Why one module over 800 lines: the pressure models, the cycle and the sweep are one model
+(the sweep is a loop over :func:`engine_cycle`, the cycle integrates the pressure models
+over the same crank-angle grid, and they share the cylinder and its checks); most of the
+length is the numpydoc of the physics.
+
+References
+----------
+Hoem and Røsholm (2016), Secs. 2.3, 4.2 and 5.1; Heywood, Internal Combustion Engine
+Fundamentals, Secs. 9.2.1-9.2.2.
 """
 
 from __future__ import annotations
@@ -42,7 +49,6 @@ from .errors import InputError, check_positive, check_range
 from .results import ResultMixin
 from .single_cylinder import BALANCE_FACTOR_RANGE
 
-STANDARD_GRAVITY = 9.80665
 GAS_CONSTANT_AIR = 287.0
 
 Strokes = Literal[2, 4]
@@ -61,355 +67,7 @@ def _nonnegative(field_name: str, value: float) -> float:
 
 
 # ======================================================================================
-# (a) Rotor test bench
-# ======================================================================================
-
-
-@dataclass(frozen=True)
-class BenchRotor(ResultMixin):
-    """A rigid rotor on two journal bearings with Coulomb friction.
-
-    Parameters
-    ----------
-    mass : float
-        Rotor mass [kg].
-    inertia : float
-        Mass moment of inertia about the spin axis [kg m^2].
-    journal_diameter : float
-        Diameter of the journals in the bearings [m].
-    friction_coefficient : float
-        Coulomb friction coefficient of each bearing [-].
-    unbalance : float
-        Static unbalance :math:`U = m_u r_u` [kg m].
-    bearing_positions : tuple of float
-        Axial positions of the two bearings [m].
-    mass_position : float
-        Axial position of the centre of gravity [m].
-    unbalance_position : float
-        Axial position of the unbalance plane [m].
-    gravity : float
-        Gravitational acceleration, perpendicular to the spin axis [m/s^2].
-    """
-
-    mass: float
-    inertia: float
-    journal_diameter: float
-    friction_coefficient: float
-    unbalance: float = 0.0
-    bearing_positions: tuple[float, float] = (-0.05, 0.05)
-    mass_position: float = 0.0
-    unbalance_position: float = 0.0
-    gravity: float = STANDARD_GRAVITY
-
-    def __post_init__(self) -> None:
-        check_positive("mass", self.mass)
-        check_positive("inertia", self.inertia)
-        check_positive("journal_diameter", self.journal_diameter)
-        _nonnegative("friction_coefficient", self.friction_coefficient)
-        _nonnegative("unbalance", self.unbalance)
-        _nonnegative("gravity", self.gravity)
-        if len(self.bearing_positions) != 2:
-            raise InputError("bearing_positions", self.bearing_positions, "must be two positions")
-        a, b = (_finite("bearing_positions", float(p)) for p in self.bearing_positions)
-        if a == b:
-            raise InputError(
-                "bearing_positions", self.bearing_positions, "must be two different axial positions"
-            )
-        _finite("mass_position", self.mass_position)
-        _finite("unbalance_position", self.unbalance_position)
-
-    def load_shares(self, position: float) -> tuple[float, float]:
-        """Shares of a force at an axial position carried by bearings A and B (lever rule)."""
-        a, b = self.bearing_positions
-        share_b = (position - a) / (b - a)
-        return 1.0 - share_b, share_b
-
-
-def disc_rotor(
-    disc_diameter: float,
-    disc_thickness: float,
-    journal_diameter: float,
-    length: float,
-    friction_coefficient: float,
-    density: float = 7850.0,
-    hole_mass: float = 0.0,
-    hole_radius: float = 0.0,
-    bearing_positions: tuple[float, float] | None = None,
-) -> BenchRotor:
-    r"""The simplified test rotor of the thesis: a disc between two journals.
-
-    .. math::
-        m = \rho\frac{\pi}{4}\big(d_1^2 t + d_2^2 (L_1 - t)\big) - m_u,\qquad
-        I = \frac{\rho\pi}{32}\big(d_1^4 t + d_2^4 (L_1 - t)\big) - m_u r_u^2,\qquad
-        U = m_u r_u
-
-    The drilled hole is treated as a point mass removed at its radius.
-
-    Parameters
-    ----------
-    disc_diameter : float
-        Disc diameter :math:`d_1` [m].
-    disc_thickness : float
-        Disc thickness :math:`t` [m].
-    journal_diameter : float
-        Journal diameter :math:`d_2` [m].
-    length : float
-        Overall length :math:`L_1` [m]; each journal is :math:`(L_1 - t)/2` long.
-    friction_coefficient : float
-        Coulomb friction coefficient of each bearing [-].
-    density : float
-        Material density [kg/m^3].
-    hole_mass : float
-        Mass removed to make the unbalance :math:`m_u` [kg].
-    hole_radius : float
-        Radius of the removed mass :math:`r_u` [m].
-    bearing_positions : tuple of float, optional
-        Axial bearing positions from the disc mid-plane [m]; default the journal mid-points,
-        :math:`\pm(L_1 + t)/4`.
-
-    References
-    ----------
-    Hoem and Røsholm (2016), Appendix E, Eqs. 7.6-7.9 and Table 7.2; Table 5.2 (drilled holes).
-    """
-    check_positive("disc_diameter", disc_diameter)
-    check_positive("disc_thickness", disc_thickness)
-    check_positive("journal_diameter", journal_diameter)
-    check_positive("length", length)
-    check_positive("density", density)
-    if disc_thickness >= length:
-        raise InputError("disc_thickness", disc_thickness, f"must be less than length = {length}")
-    _nonnegative("hole_mass", hole_mass)
-    _nonnegative("hole_radius", hole_radius)
-    journals = length - disc_thickness
-    mass = (
-        density * np.pi / 4 * (disc_diameter**2 * disc_thickness + journal_diameter**2 * journals)
-    )
-    inertia = (
-        density * np.pi / 32 * (disc_diameter**4 * disc_thickness + journal_diameter**4 * journals)
-    )
-    if hole_mass >= mass:
-        raise InputError("hole_mass", hole_mass, f"must be less than the rotor mass {mass:.4g} kg")
-    if bearing_positions is None:
-        half = (length + disc_thickness) / 4
-        bearing_positions = (-half, half)
-    return BenchRotor(
-        mass=float(mass - hole_mass),
-        inertia=float(inertia - hole_mass * hole_radius**2),
-        journal_diameter=journal_diameter,
-        friction_coefficient=friction_coefficient,
-        unbalance=hole_mass * hole_radius,
-        bearing_positions=bearing_positions,
-    )
-
-
-@dataclass(frozen=True)
-class BenchSettings(ResultMixin):
-    """Run settings of the simulated bench.
-
-    Parameters
-    ----------
-    speed : float
-        Set speed [rad/s].
-    ramp_time : float
-        Duration of the linear speed ramp from rest [s] (thesis: 2 s).
-    hold_time : float
-        Duration of the hold at set speed [s] (thesis: 1.5 s); the required torque is the
-        mean motor torque over it.
-    proportional_gain : float
-        PI controller proportional gain :math:`K_p` [N m s/rad].
-    integral_gain : float
-        PI controller integral gain :math:`K_i` [N m/rad].
-    stick_speed : float
-        Speed scale of the regularised Coulomb law
-        :math:`\\operatorname{sgn}\\omega \\approx \\omega/\\sqrt{\\omega^2 + \\omega_s^2}` [rad/s].
-    samples : int
-        Number of time samples in the returned histories.
-    rtol : float
-        Relative tolerance of ``solve_ivp``.
-    """
-
-    speed: float
-    ramp_time: float = 2.0
-    hold_time: float = 1.5
-    proportional_gain: float = 0.2
-    integral_gain: float = 10.0
-    stick_speed: float = 0.1
-    samples: int = 1401
-    rtol: float = 1e-6
-
-    def __post_init__(self) -> None:
-        check_positive("speed", self.speed)
-        check_positive("ramp_time", self.ramp_time)
-        check_positive("hold_time", self.hold_time)
-        check_positive("proportional_gain", self.proportional_gain)
-        _nonnegative("integral_gain", self.integral_gain)
-        check_positive("stick_speed", self.stick_speed)
-        if (
-            isinstance(self.samples, bool)
-            or not isinstance(self.samples, (int, np.integer))
-            or self.samples < 10
-        ):
-            raise InputError("samples", self.samples, "must be a whole number, at least 10")
-        check_range("rtol", self.rtol, 1e-12, 1e-2)
-
-
-@dataclass(frozen=True)
-class BenchResult(ResultMixin):
-    """Result of :func:`run_bench`.
-
-    Attributes
-    ----------
-    required_torque : float
-        Mean motor torque over the hold [N m] (Hoem and Røsholm 2016, Table 5.6).
-    mean_friction_torque : float
-        Mean bearing friction torque over the hold [N m].
-    friction_power : float
-        Mean friction power over the hold [W].
-    final_speed : float
-        Speed at the end of the run [rad/s].
-    speed_ripple : float
-        Peak-to-peak speed over the second half of the hold [rad/s].
-    time, speed, motor_torque, friction_torque, bearing_load_a, bearing_load_b : ndarray
-        Histories [s], [rad/s], [N m], [N m], [N], [N].
-    """
-
-    settings: BenchSettings
-    required_torque: float
-    mean_friction_torque: float
-    friction_power: float
-    final_speed: float
-    speed_ripple: float
-    time: NDArray = field(repr=False)
-    speed: NDArray = field(repr=False)
-    motor_torque: NDArray = field(repr=False)
-    friction_torque: NDArray = field(repr=False)
-    bearing_load_a: NDArray = field(repr=False)
-    bearing_load_b: NDArray = field(repr=False)
-
-
-def _bench_model(rotor: BenchRotor, settings: BenchSettings):  # noqa: ANN202
-    """Build the right-hand side and the output function of the bench ODE."""
-    inertia = rotor.inertia
-    weight = rotor.mass * rotor.gravity
-    unbalance = rotor.unbalance
-    gravity_torque = unbalance * rotor.gravity
-    wa, wb = rotor.load_shares(rotor.mass_position)
-    ua, ub = rotor.load_shares(rotor.unbalance_position)
-    lever = 0.5 * rotor.journal_diameter * rotor.friction_coefficient
-    kp, ki = settings.proportional_gain, settings.integral_gain
-    w_set, t_ramp = settings.speed, settings.ramp_time
-    ramp_rate = w_set / t_ramp
-    ws2 = settings.stick_speed**2
-    hypot, cos, sin, sqrt = math.hypot, math.cos, math.sin, math.sqrt
-
-    def loads(theta: float, omega: float, alpha: float) -> tuple[float, float]:
-        # bearing reactions on the rotor: weight + U(-w^2 e_r + alpha e_t), e_r = (c, s)
-        c, s = cos(theta), sin(theta)
-        fx = unbalance * (-omega * omega * c - alpha * s)
-        fz = unbalance * (-omega * omega * s + alpha * c)
-        return hypot(ua * fx, wa * weight + ua * fz), hypot(ub * fx, wb * weight + ub * fz)
-
-    def torques(t: float, y: Sequence[float]) -> tuple[float, float, float, float, float]:
-        theta, omega, integral = y[0], y[1], y[2]
-        reference = w_set * t / t_ramp if t < t_ramp else w_set
-        motor = kp * (reference - omega) + ki * integral
-        sign = omega / sqrt(omega * omega + ws2)
-        drive = motor - gravity_torque * cos(theta)
-        load_a, load_b = loads(theta, omega, 0.0)
-        alpha = (drive - lever * sign * (load_a + load_b)) / inertia
-        load_a, load_b = loads(theta, omega, alpha)  # one fixed-point pass for the alpha term
-        friction = lever * sign * (load_a + load_b)
-        alpha = (drive - friction) / inertia
-        return motor, friction, alpha, load_a, load_b
-
-    def rhs(t: float, y: Sequence[float]) -> list[float]:
-        motor, friction, alpha, _, _ = torques(t, y)
-        reference = w_set * t / t_ramp if t < t_ramp else w_set
-        return [y[1], alpha, reference - y[1], motor, friction]
-
-    return rhs, torques, ramp_rate
-
-
-def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
-    r"""Simulate the rotor test bench: PI-controlled spin-up, hold, required torque.
-
-    Equation of motion of the rigid rotor (angle :math:`\theta` of the unbalance from the
-    horizontal, gravity along :math:`-z`):
-
-    .. math::
-        I\ddot\theta = T_m - \operatorname{sgn}(\dot\theta)\,\mu\frac{d}{2}
-            \big(|\mathbf R_A| + |\mathbf R_B|\big) - U g\cos\theta
-
-        \mathbf R_A + \mathbf R_B = m g\,\mathbf e_z
-            + U\big(-\dot\theta^2\mathbf e_r + \ddot\theta\,\mathbf e_t\big)
-
-        T_m = K_p(\omega_{ref} - \dot\theta) + K_i\int(\omega_{ref} - \dot\theta)\,dt,\quad
-        \omega_{ref} = \omega_{set}\min(t/t_{ramp}, 1)
-
-    The reactions are split between the bearings by the lever rule (weight at the centre of
-    gravity, unbalance force in its plane). The required torque is the mean of :math:`T_m`
-    over the hold, computed exactly by integrating :math:`T_m` along with the state.
-
-    Parameters
-    ----------
-    rotor : BenchRotor
-        The rotor and its bearings.
-    settings : BenchSettings
-        Set speed, ramp, hold, controller gains, solver settings.
-
-    Returns
-    -------
-    BenchResult
-
-    References
-    ----------
-    Hoem and Røsholm (2016), Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
-    """
-    from scipy.integrate import solve_ivp
-
-    rhs, torques, _ = _bench_model(rotor, settings)
-    t_ramp = settings.ramp_time
-    t_end = t_ramp + settings.hold_time
-    n_ramp = max(2, int(round(settings.samples * t_ramp / t_end)))
-    n_hold = max(2, settings.samples - n_ramp + 1)
-    grid_ramp = np.linspace(0.0, t_ramp, n_ramp)
-    grid_hold = np.linspace(t_ramp, t_end, n_hold)
-    period = 2 * np.pi / settings.speed
-    atol = [1e-6, 1e-6 * settings.speed, 1e-8, 1e-8, 1e-8]
-    common = dict(method="DOP853", rtol=settings.rtol, atol=atol, max_step=period / 8)
-    first = solve_ivp(rhs, (0.0, t_ramp), [0.0, 0.0, 0.0, 0.0, 0.0], t_eval=grid_ramp, **common)
-    if not first.success:  # pragma: no cover - solver failure is not expected
-        raise RuntimeError(f"bench ramp failed: {first.message}")
-    second = solve_ivp(rhs, (t_ramp, t_end), first.y[:, -1], t_eval=grid_hold, **common)
-    if not second.success:  # pragma: no cover
-        raise RuntimeError(f"bench hold failed: {second.message}")
-    time = np.concatenate([first.t, second.t[1:]])
-    states = np.concatenate([first.y, second.y[:, 1:]], axis=1)
-    outputs = np.array([torques(t, states[:, k]) for k, t in enumerate(time)])
-    hold = settings.hold_time
-    required = (second.y[3, -1] - second.y[3, 0]) / hold
-    friction = (second.y[4, -1] - second.y[4, 0]) / hold
-    omega_hold = second.y[1]
-    return BenchResult(
-        settings=settings,
-        required_torque=float(required),
-        mean_friction_torque=float(friction),
-        friction_power=float(friction * settings.speed),
-        final_speed=float(second.y[1, -1]),
-        speed_ripple=float(
-            omega_hold[len(omega_hold) // 2 :].max() - omega_hold[len(omega_hold) // 2 :].min()
-        ),
-        time=time,
-        speed=states[1],
-        motor_torque=outputs[:, 0],
-        friction_torque=outputs[:, 1],
-        bearing_load_a=outputs[:, 3],
-        bearing_load_b=outputs[:, 4],
-    )
-
-
-# ======================================================================================
-# (b) Engine cycle
+# Engine cycle
 # ======================================================================================
 
 
@@ -497,6 +155,24 @@ def stroke_length(crank_radius: float, rod_length: float, offset: float = 0.0) -
     r"""Piston stroke of a slider-crank with offset [m].
 
     .. math:: S = \sqrt{(l + r)^2 - e^2} - \sqrt{(l - r)^2 - e^2}
+
+    Parameters
+    ----------
+    crank_radius : float
+        Crank throw radius r [m].
+    rod_length : float
+        Conrod length l [m].
+    offset : float
+        Wrist-pin path offset e [m].
+
+    Returns
+    -------
+    float
+        Piston stroke S [m].
+
+    References
+    ----------
+    Any machine-dynamics text; Hoem and Røsholm (2016), Sec. 2.1 for e = 0.
     """
     return math.sqrt((rod_length + crank_radius) ** 2 - offset**2) - math.sqrt(
         (rod_length - crank_radius) ** 2 - offset**2
@@ -519,12 +195,21 @@ def cylinder_volume(
     ----------
     angle : array_like
         Crank angle from the cylinder axis [rad].
-    bore, crank_radius, rod_length : float
-        Geometry [m].
+    bore : float
+        Cylinder bore [m].
+    crank_radius : float
+        Crank throw radius [m].
+    rod_length : float
+        Conrod length [m].
     compression_ratio : float
         Geometric compression ratio :math:`\varepsilon` [-].
     offset : float
         Wrist-pin path offset [m].
+
+    Returns
+    -------
+    ndarray
+        Cylinder volume at each angle [m^3].
     """
     if not compression_ratio > 1:
         raise InputError("compression_ratio", compression_ratio, "must be greater than 1")
@@ -560,6 +245,11 @@ def wiebe_burn_fraction(
         Wiebe :math:`a` (5 gives 99.3 % burnt at the end of the duration) [-].
     form_factor : float
         Wiebe :math:`m` [-].
+
+    Returns
+    -------
+    ndarray
+        Mass fraction burnt at each angle [-].
 
     References
     ----------
@@ -667,10 +357,16 @@ def wiebe_pressure(
     strokes : {2, 4}
         Cycle type.
 
+    Returns
+    -------
+    ndarray
+        Absolute cylinder pressure at each angle [Pa].
+
     References
     ----------
     Heywood, Internal Combustion Engine Fundamentals, Secs. 9.2.1 and 9.2.2 (Wiebe function,
-    single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine torque).
+    single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine
+    torque).
     """
     _check_strokes(strokes)
     theta = np.asarray(angle, dtype=float)
@@ -743,6 +439,12 @@ def tabulated_pressure(
         Absolute cylinder pressure at those angles [Pa].
     strokes : {2, 4}
         Cycle type (sets the period).
+
+    Returns
+    -------
+    ndarray
+        Absolute cylinder pressure at each angle [Pa], linear between the table rows and
+        periodic over the cycle.
     """
     _check_strokes(strokes)
     a = np.asarray(table_angle, dtype=float)
@@ -894,8 +596,9 @@ def engine_cycle(
 
     References
     ----------
-    Hoem and Røsholm (2016), Sec. 2.3 (engine torque from inertia, gas and friction), Eqs. 4.6-4.8 (balance
-    factor, in-line and transverse forces), Sec. 4.2.1 (friction torque from the bearing
+    Hoem and Røsholm (2016), Sec. 2.3 (engine torque from inertia, gas and friction),
+    Eqs. 4.6-4.8 (balance factor, in-line and transverse forces), Sec. 4.2.1 (friction
+    torque from the bearing
     load); Den Hartog, Mechanical Vibrations, Sec. 5.3 (inertia torque).
     """
     _check_strokes(strokes)
@@ -1044,7 +747,7 @@ def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step:
 
 
 # ======================================================================================
-# (c) Performance sensitivity
+# Performance sensitivity
 # ======================================================================================
 
 
@@ -1131,10 +834,15 @@ def balance_sensitivity(
     progress : callable, optional
         Called as ``progress(done, total)`` after each point.
 
+    Returns
+    -------
+    SensitivityResult
+        Every indicator over (mass scale, balance factor).
+
     References
     ----------
-    Hoem and Røsholm (2016), Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction torque against the
-    balance factor, Figs. 5.2-5.6).
+    Hoem and Røsholm (2016), Sec. 1 (performance indicators), Sec. 4.2 and Sec. 5.1 (friction
+    torque against the balance factor, Figs. 5.2-5.6).
     """
     factors = np.atleast_1d(np.asarray(balance_factors, dtype=float))
     scales = np.atleast_1d(np.asarray(mass_scales, dtype=float))

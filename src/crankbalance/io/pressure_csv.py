@@ -1,0 +1,130 @@
+"""Cylinder-pressure tables (CSV): crank angle [deg] and absolute pressure [bar] per row.
+
+This module owns the file format of ``crankbalance cycle --pressure-csv`` and
+``crankbalance sensitivity --pressure-csv``: it reads the table, refuses what is not a
+table of two numeric columns, and converts it to the SI arrays that
+:func:`crankbalance.engine_cycle.tabulated_pressure` and
+:func:`crankbalance.engine_cycle.engine_cycle` take. The physics checks of the table
+(increasing angles, less than one cycle, pressure >= 0) stay with the model.
+
+Format: comma-separated, two columns (crank angle from firing TDC [deg], absolute
+pressure [bar]); blank lines and ``#`` comments are ignored; the first row may be a header
+(``angle_deg,pressure_bar``); at least 4 data rows; UTF-8 text.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+from pathlib import Path
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+
+#: Largest pressure table read [bytes]; a cycle at 0.1 deg over 720 deg is about 150 kB.
+MAX_FILE_BYTES = 5_000_000
+#: Fewest data rows of a table.
+MIN_ROWS = 4
+
+_FIELD = "pressure_csv"
+_COLUMNS = ("angle_deg", "pressure_bar")
+
+
+def read_pressure_csv(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
+    """Read a cylinder-pressure table: crank angle [deg] and absolute pressure [bar].
+
+    Parameters
+    ----------
+    path : str or os.PathLike
+        The CSV file: per row the crank angle from firing TDC [deg] and the absolute
+        cylinder pressure [bar], comma-separated; blank lines and ``#`` comments are
+        skipped, a non-numeric first row is taken as the header. At most
+        :data:`MAX_FILE_BYTES` bytes.
+
+    Returns
+    -------
+    angle : ndarray
+        Crank angle from firing TDC [rad], one value per data row.
+    pressure : ndarray
+        Absolute cylinder pressure [Pa], one value per data row.
+
+    Raises
+    ------
+    InputError
+        If the file cannot be read, is larger than :data:`MAX_FILE_BYTES`, is not UTF-8
+        text, or is not at least :data:`MIN_ROWS` rows of two finite numbers; the error
+        names the file (and line and column), the value found and what is allowed.
+    """
+    source = str(path)
+    target = Path(path)
+    if target.is_dir():
+        raise InputError(_FIELD, source, "is a folder; give a CSV file")
+    try:
+        with target.open("rb") as handle:
+            raw = handle.read(MAX_FILE_BYTES + 1)
+    except OSError as error:
+        raise InputError(_FIELD, source, f"cannot be read: {error.strerror}") from None
+    if len(raw) > MAX_FILE_BYTES:
+        raise InputError(
+            _FIELD,
+            source,
+            f"is larger than {MAX_FILE_BYTES} bytes; a pressure table is two columns of "
+            "numbers, a few thousand rows",
+        )
+    if b"\x00" in raw:
+        raise InputError(_FIELD, source, "must be a text file (CSV), not binary data")
+    try:
+        text = raw.decode("utf-8-sig")
+    except UnicodeDecodeError:
+        raise InputError(_FIELD, source, "must be a UTF-8 text file (CSV)") from None
+    rows = _parse_rows(text, source)
+    if len(rows) < MIN_ROWS:
+        raise InputError(
+            _FIELD,
+            source,
+            f"must hold at least {MIN_ROWS} rows of: {', '.join(_COLUMNS)} (found {len(rows)})",
+        )
+    data = np.array(rows, dtype=float)
+    return np.radians(data[:, 0]), data[:, 1] * 1e5
+
+
+def _parse_rows(text: str, source: str) -> list[tuple[float, float]]:
+    """The numeric rows of the table; a non-numeric first row is the header."""
+    rows: list[tuple[float, float]] = []
+    first = True
+    for number, line in enumerate(text.splitlines(), start=1):
+        content = line.split("#", 1)[0].strip()
+        if not content:
+            continue
+        cells = [cell.strip() for cell in content.split(",")]
+        if len(cells) != len(_COLUMNS):
+            raise InputError(
+                f"{_FIELD} {source}, line {number}",
+                content,
+                f"must be two comma-separated columns: {', '.join(_COLUMNS)}",
+            )
+        values = [_number(cell) for cell in cells]
+        if first and all(v is None for v in values):
+            first = False  # the header
+            continue
+        first = False
+        checked: list[float] = []
+        for cell, value, column in zip(cells, values, _COLUMNS, strict=True):
+            if value is None or not math.isfinite(value):
+                raise InputError(
+                    f"{_FIELD} {source}, line {number}, {column}",
+                    cell,
+                    "must be a finite number",
+                )
+            checked.append(value)
+        rows.append((checked[0], checked[1]))
+    return rows
+
+
+def _number(text: str) -> float | None:
+    try:
+        return float(text)
+    except ValueError:
+        return None
