@@ -16,10 +16,10 @@ from pathlib import Path
 
 import numpy as np
 
-from crankbalance.studies.engine import Analysis, analyze
 from crankbalance.io.engine_file import load_engine
-from crankbalance.studies.build import build_model
 from crankbalance.shaking import batch_amplitudes, free_forces
+from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import Analysis, analyze
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"
 

@@ -10,10 +10,10 @@ from pathlib import Path
 
 import numpy as np
 
-from crankbalance.studies.engine import balance_options
 from crankbalance.balancing import CounterweightOptions, balance, counterweight_angle_sweep
 from crankbalance.io.engine_file import load_engine
 from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import balance_options
 
 EXAMPLE = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"
 

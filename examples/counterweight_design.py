@@ -16,13 +16,13 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from crankbalance.studies.engine import balance_engine
 from crankbalance.counterweight import (
     export_counterweight,
     mesh_mass_properties,
     optimize_counterweight,
     required_first_moment,
 )
+from crankbalance.studies.engine import balance_engine
 
 ENGINE = Path(__file__).resolve().parent / "paper_inline3.toml"
 REQUIRED = required_first_moment(balance_engine(ENGINE).result.counterweights)  # [kg m]

@@ -42,9 +42,9 @@ Other studies:
 - ``counterweight_profile(design) -> Figure``       (counterweight.CounterweightDesign)
 - ``shaft_study(study) -> Figure``                  (balance_shaft placement studies)
 - ``shaft_response_figure(response) -> Figure``     (balance_shaft.ShaftResponse)
-- ``sensitivity_figure(result) -> Figure``          (dynamics.SensitivityResult)
-- ``bench_figure(result) -> Figure``                (dynamics.BenchResult)
-- ``cycle_figure(result) -> Figure``                (dynamics.CycleResult)
+- ``sensitivity_figure(result) -> Figure``          (engine_cycle.SensitivityResult)
+- ``bench_figure(result) -> Figure``                (rotor_bench.BenchResult)
+- ``cycle_figure(result) -> Figure``                (engine_cycle.CycleResult)
 
 Conventions
 -----------
