@@ -225,8 +225,15 @@ def balance_factor(
     study = None
     if w is not None:
         model = kinematics or ("exact" if l_rod is not None else "first-order")
-        study = sc.balance_factor_study(m_rec, r, w, fb, rod_length=l_rod, offset=e, model=model)
-        # type: ignore[arg-type]
+        study = sc.balance_factor_study(
+            m_rec,
+            r,
+            w,
+            fb,
+            rod_length=l_rod,
+            offset=e,
+            model=model,  # type: ignore[arg-type]
+        )
     payload: dict[str, Any] = {
         "schema": "crankbalance.balance_factor/1",
         "definition": BALANCE_FACTOR_NOTE,

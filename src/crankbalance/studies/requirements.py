@@ -8,6 +8,7 @@ so the command line, the web application and the report size the same parts.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Literal
 
 import numpy as np
 
@@ -94,7 +95,7 @@ def shaft_requirement(
         raise InputError("order", order, "must be 1 (primary) or 2 (secondary)")
     if not isinstance(engine, EngineSpec | str) and not hasattr(engine, "__fspath__"):
         raise InputError("engine", type(engine).__name__, "a preset, an engine file or a spec")
-    arrangement = "counter-rotating" if order == 1 else "pair"
+    arrangement: Literal["counter-rotating", "pair"] = "counter-rotating" if order == 1 else "pair"
     shafts = ShaftOptions(cg_radius, length, arrangement)
     if order == 1:
         study = balance_engine(engine, primary=shafts, secondary=None)

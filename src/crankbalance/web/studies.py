@@ -12,6 +12,7 @@ page shows the message beside the input.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from typing import Any, Literal
 
 import numpy as np
@@ -73,7 +74,12 @@ def options(settings: dict[str, Any], model: type[Options]) -> Options:
             continue
         kind, _ = field_kind(model, name)
         values[name] = _split(text) if kind == "list" else text
-    return parse_options(model, values, lambda name: prefix + name)
+    return parse_options(model, values, _namer(prefix))
+
+
+def _namer(prefix: str) -> Callable[[str], str]:
+    """The setting key of a schema field: its study's prefix and the field's name."""
+    return lambda name: prefix + name
 
 
 def _split(text: str) -> list[str]:
@@ -98,7 +104,7 @@ def check_settings(settings: dict[str, Any]) -> dict[str, str]:
                 continue
             value = _split(text) if field_kind(model, name)[0] == "list" else text
             try:
-                parse_options(model, {name: value}, lambda n, p=prefix: p + n)
+                parse_options(model, {name: value}, _namer(prefix))
             except InputError as error:
                 errors[key] = str(InputError(key, text, error.allowed))
     return errors

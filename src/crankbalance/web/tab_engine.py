@@ -1,0 +1,47 @@
+"""The Engine tab: general engine and balancing-component fields, the live 3-D crank."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nicegui import ui
+
+from .. import figures
+from .project import BALANCING_FIELDS, ENGINE_FIELDS
+from .widgets import Tab
+
+
+class EngineTab(Tab):
+    name = "engine"
+
+    def build(self) -> None:
+        with ui.row().classes("w-full items-start gap-6"):
+            with ui.card():
+                ui.label("Engine general parameters").classes("text-subtitle1")
+                with ui.grid(columns=2):
+                    for f in ENGINE_FIELDS:
+                        self.page.field(f)
+            with ui.card():
+                ui.label("Balancing components parameters").classes("text-subtitle1")
+                with ui.grid(columns=2):
+                    for f in BALANCING_FIELDS:
+                        self.page.field(f)
+            with ui.column().classes("grow min-w-[420px]"):
+                self.show_3d = (
+                    ui.switch("Live 3-D view", value=True, on_change=self._toggle_3d)
+                    .props("data-testid=show-3d")
+                    .mark("show-3d")
+                )
+                self.crank_card = self.card("crank3d", "Crankshaft (3-D)", self._crank_figure)
+
+    def _toggle_3d(self) -> None:
+        """The 3-D view can be switched off (software WebGL is heavy on small machines)."""
+        self.crank_card.card.set_visibility(self.show_3d.value)
+        if self.show_3d.value:
+            self.crank_card.refresh()
+
+    def _crank_figure(self) -> Any | None:
+        c = self.page.project.computed
+        if c is None:
+            return None
+        return figures.crank_3d(c.analysis.model, c.study)

@@ -1,0 +1,84 @@
+"""The Masses tab: the masses of the crank mechanism and the resulting masses per cylinder
+and throw (shown as you type)."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nicegui import ui
+
+from .project import MASS_FIELDS
+from .widgets import Tab, distinct
+
+
+class MassesTab(Tab):
+    name = "masses"
+
+    def build(self) -> None:
+        page = self.page
+        with ui.row().classes("w-full items-start gap-6"):
+            with ui.card():
+                ui.label("Masses of the crank mechanism").classes("text-subtitle1")
+                with ui.row():
+                    ui.radio(
+                        {"parts": "Parts", "totals": "Totals"},
+                        value=page.project.settings["mass_mode"],
+                        on_change=lambda e: page.on_mode("mass_mode", e.value),
+                    ).props("inline").mark("mass-mode")
+                    ui.radio(
+                        {"fraction": "Conrod rotating fraction", "cg": "Conrod CG from big end"},
+                        value=page.project.settings["conrod_split"],
+                        on_change=lambda e: page.on_mode("conrod_split", e.value),
+                    ).props("inline").mark("conrod-split")
+                with ui.grid(columns=2):
+                    for f in MASS_FIELDS:
+                        page.field(f)
+            with ui.card().classes("min-w-[360px]"):
+                ui.label("Resulting masses").classes("text-subtitle1")
+                self.mass_summary = ui.markdown("").mark("mass-summary")
+                self.mass_table = (
+                    ui.table(
+                        columns=[
+                            {"name": "cylinder", "label": "Cylinder", "field": "cylinder"},
+                            {
+                                "name": "reciprocating",
+                                "label": "Reciprocating kg",
+                                "field": "reciprocating",
+                            },
+                            {"name": "throw", "label": "Throw", "field": "throw"},
+                            {
+                                "name": "rotating",
+                                "label": "Rotating kg (throw)",
+                                "field": "rotating",
+                            },
+                        ],
+                        rows=[],
+                        row_key="cylinder",
+                    )
+                    .props("dense flat")
+                    .mark("mass-table")
+                )
+
+    def show(self, c: Any) -> None:
+        model = c.analysis.model
+        rows = [
+            {
+                "cylinder": k + 1,
+                "reciprocating": f"{model.reciprocating_mass[k]:.4f}",
+                "throw": int(model.cylinder_throw[k]) + 1,
+                "rotating": f"{model.throw_rotating_mass[model.cylinder_throw[k]]:.4f}",
+            }
+            for k in range(model.cylinders)
+        ]
+        self.mass_table.rows = rows
+        self.mass_table.update()
+        conrods = [
+            f"conrod {r.cylinder}: {r.rotating:.4f} kg rotating + "
+            f"{r.reciprocating:.4f} kg reciprocating"
+            for r in model.conrods[:1]
+        ]
+        self.mass_summary.set_content(
+            f"**Reciprocating mass per cylinder:** {distinct(model.reciprocating_mass)} kg  \n"
+            f"**Rotating mass per throw:** {distinct(model.throw_rotating_mass)} kg  \n"
+            + ("  \n".join(conrods))
+        )

@@ -1,0 +1,192 @@
+"""The Results tab: balancing masses, free forces and moments by order, the figures of the
+analysis (orders, residuals, curves, polar diagram) and the data downloads."""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nicegui import ui
+
+from .. import figures
+from ..errors import InputError
+from .widgets import Tab, fmt_g
+
+
+def order_rows(c: Any) -> list[dict[str, Any]]:
+    """The rows of the orders table (and of the orders CSV) of the computed engine ``c``."""
+    d = c.analysis.to_dict()
+    rows = []
+    for f, m in zip(d["free_forces"], d["free_moments"], strict=True):
+        rows.append(
+            {
+                "order": f["order"],
+                "force": fmt_g(f["amplitude_N"]),
+                "force_fwd": fmt_g(f["forward_N"]),
+                "force_bwd": fmt_g(f["backward_N"]),
+                "moment": fmt_g(m["amplitude_Nm"]),
+                "moment_fwd": fmt_g(m["forward_Nm"]),
+                "moment_bwd": fmt_g(m["backward_Nm"]),
+            }
+        )
+    return rows
+
+
+class ResultsTab(Tab):
+    name = "results"
+
+    def build(self) -> None:
+        page = self.page
+        self.stale_note = (
+            ui.label(
+                "The engine has errors (fields marked in red): the results below are those of "
+                "the last valid engine."
+            )
+            .classes("text-negative")
+            .mark("results-stale")
+        )
+        with ui.row().classes("w-full items-start gap-4"):
+            with ui.card().classes("min-w-[340px]"):
+                ui.label("Balancing masses").classes("text-subtitle1")
+                self.balance_summary = ui.markdown("").mark("balance-summary")
+                with ui.row().classes("gap-1"):
+                    ui.button(
+                        "Analysis JSON", on_click=lambda: page.download_data("analysis")
+                    ).props("outline dense").mark("download-analysis")
+                    ui.button("Balance JSON", on_click=lambda: page.download_data("balance")).props(
+                        "outline dense"
+                    ).mark("download-balance")
+                    ui.button("Orders CSV", on_click=lambda: page.download_data("orders")).props(
+                        "outline dense"
+                    ).mark("download-orders")
+                    ui.button("Engine TOML", on_click=lambda: page.save("toml")).props(
+                        "outline dense"
+                    )
+                    ui.button("Report HTML", on_click=page.download_report).props(
+                        "outline dense"
+                    ).mark("download-report")
+                page.setting("orders", page.recompute)
+            with ui.card().classes("grow"):
+                ui.label("Free forces and moments by order").classes("text-subtitle1")
+                self.orders_table = (
+                    ui.table(
+                        columns=[
+                            {"name": k, "label": label, "field": k}
+                            for k, label in (
+                                ("order", "Order"),
+                                ("force", "Force N"),
+                                ("force_fwd", "fwd N"),
+                                ("force_bwd", "bwd N"),
+                                ("moment", "Moment N·m"),
+                                ("moment_fwd", "fwd N·m"),
+                                ("moment_bwd", "bwd N·m"),
+                            )
+                        ],
+                        rows=[],
+                        row_key="order",
+                    )
+                    .props("dense flat")
+                    .mark("orders-table")
+                )
+        with ui.row().classes("w-full items-center gap-4"):
+            self.curve_quantity = (
+                ui.select(
+                    ["force", "moment"],
+                    value=self.leading_quantity(),
+                    label="Curves and polar: quantity",
+                    on_change=self.refresh,
+                )
+                .classes("w-48")
+                .mark("curve-quantity")
+            )
+            self.polar_order = (
+                ui.select(
+                    ["rotating"] + [str(k) for k in range(1, 9)],
+                    value="1",
+                    label="Polar diagram: order",
+                    on_change=self.refresh,
+                )
+                .classes("w-48")
+                .mark("polar-order")
+            )
+        with ui.grid(columns=2).classes("w-full"):
+            self.card(
+                "orders",
+                "Free forces and moments by order",
+                self.computed(lambda c: figures.orders_bar(c.analysis)),
+            )
+            self.card(
+                "residuals",
+                "Residuals before/after balancing",
+                self.computed(lambda c: figures.residuals_bar(c.study)),
+            )
+            self.card(
+                "curves",
+                "Curves over a revolution, before and after balancing",
+                self.computed(
+                    lambda c: figures.curves_figure(
+                        c.analysis, c.study, quantity=self.curve_quantity.value
+                    )
+                ),
+            )
+            self.card("polar", "Polar rotating-vector diagram", self.computed(self._polar))
+
+    def refresh(self) -> None:
+        self.page.refresh_cards(self.name)
+
+    def show(self, c: Any) -> None:
+        self.orders_table.rows = order_rows(c)
+        self.orders_table.update()
+        choices = ["rotating", *(str(int(k)) for k in c.analysis.forces.orders)]
+        if list(self.polar_order.options) != choices:  # follow the "Highest order" setting
+            keep = self.polar_order.value if self.polar_order.value in choices else "1"
+            self.polar_order.set_options(choices, value=keep)
+        b = c.study.to_dict()
+        lines = []
+        cw = b["counterweight"]
+        if cw:
+            angle = "—" if cw["angle_deg"] is None else f"{cw['angle_deg']:.2f}°"
+            lines.append(
+                f"**Counterweight mass:** {cw['mass_kg']:.4f} kg × {cw['count']} "
+                f"at {cw['cg_radius_m'] * 1e3:g} mm, angle {angle}"
+            )
+        for key, label in (("primary_shafts", "Primary"), ("secondary_shafts", "Secondary")):
+            group = b[key]
+            if group:
+                lines.append(
+                    f"**{label} shaft mass:** {group['mass_kg']:.4f} kg ({group['arrangement']})"
+                )
+            else:
+                lines.append(f"**{label} shafts:** none")
+        r = b["residual"]
+        lines.append(
+            f"Residual primary force {r['order1_force_N']:.4g} N, moment "
+            f"{r['order1_moment_Nm']:.4g} N·m; secondary force "
+            f"{r['order2_force_N']:.4g} N, moment {r['order2_moment_Nm']:.4g} N·m"
+        )
+        lines += [f"_{n}_" for n in b["notes"]]
+        self.balance_summary.set_content("  \n".join(lines))
+
+    def show_stale(self, stale: bool) -> None:
+        """Say that the results are those of the last valid engine (while ``stale``)."""
+        self.stale_note.set_visibility(stale)
+
+    def follow_quantity(self) -> None:
+        """Start the curves and polar diagram of a newly loaded project on its leading
+        quantity."""
+        self.curve_quantity.set_value(self.leading_quantity())
+
+    def leading_quantity(self) -> figures.Quantity:
+        """Start the curves and polar diagram on the moment when every free force is zero
+        but a moment is not (an in-line 3): the first thing shown is then not a flat line."""
+        project = self.page.project
+        c = project.computed
+        if c is None:
+            c = project.compute() if project.spec is not None else None
+        return "force" if c is None else figures.leading_quantity(c.analysis)
+
+    def _polar(self, c: Any) -> Any:
+        order: Any = self.polar_order.value
+        order = order if order == "rotating" else int(order)
+        if order != "rotating" and order > c.analysis.forces.orders[-1]:
+            raise InputError("polar order", order, "is above the highest order computed")
+        return figures.polar_figure(c.analysis, order, quantity=self.curve_quantity.value)

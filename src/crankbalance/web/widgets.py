@@ -1,0 +1,166 @@
+"""Pieces shared by the page shell (:mod:`.app`) and its tabs (``tab_*.py``).
+
+:class:`FigureCard` is a figure with its downloads, :class:`Tab` the base of one tab of the
+page, and the small helpers format numbers and send files to the browser. Nothing here
+imports the shell or a tab at run time (only for type checking), so there is no cycle.
+"""
+
+from __future__ import annotations
+
+import logging
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any, Literal
+
+from nicegui import run, ui
+
+from .. import figures, render
+from ..errors import InputError
+from .exports import figure_csv, figure_json
+
+if TYPE_CHECKING:
+    from .app import Page
+
+log = logging.getLogger("crankbalance.web")
+#: download formats of a figure card
+FigureFormat = Literal["png", "svg", "csv", "json"]
+
+
+class FigureCard:
+    """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
+
+    def __init__(
+        self, page: Page, name: str, title: str, builder: Callable[[], Any | None]
+    ) -> None:
+        self.page, self.name, self.title, self.builder = page, name, title, builder
+        self.figure: Any | None = None
+        self.stale = True
+        with ui.card().classes("w-full") as self.card:
+            with ui.row().classes("w-full items-center justify-between"):
+                ui.label(title).classes("text-subtitle1")
+                with ui.row().classes("gap-1"):
+                    formats: tuple[FigureFormat, ...] = ("png", "svg", "csv", "json")
+                    for fmt in formats:
+                        ui.button(fmt.upper(), on_click=lambda f=fmt: self.download(f)).props(
+                            "flat dense size=sm"
+                        ).mark(f"download-{name}-{fmt}")
+            self.note = ui.label("").classes("text-grey-7")
+            self.plot = (
+                ui.plotly({"data": [], "layout": {}}).classes("w-full").mark(f"figure-{name}")
+            )
+
+    def refresh(self) -> None:
+        try:
+            self.figure = self.builder()
+        except InputError as error:
+            self.figure = None
+            self.note.set_text(str(error))
+        if self.figure is None:
+            self.plot.set_visibility(False)
+            return
+        self.note.set_text("")
+        self.plot.set_visibility(True)
+        self.plot.update_figure(self.figure)
+        self.stale = False
+
+    async def download(self, fmt: FigureFormat) -> None:
+        if self.figure is None or self.stale:
+            self.refresh()
+        if self.figure is None:
+            ui.notify("nothing to download yet", type="warning")
+            return
+        if fmt == "csv":
+            send_download(figure_csv(self.figure), f"{self.name}.csv", "text/csv")
+        elif fmt == "json":
+            send_download(
+                figure_json(self.figure, self.title), f"{self.name}.json", "application/json"
+            )
+        else:
+            try:
+                data = await run.io_bound(render.to_image, self.figure, fmt)
+            except Exception as error:  # kaleido / browser problems must not kill the page
+                log.warning("image export failed: %s", error)
+                ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
+                return
+            if data is None:  # NiceGUI is shutting down: the export was cancelled
+                ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
+                return
+            media = "image/png" if fmt == "png" else "image/svg+xml"
+            send_download(data, f"{self.name}.{fmt}", media)
+
+
+class Tab:
+    """One tab of the page. The shell (:class:`~.app.Page`) calls :meth:`build` inside the
+    tab's panel, :meth:`show` after each recompute of a valid engine and :meth:`reset` when
+    another project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed
+    by the shell when the tab is shown)."""
+
+    #: the tab's name in :data:`~.app.TABS`
+    name = ""
+
+    def __init__(self, page: Page) -> None:
+        self.page = page
+        self.cards: list[FigureCard] = []
+
+    def build(self) -> None:
+        raise NotImplementedError
+
+    def show(self, c: Any) -> None:
+        """Show the numbers of the newly computed engine ``c``."""
+
+    def reset(self) -> None:
+        """Forget the results of the previous project (a new one was loaded)."""
+
+    def card(self, name: str, title: str, builder: Callable[[], Any | None]) -> FigureCard:
+        """A figure card of this tab, refreshed with the tab."""
+        card = FigureCard(self.page, name, title, builder)
+        self.cards.append(card)
+        return card
+
+    def computed(self, build: Callable[[Any], Any]) -> Callable[[], Any | None]:
+        """A figure builder on the current computed engine (none while there is none)."""
+
+        def builder() -> Any | None:
+            c = self.page.project.computed
+            return None if c is None else build(c)
+
+        return builder
+
+    def study_ready(self) -> Any | None:
+        c = self.page.project.computed
+        if c is None or self.page.project.spec is None:
+            ui.notify("Correct the engine first (fields marked in red)", type="warning")
+            return None
+        return c
+
+    def study_error(self, error: InputError) -> None:
+        if error.field in self.page.setting_inputs:
+            self.page.show_setting_errors({error.field: str(error)})
+        else:
+            ui.notify(str(error), type="negative", multi_line=True)
+
+
+def plot_or_none(name: str, *args: Any) -> Any | None:
+    """The figure ``figures.<name>(*args)``, or None while an argument is missing."""
+    if any(a is None for a in args):
+        return None
+    builder = getattr(figures, name, None)
+    if builder is None:
+        raise InputError("figure", name, "is not available in this version of figures.py")
+    return builder(*args)
+
+
+def fmt_g(value: float) -> str:
+    return f"{float(value):.5g}"
+
+
+def distinct(values: Any) -> str:
+    """Masses [kg] as shown: one value when all cylinders (throws) agree, else each in turn
+    (an engine file may override the masses of some cylinders)."""
+    return ", ".join(dict.fromkeys(f"{float(v):.4f}" for v in values))
+
+
+def send_download(content: str | bytes, filename: str, media_type: str) -> None:
+    """Send a file to the browser (always as bytes: a str would be taken for a URL by some
+    download implementations, e.g. NiceGUI's simulated user)."""
+    data = content.encode("utf-8") if isinstance(content, str) else content
+    ui.download.content(data, filename, media_type)
