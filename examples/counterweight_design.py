@@ -17,12 +17,9 @@ import tempfile
 from pathlib import Path
 
 from crankbalance.analysis import balance_engine
-from crankbalance.counterweight import (
-    export_counterweight,
-    mesh_mass_properties,
-    optimize_counterweight,
-    required_first_moment,
-)
+from crankbalance.counterweight import required_first_moment
+from crankbalance.counterweight_optimize import optimize_counterweight
+from crankbalance.io.cad import export_counterweight, mesh_mass_properties
 
 ENGINE = Path(__file__).resolve().parent / "paper_inline3.toml"
 REQUIRED = required_first_moment(balance_engine(ENGINE).result.counterweights)  # [kg m]

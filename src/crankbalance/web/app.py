@@ -963,7 +963,7 @@ class Page:
                 card.refresh()
 
     async def export_design(self, fmt: str) -> None:
-        from .. import counterweight as cwmod
+        from ..io import cad as cwmod
 
         design = self._design()
         if design is None:
