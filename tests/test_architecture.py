@@ -16,6 +16,7 @@ PHYSICS = [
     "balancing",
     "single_cylinder",
     "counterweight",
+    "counterweight_optimize",
     "balance_shaft",
     "friction",
     "dynamics",
