@@ -10,6 +10,11 @@ arcs, polygonised by :meth:`CounterweightDesign.outline`). The optimiser lives i
 :mod:`crankbalance.counterweight_optimize`, the CAD files (SVG, DXF, STL, STEP, mesh
 read-back) in :mod:`crankbalance.io.cad`.
 
+About 900 lines, over the layout's ~800: the closed forms, the validity rules, the design
+and the exact boundary all rest on the same intersection geometry (``l_c``, ``gamma``,
+``lambda``, the hub crossing ``y*``), and every public function carries full numpydoc;
+splitting them would scatter one derivation over modules.
+
 The profile is the one of the 2021 crankshaft-balancing paper (Sec. 4, Fig. 5): a
 rectangle ``h_R x 2 r_cw`` (orange), a trapezoid of flank angle ``delta`` that widens
 by the overhang ``l_c`` on each side (blue) and a circular segment of radius ``R_cw``
@@ -107,6 +112,11 @@ def circle_cap(radius: ArrayLike, centre_y: ArrayLike, cut_y: ArrayLike) -> Circ
 
     about the circle centre (sector minus the triangle to the chord); moved to the origin
     with :math:`S = cA + S_c`, :math:`J = J_c + 2cS_c + c^2A`.
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 4, Eq. 26 (the segment areas this generalises); the moments
+       are derived in docs/counterweight.md.
     """
     rho = np.asarray(radius, dtype=float)
     c = np.asarray(centre_y, dtype=float)
@@ -187,6 +197,7 @@ def profile_section(
     Returns
     -------
     ProfileSection
+        Areas [m^2], moments [m^3, m^4], intersection angles [rad] and radii [m].
 
     Notes
     -----
@@ -216,7 +227,7 @@ def profile_section(
 
     References
     ----------
-    .. [1] 2021 paper, Sec. 4, Eqs. 24-30; errata in docs/references.md.
+    .. [1] Appl. Sci. 2021, Sec. 4, Eqs. 24-30; errata in docs/references.md.
     """
     r = np.asarray(web_radius, dtype=float)
     h_r = np.asarray(rectangle_height, dtype=float)
@@ -323,13 +334,23 @@ def profile_validity(
     segment_radius: ArrayLike,
     segment_angle: ArrayLike,
 ) -> tuple[np.ndarray, np.ndarray]:
-    """Which parameter sets form a valid profile, and why not.
+    """Which parameter sets form a valid profile, and why not (vectorised, never raises).
+
+    Parameters
+    ----------
+    web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle : array_like
+        Profile parameters r_cw [m], h_R [m], delta [rad], R_cw [m], alpha [rad].
 
     Returns
     -------
     valid : ndarray of bool
+        True where the set is a valid profile.
     reason : ndarray of int
         0 for valid, else ``1 + index`` of the first failed rule in :data:`PROFILE_REASONS`.
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 4, Fig. 5 (the profile the rules keep well formed).
     """
     r, h_r, delta, big_r, alpha = np.broadcast_arrays(
         *(
@@ -386,7 +407,22 @@ def validate_profile(
     segment_radius: ArrayLike,
     segment_angle: ArrayLike,
 ) -> None:
-    """Raise :class:`InputError` naming the parameter if any set is not a valid profile."""
+    """Raise :class:`InputError` naming the parameter if any set is not a valid profile.
+
+    Parameters
+    ----------
+    web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle : array_like
+        Profile parameters r_cw [m], h_R [m], delta [rad], R_cw [m], alpha [rad].
+
+    Raises
+    ------
+    InputError
+        For the first invalid set, naming the parameter (``[index]`` for arrays).
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 4, Fig. 5.
+    """
     values = (web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
     ok, reason = profile_validity(*values)
     if np.all(ok):
@@ -476,6 +512,7 @@ def counterweight_properties(
     Returns
     -------
     CounterweightProperties
+        Scalars for scalar input, else arrays (SI).
 
     Raises
     ------
@@ -490,7 +527,7 @@ def counterweight_properties(
 
     References
     ----------
-    .. [1] 2021 paper, Sec. 4, Eqs. 26-30.
+    .. [1] Appl. Sci. 2021, Sec. 4, Eqs. 26-30.
     """
     validate_profile(web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
     _check_material(thickness, density)
@@ -564,14 +601,18 @@ def thickness_for_first_moment(
     web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle : array_like
         Profile parameters [m, rad].
     density : float
-        [kg/m^3].
+        Material density rho [kg/m^3].
     balance : float
-        Target balance [%].
+        Target balance, achieved / required first moment [%].
 
     Returns
     -------
     float or ndarray
-        t_cw [m].
+        Thickness t_cw [m].
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 4, Eqs. 28-30 (mass and first moment are linear in t_cw).
     """
     u = _check_positive_scalar("required_first_moment", required_first_moment)
     rho = _check_positive_scalar("density", density)
@@ -601,7 +642,7 @@ def required_first_moment(counterweights: Any, web: int | None = None) -> float:
 
     References
     ----------
-    .. [1] 2021 paper, Eqs. 9-10 (m_c at r_c) and Sec. 4 (the shape must carry it).
+    .. [1] Appl. Sci. 2021, Eqs. 9-10 (m_c at r_c) and Sec. 4 (the shape must carry it).
     """
     mass = np.abs(np.asarray(counterweights.mass, dtype=float))
     if mass.size == 0:
@@ -664,13 +705,40 @@ class CounterweightDesign(ResultMixin):
         )
 
     def properties(self, required_first_moment: float | None = None) -> CounterweightProperties:
-        """Mass properties (see :func:`counterweight_properties`)."""
+        """Mass properties (see :func:`counterweight_properties`).
+
+        Parameters
+        ----------
+        required_first_moment : float, optional
+            m_c r_c the balancing asks for [kg m]; gives ``balance`` [%].
+
+        Returns
+        -------
+        CounterweightProperties
+            Mass properties (SI).
+        """
         return counterweight_properties(
             *self.profile_parameters(), self.thickness, self.density, required_first_moment
         )
 
-    def with_thickness_for(self, required_first_moment: float, balance: float = 100.0):
-        """The same profile with the thickness that gives ``balance`` % of the requirement."""
+    def with_thickness_for(
+        self, required_first_moment: float, balance: float = 100.0
+    ) -> CounterweightDesign:
+        """The same profile with the thickness that gives ``balance`` % of the requirement.
+
+        Parameters
+        ----------
+        required_first_moment : float
+            m_c r_c asked for by the balancing [kg m].
+        balance : float
+            Target balance [%].
+
+        Returns
+        -------
+        CounterweightDesign
+            Same profile and density, thickness t_cw [m] from
+            :func:`thickness_for_first_moment`.
+        """
         t = thickness_for_first_moment(
             required_first_moment, *self.profile_parameters(), density=self.density, balance=balance
         )
@@ -682,6 +750,16 @@ class CounterweightDesign(ResultMixin):
         One loop normally; two (left and right horn) when the web circle pokes out
         through the segment's arc. Arcs are polygonised with a chord error below
         ``tolerance`` [m].
+
+        Parameters
+        ----------
+        tolerance : float
+            Largest chord error of the polygonised arcs [m].
+
+        Returns
+        -------
+        list of ndarray
+            (N, 2) points (x, y) [m] of each loop.
         """
         return [_sample_loop(loop, tolerance) for loop in profile_boundary(self)]
 
@@ -693,12 +771,17 @@ class CounterweightDesign(ResultMixin):
 
 @dataclass(frozen=True)
 class BoundaryLine:
+    """A straight piece of the profile boundary from ``start`` to ``end`` (x, y) [m]."""
+
     start: tuple[float, float]
     end: tuple[float, float]
 
 
 @dataclass(frozen=True)
 class BoundaryArc:
+    """A circular piece of the profile boundary: ``centre`` (x, y) [m], ``radius`` [m],
+    from ``start_angle`` to ``end_angle`` [rad], counter-clockwise if ``ccw``."""
+
     centre: tuple[float, float]
     radius: float
     start_angle: float  # rad
@@ -706,6 +789,13 @@ class BoundaryArc:
     ccw: bool
 
     def point(self, angle: float) -> tuple[float, float]:
+        """The point (x, y) [m] of the circle at ``angle``.
+
+        Parameters
+        ----------
+        angle : float
+            Polar angle about :attr:`centre` [rad].
+        """
         return (
             self.centre[0] + self.radius * math.cos(angle),
             self.centre[1] + self.radius * math.sin(angle),
@@ -713,12 +803,29 @@ class BoundaryArc:
 
     @property
     def sweep(self) -> float:
+        """Angle swept from start to end [rad], positive for either direction."""
         d = self.end_angle - self.start_angle
         return d if self.ccw else -d
 
 
 def profile_boundary(design: CounterweightDesign) -> list[list[BoundaryLine | BoundaryArc]]:
-    """The boundary loops of the profile as lines and arcs (counter-clockwise)."""
+    """The boundary loops of the profile as exact lines and arcs (counter-clockwise).
+
+    Parameters
+    ----------
+    design : CounterweightDesign
+        The counterweight (its thickness and density are not used).
+
+    Returns
+    -------
+    list of list of BoundaryLine or BoundaryArc
+        One closed loop normally; two (left and right horn) when the web circle pokes out
+        through the segment's arc.
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 4, Fig. 5.
+    """
     r, h_r, delta, big_r, alpha = design.profile_parameters()
     sec = profile_section(r, h_r, delta, big_r, alpha)
     l_c, top, yc = float(sec.overhang), float(sec.top_height), float(sec.segment_centre)

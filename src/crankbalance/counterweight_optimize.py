@@ -69,8 +69,26 @@ def parse_bounds(
 ) -> dict[str, tuple[float, float]]:
     """Complete and check a bounds mapping: name -> (low, high), or a number to fix it.
 
-    Parameters not given take :data:`DEFAULT_BOUNDS`. Raises :class:`InputError` naming
-    the parameter for unknown names, ``low > high`` or values outside the domain.
+    Parameters
+    ----------
+    bounds : mapping or None
+        Parameter name (:data:`~crankbalance.counterweight.PARAMETERS`) -> ``(low, high)``
+        [m or rad] to leave it free, or a number [m or rad] to fix it. Parameters not given
+        take :data:`DEFAULT_BOUNDS`.
+
+    Returns
+    -------
+    dict
+        Every parameter name -> ``(low, high)`` [m or rad]; ``low == high`` when fixed.
+
+    Raises
+    ------
+    InputError
+        Naming the parameter, for unknown names, ``low > high`` or values outside the domain.
+
+    References
+    ----------
+    .. [1] Appl. Sci. 2021, Sec. 5 (fourth tab: parameter ranges, fixed/free selectors).
     """
     out = dict(DEFAULT_BOUNDS)
     for name, value in (bounds or {}).items():
@@ -99,7 +117,16 @@ def parse_bounds(
 
 @dataclass(frozen=True)
 class OptimizationProgress:
-    """State passed to the ``callback`` of :func:`optimize_counterweight` after each iteration."""
+    """State passed to the ``callback`` of :func:`optimize_counterweight` after each iteration.
+
+    Attributes
+    ----------
+    iteration, n_iterations : Round just finished, and rounds asked for.
+    nfev : Designs evaluated so far. n_feasible : Feasible designs found so far.
+    n_pareto : Designs on the current front.
+    least_mass : Least feasible mass so far [kg] (None if none or mass is no objective).
+    elapsed : Wall time since the start [s].
+    """
 
     iteration: int
     n_iterations: int
@@ -158,16 +185,29 @@ class CounterweightOptimum(ResultMixin):
         return self.outer_radius if self.radius_measure == "true" else self.radius_bound
 
     def design(self, index: int) -> CounterweightDesign:
-        """The feasible design number ``index`` as a :class:`CounterweightDesign`."""
+        """The feasible design number ``index`` as a :class:`CounterweightDesign`.
+
+        Parameters
+        ----------
+        index : int
+            Row of :attr:`designs` [-].
+
+        Returns
+        -------
+        CounterweightDesign
+            Its parameters [SI] with the optimum's density.
+        """
         r, h, delta, big_r, alpha, t = (float(v) for v in self.designs[index])
         return CounterweightDesign(r, h, delta, big_r, alpha, t, self.density)
 
     @property
     def least_mass_design(self) -> CounterweightDesign:
+        """The least-mass feasible design."""
         return self.design(self.least_mass)
 
     @property
     def least_radius_design(self) -> CounterweightDesign:
+        """The least-radius feasible design."""
         return self.design(self.least_radius)
 
     def pareto_table(self) -> list[dict[str, float]]:
@@ -175,7 +215,19 @@ class CounterweightOptimum(ResultMixin):
         return [self.row(int(i)) for i in self.pareto]
 
     def row(self, index: int) -> dict[str, float]:
-        """One feasible design with its properties (SI)."""
+        """One feasible design with its properties (SI).
+
+        Parameters
+        ----------
+        index : int
+            Row of :attr:`designs` [-].
+
+        Returns
+        -------
+        dict
+            :data:`PARAMETERS` [m, rad] and mass [kg], outer_radius, radius_bound [m],
+            inertia [kg m^2], cg_radius [m], first_moment [kg m], balance [%].
+        """
         out = {name: float(self.designs[index, k]) for k, name in enumerate(PARAMETERS)}
         out.update(
             mass=float(self.mass[index]),
@@ -193,6 +245,21 @@ def pareto_indices(objectives: np.ndarray) -> np.ndarray:
     """Indices of the non-dominated rows of ``objectives`` (minimisation), sorted by column 0.
 
     Exact duplicates keep one representative.
+
+    Parameters
+    ----------
+    objectives : ndarray
+        (N, k) objective values, one row per design [any units, smaller is better].
+
+    Returns
+    -------
+    ndarray of int
+        Row indices of the Pareto front, in lexicographic order of their objectives.
+
+    References
+    ----------
+    .. [1] Kung, Luccio and Preparata 1975, "On finding the maxima of a set of vectors"
+       (the sort-and-sweep filters used for two and three objectives).
     """
     f = np.asarray(objectives, dtype=float)
     n, k = f.shape
@@ -249,7 +316,26 @@ def _pareto_3d(f: np.ndarray, order: np.ndarray) -> np.ndarray:
 
 
 def hypervolume_2d(points: np.ndarray, reference: Sequence[float]) -> float:
-    """Hypervolume (area) dominated by 2-objective ``points`` (minimisation) up to ``reference``."""
+    """Hypervolume (area) dominated by 2-objective ``points`` (minimisation) up to ``reference``.
+
+    Parameters
+    ----------
+    points : ndarray
+        (N, 2) objective values [units of each objective]; points not below the reference
+        in both objectives are ignored.
+    reference : sequence of 2 floats
+        Reference point [units of each objective], worse than every point of interest.
+
+    Returns
+    -------
+    float
+        The dominated area [product of the two units].
+
+    References
+    ----------
+    .. [1] Zitzler and Thiele 1999, "Multiobjective evolutionary algorithms: a comparative
+       case study and the strength Pareto approach" (the hypervolume indicator).
+    """
     p = np.asarray(points, dtype=float).reshape(-1, 2)
     ref = np.asarray(reference, dtype=float)
     p = p[np.all(p < ref, axis=1)]
@@ -384,7 +470,7 @@ def optimize_counterweight(
         Parameter name (:data:`PARAMETERS`) -> ``(low, high)`` [SI] to leave it free within
         that range, or a number to fix it. Missing names take :data:`DEFAULT_BOUNDS`.
     density : float
-        [kg/m^3].
+        Material density rho [kg/m^3].
     max_mass : float, optional
         Largest counterweight mass [kg].
     max_radius : float, optional
@@ -396,7 +482,8 @@ def optimize_counterweight(
     objectives : sequence of {"mass", "radius", "inertia"}
         Objectives of the Pareto front; ``("mass", "radius", "inertia")`` adds inertia.
     population, iterations, children : int
-        Initial sample size, refinement rounds and designs evaluated per round.
+        Initial sample size [designs], refinement rounds [-] and designs evaluated per
+        round [designs].
     rng : int or numpy.random.Generator, optional
         Seed for repeatable runs.
     callback : callable, optional
@@ -405,6 +492,7 @@ def optimize_counterweight(
     Returns
     -------
     CounterweightOptimum
+        Every feasible design with its properties (SI), the Pareto front and the extremes.
 
     Raises
     ------
@@ -413,7 +501,7 @@ def optimize_counterweight(
 
     References
     ----------
-    .. [1] 2021 paper, Sec. 5 (fourth tab: constraints, parameter ranges,
+    .. [1] Appl. Sci. 2021, Sec. 5 (fourth tab: constraints, parameter ranges,
        fixed/free selectors) and Table 3 (least mass, least radial space).
     """
     t0 = time.perf_counter()
