@@ -16,12 +16,9 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from crankbalance.counterweight import (
-    export_counterweight,
-    mesh_mass_properties,
-    optimize_counterweight,
-    required_first_moment,
-)
+from crankbalance.counterweight import required_first_moment
+from crankbalance.counterweight_optimize import optimize_counterweight
+from crankbalance.io.cad import export_counterweight, mesh_mass_properties
 from crankbalance.studies.engine import balance_engine
 
 ENGINE = Path(__file__).resolve().parent / "paper_inline3.toml"

@@ -17,6 +17,7 @@ PHYSICS = [
     "single_cylinder",
     "counterweight",
     "beam",
+    "counterweight_optimize",
     "balance_shaft",
     "friction",
     "rotor_bench",

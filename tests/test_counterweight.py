@@ -1,5 +1,6 @@
-"""Tests of crankbalance.counterweight: closed forms against shapely polygons, inertia
-against polygon integration, exports read back, optimiser against exhaustive search."""
+"""Tests of crankbalance.counterweight, counterweight_optimize and io.cad: closed forms
+against shapely polygons, inertia against polygon integration, exports read back,
+optimiser against exhaustive search."""
 
 from __future__ import annotations
 
@@ -12,19 +13,23 @@ from crankbalance.counterweight import (
     PARAMETERS,
     CounterweightDesign,
     counterweight_properties,
-    export_counterweight,
-    hypervolume_2d,
-    mesh_mass_properties,
-    optimize_counterweight,
-    pareto_indices,
-    parse_bounds,
-    profile_dxf,
     profile_section,
-    profile_svg,
     profile_validity,
     thickness_for_first_moment,
 )
+from crankbalance.counterweight_optimize import (
+    hypervolume_2d,
+    optimize_counterweight,
+    pareto_indices,
+    parse_bounds,
+)
 from crankbalance.errors import InputError
+from crankbalance.io.cad import (
+    export_counterweight,
+    mesh_mass_properties,
+    profile_dxf,
+    profile_svg,
+)
 
 shapely = pytest.importorskip("shapely")
 from shapely.geometry import Polygon, box  # noqa: E402
@@ -322,7 +327,7 @@ def _exhaustive(bounds, required, max_radius, n=56, zoom=41):
     grid, then for each objective a zoom^d grid over +-2 cells around its best grid point
     (cells 20x finer near the optimum than the coarse grid). Returns (least mass, least
     radius) of the feasible grid points."""
-    from crankbalance.counterweight import _Problem
+    from crankbalance.counterweight_optimize import _Problem
 
     full = parse_bounds(bounds)
     prob = _Problem(required, full, 8000.0, math.inf, max_radius, 100.0, "true", ("mass", "radius"))

@@ -255,7 +255,7 @@ def test_counterweight_figures_match_optimum() -> None:
     pytest.importorskip("shapely")
     from shapely.geometry import Polygon
 
-    from crankbalance.counterweight import optimize_counterweight
+    from crankbalance.counterweight_optimize import optimize_counterweight
 
     o = optimize_counterweight(0.036, rng=1, population=256, iterations=4, children=256)
     fig = figures.pareto_front(o)

@@ -230,7 +230,7 @@ def optimize(
     **params: Any,
 ) -> None:
     """Feasible counterweights, Pareto front, least-mass and least-radius designs."""
-    from ..counterweight import DEFAULT_BOUNDS, optimize_counterweight
+    from ..counterweight_optimize import DEFAULT_BOUNDS, optimize_counterweight
 
     required = _first_moment(first_moment, cw_mass, cg_radius, engine)
     bounds: dict[str, Any] = {}
@@ -415,7 +415,7 @@ def show(first_moment, cw_mass, cg_radius, engine, density, fmt, **params: Any) 
 @click.option("--output", "-o", required=True, help="File: .svg, .dxf, .stl or .step (mm).")
 def export(first_moment, cw_mass, cg_radius, engine, density, output, **params: Any) -> None:
     """Write a design as SVG/DXF profile, STL solid or STEP (needs crankbalance[cad])."""
-    from ..counterweight import export_counterweight
+    from ..io.cad import export_counterweight
 
     required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     design = _design_from(params, density, required)
@@ -431,7 +431,7 @@ def export(first_moment, cw_mass, cg_radius, engine, density, output, **params: 
 @format_option(("table", "json"))
 def check(part, first_moment, cw_mass, cg_radius, engine, density, unit, fmt) -> None:
     """Mass properties of an STL/STEP PART about the crank axis (the file's z axis)."""
-    from ..counterweight import mesh_mass_properties
+    from ..io.cad import mesh_mass_properties
 
     required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     scale = parse_quantity(f"1 {unit}", "length", "--unit")

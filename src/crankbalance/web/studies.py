@@ -122,8 +122,8 @@ def counterweight_requirement(computed: Computed) -> tuple[float, float, float]:
 
 
 def run_counterweight(computed: Computed, settings: dict[str, Any], callback: Any = None) -> Any:
-    """The counterweight optimiser (Appl. Sci. 2021, Sec. 4-5) for the engine's counterweight."""
-    from ..counterweight import optimize_counterweight
+    """The counterweight optimiser (2021 paper, Sec. 4-5) for the engine's counterweight."""
+    from ..counterweight_optimize import optimize_counterweight
 
     required, _mass, _radius = counterweight_requirement(computed)
     o = options(settings, CounterweightOptions)

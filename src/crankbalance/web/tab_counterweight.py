@@ -116,7 +116,7 @@ class CounterweightTab(Tab):
                 card.refresh()
 
     async def export_design(self, fmt: str) -> None:
-        from .. import counterweight as cwmod
+        from ..io import cad as cwmod
 
         design = self._design()
         if design is None:
