@@ -70,7 +70,8 @@ def test_petroff_against_textbook_forms():
     assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(
         f * load * r, rel=1e-12
     ), "Petroff equation (Shigley 12-6)"
-    # Heywood's form printed in Hoem and Røsholm (2016), Eq. 7.2 with N in rev/s: F = pi^2 eta D^2 L N / h
+    # Heywood's form printed in Hoem and Røsholm (2016), Eq. 7.2 with N in rev/s:
+    # F = pi^2 eta D^2 L N / h
     heywood = np.pi**2 * eta * d**2 * length * n / c
     assert friction.petroff_torque(eta, d, length, c, w) == pytest.approx(heywood * r, rel=1e-12), (
         "Hoem and Røsholm (2016), App. A Eq. 7.2 (Heywood) with eps = 0, N in rev/s"

@@ -6,6 +6,7 @@ the report and check its numbers against the API; screenshots of every tab go to
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
 import re
@@ -48,13 +49,14 @@ pytestmark = pytest.mark.skipif(not os.path.exists(CHROMIUM), reason="needs Debi
 def server() -> Iterator[str]:
     from crankbalance.web.server import running_server
 
-    log = (
-        open(ROOT / "artifacts" / "web-server.log", "w")
-        if (ROOT / "artifacts").is_dir()
-        else subprocess.DEVNULL
-    )
-    with running_server(log) as url:
-        yield url
+    with contextlib.ExitStack() as stack:  # the log file is closed with the server
+        log = (
+            stack.enter_context(open(ROOT / "artifacts" / "web-server.log", "w"))
+            if (ROOT / "artifacts").is_dir()
+            else subprocess.DEVNULL
+        )
+        with running_server(log) as url:
+            yield url
 
 
 @pytest.fixture(scope="module")
