@@ -13,20 +13,22 @@ import pytest
 import crankbalance
 
 SRC = Path(crankbalance.__file__).parent
-PHYSICS = [
+#: every physics module: numpy/scipy only, no I/O, no units, no edges
+PHYSICS = (
     "kinematics",
+    "model",
     "shaking",
     "balancing",
     "single_cylinder",
     "counterweight",
-    "beam",
     "counterweight_optimize",
+    "beam",
     "balance_shaft",
     "friction",
     "rotor_bench",
     "engine_cycle",
     "tolerance",
-]
+)
 EDGES = {
     "figures",
     "render",
@@ -62,8 +64,6 @@ def imported_modules(path: Path) -> set[str]:
 def test_physics_modules_do_not_import_edges() -> None:
     for name in PHYSICS:
         path = SRC / f"{name}.py"
-        if not path.exists():
-            continue
         bad = imported_modules(path) & EDGES
         assert not bad, f"{name}.py imports edge modules {bad} (DESIGN.md: physics stays pure)"
 
@@ -81,22 +81,7 @@ def test_cli_start_does_not_import_heavy_packages() -> None:
 # Transitive purity: importing a physics module must not load an edge, directly or through
 # another module (docs: physics is numpy/scipy only). Each module is imported in a fresh
 # interpreter of its own; all of them start at once, so the test takes about as long as
-# one import. A module that does not exist yet is skipped (the split of issue 11).
-PURE_PHYSICS = (
-    "kinematics",
-    "model",
-    "shaking",
-    "balancing",
-    "single_cylinder",
-    "counterweight",
-    "counterweight_optimize",
-    "beam",
-    "balance_shaft",
-    "friction",
-    "rotor_bench",
-    "engine_cycle",
-    "tolerance",
-)
+# one import.
 FORBIDDEN_AT_IMPORT = (
     "pydantic",
     "pint",
@@ -110,32 +95,21 @@ FORBIDDEN_AT_IMPORT = (
     "crankbalance.cli",
     "crankbalance.web",
 )
-# model.py builds the model from the pydantic EngineSpec (build_model), and shaking and
-# balancing import model: they load pydantic today. build_model moves to the study layer in
-# issue 11; then this set is emptied (strict: a module that turns pure fails until removed).
-KNOWN_IMPURE = frozenset({"model", "shaking", "balancing"})
-
 _PURITY_PROBE = """
 import importlib, json, sys
-try:
-    importlib.import_module("crankbalance." + sys.argv[1])
-except ModuleNotFoundError as error:
-    if error.name != "crankbalance." + sys.argv[1]:
-        raise
-    print(json.dumps(None))
-else:
-    forbidden = sys.argv[2:]
-    print(json.dumps(sorted(
-        name for name in sys.modules
-        if any(name == f or name.startswith(f + ".") for f in forbidden)
-        and name.count(".") <= 1
-    )))
+importlib.import_module("crankbalance." + sys.argv[1])
+forbidden = sys.argv[2:]
+print(json.dumps(sorted(
+    name for name in sys.modules
+    if any(name == f or name.startswith(f + ".") for f in forbidden)
+    and name.count(".") <= 1
+)))
 """
 
 
 @pytest.fixture(scope="module")
-def loaded_edges() -> dict[str, list[str] | None]:
-    """Per physics module: the forbidden modules its import loads (None: no such module)."""
+def loaded_edges() -> dict[str, list[str]]:
+    """Per physics module: the forbidden modules its import loads."""
     children = {
         name: subprocess.Popen(
             [sys.executable, "-c", _PURITY_PROBE, name, *FORBIDDEN_AT_IMPORT],
@@ -143,30 +117,17 @@ def loaded_edges() -> dict[str, list[str] | None]:
             stderr=subprocess.PIPE,
             text=True,
         )
-        for name in PURE_PHYSICS
+        for name in PHYSICS
     }
-    found: dict[str, list[str] | None] = {}
+    found: dict[str, list[str]] = {}
     for name, child in children.items():
-        out, err = child.communicate(timeout=120)
+        out, err = child.communicate()
         assert child.returncode == 0, f"import crankbalance.{name} failed:\n{err}"
         found[name] = json.loads(out)
     return found
 
 
-@pytest.mark.parametrize(
-    "name",
-    [
-        pytest.param(
-            name,
-            marks=pytest.mark.xfail(
-                name in KNOWN_IMPURE, reason="model imports spec (pydantic)", strict=True
-            ),
-        )
-        for name in PURE_PHYSICS
-    ],
-)
-def test_physics_import_loads_no_edge(name: str, loaded_edges: dict[str, list[str] | None]) -> None:
+@pytest.mark.parametrize("name", PHYSICS)
+def test_physics_import_loads_no_edge(name: str, loaded_edges: dict[str, list[str]]) -> None:
     loaded = loaded_edges[name]
-    if loaded is None:
-        pytest.skip(f"crankbalance.{name} does not exist (yet)")
     assert loaded == [], f"import crankbalance.{name} loads {', '.join(loaded)}"
