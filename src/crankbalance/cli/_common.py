@@ -11,6 +11,11 @@ import click
 _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 
 
+def option_name(field: str) -> str:
+    """The command-line option of a settings field: ``max_mass`` -> ``--max-mass``."""
+    return "--" + field.replace("_", "-")
+
+
 def format_option(choices: Sequence[str]) -> Callable[[Any], Any]:
     """The ``--format`` option (stored as ``fmt``)."""
     return click.option(

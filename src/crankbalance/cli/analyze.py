@@ -6,24 +6,19 @@ import json
 
 import click
 
-from ._common import echo_table, format_option
+from ._common import echo_table, format_option, option_name
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option(
-    "--orders",
-    type=click.IntRange(1, 64),
-    default=8,
-    show_default=True,
-    help="Highest harmonic order.",
-)
-def analyze(engine: str, fmt: str, orders: int) -> None:
+@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
+def analyze(engine: str, fmt: str, orders: str) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
+    from ..options import AnalysisOptions, parse_options
     from ..studies.engine import analyze as run
 
-    result = run(engine, orders)
+    result = run(engine, parse_options(AnalysisOptions, {"orders": orders}, option_name).orders)
     if fmt == "json":
         click.echo(json.dumps(result.to_dict(), indent=2))
         return

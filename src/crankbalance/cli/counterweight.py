@@ -17,8 +17,15 @@ import click
 
 from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
+from ..options import CounterweightOptions, allowed, parse_options
 from ..units import parse_quantity as _parse
-from ._common import echo_table, format_option
+from ._common import echo_table, format_option, option_name
+
+
+def _limits(field: str) -> str:
+    """What a counterweight setting accepts (the one options schema's limits)."""
+    return allowed(CounterweightOptions, field)
+
 
 SCHEMA = "crankbalance.counterweight/1"
 
@@ -184,8 +191,7 @@ def counterweight() -> None:
 @click.option("--max-radius", default=None, help="Largest radial space, e.g. '80 mm'.")
 @click.option(
     "--min-balance",
-    type=float,
-    default=100.0,
+    default="100",
     show_default=True,
     help="Smallest balance, achieved / required first moment [%].",
 )
@@ -197,9 +203,9 @@ def counterweight() -> None:
     help="Radial space: true outer radius, or the paper's R_min bound.",
 )
 @click.option("--inertia", "with_inertia", is_flag=True, help="Inertia as a third objective.")
-@click.option("--iterations", type=click.IntRange(0, 1000), default=40, show_default=True)
-@click.option("--population", type=click.IntRange(16, 10**6), default=4096, show_default=True)
-@click.option("--seed", type=int, default=None, help="Random seed (repeatable runs).")
+@click.option("--iterations", default="40", show_default=True, help=_limits("iterations"))
+@click.option("--population", default="4096", show_default=True, help=_limits("population"))
+@click.option("--seed", default=None, help="Random seed (repeatable runs); " + _limits("seed"))
 @click.option(
     "--pareto",
     "n_pareto",
@@ -249,20 +255,31 @@ def optimize(
                 nl=False,
             )
 
+    settings = parse_options(
+        CounterweightOptions,
+        {
+            "density": density,
+            "max_mass": max_mass,
+            "max_radius": max_radius,
+            "min_balance": min_balance,
+            "iterations": iterations,
+            "population": population,
+            "seed": seed,
+        },
+        option_name,
+    )
     res = optimize_counterweight(
         required,
         bounds,
-        density=parse_quantity(density, "density", "--density"),
-        max_mass=None if max_mass is None else parse_quantity(max_mass, "mass", "--max-mass"),
-        max_radius=None
-        if max_radius is None
-        else parse_quantity(max_radius, "length", "--max-radius"),
-        min_balance=min_balance,
+        density=settings.density,
+        max_mass=settings.max_mass,
+        max_radius=settings.max_radius,
+        min_balance=settings.min_balance,
         radius_measure=radius_measure,
         objectives=("mass", "radius", "inertia") if with_inertia else ("mass", "radius"),
-        population=population,
-        iterations=iterations,
-        rng=seed,
+        population=settings.population,
+        iterations=settings.iterations,
+        rng=settings.seed,
         callback=progress,
     )
     if not quiet:
@@ -283,13 +300,9 @@ def optimize(
             "required_first_moment_kg_m": required,
             "density_kg_m3": res.density,
             "constraints": {
-                "max_mass_kg": None
-                if max_mass is None
-                else parse_quantity(max_mass, "mass", "--max-mass"),
-                "max_radius_m": None
-                if max_radius is None
-                else parse_quantity(max_radius, "length", "--max-radius"),
-                "min_balance_percent": min_balance,
+                "max_mass_kg": settings.max_mass,
+                "max_radius_m": settings.max_radius,
+                "min_balance_percent": settings.min_balance,
                 "radius_measure": radius_measure,
             },
             "bounds": {

@@ -14,13 +14,7 @@ import click
     help="report.html (self-contained, interactive, works offline) or report.pdf "
     "(printed by headless Chromium).",
 )
-@click.option(
-    "--orders",
-    type=click.IntRange(1, 64),
-    default=8,
-    show_default=True,
-    help="Highest harmonic order.",
-)
+@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
 @click.option(
     "--balance-factor",
     type=float,
@@ -41,14 +35,16 @@ import click
 def report(
     engine: str,
     output: str,
-    orders: int,
+    orders: str,
     balance_factor: float | None,
     angle: str | None,
     chromium: str | None,
 ) -> None:
     """Balancing report of ENGINE (an engine file or a preset name): engine data, mass split,
     free forces and moments, balancing masses, residuals, figures and the settings used."""
+    from ..options import AnalysisOptions, parse_options
     from ..report import write_report
+    from ._common import option_name
     from .plot import check_output
 
     check_output(output, (".html", ".htm", ".pdf"))
@@ -65,5 +61,6 @@ def report(
             from ..units import parse_quantity
 
             overrides["angle"] = parse_quantity(angle, "angle", "--angle")
-    path = write_report(engine, output, orders, chromium, **overrides)
+    highest = parse_options(AnalysisOptions, {"orders": orders}, option_name).orders
+    path = write_report(engine, output, highest, chromium, **overrides)
     click.echo(f"wrote {path}", err=True)

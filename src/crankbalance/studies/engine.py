@@ -10,9 +10,9 @@ from typing import Any
 
 import numpy as np
 
-from ..errors import InputError
 from ..io.engine_file import load_engine
 from ..model import EngineModel
+from ..options import AnalysisOptions, parse_options
 from ..results import to_jsonable
 from ..shaking import Curves, FreeForces, curves, free_forces
 from ..spec import EngineSpec
@@ -149,8 +149,7 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
         Highest harmonic order (1..64).
     """
 
-    if not isinstance(orders, int) or not 1 <= orders <= 64:
-        raise InputError("orders", orders, "must be a whole number from 1 to 64")
+    orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     model = as_model(engine)
     return Analysis(model=model, forces=free_forces(model, orders))
 
@@ -310,8 +309,7 @@ def balance_engine(
 
     from ..balancing import balance
 
-    if not isinstance(orders, int) or not 1 <= orders <= 64:
-        raise InputError("orders", orders, "must be a whole number from 1 to 64")
+    orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
     model = build_model(spec)
     cw, primary, secondary = balance_options(spec)
