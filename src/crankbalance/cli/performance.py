@@ -468,38 +468,36 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
         "offset": 0.0,
     }
     speed, strokes = _q(o["speed"], "speed", "speed"), int(o["strokes"])
-    if o["engine"] is not None:
+    settings = {
+        "bore": _q(o["bore"], "length", "bore"),
+        "crank_inertia": _q(o["crank_inertia"], "inertia", "crank_inertia"),
+        "balance_factor": balance_factor,
+        "journal_diameter": _q(o["journal_diameter"], "length", "journal_diameter"),
+        "friction_coefficient": o["friction_coefficient"],
+    }
+    if o["engine"] is None:
+        cylinder = CylinderSpec(**settings, **geometry)
+    else:
+        from ..studies.cylinder import cylinder_of
         from ..studies.engine import as_model
+        from ..studies.performance import cycle_cylinder
 
         model = as_model(o["engine"])
-        if o["cylinder"] > model.cylinders:
-            raise InputError(
-                "--cylinder", o["cylinder"], f"this engine has cylinders 1..{model.cylinders}"
-            )
+        cylinder_of(model, o["cylinder"], "--cylinder")
         # the engine's values, except where an option was given on the command line
         given = _given_options()
-        engine_values = {
-            "crank_radius": ("stroke", model.crank_radius),
-            "rod_length": ("rod_length", model.rod_length),
-            "reciprocating_mass": (
-                "reciprocating_mass",
-                float(model.reciprocating_mass[o["cylinder"] - 1]),
-            ),
+        typed = {
+            key: geometry[key]
+            for key, option in (
+                ("crank_radius", "stroke"),
+                ("rod_length", "rod_length"),
+                ("reciprocating_mass", "reciprocating_mass"),
+            )
+            if option in given
         }
-        for key, (option, value) in engine_values.items():
-            if option not in given:
-                geometry[key] = float(value)
-        geometry["offset"] = float(model.offset)
+        cylinder = cycle_cylinder(model, o["cylinder"], **settings, **typed)
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    cylinder = CylinderSpec(
-        bore=_q(o["bore"], "length", "bore"),
-        crank_inertia=_q(o["crank_inertia"], "inertia", "crank_inertia"),
-        balance_factor=balance_factor,
-        journal_diameter=_q(o["journal_diameter"], "length", "journal_diameter"),
-        friction_coefficient=o["friction_coefficient"],
-        **geometry,
-    )
     if o["pressure_csv"]:
         from ..io.pressure_csv import read_pressure_csv
 

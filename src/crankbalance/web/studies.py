@@ -240,7 +240,8 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5) for one cylinder of the engine (its reciprocating mass, crank radius,
     rod length, speed)."""
-    from ..engine_cycle import CylinderSpec, WiebeCombustion, balance_sensitivity
+    from ..engine_cycle import WiebeCombustion, balance_sensitivity
+    from ..studies.performance import cycle_cylinder
 
     model = computed.analysis.model
     o = options(settings, PerformanceOptions)
@@ -251,11 +252,10 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
         "friction_coefficient": "pf_friction_coefficient",
     }
     try:
-        cylinder = CylinderSpec(
-            bore=o.bore or 2 * float(model.crank_radius),
-            crank_radius=float(model.crank_radius),
-            rod_length=float(model.rod_length),
-            reciprocating_mass=float(model.reciprocating_mass[0]),
+        cylinder = cycle_cylinder(
+            model,
+            1,
+            bore=o.bore,
             crank_inertia=o.crank_inertia,
             journal_diameter=o.journal_diameter,
             friction_coefficient=o.friction_coefficient,
