@@ -45,25 +45,13 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from . import kinematics
-from .errors import InputError, check_positive, check_range
+from .errors import InputError, check_finite, check_nonnegative, check_positive, check_range
 from .results import ResultMixin
 from .single_cylinder import BALANCE_FACTOR_RANGE
 
 GAS_CONSTANT_AIR = 287.0
 
 Strokes = Literal[2, 4]
-
-
-def _finite(field_name: str, value: float) -> float:
-    if not math.isfinite(value):
-        raise InputError(field_name, value, "must be a finite number")
-    return float(value)
-
-
-def _nonnegative(field_name: str, value: float) -> float:
-    if not (value >= 0 and math.isfinite(value)):
-        raise InputError(field_name, value, "must be a finite number, zero or greater")
-    return float(value)
 
 
 # ======================================================================================
@@ -126,14 +114,14 @@ class CylinderSpec(ResultMixin):
                 self.rod_length,
                 f"must exceed crank_radius + |offset| = {self.crank_radius + abs(self.offset):g} m",
             )
-        _nonnegative("reciprocating_mass", self.reciprocating_mass)
+        check_nonnegative("reciprocating_mass", self.reciprocating_mass)
         check_positive("crank_inertia", self.crank_inertia)
         check_range("balance_factor", self.balance_factor, *BALANCE_FACTOR_RANGE)
         check_positive("journal_diameter", self.journal_diameter)
-        _nonnegative("friction_coefficient", self.friction_coefficient)
-        _finite("offset", self.offset)
-        _nonnegative("crankshaft_weight", self.crankshaft_weight)
-        _nonnegative("crankcase_pressure", self.crankcase_pressure)
+        check_nonnegative("friction_coefficient", self.friction_coefficient)
+        check_finite("offset", self.offset)
+        check_nonnegative("crankshaft_weight", self.crankshaft_weight)
+        check_nonnegative("crankcase_pressure", self.crankcase_pressure)
 
     @property
     def piston_area(self) -> float:
@@ -317,12 +305,12 @@ class WiebeCombustion(ResultMixin):
         check_positive("heating_value", self.heating_value)
         check_range("combustion_efficiency", self.combustion_efficiency, 0.0, 1.0)
         if self.heat_release is not None:
-            _nonnegative("heat_release", self.heat_release)
+            check_nonnegative("heat_release", self.heat_release)
         check_range("gamma", self.gamma, 1.01, 1.67)
         if self.exhaust_pressure is not None:
             check_positive("exhaust_pressure", self.exhaust_pressure)
         check_positive("efficiency_factor", self.efficiency_factor)
-        _nonnegative("form_factor", self.form_factor)
+        check_nonnegative("form_factor", self.form_factor)
 
 
 def wiebe_pressure(

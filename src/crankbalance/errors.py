@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 
@@ -37,6 +38,20 @@ def check_positive(field: str, value: float) -> float:
     """Return ``value`` if it is a finite number > 0, else raise :class:`InputError`."""
     if not (value > 0 and value < float("inf")):
         raise InputError(field, value, "must be a finite number greater than zero")
+    return float(value)
+
+
+def check_finite(field: str, value: float) -> float:
+    """Return ``value`` if it is a finite number, else raise :class:`InputError`."""
+    if not math.isfinite(value):
+        raise InputError(field, value, "must be a finite number")
+    return float(value)
+
+
+def check_nonnegative(field: str, value: float) -> float:
+    """Return ``value`` if it is a finite number >= 0, else raise :class:`InputError`."""
+    if not (value >= 0 and math.isfinite(value)):
+        raise InputError(field, value, "must be a finite number, zero or greater")
     return float(value)
 
 

@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
-from .errors import InputError, check_positive, check_range
+from .errors import InputError, check_finite, check_nonnegative, check_positive, check_range
 from .results import ResultMixin
 from .single_cylinder import (
     STEEL_DENSITY,
@@ -44,18 +44,6 @@ from .single_cylinder import (
 )
 
 STANDARD_GRAVITY = 9.80665
-
-
-def _finite(field_name: str, value: float) -> float:
-    if not math.isfinite(value):
-        raise InputError(field_name, value, "must be a finite number")
-    return float(value)
-
-
-def _nonnegative(field_name: str, value: float) -> float:
-    if not (value >= 0 and math.isfinite(value)):
-        raise InputError(field_name, value, "must be a finite number, zero or greater")
-    return float(value)
 
 
 # ======================================================================================
@@ -103,18 +91,18 @@ class BenchRotor(ResultMixin):
         check_positive("mass", self.mass)
         check_positive("inertia", self.inertia)
         check_positive("journal_diameter", self.journal_diameter)
-        _nonnegative("friction_coefficient", self.friction_coefficient)
-        _nonnegative("unbalance", self.unbalance)
-        _nonnegative("gravity", self.gravity)
+        check_nonnegative("friction_coefficient", self.friction_coefficient)
+        check_nonnegative("unbalance", self.unbalance)
+        check_nonnegative("gravity", self.gravity)
         if len(self.bearing_positions) != 2:
             raise InputError("bearing_positions", self.bearing_positions, "must be two positions")
-        a, b = (_finite("bearing_positions", float(p)) for p in self.bearing_positions)
+        a, b = (check_finite("bearing_positions", float(p)) for p in self.bearing_positions)
         if a == b:
             raise InputError(
                 "bearing_positions", self.bearing_positions, "must be two different axial positions"
             )
-        _finite("mass_position", self.mass_position)
-        _finite("unbalance_position", self.unbalance_position)
+        check_finite("mass_position", self.mass_position)
+        check_finite("unbalance_position", self.unbalance_position)
 
     def load_shares(self, position: float) -> tuple[float, float]:
         """Shares of a force at an axial position carried by bearings A and B (lever rule)."""
@@ -181,8 +169,8 @@ def disc_rotor(
     check_positive("density", density)
     if disc_thickness >= length:
         raise InputError("disc_thickness", disc_thickness, f"must be less than length = {length}")
-    _nonnegative("hole_mass", hole_mass)
-    _nonnegative("hole_radius", hole_radius)
+    check_nonnegative("hole_mass", hole_mass)
+    check_nonnegative("hole_radius", hole_radius)
     journals = length - disc_thickness
     mass = (
         density * np.pi / 4 * (disc_diameter**2 * disc_thickness + journal_diameter**2 * journals)
@@ -245,7 +233,7 @@ class BenchSettings(ResultMixin):
         check_positive("ramp_time", self.ramp_time)
         check_positive("hold_time", self.hold_time)
         check_positive("proportional_gain", self.proportional_gain)
-        _nonnegative("integral_gain", self.integral_gain)
+        check_nonnegative("integral_gain", self.integral_gain)
         check_positive("stick_speed", self.stick_speed)
         if (
             isinstance(self.samples, bool)
