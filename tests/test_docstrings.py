@@ -107,16 +107,6 @@ KNOWN_MISSING: frozenset[str] = frozenset(
         "engine_cycle:SensitivityResult",
         "rotor_bench:BenchResult",
         "rotor_bench:BenchSettings",
-        "single_cylinder:balance_factor_from_mass_properties",
-        "single_cylinder:balance_factor_study",
-        "single_cylinder:bob_weight",
-        "single_cylinder:check_balance_factor",
-        "single_cylinder:counterweight_moment",
-        "single_cylinder:first_order_peak_resultant",
-        "single_cylinder:peak_resultant",
-        "single_cylinder:primary_force",
-        "single_cylinder:rebalance",
-        "single_cylinder:sum_parts",
     }
 )
 
