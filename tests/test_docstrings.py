@@ -86,11 +86,6 @@ KNOWN_MISSING: frozenset[str] = frozenset(
         "counterweight:ProfileSection",
         "counterweight:thickness_for_first_moment",
         "counterweight_optimize:CounterweightOptimum",
-        "counterweight_optimize:OptimizationProgress",
-        "engine_cycle:CycleResult",
-        "engine_cycle:SensitivityResult",
-        "rotor_bench:BenchResult",
-        "rotor_bench:BenchSettings",
     }
 )
 

@@ -122,7 +122,8 @@ class OptimizationProgress:
     Attributes
     ----------
     iteration, n_iterations : Round just finished, and rounds asked for.
-    nfev : Designs evaluated so far. n_feasible : Feasible designs found so far.
+    nfev : Designs evaluated so far.
+    n_feasible : Feasible designs found so far.
     n_pareto : Designs on the current front.
     least_mass : Least feasible mass so far [kg] (None if none or mass is no objective).
     elapsed : Wall time since the start [s].
