@@ -75,9 +75,6 @@ NONE_RETURNS = {"None", "NoReturn", "typing.NoReturn", "Never"}
 # what each lacks.
 KNOWN_MISSING: frozenset[str] = frozenset(
     {
-        "balance_shaft:PlacementStudy",
-        "balance_shaft:inline3_study",
-        "balance_shaft:inline4_study",
         "beam:deflection_at",
         "counterweight:BoundaryArc",
         "counterweight:BoundaryLine",
