@@ -75,7 +75,6 @@ NONE_RETURNS = {"None", "NoReturn", "typing.NoReturn", "Never"}
 # what each lacks.
 KNOWN_MISSING: frozenset[str] = frozenset(
     {
-        "beam:deflection_at",
         "counterweight:BoundaryArc",
         "counterweight:BoundaryLine",
         "counterweight:CircleCap",
