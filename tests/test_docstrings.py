@@ -75,12 +75,6 @@ NONE_RETURNS = {"None", "NoReturn", "typing.NoReturn", "Never"}
 # what each lacks.
 KNOWN_MISSING: frozenset[str] = frozenset(
     {
-        "counterweight:BoundaryArc",
-        "counterweight:BoundaryLine",
-        "counterweight:CircleCap",
-        "counterweight:CounterweightProperties",
-        "counterweight:ProfileSection",
-        "counterweight:thickness_for_first_moment",
         "counterweight_optimize:CounterweightOptimum",
     }
 )
