@@ -25,11 +25,9 @@ modules are split):
    an annotation, whose body has a ``return <value>``) has a ``Returns`` section
    (``Yields`` for a generator). Classes need none.
 
-``KNOWN_MISSING`` lists the entries (``module:name``) that fail today. Their docstrings are
-being moved by the restructuring of issue 11 and are fixed after it; then the set is
-emptied. It cannot rot: an entry of the set that no longer exists, or that now passes,
-fails the test. ``python tests/test_docstrings.py`` prints the current failures in the
-form of the set.
+Every entry must pass; there is no list of known failures.
+``python tests/test_docstrings.py`` prints the current failures (``module:name`` and what
+each lacks).
 """
 
 from __future__ import annotations
@@ -69,15 +67,6 @@ INTEGER_ARRAY = re.compile(r"^\s*NDArray\[\s*np\.(u?int\w*|bool_?|intp)\s*\]\s*$
 NUMERIC_DOC_TYPE = re.compile(r"\b(float|array_like|ndarray)\b")
 UNIT = re.compile(r"\[(-|[A-Za-zΩ°µμ%][A-Za-z0-9°µμΩ%·*/^.()²³⁻¹-]*)(\s[^\[\]\n]*)?\]")
 NONE_RETURNS = {"None", "NoReturn", "typing.NoReturn", "Never"}
-
-# Today's failures (module:name): the docstrings are moved by the split of issue 11 and
-# fixed after the merge, then this set is emptied. `python tests/test_docstrings.py` prints
-# what each lacks.
-KNOWN_MISSING: frozenset[str] = frozenset(
-    {
-        "counterweight_optimize:CounterweightOptimum",
-    }
-)
 
 
 def _modules() -> list[ModuleType]:
@@ -253,19 +242,11 @@ def test_public_physics_api_found() -> None:
 @pytest.mark.parametrize("key", sorted(API))
 def test_docstring(key: str) -> None:
     found = problems(API[key])
-    if key in KNOWN_MISSING:
-        assert found, f"{key} now passes: remove it from KNOWN_MISSING"
-    else:
-        assert not found, f"{key}: {'; '.join(found)} (rules: tests/test_docstrings.py)"
-
-
-def test_known_missing_entries_exist() -> None:
-    stale = sorted(KNOWN_MISSING - set(API))
-    assert not stale, f"KNOWN_MISSING names entries that no longer exist: {stale}"
+    assert not found, f"{key}: {'; '.join(found)} (rules: tests/test_docstrings.py)"
 
 
 if __name__ == "__main__":
-    # print today's failures, in the form of KNOWN_MISSING
+    # print today's failures
     failing = {key: problems(obj) for key, obj in sorted(API.items())}
     for key, found in failing.items():
         if found:
