@@ -25,11 +25,9 @@ modules are split):
    an annotation, whose body has a ``return <value>``) has a ``Returns`` section
    (``Yields`` for a generator). Classes need none.
 
-``KNOWN_MISSING`` lists the entries (``module:name``) that fail today. Their docstrings are
-being moved by the restructuring of issue 11 and are fixed after it; then the set is
-emptied. It cannot rot: an entry of the set that no longer exists, or that now passes,
-fails the test. ``python tests/test_docstrings.py`` prints the current failures in the
-form of the set.
+Every entry must pass; there is no list of known failures.
+``python tests/test_docstrings.py`` prints the current failures (``module:name`` and what
+each lacks).
 """
 
 from __future__ import annotations
@@ -69,108 +67,6 @@ INTEGER_ARRAY = re.compile(r"^\s*NDArray\[\s*np\.(u?int\w*|bool_?|intp)\s*\]\s*$
 NUMERIC_DOC_TYPE = re.compile(r"\b(float|array_like|ndarray)\b")
 UNIT = re.compile(r"\[(-|[A-Za-zΩ°µμ%][A-Za-z0-9°µμΩ%·*/^.()²³⁻¹-]*)(\s[^\[\]\n]*)?\]")
 NONE_RETURNS = {"None", "NoReturn", "typing.NoReturn", "Never"}
-
-# Today's failures (module:name): the docstrings are moved by the split of issue 11 and
-# fixed after the merge, then this set is emptied. `python tests/test_docstrings.py` prints
-# what each lacks.
-KNOWN_MISSING: frozenset[str] = frozenset(
-    {
-        "balance_shaft:PlacementStudy",
-        "balance_shaft:ShaftSection",
-        "balance_shaft:assemble",
-        "balance_shaft:bending_moment_at",
-        "balance_shaft:compare_inline3_types",
-        "balance_shaft:default_weights",
-        "balance_shaft:deflection_at",
-        "balance_shaft:design_checks",
-        "balance_shaft:element_matrices",
-        "balance_shaft:inline3_couple_unbalance",
-        "balance_shaft:inline3_layout",
-        "balance_shaft:inline3_study",
-        "balance_shaft:inline4_closed_form",
-        "balance_shaft:inline4_secondary_unbalance",
-        "balance_shaft:inline4_study",
-        "balance_shaft:minimise_on_grid",
-        "balance_shaft:normalise",
-        "balance_shaft:objective",
-        "balance_shaft:shape_vectors",
-        "balance_shaft:simpson",
-        "balancing:AngleSweep",
-        "balancing:BalanceResult",
-        "balancing:ComponentResidual",
-        "balancing:CounterweightOptions",
-        "balancing:Counterweights",
-        "balancing:Shaft",
-        "balancing:ShaftMass",
-        "balancing:ShaftOptions",
-        "balancing:ShaftSet",
-        "balancing:counterweight_angle_sweep",
-        "balancing:default_web_offset",
-        "balancing:pattern_masses",
-        "balancing:solve_counterweights",
-        "balancing:solve_shaft",
-        "balancing:verify",
-        "balancing:web_layout",
-        "counterweight:CircleCap",
-        "counterweight:CounterweightOptimum",
-        "counterweight:CounterweightProperties",
-        "counterweight:MeshMassProperties",
-        "counterweight:OptimizationProgress",
-        "counterweight:ProfileSection",
-        "counterweight:export_counterweight",
-        "counterweight:hypervolume_2d",
-        "counterweight:mesh_mass_properties",
-        "counterweight:pareto_indices",
-        "counterweight:parse_bounds",
-        "counterweight:profile_boundary",
-        "counterweight:profile_dxf",
-        "counterweight:profile_mesh",
-        "counterweight:profile_svg",
-        "counterweight:profile_validity",
-        "counterweight:thickness_for_first_moment",
-        "counterweight:validate_profile",
-        "counterweight:write_step",
-        "counterweight:write_stl",
-        "friction:friction_coefficient_from_torque",
-        "friction:friction_torque",
-        "friction:journal_bearing_torque",
-        "friction:petroff_torque",
-        "friction:rectangular_squeeze_film_damping",
-        "friction:squeeze_film_damping",
-        "friction:squeeze_film_stiffness",
-        "friction:torque_from_transducer_voltage",
-        "friction:unbalanced_friction_torque",
-        "kinematics:piston_acceleration",
-        "kinematics:piston_position",
-        "kinematics:piston_velocity",
-        "kinematics:series_coefficients",
-        "model:ConrodSplit",
-        "model:EngineModel",
-        "model:build_model",
-        "shaking:Curves",
-        "shaking:FreeForces",
-        "shaking:batch_amplitudes",
-        "shaking:curves",
-        "shaking:exact_time_domain",
-        "shaking:phasor_curve",
-        "shaking:reciprocating_phasors",
-        "single_cylinder:balance_factor_from_mass_properties",
-        "single_cylinder:balance_factor_study",
-        "single_cylinder:bob_weight",
-        "single_cylinder:counterweight_moment",
-        "single_cylinder:cylinder_balance_factor_study",
-        "single_cylinder:first_order_peak_resultant",
-        "single_cylinder:peak_resultant",
-        "single_cylinder:primary_force",
-        "single_cylinder:rebalance",
-        "single_cylinder:sum_parts",
-        "tolerance:balance_grade",
-        "tolerance:check_residual",
-        "tolerance:grade_names",
-        "tolerance:permissible_unbalance",
-        "tolerance:specific_unbalance",
-    }
-)
 
 
 def _modules() -> list[ModuleType]:
@@ -346,19 +242,11 @@ def test_public_physics_api_found() -> None:
 @pytest.mark.parametrize("key", sorted(API))
 def test_docstring(key: str) -> None:
     found = problems(API[key])
-    if key in KNOWN_MISSING:
-        assert found, f"{key} now passes: remove it from KNOWN_MISSING"
-    else:
-        assert not found, f"{key}: {'; '.join(found)} (rules: tests/test_docstrings.py)"
-
-
-def test_known_missing_entries_exist() -> None:
-    stale = sorted(KNOWN_MISSING - set(API))
-    assert not stale, f"KNOWN_MISSING names entries that no longer exist: {stale}"
+    assert not found, f"{key}: {'; '.join(found)} (rules: tests/test_docstrings.py)"
 
 
 if __name__ == "__main__":
-    # print today's failures, in the form of KNOWN_MISSING
+    # print today's failures
     failing = {key: problems(obj) for key, obj in sorted(API.items())}
     for key, found in failing.items():
         if found:

@@ -611,13 +611,13 @@ class PlacementStudy(ResultMixin):
     weight : float
         w of the objective [-].
     objective : ndarray
-        J = (A/max A)^2 + w (B/max B)^2 along the design variable.
+        J = (A/max A)^2 + w (B/max B)^2 along the design variable [-].
     optimum_position : float
         Minimiser of J (refined by a parabola through the three best points) [-].
     optimum_objective : float
-        J there.
+        J there [-].
     weights : ndarray
-        The swept weights.
+        The swept weights w [-].
     optimum_positions : ndarray
         Optimum position for each swept weight [-].
     """
@@ -898,9 +898,9 @@ def inline4_study(
     weight : float
         w of the objective [-].
     positions : array_like, optional
-        Design points as fractions of the length (default 200 points over [0, 1]).
+        Design points as fractions of the length [-] (default 200 points over [0, 1]).
     weights : array_like, optional
-        Weights of the sweep (default :func:`default_weights`).
+        Weights w of the sweep [-] (default :func:`default_weights`).
     unbalance_radius : float
         Centre-of-gravity radius of the unbalance mass [m] (its mass for the frequency).
     bearing_stiffness : float, optional
@@ -1054,9 +1054,9 @@ def inline3_study(
     weight : float
         w of the objective [-].
     positions : array_like, optional
-        z / L design points (default 200 points over [0.3, 1]).
+        z / L design points [-] (default 200 points over [0.3, 1]).
     weights : array_like, optional
-        Weights of the sweep.
+        Weights w of the sweep [-] (default :func:`default_weights`).
     bearing_offset : float, optional
         Distance o between a bearing and the neighbouring mass [m] (default 0.1 L).
     hold : {"couple", "unbalance"}
@@ -1064,7 +1064,8 @@ def inline3_study(
         spacing`` so the couple stays the one required; ``"unbalance"``: each mass keeps
         ``unbalance`` as the paper's "same unbalance quantity" (the couple then varies).
     unbalance_radius, bearing_stiffness, theory, secondary, n_elements, n_points
-        As :func:`inline4_study`.
+        As :func:`inline4_study`: centre-of-gravity radius of the masses [m], radial
+        bearing stiffness [N/m] (None: rigid), beam theory, measure B, resolution.
 
     Returns
     -------

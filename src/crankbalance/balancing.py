@@ -51,6 +51,34 @@ class CounterweightOptions:
     turn :math:`\\alpha` [rad] from the position opposite the crankpin, or ``"optimal"``.
     ``web_offset`` is the axial distance of each web from its throw mid-plane [m]
     (the paper's a/4 when None).
+
+    Parameters
+    ----------
+    cg_radius : float
+        Radius of the counterweights' centre of gravity, :math:`r_c` [m].
+    webs : tuple of int, optional
+        0/1 per web, two per throw from the y < 0 end (the paper's :math:`Y_{cw}`); None:
+        a counterweight on every web.
+    angle : float or "optimal"
+        Turn :math:`\\alpha` of the pattern from the position opposite the crankpin [rad],
+        or ``"optimal"`` for the least-mass angle that balances.
+    balance_factor : float
+        Share :math:`f_b` of the reciprocating masses the counterweights carry on top of
+        the rotating masses [-].
+    scope : {"auto", "whole", "halves"}
+        Balance the crank as a whole or each half on its own; ``"auto"`` takes halves when
+        the crank is balanced as a whole and has an even number of throws.
+    method : {"pattern", "individual"}
+        The paper's equal-mass pattern, or each counterweight its own mass and angle
+        (least :math:`\\sum m_j^2`).
+    web_offset : float, optional
+        Axial distance of each web from its throw mid-plane [m]; default
+        :func:`default_web_offset`.
+
+    References
+    ----------
+    Appl. Sci. 2021, section 2 (Eqs. 6-11), with the sign-rule reading of
+    docs/references.md.
     """
 
     cg_radius: float
@@ -66,7 +94,22 @@ class CounterweightOptions:
 class ShaftOptions:
     """Balance shafts of one order: ``pair`` (co- and counter-rotating) or a single
     ``counter-rotating`` shaft; CG radius of their masses and distance between the outer
-    masses [m]. The shafts' mid-point is taken in the crank's mid-plane (y = 0)."""
+    masses [m]. The shafts' mid-point is taken in the crank's mid-plane (y = 0).
+
+    Parameters
+    ----------
+    cg_radius : float
+        Radius of the centre of gravity of the shaft masses, :math:`r_{c1}` or
+        :math:`r_{c2}` [m].
+    length : float
+        Axial distance between the outer masses, :math:`l_{sh}` [m].
+    arrangement : {"pair", "counter-rotating"}
+        A co- and a counter-rotating shaft, or a single counter-rotating shaft.
+
+    References
+    ----------
+    Appl. Sci. 2021, section 3 (Eqs. 13-22), with the errata of docs/references.md.
+    """
 
     cg_radius: float
     length: float
@@ -81,6 +124,29 @@ class Counterweights(ResultMixin):
     Per counterweight: web number (1-based, two per throw), throw number, axial position
     [m], mass [kg] at ``cg_radius`` and direction at crank angle 0 [rad, from +z toward +x].
     ``alpha`` is the pattern's turn angle (None for ``individual``).
+
+    Parameters
+    ----------
+    method : {"pattern", "individual"}
+        How the counterweights were sized.
+    scope : {"whole", "halves"}
+        Whether the crank was balanced as a whole or each half on its own.
+    cg_radius : float
+        Radius of the counterweights' centre of gravity [m].
+    alpha : float or None
+        Turn angle of the pattern [rad]; None for ``individual``.
+    web : ndarray of int, shape (W,)
+        Web number of each counterweight (1-based, two per throw).
+    throw : ndarray of int, shape (W,)
+        Throw number of each counterweight (1-based).
+    position : ndarray, shape (W,)
+        Axial position from the crankshaft mid-point [m].
+    mass : ndarray, shape (W,)
+        Mass at ``cg_radius`` [kg].
+    direction : ndarray, shape (W,)
+        Direction at crank angle 0, from +z toward +x [rad].
+    note : str
+        Remark of the solver (already balanced, pattern flipped), empty if none.
     """
 
     method: str
@@ -106,6 +172,18 @@ class Counterweights(ResultMixin):
 
 @dataclass(frozen=True)
 class ShaftMass(ResultMixin):
+    """One point mass of a balance shaft.
+
+    Parameters
+    ----------
+    position : float
+        Axial position from the crankshaft mid-point [m].
+    mass : float
+        Mass at the shaft's ``cg_radius`` [kg].
+    phase : float
+        Direction at crank angle 0, from +z toward +x [rad].
+    """
+
     position: float
     mass: float
     phase: float
@@ -115,7 +193,21 @@ class ShaftMass(ResultMixin):
 class Shaft(ResultMixin):
     """One balance shaft: order (1 or 2), sense (+1 co-rotating, -1 counter-rotating),
     the CG radius of its masses and the masses (axial position [m], mass [kg], phase at
-    crank angle 0 [rad, from +z toward +x])."""
+    crank angle 0 [rad, from +z toward +x]).
+
+    Parameters
+    ----------
+    order : int
+        Speed of the shaft in multiples of the crank speed (1 or 2).
+    sense : int
+        +1 co-rotating, -1 counter-rotating.
+    cg_radius : float
+        Radius of the centre of gravity of its masses [m].
+    masses : tuple of ShaftMass
+        Its masses; empty when there is nothing to cancel.
+    note : str
+        Remark of the solver, empty if none.
+    """
 
     order: int
     sense: int
@@ -131,6 +223,20 @@ class Shaft(ResultMixin):
 
 @dataclass(frozen=True)
 class ShaftSet(ResultMixin):
+    """The balance shafts of one order.
+
+    Parameters
+    ----------
+    order : int
+        1 (primary) or 2 (secondary).
+    arrangement : {"pair", "counter-rotating"}
+        As :class:`ShaftOptions`.
+    length : float
+        Axial distance between the outer masses [m].
+    shafts : tuple of Shaft
+        The co-rotating shaft (``pair`` only) and the counter-rotating one.
+    """
+
     order: int
     arrangement: str
     length: float
@@ -139,7 +245,21 @@ class ShaftSet(ResultMixin):
 
 @dataclass(frozen=True)
 class ComponentResidual(ResultMixin):
-    """Amplitude of one component before and after balancing (time-domain check)."""
+    """Amplitude of one component before and after balancing (time-domain check).
+
+    Parameters
+    ----------
+    component : str
+        ``"rotating"`` (rotating masses and the counterweight share that carries them) or
+        ``"order1"``, ``"order2"``, ... (reciprocating masses).
+    targeted : bool
+        Whether a counterweight or shaft was asked to cancel this component.
+    force_before, force_after : float
+        Largest force of the component over a revolution, without and with the balancing
+        masses [N].
+    moment_before, moment_after : float
+        The same for the moment about the crankshaft mid-point [N·m].
+    """
 
     component: str
     targeted: bool
@@ -151,7 +271,22 @@ class ComponentResidual(ResultMixin):
 
 @dataclass(frozen=True)
 class BalanceResult(ResultMixin):
-    """Everything the solver found, with the time-domain residual of each component."""
+    """Everything the solver found, with the time-domain residual of each component.
+
+    Parameters
+    ----------
+    counterweights : Counterweights or None
+        Crank counterweights, None when none were asked for.
+    extra_counterweights : Counterweights or None
+        The extra crank masses that replace the co-rotating primary shaft of a single
+        counter-rotating primary shaft (Eq. 17 of Appl. Sci. 2021, corrected), else None.
+    primary, secondary : ShaftSet or None
+        Balance shafts of order 1 and 2, None when none were asked for.
+    residuals : tuple of ComponentResidual
+        ``"rotating"`` first, then ``"order1"``, ``"order2"``, ...
+    notes : tuple of str
+        Remarks of the solver.
+    """
 
     counterweights: Counterweights | None
     extra_counterweights: Counterweights | None
@@ -175,6 +310,32 @@ def web_layout(
 
     Webs are numbered two per throw from the y < 0 end; each sits ``web_offset`` from its
     throw mid-plane (the paper's a/4, Eq. 7).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    web_offset : float, optional
+        Axial distance of each web from its throw mid-plane [m]; default
+        :func:`default_web_offset`.
+    webs : tuple of int, optional
+        0/1 per web, two per throw; None: every web.
+
+    Returns
+    -------
+    throw : ndarray of int
+        Index (0-based) of the throw of each web that carries a counterweight.
+    position : ndarray
+        Axial position of each such web from the crankshaft mid-point [m].
+
+    Raises
+    ------
+    InputError
+        If ``webs`` does not have two entries per throw.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eq. 7.
     """
     t = model.throws
     if web_offset is None:
@@ -191,7 +352,23 @@ def web_layout(
 
 
 def default_web_offset(model: EngineModel) -> float:
-    """A quarter of the throw pitch (paper Eq. 7); for one throw, half the crank radius."""
+    """A quarter of the throw pitch (paper Eq. 7); for one throw, half the crank radius.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+
+    Returns
+    -------
+    float
+        Axial distance of a web from its throw mid-plane [m]: a quarter of the smallest
+        non-zero distance between throws, or half the crank radius without one.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eq. 7 (a/4).
+    """
     if model.throws > 1:
         spacing = np.diff(np.sort(model.throw_position))
         spacing = spacing[spacing > 0]
@@ -237,6 +414,35 @@ def solve_counterweights(
     the whole crank's ``target_force`` and ``target_couple`` are used. Targets are the
     unbalance to cancel, as first moments :math:`\\sum m\\,r\\,e^{i\\varphi}` [kg·m] and
     :math:`\\sum y\\,m\\,r\\,e^{i\\varphi}` [kg·m²].
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    options : CounterweightOptions
+        Webs, CG radius, angle, scope and method; ``scope="auto"`` is taken as whole.
+    target_force : complex
+        First moment of the unbalance of the whole crank, :math:`z + i x` [kg·m].
+    target_couple : complex
+        Its moment about the crankshaft mid-point [kg·m²].
+    part_targets : list of (complex, complex), optional
+        (first moment [kg·m], moment [kg·m²]) of each half for ``scope="halves"``.
+
+    Returns
+    -------
+    Counterweights
+        Mass [kg] and direction [rad] of every counterweight.
+
+    Raises
+    ------
+    InputError
+        If a part needs balancing but has no counterweight, or its counterweights all lie
+        in one plane while a couple is to be cancelled.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 6-11 (Eq. 10 with the minus sign in the counterweight matrix, the
+    sign rule of Eq. 8 generalised; docs/references.md).
     """
     throw_of_web, y = web_layout(model, options.web_offset, options.webs)
     scope = "whole" if options.scope == "auto" else options.scope
@@ -340,6 +546,33 @@ def pattern_masses(
     pattern and the residual of the equations, for many angles :math:`\\alpha` at once.
 
     Vectorised over ``alphas`` (least squares with one real unknown per angle).
+
+    Parameters
+    ----------
+    a : ndarray of complex, shape (E, W)
+        Equations over the webs: a row of ones (force) and a row of axial positions over
+        the crank length (couple) per part [-].
+    b : ndarray of complex, shape (E,)
+        Right-hand sides: minus the first moment to cancel, and minus its moment over the
+        crank length [kg·m].
+    opposite : ndarray, shape (W,)
+        Direction opposite the crankpin of each web [rad].
+    side : ndarray, shape (W,)
+        Side of the mid-plane of each web (-1, 0 or +1) [-].
+    alphas : array_like, shape (A,)
+        Turn angles :math:`\\alpha` to evaluate [rad].
+
+    Returns
+    -------
+    moment : ndarray, shape (A,)
+        Least-squares :math:`m_c r_c` per angle [kg·m]; negative when the pattern points
+        toward the crankpins.
+    residual : ndarray, shape (A,)
+        Euclidean norm of the residual of the equations [kg·m].
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 8-10.
     """
     alpha = np.asarray(alphas, dtype=float)
     unit = np.exp(1j * (opposite[None, :] + side[None, :] * alpha[:, None]))  # (A, W)
@@ -405,6 +638,35 @@ def solve_shaft(
 
     Force only: one mass mid-shaft; couple only: two masses in opposite phase at
     :math:`\\pm l/2` (paper Eq. 13); both: two masses at :math:`\\pm l/2` sized together.
+
+    Parameters
+    ----------
+    order : int
+        Shaft speed in multiples of the crank speed (1 or 2).
+    sense : int
+        +1 co-rotating (cancels forward phasors), -1 counter-rotating (backward).
+    force : complex
+        Phasor of the force to cancel, :math:`z + i x` [N].
+    couple : complex
+        Phasor of the couple to cancel, about the crankshaft mid-point [N·m].
+    cg_radius : float
+        Radius of the centre of gravity of the shaft masses [m].
+    length : float
+        Axial distance between the two outer masses, :math:`l_{sh}` [m].
+    speed : float
+        Crank speed [rad/s].
+    scale : float
+        Force scale of the engine, below ``ZERO`` times which a phasor counts as zero [N].
+
+    Returns
+    -------
+    Shaft
+        Its masses [kg], axial positions [m] and phases [rad].
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 13-22, with the errata of docs/references.md (masses at
+    :math:`\\pm l_{sh}/2`, factor 4 of :math:`(2\\omega)^2` for the secondary shafts).
     """
     gain = cg_radius * (order * speed) ** 2  # force per kg of shaft mass at phase 0
     has_force = abs(force) > ZERO * scale
@@ -443,6 +705,7 @@ def balance(
     Parameters
     ----------
     model : EngineModel
+        The engine (SI arrays).
     counterweights : CounterweightOptions, optional
         Crank counterweights (rotating masses plus the balance-factor share).
     primary, secondary : ShaftOptions, optional
@@ -453,10 +716,11 @@ def balance(
     Returns
     -------
     BalanceResult
+        Counterweights, shafts and the residual of each component.
 
     References
     ----------
-    2021 paper, Eqs. 1-23, with the errata of docs/references.md.
+    Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
     """
     forces = free_forces(model, max(orders, 2))
     r, w = model.crank_radius, model.speed
@@ -712,6 +976,31 @@ def verify(
     (the rest, balance factor and Eq. 17 extra, counts to the first order). The order-by-order
     amplitudes are then read off a discrete Fourier transform of the totals, so this check
     shares no algebra with the solver.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    forces : FreeForces
+        Its phasors (used for the reciprocating forces unless the kinematics is exact).
+    cw : Counterweights or None
+        Crank counterweights.
+    cw_rotating : ndarray of complex or None
+        First moments of the counterweight share that carries the rotating masses [kg·m].
+    extra : Counterweights or None
+        The Eq. 17 extra counterweights.
+    primary, secondary : ShaftSet or None
+        Balance shafts of order 1 and 2.
+    orders : int
+        Highest reciprocating order checked.
+    samples : int
+        Crank angles per revolution of the time histories (more than twice ``orders``).
+
+    Returns
+    -------
+    tuple of ComponentResidual
+        ``"rotating"``, then ``"order1"`` .. ``"order<orders>"``; forces [N], moments
+        [N·m].
     """
     theta = 2 * np.pi * np.arange(samples) / samples
     w = model.speed
@@ -795,6 +1084,15 @@ class AngleSweep(ResultMixin):
     ``mass`` [kg] per counterweight and ``residual`` [kg·m]: the first-moment residual of
     the force and couple equations (couple divided by the crank length); zero where the
     pattern balances the crank exactly.
+
+    Parameters
+    ----------
+    angle : ndarray, shape (A,)
+        Turn angle :math:`\\alpha` of the pattern [rad].
+    mass : ndarray, shape (A,)
+        Mass of each counterweight at its CG radius [kg].
+    residual : ndarray, shape (A,)
+        Residual of the equations [kg·m].
     """
 
     angle: NDArray[np.float64]
@@ -806,7 +1104,27 @@ def counterweight_angle_sweep(
     model: EngineModel, options: CounterweightOptions, angles: ArrayLike
 ) -> AngleSweep:
     """Mass of the equal counterweights and the residual for every angle in ``angles``
-    [rad] at once (the rotating masses plus the balance-factor share, whole crank)."""
+    [rad] at once (the rotating masses plus the balance-factor share, whole crank).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    options : CounterweightOptions
+        Webs, CG radius, balance factor and web offset; ``angle``, ``scope`` and
+        ``method`` are not used.
+    angles : array_like, shape (A,)
+        Turn angles :math:`\\alpha` [rad].
+
+    Returns
+    -------
+    AngleSweep
+        Mass per counterweight [kg] and residual [kg·m] at each angle.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 8-10 (the pattern of equal counterweights).
+    """
     throw_of_web, y = web_layout(model, options.web_offset, options.webs)
     _, length = _scale(model)
     r = model.crank_radius

@@ -300,11 +300,11 @@ def deflection_at(
     loads : ndarray, shape (..., n_loads)
         Load phasors [N], in equilibrium.
     coefficients : ndarray, shape (..., 2)
-        Rigid-body line ``a, b`` [m, -] (from :func:`beam_statics`).
+        Rigid-body line: offset ``a`` [m] and slope ``b`` [-] (from :func:`beam_statics`).
     bending_stiffness : float
         E I [N m^2].
     shear_flexibility : float
-        1 / (kappa G A) [1/N]; 0 for Euler-Bernoulli.
+        1 / (kappa G A) [N^-1]; 0 for Euler-Bernoulli.
 
     Returns
     -------

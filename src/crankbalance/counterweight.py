@@ -75,7 +75,17 @@ DEFAULT_DENSITY = 8000.0
 
 
 class CircleCap(NamedTuple):
-    """Area, first moment (in y) and polar second moment about the origin of a circle cap."""
+    """Area, first moment (in y) and polar second moment about the origin of a circle cap.
+
+    Parameters
+    ----------
+    area : ndarray
+        Area of the cap [m^2].
+    first_moment : ndarray
+        First moment ``int y dA`` about the x axis [m^3].
+    polar_moment : ndarray
+        Polar second moment ``int (x^2 + y^2) dA`` about the origin [m^4].
+    """
 
     area: np.ndarray
     first_moment: np.ndarray
@@ -148,6 +158,39 @@ class ProfileSection(NamedTuple):
     ``polar_moment`` the polar second moment ``int (x^2 + y^2) dA`` [m^4] about it.
     ``hub_protrusion`` is True where the web circle reaches out through the segment's arc
     (the regime where the paper's Eqs. 26/30 need the correction, see the docs).
+
+    Parameters
+    ----------
+    area : ndarray
+        Profile area A_cw [m^2] (Eq. 27).
+    first_moment : ndarray
+        ``int y dA`` about the crank axis [m^3].
+    polar_moment : ndarray
+        ``int (x^2 + y^2) dA`` about the crank axis [m^4].
+    area_green, area_blue, area_orange : ndarray
+        Areas of the segment, trapezoid and rectangle zones, web circle cut out [m^2]
+        (Eq. 26).
+    cg_green, cg_blue, cg_orange : ndarray
+        y of the centroid of each zone [m]; 0 where the zone is empty.
+    overhang : ndarray
+        l_c, how far the trapezoid widens on each side beyond the web circle [m].
+    gamma, lam : ndarray
+        Angles gamma and lambda at which the web circle crosses the top of the rectangle
+        and the chord of the segment [rad] (Eqs. 24-25).
+    top_height : ndarray
+        y of the segment's chord, h_R + l_c tan(delta) [m].
+    segment_centre : ndarray
+        y of the centre of the segment's circle [m].
+    outer_radius : ndarray
+        Largest distance of the profile from the crank axis [m].
+    radius_bound : ndarray
+        The paper's R_min = h_R + l_c tan(delta) + R_cw [m] (Table 3), a bound.
+    hub_protrusion : ndarray of bool
+        Where the web circle reaches out through the segment's arc (a mask) [-].
+
+    References
+    ----------
+    Appl. Sci. 2021, Sec. 4, Eqs. 24-30, Table 3, with the errata of docs/references.md.
     """
 
     area: np.ndarray
@@ -462,7 +505,9 @@ class CounterweightProperties(ResultMixin):
     inertia : Mass moment of inertia about the crank axis [kg m^2].
     outer_radius : True radial space: largest distance of the profile from the axis [m].
     radius_bound : The paper's R_min = h_R + l_c tan(delta) + R_cw [m] (Table 3).
-    overhang : l_c [m]; ``gamma``, ``lam``: intersection angles [rad] (Eqs. 24-25).
+    overhang : l_c [m].
+    gamma : Intersection angle gamma of the web circle and the rectangle [rad] (Eq. 25).
+    lam : Intersection angle lambda of the web circle and the chord [rad] (Eq. 24).
     area_green, area_blue, area_orange : Zone areas [m^2] (Eq. 26).
     hub_protrusion : True where the web circle reaches out through the segment's arc.
     balance : Achieved / required first moment [%] (only if a requirement was given).
@@ -598,8 +643,16 @@ def thickness_for_first_moment(
     ----------
     required_first_moment : float
         m_c r_c asked for by the balancing [kg m].
-    web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle : array_like
-        Profile parameters [m, rad].
+    web_radius : array_like
+        Radius r_cw of the base crank-web circle [m].
+    rectangle_height : array_like
+        Height h_R of the rectangle above the crank axis [m].
+    trapezoid_angle : array_like
+        Flank angle delta of the trapezoid [rad].
+    segment_radius : array_like
+        Radius R_cw of the circular segment [m].
+    segment_angle : array_like
+        Angle alpha subtended by the segment's arc at its centre [rad].
     density : float
         Material density rho [kg/m^3].
     balance : float
@@ -771,7 +824,13 @@ class CounterweightDesign(ResultMixin):
 
 @dataclass(frozen=True)
 class BoundaryLine:
-    """A straight piece of the profile boundary from ``start`` to ``end`` (x, y) [m]."""
+    """A straight piece of the profile boundary from ``start`` to ``end`` (x, y) [m].
+
+    Parameters
+    ----------
+    start, end : tuple of float
+        End points (x, y) [m], crank axis at the origin.
+    """
 
     start: tuple[float, float]
     end: tuple[float, float]
@@ -780,7 +839,19 @@ class BoundaryLine:
 @dataclass(frozen=True)
 class BoundaryArc:
     """A circular piece of the profile boundary: ``centre`` (x, y) [m], ``radius`` [m],
-    from ``start_angle`` to ``end_angle`` [rad], counter-clockwise if ``ccw``."""
+    from ``start_angle`` to ``end_angle`` [rad], counter-clockwise if ``ccw``.
+
+    Parameters
+    ----------
+    centre : tuple of float
+        Centre (x, y) of the circle [m].
+    radius : float
+        Radius of the circle [m].
+    start_angle, end_angle : float
+        Polar angles about ``centre`` where the arc starts and ends [rad].
+    ccw : bool
+        Whether the arc runs counter-clockwise from start to end.
+    """
 
     centre: tuple[float, float]
     radius: float

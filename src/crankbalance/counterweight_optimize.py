@@ -122,7 +122,8 @@ class OptimizationProgress:
     Attributes
     ----------
     iteration, n_iterations : Round just finished, and rounds asked for.
-    nfev : Designs evaluated so far. n_feasible : Feasible designs found so far.
+    nfev : Designs evaluated so far.
+    n_feasible : Feasible designs found so far.
     n_pareto : Designs on the current front.
     least_mass : Least feasible mass so far [kg] (None if none or mass is no objective).
     elapsed : Wall time since the start [s].
@@ -143,15 +144,58 @@ class CounterweightOptimum(ResultMixin):
 
     Attributes
     ----------
-    designs : (N, 6) array of every feasible design found, columns :data:`PARAMETERS` [SI].
-    mass, outer_radius, radius_bound, inertia, cg_radius, first_moment, balance :
-        Their properties [kg, m, m, kg m^2, m, kg m, %].
-    pareto : Indices of the Pareto-optimal designs (mass vs radial space, and inertia if
-        asked), sorted by radial space.
-    least_mass, least_radius : Indices of the least-mass and least-radius feasible designs.
-    x, fun : Parameters and mass of the least-mass design (as scipy's ``x`` and ``fun``).
-    radius_measure : ``"true"`` (largest distance of the profile from the axis) or
-        ``"paper"`` (the R_min bound of Table 3); used for the constraint and the front.
+    designs : ndarray, shape (N, 6)
+        Every feasible design found, columns :data:`PARAMETERS` [m or rad, per column].
+    mass : ndarray, shape (N,)
+        Mass of each design [kg].
+    outer_radius : ndarray, shape (N,)
+        Largest distance of the profile from the crank axis [m].
+    radius_bound : ndarray, shape (N,)
+        The paper's R_min bound (Table 3) [m].
+    inertia : ndarray, shape (N,)
+        Mass moment of inertia about the crank axis [kg m^2].
+    cg_radius : ndarray, shape (N,)
+        Distance of the centre of gravity from the crank axis [m].
+    first_moment : ndarray, shape (N,)
+        m_cw r_c [kg m].
+    balance : ndarray, shape (N,)
+        Achieved / required first moment [%].
+    pareto : ndarray of int
+        Indices of the Pareto-optimal designs (mass vs radial space, and inertia if
+        asked), sorted by radial space [-].
+    least_mass, least_radius : int
+        Indices of the least-mass and least-radius feasible designs.
+    x : ndarray, shape (6,)
+        Parameters of the least-mass design, as scipy's ``x`` [m or rad, per column].
+    fun : float
+        Its mass, as scipy's ``fun`` [kg].
+    nfev : int
+        Designs evaluated.
+    nit : int
+        Iterations (rounds) run.
+    success : bool
+        Whether the run succeeded (as scipy's ``success``).
+    message : str
+        How the run ended.
+    required_first_moment : float
+        First moment asked for [kg m].
+    density : float
+        Material density [kg/m^3].
+    free : tuple of str
+        Names of the parameters that were varied.
+    objectives : tuple of str
+        Names of the objectives minimised.
+    radius_measure : {"true", "paper"}
+        ``"true"`` (largest distance of the profile from the axis) or ``"paper"`` (the
+        R_min bound of Table 3); used for the constraint and the front.
+    elapsed : float
+        Wall time of the run [s].
+    parameter_names : tuple of str
+        Column names of ``designs`` and ``x``.
+
+    References
+    ----------
+    Appl. Sci. 2021, Sec. 4 (counterweight optimisation), Table 3.
     """
 
     designs: np.ndarray

@@ -462,10 +462,14 @@ PressureSource = WiebeCombustion | tuple[NDArray, NDArray]
 
 @dataclass(frozen=True)
 class CycleResult(ResultMixin):
-    """Result of :func:`engine_cycle` (arrays over the crank angle of one cycle).
+    r"""Result of :func:`engine_cycle` (arrays over the crank angle of one cycle).
 
     Attributes
     ----------
+    speed_mean : float
+        Mean crank speed the cycle is run at [rad/s].
+    strokes : int
+        Strokes per working cycle (2 or 4).
     angle : ndarray
         Crank angle of the first cylinder from its firing TDC [rad].
     pressure : ndarray, shape (cylinders, samples)
@@ -486,6 +490,23 @@ class CycleResult(ResultMixin):
         Constant brake torque that keeps the mean speed [N m].
     indicated_work, gas_work : float
         Closed-loop integral of p dV, and work of the gas torque over the cycle [J].
+    mean_friction_torque : float
+        Mean of ``friction_torque`` over the cycle [N m].
+    friction_power : float
+        ``mean_friction_torque`` times the mean speed [W].
+    peak_bearing_load, mean_bearing_load : float
+        Largest and mean ``bearing_load`` over all cylinders and angles [N].
+    peak_net_torque : float
+        Largest (signed) value of ``net_torque`` [N m].
+    max_crank_acceleration : float
+        Largest magnitude of ``crank_acceleration`` [rad/s^2].
+    speed_fluctuation : float
+        Cyclic irregularity :math:`(\omega_{max} - \omega_{min})/\omega_{mean}` [-].
+    peak_shaking_inline, peak_shaking_transverse : float
+        Largest magnitude of ``shaking_inline`` and ``shaking_transverse`` summed over the
+        cylinders [N].
+    peak_shaking_force : float
+        Largest magnitude of the resultant of those sums [N].
     """
 
     speed_mean: float
@@ -746,6 +767,8 @@ class SensitivityResult(ResultMixin):
 
     Attributes
     ----------
+    speed : float
+        Mean crank speed of every cycle [rad/s].
     balance_factors : ndarray
         Balance factors swept [-].
     mass_scales : ndarray

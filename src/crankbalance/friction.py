@@ -179,6 +179,11 @@ def friction_torque(
     journal_diameter : array_like
         Journal diameter :math:`d` [m].
 
+    Returns
+    -------
+    ndarray
+        Friction torque :math:`T` [N m], the broadcast shape of the arguments.
+
     References
     ----------
     Hoem and Røsholm (2016), Eqs. 4.10 and 4.12.
@@ -213,6 +218,11 @@ def unbalanced_friction_torque(
     method : {"approximate", "cubic", "arithmetic"}
         Mean equivalent load used (the thesis uses "approximate").
 
+    Returns
+    -------
+    ndarray
+        Mean friction torque :math:`T` [N m], the broadcast shape of the arguments.
+
     References
     ----------
     Hoem and Røsholm (2016), Eq. 4.12 with Eqs. 4.13, 4.14.
@@ -244,6 +254,11 @@ def friction_coefficient_from_torque(
         Journal diameter [m].
     method : {"approximate", "cubic", "arithmetic"}
         Mean equivalent load (the thesis uses "approximate").
+
+    Returns
+    -------
+    ndarray
+        Coulomb friction coefficient :math:`\mu` [-], the broadcast shape of the arguments.
 
     References
     ----------
@@ -278,6 +293,11 @@ def torque_from_transducer_voltage(
         Output at zero torque [V].
     volts_per_newton_metre : float
         Slope [V/(N m)].
+
+    Returns
+    -------
+    ndarray
+        Torque :math:`T` [N m], the shape of ``voltage``.
 
     References
     ----------
@@ -321,9 +341,15 @@ def petroff_torque(
     speed : array_like
         Shaft speed :math:`\omega` [rad/s].
 
+    Returns
+    -------
+    ndarray
+        Friction torque on the journal :math:`T` [N m], the broadcast shape of the
+        arguments; its sign follows ``speed``.
+
     References
     ----------
-    Petroff (1883); Heywood, Internal Combustion Engine Fundamentals, Sec. 13.4;
+    Petroff (1883); Heywood (1988) Sec. 13.4; Shigley (Budynas and Nisbett 2015) Eq. 12-6;
     Hoem and Røsholm (2016), Appendix A Eq. 7.2 with :math:`\varepsilon = 0`.
     """
     return journal_bearing_torque(
@@ -372,6 +398,12 @@ def journal_bearing_torque(
     attitude_angle : array_like
         Attitude angle :math:`\phi` [rad].
 
+    Returns
+    -------
+    ndarray
+        Friction torque on the journal :math:`T` [N m], the broadcast shape of the
+        arguments; its sign follows ``speed``.
+
     References
     ----------
     Hoem and Røsholm (2016), Appendix A Eq. 7.2 (after Heywood); the friction coefficient is Eq.
@@ -409,6 +441,11 @@ def squeeze_film_stiffness(load: ArrayLike, gap: ArrayLike) -> NDArray:
     gap : array_like
         Bearing/journal gap :math:`H` [m].
 
+    Returns
+    -------
+    ndarray
+        Squeeze-film stiffness :math:`k` [N/m], the broadcast shape of the arguments.
+
     References
     ----------
     Hoem and Røsholm (2016), Appendix A Eq. 7.4 (after Weston et al.).
@@ -444,6 +481,11 @@ def squeeze_film_damping(
         Bearing length :math:`L` [m].
     bearing_width : array_like
         Bearing width :math:`Z` [m].
+
+    Returns
+    -------
+    ndarray
+        Damping coefficient :math:`C_D` [N s/m], the broadcast shape of the arguments.
 
     References
     ----------
@@ -482,7 +524,12 @@ def rectangular_squeeze_film_damping(
     bearing_length, bearing_width : array_like
         Sides of the rectangle [m] (order does not matter).
     terms : int
-        Number of odd terms of the series.
+        Number of odd terms of the series (50 give a relative error below 1e-8).
+
+    Returns
+    -------
+    ndarray
+        Damping coefficient :math:`C` [N s/m], the broadcast shape of the arguments.
 
     References
     ----------

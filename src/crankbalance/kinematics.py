@@ -53,6 +53,13 @@ def piston_position(
     offset : array_like
         Lateral distance of the wrist-pin path from the crank axis [m].
 
+    Returns
+    -------
+    ndarray
+        Wrist-pin distance from the crank axis [m], the broadcast shape of the arguments.
+
+    Notes
+    -----
     .. math:: s = r\cos\psi + \sqrt{l^2 - (e - r\sin\psi)^2}
 
     References
@@ -72,8 +79,35 @@ def piston_velocity(
 ) -> NDArray:
     r"""Piston velocity along the cylinder axis [m/s] at constant crank speed [rad/s].
 
+    Parameters
+    ----------
+    angle : array_like
+        Crank angle from the cylinder axis [rad].
+    crank_radius : array_like
+        Crank throw radius [m].
+    rod_length : array_like
+        Conrod length, big-end to small-end centre [m].
+    offset : array_like
+        Lateral distance of the wrist-pin path from the crank axis [m].
+    speed : array_like
+        Crank speed [rad/s]; the default 1 gives the derivative with respect to the crank
+        angle, ``ds/dpsi`` [m/rad].
+
+    Returns
+    -------
+    ndarray
+        Piston velocity [m/s], the broadcast shape of the arguments; positive away from
+        the crank axis.
+
+    Notes
+    -----
     .. math:: \dot s = \omega\left(-r\sin\psi + \frac{u\,r\cos\psi}{q}\right),\quad
               u = e - r\sin\psi,\ q = \sqrt{l^2 - u^2}
+
+    References
+    ----------
+    The derivative of :func:`piston_position`; Hoem and Røsholm (2016) section 2.1 for
+    :math:`e = 0`.
     """
     psi, r, u, q = _rod_terms(angle, crank_radius, rod_length, offset)
     return np.asarray(speed) * (-r * np.sin(psi) + u * r * np.cos(psi) / q)
@@ -88,8 +122,35 @@ def piston_acceleration(
 ) -> NDArray:
     r"""Piston acceleration along the cylinder axis [m/s²] at constant crank speed.
 
+    Parameters
+    ----------
+    angle : array_like
+        Crank angle from the cylinder axis [rad].
+    crank_radius : array_like
+        Crank throw radius [m].
+    rod_length : array_like
+        Conrod length, big-end to small-end centre [m].
+    offset : array_like
+        Lateral distance of the wrist-pin path from the crank axis [m].
+    speed : array_like
+        Crank speed [rad/s]; the default 1 gives the derivative with respect to the crank
+        angle, ``d2s/dpsi2`` [m/rad²].
+
+    Returns
+    -------
+    ndarray
+        Piston acceleration [m/s²], the broadcast shape of the arguments; positive away
+        from the crank axis.
+
+    Notes
+    -----
     .. math:: \ddot s = \omega^2\left(-r\cos\psi - \frac{r^2\cos^2\psi + u\,r\sin\psi}{q}
               - \frac{(u\,r\cos\psi)^2}{q^3}\right)
+
+    References
+    ----------
+    The second derivative of :func:`piston_position`; Hoem and Røsholm (2016) section 2.1
+    for :math:`e = 0`.
     """
     psi, r, u, q = _rod_terms(angle, crank_radius, rod_length, offset)
     c = r * np.cos(psi)
@@ -160,6 +221,21 @@ def harmonic_coefficients(
 
 def series_coefficients(rod_ratio: ArrayLike) -> tuple[NDArray, NDArray, NDArray]:
     r"""Classical series coefficients :math:`A_2, A_4, A_6` of the piston inertia.
+
+    Parameters
+    ----------
+    rod_ratio : array_like
+        :math:`\lambda = r/l`, crank radius over conrod length [-], any shape.
+
+    Returns
+    -------
+    a2, a4, a6 : ndarray
+        Coefficients of the second, fourth and sixth order of the normalised piston inertia
+        :math:`-\ddot s/(r\omega^2)` [-], each of the shape of ``rod_ratio``.
+
+    Notes
+    -----
+    Zero wrist-pin offset, series truncated after :math:`\lambda^5`:
 
     .. math::
         A_2 = \lambda + \tfrac{\lambda^3}{4} + \tfrac{15\lambda^5}{128},\quad

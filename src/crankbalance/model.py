@@ -31,6 +31,32 @@ class ConrodSplit(ResultMixin):
     ``inertia_two_mass`` is the inertia about the CG the two point masses have,
     :math:`m\,d\,(l-d)`; ``inertia_error`` is that minus the real inertia, when the real
     one is given (None otherwise).
+
+    Parameters
+    ----------
+    cylinder : int
+        Number of the cylinder the conrod belongs to (1-based, docs/engine_file.md).
+    mass : float
+        Conrod mass [kg].
+    rotating : float
+        Mass at the big end, :math:`m\,(l-d)/l` [kg].
+    reciprocating : float
+        Mass at the small end, :math:`m\,d/l` [kg].
+    cg_from_big_end : float
+        :math:`d`, distance of the conrod's centre of gravity from the big-end centre [m].
+    inertia_two_mass : float
+        Moment of inertia of the two point masses about the centre of gravity,
+        :math:`m\,d\,(l-d)` [kg m^2].
+    inertia_given : float or None
+        Real moment of inertia of the conrod about its centre of gravity [kg m^2], None
+        when not given.
+    inertia_error : float or None
+        ``inertia_two_mass - inertia_given`` [kg m^2], None when the real inertia is not
+        given.
+
+    References
+    ----------
+    The two-mass equivalent conrod of machine-dynamics texts, e.g. Den Hartog (1956) ch. 5.
     """
 
     cylinder: int
@@ -49,6 +75,12 @@ class EngineModel:
 
     Attributes
     ----------
+    name : str
+        Engine name, for reports.
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model, see :func:`crankbalance.kinematics.harmonic_coefficients`.
+    strokes : int
+        Strokes per working cycle (2 or 4).
     crank_radius, rod_length, offset : float
         [m]; ``offset`` is crank offset plus wrist-pin offset.
     speed : float
@@ -60,6 +92,12 @@ class EngineModel:
         Index of the throw each cylinder sits on.
     cylinder_bank, reciprocating_mass : ndarray, shape (C,)
         [rad], [kg].
+    firing_order : tuple of int
+        Cylinder numbers (1-based) in firing order.
+    conrods : tuple of ConrodSplit
+        The two-mass split of each conrod given by its mass, empty when none is.
+    firing_order_given : bool
+        False when the spec gave no firing order and ``firing_order`` is the cylinder order.
     """
 
     name: str

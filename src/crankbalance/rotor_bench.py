@@ -216,7 +216,7 @@ class BenchSettings(ResultMixin):
     samples : int
         Number of time samples in the returned histories.
     rtol : float
-        Relative tolerance of ``solve_ivp``.
+        Relative tolerance of ``solve_ivp`` [-], in [1e-12, 1e-2].
     """
 
     speed: float
@@ -250,6 +250,8 @@ class BenchResult(ResultMixin):
 
     Attributes
     ----------
+    settings : BenchSettings
+        The run settings the result was computed with.
     required_torque : float
         Mean motor torque over the hold [N m] (Hoem and Røsholm 2016, Table 5.6).
     mean_friction_torque : float

@@ -41,10 +41,30 @@ from .results import ResultMixin
 
 @dataclass(frozen=True)
 class FreeForces(ResultMixin):
-    """Free forces and moments of one engine by order (phasors at crank angle 0).
+    r"""Free forces and moments of one engine by order (phasors at crank angle 0).
 
     Forces in N, couples in N·m, complex as :math:`z + i x` (see module docstring).
     ``force_forward[k]`` belongs to ``orders[k]``.
+
+    Parameters
+    ----------
+    orders : ndarray of int, shape (K,)
+        Harmonic orders 1..K of the reciprocating forces.
+    force_forward, force_backward : ndarray of complex, shape (K,)
+        Forward (co-rotating) and backward (counter-rotating) phasors :math:`F_n^{\pm}` of
+        the reciprocating inertia force, summed over the cylinders [N].
+    couple_forward, couple_backward : ndarray of complex, shape (K,)
+        The same phasors weighted by the axial position, :math:`C_n^{\pm} = \sum y F`,
+        about the crankshaft mid-point [N·m]; the moment vector is :math:`M = iC`.
+    rotating_force : complex
+        First-order forward phasor of the rotating masses [N].
+    rotating_couple : complex
+        Its couple about the crankshaft mid-point [N·m].
+
+    References
+    ----------
+    The phasor form of the matrix formulation of Appl. Sci. 2021; closed forms of the
+    free forces and moments in Den Hartog (1956) ch. 5 and Taylor (1985) ch. 8.
     """
 
     orders: NDArray[np.int64]
@@ -90,6 +110,13 @@ def free_forces(
     Returns
     -------
     FreeForces
+        Phasors of the reciprocating forces [N] and couples [N·m] by order, and of the
+        rotating masses.
+
+    References
+    ----------
+    Appl. Sci. 2021 (matrix formulation of the free forces and moments, any number of
+    cranks, in-line and V); Den Hartog (1956) ch. 5.
     """
     mode = kinematics or model.kinematics
     coeff = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius, mode)  # type: ignore[arg-type]
@@ -133,16 +160,23 @@ def reciprocating_phasors(
     Parameters
     ----------
     coefficients : array_like of complex, shape (..., K)
-        Harmonic coefficients :math:`c_n` of orders 1..K.
+        Harmonic coefficients :math:`c_n` of orders 1..K of the normalised piston
+        inertia [-].
     mass, throw_angle, bank, position : array_like, shape (..., C)
         Per cylinder: reciprocating mass [kg], throw angle [rad], bank angle [rad],
         axial position [m]. Pad absent cylinders of smaller engines with zero mass.
     crank_radius, speed : array_like, shape (...)
-        [m], [rad/s].
+        Crank radius [m] and crank speed [rad/s].
 
     Returns
     -------
     force_forward, force_backward, couple_forward, couple_backward : ndarray, shape (..., K)
+        Complex phasors :math:`F_n^{\pm}` [N] and :math:`C_n^{\pm}` [N·m] of each order.
+
+    References
+    ----------
+    Appl. Sci. 2021 (matrix formulation), written with rotating phasors as in the module
+    docstring.
     """
     c = np.asarray(coefficients)
     k = c.shape[-1]
@@ -185,7 +219,30 @@ def batch_amplitudes(
     """Force and moment amplitudes of many engines at once.
 
     Engine parameters have shape (E,), per-cylinder arrays (E, C) (pad smaller engines
-    with zero mass). Returns force amplitudes [N] and moment amplitudes [N·m], each (E, K).
+    with zero mass). Only the reciprocating masses are counted.
+
+    Parameters
+    ----------
+    crank_radius, rod_length : array_like, shape (E,)
+        Crank radius and conrod length [m].
+    speed : array_like, shape (E,)
+        Crank speed [rad/s].
+    mass, throw_angle, bank, position : array_like, shape (E, C)
+        Per cylinder: reciprocating mass [kg], throw angle [rad], bank angle [rad],
+        axial position from the crankshaft mid-point [m].
+    orders : int
+        Highest harmonic order K.
+    offset : array_like, shape (E,)
+        Crank offset plus wrist-pin offset [m].
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model, see :func:`crankbalance.kinematics.harmonic_coefficients`.
+
+    Returns
+    -------
+    force_amplitude : ndarray, shape (E, K)
+        :math:`|F_n^+| + |F_n^-|`, largest force of each order over a revolution [N].
+    moment_amplitude : ndarray, shape (E, K)
+        :math:`|C_n^+| + |C_n^-|`, largest moment of each order over a revolution [N·m].
     """
     r = np.asarray(crank_radius, dtype=float)
     coeff = harmonic_coefficients(
@@ -205,6 +262,26 @@ class Curves(ResultMixin):
 
     Arrays by order have shape (K, M); totals (M,). Components: ``fx``, ``fz`` and
     ``mx``, ``mz`` (moment about the crankshaft mid-point).
+
+    Parameters
+    ----------
+    angle : ndarray, shape (M,)
+        Crank angle of the first throw [rad].
+    orders : ndarray of int, shape (K,)
+        Harmonic orders of the rows of the per-order arrays.
+    fx, fz : ndarray, shape (K, M)
+        Reciprocating inertia force of each order, components x and z [N].
+    mx, mz : ndarray, shape (K, M)
+        Its moment about the crankshaft mid-point, components x and z [N·m].
+    total_fx, total_fz : ndarray, shape (M,)
+        Total reciprocating force [N]: exact time domain for the exact kinematics, the sum
+        of the orders otherwise.
+    total_mx, total_mz : ndarray, shape (M,)
+        Total reciprocating moment [N·m], as ``total_fx``.
+    rotating_fx, rotating_fz : ndarray, shape (M,)
+        Force of the rotating masses [N].
+    rotating_mx, rotating_mz : ndarray, shape (M,)
+        Moment of the rotating masses about the crankshaft mid-point [N·m].
     """
 
     angle: NDArray[np.float64]
@@ -226,7 +303,22 @@ class Curves(ResultMixin):
 def phasor_curve(
     forward: ArrayLike, backward: ArrayLike, orders: ArrayLike, angle: ArrayLike
 ) -> NDArray[np.complex128]:
-    r"""Evaluate :math:`F^+ e^{in\theta} + F^- e^{-in\theta}` for each order, shape (K, M)."""
+    r"""Evaluate :math:`F^+ e^{in\theta} + F^- e^{-in\theta}` for each order, shape (K, M).
+
+    Parameters
+    ----------
+    forward, backward : array_like of complex, shape (K,)
+        Forward and backward phasors of each order [N] or [N·m]; the curve has their unit.
+    orders : array_like, shape (K,)
+        Harmonic order n of each phasor [-].
+    angle : array_like, shape (M,)
+        Crank angle of the first throw :math:`\theta` [rad].
+
+    Returns
+    -------
+    ndarray of complex, shape (K, M)
+        :math:`z + i x` components of each order at each angle, in the unit of the phasors.
+    """
     n = np.asarray(orders, dtype=float)[:, None]
     theta = np.asarray(angle, dtype=float)[None, :]
     turn = np.exp(1j * n * theta)
@@ -239,6 +331,20 @@ def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = Non
     The total of the reciprocating forces is computed directly from the exact slider-crank
     motion when ``model.kinematics == "exact"`` (not as a sum of orders); for the series
     and first-order models it is the sum of the computed orders.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    forces : FreeForces
+        Its phasors, from :func:`free_forces`.
+    angle : array_like, optional
+        Crank angles of the first throw [rad]; default 720 points over one revolution.
+
+    Returns
+    -------
+    Curves
+        Forces [N] and moments [N·m] by order, total and of the rotating masses.
     """
     theta = (
         np.linspace(0, 2 * np.pi, 720, endpoint=False)
@@ -276,7 +382,19 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
     """Reciprocating inertia force and couple versus crank angle, straight from the exact
     slider-crank acceleration of every cylinder (no harmonic analysis).
 
-    Returns complex force :math:`F_z + iF_x` [N] and couple :math:`\\sum y F` [N·m], shape (M,).
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    angle : array_like, shape (M,)
+        Crank angles of the first throw [rad].
+
+    Returns
+    -------
+    force : ndarray of complex, shape (M,)
+        Reciprocating inertia force :math:`F_z + iF_x` summed over the cylinders [N].
+    couple : ndarray of complex, shape (M,)
+        Its couple :math:`\\sum y F` about the crankshaft mid-point [N·m].
     """
     theta = np.asarray(angle, dtype=float)[:, None]
     psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]

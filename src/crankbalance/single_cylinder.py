@@ -63,7 +63,25 @@ FaceOrientation = Literal["axial", "radial"]
 
 def check_balance_factor(value: float, field_name: str = "balance_factor") -> float:
     """Return ``value`` if it is a balance factor in :data:`BALANCE_FACTOR_RANGE`, else raise
-    :class:`~crankbalance.errors.InputError` naming ``field_name``."""
+    :class:`~crankbalance.errors.InputError` naming ``field_name``.
+
+    Parameters
+    ----------
+    value : float
+        Balance factor :math:`f_b` to check [-].
+    field_name : str
+        Name of the input it came from, used in the error message.
+
+    Returns
+    -------
+    float
+        ``value``, when it lies in [0, 2] [-].
+
+    Raises
+    ------
+    InputError
+        If ``value`` is not a finite number in :data:`BALANCE_FACTOR_RANGE`.
+    """
     low, high = BALANCE_FACTOR_RANGE
     return check_range(field_name, value, low, high)
 
@@ -95,6 +113,11 @@ def primary_force(reciprocating_mass: float, crank_radius: float, speed: float) 
         Crank throw radius [m].
     speed : float
         Crank speed [rad/s].
+
+    Returns
+    -------
+    float
+        :math:`P` [N].
 
     References
     ----------
@@ -140,6 +163,8 @@ def single_cylinder_forces(
     in_line, transverse : ndarray
         Forces along and across the cylinder axis [N].
 
+    Notes
+    -----
     .. math::
         F_i = -m_{rec}\ddot s - f_b m_{rec} r\omega^2\cos\theta,\qquad
         F_t = -f_b m_{rec} r\omega^2\sin\theta
@@ -188,6 +213,17 @@ def single_cylinder_forces(
 def first_order_peak_resultant(balance_factor: ArrayLike) -> NDArray:
     r"""Peak resultant of the first-order model over :math:`P` [-]: :math:`\max(f_b, |1-f_b|)`.
 
+    Parameters
+    ----------
+    balance_factor : array_like
+        :math:`f_b` [-], any shape.
+
+    Returns
+    -------
+    ndarray
+        Largest resultant shaking force over a revolution divided by
+        :math:`P = m_{rec} r \omega^2` [-], the shape of ``balance_factor``.
+
     References
     ----------
     Hoem and Røsholm (2016) Fig. 4.8 (least at :math:`f_b = 0.5`).
@@ -201,6 +237,24 @@ def counterweight_moment(
 ) -> float:
     r"""First moment the counterweight (webs included) must have [kg m].
 
+    Parameters
+    ----------
+    rotating_mass : float
+        :math:`m_{rot}`: crankpin + conrod big end + big-end bearing [kg].
+    reciprocating_mass : float
+        :math:`m_{rec}`: piston assembly + wrist pin + conrod small end [kg].
+    balance_factor : float
+        :math:`f_b` in [0, 2] [-].
+    crank_radius : float
+        :math:`r`: crank throw radius [m].
+
+    Returns
+    -------
+    float
+        :math:`m_{cw}\,r'` [kg m].
+
+    Notes
+    -----
     .. math:: m_{cw}\,r' = (m_{rot} + f_b\,m_{rec})\,r
 
     References
@@ -237,6 +291,13 @@ def balance_factor_from_mass_properties(
     reciprocating_mass : float
         :math:`m_{rec}`: piston assembly + wrist pin + conrod small end (+ bearing) [kg].
 
+    Returns
+    -------
+    float
+        :math:`f_b` [-] (not checked against :data:`BALANCE_FACTOR_RANGE`).
+
+    Notes
+    -----
     .. math:: f_b = \frac{m_{cw}\,r'/r - m_{rot}}{m_{rec}}
 
     References
@@ -259,6 +320,22 @@ def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: 
     With the bob-weight at the crank radius the crank runs smooth exactly when its
     counterweight has the target balance factor.
 
+    Parameters
+    ----------
+    rotating_mass : float
+        :math:`m_{rot}` [kg].
+    reciprocating_mass : float
+        :math:`m_{rec}` [kg].
+    balance_factor : float
+        Target :math:`f_b` in [0, 2] [-].
+
+    Returns
+    -------
+    float
+        :math:`m_{bob}` [kg].
+
+    Notes
+    -----
     .. math:: m_{bob} = m_{rot} + f_b\,m_{rec}
 
     References
@@ -272,7 +349,25 @@ def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: 
 
 
 def sum_parts(parts: dict[str, float], field_name: str = "parts") -> float:
-    """Sum named part masses [kg], refusing negative or non-finite entries."""
+    """Sum named part masses [kg], refusing negative or non-finite entries.
+
+    Parameters
+    ----------
+    parts : dict of str to float
+        Part name to mass [kg].
+    field_name : str
+        Prefix of the field named in the error message (``field_name.part``).
+
+    Returns
+    -------
+    float
+        Sum of the masses [kg].
+
+    Raises
+    ------
+    InputError
+        If a mass is negative or not finite.
+    """
     total = 0.0
     for name, mass in parts.items():
         total += _check_mass(f"{field_name}.{name}", mass)
@@ -357,6 +452,30 @@ def peak_resultant(
 ) -> float:
     r"""Largest magnitude of the residual shaking force over one revolution [N].
 
+    Parameters
+    ----------
+    balance_factor : float
+        :math:`f_b` [-].
+    reciprocating_mass : float
+        Reciprocating mass of the cylinder [kg].
+    crank_radius : float
+        Crank throw radius [m].
+    speed : float
+        Crank speed [rad/s].
+    rod_length : float, optional
+        Conrod length [m]; needed unless ``model="first-order"``.
+    offset : float
+        Lateral wrist-pin path offset [m]; must be 0 unless ``model="exact"``.
+    model : {"exact", "series", "first-order"}
+        Piston kinematics.
+
+    Returns
+    -------
+    float
+        Peak resultant force [N] (720-point grid, refined locally).
+
+    Notes
+    -----
     .. math:: \max_\theta \sqrt{F_i(\theta)^2 + F_t(\theta)^2}
 
     References
@@ -406,12 +525,15 @@ def balance_factor_study(
     samples : int
         Crank angles per revolution in the returned curves.
     sweep : sequence of float, optional
-        Balance factors of the sweep; default 0, 0.01, ..., 1.
+        Balance factors of the sweep [-], each in [0, 2]; default 0, 0.01, ..., 1.
 
     Returns
     -------
     BalanceFactorStudy
+        Curves for ``balance_factor``, the sweep and the optimum balance factor.
 
+    Notes
+    -----
     .. math::
         F_i = -m_{rec}\ddot s - f_b P\cos\theta,\quad F_t = -f_b P\sin\theta,\quad
         f_b^{*} = \arg\min_{f_b}\max_\theta |F|
@@ -763,7 +885,7 @@ def rebalance(
     tolerance : float
         Largest accepted residual unbalance [kg m], e.g. ISO 21940-11 :math:`U_{per}`.
     target_balance_factor : float, optional
-        :math:`f_b` wanted with the new parts, in [0, 2]; default: the crank's present
+        :math:`f_b` wanted with the new parts, in [0, 2] [-]; default: the crank's present
         (factory) factor.
     max_iterations : int
         Passes of steps 3-8 before giving up.
@@ -771,7 +893,10 @@ def rebalance(
     Returns
     -------
     RebalanceResult
+        The correction, its iterations, the residual [kg m] and the balance factor achieved.
 
+    Notes
+    -----
     .. math::
         (m_{cw}r')_{new} = (m_{rot} + f_b m_{rec})_{new}\,r,\quad
         m_u r_u = (m_{cw}r')_{old} - (m_{cw}r')_{new},\quad

@@ -147,17 +147,44 @@ GRADES: tuple[BalanceGrade, ...] = tuple(
 
 
 def grade_names() -> list[str]:
-    """Designations of all grades, e.g. ``["G 4000", ..., "G 0.4"]``."""
+    """Designations of all grades, e.g. ``["G 4000", ..., "G 0.4"]``.
+
+    Returns
+    -------
+    list of str
+        The designations of :data:`GRADES`, coarsest first.
+
+    References
+    ----------
+    ISO 21940-11:2016, table of balance quality grades.
+    """
     return [grade.name for grade in GRADES]
 
 
 def balance_grade(grade: str | float, field: str = "grade") -> BalanceGrade:
-    """Look a grade up by designation (``"G6.3"``, ``"G 6.3"``, ``"6.3"``) or number [mm/s].
+    r"""Look a grade up by designation (``"G6.3"``, ``"G 6.3"``, ``"6.3"``) or number [mm/s].
+
+    Parameters
+    ----------
+    grade : str or float
+        Designation, with or without ``G`` and blanks, or the number of the grade
+        :math:`e\,\Omega` [mm/s] (6.3 for G 6.3).
+    field : str
+        Name of the input the grade came from, used in the error message.
+
+    Returns
+    -------
+    BalanceGrade
+        The grade of :data:`GRADES` whose number matches (relative tolerance 1e-9).
 
     Raises
     ------
     InputError
         If the grade is not one of the standard's grades G 0.4 ... G 4000.
+
+    References
+    ----------
+    ISO 21940-11:2016, table of balance quality grades.
     """
     allowed = "must be one of " + ", ".join(name.replace(" ", "") for name in grade_names())
     if isinstance(grade, bool):
@@ -183,7 +210,7 @@ def permissible_unbalance(grade: str | float, rotor_mass: float, speed: float) -
     Parameters
     ----------
     grade : str or float
-        Balance quality grade: ``"G6.3"`` or the number in mm/s.
+        Balance quality grade: ``"G6.3"`` or the number of the grade [mm/s].
     rotor_mass : float
         Mass of the rotor [kg].
     speed : float
@@ -194,6 +221,8 @@ def permissible_unbalance(grade: str | float, rotor_mass: float, speed: float) -
     float
         :math:`U_{per}` [kg m] (multiply by 1e6 for g mm).
 
+    Notes
+    -----
     .. math:: U_{per} = \frac{G\,m}{\Omega}, \qquad
               U_{per}\,[\mathrm{g\,mm}] = \frac{1000\,G\,[\mathrm{mm/s}]\,m\,[\mathrm{kg}]}{\Omega}
 
@@ -209,7 +238,26 @@ def permissible_unbalance(grade: str | float, rotor_mass: float, speed: float) -
 
 
 def specific_unbalance(grade: str | float, speed: float) -> float:
-    r"""Permissible eccentricity of the centre of mass :math:`e_{per} = G/\Omega` [m]."""
+    r"""Permissible eccentricity of the centre of mass :math:`e_{per} = G/\Omega` [m].
+
+    Parameters
+    ----------
+    grade : str or float
+        Balance quality grade: ``"G6.3"`` or the number of the grade [mm/s].
+    speed : float
+        Largest service speed :math:`\Omega` [rad/s].
+
+    Returns
+    -------
+    float
+        :math:`e_{per}` [m], the permissible residual unbalance per unit rotor mass
+        [kg m/kg] (multiply by 1e6 for g mm/kg or µm).
+
+    References
+    ----------
+    ISO 21940-11:2016 (formerly ISO 1940-1), definition of the balance quality grade
+    :math:`G = e_{per}\,\Omega`.
+    """
     item = balance_grade(grade)
     check_positive("speed", speed)
     return item.value / speed
@@ -271,7 +319,10 @@ def allocate_to_planes(
     Returns
     -------
     PlaneAllocation
+        Bearing-plane shares and correction-plane tolerances [kg m].
 
+    Notes
+    -----
     .. math::
         U_{per,A} = U_{per}\,\mathrm{clip}\!\left(\tfrac{L_B}{L}, 0.3, 0.7\right),\quad
         U_{per,B} = U_{per} - U_{per,A}
@@ -350,7 +401,31 @@ class ToleranceVerdict(ResultMixin):
 
 
 def check_residual(residual: float, permissible: float) -> ToleranceVerdict:
-    """Compare a residual unbalance [kg m] with the permissible one [kg m]."""
+    """Compare a residual unbalance [kg m] with the permissible one [kg m].
+
+    Parameters
+    ----------
+    residual : float
+        Measured residual unbalance, a magnitude [kg m] (finite, >= 0).
+    permissible : float
+        Permissible residual unbalance [kg m], e.g. from :func:`permissible_unbalance` or
+        one plane of :func:`allocate_to_planes` (> 0).
+
+    Returns
+    -------
+    ToleranceVerdict
+        The ratio ``residual / permissible`` [-] and whether it is at most 1.
+
+    Raises
+    ------
+    InputError
+        If ``residual`` is negative or not finite, or ``permissible`` is not positive.
+
+    References
+    ----------
+    ISO 21940-11:2016: a rotor is within tolerance when its residual unbalance does not
+    exceed :math:`U_{per}`.
+    """
     if not (residual >= 0 and math.isfinite(residual)):
         raise InputError("residual", residual, "must be a finite unbalance >= 0 (a magnitude)")
     check_positive("permissible", permissible)
