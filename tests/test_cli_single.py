@@ -47,7 +47,7 @@ def test_balance_factor_json(capsys) -> None:
     )
     assert code == 0
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.balance_factor/1"
+    assert data["schema"] == "crankbalance.balance_factor/2"
     assert data["mass_properties"]["balance_factor"] == pytest.approx(0.6379, abs=1e-4)
     assert data["bob_weight"]["mass_kg"] == pytest.approx(0.28269 + 0.28 * 0.28212)
     study = data["study"]
@@ -129,7 +129,7 @@ def test_balance_factor_table(capsys) -> None:
         (["balance-factor", *CRF, "--speed", "1000 rpm", "--offset", "5 mm"], "offset"),
         (["balance-factor", *CRF, "--rod-length", "105 mm"], "rod_length"),
         (["balance-factor", *CRF, "--target", "0.3"], "target"),
-        (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "correction.diameter"),
+        (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "hole_diameter"),
         # the option at fault is named, not a derived quantity
         (["balance-factor", *CRF, "--rotating-mass", "282 g", "--target", "5"], "target"),
         (
@@ -242,10 +242,10 @@ def test_tolerance_json_and_list(capsys) -> None:
     )
     assert code == 0
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.tolerance/1"
-    assert data["permissible_unbalance_gmm"] == pytest.approx(10.69, abs=0.01)
+    assert data["schema"] == "crankbalance.tolerance/2"
+    assert data["permissible_unbalance_kg_m"] * 1e6 == pytest.approx(10.69, abs=0.01)
     assert data["verdict"]["passed"] is True
-    assert data["planes"]["plane_1"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
+    assert data["planes"]["plane_1_kg_m"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
     code, out, _ = run(capsys, ["tolerance", "--list"])
     assert code == 0 and "G 4000" in out and "G 0.4" in out
 

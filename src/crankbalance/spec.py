@@ -126,9 +126,13 @@ class CrankTrain(_Strict):
                 raise FieldProblem("cylinders", f"is required for layout '{self.layout}'")
             n = self.cylinders
             if self.layout in ("vee", "boxer") and n % 2:
-                raise FieldProblem("cylinders", f"a {self.layout} engine needs an even number of cylinders")
+                raise FieldProblem(
+                    "cylinders", f"a {self.layout} engine needs an even number of cylinders"
+                )
             if self.layout == "w" and n % 3:
-                raise FieldProblem("cylinders", "a W engine (three banks) needs a multiple of 3 cylinders")
+                raise FieldProblem(
+                    "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
+                )
             if self.layout == "radial" and n < 3:
                 raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
             if self.layout in ("vee", "w"):
@@ -143,7 +147,9 @@ class CrankTrain(_Strict):
                 raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
             throws = throw_count(self.layout, n)
             if throws > 1 and self.crank_pitch is None:
-                raise FieldProblem("crank_pitch", "is required for an engine with more than one throw")
+                raise FieldProblem(
+                    "crank_pitch", "is required for an engine with more than one throw"
+                )
             if self.crank_pitch is not None and self.crank_pitch <= 0:
                 raise FieldProblem("crank_pitch", "must be greater than zero")
             if self.throw_angles is not None and len(self.throw_angles) != throws:
@@ -242,15 +248,21 @@ class MassOverride(_MassFields):
     def _check_target(self) -> MassOverride:
         given = {k for k in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(self, k) is not None}
         if self.cylinders is None and self.throws is None:
-            raise FieldProblem("cylinders", "an override needs `cylinders = [...]` or `throws = [...]`")
+            raise FieldProblem(
+                "cylinders", "an override needs `cylinders = [...]` or `throws = [...]`"
+            )
         if self.cylinders is not None and self.throws is not None:
-            raise FieldProblem("throws", "an override takes either `cylinders` or `throws`, not both")
+            raise FieldProblem(
+                "throws", "an override takes either `cylinders` or `throws`, not both"
+            )
         if self.cylinders is not None and given & set(_THROW_FIELDS):
             bad = sorted(given & set(_THROW_FIELDS))
             raise FieldProblem(bad[0], "is a per-throw mass: override it with `throws = [...]`")
         if self.throws is not None and given & set(_CYLINDER_FIELDS):
             bad = sorted(given & set(_CYLINDER_FIELDS))
-            raise FieldProblem(bad[0], "is a per-cylinder mass: override it with `cylinders = [...]`")
+            raise FieldProblem(
+                bad[0], "is a per-cylinder mass: override it with `cylinders = [...]`"
+            )
         if not given:
             raise FieldProblem("cylinders", "an override must change at least one mass")
         return self
