@@ -48,7 +48,13 @@ def _target(value: Any) -> Any:
         return "factory"
     from ..single_cylinder import check_balance_factor
 
-    return check_balance_factor(parse_factor(value, ""), "")
+    try:
+        number = parse_factor(value, "")
+    except InputError:
+        raise InputError(
+            "", value, "must be a number such as 0.28, a percentage '28%' or 'factory'"
+        ) from None
+    return check_balance_factor(number, "")
 
 
 Target = Annotated[float | Literal["factory"], BeforeValidator(_target)]
