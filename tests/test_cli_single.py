@@ -47,7 +47,7 @@ def test_balance_factor_json(capsys) -> None:
     )
     assert code == 0
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.balance_factor/1"
+    assert data["schema"] == "crankbalance.balance_factor/2"
     assert data["mass_properties"]["balance_factor"] == pytest.approx(0.6379, abs=1e-4)
     assert data["bob_weight"]["mass_kg"] == pytest.approx(0.28269 + 0.28 * 0.28212)
     study = data["study"]
@@ -129,7 +129,7 @@ def test_balance_factor_table(capsys) -> None:
         (["balance-factor", *CRF, "--speed", "1000 rpm", "--offset", "5 mm"], "offset"),
         (["balance-factor", *CRF, "--rod-length", "105 mm"], "rod_length"),
         (["balance-factor", *CRF, "--target", "0.3"], "target"),
-        (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "correction.diameter"),
+        (["rebalance", "--parts", str(EXAMPLE), "--hole-diameter", "8 mm"], "hole_diameter"),
         # the option at fault is named, not a derived quantity
         (["balance-factor", *CRF, "--rotating-mass", "282 g", "--target", "5"], "target"),
         (
@@ -242,10 +242,10 @@ def test_tolerance_json_and_list(capsys) -> None:
     )
     assert code == 0
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.tolerance/1"
-    assert data["permissible_unbalance_gmm"] == pytest.approx(10.69, abs=0.01)
+    assert data["schema"] == "crankbalance.tolerance/2"
+    assert data["permissible_unbalance_kg_m"] * 1e6 == pytest.approx(10.69, abs=0.01)
     assert data["verdict"]["passed"] is True
-    assert data["planes"]["plane_1"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
+    assert data["planes"]["plane_1_kg_m"] * 1e6 == pytest.approx(10.686 / 2, abs=0.01)
     code, out, _ = run(capsys, ["tolerance", "--list"])
     assert code == 0 and "G 4000" in out and "G 0.4" in out
 
@@ -282,3 +282,42 @@ def test_rebalance_method_option_replaces_the_files_correction(capsys) -> None:
     assert code == 0, err
     cases = json.loads(out)["cases"]
     assert all(case["correction"]["kind"] == "holes" and case["passed"] for case in cases)
+
+
+@pytest.mark.parametrize(
+    "edit, field",
+    [
+        (('crankpin = "114.65 g"', 'crankpin = "114.65 N"'), "old.rotating.crankpin"),
+        (("area = ", "areas = "), "correction.areas"),
+        (('targets = [0.28, "factory"]', 'targets = [0.28, "fact"]'), "targets[1]"),
+        (('grade = "G6.3"', 'grade = "G6.3"\nunbalance = "5 g*mm"'), "tolerance.grade"),
+        (('mass = "2020.40 g"', 'mass = "0 g"'), "counterweight.mass"),
+    ],
+)
+def test_rebalance_file_errors_name_the_key(tmp_path, capsys, edit, field) -> None:
+    text = EXAMPLE.read_text(encoding="utf-8")
+    assert edit[0] in text
+    path = tmp_path / "parts.toml"
+    path.write_text(text.replace(edit[0], edit[1], 1), encoding="utf-8")
+    code, _, err = run(capsys, ["rebalance", "--parts", str(path)])
+    assert code == 2 and err.startswith(f"error: {field} = "), err
+
+
+def test_rebalance_file_bounded_read(tmp_path, capsys) -> None:
+    big = tmp_path / "big.toml"
+    big.write_text("#" * 1_000_001)
+    binary = tmp_path / "binary.toml"
+    binary.write_bytes(b"\xff\xfe\x00name")
+    for path, words in ((big, "larger than"), (binary, "UTF-8"), (tmp_path, "folder")):
+        code, _, err = run(capsys, ["rebalance", "--parts", str(path)])
+        assert code == 2 and err.startswith("error: parts = ") and words in err, err
+
+
+def test_rebalance_file_and_api_agree() -> None:
+    from crankbalance.io.rebalance_file import load_rebalance_file
+    from crankbalance.studies.rebalance import rebalance_parts
+
+    study = rebalance_parts(load_rebalance_file(EXAMPLE))
+    assert [case.target_balance_factor for case in study.cases][0] == 0.28
+    assert study.tolerance_source == "ISO 21940-11 G 6.3, 2.7 kg, 15200 rpm"
+    assert study.old.rotating_mass == pytest.approx(0.28269)

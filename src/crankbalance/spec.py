@@ -56,8 +56,9 @@ def _finite(value: Any) -> Any:
 Fraction = Annotated[float, BeforeValidator(_finite)]
 
 
-class _Bad(ValueError):
-    """A validation failure of one named field inside a model validator."""
+class FieldProblem(ValueError):
+    """A validation failure of one named field inside a model validator (``field`` is
+    relative to the model raising it, or dotted from the root when it contains a dot)."""
 
     def __init__(self, field: str, allowed: str) -> None:
         super().__init__(allowed)
@@ -100,59 +101,65 @@ class CrankTrain(_Strict):
     def _check(self) -> CrankTrain:
         r, l = self.crank_radius, self.rod_length
         if r <= 0:
-            raise _Bad("crank_radius", "must be greater than zero")
+            raise FieldProblem("crank_radius", "must be greater than zero")
         if l <= r + abs(self.pin_offset + self.crank_offset):
-            raise _Bad(
+            raise FieldProblem(
                 "rod_length",
                 "must exceed crank_radius plus the total offset "
                 f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)",
             )
         if self.layout == "custom":
             if not self.throw:
-                raise _Bad(
+                raise FieldProblem(
                     "throw", "layout 'custom' needs its throws as [[crank_train.throw]] tables"
                 )
             for key in ("throw_angles", "bank_angle"):
                 if getattr(self, key) is not None:
-                    raise _Bad(key, "is not used with layout 'custom' (give it per throw)")
+                    raise FieldProblem(key, "is not used with layout 'custom' (give it per throw)")
             count = sum(len(t.banks) for t in self.throw)
             if self.cylinders is not None and self.cylinders != count:
-                raise _Bad("cylinders", f"the throws carry {count} cylinders")
+                raise FieldProblem("cylinders", f"the throws carry {count} cylinders")
         else:
             if self.throw is not None:
-                raise _Bad("throw", "[[crank_train.throw]] tables need layout = 'custom'")
+                raise FieldProblem("throw", "[[crank_train.throw]] tables need layout = 'custom'")
             if self.cylinders is None:
-                raise _Bad("cylinders", f"is required for layout '{self.layout}'")
+                raise FieldProblem("cylinders", f"is required for layout '{self.layout}'")
             n = self.cylinders
             if self.layout in ("vee", "boxer") and n % 2:
-                raise _Bad("cylinders", f"a {self.layout} engine needs an even number of cylinders")
+                raise FieldProblem(
+                    "cylinders", f"a {self.layout} engine needs an even number of cylinders"
+                )
             if self.layout == "w" and n % 3:
-                raise _Bad("cylinders", "a W engine (three banks) needs a multiple of 3 cylinders")
+                raise FieldProblem(
+                    "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
+                )
             if self.layout == "radial" and n < 3:
-                raise _Bad("cylinders", "a radial engine needs at least 3 cylinders")
+                raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
             if self.layout in ("vee", "w"):
                 if self.bank_angle is None:
-                    raise _Bad("bank_angle", f"is required for layout '{self.layout}'")
+                    raise FieldProblem("bank_angle", f"is required for layout '{self.layout}'")
                 limit = 180.0 if self.layout == "vee" else 90.0
                 if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
-                    raise _Bad(
+                    raise FieldProblem(
                         "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
                     )
             elif self.bank_angle is not None:
-                raise _Bad("bank_angle", f"is not used with layout '{self.layout}'")
+                raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
             throws = throw_count(self.layout, n)
             if throws > 1 and self.crank_pitch is None:
-                raise _Bad("crank_pitch", "is required for an engine with more than one throw")
+                raise FieldProblem(
+                    "crank_pitch", "is required for an engine with more than one throw"
+                )
             if self.crank_pitch is not None and self.crank_pitch <= 0:
-                raise _Bad("crank_pitch", "must be greater than zero")
+                raise FieldProblem("crank_pitch", "must be greater than zero")
             if self.throw_angles is not None and len(self.throw_angles) != throws:
-                raise _Bad(
+                raise FieldProblem(
                     "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
                 )
         n_cyl = self.cylinder_count
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
-                raise _Bad(
+                raise FieldProblem(
                     "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
                 )
         return self
@@ -216,18 +223,18 @@ class _MassFields(_Strict):
         ):
             value = getattr(self, name)
             if value is not None and value < 0:
-                raise _Bad(name, "must not be negative")
+                raise FieldProblem(name, "must not be negative")
         if self.conrod is not None and self.conrod <= 0:
-            raise _Bad("conrod", "must be greater than zero")
+            raise FieldProblem("conrod", "must be greater than zero")
         if self.conrod_rotating_fraction is not None and self.conrod_cg_from_big_end is not None:
-            raise _Bad(
+            raise FieldProblem(
                 "conrod_cg_from_big_end",
                 "give conrod_rotating_fraction or conrod_cg_from_big_end, not both",
             )
         if self.conrod_cg_from_big_end is not None and self.conrod_cg_from_big_end < 0:
-            raise _Bad("conrod_cg_from_big_end", "must not be negative")
+            raise FieldProblem("conrod_cg_from_big_end", "must not be negative")
         if self.crank_web_cg_radius is not None and self.crank_web_cg_radius < 0:
-            raise _Bad("crank_web_cg_radius", "must not be negative")
+            raise FieldProblem("crank_web_cg_radius", "must not be negative")
         return self
 
 
@@ -241,17 +248,23 @@ class MassOverride(_MassFields):
     def _check_target(self) -> MassOverride:
         given = {k for k in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(self, k) is not None}
         if self.cylinders is None and self.throws is None:
-            raise _Bad("cylinders", "an override needs `cylinders = [...]` or `throws = [...]`")
+            raise FieldProblem(
+                "cylinders", "an override needs `cylinders = [...]` or `throws = [...]`"
+            )
         if self.cylinders is not None and self.throws is not None:
-            raise _Bad("throws", "an override takes either `cylinders` or `throws`, not both")
+            raise FieldProblem(
+                "throws", "an override takes either `cylinders` or `throws`, not both"
+            )
         if self.cylinders is not None and given & set(_THROW_FIELDS):
             bad = sorted(given & set(_THROW_FIELDS))
-            raise _Bad(bad[0], "is a per-throw mass: override it with `throws = [...]`")
+            raise FieldProblem(bad[0], "is a per-throw mass: override it with `throws = [...]`")
         if self.throws is not None and given & set(_CYLINDER_FIELDS):
             bad = sorted(given & set(_CYLINDER_FIELDS))
-            raise _Bad(bad[0], "is a per-cylinder mass: override it with `cylinders = [...]`")
+            raise FieldProblem(
+                bad[0], "is a per-cylinder mass: override it with `cylinders = [...]`"
+            )
         if not given:
-            raise _Bad("cylinders", "an override must change at least one mass")
+            raise FieldProblem("cylinders", "an override must change at least one mass")
         return self
 
 
@@ -270,20 +283,20 @@ class Masses(_MassFields):
         if self.reciprocating is None:
             missing = [k for k in parts_rec if getattr(self, k) is None]
             if missing:
-                raise _Bad(
+                raise FieldProblem(
                     missing[0],
                     "is required: give the parts (piston, wrist_pin, conrod) "
                     "or the total `reciprocating`",
                 )
         elif any(getattr(self, k) is not None for k in ("piston", "wrist_pin")):
-            raise _Bad(
+            raise FieldProblem(
                 "reciprocating",
                 "give either `reciprocating` or the parts piston/wrist_pin, not both",
             )
         if self.conrod is not None and (
             self.conrod_rotating_fraction is None and self.conrod_cg_from_big_end is None
         ):
-            raise _Bad(
+            raise FieldProblem(
                 "conrod", "needs its split: conrod_rotating_fraction or conrod_cg_from_big_end"
             )
         if self.rotating is None:
@@ -291,17 +304,17 @@ class Masses(_MassFields):
             if self.crank_web is not None and self.crank_web_cg_radius is None:
                 missing.append("crank_web_cg_radius")
             if missing:
-                raise _Bad(
+                raise FieldProblem(
                     missing[0],
                     "is required: give the parts (crankpin, crank_web, "
                     "crank_web_cg_radius) or the total `rotating`",
                 )
             if self.conrod is None:
-                raise _Bad(
+                raise FieldProblem(
                     "conrod", "is required with the rotating parts (its big end turns with the pin)"
                 )
         elif any(getattr(self, k) is not None for k in ("crankpin", "crank_web")):
-            raise _Bad(
+            raise FieldProblem(
                 "rotating", "give either `rotating` or the parts crankpin/crank_web, not both"
             )
         return self
@@ -328,11 +341,11 @@ class Counterweights(_Strict):
     @model_validator(mode="after")
     def _check(self) -> Counterweights:
         if self.cg_radius <= 0:
-            raise _Bad("cg_radius", "must be greater than zero")
+            raise FieldProblem("cg_radius", "must be greater than zero")
         if self.webs is not None and not any(self.webs):
-            raise _Bad("webs", "has no counterweight (all zeros)")
+            raise FieldProblem("webs", "has no counterweight (all zeros)")
         if self.web_offset is not None and self.web_offset < 0:
-            raise _Bad("web_offset", "must not be negative")
+            raise FieldProblem("web_offset", "must not be negative")
         return self
 
 
@@ -346,9 +359,9 @@ class ShaftSet(_Strict):
     @model_validator(mode="after")
     def _check(self) -> ShaftSet:
         if self.cg_radius <= 0:
-            raise _Bad("cg_radius", "must be greater than zero")
+            raise FieldProblem("cg_radius", "must be greater than zero")
         if self.length <= 0:
-            raise _Bad("length", "must be greater than zero")
+            raise FieldProblem("length", "must be greater than zero")
         return self
 
 
@@ -372,26 +385,26 @@ class EngineSpec(_Strict):
     @model_validator(mode="after")
     def _check(self) -> EngineSpec:
         if self.speed <= 0:
-            raise _Bad("speed", "must be greater than zero")
+            raise FieldProblem("speed", "must be greater than zero")
         ct = self.crank_train
         n_cyl = ct.cylinder_count
         n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl)
         for k, item in enumerate(self.masses.override):
             for number in item.cylinders or []:
                 if not 1 <= number <= n_cyl:
-                    raise _Bad(
+                    raise FieldProblem(
                         f"masses.override[{k}].cylinders",
                         f"cylinder {number} does not exist (1..{n_cyl})",
                     )
             for number in item.throws or []:
                 if not 1 <= number <= n_throw:
-                    raise _Bad(
+                    raise FieldProblem(
                         f"masses.override[{k}].throws",
                         f"throw {number} does not exist (1..{n_throw})",
                     )
         if self.counterweights is not None and self.counterweights.webs is not None:
             if len(self.counterweights.webs) != 2 * n_throw:
-                raise _Bad(
+                raise FieldProblem(
                     "counterweights.webs",
                     f"needs one entry per web: {2 * n_throw} for {n_throw} throws",
                 )
@@ -410,28 +423,35 @@ def spec_from_dict(data: Any) -> EngineSpec:
     try:
         return EngineSpec.model_validate(data)
     except ValidationError as error:
-        raise _input_error(error, data) from None
+        raise input_error(error, data) from None
 
 
-def _input_error(error: ValidationError, data: Any) -> InputError:
+def input_error(
+    error: ValidationError,
+    data: Any,
+    root: type[BaseModel] | None = None,
+    doc: str = "docs/engine_file.md",
+    source: str = "engine file",
+) -> InputError:
+    """The first problem of a pydantic validation of ``data`` against ``root`` (default
+    :class:`EngineSpec`) as an :class:`InputError` naming the dotted key as written in the
+    file, the value and what is allowed; ``doc`` is where the format is described."""
     first = error.errors(include_url=False)[0]
     loc = list(first["loc"])
     kind = first["type"]
     value = first.get("input")
     ctx = first.get("ctx") or {}
     inner = ctx.get("error")
-    if isinstance(inner, _Bad):
+    if isinstance(inner, FieldProblem):
         path = inner.field.split(".") if "." in inner.field and not loc else loc + [inner.field]
         return InputError(_dotted(path), _lookup(data, path), inner.allowed)
-    field = _dotted(loc) or "engine file"
+    field = _dotted(loc) or source
     if kind == "extra_forbidden":
-        parent = _model_at([str(p) for p in loc[:-1]])
-        allowed = (
-            ", ".join(parent.model_fields) if parent is not None else "see docs/engine_file.md"
-        )
+        parent = _model_at([str(p) for p in loc[:-1]], root or EngineSpec)
+        allowed = ", ".join(parent.model_fields) if parent is not None else f"see {doc}"
         return InputError(field, value, f"unknown key; allowed keys here: {allowed}")
     if kind == "missing":
-        return InputError(field, None, "is missing; it is required (see docs/engine_file.md)")
+        return InputError(field, None, f"is missing; it is required (see {doc})")
     if isinstance(inner, InputError):
         return InputError(field, inner.value, inner.allowed)
     if kind in ("literal_error", "enum"):
@@ -471,8 +491,8 @@ def _short_value(value: Any) -> Any:
     return value
 
 
-def _model_at(loc: list[str]) -> type[BaseModel] | None:
-    model: Any = EngineSpec
+def _model_at(loc: list[str], root: type[BaseModel]) -> type[BaseModel] | None:
+    model: Any = root
     for part in loc:
         if part.isdigit():
             continue

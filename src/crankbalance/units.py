@@ -23,6 +23,7 @@ _EXPONENT = re.compile(r"(\^|\*\*)\s*\(?-?\d+(\.\d+)?\)?")
 # kind -> (SI unit pint understands, unit used when writing a value back, example)
 KINDS: dict[str, tuple[str, str, str]] = {
     "length": ("m", "mm", "40 mm"),
+    "area": ("m**2", "mm**2", "2000 mm^2"),
     "mass": ("kg", "g", "500 g"),
     "angle": ("rad", "deg", "30 deg"),
     "speed": ("rad/s", "rpm", "2000 rpm"),
@@ -131,3 +132,27 @@ def format_quantity(value: float, kind: str, digits: int = 12) -> str:
         _SI_DISPLAY_FACTOR[kind] = factor
     shown = display.replace("**", "^")
     return f"{value * factor:.{digits}g} {shown}"
+
+
+def parse_factor(value: Any, field: str) -> float:
+    """A balance factor as written: ``0.28``, ``"0.28"`` or ``"28%"`` -> 0.28 (the range is
+    checked by :func:`crankbalance.single_cylinder.check_balance_factor`)."""
+    hint = "must be a number such as 0.28 or a percentage '28%'"
+    if isinstance(value, bool):
+        raise InputError(field, value, hint)
+    if isinstance(value, (int, float)):
+        number = float(value)
+    elif isinstance(value, str):
+        text = value.strip()
+        scale = 1.0
+        if text.endswith("%"):
+            text, scale = text[:-1].strip(), 0.01
+        try:
+            number = float(text) * scale
+        except ValueError:
+            raise InputError(field, value, hint) from None
+    else:
+        raise InputError(field, value, hint)
+    if not math.isfinite(number):
+        raise InputError(field, value, "must be a finite number")
+    return number

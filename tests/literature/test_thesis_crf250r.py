@@ -13,8 +13,9 @@ import pytest
 
 from crankbalance import single_cylinder as sc
 from crankbalance.cli import main
-from crankbalance.cli.single import load_rebalance_file, run_rebalance
+from crankbalance.io.rebalance_file import load_rebalance_file
 from crankbalance.rotor_bench import equal_inertia_test_rotor
+from crankbalance.studies.rebalance import rebalance_parts
 from crankbalance.tolerance import permissible_unbalance
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "crf250r_rebalance.toml"
@@ -64,16 +65,17 @@ def test_table_6_1_sums() -> None:
 
 def test_file_matches_table_6_1() -> None:
     spec = load_rebalance_file(EXAMPLE)
-    assert spec["old"]["rotating_mass"] == pytest.approx(0.28269), (
+    assert spec.old is not None and spec.new is not None
+    assert spec.old.rotating_total == pytest.approx(0.28269), (
         "Hoem and Røsholm (2016), Table 6.1 OEM m_rot"
     )
-    assert spec["old"]["reciprocating_mass"] == pytest.approx(0.28212), (
+    assert spec.old.reciprocating_total == pytest.approx(0.28212), (
         "Hoem and Røsholm (2016), Table 6.1"
     )
-    assert spec["new"]["rotating_mass"] == pytest.approx(0.24869), (
+    assert spec.new.rotating_total == pytest.approx(0.24869), (
         "Hoem and Røsholm (2016), Table 6.1 MXRR"
     )
-    assert spec["new"]["reciprocating_mass"] == pytest.approx(0.26150), (
+    assert spec.new.reciprocating_total == pytest.approx(0.26150), (
         "Hoem and Røsholm (2016), Table 6.1 MXRR"
     )
 
@@ -115,8 +117,7 @@ def test_appendix_e_test_rotor() -> None:
 
 
 def test_rebalance_cases_within_iso_tolerance() -> None:
-    spec = load_rebalance_file(EXAMPLE)
-    results = run_rebalance(spec, [0.28, "factory"])
+    results = rebalance_parts(load_rebalance_file(EXAMPLE), [0.28, "factory"]).cases
     u_per = 10.686e-6
     low, factory = results
     for res in results:
@@ -140,6 +141,6 @@ def test_cli_rebalance_file(capsys) -> None:
     import json
 
     payload = json.loads(capsys.readouterr().out)
-    assert payload["schema"] == "crankbalance.rebalance/1"
+    assert payload["schema"] == "crankbalance.rebalance/2"
     assert [case["passed"] for case in payload["cases"]] == [True, True]
-    assert payload["tolerance"]["unbalance_kgm"] * 1e6 == pytest.approx(10.69, abs=0.01)
+    assert payload["tolerance"]["unbalance_kg_m"] * 1e6 == pytest.approx(10.69, abs=0.01)

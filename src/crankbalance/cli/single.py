@@ -8,7 +8,6 @@ from __future__ import annotations
 
 import json
 import math
-import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -16,7 +15,7 @@ import click
 
 from ..errors import InputError, check_positive
 from ..units import format_quantity as _format_quantity
-from ..units import parse_quantity, registry
+from ..units import parse_factor, parse_quantity
 from ._common import format_table
 
 FORMATS = click.Choice(["table", "json"])
@@ -33,43 +32,6 @@ BALANCE_FACTOR_NOTE = (
 
 def _q(text: Any, kind: str, field: str) -> float | None:
     return None if text is None else parse_quantity(text, kind, field)
-
-
-def parse_factor(value: Any, field: str) -> float:
-    """A balance factor: ``0.28``, ``"0.28"`` or ``"28%"`` -> 0.28 (range checked later)."""
-    if isinstance(value, bool):
-        raise InputError(field, value, "must be a number such as 0.28 or a percentage '28%'")
-    if isinstance(value, (int, float)):
-        number = float(value)
-    else:
-        text = str(value).strip()
-        scale = 1.0
-        if text.endswith("%"):
-            text, scale = text[:-1].strip(), 0.01
-        try:
-            number = float(text) * scale
-        except ValueError:
-            raise InputError(
-                field, value, "must be a number such as 0.28 or a percentage '28%'"
-            ) from None
-    if not math.isfinite(number):
-        raise InputError(field, value, "must be a finite number")
-    return number
-
-
-def parse_area(value: Any, field: str) -> float:
-    """An area string (``"2157 mm^2"``) -> m^2."""
-    if not isinstance(value, str):
-        raise InputError(field, value, "must be an area with a unit, e.g. '2000 mm^2'")
-    ureg = registry()
-    try:
-        quantity = ureg.Quantity(value.strip().replace("^", "**"))
-        area = float(quantity.to("m**2").magnitude)
-    except Exception:
-        raise InputError(field, value, "must be an area with a unit, e.g. '2000 mm^2'") from None
-    if not (area > 0 and math.isfinite(area)):
-        raise InputError(field, value, "must be a positive area")
-    return area
 
 
 def _echo_json(payload: dict[str, Any]) -> None:
@@ -158,13 +120,17 @@ def balance_factor(
     w = _q(speed, "speed", "speed")
     e = _q(offset, "length", "offset") or 0.0
     if engine is not None:
-        eng = _engine_cylinder(engine, cylinder)
-        m_rec = eng["reciprocating_mass"] if m_rec is None else m_rec
-        r = eng["crank_radius"] if r is None else r
-        l_rod = eng["rod_length"] if l_rod is None else l_rod
-        w = eng["speed"] if w is None else w
-        e = eng["offset"] if offset is None else e
-        m_rot = eng["rotating_mass"] if m_rot is None else m_rot
+        from ..io.engine_file import load_engine
+        from ..studies.build import build_model
+        from ..studies.cylinder import cylinder_of
+
+        one = cylinder_of(build_model(load_engine(engine)), cylinder)
+        m_rec = one.reciprocating_mass if m_rec is None else m_rec
+        r = one.crank_radius if r is None else r
+        l_rod = one.rod_length if l_rod is None else l_rod
+        w = one.speed if w is None else w
+        e = one.offset if offset is None else e
+        m_rot = one.rotating_mass if m_rot is None else m_rot
     if m_rec is None:
         raise InputError("reciprocating_mass", None, "is required, e.g. '282.12 g'")
     if r is None:
@@ -199,7 +165,7 @@ def balance_factor(
             "counterweight_radius_m": r_cw,
             "rotating_mass_kg": m_rot,
             "balance_factor": fb_crank,
-            "counterweight_moment_kgm": m_cw * r_cw,
+            "counterweight_moment_kg_m": m_cw * r_cw,
         }
     if balance_factor is not None:
         fb = sc.check_balance_factor(parse_factor(balance_factor, "balance_factor"))
@@ -235,7 +201,7 @@ def balance_factor(
             model=model,  # type: ignore[arg-type]
         )
     payload: dict[str, Any] = {
-        "schema": "crankbalance.balance_factor/1",
+        "schema": "crankbalance.balance_factor/2",
         "definition": BALANCE_FACTOR_NOTE,
         "balance_factor": fb,
         "reciprocating_mass_kg": m_rec,
@@ -273,7 +239,7 @@ def balance_factor(
             ("balance factor of the crank (Eq. 6.2)", f"{mass_properties['balance_factor']:.4f}")
         )
         rows.append(
-            ("counterweight moment m_cw r'", _gmm(mass_properties["counterweight_moment_kgm"]))
+            ("counterweight moment m_cw r'", _gmm(mass_properties["counterweight_moment_kg_m"]))
         )
     if bob is not None:
         rows.append((f"bob-weight for f_b = {fb_target:.4f}", format_quantity(bob, "mass")))
@@ -291,269 +257,9 @@ def balance_factor(
     click.echo(f"({BALANCE_FACTOR_NOTE})")
 
 
-def _engine_cylinder(engine: str, cylinder: int) -> dict[str, float]:
-    """Single-cylinder data of one cylinder of an engine file (needs crankbalance.io/model)."""
-    try:
-        from ..io.engine_file import load_engine
-        from ..studies.build import build_model
-    except ImportError:
-        raise InputError(
-            "engine",
-            engine,
-            "engine files are not available in this "
-            "version; give the masses and geometry as options",
-        ) from None
-    model = build_model(load_engine(engine))
-    count = len(model.reciprocating_mass)
-    if not 1 <= cylinder <= count:
-        raise InputError("cylinder", cylinder, f"must lie between 1 and {count}")
-    k = cylinder - 1
-    throw = int(model.cylinder_throw[k])
-    sharing = sum(1 for t in model.cylinder_throw if int(t) == throw)
-    return {
-        "reciprocating_mass": float(model.reciprocating_mass[k]),
-        "crank_radius": float(model.crank_radius),
-        "rod_length": float(model.rod_length),
-        "speed": float(model.speed),
-        "offset": float(model.offset),
-        # rotating mass of the throw shared among the rods on its pin
-        "rotating_mass": float(model.throw_rotating_mass[throw]) / sharing,
-    }
-
-
 # ---------------------------------------------------------------------------------------
 # rebalance
 # ---------------------------------------------------------------------------------------
-
-_TOP_KEYS = {
-    "name",
-    "crank_radius",
-    "targets",
-    "counterweight",
-    "old",
-    "new",
-    "correction",
-    "tolerance",
-}
-_PART_KEYS = {"label", "rotating", "reciprocating", "rotating_mass", "reciprocating_mass"}
-_CW_KEYS = {"mass", "cg_radius"}
-_CORRECTION_KEYS = {
-    "method",
-    "radius",
-    "area",
-    "orientation",
-    "diameter",
-    "number",
-    "direction",
-    "webs",
-    "density",
-    "depth_resolution",
-}
-_TOL_KEYS = {"grade", "rotor_mass", "speed", "unbalance"}
-#: [correction] keys that belong to one method only
-_METHOD_KEYS = {"face": ("area", "orientation"), "holes": ("diameter", "number", "direction")}
-
-
-def _check_keys(table: Any, allowed: set[str], where: str) -> dict[str, Any]:
-    if not isinstance(table, dict):
-        raise InputError(where, table, "must be a table")
-    for key in table:
-        if key not in allowed:
-            raise InputError(
-                f"{where}.{key}" if where else key,
-                table[key],
-                f"unknown key; allowed: {', '.join(sorted(allowed))}",
-            )
-    return table
-
-
-def _masses(table: dict[str, Any], where: str) -> tuple[float, float, str, dict[str, Any]]:
-    from ..single_cylinder import sum_parts
-
-    _check_keys(table, _PART_KEYS, where)
-    out: dict[str, Any] = {}
-    totals = []
-    for kind in ("rotating", "reciprocating"):
-        if f"{kind}_mass" in table:
-            totals.append(parse_quantity(table[f"{kind}_mass"], "mass", f"{where}.{kind}_mass"))
-        elif kind in table:
-            parts = {
-                name: parse_quantity(text, "mass", f"{where}.{kind}.{name}")
-                for name, text in _check_keys(
-                    table[kind], set(table[kind]), f"{where}.{kind}"
-                ).items()
-            }
-            out[kind] = parts
-            totals.append(sum_parts(parts, f"{where}.{kind}"))
-        else:
-            raise InputError(
-                f"{where}.{kind}", None, f"give [{where}.{kind}] part masses or {kind}_mass"
-            )
-    return totals[0], totals[1], str(table.get("label", where)), out
-
-
-def load_rebalance_file(path: str | Path) -> dict[str, Any]:
-    """Read a rebalancing TOML file into SI values (see ``examples/crf250r_rebalance.toml``)."""
-    try:
-        data = tomllib.loads(Path(path).read_text(encoding="utf-8"))
-    except FileNotFoundError:
-        raise InputError("parts", str(path), "file not found") from None
-    except (tomllib.TOMLDecodeError, UnicodeDecodeError) as error:
-        raise InputError("parts", str(path), f"is not valid TOML: {error}") from None
-    _check_keys(data, _TOP_KEYS, "")
-    out: dict[str, Any] = {"name": data.get("name", Path(path).stem)}
-    if "crank_radius" in data:
-        out["crank_radius"] = parse_quantity(data["crank_radius"], "length", "crank_radius")
-    if "targets" in data:
-        targets = data["targets"]
-        out["targets"] = targets if isinstance(targets, list) else [targets]
-    if "counterweight" in data:
-        cw = _check_keys(data["counterweight"], _CW_KEYS, "counterweight")
-        if "mass" in cw:
-            out["cw_mass"] = parse_quantity(cw["mass"], "mass", "counterweight.mass")
-        if "cg_radius" in cw:
-            out["cw_radius"] = parse_quantity(cw["cg_radius"], "length", "counterweight.cg_radius")
-    for side in ("old", "new"):
-        if side in data:
-            rot, rec, label, parts = _masses(data[side], side)
-            out[side] = {
-                "rotating_mass": rot,
-                "reciprocating_mass": rec,
-                "label": label,
-                "parts": parts,
-            }
-    if "correction" in data:
-        out["correction"] = dict(_check_keys(data["correction"], _CORRECTION_KEYS, "correction"))
-    if "tolerance" in data:
-        out["tolerance"] = dict(_check_keys(data["tolerance"], _TOL_KEYS, "tolerance"))
-    return out
-
-
-def build_correction(spec: dict[str, Any]) -> Any:
-    """DrilledHoles or FaceRemoval from a ``[correction]`` table of unit strings."""
-    from ..single_cylinder import STEEL_DENSITY, DrilledHoles, FaceRemoval
-
-    method = spec.get("method", "face")
-    if "radius" not in spec:
-        raise InputError(
-            "correction.radius", None, "is required: radius of the correction, e.g. '40 mm'"
-        )
-    radius = parse_quantity(spec["radius"], "length", "correction.radius")
-    density = (
-        parse_quantity(spec["density"], "density", "correction.density")
-        if "density" in spec
-        else STEEL_DENSITY
-    )
-    resolution = (
-        parse_quantity(spec["depth_resolution"], "length", "correction.depth_resolution")
-        if "depth_resolution" in spec
-        else 1e-6
-    )
-    webs = spec.get("webs", 2)
-    other = [key for name, keys in _METHOD_KEYS.items() if name != method for key in keys]
-    for key in other:
-        if key in spec:
-            raise InputError(
-                f"correction.{key}",
-                spec[key],
-                f"does not apply to method {method!r}; remove it or set the "
-                "method (--method face|holes)",
-            )
-    if method == "face":
-        if "area" not in spec:
-            raise InputError(
-                "correction.area", None, "is required for method 'face', e.g. '2000 mm^2'"
-            )
-        return FaceRemoval(
-            area=parse_area(spec["area"], "correction.area"),
-            radius=radius,
-            orientation=spec.get("orientation", "radial"),
-            webs=webs,
-            density=density,
-            depth_resolution=resolution,
-        )
-    if method == "holes":
-        if "diameter" not in spec:
-            raise InputError(
-                "correction.diameter", None, "is required for method 'holes', e.g. '8 mm'"
-            )
-        return DrilledHoles(
-            diameter=parse_quantity(spec["diameter"], "length", "correction.diameter"),
-            radius=radius,
-            number=spec.get("number", 1),
-            direction=spec.get("direction", "axial"),
-            webs=webs,
-            density=density,
-            depth_resolution=resolution,
-        )
-    raise InputError("correction.method", method, "must be 'face' or 'holes'")
-
-
-def tolerance_from_spec(spec: dict[str, Any]) -> tuple[float, str]:
-    """Permissible residual unbalance [kg m] from ``[tolerance]`` (grade or unbalance)."""
-    from ..tolerance import balance_grade, permissible_unbalance
-
-    if "unbalance" in spec:
-        value = parse_quantity(spec["unbalance"], "unbalance", "tolerance.unbalance")
-        return value, "given"
-    missing = [k for k in ("grade", "rotor_mass", "speed") if k not in spec]
-    if missing:
-        raise InputError(
-            f"tolerance.{missing[0]}",
-            None,
-            "give tolerance.unbalance, or grade, rotor_mass and speed",
-        )
-    grade = balance_grade(spec["grade"], "tolerance.grade")
-    mass = parse_quantity(spec["rotor_mass"], "mass", "tolerance.rotor_mass")
-    speed = parse_quantity(spec["speed"], "speed", "tolerance.speed")
-    return permissible_unbalance(grade.name, mass, speed), (
-        f"ISO 21940-11 {grade.name}, {spec['rotor_mass']}, {spec['speed']}"
-    )
-
-
-def run_rebalance(spec: dict[str, Any], targets: list[Any]) -> list[Any]:
-    """Rebalance for each target (a number, a percentage or ``"factory"``)."""
-    from ..single_cylinder import rebalance
-
-    for key, hint in (
-        ("crank_radius", "'26.9 mm'"),
-        ("cw_mass", "'2020.40 g'"),
-        ("cw_radius", "'6.16 mm'"),
-    ):
-        if key not in spec:
-            raise InputError(key, None, f"is required, e.g. {hint}")
-    for side in ("old", "new"):
-        if side not in spec:
-            raise InputError(
-                side,
-                None,
-                f"the {side} parts are required ([{side}] table "
-                f"or --{side}-rotating-mass/--{side}-reciprocating-mass)",
-            )
-    correction = build_correction(spec.get("correction", {}))
-    tol, _source = tolerance_from_spec(spec.get("tolerance", {}))
-    results = []
-    for target in targets or ["factory"]:
-        fb = (
-            None
-            if isinstance(target, str) and target.strip().lower() == "factory"
-            else parse_factor(target, "target")
-        )
-        results.append(
-            rebalance(
-                spec["old"]["rotating_mass"],
-                spec["old"]["reciprocating_mass"],
-                spec["new"]["rotating_mass"],
-                spec["new"]["reciprocating_mass"],
-                spec["cw_mass"],
-                spec["cw_radius"],
-                spec["crank_radius"],
-                correction,
-                tol,
-                target_balance_factor=fb,
-            )
-        )
-    return results
 
 
 @click.command("rebalance")
@@ -624,78 +330,101 @@ def rebalance_command(
 
     Options override the values of the --parts file.
     """
-    spec: dict[str, Any] = load_rebalance_file(parts_file) if parts_file else {"name": "options"}
-    if crank_radius:
-        spec["crank_radius"] = parse_quantity(crank_radius, "length", "crank_radius")
-    if cw_mass:
-        spec["cw_mass"] = parse_quantity(cw_mass, "mass", "cw_mass")
-    if cw_radius:
-        spec["cw_radius"] = parse_quantity(cw_radius, "length", "cw_radius")
+    from ..io.rebalance_file import METHOD_KEYS, read_rebalance_data, rebalance_file_from_dict
+    from ..studies.rebalance import rebalance_parts
+
+    data: dict[str, Any] = {}
+    source = "parts"
+    if parts_file:
+        data = read_rebalance_data(parts_file)
+        data.setdefault("name", Path(parts_file).stem)
+        source = str(parts_file)
+        rebalance_file_from_dict(data, source)  # the file's own errors name its keys
+    else:
+        data["name"] = "options"
+    # options override the file: set them at their key of the file, remember the option
+    origin: dict[str, str] = {}
+
+    def put(key: str, value: Any, option: str) -> None:
+        if value is None or value == "":
+            return
+        *tables, last = key.split(".")
+        table = data
+        for name in tables:
+            table = table.setdefault(name, {})
+        table[last] = value
+        origin[key] = option
+
+    put("crank_radius", crank_radius, "crank_radius")
+    put("counterweight.mass", cw_mass, "cw_mass")
+    put("counterweight.cg_radius", cw_radius, "cw_radius")
     for side, rot, rec in (
         ("old", old_rotating_mass, old_reciprocating_mass),
         ("new", new_rotating_mass, new_reciprocating_mass),
     ):
-        entry = spec.setdefault(side, {"label": side}) if (rot or rec or side in spec) else None
-        if entry is None:
-            continue
-        if rot:
-            entry["rotating_mass"] = parse_quantity(rot, "mass", f"{side}_rotating_mass")
-        if rec:
-            entry["reciprocating_mass"] = parse_quantity(rec, "mass", f"{side}_reciprocating_mass")
-        for key in ("rotating_mass", "reciprocating_mass"):
-            if key not in entry:
-                raise InputError(f"{side}_{key}", None, "is required (option or file)")
-    corr = spec.setdefault("correction", {})
+        for kind, value in (("rotating", rot), ("reciprocating", rec)):
+            if value:
+                data.get(side, {}).pop(kind, None)  # the total replaces the file's parts
+                put(f"{side}.{kind}_mass", value, f"{side}_{kind}_mass")
+    if targets:
+        put("targets", list(targets), "target")
+    corr = data.get("correction", {})
     if method is not None and method != corr.get("method", "face"):
         # --method switches the file's correction: its keys of the other method no longer apply
-        for key in _METHOD_KEYS[corr.get("method", "face")]:
+        for key in METHOD_KEYS[corr.get("method", "face")]:
             corr.pop(key, None)
-    for key, value in (
-        ("method", method),
-        ("radius", correction_radius),
-        ("area", face_area),
-        ("orientation", face_orientation),
-        ("diameter", hole_diameter),
-        ("number", holes),
-        ("direction", hole_direction),
-        ("density", density),
-        ("depth_resolution", depth_resolution),
-    ):
-        if value is not None:
-            corr[key] = value
-    tol = spec.setdefault("tolerance", {})
+    corrections: tuple[tuple[str, Any, str], ...] = (
+        ("method", method, "method"),
+        ("radius", correction_radius, "correction_radius"),
+        ("area", face_area, "face_area"),
+        ("orientation", face_orientation, "face_orientation"),
+        ("diameter", hole_diameter, "hole_diameter"),
+        ("number", holes, "holes"),
+        ("direction", hole_direction, "hole_direction"),
+        ("density", density, "density"),
+        ("depth_resolution", depth_resolution, "depth_resolution"),
+    )
+    for key, given, option in corrections:
+        put(f"correction.{key}", given, option)
     if tolerance_text:
-        tol.clear()
-        tol["unbalance"] = tolerance_text
-    for key, value in (("grade", grade), ("rotor_mass", rotor_mass), ("speed", speed)):
-        if value is not None:
-            tol.pop("unbalance", None)
-            tol[key] = value
-    tolerance_value, tolerance_source = tolerance_from_spec(tol)
-    target_list = list(targets) or spec.get("targets", ["factory"])
-    results = run_rebalance(spec, target_list)
+        data["tolerance"] = {}
+        put("tolerance.unbalance", tolerance_text, "tolerance")
+    for key, text in (("grade", grade), ("rotor_mass", rotor_mass), ("speed", speed)):
+        if text is not None:
+            data.get("tolerance", {}).pop("unbalance", None)
+            put(f"tolerance.{key}", text, key)
+    try:
+        study = rebalance_parts(rebalance_file_from_dict(data, source))
+    except InputError as error:
+        named = origin.get(error.field.split("[")[0])
+        if named is None:
+            raise
+        raise InputError(named, error.value, error.allowed) from None
     if fmt == "json":
         _echo_json(
             {
-                "schema": "crankbalance.rebalance/1",
-                "name": spec["name"],
+                "schema": "crankbalance.rebalance/2",
+                "name": study.name,
                 "definition": BALANCE_FACTOR_NOTE,
-                "tolerance": {"unbalance_kgm": tolerance_value, "source": tolerance_source},
-                "old": spec["old"],
-                "new": spec["new"],
-                "cases": [res.to_dict() for res in results],
+                "tolerance": {
+                    "unbalance_kg_m": study.tolerance,
+                    "source": study.tolerance_source,
+                },
+                "old": _parts_json(study.old),
+                "new": _parts_json(study.new),
+                "cases": [_case_json(res) for res in study.cases],
             }
         )
         return
-    click.echo(f"{spec['name']}")
+    click.echo(study.name)
     click.echo(
-        f"old parts: m_rot = {format_quantity(spec['old']['rotating_mass'], 'mass')}, "
-        f"m_rec = {format_quantity(spec['old']['reciprocating_mass'], 'mass')}; "
-        f"new parts: m_rot = {format_quantity(spec['new']['rotating_mass'], 'mass')}, "
-        f"m_rec = {format_quantity(spec['new']['reciprocating_mass'], 'mass')}"
+        f"old parts: m_rot = {format_quantity(study.old.rotating_mass, 'mass')}, "
+        f"m_rec = {format_quantity(study.old.reciprocating_mass, 'mass')}; "
+        f"new parts: m_rot = {format_quantity(study.new.rotating_mass, 'mass')}, "
+        f"m_rec = {format_quantity(study.new.reciprocating_mass, 'mass')}"
     )
-    click.echo(f"tolerance: {_gmm(tolerance_value)} ({tolerance_source})")
-    for res in results:
+    click.echo(f"tolerance: {_gmm(study.tolerance)} ({study.tolerance_source})")
+    for res in study.cases:
         click.echo("")
         click.echo(
             f"target f_b = {res.target_balance_factor:.4f} (crank now "
@@ -735,6 +464,65 @@ def rebalance_command(
     click.echo(f"({BALANCE_FACTOR_NOTE})")
 
 
+def _parts_json(side: Any) -> dict[str, Any]:
+    return {
+        "label": side.label,
+        "rotating_mass_kg": side.rotating_mass,
+        "reciprocating_mass_kg": side.reciprocating_mass,
+        "rotating_parts_kg": side.rotating_parts,
+        "reciprocating_parts_kg": side.reciprocating_parts,
+    }
+
+
+def _correction_json(correction: Any) -> dict[str, Any]:
+    out: dict[str, Any] = {"kind": correction.kind, "radius_m": correction.radius}
+    if correction.kind == "face":
+        out |= {"area_m2": correction.area, "orientation": correction.orientation}
+    else:
+        out |= {
+            "diameter_m": correction.diameter,
+            "number": correction.number,
+            "direction": correction.direction,
+        }
+    return out | {
+        "webs": correction.webs,
+        "density_kg_m3": correction.density,
+        "depth_resolution_m": correction.depth_resolution,
+    }
+
+
+def _case_json(res: Any) -> dict[str, Any]:
+    """One rebalancing result with the SI unit in every key that carries one."""
+    return {
+        "original_balance_factor": res.original_balance_factor,
+        "target_balance_factor": res.target_balance_factor,
+        "original_moment_kg_m": res.original_moment,
+        "required_moment_kg_m": res.required_moment,
+        "unbalance_kg_m": res.unbalance,
+        "correction": _correction_json(res.correction),
+        "iterations": [
+            {
+                "iteration": it.iteration,
+                "unbalance_to_correct_kg_m": it.unbalance_to_correct,
+                "correction_radius_m": it.correction_radius,
+                "correction_mass_kg": it.correction_mass,
+                "depth_m": it.depth,
+                "removed_mass_kg": it.removed_mass,
+                "removed_unbalance_kg_m": it.removed_unbalance,
+                "residual_kg_m": it.residual,
+                "within_tolerance": it.within_tolerance,
+            }
+            for it in res.iterations
+        ],
+        "residual_kg_m": res.residual,
+        "achieved_balance_factor": res.achieved_balance_factor,
+        "tolerance_kg_m": res.tolerance,
+        "passed": res.passed,
+        "status": res.status,
+        "bob_weight_kg": res.bob_weight,
+    }
+
+
 # ---------------------------------------------------------------------------------------
 # tolerance
 # ---------------------------------------------------------------------------------------
@@ -771,7 +559,7 @@ def tolerance_command(
     if list_grades:
         if fmt == "json":
             _echo_json(
-                {"schema": "crankbalance.grades/1", "grades": [g.to_dict() for g in tl.GRADES]}
+                {"schema": "crankbalance.grades/2", "grades": [_grade_json(g) for g in tl.GRADES]}
             )
         else:
             click.echo(
@@ -810,15 +598,31 @@ def tolerance_command(
     if fmt == "json":
         _echo_json(
             {
-                "schema": "crankbalance.tolerance/1",
-                "grade": item.to_dict(),
+                "schema": "crankbalance.tolerance/2",
+                "grade": _grade_json(item),
                 "rotor_mass_kg": mass,
                 "speed_rad_s": omega,
-                "permissible_unbalance_kgm": u_per,
-                "permissible_unbalance_gmm": u_per * 1e6,
+                "permissible_unbalance_kg_m": u_per,
                 "eccentricity_m": u_per / mass,
-                "planes": None if allocation is None else allocation.to_dict(),
-                "verdict": None if verdict is None else verdict.to_dict(),
+                "planes": None
+                if allocation is None
+                else {
+                    "total_kg_m": allocation.total,
+                    "bearing_a_kg_m": allocation.bearing_a,
+                    "bearing_b_kg_m": allocation.bearing_b,
+                    "plane_1_kg_m": allocation.plane_1,
+                    "plane_2_kg_m": allocation.plane_2,
+                    "share_a": allocation.share_a,
+                    "rule": allocation.rule,
+                },
+                "verdict": None
+                if verdict is None
+                else {
+                    "residual_kg_m": verdict.residual,
+                    "permissible_kg_m": verdict.permissible,
+                    "ratio": verdict.ratio,
+                    "passed": verdict.passed,
+                },
             }
         )
         return
@@ -846,3 +650,12 @@ def tolerance_command(
     click.echo(f"({item.name}: {item.examples})")
     if allocation is not None:
         click.echo(f"(rule: {allocation.rule})")
+
+
+def _grade_json(grade: Any) -> dict[str, Any]:
+    return {
+        "name": grade.name,
+        "value_m_s": grade.value,
+        "examples": grade.examples,
+        "crank_drive": grade.crank_drive,
+    }
