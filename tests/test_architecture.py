@@ -35,6 +35,7 @@ EDGES = {
     "cli",
     "web",
     "units",
+    "format",
     "pint",
     "plotly",
     "nicegui",

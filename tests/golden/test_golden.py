@@ -64,7 +64,7 @@ def same(key: str, new: Any, old: Any) -> bool:
         return bool(new == old)
     if not isinstance(old, int | float):
         return False
-    if key.endswith("_deg"):  # one angle range was chosen: compare modulo a turn
+    if re.search(r"_deg(\.\d+)*$", key):  # one angle range, [0, 360): compare modulo a turn
         turn = (new - old) / 360.0
         return abs(turn - round(turn)) * 360.0 <= 1e-9 * max(1.0, abs(old))
     return math.isclose(new, old, rel_tol=REL, abs_tol=ABS)
