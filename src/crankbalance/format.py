@@ -130,3 +130,30 @@ def json_text(payload: Any, indent: int | None = 2) -> str:
     """The text of one JSON output: every value through :func:`~crankbalance.results.to_jsonable`
     (12 significant digits, no ``-0.0``, angles in [0, 360))."""
     return json.dumps(to_jsonable(payload), indent=indent, ensure_ascii=False)
+
+
+def _scaled(value: Any, factor: float) -> Any:
+    if isinstance(value, bool) or value is None:
+        return value
+    if isinstance(value, int | float):
+        return value * factor
+    if isinstance(value, list | tuple):
+        return [_scaled(v, factor) for v in value]
+    return value
+
+
+def keyed(values: dict[str, Any], names: dict[str, str | tuple[str, float]]) -> dict[str, Any]:
+    """``values`` with its keys renamed to the JSON convention (unit in a suffix).
+
+    ``names`` maps an old key to its new key, or to ``(new key, factor)`` when the value
+    changes unit too (radians -> degrees: ``("phase_deg", 180 / math.pi)``). Keys not in
+    ``names`` stay as they are; the order of the keys is kept.
+    """
+    out: dict[str, Any] = {}
+    for key, value in values.items():
+        name = names.get(key, key)
+        if isinstance(name, tuple):
+            out[name[0]] = _scaled(value, name[1])
+        else:
+            out[name] = value
+    return out
