@@ -30,6 +30,12 @@ RENAMED: list[tuple[str, str, float]] = [
     (r"^(masses\.conrods\.\d+)\.(rotating|reciprocating)_kg$", r"\1.\2", 1.0),
     (r"^(masses\.conrods\.\d+)\.cg_from_big_end_m$", r"\1.cg_from_big_end", 1.0),
     (r"^(masses\.conrods\.\d+)\.(inertia_\w+)_kg_m2$", r"\1.\2", 1.0),
+    # shaft/2: the placement studies' curves, and every key of shaft check
+    (r"^((studies\.\w+\.)?curves)\.first_frequency_hz", r"\1.first_frequency_Hz", 1.0),
+    (r"^((studies\.\w+\.)?curves)\.unbalances_kg_m", r"\1.unbalances_kgm", 1.0),
+    (r"^(shaft|response)\.(\w+)_deg(\.\d+)?$", r"\1.\2\3", DEG),
+    (r"^(shaft|response)\.(\w+?)_rad_s$", r"\1.\2", 1.0),
+    (r"^(shaft\.section|shaft|response|checks)\.(\w+?)_(m|m2|kg_m|N|Nm|Pa|hz|kg_m3|N_per_m)(\.\d+)?$", r"\1.\2\4", 1.0),
 ]
 
 #: keys whose value depends on the run, not on the engine
