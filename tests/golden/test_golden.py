@@ -35,6 +35,10 @@ RENAMED: list[tuple[str, str, float]] = [
     (r"^((studies\.\w+\.)?curves)\.unbalances_kg_m", r"\1.unbalances_kgm", 1.0),
     (r"^(shaft|response)\.(\w+)_deg(\.\d+)?$", r"\1.\2\3", DEG),
     (r"^(shaft|response)\.(\w+?)_rad_s$", r"\1.\2", 1.0),
+    # counterweight/2: angles in degrees
+    (r"^((least_mass|least_radius|pareto\.\d+|design)\.\w+?)_deg$", r"\1_rad", DEG),
+    (r"^(bounds\.\w+?)_deg(\.\d+)?$", r"\1_rad\2", DEG),
+    (r"^(gamma|lambda)_deg$", r"\1_rad", DEG),
     (r"^(shaft\.section|shaft|response|checks)\.(\w+?)_(m|m2|kg_m|N|Nm|Pa|hz|kg_m3|N_per_m)(\.\d+)?$", r"\1.\2\4", 1.0),
 ]
 
