@@ -22,8 +22,9 @@ from .cases import DATA, cases, run
 RPM = 30.0 / math.pi  # rad/s -> rpm
 DEG = math.pi / 180.0  # degrees -> radians
 
-#: (pattern on the new dotted key, the old key it replaces, factor new -> old unit)
-RENAMED: list[tuple[str, str, float]] = [
+#: (pattern on the new dotted key, the old key it replaces, factor new -> old unit[, pattern
+#: on the case names it is limited to])
+RENAMED: list[tuple[str, str, float] | tuple[str, str, float, str]] = [
     # analysis/2, balance/2: speeds in rad/s, conrod splits with their units
     (r"^engine\.speed_rad_s$", "engine.speed_rpm", RPM),
     (r"^(masses\.conrods\.\d+)\.mass_kg$", r"\1.mass", 1.0),
@@ -35,6 +36,12 @@ RENAMED: list[tuple[str, str, float]] = [
     (r"^((studies\.\w+\.)?curves)\.unbalances_kg_m", r"\1.unbalances_kgm", 1.0),
     (r"^(shaft|response)\.(\w+)_deg(\.\d+)?$", r"\1.\2\3", DEG),
     (r"^(shaft|response)\.(\w+?)_rad_s$", r"\1.\2", 1.0),
+    # bench/2, cycle/2, sensitivity/2: speeds in rad/s, rotor and cylinder with units
+    (r"^(runs\.\d+\.(final_)?speed)_rad_s$", r"\1_rpm", RPM),
+    (r"^speed_rad_s$", "speed_rpm", RPM, r"cycle-.*|sensitivity-.*"),
+    (r"^curves\.speed_rad_s", "curves.speed_rpm", RPM),
+    (r"^curves\.pressure_Pa", "curves.pressure_bar", 1e-5),
+    (r"^(rotor|cylinder)\.(\w+?)_(m|kg|kg_m|kg_m2|m_s2|N|Pa)(\.\d+)?$", r"\1.\2\4", 1.0),
     # counterweight/2: angles in degrees
     (r"^((least_mass|least_radius|pareto\.\d+|design)\.\w+?)_deg$", r"\1_rad", DEG),
     (r"^(bounds\.\w+?)_deg(\.\d+)?$", r"\1_rad\2", DEG),
@@ -74,9 +81,11 @@ def flatten(value: Any, prefix: str = "") -> dict[str, Any]:
     return {prefix[:-1]: value}
 
 
-def old_key(key: str) -> tuple[str, float]:
+def old_key(key: str, case: str) -> tuple[str, float]:
     """The key this value had in the golden file, and the factor to its old unit."""
-    for pattern, old, factor in RENAMED:
+    for pattern, old, factor, *only in RENAMED:
+        if only and not re.fullmatch(only[0], case):
+            continue
         if re.search(pattern, key):
             return re.sub(pattern, old, key), factor
     return key, 1.0
@@ -110,7 +119,7 @@ def test_golden(name: str) -> None:
     for key, value in now.items():
         if VOLATILE.search(key) or key.endswith("schema"):
             continue
-        old, factor = old_key(key)
+        old, factor = old_key(key, name)
         if old not in golden:
             problems.append(f"{key}: new key (not in the golden file as {old})")
             continue
