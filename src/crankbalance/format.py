@@ -5,7 +5,8 @@ An edge module: the physics modules never import it. It owns
 * the unit symbols printed in text (``N·m``, ``µm``, ``g·mm``, ``kg·m²``, ``°`` ...);
 * :func:`text`, the one formatter of a value with its unit: a fixed number of significant
   digits, no ``-0``, no float noise (a speed typed as 2000 rpm prints as ``2000 rpm``);
-* :func:`angle` (from :mod:`crankbalance.results`), the one range of angles, [0, 360) degrees, for text and JSON alike;
+* :func:`angle` (from :mod:`crankbalance.results`), the one range of angles, [0, 360)
+  degrees, for text and JSON alike;
 * :func:`plural` ("1 throw", "3 throws");
 * :func:`clean_number`, which :func:`crankbalance.results.to_jsonable` applies to every
   float of every JSON output (12 significant digits, ``-0.0`` -> ``0.0``).
@@ -75,6 +76,7 @@ N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
     "Hz",
     "°",
 )
+
 
 def number(value: float, digits: int = 4) -> str:
     """A number with ``digits`` significant digits, never ``-0`` nor float noise.

@@ -57,9 +57,7 @@ def to_jsonable(value: Any) -> Any:
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
         return to_jsonable({f.name: getattr(value, f.name) for f in dataclasses.fields(value)})
     if isinstance(value, dict):
-        return {
-            str(k): _clean(to_jsonable(v), str(k).endswith("_deg")) for k, v in value.items()
-        }
+        return {str(k): _clean(to_jsonable(v), str(k).endswith("_deg")) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [to_jsonable(v) for v in value]
     if isinstance(value, np.ndarray):

@@ -46,7 +46,11 @@ RENAMED: list[tuple[str, str, float] | tuple[str, str, float, str]] = [
     (r"^((least_mass|least_radius|pareto\.\d+|design)\.\w+?)_deg$", r"\1_rad", DEG),
     (r"^(bounds\.\w+?)_deg(\.\d+)?$", r"\1_rad\2", DEG),
     (r"^(gamma|lambda)_deg$", r"\1_rad", DEG),
-    (r"^(shaft\.section|shaft|response|checks)\.(\w+?)_(m|m2|kg_m|N|Nm|Pa|hz|kg_m3|N_per_m)(\.\d+)?$", r"\1.\2\4", 1.0),
+    (
+        r"^(shaft\.section|shaft|response|checks)\.(\w+?)_(m|m2|kg_m|N|Nm|Pa|hz|kg_m3|N_per_m)(\.\d+)?$",
+        r"\1.\2\4",
+        1.0,
+    ),
 ]
 
 #: keys whose value depends on the run, not on the engine

@@ -56,9 +56,7 @@ def analyze(engine: str, fmt: str, orders: int) -> None:
             f"{text(rod['inertia_two_mass_kg_m2'], 'inertia')}"
         )
         if rod["inertia_error_kg_m2"] is not None:
-            line += (
-                f" (error {text(rod['inertia_error_kg_m2'], 'inertia')} against the real one)"
-            )
+            line += f" (error {text(rod['inertia_error_kg_m2'], 'inertia')} against the real one)"
         click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "

@@ -119,7 +119,9 @@ def print_table(data: dict[str, Any]) -> None:
         group = data[key]
         if group is None:
             continue
-        click.echo(f"\n{title}, {group['arrangement']}, length {text(group['length_m'], 'length')}:")
+        click.echo(
+            f"\n{title}, {group['arrangement']}, length {text(group['length_m'], 'length')}:"
+        )
         rows = []
         for shaft in group["shafts"]:
             if not shaft["masses"]:

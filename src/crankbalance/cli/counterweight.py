@@ -16,8 +16,9 @@ import click
 
 from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
+from ..format import json_text, keyed, number
+from ..format import text as unit_text
 from ..units import parse_quantity as _parse
-from ..format import json_text, keyed, number, text
 from ._common import echo_table, format_option
 
 SCHEMA = "crankbalance.counterweight/2"
@@ -325,7 +326,7 @@ def optimize(
         click.echo(json_text(out))
         return
     click.echo(
-        f"required first moment {text(required, 'first_moment', 5)}, "
+        f"required first moment {unit_text(required, 'first_moment', 5)}, "
         f"density {number(res.density)} kg/m³,"
         f" free: {', '.join(_SYMBOL[n] for n in res.free) or 'none'}"
     )
@@ -410,17 +411,20 @@ def show(first_moment, cw_mass, cg_radius, engine, density, fmt, **params: Any) 
     echo_table(
         ["quantity", "value"],
         [
-            ["mass", text(props.mass, "mass", 6)],
+            ["mass", unit_text(props.mass, "mass", 6)],
             ["volume", f"{number(props.volume * 1e9, 6)} mm³"],
-            ["centre of gravity r_c", text(props.cg_radius, "length", 6)],
-            ["first moment m r_c", text(props.first_moment, "first_moment", 6)],
-            ["balance", "-" if props.balance is None else text(props.balance, "percent", 5)],
-            ["inertia about crank axis", text(props.inertia, "inertia", 5)],
-            ["true outer radius", text(props.outer_radius, "length", 6)],
-            ["paper R_min (bound)", text(props.radius_bound, "length", 6)],
-            ["overhang l_c", text(props.overhang, "length", 6)],
-            ["gamma, lambda", f"{text(props.gamma, 'angle')}, {text(props.lam, 'angle')}"],
-            ["thickness t_cw", text(design.thickness, "length", 6)],
+            ["centre of gravity r_c", unit_text(props.cg_radius, "length", 6)],
+            ["first moment m r_c", unit_text(props.first_moment, "first_moment", 6)],
+            ["balance", "-" if props.balance is None else unit_text(props.balance, "percent", 5)],
+            ["inertia about crank axis", unit_text(props.inertia, "inertia", 5)],
+            ["true outer radius", unit_text(props.outer_radius, "length", 6)],
+            ["paper R_min (bound)", unit_text(props.radius_bound, "length", 6)],
+            ["overhang l_c", unit_text(props.overhang, "length", 6)],
+            [
+                "gamma, lambda",
+                f"{unit_text(props.gamma, 'angle')}, {unit_text(props.lam, 'angle')}",
+            ],
+            ["thickness t_cw", unit_text(design.thickness, "length", 6)],
         ],
     )
 
@@ -459,22 +463,27 @@ def check(part, first_moment, cw_mass, cg_radius, engine, density, unit, fmt) ->
         required_first_moment=required,
     )
     if fmt == "json":
-        out = {"schema": SCHEMA, "mode": "part", "path": str(part), **keyed(m.to_dict(), _PART_KEYS)}
+        out = {
+            "schema": SCHEMA,
+            "mode": "part",
+            "path": str(part),
+            **keyed(m.to_dict(), _PART_KEYS),
+        }
         click.echo(json_text(out))
         return
     echo_table(
         ["quantity", "value"],
         [
             ["volume", f"{number(m.volume * 1e9, 6)} mm³"],
-            ["mass", text(m.mass, "mass", 6)],
+            ["mass", unit_text(m.mass, "mass", 6)],
             [
                 "centre of gravity",
                 " ".join(number(v * 1e3, 6) for v in m.centre_of_gravity) + " mm",
             ],
-            ["distance from crank axis", text(m.cg_radius, "length", 6)],
-            ["first moment", text(m.first_moment, "first_moment", 6)],
-            ["balance", "-" if m.balance is None else text(m.balance, "percent", 5)],
-            ["inertia about crank axis", text(m.inertia, "inertia", 5)],
+            ["distance from crank axis", unit_text(m.cg_radius, "length", 6)],
+            ["first moment", unit_text(m.first_moment, "first_moment", 6)],
+            ["balance", "-" if m.balance is None else unit_text(m.balance, "percent", 5)],
+            ["inertia about crank axis", unit_text(m.inertia, "inertia", 5)],
             ["watertight", "yes" if m.watertight else "NO (numbers unreliable)"],
         ],
     )

@@ -419,7 +419,9 @@ def bench(
             }
             for r in results
         ]
-        _emit_json("crankbalance.bench/2", {"rotor": keyed(rotor.to_dict(), ROTOR_KEYS), "runs": runs})
+        _emit_json(
+            "crankbalance.bench/2", {"rotor": keyed(rotor.to_dict(), ROTOR_KEYS), "runs": runs}
+        )
     elif fmt == "csv":
         _emit_csv(keys, [[r[k] for k in keys] for r in rows])
     else:

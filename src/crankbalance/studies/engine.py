@@ -11,9 +11,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
+from ..format import keyed, text
 from ..io.engine_file import load_engine
 from ..model import EngineModel
-from ..format import keyed, text
 from ..results import to_jsonable
 from ..shaking import Curves, FreeForces, curves, free_forces
 from ..spec import EngineSpec
