@@ -409,7 +409,7 @@ def bench(
     ]
     keys = list(rows[0])
     if fmt == "json":
-        runs = [
+        run_rows = [
             {
                 "speed_rad_s": r.settings.speed,
                 "required_torque_Nm": r.required_torque,
@@ -420,7 +420,7 @@ def bench(
             for r in results
         ]
         _emit_json(
-            "crankbalance.bench/2", {"rotor": keyed(rotor.to_dict(), ROTOR_KEYS), "runs": runs}
+            "crankbalance.bench/2", {"rotor": keyed(rotor.to_dict(), ROTOR_KEYS), "runs": run_rows}
         )
     elif fmt == "csv":
         _emit_csv(keys, [[r[k] for k in keys] for r in rows])
