@@ -37,6 +37,7 @@ EDGES = {
     "cli",
     "web",
     "units",
+    "format",
     "pint",
     "plotly",
     "nicegui",

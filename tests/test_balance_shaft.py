@@ -452,7 +452,7 @@ def test_cli_shaft_json(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli([*INLINE4, "--format", "json"], capsys)
     assert code == 0, err
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.shaft/1"
+    assert data["schema"] == "crankbalance.shaft/2"
     assert abs(data["optimum"]["position"] - 0.67) < 0.01, "Kim (2018), Fig. 7: 67 % with w = 2"
     assert len(data["weight_sweep"]) == 20
 
@@ -475,10 +475,10 @@ def test_cli_shaft_tables(capsys: pytest.CaptureFixture[str]) -> None:
     )
     assert code == 0, err
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.shaft/1" and "checks" in data
+    assert data["schema"] == "crankbalance.shaft/2" and "checks" in data
     # Gere: R = P a / L on the bearing near the load, P = U Omega^2 (x = 200 of 300 mm)
     p = 3.3e-3 * (12000 * math.pi / 30) ** 2
-    assert np.allclose(data["response"]["reactions"], [p / 3, 2 * p / 3], rtol=1e-9)
+    assert np.allclose(data["response"]["reactions_N"], [p / 3, 2 * p / 3], rtol=1e-9)
 
 
 @pytest.mark.parametrize(

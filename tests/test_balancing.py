@@ -132,7 +132,7 @@ def test_balance_cli_json(capsys: pytest.CaptureFixture[str]) -> None:
     )
     assert code == 0, err
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.balance/1"
+    assert data["schema"] == "crankbalance.balance/2"
     assert {"mass_kg", "angle_deg", "count"} <= set(data["counterweight"])
     assert {
         "rotating_force_N",

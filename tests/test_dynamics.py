@@ -394,18 +394,18 @@ def test_cli_bench_cycle_sensitivity_outputs(tmp_path):
         ]
     )
     assert result.exit_code == 0, result.output
-    assert data["schema"] == "crankbalance.bench/1"
+    assert data["schema"] == "crankbalance.bench/2"
     assert data["runs"][0]["required_torque_Nm"] == pytest.approx(
         0.5 * 2.5464 * 9.80665 * 0.01, rel=0.01
     )
     assert history.read_text().startswith("time_s,")
     result, data = _run_cli(["cycle", "--speed", "6000 rpm", "--format", "json"])
-    assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/1"
+    assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/2"
     assert data["summary"]["energy_check_ratio"] == pytest.approx(1.0, abs=5e-3)
     result, _ = _run_cli(["cycle", "--format", "csv"])
     assert result.stdout.splitlines()[0].startswith("angle_deg,pressure_bar")
     result, data = _run_cli(["sensitivity", "--balance-factors", "0:1:0.5", "--format", "json"])
-    assert result.exit_code == 0 and data["schema"] == "crankbalance.sensitivity/1"
+    assert result.exit_code == 0 and data["schema"] == "crankbalance.sensitivity/2"
     assert [p["balance_factor"] for p in data["points"]] == [0.0, 0.5, 1.0]
 
 
@@ -419,7 +419,7 @@ def test_cli_pressure_csv(tmp_path):
     )
     result, data = _run_cli(["cycle", "--pressure-csv", str(table), "--format", "json"])
     assert result.exit_code == 0, result.output
-    assert max(data["curves"]["pressure_bar"]) == pytest.approx(41.0, rel=0.02)
+    assert max(data["curves"]["pressure_Pa"]) == pytest.approx(41.0e5, rel=0.02)
 
 
 @pytest.mark.parametrize(
@@ -517,7 +517,7 @@ def test_sensitivity_refuses_bad_factors_before_computing():
 def test_cli_cycle_engine_options_given_override_the_engine():
     result, data = _run_cli(["cycle", "--engine", "single", "--format", "json"])
     assert result.exit_code == 0, result.output
-    from_engine = data["cylinder"]["crank_radius"]
+    from_engine = data["cylinder"]["crank_radius_m"]
     result, data = _run_cli(
         [
             "cycle",
@@ -532,5 +532,5 @@ def test_cli_cycle_engine_options_given_override_the_engine():
         ]
     )
     assert result.exit_code == 0, result.output
-    assert data["cylinder"]["crank_radius"] == pytest.approx(0.030) != from_engine
-    assert data["cylinder"]["reciprocating_mass"] == pytest.approx(0.300)
+    assert data["cylinder"]["crank_radius_m"] == pytest.approx(0.030) != from_engine
+    assert data["cylinder"]["reciprocating_mass_kg"] == pytest.approx(0.300)

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import json
+import math
 
 import pytest
 
@@ -20,9 +21,9 @@ def test_cycle_from_engine_file(capsys: pytest.CaptureFixture[str]) -> None:
     assert code == 0, err
     data = json.loads(out)
     model = as_model("single")
-    assert data["cylinder"]["reciprocating_mass"] == pytest.approx(model.reciprocating_mass[0])
-    assert data["cylinder"]["crank_radius"] == pytest.approx(model.crank_radius)
-    assert data["speed_rpm"] == pytest.approx(9000.0)
+    assert data["cylinder"]["reciprocating_mass_kg"] == pytest.approx(model.reciprocating_mass[0])
+    assert data["cylinder"]["crank_radius_m"] == pytest.approx(model.crank_radius)
+    assert data["speed_rad_s"] * 30 / math.pi == pytest.approx(9000.0)
     code, _out, err = run_cli(["cycle", "--engine", "single", "--cylinder", "2"], capsys)
     assert code == 2 and "--cylinder" in err
 

@@ -93,7 +93,7 @@ def test_preset_library() -> None:
         assert required in names
     for name in names:
         data = analyze(name).to_dict()
-        assert data["schema"] == "crankbalance.analysis/1"
+        assert data["schema"] == "crankbalance.analysis/2"
         assert len(data["free_forces"]) == 8
 
 
@@ -158,4 +158,4 @@ def test_conrod_two_mass_split() -> None:
         0.3 + 2 * 0.9 * 0.02 / 0.04 + m * (l - d) / l
     )
     conrods = result.to_dict()["masses"]["conrods"]
-    assert conrods[0]["inertia_error"] == pytest.approx(point_inertia - 0.0021)
+    assert conrods[0]["inertia_error_kg_m2"] == pytest.approx(point_inertia - 0.0021)

@@ -34,11 +34,13 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .errors import InputError
+from .format import angle, convert, number
+from .results import to_jsonable
 
 if TYPE_CHECKING:  # pragma: no cover
     from .figures import Quantity
 
-REPORT_SCHEMA = "crankbalance.report/1"
+REPORT_SCHEMA = "crankbalance.report/2"
 
 
 @dataclass(frozen=True)
@@ -121,18 +123,15 @@ def fmt(value: Any, digits: int = 5) -> str:
     if isinstance(value, int):
         return str(value)
     if isinstance(value, float):
-        if value == 0.0:
-            return "0"
-        return f"{value:.{digits}g}"
+        return number(value, digits)
     return _html.escape(str(value))
 
 
 def _angle(value: float | None) -> float | None:
-    """An angle in degrees with round-off (below 1e-9 deg) removed, in [0, 360) or as given
-    when negative turns are meaningful."""
+    """An angle in degrees in the one range of the output vocabulary, [0, 360)."""
     if value is None:
         return None
-    return 0.0 if abs(value) < 1e-9 else float(value)
+    return angle(0.0 if abs(value) < 1e-9 else float(value))
 
 
 def _table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
@@ -261,7 +260,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     rows = [
         ["cylinders", e["cylinders"]],
         ["throws", e["throws"]],
-        ["speed [rpm]", e["speed_rpm"]],
+        ["speed [rpm]", convert(e["speed_rad_s"], "speed")],
         ["crank radius [mm]", e["crank_radius_m"] * 1e3],
         ["rod length [mm]", e["rod_length_m"] * 1e3],
         ["rod ratio r/l", e["rod_ratio"]],
@@ -277,7 +276,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     throw_rows = [
         [
             t + 1,
-            e["throw_angle_deg"][t] % 360.0,
+            _angle(e["throw_angle_deg"][t]),
             e["throw_position_m"][t] * 1e3,
             a["masses"]["rotating_kg"][t],
         ]
@@ -285,20 +284,20 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     ]
     parts.append("<h3>Throws</h3>")
     parts.append(
-        _table(["throw", "angle [deg]", "position y [mm]", "rotating mass [kg]"], throw_rows)
+        _table(["throw", "angle [°]", "position y [mm]", "rotating mass [kg]"], throw_rows)
     )
     cyl_rows = [
         [
             c + 1,
             e["cylinder_throw"][c],
-            e["cylinder_bank_deg"][c],
+            _angle(e["cylinder_bank_deg"][c]),
             a["masses"]["reciprocating_kg"][c],
         ]
         for c in range(e["cylinders"])
     ]
     parts.append("<h3>Cylinders</h3>")
     parts.append(
-        _table(["cylinder", "throw", "bank angle [deg]", "reciprocating mass [kg]"], cyl_rows)
+        _table(["cylinder", "throw", "bank angle [°]", "reciprocating mass [kg]"], cyl_rows)
     )
 
     # mass split
@@ -319,18 +318,18 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
                     "rotating [kg]",
                     "reciprocating [kg]",
                     "CG from big end [mm]",
-                    "two-mass inertia [kg·mm²]",
-                    "inertia error [kg·mm²]",
+                    "two-mass inertia [kg·m²]",
+                    "inertia error [kg·m²]",
                 ],
                 [
                     [
                         r["cylinder"],
-                        r["mass"],
-                        r["rotating"],
-                        r["reciprocating"],
-                        r["cg_from_big_end"] * 1e3,
-                        r["inertia_two_mass"] * 1e6,
-                        None if r["inertia_error"] is None else r["inertia_error"] * 1e6,
+                        r["mass_kg"],
+                        r["rotating_kg"],
+                        r["reciprocating_kg"],
+                        r["cg_from_big_end_m"] * 1e3,
+                        r["inertia_two_mass_kg_m2"],
+                        r["inertia_error_kg_m2"],
                     ]
                     for r in rods
                 ],
@@ -390,13 +389,13 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         parts.append(
             f"<p>{cw['count']} counterweights, method {esc(cw['method'])}, scope "
             f"{esc(cw['scope'])}, CG radius {fmt(cw['cg_radius_m'] * 1e3)} mm"
-            + ("" if cw["angle_deg"] is None else f", angle {fmt(_angle(cw['angle_deg']))} deg")
+            + ("" if cw["angle_deg"] is None else f", angle {fmt(_angle(cw['angle_deg']))}°")
             + f"; largest mass {fmt(cw['mass_kg'])} kg, total "
             f"{fmt(cw['total_mass_kg'])} kg.</p>"
         )
         parts.append(
             _table(
-                ["web", "throw", "position y [mm]", "mass [kg]", "direction [deg]"],
+                ["web", "throw", "position y [mm]", "mass [kg]", "direction [°]"],
                 [
                     [
                         w["web"],
@@ -446,7 +445,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
                         "CG radius [mm]",
                         "position y [mm]",
                         "mass [kg]",
-                        "phase [deg]",
+                        "phase [°]",
                     ],
                     rows,
                 )
@@ -509,12 +508,14 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     # settings
     parts.append("<h2>Settings used</h2>")
     parts.append(
-        "<pre>" + esc(json.dumps(report.settings, indent=2, default=_json_default)) + "</pre>"
+        "<pre>"
+        + esc(json.dumps(to_jsonable(report.settings), indent=2, default=_json_default))
+        + "</pre>"
     )
     parts.append("<h3>Engine file</h3>")
     parts.append("<pre>" + esc(report.engine_file) + "</pre>")
 
-    data = json.dumps(report.data(), default=_json_default).replace("</", "<\\/")
+    data = json.dumps(to_jsonable(report.data()), default=_json_default).replace("</", "<\\/")
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
         f"<title>{esc(e['name'])}: balancing report</title>\n<style>{CSS}</style>\n"

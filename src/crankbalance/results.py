@@ -8,17 +8,56 @@ from typing import Any
 
 import numpy as np
 
+#: significant digits kept in JSON: enough for any measured input, none of the float noise
+JSON_DIGITS = 12
+
+
+def clean_number(value: float, digits: int = JSON_DIGITS) -> float:
+    """``value`` rounded to ``digits`` significant digits, with ``-0.0`` as ``0.0``.
+
+    >>> clean_number(1999.9999999999998)
+    2000.0
+    >>> clean_number(-0.0)
+    0.0
+    """
+    if value == 0.0 or not math.isfinite(value):
+        return 0.0 if value == 0.0 else value
+    rounded = float(f"{value:.{digits}g}")
+    return rounded + 0.0  # -0.0 + 0.0 == 0.0
+
+
+def angle(degrees: float) -> float:
+    """An angle in degrees, in the one range used everywhere: [0, 360).
+
+    >>> angle(-90.0), angle(360.0), angle(-1e-13)
+    (270.0, 0.0, 0.0)
+    """
+    value = clean_number(float(degrees)) % 360.0
+    value = clean_number(value)
+    return 0.0 if value >= 360.0 else value
+
+
+def _clean(value: Any, is_angle: bool) -> Any:
+    """Normalise the angles (``is_angle``) of a JSON value: numbers and lists of numbers."""
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return angle(value) if is_angle else value
+    if isinstance(value, list):
+        return [_clean(v, is_angle) for v in value]
+    return value
+
 
 def to_jsonable(value: Any) -> Any:
     """Convert dataclasses, numpy arrays and scalars, complex numbers to plain JSON values.
 
     Complex numbers become ``{"re": .., "im": ..}``; non-finite floats raise, since
-    a NaN must never reach the output.
+    a NaN must never reach the output. Every float is rounded to 12 significant digits
+    (no float noise: 1999.9999999999998 -> 2000.0, no ``-0.0``), and the value of every
+    dictionary key ending in ``_deg`` is put in the one range of angles, [0, 360).
     """
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return {f.name: to_jsonable(getattr(value, f.name)) for f in dataclasses.fields(value)}
+        return to_jsonable({f.name: getattr(value, f.name) for f in dataclasses.fields(value)})
     if isinstance(value, dict):
-        return {str(k): to_jsonable(v) for k, v in value.items()}
+        return {str(k): _clean(to_jsonable(v), str(k).endswith("_deg")) for k, v in value.items()}
     if isinstance(value, (list, tuple)):
         return [to_jsonable(v) for v in value]
     if isinstance(value, np.ndarray):
@@ -33,7 +72,7 @@ def to_jsonable(value: Any) -> Any:
         number = float(value)
         if not math.isfinite(number):
             raise ValueError(f"non-finite number {number!r} in a result")
-        return number
+        return clean_number(number)
     return value
 
 

@@ -49,15 +49,16 @@ def test_inline3_closed_forms() -> None:
     m_c = sqrt(3) m_rot r/(4 r_c cos(a-30)), m_c1 = sqrt(3) m_alt r a/(2 r_c1 l_sh1),
     m_c2 = sqrt(3) m_alt L r a/(8 r_c2 l_sh2)."""
     m_rot, m_alt, r, a, rc, l_sh, lam = 2.15, 0.94, 0.04, 0.09, 0.03, 0.2, 0.04 / 0.135
+    # the JSON keeps 12 significant digits (format.py): compare to 1e-11
     data = balance_engine(EXAMPLES / "paper_inline3.toml").to_dict()
     assert data["counterweight"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_rot * r / (4 * rc), rel=1e-12
+        math.sqrt(3) * m_rot * r / (4 * rc), rel=1e-11
     )
     assert data["primary_shafts"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_alt * r * a / (2 * rc * l_sh), rel=1e-12
+        math.sqrt(3) * m_alt * r * a / (2 * rc * l_sh), rel=1e-11
     )
     assert data["secondary_shafts"]["mass_kg"] == pytest.approx(
-        math.sqrt(3) * m_alt * lam * r * a / (8 * rc * l_sh), rel=1e-12
+        math.sqrt(3) * m_alt * lam * r * a / (8 * rc * l_sh), rel=1e-11
     )
 
 

@@ -120,11 +120,11 @@ async def test_downloads_are_the_api_numbers(user: User, form) -> None:
     user.find(marker="download-balance").click()
     response = await user.download.next()
     data = json.loads(response.content)
-    assert data["schema"] == "crankbalance.balance/1"
+    assert data["schema"] == "crankbalance.balance/2"
     assert abs(data["counterweight"]["mass_kg"] - 1.2413) < 1e-4, "2021 paper Table 2"
     user.find(marker="download-analysis").click()
     data = json.loads((await user.download.next()).content)
-    assert data["schema"] == "crankbalance.analysis/1"
+    assert data["schema"] == "crankbalance.analysis/2"
     user.find(marker="download-orders-csv").click()
     text = (await user.download.next()).content.decode()
     assert text.splitlines()[0].startswith("trace,point,x,y")

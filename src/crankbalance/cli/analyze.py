@@ -2,10 +2,9 @@
 
 from __future__ import annotations
 
-import json
-
 import click
 
+from ..format import json_text, number, plural, text
 from ._common import echo_table, format_option, option_name
 
 
@@ -20,7 +19,7 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
 
     result = run(engine, parse_options(AnalysisOptions, {"orders": orders}, option_name).orders)
     if fmt == "json":
-        click.echo(json.dumps(result.to_dict(), indent=2))
+        click.echo(json_text(result.to_dict()))
         return
     if fmt == "csv":
         click.echo(curves_csv(result), nl=False)
@@ -29,8 +28,9 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
     e = data["engine"]
     click.echo(f"{e['name']}")
     click.echo(
-        f"{e['cylinders']} cylinders on {e['throws']} throws, {e['speed_rpm']:.0f} rpm, "
-        f"r/l = {e['rod_ratio']:.4f}, kinematics: {e['kinematics']}"
+        f"{plural(e['cylinders'], 'cylinder')} on {plural(e['throws'], 'throw')}, "
+        f"{text(e['speed_rad_s'], 'speed')}, "
+        f"r/l = {number(e['rod_ratio'])}, kinematics: {e['kinematics']}"
     )
     masses = data["masses"]
     click.echo(
@@ -41,17 +41,17 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         + " kg"
     )
     rods = masses["conrods"]
-    if len({(r["mass"], r["rotating"], r["inertia_error"]) for r in rods}) == 1:
+    if len({(r["mass_kg"], r["rotating_kg"], r["inertia_error_kg_m2"]) for r in rods}) == 1:
         rods = rods[:1]  # all conrods alike: show one
     for rod in rods:
         line = (
-            f"Conrod {rod['cylinder']}: {rod['mass'] * 1e3:.1f} g = "
-            f"{rod['rotating'] * 1e3:.1f} g at the big end + "
-            f"{rod['reciprocating'] * 1e3:.1f} g at the small end; two-mass inertia "
-            f"{rod['inertia_two_mass'] * 1e6:.0f} kg*mm^2"
+            f"Conrod {rod['cylinder']}: {text(rod['mass_kg'], 'mass')} = "
+            f"{text(rod['rotating_kg'], 'mass')} at the big end + "
+            f"{text(rod['reciprocating_kg'], 'mass')} at the small end; two-mass inertia "
+            f"{text(rod['inertia_two_mass_kg_m2'], 'inertia')}"
         )
-        if rod["inertia_error"] is not None:
-            line += f" (error {rod['inertia_error'] * 1e6:+.0f} kg*mm^2 against the real one)"
+        if rod["inertia_error_kg_m2"] is not None:
+            line += f" (error {text(rod['inertia_error_kg_m2'], 'inertia')} against the real one)"
         click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "
@@ -60,28 +60,28 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
     rows = [
         [
             str(f["order"]),
-            f"{f['amplitude_N']:.4g}",
-            f"{f['forward_N']:.4g}",
-            f"{f['backward_N']:.4g}",
-            f"{m['amplitude_Nm']:.4g}",
-            f"{m['forward_Nm']:.4g}",
-            f"{m['backward_Nm']:.4g}",
+            number(f["amplitude_N"]),
+            number(f["forward_N"]),
+            number(f["backward_N"]),
+            number(m["amplitude_Nm"]),
+            number(m["forward_Nm"]),
+            number(m["backward_Nm"]),
         ]
         for f, m in zip(data["free_forces"], data["free_moments"], strict=True)
     ]
     echo_table(["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m"], rows)
     rot = data["rotating"]
     click.echo(
-        f"Rotating masses (bare crank, no counterweights): force {rot['force_N']:.4g} N, "
-        f"moment {rot['moment_Nm']:.4g} N·m"
+        "Rotating masses (bare crank, no counterweights): "
+        f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
     )
 
 
 def _distinct(values: list[float]) -> str:
     """One value if all are equal, else the list (for per-cylinder masses)."""
     if max(values) - min(values) <= 1e-12 * max(abs(v) for v in values):
-        return f"{values[0]:.4g}"
-    return "[" + ", ".join(f"{v:.4g}" for v in values) + "]"
+        return number(values[0])
+    return "[" + ", ".join(number(v) for v in values) + "]"
 
 
 def curves_csv(result: object) -> str:
@@ -130,12 +130,11 @@ def presets(fmt: str) -> None:
     names = list_presets()
     if fmt == "json":
         click.echo(
-            json.dumps(
+            json_text(
                 {
                     "schema": "crankbalance.presets/1",
                     "presets": [{"name": n, "title": load_engine(n).name} for n in names],
-                },
-                indent=2,
+                }
             )
         )
         return

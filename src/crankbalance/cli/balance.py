@@ -2,11 +2,11 @@
 
 from __future__ import annotations
 
-import json
 from typing import Any
 
 import click
 
+from ..format import json_text, number, plural, text
 from ._common import echo_table, format_option
 
 
@@ -66,33 +66,36 @@ def balance(
         overrides["scope"] = scope
     data = balance_engine(engine, **overrides).to_dict()
     if fmt == "json":
-        click.echo(json.dumps(data, indent=2))
+        click.echo(json_text(data))
         return
     print_table(data)
 
 
 def print_table(data: dict[str, Any]) -> None:
     e = data["engine"]
-    click.echo(f"{e['name']} ({e['speed_rpm']:.0f} rpm, kinematics: {e['kinematics']})")
+    click.echo(f"{e['name']} ({text(e['speed_rad_s'], 'speed')}, kinematics: {e['kinematics']})")
     cw = data["counterweight"]
     if cw is not None:
         angle = (
-            "individual angles" if cw["angle_deg"] is None else f"alpha = {cw['angle_deg']:.3f} deg"
+            "individual angles"
+            if cw["angle_deg"] is None
+            else f"alpha = {text(cw['angle_deg'], 'angle_deg', 6)}"
         )
         click.echo(
             f"\nCrank counterweights ({cw['method']}, {cw['scope']} crank, {angle}, "
-            f"CG radius {cw['cg_radius_m'] * 1e3:.4g} mm): {cw['count']} counterweights, "
-            f"{cw['total_mass_kg']:.4f} kg in all"
+            f"CG radius {text(cw['cg_radius_m'], 'length')}): "
+            f"{plural(cw['count'], 'counterweight')}, "
+            f"{text(cw['total_mass_kg'], 'mass_kg')} in all"
         )
         echo_table(
-            ["web", "throw", "y mm", "mass kg", "direction deg"],
+            ["web", "throw", "y mm", "mass kg", "direction °"],
             [
                 [
                     str(w["web"]),
                     str(w["throw"]),
                     f"{w['position_m'] * 1e3:.2f}",
                     f"{w['mass_kg']:.4f}",
-                    f"{w['direction_deg']:.2f}",
+                    number(w["direction_deg"], 5),
                 ]
                 for w in cw["webs"]
             ],
@@ -103,9 +106,9 @@ def print_table(data: dict[str, Any]) -> None:
     if extra is not None:
         click.echo("\nExtra crank counterweight masses replacing the co-rotating primary shaft:")
         echo_table(
-            ["web", "mass kg", "direction deg"],
+            ["web", "mass kg", "direction °"],
             [
-                [str(w["web"]), f"{w['mass_kg']:.4f}", f"{w['direction_deg']:.2f}"]
+                [str(w["web"]), f"{w['mass_kg']:.4f}", number(w["direction_deg"], 5)]
                 for w in extra["webs"]
             ],
         )
@@ -116,7 +119,9 @@ def print_table(data: dict[str, Any]) -> None:
         group = data[key]
         if group is None:
             continue
-        click.echo(f"\n{title}, {group['arrangement']}, length {group['length_m'] * 1e3:.4g} mm:")
+        click.echo(
+            f"\n{title}, {group['arrangement']}, length {text(group['length_m'], 'length')}:"
+        )
         rows = []
         for shaft in group["shafts"]:
             if not shaft["masses"]:
@@ -127,21 +132,21 @@ def print_table(data: dict[str, Any]) -> None:
                         shaft["rotation"],
                         f"{mass['position_m'] * 1e3:.1f}",
                         f"{mass['mass_kg']:.4f}",
-                        f"{mass['phase_deg']:.2f}",
+                        number(mass["phase_deg"], 5),
                     ]
                 )
-        echo_table(["shaft", "y mm", "mass kg", "phase deg"], rows)
+        echo_table(["shaft", "y mm", "mass kg", "phase °"], rows)
     click.echo("\nTime-domain check (amplitudes before -> after):")
     echo_table(
-        ["component", "targeted", "force N", "after", "moment N*m", "after"],
+        ["component", "targeted", "force N", "after", "moment N·m", "after"],
         [
             [
                 c["component"],
                 "yes" if c["targeted"] else "no",
-                f"{c['force_before_N']:.4g}",
-                f"{c['force_after_N']:.4g}",
-                f"{c['moment_before_Nm']:.4g}",
-                f"{c['moment_after_Nm']:.4g}",
+                number(c["force_before_N"]),
+                number(c["force_after_N"]),
+                number(c["moment_before_Nm"]),
+                number(c["moment_after_Nm"]),
             ]
             for c in data["components"]
             if c["force_before_N"] > 1e-9 or c["moment_before_Nm"] > 1e-9 or c["targeted"]

@@ -3,12 +3,11 @@
 Subcommands: ``optimize`` (constraints and parameter ranges -> feasible designs, Pareto
 front, least-mass and least-radius designs), ``show`` (one design's mass properties),
 ``export`` (SVG, DXF, STL, STEP) and ``check`` (mass properties of an STL/STEP part).
-JSON output is one object with ``"schema": "crankbalance.counterweight/1"``.
+JSON output is one object with ``"schema": "crankbalance.counterweight/2"`` (docs/json.md).
 """
 
 from __future__ import annotations
 
-import json
 import math
 import re
 from typing import Any
@@ -17,6 +16,8 @@ import click
 
 from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
+from ..format import json_text, keyed, number
+from ..format import text as unit_text
 from ..options import CounterweightOptions, allowed, parse_options
 from ..units import parse_quantity as _parse
 from ._common import echo_table, format_option, option_name
@@ -27,18 +28,30 @@ def _limits(field: str) -> str:
     return allowed(CounterweightOptions, field)
 
 
-SCHEMA = "crankbalance.counterweight/1"
+SCHEMA = "crankbalance.counterweight/2"
 
 # parameter -> (option, quantity kind, display unit factor, display unit)
 _PARAMS: dict[str, tuple[str, str, float, str]] = {
     "web_radius": ("--web-radius", "length", 1e3, "mm"),
     "rectangle_height": ("--rectangle-height", "length", 1e3, "mm"),
-    "trapezoid_angle": ("--trapezoid-angle", "angle", 180 / math.pi, "deg"),
+    "trapezoid_angle": ("--trapezoid-angle", "angle", 180 / math.pi, "°"),
     "segment_radius": ("--segment-radius", "length", 1e3, "mm"),
-    "segment_angle": ("--segment-angle", "angle", 180 / math.pi, "deg"),
+    "segment_angle": ("--segment-angle", "angle", 180 / math.pi, "°"),
     "thickness": ("--thickness", "length", 1e3, "mm"),
 }
-_SI_UNIT = {"length": "m", "angle": "rad"}
+_SI_UNIT = {"length": "m", "angle": "deg"}
+#: factor from the SI value of a parameter to its JSON value (angles in degrees)
+_JSON_FACTOR = {"length": 1.0, "angle": 180.0 / math.pi}
+#: JSON keys of a part's mass properties (``counterweight check``)
+_PART_KEYS: dict[str, str | tuple[str, float]] = {
+    "volume": "volume_m3",
+    "mass": "mass_kg",
+    "centre_of_gravity": "centre_of_gravity_m",
+    "cg_radius": "cg_radius_m",
+    "first_moment": "first_moment_kg_m",
+    "inertia": "inertia_kg_m2",
+    "balance": "balance_percent",
+}
 
 
 def parse_quantity(text: str, kind: str, field: str) -> float:
@@ -148,14 +161,15 @@ def _design_row(values: dict[str, float]) -> dict[str, float]:
     out: dict[str, float] = {}
     for name, value in values.items():
         if name in _PARAMS:
-            out[f"{name}_{_SI_UNIT[_PARAMS[name][1]]}"] = float(value)
+            kind = _PARAMS[name][1]
+            out[f"{name}_{_SI_UNIT[kind]}"] = float(value) * _JSON_FACTOR[kind]
         elif name in keys:
             out[keys[name]] = float(value)
     return out
 
 
 def _table_rows(rows: list[dict[str, float]], labels: list[str]) -> None:
-    header = ["design", "mass g", "R true mm", "R_min mm", "balance %", "r_c mm", "J kg*mm^2"]
+    header = ["design", "mass g", "R true mm", "R_min mm", "balance %", "r_c mm", "J kg·m²"]
     header += [f"{_SYMBOL[n]} {_PARAMS[n][3]}" for n in _PARAMS]
     table = []
     for label, r in zip(labels, rows, strict=True):
@@ -166,7 +180,7 @@ def _table_rows(rows: list[dict[str, float]], labels: list[str]) -> None:
             f"{r['radius_bound'] * 1e3:.2f}",
             f"{r['balance']:.2f}",
             f"{r['cg_radius'] * 1e3:.2f}",
-            f"{r['inertia'] * 1e6:.1f}",
+            number(r["inertia"]),
         ]
         cells += [f"{r[n] * _PARAMS[n][2]:.2f}" for n in _PARAMS]
         table.append(cells)
@@ -306,7 +320,10 @@ def optimize(
                 "radius_measure": radius_measure,
             },
             "bounds": {
-                f"{n}_{_SI_UNIT[_PARAMS[n][1]]}": list(v) if isinstance(v, tuple) else v
+                f"{n}_{_SI_UNIT[_PARAMS[n][1]]}": keyed(
+                    {"v": list(v) if isinstance(v, tuple) else v},
+                    {"v": ("v", _JSON_FACTOR[_PARAMS[n][1]])},
+                )["v"]
                 for n, v in full.items()
             },
             "free": list(res.free),
@@ -319,10 +336,11 @@ def optimize(
             "least_radius": _design_row(res.row(res.least_radius)),
             "pareto": [_design_row(res.row(int(i))) for i in pick],
         }
-        click.echo(json.dumps(out, indent=2))
+        click.echo(json_text(out))
         return
     click.echo(
-        f"required first moment {required * 1e6:.1f} g*mm, density {res.density:g} kg/m^3,"
+        f"required first moment {unit_text(required, 'first_moment', 5)}, "
+        f"density {number(res.density)} kg/m³,"
         f" free: {', '.join(_SYMBOL[n] for n in res.free) or 'none'}"
     )
     rows = [res.row(res.least_mass), res.row(res.least_radius)] + [res.row(int(i)) for i in pick]
@@ -397,26 +415,29 @@ def show(first_moment, cw_mass, cg_radius, engine, density, fmt, **params: Any) 
             "area_m2": props.area,
             "volume_m3": props.volume,
             "overhang_m": props.overhang,
-            "gamma_rad": props.gamma,
-            "lambda_rad": props.lam,
+            "gamma_deg": math.degrees(props.gamma),
+            "lambda_deg": math.degrees(props.lam),
             "hub_protrusion": bool(props.hub_protrusion),
         }
-        click.echo(json.dumps(out, indent=2))
+        click.echo(json_text(out))
         return
     echo_table(
         ["quantity", "value"],
         [
-            ["mass", f"{props.mass * 1e3:.3f} g"],
-            ["volume", f"{props.volume * 1e9:.1f} mm^3"],
-            ["centre of gravity r_c", f"{props.cg_radius * 1e3:.3f} mm"],
-            ["first moment m r_c", f"{props.first_moment * 1e6:.1f} g*mm"],
-            ["balance", "-" if props.balance is None else f"{props.balance:.2f} %"],
-            ["inertia about crank axis", f"{props.inertia * 1e6:.2f} kg*mm^2"],
-            ["true outer radius", f"{props.outer_radius * 1e3:.3f} mm"],
-            ["paper R_min (bound)", f"{props.radius_bound * 1e3:.3f} mm"],
-            ["overhang l_c", f"{props.overhang * 1e3:.3f} mm"],
-            ["gamma, lambda", f"{props.gamma:.4f}, {props.lam:.4f} rad"],
-            ["thickness t_cw", f"{design.thickness * 1e3:.3f} mm"],
+            ["mass", unit_text(props.mass, "mass", 6)],
+            ["volume", f"{number(props.volume * 1e9, 6)} mm³"],
+            ["centre of gravity r_c", unit_text(props.cg_radius, "length", 6)],
+            ["first moment m r_c", unit_text(props.first_moment, "first_moment", 6)],
+            ["balance", "-" if props.balance is None else unit_text(props.balance, "percent", 5)],
+            ["inertia about crank axis", unit_text(props.inertia, "inertia", 5)],
+            ["true outer radius", unit_text(props.outer_radius, "length", 6)],
+            ["paper R_min (bound)", unit_text(props.radius_bound, "length", 6)],
+            ["overhang l_c", unit_text(props.overhang, "length", 6)],
+            [
+                "gamma, lambda",
+                f"{unit_text(props.gamma, 'angle')}, {unit_text(props.lam, 'angle')}",
+            ],
+            ["thickness t_cw", unit_text(design.thickness, "length", 6)],
         ],
     )
 
@@ -455,19 +476,27 @@ def check(part, first_moment, cw_mass, cg_radius, engine, density, unit, fmt) ->
         required_first_moment=required,
     )
     if fmt == "json":
-        out = {"schema": SCHEMA, "mode": "part", "path": str(part), **m.to_dict()}
-        click.echo(json.dumps(out, indent=2))
+        out = {
+            "schema": SCHEMA,
+            "mode": "part",
+            "path": str(part),
+            **keyed(m.to_dict(), _PART_KEYS),
+        }
+        click.echo(json_text(out))
         return
     echo_table(
         ["quantity", "value"],
         [
-            ["volume", f"{m.volume * 1e9:.1f} mm^3"],
-            ["mass", f"{m.mass * 1e3:.3f} g"],
-            ["centre of gravity", " ".join(f"{v * 1e3:.3f}" for v in m.centre_of_gravity) + " mm"],
-            ["distance from crank axis", f"{m.cg_radius * 1e3:.3f} mm"],
-            ["first moment", f"{m.first_moment * 1e6:.1f} g*mm"],
-            ["balance", "-" if m.balance is None else f"{m.balance:.2f} %"],
-            ["inertia about crank axis", f"{m.inertia * 1e6:.2f} kg*mm^2"],
+            ["volume", f"{number(m.volume * 1e9, 6)} mm³"],
+            ["mass", unit_text(m.mass, "mass", 6)],
+            [
+                "centre of gravity",
+                " ".join(number(v * 1e3, 6) for v in m.centre_of_gravity) + " mm",
+            ],
+            ["distance from crank axis", unit_text(m.cg_radius, "length", 6)],
+            ["first moment", unit_text(m.first_moment, "first_moment", 6)],
+            ["balance", "-" if m.balance is None else unit_text(m.balance, "percent", 5)],
+            ["inertia about crank axis", unit_text(m.inertia, "inertia", 5)],
             ["watertight", "yes" if m.watertight else "NO (numbers unreliable)"],
         ],
     )

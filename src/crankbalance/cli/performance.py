@@ -8,7 +8,6 @@ Quantities are unit strings (``"20 mm"``, ``"9000 rpm"``); the physics lives in
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 from pathlib import Path
@@ -17,6 +16,7 @@ from typing import Any
 import click
 
 from ..errors import InputError
+from ..format import json_text, keyed, number, text
 from ._common import echo_table, format_option
 
 FORMATS = ("table", "json", "csv")
@@ -54,11 +54,42 @@ def _number_list(text: str, field: str) -> list[float]:
 
 
 def _cell(value: float | str) -> str:
-    return value if isinstance(value, str) else f"{value:.5g}"
+    return value if isinstance(value, str) else number(value, 5)
 
 
 def _emit_json(schema: str, payload: dict[str, Any]) -> None:
-    click.echo(json.dumps({"schema": schema, **payload}, indent=2))
+    click.echo(json_text({"schema": schema, **payload}))
+
+
+_RPM = 30.0 / math.pi  # rad/s -> rpm
+#: JSON keys of the bench rotor (unit in a suffix)
+ROTOR_KEYS: dict[str, str | tuple[str, float]] = {
+    "mass": "mass_kg",
+    "inertia": "inertia_kg_m2",
+    "journal_diameter": "journal_diameter_m",
+    "unbalance": "unbalance_kg_m",
+    "bearing_positions": "bearing_positions_m",
+    "mass_position": "mass_position_m",
+    "unbalance_position": "unbalance_position_m",
+    "gravity": "gravity_m_s2",
+}
+#: JSON keys of the cylinder of ``cycle``
+CYLINDER_KEYS: dict[str, str | tuple[str, float]] = {
+    "bore": "bore_m",
+    "crank_radius": "crank_radius_m",
+    "rod_length": "rod_length_m",
+    "reciprocating_mass": "reciprocating_mass_kg",
+    "crank_inertia": "crank_inertia_kg_m2",
+    "journal_diameter": "journal_diameter_m",
+    "offset": "offset_m",
+    "crankshaft_weight": "crankshaft_weight_N",
+    "crankcase_pressure": "crankcase_pressure_Pa",
+}
+#: the curves of ``cycle`` in JSON: SI values (the CSV keeps bar and rpm)
+CURVE_KEYS: dict[str, str | tuple[str, float]] = {
+    "pressure_bar": ("pressure_Pa", 1e5),
+    "speed_rpm": ("speed_rad_s", 1.0 / _RPM),
+}
 
 
 def _emit_csv(header: Sequence[str], rows: Sequence[Sequence[float | str]]) -> None:
@@ -147,13 +178,13 @@ def friction(
         rotating = _q(unbalance, "unbalance", "unbalance") * omega**2
     else:
         rotating = _q(rotating_load, "force", "rotating_load") if rotating_load else 0.0
-    for name, value, text in (
+    for name, value, given_text in (
         ("load", constant, load_text),
         ("rotating_load", rotating, rotating_load or unbalance),
         ("friction_coefficient", friction_coefficient, friction_coefficient),
     ):
         if value is not None and not (value >= 0 and math.isfinite(value)):
-            raise InputError(name, text, "must be finite and not negative")
+            raise InputError(name, given_text, "must be finite and not negative")
     measured = _q_opt(torque, "torque", "torque")
     if measured is None and friction_coefficient is None and viscosity is None:
         raise InputError(
@@ -247,14 +278,14 @@ def friction(
         )
         return
     click.echo(
-        f"constant load {constant:.4g} N, rotating load {rotating:.4g} N, "
-        f"journal {diameter * 1000:.4g} mm"
+        f"constant load {text(constant, 'force')}, rotating load {text(rotating, 'force')}, "
+        f"journal {text(diameter, 'length')}"
     )
     echo_table(keys, [[_cell(r[k]) for k in keys] for r in rows])
     if hydro:
         click.echo(
-            f"Petroff torque {hydro['petroff_torque_Nm']:.5g} N·m; with eccentricity "
-            f"{eccentricity:g}: {hydro['journal_bearing_torque_Nm']:.5g} N·m"
+            f"Petroff torque {text(hydro['petroff_torque_Nm'], 'torque', 5)}; with eccentricity "
+            f"{number(eccentricity)}: {text(hydro['journal_bearing_torque_Nm'], 'torque', 5)}"
         )
 
 
@@ -368,21 +399,33 @@ def bench(
                 handle.write(",".join(f"{v:.9g}" for v in row) + "\n")
     rows = [
         {
-            "speed_rpm": r.settings.speed * 30 / math.pi,
+            "speed_rpm": r.settings.speed * _RPM,
             "required_torque_Nm": r.required_torque,
             "mean_friction_torque_Nm": r.mean_friction_torque,
             "friction_power_W": r.friction_power,
-            "final_speed_rpm": r.final_speed * 30 / math.pi,
+            "final_speed_rpm": r.final_speed * _RPM,
         }
         for r in results
     ]
     keys = list(rows[0])
     if fmt == "json":
-        _emit_json("crankbalance.bench/1", {"rotor": rotor.to_dict(), "runs": rows})
+        run_rows = [
+            {
+                "speed_rad_s": r.settings.speed,
+                "required_torque_Nm": r.required_torque,
+                "mean_friction_torque_Nm": r.mean_friction_torque,
+                "friction_power_W": r.friction_power,
+                "final_speed_rad_s": r.final_speed,
+            }
+            for r in results
+        ]
+        _emit_json(
+            "crankbalance.bench/2", {"rotor": keyed(rotor.to_dict(), ROTOR_KEYS), "runs": run_rows}
+        )
     elif fmt == "csv":
         _emit_csv(keys, [[r[k] for k in keys] for r in rows])
     else:
-        echo_table(keys, [[f"{r[k]:.5g}" for k in keys] for r in rows])
+        echo_table(keys, [[number(r[k], 5) for k in keys] for r in rows])
 
 
 # --------------------------------------------------------------------------------------
@@ -570,13 +613,13 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
     }
     if fmt == "json":
         _emit_json(
-            "crankbalance.cycle/1",
+            "crankbalance.cycle/2",
             {
-                "cylinder": cylinder.to_dict(),
-                "speed_rpm": speed * 30 / math.pi,
+                "cylinder": keyed(cylinder.to_dict(), CYLINDER_KEYS),
+                "speed_rad_s": speed,
                 "strokes": strokes,
                 "summary": summary,
-                "curves": {k: v.tolist() for k, v in curves.items()},
+                "curves": keyed({k: v.tolist() for k, v in curves.items()}, CURVE_KEYS),
             },
         )
     elif fmt == "csv":
@@ -584,10 +627,10 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
         _emit_csv(keys, list(zip(*(curves[k] for k in keys), strict=True)))
     else:
         click.echo(
-            f"single cylinder, {speed * 30 / math.pi:.0f} rpm, {strokes}-stroke, "
-            f"balance factor {balance_factor:g}"
+            f"single cylinder, {text(speed, 'speed')}, {strokes}-stroke, "
+            f"balance factor {number(balance_factor)}"
         )
-        echo_table(["quantity", "value"], [[k, f"{v:.5g}"] for k, v in summary.items()])
+        echo_table(["quantity", "value"], [[k, number(v, 5)] for k, v in summary.items()])
 
 
 @click.command()
@@ -634,9 +677,9 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     header = ["mass_scale", "balance_factor", *labels]
     if fmt == "json":
         _emit_json(
-            "crankbalance.sensitivity/1",
+            "crankbalance.sensitivity/2",
             {
-                "speed_rpm": speed * 30 / math.pi,
+                "speed_rad_s": speed,
                 "strokes": strokes,
                 "points": [dict(zip(header, row, strict=True)) for row in rows],
             },
@@ -658,4 +701,4 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
             "shake_x N",
             "shake N",
         ]
-        echo_table(short, [[f"{v:.4g}" for v in row] for row in rows])
+        echo_table(short, [[number(v) for v in row] for row in rows])

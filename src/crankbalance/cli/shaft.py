@@ -9,19 +9,59 @@ Sub-commands:
 
 from __future__ import annotations
 
-import json
+import math
 from typing import TYPE_CHECKING, Any, cast
 
 import click
 
 from ..errors import InputError
+from ..format import json_text, keyed, text
 from ._common import echo_table, format_option
 
 if TYPE_CHECKING:
     from ..balance_shaft import HoldMode, RotorType, SecondaryMeasure
     from ..beam import BeamTheory
 
-SCHEMA = "crankbalance.shaft/1"
+SCHEMA = "crankbalance.shaft/2"
+
+_DEG = 180.0 / math.pi
+#: JSON keys of ``shaft check`` (unit in a suffix, angles in degrees)
+SHAFT_KEYS: dict[str, str | tuple[str, float]] = {
+    "length": "length_m",
+    "bearing_positions": "bearing_positions_m",
+    "mass_positions": "mass_positions_m",
+    "unbalances": "unbalances_kg_m",
+    "speed": "speed_rad_s",
+    "phases": ("phases_deg", _DEG),
+    "unbalance_radius": "unbalance_radius_m",
+    "bearing_stiffness": "bearing_stiffness_N_per_m",
+}
+SECTION_KEYS: dict[str, str | tuple[str, float]] = {
+    "outer_diameter": "outer_diameter_m",
+    "inner_diameter": "inner_diameter_m",
+    "youngs_modulus": "youngs_modulus_Pa",
+    "density": "density_kg_m3",
+}
+RESPONSE_KEYS: dict[str, str | tuple[str, float]] = {
+    "reactions": "reactions_N",
+    "reaction_phases": ("reaction_phases_deg", _DEG),
+    "reaction_difference": "reaction_difference_N",
+    "x": "x_m",
+    "deflection": "deflection_m",
+    "bending_measure": "bending_measure_m2",
+    "max_deflection": "max_deflection_m",
+    "max_moment": "max_moment_Nm",
+    "max_stress": "max_stress_Pa",
+    "first_frequency": "first_frequency_hz",
+    "first_critical_speed": "first_critical_speed_rad_s",
+    "speed": "speed_rad_s",
+}
+CHECK_KEYS: dict[str, str | tuple[str, float]] = {
+    "max_bearing_load": "max_bearing_load_N",
+    "bearing_capacity": "bearing_capacity_N",
+    "max_deflection": "max_deflection_m",
+    "deflection_limit": "deflection_limit_m",
+}
 
 
 def _section_options(function: Any) -> Any:
@@ -260,8 +300,8 @@ def _input_json(engine: str | None, c: dict[str, Any]) -> dict[str, Any]:
 def _echo_input(engine: str | None, c: dict[str, Any]) -> None:
     source = f" (from the balancing solver of {engine})" if engine else ""
     click.echo(
-        f"Unbalance {c['unbalance'] * 1e6:.6g} g*mm at "
-        f"{c['speed'] * 30 / 3.141592653589793:.6g} rpm{source}"
+        f"Unbalance {text(c['unbalance'], 'unbalance', 6)} at "
+        f"{text(c['speed'], 'speed', 6)}{source}"
     )
 
 
@@ -289,13 +329,13 @@ def study_json(study: Any) -> dict[str, Any]:
             "position": d["positions"],
             "bearing_positions_m": d["bearing_positions"],
             "mass_positions_m": d["mass_positions"],
-            "unbalances_kgm": d["unbalances"],
+            "unbalances_kg_m": d["unbalances"],
             "reactions_N": d["reactions"],
             "reaction_difference_N": d["reaction_difference"],
             "bending_measure_m2": d["bending_measure"],
             "max_deflection_m": d["max_deflection"],
             "max_stress_Pa": d["max_stress"],
-            "first_frequency_Hz": d["first_frequency"],
+            "first_frequency_hz": d["first_frequency"],
             "normalised_bending": d["normalised_bending"],
             "normalised_secondary": d["normalised_secondary"],
             "objective": d["objective"],
@@ -362,7 +402,7 @@ def inline4(fmt: str, **options: Any) -> None:
                 "source": "Kim (2018), Sect. 3.1, Fig. 7",
             },
         }
-        click.echo(json.dumps(out, indent=2))
+        click.echo(json_text(out))
         return
     _echo_input(options["engine"], c)
     _echo_study(study, max(1, points // 10))
@@ -445,7 +485,7 @@ def inline3(
                 "and 22-25 garbled (docs/references.md)",
             },
         }
-        click.echo(json.dumps(out, indent=2))
+        click.echo(json_text(out))
         return
     _echo_input(options["engine"], c)
     for s in studies:
@@ -565,16 +605,17 @@ def check(
         else _quantity(deflection_limit, "length", "deflection_limit"),
     )
     if fmt == "json":
+        shaft_dict = keyed(design.to_dict(), SHAFT_KEYS)
+        shaft_dict["section"] = keyed(shaft_dict["section"], SECTION_KEYS)
         click.echo(
-            json.dumps(
+            json_text(
                 {
                     "schema": SCHEMA,
                     "case": "check",
-                    "shaft": design.to_dict(),
-                    "response": response.to_dict(),
-                    "checks": checks.to_dict(),
-                },
-                indent=2,
+                    "shaft": shaft_dict,
+                    "response": keyed(response.to_dict(), RESPONSE_KEYS),
+                    "checks": keyed(checks.to_dict(), CHECK_KEYS),
+                }
             )
         )
         return

@@ -1,5 +1,5 @@
 """The analysis study: from an engine (file, preset, spec or model) to its free forces and
-moments, in the JSON contract ``crankbalance.analysis/1`` of DESIGN.md."""
+moments, in the JSON contract ``crankbalance.analysis/2`` (docs/json.md)."""
 
 from __future__ import annotations
 
@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from ..format import keyed, text
 from ..io.engine_file import load_engine
 from ..model import EngineModel
 from ..options import AnalysisOptions, parse_options
@@ -18,7 +19,17 @@ from ..shaking import Curves, FreeForces, curves, free_forces
 from ..spec import EngineSpec
 from .build import build_model
 
-SCHEMA = "crankbalance.analysis/1"
+SCHEMA = "crankbalance.analysis/2"
+#: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
+CONROD_KEYS: dict[str, str | tuple[str, float]] = {
+    "mass": "mass_kg",
+    "rotating": "rotating_kg",
+    "reciprocating": "reciprocating_kg",
+    "cg_from_big_end": "cg_from_big_end_m",
+    "inertia_two_mass": "inertia_two_mass_kg_m2",
+    "inertia_given": "inertia_given_kg_m2",
+    "inertia_error": "inertia_error_kg_m2",
+}
 EngineLike = str | os.PathLike[str] | EngineSpec | EngineModel
 
 
@@ -102,7 +113,7 @@ class Analysis:
             "masses": {
                 "reciprocating_kg": m.reciprocating_mass,
                 "rotating_kg": m.throw_rotating_mass,
-                "conrods": [c.to_dict() for c in m.conrods],
+                "conrods": [keyed(c.to_dict(), CONROD_KEYS) for c in m.conrods],
             },
             "free_forces": rows_f,
             "free_moments": rows_m,
@@ -126,7 +137,7 @@ def engine_summary(m: EngineModel) -> dict[str, Any]:
         "name": m.name,
         "cylinders": m.cylinders,
         "throws": m.throws,
-        "speed_rpm": m.speed * 30 / math.pi,
+        "speed_rad_s": m.speed,
         "kinematics": m.kinematics,
     }
 
@@ -155,7 +166,7 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
 
 
 # --------------------------------------------------------------------------- balancing study
-BALANCE_SCHEMA = "crankbalance.balance/1"
+BALANCE_SCHEMA = "crankbalance.balance/2"
 
 
 def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
@@ -200,7 +211,7 @@ class BalanceStudy:
     result: Any  # balancing.BalanceResult
 
     def to_dict(self) -> dict[str, Any]:
-        """The JSON contract ``crankbalance.balance/1`` of DESIGN.md."""
+        """The JSON contract ``crankbalance.balance/2`` (docs/json.md)."""
         res, m = self.result, self.model
         components = {c.component: c for c in res.residuals}
 
@@ -258,7 +269,8 @@ class BalanceStudy:
 
         rotating, o1, o2 = components["rotating"], components["order1"], components["order2"]
         unbalanced = [
-            f"{c.component}: force {c.force_after:.4g} N, moment {c.moment_after:.4g} N*m"
+            f"{c.component}: force {text(c.force_after, 'force')}, "
+            f"moment {text(c.moment_after, 'moment')}"
             for c in res.residuals
             if c.force_after > 0 or c.moment_after > 0
         ]

@@ -2,8 +2,8 @@
 
 * ``GET  /api/presets``: the engine library.
 * ``POST /api/analyze``: body an engine file (TOML, or JSON with ``Content-Type:
-  application/json``) -> the ``crankbalance.analysis/1`` JSON.
-* ``POST /api/balance``: the same -> the ``crankbalance.balance/1`` JSON.
+  application/json``) -> the ``crankbalance.analysis/2`` JSON.
+* ``POST /api/balance``: the same -> the ``crankbalance.balance/2`` JSON.
 
 Bad input answers 422 with ``{"error": message, "field": field}``: the same message the
 command line prints. Every request is computed on its own; nothing is shared between

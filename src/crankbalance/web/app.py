@@ -291,7 +291,7 @@ class Page:
         )
 
     def download_data(self, what: str) -> None:
-        import json
+        from ..format import json_text
 
         c = self.project.computed
         if c is None or self.project.spec is None:
@@ -299,11 +299,11 @@ class Page:
             return
         if what == "analysis":
             send_download(
-                json.dumps(c.analysis.to_dict(), indent=1), "analysis.json", "application/json"
+                json_text(c.analysis.to_dict(), indent=1), "analysis.json", "application/json"
             )
         elif what == "balance":
             send_download(
-                json.dumps(c.study.to_dict(), indent=1), "balance.json", "application/json"
+                json_text(c.study.to_dict(), indent=1), "balance.json", "application/json"
             )
         else:
             send_download(table_csv(order_rows(c)), "orders.csv", "text/csv")

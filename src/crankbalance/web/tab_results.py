@@ -9,6 +9,7 @@ from nicegui import ui
 
 from .. import figures
 from ..errors import InputError
+from ..format import text
 from .widgets import Tab, fmt_g
 
 
@@ -144,10 +145,10 @@ class ResultsTab(Tab):
         lines = []
         cw = b["counterweight"]
         if cw:
-            angle = "—" if cw["angle_deg"] is None else f"{cw['angle_deg']:.2f}°"
+            angle = "—" if cw["angle_deg"] is None else text(cw["angle_deg"], "angle_deg", 5)
             lines.append(
                 f"**Counterweight mass:** {cw['mass_kg']:.4f} kg × {cw['count']} "
-                f"at {cw['cg_radius_m'] * 1e3:g} mm, angle {angle}"
+                f"at {text(cw['cg_radius_m'], 'length')}, angle {angle}"
             )
         for key, label in (("primary_shafts", "Primary"), ("secondary_shafts", "Secondary")):
             group = b[key]
@@ -159,9 +160,9 @@ class ResultsTab(Tab):
                 lines.append(f"**{label} shafts:** none")
         r = b["residual"]
         lines.append(
-            f"Residual primary force {r['order1_force_N']:.4g} N, moment "
-            f"{r['order1_moment_Nm']:.4g} N·m; secondary force "
-            f"{r['order2_force_N']:.4g} N, moment {r['order2_moment_Nm']:.4g} N·m"
+            f"Residual primary force {text(r['order1_force_N'], 'force')}, moment "
+            f"{text(r['order1_moment_Nm'], 'moment')}; secondary force "
+            f"{text(r['order2_force_N'], 'force')}, moment {text(r['order2_moment_Nm'], 'moment')}"
         )
         lines += [f"_{n}_" for n in b["notes"]]
         self.balance_summary.set_content("  \n".join(lines))

@@ -15,6 +15,7 @@ from nicegui import run, ui
 
 from .. import figures, render
 from ..errors import InputError
+from ..format import number
 from .exports import figure_csv, figure_json
 
 if TYPE_CHECKING:
@@ -150,7 +151,8 @@ def plot_or_none(name: str, *args: Any) -> Any | None:
 
 
 def fmt_g(value: float) -> str:
-    return f"{float(value):.5g}"
+    """A number in the one output vocabulary (5 significant digits, no -0)."""
+    return number(float(value), 5)
 
 
 def distinct(values: Any) -> str:
