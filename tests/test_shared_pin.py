@@ -9,9 +9,6 @@ import json
 
 import pytest
 
-#: relative resolution of a number printed with 12 significant digits
-PRINTED = 1e-11
-
 from crankbalance.cli import main
 from crankbalance.io.engine_file import load_engine
 from crankbalance.studies.build import build_model
@@ -20,6 +17,8 @@ from crankbalance.web.project import DEFAULT_SETTINGS, Project
 from crankbalance.web.studies import rebalance_study, single_study
 
 PRESETS = ("v8-crossplane", "v2-45")
+#: relative resolution of a number printed with 12 significant digits
+PRINTED = 1e-11
 CYLINDERS = (1, 2)
 
 
