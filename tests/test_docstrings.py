@@ -46,21 +46,7 @@ import pytest
 from numpy.typing import ArrayLike
 from numpydoc.docscrape import NumpyDocString
 
-PHYSICS = (
-    "kinematics",
-    "model",
-    "shaking",
-    "balancing",
-    "single_cylinder",
-    "counterweight",
-    "counterweight_optimize",
-    "beam",
-    "balance_shaft",
-    "friction",
-    "rotor_bench",
-    "engine_cycle",
-    "tolerance",
-)
+from .test_architecture import PHYSICS
 
 NUMERIC_ANNOTATION = re.compile(r"\b(float|complex|ArrayLike|NDArray|ndarray)\b")
 INTEGER_ARRAY = re.compile(r"^\s*NDArray\[\s*np\.(u?int\w*|bool_?|intp)\s*\]\s*$")
