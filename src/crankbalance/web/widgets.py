@@ -8,6 +8,7 @@ imports the shell or a tab at run time (only for type checking), so there is no 
 from __future__ import annotations
 
 import logging
+from abc import ABC, abstractmethod
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -89,7 +90,7 @@ class FigureCard:
             send_download(data, f"{self.name}.{fmt}", media)
 
 
-class Tab:
+class Tab(ABC):
     """One tab of the page. The shell (:class:`~.app.Page`) calls :meth:`build` inside the
     tab's panel, :meth:`show` after each recompute of a valid engine and :meth:`reset` when
     another project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed
@@ -102,13 +103,14 @@ class Tab:
         self.page = page
         self.cards: list[FigureCard] = []
 
+    @abstractmethod
     def build(self) -> None:
-        raise NotImplementedError
+        """Lay out the tab's inputs, tables and figure cards (inside its panel)."""
 
-    def show(self, c: Any) -> None:
+    def show(self, c: Any) -> None:  # noqa: B027 (optional: most tabs show only figures)
         """Show the numbers of the newly computed engine ``c``."""
 
-    def reset(self) -> None:
+    def reset(self) -> None:  # noqa: B027 (optional: only study tabs keep results)
         """Forget the results of the previous project (a new one was loaded)."""
 
     def card(self, name: str, title: str, builder: Callable[[], Any | None]) -> FigureCard:
