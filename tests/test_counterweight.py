@@ -574,7 +574,7 @@ def test_cli_export_and_check(tmp_path, capsys):
         (["optimize", "--first-moment", "7880 g*mm", "--web-radius", "30..10 mm"], "low must"),
         (["optimize", "--first-moment", "7880 g*mm", "--web-radius", "1..2..3 mm"], "one range"),
         (["optimize", "--first-moment", "7880 g*mm", "--min-balance", "nan"], "--min-balance"),
-        (["export", *ROW2, "--thickness", "5 mm", "-o", "/no/such/dir/cw.svg"], "writable"),
+        (["export", *ROW2, "--thickness", "5 mm", "-o", "/no/such/dir/cw.svg"], "cannot write"),
     ],
 )
 def test_cli_bad_input_exit_2(args, text, capsys):

@@ -172,12 +172,18 @@ def find_chromium(chromium: str | None = None) -> str:
 
 
 def html_to_pdf(html: str, chromium: str | None = None, timeout: float = 120.0) -> bytes:
-    """Print an HTML document to PDF with headless Chromium (no network, fresh profile)."""
+    """Print an HTML document to PDF with headless Chromium (no network, fresh profile).
+
+    Chromium prints into a private scratch folder and the bytes are returned, checked to be
+    a whole PDF: the caller writes them with :func:`crankbalance.io.files.write_atomic`,
+    which reports the real error (e.g. a full disk) of the write that matters."""
+    from .io.files import write_atomic
+
     exe = find_chromium(chromium)
     with tempfile.TemporaryDirectory(prefix="crankbalance-report-") as tmp:
         page = Path(tmp) / "report.html"
         out = Path(tmp) / "report.pdf"
-        page.write_text(html, encoding="utf-8")
+        write_atomic(page, html)
         command = [
             exe,
             *CHROMIUM_FLAGS,
@@ -189,9 +195,11 @@ def html_to_pdf(html: str, chromium: str | None = None, timeout: float = 120.0) 
             done = subprocess.run(command, capture_output=True, timeout=timeout, check=False)
         except subprocess.TimeoutExpired:
             raise InputError("chromium", exe, f"to print the PDF within {timeout:g} s") from None
-        if not out.exists() or out.stat().st_size == 0:
+        pdf = out.read_bytes() if out.exists() else b""
+        # a printer stopped part way (e.g. its scratch disk full) leaves no %%EOF at the end
+        if not (pdf.startswith(b"%PDF-") and b"%%EOF" in pdf[-1024:]):
             tail = done.stderr.decode(errors="replace").strip().splitlines()[-3:]
             raise InputError(
                 "chromium", exe, "a Chromium that prints PDFs (it failed: " + " | ".join(tail) + ")"
             )
-        return out.read_bytes()
+        return pdf

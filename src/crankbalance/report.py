@@ -540,7 +540,7 @@ def write_report(
     **overrides: Any,
 ) -> Path:
     """Write the report of ``engine`` to ``path`` (``.html``/``.htm`` or ``.pdf``),
-    atomically."""
+    atomically (:class:`crankbalance.io.files.WriteError` when it cannot be written)."""
     from .io.files import write_atomic
 
     target = Path(path)
@@ -555,10 +555,5 @@ def write_report(
         data: str | bytes = html_to_pdf(report_html(report, static=True), exe)
     else:
         data = report_html(report)
-    try:
-        write_atomic(target, data)
-    except OSError as error:
-        raise InputError(
-            "output", str(path), f"a file that can be written ({error.strerror})"
-        ) from None
+    write_atomic(target, data)
     return target

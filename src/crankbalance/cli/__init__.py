@@ -3,8 +3,9 @@
 Each command lives in its own module of this package and is imported only when it
 runs, so that ``crankbalance --help`` and every command start fast. To add a command,
 add one line to :data:`COMMANDS` (name -> "module:function" of a ``click.Command``).
-Commands raise :class:`crankbalance.errors.InputError` for bad input; :func:`main`
-prints its message without a traceback and exits with status 2.
+Commands raise :class:`crankbalance.errors.InputError` for bad input and
+:class:`crankbalance.io.files.WriteError` for a file that cannot be written (a full disk);
+:func:`main` prints either message in one line without a traceback and exits with status 2.
 """
 
 from __future__ import annotations
@@ -16,6 +17,7 @@ from typing import Any
 import click
 
 from ..errors import InputError
+from ..io.files import WriteError
 
 COMMANDS: dict[str, tuple[str, str]] = {
     # name: ("module:attribute", one-line help)
@@ -89,7 +91,7 @@ def main(argv: list[str] | None = None) -> Any:
     """Entry point of the ``crankbalance`` console script."""
     try:
         return cli.main(args=argv, prog_name="crankbalance", standalone_mode=False)
-    except InputError as error:
+    except (InputError, WriteError) as error:  # WriteError: "cannot write FILE: reason"
         click.echo(f"error: {error}", err=True)
         sys.exit(2)
     except click.exceptions.Abort:

@@ -377,12 +377,10 @@ def bench(
         results.append(run_bench(rotor, settings))
         report(k + 1, len(runs))
     if history:
+        from ..io.files import atomic_open
+
         last = results[-1]
-        try:
-            handle = open(history, "w", encoding="utf-8")  # noqa: SIM115
-        except OSError as error:
-            raise InputError("history", history, f"cannot be written ({error.strerror})") from None
-        with handle:
+        with atomic_open(history) as handle:
             handle.write(
                 "time_s,speed_rpm,motor_torque_Nm,friction_torque_Nm,"
                 "bearing_load_a_N,bearing_load_b_N\n"

@@ -42,17 +42,6 @@ def check_output(output: str, suffixes: Sequence[str], field: str = "--output") 
     return target
 
 
-def write_output(output: str, data: str | bytes, field: str = "--output") -> None:
-    """Write ``data`` atomically; an OS error (disk full, permissions) is an InputError."""
-    from ..errors import InputError
-    from ..io.files import write_atomic
-
-    try:
-        write_atomic(output, data)
-    except OSError as error:
-        raise InputError(field, output, f"a file that can be written ({error.strerror})") from None
-
-
 def build_figure(
     kind: str,
     engine: str,
@@ -206,9 +195,10 @@ def plot(
             )
     fig = build_figure(kind, engine, order, quantity, balance, cylinder, balance_factor)
     from .. import render
+    from ..io.files import write_atomic
 
     if fmt == "html":
-        write_output(output, render.to_html(fig))
+        write_atomic(output, render.to_html(fig))
     else:
-        write_output(output, render.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
+        write_atomic(output, render.to_image(fig, fmt, width=width, height=height))  # type: ignore[arg-type]
     click.echo(f"wrote {output}", err=True)

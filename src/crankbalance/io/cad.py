@@ -2,12 +2,13 @@
 
 This module owns every file a counterweight is written to or read back from:
 :func:`profile_svg` and :func:`profile_dxf` (exact lines and arcs of
-:func:`crankbalance.counterweight.profile_boundary`), :func:`profile_mesh` and
-:func:`write_stl` (a closed triangle mesh of the prism), :func:`write_step` (build123d,
+:func:`crankbalance.counterweight.profile_boundary`), :func:`profile_mesh`, :func:`stl_bytes`
+and :func:`write_stl` (a closed triangle mesh of the prism), :func:`write_step` (build123d,
 ``cad`` extra), the dispatcher :func:`export_counterweight`, and
 :func:`mesh_mass_properties` (:class:`MeshMassProperties` of an STL or STEP part, read
-with trimesh). Files are written atomically (:func:`crankbalance.io.files.write_atomic`).
-trimesh and build123d are imported lazily.
+with trimesh). Files are written atomically (:func:`crankbalance.io.files.write_atomic`;
+an error while writing is a :class:`crankbalance.io.files.WriteError` and leaves the
+previous file intact). trimesh and build123d are imported lazily.
 """
 
 from __future__ import annotations
@@ -266,8 +267,8 @@ def profile_mesh(
     return vertices, np.vstack(faces)
 
 
-def write_stl(design: CounterweightDesign, path: str | Path, tolerance: float = 2e-6) -> Path:
-    """Write the counterweight prism as a binary STL in millimetres (see :func:`profile_mesh`)."""
+def stl_bytes(design: CounterweightDesign, tolerance: float = 2e-6) -> bytes:
+    """The counterweight prism as a binary STL in millimetres (see :func:`profile_mesh`)."""
     vertices, faces = profile_mesh(design, tolerance)
     tri = vertices[faces] * _MM
     normals = np.cross(tri[:, 1] - tri[:, 0], tri[:, 2] - tri[:, 0])
@@ -276,9 +277,14 @@ def write_stl(design: CounterweightDesign, path: str | Path, tolerance: float = 
     record = np.zeros(len(faces), dtype=[("n", "<f4", 3), ("v", "<f4", (3, 3)), ("a", "<u2")])
     record["n"] = normals
     record["v"] = tri
-    path = Path(path)
     header = b"crankbalance counterweight, mm".ljust(80, b" ")
-    write_atomic(path, header + np.uint32(len(faces)).tobytes() + record.tobytes())
+    return header + np.uint32(len(faces)).tobytes() + record.tobytes()
+
+
+def write_stl(design: CounterweightDesign, path: str | Path, tolerance: float = 2e-6) -> Path:
+    """Write the counterweight prism as a binary STL in millimetres (see :func:`stl_bytes`)."""
+    path = Path(path)
+    write_atomic(path, stl_bytes(design, tolerance))
     return path
 
 
@@ -328,17 +334,14 @@ def export_counterweight(
         kind = "step"
     if kind not in ("svg", "dxf", "stl", "step"):
         raise InputError("format", kind, "one of svg, dxf, stl, step")
-    try:
-        if kind == "svg":
-            write_atomic(path, profile_svg(design))
-        elif kind == "dxf":
-            write_atomic(path, profile_dxf(design))
-        elif kind == "stl":
-            write_stl(design, path)
-        else:
-            write_step(design, path)
-    except OSError as error:
-        raise InputError("path", str(path), f"must be a writable file ({error.strerror})") from None
+    if kind == "svg":
+        write_atomic(path, profile_svg(design))
+    elif kind == "dxf":
+        write_atomic(path, profile_dxf(design))
+    elif kind == "stl":
+        write_stl(design, path)
+    else:
+        write_step(design, path)
     return path
 
 

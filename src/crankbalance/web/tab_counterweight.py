@@ -3,8 +3,6 @@ Pareto front, the chosen design to scale and its SVG/DXF/STL export."""
 
 from __future__ import annotations
 
-import tempfile
-from pathlib import Path
 from typing import Any
 
 from nicegui import run, ui
@@ -127,11 +125,9 @@ class CounterweightTab(Tab):
         elif fmt == "dxf":
             send_download(cwmod.profile_dxf(design), "counterweight.dxf", "application/dxf")
         else:
-            with tempfile.TemporaryDirectory() as folder:
-                path = Path(folder) / "counterweight.stl"
-                await run.io_bound(cwmod.write_stl, design, path)
-                data = path.read_bytes()
-            send_download(data, "counterweight.stl", "model/stl")
+            data = await run.io_bound(cwmod.stl_bytes, design)
+            if data is not None:  # None: the server is shutting down
+                send_download(data, "counterweight.stl", "model/stl")
 
     def _design(self) -> Any | None:
         if self.optimum is None:
