@@ -18,21 +18,29 @@ the side of the mid-plane, Eqs. 6-11 with the docs/references.md reading of the 
 ``method="individual"``, each its own mass and angle (least :math:`\sum m_j^2`). The
 equations are the paper's Eq. 10: force and couple, x and z, solved together in the least
 squares sense; the residual of each is reported, never hidden.
+
+Many engines of one topology (a firing-order or crank study) go to :func:`balance_batch`:
+an :class:`EngineBatch` of arrays with a leading engine axis in, a :class:`BatchBalance`
+of arrays out, engine by engine the results of :func:`balance`, solved with stacked numpy
+linear algebra in chunks of bounded memory (docs/performance_balancing.md). The module is
+long because the one-engine solver, its check and the batch solver share their equations,
+web layout and tolerances, which belong in one place.
 """
 
 from __future__ import annotations
 
-from collections.abc import Sequence
-from dataclasses import dataclass, field
-from typing import Literal
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields, replace
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
+from .kinematics import harmonic_coefficients
 from .model import EngineModel
 from .results import ResultMixin
-from .shaking import FreeForces, exact_time_domain, free_forces
+from .shaking import FreeForces, exact_time_domain, free_forces, reciprocating_phasors
 
 Method = Literal["pattern", "individual"]
 Scope = Literal["auto", "whole", "halves"]
@@ -337,18 +345,21 @@ def web_layout(
     ----------
     Appl. Sci. 2021, Eq. 7.
     """
-    t = model.throws
     if web_offset is None:
         web_offset = default_web_offset(model)
-    flags = np.ones(2 * t, dtype=int) if webs is None else np.asarray(webs, dtype=int)
-    if flags.size != 2 * t:
+    throw, side = _web_sides(model.throws, webs)
+    return throw, model.throw_position[throw] + side * web_offset
+
+
+def _web_sides(throws: int, webs: tuple[int, ...] | None) -> tuple[NDArray, NDArray]:
+    """Throw index and side of its throw mid-plane (-1 or +1) of every counterweight web."""
+    flags = np.ones(2 * throws, dtype=int) if webs is None else np.asarray(webs, dtype=int)
+    if flags.size != 2 * throws:
         raise InputError(
-            "counterweights.webs", list(flags), f"needs {2 * t} entries (two per throw)"
+            "counterweights.webs", list(flags), f"needs {2 * throws} entries (two per throw)"
         )
     index = np.flatnonzero(flags)
-    throw = index // 2
-    side = np.where(index % 2 == 0, -1.0, 1.0)
-    return throw, model.throw_position[throw] + side * web_offset
+    return index // 2, np.where(index % 2 == 0, -1.0, 1.0)
 
 
 def default_web_offset(model: EngineModel) -> float:
@@ -369,12 +380,18 @@ def default_web_offset(model: EngineModel) -> float:
     ----------
     Appl. Sci. 2021, Eq. 7 (a/4).
     """
-    if model.throws > 1:
-        spacing = np.diff(np.sort(model.throw_position))
+    pitch = _throw_pitch(model.throw_position)
+    return pitch / 4.0 if pitch is not None else model.crank_radius / 2.0
+
+
+def _throw_pitch(throw_position: NDArray) -> float | None:
+    """Smallest non-zero axial distance between throws [m], None without one."""
+    if throw_position.size > 1:
+        spacing = np.diff(np.sort(throw_position))
         spacing = spacing[spacing > 0]
         if spacing.size:
-            return float(spacing.min()) / 4.0
-    return model.crank_radius / 2.0
+            return float(spacing.min())
+    return None
 
 
 def _parts(model: EngineModel, scope: str, throw_of_web: NDArray) -> list[tuple[NDArray, NDArray]]:
@@ -394,10 +411,23 @@ def _parts(model: EngineModel, scope: str, throw_of_web: NDArray) -> list[tuple[
 
 def _scale(model: EngineModel) -> tuple[float, float]:
     """Force and length scales of an engine, for relative tolerances."""
-    mass = float(model.throw_rotating_mass.sum() + model.reciprocating_mass.sum())
-    force = max(mass, 1e-30) * model.crank_radius * model.speed**2
-    length = max(float(np.ptp(model.throw_position)), model.crank_radius)
-    return force, length
+    force, length = _scales(
+        model.throw_rotating_mass,
+        model.reciprocating_mass,
+        model.crank_radius,
+        model.speed,
+        model.throw_position,
+    )
+    return float(force), float(length)
+
+
+def _scales(
+    rotating: NDArray, reciprocating: NDArray, crank_radius: ArrayLike, speed: ArrayLike, y: NDArray
+) -> tuple[NDArray, NDArray]:
+    """Force [N] and length [m] scales of one engine or a batch (leading engine axis)."""
+    mass = np.sum(rotating, axis=-1) + np.sum(reciprocating, axis=-1)
+    force = np.maximum(mass, 1e-30) * crank_radius * np.square(speed)
+    return force, np.maximum(np.ptp(y), crank_radius)
 
 
 # --------------------------------------------------------------------------- counterweights
@@ -483,20 +513,10 @@ def solve_counterweights(
     for (_, web_mask), (force, couple) in zip(parts, targets, strict=True):
         planes = np.unique(np.round(y[web_mask], 12))
         if planes.size == 0:
-            raise InputError(
-                "counterweights.webs",
-                list(options.webs or []),
-                "a part of the crank that needs balancing has no counterweight",
-            )
+            raise _no_counterweight(options)
         moment_about_plane = couple - planes[0] * force
         if planes.size == 1 and abs(moment_about_plane) > ZERO * size * length:
-            raise InputError(
-                "counterweights.webs",
-                list(options.webs or []),
-                f"all counterweights lie in one plane (y = {planes[0] * 1e3:g} mm): they cannot "
-                "cancel the couple of the rotating masses; put counterweights on webs in two "
-                "planes",
-            )
+            raise _one_plane(options, planes[0])
     if options.method == "individual":
         v, *_ = np.linalg.lstsq(a, b, rcond=None)  # least sum |v|^2 among exact solutions
         mass = np.abs(v) / options.cg_radius
@@ -536,6 +556,33 @@ def solve_counterweights(
         mass,
         np.mod(direction, 2 * np.pi),
         note,
+    )
+
+
+def _no_counterweight(options: CounterweightOptions) -> InputError:
+    return InputError(
+        "counterweights.webs",
+        list(options.webs or []),
+        "a part of the crank that needs balancing has no counterweight",
+    )
+
+
+def _one_plane(options: CounterweightOptions, plane: float) -> InputError:
+    return InputError(
+        "counterweights.webs",
+        list(options.webs or []),
+        f"all counterweights lie in one plane (y = {plane * 1e3:g} mm): they cannot "
+        "cancel the couple of the rotating masses; put counterweights on webs in two "
+        "planes",
+    )
+
+
+def _single_shaft_without_counterweights() -> InputError:
+    return InputError(
+        "balance_shafts.primary.arrangement",
+        "counter-rotating",
+        "a single counter-rotating shaft needs [counterweights] on the "
+        "crank to take the co-rotating half",
     )
 
 
@@ -811,12 +858,7 @@ def balance(
             # Eq. 17 done right: the co-rotating shaft's first moment and couple go onto the
             # crank counterweights as an extra set of masses
             if counterweights is None:
-                raise InputError(
-                    "balance_shafts.primary.arrangement",
-                    "counter-rotating",
-                    "a single counter-rotating shaft needs [counterweights] on the "
-                    "crank to take the co-rotating half",
-                )
+                raise _single_shaft_without_counterweights()
             opts = CounterweightOptions(
                 **{**counterweights.__dict__, "scope": "whole", "method": "individual"}
             )
@@ -1142,3 +1184,1041 @@ def counterweight_angle_sweep(
     side = np.sign(np.round(y / length, 12))
     moment, residual = pattern_masses(a, b, opposite, side, angles)
     return AngleSweep(np.asarray(angles, dtype=float), np.abs(moment) / options.cg_radius, residual)
+
+
+# --------------------------------------------------------------------------- batches
+#: engines solved together in one pass of :func:`balance_batch` (bounds the temporaries to
+#: a few MB; the result grows with the batch, about 1 kB per engine)
+BATCH_CHUNK = 2048
+#: share of an engine's force scale (forces) or force scale times crank length (moments)
+#: below which the batch check counts a targeted component as cancelled
+CHECK_TOLERANCE = 1e-9
+
+
+@dataclass(frozen=True)
+class EngineBatch:
+    """Many engines of one topology: arrays with a leading engine axis (E engines).
+
+    The ``topology`` fixes what the engines share: the throws' axial positions, the throw
+    and bank angle of each cylinder and the kinematics model. Each engine has its own throw
+    angles, masses, crank radius, conrod length, offset and speed. Build it with
+    :func:`engine_batch` or :func:`stack_models`.
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The shared layout (its throw angles, masses, radius, rod length, offset and speed
+        are not used).
+    throw_angle : ndarray, shape (E, T)
+        Throw angles [rad].
+    throw_rotating_mass : ndarray, shape (E, T)
+        Rotating mass of each throw at the crank radius [kg].
+    reciprocating_mass : ndarray, shape (E, C)
+        Reciprocating mass of each cylinder [kg].
+    crank_radius, rod_length, offset : ndarray, shape (E,)
+        Crank radius, conrod length, crank plus wrist-pin offset [m].
+    speed : ndarray, shape (E,)
+        Crank speed [rad/s].
+    """
+
+    topology: EngineModel
+    throw_angle: NDArray[np.float64]
+    throw_rotating_mass: NDArray[np.float64]
+    reciprocating_mass: NDArray[np.float64]
+    crank_radius: NDArray[np.float64]
+    rod_length: NDArray[np.float64]
+    offset: NDArray[np.float64]
+    speed: NDArray[np.float64]
+
+    @property
+    def size(self) -> int:
+        """Number of engines E."""
+        return int(self.crank_radius.size)
+
+    def model(self, index: int) -> EngineModel:
+        """Engine ``index`` as an :class:`EngineModel`, for the one-engine functions."""
+        return replace(
+            self.topology,
+            throw_angle=self.throw_angle[index].copy(),
+            throw_rotating_mass=self.throw_rotating_mass[index].copy(),
+            reciprocating_mass=self.reciprocating_mass[index].copy(),
+            crank_radius=float(self.crank_radius[index]),
+            rod_length=float(self.rod_length[index]),
+            offset=float(self.offset[index]),
+            speed=float(self.speed[index]),
+        )
+
+    def take(self, index: slice | NDArray[np.int64]) -> EngineBatch:
+        """The engines ``index`` (a slice or integer indices) as a batch."""
+        return _take(self, index)
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = (
+        "throw_angle",
+        "throw_rotating_mass",
+        "reciprocating_mass",
+        "crank_radius",
+        "rod_length",
+        "offset",
+        "speed",
+    )
+
+
+def engine_batch(
+    topology: EngineModel,
+    size: int | None = None,
+    *,
+    throw_angle: ArrayLike | None = None,
+    throw_rotating_mass: ArrayLike | None = None,
+    reciprocating_mass: ArrayLike | None = None,
+    crank_radius: ArrayLike | None = None,
+    rod_length: ArrayLike | None = None,
+    offset: ArrayLike | None = None,
+    speed: ArrayLike | None = None,
+) -> EngineBatch:
+    """Engines of one topology from arrays; what is not given is the topology's value.
+
+    An array with a leading engine axis gives one value per engine; without it (per-throw
+    and per-cylinder arrays of one dimension, scalars) the value is shared by all engines.
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The shared layout and the default of every value not given.
+    size : int, optional
+        Number of engines E; default the leading axis of the arrays given (1 if none has
+        one).
+    throw_angle : array_like, shape (E, T) or (T,), optional
+        Throw angles [rad].
+    throw_rotating_mass : array_like, shape (E, T) or (T,), optional
+        Rotating mass of each throw at the crank radius [kg].
+    reciprocating_mass : array_like, shape (E, C) or (C,), optional
+        Reciprocating mass of each cylinder [kg].
+    crank_radius, rod_length, offset : array_like, shape (E,) or scalar, optional
+        Crank radius, conrod length, crank plus wrist-pin offset [m].
+    speed : array_like, shape (E,) or scalar, optional
+        Crank speed [rad/s].
+
+    Returns
+    -------
+    EngineBatch
+        The engines, every array with its leading engine axis.
+
+    Raises
+    ------
+    InputError
+        If the arrays disagree on the number of engines or have the wrong shape, or an
+        engine has a non-finite value, a crank radius or speed not above zero, a negative
+        mass, or a conrod not longer than the crank radius plus the offset.
+    """
+    tails = {
+        "throw_angle": (topology.throws,),
+        "throw_rotating_mass": (topology.throws,),
+        "reciprocating_mass": (topology.cylinders,),
+        "crank_radius": (),
+        "rod_length": (),
+        "offset": (),
+        "speed": (),
+    }
+    arguments = {
+        "throw_angle": throw_angle,
+        "throw_rotating_mass": throw_rotating_mass,
+        "reciprocating_mass": reciprocating_mass,
+        "crank_radius": crank_radius,
+        "rod_length": rod_length,
+        "offset": offset,
+        "speed": speed,
+    }
+    given = {k: np.asarray(v, dtype=float) for k, v in arguments.items() if v is not None}
+    sizes = {a.shape[0] for k, a in given.items() if a.ndim == len(tails[k]) + 1}
+    if size is not None:
+        sizes.add(size)
+    if len(sizes) > 1 or min(sizes, default=1) < 1:
+        raise InputError(
+            "engine_batch", sorted(sizes), "one number of engines, 1 or more, for every array"
+        )
+    n = sizes.pop() if sizes else 1
+    values: dict[str, NDArray] = {}
+    for name, tail in tails.items():
+        value = given.get(name, np.asarray(getattr(topology, name), dtype=float))
+        try:
+            values[name] = np.array(np.broadcast_to(value, (n, *tail)), dtype=float)
+        except ValueError:
+            raise InputError(name, list(np.shape(value)), f"shape {(n, *tail)} or {tail}") from None
+    _check_engines(values)
+    return EngineBatch(topology, **values)
+
+
+def _check_engines(values: dict[str, NDArray]) -> None:
+    """Raise :class:`InputError` for the first engine with an impossible value."""
+    r, length, e = values["crank_radius"], values["rod_length"], values["offset"]
+    checks = [(name, np.isfinite(a), "must be finite") for name, a in values.items()]
+    checks += [
+        ("crank_radius", r > 0, "must be greater than zero"),
+        ("speed", values["speed"] > 0, "must be greater than zero"),
+        ("throw_rotating_mass", values["throw_rotating_mass"] >= 0, "must be zero or more"),
+        ("reciprocating_mass", values["reciprocating_mass"] >= 0, "must be zero or more"),
+        ("rod_length", length > r + np.abs(e), "must exceed the crank radius plus the offset"),
+    ]
+    for name, ok, allowed in checks:
+        bad = np.flatnonzero(~ok.reshape(ok.shape[0], -1).all(axis=1))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(name, values[name][i].tolist(), f"{allowed} (engine {i})")
+
+
+def stack_models(models: Sequence[EngineModel]) -> EngineBatch:
+    """Engine models of one topology stacked into a batch.
+
+    Parameters
+    ----------
+    models : sequence of EngineModel
+        The engines; all have the throw positions, cylinder throws and bank angles and the
+        kinematics model of the first.
+
+    Returns
+    -------
+    EngineBatch
+        The engines in the order given (the first is the topology).
+
+    Raises
+    ------
+    InputError
+        If ``models`` is empty or an engine's topology differs from the first's.
+    """
+    if not models:
+        raise InputError("models", [], "at least one engine")
+    first = models[0]
+    for i, m in enumerate(models):
+        same = (
+            m.kinematics == first.kinematics
+            and np.array_equal(m.throw_position, first.throw_position)
+            and np.array_equal(m.cylinder_throw, first.cylinder_throw)
+            and np.array_equal(m.cylinder_bank, first.cylinder_bank)
+        )
+        if not same:
+            raise InputError(
+                "models",
+                f"engine {i} ({m.name})",
+                "engines of one topology: the throw positions, cylinder throws, bank "
+                "angles and kinematics of the first",
+            )
+    return engine_batch(
+        first,
+        len(models),
+        throw_angle=[m.throw_angle for m in models],
+        throw_rotating_mass=[m.throw_rotating_mass for m in models],
+        reciprocating_mass=[m.reciprocating_mass for m in models],
+        crank_radius=[m.crank_radius for m in models],
+        rod_length=[m.rod_length for m in models],
+        offset=[m.offset for m in models],
+        speed=[m.speed for m in models],
+    )
+
+
+@dataclass(frozen=True)
+class BatchCounterweights(ResultMixin):
+    """Crank counterweights of a batch (as :class:`Counterweights`, W per engine).
+
+    Parameters
+    ----------
+    method : {"pattern", "individual"}
+        How the counterweights were sized.
+    cg_radius : float
+        Radius of the counterweights' centre of gravity [m].
+    web : ndarray of int, shape (W,)
+        Web number of each counterweight (1-based, two per throw).
+    throw : ndarray of int, shape (W,)
+        Throw number of each counterweight (1-based).
+    position : ndarray, shape (E, W)
+        Axial position from the crankshaft mid-point [m].
+    mass : ndarray, shape (E, W)
+        Mass at ``cg_radius`` [kg].
+    direction : ndarray, shape (E, W)
+        Direction at crank angle 0, from +z toward +x [rad].
+    alpha : ndarray, shape (E,)
+        Turn angle of the pattern [rad]; 0 for ``individual`` and where the crank needed
+        no counterweight (the one-engine solver's None).
+    halves : ndarray of bool, shape (E,)
+        Whether each half of the crank was balanced on its own (else the whole crank).
+    flipped : ndarray of bool, shape (E,)
+        Whether the pattern pointed toward the crankpins and was flipped.
+    already_balanced : ndarray of bool, shape (E,)
+        Whether there was nothing to cancel (all masses zero).
+    """
+
+    method: str
+    cg_radius: float
+    web: NDArray[np.int64]
+    throw: NDArray[np.int64]
+    position: NDArray[np.float64]
+    mass: NDArray[np.float64]
+    direction: NDArray[np.float64]
+    alpha: NDArray[np.float64]
+    halves: NDArray[np.bool_]
+    flipped: NDArray[np.bool_]
+    already_balanced: NDArray[np.bool_]
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = (
+        "position",
+        "mass",
+        "direction",
+        "alpha",
+        "halves",
+        "flipped",
+        "already_balanced",
+    )
+
+    @property
+    def moments(self) -> NDArray[np.complex128]:
+        """Complex first moments :math:`m\\rho e^{i\\psi}`, shape (E, W) [kg·m]."""
+        return self.mass * self.cg_radius * np.exp(1j * self.direction)
+
+
+@dataclass(frozen=True)
+class BatchShafts(ResultMixin):
+    """The balance shafts of one order for a batch (as :class:`ShaftSet`).
+
+    Each shaft has three mass slots at the axial positions :math:`-l/2, 0, +l/2`; its
+    ``layout`` says which hold a mass, as the one-engine :func:`solve_shaft`: 0 nothing to
+    cancel (no mass), 1 a force only (one mass mid-shaft), 2 a couple (the two outer
+    masses, sized together with the force).
+
+    Parameters
+    ----------
+    order : int
+        1 (primary) or 2 (secondary).
+    arrangement : {"pair", "counter-rotating"}
+        As :class:`ShaftOptions`.
+    length : float
+        Axial distance between the outer masses [m].
+    cg_radius : float
+        Radius of the centre of gravity of the shaft masses [m].
+    sense : ndarray of int, shape (S,)
+        +1 co-rotating, -1 counter-rotating, one per shaft (``pair``: +1, -1).
+    position : ndarray, shape (3,)
+        Axial positions of the three slots [m].
+    layout : ndarray of int, shape (E, S)
+        0, 1 or 2 (see above) per engine and shaft.
+    mass : ndarray, shape (E, S, 3)
+        Mass in each slot [kg], 0 where none.
+    phase : ndarray, shape (E, S, 3)
+        Direction of each mass at crank angle 0, from +z toward +x [rad].
+    """
+
+    order: int
+    arrangement: str
+    length: float
+    cg_radius: float
+    sense: NDArray[np.int64]
+    position: NDArray[np.float64]
+    layout: NDArray[np.int64]
+    mass: NDArray[np.float64]
+    phase: NDArray[np.float64]
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = ("layout", "mass", "phase")
+
+    @property
+    def largest(self) -> NDArray[np.float64]:
+        """Largest single mass of each shaft, shape (E, S) [kg] (:attr:`Shaft.mass`)."""
+        return self.mass.max(axis=-1)
+
+
+@dataclass(frozen=True)
+class BatchResiduals(ResultMixin):
+    """What the balancing masses of a batch leave, component by component.
+
+    Rebuilt from the reported masses, radii, phases and positions of the counterweights
+    and shaft masses (each a point mass adding :math:`m\\rho(k\\omega)^2 e^{i\\psi}` to its
+    order and sense), added to the free forces; the same numbers as the one-engine
+    solver's time-domain check (:func:`verify`), to its round-off.
+
+    Parameters
+    ----------
+    components : tuple of str
+        ``"rotating"``, then ``"order1"`` .. ``"order<K>"`` (the columns).
+    targeted : ndarray of bool, shape (K + 1,)
+        Whether a counterweight or shaft was asked to cancel each component.
+    force_before, force_after : ndarray, shape (E, K + 1)
+        Largest force of each component over a revolution, without and with the balancing
+        masses [N] (0 below 1e-13 of the engine's force scale, as :func:`verify`).
+    moment_before, moment_after : ndarray, shape (E, K + 1)
+        The same for the moment about the crankshaft mid-point [N·m].
+    balanced : ndarray of bool, shape (E,)
+        The residual check: every targeted component is cancelled, its force and moment
+        after balancing below :data:`CHECK_TOLERANCE` of the engine's force scale (times
+        the crank length for moments).
+    """
+
+    components: tuple[str, ...]
+    targeted: NDArray[np.bool_]
+    force_before: NDArray[np.float64]
+    force_after: NDArray[np.float64]
+    moment_before: NDArray[np.float64]
+    moment_after: NDArray[np.float64]
+    balanced: NDArray[np.bool_]
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = (
+        "force_before",
+        "force_after",
+        "moment_before",
+        "moment_after",
+        "balanced",
+    )
+
+    def column(self, component: str) -> int:
+        """Index of ``component`` in the columns."""
+        return self.components.index(component)
+
+
+@dataclass(frozen=True)
+class BatchBalance(ResultMixin):
+    """Counterweights, balance shafts and residuals of every engine of a batch.
+
+    Parameters
+    ----------
+    counterweights : BatchCounterweights or None
+        Crank counterweights, None when none were asked for.
+    extra_counterweights : BatchCounterweights or None
+        The Eq. 17 extra crank masses of a single counter-rotating primary shaft, else None.
+    primary, secondary : BatchShafts or None
+        Balance shafts of order 1 and 2, None when none were asked for.
+    rotating_share : ndarray of complex, shape (E, W), or None
+        First moments of the counterweights' share that carries the rotating masses
+        [kg·m] (the rest, the balance-factor share, counts to the first order).
+    residuals : BatchResiduals
+        Forces and moments before and after, per component, and the residual check.
+    """
+
+    counterweights: BatchCounterweights | None
+    extra_counterweights: BatchCounterweights | None
+    primary: BatchShafts | None
+    secondary: BatchShafts | None
+    rotating_share: NDArray[np.complex128] | None
+    residuals: BatchResiduals
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = ("rotating_share",)
+
+    @property
+    def size(self) -> int:
+        """Number of engines E."""
+        return int(self.residuals.balanced.size)
+
+
+def balance_batch(
+    batch: EngineBatch,
+    counterweights: CounterweightOptions | None = None,
+    primary: ShaftOptions | None = None,
+    secondary: ShaftOptions | None = None,
+    orders: int = 8,
+    chunk: int = BATCH_CHUNK,
+) -> BatchBalance:
+    """Counterweights and balance shafts for many engines of one topology at once.
+
+    Engine by engine the same results as :func:`balance` (the same equations, least
+    squares and tolerances; degenerate cases handled alike: nothing to cancel gives zero
+    masses, rank-deficient equations the least-norm solution, and the inputs for which
+    :func:`balance` raises raise the same :class:`InputError`, naming the engine). The
+    equations are solved with stacked numpy linear algebra: one pseudo-inverse per web
+    geometry for ``individual`` counterweights, a two-unknown least squares per engine for
+    the ``optimal`` pattern, closed forms for the shafts. The engines are processed
+    ``chunk`` at a time, so the temporaries stay bounded whatever the batch size.
+
+    Parameters
+    ----------
+    batch : EngineBatch
+        The engines (:func:`engine_batch`, :func:`stack_models`).
+    counterweights : CounterweightOptions, optional
+        Crank counterweights, the same for every engine.
+    primary, secondary : ShaftOptions, optional
+        Balance shafts at crank speed and at twice crank speed.
+    orders : int
+        Orders reported in the residuals (orders 1 and 2 always are).
+    chunk : int
+        Engines solved together.
+
+    Returns
+    -------
+    BatchBalance
+        Per engine: counterweight masses [kg] and directions [rad], shaft masses [kg] and
+        phases [rad], residual forces [N] and moments [N·m] by order, and the check.
+
+    Raises
+    ------
+    InputError
+        As :func:`balance`, for the first engine it fails on; or a ``chunk`` below 1.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
+    """
+    if primary is not None and primary.arrangement != "pair" and counterweights is None:
+        raise _single_shaft_without_counterweights()
+    out: Any = None  # _chunked gives one chunk or more
+    for start, piece in _chunked(batch, chunk):
+        try:
+            part = _balance_chunk(piece, counterweights, primary, secondary, orders)
+        except _EngineFailed as failed:
+            e = failed.error
+            raise InputError(
+                e.field, e.value, f"{e.allowed} (engine {start + failed.engine} of the batch)"
+            ) from None
+        out = _gather(out, part, start, batch.size)
+    return out
+
+
+def check_batch(
+    batch: EngineBatch, result: BatchBalance, chunk: int = BATCH_CHUNK
+) -> BatchResiduals:
+    """Residuals of the balancing masses in ``result`` on the engines of ``batch``.
+
+    Recomputes the free forces and adds the forces of every counterweight and shaft mass
+    from its reported mass, radius, phase and position: change a mass of ``result``
+    (:func:`dataclasses.replace`) and the check shows what it leaves.
+
+    Parameters
+    ----------
+    batch : EngineBatch
+        The engines ``result`` was solved for.
+    result : BatchBalance
+        The balancing masses (from :func:`balance_batch`, possibly changed).
+    chunk : int
+        Engines checked together.
+
+    Returns
+    -------
+    BatchResiduals
+        Forces [N] and moments [N·m] before and after, per component, and the check.
+    """
+    orders = len(result.residuals.components) - 1
+    out: Any = None  # _chunked gives one chunk or more
+    for start, piece in _chunked(batch, chunk):
+        got = _take(result, slice(start, start + piece.size))
+        part = _residuals(
+            piece,
+            _chunk_forces(piece, orders),
+            got.counterweights,
+            got.rotating_share,
+            got.extra_counterweights,
+            got.primary,
+            got.secondary,
+        )
+        out = _gather(out, part, start, batch.size)
+    return out
+
+
+class _EngineFailed(Exception):
+    """An :class:`InputError` of one engine of a chunk (index within the chunk)."""
+
+    def __init__(self, error: InputError, engine: int) -> None:
+        super().__init__(str(error))
+        self.error = error
+        self.engine = engine
+
+
+def _chunked(batch: EngineBatch, chunk: int) -> list[tuple[int, EngineBatch]]:
+    if not (isinstance(chunk, int | np.integer) and chunk >= 1):
+        raise InputError("chunk", chunk, "an integer of 1 or more")
+    if batch.size <= chunk:
+        return [(0, batch)]
+    return [
+        (start, batch.take(slice(start, start + chunk))) for start in range(0, batch.size, chunk)
+    ]
+
+
+def _take(obj: Any, index: slice | NDArray[np.int64]) -> Any:
+    """The engines ``index`` of a batch dataclass (its ``PER_ENGINE`` arrays, recursively)."""
+    return _per_engine(obj, lambda a: a[index])
+
+
+def _per_engine(obj: Any, func: Callable[[NDArray], NDArray]) -> Any:
+    """A batch dataclass with ``func`` applied to its ``PER_ENGINE`` arrays, recursively."""
+    if obj is None:
+        return None
+    changes = {}
+    for f in fields(obj):
+        value = getattr(obj, f.name)
+        if f.name in obj.PER_ENGINE and value is not None:
+            changes[f.name] = func(value)
+        elif hasattr(value, "PER_ENGINE"):
+            changes[f.name] = _per_engine(value, func)
+    return replace(obj, **changes)
+
+
+def _gather(out: Any, part: Any, start: int, total: int) -> Any:
+    """Put the chunk ``part`` (engines from ``start``) into ``out``, the result of all
+    ``total`` engines (allocated from the first chunk; the first chunk is the result when
+    it holds every engine)."""
+    size = part.size if isinstance(part, BatchBalance) else part.balanced.size
+    if out is None:
+        if size == total:
+            return part
+        out = _per_engine(part, lambda a: np.empty((total, *a.shape[1:]), a.dtype))
+    _fill(out, part, slice(start, start + size))
+    return out
+
+
+def _fill(out: Any, part: Any, index: slice) -> None:
+    if out is None:
+        return
+    for f in fields(out):
+        value = getattr(out, f.name)
+        if f.name in out.PER_ENGINE and value is not None:
+            value[index] = getattr(part, f.name)
+        elif hasattr(value, "PER_ENGINE"):
+            _fill(value, getattr(part, f.name), index)
+
+
+@dataclass(frozen=True)
+class _ChunkForces:
+    """Free-force phasors (E, K), rotating first moments (E, T) and scales of a chunk."""
+
+    forward: NDArray
+    backward: NDArray
+    couple_forward: NDArray
+    couple_backward: NDArray
+    rotating: NDArray
+    scale: NDArray
+    length: NDArray
+
+
+def _chunk_forces(batch: EngineBatch, orders: int) -> _ChunkForces:
+    """The free forces of every engine (:func:`free_forces`, stacked)."""
+    topo = batch.topology
+    r = batch.crank_radius
+    ratio, offset = r / batch.rod_length, batch.offset / r
+    if np.all(ratio == ratio[0]) and np.all(offset == offset[0]):  # computed once if shared
+        ratio, offset = ratio[:1], offset[:1]
+    coeff = harmonic_coefficients(ratio, orders, offset, topo.kinematics)  # type: ignore[arg-type]
+    phasors = reciprocating_phasors(
+        coeff,
+        batch.reciprocating_mass,
+        batch.throw_angle[:, topo.cylinder_throw],
+        topo.cylinder_bank,
+        topo.cylinder_position,
+        r,
+        batch.speed,
+    )
+    scale, length = _scales(
+        batch.throw_rotating_mass,
+        batch.reciprocating_mass,
+        r,
+        batch.speed,
+        topo.throw_position,
+    )
+    rotating = batch.throw_rotating_mass * r[:, None] * np.exp(1j * batch.throw_angle)
+    return _ChunkForces(*phasors, rotating, scale, length)
+
+
+def _balance_chunk(
+    batch: EngineBatch,
+    counterweights: CounterweightOptions | None,
+    primary: ShaftOptions | None,
+    secondary: ShaftOptions | None,
+    orders: int,
+) -> BatchBalance:
+    """:func:`balance` for every engine of a chunk."""
+    topo = batch.topology
+    n, y = batch.size, topo.throw_position
+    forces = _chunk_forces(batch, max(orders, 2))
+    w = batch.speed
+    w2 = w**2
+    scale, length = forces.scale, forces.length
+    size = scale / w2  # kg·m
+    rot_moment = forces.rotating
+    pins = np.zeros((topo.cylinders, topo.throws))
+    pins[np.arange(topo.cylinders), topo.cylinder_throw] = 1.0
+    rec_moment = (batch.reciprocating_mass @ pins) * batch.crank_radius[:, None]
+    rec_moment = rec_moment * np.exp(1j * batch.throw_angle)
+    fb = counterweights.balance_factor if counterweights else 0.0
+    target = rot_moment + fb * rec_moment
+
+    cw: BatchCounterweights | None = None
+    share: NDArray | None = None
+    webs: _Webs | None = None
+    if counterweights is not None:
+        whole_f, whole_c = target.sum(axis=-1), (target * y).sum(axis=-1)
+        if counterweights.scope == "auto":
+            balanced = (np.abs(whole_f) < ZERO * size) & (np.abs(whole_c) < ZERO * size * length)
+            halves = balanced & (topo.throws % 2 == 0 and topo.throws >= 2)
+        else:
+            halves = np.full(n, counterweights.scope == "halves")
+        webs = _web_geometry(batch, counterweights, length)
+        cw = _counterweights_batch(
+            batch, webs, counterweights, halves, whole_f, whole_c, target, size, length
+        )
+        moments = share = cw.moments
+        if fb != 0.0:
+            # the share that carries the rotating masses alone, at the same angle
+            share = _counterweights_batch(
+                batch,
+                webs,
+                counterweights,
+                halves,
+                rot_moment.sum(axis=-1),
+                (rot_moment * y).sum(axis=-1),
+                rot_moment,
+                size,
+                length,
+                angle=cw.alpha,
+            ).moments
+
+    fwd1_f, fwd1_c = forces.forward[:, 0], forces.couple_forward[:, 0]
+    if cw is not None and share is not None:
+        beyond = (moments - share) * w2[:, None]
+        fwd1_f = fwd1_f + beyond.sum(axis=-1)
+        fwd1_c = fwd1_c + (beyond * cw.position).sum(axis=-1)
+
+    extra: BatchCounterweights | None = None
+    primary_set: BatchShafts | None = None
+    if primary is not None:
+        shafts = []
+        if primary.arrangement == "pair":
+            shafts.append(_shaft_batch(1, +1, fwd1_f, fwd1_c, primary, w, scale))
+        elif counterweights is not None and webs is not None:
+            opts = replace(counterweights, scope="whole", method="individual")
+            extra = _counterweights_batch(
+                batch, webs, opts, np.zeros(n, bool), fwd1_f / w2, fwd1_c / w2, None, size, length
+            )
+        shafts.append(
+            _shaft_batch(
+                1, -1, forces.backward[:, 0], forces.couple_backward[:, 0], primary, w, scale
+            )
+        )
+        primary_set = _shaft_set(1, primary, shafts)
+
+    secondary_set: BatchShafts | None = None
+    if secondary is not None:
+        shafts = []
+        if secondary.arrangement == "pair":
+            shafts.append(
+                _shaft_batch(
+                    2, +1, forces.forward[:, 1], forces.couple_forward[:, 1], secondary, w, scale
+                )
+            )
+        shafts.append(
+            _shaft_batch(
+                2, -1, forces.backward[:, 1], forces.couple_backward[:, 1], secondary, w, scale
+            )
+        )
+        secondary_set = _shaft_set(2, secondary, shafts)
+
+    residuals = _residuals(batch, forces, cw, share, extra, primary_set, secondary_set)
+    return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
+
+
+@dataclass(frozen=True)
+class _Webs:
+    """Counterweight webs of a chunk: throw (0-based) and number (1-based) of each web,
+    positions (E, W) [m], and the groups of engines with the same positions over the
+    crank length (the same equations)."""
+
+    throw: NDArray
+    number: NDArray
+    position: NDArray
+    groups: list[NDArray]
+
+
+def _web_geometry(batch: EngineBatch, options: CounterweightOptions, length: NDArray) -> _Webs:
+    """:func:`web_layout` of every engine, grouped by equal equations."""
+    topo = batch.topology
+    throw, side = _web_sides(topo.throws, options.webs)
+    if options.web_offset is not None:
+        offset = np.full(batch.size, float(options.web_offset))
+    else:
+        pitch = _throw_pitch(topo.throw_position)
+        offset = np.full(batch.size, pitch / 4.0) if pitch is not None else batch.crank_radius / 2.0
+    position = topo.throw_position[throw] + side * offset[:, None]
+    normal = position / length[:, None]
+    if np.all(normal == normal[:1]):
+        groups = [np.arange(batch.size)]
+    else:
+        _, inverse = np.unique(normal, axis=0, return_inverse=True)
+        inverse = inverse.reshape(-1)
+        order = np.argsort(inverse, kind="stable")
+        groups = np.split(order, np.cumsum(np.bincount(inverse))[:-1])
+    number = 2 * throw + (side > 0) + 1
+    return _Webs(throw, number, position, groups)
+
+
+def _counterweights_batch(
+    batch: EngineBatch,
+    webs: _Webs,
+    options: CounterweightOptions,
+    halves: NDArray,
+    force: NDArray,
+    couple: NDArray,
+    per_throw: NDArray | None,
+    size: NDArray,
+    length: NDArray,
+    angle: NDArray | None = None,
+) -> BatchCounterweights:
+    """:func:`solve_counterweights` for every engine of a chunk.
+
+    ``force`` and ``couple`` are the whole crank's targets (E,) [kg·m, kg·m²], ``per_throw``
+    the per-throw first moments (E, T) the halves' targets are summed from; ``angle`` (E,)
+    replaces the options' angle of the pattern.
+    """
+    topo = batch.topology
+    n, count = batch.size, webs.throw.size
+    mass = np.zeros((n, count))
+    direction = np.zeros((n, count))
+    alpha = np.zeros(n)
+    flipped = np.zeros(n, bool)
+    already = np.zeros(n, bool)
+    for group in webs.groups:
+        y = webs.position[group[0]]
+        normal = y / length[group[0]]
+        for scope in ("whole", "halves"):
+            sub = group[halves[group] == (scope == "halves")]
+            if not sub.size:
+                continue
+            parts = _parts(topo, scope, webs.throw)
+            rows: list[NDArray] = []
+            rhs: list[NDArray] = []
+            targets = []
+            for throw_mask, web_mask in parts:
+                if scope == "whole" or per_throw is None:
+                    f, c = force[sub], couple[sub]
+                else:
+                    t = per_throw[sub][:, throw_mask]
+                    f, c = t.sum(axis=-1), (t * topo.throw_position[throw_mask]).sum(axis=-1)
+                targets.append((web_mask, f, c))
+                rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
+                rhs += [-f, -c / length[sub]]
+            a = np.array(rows)
+            b = np.stack(rhs, axis=-1)
+            still = np.abs(b).max(axis=-1, initial=0.0) < ZERO * size[sub]
+            already[sub] = still
+            live = ~still
+            if not live.any():
+                continue
+            _check_planes(webs, options, sub, live, targets, size[sub], length[sub])
+            engines, b = sub[live], b[live]
+            if options.method == "individual":
+                # least sum |v|^2 among exact solutions, the cut-off of np.linalg.lstsq
+                pinv = np.linalg.pinv(a, rcond=np.finfo(float).eps * max(a.shape))
+                v = b @ pinv.T
+                mass[engines] = np.abs(v) / options.cg_radius
+                direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
+                continue
+            opposite = batch.throw_angle[engines][:, webs.throw] + np.pi
+            side = np.sign(np.round(normal, 12))
+            if angle is None and options.angle == "optimal":
+                turn, m_c = _optimal_patterns(a, b, opposite, side)
+            else:
+                fixed = options.angle if angle is None else angle[engines]
+                turn = np.broadcast_to(np.asarray(fixed, dtype=float), engines.shape)
+                m_c = _pattern_moments(a, b, opposite, side, turn)
+            flip = m_c < 0  # the pattern points the wrong way: flip it
+            turned = opposite + side * turn[:, None] + np.where(flip, np.pi, 0.0)[:, None]
+            mass[engines] = (np.abs(m_c) / options.cg_radius)[:, None]
+            direction[engines] = np.mod(turned, 2 * np.pi)
+            alpha[engines] = turn
+            flipped[engines] = flip
+    return BatchCounterweights(
+        options.method,
+        options.cg_radius,
+        webs.number,
+        webs.throw + 1,
+        webs.position,
+        mass,
+        direction,
+        alpha,
+        halves.copy(),
+        flipped,
+        already,
+    )
+
+
+def _check_planes(
+    webs: _Webs,
+    options: CounterweightOptions,
+    sub: NDArray,
+    live: NDArray,
+    targets: list[tuple[NDArray, NDArray, NDArray]],
+    size: NDArray,
+    length: NDArray,
+) -> None:
+    """The one-engine solver's errors: a part without counterweight, or all its
+    counterweights in one plane while a couple is to be cancelled."""
+    for web_mask, force, couple in targets:
+        planes = np.unique(np.round(webs.position[sub[0]][web_mask], 12))
+        if planes.size == 0:
+            raise _EngineFailed(_no_counterweight(options), int(sub[live][0]))
+        if planes.size == 1:
+            plane = np.round(webs.position[sub][:, web_mask][:, 0], 12)
+            bad = live & (np.abs(couple - plane * force) > ZERO * size * length)
+            if bad.any():
+                i = int(np.flatnonzero(bad)[0])
+                raise _EngineFailed(_one_plane(options, float(plane[i])), int(sub[i]))
+
+
+def _pattern_moments(
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray, alpha: NDArray
+) -> NDArray:
+    """:func:`pattern_masses` (the moment) with one angle, right-hand side and crank per
+    engine: a (Q, W), b (E, Q), opposite (E, W), side (W,), alpha (E,)."""
+    unit = np.exp(1j * (opposite + side * alpha[:, None]))
+    coeff = unit @ a.T
+    num = np.real(np.sum(np.conj(coeff) * b, axis=-1))
+    den = np.sum(np.abs(coeff) ** 2, axis=-1)
+    safe = den > 1e-300
+    return np.where(safe, num / np.where(safe, den, 1.0), 0.0)
+
+
+def _optimal_patterns(
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray
+) -> tuple[NDArray, NDArray]:
+    """:func:`_optimal_pattern` for every engine: turn angles and first moments (E,)."""
+    if np.any(side == 0):
+        found = [
+            _optimal_pattern(a.astype(complex), b[i], opposite[i], side) for i in range(len(b))
+        ]
+        return np.array([f[0] for f in found]), np.array([f[1] for f in found])
+    base = np.exp(1j * opposite)
+    cx = base @ a.T
+    cy = (1j * side * base) @ a.T
+    matrix = np.stack(
+        [np.concatenate([cx.real, cx.imag], axis=-1), np.concatenate([cy.real, cy.imag], axis=-1)],
+        axis=-1,
+    )
+    x, yv = _lstsq2(matrix, np.concatenate([b.real, b.imag], axis=-1))
+    return np.arctan2(yv, x), np.hypot(x, yv)
+
+
+def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
+    """Least squares with two unknowns for many systems: matrix (E, R, 2), rhs (E, R).
+
+    A QR factorisation by Gram-Schmidt; a system whose columns are nearly parallel
+    (condition above about 1e6) goes to :func:`numpy.linalg.lstsq`, for its least-norm
+    solution.
+    """
+    c1, c2 = matrix[..., 0], matrix[..., 1]
+    r11 = np.linalg.norm(c1, axis=-1)
+    ok = r11 > 0
+    q1 = c1 / np.where(ok, r11, 1.0)[:, None]
+    r12 = np.sum(q1 * c2, axis=-1)
+    u = c2 - r12[:, None] * q1
+    r22 = np.linalg.norm(u, axis=-1)
+    ok &= r11 * r22 > 1e-6 * (r11**2 + r12**2 + r22**2)
+    x2 = np.sum(u * rhs, axis=-1) / np.where(ok, r22**2, 1.0)
+    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / np.where(ok, r11, 1.0)
+    for i in np.flatnonzero(~ok):
+        (x1[i], x2[i]), *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=None)
+    return x1, x2
+
+
+def _shaft_batch(
+    order: int,
+    sense: int,
+    force: NDArray,
+    couple: NDArray,
+    options: ShaftOptions,
+    speed: NDArray,
+    scale: NDArray,
+) -> tuple[int, NDArray, NDArray]:
+    """:func:`solve_shaft` for every engine: sense, layout (E,) and the complex unknowns
+    :math:`m e^{i\\psi}` (E, 3) [kg] in the slots at -l/2, 0, +l/2."""
+    gain = options.cg_radius * (order * speed) ** 2
+    has_force = np.abs(force) > ZERO * scale
+    has_couple = np.abs(couple) > ZERO * scale * options.length
+    half = options.length / 2
+    v2 = np.where(
+        has_force,
+        (-force / gain - couple / (gain * half)) / 2,
+        -couple / (gain * options.length),
+    )
+    v1 = np.where(has_force, -force / gain - v2, -v2)
+    v = np.zeros((force.size, 3), complex)
+    v[:, 0] = np.where(has_couple, v1, 0.0)
+    v[:, 1] = np.where(has_force & ~has_couple, -force / gain, 0.0)
+    v[:, 2] = np.where(has_couple, v2, 0.0)
+    layout = np.where(has_couple, 2, np.where(has_force, 1, 0))
+    return sense, layout, v
+
+
+def _shaft_set(
+    order: int, options: ShaftOptions, shafts: list[tuple[int, NDArray, NDArray]]
+) -> BatchShafts:
+    v = np.stack([s[2] for s in shafts], axis=1)  # (E, S, 3)
+    mass = np.abs(v)
+    half = options.length / 2
+    return BatchShafts(
+        order,
+        options.arrangement,
+        options.length,
+        options.cg_radius,
+        np.array([s[0] for s in shafts]),
+        np.array([-half, 0.0, half]),
+        np.stack([s[1] for s in shafts], axis=1),
+        mass,
+        np.where(mass > 0, np.mod(np.angle(v), 2 * np.pi), 0.0),
+    )
+
+
+def _residuals(
+    batch: EngineBatch,
+    forces: _ChunkForces,
+    cw: BatchCounterweights | None,
+    share: NDArray | None,
+    extra: BatchCounterweights | None,
+    primary: BatchShafts | None,
+    secondary: BatchShafts | None,
+) -> BatchResiduals:
+    """Forces and moments before and after the balancing masses, from the reported masses
+    (:func:`verify` in the frequency domain)."""
+    w2 = batch.speed**2
+    y = batch.topology.throw_position
+    rot_f = w2 * forces.rotating.sum(axis=-1)
+    rot_c = w2 * (forces.rotating * y).sum(axis=-1)
+    after_rot_f, after_rot_c = rot_f, rot_c
+    fwd, bwd = forces.forward.copy(), forces.backward.copy()
+    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
+    first_order: list[tuple[NDArray, NDArray]] = []
+    if cw is not None and share is not None:
+        after_rot_f = rot_f + w2 * share.sum(axis=-1)
+        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
+        first_order.append((cw.moments - share, cw.position))
+    if extra is not None:
+        first_order.append((extra.moments, extra.position))
+    for moments, position in first_order:
+        fwd[:, 0] += w2 * moments.sum(axis=-1)
+        cfwd[:, 0] += w2 * (moments * position).sum(axis=-1)
+    for group in (primary, secondary):
+        if group is None:
+            continue
+        k = group.order - 1
+        gain = group.cg_radius * (group.order * batch.speed) ** 2
+        for s, sense in enumerate(group.sense):
+            f = group.mass[:, s] * gain[:, None] * np.exp(1j * group.phase[:, s])
+            force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
+            force[:, k] += f.sum(axis=-1)
+            couple[:, k] += (f * group.position).sum(axis=-1)
+    scale = forces.scale[:, None]
+    moment_scale = scale * forces.length[:, None]
+
+    def amplitude(first: NDArray, forward: NDArray, backward: NDArray, limit: NDArray) -> NDArray:
+        """Columns rotating and orders 1..K; 0 below round-off of the scale (as verify)."""
+        value = np.column_stack([np.abs(first), np.abs(forward) + np.abs(backward)])
+        return np.where(value < 1e-13 * limit, 0.0, value)
+
+    force_before = amplitude(rot_f, forces.forward, forces.backward, scale)
+    moment_before = amplitude(rot_c, forces.couple_forward, forces.couple_backward, moment_scale)
+    force_after = amplitude(after_rot_f, fwd, bwd, scale)
+    moment_after = amplitude(after_rot_c, cfwd, cbwd, moment_scale)
+    orders = fwd.shape[1]
+    targeted = np.array(
+        [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
+    )
+    balanced = np.all(
+        ~targeted
+        | (
+            (force_after <= CHECK_TOLERANCE * scale)
+            & (moment_after <= CHECK_TOLERANCE * moment_scale)
+        ),
+        axis=-1,
+    )
+    components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
+    return BatchResiduals(
+        components, targeted, force_before, force_after, moment_before, moment_after, balanced
+    )
