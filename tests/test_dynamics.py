@@ -120,6 +120,69 @@ def test_bench_lever_rule_split():
     assert np.allclose(result.bearing_load_b[tail], 0.25 * weight, rtol=1e-6)
 
 
+def _reference_bench(rotor, settings, rtol):
+    """The bench by an independent route: the equations of motion of the docstring in
+    vector form, the acceleration term of the reactions solved to convergence (not one
+    fixed-point pass), integrated by scipy's DOP853 at a tight tolerance. Returns the
+    sample times, the speed there, the mean motor and friction torques over the hold."""
+    from scipy.integrate import solve_ivp
+
+    a, b = rotor.bearing_positions
+    shares = np.array([b - rotor.mass_position, rotor.mass_position - a]) / (b - a)
+    u_shares = np.array([b - rotor.unbalance_position, rotor.unbalance_position - a]) / (b - a)
+    weight = np.array([0.0, rotor.mass * rotor.gravity])
+    lever = 0.5 * rotor.journal_diameter * rotor.friction_coefficient
+    t_ramp, speed = settings.ramp_time, settings.speed
+
+    def rhs(t, y):
+        theta, omega, integral = y[:3]
+        reference = speed * min(t / t_ramp, 1.0)
+        motor = settings.proportional_gain * (reference - omega) + settings.integral_gain * integral
+        e_r = np.array([np.cos(theta), np.sin(theta)])
+        e_t = np.array([-e_r[1], e_r[0]])
+        sign = omega / np.hypot(omega, settings.stick_speed)
+        alpha = 0.0
+        for _ in range(50):
+            force = rotor.unbalance * (-(omega**2) * e_r + alpha * e_t)
+            reactions = shares[:, None] * weight + u_shares[:, None] * force
+            friction = lever * sign * np.linalg.norm(reactions, axis=1).sum()
+            new = (motor - friction - rotor.unbalance * rotor.gravity * e_r[0]) / rotor.inertia
+            if abs(new - alpha) <= 1e-14 * abs(new):
+                break
+            alpha = new
+        return [omega, new, reference - omega, motor, friction]
+
+    options = dict(method="DOP853", rtol=rtol, atol=1e-12, max_step=np.pi / (4 * speed))
+    t_end = t_ramp + settings.hold_time
+    ramp = solve_ivp(rhs, (0.0, t_ramp), np.zeros(5), dense_output=True, **options)
+    hold = solve_ivp(rhs, (t_ramp, t_end), ramp.y[:, -1], dense_output=True, **options)
+    means = (hold.y[3:, -1] - hold.y[3:, 0]) / settings.hold_time
+    return ramp.sol, hold.sol, means
+
+
+@pytest.mark.parametrize("unbalance", [0.0, 1.7e-3])
+def test_bench_against_tight_reference(unbalance):
+    """The bench's own integrator against an independent tight-tolerance reference."""
+    rotor = BenchRotor(
+        mass=2.5,
+        inertia=2.8e-3,
+        journal_diameter=0.02,
+        friction_coefficient=0.05,
+        unbalance=unbalance,
+        bearing_positions=(-0.03, 0.07),
+        unbalance_position=0.01,
+    )
+    settings = BenchSettings(speed=6000 * math.pi / 30, ramp_time=0.4, hold_time=0.25, samples=300)
+    ramp, hold, (motor, friction) = _reference_bench(rotor, settings, rtol=1e-11)
+    result = run_bench(rotor, settings)
+    t = result.time
+    expected = np.where(t <= settings.ramp_time, ramp(t)[1], hold(t)[1])
+    assert np.max(np.abs(result.speed - expected)) < 1e-7 * settings.speed
+    assert result.required_torque == pytest.approx(motor, rel=1e-9)
+    assert result.mean_friction_torque == pytest.approx(friction, rel=1e-9)
+    assert result.final_speed == pytest.approx(hold(t[-1])[1], rel=1e-9)
+
+
 # ----------------------------------------------------------------------------------------
 # Engine cycle
 # ----------------------------------------------------------------------------------------

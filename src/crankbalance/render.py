@@ -1,17 +1,18 @@
 """Turning figures and HTML pages into files: the one place that talks to kaleido and
 Chromium.
 
-Owns the kaleido server (one headless Chromium, started on first use and reused, closed at
-exit), static images of figures (:func:`to_image`), interactive HTML of figures
-(:func:`to_html`), the Chromium lookup and command-line flags (:data:`CHROMIUM_FLAGS`,
-:func:`find_chromium`) and printing HTML to PDF (:func:`html_to_pdf`). The figures
+Owns the figure exporter (one headless Chromium driven by kaleido, started on first use,
+reused, started again if it dies, closed at exit), static images of figures
+(:func:`to_image`), interactive HTML of figures (:func:`to_html`), the Chromium lookup and
+command-line flags (:data:`CHROMIUM_FLAGS`, :func:`find_chromium`) and printing HTML to PDF
+(:func:`html_to_pdf`). The figures
 themselves come from :mod:`crankbalance.figures`, the report page from
 :mod:`crankbalance.report`. plotly and kaleido are imported inside the functions.
 
 Public functions
 ----------------
 - ``to_image(fig, fmt="png", width=None, height=None, scale=1.0) -> bytes``
-    Static PNG or SVG through kaleido (Chromium: found by kaleido, else /usr/bin/chromium).
+    Static PNG or SVG through kaleido and one kept headless Chromium (:func:`find_chromium`).
 - ``to_html(fig, include_plotlyjs=True, full_html=True, div_id=None) -> str``
     Interactive HTML; plotly.js inlined by default (no network needed).
 - ``find_chromium(chromium=None) -> str``
@@ -22,7 +23,9 @@ Public functions
 
 from __future__ import annotations
 
+import asyncio
 import atexit
+import concurrent.futures
 import contextlib
 import os
 import shutil
@@ -30,7 +33,7 @@ import subprocess
 import tempfile
 import threading
 from pathlib import Path
-from typing import TYPE_CHECKING, Literal
+from typing import TYPE_CHECKING, Any, Literal
 
 from .errors import InputError
 
@@ -51,22 +54,132 @@ CHROMIUM_FLAGS = (
     "--disable-sync",
     "--no-pdf-header-footer",
 )
+#: the flags above that concern printing only (a browser that kaleido drives does not start
+#: with them)
+_PRINT_FLAGS = ("--no-pdf-header-footer",)
 
 
 # --------------------------------------------------------------------------- images
-def _ensure_browser() -> None:
-    """Point kaleido (choreographer) at Debian's chromium when it finds no browser."""
-    if os.environ.get("BROWSER_PATH"):
-        return
-    for candidate in (
-        "/usr/bin/chromium",
-        "/usr/bin/chromium-browser",
-        shutil.which("chromium") or "",
-        shutil.which("google-chrome") or "",
-    ):
-        if candidate and os.path.exists(candidate):
-            os.environ["BROWSER_PATH"] = candidate
-            return
+#: hang guards of the exporter [s]: starting Chromium, and one image (kaleido's own timeout)
+_OPEN_TIMEOUT = 120.0
+_IMAGE_TIMEOUT = 90.0
+
+
+class _Exporter:
+    """One headless Chromium (a ``kaleido.Kaleido``) kept open for every image of a process.
+
+    kaleido 1.x starts a Chromium per call unless one is kept open; its own sync server
+    (``kaleido.start_sync_server``) waits forever when the browser fails to start and goes
+    on with a dead browser. This one runs the browser's event loop on a daemon thread,
+    waits for every answer with a hang guard, starts the browser again once when it has
+    died (before or during an export), and closes it at exit. Chromium is
+    :func:`find_chromium`'s (Debian's ``/usr/bin/chromium`` unless told otherwise),
+    started with the :data:`CHROMIUM_FLAGS` that kaleido does not pass itself (printing flags
+    aside).
+    """
+
+    def __init__(self, chromium: str | None = None) -> None:
+        self._chromium = chromium
+        self._lock = threading.Lock()
+        self._loop: asyncio.AbstractEventLoop | None = None
+        self._thread: threading.Thread | None = None
+        self._browser: Any = None  # kaleido.Kaleido
+
+    def _run(self, coroutine: Any, timeout: float) -> Any:
+        """Run a coroutine on the browser's loop and wait for it at most ``timeout`` s."""
+        assert self._loop is not None
+        future = asyncio.run_coroutine_threadsafe(coroutine, self._loop)
+        try:
+            return future.result(timeout)
+        except concurrent.futures.TimeoutError:
+            future.cancel()
+            raise
+
+    def pid(self) -> int | None:
+        """Process id of the running browser's launcher (Chromium is its child), else None."""
+        browser = self._browser
+        if browser is None or browser.subprocess.poll() is not None:
+            return None
+        return int(browser.subprocess.pid)
+
+    def _open(self) -> None:
+        import kaleido
+        from choreographer.browsers import Chromium
+
+        class FlaggedChromium(Chromium):
+            def get_cli(self) -> list[str]:
+                cli = list(super().get_cli())
+                extra = [f for f in CHROMIUM_FLAGS if f not in cli and f not in _PRINT_FLAGS]
+                return cli + extra
+
+        exe = find_chromium(self._chromium)
+        if self._loop is None:
+            self._loop = asyncio.new_event_loop()
+            self._thread = threading.Thread(
+                target=self._loop.run_forever, name="crankbalance-chromium", daemon=True
+            )
+            self._thread.start()
+        browser = kaleido.Kaleido(
+            path=exe, browser_cls=FlaggedChromium, mathjax=False, timeout=_IMAGE_TIMEOUT
+        )
+        try:
+            self._run(browser.open(), _OPEN_TIMEOUT)
+        except Exception as error:
+            with contextlib.suppress(Exception):
+                self._run(browser.close(), _OPEN_TIMEOUT)
+            reason = str(error.args[0]) if error.args else type(error).__name__
+            raise InputError(
+                "chromium", exe, f"a Chromium that starts headless for kaleido ({reason})"
+            ) from None
+        self._browser = browser
+        # (re)registered after the browser made its temporary directories, so that it runs
+        # before their finalizers at exit (atexit is last in, first out)
+        atexit.unregister(self.close)
+        atexit.register(self.close)
+
+    def _close_browser(self) -> None:
+        browser, self._browser = self._browser, None
+        if browser is not None:
+            with contextlib.suppress(Exception):  # a browser that is already gone is fine
+                self._run(browser.close(), _OPEN_TIMEOUT)
+
+    def _image(self, figure: dict[str, Any], opts: dict[str, Any]) -> bytes:
+        if self.pid() is None:
+            self._close_browser()
+            self._open()
+        data = self._run(self._browser.calc_fig(figure, opts=opts), _IMAGE_TIMEOUT + 30.0)
+        return data if isinstance(data, bytes) else str(data).encode()
+
+    def image(self, figure: dict[str, Any], opts: dict[str, Any]) -> bytes:
+        """PNG or SVG bytes of a plotly figure dictionary (kaleido ``opts``)."""
+        from choreographer.errors import BrowserClosedError, BrowserFailedError, ChannelClosedError
+
+        with self._lock:
+            try:
+                return self._image(figure, opts)
+            except (
+                BrowserClosedError,
+                BrowserFailedError,
+                ChannelClosedError,
+                concurrent.futures.TimeoutError,
+            ):
+                self._close_browser()  # the browser died or hangs: a fresh one, once
+                return self._image(figure, opts)
+
+    def close(self) -> None:
+        """Close the browser and stop its thread (registered with atexit)."""
+        with self._lock:
+            self._close_browser()
+            loop, thread, self._loop, self._thread = self._loop, self._thread, None, None
+            if loop is not None and thread is not None:
+                loop.call_soon_threadsafe(loop.stop)
+                thread.join(_OPEN_TIMEOUT)
+                if not thread.is_alive():
+                    loop.close()
+                atexit.unregister(self.close)
+
+
+_EXPORTER = _Exporter()
 
 
 def to_image(
@@ -78,16 +191,13 @@ def to_image(
 ) -> bytes:
     """Static image of a figure (PNG or SVG bytes) through kaleido and a headless Chromium.
 
-    The first call starts one kaleido server (a headless Chromium, closed at exit) that
-    later calls reuse (about 0.1 s per image instead of 2-3 s). MathJax is switched off so
-    that no network access is needed. Width and height default to the figure's own
-    layout size, else 1000 x 600 px.
+    The first call starts one headless Chromium (closed at exit, started again if it dies)
+    that later calls reuse: a few seconds for the first image, a fraction of a second
+    after. MathJax is switched off so that no network access is needed. Width and height
+    default to the figure's own layout size, else 1000 x 600 px.
     """
     if fmt not in ("png", "svg"):
         raise InputError("format", fmt, "'png' or 'svg'")
-    import kaleido
-
-    _ensure_browser()
     layout = fig.layout
     opts = {
         "format": fmt,
@@ -95,35 +205,7 @@ def to_image(
         "height": height or layout.height or 600,
         "scale": scale,
     }
-    fig_dict = fig.to_dict()
-    with _SERVER_LOCK:
-        _start_server()
-        data = kaleido.calc_fig_sync(fig_dict, opts=opts)
-    return data if isinstance(data, bytes) else str(data).encode()
-
-
-_SERVER_LOCK = threading.Lock()
-_SERVER: dict[str, bool] = {"running": False}
-
-
-def _start_server() -> None:
-    import kaleido
-
-    if _SERVER["running"]:
-        return
-    kaleido.start_sync_server(mathjax=False, silence_warnings=True)
-    _SERVER["running"] = True
-    atexit.register(_stop_server)
-
-
-def _stop_server() -> None:
-    import kaleido
-
-    if _SERVER["running"]:
-        _SERVER["running"] = False
-        # at exit, a browser that is already gone is fine
-        with contextlib.suppress(Exception):
-            kaleido.stop_sync_server(silence_warnings=True)
+    return _EXPORTER.image(fig.to_dict(), opts)
 
 
 def to_html(
