@@ -115,6 +115,8 @@ EXAMPLES = [
     "1 kg/m*s",
     "1 N/m/s",
     "1 m^-2",
+    "1 m^02",
+    "1 m^-02",
     "10 g*mm",
     "1.5 N*m",
     "50 Hz",
@@ -171,7 +173,7 @@ def test_plain_numbers_and_bad_values_name_the_field() -> None:
 
 UNIT_TERMS = st.tuples(
     st.sampled_from(sorted(units._SPELLINGS)),
-    st.sampled_from(["", "^2", "**2", "^-1", "^3", " ^ 2"]),
+    st.sampled_from(["", "^2", "**2", "^-1", "^3", " ^ 2", "^0", "^02", "^-10"]),
 )
 
 

@@ -111,8 +111,8 @@ def _unit_table() -> tuple[dict[str, tuple[float, _Dims]], dict[str, str]]:
 _TABLE, _SPELLINGS = _unit_table()
 
 # one unit of a product or quotient: "*" or "/" (none before the first), the unit, and an
-# integer exponent written "^2" or "**2"
-_TERM = re.compile(r"\s*([*/]?)\s*([^\W\d_]+)\s*(?:(?:\^|\*\*)\s*(-?\d+))?\s*")
+# integer exponent written "^2" or "**2" (not "^02", which pint reads as "^0 2")
+_TERM = re.compile(r"\s*([*/]?)\s*([^\W\d_]+)\s*(?:(?:\^|\*\*)\s*(-?(?:0|[1-9]\d*)))?\s*")
 
 
 @lru_cache(maxsize=1024)
