@@ -69,14 +69,41 @@ def test_physics_modules_do_not_import_edges() -> None:
         assert not bad, f"{name}.py imports edge modules {bad} (DESIGN.md: physics stays pure)"
 
 
-def test_cli_start_does_not_import_heavy_packages() -> None:
-    code = (
-        "import sys; import crankbalance.cli; "
-        "heavy = [m for m in ('pint', 'scipy', 'plotly', 'nicegui', 'shapely', 'trimesh', "
-        "'pymoo', 'matplotlib') if m in sys.modules]; print(','.join(heavy))"
+#: third-party packages the command line may load, by command (``None``: the start alone,
+#: ``crankbalance --help``); everything else (pint, scipy, plotly, nicegui, kaleido,
+#: shapely, trimesh, pymoo, matplotlib, ...) must stay unloaded
+CLI_PACKAGES: dict[str | None, set[str]] = {
+    None: {"click"},
+    "analyze": {"click", "numpy", "pydantic", "pydantic_core", "annotated_types"}
+    | {"typing_extensions", "typing_inspection"},
+}
+CLI_PACKAGES["balance"] = CLI_PACKAGES["analyze"]
+_CLI_PROBE = """
+import contextlib, io, json, sys
+before = set(sys.modules)
+from crankbalance.cli import main
+if len(sys.argv) > 1:
+    with contextlib.redirect_stdout(io.StringIO()):
+        main(sys.argv[1:])
+new = {name.split(".")[0] for name in set(sys.modules) - before}
+print(json.dumps(sorted(
+    name for name in new - set(sys.stdlib_module_names) if not name.startswith("_")
+)))
+"""
+
+
+@pytest.mark.parametrize("command", list(CLI_PACKAGES), ids=lambda c: c or "start")
+def test_cli_loads_only_the_packages_it_needs(command: str | None) -> None:
+    """A fresh interpreter runs ``crankbalance COMMAND inline4`` and lists the third-party
+    packages it loaded (times nothing: docs/performance_units.md has the timings)."""
+    args = [] if command is None else [command, "inline4"]
+    out = subprocess.run(
+        [sys.executable, "-c", _CLI_PROBE, *args], capture_output=True, text=True, check=True
     )
-    out = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
-    assert out.stdout.strip() == "", f"imported at CLI start: {out.stdout.strip()}"
+    loaded = set(json.loads(out.stdout)) - {"crankbalance"}
+    assert loaded <= CLI_PACKAGES[command], (
+        f"crankbalance {' '.join(args)} loads {', '.join(sorted(loaded - CLI_PACKAGES[command]))}"
+    )
 
 
 # Transitive purity: importing a physics module must not load an edge, directly or through

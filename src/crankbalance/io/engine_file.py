@@ -5,6 +5,7 @@ from __future__ import annotations
 import json
 import os
 import tomllib
+from functools import cache
 from importlib import resources
 from pathlib import Path
 from typing import Any
@@ -18,13 +19,19 @@ MAX_FILE_BYTES = 2_000_000
 
 def list_presets() -> list[str]:
     """Names of the built-in engines (files ``presets/<name>.toml``)."""
+    return list(_preset_names())
+
+
+@cache
+def _preset_names() -> tuple[str, ...]:
+    """The preset folder is package data: listed once per process, not on every load."""
     folder = resources.files("crankbalance") / "presets"
-    return sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml"))
+    return tuple(sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml")))
 
 
 def preset_text(name: str) -> str:
     """The TOML text of a built-in engine."""
-    if name not in list_presets():
+    if name not in _preset_names():
         raise InputError(
             "preset",
             name,
@@ -60,7 +67,7 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
     """Load an engine from a file path (``.toml`` or ``.json``) or a preset name."""
     path = Path(source)
     if not path.exists():
-        if str(source) in list_presets():
+        if str(source) in _preset_names():
             return parse_engine_text(preset_text(str(source)), f"preset {source}")
         raise InputError(
             "engine",

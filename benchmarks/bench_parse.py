@@ -1,0 +1,68 @@
+"""Engine file -> result, in one process: a preset loaded, validated, built and analysed.
+
+Run: python benchmarks/bench_parse.py [--preset NAME] [--repeat N]
+
+Prints the best-of-N time of each stage (read the preset's TOML, validate it into an
+``EngineSpec``, build the ``EngineModel``, analyse it) and of the whole, the target
+(issue 13: at most 1 ms) and the ratio of the whole to a bare analysis of the built model
+and to the TOML parse alone, both measured in the same run. One quantity string read by
+``crankbalance.units`` is timed too.
+"""
+
+from __future__ import annotations
+
+import argparse
+import timeit
+import tomllib
+from collections.abc import Callable
+
+from crankbalance.io.engine_file import load_engine, preset_text
+from crankbalance.shaking import free_forces
+from crankbalance.spec import spec_from_dict
+from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import analyze
+from crankbalance.units import parse_quantity
+
+TARGET_S = 1e-3
+
+
+def best(func: Callable[[], object], repeat: int) -> float:
+    """Best-of-``repeat`` time of one call [s] (each repeat the mean of a batch)."""
+    number = max(1, int(0.02 / max(timeit.timeit(func, number=1), 1e-7)))
+    return min(timeit.repeat(func, repeat=repeat, number=number)) / number
+
+
+def main() -> None:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--preset", default="inline4", help="engine preset")
+    parser.add_argument("--repeat", type=int, default=7, help="best of N")
+    args = parser.parse_args()
+
+    text = preset_text(args.preset)
+    data = tomllib.loads(text)
+    spec = spec_from_dict(data)
+    model = build_model(spec)
+    stages = {
+        "read the TOML (tomllib.loads)": lambda: tomllib.loads(text),
+        "validate (spec_from_dict)": lambda: spec_from_dict(data),
+        "build the model (build_model)": lambda: build_model(spec),
+        "analyse the model (free_forces, 8 orders)": lambda: free_forces(model, 8),
+        "one quantity ('6000 rpm' -> rad/s)": lambda: parse_quantity("6000 rpm", "speed", "s"),
+    }
+    times = {name: best(func, args.repeat) for name, func in stages.items()}
+    whole = best(lambda: analyze(load_engine(args.preset), 8), args.repeat)
+    width = max(map(len, stages)) + 2
+    print(f"preset {args.preset}, best of {args.repeat}")
+    for name, t in times.items():
+        print(f"  {name:{width}s} {t * 1e3:8.4f} ms")
+    verdict = "met" if whole <= TARGET_S else "NOT met"
+    print(f"  {'whole: analyze(load_engine(preset))':{width}s} {whole * 1e3:8.4f} ms")
+    print(
+        f"measured {whole * 1e3:.3f} ms; target <= {TARGET_S * 1e3:g} ms ({verdict}); "
+        f"{whole / times['analyse the model (free_forces, 8 orders)']:.1f} x a bare analysis, "
+        f"{whole / times['read the TOML (tomllib.loads)']:.1f} x the TOML parse"
+    )
+
+
+if __name__ == "__main__":
+    main()
