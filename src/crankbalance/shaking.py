@@ -251,7 +251,7 @@ def _cylinder_sums(
         step = min(done, orders - done)
         np.multiply(powers[:step], powers[done - 1], out=powers[done : done + step])
         done += step
-    return weights @ np.moveaxis(powers, 0, -1)  # (..., 4, C) @ (..., C, K)
+    return weights @ powers.transpose(tuple(range(1, powers.ndim)) + (0,))  # @ (..., C, K)
 
 
 def batch_amplitudes(
