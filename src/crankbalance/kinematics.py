@@ -13,6 +13,7 @@ and many engines are evaluated at once.
 
 from __future__ import annotations
 
+import functools
 from typing import Literal
 
 import numpy as np
@@ -25,6 +26,11 @@ KINEMATICS_MODELS: tuple[str, ...] = ("exact", "series", "first-order")
 #: The harmonic amplitudes decay like rod_ratio**n, so 64 samples leave an aliasing
 #: error far below round-off for any rod ratio a real engine has (< 0.5).
 FOURIER_SAMPLES = 64
+
+#: Engines computed together by the batched functions (here and in
+#: :mod:`crankbalance.shaking`): the temporaries of one chunk stay in the processor's
+#: cache, and the memory of a call is its results and one chunk's temporaries.
+CHUNK = 1024
 
 
 def _rod_terms(
@@ -188,22 +194,18 @@ def harmonic_coefficients(
     Returns
     -------
     ndarray of complex, shape ``rod_ratio.shape + (orders,)``
+
+    Notes
+    -----
+    The exact coefficients of one rod ratio and offset (scalars) are kept in a small
+    cache (:func:`cached_exact_coefficients`); arrays are computed afresh.
     """
     lam = np.asarray(rod_ratio, dtype=float)
     if model == "exact":
-        n = FOURIER_SAMPLES
-        while n < 4 * orders:
-            n *= 2
-        psi = 2.0 * np.pi * np.arange(n) / n
-        sin, cos = np.sin(psi), np.cos(psi)
-        # the acceleration of piston_acceleration() with r = 1, l = 1/lambda, written out so
-        # that the sines and cosines of the sample angles are shared by all engines
-        u = np.asarray(offset_ratio, dtype=float)[..., None] - sin
-        q = np.sqrt((1.0 / lam[..., None]) ** 2 - u * u)
-        uc = u * cos
-        f = cos + (cos * cos + u * sin) / q + uc * uc / q**3  # = -s''/(r w^2)
-        spectrum = np.fft.rfft(f, axis=-1)
-        return 2.0 * spectrum[..., 1 : orders + 1] / n
+        offset = np.asarray(offset_ratio, dtype=float)
+        if lam.ndim == 0 and offset.ndim == 0:
+            return cached_exact_coefficients(float(lam), float(offset), int(orders)).copy()
+        return exact_coefficients(lam, orders, offset)
     out = np.zeros(lam.shape + (orders,), dtype=complex)
     out[..., 0] = 1.0
     if model == "first-order":
@@ -217,6 +219,130 @@ def harmonic_coefficients(
                 out[..., order - 1] = series[k]
         return out
     raise ValueError(f"unknown kinematics model {model!r}; allowed: {KINEMATICS_MODELS}")
+
+
+@functools.lru_cache(maxsize=8)
+def _half_turn(orders: int, zero_offset: bool) -> tuple[NDArray, NDArray, NDArray]:
+    """Sample angles of the exact motion and the weights that turn samples into harmonics.
+
+    Returns the sines and squared cosines of the sample angles and the weight matrix W, so
+    that ``A(samples) @ W`` are the coefficients of the orders W's columns belong to
+    (see :func:`exact_coefficients`). Read-only arrays, built once per ``orders``.
+    """
+    n = FOURIER_SAMPLES
+    while n < 4 * orders:
+        n *= 2
+    j = np.arange(-(n // 4), n // 4 + 1)
+    psi = 2.0 * np.pi * j / n
+    order = np.arange(1, orders + 1)
+    even = order % 2 == 0
+    # the samples at psi and pi - psi are equal: count each interior one twice; the two at
+    # psi = +-pi/2 are their own mirror image
+    fold = np.where(np.abs(j) == n // 4, 1.0, 2.0)[:, None]
+    angle = np.outer(psi, order)
+    weights = (2.0 / n) * fold * np.where(even, np.cos(angle), np.sin(angle))
+    sin, cos2 = np.sin(psi), np.cos(psi) ** 2
+    if zero_offset:
+        # the samples are also even in psi: fold -psi onto psi; the sine weights cancel
+        half = n // 4
+        weights = weights[half:, even].copy()
+        weights[1:] += weights[1:]
+        sin, cos2 = sin[half:], cos2[half:]
+    for array in (sin, cos2, weights):
+        array.flags.writeable = False
+    return sin, cos2, weights
+
+
+def exact_coefficients(
+    rod_ratio: ArrayLike, orders: int = 8, offset_ratio: ArrayLike = 0.0
+) -> NDArray[np.complex128]:
+    r"""Exact harmonic coefficients :math:`c_n = a_n - i b_n` of the piston inertia.
+
+    The exact normalised inertia is :math:`f(\psi) = \cos\psi + A(\psi)` with
+
+    .. math:: A = \frac{1}{q}\left(\cos^2\psi + u\sin\psi
+              + \frac{u^2\cos^2\psi}{q^2}\right),\quad u = \epsilon - \sin\psi,
+              \quad q = \sqrt{\lambda^{-2} - u^2}
+
+    (:func:`piston_acceleration` with :math:`r = 1`, :math:`l = 1/\lambda`). A depends on
+    :math:`\sin\psi` and :math:`\cos^2\psi` only, so :math:`A(\pi - \psi) = A(\psi)`:
+    its even orders have no sine part, its odd orders no cosine part, and the cosine of the
+    first order is exactly 1. The discrete Fourier transform of the
+    :data:`FOURIER_SAMPLES` (or more) equally spaced samples of a revolution is therefore
+    taken from the samples of half a revolution, :math:`|\psi| \le \pi/2`, as one
+    real matrix product; with no offset A is also even in :math:`\psi` and a quarter of
+    a revolution suffices.
+
+    Parameters
+    ----------
+    rod_ratio : array_like
+        :math:`\lambda = r/l` [-], any shape (one value per engine).
+    orders : int
+        Highest order returned.
+    offset_ratio : array_like
+        :math:`\epsilon = e/r` [-], lateral wrist-pin path offset over crank radius,
+        broadcast against ``rod_ratio``.
+
+    Returns
+    -------
+    ndarray of complex, shape ``broadcast(rod_ratio, offset_ratio).shape + (orders,)``
+        :math:`c_n` of orders 1..``orders`` [-].
+    """
+    lam = np.asarray(rod_ratio, dtype=float)
+    offset = np.asarray(offset_ratio, dtype=float)
+    shape = np.broadcast_shapes(lam.shape, offset.shape)
+    inv2 = np.broadcast_to(lam, shape).reshape(-1) ** -2.0
+    zero_offset = not np.any(offset)
+    offset = np.broadcast_to(offset, shape).reshape(-1)
+    sin, cos2, weights = _half_turn(int(orders), zero_offset)
+    s2 = sin * sin
+    out = np.zeros((inv2.size, orders), dtype=complex)
+    for start in range(0, inv2.size, CHUNK):  # bounded temporaries, one thread of BLAS
+        part = slice(start, start + CHUNK)
+        if zero_offset:
+            q2 = inv2[part, None] - s2
+            samples = ((cos2 - s2) + (cos2 * s2) / q2) / np.sqrt(q2)
+            out.real[part, 1::2] = samples @ weights
+        else:
+            u = offset[part, None] - sin
+            u2 = u * u
+            q2 = inv2[part, None] - u2
+            samples = (cos2 + u * sin + (cos2 * u2) / q2) / np.sqrt(q2)
+            parts = samples @ weights
+            out.real[part, 1::2] = parts[:, 1::2]
+            out.imag[part, 0::2] = -parts[:, 0::2]
+    out.real[:, 0] = 1.0
+    return out.reshape(shape + (orders,))
+
+
+#: How many (rod ratio, offset ratio, orders) the cache of exact coefficients keeps.
+CACHE_SIZE = 256
+
+
+@functools.lru_cache(maxsize=CACHE_SIZE)
+def cached_exact_coefficients(
+    rod_ratio: float, offset_ratio: float, orders: int
+) -> NDArray[np.complex128]:
+    r""":func:`exact_coefficients` of one engine, kept for the next call with the same
+    arguments (least recently used out beyond :data:`CACHE_SIZE` entries).
+
+    Parameters
+    ----------
+    rod_ratio : float
+        :math:`\lambda = r/l` [-].
+    offset_ratio : float
+        :math:`e/r` [-].
+    orders : int
+        Highest order returned.
+
+    Returns
+    -------
+    ndarray of complex, shape (orders,)
+        :math:`c_n` of orders 1..``orders`` [-]; read-only (it is shared), copy to change.
+    """
+    out = exact_coefficients(np.array([rod_ratio]), orders, np.array([offset_ratio]))[0]
+    out.flags.writeable = False
+    return out
 
 
 def series_coefficients(rod_ratio: ArrayLike) -> tuple[NDArray, NDArray, NDArray]:

@@ -34,7 +34,13 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .kinematics import KinematicsModel, harmonic_coefficients, piston_acceleration
+from .kinematics import (
+    CHUNK,
+    KinematicsModel,
+    cached_exact_coefficients,
+    harmonic_coefficients,
+    piston_acceleration,
+)
 from .model import EngineModel
 from .results import ResultMixin
 
@@ -119,30 +125,32 @@ def free_forces(
     cranks, in-line and V); Den Hartog (1956) ch. 5.
     """
     mode = kinematics or model.kinematics
-    coeff = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius, mode)  # type: ignore[arg-type]
-    fwd, bwd, cfwd, cbwd = reciprocating_phasors(
-        coeff,
-        model.reciprocating_mass,
-        model.cylinder_angle,
-        model.cylinder_bank,
+    offset = model.offset / model.crank_radius
+    coeff = (
+        cached_exact_coefficients(model.rod_ratio, offset, orders)
+        if mode == "exact"
+        else harmonic_coefficients(model.rod_ratio, orders, offset, mode)  # type: ignore[arg-type]
+    )
+    accel = model.crank_radius * model.speed**2  # r w^2 [m/s^2]
+    bank = model.cylinder_bank
+    sums = _cylinder_sums(
+        0.5 * accel * model.reciprocating_mass,
+        model.cylinder_angle - bank,
+        bank,
         model.cylinder_position,
-        model.crank_radius,
-        model.speed,
+        orders,
     )
-    rot = (
-        model.throw_rotating_mass
-        * model.crank_radius
-        * model.speed**2
-        * np.exp(1j * model.throw_angle)
-    )
+    fwd, bwd, cfwd, cbwd = _phasors(coeff, sums)
+    turn = np.exp(1j * model.throw_angle)
+    rotating = accel * model.throw_rotating_mass
     return FreeForces(
         orders=np.arange(1, orders + 1),
         force_forward=fwd,
         force_backward=bwd,
         couple_forward=cfwd,
         couple_backward=cbwd,
-        rotating_force=complex(rot.sum()),
-        rotating_couple=complex((rot * model.throw_position).sum()),
+        rotating_force=complex(np.vdot(rotating, turn)),
+        rotating_couple=complex(np.vdot(rotating * model.throw_position, turn)),
     )
 
 
@@ -179,29 +187,71 @@ def reciprocating_phasors(
     docstring.
     """
     c = np.asarray(coefficients)
-    k = c.shape[-1]
-    phi = np.asarray(throw_angle, dtype=float)
+    return _phasors(
+        c, _engine_sums(mass, throw_angle, bank, position, crank_radius, speed, c.shape[-1])
+    )
+
+
+#: Up to this many cylinders times orders :func:`_cylinder_sums` takes the exponentials of
+#: all the angles at once (one engine); beyond, the powers of one exponential per cylinder.
+SMALL = 1024
+
+
+def _phasors(coefficients: NDArray, sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """:math:`F^+, F^-, C^+, C^-` from the coefficients and the sums of :func:`_cylinder_sums`."""
+    phasors = coefficients[..., None, :] * sums  # (..., 4, K)
+    np.conjugate(phasors[..., 1::2, :], out=phasors[..., 1::2, :])
+    return phasors[..., 0, :], phasors[..., 1, :], phasors[..., 2, :], phasors[..., 3, :]
+
+
+def _engine_sums(
+    mass: ArrayLike,
+    throw_angle: ArrayLike,
+    bank: ArrayLike,
+    position: ArrayLike,
+    crank_radius: ArrayLike,
+    speed: ArrayLike,
+    orders: int,
+) -> NDArray[np.complex128]:
+    """:func:`_cylinder_sums` from the arguments of :func:`reciprocating_phasors`."""
     beta = np.asarray(bank, dtype=float)
-    p = (
-        np.asarray(mass, dtype=float)
-        * (np.asarray(crank_radius, dtype=float) * np.asarray(speed, dtype=float) ** 2)[..., None]
-    )
-    base = 0.5 * p * np.exp(1j * beta)  # (..., C)
-    y = np.asarray(position, dtype=float)
-    # sums over cylinders of z**n * w with z = exp(i (phi - beta)); the backward sums use
-    # sum(conj(z**n) w) = conj(sum(z**n conj(w)))
-    weights = np.stack([base, base * y, np.conj(base), np.conj(base) * y], axis=-1)
-    z = np.exp(1j * (phi - beta))
-    powers = np.cumprod(
-        np.broadcast_to(z[..., None, :], z.shape[:-1] + (k,) + z.shape[-1:]), axis=-2
-    )  # (..., K, C): z**1 .. z**K
-    sums = powers @ weights  # (..., K, 4)
-    return (
-        c * sums[..., 0],
-        np.conj(c * sums[..., 2]),
-        c * sums[..., 1],
-        np.conj(c * sums[..., 3]),
-    )
+    half = 0.5 * np.asarray(crank_radius, dtype=float) * np.asarray(speed, dtype=float) ** 2
+    p = np.multiply(mass, half[..., None])
+    return _cylinder_sums(p, np.subtract(throw_angle, beta), beta, position, orders)
+
+
+def _cylinder_sums(
+    p: NDArray, theta: NDArray, beta: NDArray, position: ArrayLike, orders: int
+) -> NDArray[np.complex128]:
+    r"""The four sums over the cylinders behind the phasors of :func:`reciprocating_phasors`.
+
+    With :math:`p_c = \tfrac{1}{2} m_c r\omega^2`, :math:`w_c = p_c e^{i\beta_c}` and
+    :math:`z_c = e^{i\theta_c}`, :math:`\theta_c = \varphi_c - \beta_c` (arrays of shape
+    (..., C)), the rows of the result (axis -2) are :math:`G_0 = \sum_c w_c z_c^n`,
+    :math:`G_1 = \sum_c \bar w_c z_c^n` and the same weighted by the axial position
+    :math:`y_c`, :math:`G_2` and :math:`G_3`, so that :math:`F_n^+ = c_n G_0`,
+    :math:`F_n^- = \overline{c_n G_1}` (as :math:`\sum w \bar z^n = \overline{\sum \bar w
+    z^n}`), :math:`C_n^+ = c_n G_2` and :math:`C_n^- = \overline{c_n G_3}`. Shape
+    ``(..., 4, orders)``.
+    """
+    w = p * np.exp(1j * beta)
+    wy = w * position
+    weights = np.empty(wy.shape[:-1] + (4,) + wy.shape[-1:], dtype=complex)  # (..., 4, C)
+    weights[..., 0, :] = w
+    weights[..., 2, :] = wy
+    np.conjugate(weights[..., 0::2, :], out=weights[..., 1::2, :])
+    if theta.size * orders <= SMALL:  # one engine: the fewest numpy calls
+        return weights @ np.exp(1j * theta[..., None] * np.arange(1.0, orders + 1))
+    # many: z**1 .. z**K by doubling, z**(m+1..2m) = z**(1..m) * z**m, orders first so
+    # that every product runs over all the engines and cylinders at once
+    powers = np.empty((orders,) + theta.shape, dtype=complex)  # (K, ..., C)
+    np.exp(1j * theta, out=powers[0])
+    done = 1
+    while done < orders:
+        step = min(done, orders - done)
+        np.multiply(powers[:step], powers[done - 1], out=powers[done : done + step])
+        done += step
+    return weights @ powers.transpose(tuple(range(1, powers.ndim)) + (0,))  # @ (..., C, K)
 
 
 def batch_amplitudes(
@@ -215,27 +265,32 @@ def batch_amplitudes(
     orders: int = 8,
     offset: ArrayLike = 0.0,
     kinematics: KinematicsModel = "exact",
+    chunk: int = CHUNK,
 ) -> tuple[NDArray, NDArray]:
-    """Force and moment amplitudes of many engines at once.
+    r"""Force and moment amplitudes of many engines at once, a chunk of engines at a time.
 
     Engine parameters have shape (E,), per-cylinder arrays (E, C) (pad smaller engines
-    with zero mass). Only the reciprocating masses are counted.
+    with zero mass); a scalar, or a (C,) array, is shared by all the engines. Only the
+    reciprocating masses are counted. The memory of a call is its two (E, K) results and
+    the temporaries of one chunk.
 
     Parameters
     ----------
-    crank_radius, rod_length : array_like, shape (E,)
+    crank_radius, rod_length : array_like, shape (E,) or scalar
         Crank radius and conrod length [m].
-    speed : array_like, shape (E,)
+    speed : array_like, shape (E,) or scalar
         Crank speed [rad/s].
-    mass, throw_angle, bank, position : array_like, shape (E, C)
+    mass, throw_angle, bank, position : array_like, shape (E, C) or (C,)
         Per cylinder: reciprocating mass [kg], throw angle [rad], bank angle [rad],
         axial position from the crankshaft mid-point [m].
     orders : int
         Highest harmonic order K.
-    offset : array_like, shape (E,)
+    offset : array_like, shape (E,) or scalar
         Crank offset plus wrist-pin offset [m].
     kinematics : {"exact", "series", "first-order"}
         Piston kinematics model, see :func:`crankbalance.kinematics.harmonic_coefficients`.
+    chunk : int
+        Engines computed together [-]; changes the speed, not the results.
 
     Returns
     -------
@@ -243,16 +298,37 @@ def batch_amplitudes(
         :math:`|F_n^+| + |F_n^-|`, largest force of each order over a revolution [N].
     moment_amplitude : ndarray, shape (E, K)
         :math:`|C_n^+| + |C_n^-|`, largest moment of each order over a revolution [N·m].
+        Both are of shape (K,) when no argument has an engine axis.
+
+    Notes
+    -----
+    :math:`|F_n^+| + |F_n^-| = |c_n|\,(|G_0| + |G_1|)` with the sums over the cylinders of
+    :func:`_cylinder_sums`, so the phasors themselves are never formed.
     """
-    r = np.asarray(crank_radius, dtype=float)
-    coeff = harmonic_coefficients(
-        r / np.asarray(rod_length, dtype=float),
-        orders,
-        np.asarray(offset, dtype=float) / r,
-        kinematics,
-    )
-    fwd, bwd, cfwd, cbwd = reciprocating_phasors(coeff, mass, throw_angle, bank, position, r, speed)
-    return np.abs(fwd) + np.abs(bwd), np.abs(cfwd) + np.abs(cbwd)
+    engine = [np.asarray(a, dtype=float) for a in (crank_radius, rod_length, speed, offset)]
+    cylinder = [np.asarray(a, dtype=float) for a in (mass, throw_angle, bank, position)]
+    if any(a.ndim > 1 for a in engine) or any(a.ndim not in (1, 2) for a in cylinder):
+        raise ValueError(
+            "batch_amplitudes: engine parameters are scalars or (E,) arrays, per-cylinder "
+            "parameters (C,) or (E, C) arrays; got shapes "
+            f"{[a.shape for a in engine]} and {[a.shape for a in cylinder]}"
+        )
+    lead = np.broadcast_shapes(*(a.shape for a in engine), *(a.shape[:-1] for a in cylinder))
+    engines = lead[0] if lead else 1
+    force = np.empty((engines, orders))
+    moment = np.empty((engines, orders))
+    step = max(1, int(chunk))
+    for start in range(0, engines, step):
+        part = slice(start, min(start + step, engines))
+        r, l, w, e = (a[part] if a.ndim == 1 and a.shape[0] != 1 else a for a in engine)
+        m, phi, beta, y = (a[part] if a.ndim == 2 and a.shape[0] != 1 else a for a in cylinder)
+        size = np.abs(harmonic_coefficients(r / l, orders, e / r, kinematics))
+        sums = np.abs(_engine_sums(m, phi, beta, y, r, w, orders))
+        force[part] = size * (sums[..., 0, :] + sums[..., 1, :])
+        moment[part] = size * (sums[..., 2, :] + sums[..., 3, :])
+    if not lead:
+        return force[0], moment[0]
+    return force, moment
 
 
 # --------------------------------------------------------------------------- curves
