@@ -273,7 +273,9 @@ def test_residual_check_fails_when_a_mass_is_perturbed() -> None:
     res = balance_batch(batch, INDIVIDUAL, PAIR, SECONDARY)
     assert res.residuals.balanced.all(), "individual counterweights and shaft pairs cancel"
     again = check_batch(batch, res, chunk=3)
-    assert np.array_equal(again.force_after, res.residuals.force_after)
+    # the same numbers, up to the rounding of a different chunking of the coefficients
+    scale = np.abs(res.residuals.force_after).max()
+    np.testing.assert_allclose(again.force_after, res.residuals.force_after, atol=1e-14 * scale)
     assert again.balanced.all()
 
     # one secondary shaft mass of engine 4 one per cent too heavy
