@@ -95,7 +95,7 @@ print(json.dumps(sorted(
 @pytest.mark.parametrize("command", list(CLI_PACKAGES), ids=lambda c: c or "start")
 def test_cli_loads_only_the_packages_it_needs(command: str | None) -> None:
     """A fresh interpreter runs ``crankbalance COMMAND inline4`` and lists the third-party
-    packages it loaded (times nothing: docs/performance_units.md has the timings)."""
+    packages it loaded (times nothing: docs/performance.md has the timings)."""
     args = [] if command is None else [command, "inline4"]
     out = subprocess.run(
         [sys.executable, "-c", _CLI_PROBE, *args], capture_output=True, text=True, check=True

@@ -22,7 +22,7 @@ squares sense; the residual of each is reported, never hidden.
 Many engines of one topology (a firing-order or crank study) go to :func:`balance_batch`:
 an :class:`EngineBatch` of arrays with a leading engine axis in, a :class:`BatchBalance`
 of arrays out, engine by engine the results of :func:`balance`, solved with stacked numpy
-linear algebra in chunks of bounded memory (docs/performance_balancing.md). The module is
+linear algebra in chunks of bounded memory (docs/performance.md). The module is
 long because the one-engine solver, its check and the batch solver share their equations,
 web layout and tolerances, which belong in one place.
 """

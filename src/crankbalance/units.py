@@ -3,7 +3,7 @@
 Physics modules never import this module; they work in SI floats. The units engine files
 use are read from a small table (every entry checked against pint by tests/test_units.py);
 pint is imported only for any other unit, so that reading an engine file takes microseconds
-and the command line starts fast (docs/performance_units.md).
+and the command line starts fast (docs/performance.md).
 """
 
 from __future__ import annotations
@@ -51,7 +51,7 @@ _ROTATION_UNITS = {"revolution", "radian", "degree", "turn", "revolutions_per_mi
 # dimensionless, as in pint (a length may be written "40 mm*rad", a turn is 2 pi), but it
 # counts as a unit ("30 deg" has one, "1 mm/m" has none). tests/test_units.py checks
 # every spelling below against pint (same name, same root units and factor); any other
-# unit goes to pint. docs/performance_units.md says why.
+# unit goes to pint. docs/performance.md says why.
 _Dims = tuple[int, ...]
 _NONE: _Dims = (0, 0, 0, 0)
 _LENGTH, _MASS, _TIME, _ANGLE = (1, 0, 0, 0), (0, 1, 0, 0), (0, 0, 1, 0), (0, 0, 0, 1)
