@@ -2,7 +2,9 @@
 counterweight, the correction and the tolerance (``examples/crf250r_rebalance.toml``,
 ``docs/single_cylinder.md``; Hoem and Røsholm (2016), Sec. 6.4).
 
-Quantities are unit strings, parsed to SI floats on validation; unknown keys are errors.
+Quantities are unit strings, parsed to SI floats on validation and checked against the
+physical range of their kind (:data:`crankbalance.spec.QUANTITY_RANGE`); unknown keys are
+errors.
 Every key is optional here: the ``rebalance`` command completes the file with its options,
 and :func:`crankbalance.studies.rebalance.rebalance_parts` says what is still missing.
 """
@@ -17,8 +19,8 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
-from ..spec import FieldProblem, input_error
-from ..units import parse_factor, parse_quantity
+from ..spec import FieldProblem, input_error, parse_in_range
+from ..units import parse_factor
 from .reading import parse_toml, read_text
 
 #: largest rebalance file read [bytes]; the example is about 2 kB
@@ -27,7 +29,7 @@ DOC = "docs/single_cylinder.md"
 
 
 def _quantity(kind: str) -> Any:
-    return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
+    return BeforeValidator(partial(parse_in_range, kind=kind))
 
 
 Length = Annotated[float, _quantity("length")]
