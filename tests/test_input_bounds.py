@@ -84,7 +84,7 @@ def test_devices_are_refused_without_reading(
     /dev/urandom hung."""
     with hang_guard():
         code, out, err = run_cli([command, device], capsys)
-    one_line_error(code, out, err, device, "is a device")
+    one_line_error(code, out, err, f"engine = '{device}'", "is a device")
 
 
 def test_fifo_is_refused_without_waiting_for_a_writer(
@@ -94,7 +94,7 @@ def test_fifo_is_refused_without_waiting_for_a_writer(
     os.mkfifo(fifo)
     with hang_guard():
         code, out, err = run_cli(["analyze", str(fifo)], capsys)
-        one_line_error(code, out, err, str(fifo), "pipe")
+        one_line_error(code, out, err, "engine = ", "pipe")
         with pytest.raises(InputError, match="pipe"):
             read_pressure_csv(fifo)
 
@@ -120,7 +120,7 @@ def test_rebalance_parts_must_be_a_file(
     path = str(tmp_path) if target == "folder" else target
     with hang_guard():
         code, out, err = run_cli(["rebalance", "--parts", path], capsys)
-    one_line_error(code, out, err, "parts = ", path)
+    one_line_error(code, out, err, "parts = ", "folder" if target == "folder" else "device")
 
 
 def test_read_text_bounds(tmp_path: Path) -> None:
