@@ -1,17 +1,18 @@
-"""Fuzzing the engine-file input (issue 12): every preset mutated in every category, each
-file run through ``crankbalance analyze FILE`` and ``crankbalance balance FILE`` in-process.
+"""Fuzzing the engine-file input (issue 12): presets mutated in 13 categories, each file
+run through ``crankbalance analyze FILE`` and ``crankbalance balance FILE`` in-process.
 
 Each run must end either in exit status 2 with exactly one line on stderr (``error: ...``)
 and nothing on stdout, or in exit status 0 with a result that holds no NaN or infinity and
-nothing on stderr. Warnings are errors under pytest, so a numpy overflow in the physics
-counts as a failure. A run that lasts longer than :data:`HANG_GUARD` seconds is stopped and
-counted as a hang (a guard against running without end, not a timing test).
+nothing on stderr; in the categories of :data:`INVALID` every file is invalid by
+construction and must be refused. Warnings are errors under pytest, so a numpy overflow in
+the physics counts as a failure. A run that lasts longer than :data:`HANG_GUARD` seconds is
+stopped and counted as a hang (a guard against running without end, not a timing test).
 
 The draws are deterministic (``derandomize=True``, no example database): each category
-mutates :data:`FILES` presets drawn from the library, so the suite covers every preset.
-Each test prints a line ``fuzz engine-file <category>: tried N, clean M, ...``; see them with
-``python3 -m pytest -p no:cacheprovider tests/fuzz -rP | grep 'fuzz engine-file'``.
-"""
+mutates :data:`FILES` presets drawn from the library (together the categories draw all 27
+presets; ``CRANKBALANCE_FUZZ_FILES=400`` runs more). Each test prints a line
+``fuzz engine-file <category>: tried N, clean M, ...``; see them with
+``python3 -m pytest -p no:cacheprovider tests/fuzz -rP | grep 'fuzz engine-file'``."""
 
 from __future__ import annotations
 
@@ -167,8 +168,11 @@ def quantity_strings(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str
     targets = quantity_paths(data) or list(paths(data))
     for path in draw(st.lists(st.sampled_from(targets), min_size=1, max_size=3)):
         number = number_text(draw(NUMBERS))
+        old = get(data, path)
+        own = old.split(" ", 1)[1] if isinstance(old, str) and " " in old else "mm"
         text = draw(
             st.one_of(
+                st.just(f"{number} {own}"),  # the key's own unit, any number
                 st.sampled_from([f"{number} {unit}" for unit in UNITS]),
                 st.sampled_from(["nan mm", "inf rpm", "-inf g", "1e308 km", "5 parsec"]),
                 st.sampled_from(["20..30 mm", "1 m*" * 50 + "m", "(((1 mm", "1 mm" * 40]),
@@ -322,6 +326,9 @@ def unknown_keys(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
     return toml_or_json(data, draw)
 
 
+#: Categories whose every file is invalid by construction: each must end in exit 2.
+INVALID = {"NaN and infinity", "duplicate JSON keys"}
+
 CATEGORIES: dict[str, Callable[[dict[str, Any], Draw], tuple[str | bytes, str]]] = {
     "delete keys": delete_key,
     "swap types": swap_type,
@@ -373,14 +380,17 @@ def run(args: list[str]) -> tuple[int | str, str, str]:
     return code, out.getvalue(), err.getvalue()
 
 
-def verdict(path: Path, code: int | str, out: str, err: str) -> str:
-    """Empty when the run ended cleanly, else what was wrong."""
+def verdict(path: Path, code: int | str, out: str, err: str, invalid: bool) -> str:
+    """Empty when the run ended cleanly, else what was wrong; an ``invalid`` file must be
+    refused."""
     if code == 2:
         lines = err.strip().splitlines()
         if len(lines) == 1 and lines[0].startswith("error: ") and not out:
             return ""
         return f"exit 2 with stderr {err[:300]!r}"
     if code == 0:
+        if invalid:
+            return "exit 0: an invalid file was accepted"
         if err:
             return f"exit 0 with stderr {err[:300]!r}"
         spec = load_engine(path)
@@ -419,7 +429,7 @@ def test_mutated_presets_end_cleanly(category: str, tmp_path: Path) -> None:
         for command in ("analyze", "balance"):
             code, out, err = run([command, str(path)])
             counts[f"exit {code}" if code in (0, 2) else "other"] += 1
-            problem = verdict(path, code, out, err)
+            problem = verdict(path, code, out, err, category in INVALID)
             if problem:
                 problems.append(f"{command}: {problem}")
         if problems:
