@@ -111,7 +111,7 @@ def _finite(value: Any) -> Any:
     """A plain number as written (no true/false, no "0.5"), finite."""
     if isinstance(value, bool) or not isinstance(value, (int, float)):
         raise ValueError("must be a number (not text, not true/false)")
-    if not math.isfinite(value):
+    if isinstance(value, float) and not math.isfinite(value):
         raise ValueError("must be a finite number")
     return value
 
