@@ -9,8 +9,10 @@ See ``docs/engine_file.md`` for the format and the numbering conventions.
 
 from __future__ import annotations
 
+import json
 import math
-from functools import partial
+import re
+from functools import cache, partial
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -30,9 +32,60 @@ Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
 LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
 Kinematics = Literal["exact", "series", "first-order"]
 
+# --------------------------------------------------------------------------- limits
+# Bounds on the work an engine file can ask for (docs/engine_file.md, "Limits").
+#: Most cylinders of an engine, any layout.
+MAX_CYLINDERS = 64
+#: Most crank throws of an engine (``throw_angles`` entries, ``[[crank_train.throw]]`` tables).
+MAX_THROWS = 64
+#: Most ``[[masses.override]]`` tables.
+MAX_OVERRIDES = 2 * MAX_CYLINDERS
+#: Longest quantity string, in characters.
+MAX_QUANTITY_CHARS = 100
+#: Longest ``name`` and ``description``, in characters.
+MAX_NAME_CHARS = 200
+MAX_DESCRIPTION_CHARS = 10_000
+#: Physical range of each kind of quantity, checked on the SI value after unit conversion:
+#: a value other than zero must lie between the two sizes (the sign is checked by each
+#: field: offsets, positions and angles may be negative).
+QUANTITY_RANGE: dict[str, tuple[str, str]] = {
+    "length": ("1 um", "100 m"),
+    "mass": ("1 mg", "1e5 kg"),
+    "angle": ("0 deg", "3600 deg"),
+    "speed": ("1 rpm", "1e6 rpm"),
+    "inertia": ("1e-12 kg*m^2", "1e5 kg*m^2"),
+    "area": ("1 um^2", "100 m^2"),
+    "density": ("1 kg/m^3", "1e5 kg/m^3"),
+    "unbalance": ("1e-12 kg*m", "1e5 kg*m"),
+}
+
+
+@cache
+def _range_si(kind: str) -> tuple[float, float]:
+    low, high = QUANTITY_RANGE[kind]
+    return parse_quantity(low, kind, "range"), parse_quantity(high, kind, "range")
+
+
+def parse_in_range(value: Any, kind: str, field: str = "") -> float:
+    """A quantity string as an SI float, refused unless its size lies in the physical range
+    of its kind (:data:`QUANTITY_RANGE`) or it is zero; strings longer than
+    :data:`MAX_QUANTITY_CHARS` are refused before parsing."""
+    if isinstance(value, str) and len(value) > MAX_QUANTITY_CHARS:
+        raise InputError(
+            field, value, f"must be one number and a unit, at most {MAX_QUANTITY_CHARS} characters"
+        )
+    number = parse_quantity(value, kind, field)
+    if kind in QUANTITY_RANGE:
+        low, high = _range_si(kind)
+        if abs(number) > high or 0 < abs(number) < low:
+            words = QUANTITY_RANGE[kind]
+            size = " in size" if number < 0 else ""
+            raise InputError(field, value, f"must lie between {words[0]} and {words[1]}{size}")
+    return number
+
 
 def _parser(kind: str) -> BeforeValidator:
-    return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
+    return BeforeValidator(partial(parse_in_range, kind=kind))
 
 
 def _writer(kind: str) -> PlainSerializer:
@@ -47,12 +100,23 @@ Speed = Annotated[float, _parser("speed"), _writer("speed")]
 Inertia = Annotated[float, _parser("inertia"), _writer("inertia")]
 
 
+def _whole(value: Any) -> Any:
+    """A count, an index or a 0/1 flag: an integer as written (no true/false, no "4")."""
+    if isinstance(value, bool) or not isinstance(value, int):
+        raise ValueError("must be a whole number (not text, not true/false)")
+    return value
+
+
 def _finite(value: Any) -> Any:
+    """A plain number as written (no true/false, no "0.5"), finite."""
+    if isinstance(value, bool) or not isinstance(value, (int, float)):
+        raise ValueError("must be a number (not text, not true/false)")
     if isinstance(value, float) and not math.isfinite(value):
         raise ValueError("must be a finite number")
     return value
 
 
+Whole = Annotated[int, BeforeValidator(_whole)]
 Fraction = Annotated[float, BeforeValidator(_finite)]
 
 
@@ -78,24 +142,28 @@ class Throw(_Strict):
         description="axial position of the throw mid-plane from the crank mid-point"
     )
     angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
-    banks: list[Angle] = Field(min_length=1, description="bank angle of each cylinder on this pin")
+    banks: list[Angle] = Field(
+        min_length=1,
+        max_length=MAX_CYLINDERS,
+        description="bank angle of each cylinder on this pin",
+    )
 
 
 class CrankTrain(_Strict):
     """Layout and geometry of the crank train."""
 
     layout: Layout
-    cylinders: int | None = Field(default=None, ge=1, le=64)
-    firing_order: list[int] | None = None
-    strokes: Literal[2, 4] = 4
+    cylinders: Whole | None = Field(default=None, ge=1, le=MAX_CYLINDERS)
+    firing_order: list[Whole] | None = Field(default=None, max_length=MAX_CYLINDERS)
+    strokes: Annotated[Literal[2, 4], BeforeValidator(_whole)] = 4
     crank_radius: Length
     rod_length: Length
     crank_pitch: Length | None = None
     bank_angle: Angle | None = None
     pin_offset: Length = 0.0
     crank_offset: Length = 0.0
-    throw_angles: list[Angle] | None = None
-    throw: list[Throw] | None = None
+    throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
+    throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
@@ -117,6 +185,10 @@ class CrankTrain(_Strict):
                 if getattr(self, key) is not None:
                     raise FieldProblem(key, "is not used with layout 'custom' (give it per throw)")
             count = sum(len(t.banks) for t in self.throw)
+            if count > MAX_CYLINDERS:
+                raise FieldProblem(
+                    "throw", f"the throws carry {count} cylinders; at most {MAX_CYLINDERS}"
+                )
             if self.cylinders is not None and self.cylinders != count:
                 raise FieldProblem("cylinders", f"the throws carry {count} cylinders")
         else:
@@ -241,8 +313,8 @@ class _MassFields(_Strict):
 class MassOverride(_MassFields):
     """Masses that differ for some cylinders (per-cylinder fields) or throws (per-throw fields)."""
 
-    cylinders: list[int] | None = None
-    throws: list[int] | None = None
+    cylinders: list[Whole] | None = Field(default=None, max_length=MAX_CYLINDERS)
+    throws: list[Whole] | None = Field(default=None, max_length=MAX_THROWS)
 
     @model_validator(mode="after")
     def _check_target(self) -> MassOverride:
@@ -275,7 +347,7 @@ class Masses(_MassFields):
     CG radius) or totals (``reciprocating`` per cylinder, ``rotating`` per throw).
     """
 
-    override: list[MassOverride] = Field(default_factory=list)
+    override: list[MassOverride] = Field(default_factory=list, max_length=MAX_OVERRIDES)
 
     @model_validator(mode="after")
     def _check_complete(self) -> Masses:
@@ -324,8 +396,10 @@ class Masses(_MassFields):
 class Counterweights(_Strict):
     """Crankshaft counterweights (2021 paper, section 3.1)."""
 
-    webs: list[Literal[0, 1]] | None = Field(
-        default=None, description="two webs per throw, 1 = carries a counterweight (default all)"
+    webs: list[Annotated[Literal[0, 1], BeforeValidator(_whole)]] | None = Field(
+        default=None,
+        max_length=2 * MAX_THROWS,
+        description="two webs per throw, 1 = carries a counterweight (default all)",
     )
     cg_radius: Length
     angle: Angle | Literal["optimal"] = 0.0
@@ -373,8 +447,8 @@ class BalanceShafts(_Strict):
 class EngineSpec(_Strict):
     """A whole engine: the contents of one engine file."""
 
-    name: str = "engine"
-    description: str = ""
+    name: str = Field(default="engine", max_length=MAX_NAME_CHARS)
+    description: str = Field(default="", max_length=MAX_DESCRIPTION_CHARS)
     speed: Speed
     kinematics: Kinematics = "exact"
     crank_train: CrankTrain
@@ -454,6 +528,16 @@ def input_error(
         return InputError(field, None, f"is missing; it is required (see {doc})")
     if isinstance(inner, InputError):
         return InputError(field, inner.value, inner.allowed)
+    if kind == "too_long":
+        return InputError(
+            field,
+            f"{ctx.get('actual_length')} entries",
+            f"takes at most {ctx.get('max_length')} entries (see {doc})",
+        )
+    if kind == "string_too_long":
+        return InputError(
+            field, f"{len(value)} characters", f"takes at most {ctx.get('max_length')} characters"
+        )
     if kind in ("literal_error", "enum"):
         return InputError(field, value, f"must be one of {ctx.get('expected', '')}")
     message = str(first.get("msg", ""))
@@ -481,8 +565,14 @@ def _dotted(loc: Any) -> str:
         elif isinstance(part, str) and part.startswith(("function-", "union[", "literal[")):
             continue
         else:
-            out += ("." if out else "") + str(part)
+            out += ("." if out else "") + _key_text(str(part))
     return out
+
+
+def _key_text(key: str) -> str:
+    """A key as written in TOML: bare when it can be, else quoted with escapes (a key in a
+    message never carries a line break or a control character into the terminal)."""
+    return key if re.fullmatch(r"[A-Za-z0-9_-]+(\[\d+\])*", key) else json.dumps(key)
 
 
 def _short_value(value: Any) -> Any:

@@ -4,16 +4,16 @@ from __future__ import annotations
 
 import json
 import os
-import tomllib
 from functools import cache
 from importlib import resources
-from pathlib import Path
 from typing import Any
 
 from ..errors import InputError
 from ..spec import EngineSpec, spec_from_dict
 from .files import write_atomic
+from .reading import file_format, parse_json, parse_toml, read_text
 
+#: Largest engine file read [bytes]; an engine file is a few kB of TOML or JSON.
 MAX_FILE_BYTES = 2_000_000
 
 
@@ -41,32 +41,20 @@ def preset_text(name: str) -> str:
 
 
 def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml") -> EngineSpec:
-    """Validate the text of an engine file (TOML, or JSON with the same structure)."""
+    """Validate the text of an engine file (TOML, or JSON with the same structure), parsed
+    with the bounds of :mod:`crankbalance.io.reading` (nesting, number length, duplicate
+    JSON keys)."""
     if "\x00" in text:
         raise InputError(source, "binary data", "must be a text file (TOML or JSON)")
     if not text.strip():
         raise InputError(source, "empty file", "must describe an engine (see docs/engine_file.md)")
-    if fmt == "json":
-        try:
-            data = json.loads(text)
-        except json.JSONDecodeError as error:
-            raise InputError(
-                source,
-                f"line {error.lineno}, column {error.colno}",
-                f"is not valid JSON: {error.msg}",
-            ) from None
-    else:
-        try:
-            data = tomllib.loads(text)
-        except tomllib.TOMLDecodeError as error:
-            raise InputError(source, "TOML syntax", f"is not valid TOML: {error}") from None
+    data = parse_json(text, source) if fmt == "json" else parse_toml(text, source)
     return spec_from_dict(data)
 
 
 def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
     """Load an engine from a file path (``.toml`` or ``.json``) or a preset name."""
-    path = Path(source)
-    if not path.exists():
+    if not os.path.lexists(source):
         if str(source) in _preset_names():
             return parse_engine_text(preset_text(str(source)), f"preset {source}")
         raise InputError(
@@ -74,26 +62,8 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
             str(source),
             "is neither an engine file nor a preset (`crankbalance presets` lists the presets)",
         )
-    if path.is_dir():
-        raise InputError("engine", str(source), "is a folder; give an engine file (.toml or .json)")
-    try:
-        raw = path.read_bytes()
-    except OSError as error:
-        raise InputError("engine", str(source), f"cannot be read: {error.strerror}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise InputError(
-            "engine",
-            str(source),
-            f"is larger than {MAX_FILE_BYTES} bytes; an engine file is a few kB of TOML or JSON",
-        )
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError(
-            str(source), "binary data", "must be a UTF-8 text file (TOML or JSON)"
-        ) from None
-    fmt = "json" if path.suffix.lower() == ".json" else "toml"
-    return parse_engine_text(text, str(source), fmt)
+    text = read_text(source, "engine", "an engine file (.toml or .json)", MAX_FILE_BYTES)
+    return parse_engine_text(text, str(source), file_format(source))
 
 
 def engine_to_toml(spec: EngineSpec) -> str:
@@ -103,12 +73,11 @@ def engine_to_toml(spec: EngineSpec) -> str:
 
 def save_engine(spec: EngineSpec, path: str | os.PathLike[str]) -> None:
     """Save an engine file atomically; the format follows the suffix (.json or .toml)."""
-    target = Path(path)
-    if target.suffix.lower() == ".json":
+    if file_format(path) == "json":
         text = json.dumps(spec.to_file_dict(), indent=2) + "\n"
     else:
         text = engine_to_toml(spec)
-    write_atomic(target, text)
+    write_atomic(path, text)
 
 
 # --------------------------------------------------------------------------- TOML writer

@@ -16,12 +16,12 @@ from __future__ import annotations
 
 import math
 import os
-from pathlib import Path
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from .reading import read_text
 
 #: Largest pressure table read [bytes]; a cycle at 0.1 deg over 720 deg is about 150 kB.
 MAX_FILE_BYTES = 5_000_000
@@ -58,27 +58,9 @@ def read_pressure_csv(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
         names the file (and line and column), the value found and what is allowed.
     """
     source = str(path)
-    target = Path(path)
-    if target.is_dir():
-        raise InputError(_FIELD, source, "is a folder; give a CSV file")
-    try:
-        with target.open("rb") as handle:
-            raw = handle.read(MAX_FILE_BYTES + 1)
-    except OSError as error:
-        raise InputError(_FIELD, source, f"cannot be read: {error.strerror}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise InputError(
-            _FIELD,
-            source,
-            f"is larger than {MAX_FILE_BYTES} bytes; a pressure table is two columns of "
-            "numbers, a few thousand rows",
-        )
-    if b"\x00" in raw:
-        raise InputError(_FIELD, source, "must be a text file (CSV), not binary data")
-    try:
-        text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        raise InputError(_FIELD, source, "must be a UTF-8 text file (CSV)") from None
+    text = read_text(
+        path, _FIELD, "a CSV table of crank angle and pressure, a few thousand rows", MAX_FILE_BYTES
+    )
     rows = _parse_rows(text, source)
     if len(rows) < MIN_ROWS:
         raise InputError(

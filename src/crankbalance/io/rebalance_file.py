@@ -2,7 +2,9 @@
 counterweight, the correction and the tolerance (``examples/crf250r_rebalance.toml``,
 ``docs/single_cylinder.md``; Hoem and Røsholm (2016), Sec. 6.4).
 
-Quantities are unit strings, parsed to SI floats on validation; unknown keys are errors.
+Quantities are unit strings, parsed to SI floats on validation and checked against the
+physical range of their kind (:data:`crankbalance.spec.QUANTITY_RANGE`); unknown keys are
+errors.
 Every key is optional here: the ``rebalance`` command completes the file with its options,
 and :func:`crankbalance.studies.rebalance.rebalance_parts` says what is still missing.
 """
@@ -10,7 +12,6 @@ and :func:`crankbalance.studies.rebalance.rebalance_parts` says what is still mi
 from __future__ import annotations
 
 import os
-import tomllib
 from functools import partial
 from pathlib import Path
 from typing import Annotated, Any, Literal
@@ -18,8 +19,9 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
-from ..spec import FieldProblem, input_error
-from ..units import parse_factor, parse_quantity
+from ..spec import FieldProblem, input_error, parse_in_range
+from ..units import parse_factor
+from .reading import parse_toml, read_text
 
 #: largest rebalance file read [bytes]; the example is about 2 kB
 MAX_FILE_BYTES = 1_000_000
@@ -27,7 +29,7 @@ DOC = "docs/single_cylinder.md"
 
 
 def _quantity(kind: str) -> Any:
-    return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
+    return BeforeValidator(partial(parse_in_range, kind=kind))
 
 
 Length = Annotated[float, _quantity("length")]
@@ -216,34 +218,11 @@ def rebalance_file_from_dict(data: Any, source: str = "parts") -> RebalanceFile:
 
 
 def read_rebalance_data(path: str | os.PathLike[str], field: str = "parts") -> dict[str, Any]:
-    """The TOML table of a rebalance parts file, read with bounds: no folders, at most
-    :data:`MAX_FILE_BYTES`, UTF-8 text only."""
-    target = Path(path)
-    if not target.exists():
-        raise InputError(field, str(path), "file not found")
-    if target.is_dir():
-        raise InputError(field, str(path), "is a folder; give a rebalance parts file (.toml)")
-    try:
-        with target.open("rb") as handle:
-            raw = handle.read(MAX_FILE_BYTES + 1)
-    except OSError as error:
-        raise InputError(field, str(path), f"cannot be read: {error.strerror}") from None
-    if len(raw) > MAX_FILE_BYTES:
-        raise InputError(
-            field,
-            str(path),
-            f"is larger than {MAX_FILE_BYTES} bytes; a rebalance parts file is a few kB of TOML",
-        )
-    try:
-        text = raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError(field, str(path), "must be a UTF-8 text file (TOML)") from None
-    if "\x00" in text:
-        raise InputError(field, str(path), "must be a text file (TOML), not binary data")
-    try:
-        return tomllib.loads(text)
-    except tomllib.TOMLDecodeError as error:
-        raise InputError(field, str(path), f"is not valid TOML: {error}") from None
+    """The TOML table of a rebalance parts file, read with the bounds of
+    :mod:`crankbalance.io.reading`: a regular file of at most :data:`MAX_FILE_BYTES`,
+    UTF-8 text, bounded nesting."""
+    text = read_text(path, field, "a rebalance parts file (.toml)", MAX_FILE_BYTES)
+    return parse_toml(text, field, str(path))
 
 
 def load_rebalance_file(path: str | os.PathLike[str]) -> RebalanceFile:
