@@ -43,7 +43,7 @@ def _field(page, key: str):
 def _wait_text(page, selector: str, pattern: str) -> str:
     """Wait (the page's hang guard, see conftest) until ``selector`` shows ``pattern``."""
     locator = page.locator(selector).first
-    playwright_api.expect(locator).to_contain_text(re.compile(pattern))
+    playwright_api.expect(locator).to_contain_text(re.compile(pattern), use_inner_text=True)
     return str(locator.inner_text())
 
 
