@@ -99,7 +99,7 @@ BAD_UPLOADS = [
     ("binary.toml", bytes(range(256)), "UTF-8"),
     ("empty.json", b"", "empty"),
     ("wrong.json", b'{"speed": "fast"}', "speed"),
-    ("deep.toml", b"a = " + b"[" * 500 + b"]" * 500, "nested"),
+    ("deep.toml", b"a = " + b"[" * 500 + b"]" * 500, "deep"),
     ("digits.toml", preset_text("inline4").replace("= 4", "= " + "4" * 5000).encode(), "digit"),
     ("huge.toml", b"#" * (MAX_BYTES + 1), str(MAX_BYTES)),
     ("orders.toml", _with_settings('{"orders": "abc"}'), "orders = 'abc'"),

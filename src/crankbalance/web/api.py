@@ -47,7 +47,8 @@ CONTENT_TYPES = {"application/json": "json", "application/toml": "toml"}
 LOOPBACK = ("127.0.0.1", "localhost", "::1")
 #: harmonic orders of the answers (the command line's default)
 ORDERS = 8
-#: largest (cylinders + throws) x orders computed: 64 throws of 4 rods at 8 orders fit
+#: largest (cylinders + throws) x orders computed: a second line behind the engine file's
+#: caps (64 cylinders on 64 throws at 8 orders is 1024)
 MAX_WORK = 4096
 #: seconds after which a computation is answered 503 (work within MAX_WORK takes well
 #: under a second; this is the guard for what the budget does not foresee)
