@@ -1,13 +1,22 @@
-"""Fixtures of the web tests: NiceGUI's simulated User (no browser) on the real page.
+"""Fixtures of the web tests: NiceGUI's simulated User (no browser) on the real page, and
+``crankbalance web`` in a subprocess (``server``) for the API, load and browser tests.
 
 The tests are async; they run on anyio's pytest plugin (installed with httpx), asyncio
 backend. Each test gets a fresh NiceGUI app (``user_simulation`` resets NiceGUI's globals).
+
+Every wait is a wait for a state of the page (or of the server) with one generous hang
+guard, :data:`HANG_GUARD`: on a loaded two-core machine work takes many times longer than
+on an idle one, so no wait is tuned to how long the work takes.
 """
 
 from __future__ import annotations
 
 import asyncio
-from collections.abc import AsyncIterator
+import contextlib
+import os
+import subprocess
+from collections.abc import AsyncIterator, Callable, Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -20,10 +29,81 @@ from nicegui.testing.user_simulation import user_simulation  # noqa: E402
 
 from crankbalance.web.app import root  # noqa: E402
 
+#: seconds a test waits for a state before it fails as hung (not a timing target)
+HANG_GUARD = 180.0
+ROOT = Path(__file__).resolve().parents[2]
+CHROMIUM = "/usr/bin/chromium"
+
+
+async def until(condition: Callable[[], Any], what: str = "the page to finish") -> None:
+    """Wait until ``condition()`` is true (background work of the page or server)."""
+    with hang_guard(what):
+        while not condition():
+            await asyncio.sleep(0.05)
+
+
+@contextlib.contextmanager
+def hang_guard(what: str) -> Iterator[None]:
+    """Fail (not hang) when the block has not finished within :data:`HANG_GUARD`."""
+    import anyio
+
+    try:
+        with anyio.fail_after(HANG_GUARD):
+            yield
+    except TimeoutError:
+        raise AssertionError(f"waited {HANG_GUARD:g} s for {what}; hung?") from None
+
 
 @pytest.fixture
 def anyio_backend() -> str:
     return "asyncio"
+
+
+@pytest.fixture
+def hang_guard_seconds() -> float:
+    """:data:`HANG_GUARD`, for tests that wait on something else than the page."""
+    return HANG_GUARD
+
+
+@pytest.fixture(scope="session")
+def server() -> Iterator[str]:
+    """``crankbalance web`` in a subprocess (log in ``artifacts/web-server.log`` when that
+    folder exists); yields its URL."""
+    from crankbalance.web.server import running_server
+
+    with contextlib.ExitStack() as stack:  # the log file is closed with the server
+        log = (
+            stack.enter_context(open(ROOT / "artifacts" / "web-server.log", "w"))
+            if (ROOT / "artifacts").is_dir()
+            else subprocess.DEVNULL
+        )
+        with running_server(log, timeout=HANG_GUARD) as url:
+            yield url
+
+
+@pytest.fixture(scope="module")
+def browser() -> Iterator[Any]:
+    """Debian's chromium driven by Playwright (never a downloaded browser); every wait of
+    Playwright (``expect``, ``wait_for``, downloads) has the hang guard as its timeout."""
+    from crankbalance.render import CHROMIUM_FLAGS
+
+    sync_api = pytest.importorskip("playwright.sync_api")
+    if not os.path.exists(CHROMIUM):
+        pytest.skip("needs Debian's chromium")
+    sync_api.expect.set_options(timeout=HANG_GUARD * 1000)
+    with sync_api.sync_playwright() as p:
+        chromium = p.chromium.launch(executable_path=CHROMIUM, args=list(CHROMIUM_FLAGS))
+        yield chromium
+        chromium.close()
+
+
+@pytest.fixture
+def page(browser: Any) -> Iterator[Any]:
+    """A new browser page, its default timeout the hang guard."""
+    page = browser.new_page(viewport={"width": 1500, "height": 1000}, accept_downloads=True)
+    page.set_default_timeout(HANG_GUARD * 1000)
+    yield page
+    page.close()
 
 
 @pytest.fixture
@@ -67,13 +147,22 @@ class Form:
                     found[marker] = item
         return found
 
-    async def until(self, condition: Any, timeout: float = 20.0) -> None:
+    async def until(self, condition: Callable[[], Any], what: str = "the page") -> None:
         """Wait until background work of the page (async handlers) makes ``condition`` true."""
-        for _ in range(int(timeout / 0.05)):
-            if condition():
-                return
-            await asyncio.sleep(0.05)
-        raise AssertionError("the page did not finish in time")
+        await until(condition, what)
+
+    async def see(self, text: str) -> None:
+        """Wait until the page shows ``text``."""
+        await self.user.should_see(text, retries=int(HANG_GUARD / 0.1))  # 0.1 s apart
+
+    async def download(self, marker: str) -> bytes:
+        """Click the button marked ``marker`` and wait for the download it sends."""
+        before = len(self.user.download.http_responses)
+        self.user.find(marker=marker).click()
+        await until(
+            lambda: len(self.user.download.http_responses) > before, f"the {marker} download"
+        )
+        return bytes(self.user.download.http_responses[-1].content)
 
     def rows(self, marker: str) -> list[dict[str, Any]]:
         return list(self.element(marker).rows)

@@ -13,7 +13,7 @@ from nicegui.testing.user_simulation import user_simulation
 
 from crankbalance.io.engine_file import preset_text
 from crankbalance.web.app import root
-from crankbalance.web.project import FIELDS
+from crankbalance.web.project import FIELDS, MAX_BYTES, SETTINGS_TAG
 
 pytestmark = pytest.mark.anyio
 
@@ -88,35 +88,66 @@ async def test_bad_input_in_every_field(user: User, form, caplog) -> None:
     assert not [r for r in caplog.records if r.levelno >= logging.ERROR]
 
 
-async def test_malformed_upload_is_refused_and_project_kept(user: User, form) -> None:
+def _with_settings(line: str) -> bytes:
+    return (SETTINGS_TAG + line + "\n" + preset_text("inline4")).encode()
+
+
+#: uploads that must be refused at load: (file name, content, a word the message must hold)
+BAD_UPLOADS = [
+    ("broken.toml", b"name = 'x'\n[crank_train\nlayout = 'inline'", "TOML"),
+    ("unknown.toml", preset_text("inline4").encode() + b"\nturbo = true\n", "turbo"),
+    ("binary.toml", bytes(range(256)), "UTF-8"),
+    ("empty.json", b"", "empty"),
+    ("wrong.json", b'{"speed": "fast"}', "speed"),
+    ("deep.toml", b"a = " + b"[" * 500 + b"]" * 500, "deep"),
+    ("digits.toml", preset_text("inline4").replace("= 4", "= " + "4" * 5000).encode(), "digit"),
+    ("huge.toml", b"#" * (MAX_BYTES + 1), str(MAX_BYTES)),
+    ("orders.toml", _with_settings('{"orders": "abc"}'), "orders = 'abc'"),
+    ("unknown-setting.toml", _with_settings('{"turbo": 1}'), "unknown setting"),
+    ("broken-settings.toml", _with_settings('{"orders": '), "JSON object"),
+    ("list-settings.toml", _with_settings("[8]"), "JSON object"),
+    ("typed-setting.toml", _with_settings('{"cw_seed": [1]}'), "text or a number"),
+    ("mode-setting.toml", _with_settings('{"mass_mode": "both"}'), "parts, totals"),
+    ("polar-setting.toml", _with_settings('{"polar_order": "0"}'), "polar_order"),
+    ("seed-setting.toml", _with_settings('{"cw_seed": -1}'), "cw_seed"),
+]
+
+
+async def test_malformed_upload_is_refused_and_project_kept(user: User, form, caplog) -> None:
+    """Every bad upload says, on the page, which file was refused and why; the project is
+    kept; the server logs no error and no traceback."""
     await user.open("/?preset=v8-crossplane")
     upload = form.element("upload")
-    bad_files = [
-        ("broken.toml", b"name = 'x'\n[crank_train\nlayout = 'inline'"),
-        ("unknown.toml", preset_text("inline4").encode() + b"\nturbo = true\n"),
-        ("binary.toml", bytes(range(256))),
-        ("empty.json", b""),
-        ("wrong.json", b'{"speed": "fast"}'),
-    ]
-    for name, data in bad_files:
+    for name, data, word in BAD_UPLOADS:
         with user:
             await upload.handle_uploads([SmallFileUpload(name, "text/plain", data)])
-        await form.until(lambda: form.text("general-error"))
+        await form.until(lambda: form.text("general-error"), f"the refusal of {name}")
         message = form.text("general-error")
         with user:
             form.element("general-error").set_text("")
         assert message.startswith(f"Upload of {name} refused, the current project is kept")
-        assert len(message) > len(name) + 50, message  # says what is wrong
+        assert word in message, (name, message)  # says what is wrong
+        assert "\n" not in message, message  # one line
         assert form.element("field-name").value == "V8 90 deg, crossplane crank"
         assert form.element("field-cylinders").value == "8"
+    assert not [r for r in caplog.records if r.exc_info or r.levelno >= logging.ERROR]
+
+
+async def test_file_the_browser_refuses_is_reported(user: User, form) -> None:
+    """A file over the size limit is refused by the browser before it is sent; the page
+    says so."""
+    await user.open("/?preset=v8-crossplane")
+    user.find(marker="upload").trigger("rejected")
+    await form.until(lambda: form.text("general-error"), "the refusal")
+    assert f"larger than {MAX_BYTES} bytes" in form.text("general-error")
+    assert form.element("field-cylinders").value == "8"
 
 
 async def test_save_then_load_round_trip(user: User, form) -> None:
     await user.open("/")
     form.set("field-speed", "3000 rpm")
     form.set("setting-orders", "6")
-    user.find(marker="save-toml").click()
-    saved = (await user.download.next()).content
+    saved = await form.download("save-toml")
     assert b"crankbalance-web settings" in saved and b'speed = "3000 rpm"' in saved
     with user:
         form.element("preset").value = "inline4"

@@ -48,7 +48,7 @@ PAPER_MASSES = {
 
 async def test_paper_inline3_typed_in_gives_table2(user: User, form) -> None:
     await user.open("/?preset=v8-crossplane")  # start from another engine
-    await user.should_see("V8 90 deg, crossplane crank")
+    await form.see("V8 90 deg, crossplane crank")
     for marker, value in PAPER_ENGINE.items():
         form.set(marker, value)
     user.find("Next").click()  # the Engine tab's Next leads to Masses
@@ -63,7 +63,7 @@ async def test_paper_inline3_typed_in_gives_table2(user: User, form) -> None:
     assert "1.2413 kg" in summary, f"2021 paper Table 2: counterweight 1.2413 kg; {summary}"
     assert "0.4884 kg" in summary, f"2021 paper Table 2: primary shaft 0.4884 kg; {summary}"
     assert "0.0362 kg" in summary, f"2021 paper Table 2: secondary shaft 0.0362 kg; {summary}"
-    await user.should_see("Counterweight mass:")
+    await form.see("Counterweight mass:")
 
 
 async def test_masses_shown_as_you_type(user: User, form) -> None:
@@ -117,19 +117,14 @@ async def test_totals_mode_and_layout_change(user: User, form) -> None:
 
 async def test_downloads_are_the_api_numbers(user: User, form) -> None:
     await user.open("/")
-    user.find(marker="download-balance").click()
-    response = await user.download.next()
-    data = json.loads(response.content)
+    data = json.loads(await form.download("download-balance"))
     assert data["schema"] == "crankbalance.balance/2"
     assert abs(data["counterweight"]["mass_kg"] - 1.2413) < 1e-4, "2021 paper Table 2"
-    user.find(marker="download-analysis").click()
-    data = json.loads((await user.download.next()).content)
+    data = json.loads(await form.download("download-analysis"))
     assert data["schema"] == "crankbalance.analysis/2"
-    user.find(marker="download-orders-csv").click()
-    text = (await user.download.next()).content.decode()
+    text = (await form.download("download-orders-csv")).decode()
     assert text.splitlines()[0].startswith("trace,point,x,y")
-    user.find(marker="download-curves-json").click()
-    data = json.loads((await user.download.next()).content)
+    data = json.loads(await form.download("download-curves-json"))
     assert data["schema"] == "crankbalance.figure-data/1" and data["traces"]
 
 
@@ -146,7 +141,7 @@ async def test_next_back_and_tabs(user: User, form) -> None:
 async def test_unknown_preset_in_url_is_reported(user: User, form) -> None:
     await user.open("/?preset=no-such-engine")
     assert "no-such-engine" in form.text("general-error")
-    await user.should_see("Inline-3, Table 1")
+    await form.see("Inline-3, Table 1")
 
 
 async def test_results_start_on_the_quantity_that_is_not_zero(user: User, form) -> None:
@@ -154,7 +149,7 @@ async def test_results_start_on_the_quantity_that_is_not_zero(user: User, form) 
     so the curves and polar diagram start on the moment; an inline-4 (free 2nd-order
     force) starts on the force, also after switching presets."""
     await user.open("/?preset=paper-inline3")
-    await user.should_see("Inline-3, Table 1")
+    await form.see("Inline-3, Table 1")
     assert form.element("curve-quantity").value == "moment"
     user.find(marker="tab-results").click()
     await form.until(lambda: "title" in form.element("figure-polar").figure["layout"])

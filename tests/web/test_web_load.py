@@ -10,9 +10,6 @@ reports the p95 response time of the same load.
 
 from __future__ import annotations
 
-import json
-import urllib.request
-from collections.abc import Iterator
 from concurrent.futures import ThreadPoolExecutor
 
 import pytest
@@ -24,14 +21,6 @@ from crankbalance.web.loadgen import engine_text, run_session
 pytest.importorskip("nicegui")
 
 SESSIONS, ENGINES = 20, 20
-
-
-@pytest.fixture(scope="module")
-def server() -> Iterator[str]:
-    from crankbalance.web.server import running_server
-
-    with running_server() as url:
-        yield url
 
 
 def test_20_sessions_of_20_engines(server: str) -> None:
@@ -48,14 +37,3 @@ def test_20_sessions_of_20_engines(server: str) -> None:
                 expected["counterweight"]["mass_kg"], rel=1e-12
             )
             assert answer["residual"] == expected["residual"]
-
-
-def test_api_bad_input_is_a_422_naming_the_field(server: str) -> None:
-    request = urllib.request.Request(
-        server + "/api/analyze", data=b'speed = "2000 kg"', method="POST"
-    )
-    with pytest.raises(urllib.error.HTTPError) as caught:
-        urllib.request.urlopen(request, timeout=30)
-    assert caught.value.code == 422
-    body = json.loads(caught.value.read())
-    assert body["field"] == "speed" and "rotational speed" in body["error"]

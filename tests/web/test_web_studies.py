@@ -3,8 +3,6 @@ through NiceGUI's simulated User: enter values, compute, read results against th
 
 from __future__ import annotations
 
-import asyncio
-
 import pytest
 from nicegui.testing.user import User
 
@@ -13,15 +11,6 @@ from crankbalance.studies.engine import balance_engine
 from crankbalance.tolerance import permissible_unbalance
 
 pytestmark = pytest.mark.anyio
-
-
-async def _settle(condition, timeout: float = 20.0) -> None:
-    """Wait for background work (run.io_bound) to finish."""
-    for _ in range(int(timeout / 0.05)):
-        if condition():
-            return
-        await asyncio.sleep(0.05)
-    raise AssertionError("the page did not finish in time")
 
 
 async def test_counterweight_design_tab(user: User, form) -> None:
@@ -34,21 +23,18 @@ async def test_counterweight_design_tab(user: User, form) -> None:
     form.set("setting-cw_population", "256")
     form.set("setting-cw_max_radius", "120 mm")
     user.find(marker="optimise").click()
-    await _settle(
+    await form.until(
         lambda: "feasible designs" in form.text("cw-summary") or "Error" in form.text("cw-summary")
     )
     summary = form.text("cw-summary")
     assert "Least mass" in summary and "Pareto front" in summary, summary
     assert form.element("figure-pareto").visible
     assert form.element("figure-profile").visible
-    user.find(marker="export-svg").click()
-    svg = (await user.download.next()).content.decode()
+    svg = (await form.download("export-svg")).decode()
     assert svg.lstrip().startswith("<") and "svg" in svg[:200]
-    user.find(marker="export-dxf").click()
-    dxf = (await user.download.next()).content.decode()
+    dxf = (await form.download("export-dxf")).decode()
     assert "SECTION" in dxf
-    user.find(marker="export-stl").click()
-    stl = (await user.download.next(timeout=10)).content
+    stl = await form.download("export-stl")
     assert len(stl) > 84
 
 
@@ -59,7 +45,7 @@ async def test_counterweight_bad_constraint(user: User, form) -> None:
     form.set("setting-cw_iterations", "many")
     assert form.error("setting-cw_iterations")
     user.find(marker="optimise").click()
-    await _settle(lambda: form.text("cw-summary") not in ("", "optimising …"))
+    await form.until(lambda: form.text("cw-summary") not in ("", "optimising …"))
     assert "cw_density" in form.text("cw-summary") or "cw_iterations" in form.text("cw-summary")
 
 
@@ -68,7 +54,7 @@ async def test_single_cylinder_tab(user: User, form) -> None:
     form.set("setting-sc_balance_factor", "0.6")
     form.set("setting-sc_residual", "5 g*mm")
     user.find(marker="run-single").click()
-    await _settle(lambda: "Primary force" in form.text("single-summary"))
+    await form.until(lambda: "Primary force" in form.text("single-summary"))
     spec_study = balance_engine("single")
     ref = cylinder_study(spec_study.model, 1, 0.6)
     summary = form.text("single-summary")
@@ -87,31 +73,31 @@ async def test_single_cylinder_bad_inputs(user: User, form) -> None:
     await user.open("/?preset=single")
     form.set("setting-sc_cylinder", "2")
     user.find(marker="run-single").click()
-    await _settle(lambda: form.error("setting-sc_cylinder"))
+    await form.until(lambda: form.error("setting-sc_cylinder"))
     assert "1 to 1" in (form.error("setting-sc_cylinder") or "")
     form.set("setting-sc_cylinder", "1")
     form.set("setting-sc_grade", "G7")
     user.find(marker="run-single").click()
-    await _settle(lambda: form.error("setting-sc_grade"))
+    await form.until(lambda: form.error("setting-sc_grade"))
     assert "G6.3" in (form.error("setting-sc_grade") or "")
 
 
 async def test_balance_shaft_tab(user: User, form) -> None:
     await user.open("/?preset=inline4")
     user.find(marker="run-shaft").click()
-    await _settle(lambda: "optimum" in form.text("shaft-summary"))
+    await form.until(lambda: "optimum" in form.text("shaft-summary"))
     assert "of the shaft length" in form.text("shaft-summary")
     assert form.element("figure-shaft").visible
     form.set("setting-bs_diameter", "-3 mm")
     user.find(marker="run-shaft").click()
-    await _settle(lambda: form.error("setting-bs_diameter"))
+    await form.until(lambda: form.error("setting-bs_diameter"))
 
 
 async def test_performance_tab(user: User, form) -> None:
     await user.open("/?preset=single")
     form.set("setting-pf_balance_factors", "0, 0.5, 1")
     user.find(marker="run-performance").click()
-    await _settle(lambda: len(form.rows("performance-table")) == 3)
+    await form.until(lambda: len(form.rows("performance-table")) == 3)
     rows = form.rows("performance-table")
     assert [r["balance_factor"] for r in rows] == ["0", "0.5", "1"]
     assert all(float(r["friction_torque"]) > 0 for r in rows)

@@ -1,44 +1,190 @@
 """A JSON API beside the web pages, on the same server (``crankbalance web``).
 
 * ``GET  /api/presets``: the engine library.
-* ``POST /api/analyze``: body an engine file (TOML, or JSON with ``Content-Type:
-  application/json``) -> the ``crankbalance.analysis/2`` JSON.
+* ``POST /api/analyze``: body an engine file -> the ``crankbalance.analysis/2`` JSON.
 * ``POST /api/balance``: the same -> the ``crankbalance.balance/2`` JSON.
 
-Bad input answers 422 with ``{"error": message, "field": field}``: the same message the
-command line prints. Every request is computed on its own; nothing is shared between
-requests or users.
+What a request must be (``docs/web.md``, "JSON API"), checked in this order:
+
+* **From this machine, not from a foreign page** (403): the ``Host`` is a loopback name
+  (``127.0.0.1``, ``localhost``, ``[::1]``; a DNS-rebinding page has its own name there),
+  and a browser's ``Origin`` (without one: ``Sec-Fetch-Site``, then ``Referer``) is this
+  server. Clients that send none of these headers (curl, urllib, scripts) are served.
+* **Content-Type** ``application/json`` (a JSON engine file) or ``application/toml`` (a
+  TOML engine file, or a preset name as the whole body); anything else is 415. A form or
+  ``text/plain`` body, which a foreign page could send without asking the browser first,
+  never reaches the parser.
+* **At most** :data:`MAX_BODY` bytes (413): refused from ``Content-Length`` before the body
+  is read, and while it is read when the length is not given.
+* **Bounded work** (422): the engine's work units, (cylinders + throws) x orders, are at most
+  :data:`MAX_WORK` before computing starts; a computation still running after
+  :data:`WALL_CLOCK` seconds is answered 503 (the last resort: its thread finishes the work).
+
+Bad input answers 422 with ``{"error": message, "field": field}``, the message the command
+line prints; a refused request answers its 4xx status with the same two keys. 500 is left
+for a bug of crankbalance (logged with its traceback). Every request is computed on its own
+in a worker thread, so other users are answered meanwhile; nothing is shared between them.
 """
 
+import asyncio
+import logging
+from collections.abc import Mapping
 from typing import Any
+from urllib.parse import urlsplit
 
 from ..errors import InputError
-from ..io.engine_file import list_presets, load_engine, parse_engine_text
+from ..io.engine_file import list_presets, load_engine
+from ..spec import EngineSpec, throw_count
 from ..studies.engine import analyze, balance_engine
+from .project import MAX_BYTES, parse_untrusted, read_text
 
-MAX_BODY = 200_000
+log = logging.getLogger("crankbalance.web")
+
+MAX_BODY = MAX_BYTES
+#: Content-Type (media type, parameters ignored) -> engine-file format of the body
+CONTENT_TYPES = {"application/json": "json", "application/toml": "toml"}
+#: host names of this machine; the server binds 127.0.0.1 only
+LOOPBACK = ("127.0.0.1", "localhost", "::1")
+#: harmonic orders of the answers (the command line's default)
+ORDERS = 8
+#: largest (cylinders + throws) x orders computed: a second line behind the engine file's
+#: caps (64 cylinders on 64 throws at 8 orders is 1024)
+MAX_WORK = 4096
+#: seconds after which a computation is answered 503 (work within MAX_WORK takes well
+#: under a second; this is the guard for what the budget does not foresee)
+WALL_CLOCK = 120.0
 
 
-def compute(kind: str, body: bytes, content_type: str) -> tuple[int, dict[str, Any]]:
-    """Status code and JSON answer of one API call (no web framework involved)."""
+class Refused(InputError):
+    """A request answered with the 4xx ``status`` before anything is computed."""
+
+    def __init__(self, status: int, field: str, value: Any, allowed: str) -> None:
+        super().__init__(field, value, allowed)
+        self.status = status
+
+
+def error_body(error: InputError) -> dict[str, Any]:
+    """The JSON answer of a refused request or of bad input."""
+    return {"error": str(error), "field": error.field}
+
+
+def body_format(content_type: str | None) -> str:
+    """The engine-file format ("json" or "toml") of a Content-Type; 415 for any other."""
+    media = (content_type or "").split(";")[0].strip().lower()
+    if media not in CONTENT_TYPES:
+        raise Refused(
+            415,
+            "Content-Type",
+            content_type,
+            "must be application/json (a JSON engine file) or application/toml (a TOML engine "
+            "file or a preset name)",
+        )
+    return CONTENT_TYPES[media]
+
+
+def _netloc(url: str) -> str:
     try:
-        if len(body) > MAX_BODY:
-            raise InputError("engine file", f"{len(body)} bytes", f"must be under {MAX_BODY} bytes")
-        try:
-            text = body.decode("utf-8")
-        except UnicodeDecodeError:
-            raise InputError("engine file", "binary data", "must be UTF-8 text") from None
-        fmt = "json" if "json" in content_type else "toml"
+        return urlsplit(url).netloc.lower()
+    except ValueError:  # e.g. an unclosed "[" of an IPv6 address
+        return ""
+
+
+def check_request(headers: Mapping[str, str]) -> str:
+    """Refuse a foreign or malformed request from its headers alone (403, 415, 413, 400),
+    before its body is read; return the body's format."""
+    host = headers.get("host", "")
+    try:
+        hostname = urlsplit("//" + host).hostname
+    except ValueError:
+        hostname = None
+    if hostname not in LOOPBACK:
+        raise Refused(
+            403, "Host", host, "must be this machine (127.0.0.1, localhost or [::1]:port)"
+        )
+    own = host.lower()
+    foreign = "a page of another site cannot use the API"
+    origin = headers.get("origin")
+    if origin is not None:
+        if _netloc(origin) != own:
+            raise Refused(403, "Origin", origin, f"must be this server, http://{host}; {foreign}")
+    elif headers.get("sec-fetch-site", "same-origin") not in ("same-origin", "none"):
+        site = headers["sec-fetch-site"]
+        raise Refused(403, "Sec-Fetch-Site", site, f"must be same-origin; {foreign}")
+    elif "referer" in headers and _netloc(headers["referer"]) != own:
+        raise Refused(403, "Referer", headers["referer"], f"must be this server; {foreign}")
+    fmt = body_format(headers.get("content-type"))
+    length = headers.get("content-length")
+    if length is not None:
+        if not (length.isascii() and length.isdigit() and len(length) < 20):
+            raise Refused(400, "Content-Length", length, "must be a whole number of bytes")
+        _check_size(int(length))
+    return fmt
+
+
+def _check_size(size: int) -> None:
+    if size > MAX_BODY:
+        raise Refused(
+            413,
+            "request body",
+            f"{size} bytes",
+            f"must be at most {MAX_BODY} bytes; an engine file is a few kB of TOML or JSON",
+        )
+
+
+def check_work(spec: EngineSpec, orders: int = ORDERS) -> None:
+    """Refuse (422) an engine whose work units, (cylinders + throws) x orders, exceed
+    :data:`MAX_WORK`, before any computing."""
+    train = spec.crank_train
+    cylinders = train.cylinder_count
+    throws = len(train.throw) if train.throw is not None else throw_count(train.layout, cylinders)
+    work = (cylinders + throws) * orders
+    if work > MAX_WORK:
+        raise InputError(
+            "crank_train",
+            f"{cylinders} cylinders on {throws} throws",
+            f"(cylinders + throws) x {orders} orders = {work} is over the API's work budget "
+            f"of {MAX_WORK}",
+        )
+
+
+def compute(kind: str, body: bytes, content_type: str | None) -> tuple[int, dict[str, Any]]:
+    """Status code and JSON answer of one API call (no web framework involved): 415 or 413
+    for a body of another type or too large, 422 for bad input, 200 with finite numbers."""
+    try:
+        fmt = body_format(content_type)
+        _check_size(len(body))
+        text = read_text(body, "engine file")
         stripped = text.strip()
         if fmt == "toml" and stripped and "\n" not in stripped and stripped in list_presets():
             spec = load_engine(stripped)  # a preset name as the whole body
         else:
-            spec = parse_engine_text(text, "engine file", fmt)
-        if kind == "analyze":
-            return 200, analyze(spec).to_dict()
-        return 200, balance_engine(spec).to_dict()
+            spec = parse_untrusted(text, "engine file", fmt)
+        check_work(spec)
+        result = (analyze if kind == "analyze" else balance_engine)(spec, orders=ORDERS)
+    except Refused as refused:
+        return refused.status, error_body(refused)
     except InputError as error:
-        return 422, {"error": str(error), "field": error.field}
+        return 422, error_body(error)
+    except Exception as error:  # a bug of crankbalance: logged in full, answered 500
+        log.exception("POST /api/%s failed", kind)
+        message = f"internal error ({type(error).__name__}); please report it with the body"
+        return 500, {"error": message, "field": None}
+    try:
+        return 200, result.to_dict()
+    except ValueError as error:  # to_jsonable refuses NaN and infinities
+        problem = f"gives a result that is not finite ({error}); check its values"
+        return 422, error_body(InputError("engine file", None, problem))
+
+
+async def read_body(request: Any) -> bytes:
+    """The request's body, refused (413) as soon as it grows over :data:`MAX_BODY`."""
+    chunks: list[bytes] = []
+    size = 0
+    async for chunk in request.stream():
+        size += len(chunk)
+        _check_size(size)
+        chunks.append(chunk)
+    return b"".join(chunks)
 
 
 def register(app: Any) -> None:
@@ -49,10 +195,18 @@ def register(app: Any) -> None:
     from starlette.concurrency import run_in_threadpool
 
     async def answer(kind: str, request: Request) -> JSONResponse:
-        body = await request.body()
-        status, data = await run_in_threadpool(
-            compute, kind, body, request.headers.get("content-type", "")
-        )
+        try:
+            check_request(request.headers)
+            body = await read_body(request)
+        except Refused as refused:
+            return JSONResponse(error_body(refused), status_code=refused.status)
+        work = run_in_threadpool(compute, kind, body, request.headers.get("content-type"))
+        try:
+            status, data = await asyncio.wait_for(work, WALL_CLOCK)
+        except TimeoutError:
+            log.warning("POST /api/%s still computing after %g s: answered 503", kind, WALL_CLOCK)
+            status = 503
+            data = {"error": f"the computation took longer than {WALL_CLOCK:g} s", "field": None}
         return JSONResponse(data, status_code=status)
 
     @app.get("/api/presets")

@@ -24,10 +24,10 @@ from typing import Any
 from nicegui import run, ui
 
 from ..errors import InputError
-from ..io.engine_file import MAX_FILE_BYTES, list_presets
+from ..io.engine_file import list_presets
 from . import studies
 from .exports import table_csv
-from .project import FIELD_BY_KEY, FormField, Project
+from .project import FIELD_BY_KEY, MAX_BYTES, FormField, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_masses import MassesTab
@@ -119,7 +119,8 @@ class Page:
                 label="Project file",
                 auto_upload=True,
                 on_upload=self.on_upload,
-                max_file_size=MAX_FILE_BYTES,
+                on_rejected=self.on_rejected,
+                max_file_size=MAX_BYTES,
             ).props("accept=.toml,.json flat bordered").classes("w-96").mark("upload")
         self.general = ui.label("").classes("text-negative text-body1").mark("general-error")
         with ui.tabs().classes("w-full") as self.tab_bar:
@@ -233,29 +234,26 @@ class Page:
         upload = event.file
         name = str(getattr(upload, "name", "project.toml"))
         try:
-            raw = await upload.read()
-            if len(raw) > MAX_FILE_BYTES:
-                raise InputError(
-                    name,
-                    f"{len(raw)} bytes",
-                    f"is larger than {MAX_FILE_BYTES} bytes; an engine file is a few kB",
-                )
-            try:
-                text = raw.decode("utf-8")
-            except UnicodeDecodeError:
-                raise InputError(
-                    name, "binary data", "must be a UTF-8 text file (TOML or JSON)"
-                ) from None
+            text = read_text(await upload.read(), name)
             fmt = "json" if name.lower().endswith(".json") else "toml"
             project = Project.from_text(text, name, fmt)
         except InputError as error:
-            message = f"Upload of {name} refused, the current project is kept: {error}"
-            self.general.set_text(message)
-            ui.notify(message, type="negative", multi_line=True)
+            self.refuse_upload(f"Upload of {name} refused, the current project is kept: {error}")
             return
         self.load(project)
         self.general.set_text("")
         ui.notify(f"Loaded {name}", type="positive")
+
+    def on_rejected(self) -> None:
+        """The browser refused the chosen file before sending it (larger than MAX_BYTES)."""
+        self.refuse_upload(
+            f"Upload refused, the current project is kept: the file is larger than {MAX_BYTES} "
+            "bytes; an engine file is a few kB of TOML or JSON"
+        )
+
+    def refuse_upload(self, message: str) -> None:
+        self.general.set_text(message)
+        ui.notify(message, type="negative", multi_line=True)
 
     def load(self, project: Project) -> None:
         self.project = project

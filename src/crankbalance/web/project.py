@@ -14,7 +14,9 @@ from __future__ import annotations
 
 import copy
 import json
+import logging
 import math
+import re
 import time
 import typing
 from dataclasses import dataclass, field
@@ -26,6 +28,11 @@ from ..units import parse_quantity
 
 Kind = Literal["text", "quantity", "int", "float", "intlist", "choice", "angle_or_optimal"]
 SETTINGS_TAG = "# crankbalance-web settings: "
+SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag names it
+#: largest engine file or project the web page and the API take [bytes]: an engine file is
+#: a few kB (the largest preset well under 1 kB, a 64-throw custom engine under 10 kB)
+MAX_BYTES = 65_536
+log = logging.getLogger("crankbalance.web")
 
 
 def _choices(model: Any, name: str, first: str | None = None) -> tuple[str, ...]:
@@ -380,10 +387,8 @@ class Project:
 
     def load_text(self, text: str, source: str = "project file", fmt: str = "toml") -> None:
         """Replace the project by the content of an engine file; on error raise InputError
-        and leave the project as it was."""
-        from ..io.engine_file import parse_engine_text
-
-        spec = parse_engine_text(text, source, fmt)
+        and leave the project as it was (a bad settings line is an error too)."""
+        spec = parse_untrusted(text, source, fmt)
         settings = _settings_from_text(text)
         self.load_spec(spec, settings)
 
@@ -536,6 +541,42 @@ class Project:
         return json.dumps(self.spec.to_file_dict(), indent=2) + "\n"
 
 
+# --------------------------------------------------------------------------- reading
+def read_text(raw: bytes, source: str) -> str:
+    """The text of an uploaded engine file or API body: at most :data:`MAX_BYTES`, UTF-8."""
+    if len(raw) > MAX_BYTES:
+        raise InputError(
+            source,
+            f"{len(raw)} bytes",
+            f"is larger than {MAX_BYTES} bytes; an engine file is a few kB of TOML or JSON",
+        )
+    try:
+        return raw.decode("utf-8")
+    except UnicodeDecodeError:
+        raise InputError(
+            source, "binary data", "must be a UTF-8 text file (TOML or JSON)"
+        ) from None
+
+
+def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
+    """The engine of a text from outside (an upload, an API body): every failure to read it
+    is an :class:`InputError` naming ``source``, never a traceback in the server's log."""
+    from ..io.engine_file import parse_engine_text
+
+    try:
+        return parse_engine_text(text, source, fmt)
+    except InputError:
+        raise
+    except RecursionError:
+        raise InputError(source, "nesting", "is nested too deeply to be an engine file") from None
+    except Exception as error:  # a reader's failure on hostile input: refused in one line
+        detail = " ".join(str(error).split())[:200]
+        log.warning("%s refused: %s: %s", source, type(error).__name__, detail)
+        raise InputError(
+            source, type(error).__name__, f"cannot be read as an engine file ({detail})"
+        ) from None
+
+
 # --------------------------------------------------------------------------- helpers
 def _field_for(dotted: str) -> FormField | None:
     """The form field an InputError's field path points at (the nearest one above it)."""
@@ -548,15 +589,57 @@ def _field_for(dotted: str) -> FormField | None:
     return None
 
 
+#: settings of the page that are a choice among words (the others are checked by the
+#: study's options schema, ``polar_order`` by :data:`_POLAR_ORDER`)
+SETTING_CHOICES: dict[str, tuple[str, ...]] = {
+    "mass_mode": ("parts", "totals"),
+    "conrod_split": ("fraction", "cg"),
+    "curve_quantity": ("force", "moment"),
+}
+_POLAR_ORDER = re.compile(r"rotating|[1-9][0-9]?")
+
+
 def _settings_from_text(text: str) -> dict[str, Any]:
-    for line in text.splitlines()[:5]:
-        if line.startswith(SETTINGS_TAG):
-            try:
-                value = json.loads(line[len(SETTINGS_TAG) :])
-            except json.JSONDecodeError:
-                return {}
-            return value if isinstance(value, dict) else {}
-    return {}
+    """The settings line of a saved project, checked as the form checks them; a line that
+    does not hold valid settings is refused (it must not load and fail later)."""
+    line = next((ln for ln in text.splitlines()[:5] if ln.startswith(SETTINGS_TAG)), None)
+    if line is None:
+        return {}
+    try:
+        value = json.loads(line[len(SETTINGS_TAG) :])
+    except (ValueError, RecursionError):
+        value = None
+    if not isinstance(value, dict):
+        raise InputError(
+            SETTINGS_WHERE,
+            line[len(SETTINGS_TAG) :],
+            'must be one JSON object on its line, e.g. {"orders": 8}',
+        )
+    problem = _settings_problem(value)
+    if problem:
+        raise InputError(SETTINGS_WHERE, None, problem)
+    return value
+
+
+def _settings_problem(settings: dict[str, Any]) -> str | None:
+    """The message of the first setting of a saved project that is unknown, not a text or
+    a number, or not a valid value (None when all are good)."""
+    from .studies import check_settings  # studies imports this module
+
+    for key, value in settings.items():
+        if key not in DEFAULT_SETTINGS:
+            allowed = "unknown setting; known: " + ", ".join(DEFAULT_SETTINGS)
+        elif isinstance(value, bool) or not isinstance(value, str | int | float):
+            allowed = "must be a text or a number"
+        elif key in SETTING_CHOICES and value not in SETTING_CHOICES[key]:
+            allowed = "must be one of " + ", ".join(SETTING_CHOICES[key])
+        elif key == "polar_order" and not _POLAR_ORDER.fullmatch(str(value)):
+            allowed = "must be rotating or an order from 1 to 99"
+        else:
+            continue
+        return str(InputError(key, value, allowed))
+    errors = check_settings({k: v for k, v in settings.items() if k not in SETTING_CHOICES})
+    return next(iter(errors.values()), None)
 
 
 def _pop_path(data: dict[str, Any], path: tuple[str, ...]) -> Any:

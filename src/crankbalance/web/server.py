@@ -41,11 +41,12 @@ def serve(
 
 
 @contextmanager
-def running_server(log: Any = subprocess.DEVNULL, timeout: float = 60.0) -> Iterator[str]:
+def running_server(log: Any = subprocess.DEVNULL, timeout: float = 180.0) -> Iterator[str]:
     """``crankbalance web`` in a subprocess on a free port; yields its URL, stops it after.
 
     Used by the end-to-end tests and the benchmarks. ``PYTEST_CURRENT_TEST`` is removed
     from the server's environment (NiceGUI would otherwise think it runs under pytest).
+    ``timeout`` [s] is a hang guard for the start, generous for a loaded machine.
     """
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
