@@ -354,9 +354,9 @@ def test_atomic_open_modes() -> None:
 
 
 # --------------------------------------------------------------------------- no bypass
-#: module-qualified calls that write, copy, move or create files
+#: module-qualified calls that write, copy, move or create files (os.open: by its flags)
 QUALIFIED = {
-    "os": {"open", "fdopen", "replace", "rename", "renames", "link", "symlink", "truncate"},
+    "os": {"fdopen", "replace", "rename", "renames", "link", "symlink", "truncate"},
     "shutil": {"copy", "copy2", "copyfile", "copyfileobj", "copytree", "move"},
     "tempfile": {"mkstemp", "NamedTemporaryFile", "TemporaryFile", "SpooledTemporaryFile"},
     "json": {"dump"},
@@ -412,6 +412,15 @@ def writes_in(source: str) -> list[tuple[int, str]]:
                 found.append((node.lineno, func.attr))
                 continue
         name = func.id if isinstance(func, ast.Name) else getattr(func, "attr", "")
+        if isinstance(func, ast.Attribute) and getattr(func.value, "id", "") == "os":
+            # os.open(path, flags): a write unless the flags are written out and name
+            # no writing mode
+            if name == "open" and len(node.args) > 1:
+                flags = {getattr(n, "attr", getattr(n, "id", "")) for n in ast.walk(node.args[1])}
+                writing = {"O_WRONLY", "O_RDWR", "O_CREAT", "O_APPEND", "O_TRUNC"}
+                if flags & writing or "O_RDONLY" not in flags:
+                    found.append((node.lineno, "open"))
+            continue
         if name == "open":  # builtin open(path, mode) or Path.open(mode)
             where = 1 if isinstance(func, ast.Name) else 0
             mode = node.args[where] if len(node.args) > where else None
@@ -446,10 +455,12 @@ path.write_text(s); path.write_bytes(b); fig.write_image(p); fig.write_html(p)
 plt.savefig(p); frame.to_csv(p); array.tofile(p); mesh.export(p); bd.export_step(s, p)
 os.replace(a, b); os.open(p, flags); shutil.copy(a, b); tempfile.mkstemp(); json.dump(d, f)
 np.save(p, a); path.touch(); path.rename(q); run(["chromium", "--screenshot=x.png"])
+os.open(p, os.O_WRONLY | os.O_CREAT)
 """
-    assert len(writes_in(writes)) == 23
+    assert len(writes_in(writes)) == 24
     reads = """
 open(p); open(p, "rb"); path.open(); path.open("r"); text.replace("a", "b"); d.copy()
 json.dumps(d); model.model_dump(); path.read_bytes(); tempfile.TemporaryDirectory()
+os.open(p, os.O_RDONLY | os.O_NONBLOCK)
 """
     assert writes_in(reads) == []

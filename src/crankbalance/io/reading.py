@@ -64,8 +64,13 @@ def read_text(path: str | os.PathLike[str], field: str, what: str, limit: int) -
         _check_regular(os.stat(path).st_mode, field, source, what)
         # O_NONBLOCK: should the path have turned into a pipe since the stat, the open
         # does not wait for a writer (and fstat below refuses it)
-        flags = os.O_RDONLY | getattr(os, "O_NONBLOCK", 0) | getattr(os, "O_NOCTTY", 0)
-        fd = os.open(path, flags | getattr(os, "O_BINARY", 0))
+        fd = os.open(
+            path,
+            os.O_RDONLY
+            | getattr(os, "O_NONBLOCK", 0)
+            | getattr(os, "O_NOCTTY", 0)
+            | getattr(os, "O_BINARY", 0),
+        )
         try:
             _check_regular(os.fstat(fd).st_mode, field, source, what)
             raw = b"".join(_chunks(fd, limit + 1))
