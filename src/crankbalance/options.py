@@ -75,7 +75,12 @@ MAX_BENCH_RUNS = 10
 #: most revolutions one bench run may simulate, ``speed / 2 pi * (ramp_time / 2 +
 #: hold_time)``: the explicit solver takes at least 8 steps a revolution, so this caps
 #: the work of a run (the thesis' runs: about 130 revolutions)
-MAX_BENCH_REVOLUTIONS = 10_000
+MAX_BENCH_REVOLUTIONS = 5_000
+#: most time constants of the bench's PI controller one run may simulate,
+#: ``(kp / inertia + sqrt(ki / inertia)) * (ramp_time + hold_time)``: the explicit solver
+#: needs steps shorter than the controller's time constant (the thesis' runs: about 450).
+#: :data:`crankbalance.rotor_bench.MAX_BENCH_EVALUATIONS` bounds the work of what is left
+MAX_BENCH_CONTROL = 50_000
 #: most values of a list setting of a sweep (balance factors, mass scales, weights)
 MAX_SWEEP = 21
 #: most design points along a balance shaft (each one a beam solve and an eigenproblem)
@@ -336,6 +341,17 @@ class BenchOptions(StudyOptions):
                 f"the run at {format_quantity(fastest, 'speed', 6)} would simulate "
                 f"{turns:.3g} revolutions, at most {MAX_BENCH_REVOLUTIONS} are allowed: "
                 "shorten the ramp and hold times or lower the speed",
+            )
+        proportional, integral = self.kp / self.inertia, math.sqrt(self.ki / self.inertia)
+        rate = proportional + integral
+        if rate * (self.ramp_time + self.hold_time) > MAX_BENCH_CONTROL:
+            gain = "kp" if proportional >= integral else "ki"
+            raise InputError(
+                gain,
+                getattr(self, gain),
+                f"the controller (time constant {1 / rate:.3g} s against the rotor's inertia) "
+                f"would need more than {MAX_BENCH_CONTROL} steps over the run: lower --kp "
+                "and --ki, raise the inertia or shorten the run",
             )
         return self
 

@@ -44,6 +44,11 @@ from .single_cylinder import (
 )
 
 STANDARD_GRAVITY = 9.80665
+#: Most evaluations of the equations of motion one :func:`run_bench` may take; a run that
+#: needs more (a stiff rotor: high controller gains or friction on a small inertia, or a
+#: very long run) stops with :class:`~crankbalance.errors.InputError` instead of running
+#: on. An ordinary run takes about 100 evaluations per simulated revolution.
+MAX_BENCH_EVALUATIONS = 1_000_000
 
 
 # ======================================================================================
@@ -354,13 +359,34 @@ def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
     -------
     BenchResult
 
+    Raises
+    ------
+    InputError
+        When the run needs more than :data:`MAX_BENCH_EVALUATIONS` evaluations of the
+        equations of motion (bounded work for any input).
+
     References
     ----------
     Hoem and Røsholm (2016), Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
     """
     from scipy.integrate import solve_ivp
 
-    rhs, torques, _ = _bench_model(rotor, settings)
+    model, torques, _ = _bench_model(rotor, settings)
+    evaluations = 0
+
+    def rhs(t: float, y: NDArray) -> NDArray:
+        nonlocal evaluations
+        evaluations += 1
+        if evaluations > MAX_BENCH_EVALUATIONS:
+            raise InputError(
+                "bench run",
+                None,
+                f"needs more than {MAX_BENCH_EVALUATIONS} evaluations of the equations of "
+                "motion (a stiff rotor: lower the controller gains, raise the inertia, or "
+                "shorten the run)",
+            )
+        return model(t, y)
+
     t_ramp = settings.ramp_time
     t_end = t_ramp + settings.hold_time
     n_ramp = max(2, int(round(settings.samples * t_ramp / t_end)))
