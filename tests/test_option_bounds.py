@@ -401,3 +401,87 @@ def test_missing_extra_is_one_line(
     line = refused(args, f"pip install 'crankbalance[{extra}]'", capsys)
     assert module in line
     assert sorted(p.name for p in tmp_path.iterdir()) == ["part.stl"]
+
+
+# ------------------------------------------------------------------------------------------
+# found by the fuzzing suite (tests/fuzz/test_fuzz_options.py); warnings are errors here
+# ------------------------------------------------------------------------------------------
+
+FOUND = [
+    (["bench", "--friction-coefficient", "0.1", "--unbalance", "1e11 g*mm"], "--unbalance"),
+    ([*OPTIMIZE, "--min-balance", "1e-320"], "--min-balance"),
+    (
+        [
+            "shaft",
+            "inline3",
+            "--length",
+            "0.001 mm",
+            "--diameter",
+            "25 mm",
+            "--unbalance",
+            "3 g*m",
+            "--speed",
+            "6000 rpm",
+        ],
+        "--length",
+    ),
+    (
+        [
+            "rebalance",
+            "--parts",
+            str(EXAMPLES / "crf250r_rebalance.toml"),
+            "--depth-resolution",
+            "1e-320 mm",
+        ],
+        "--depth-resolution",
+    ),
+    (
+        ["rebalance", "--parts", str(EXAMPLES / "crf250r_rebalance.toml"), "--speed", "1e308 rpm"],
+        "--speed",
+    ),
+    (
+        ["friction", "--journal-diameter", "0.001 mm", "--load", "1e-300 N", "--torque", "1e7 N*m"],
+        "--torque",
+    ),
+]
+
+
+@pytest.mark.parametrize("args,needle", FOUND, ids=[" ".join(a)[:60] for a, _ in FOUND])
+def test_found_by_the_fuzz(
+    args: list[str], needle: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    refused(args, needle, capsys)
+
+
+def test_extremes_inside_the_ranges_compute(capsys: pytest.CaptureFixture[str]) -> None:
+    """Values at the ends of the documented ranges give finite results (no warning either:
+    warnings are errors in the tests)."""
+    calls = [
+        [*FRICTION[:3], "--rotating-load", "1e-320 N", "--friction-coefficient", "0.1"],
+        [*FRICTION[:3], "--load", "1e9 N", "--rotating-load", "1e9 N", "--torque", "1e7 N*m"],
+        [
+            "shaft",
+            "check",
+            "--length",
+            "100000 mm",
+            "--diameter",
+            "0.001 mm",
+            "--bearing",
+            "0 mm",
+            "--bearing",
+            "100000 mm",
+            "--mass",
+            "50000 mm",
+            "--unbalance",
+            "1e11 g*mm",
+            "--speed",
+            "100000 rpm",
+            "--format",
+            "json",
+        ],
+        ["cycle", "--stroke", "0.001 mm", "--rod-length", "100000 mm", "--bore", "0.001 mm"],
+    ]
+    for args in calls:
+        code, out, err = run_cli(args, capsys)
+        assert code == 0, (args, err)
+        assert "nan" not in out.lower() and "inf" not in out.lower().replace("info", "")

@@ -27,6 +27,7 @@ from functools import partial
 from typing import Annotated, Any, Literal, TypeVar, Union, get_args, get_origin
 
 from pydantic import (
+    AfterValidator,
     BaseModel,
     BeforeValidator,
     ConfigDict,
@@ -50,6 +51,7 @@ _RPM = math.pi / 30.0  # 1 rpm in rad/s
 #: enough that no computation overflows; a setting may narrow its kind's range.
 RANGES: dict[str, tuple[float, float]] = {
     "length": (1e-6, 100.0),  # 1 µm to 100 m: clearances to shaft lengths
+    "area": (1e-12, 1e4),  # m^2
     "position": (-100.0, 100.0),  # an axial position or offset: a length that may be <= 0
     "mass": (1e-6, 1e6),  # 1 mg to 1000 t
     "density": (100.0, 1e5),  # kg/m^3: polymers to tungsten, with margin
@@ -75,7 +77,7 @@ MAX_BENCH_RUNS = 10
 #: most revolutions one bench run may simulate, ``speed / 2 pi * (ramp_time / 2 +
 #: hold_time)``: the explicit solver takes at least 8 steps a revolution, so this caps
 #: the work of a run (the thesis' runs: about 130 revolutions)
-MAX_BENCH_REVOLUTIONS = 5_000
+MAX_BENCH_REVOLUTIONS = 2_000
 #: most time constants of the bench's PI controller one run may simulate,
 #: ``(kp / inertia + sqrt(ki / inertia)) * (ramp_time + hold_time)``: the explicit solver
 #: needs steps shorter than the controller's time constant (the thesis' runs: about 450).
@@ -121,6 +123,17 @@ def _factor(value: Any) -> float:
     return parse_factor(value, "")
 
 
+def _target(value: Any) -> Any:
+    """A target balance factor: 0.28, "28%" or "factory" (the crank's own)."""
+    if isinstance(value, str) and value.strip().lower() == "factory":
+        return "factory"
+    factor = parse_factor(value, "")
+    low, high = BALANCE_FACTOR_LIMITS
+    if not low <= factor <= high:
+        raise InputError("", value, f"must be 'factory' or a number from {low:g} to {high:g}")
+    return factor
+
+
 def _angle_or_optimal(value: Any) -> Any:
     """``"optimal"`` or an angle with a unit, in :data:`RANGES` ``["angle"]``."""
     if isinstance(value, str) and value.strip().lower() == "optimal":
@@ -134,6 +147,7 @@ def _angle_or_optimal(value: Any) -> Any:
 
 
 Length = Annotated[float, _quantity("length"), _range("length")]
+Area = Annotated[float, _quantity("area"), _range("area")]
 Position = Annotated[float, _quantity("length"), _range("position")]
 Mass = Annotated[float, _quantity("mass"), _range("mass")]
 Density = Annotated[float, _quantity("density"), _range("density")]
@@ -160,8 +174,17 @@ Factor = Annotated[
 FrictionCoefficient = Annotated[float, BeforeValidator(_number), Field(gt=0, le=1)]
 #: a first moment a counterweight or balance shaft is sized for [kg m]
 Requirement = Annotated[Unbalance, Field(ge=MIN_UNBALANCE)]
+
+
+def _zero_or_length(value: float) -> float:
+    """Zero, or a length in its physical range (no length of a trillionth of a millimetre)."""
+    if value != 0 and value < RANGES["length"][0]:
+        raise InputError("", value, f"must be {ZERO_OR_LENGTH}")
+    return value
+
+
 #: a length that may be zero (a solid shaft's bore, a profile's rectangle height) [m]
-LengthOrZero = Annotated[Position, Field(ge=0)]
+LengthOrZero = Annotated[Position, Field(ge=0), AfterValidator(_zero_or_length)]
 #: the weight w of the balance-shaft placement objective [-]
 ShaftWeight = Annotated[float, BeforeValidator(_number), Field(ge=0, le=1000)]
 #: the balance factors of a sweep
@@ -191,7 +214,7 @@ class CounterweightOptions(StudyOptions):
     density: Density = Field(8000.0, title="Density", description="e.g. 8000 kg/m^3")
     max_mass: Mass | None = Field(None, title="Largest mass", description="e.g. 400 g")
     max_radius: Length | None = Field(None, title="Largest radial space", description="e.g. 80 mm")
-    min_balance: Number = Field(100.0, gt=0, le=1000, title="Smallest balance [%]")
+    min_balance: Number = Field(100.0, ge=1, le=1000, title="Smallest balance [%]")
     iterations: Whole = Field(40, ge=0, le=1000, title="Iterations")
     population: Whole = Field(4096, ge=16, le=100_000, title="Population")
     seed: Whole | None = Field(None, ge=0, le=2**32 - 1, title="Random seed")
@@ -236,6 +259,17 @@ class RebalanceOptions(StudyOptions):
     )
 
 
+def _slender(length: float, diameter: float) -> None:
+    """A shaft the beam model can describe: at least as long as its diameter."""
+    if length < diameter:
+        raise InputError(
+            "length",
+            length,
+            f"must be at least the diameter ({format_quantity(diameter, 'length', 6)}): the "
+            "beam model needs a shaft longer than it is thick",
+        )
+
+
 class ShaftPlacementOptions(StudyOptions):
     """Unbalance-mass placement on a balance shaft with end bearings (Kim 2018, Sec. 3.1)."""
 
@@ -243,6 +277,11 @@ class ShaftPlacementOptions(StudyOptions):
     diameter: Length = Field(0.025, title="Shaft diameter", description="e.g. 25 mm")
     weight: ShaftWeight = Field(2.0, title="Objective weight w", description="e.g. 2")
     points: Whole = Field(41, ge=3, le=MAX_SHAFT_POINTS, title="Design points along the shaft")
+
+    @model_validator(mode="after")
+    def _beam(self) -> ShaftPlacementOptions:
+        _slender(self.length, self.diameter)
+        return self
 
 
 class PerformanceOptions(StudyOptions):
@@ -400,6 +439,11 @@ class ShaftSectionOptions(StudyOptions):
     unbalance_radius: Length = Field(0.02, title="CG radius of the unbalance masses")
     bearing_stiffness: Stiffness | None = Field(None, title="Radial bearing stiffness")
 
+    @model_validator(mode="after")
+    def _beam(self) -> ShaftSectionOptions:
+        _slender(self.length, self.diameter)
+        return self
+
 
 class ShaftStudyOptions(ShaftSectionOptions):
     """``shaft inline4|inline3``: the required unbalance and the placement sweep."""
@@ -445,6 +489,32 @@ class BalanceFactorOptions(StudyOptions):
     offset: Position | None = Field(None, title="Wrist-pin offset")
     engine: str | None = Field(None, title="Engine file or preset")
     cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+
+
+class RebalancePartsOptions(StudyOptions):
+    """``rebalance``: the options that override the values of a parts file (the file's
+    own schema, :mod:`crankbalance.io.rebalance_file`, then checks how they combine)."""
+
+    crank_radius: Length | None = Field(None, title="Crank radius")
+    cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
+    cw_radius: Length | None = Field(None, title="Counterweight CG radius")
+    old_rotating_mass: Mass | None = Field(None, title="Rotating mass, old parts")
+    old_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, old parts")
+    new_rotating_mass: Mass | None = Field(None, title="Rotating mass, new parts")
+    new_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, new parts")
+    target: list[Annotated[float | str, BeforeValidator(_target)]] = Field(
+        [], max_length=50, title="Target balance factors"
+    )
+    correction_radius: Length | None = Field(None, title="Radius of the correction")
+    face_area: Area | None = Field(None, title="Face area ground per web")
+    hole_diameter: Length | None = Field(None, title="Drill diameter")
+    holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    density: Density | None = Field(None, title="Crank material density")
+    depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
+    grade: str | None = Field(None, title="ISO 21940-11 grade")
+    rotor_mass: Mass | None = Field(None, title="Crank mass")
+    speed: Speed | None = Field(None, title="Largest service speed")
+    tolerance: Requirement | None = Field(None, title="Permissible residual unbalance")
 
 
 class ToleranceOptions(StudyOptions):
@@ -575,6 +645,12 @@ def _range_words(quantity: str | None, bounds: Bounds, whole: bool = False) -> s
     return what.rstrip(",") + (", " + " and ".join(parts) if parts else "")
 
 
+#: what a length that may be zero accepts, in words
+ZERO_OR_LENGTH = (
+    f"0, or {_range_words('length', (RANGES['length'][0], False, RANGES['length'][1], False))}"
+)
+
+
 def allowed(model: type[StudyOptions], name: str) -> str:
     """What a field accepts, in words: "a whole number from 16 to 100000", ..."""
     info = model.model_fields[name]
@@ -593,6 +669,8 @@ def allowed(model: type[StudyOptions], name: str) -> str:
         return f"{count} values, each {_range_words(quantity, _bounds(inner))}"
     if base is str:
         return "a text"
+    if any(getattr(m, "func", None) is _zero_or_length for m in _metadata(model, name)):
+        return ZERO_OR_LENGTH
     if name == "angle" and model is BalanceOptions:
         low, high = RANGES["angle"]
         return f"'optimal' or {_range_words('angle', (low, False, high, False))}"

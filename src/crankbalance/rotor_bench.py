@@ -48,7 +48,7 @@ STANDARD_GRAVITY = 9.80665
 #: needs more (a stiff rotor: high controller gains or friction on a small inertia, or a
 #: very long run) stops with :class:`~crankbalance.errors.InputError` instead of running
 #: on. An ordinary run takes about 100 evaluations per simulated revolution.
-MAX_BENCH_EVALUATIONS = 1_000_000
+MAX_BENCH_EVALUATIONS = 500_000
 
 
 # ======================================================================================
@@ -98,6 +98,14 @@ class BenchRotor(ResultMixin):
         check_positive("journal_diameter", self.journal_diameter)
         check_nonnegative("friction_coefficient", self.friction_coefficient)
         check_nonnegative("unbalance", self.unbalance)
+        if self.unbalance**2 > self.mass * self.inertia:
+            # U = integral of r dm <= sqrt(integral of r^2 dm * m) = sqrt(I m) (Cauchy-Schwarz)
+            raise InputError(
+                "unbalance",
+                self.unbalance,
+                f"cannot exceed sqrt(inertia * mass) = {math.sqrt(self.mass * self.inertia):.4g} "
+                "kg m for this rotor (no mass distribution has a larger first moment)",
+            )
         check_nonnegative("gravity", self.gravity)
         if len(self.bearing_positions) != 2:
             raise InputError("bearing_positions", self.bearing_positions, "must be two positions")

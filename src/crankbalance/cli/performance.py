@@ -19,7 +19,14 @@ from ..errors import InputError
 from ..format import json_text, keyed, number, text
 from ..options import MAX_BENCH_REVOLUTIONS, MAX_BENCH_RUNS, MAX_SWEEP
 from ..results import require_finite
-from ._common import echo_table, format_option, given_options, parse_settings, refuse_unused
+from ._common import (
+    echo_table,
+    format_option,
+    given_options,
+    named_as_typed,
+    parse_settings,
+    refuse_unused,
+)
 
 FORMATS = ("table", "json", "csv")
 
@@ -218,11 +225,11 @@ def friction(
                 fr.friction_torque(o.friction_coefficient, mean, o.journal_diameter)
             )
         if o.torque is not None:
-            row["friction_coefficient"] = float(
-                fr.friction_coefficient_from_torque(
+            with named_as_typed({"torque": torque}):
+                mu = fr.friction_coefficient_from_torque(
                     o.torque, constant, rotating, o.journal_diameter, method
                 )
-            )
+            row["friction_coefficient"] = float(mu)
         rows.append(row)
     hydro: dict[str, float] | None = None
     if o.viscosity is not None:
@@ -359,13 +366,14 @@ def bench(
         },
     )
     assert o.friction_coefficient is not None  # a required option
-    rotor = BenchRotor(
-        mass=o.mass,
-        inertia=o.inertia,
-        journal_diameter=o.journal_diameter,
-        friction_coefficient=o.friction_coefficient,
-        unbalance=o.unbalance,
-    )
+    with named_as_typed({"mass": mass, "inertia": inertia, "unbalance": unbalance}):
+        rotor = BenchRotor(
+            mass=o.mass,
+            inertia=o.inertia,
+            journal_diameter=o.journal_diameter,
+            friction_coefficient=o.friction_coefficient,
+            unbalance=o.unbalance,
+        )
     # everything is checked before the first (slow) run
     runs = [
         BenchSettings(

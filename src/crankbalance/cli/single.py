@@ -296,7 +296,7 @@ def balance_factor(
 @click.option("--face-area", help="Face area ground per web, e.g. '2157 mm^2'.")
 @click.option("--face-orientation", type=click.Choice(["radial", "axial"]), default=None)
 @click.option("--hole-diameter", help="Drill diameter, e.g. '8 mm'.")
-@click.option("--holes", type=int, default=None, help="Holes per web.")
+@click.option("--holes", default=None, help="Holes per web (1 to 1000).")
 @click.option("--hole-direction", type=click.Choice(["axial", "radial"]), default=None)
 @click.option("--density", help="Crank material density, default '7850 kg/m^3'.")
 @click.option("--depth-resolution", help="Machining step, default '0.001 mm'.")
@@ -324,7 +324,7 @@ def rebalance_command(
     face_area: str | None,
     face_orientation: str | None,
     hole_diameter: str | None,
-    holes: int | None,
+    holes: str | None,
     hole_direction: str | None,
     density: str | None,
     depth_resolution: str | None,
@@ -340,7 +340,34 @@ def rebalance_command(
     Options override the values of the --parts file.
     """
     from ..io.rebalance_file import METHOD_KEYS, read_rebalance_data, rebalance_file_from_dict
+    from ..options import RebalancePartsOptions
     from ..studies.rebalance import rebalance_parts
+
+    # the typed values in their physical ranges; the file's schema then checks how they
+    # combine with the file
+    typed = parse_settings(
+        RebalancePartsOptions,
+        {
+            "crank_radius": crank_radius,
+            "cw_mass": cw_mass,
+            "cw_radius": cw_radius,
+            "old_rotating_mass": old_rotating_mass,
+            "old_reciprocating_mass": old_reciprocating_mass,
+            "new_rotating_mass": new_rotating_mass,
+            "new_reciprocating_mass": new_reciprocating_mass,
+            "target": list(targets),
+            "correction_radius": correction_radius,
+            "face_area": face_area,
+            "hole_diameter": hole_diameter,
+            "holes": holes,
+            "density": density,
+            "depth_resolution": depth_resolution,
+            "grade": grade,
+            "rotor_mass": rotor_mass,
+            "speed": speed,
+            "tolerance": tolerance_text,
+        },
+    )
 
     data: dict[str, Any] = {}
     source = "parts"
@@ -388,7 +415,7 @@ def rebalance_command(
         ("area", face_area, "face_area"),
         ("orientation", face_orientation, "face_orientation"),
         ("diameter", hole_diameter, "hole_diameter"),
-        ("number", holes, "holes"),
+        ("number", typed.holes, "holes"),
         ("direction", hole_direction, "hole_direction"),
         ("density", density, "density"),
         ("depth_resolution", depth_resolution, "depth_resolution"),
