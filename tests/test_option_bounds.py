@@ -237,6 +237,29 @@ IGNORED = [
     (["rebalance", "--parts", "PARTS", "--tolerance", "5 g*mm", "--grade", "G2.5"], "--tol"),
     ([*FRICTION, "--friction-coefficient", "0.1", "--clearance", "20 um"], "--clearance"),
     ([*FRICTION, "--friction-coefficient", "0.1", "--speed", "100 rpm"], "--speed"),
+    (
+        [
+            "counterweight",
+            "export",
+            "--first-moment",
+            "7880 g*mm",
+            "--web-radius",
+            "20 mm",
+            "--rectangle-height",
+            "20 mm",
+            "--trapezoid-angle",
+            "20 deg",
+            "--segment-radius",
+            "50 mm",
+            "--segment-angle",
+            "120 deg",
+            "--thickness",
+            "5 mm",
+            "-o",
+            "x.svg",
+        ],
+        "--first-moment",
+    ),
 ]
 
 

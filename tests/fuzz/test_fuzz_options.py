@@ -36,9 +36,9 @@ from crankbalance.units import KINDS, format_quantity
 
 ROOT = Path(__file__).resolve().parents[2]
 PARTS = str(ROOT / "examples" / "crf250r_rebalance.toml")
-#: examples per command; 20 commands and subcommands, so 8 give 160 combinations (a longer
+#: examples per command; 20 commands and subcommands, so 10 give about 200 combinations (a longer
 #: exploration: CRANKBALANCE_FUZZ_EXAMPLES=200, still deterministic)
-EXAMPLES = int(os.environ.get("CRANKBALANCE_FUZZ_EXAMPLES", "8"))
+EXAMPLES = int(os.environ.get("CRANKBALANCE_FUZZ_EXAMPLES", "10"))
 #: the hang guard of one example [s]: generous, the slowest valid example takes a few seconds
 HANG_GUARD = 120
 #: NaN or an infinity in an output, as Python, JSON or a table would print it

@@ -20,7 +20,14 @@ from ..format import json_text, keyed, number
 from ..format import text as unit_text
 from ..options import CounterweightDesignOptions, CounterweightOptions, allowed, parse_options
 from ..results import require_finite
-from ._common import echo_table, format_option, option_name, parse_settings, require_extra
+from ._common import (
+    echo_table,
+    format_option,
+    option_name,
+    parse_settings,
+    refuse_unused,
+    require_extra,
+)
 
 
 def _limits(field: str) -> str:
@@ -457,6 +464,11 @@ def export(first_moment, cw_mass, cg_radius, engine, density, output, **params: 
 
     if output.lower().endswith((".step", ".stp")):
         require_extra("cad")
+    if params["thickness"] is not None:
+        refuse_unused(
+            {name: False for name in ("first_moment", "cw_mass", "cg_radius", "engine")},
+            "only sizes the thickness of an export: give it or --thickness, not both",
+        )
     required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     design = _design_from(params, density, required)
     require_finite(design.properties(required), "design")
