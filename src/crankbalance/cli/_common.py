@@ -40,8 +40,9 @@ EXTRAS: dict[str, tuple[str, ...]] = {
 
 def require_extra(extra: str, *modules: str) -> None:
     """Refuse with one line (:class:`~crankbalance.errors.InputError`, exit 2) when a module
-    of an optional extra is not installed: "needs the web extra: pip install
-    'crankbalance[web]' (plotly is missing)". ``modules`` defaults to all of the extra's."""
+    of an optional extra is not installed: "the web extra: needed here but not installed
+    (plotly is missing): pip install 'crankbalance[web]'". ``modules`` defaults to all of
+    the extra's."""
     from ..errors import InputError
 
     for module in modules or EXTRAS[extra]:

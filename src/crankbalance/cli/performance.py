@@ -11,7 +11,7 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
@@ -27,6 +27,9 @@ from ._common import (
     parse_settings,
     refuse_unused,
 )
+
+if TYPE_CHECKING:
+    from ..options import CycleOptions
 
 FORMATS = ("table", "json", "csv")
 
@@ -509,7 +512,7 @@ def _engine_options(function: Any) -> Any:
 WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
 
 
-def _engine_from_options(o: Any) -> tuple[Any, Any, float, int]:
+def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
     """The cylinder, its pressure source, speed and stroke count of ``cycle`` and
     ``sensitivity`` from their validated options (:class:`~crankbalance.options.CycleOptions`);
     an option that would be ignored is refused."""
