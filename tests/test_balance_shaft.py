@@ -495,7 +495,7 @@ def test_cli_shaft_tables(capsys: pytest.CaptureFixture[str]) -> None:
         ([*CHECK, "--bearing", "400 mm"], "bearing_positions"),
         ([*CHECK, "--bearing", "0 mm"], "bearing_positions"),
         ([*CHECK, "--bearing", "300 mm", "--phase", "1 deg", "--mass", "100 mm"], "phases"),
-        ([*CHECK, "--bearing", "300 mm", "--margin", "nan"], "critical_speed_margin"),
+        ([*CHECK, "--bearing", "300 mm", "--margin", "nan"], "--margin"),
     ],
 )
 def test_cli_bad_input_exits_2(

@@ -489,8 +489,8 @@ def test_cli_pressure_csv(tmp_path):
     "args,needle",
     [
         (["cycle", "--bore", "-3 mm"], "bore"),
-        (["sensitivity", "--balance-factors", "a,b"], "balance_factors"),
-        (["friction", "--journal-diameter", "20 mm"], "friction_coefficient"),
+        (["sensitivity", "--balance-factors", "a,b"], "--balance-factors"),
+        (["friction", "--journal-diameter", "20 mm"], "--friction-coefficient"),
         (["bench", "--friction-coefficient", "0.1", "--speed", "fast"], "speed"),
         (["friction", "--journal-diameter", "20 mm", "--friction-coefficient", "0.1"], "load"),
         (
@@ -550,8 +550,8 @@ def test_cli_pressure_csv(tmp_path):
             "speed",
         ),
         (["bench", "--friction-coefficient", "0.1", "--history", "/no/such/dir/h.csv"], "history"),
-        (["cycle", "--balance-factor", "-0.5"], "balance_factor"),
-        (["sensitivity", "--balance-factors", "0,5"], "balance_factors"),
+        (["cycle", "--balance-factor", "-0.5"], "--balance-factor"),
+        (["sensitivity", "--balance-factors", "0,5"], "--balance-factors"),
     ],
 )
 def test_cli_bad_input_exit_2(args, needle, capsys):

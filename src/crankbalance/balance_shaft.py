@@ -452,8 +452,9 @@ def design_checks(
     ratio = response.first_critical_speed / speed
     load = float(response.reactions.max() * scale)
     deflection = response.max_deflection * scale
-    detuning = abs(1.0 - 1.0 / ratio**2)
-    amplification = 1.0 / detuning if detuning > 1e-12 else 1e12
+    # 1 / |1 - 1/ratio^2|, written so that a ratio near zero does not divide by zero
+    detuning = abs(ratio**2 - 1.0)
+    amplification = ratio**2 / detuning if detuning > 1e-12 * ratio**2 else 1e12
     return DesignChecks(
         critical_speed_ratio=ratio,
         required_ratio=1.0 + critical_speed_margin,

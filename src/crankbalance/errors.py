@@ -56,7 +56,30 @@ def check_nonnegative(field: str, value: float) -> float:
 
 
 def check_range(field: str, value: float, low: float, high: float) -> float:
-    """Return ``value`` if ``low <= value <= high`` (and finite), else raise."""
-    if not (low <= value <= high):
-        raise InputError(field, value, f"must lie between {low:g} and {high:g}")
+    """Return ``value`` if it is finite and ``low <= value <= high``, else raise.
+
+    NaN and infinities are refused even when a bound is infinite.
+    """
+    if not (math.isfinite(value) and low <= value <= high):
+        raise InputError(field, value, f"must be a finite number from {low:g} to {high:g}")
     return float(value)
+
+
+class ResultError(ValueError):
+    """A computed result that is not a finite number, found before it was printed or served.
+
+    Parameters
+    ----------
+    quantity : str
+        Where the value sits in the result, e.g. ``summary.energy_check_ratio``.
+    value : float
+        The value (NaN or an infinity).
+    """
+
+    def __init__(self, quantity: str, value: float) -> None:
+        self.quantity = quantity
+        self.value = value
+        super().__init__(
+            f"the result {quantity or 'value'} is not a finite number ({value!r}) for these "
+            "inputs; nothing was output"
+        )

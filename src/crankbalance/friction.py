@@ -151,7 +151,7 @@ def mean_equivalent_load(
     if method == "arithmetic":
         total = w + u
         safe = np.where(total > 0, total, 1.0)
-        m = np.where(total > 0, 4.0 * w * u / safe**2, 0.0)
+        m = np.where(total > 0, 4.0 * (w / safe) * (u / safe), 0.0)  # no underflow of safe**2
         return 2.0 / np.pi * total * ellipe(np.clip(m, 0.0, 1.0))
     theta = 2.0 * np.pi * np.arange(CUBIC_MEAN_SAMPLES) / CUBIC_MEAN_SAMPLES
     w_, u_ = np.broadcast_arrays(w, u)
@@ -273,7 +273,16 @@ def friction_coefficient_from_torque(
             np.asarray(load).tolist(),
             "must be greater than zero (the bearing carries no load)",
         )
-    return t / (load * 0.5 * d)
+    with np.errstate(over="ignore", divide="ignore"):  # checked just below
+        mu = t / (load * 0.5 * d)
+    if not np.all(np.isfinite(mu)):
+        raise InputError(
+            "torque",
+            torque,
+            "is too large for this load and journal diameter: the friction coefficient "
+            "would not be a finite number",
+        )
+    return mu
 
 
 def torque_from_transducer_voltage(

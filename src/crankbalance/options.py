@@ -1,10 +1,17 @@
-"""One schema for the settings of every study, with one set of limits.
+"""One schema for the settings of every study and every command, with one set of limits.
 
 The command line and the web form both validate a study's settings through these pydantic
 models, so that a setting has the same default, the same limits and the same message
 everywhere. Quantities are unit strings (``"8000 kg/m^3"``, ``"400 g"``) parsed to SI
 floats; plain numbers stay numbers. Every field has a default (``None`` where the study
 derives the value from the engine when it is not given).
+
+Limits. Every value is checked *after* unit conversion: it must be a finite number (no
+NaN, no infinity, whatever the unit: ``"1e308 km"`` is refused) inside the physical range
+of its kind (:data:`RANGES`), which a setting may narrow (a balance factor from 0 to 2, a
+friction coefficient up to 1). Counts and indices are whole numbers within stated bounds;
+the work of the long studies is capped (:data:`MAX_BENCH_REVOLUTIONS`, the design points
+of a shaft sweep, the balance factors of a sensitivity sweep).
 
 An edge names the fields as its users write them: the CLI as ``--max-mass``, the web form
 by its setting key; :func:`parse_options` takes that naming as a function, so that an
@@ -14,22 +21,87 @@ error names the field the user typed.
 from __future__ import annotations
 
 import math
+import types
 from collections.abc import Callable, Mapping
 from functools import partial
-from typing import Annotated, Any, Literal, TypeVar, get_args
+from typing import Annotated, Any, Literal, TypeVar, Union, get_args, get_origin
 
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError
+from pydantic import (
+    AfterValidator,
+    BaseModel,
+    BeforeValidator,
+    ConfigDict,
+    Field,
+    ValidationError,
+    model_validator,
+)
+from pydantic.fields import FieldInfo
 
 from .errors import InputError
 from .single_cylinder import BALANCE_FACTOR_RANGE
-from .units import KINDS, parse_quantity
+from .units import KINDS, format_quantity, parse_factor, parse_quantity
 
 #: the balance factors every study accepts (share of the reciprocating mass) [-]
 BALANCE_FACTOR_LIMITS = BALANCE_FACTOR_RANGE
 
+_RPM = math.pi / 30.0  # 1 rpm in rad/s
+
+#: The physical range of each kind of quantity, in SI units (angles in rad, speeds in
+#: rad/s). Wide enough for any engine from a model engine to a ship's diesel, narrow
+#: enough that no computation overflows; a setting may narrow its kind's range.
+RANGES: dict[str, tuple[float, float]] = {
+    "length": (1e-6, 100.0),  # 1 µm to 100 m: clearances to shaft lengths
+    "area": (1e-12, 1e4),  # m^2
+    "position": (-100.0, 100.0),  # an axial position or offset: a length that may be <= 0
+    "mass": (1e-6, 1e6),  # 1 mg to 1000 t
+    "density": (100.0, 1e5),  # kg/m^3: polymers to tungsten, with margin
+    "inertia": (1e-12, 1e6),  # kg m^2
+    "unbalance": (0.0, 1e5),  # kg m
+    "speed": (1.0 * _RPM, 1e5 * _RPM),  # 1 rpm to 100 000 rpm
+    "force": (0.0, 1e9),  # N
+    "torque": (0.0, 1e7),  # N m
+    "time": (1e-3, 600.0),  # 1 ms to 10 min of simulated time
+    "stiffness": (1e3, 1e12),  # N/m
+    "modulus": (1e6, 1e13),  # Pa: rubber-like to beyond diamond
+    "pressure": (1e3, 1e8),  # Pa: 0.01 bar to 1000 bar
+    "viscosity": (1e-6, 100.0),  # Pa s
+    "angle": (-2 * math.pi, 2 * math.pi),  # -360 deg to 360 deg
+}
+#: (low, low is open, high, high is open) of a value
+Bounds = tuple[float | None, bool, float | None, bool]
+#: the smallest first moment a counterweight or a balance shaft is sized for [kg m]
+#: (0.001 g mm; a smaller requirement is zero for any balancing machine)
+MIN_UNBALANCE = 1e-9
+#: most runs of one ``bench`` call (one per ``--speed``)
+MAX_BENCH_RUNS = 10
+#: most revolutions one bench run may simulate, ``speed / 2 pi * (ramp_time / 2 +
+#: hold_time)``: the explicit solver takes at least 8 steps a revolution, so this caps
+#: the work of a run (the thesis' runs: about 130 revolutions)
+MAX_BENCH_REVOLUTIONS = 2_000
+#: most time constants of the bench's PI controller one run may simulate,
+#: ``(kp / inertia + sqrt(ki / inertia)) * (ramp_time + hold_time)``: the explicit solver
+#: needs steps shorter than the controller's time constant (the thesis' runs: about 450).
+#: :data:`crankbalance.rotor_bench.MAX_BENCH_EVALUATIONS` bounds the work of what is left
+MAX_BENCH_CONTROL = 50_000
+#: most values of a list setting of a sweep (balance factors, mass scales, weights)
+MAX_SWEEP = 21
+#: most design points along a balance shaft (each one a beam solve and an eigenproblem)
+MAX_SHAFT_POINTS = 2001
+#: most bearings, unbalance masses or phases of one balance shaft (``shaft check``)
+MAX_SHAFT_ITEMS = 64
+#: the largest harmonic order any study computes
+MAX_ORDER = 64
+
 
 def _quantity(kind: str) -> Any:
+    """A quantity string of ``kind`` parsed to SI."""
     return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
+
+
+def _range(kind: str) -> Any:
+    """The physical range of a kind of quantity (:data:`RANGES`)."""
+    low, high = RANGES[kind]
+    return Field(ge=low, le=high)
 
 
 def _number(value: Any) -> Any:
@@ -46,36 +118,103 @@ def _number(value: Any) -> Any:
     return value
 
 
-Length = Annotated[float, _quantity("length")]
-Mass = Annotated[float, _quantity("mass")]
-Density = Annotated[float, _quantity("density")]
-Inertia = Annotated[float, _quantity("inertia")]
-Unbalance = Annotated[float, _quantity("unbalance")]
+def _factor(value: Any) -> float:
+    """A balance factor as written: 0.28, "0.28" or "28%"."""
+    return parse_factor(value, "")
+
+
+def _target(value: Any) -> Any:
+    """A target balance factor: 0.28, "28%" or "factory" (the crank's own)."""
+    if isinstance(value, str) and value.strip().lower() == "factory":
+        return "factory"
+    factor = parse_factor(value, "")
+    low, high = BALANCE_FACTOR_LIMITS
+    if not low <= factor <= high:
+        raise InputError("", value, f"must be 'factory' or a number from {low:g} to {high:g}")
+    return factor
+
+
+def _angle_or_optimal(value: Any) -> Any:
+    """``"optimal"`` or an angle with a unit, in :data:`RANGES` ``["angle"]``."""
+    if isinstance(value, str) and value.strip().lower() == "optimal":
+        return "optimal"
+    angle = parse_quantity(value, "angle", "")
+    low, high = RANGES["angle"]
+    if not low <= angle <= high:
+        words = _range_words("angle", (low, False, high, False))
+        raise InputError("", value, f"must be 'optimal' or {words}")
+    return angle
+
+
+Length = Annotated[float, _quantity("length"), _range("length")]
+Area = Annotated[float, _quantity("area"), _range("area")]
+Position = Annotated[float, _quantity("length"), _range("position")]
+Mass = Annotated[float, _quantity("mass"), _range("mass")]
+Density = Annotated[float, _quantity("density"), _range("density")]
+Inertia = Annotated[float, _quantity("inertia"), _range("inertia")]
+Unbalance = Annotated[float, _quantity("unbalance"), _range("unbalance")]
+Speed = Annotated[float, _quantity("speed"), _range("speed")]
+Force = Annotated[float, _quantity("force"), _range("force")]
+Torque = Annotated[float, _quantity("torque"), _range("torque")]
+Time = Annotated[float, _quantity("time"), _range("time")]
+Stiffness = Annotated[float, _quantity("stiffness"), _range("stiffness")]
+Modulus = Annotated[float, _quantity("modulus"), _range("modulus")]
+Pressure = Annotated[float, _quantity("pressure"), _range("pressure")]
+Viscosity = Annotated[float, _quantity("viscosity"), _range("viscosity")]
+Angle = Annotated[float, _quantity("angle"), _range("angle")]
 Number = Annotated[float, BeforeValidator(_number)]
 Whole = Annotated[int, BeforeValidator(_number)]
+#: a balance factor: 0.28 or "28%", from 0 to 2
+Factor = Annotated[
+    float,
+    BeforeValidator(_factor),
+    Field(ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1]),
+]
+#: a Coulomb friction coefficient [-]
+FrictionCoefficient = Annotated[float, BeforeValidator(_number), Field(gt=0, le=1)]
+#: a first moment a counterweight or balance shaft is sized for [kg m]
+Requirement = Annotated[Unbalance, Field(ge=MIN_UNBALANCE)]
+
+
+def _zero_or_length(value: float) -> float:
+    """Zero, or a length in its physical range (no length of a trillionth of a millimetre)."""
+    if value != 0 and value < RANGES["length"][0]:
+        raise InputError("", value, f"must be {ZERO_OR_LENGTH}")
+    return value
+
+
+#: a length that may be zero (a solid shaft's bore, a profile's rectangle height) [m]
+LengthOrZero = Annotated[Position, Field(ge=0), AfterValidator(_zero_or_length)]
+#: the weight w of the balance-shaft placement objective [-]
+ShaftWeight = Annotated[float, BeforeValidator(_number), Field(ge=0, le=1000)]
+#: the balance factors of a sweep
+BalanceFactors = Annotated[list[Factor], Field(min_length=1, max_length=MAX_SWEEP)]
 
 
 class StudyOptions(BaseModel):
-    """Base of the study settings: unknown keys are errors, values are frozen."""
+    """Base of the study settings: unknown keys are errors, values are frozen and finite."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+
+
+# --------------------------------------------------------------------------------------
+# the studies of the web form and the command line
+# --------------------------------------------------------------------------------------
 
 
 class AnalysisOptions(StudyOptions):
     """Free forces and moments: how many harmonic orders."""
 
-    orders: Whole = Field(8, ge=1, le=64, title="Highest order")
+    orders: Whole = Field(8, ge=1, le=MAX_ORDER, title="Highest order")
 
 
 class CounterweightOptions(StudyOptions):
     """Counterweight shape optimisation (Appl. Sci. 2021, Sec. 4-5)."""
 
-    density: Density = Field(8000.0, gt=0, title="Density", description="e.g. 8000 kg/m^3")
-    max_mass: Mass | None = Field(None, gt=0, title="Largest mass", description="e.g. 400 g")
-    max_radius: Length | None = Field(
-        None, gt=0, title="Largest radial space", description="e.g. 80 mm"
-    )
-    min_balance: Number = Field(100.0, gt=0, le=1000, title="Smallest balance [%]")
+    density: Density = Field(8000.0, title="Density", description="e.g. 8000 kg/m^3")
+    max_mass: Mass | None = Field(None, title="Largest mass", description="e.g. 400 g")
+    max_radius: Length | None = Field(None, title="Largest radial space", description="e.g. 80 mm")
+    min_balance: Number = Field(100.0, ge=1, le=1000, title="Smallest balance [%]")
     iterations: Whole = Field(40, ge=0, le=1000, title="Iterations")
     population: Whole = Field(4096, ge=16, le=100_000, title="Population")
     seed: Whole | None = Field(None, ge=0, le=2**32 - 1, title="Random seed")
@@ -90,10 +229,10 @@ class SingleCylinderOptions(StudyOptions):
     )
     grade: str = Field("G6.3", title="ISO 21940-11 grade", description="e.g. G6.3")
     rotor_mass: Mass | None = Field(
-        None, gt=0, title="Rotor mass", description="empty: the crank's rotating masses"
+        None, title="Rotor mass", description="empty: the crank's rotating masses"
     )
     residual: Unbalance | None = Field(
-        None, ge=0, title="Measured residual unbalance", description="optional, e.g. 8 g*mm"
+        None, title="Measured residual unbalance", description="optional, e.g. 8 g*mm"
     )
 
 
@@ -101,35 +240,48 @@ class RebalanceOptions(StudyOptions):
     """Rebalancing one cylinder's throw after new parts (Hoem and Røsholm 2016, Sec. 6.4)."""
 
     new_reciprocating: Mass | None = Field(
-        None, gt=0, title="New reciprocating mass", description="empty: unchanged"
+        None, title="New reciprocating mass", description="empty: unchanged"
     )
     new_rotating: Mass | None = Field(
-        None, gt=0, title="New rotating mass", description="empty: unchanged"
+        None, title="New rotating mass", description="empty: unchanged"
     )
     cw_mass: Mass | None = Field(
         None,
-        gt=0,
         title="Counterweight mass (webs incl.)",
         description="empty: what the balance factor needs at the CG radius",
     )
     cw_radius: Length | None = Field(
-        None, gt=0, title="Counterweight CG radius", description="empty: crank radius"
+        None, title="Counterweight CG radius", description="empty: crank radius"
     )
-    hole_diameter: Length = Field(0.008, gt=0, title="Drill diameter", description="e.g. 8 mm")
+    hole_diameter: Length = Field(0.008, title="Drill diameter", description="e.g. 8 mm")
     hole_radius: Length | None = Field(
-        None, gt=0, title="Hole radius", description="empty: counterweight CG radius"
+        None, title="Hole radius", description="empty: counterweight CG radius"
     )
+
+
+def _slender(length: float, diameter: float) -> None:
+    """A shaft the beam model can describe: at least as long as its diameter."""
+    if length < diameter:
+        raise InputError(
+            "length",
+            length,
+            f"must be at least the diameter ({format_quantity(diameter, 'length', 6)}): the "
+            "beam model needs a shaft longer than it is thick",
+        )
 
 
 class ShaftPlacementOptions(StudyOptions):
     """Unbalance-mass placement on a balance shaft with end bearings (Kim 2018, Sec. 3.1)."""
 
-    length: Length = Field(
-        0.3, gt=0, title="Shaft length (between bearings)", description="e.g. 300 mm"
-    )
-    diameter: Length = Field(0.025, gt=0, title="Shaft diameter", description="e.g. 25 mm")
-    weight: Number = Field(2.0, ge=0, le=1000, title="Objective weight w", description="e.g. 2")
-    points: Whole = Field(41, ge=3, le=2001, title="Design points along the shaft")
+    length: Length = Field(0.3, title="Shaft length (between bearings)", description="e.g. 300 mm")
+    diameter: Length = Field(0.025, title="Shaft diameter", description="e.g. 25 mm")
+    weight: ShaftWeight = Field(2.0, title="Objective weight w", description="e.g. 2")
+    points: Whole = Field(41, ge=3, le=MAX_SHAFT_POINTS, title="Design points along the shaft")
+
+    @model_validator(mode="after")
+    def _beam(self) -> ShaftPlacementOptions:
+        _slender(self.length, self.diameter)
+        return self
 
 
 class PerformanceOptions(StudyOptions):
@@ -137,39 +289,301 @@ class PerformanceOptions(StudyOptions):
     2016, Sec. 5)."""
 
     bore: Length | None = Field(
-        None, gt=0, title="Bore", description="empty: square engine (bore = stroke)"
+        None, title="Bore", description="empty: square engine (bore = stroke)"
     )
-    balance_factors: list[
-        Annotated[Number, Field(ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1])]
-    ] = Field(
+    balance_factors: BalanceFactors = Field(
         [0.0, 0.25, 0.5, 0.75, 1.0],
-        min_length=1,
-        max_length=21,
         title="Balance factors",
         description="e.g. 0, 0.25, 0.5, 0.75, 1",
     )
     crank_inertia: Inertia = Field(
-        0.006, gt=0, title="Crank + flywheel inertia", description="e.g. 0.006 kg*m^2"
+        0.006, title="Crank + flywheel inertia", description="e.g. 0.006 kg*m^2"
     )
-    friction_coefficient: Number = Field(
-        0.005, gt=0, le=1, title="Bearing friction coefficient", description="e.g. 0.005"
+    friction_coefficient: FrictionCoefficient = Field(
+        0.005, title="Bearing friction coefficient", description="e.g. 0.005"
     )
-    journal_diameter: Length = Field(
-        0.03, gt=0, title="Main journal diameter", description="e.g. 30 mm"
+    journal_diameter: Length = Field(0.03, title="Main journal diameter", description="e.g. 30 mm")
+
+
+# --------------------------------------------------------------------------------------
+# the commands of the command line (crankbalance COMMAND --option ...)
+# --------------------------------------------------------------------------------------
+
+
+class BalanceOptions(StudyOptions):
+    """``balance`` and ``report``: overrides of the engine file's counterweights."""
+
+    angle: Annotated[float | str, BeforeValidator(_angle_or_optimal)] | None = Field(
+        None, title="Counterweight angle", description="'optimal' or e.g. 30 deg"
     )
+    balance_factor: Factor | None = Field(None, title="Balance factor")
+
+
+class CounterweightDesignOptions(StudyOptions):
+    """``counterweight optimize|show|export|check``: the requirement and the profile
+    parameters (each a value, or for ``optimize`` both ends of a range)."""
+
+    first_moment: Requirement | None = Field(None, title="Required first moment m_c r_c")
+    cw_mass: Mass | None = Field(None, title="Counterweight mass m_c")
+    cg_radius: Length | None = Field(None, title="Counterweight CG radius r_c")
+    web_radius: Length | None = Field(None, title="Web circle radius r_cw")
+    rectangle_height: LengthOrZero | None = Field(None, title="Rectangle height h_R")
+    trapezoid_angle: Annotated[Angle, Field(ge=0)] | None = Field(None, title="delta")
+    segment_radius: Length | None = Field(None, title="Segment radius R_cw")
+    segment_angle: Annotated[Angle, Field(gt=0)] | None = Field(None, title="alpha")
+    thickness: Length | None = Field(None, title="Thickness t_cw")
+    density: Density = Field(8000.0, title="Density")
+    unit: Length = Field(1e-3, title="Length unit of a CAD file")
+
+
+class FrictionOptions(StudyOptions):
+    """``friction``: bearing friction torque under a constant plus a rotating load."""
+
+    load: Force = Field(0.0, title="Constant bearing load")
+    rotating_load: Force | None = Field(None, title="Rotating load")
+    unbalance: Unbalance | None = Field(None, title="Unbalance")
+    speed: Speed | None = Field(None, title="Shaft speed")
+    journal_diameter: Length | None = Field(None, title="Journal diameter")
+    friction_coefficient: FrictionCoefficient | None = Field(None, title="Friction coefficient")
+    torque: Torque | None = Field(None, title="Measured torque")
+    viscosity: Viscosity | None = Field(None, title="Oil viscosity")
+    bearing_length: Length | None = Field(None, title="Bearing length")
+    clearance: Length | None = Field(None, title="Radial clearance")
+    eccentricity: Number = Field(0.0, ge=0, lt=1, title="Eccentricity ratio")
+    attitude_angle: Angle = Field(0.0, title="Attitude angle")
+
+
+class BenchOptions(StudyOptions):
+    """``bench``: the simulated rotor test bench (Hoem and Røsholm 2016, Sec. 5.2.5)."""
+
+    mass: Mass = Field(2.5464, title="Rotor mass")
+    inertia: Inertia = Field(2.847335e-3, title="Rotor moment of inertia")
+    unbalance: Unbalance = Field(0.0, title="Rotor unbalance")
+    journal_diameter: Length = Field(0.02, title="Journal diameter")
+    friction_coefficient: FrictionCoefficient | None = Field(None, title="Friction coefficient")
+    speed: list[Speed] = Field(
+        [3000 * _RPM], min_length=1, max_length=MAX_BENCH_RUNS, title="Set speeds"
+    )
+    ramp_time: Time = Field(2.0, title="Ramp time")
+    hold_time: Time = Field(1.5, title="Hold time")
+    kp: Number = Field(0.2, gt=0, le=1e4, title="PI proportional gain [N m s/rad]")
+    ki: Number = Field(10.0, ge=0, le=1e6, title="PI integral gain [N m/rad]")
+
+    @model_validator(mode="after")
+    def _bounded_work(self) -> BenchOptions:
+        fastest = max(self.speed)
+        turns = fastest / (2 * math.pi) * (self.ramp_time / 2 + self.hold_time)
+        if turns > MAX_BENCH_REVOLUTIONS:
+            raise InputError(
+                "hold_time",
+                self.hold_time,
+                f"the run at {format_quantity(fastest, 'speed', 6)} would simulate "
+                f"{turns:.3g} revolutions, at most {MAX_BENCH_REVOLUTIONS} are allowed: "
+                "shorten the ramp and hold times or lower the speed",
+            )
+        proportional, integral = self.kp / self.inertia, math.sqrt(self.ki / self.inertia)
+        rate = proportional + integral
+        if rate * (self.ramp_time + self.hold_time) > MAX_BENCH_CONTROL:
+            gain = "kp" if proportional >= integral else "ki"
+            raise InputError(
+                gain,
+                getattr(self, gain),
+                f"the controller (time constant {1 / rate:.3g} s against the rotor's inertia) "
+                f"would need more than {MAX_BENCH_CONTROL} steps over the run: lower --kp "
+                "and --ki, raise the inertia or shorten the run",
+            )
+        return self
+
+
+class CycleOptions(StudyOptions):
+    """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) and its gas
+    pressure (the Wiebe model or a table)."""
+
+    engine: str | None = Field(None, title="Engine file or preset")
+    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+    bore: Length = Field(0.0768, title="Bore")
+    stroke: Length = Field(0.0538, title="Stroke")
+    rod_length: Length = Field(0.1035, title="Conrod length")
+    reciprocating_mass: Mass = Field(0.282, title="Reciprocating mass")
+    crank_inertia: Inertia = Field(0.006, title="Crank + flywheel inertia")
+    journal_diameter: Length = Field(0.03, title="Main journal diameter")
+    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
+    speed: Speed = Field(9000 * _RPM, title="Mean speed")
+    strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle")
+    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
+    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: str | None = Field(None, title="Cylinder pressure table")
+    balance_factor: Factor = Field(0.5, title="Balance factor")
+
+
+class SensitivityOptions(CycleOptions):
+    """``sensitivity``: the cycle swept over balance factors and reciprocating-mass scales."""
+
+    balance_factors: BalanceFactors = Field([0.1 * k for k in range(11)], title="Balance factors")
+    mass_scales: list[Annotated[Number, Field(gt=0, le=10)]] = Field(
+        [1.0], min_length=1, max_length=MAX_SWEEP, title="Reciprocating-mass scales"
+    )
+
+
+class ShaftSectionOptions(StudyOptions):
+    """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
+
+    length: Length = Field(0.3, title="Shaft length")
+    diameter: Length = Field(0.025, title="Outer diameter")
+    bore: LengthOrZero = Field(0.0, title="Bore diameter (hollow shaft)")
+    modulus: Modulus = Field(210e9, title="Young's modulus")
+    density: Density = Field(7850.0, title="Density")
+    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
+    unbalance_radius: Length = Field(0.02, title="CG radius of the unbalance masses")
+    bearing_stiffness: Stiffness | None = Field(None, title="Radial bearing stiffness")
+
+    @model_validator(mode="after")
+    def _beam(self) -> ShaftSectionOptions:
+        _slender(self.length, self.diameter)
+        return self
+
+
+class ShaftStudyOptions(ShaftSectionOptions):
+    """``shaft inline4|inline3``: the required unbalance and the placement sweep."""
+
+    engine: str | None = Field(None, title="Engine file or preset")
+    unbalance: Requirement | None = Field(None, title="Required first moment")
+    speed: Speed | None = Field(None, title="Shaft speed")
+    weight: ShaftWeight = Field(2.0, title="Objective weight w")
+    weights: list[ShaftWeight] | None = Field(
+        None, min_length=1, max_length=MAX_SWEEP, title="Weights of the sweep"
+    )
+    points: Whole = Field(200, ge=3, le=MAX_SHAFT_POINTS, title="Design points")
+    bearing_offset: Length | None = Field(None, title="Bearing-to-mass distance")
+    z_min: Number = Field(0.3, ge=0, lt=1, title="Smallest second-mass position z/L")
+
+
+class ShaftCheckOptions(ShaftSectionOptions):
+    """``shaft check``: one layout (bearings, masses, unbalances, phases) and its limits."""
+
+    bearing: list[Position] = Field([], min_length=2, max_length=MAX_SHAFT_ITEMS)
+    mass: list[Position] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
+    unbalance: list[Unbalance] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
+    phase: list[Angle] = Field([], max_length=MAX_SHAFT_ITEMS)
+    speed: Speed | None = Field(None, title="Shaft speed")
+    max_speed: Speed | None = Field(None, title="Maximum shaft speed")
+    margin: Number = Field(0.25, ge=0, le=10, title="Critical-speed separation")
+    bearing_capacity: Annotated[Force, Field(gt=0)] | None = Field(None, title="Bearing load")
+    deflection_limit: Length | None = Field(None, title="Allowed deflection")
+
+
+class BalanceFactorOptions(StudyOptions):
+    """``balance-factor``: one crank's balance factor, bob-weight and force study."""
+
+    reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass")
+    crank_radius: Length | None = Field(None, title="Crank radius")
+    rotating_mass: Mass | None = Field(None, title="Rotating mass")
+    cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
+    cw_radius: Length | None = Field(None, title="Counterweight CG radius")
+    balance_factor: Factor | None = Field(None, title="Balance factor studied")
+    target: Factor | None = Field(None, title="Balance factor of the bob-weight")
+    speed: Speed | None = Field(None, title="Crank speed")
+    rod_length: Length | None = Field(None, title="Conrod length")
+    offset: Position | None = Field(None, title="Wrist-pin offset")
+    engine: str | None = Field(None, title="Engine file or preset")
+    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+
+
+class RebalancePartsOptions(StudyOptions):
+    """``rebalance``: the options that override the values of a parts file (the file's
+    own schema, :mod:`crankbalance.io.rebalance_file`, then checks how they combine)."""
+
+    crank_radius: Length | None = Field(None, title="Crank radius")
+    cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
+    cw_radius: Length | None = Field(None, title="Counterweight CG radius")
+    old_rotating_mass: Mass | None = Field(None, title="Rotating mass, old parts")
+    old_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, old parts")
+    new_rotating_mass: Mass | None = Field(None, title="Rotating mass, new parts")
+    new_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, new parts")
+    target: list[Annotated[float | str, BeforeValidator(_target)]] = Field(
+        [], max_length=50, title="Target balance factors"
+    )
+    correction_radius: Length | None = Field(None, title="Radius of the correction")
+    face_area: Area | None = Field(None, title="Face area ground per web")
+    hole_diameter: Length | None = Field(None, title="Drill diameter")
+    holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    density: Density | None = Field(None, title="Crank material density")
+    depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
+    grade: str | None = Field(None, title="ISO 21940-11 grade")
+    rotor_mass: Mass | None = Field(None, title="Crank mass")
+    speed: Speed | None = Field(None, title="Largest service speed")
+    tolerance: Requirement | None = Field(None, title="Permissible residual unbalance")
+
+
+class ToleranceOptions(StudyOptions):
+    """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes."""
+
+    grade: str | None = Field(None, title="Balance quality grade")
+    rotor_mass: Mass | None = Field(None, title="Rotor mass")
+    speed: Speed | None = Field(None, title="Largest service speed")
+    residual: Unbalance | None = Field(None, title="Measured residual unbalance")
+    bearing_a: Position | None = Field(None, title="Bearing A")
+    bearing_b: Position | None = Field(None, title="Bearing B")
+    center_of_mass: Position | None = Field(None, title="Centre of mass")
+    plane_1: Position | None = Field(None, title="Correction plane I")
+    plane_2: Position | None = Field(None, title="Correction plane II")
+
+
+class PlotOptions(StudyOptions):
+    """``plot``: the settings of the figures that take any."""
+
+    order: Annotated[int, BeforeValidator(_number)] | Literal["rotating"] = Field(
+        1, title="Harmonic order"
+    )
+    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder")
+    balance_factor: Factor = Field(0.5, title="Balance factor")
+
+    @model_validator(mode="after")
+    def _order_range(self) -> PlotOptions:
+        if self.order != "rotating" and not 1 <= int(self.order) <= MAX_ORDER:
+            raise InputError(
+                "order", self.order, f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'"
+            )
+        return self
 
 
 Options = TypeVar("Options", bound=StudyOptions)
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 
 
+def _unwrap(annotation: Any) -> tuple[Any, list[Any]]:
+    """The base type of an annotation and its metadata, through ``X | None`` and
+    ``Annotated`` (the constraints of a nested ``Field`` flattened)."""
+    found: list[Any] = []
+    while True:
+        origin = get_origin(annotation)
+        if origin is Annotated:
+            annotation, *extra = get_args(annotation)
+            for meta in extra:
+                found += list(meta.metadata) if isinstance(meta, FieldInfo) else [meta]
+        elif origin in (Union, types.UnionType):
+            options = [a for a in get_args(annotation) if a is not type(None)]
+            if len(options) != 1:
+                return annotation, found
+            annotation = options[0]
+        else:
+            return annotation, found
+
+
 def _metadata(model: type[StudyOptions], name: str) -> list[Any]:
     """The field's constraints and validators, also those inside ``X | None``."""
     info = model.model_fields[name]
-    found = list(info.metadata)
-    for arg in get_args(info.annotation):
-        found += list(getattr(arg, "__metadata__", ()))
-    return found
+    return list(info.metadata) + _unwrap(info.annotation)[1]
+
+
+def _quantity_kind(metadata: list[Any]) -> str | None:
+    for meta in metadata:
+        func = getattr(meta, "func", None)
+        if isinstance(func, partial) and func.func is parse_quantity:
+            return str(func.keywords["kind"])
+    return None
 
 
 def _show(value: float) -> str:
@@ -178,55 +592,91 @@ def _show(value: float) -> str:
 
 def field_kind(model: type[StudyOptions], name: str) -> tuple[Kind, str | None]:
     """How a field is written: its kind and, for a quantity, the quantity kind."""
-    info = model.model_fields[name]
-    for meta in _metadata(model, name):
-        func = getattr(meta, "func", None)
-        if isinstance(func, partial) and func.func is parse_quantity:
-            return "quantity", str(func.keywords["kind"])
-    annotation = str(info.annotation)
-    if "list" in annotation:
+    base, metadata = _unwrap(model.model_fields[name].annotation)
+    quantity = _quantity_kind(list(model.model_fields[name].metadata) + metadata)
+    if quantity is not None:
+        return "quantity", quantity
+    if get_origin(base) is list:
         return "list", None
-    if "int" in annotation:
+    if base is int:
         return "whole", None
-    if "float" in annotation:
+    if base is float:
         return "number", None
     return "text", None
+
+
+def _bounds(metadata: list[Any]) -> Bounds:
+    """The tightest (low, low is open, high, high is open) of a field's constraints."""
+    low: float | None = None
+    high: float | None = None
+    low_open = high_open = False
+    for meta in metadata:
+        for attr, is_open in (("ge", False), ("gt", True)):
+            value = getattr(meta, attr, None)
+            if value is not None and (low is None or value > low or (value == low and is_open)):
+                low, low_open = value, is_open
+        for attr, is_open in (("le", False), ("lt", True)):
+            value = getattr(meta, attr, None)
+            if value is not None and (high is None or value < high or (value == high and is_open)):
+                high, high_open = value, is_open
+    return low, low_open, high, high_open
+
+
+def _range_words(quantity: str | None, bounds: Bounds, whole: bool = False) -> str:
+    """ "a length with a unit, e.g. '40 mm', from 0.001 mm to 100000 mm", "a number, greater
+    than 0 and at most 1", ... for ``bounds`` (low, low is open, high, high is open)."""
+    low, low_open, high, high_open = bounds
+    if quantity is not None:
+        article = "an" if quantity[0] in "aeiou" else "a"
+        what = f"{article} {quantity} with a unit, e.g. '{KINDS[quantity][2]}',"
+
+        def show(value: float) -> str:
+            return format_quantity(float(value), quantity, digits=6)
+    else:
+        what = "a whole number" if whole else "a number"
+        show = _show
+    if low is not None and high is not None and not low_open and not high_open:
+        return f"{what} from {show(low)} to {show(high)}"
+    parts = []
+    if low is not None:
+        parts.append(f"{'greater than' if low_open else 'at least'} {show(low)}")
+    if high is not None:
+        parts.append(f"{'less than' if high_open else 'at most'} {show(high)}")
+    return what.rstrip(",") + (", " + " and ".join(parts) if parts else "")
+
+
+#: what a length that may be zero accepts, in words
+ZERO_OR_LENGTH = (
+    f"0, or {_range_words('length', (RANGES['length'][0], False, RANGES['length'][1], False))}"
+)
 
 
 def allowed(model: type[StudyOptions], name: str) -> str:
     """What a field accepts, in words: "a whole number from 16 to 100000", ..."""
     info = model.model_fields[name]
-    low = high = None
-    low_open = high_open = False
-    for meta in _metadata(model, name):
-        for attr, is_open in (("ge", False), ("gt", True)):
-            if getattr(meta, attr, None) is not None:
-                low, low_open = getattr(meta, attr), is_open
-        for attr, is_open in (("le", False), ("lt", True)):
-            if getattr(meta, attr, None) is not None:
-                high, high_open = getattr(meta, attr), is_open
     kind, quantity = field_kind(model, name)
+    base, _ = _unwrap(info.annotation)
     if kind == "list":
-        longest = next((m.max_length for m in info.metadata if hasattr(m, "max_length")), None)
-        return (
-            f"1 to {longest} numbers from {BALANCE_FACTOR_LIMITS[0]:g} to "
-            f"{BALANCE_FACTOR_LIMITS[1]:g}, separated by commas"
-        )
-    if kind == "text":
+        _element, inner = _unwrap(get_args(base)[0])
+        metadata = _metadata(model, name)
+        shortest = next((m.min_length for m in metadata if hasattr(m, "min_length")), 0)
+        longest = next((m.max_length for m in metadata if hasattr(m, "max_length")), None)
+        count = f"{shortest} to {longest}" if longest else f"at least {shortest}"
+        quantity = _quantity_kind(inner)
+        if quantity is None:
+            rest = _range_words(None, _bounds(inner)).removeprefix("a number")
+            return f"{count} numbers{rest}, separated by commas"
+        return f"{count} values, each {_range_words(quantity, _bounds(inner))}"
+    if base is str:
         return "a text"
-    if kind == "quantity":
-        article = "an" if str(quantity)[0] in "aeiou" else "a"
-        what = f"{article} {quantity} with a unit, e.g. '{KINDS[str(quantity)][2]}'"
-    else:
-        what = "a whole number" if kind == "whole" else "a number"
-    if low is not None and high is not None and not low_open and not high_open:
-        return f"{what} from {_show(low)} to {_show(high)}"
-    parts = []
-    if low is not None:
-        parts.append(f"{'greater than' if low_open else 'at least'} {_show(low)}")
-    if high is not None:
-        parts.append(f"{'less than' if high_open else 'at most'} {_show(high)}")
-    return what + (", " + " and ".join(parts) if parts else "")
+    if any(getattr(m, "func", None) is _zero_or_length for m in _metadata(model, name)):
+        return ZERO_OR_LENGTH
+    if name == "angle" and model is BalanceOptions:
+        low, high = RANGES["angle"]
+        return f"'optimal' or {_range_words('angle', (low, False, high, False))}"
+    if model is PlotOptions and name == "order":
+        return f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'"
+    return _range_words(quantity, _bounds(_metadata(model, name)), kind == "whole")
 
 
 def parse_options(
@@ -237,7 +687,8 @@ def parse_options(
     """Validate a study's settings; raise :class:`InputError` naming the field as the user
     wrote it (``name(field)``), the value given and what is allowed.
 
-    Values that are ``None`` are left out, so that the schema's default applies.
+    Values that are ``None`` are left out, so that the schema's default applies. A value
+    in a list is named by its list's field and shown alone.
     """
     given = {key: value for key, value in values.items() if value is not None}
     try:
@@ -246,18 +697,24 @@ def parse_options(
         first = error.errors(include_url=False)[0]
         loc = [str(p) for p in first["loc"]]
         key = loc[0] if loc else ""
-        value = given.get(key, first.get("input"))
+        value = first.get("input") if len(loc) > 1 else given.get(key, first.get("input"))
+        inner = (first.get("ctx") or {}).get("error")
         if first["type"] == "extra_forbidden":
             raise InputError(
                 name(key), value, f"unknown setting; known: {', '.join(model.model_fields)}"
             ) from None
+        if isinstance(inner, InputError) and not loc:  # a check across fields
+            field, text = inner.field, inner.allowed
+            text = text if text.startswith(("must", "the ")) else f"must be {text}"
+            raise InputError(name(field), given.get(field, inner.value), text) from None
         if key not in model.model_fields:
             raise InputError(name(key), value, str(first.get("msg", ""))) from None
-        inner = (first.get("ctx") or {}).get("error")
         text = allowed(model, key)
         if isinstance(inner, InputError):
             text = inner.allowed
-        elif isinstance(inner, ValueError) and "finite" in str(inner):
+        elif first["type"] in ("finite_number",) or (
+            isinstance(inner, ValueError) and "finite" in str(inner)
+        ):
             text = f"{text} (finite)"
         if not text.startswith("must"):
             text = f"must be {text}"
@@ -266,8 +723,6 @@ def parse_options(
 
 def default_text(model: type[StudyOptions], name: str) -> str:
     """A field's default as a user would type it ("" for a default of None)."""
-    from .units import format_quantity
-
     value = model.model_fields[name].default
     if value is None:
         return ""

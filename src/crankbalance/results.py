@@ -8,6 +8,8 @@ from typing import Any
 
 import numpy as np
 
+from .errors import ResultError
+
 #: significant digits kept in JSON: enough for any measured input, none of the float noise
 JSON_DIGITS = 12
 
@@ -46,24 +48,33 @@ def _clean(value: Any, is_angle: bool) -> Any:
     return value
 
 
-def to_jsonable(value: Any) -> Any:
+def to_jsonable(value: Any, path: str = "") -> Any:
     """Convert dataclasses, numpy arrays and scalars, complex numbers to plain JSON values.
 
-    Complex numbers become ``{"re": .., "im": ..}``; non-finite floats raise, since
-    a NaN must never reach the output. Every float is rounded to 12 significant digits
-    (no float noise: 1999.9999999999998 -> 2000.0, no ``-0.0``), and the value of every
-    dictionary key ending in ``_deg`` is put in the one range of angles, [0, 360).
+    Complex numbers become ``{"re": .., "im": ..}``; a non-finite float raises
+    :class:`~crankbalance.errors.ResultError` naming where it sits (``path``, then the keys
+    and indices down to it, e.g. ``summary.energy_check_ratio``), since a NaN must never
+    reach the output. Every float is rounded to 12 significant digits (no float noise:
+    1999.9999999999998 -> 2000.0, no ``-0.0``), and the value of every dictionary key ending
+    in ``_deg`` is put in the one range of angles, [0, 360).
     """
     if dataclasses.is_dataclass(value) and not isinstance(value, type):
-        return to_jsonable({f.name: getattr(value, f.name) for f in dataclasses.fields(value)})
+        fields = {f.name: getattr(value, f.name) for f in dataclasses.fields(value)}
+        return to_jsonable(fields, path)
     if isinstance(value, dict):
-        return {str(k): _clean(to_jsonable(v), str(k).endswith("_deg")) for k, v in value.items()}
+        return {
+            str(k): _clean(to_jsonable(v, _join(path, str(k))), str(k).endswith("_deg"))
+            for k, v in value.items()
+        }
     if isinstance(value, (list, tuple)):
-        return [to_jsonable(v) for v in value]
+        return [to_jsonable(v, f"{path}[{k}]") for k, v in enumerate(value)]
     if isinstance(value, np.ndarray):
-        return to_jsonable(value.tolist())
+        return to_jsonable(value.tolist(), path)
     if isinstance(value, (complex, np.complexfloating)):
-        return {"re": to_jsonable(float(value.real)), "im": to_jsonable(float(value.imag))}
+        return {
+            "re": to_jsonable(float(value.real), _join(path, "re")),
+            "im": to_jsonable(float(value.imag), _join(path, "im")),
+        }
     if isinstance(value, (np.bool_, bool)):
         return bool(value)
     if isinstance(value, (np.integer, int)):
@@ -71,9 +82,20 @@ def to_jsonable(value: Any) -> Any:
     if isinstance(value, (np.floating, float)):
         number = float(value)
         if not math.isfinite(number):
-            raise ValueError(f"non-finite number {number!r} in a result")
+            raise ResultError(path, number)
         return clean_number(number)
     return value
+
+
+def _join(path: str, key: str) -> str:
+    return f"{path}.{key}" if path else key
+
+
+def require_finite(value: Any, path: str = "") -> None:
+    """Raise :class:`~crankbalance.errors.ResultError` if any number in ``value`` (a result,
+    a dictionary, a list, an array) is NaN or infinite; the check of every output, text or
+    JSON, before it is printed or written."""
+    to_jsonable(value, path)
 
 
 class ResultMixin:

@@ -44,6 +44,11 @@ from .single_cylinder import (
 )
 
 STANDARD_GRAVITY = 9.80665
+#: Most evaluations of the equations of motion one :func:`run_bench` may take; a run that
+#: needs more (a stiff rotor: high controller gains or friction on a small inertia, or a
+#: very long run) stops with :class:`~crankbalance.errors.InputError` instead of running
+#: on. An ordinary run takes about 100 evaluations per simulated revolution.
+MAX_BENCH_EVALUATIONS = 500_000
 
 
 # ======================================================================================
@@ -93,6 +98,14 @@ class BenchRotor(ResultMixin):
         check_positive("journal_diameter", self.journal_diameter)
         check_nonnegative("friction_coefficient", self.friction_coefficient)
         check_nonnegative("unbalance", self.unbalance)
+        if self.unbalance**2 > self.mass * self.inertia:
+            # U = integral of r dm <= sqrt(integral of r^2 dm * m) = sqrt(I m) (Cauchy-Schwarz)
+            raise InputError(
+                "unbalance",
+                self.unbalance,
+                f"cannot exceed sqrt(inertia * mass) = {math.sqrt(self.mass * self.inertia):.4g} "
+                "kg m for this rotor (no mass distribution has a larger first moment)",
+            )
         check_nonnegative("gravity", self.gravity)
         if len(self.bearing_positions) != 2:
             raise InputError("bearing_positions", self.bearing_positions, "must be two positions")
@@ -451,13 +464,30 @@ def run_bench(rotor: BenchRotor, settings: BenchSettings) -> BenchResult:
     -------
     BenchResult
 
+    Raises
+    ------
+    InputError
+        When the run needs more than :data:`MAX_BENCH_EVALUATIONS` evaluations of the
+        equations of motion (bounded work for any input).
+
     References
     ----------
     Hoem and Røsholm (2016), Sec. 5.2.5 (FEDEM test bench, Figs. 5.16, 5.17), Table 5.6, Appendix F.
     """
     equations = _bench_model(rotor, settings)
+    evaluations = 0
 
     def rhs(t: float, y: Sequence[float]) -> tuple[float, ...]:
+        nonlocal evaluations
+        evaluations += 1
+        if evaluations > MAX_BENCH_EVALUATIONS:
+            raise InputError(
+                "bench run",
+                None,
+                f"needs more than {MAX_BENCH_EVALUATIONS} evaluations of the equations of "
+                "motion (a stiff rotor: lower the controller gains, raise the inertia, or "
+                "shorten the run)",
+            )
         reference, motor, friction, alpha, _, _ = equations(t, y[0], y[1], y[2])
         return y[1], alpha, reference - y[1], motor, friction
 

@@ -3,9 +3,11 @@
 Each command lives in its own module of this package and is imported only when it
 runs, so that ``crankbalance --help`` and every command start fast. To add a command,
 add one line to :data:`COMMANDS` (name -> "module:function" of a ``click.Command``).
-Commands raise :class:`crankbalance.errors.InputError` for bad input and
-:class:`crankbalance.io.files.WriteError` for a file that cannot be written (a full disk);
-:func:`main` prints either message in one line without a traceback and exits with status 2.
+Commands raise :class:`crankbalance.errors.InputError` for bad input,
+:class:`crankbalance.errors.ResultError` when a result is not finite (every output is
+checked before it is printed) and :class:`crankbalance.io.files.WriteError` for a file
+that cannot be written (a full disk); :func:`main` prints the message on one line without
+a traceback and exits with status 2.
 """
 
 from __future__ import annotations
@@ -16,7 +18,7 @@ from typing import Any
 
 import click
 
-from ..errors import InputError
+from ..errors import InputError, ResultError
 from ..io.files import WriteError
 
 COMMANDS: dict[str, tuple[str, str]] = {
@@ -91,15 +93,20 @@ def main(argv: list[str] | None = None) -> Any:
     """Entry point of the ``crankbalance`` console script."""
     try:
         return cli.main(args=argv, prog_name="crankbalance", standalone_mode=False)
-    except (InputError, WriteError) as error:  # WriteError: "cannot write FILE: reason"
-        click.echo(f"error: {error}", err=True)
+    except (InputError, ResultError, WriteError) as error:
+        click.echo(f"error: {_one_line(str(error))}", err=True)
         sys.exit(2)
     except click.exceptions.Abort:
         click.echo("aborted", err=True)
         sys.exit(1)
     except click.ClickException as error:  # usage errors: one line, like InputError
-        click.echo(f"error: {error.format_message()}", err=True)
+        click.echo(f"error: {_one_line(error.format_message())}", err=True)
         sys.exit(error.exit_code)
+
+
+def _one_line(message: str) -> str:
+    """A message on one line (a value or a reason may hold line breaks)."""
+    return " ".join(message.split())
 
 
 if __name__ == "__main__":  # pragma: no cover

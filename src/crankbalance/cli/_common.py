@@ -1,12 +1,18 @@
-"""Small helpers shared by the CLI commands: output format option and plain tables."""
+"""Small helpers shared by the CLI commands: output format option, plain tables, the
+options a user typed, and the check for an optional extra."""
 
 from __future__ import annotations
 
+import contextlib
+import importlib
 import re
-from collections.abc import Callable, Sequence
-from typing import Any
+from collections.abc import Callable, Iterator, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
 
 import click
+
+if TYPE_CHECKING:
+    from ..options import Options
 
 _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 
@@ -14,6 +20,82 @@ _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 def option_name(field: str) -> str:
     """The command-line option of a settings field: ``max_mass`` -> ``--max-mass``."""
     return "--" + field.replace("_", "-")
+
+
+def parse_settings(model: type[Options], values: Mapping[str, Any]) -> Options:
+    """A command's options validated by their schema in :mod:`crankbalance.options` (limits
+    after unit conversion, finite numbers); an error names the option as typed."""
+    from ..options import parse_options
+
+    return parse_options(model, values, option_name)
+
+
+#: the optional extras of crankbalance (pyproject.toml) and the modules each provides
+EXTRAS: dict[str, tuple[str, ...]] = {
+    "web": ("nicegui", "plotly", "kaleido"),
+    "geometry": ("shapely", "trimesh", "pymoo"),
+    "cad": ("build123d",),
+}
+
+
+def require_extra(extra: str, *modules: str) -> None:
+    """Refuse with one line (:class:`~crankbalance.errors.InputError`, exit 2) when a module
+    of an optional extra is not installed: "the web extra: needed here but not installed
+    (plotly is missing): pip install 'crankbalance[web]'". ``modules`` defaults to all of
+    the extra's."""
+    from ..errors import InputError
+
+    for module in modules or EXTRAS[extra]:
+        assert module in EXTRAS[extra], f"{module} is not in the {extra} extra"
+        try:
+            importlib.import_module(module)
+        except ImportError:
+            raise InputError(
+                f"the {extra} extra",
+                None,
+                f"needed here but not installed ({module} is missing): "
+                f"pip install 'crankbalance[{extra}]'",
+            ) from None
+
+
+def given_options() -> set[str]:
+    """Names of the options the user typed (not defaults) in the running command."""
+    context = click.get_current_context(silent=True)
+    if context is None:
+        return set()
+    return {
+        name
+        for name in context.params
+        if context.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE
+    }
+
+
+def refuse_unused(used: dict[str, bool], reason: str, given: set[str] | None = None) -> None:
+    """Refuse an option the user typed that would be ignored: ``used`` maps an option's
+    parameter name to whether it acts; the first typed one that does not is named with
+    ``reason`` ("only acts with --engine")."""
+    from ..errors import InputError
+
+    typed = given_options() if given is None else given
+    for name, acts in used.items():
+        if name in typed and not acts:
+            context = click.get_current_context()
+            raise InputError(option_name(name), context.params.get(name), reason)
+
+
+@contextlib.contextmanager
+def named_as_typed(typed: Mapping[str, Any]) -> Iterator[None]:
+    """Within the block, an :class:`~crankbalance.errors.InputError` of the physics about
+    a value the user typed (``typed``: field name -> the text typed) names its option
+    (``torque`` -> ``--torque``) and shows the text."""
+    from ..errors import InputError
+
+    try:
+        yield
+    except InputError as error:
+        if error.field not in typed:
+            raise
+        raise InputError(option_name(error.field), typed[error.field], error.allowed) from None
 
 
 def format_option(choices: Sequence[str]) -> Callable[[Any], Any]:

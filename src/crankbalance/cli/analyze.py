@@ -115,6 +115,9 @@ def curves_csv(result: object) -> str:
         c.rotating_mx,
         c.rotating_mz,
     ]
+    from ..results import require_finite
+
+    require_finite(dict(zip(header, columns, strict=True)), "curves")
     lines = [",".join(header)]
     for row in zip(*columns, strict=True):
         lines.append(",".join(f"{v:.9g}" for v in row))

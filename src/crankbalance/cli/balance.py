@@ -7,7 +7,7 @@ from typing import Any
 import click
 
 from ..format import json_text, number, plural, text
-from ._common import echo_table, format_option
+from ._common import echo_table, format_option, given_options, parse_settings
 
 
 @click.command()
@@ -21,9 +21,9 @@ from ._common import echo_table, format_option
 )
 @click.option(
     "--balance-factor",
-    type=click.FloatRange(0.0, 2.0),
     default=None,
-    help="Share of the pin's reciprocating mass put on the crank counterweights.",
+    help="Share of the pin's reciprocating mass put on the crank counterweights "
+    "(0 to 2, or a percentage '50%').",
 )
 @click.option(
     "--method",
@@ -41,7 +41,7 @@ def balance(
     engine: str,
     fmt: str,
     angle: str | None,
-    balance_factor: float | None,
+    balance_factor: str | None,
     method: str | None,
     scope: str | None,
 ) -> None:
@@ -50,21 +50,24 @@ def balance(
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
+    from ..errors import InputError
+    from ..options import BalanceOptions
     from ..studies.engine import balance_engine
-    from ..units import parse_quantity
 
-    overrides: dict[str, Any] = {}
-    if angle is not None:
-        overrides["angle"] = (
-            "optimal" if angle.strip() == "optimal" else parse_quantity(angle, "angle", "--angle")
+    settings = parse_settings(BalanceOptions, {"angle": angle, "balance_factor": balance_factor})
+    overrides: dict[str, Any] = {
+        key: value
+        for key, value in (
+            ("angle", settings.angle),
+            ("balance_factor", settings.balance_factor),
+            ("method", method),
+            ("scope", scope),
         )
-    if balance_factor is not None:
-        overrides["balance_factor"] = balance_factor
-    if method is not None:
-        overrides["method"] = method
-    if scope is not None:
-        overrides["scope"] = scope
-    data = balance_engine(engine, **overrides).to_dict()
+        if value is not None
+    }
+    data = balance_engine(engine, **overrides).to_dict()  # checked finite by to_jsonable
+    if "angle" in given_options() and data["counterweight"]["method"] == "individual":
+        raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
     if fmt == "json":
         click.echo(json_text(data))
         return

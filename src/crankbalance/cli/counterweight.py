@@ -18,9 +18,16 @@ from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
 from ..format import json_text, keyed, number
 from ..format import text as unit_text
-from ..options import CounterweightOptions, allowed, parse_options
-from ..units import parse_quantity as _parse
-from ._common import echo_table, format_option, option_name
+from ..options import CounterweightDesignOptions, CounterweightOptions, allowed, parse_options
+from ..results import require_finite
+from ._common import (
+    echo_table,
+    format_option,
+    option_name,
+    parse_settings,
+    refuse_unused,
+    require_extra,
+)
 
 
 def _limits(field: str) -> str:
@@ -54,12 +61,13 @@ _PART_KEYS: dict[str, str | tuple[str, float]] = {
 }
 
 
-def parse_quantity(text: str, kind: str, field: str) -> float:
-    """One quantity; 'LOW..HIGH' is refused (the unit parser would read '20..30 mm' as
-    the product 20. x .30 mm = 6 mm). Ranges go through :func:`_value_or_range`."""
-    if ".." in text:
-        raise InputError(field, text, "must be a single quantity here, not a range")
-    return _parse(text, kind, field)
+def _value(field: str, text: str) -> float:
+    """One value of a counterweight option (``field`` as in
+    :class:`~crankbalance.options.CounterweightDesignOptions`), in SI and in its physical
+    range; 'LOW..HIGH' is refused here. Ranges go through :func:`_value_or_range`."""
+    value = getattr(parse_settings(CounterweightDesignOptions, {field: text}), field)
+    assert isinstance(value, float)
+    return value
 
 
 def _param_options(help_suffix: str):
@@ -76,18 +84,20 @@ def _param_options(help_suffix: str):
     return decorate
 
 
-def _value_or_range(text: str, kind: str, field: str) -> float | tuple[float, float]:
+def _value_or_range(text: str, field: str) -> float | tuple[float, float]:
     """'20 mm' -> 0.02; '10..20 mm' or '10 mm..20 mm' -> (0.01, 0.02)."""
     if ".." not in text:
-        return parse_quantity(text, kind, field)
+        return _value(field, text)
     low, high = (part.strip() for part in text.split("..", 1))
     if ".." in high:
-        raise InputError(field, text, "a value or one range 'LOW..HIGH', e.g. '10..20 mm'")
+        raise InputError(
+            option_name(field), text, "a value or one range 'LOW..HIGH', e.g. '10..20 mm'"
+        )
     if re.fullmatch(r"[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?", low):
         # a bare lower number takes the unit of the upper value: '10..20 mm'
         unit = high.lstrip("0123456789.eE+- ")
         low = f"{low} {unit}" if unit else low
-    return (parse_quantity(low, kind, field), parse_quantity(high, kind, field))
+    return (_value(field, low), _value(field, high))
 
 
 def _first_moment(
@@ -117,7 +127,7 @@ def _first_moment(
         except InputError as error:
             raise InputError("--engine", engine, error.allowed) from None
     if first_moment is not None:
-        return parse_quantity(first_moment, "unbalance", "--first-moment")
+        return _value("first_moment", first_moment)
     if cw_mass is None or cg_radius is None:
         raise InputError(
             "--first-moment",
@@ -125,8 +135,7 @@ def _first_moment(
             "required: e.g. --first-moment '7880 g*mm', or --cw-mass '263 g' with "
             "--cg-radius '30 mm', or --engine FILE (the balancing solver's counterweight)",
         )
-    mass = parse_quantity(cw_mass, "mass", "--cw-mass")
-    return mass * parse_quantity(cg_radius, "length", "--cg-radius")
+    return _value("cw_mass", cw_mass) * _value("cg_radius", cg_radius)
 
 
 def _requirement_options(f):
@@ -256,7 +265,7 @@ def optimize(
     bounds: dict[str, Any] = {}
     for name, text in params.items():
         if text is not None:
-            bounds[name] = _value_or_range(text, _PARAMS[name][1], _PARAMS[name][0])
+            bounds[name] = _value_or_range(text, name)
 
     def progress(state: Any) -> None:
         if not quiet:
@@ -338,12 +347,13 @@ def optimize(
         }
         click.echo(json_text(out))
         return
+    rows = [res.row(res.least_mass), res.row(res.least_radius)] + [res.row(int(i)) for i in pick]
+    require_finite({"required_first_moment": required, "designs": rows})
     click.echo(
         f"required first moment {unit_text(required, 'first_moment', 5)}, "
         f"density {number(res.density)} kg/m³,"
         f" free: {', '.join(_SYMBOL[n] for n in res.free) or 'none'}"
     )
-    rows = [res.row(res.least_mass), res.row(res.least_radius)] + [res.row(int(i)) for i in pick]
     labels = ["least mass", "least radius"] + [f"front {k + 1}" for k in range(len(pick))]
     _table_rows(rows, labels)
 
@@ -367,8 +377,8 @@ def _design_from(params: dict[str, Any], density: str, required: float | None):
                 f"required ({kind}, e.g. '20 {_PARAMS[name][3]}')"
                 + ("; or give the requirement to size it" if name == "thickness" else ""),
             )
-        values[name] = parse_quantity(text, kind, opt)
-    rho = parse_quantity(density, "density", "--density")
+        values[name] = _value(name, text)
+    rho = _value("density", density)
     if "thickness" not in values:
         assert required is not None
         probe = CounterweightDesign(**values, thickness=1.0, density=rho)
@@ -402,23 +412,24 @@ def show(first_moment, cw_mass, cg_radius, engine, density, fmt, **params: Any) 
         first_moment=props.first_moment,
         balance=props.balance if props.balance is not None else math.nan,
     )
+    row = _design_row(values)
+    if props.balance is None:
+        row.pop("balance_percent")
+    out = {
+        "schema": SCHEMA,
+        "mode": "design",
+        "density_kg_m3": design.density,
+        "required_first_moment_kg_m": required,
+        "design": row,
+        "area_m2": props.area,
+        "volume_m3": props.volume,
+        "overhang_m": props.overhang,
+        "gamma_deg": math.degrees(props.gamma),
+        "lambda_deg": math.degrees(props.lam),
+        "hub_protrusion": bool(props.hub_protrusion),
+    }
+    require_finite(out)
     if fmt == "json":
-        row = _design_row(values)
-        if props.balance is None:
-            row.pop("balance_percent")
-        out = {
-            "schema": SCHEMA,
-            "mode": "design",
-            "density_kg_m3": design.density,
-            "required_first_moment_kg_m": required,
-            "design": row,
-            "area_m2": props.area,
-            "volume_m3": props.volume,
-            "overhang_m": props.overhang,
-            "gamma_deg": math.degrees(props.gamma),
-            "lambda_deg": math.degrees(props.lam),
-            "hub_protrusion": bool(props.hub_protrusion),
-        }
         click.echo(json_text(out))
         return
     echo_table(
@@ -451,8 +462,16 @@ def export(first_moment, cw_mass, cg_radius, engine, density, output, **params: 
     """Write a design as SVG/DXF profile, STL solid or STEP (needs crankbalance[cad])."""
     from ..io.cad import export_counterweight
 
+    if output.lower().endswith((".step", ".stp")):
+        require_extra("cad")
+    if params["thickness"] is not None:
+        refuse_unused(
+            {name: False for name in ("first_moment", "cw_mass", "cg_radius", "engine")},
+            "only sizes the thickness of an export: give it or --thickness, not both",
+        )
     required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
     design = _design_from(params, density, required)
+    require_finite(design.properties(required), "design")
     path = export_counterweight(design, output)
     click.echo(f"wrote {path}", err=True)
 
@@ -467,21 +486,24 @@ def check(part, first_moment, cw_mass, cg_radius, engine, density, unit, fmt) ->
     """Mass properties of an STL/STEP PART about the crank axis (the file's z axis)."""
     from ..io.cad import mesh_mass_properties
 
+    require_extra("geometry", "trimesh")
+    if str(part).lower().endswith((".step", ".stp")):
+        require_extra("cad")
     required = _optional_requirement(first_moment, cw_mass, cg_radius, engine)
-    scale = parse_quantity(f"1 {unit}", "length", "--unit")
     m = mesh_mass_properties(
         part,
-        parse_quantity(density, "density", "--density"),
-        length_unit=scale,
+        _value("density", density),
+        length_unit=_value("unit", f"1 {unit}"),
         required_first_moment=required,
     )
+    out = {
+        "schema": SCHEMA,
+        "mode": "part",
+        "path": str(part),
+        **keyed(m.to_dict(), _PART_KEYS),
+    }
+    require_finite(out)
     if fmt == "json":
-        out = {
-            "schema": SCHEMA,
-            "mode": "part",
-            "path": str(part),
-            **keyed(m.to_dict(), _PART_KEYS),
-        }
         click.echo(json_text(out))
         return
     echo_table(

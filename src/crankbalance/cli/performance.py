@@ -11,38 +11,41 @@ from __future__ import annotations
 import math
 from collections.abc import Sequence
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import click
 
 from ..errors import InputError
 from ..format import json_text, keyed, number, text
-from ._common import echo_table, format_option
+from ..options import MAX_BENCH_REVOLUTIONS, MAX_BENCH_RUNS, MAX_SWEEP
+from ..results import require_finite
+from ._common import (
+    echo_table,
+    format_option,
+    given_options,
+    named_as_typed,
+    parse_settings,
+    refuse_unused,
+)
+
+if TYPE_CHECKING:
+    from ..options import CycleOptions
 
 FORMATS = ("table", "json", "csv")
 
 
-def _q(text: str, kind: str, field: str) -> float:
-    from ..units import parse_quantity
-
-    return parse_quantity(text, kind, field)
-
-
-def _q_opt(text: str | None, kind: str, field: str) -> float | None:
-    return None if text is None else _q(text, kind, field)
-
-
 def _number_list(text: str, field: str) -> list[float]:
-    """``"0,0.28,0.5"`` or ``"start:stop:step"`` (stop included) -> floats."""
+    """``"0,0.28,0.5"`` or ``"start:stop:step"`` (stop included) -> floats (their count and
+    range are checked by the options schema)."""
     try:
         if ":" in text:
             start, stop, step = (float(x) for x in text.split(":"))
-            if not step > 0 or stop < start:
+            span = (stop - start) / step
+            if not (step > 0 and 0 <= span < math.inf):
                 raise ValueError
-            count = int(math.floor((stop - start) / step + 1e-9)) + 1
-            if count > 100000:
-                raise ValueError
-            return [start + k * step for k in range(count)]
+            if span > MAX_SWEEP:
+                raise InputError(field, text, f"must give at most {MAX_SWEEP} values")
+            return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
         values = [float(x) for x in text.split(",") if x.strip()]
     except ValueError:
         raise InputError(
@@ -93,6 +96,7 @@ CURVE_KEYS: dict[str, str | tuple[str, float]] = {
 
 
 def _emit_csv(header: Sequence[str], rows: Sequence[Sequence[float | str]]) -> None:
+    require_finite([[v for v in row if not isinstance(v, str)] for row in rows], "rows")
     lines = [",".join(header)]
     for row in rows:
         lines.append(",".join(v if isinstance(v, str) else f"{v:.9g}" for v in row))
@@ -125,17 +129,16 @@ def _progress(label: str):  # noqa: ANN202
 )
 @click.option("--speed", help="Shaft speed, e.g. '3000 rpm'.")
 @click.option("--journal-diameter", required=True, help="Journal diameter, e.g. '20 mm'.")
-@click.option("--friction-coefficient", type=float, help="Coulomb friction coefficient.")
+@click.option("--friction-coefficient", help="Coulomb friction coefficient (above 0, at most 1).")
 @click.option("--torque", help="Measured torque: back-compute the friction coefficient (Eq. 5.1).")
 @click.option("--viscosity", help="Oil viscosity for the hydrodynamic bearing, e.g. '0.01 Pa*s'.")
 @click.option("--bearing-length", help="Bearing length (hydrodynamic).")
 @click.option("--clearance", help="Mean radial clearance (hydrodynamic), e.g. '20 um'.")
 @click.option(
     "--eccentricity",
-    type=float,
-    default=0.0,
+    default="0",
     show_default=True,
-    help="Eccentricity ratio (hydrodynamic).",
+    help="Eccentricity ratio, from 0 to below 1 (hydrodynamic).",
 )
 @click.option(
     "--attitude-angle", default="0 deg", show_default=True, help="Attitude angle (hydrodynamic)."
@@ -147,12 +150,12 @@ def friction(
     unbalance: str | None,
     speed: str | None,
     journal_diameter: str,
-    friction_coefficient: float | None,
+    friction_coefficient: str | None,
     torque: str | None,
     viscosity: str | None,
     bearing_length: str | None,
     clearance: str | None,
-    eccentricity: float,
+    eccentricity: str,
     attitude_angle: str,
     fmt: str,
 ) -> None:
@@ -161,55 +164,52 @@ def friction(
     Hoem and Røsholm (2016), Sec. 4.2.1.
     """
     from .. import friction as fr
-    from ..errors import check_positive
+    from ..options import FrictionOptions
 
-    constant = _q(load_text, "force", "load")
-    omega = _q_opt(speed, "speed", "speed")
-    if omega is not None:
-        check_positive("speed", omega)
-    diameter = check_positive(
-        "journal_diameter", _q(journal_diameter, "length", "journal_diameter")
+    o = parse_settings(
+        FrictionOptions,
+        {
+            "load": load_text,
+            "rotating_load": rotating_load,
+            "unbalance": unbalance,
+            "speed": speed,
+            "journal_diameter": journal_diameter,
+            "friction_coefficient": friction_coefficient,
+            "torque": torque,
+            "viscosity": viscosity,
+            "bearing_length": bearing_length,
+            "clearance": clearance,
+            "eccentricity": eccentricity,
+            "attitude_angle": attitude_angle,
+        },
     )
+    assert o.journal_diameter is not None  # a required option
     if rotating_load is not None and unbalance is not None:
-        raise InputError("unbalance", unbalance, "give either --rotating-load or --unbalance")
-    if unbalance is not None:
-        if omega is None:
-            raise InputError("speed", None, "is needed with --unbalance")
-        rotating = _q(unbalance, "unbalance", "unbalance") * omega**2
+        raise InputError("--unbalance", unbalance, "give either --rotating-load or --unbalance")
+    if o.unbalance is not None:
+        if o.speed is None:
+            raise InputError("--speed", None, "is needed with --unbalance")
+        rotating = o.unbalance * o.speed**2
     else:
-        rotating = _q(rotating_load, "force", "rotating_load") if rotating_load else 0.0
-    for name, value, given_text in (
-        ("load", constant, load_text),
-        ("rotating_load", rotating, rotating_load or unbalance),
-        ("friction_coefficient", friction_coefficient, friction_coefficient),
-    ):
-        if value is not None and not (value >= 0 and math.isfinite(value)):
-            raise InputError(name, given_text, "must be finite and not negative")
-    measured = _q_opt(torque, "torque", "torque")
-    if measured is None and friction_coefficient is None and viscosity is None:
+        rotating = o.rotating_load or 0.0
+    constant = o.load
+    if o.torque is None and o.friction_coefficient is None and o.viscosity is None:
         raise InputError(
-            "friction_coefficient",
+            "--friction-coefficient",
             None,
             "give --friction-coefficient, --torque or the hydrodynamic options",
         )
-    if viscosity is None:
-        given = _given_options()
-        hydrodynamic = ("bearing_length", "clearance", "eccentricity", "attitude_angle")
-        unused: list[str] = [name for name in hydrodynamic if name in given]
-        if speed is not None and unbalance is None:
-            unused.append("speed")
-        for name in unused:
-            raise InputError(
-                name,
-                locals()[name],
-                "only acts on the hydrodynamic bearing "
-                "(with --viscosity), or for --speed with --unbalance",
-            )
-    if (measured is not None or friction_coefficient is not None) and not (
+    hydrodynamic = ("bearing_length", "clearance", "eccentricity", "attitude_angle")
+    refuse_unused(
+        {name: o.viscosity is not None for name in hydrodynamic}
+        | {"speed": o.viscosity is not None or o.unbalance is not None},
+        "only acts on the hydrodynamic bearing (with --viscosity), or for --speed with --unbalance",
+    )
+    if (o.torque is not None or o.friction_coefficient is not None) and not (
         constant > 0 or rotating > 0
     ):
         raise InputError(
-            "load",
+            "--load",
             load_text,
             "the bearing carries no load: give --load (e.g. "
             "the rotor weight) and/or --rotating-load or --unbalance",
@@ -223,48 +223,43 @@ def friction(
             else 0.0
         )
         row: dict[str, float | str] = {"method": method, "mean_load_N": mean}
-        if friction_coefficient is not None:
-            row["torque_Nm"] = float(fr.friction_torque(friction_coefficient, mean, diameter))
-        if measured is not None:
-            row["friction_coefficient"] = float(
-                fr.friction_coefficient_from_torque(measured, constant, rotating, diameter, method)
+        if o.friction_coefficient is not None:
+            row["torque_Nm"] = float(
+                fr.friction_torque(o.friction_coefficient, mean, o.journal_diameter)
             )
+        if o.torque is not None:
+            with named_as_typed({"torque": torque}):
+                mu = fr.friction_coefficient_from_torque(
+                    o.torque, constant, rotating, o.journal_diameter, method
+                )
+            row["friction_coefficient"] = float(mu)
         rows.append(row)
     hydro: dict[str, float] | None = None
-    if viscosity is not None:
-        if omega is None or bearing_length is None or clearance is None:
+    if o.viscosity is not None:
+        if o.speed is None or o.bearing_length is None or o.clearance is None:
             raise InputError(
-                "viscosity",
+                "--viscosity",
                 viscosity,
                 "the hydrodynamic bearing needs --speed, --bearing-length, --clearance",
             )
-        args = (
-            _q(viscosity, "viscosity", "viscosity"),
-            diameter,
-            _q(bearing_length, "length", "bearing_length"),
-            _q(clearance, "length", "clearance"),
-            omega,
-        )
+        args = (o.viscosity, o.journal_diameter, o.bearing_length, o.clearance, o.speed)
         hydro = {
             "petroff_torque_Nm": float(fr.petroff_torque(*args)),
             "journal_bearing_torque_Nm": float(
                 fr.journal_bearing_torque(
-                    *args,
-                    eccentricity,
-                    constant + rotating,
-                    _q(attitude_angle, "angle", "attitude_angle"),
+                    *args, o.eccentricity, constant + rotating, o.attitude_angle
                 )
             ),
         }
     inputs = {
         "constant_load_N": constant,
         "rotating_load_N": rotating,
-        "journal_diameter_m": diameter,
+        "journal_diameter_m": o.journal_diameter,
     }
+    payload = {"inputs": inputs, "coulomb": rows, "hydrodynamic": hydro}
+    require_finite(payload)
     if fmt == "json":
-        _emit_json(
-            "crankbalance.friction/1", {"inputs": inputs, "coulomb": rows, "hydrodynamic": hydro}
-        )
+        _emit_json("crankbalance.friction/1", payload)
         return
     keys = [k for k in rows[0]]
     if fmt == "csv":
@@ -279,13 +274,13 @@ def friction(
         return
     click.echo(
         f"constant load {text(constant, 'force')}, rotating load {text(rotating, 'force')}, "
-        f"journal {text(diameter, 'length')}"
+        f"journal {text(o.journal_diameter, 'length')}"
     )
     echo_table(keys, [[_cell(r[k]) for k in keys] for r in rows])
     if hydro:
         click.echo(
             f"Petroff torque {text(hydro['petroff_torque_Nm'], 'torque', 5)}; with eccentricity "
-            f"{number(eccentricity)}: {text(hydro['journal_bearing_torque_Nm'], 'torque', 5)}"
+            f"{number(o.eccentricity)}: {text(hydro['journal_bearing_torque_Nm'], 'torque', 5)}"
         )
 
 
@@ -303,9 +298,8 @@ def friction(
 @click.option("--journal-diameter", default="20 mm", show_default=True)
 @click.option(
     "--friction-coefficient",
-    type=float,
     required=True,
-    help="Coulomb friction coefficient of each bearing.",
+    help="Coulomb friction coefficient of each bearing (above 0, at most 1).",
 )
 @click.option(
     "--speed",
@@ -313,16 +307,23 @@ def friction(
     multiple=True,
     default=("3000 rpm",),
     show_default=True,
-    help="Set speed; repeat for several runs.",
-)
-@click.option("--ramp-time", default="2 s", show_default=True)
-@click.option("--hold-time", default="1.5 s", show_default=True)
-@click.option(
-    "--kp", type=float, default=0.2, show_default=True, help="PI proportional gain [N m s/rad]."
+    help=f"Set speed; repeat for several runs (at most {MAX_BENCH_RUNS}).",
 )
 @click.option(
-    "--ki", type=float, default=10.0, show_default=True, help="PI integral gain [N m/rad]."
+    "--ramp-time",
+    default="2 s",
+    show_default=True,
+    help="Duration of the speed ramp (at most 600 s).",
 )
+@click.option(
+    "--hold-time",
+    default="1.5 s",
+    show_default=True,
+    help=f"Duration of the hold (at most 600 s; a run simulates at most "
+    f"{MAX_BENCH_REVOLUTIONS} revolutions).",
+)
+@click.option("--kp", default="0.2", show_default=True, help="PI proportional gain [N m s/rad].")
+@click.option("--ki", default="10", show_default=True, help="PI integral gain [N m/rad].")
 @click.option(
     "--history",
     type=click.Path(dir_okay=False, writable=True),
@@ -334,12 +335,12 @@ def bench(
     inertia: str,
     unbalance: str,
     journal_diameter: str,
-    friction_coefficient: float,
+    friction_coefficient: str,
     speeds: tuple[str, ...],
     ramp_time: str,
     hold_time: str,
-    kp: float,
-    ki: float,
+    kp: str,
+    ki: str,
     history: str | None,
     fmt: str,
 ) -> None:
@@ -349,25 +350,43 @@ def bench(
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """
+    from ..options import BenchOptions
     from ..rotor_bench import BenchRotor, BenchSettings, run_bench
 
-    rotor = BenchRotor(
-        mass=_q(mass, "mass", "mass"),
-        inertia=_q(inertia, "inertia", "inertia"),
-        journal_diameter=_q(journal_diameter, "length", "journal_diameter"),
-        friction_coefficient=friction_coefficient,
-        unbalance=_q(unbalance, "unbalance", "unbalance"),
+    o = parse_settings(
+        BenchOptions,
+        {
+            "mass": mass,
+            "inertia": inertia,
+            "unbalance": unbalance,
+            "journal_diameter": journal_diameter,
+            "friction_coefficient": friction_coefficient,
+            "speed": list(speeds),
+            "ramp_time": ramp_time,
+            "hold_time": hold_time,
+            "kp": kp,
+            "ki": ki,
+        },
     )
+    assert o.friction_coefficient is not None  # a required option
+    with named_as_typed({"mass": mass, "inertia": inertia, "unbalance": unbalance}):
+        rotor = BenchRotor(
+            mass=o.mass,
+            inertia=o.inertia,
+            journal_diameter=o.journal_diameter,
+            friction_coefficient=o.friction_coefficient,
+            unbalance=o.unbalance,
+        )
     # everything is checked before the first (slow) run
     runs = [
         BenchSettings(
-            speed=_q(text, "speed", "speed"),
-            ramp_time=_q(ramp_time, "time", "ramp_time"),
-            hold_time=_q(hold_time, "time", "hold_time"),
-            proportional_gain=kp,
-            integral_gain=ki,
+            speed=speed,
+            ramp_time=o.ramp_time,
+            hold_time=o.hold_time,
+            proportional_gain=o.kp,
+            integral_gain=o.ki,
         )
-        for text in speeds
+        for speed in o.speed
     ]
     if history and not Path(history).resolve().parent.is_dir():
         raise InputError("history", history, "must be a file in an existing directory")
@@ -375,6 +394,7 @@ def bench(
     report = _progress("bench")
     for k, settings in enumerate(runs):
         results.append(run_bench(rotor, settings))
+        require_finite(results[-1], f"runs[{k}]")  # before any output, the history too
         report(k + 1, len(runs))
     if history:
         from ..io.files import atomic_open
@@ -442,8 +462,7 @@ def _engine_options(function: Any) -> Any:
         ),
         click.option(
             "--cylinder",
-            type=click.IntRange(1),
-            default=1,
+            default="1",
             show_default=True,
             help="With --engine: the cylinder studied.",
         ),
@@ -458,10 +477,10 @@ def _engine_options(function: Any) -> Any:
             help="Inertia of all purely rotating parts incl. flywheel.",
         ),
         click.option("--journal-diameter", default="30 mm", show_default=True),
-        click.option("--friction-coefficient", type=float, default=0.005, show_default=True),
+        click.option("--friction-coefficient", default="0.005", show_default=True),
         click.option("--speed", default="9000 rpm", show_default=True, help="Mean speed."),
         click.option("--strokes", type=click.Choice(["2", "4"]), default="4", show_default=True),
-        click.option("--compression-ratio", type=float, default=13.5, show_default=True),
+        click.option("--compression-ratio", default="13.5", show_default=True),
         click.option(
             "--ignition",
             default="-25 deg",
@@ -487,46 +506,47 @@ def _engine_options(function: Any) -> Any:
     return function
 
 
-def _given_options() -> set[str]:
-    """Names of the options the user typed (not defaults) in the running command."""
-    context = click.get_current_context(silent=True)
-    if context is None:
-        return set()
-    return {
-        name
-        for name in context.params
-        if context.get_parameter_source(name) == click.core.ParameterSource.COMMANDLINE
-    }
+#: the options of the Wiebe combustion model (a --pressure-csv table replaces them)
+WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
 
 
-def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any, Any, float, int]:
+def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
+    """The cylinder, its pressure source, speed and stroke count of ``cycle`` and
+    ``sensitivity`` from their validated options (:class:`~crankbalance.options.CycleOptions`);
+    an option that would be ignored is refused."""
     from ..engine_cycle import CylinderSpec, WiebeCombustion
 
+    given = given_options()
+    refuse_unused({"cylinder": o.engine is not None}, "only acts with --engine", given)
+    refuse_unused(
+        {name: o.pressure_csv is None for name in WIEBE_OPTIONS},
+        "only acts on the Wiebe combustion model, not with --pressure-csv",
+        given,
+    )
     geometry = {
-        "crank_radius": _q(o["stroke"], "length", "stroke") / 2,
-        "rod_length": _q(o["rod_length"], "length", "rod_length"),
-        "reciprocating_mass": _q(o["reciprocating_mass"], "mass", "reciprocating_mass"),
+        "crank_radius": o.stroke / 2,
+        "rod_length": o.rod_length,
+        "reciprocating_mass": o.reciprocating_mass,
         "offset": 0.0,
     }
-    speed, strokes = _q(o["speed"], "speed", "speed"), int(o["strokes"])
+    speed, strokes = o.speed, o.strokes
     settings = {
-        "bore": _q(o["bore"], "length", "bore"),
-        "crank_inertia": _q(o["crank_inertia"], "inertia", "crank_inertia"),
-        "balance_factor": balance_factor,
-        "journal_diameter": _q(o["journal_diameter"], "length", "journal_diameter"),
-        "friction_coefficient": o["friction_coefficient"],
+        "bore": o.bore,
+        "crank_inertia": o.crank_inertia,
+        "balance_factor": o.balance_factor,
+        "journal_diameter": o.journal_diameter,
+        "friction_coefficient": o.friction_coefficient,
     }
-    if o["engine"] is None:
+    if o.engine is None:
         cylinder = CylinderSpec(**settings, **geometry)
     else:
         from ..studies.cylinder import cylinder_of
         from ..studies.engine import as_model
         from ..studies.performance import cycle_cylinder
 
-        model = as_model(o["engine"])
-        cylinder_of(model, o["cylinder"], "--cylinder")
+        model = as_model(o.engine)
+        cylinder_of(model, o.cylinder, "--cylinder")
         # the engine's values, except where an option was given on the command line
-        given = _given_options()
         typed = {
             key: geometry[key]
             for key, option in (
@@ -536,19 +556,19 @@ def _engine_from_options(o: dict[str, Any], balance_factor: float) -> tuple[Any,
             )
             if option in given
         }
-        cylinder = cycle_cylinder(model, o["cylinder"], **settings, **typed)
+        cylinder = cycle_cylinder(model, o.cylinder, **settings, **typed)
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    if o["pressure_csv"]:
+    if o.pressure_csv:
         from ..io.pressure_csv import read_pressure_csv
 
-        pressure: Any = read_pressure_csv(o["pressure_csv"])
+        pressure: Any = read_pressure_csv(o.pressure_csv)
     else:
         pressure = WiebeCombustion(
-            compression_ratio=o["compression_ratio"],
-            ignition_angle=_q(o["ignition"], "angle", "ignition"),
-            burn_duration=_q(o["burn_duration"], "angle", "burn_duration"),
-            intake_pressure=_q(o["intake_pressure"], "pressure", "intake_pressure"),
+            compression_ratio=o.compression_ratio,
+            ignition_angle=o.ignition,
+            burn_duration=o.burn_duration,
+            intake_pressure=o.intake_pressure,
         )
     return cylinder, pressure, speed, strokes
 
@@ -573,14 +593,13 @@ SUMMARY_KEYS = (
 @_engine_options
 @click.option(
     "--balance-factor",
-    type=float,
-    default=0.5,
+    default="0.5",
     show_default=True,
     help="Share of the reciprocating mass on the counterweight, on top of 100 % of "
     "the rotating mass.",
 )
 @format_option(FORMATS)
-def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
+def cycle(fmt: str, balance_factor: str, **options: Any) -> None:
     """One engine cycle of a single cylinder: torques, main-bearing loads, speed fluctuation.
 
     CSV output gives the curves over the crank angle (the polar load diagram is the
@@ -589,8 +608,10 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
     import numpy as np
 
     from ..engine_cycle import engine_cycle
+    from ..options import CycleOptions
 
-    cylinder, pressure, speed, strokes = _engine_from_options(options, balance_factor)
+    o = parse_settings(CycleOptions, {**options, "balance_factor": balance_factor})
+    cylinder, pressure, speed, strokes = _engine_from_options(o)
     result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
     summary = {label: getattr(result, name) for name, label in SUMMARY_KEYS}
     summary["energy_check_ratio"] = (
@@ -609,24 +630,23 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
         "speed_rpm": result.speed * 30 / np.pi,
         "crank_acceleration_rad_s2": result.crank_acceleration,
     }
+    payload = {
+        "cylinder": keyed(cylinder.to_dict(), CYLINDER_KEYS),
+        "speed_rad_s": speed,
+        "strokes": strokes,
+        "summary": summary,
+        "curves": keyed({k: v.tolist() for k, v in curves.items()}, CURVE_KEYS),
+    }
+    require_finite(payload)
     if fmt == "json":
-        _emit_json(
-            "crankbalance.cycle/2",
-            {
-                "cylinder": keyed(cylinder.to_dict(), CYLINDER_KEYS),
-                "speed_rad_s": speed,
-                "strokes": strokes,
-                "summary": summary,
-                "curves": keyed({k: v.tolist() for k, v in curves.items()}, CURVE_KEYS),
-            },
-        )
+        _emit_json("crankbalance.cycle/2", payload)
     elif fmt == "csv":
         keys = list(curves)
         _emit_csv(keys, list(zip(*(curves[k] for k in keys), strict=True)))
     else:
         click.echo(
             f"single cylinder, {text(speed, 'speed')}, {strokes}-stroke, "
-            f"balance factor {number(balance_factor)}"
+            f"balance factor {number(o.balance_factor)}"
         )
         echo_table(["quantity", "value"], [[k, number(v, 5)] for k, v in summary.items()])
 
@@ -649,16 +669,22 @@ def cycle(fmt: str, balance_factor: float, **options: Any) -> None:
 def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any) -> None:
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
     from ..engine_cycle import balance_sensitivity
+    from ..options import SensitivityOptions
 
-    factors = _number_list(balance_factors, "balance_factors")
-    scales = _number_list(mass_scales, "mass_scales")
-    cylinder, pressure, speed, strokes = _engine_from_options(options, 0.0)
+    values = {
+        **options,
+        "balance_factor": 0.0,  # swept: the cylinder's own factor is not used
+        "balance_factors": _number_list(balance_factors, "--balance-factors"),
+        "mass_scales": _number_list(mass_scales, "--mass-scales"),
+    }
+    o = parse_settings(SensitivityOptions, values)
+    cylinder, pressure, speed, strokes = _engine_from_options(o)
     result = balance_sensitivity(
         cylinder,
         speed,
         pressure,
-        factors,
-        scales,
+        o.balance_factors,
+        o.mass_scales,
         strokes,  # type: ignore[arg-type]
         progress=_progress("sensitivity"),
     )
@@ -673,15 +699,14 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
                 [float(scale), float(factor)] + [float(getattr(result, n)[i, k]) for n in names]
             )
     header = ["mass_scale", "balance_factor", *labels]
+    payload = {
+        "speed_rad_s": speed,
+        "strokes": strokes,
+        "points": [dict(zip(header, row, strict=True)) for row in rows],
+    }
+    require_finite(payload)
     if fmt == "json":
-        _emit_json(
-            "crankbalance.sensitivity/2",
-            {
-                "speed_rad_s": speed,
-                "strokes": strokes,
-                "points": [dict(zip(header, row, strict=True)) for row in rows],
-            },
-        )
+        _emit_json("crankbalance.sensitivity/2", payload)
     elif fmt == "csv":
         _emit_csv(header, rows)
     else:

@@ -122,12 +122,11 @@ def build_figure(
     "as the engine file asks).",
 )
 @click.option(
-    "--cylinder", type=int, default=1, show_default=True, help="single: cylinder number (1-based)."
+    "--cylinder", default="1", show_default=True, help="single: cylinder number (1-based)."
 )
 @click.option(
     "--balance-factor",
-    type=float,
-    default=0.5,
+    default="0.5",
     show_default=True,
     help="single: balance factor (0 = rotating mass only, 0.5 = 50 %).",
 )
@@ -146,8 +145,8 @@ def plot(
     order: str,
     quantity: str,
     balance: bool,
-    cylinder: int,
-    balance_factor: float,
+    cylinder: str,
+    balance_factor: str,
     width: int | None,
     height: int | None,
 ) -> None:
@@ -161,6 +160,8 @@ def plot(
     from click.core import ParameterSource
 
     from ..errors import InputError
+    from ..options import PlotOptions
+    from ._common import parse_settings, require_extra
 
     if kind not in KINDS:
         raise InputError("KIND", kind, f"one of {', '.join(KINDS)}")
@@ -193,7 +194,11 @@ def plot(
                 ctx.params[name],
                 f"only for the {used} figure, not {kind}",
             )
-    fig = build_figure(kind, engine, order, quantity, balance, cylinder, balance_factor)
+    require_extra("web", "plotly", *(() if fmt == "html" else ("kaleido",)))
+    o = parse_settings(
+        PlotOptions, {"order": order, "cylinder": cylinder, "balance_factor": balance_factor}
+    )
+    fig = build_figure(kind, engine, str(o.order), quantity, balance, o.cylinder, o.balance_factor)
     from .. import render
     from ..io.files import write_atomic
 

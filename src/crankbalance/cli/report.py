@@ -17,9 +17,9 @@ import click
 @click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
 @click.option(
     "--balance-factor",
-    type=float,
     default=None,
-    help="Override the engine file's counterweight balance factor (0 = rotating masses only).",
+    help="Override the engine file's counterweight balance factor (0 = rotating masses "
+    "only, up to 2).",
 )
 @click.option(
     "--angle",
@@ -36,31 +36,28 @@ def report(
     engine: str,
     output: str,
     orders: str,
-    balance_factor: float | None,
+    balance_factor: str | None,
     angle: str | None,
     chromium: str | None,
 ) -> None:
     """Balancing report of ENGINE (an engine file or a preset name): engine data, mass split,
     free forces and moments, balancing masses, residuals, figures and the settings used."""
-    from ..options import AnalysisOptions, parse_options
+    from ..errors import InputError
+    from ..options import AnalysisOptions, BalanceOptions
     from ..report import write_report
-    from ._common import option_name
+    from ._common import parse_settings, require_extra
     from .plot import check_output
 
-    check_output(output, (".html", ".htm", ".pdf"))
-    overrides: dict[str, object] = {}
-    if balance_factor is not None:
-        from ..errors import check_range
-
-        check_range("--balance-factor", balance_factor, 0.0, 2.0)
-        overrides["balance_factor"] = balance_factor
-    if angle is not None:
-        if angle.strip().lower() == "optimal":
-            overrides["angle"] = "optimal"
-        else:
-            from ..units import parse_quantity
-
-            overrides["angle"] = parse_quantity(angle, "angle", "--angle")
-    highest = parse_options(AnalysisOptions, {"orders": orders}, option_name).orders
+    pdf = check_output(output, (".html", ".htm", ".pdf")).suffix.lower() == ".pdf"
+    require_extra("web", "plotly", *(("kaleido",) if pdf else ()))
+    if chromium is not None and not pdf:
+        raise InputError("--chromium", chromium, "only acts on a PDF report (-o report.pdf)")
+    highest = parse_settings(AnalysisOptions, {"orders": orders}).orders
+    settings = parse_settings(BalanceOptions, {"balance_factor": balance_factor, "angle": angle})
+    overrides = {
+        key: value
+        for key, value in (("balance_factor", settings.balance_factor), ("angle", settings.angle))
+        if value is not None
+    }
     path = write_report(engine, output, highest, chromium, **overrides)
     click.echo(f"wrote {path}", err=True)

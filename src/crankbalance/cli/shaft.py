@@ -13,14 +13,18 @@ import math
 from typing import TYPE_CHECKING, Any, cast
 
 import click
+import numpy as np
 
 from ..errors import InputError
 from ..format import json_text, keyed, text
-from ._common import echo_table, format_option
+from ..options import MAX_SHAFT_POINTS
+from ..results import require_finite
+from ._common import echo_table, format_option, parse_settings
 
 if TYPE_CHECKING:
     from ..balance_shaft import HoldMode, RotorType, SecondaryMeasure
     from ..beam import BeamTheory
+    from ..options import ShaftSectionOptions, ShaftStudyOptions
 
 SCHEMA = "crankbalance.shaft/2"
 
@@ -73,9 +77,7 @@ def _section_options(function: Any) -> Any:
         ),
         click.option("--modulus", default="210 GPa", show_default=True, help="Young's modulus."),
         click.option("--density", default="7850 kg/m^3", show_default=True, help="Density."),
-        click.option(
-            "--poisson", type=float, default=0.3, show_default=True, help="Poisson's ratio."
-        ),
+        click.option("--poisson", default="0.3", show_default=True, help="Poisson's ratio."),
         click.option(
             "--unbalance-radius",
             default="20 mm",
@@ -118,7 +120,7 @@ def _study_options(function: Any) -> Any:
             help='Shaft speed (twice crank speed for second order), e.g. "12000 rpm".',
         ),
         click.option(
-            "--weight", type=float, default=2.0, show_default=True, help="w of the objective."
+            "--weight", default="2", show_default=True, help="w of the objective (0 to 1000)."
         ),
         click.option(
             "--weights",
@@ -127,10 +129,9 @@ def _study_options(function: Any) -> Any:
         ),
         click.option(
             "--points",
-            type=int,
-            default=200,
+            default="200",
             show_default=True,
-            help="Design points along the shaft.",
+            help=f"Design points along the shaft (3 to {MAX_SHAFT_POINTS}).",
         ),
         click.option(
             "--secondary",
@@ -145,148 +146,64 @@ def _study_options(function: Any) -> Any:
     return _section_options(function)
 
 
-#: Most design points of a sweep (each one is a beam solve and an FE eigenproblem).
-MAX_POINTS = 5001
-
-
-def _quantity(text: str, kind: str, field: str) -> float:
-    """:func:`crankbalance.units.parse_quantity` that refuses ranges ('LOW..HIGH').
-
-    The unit parser reads '300..200 mm' as the product 300. x .200 mm; no option of
-    this command takes a range, so it is an error here, not a silent 60 mm.
-    """
-    from ..units import parse_quantity
-
-    if ".." in text:
-        raise InputError(field, text, "must be a single quantity, not a range")
-    return parse_quantity(text, kind, field)
-
-
-def _parse_section(
-    length: str, diameter: str, bore: str, modulus: str, density: str, poisson: float
-) -> tuple[float, Any]:
+def _section(o: ShaftSectionOptions) -> Any:
+    """The shaft section of the validated options."""
     from ..beam import ShaftSection
 
-    length_m = _positive(_quantity(length, "length", "length"), "length", length)
-    section = ShaftSection(
-        outer_diameter=_positive(_quantity(diameter, "length", "diameter"), "diameter", diameter),
-        inner_diameter=_quantity(bore, "length", "bore"),
-        youngs_modulus=_positive(_quantity(modulus, "modulus", "modulus"), "modulus", modulus),
-        density=_positive(_quantity(density, "density", "density"), "density", density),
-        poisson_ratio=poisson,
+    return ShaftSection(
+        outer_diameter=o.diameter,
+        inner_diameter=o.bore,
+        youngs_modulus=o.modulus,
+        density=o.density,
+        poisson_ratio=o.poisson,
     )
-    return length_m, section
 
 
-def _positive(value: float, name: str, text: str) -> float:
-    if not value > 0:
-        raise InputError(name, text, "must be greater than zero")
-    return value
+def _study_setup(
+    order: int, options: dict[str, Any]
+) -> tuple[ShaftStudyOptions, dict[str, Any], dict[str, Any]]:
+    """Validate the options shared by ``inline4`` and ``inline3``.
 
+    Returns the options, the requirement block (unbalance and shaft speed, from --engine or
+    --unbalance/--speed, in SI) and the keyword arguments common to
+    :func:`inline4_study` and :func:`inline3_study` (length and section included).
+    """
+    from ..options import ShaftStudyOptions
 
-def _material(unbalance_radius: str, bearing_stiffness: str | None) -> tuple[float, float | None]:
-    """Unbalance-mass radius [m] and bearing stiffness [N/m] (None: rigid)."""
-    radius = _positive(
-        _quantity(unbalance_radius, "length", "unbalance_radius"),
-        "unbalance_radius",
-        unbalance_radius,
-    )
-    if bearing_stiffness is None:
-        return radius, None
-    stiffness = _quantity(bearing_stiffness, "stiffness", "bearing_stiffness")
-    return radius, _positive(stiffness, "bearing_stiffness", bearing_stiffness)
-
-
-def _common(
-    engine: str | None,
-    order: int,
-    length: float,
-    unbalance: str | None,
-    speed: str | None,
-    unbalance_radius: str,
-    bearing_stiffness: str | None,
-    weights: str | None,
-    points: int,
-) -> dict[str, Any]:
-    """Requirement (from --engine or --unbalance/--speed) and the sweep options, in SI."""
-    import numpy as np
-
-    if not 3 <= points <= MAX_POINTS:
-        raise InputError("points", points, f"must be an integer from 3 to {MAX_POINTS}")
-    radius, stiffness = _material(unbalance_radius, bearing_stiffness)
-    if engine is not None:
-        if unbalance is not None or speed is not None:
-            raise InputError("--engine", engine, "give --engine or --unbalance/--speed, not both")
+    values = {k: v for k, v in options.items() if k in ShaftStudyOptions.model_fields}
+    if options["weights"] is not None:
+        values["weights"] = options["weights"].split(",")
+    o = parse_settings(ShaftStudyOptions, values)
+    if o.engine is not None:
+        if o.unbalance is not None or o.speed is not None:
+            raise InputError("--engine", o.engine, "give --engine or --unbalance/--speed, not both")
         from ..studies.requirements import shaft_requirement
 
-        need = shaft_requirement(engine, order, length, radius)
+        need = shaft_requirement(o.engine, order, o.length, o.unbalance_radius)
         required, shaft_speed = need.unbalance, need.speed
+    elif o.unbalance is None or o.speed is None:
+        raise InputError(
+            "--unbalance" if o.unbalance is None else "--speed",
+            None,
+            "is required (or give --engine to take it from the balancing solver)",
+        )
     else:
-        if unbalance is None or speed is None:
-            raise InputError(
-                "--unbalance" if unbalance is None else "--speed",
-                None,
-                "is required (or give --engine to take it from the balancing solver)",
-            )
-        required = _positive(_quantity(unbalance, "unbalance", "unbalance"), "unbalance", unbalance)
-        shaft_speed = _positive(_quantity(speed, "speed", "speed"), "speed", speed)
-    out: dict[str, Any] = {
+        required, shaft_speed = o.unbalance, o.speed
+    c = {"unbalance": required, "speed": shaft_speed}
+    kwargs: dict[str, Any] = {
         "unbalance": required,
         "speed": shaft_speed,
-        "unbalance_radius": radius,
-        "bearing_stiffness": stiffness,
-        "weights": None,
-    }
-    if weights is not None:
-        try:
-            out["weights"] = np.array([float(w) for w in weights.split(",")])
-        except ValueError:
-            raise InputError(
-                "weights", weights, "must be comma-separated numbers >= 0, e.g. 1,2,3"
-            ) from None
-    return out
-
-
-def _study_setup(order: int, options: dict[str, Any]) -> tuple[dict[str, Any], Any, dict[str, Any]]:
-    """Parse the options shared by ``inline4`` and ``inline3``.
-
-    Returns the requirement block of :func:`_common`, the design-point count and the
-    keyword arguments common to :func:`inline4_study` and :func:`inline3_study`
-    (length and section included).
-    """
-    length_m, section = _parse_section(
-        options["length"],
-        options["diameter"],
-        options["bore"],
-        options["modulus"],
-        options["density"],
-        options["poisson"],
-    )
-    c = _common(
-        options["engine"],
-        order,
-        length_m,
-        options["unbalance"],
-        options["speed"],
-        options["unbalance_radius"],
-        options["bearing_stiffness"],
-        options["weights"],
-        options["points"],
-    )
-    kwargs: dict[str, Any] = {
-        "unbalance": c["unbalance"],
-        "speed": c["speed"],
-        "length": length_m,
-        "section": section,
-        "weight": options["weight"],
-        "weights": c["weights"],
-        "unbalance_radius": c["unbalance_radius"],
-        "bearing_stiffness": c["bearing_stiffness"],
+        "length": o.length,
+        "section": _section(o),
+        "weight": o.weight,
+        "weights": None if o.weights is None else np.array(o.weights),
+        "unbalance_radius": o.unbalance_radius,
+        "bearing_stiffness": o.bearing_stiffness,
         "theory": cast("BeamTheory", options["theory"]),
     }
     if options["secondary"] is not None:
         kwargs["secondary"] = cast("SecondaryMeasure", options["secondary"])
-    return c, options["points"], kwargs
+    return o, c, kwargs
 
 
 def _input_json(engine: str | None, c: dict[str, Any]) -> dict[str, Any]:
@@ -385,27 +302,26 @@ def shaft() -> None:
 @format_option(("table", "json"))
 def inline4(fmt: str, **options: Any) -> None:
     """Optimum unbalance-mass position of an inline-4 second-order shaft on end bearings."""
-    import numpy as np
-
     from ..balance_shaft import inline4_study
 
-    c, points, kwargs = _study_setup(2, options)
-    study = inline4_study(positions=np.linspace(0.0, 1.0, points), **kwargs)
+    o, c, kwargs = _study_setup(2, options)
+    study = inline4_study(positions=np.linspace(0.0, 1.0, o.points), **kwargs)
+    out = {
+        "schema": SCHEMA,
+        "input": _input_json(o.engine, c),
+        **study_json(study),
+        "paper": {
+            "optimum_position": 0.67,
+            "weight": 2.0,
+            "source": "Kim (2018), Sect. 3.1, Fig. 7",
+        },
+    }
+    require_finite(out)
     if fmt == "json":
-        out = {
-            "schema": SCHEMA,
-            "input": _input_json(options["engine"], c),
-            **study_json(study),
-            "paper": {
-                "optimum_position": 0.67,
-                "weight": 2.0,
-                "source": "Kim (2018), Sect. 3.1, Fig. 7",
-            },
-        }
         click.echo(json_text(out))
         return
-    _echo_input(options["engine"], c)
-    _echo_study(study, max(1, points // 10))
+    _echo_input(o.engine, c)
+    _echo_study(study, max(1, o.points // 10))
     click.echo("Kim (2018), Fig. 7: 67 % with w = 2.")
 
 
@@ -429,17 +345,16 @@ def inline4(fmt: str, **options: Any) -> None:
 @click.option("--bearing-offset", default=None, help="Bearing-to-mass distance (default 0.1 L).")
 @click.option(
     "--z-min",
-    type=float,
-    default=0.3,
+    default="0.3",
     show_default=True,
-    help="Smallest second-mass position z / L of the sweep.",
+    help="Smallest second-mass position z / L of the sweep (0 to below 1).",
 )
 @format_option(("table", "json"))
 def inline3(
     rotor_type: str,
     hold: str,
     bearing_offset: str | None,
-    z_min: float,
+    z_min: str,
     fmt: str,
     **options: Any,
 ) -> None:
@@ -448,48 +363,42 @@ def inline3(
     --unbalance is the first moment of each mass when the two masses are the shaft
     length apart (Kim (2018), Eq. 12).
     """
-    import numpy as np
-
     from ..balance_shaft import ROTOR_TYPES, inline3_study
 
-    c, points, kwargs = _study_setup(1, options)
-    if not (0.0 <= z_min < 1.0):
-        raise InputError("z_min", z_min, "must lie in [0, 1)")
-    offset = (
-        None if bearing_offset is None else _quantity(bearing_offset, "length", "bearing_offset")
-    )
+    o, c, kwargs = _study_setup(1, {**options, "bearing_offset": bearing_offset, "z_min": z_min})
     types = ROTOR_TYPES if rotor_type == "all" else (rotor_type,)
     studies = [
         inline3_study(
             cast("RotorType", t),
-            positions=np.linspace(z_min, 1.0, points),
-            bearing_offset=offset,
+            positions=np.linspace(o.z_min, 1.0, o.points),
+            bearing_offset=o.bearing_offset,
             hold=cast("HoldMode", hold),
             **kwargs,
         )
         for t in types
     ]
+    out = {
+        "schema": SCHEMA,
+        "input": _input_json(o.engine, c),
+        "case": "inline3",
+        "hold": hold,
+        "studies": {s.case.split("-")[1]: study_json(s) for s in studies},
+        "paper": {
+            "optimum_position": 0.69,
+            "weight": 2.0,
+            "rotor_type": "III",
+            "source": "Kim (2018), Sect. 3.2, Fig. 9",
+            "note": "not reproducible from the text: geometry not given, Eqs. 14-16 "
+            "and 22-25 garbled (docs/references.md)",
+        },
+    }
+    require_finite(out)
     if fmt == "json":
-        out = {
-            "schema": SCHEMA,
-            "input": _input_json(options["engine"], c),
-            "case": "inline3",
-            "hold": hold,
-            "studies": {s.case.split("-")[1]: study_json(s) for s in studies},
-            "paper": {
-                "optimum_position": 0.69,
-                "weight": 2.0,
-                "rotor_type": "III",
-                "source": "Kim (2018), Sect. 3.2, Fig. 9",
-                "note": "not reproducible from the text: geometry not given, Eqs. 14-16 "
-                "and 22-25 garbled (docs/references.md)",
-            },
-        }
         click.echo(json_text(out))
         return
-    _echo_input(options["engine"], c)
+    _echo_input(o.engine, c)
     for s in studies:
-        _echo_study(s, max(1, points // 10))
+        _echo_study(s, max(1, o.points // 10))
         click.echo("")
     echo_table(
         ["type", "model optimum %", "paper %"],
@@ -538,8 +447,7 @@ def inline3(
 )
 @click.option(
     "--margin",
-    type=float,
-    default=0.25,
+    default="0.25",
     show_default=True,
     help="Required separation of the first critical speed above the maximum speed.",
 )
@@ -554,7 +462,7 @@ def check(
     phases: tuple[str, ...],
     speed: str,
     max_speed: str | None,
-    margin: float,
+    margin: str,
     bearing_capacity: str | None,
     deflection_limit: str | None,
     length: str,
@@ -562,7 +470,7 @@ def check(
     bore: str,
     modulus: str,
     density: str,
-    poisson: float,
+    poisson: str,
     unbalance_radius: str,
     bearing_stiffness: str | None,
     theory: str,
@@ -570,54 +478,63 @@ def check(
 ) -> None:
     """State variables and design checks of one shaft layout."""
     from ..balance_shaft import BalanceShaft, design_checks, shaft_response
+    from ..options import ShaftCheckOptions
 
-    length_m, section = _parse_section(length, diameter, bore, modulus, density, poisson)
-    radius, stiffness = _material(unbalance_radius, bearing_stiffness)
-    shaft_speed = _positive(_quantity(speed, "speed", "speed"), "speed", speed)
-    u = [_quantity(v, "unbalance", f"unbalances[{i}]") for i, v in enumerate(unbalances)]
-    if len(u) == 1:
-        u = u * len(masses)
+    o = parse_settings(
+        ShaftCheckOptions,
+        {
+            "bearing": list(bearings),
+            "mass": list(masses),
+            "unbalance": list(unbalances),
+            "phase": list(phases),
+            "speed": speed,
+            "max_speed": max_speed,
+            "margin": margin,
+            "bearing_capacity": bearing_capacity,
+            "deflection_limit": deflection_limit,
+            "length": length,
+            "diameter": diameter,
+            "bore": bore,
+            "modulus": modulus,
+            "density": density,
+            "poisson": poisson,
+            "unbalance_radius": unbalance_radius,
+            "bearing_stiffness": bearing_stiffness,
+        },
+    )
+    assert o.speed is not None  # a required option
+    u = o.unbalance * len(o.mass) if len(o.unbalance) == 1 else o.unbalance
     design = BalanceShaft(
-        length=length_m,
-        section=section,
-        bearing_positions=tuple(
-            _quantity(b, "length", f"bearing_positions[{i}]") for i, b in enumerate(bearings)
-        ),
-        mass_positions=tuple(
-            _quantity(m, "length", f"mass_positions[{i}]") for i, m in enumerate(masses)
-        ),
+        length=o.length,
+        section=_section(o),
+        bearing_positions=tuple(o.bearing),
+        mass_positions=tuple(o.mass),
         unbalances=tuple(u),
-        speed=shaft_speed,
-        phases=tuple(_quantity(p, "angle", f"phases[{i}]") for i, p in enumerate(phases)),
-        unbalance_radius=radius,
-        bearing_stiffness=stiffness,
+        speed=o.speed,
+        phases=tuple(o.phase),
+        unbalance_radius=o.unbalance_radius,
+        bearing_stiffness=o.bearing_stiffness,
     )
     response = shaft_response(design, theory=cast("BeamTheory", theory))
     checks = design_checks(
         response,
-        max_speed=None if max_speed is None else _quantity(max_speed, "speed", "max_speed"),
-        critical_speed_margin=margin,
-        bearing_capacity=None
-        if bearing_capacity is None
-        else _quantity(bearing_capacity, "force", "bearing_capacity"),
-        deflection_limit=None
-        if deflection_limit is None
-        else _quantity(deflection_limit, "length", "deflection_limit"),
+        max_speed=o.max_speed,
+        critical_speed_margin=o.margin,
+        bearing_capacity=o.bearing_capacity,
+        deflection_limit=o.deflection_limit,
     )
+    shaft_dict = keyed(design.to_dict(), SHAFT_KEYS)
+    shaft_dict["section"] = keyed(shaft_dict["section"], SECTION_KEYS)
+    out = {
+        "schema": SCHEMA,
+        "case": "check",
+        "shaft": shaft_dict,
+        "response": keyed(response.to_dict(), RESPONSE_KEYS),
+        "checks": keyed(checks.to_dict(), CHECK_KEYS),
+    }
+    require_finite(out)
     if fmt == "json":
-        shaft_dict = keyed(design.to_dict(), SHAFT_KEYS)
-        shaft_dict["section"] = keyed(shaft_dict["section"], SECTION_KEYS)
-        click.echo(
-            json_text(
-                {
-                    "schema": SCHEMA,
-                    "case": "check",
-                    "shaft": shaft_dict,
-                    "response": keyed(response.to_dict(), RESPONSE_KEYS),
-                    "checks": keyed(checks.to_dict(), CHECK_KEYS),
-                }
-            )
-        )
+        click.echo(json_text(out))
         return
     rows = [
         [f"bearing {i + 1} at {1000 * x:.1f} mm", f"{r:.4g} N"]

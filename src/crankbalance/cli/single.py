@@ -13,10 +13,10 @@ from typing import Any
 
 import click
 
-from ..errors import InputError, check_positive
+from ..errors import InputError
+from ..results import require_finite, to_jsonable
 from ..units import format_quantity as _format_quantity
-from ..units import parse_factor, parse_quantity
-from ._common import format_table
+from ._common import format_table, option_name, parse_settings, refuse_unused
 
 FORMATS = click.Choice(["table", "json"])
 BALANCE_FACTOR_NOTE = (
@@ -30,13 +30,7 @@ BALANCE_FACTOR_NOTE = (
 # ---------------------------------------------------------------------------------------
 
 
-def _q(text: Any, kind: str, field: str) -> float | None:
-    return None if text is None else parse_quantity(text, kind, field)
-
-
 def _echo_json(payload: dict[str, Any]) -> None:
-    from ..results import to_jsonable
-
     click.echo(json.dumps(to_jsonable(payload), indent=2))
 
 
@@ -86,9 +80,7 @@ def _gmm(value: float) -> str:
     default=None,
     help="Engine file or preset: take masses and geometry of one cylinder from it.",
 )
-@click.option(
-    "--cylinder", default=1, show_default=True, type=int, help="Cylinder of --engine (1-based)."
-)
+@click.option("--cylinder", default="1", show_default=True, help="Cylinder of --engine (1-based).")
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def balance_factor(
     reciprocating_mass: str | None,
@@ -103,7 +95,7 @@ def balance_factor(
     offset: str | None,
     kinematics: str | None,
     engine: str | None,
-    cylinder: int,
+    cylinder: str,
     fmt: str,
 ) -> None:
     """Balance factor of a crank, its bob-weight, and the single-cylinder force study.
@@ -112,19 +104,40 @@ def balance_factor(
     crank counterweight, on top of 100 % of the rotating mass.
     """
     from .. import single_cylinder as sc
+    from ..options import BalanceFactorOptions
 
-    m_rec = _q(reciprocating_mass, "mass", "reciprocating_mass")
-    r = _q(crank_radius, "length", "crank_radius")
-    m_rot = _q(rotating_mass, "mass", "rotating_mass")
-    l_rod = _q(rod_length, "length", "rod_length")
-    w = _q(speed, "speed", "speed")
-    e = _q(offset, "length", "offset") or 0.0
+    o = parse_settings(
+        BalanceFactorOptions,
+        {
+            "reciprocating_mass": reciprocating_mass,
+            "crank_radius": crank_radius,
+            "rotating_mass": rotating_mass,
+            "cw_mass": cw_mass,
+            "cw_radius": cw_radius,
+            "balance_factor": balance_factor,
+            "target": target,
+            "speed": speed,
+            "rod_length": rod_length,
+            "offset": offset,
+            "engine": engine,
+            "cylinder": cylinder,
+        },
+    )
+    refuse_unused({"cylinder": engine is not None}, "only acts with --engine")
+    m_rec, r, m_rot, l_rod, w = (
+        o.reciprocating_mass,
+        o.crank_radius,
+        o.rotating_mass,
+        o.rod_length,
+        o.speed,
+    )
+    e = o.offset or 0.0
     if engine is not None:
         from ..io.engine_file import load_engine
         from ..studies.build import build_model
         from ..studies.cylinder import cylinder_of
 
-        one = cylinder_of(build_model(load_engine(engine)), cylinder)
+        one = cylinder_of(build_model(load_engine(engine)), o.cylinder, "--cylinder")
         m_rec = one.reciprocating_mass if m_rec is None else m_rec
         r = one.crank_radius if r is None else r
         l_rod = one.rod_length if l_rod is None else l_rod
@@ -132,33 +145,30 @@ def balance_factor(
         e = one.offset if offset is None else e
         m_rot = one.rotating_mass if m_rot is None else m_rot
     if m_rec is None:
-        raise InputError("reciprocating_mass", None, "is required, e.g. '282.12 g'")
+        raise InputError("--reciprocating-mass", None, "is required, e.g. '282.12 g'")
     if r is None:
-        raise InputError("crank_radius", None, "is required, e.g. '26.9 mm'")
-    check_positive("reciprocating_mass", m_rec)
-    check_positive("crank_radius", r)
+        raise InputError("--crank-radius", None, "is required, e.g. '26.9 mm'")
     if w is None:
-        for name, value in (
-            ("rod_length", rod_length),
-            ("offset", offset),
-            ("kinematics", kinematics),
-        ):
-            if value is not None:
-                raise InputError(name, value, "only acts on the force study: give --speed too")
+        refuse_unused(
+            {name: False for name in ("rod_length", "offset", "kinematics")},
+            "only acts on the force study: give --speed too",
+        )
+    refuse_unused(
+        {"rod_length": kinematics != "first-order"},
+        "the first-order kinematics does not use the conrod length",
+    )
     if target is not None and m_rot is None:
-        raise InputError("target", target, "sizes the bob-weight: give --rotating-mass too")
-    given = [x is not None for x in (cw_mass, cw_radius)]
+        raise InputError("--target", target, "sizes the bob-weight: give --rotating-mass too")
     mass_properties = None
-    if any(given):
-        if not all(given) or m_rot is None:
+    if o.cw_mass is not None or o.cw_radius is not None:
+        if o.cw_mass is None or o.cw_radius is None or m_rot is None:
             raise InputError(
-                "cw_mass",
+                "--cw-mass",
                 cw_mass,
                 "the crank's balance factor needs --cw-mass, "
                 "--cw-radius and --rotating-mass together",
             )
-        m_cw = parse_quantity(cw_mass, "mass", "cw_mass")
-        r_cw = parse_quantity(cw_radius, "length", "cw_radius")
+        m_cw, r_cw = o.cw_mass, o.cw_radius
         fb_crank = sc.balance_factor_from_mass_properties(m_cw, r_cw, r, m_rot, m_rec)
         mass_properties = {
             "counterweight_mass_kg": m_cw,
@@ -167,14 +177,14 @@ def balance_factor(
             "balance_factor": fb_crank,
             "counterweight_moment_kg_m": m_cw * r_cw,
         }
-    if balance_factor is not None:
-        fb = sc.check_balance_factor(parse_factor(balance_factor, "balance_factor"))
+    if o.balance_factor is not None:
+        fb = o.balance_factor
     elif mass_properties is not None:
         fb = mass_properties["balance_factor"]
         low, high = sc.BALANCE_FACTOR_RANGE
         if not low <= fb <= high:
             raise InputError(
-                "cw_mass",
+                "--cw-mass",
                 cw_mass,
                 f"with --cw-radius and --rotating-mass gives the crank a balance "
                 f"factor of {fb:.4f}, outside [{low:g}, {high:g}]; check the mass "
@@ -182,9 +192,7 @@ def balance_factor(
             )
     else:
         fb = 0.5
-    fb_target = (
-        fb if target is None else sc.check_balance_factor(parse_factor(target, "target"), "target")
-    )
+    fb_target = fb if o.target is None else o.target
     bob = None
     if m_rot is not None:
         bob = sc.bob_weight(m_rot, m_rec, fb_target)
@@ -230,6 +238,7 @@ def balance_factor(
             },
         },
     }
+    require_finite(payload)
     if fmt == "json":
         _echo_json(payload)
         return
@@ -287,7 +296,7 @@ def balance_factor(
 @click.option("--face-area", help="Face area ground per web, e.g. '2157 mm^2'.")
 @click.option("--face-orientation", type=click.Choice(["radial", "axial"]), default=None)
 @click.option("--hole-diameter", help="Drill diameter, e.g. '8 mm'.")
-@click.option("--holes", type=int, default=None, help="Holes per web.")
+@click.option("--holes", default=None, help="Holes per web (1 to 1000).")
 @click.option("--hole-direction", type=click.Choice(["axial", "radial"]), default=None)
 @click.option("--density", help="Crank material density, default '7850 kg/m^3'.")
 @click.option("--depth-resolution", help="Machining step, default '0.001 mm'.")
@@ -315,7 +324,7 @@ def rebalance_command(
     face_area: str | None,
     face_orientation: str | None,
     hole_diameter: str | None,
-    holes: int | None,
+    holes: str | None,
     hole_direction: str | None,
     density: str | None,
     depth_resolution: str | None,
@@ -331,7 +340,34 @@ def rebalance_command(
     Options override the values of the --parts file.
     """
     from ..io.rebalance_file import METHOD_KEYS, read_rebalance_data, rebalance_file_from_dict
+    from ..options import RebalancePartsOptions
     from ..studies.rebalance import rebalance_parts
+
+    # the typed values in their physical ranges; the file's schema then checks how they
+    # combine with the file
+    typed = parse_settings(
+        RebalancePartsOptions,
+        {
+            "crank_radius": crank_radius,
+            "cw_mass": cw_mass,
+            "cw_radius": cw_radius,
+            "old_rotating_mass": old_rotating_mass,
+            "old_reciprocating_mass": old_reciprocating_mass,
+            "new_rotating_mass": new_rotating_mass,
+            "new_reciprocating_mass": new_reciprocating_mass,
+            "target": list(targets),
+            "correction_radius": correction_radius,
+            "face_area": face_area,
+            "hole_diameter": hole_diameter,
+            "holes": holes,
+            "density": density,
+            "depth_resolution": depth_resolution,
+            "grade": grade,
+            "rotor_mass": rotor_mass,
+            "speed": speed,
+            "tolerance": tolerance_text,
+        },
+    )
 
     data: dict[str, Any] = {}
     source = "parts"
@@ -346,14 +382,14 @@ def rebalance_command(
     origin: dict[str, str] = {}
 
     def put(key: str, value: Any, option: str) -> None:
-        if value is None or value == "":
+        if value is None:
             return
         *tables, last = key.split(".")
         table = data
         for name in tables:
             table = table.setdefault(name, {})
         table[last] = value
-        origin[key] = option
+        origin[key] = option_name(option)
 
     put("crank_radius", crank_radius, "crank_radius")
     put("counterweight.mass", cw_mass, "cw_mass")
@@ -363,7 +399,7 @@ def rebalance_command(
         ("new", new_rotating_mass, new_reciprocating_mass),
     ):
         for kind, value in (("rotating", rot), ("reciprocating", rec)):
-            if value:
+            if value is not None:
                 data.get(side, {}).pop(kind, None)  # the total replaces the file's parts
                 put(f"{side}.{kind}_mass", value, f"{side}_{kind}_mass")
     if targets:
@@ -379,14 +415,20 @@ def rebalance_command(
         ("area", face_area, "face_area"),
         ("orientation", face_orientation, "face_orientation"),
         ("diameter", hole_diameter, "hole_diameter"),
-        ("number", holes, "holes"),
+        ("number", typed.holes, "holes"),
         ("direction", hole_direction, "hole_direction"),
         ("density", density, "density"),
         ("depth_resolution", depth_resolution, "depth_resolution"),
     )
     for key, given, option in corrections:
         put(f"correction.{key}", given, option)
-    if tolerance_text:
+    if tolerance_text is not None:
+        if grade is not None or rotor_mass is not None or speed is not None:
+            raise InputError(
+                "--tolerance",
+                tolerance_text,
+                "give either --tolerance or --grade with --rotor-mass and --speed",
+            )
         data["tolerance"] = {}
         put("tolerance.unbalance", tolerance_text, "tolerance")
     for key, text in (("grade", grade), ("rotor_mass", rotor_mass), ("speed", speed)):
@@ -400,21 +442,21 @@ def rebalance_command(
         if named is None:
             raise
         raise InputError(named, error.value, error.allowed) from None
+    payload = {
+        "schema": "crankbalance.rebalance/2",
+        "name": study.name,
+        "definition": BALANCE_FACTOR_NOTE,
+        "tolerance": {
+            "unbalance_kg_m": study.tolerance,
+            "source": study.tolerance_source,
+        },
+        "old": _parts_json(study.old),
+        "new": _parts_json(study.new),
+        "cases": [_case_json(res) for res in study.cases],
+    }
+    require_finite(payload)
     if fmt == "json":
-        _echo_json(
-            {
-                "schema": "crankbalance.rebalance/2",
-                "name": study.name,
-                "definition": BALANCE_FACTOR_NOTE,
-                "tolerance": {
-                    "unbalance_kg_m": study.tolerance,
-                    "source": study.tolerance_source,
-                },
-                "old": _parts_json(study.old),
-                "new": _parts_json(study.new),
-                "cases": [_case_json(res) for res in study.cases],
-            }
-        )
+        _echo_json(payload)
         return
     click.echo(study.name)
     click.echo(
@@ -528,6 +570,10 @@ def _case_json(res: Any) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------
 
 
+#: the options of the split between the correction planes
+PLANE_OPTIONS = ("bearing_a", "bearing_b", "center_of_mass", "plane_1", "plane_2")
+
+
 @click.command("tolerance")
 @click.option("--grade", help="Balance quality grade, e.g. G6.3.")
 @click.option("--rotor-mass", help="Rotor mass, e.g. '2.7 kg'.")
@@ -555,8 +601,27 @@ def tolerance_command(
 ) -> None:
     """ISO 21940-11 permissible residual unbalance U_per = 1000 G m / Omega [g*mm]."""
     from .. import tolerance as tl
+    from ..options import ToleranceOptions
 
+    o = parse_settings(
+        ToleranceOptions,
+        {
+            "grade": grade,
+            "rotor_mass": rotor_mass,
+            "speed": speed,
+            "residual": residual,
+            "bearing_a": bearing_a,
+            "bearing_b": bearing_b,
+            "center_of_mass": center_of_mass,
+            "plane_1": plane_1,
+            "plane_2": plane_2,
+        },
+    )
     if list_grades:
+        refuse_unused(
+            {name: False for name in ToleranceOptions.model_fields},
+            "does not act with --list (which lists the grades only)",
+        )
         if fmt == "json":
             _echo_json(
                 {"schema": "crankbalance.grades/2", "grades": [_grade_json(g) for g in tl.GRADES]}
@@ -568,63 +633,54 @@ def tolerance_command(
                 )
             )
         return
-    for name, value in (("grade", grade), ("rotor_mass", rotor_mass), ("speed", speed)):
-        if value is None:
-            raise InputError(name, None, "is required (or use --list)")
-    item = tl.balance_grade(grade)  # type: ignore[arg-type]
-    mass = parse_quantity(rotor_mass, "mass", "rotor_mass")
-    omega = parse_quantity(speed, "speed", "speed")
+    if o.grade is None or o.rotor_mass is None or o.speed is None:
+        missing = next(n for n in ("grade", "rotor_mass", "speed") if getattr(o, n) is None)
+        raise InputError(option_name(missing), None, "is required (or use --list)")
+    item = tl.balance_grade(o.grade)
+    mass, omega = o.rotor_mass, o.speed
     u_per = tl.permissible_unbalance(item.name, mass, omega)
     allocation = None
-    positions = [bearing_a, bearing_b, center_of_mass]
-    if any(p is not None for p in positions + [plane_1, plane_2]):
-        if any(p is None for p in positions):
+    if any(getattr(o, n) is not None for n in PLANE_OPTIONS):
+        if o.bearing_a is None or o.bearing_b is None or o.center_of_mass is None:
             raise InputError(
-                "bearing_a",
+                "--bearing-a",
                 bearing_a,
                 "the split between planes needs --bearing-a, --bearing-b and --center-of-mass",
             )
         allocation = tl.allocate_to_planes(
-            u_per,
-            parse_quantity(bearing_a, "length", "bearing_a"),
-            parse_quantity(bearing_b, "length", "bearing_b"),
-            parse_quantity(center_of_mass, "length", "center_of_mass"),
-            _q(plane_1, "length", "plane_1"),
-            _q(plane_2, "length", "plane_2"),
+            u_per, o.bearing_a, o.bearing_b, o.center_of_mass, o.plane_1, o.plane_2
         )
-    verdict = None
-    if residual is not None:
-        verdict = tl.check_residual(parse_quantity(residual, "unbalance", "residual"), u_per)
+    verdict = None if o.residual is None else tl.check_residual(o.residual, u_per)
+    payload = {
+        "schema": "crankbalance.tolerance/2",
+        "grade": _grade_json(item),
+        "rotor_mass_kg": mass,
+        "speed_rad_s": omega,
+        "permissible_unbalance_kg_m": u_per,
+        "eccentricity_m": u_per / mass,
+        "planes": None
+        if allocation is None
+        else {
+            "total_kg_m": allocation.total,
+            "bearing_a_kg_m": allocation.bearing_a,
+            "bearing_b_kg_m": allocation.bearing_b,
+            "plane_1_kg_m": allocation.plane_1,
+            "plane_2_kg_m": allocation.plane_2,
+            "share_a": allocation.share_a,
+            "rule": allocation.rule,
+        },
+        "verdict": None
+        if verdict is None
+        else {
+            "residual_kg_m": verdict.residual,
+            "permissible_kg_m": verdict.permissible,
+            "ratio": verdict.ratio,
+            "passed": verdict.passed,
+        },
+    }
+    require_finite(payload)
     if fmt == "json":
-        _echo_json(
-            {
-                "schema": "crankbalance.tolerance/2",
-                "grade": _grade_json(item),
-                "rotor_mass_kg": mass,
-                "speed_rad_s": omega,
-                "permissible_unbalance_kg_m": u_per,
-                "eccentricity_m": u_per / mass,
-                "planes": None
-                if allocation is None
-                else {
-                    "total_kg_m": allocation.total,
-                    "bearing_a_kg_m": allocation.bearing_a,
-                    "bearing_b_kg_m": allocation.bearing_b,
-                    "plane_1_kg_m": allocation.plane_1,
-                    "plane_2_kg_m": allocation.plane_2,
-                    "share_a": allocation.share_a,
-                    "rule": allocation.rule,
-                },
-                "verdict": None
-                if verdict is None
-                else {
-                    "residual_kg_m": verdict.residual,
-                    "permissible_kg_m": verdict.permissible,
-                    "ratio": verdict.ratio,
-                    "passed": verdict.passed,
-                },
-            }
-        )
+        _echo_json(payload)
         return
     rows = [
         ("grade", item.name),

@@ -5,6 +5,7 @@ from __future__ import annotations
 import click
 
 from ..errors import InputError
+from ._common import require_extra
 
 
 @click.command()
@@ -31,10 +32,7 @@ def web(port: int, preset: str, show: bool) -> None:
 
     if preset not in list_presets():
         raise InputError("--preset", preset, "unknown preset; `crankbalance presets` lists them")
-    try:
-        from ..web.server import serve
-    except ImportError as error:  # pragma: no cover - depends on the installed extras
-        raise InputError(
-            "web", None, f"needs the web extra: pip install 'crankbalance[web]' ({error})"
-        ) from None
+    require_extra("web")
+    from ..web.server import serve
+
     serve(port=port, preset=preset, show=show)

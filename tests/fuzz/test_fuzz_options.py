@@ -1,0 +1,620 @@
+"""Fuzzing of every subcommand's options (issue 12): random subsets of each command's options
+with hostile values (NaN, infinities, 1e308, -1, 0, subnormal numbers, huge integers, wrong
+units, empty texts, ranges where one value is expected), run in-process through
+``crankbalance.cli.main``.
+
+Each run must end in exit status 2 with exactly one line on stderr, or in exit status 0 with
+no NaN or infinity in the output. Deterministic (``derandomize=True``, no database); each
+example has a generous hang guard (``signal.alarm``, 120 s), not a timing assertion: the work
+of every command is bounded by the documented caps of :mod:`crankbalance.options`. Valid
+values are kept cheap (small presets, one or two optimiser rounds, short bench runs).
+
+``pytest -s`` prints the examples tried and clean per command (docs/reliability.md).
+"""
+
+from __future__ import annotations
+
+import contextlib
+import io
+import os
+import re
+import signal
+import tempfile
+from collections.abc import Iterator
+from dataclasses import dataclass, field
+from pathlib import Path
+from typing import Any
+
+import click
+import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
+
+from crankbalance.cli import COMMANDS, cli, main
+from crankbalance.options import RANGES
+from crankbalance.units import KINDS, format_quantity
+
+ROOT = Path(__file__).resolve().parents[2]
+PARTS = str(ROOT / "examples" / "crf250r_rebalance.toml")
+#: examples per command; 20 commands and subcommands, so 10 give about 200 combinations (a longer
+#: exploration: CRANKBALANCE_FUZZ_EXAMPLES=200, still deterministic)
+EXAMPLES = int(os.environ.get("CRANKBALANCE_FUZZ_EXAMPLES", "10"))
+#: the hang guard of one example [s]: generous, the slowest valid example takes a few seconds
+HANG_GUARD = 120
+#: NaN or an infinity in an output, as Python, JSON or a table would print it
+NON_FINITE = re.compile(r"(?<![A-Za-z])(nan|inf|infinity)(?![A-Za-z])", re.IGNORECASE)
+
+#: hostile plain numbers, then numbers at the edges of the ranges options accept
+NUMBERS = ["nan", "inf", "-inf", "1e308", "-1", "0", "1e-320", "9" * 30, "", "abc", "1..2"]
+EDGES = ["1e-300", "0.999999", "1.000001", "100", "10000", "1e6"]
+
+
+def number(*valid: str) -> list[str]:
+    """Valid values and the hostile ones of a plain number."""
+    return [*valid, *NUMBERS, *EDGES]
+
+
+def quantity(kind: str, *valid: str) -> list[str]:
+    """Valid values and the hostile ones of a quantity of ``kind`` (units.KINDS), written in
+    its display unit, with the two ends of its physical range (options.RANGES)."""
+    unit = KINDS[kind][1].replace("**", "^")
+    hostile = [f"{v} {unit}" for v in NUMBERS[:8]] + [f"1..2 {unit}"]
+    edges = [format_quantity(v, kind, 6) for v in RANGES.get(kind, ())]
+    return [*valid, *hostile, *edges, "", "abc", "42", "3 kg", "5 parsec", "2 s"]
+
+
+#: the hostile words of a choice and of a file name
+CHOICE = ["", "x", "nan"]
+FLAG = None  # an option without a value
+
+
+@dataclass
+class Command:
+    """How one command is called: its words, its positional arguments (choices), the
+    options that make a valid call, and every option with its valid and hostile values."""
+
+    words: list[str]
+    positionals: list[list[str]] = field(default_factory=list)
+    base: list[str] = field(default_factory=list)
+    options: dict[str, list[str | None]] = field(default_factory=dict)
+
+
+LENGTH = quantity("length", "20 mm")
+MASS = quantity("mass", "300 g")
+SPEED = quantity("speed", "3000 rpm")
+FORMATS = ["table", "json", *CHOICE]
+FORMATS_CSV = ["table", "json", "csv", *CHOICE]
+PROFILE = {
+    "--web-radius": quantity("length", "20 mm", "10..20 mm"),
+    "--rectangle-height": quantity("length", "20 mm", "0 mm"),
+    "--trapezoid-angle": quantity("angle", "20 deg"),
+    "--segment-radius": quantity("length", "50 mm"),
+    "--segment-angle": quantity("angle", "120 deg", "60..170 deg"),
+    "--thickness": quantity("length", "8 mm"),
+}
+PROFILE_BASE = [
+    "--web-radius",
+    "20 mm",
+    "--rectangle-height",
+    "20 mm",
+    "--trapezoid-angle",
+    "20 deg",
+    "--segment-radius",
+    "50 mm",
+    "--segment-angle",
+    "120 deg",
+]
+REQUIREMENT = {
+    "--first-moment": quantity("unbalance", "7880 g*mm"),
+    "--cw-mass": MASS,
+    "--cg-radius": LENGTH,
+    "--engine": ["inline4", "single", "no-such-engine", ""],
+}
+SECTION = {
+    "--length": quantity("length", "300 mm"),
+    "--diameter": quantity("length", "25 mm"),
+    "--bore": quantity("length", "0 mm", "10 mm"),
+    "--modulus": quantity("modulus", "210 GPa"),
+    "--density": quantity("density", "7850 kg/m^3"),
+    "--poisson": number("0.3"),
+    "--unbalance-radius": quantity("length", "20 mm"),
+    "--bearing-stiffness": quantity("stiffness", "2e8 N/m"),
+    "--theory": ["euler-bernoulli", "timoshenko", *CHOICE],
+}
+STUDY = {
+    "--engine": ["inline4", "single", "no-such-engine"],
+    "--unbalance": quantity("unbalance", "3 g*m"),
+    "--speed": quantity("speed", "12000 rpm"),
+    "--weight": number("2"),
+    "--weights": ["1,2", "1,nan", "0.5", *NUMBERS],
+    "--points": number("3", "21"),
+    "--secondary": ["reaction-difference", "inverse-frequency", *CHOICE],
+}
+ENGINE_CYCLE = {
+    "--engine": ["single", "inline4", "no-such-engine", ""],
+    "--cylinder": number("1", "2"),
+    "--bore": quantity("length", "76.8 mm"),
+    "--stroke": quantity("length", "53.8 mm"),
+    "--rod-length": quantity("length", "103.5 mm"),
+    "--reciprocating-mass": quantity("mass", "282 g"),
+    "--crank-inertia": quantity("inertia", "0.006 kg*m^2"),
+    "--journal-diameter": quantity("length", "30 mm"),
+    "--friction-coefficient": number("0.005"),
+    "--speed": quantity("speed", "9000 rpm"),
+    "--strokes": ["2", "4", "3", *CHOICE],
+    "--compression-ratio": number("13.5"),
+    "--ignition": quantity("angle", "-25 deg"),
+    "--burn-duration": quantity("angle", "50 deg"),
+    "--intake-pressure": quantity("pressure", "1 bar"),
+    "--pressure-csv": ["OUT/p.csv", "OUT/missing.csv", "OUT", ""],
+}
+OUTPUT = ["OUT/x.html", "OUT/x.txt", "/no/such/folder/x.html", "OUT", ""]
+
+COMMAND_TABLE: dict[str, Command] = {
+    "analyze": Command(
+        ["analyze"],
+        [["inline4", "single", "no-such-engine", ""]],
+        [],
+        {"--orders": number("1", "8", "64"), "--format": FORMATS_CSV},
+    ),
+    "presets": Command(["presets"], [], [], {"--format": FORMATS}),
+    "balance": Command(
+        ["balance"],
+        [["inline4", "single", "v8-crossplane", "no-such-engine"]],
+        [],
+        {
+            "--angle": quantity("angle", "optimal", "30 deg"),
+            "--balance-factor": number("0.5", "50%", "2"),
+            "--method": ["pattern", "individual", *CHOICE],
+            "--scope": ["auto", "whole", "halves", *CHOICE],
+            "--format": FORMATS,
+        },
+    ),
+    "counterweight optimize": Command(
+        ["counterweight", "optimize"],
+        [],
+        ["--first-moment", "7880 g*mm", "--iterations", "1", "--population", "64", "--quiet"],
+        {
+            **REQUIREMENT,
+            **PROFILE,
+            "--density": quantity("density", "8000 kg/m^3"),
+            "--max-mass": quantity("mass", "400 g"),
+            "--max-radius": quantity("length", "80 mm"),
+            "--min-balance": number("100"),
+            "--radius-measure": ["true", "paper", *CHOICE],
+            "--inertia": [FLAG],
+            # valid values kept cheap: no long optimisation
+            "--iterations": number("0", "2"),
+            "--population": number("16", "64"),
+            "--seed": number("7", "4294967295"),
+            "--pareto": number("3"),
+            "--quiet": [FLAG],
+            "--format": FORMATS,
+        },
+    ),
+    "counterweight show": Command(
+        ["counterweight", "show"],
+        [],
+        ["--first-moment", "7880 g*mm", *PROFILE_BASE],
+        {**REQUIREMENT, **PROFILE, "--density": quantity("density"), "--format": FORMATS},
+    ),
+    "counterweight export": Command(
+        ["counterweight", "export"],
+        [],
+        ["--first-moment", "7880 g*mm", *PROFILE_BASE, "--output", "OUT/cw.svg"],
+        {
+            **REQUIREMENT,
+            **PROFILE,
+            "--density": quantity("density"),
+            "--output": ["OUT/cw.dxf", "OUT/cw.stl", "OUT/cw.txt", "/no/such/cw.svg", "OUT", ""],
+        },
+    ),
+    "counterweight check": Command(
+        ["counterweight", "check"],
+        [["OUT/part.stl", "OUT/missing.stl", "OUT", ""]],
+        [],
+        {
+            **REQUIREMENT,
+            "--density": quantity("density", "8000 kg/m^3"),
+            "--unit": ["mm", "m", "inch", "parsec", "kg", "nan", ""],
+            "--format": FORMATS,
+        },
+    ),
+    "shaft inline4": Command(
+        ["shaft", "inline4"],
+        [],
+        [
+            "--length",
+            "300 mm",
+            "--diameter",
+            "25 mm",
+            "--unbalance",
+            "3 g*m",
+            "--speed",
+            "12000 rpm",
+            "--points",
+            "21",
+        ],
+        {**SECTION, **STUDY, "--format": FORMATS},
+    ),
+    "shaft inline3": Command(
+        ["shaft", "inline3"],
+        [],
+        [
+            "--length",
+            "300 mm",
+            "--diameter",
+            "25 mm",
+            "--unbalance",
+            "3 g*m",
+            "--speed",
+            "6000 rpm",
+            "--points",
+            "11",
+        ],
+        {
+            **SECTION,
+            **STUDY,
+            "--type": ["I", "II", "III", "all", *CHOICE],
+            "--hold": ["couple", "unbalance", *CHOICE],
+            "--bearing-offset": quantity("length", "30 mm"),
+            "--z-min": number("0.3"),
+            "--format": FORMATS,
+        },
+    ),
+    "shaft check": Command(
+        ["shaft", "check"],
+        [],
+        [
+            "--length",
+            "300 mm",
+            "--diameter",
+            "25 mm",
+            "--bearing",
+            "0 mm",
+            "--bearing",
+            "300 mm",
+            "--mass",
+            "150 mm",
+            "--unbalance",
+            "3 g*m",
+            "--speed",
+            "3000 rpm",
+        ],
+        {
+            **SECTION,
+            "--bearing": quantity("length", "100 mm"),
+            "--mass": quantity("length", "200 mm"),
+            "--unbalance": quantity("unbalance", "3 g*m"),
+            "--phase": quantity("angle", "180 deg"),
+            "--speed": SPEED,
+            "--max-speed": SPEED,
+            "--margin": number("0.25"),
+            "--bearing-capacity": quantity("force", "5 kN"),
+            "--deflection-limit": quantity("length", "50 um"),
+            "--format": FORMATS,
+        },
+    ),
+    "balance-factor": Command(
+        ["balance-factor"],
+        [],
+        ["--reciprocating-mass", "282.12 g", "--crank-radius", "26.9 mm"],
+        {
+            "--reciprocating-mass": MASS,
+            "--crank-radius": LENGTH,
+            "--rotating-mass": MASS,
+            "--cw-mass": quantity("mass", "2020 g"),
+            "--cw-radius": quantity("length", "6.16 mm"),
+            "--balance-factor": number("0.5", "28%"),
+            "--target": number("0.3"),
+            "--speed": SPEED,
+            "--rod-length": quantity("length", "105 mm"),
+            "--offset": quantity("length", "0 mm", "2 mm"),
+            "--kinematics": ["exact", "series", "first-order", *CHOICE],
+            "--engine": ["single", "inline4", "no-such-engine"],
+            "--cylinder": number("1", "2"),
+            "--format": FORMATS,
+        },
+    ),
+    "rebalance": Command(
+        ["rebalance"],
+        [],
+        ["--parts", PARTS],
+        {
+            "--parts": [PARTS, "OUT", "OUT/missing.toml", ""],
+            "--crank-radius": quantity("length", "26.9 mm"),
+            "--cw-mass": quantity("mass", "2020.4 g"),
+            "--cw-radius": quantity("length", "6.16 mm"),
+            "--old-rotating-mass": MASS,
+            "--old-reciprocating-mass": MASS,
+            "--new-rotating-mass": quantity("mass", "248.69 g"),
+            "--new-reciprocating-mass": quantity("mass", "261.5 g"),
+            "--target": number("0.28", "factory", "28%"),
+            "--method": ["face", "holes", *CHOICE],
+            "--correction-radius": quantity("length", "40 mm"),
+            "--face-area": quantity("area", "2157 mm^2"),
+            "--face-orientation": ["radial", "axial", *CHOICE],
+            "--hole-diameter": quantity("length", "8 mm"),
+            "--holes": number("2"),
+            "--hole-direction": ["axial", "radial", *CHOICE],
+            "--density": quantity("density", "7850 kg/m^3"),
+            "--depth-resolution": quantity("length", "0.001 mm"),
+            "--grade": ["G6.3", "G2.5", "G7", ""],
+            "--rotor-mass": quantity("mass", "2.7 kg"),
+            "--speed": quantity("speed", "15200 rpm"),
+            "--tolerance": quantity("unbalance", "10 g*mm"),
+            "--format": FORMATS,
+        },
+    ),
+    "tolerance": Command(
+        ["tolerance"],
+        [],
+        ["--grade", "G6.3", "--rotor-mass", "2.7 kg", "--speed", "15200 rpm"],
+        {
+            "--grade": ["G6.3", "G2.5", "G7", "", "nan"],
+            "--rotor-mass": quantity("mass", "2.7 kg"),
+            "--speed": quantity("speed", "15200 rpm"),
+            "--residual": quantity("unbalance", "7.39 g*mm"),
+            "--bearing-a": quantity("length", "0 mm"),
+            "--bearing-b": quantity("length", "120 mm"),
+            "--center-of-mass": quantity("length", "60 mm"),
+            "--plane-1": quantity("length", "10 mm"),
+            "--plane-2": quantity("length", "110 mm"),
+            "--list": [FLAG],
+            "--format": FORMATS,
+        },
+    ),
+    "friction": Command(
+        ["friction"],
+        [],
+        [
+            "--journal-diameter",
+            "20 mm",
+            "--rotating-load",
+            "42.2 N",
+            "--friction-coefficient",
+            "0.1",
+        ],
+        {
+            "--load": quantity("force", "25 N"),
+            "--rotating-load": quantity("force", "42.2 N"),
+            "--unbalance": quantity("unbalance", "427 g*mm"),
+            "--speed": SPEED,
+            "--journal-diameter": LENGTH,
+            "--friction-coefficient": number("0.1", "1"),
+            "--torque": quantity("torque", "0.2 N*m"),
+            "--viscosity": quantity("viscosity", "0.01 Pa*s"),
+            "--bearing-length": quantity("length", "20 mm"),
+            "--clearance": quantity("length", "20 um"),
+            "--eccentricity": number("0.5"),
+            "--attitude-angle": quantity("angle", "30 deg"),
+            "--format": FORMATS_CSV,
+        },
+    ),
+    "bench": Command(
+        ["bench"],
+        [],
+        [
+            "--friction-coefficient",
+            "0.1",
+            "--ramp-time",
+            "0.2 s",
+            "--hold-time",
+            "0.1 s",
+            "--speed",
+            "1000 rpm",
+        ],
+        {
+            "--mass": quantity("mass", "2.5 kg"),
+            "--inertia": quantity("inertia", "0.003 kg*m^2"),
+            "--unbalance": quantity("unbalance", "400 g*mm"),
+            "--journal-diameter": LENGTH,
+            "--friction-coefficient": number("0.1"),
+            "--speed": quantity("speed", "1000 rpm", "2000 rpm"),
+            "--ramp-time": quantity("time", "0.2 s"),
+            "--hold-time": quantity("time", "0.1 s"),
+            "--kp": number("0.2"),
+            "--ki": number("10"),
+            "--history": ["OUT/h.csv", "/no/such/h.csv", "OUT", ""],
+            "--format": FORMATS_CSV,
+        },
+    ),
+    "cycle": Command(
+        ["cycle"],
+        [],
+        [],
+        {**ENGINE_CYCLE, "--balance-factor": number("0.5"), "--format": FORMATS_CSV},
+    ),
+    "sensitivity": Command(
+        ["sensitivity"],
+        [],
+        ["--balance-factors", "0:1:0.5"],
+        {
+            **ENGINE_CYCLE,
+            "--balance-factors": ["0:1:0.5", "0,0.5", "0:inf:1", "0:2:0.01", "1:0:0.1", *NUMBERS],
+            "--mass-scales": ["1", "0.5,1", *NUMBERS],
+            "--format": FORMATS_CSV,
+        },
+    ),
+    "web": Command(
+        ["web"],
+        [],
+        [],
+        {
+            "--port": number("8080", "65535"),
+            "--preset": ["paper-inline3", "single", "no-such-engine", ""],
+            "--show": [FLAG],
+            "--no-show": [FLAG],
+        },
+    ),
+    "plot": Command(
+        ["plot"],
+        [
+            ["orders", "curves", "polar", "crank", "residuals", "single", "bad", ""],
+            ["inline4", "single", "no-such-engine"],
+        ],
+        ["--output", "OUT/x.html"],
+        {
+            "--output": OUTPUT,
+            "--order": number("1", "2", "rotating", "65"),
+            "--quantity": ["force", "moment", *CHOICE],
+            "--balance": [FLAG],
+            "--no-balance": [FLAG],
+            "--cylinder": number("1", "2"),
+            "--balance-factor": number("0.5"),
+            "--width": number("800"),
+            "--height": number("600"),
+        },
+    ),
+    "report": Command(
+        ["report"],
+        [["inline4", "single", "no-such-engine"]],
+        ["--output", "OUT/r.html"],
+        {
+            "--output": OUTPUT,
+            "--orders": number("4"),
+            "--balance-factor": number("0.5"),
+            "--angle": quantity("angle", "optimal", "30 deg"),
+            "--chromium": ["/no/such/chromium", ""],
+        },
+    ),
+}
+
+
+def _leaf_commands() -> dict[str, click.Command]:
+    """Every command and subcommand of the CLI, by its words."""
+    ctx = click.Context(cli)
+    out: dict[str, click.Command] = {}
+    for name in COMMANDS:
+        command = cli.get_command(ctx, name)
+        assert command is not None
+        if isinstance(command, click.Group):
+            for sub in command.commands.values():
+                out[f"{name} {sub.name}"] = sub
+        else:
+            out[name] = command
+    return out
+
+
+def test_every_command_and_option_is_fuzzed() -> None:
+    """A new command or option must be added to the fuzz table."""
+    leaves = _leaf_commands()
+    assert set(COMMAND_TABLE) == set(leaves)
+    for name, command in leaves.items():
+        options = {
+            opt
+            for p in command.params
+            if isinstance(p, click.Option)
+            for opt in [*p.opts, *p.secondary_opts]
+            if opt.startswith("--") and opt != "--help"
+        }
+        table = COMMAND_TABLE[name]
+        positionals = [p for p in command.params if isinstance(p, click.Argument)]
+        assert len(positionals) == len(table.positionals), name
+        assert options == set(table.options), (name, options ^ set(table.options))
+
+
+@st.composite
+def invocations(draw: Any, name: str) -> list[str]:
+    """One call of command ``name``: its positionals, the valid base options (mostly), then
+    a random subset of its options with drawn values (a later option wins)."""
+    table = COMMAND_TABLE[name]
+    args = list(table.words)
+    args += [draw(st.sampled_from(choices)) for choices in table.positionals]
+    if draw(st.integers(0, 3)) < 3:  # the base three times in four (and in the simplest call)
+        args += table.base
+    chosen = draw(st.lists(st.sampled_from(sorted(table.options)), unique=True, max_size=4))
+    for option in chosen:
+        value = draw(st.sampled_from(table.options[option]))
+        args += [option] if value is None else [option, value]
+    return args
+
+
+class Hang(Exception):
+    """An example ran longer than the hang guard."""
+
+
+@contextlib.contextmanager
+def hang_guard(seconds: int) -> Iterator[None]:
+    def alarm(signum: int, frame: Any) -> None:
+        raise Hang(f"no end after {seconds} s")
+
+    previous = signal.signal(signal.SIGALRM, alarm)
+    signal.alarm(seconds)
+    try:
+        yield
+    finally:
+        signal.alarm(0)
+        signal.signal(signal.SIGALRM, previous)
+
+
+def run(args: list[str]) -> tuple[int, str, str]:
+    """Run the CLI in this process; (exit status, stdout, stderr)."""
+    out, err = io.StringIO(), io.StringIO()
+    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+        try:
+            code = int(main(args) or 0)
+        except SystemExit as stop:
+            code = stop.code if isinstance(stop.code, int) else 1
+    return code, out.getvalue(), err.getvalue()
+
+
+@pytest.fixture(scope="module")
+def workspace() -> Iterator[Path]:
+    """A folder with the files some options name: a pressure table and an STL part."""
+    from crankbalance.counterweight import CounterweightDesign
+    from crankbalance.io.cad import write_stl
+
+    with tempfile.TemporaryDirectory() as folder:
+        root = Path(folder)
+        (root / "p.csv").write_text(
+            "angle_deg,pressure_bar\n"
+            + "\n".join(f"{a},{1 + 40 * (abs(a) < 20)}" for a in range(-360, 360, 10))
+        )
+        design = CounterweightDesign(0.02, 0.02, 0.35, 0.05, 2.1, 0.008, 8000.0)
+        write_stl(design, root / "part.stl")
+        yield root
+
+
+TALLY: dict[str, dict[str, int]] = {}
+
+
+@pytest.mark.parametrize("name", sorted(COMMAND_TABLE))
+def test_fuzz_options(name: str, workspace: Path, monkeypatch: pytest.MonkeyPatch) -> None:
+    import crankbalance.web.server
+
+    # a valid `web` call would serve until stopped: it only records that it would serve
+    monkeypatch.setattr(crankbalance.web.server, "serve", lambda **kwargs: None)
+    tally = TALLY.setdefault(name, {"tried": 0, "clean": 0, "exit 0": 0, "exit 2": 0})
+
+    @settings(
+        max_examples=EXAMPLES,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+    )
+    @given(args=invocations(name))
+    def example(args: list[str]) -> None:
+        with tempfile.TemporaryDirectory(dir=workspace) as folder:
+            (Path(folder) / "p.csv").write_bytes((workspace / "p.csv").read_bytes())
+            (Path(folder) / "part.stl").write_bytes((workspace / "part.stl").read_bytes())
+            call = [a.replace("OUT", folder) for a in args]
+            tally["tried"] += 1
+            with hang_guard(HANG_GUARD):
+                code, out, err = run(call)
+            lines = err.strip().splitlines()
+            if code == 2:
+                assert len(lines) == 1 and lines[0].startswith("error: "), (call, err)
+                assert "Traceback" not in err
+            else:
+                assert code == 0, (call, code, err)
+                assert not NON_FINITE.search(out), (call, out[:2000])
+            tally["clean"] += 1
+            tally[f"exit {code}"] += 1
+
+    example()
+    print(
+        f"\nfuzz options {name}: tried {tally['tried']}, clean {tally['clean']} "
+        f"(exit 0: {tally['exit 0']}, exit 2: {tally['exit 2']})"
+    )
