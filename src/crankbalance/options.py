@@ -39,34 +39,23 @@ from pydantic.fields import FieldInfo
 
 from .errors import InputError
 from .single_cylinder import BALANCE_FACTOR_RANGE
-from .units import KINDS, format_quantity, parse_factor, parse_quantity
+from .units import KINDS, format_quantity, parse_factor, parse_quantity, range_si
+from .units import RANGES as units_ranges
 
 #: the balance factors every study accepts (share of the reciprocating mass) [-]
 BALANCE_FACTOR_LIMITS = BALANCE_FACTOR_RANGE
 
 _RPM = math.pi / 30.0  # 1 rpm in rad/s
 
-#: The physical range of each kind of quantity, in SI units (angles in rad, speeds in
-#: rad/s). Wide enough for any engine from a model engine to a ship's diesel, narrow
-#: enough that no computation overflows; a setting may narrow its kind's range.
-RANGES: dict[str, tuple[float, float]] = {
-    "length": (1e-6, 100.0),  # 1 µm to 100 m: clearances to shaft lengths
-    "area": (1e-12, 1e4),  # m^2
-    "position": (-100.0, 100.0),  # an axial position or offset: a length that may be <= 0
-    "mass": (1e-6, 1e6),  # 1 mg to 1000 t
-    "density": (100.0, 1e5),  # kg/m^3: polymers to tungsten, with margin
-    "inertia": (1e-12, 1e6),  # kg m^2
-    "unbalance": (0.0, 1e5),  # kg m
-    "speed": (1.0 * _RPM, 1e5 * _RPM),  # 1 rpm to 100 000 rpm
-    "force": (0.0, 1e9),  # N
-    "torque": (0.0, 1e7),  # N m
-    "time": (1e-3, 600.0),  # 1 ms to 10 min of simulated time
-    "stiffness": (1e3, 1e12),  # N/m
-    "modulus": (1e6, 1e13),  # Pa: rubber-like to beyond diamond
-    "pressure": (1e3, 1e8),  # Pa: 0.01 bar to 1000 bar
-    "viscosity": (1e-6, 100.0),  # Pa s
-    "angle": (-2 * math.pi, 2 * math.pi),  # -360 deg to 360 deg
-}
+#: The signed range of each kind of quantity a setting may take, in SI units (angles in
+#: rad, speeds in rad/s), from the one table of physical ranges (:data:`units.RANGES`):
+#: positive kinds from its smallest to its largest size, a position or an angle either
+#: side of zero, a force, torque or unbalance from zero. A setting may narrow its range.
+RANGES: dict[str, tuple[float, float]] = {kind: range_si(kind) for kind in units_ranges}
+RANGES["position"] = (-RANGES["length"][1], RANGES["length"][1])  # axial positions, offsets
+RANGES["angle"] = (-RANGES["angle"][1], RANGES["angle"][1])
+for _kind in ("unbalance", "force", "torque"):
+    RANGES[_kind] = (0.0, RANGES[_kind][1])
 #: (low, low is open, high, high is open) of a value
 Bounds = tuple[float | None, bool, float | None, bool]
 #: the smallest first moment a counterweight or a balance shaft is sized for [kg m]

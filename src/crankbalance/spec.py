@@ -12,7 +12,7 @@ from __future__ import annotations
 import json
 import math
 import re
-from functools import cache, partial
+from functools import partial
 from typing import Annotated, Any, Literal
 
 from pydantic import (
@@ -26,7 +26,7 @@ from pydantic import (
 )
 
 from .errors import InputError
-from .units import format_quantity, parse_quantity
+from .units import RANGES, format_quantity, parse_quantity, range_si
 
 Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
 LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
@@ -45,40 +45,21 @@ MAX_QUANTITY_CHARS = 100
 #: Longest ``name`` and ``description``, in characters.
 MAX_NAME_CHARS = 200
 MAX_DESCRIPTION_CHARS = 10_000
-#: Physical range of each kind of quantity, checked on the SI value after unit conversion:
-#: a value other than zero must lie between the two sizes (the sign is checked by each
-#: field: offsets, positions and angles may be negative).
-QUANTITY_RANGE: dict[str, tuple[str, str]] = {
-    "length": ("1 um", "100 m"),
-    "mass": ("1 mg", "1e5 kg"),
-    "angle": ("0 deg", "3600 deg"),
-    "speed": ("1 rpm", "1e6 rpm"),
-    "inertia": ("1e-12 kg*m^2", "1e5 kg*m^2"),
-    "area": ("1 um^2", "100 m^2"),
-    "density": ("1 kg/m^3", "1e5 kg/m^3"),
-    "unbalance": ("1e-12 kg*m", "1e5 kg*m"),
-}
-
-
-@cache
-def _range_si(kind: str) -> tuple[float, float]:
-    low, high = QUANTITY_RANGE[kind]
-    return parse_quantity(low, kind, "range"), parse_quantity(high, kind, "range")
 
 
 def parse_in_range(value: Any, kind: str, field: str = "") -> float:
     """A quantity string as an SI float, refused unless its size lies in the physical range
-    of its kind (:data:`QUANTITY_RANGE`) or it is zero; strings longer than
+    of its kind (:data:`crankbalance.units.RANGES`) or it is zero; strings longer than
     :data:`MAX_QUANTITY_CHARS` are refused before parsing."""
     if isinstance(value, str) and len(value) > MAX_QUANTITY_CHARS:
         raise InputError(
             field, value, f"must be one number and a unit, at most {MAX_QUANTITY_CHARS} characters"
         )
     number = parse_quantity(value, kind, field)
-    if kind in QUANTITY_RANGE:
-        low, high = _range_si(kind)
+    if kind in RANGES:
+        low, high = range_si(kind)
         if abs(number) > high or 0 < abs(number) < low:
-            words = QUANTITY_RANGE[kind]
+            words = RANGES[kind]
             size = " in size" if number < 0 else ""
             raise InputError(field, value, f"must lie between {words[0]} and {words[1]}{size}")
     return number

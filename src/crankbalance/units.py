@@ -10,7 +10,7 @@ from __future__ import annotations
 
 import math
 import re
-from functools import lru_cache
+from functools import cache, lru_cache
 from typing import Any
 
 from .errors import InputError
@@ -42,6 +42,38 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "power": ("W", "kW", "10 kW"),
     "frequency": ("Hz", "Hz", "50 Hz"),
 }
+
+#: The physical range of each kind of quantity: (smallest size other than zero, largest
+#: size), as written in messages. Wide enough for any engine from a model engine to a
+#: ship's diesel, narrow enough that no computation overflows. The engine file checks the
+#: size of a value (each key has its own rule on sign and zero); the study settings take
+#: their signed ranges from it (``crankbalance.options.RANGES``), and a setting may narrow
+#: its kind's range. docs/reliability.md lists them.
+RANGES: dict[str, tuple[str, str]] = {
+    "length": ("1 um", "100 m"),
+    "area": ("1 um^2", "1e4 m^2"),
+    "mass": ("1 mg", "1e6 kg"),
+    "density": ("100 kg/m^3", "1e5 kg/m^3"),
+    "inertia": ("1e-12 kg*m^2", "1e6 kg*m^2"),
+    "unbalance": ("1e-12 kg*m", "1e5 kg*m"),
+    "speed": ("1 rpm", "1e5 rpm"),
+    "force": ("1e-6 N", "1e9 N"),
+    "torque": ("1e-6 N*m", "1e7 N*m"),
+    "time": ("1 ms", "600 s"),
+    "stiffness": ("1e3 N/m", "1e12 N/m"),
+    "modulus": ("1 MPa", "1e4 GPa"),
+    "pressure": ("0.01 bar", "1000 bar"),
+    "viscosity": ("1e-6 Pa*s", "100 Pa*s"),
+    "angle": ("0 deg", "720 deg"),
+}
+
+
+@cache
+def range_si(kind: str) -> tuple[float, float]:
+    """:data:`RANGES` of ``kind`` in SI units (angles in rad, speeds in rad/s)."""
+    low, high = RANGES[kind]
+    return parse_quantity(low, kind, "range"), parse_quantity(high, kind, "range")
+
 
 _ANGLE_UNITS = {"radian", "degree", "turn", "revolution", "arcminute", "arcsecond", "gradian"}
 _ROTATION_UNITS = {"revolution", "radian", "degree", "turn", "revolutions_per_minute"}

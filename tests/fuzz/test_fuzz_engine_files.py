@@ -184,12 +184,12 @@ def quantity_strings(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str
 
 
 #: Each kind of quantity in the presets: its units, and the sizes at the edges of its
-#: documented range (crankbalance.spec.QUANTITY_RANGE) and beyond them, in those units.
+#: documented range (crankbalance.units.RANGES) and beyond them, in those units.
 EDGES = {
     "length": (("mm", "m", "um"), ["1 um", "100 m", "0.001 mm", "99.99 m", "1.1 um"]),
-    "mass": (("g", "kg"), ["1 mg", "1e5 kg", "0.001 g", "99999 kg", "1 kg"]),
-    "angle": (("deg",), ["3600 deg", "-3600 deg", "1e-12 deg", "359.999999 deg"]),
-    "speed": (("rpm",), ["1 rpm", "1e6 rpm", "1.0001 rpm", "999999 rpm"]),
+    "mass": (("g", "kg"), ["1 mg", "1e6 kg", "0.001 g", "999999 kg", "1 kg"]),
+    "angle": (("deg",), ["720 deg", "-720 deg", "1e-12 deg", "359.999999 deg"]),
+    "speed": (("rpm",), ["1 rpm", "1e5 rpm", "1.0001 rpm", "99999 rpm"]),
 }
 
 

@@ -3,7 +3,7 @@ counterweight, the correction and the tolerance (``examples/crf250r_rebalance.to
 ``docs/single_cylinder.md``; Hoem and Røsholm (2016), Sec. 6.4).
 
 Quantities are unit strings, parsed to SI floats on validation and checked against the
-physical range of their kind (:data:`crankbalance.spec.QUANTITY_RANGE`); unknown keys are
+physical range of their kind (:data:`crankbalance.units.RANGES`); unknown keys are
 errors.
 Every key is optional here: the ``rebalance`` command completes the file with its options,
 and :func:`crankbalance.studies.rebalance.rebalance_parts` says what is still missing.
