@@ -183,7 +183,7 @@ BalanceFactors = Annotated[list[Factor], Field(min_length=1, max_length=MAX_SWEE
 class StudyOptions(BaseModel):
     """Base of the study settings: unknown keys are errors, values are frozen and finite."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False)
+    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False, defer_build=True)
 
 
 # --------------------------------------------------------------------------------------
