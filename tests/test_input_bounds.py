@@ -9,13 +9,11 @@ line naming the field as written, exit status 2.
 
 from __future__ import annotations
 
-import contextlib
 import json
 import os
 import re
-import signal
 import socket
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from pathlib import Path
 from typing import Any
 
@@ -29,24 +27,10 @@ from crankbalance.io.reading import MAX_DEPTH, parse_json, parse_toml, read_text
 from crankbalance.spec import MAX_CYLINDERS, MAX_THROWS, parse_in_range
 from crankbalance.units import RANGES
 
-from .conftest import run_cli
+from .conftest import hang_guard, run_cli
 
 #: Seconds a test may wait on a read before it counts as hung (a guard, not a timing test).
 HANG_GUARD = 60
-
-
-@contextlib.contextmanager
-def hang_guard() -> Iterator[None]:
-    def stop(signum: int, frame: Any) -> None:
-        raise AssertionError(f"still waiting after {HANG_GUARD} s")
-
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.alarm(HANG_GUARD)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def one_line_error(code: int, out: str, err: str, *needles: str) -> str:
@@ -83,7 +67,7 @@ def test_devices_are_refused_without_reading(
 ) -> None:
     """`crankbalance analyze /dev/zero` read without bound until a MemoryError;
     /dev/urandom hung."""
-    with hang_guard():
+    with hang_guard(HANG_GUARD):
         code, out, err = run_cli([command, device], capsys)
     one_line_error(code, out, err, f"engine = '{device}'", "is a device")
 
@@ -93,7 +77,7 @@ def test_fifo_is_refused_without_waiting_for_a_writer(
 ) -> None:
     fifo = tmp_path / "engine.toml"
     os.mkfifo(fifo)
-    with hang_guard():
+    with hang_guard(HANG_GUARD):
         code, out, err = run_cli(["analyze", str(fifo)], capsys)
         one_line_error(code, out, err, "engine = ", "pipe")
         with pytest.raises(InputError, match="pipe"):
@@ -109,7 +93,7 @@ def test_socket_and_folder_and_symlink_to_a_device_are_refused(tmp_path: Path) -
         load_engine(tmp_path)
     if DEVICES:
         (tmp_path / "zero.toml").symlink_to(DEVICES[0])
-        with hang_guard(), pytest.raises(InputError, match="device"):
+        with hang_guard(HANG_GUARD), pytest.raises(InputError, match="device"):
             load_engine(tmp_path / "zero.toml")
 
 
@@ -119,7 +103,7 @@ def test_rebalance_parts_must_be_a_file(
 ) -> None:
     """`rebalance --parts SOME_DIRECTORY` ended in a traceback."""
     path = str(tmp_path) if target == "folder" else target
-    with hang_guard():
+    with hang_guard(HANG_GUARD):
         code, out, err = run_cli(["rebalance", "--parts", path], capsys)
     one_line_error(code, out, err, "parts = ", "folder" if target == "folder" else "device")
 

@@ -21,7 +21,6 @@ import io
 import json
 import os
 import re
-import signal
 import tomllib
 from collections import Counter
 from collections.abc import Callable, Iterator
@@ -35,6 +34,8 @@ from hypothesis import strategies as st
 from crankbalance.cli import main
 from crankbalance.io.engine_file import dumps_toml, list_presets, load_engine, preset_text
 from crankbalance.spec import LAYOUTS
+
+from ..conftest import hang_guard
 
 PRESETS = list_presets()
 #: Mutated files per category.
@@ -347,24 +348,6 @@ CATEGORIES: dict[str, Callable[[dict[str, Any], Draw], tuple[str | bytes, str]]]
 
 
 # --------------------------------------------------------------------------- running
-class Hang(Exception):
-    """A CLI run outlasted the hang guard."""
-
-
-@contextlib.contextmanager
-def hang_guard(seconds: int) -> Iterator[None]:
-    def stop(signum: int, frame: Any) -> None:
-        raise Hang(f"still running after {seconds} s")
-
-    previous = signal.signal(signal.SIGALRM, stop)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
-
-
 def run(args: list[str]) -> tuple[int | str, str, str]:
     """Exit status (or the exception that escaped), stdout and stderr of one CLI run."""
     out, err = io.StringIO(), io.StringIO()

@@ -18,7 +18,6 @@ import contextlib
 import io
 import os
 import re
-import signal
 import tempfile
 from collections.abc import Iterator
 from dataclasses import dataclass, field
@@ -33,6 +32,8 @@ from hypothesis import strategies as st
 from crankbalance.cli import COMMANDS, cli, main
 from crankbalance.options import RANGES
 from crankbalance.units import KINDS, format_quantity
+
+from ..conftest import hang_guard
 
 ROOT = Path(__file__).resolve().parents[2]
 PARTS = str(ROOT / "examples" / "crf250r_rebalance.toml")
@@ -528,24 +529,6 @@ def invocations(draw: Any, name: str) -> list[str]:
         value = draw(st.sampled_from(table.options[option]))
         args += [option] if value is None else [option, value]
     return args
-
-
-class Hang(Exception):
-    """An example ran longer than the hang guard."""
-
-
-@contextlib.contextmanager
-def hang_guard(seconds: int) -> Iterator[None]:
-    def alarm(signum: int, frame: Any) -> None:
-        raise Hang(f"no end after {seconds} s")
-
-    previous = signal.signal(signal.SIGALRM, alarm)
-    signal.alarm(seconds)
-    try:
-        yield
-    finally:
-        signal.alarm(0)
-        signal.signal(signal.SIGALRM, previous)
 
 
 def run(args: list[str]) -> tuple[int, str, str]:
