@@ -156,3 +156,39 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
     none = figures.drilling_plan(replace(reb, iterations=[]), 0.031)
     assert not [t for t in none.data if t.legendgroup == "holes"]
     assert "no hole needed" in none.layout.title.text
+
+
+@pytest.mark.parametrize(
+    ("preset", "says"),
+    [
+        ("v10-72", r"does not apply to this engine[\s\S]*second-order effect is a moment"),
+        ("inline6", r"needs no balance shaft"),
+        ("radial5", r"does not apply to this engine[\s\S]*counterweights cancel it"),
+    ],
+)
+def test_balance_shaft_says_when_it_does_not_apply(
+    server: str, page: Any, preset: str, says: str
+) -> None:
+    """No silent fallback: an engine whose shaft would carry a moment, one without free
+    first- or second-order effects and one whose counterweights cancel its free force are
+    told so, and no placement result or figure is shown."""
+    errors = _open(page, server, preset, "Balance shaft")
+    page.get_by_role("button", name="Find the optimum").click()
+    panel = page.locator(".q-tab-panel:visible").first
+    playwright_api.expect(panel).to_contain_text(re.compile(says), use_inner_text=True)
+    assert "optimum mass position" not in panel.inner_text()
+    playwright_api.expect(panel.locator(".js-plotly-plot:visible")).to_have_count(0)
+    if preset == "v10-72":
+        _shoot(page, "shaft-v10")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def test_balance_shaft_inline4_secondary_force(server: str, page: Any) -> None:
+    """The inline-4's free second-order force: the study applies and finds the 67 % of Kim
+    (2018), Fig. 7, with w = 2."""
+    errors = _open(page, server, "inline4", "Balance shaft")
+    _text(page, "For this engine", r"free second-order force of \d")
+    page.get_by_role("button", name="Find the optimum").click()
+    _text(page, "optimum mass position", r"66\.7 %")
+    _shoot(page, "shaft-inline4")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
