@@ -192,3 +192,33 @@ def test_balance_shaft_inline4_secondary_force(server: str, page: Any) -> None:
     _text(page, "optimum mass position", r"66\.7 %")
     _shoot(page, "shaft-inline4")
     assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def _outer_radii(summary: str) -> list[float]:
+    return [float(x) for x in re.findall(r"outer radius ([\d.]+) mm, balance", summary)]
+
+
+def test_counterweight_radial_space_from_the_engine(server: str, page: Any) -> None:
+    """Largest radial space left empty: the optimiser keeps within the engine's space
+    (rod length - crank radius, 155 - 47 = 108 mm for the crossplane V8); a larger limit
+    typed in lets bigger designs through, each warned about."""
+    errors = _open(page, server, "v8-crossplane", "Counterweight design")
+    _text(page, "Largest radial space", r"the engine's 108\.0 mm")
+    page.get_by_role("button", name="Optimise").click()
+    summary = _text(page, "feasible designs", r"Least radius:.*outer radius")
+    radii = _outer_radii(summary)
+    assert len(radii) == 2 and max(radii) <= 108.0 + 0.05, summary
+    assert "Warning" not in summary
+    _setting(page, "cw_max_radius").fill("300 mm")
+    page.get_by_role("button", name="Optimise").click()
+    # the new result (the old one had no warning): without the engine's limit the
+    # least-mass design is larger than the space
+    summary = _text(page, "feasible designs", r"larger than the space")
+    radii = _outer_radii(summary)
+    assert max(radii) > 108.0
+    for radius in radii:
+        assert (f"outer radius {radius:.1f} mm is larger than the space" in summary) == (
+            radius > 108.0
+        )
+    _shoot(page, "counterweight-space")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors

@@ -7,6 +7,7 @@ input, or in a notification that names the setting by its label, never by its ke
 
 from __future__ import annotations
 
+import re
 from typing import TYPE_CHECKING
 
 from nicegui import ui
@@ -23,9 +24,14 @@ def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[
 
     ``aliases`` maps argument names of the library to the tab's setting keys. The message
     is the value given and what is allowed; a field that is no setting keeps only that."""
-    key = (aliases or {}).get(error.field, error.field)
+    aliases = aliases or {}
+    key = aliases.get(error.field, error.field)
     given = "" if error.value is None else f"{error.value!r}: "
-    return (key if key in SETTING_FIELDS else None), f"{given}{error.allowed}"
+    text = error.allowed
+    for name, setting in aliases.items():  # library names inside the text, as labelled
+        if setting in SETTING_FIELDS:
+            text = re.sub(rf"\b{name}\b", SETTING_FIELDS[setting][0], text)
+    return (key if key in SETTING_FIELDS else None), f"{given}{text}"
 
 
 def show_error(page: Page, error: InputError, aliases: dict[str, str] | None = None) -> str:
