@@ -8,7 +8,7 @@ histories from :func:`crankbalance.balancing.point_mass_history`), and turning a
 into a PNG, SVG or HTML file is :mod:`crankbalance.render`'s job.
 
 It is longer than the ~800 lines the layout aims at because it holds one builder per
-figure of every study (fifteen builders, 30-190 lines each) around one shared palette and title
+figure of every study (sixteen builders, 30-190 lines each) around one shared palette and title
 style; splitting it by study would spread that style over several modules for no gain in
 cohesion (each builder depends only on the palette and helpers at the top).
 
@@ -40,6 +40,7 @@ Other studies:
 - ``balance_factor_sweep(study) -> Figure``
 - ``pareto_front(optimum) -> Figure``               (counterweight.CounterweightOptimum)
 - ``counterweight_profile(design) -> Figure``       (counterweight.CounterweightDesign)
+- ``drilling_plan(result, crank_radius) -> Figure`` (single_cylinder.RebalanceResult)
 - ``shaft_study(study) -> Figure``                  (balance_shaft placement studies)
 - ``shaft_response_figure(response) -> Figure``     (balance_shaft.ShaftResponse)
 - ``sensitivity_figure(result) -> Figure``          (engine_cycle.SensitivityResult)
@@ -1073,6 +1074,97 @@ def counterweight_profile(design: Any) -> go.Figure:
         title=f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
         f"{design.thickness * 1e3:.2f} mm, outer radius "
         f"{float(props.outer_radius) * 1e3:.2f} mm",
+    )
+    return fig
+
+
+def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
+    """The drilled holes of a rebalancing to scale (mm), one web seen along the crank axis:
+    the crank axis, the crankpin centre straight up, the holes on the counterweight side
+    (180 deg from the crankpin) and a schematic counterweight outline
+    (:class:`~crankbalance.single_cylinder.RebalanceResult` with a
+    :class:`~crankbalance.single_cylinder.DrilledHoles` correction; ``crank_radius`` [m])."""
+    go = _go()
+    holes = result.correction
+    if getattr(holes, "kind", "") != "holes":
+        raise InputError("correction", getattr(holes, "kind", None), "the plan draws holes")
+    depth = result.iterations[-1].depth if result.iterations else 0.0
+    d, rh, r = holes.diameter * 1e3, holes.radius * 1e3, crank_radius * 1e3
+    fig = go.Figure()
+    outer = rh + 1.5 * d
+    arc = np.radians(np.linspace(120.0, 240.0, 61)) + np.pi / 2  # around straight down
+    ring = np.linspace(0, 2 * np.pi, 73)
+    fig.add_trace(
+        go.Scatter(
+            x=np.concatenate([[0.0], outer * np.cos(arc), [0.0]]),
+            y=np.concatenate([[0.0], outer * np.sin(arc), [0.0]]),
+            mode="lines",
+            fill="toself",
+            fillcolor="rgba(127,140,141,0.35)",
+            name="counterweight (outline schematic)",
+            line={"color": COLORS["crank"], "width": 1},
+            hoverinfo="skip",
+        )
+    )
+    if depth > 0:
+        # the holes of one web, side by side on the circle of radius rh, 1.5 d apart
+        spread = 1.5 * d / rh * (np.arange(holes.number) - (holes.number - 1) / 2)
+        for k, phi in enumerate(spread):
+            cx, cy = rh * np.sin(phi), -rh * np.cos(phi)
+            if holes.direction == "axial":
+                x, y = cx + d / 2 * np.cos(ring), cy + d / 2 * np.sin(ring)
+            else:  # drilled inward from the rim: the slot the drill leaves, seen from the side
+                dx, dy = np.sin(phi), -np.cos(phi)
+                ends = [(rh - depth * 1e3) * np.array([dx, dy]), rh * np.array([dx, dy])]
+                px, py = -dy * d / 2, dx * d / 2
+                corners = [ends[0] + (px, py), ends[1] + (px, py), ends[1] - (px, py)]
+                corners += [ends[0] - (px, py), ends[0] + (px, py)]
+                x, y = np.array(corners).T
+            fig.add_trace(
+                go.Scatter(
+                    x=x,
+                    y=y,
+                    mode="lines",
+                    fill="toself",
+                    fillcolor="white",
+                    name=f"hole Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep",
+                    legendgroup="holes",
+                    showlegend=k == 0,
+                    line={"color": COLORS["after"], "width": 2},
+                )
+            )
+    fig.add_trace(
+        go.Scatter(
+            x=[0.0, 0.0],
+            y=[r, -rh],
+            mode="markers+text",
+            text=[f"crankpin (r = {r:.4g} mm)", f"holes at {rh:.4g} mm"],
+            textposition=["top center", "bottom center"],
+            name="crankpin centre, hole radius",
+            marker={"color": ["black", COLORS["after"]], "size": 8, "symbol": "circle-open"},
+        )
+    )
+    fig.add_trace(
+        go.Scatter(
+            x=[0.0],
+            y=[0.0],
+            mode="markers",
+            name="crank axis",
+            marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
+        )
+    )
+    reach = 1.15 * max(outer, r)
+    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
+    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
+    what = (
+        f"{holes.number} × Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep, on each of {holes.webs} webs"
+        if depth > 0
+        else "no hole needed"
+    )
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=figure_title("Drilling plan", note=what),
     )
     return fig
 

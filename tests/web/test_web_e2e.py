@@ -116,7 +116,8 @@ def test_screenshots_of_every_tab(server: str, page) -> None:
     actions = {
         "Counterweight design": ("Optimise", r"feasible designs"),
         "Single cylinder": ("Compute study", r"Least peak at"),
-        "Balance shaft": ("Find the optimum", r"optimum mass position"),
+        # the paper's inline-3 has free moments only: the tab says the study does not apply
+        "Balance shaft": ("Find the optimum", r"does not apply"),
         "Performance": ("Run the sweep", r"Peak shaking N[\s\S]*\b0\.75\b"),
     }
     for k, tab in enumerate(TABS):

@@ -1,5 +1,11 @@
 """The Counterweight design tab: the required first moment, the optimiser's constraints, the
-Pareto front, the chosen design to scale and its SVG/DXF/STL export."""
+Pareto front, the chosen design to scale and its SVG/DXF/STL export.
+
+The radial space a counterweight may take is limited by the engine: it must pass under the
+piston at bottom dead centre, where the wrist pin is ``rod length - crank radius`` from the
+crank axis. When *Largest radial space* is left empty the optimiser gets that limit, and a
+design larger than it (with a larger limit typed in) is warned about.
+"""
 
 from __future__ import annotations
 
@@ -9,7 +15,38 @@ from nicegui import run, ui
 
 from ..errors import InputError
 from . import studies
+from .messages import show_error
 from .widgets import Tab, plot_or_none, send_download
+
+
+def radial_space(model: Any) -> float:
+    """The radial space the engine allows a crank counterweight [m]: the wrist pin's distance
+    from the crank axis at bottom dead centre, rod length - crank radius (the piston skirt
+    below the pin and a running clearance take more; the designer's own limit wins)."""
+    return float(model.rod_length) - float(model.crank_radius)
+
+
+def space_warnings(optimum: Any, limit: float) -> list[str]:
+    """Warnings for the shown designs whose outer radius exceeds the engine's space."""
+    out = []
+    for label, row in (
+        ("least mass", optimum.row(optimum.least_mass)),
+        ("least radius", optimum.row(optimum.least_radius)),
+    ):
+        if row["outer_radius"] > limit:
+            out.append(
+                f"**Warning:** the {label} design's outer radius {row['outer_radius'] * 1e3:.1f}"
+                f" mm is larger than the space the engine allows ({limit * 1e3:.1f} mm, rod "
+                "length - crank radius): it would hit the piston at bottom dead centre."
+            )
+    return out
+
+
+#: argument names of the optimiser -> the settings of this tab
+ALIASES = {
+    name: f"cw_{name}"
+    for name in ("density", "max_mass", "max_radius", "min_balance", "iterations", "population")
+}
 
 
 class CounterweightTab(Tab):
@@ -31,6 +68,7 @@ class CounterweightTab(Tab):
                     "cw_seed",
                 ):
                     self.page.setting(key)
+                self.cw_space = ui.markdown("").classes("text-grey-8 max-w-xs").mark("cw-space")
                 ui.button("Optimise", on_click=self.optimise).props("color=primary").mark(
                     "optimise"
                 )
@@ -72,7 +110,13 @@ class CounterweightTab(Tab):
                 f"({mass * 1e3:.1f} g at {radius * 1e3:g} mm, from the balancing)"
             )
         except InputError as error:
-            self.cw_requirement.set_content(str(error))
+            self.cw_requirement.set_content(f"No counterweight requirement: {error.allowed}")
+        limit = radial_space(c.analysis.model)
+        self.cw_space.set_content(
+            f"Empty *Largest radial space*: the engine's {limit * 1e3:.1f} mm (rod length - "
+            "crank radius, the wrist pin at bottom dead centre); the piston skirt needs more "
+            "clearance, so type your own limit."
+        )
 
     def reset(self) -> None:
         self.optimum = None
@@ -82,12 +126,19 @@ class CounterweightTab(Tab):
         if c is None:
             return
         settings = dict(self.page.project.settings)
+        limit = radial_space(c.analysis.model)
+        if not str(settings.get("cw_max_radius", "")).strip():
+            settings["cw_max_radius"] = f"{limit * 1e3:.6g} mm"  # the engine's space
         self.cw_summary.set_content("optimising …")
         try:
             optimum = await run.io_bound(studies.run_counterweight, c, settings)
         except InputError as error:
-            self.cw_summary.set_content(str(error))
-            self.study_error(error)
+            message = show_error(self.page, error, ALIASES)
+            if error.field == "constraints" and settings["cw_max_radius"] != (
+                self.page.project.settings.get("cw_max_radius")
+            ):
+                message += f" (*Largest radial space* was empty: the engine's {limit * 1e3:.1f} mm)"
+            self.cw_summary.set_content(message)
             return
         if optimum is None:
             self.cw_summary.set_content("optimisation cancelled (server stopping): no result")
@@ -104,7 +155,7 @@ class CounterweightTab(Tab):
                 f"**{label}:** {row['mass'] * 1e3:.1f} g, outer radius "
                 f"{row['outer_radius'] * 1e3:.1f} mm, balance {row['balance']:.1f} %"
             )
-        self.cw_summary.set_content("  \n".join(text))
+        self.cw_summary.set_content("  \n".join(text + space_warnings(optimum, limit)))
         for card in self.cards:
             card.refresh()
 

@@ -9,6 +9,7 @@ from nicegui import run, ui
 
 from ..errors import InputError
 from . import studies
+from .messages import show_error
 from .widgets import Tab, fmt_g, plot_or_none
 
 
@@ -68,7 +69,7 @@ class PerformanceTab(Tab):
         try:
             result = await run.io_bound(studies.performance_study, c, settings)
         except InputError as error:
-            self.study_error(error)
+            show_error(self.page, error)
             return
         if result is None:
             ui.notify("sweep cancelled (server stopping): no result", type="warning")

@@ -1,4 +1,11 @@
-"""The Balance shaft tab: where along a balance shaft to put its unbalance mass."""
+"""The Balance shaft tab: where along a balance shaft to put its unbalance mass.
+
+The placement study (Kim 2018, Sec. 3.1) is for one unbalance mass on a shaft between end
+bearings: a shaft that carries a free force. An engine whose free effect of the shaft's
+order is a moment (a couple: two masses in opposition at the shaft's ends) or that has no
+free first- or second-order effect at all is told so; nothing falls back to another engine's
+shaft.
+"""
 
 from __future__ import annotations
 
@@ -8,7 +15,40 @@ from nicegui import ui
 
 from ..errors import InputError
 from . import studies
+from .messages import show_error
 from .widgets import Tab, plot_or_none
+
+#: argument names of the library -> the settings of this tab
+ALIASES = {"length": "bs_length", "diameter": "bs_diameter", "weight": "bs_weight"}
+ORDER_NAMES = {1: "first-order", 2: "second-order"}
+
+
+def applicability(analysis: Any) -> tuple[bool, str]:
+    """(whether the placement study applies to this engine, why in words) from its free
+    forces and moments (:func:`~crankbalance.studies.requirements.default_shaft_order`
+    picks the order)."""
+    from ..studies.requirements import default_shaft_order
+
+    try:
+        order = default_shaft_order(analysis)
+    except InputError:
+        return False, (
+            "**This engine needs no balance shaft:** it has no free first- or second-order "
+            "force or moment, so the placement study does not apply to it."
+        )
+    row = analysis.to_dict()
+    force = float(row["free_forces"][order - 1]["amplitude_N"])
+    moment = float(row["free_moments"][order - 1]["amplitude_Nm"])
+    name = ORDER_NAMES[order]
+    if moment > 0:
+        also = f" (and a free force of {force:.4g} N)" if force > 0 else ""
+        return False, (
+            f"**The placement study does not apply to this engine.** Its free {name} effect "
+            f"is a moment of {moment:.4g} N·m{also}: a shaft cancels it with two masses in "
+            "opposition at its ends, not with the one unbalance mass between end bearings "
+            "whose position this study (Kim 2018) finds."
+        )
+    return True, f"For this engine's free {name} force of {force:.4g} N."
 
 
 class ShaftTab(Tab):
@@ -17,28 +57,57 @@ class ShaftTab(Tab):
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
-            with ui.card():
+            with ui.card().classes("max-w-full"):
                 ui.label("Shaft and objective").classes("text-subtitle1")
                 for key in ("bs_length", "bs_diameter", "bs_weight"):
                     self.page.setting(key)
                 ui.button("Find the optimum", on_click=self.run_study).props("color=primary").mark(
                     "run-shaft"
                 )
-            with ui.card().classes("grow"):
+            with ui.card().classes("grow max-w-full"):
+                self.applies = ui.markdown("").mark("shaft-applies")
                 self.shaft_summary = ui.markdown("").mark("shaft-summary")
         self.card("shaft", "Placement study", lambda: plot_or_none("shaft_study", self.result))
 
+    def show(self, c: Any) -> None:
+        ok, why = applicability(c.analysis)
+        self.applies.set_content(why)
+        if ok:
+            self.applies.classes(remove="text-orange-10")
+        else:
+            self.applies.classes(add="text-orange-10")
+        if not ok and self.result is not None:
+            self._clear()
+
     def reset(self) -> None:
         self.result = None
+
+    def _clear(self, text: str = "") -> None:
+        self.result = None
+        self.shaft_summary.set_content(text)
+        for card in self.cards:
+            card.refresh()
 
     async def run_study(self) -> None:
         c = self.study_ready()
         if c is None:
             return
+        ok, why = applicability(c.analysis)
+        self.applies.set_content(why)
+        if not ok:
+            self._clear()
+            ui.notify("The placement study does not apply to this engine", type="warning")
+            return
         try:
             study, which = studies.shaft_placement(c, self.page.project.settings)
         except InputError as error:
-            self.study_error(error)
+            if error.field == "engine":  # the balancing leaves no unbalance for a shaft
+                self._clear(
+                    f"**The placement study does not apply to this engine:** "
+                    f"{error.allowed} (the crank counterweights cancel it)."
+                )
+                return
+            self._clear(show_error(self.page, error, ALIASES))
             return
         self.result = study
         self.shaft_summary.set_content(

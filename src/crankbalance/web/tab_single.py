@@ -1,5 +1,6 @@
 """The Single cylinder tab: the balance-factor study of one cylinder, the ISO 21940-11
-check and the rebalancing after new parts."""
+check and the rebalancing after new parts, carried to its drilling plan (holes: count,
+diameter, depth, radius, angle, mass removed per web, passes) with a drawing."""
 
 from __future__ import annotations
 
@@ -9,12 +10,99 @@ from nicegui import ui
 
 from ..errors import InputError
 from . import studies
+from .messages import show_error
 from .widgets import Tab, plot_or_none
+
+#: argument names of the library -> the settings of this tab (messages beside the input)
+ALIASES = {
+    "grade": "sc_grade",
+    "cylinder": "sc_cylinder",
+    "balance_factor": "sc_balance_factor",
+    "target_balance_factor": "sc_balance_factor",
+    "hole_diameter": "rb_hole_diameter",
+    "correction_radius": "rb_hole_radius",
+    "correction": "rb_hole_diameter",
+}
+#: columns of the passes table (the thesis' steps 3-8, one row per pass)
+PASS_COLUMNS = [
+    {"name": "iteration", "label": "Pass", "field": "iteration"},
+    {"name": "radius", "label": "Radius [mm]", "field": "radius"},
+    {"name": "mass", "label": "Mass to remove [g]", "field": "mass"},
+    {"name": "depth", "label": "Depth [mm]", "field": "depth"},
+    {"name": "removed", "label": "Removed [g]", "field": "removed"},
+    {"name": "residual", "label": "Residual [g·mm]", "field": "residual"},
+    {"name": "within", "label": "Within tolerance", "field": "within"},
+]
+
+
+def drilling_plan(result: Any) -> list[tuple[str, str]]:
+    """The drilling plan of a rebalancing as (what, value) lines, from the library's
+    :class:`~crankbalance.single_cylinder.RebalanceResult` (its holes and last pass)."""
+    holes = result.correction
+    passes = len(result.iterations)
+    verdict = (
+        f"residual {abs(result.residual) * 1e6:.2f} g·mm "
+        f"{'≤' if result.passed else '>'} tolerance {result.tolerance * 1e6:.2f} g·mm: "
+        f"**{'PASS' if result.passed else 'FAIL'}**"
+    )
+    if passes == 0:
+        return [("Holes", "none: the unbalance to remove is within the tolerance"), ("", verdict)]
+    last = result.iterations[-1]
+    axial = holes.direction == "axial"
+    return [
+        (
+            "Holes",
+            f"{holes.number} per web on {holes.webs} webs ({holes.number * holes.webs} in all), "
+            + ("axial (parallel to the crank axis)" if axial else "radial, inward from the rim"),
+        ),
+        ("Drill diameter", f"{holes.diameter * 1e3:.4g} mm"),
+        ("Depth", f"{last.depth * 1e3:.3f} mm (flat-bottomed)"),
+        (
+            "Radius" if axial else "Rim radius",
+            f"{holes.radius * 1e3:.4g} mm from the crank axis",
+        ),
+        ("Angle", "180° from the crankpin (on the counterweight's centre line)"),
+        (
+            "Mass removed per web",
+            f"{last.removed_mass / holes.webs * 1e3:.2f} g ({last.removed_mass * 1e3:.2f} g "
+            "in all)",
+        ),
+        ("Passes", f"{passes} ({result.status}); {verdict}"),
+    ]
+
+
+def pass_rows(result: Any) -> list[dict[str, Any]]:
+    """The passes of a rebalancing as rows of :data:`PASS_COLUMNS` (mm, g, g·mm)."""
+    return [
+        {
+            "iteration": it.iteration,
+            "radius": f"{it.correction_radius * 1e3:.3f}",
+            "mass": f"{it.correction_mass * 1e3:.3f}",
+            "depth": f"{it.depth * 1e3:.3f}",
+            "removed": f"{it.removed_mass * 1e3:.3f}",
+            "residual": f"{it.residual * 1e6:.3f}",
+            "within": "yes" if it.within_tolerance else "no",
+        }
+        for it in result.iterations
+    ]
+
+
+def rotor_mass_note(iso: dict[str, Any], given: str) -> str:
+    """Beside the ISO result: the rotor mass used, and when none was given, its stand-in
+    named with what it does to the tolerance."""
+    if given.strip():
+        return f"Rotor mass {iso['rotor_mass']:.3f} kg, as given."
+    return (
+        f"**Rotor mass not given:** the crank's rotating masses ({iso['rotor_mass']:.3f} kg) "
+        "stand in for it. The whole crank is heavier, so this tolerance is tighter than "
+        "ISO 21940-11 asks; enter the crank's mass under *Rotor mass*."
+    )
 
 
 class SingleTab(Tab):
     name = "single"
     result: Any = None
+    rebalanced: Any = None
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
@@ -31,6 +119,7 @@ class SingleTab(Tab):
                 for key in ("sc_grade", "sc_rotor_mass", "sc_residual"):
                     self.page.setting(key)
                 self.iso_summary = ui.markdown("").mark("iso-summary")
+                self.iso_note = ui.markdown("").classes("text-orange-10").mark("iso-rotor-mass")
             with ui.card():
                 ui.label("Rebalancing after new parts").classes("text-subtitle1")
                 for key in (
@@ -43,7 +132,19 @@ class SingleTab(Tab):
                 ):
                     self.page.setting(key)
                 self.rebalance_summary = ui.markdown("").mark("rebalance-summary")
-        with ui.grid(columns=2).classes("w-full"):
+            with ui.card().classes("grow max-w-full"):
+                ui.label("Drilling plan").classes("text-subtitle1")
+                self.plan = ui.markdown("Compute the study for the drilling plan.").mark(
+                    "drilling-plan"
+                )
+                self.passes = (
+                    ui.table(columns=PASS_COLUMNS, rows=[], row_key="iteration")
+                    .classes("max-w-full")
+                    .props("dense wrap-cells")
+                    .mark("drilling-passes")
+                )
+                self.passes.set_visibility(False)
+        with ui.grid().classes("w-full grid-cols-1 md:grid-cols-2"):
             self.card(
                 "single-forces",
                 "Forces of one cylinder",
@@ -59,9 +160,17 @@ class SingleTab(Tab):
                 "Polar diagram of the residual force",
                 lambda: plot_or_none("single_cylinder_polar", self.result),
             )
+            self.card("drilling", "Drilling plan to scale", self._drawing)
 
     def reset(self) -> None:
-        self.result = None
+        self.result = self.rebalanced = None
+
+    def _drawing(self) -> Any | None:
+        c = self.page.project.computed
+        if self.rebalanced is None or c is None:
+            return None
+        crank_radius = float(c.analysis.model.crank_radius)
+        return plot_or_none("drilling_plan", self.rebalanced, crank_radius)
 
     async def run_study(self) -> None:
         c = self.study_ready()
@@ -73,9 +182,13 @@ class SingleTab(Tab):
             iso = studies.iso_check(c, s)
             reb = studies.rebalance_study(c, s)
         except InputError as error:
-            self.study_error(error)
+            self.result = self.rebalanced = None
+            self.plan.set_content(f"No drilling plan: {show_error(self.page, error, ALIASES)}")
+            self.passes.set_visibility(False)
+            for card in self.cards:
+                card.refresh()
             return
-        self.result = study
+        self.result, self.rebalanced = study, reb
         self.single_summary.set_content(
             f"Primary force **{study.primary_force:.1f} N**; with f_b = "
             f"{study.balance_factor:g}: peak resultant **{study.peak_resultant:.1f} N** "
@@ -94,11 +207,17 @@ class SingleTab(Tab):
                 f"{'PASS' if verdict.passed else 'FAIL'}** ({verdict.ratio * 100:.0f} %)"
             )
         )
+        self.iso_note.set_content(rotor_mass_note(iso, str(s.get("sc_rotor_mass", ""))))
         self.rebalance_summary.set_content(
             f"Unbalance to remove **{reb.unbalance * 1e6:.1f} g·mm**; achieved f_b "
             f"{reb.achieved_balance_factor:.3f}; residual {reb.residual * 1e6:.2f} g·mm "
             f"({'within' if reb.passed else 'outside'} tolerance, {reb.status})  \n"
             f"Bob-weight {reb.bob_weight * 1e3:.1f} g"
         )
+        lines = [f"**{what}:** {value}" if what else value for what, value in drilling_plan(reb)]
+        self.plan.set_content("  \n".join(lines))
+        self.passes.rows = pass_rows(reb)
+        self.passes.set_visibility(bool(reb.iterations))
+        self.passes.update()
         for card in self.cards:
             card.refresh()

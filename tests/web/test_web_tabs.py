@@ -1,0 +1,224 @@
+"""Browser tests of the study tabs (Single cylinder, Counterweight design, Balance shaft):
+``crankbalance web`` in a subprocess driven by Playwright in Debian's chromium. Every wait
+is for a state of the page with the hang guard of ``conftest.py``; the numbers on screen
+are checked against the library's own results for the same engine and settings.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import re
+from pathlib import Path
+from typing import Any
+
+import pytest
+
+pytest.importorskip("nicegui")
+playwright_api = pytest.importorskip("playwright.sync_api")
+
+#: screenshots for a person to look at (not committed): CRANKBALANCE_SHOTS=folder
+SHOTS = os.environ.get("CRANKBALANCE_SHOTS")
+#: true once every plotly figure visible in the open tab panel is drawn with its data
+DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
+    .filter((e) => e.offsetParent !== null)
+    .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
+#: plotly complains when a figure in a hidden tab panel is resized; harmless
+BENIGN = ("Resize must be passed a displayed plot div element",)
+
+
+def _open(page: Any, server: str, preset: str, tab: str) -> list[str]:
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(f"{server}/?preset={preset}")
+    playwright_api.expect(page.locator(".q-header")).to_contain_text(re.compile("computed"))
+    page.get_by_role("tab", name=tab).click()
+    playwright_api.expect(page.get_by_role("tab", name=tab)).to_have_attribute(
+        "aria-selected", "true"
+    )
+    return errors
+
+
+def _setting(page: Any, key: str) -> Any:
+    return page.locator(f"[data-testid=setting-{key}]").first
+
+
+def _text(page: Any, marker_text: str, pattern: str) -> str:
+    """Wait until the element of the tab that shows ``marker_text`` matches ``pattern``."""
+    locator = page.locator(".q-tab-panel:visible .nicegui-markdown", has_text=marker_text).first
+    playwright_api.expect(locator).to_contain_text(re.compile(pattern), use_inner_text=True)
+    return str(locator.inner_text())
+
+
+def _shoot(page: Any, name: str) -> None:
+    if not SHOTS:
+        return
+    Path(SHOTS).mkdir(parents=True, exist_ok=True)
+    page.wait_for_function(DRAWN)
+    for width, height in ((1280, 800), (390, 844)):
+        page.set_viewport_size({"width": width, "height": height})
+        page.evaluate("window.scrollTo(0, 0)")
+        page.screenshot(path=f"{SHOTS}/{name}-{width}.png", full_page=True)
+    page.set_viewport_size({"width": 1500, "height": 1000})
+
+
+def _single_reference(new_reciprocating: str) -> tuple[Any, Any]:
+    """The library's rebalancing and ISO check of the single preset's cylinder 1."""
+    from crankbalance.io.engine_file import load_engine
+    from crankbalance.options import RebalanceOptions, SingleCylinderOptions
+    from crankbalance.studies.build import build_model
+    from crankbalance.studies.cylinder import iso_check, rebalance_cylinder
+
+    model = build_model(load_engine("single"))
+    single = SingleCylinderOptions()
+    reb = rebalance_cylinder(model, single, RebalanceOptions(new_reciprocating=new_reciprocating))
+    return reb, iso_check(model, single)
+
+
+def test_single_cylinder_drilling_plan(server: str, page: Any) -> None:
+    """New lighter reciprocating parts: the plan on screen (count, diameter, depth, radius,
+    angle, mass per web, passes) and its drawing equal the library's rebalancing; the
+    rotor mass left empty is named as a stand-in beside the ISO result."""
+    errors = _open(page, server, "single", "Single cylinder")
+    _setting(page, "rb_new_reciprocating").fill("359 g")
+    page.get_by_role("button", name="Compute study").click()
+    plan = _text(page, "Holes:", r"Passes:")
+    reb, iso = _single_reference("359 g")
+    holes, last = reb.correction, reb.iterations[-1]
+    assert last.depth > 0 and reb.passed, "the case needs holes and converges"
+    assert f"{holes.number} per web on {holes.webs} webs" in plan
+    assert f"Drill diameter: {holes.diameter * 1e3:.4g} mm" in plan
+    assert f"Depth: {last.depth * 1e3:.3f} mm" in plan
+    assert f"{holes.radius * 1e3:.4g} mm from the crank axis" in plan
+    assert "180° from the crankpin" in plan
+    assert f"Mass removed per web: {last.removed_mass / holes.webs * 1e3:.2f} g" in plan
+    assert f"Passes: {len(reb.iterations)} (converged)" in plan
+    assert "PASS" in plan
+    rows = page.locator(".q-tab-panel:visible .q-table tbody tr")
+    playwright_api.expect(rows).to_have_count(len(reb.iterations))
+    assert f"{last.depth * 1e3:.3f}" in rows.last.inner_text()
+    # the drawing: its hole at the plan's radius, straight below the crank axis
+    page.wait_for_function(DRAWN)
+    hole = page.evaluate(
+        """() => [...document.querySelectorAll('.js-plotly-plot')]
+        .flatMap((e) => e._fullData || []).filter((t) => (t.name || '').startsWith('hole'))
+        .map((t) => ({x: Array.from(t.x), y: Array.from(t.y)}))[0]"""
+    )
+    assert hole is not None, "the drawing shows the hole"
+    cx = (max(hole["x"]) + min(hole["x"])) / 2
+    cy = (max(hole["y"]) + min(hole["y"])) / 2
+    assert abs(cx) < 1e-6 and abs(cy + holes.radius * 1e3) < 1e-6
+    assert abs((max(hole["x"]) - min(hole["x"])) - holes.diameter * 1e3) < 1e-6
+    # the ISO rotor mass: left empty, its stand-in is named beside the result
+    note = _text(page, "Rotor mass", r"stand in")
+    assert f"({iso.rotor_mass:.3f} kg)" in note
+    _shoot(page, "single-drilling")
+    _setting(page, "sc_rotor_mass").fill("2.7 kg")
+    page.get_by_role("button", name="Compute study").click()
+    _text(page, "Rotor mass", r"2\.700 kg, as given")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def test_single_cylinder_no_holes_and_worded_error(server: str, page: Any) -> None:
+    """Unchanged parts need no hole (said so); a balance factor the holes cannot reach is
+    shown in the words of the form, never by an internal key."""
+    errors = _open(page, server, "single", "Single cylinder")
+    page.get_by_role("button", name="Compute study").click()
+    _text(page, "Holes:", r"none: the unbalance to remove is within the tolerance")
+    _setting(page, "rb_new_reciprocating").fill("450 g")  # heavier: holes cannot do it
+    page.get_by_role("button", name="Compute study").click()
+    plan = _text(page, "No drilling plan", r"Balance factor: .*removing material")
+    for internal in ("target_balance_factor", "sc_", "rb_", "crank_train."):
+        assert internal not in plan
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
+    """Radial holes are drawn as the slot the drill leaves, from the rim inward by the
+    plan's depth; a rebalancing without holes draws none."""
+    from dataclasses import replace
+
+    from crankbalance import figures
+    from crankbalance.single_cylinder import DrilledHoles, rebalance
+
+    holes = DrilledHoles(diameter=0.006, radius=0.05, number=2, direction="radial")
+    reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, holes, 1e-9)
+    depth = reb.iterations[-1].depth * 1e3
+    assert depth > 0
+    fig = figures.drilling_plan(reb, 0.031)
+    drawn = [t for t in fig.data if (t.name or "").startswith("hole") or t.legendgroup == "holes"]
+    assert len(drawn) == holes.number
+    for trace in drawn:
+        reach = [float((x * x + y * y) ** 0.5) for x, y in zip(trace.x, trace.y, strict=True)]
+        # corners of the slot: half the diameter (3 mm) beside the hole's axis
+        assert min(reach) == pytest.approx(math.hypot(50 - depth, 3), rel=1e-9)
+        assert max(reach) == pytest.approx(math.hypot(50, 3), rel=1e-9)
+    none = figures.drilling_plan(replace(reb, iterations=[]), 0.031)
+    assert not [t for t in none.data if t.legendgroup == "holes"]
+    assert "no hole needed" in none.layout.title.text
+
+
+@pytest.mark.parametrize(
+    ("preset", "says"),
+    [
+        ("v10-72", r"does not apply to this engine[\s\S]*second-order effect is a moment"),
+        ("inline6", r"needs no balance shaft"),
+        ("radial5", r"does not apply to this engine[\s\S]*counterweights cancel it"),
+    ],
+)
+def test_balance_shaft_says_when_it_does_not_apply(
+    server: str, page: Any, preset: str, says: str
+) -> None:
+    """No silent fallback: an engine whose shaft would carry a moment, one without free
+    first- or second-order effects and one whose counterweights cancel its free force are
+    told so, and no placement result or figure is shown."""
+    errors = _open(page, server, preset, "Balance shaft")
+    page.get_by_role("button", name="Find the optimum").click()
+    panel = page.locator(".q-tab-panel:visible").first
+    playwright_api.expect(panel).to_contain_text(re.compile(says), use_inner_text=True)
+    assert "optimum mass position" not in panel.inner_text()
+    playwright_api.expect(panel.locator(".js-plotly-plot:visible")).to_have_count(0)
+    if preset == "v10-72":
+        _shoot(page, "shaft-v10")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def test_balance_shaft_inline4_secondary_force(server: str, page: Any) -> None:
+    """The inline-4's free second-order force: the study applies and finds the 67 % of Kim
+    (2018), Fig. 7, with w = 2."""
+    errors = _open(page, server, "inline4", "Balance shaft")
+    _text(page, "For this engine", r"free second-order force of \d")
+    page.get_by_role("button", name="Find the optimum").click()
+    _text(page, "optimum mass position", r"66\.7 %")
+    _shoot(page, "shaft-inline4")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def _outer_radii(summary: str) -> list[float]:
+    return [float(x) for x in re.findall(r"outer radius ([\d.]+) mm, balance", summary)]
+
+
+def test_counterweight_radial_space_from_the_engine(server: str, page: Any) -> None:
+    """Largest radial space left empty: the optimiser keeps within the engine's space
+    (rod length - crank radius, 155 - 47 = 108 mm for the crossplane V8); a larger limit
+    typed in lets bigger designs through, each warned about."""
+    errors = _open(page, server, "v8-crossplane", "Counterweight design")
+    _text(page, "Largest radial space", r"the engine's 108\.0 mm")
+    page.get_by_role("button", name="Optimise").click()
+    summary = _text(page, "feasible designs", r"Least radius:.*outer radius")
+    radii = _outer_radii(summary)
+    assert len(radii) == 2 and max(radii) <= 108.0 + 0.05, summary
+    assert "Warning" not in summary
+    _setting(page, "cw_max_radius").fill("300 mm")
+    page.get_by_role("button", name="Optimise").click()
+    # the new result (the old one had no warning): without the engine's limit the
+    # least-mass design is larger than the space
+    summary = _text(page, "feasible designs", r"larger than the space")
+    radii = _outer_radii(summary)
+    assert max(radii) > 108.0
+    for radius in radii:
+        assert (f"outer radius {radius:.1f} mm is larger than the space" in summary) == (
+            radius > 108.0
+        )
+    _shoot(page, "counterweight-space")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
