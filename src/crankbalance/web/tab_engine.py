@@ -7,6 +7,7 @@ from typing import Any
 from nicegui import ui
 
 from .. import figures
+from .crank_editor import CrankEditor
 from .project import BALANCING_FIELDS, ENGINE_FIELDS
 from .widgets import Tab
 
@@ -33,6 +34,14 @@ class EngineTab(Tab):
                     .mark("show-3d")
                 )
                 self.crank_card = self.card("crank3d", "Crankshaft (3-D)", self._crank_figure)
+        self.editor = CrankEditor(self.page)
+        self.editor.build()
+
+    def show_errors(self, errors: dict[str, str]) -> None:
+        self.editor.show_errors(errors)
+
+    def reset(self) -> None:
+        self.editor.rebuild()
 
     def _toggle_3d(self) -> None:
         """The 3-D view can be switched off (software WebGL is heavy on small machines)."""
