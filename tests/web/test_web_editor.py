@@ -227,3 +227,64 @@ def test_custom_throws_and_overrides_round_trip() -> None:
     c = project.compute()
     assert c is not None
     assert list(c.analysis.model.reciprocating_mass) == list(analyze(spec).model.reciprocating_mass)
+
+
+# --------------------------------------------------------------------------- warnings
+async def test_plausibility_warnings_beside_the_field(user: User, form) -> None:
+    """Mean piston speed 2 s n above 30 m/s and a rod outside 2.8-4.5 crank radii are
+    warned beside their field; the engine still computes (a warning is not an error)."""
+    await user.open("/?preset=v10-72")  # r = 47 mm, l = 155 mm (3.3 r), 5500 rpm: 17.2 m/s
+    await form.see("V10 72 deg")
+    speed, rod = form.element("field-speed"), form.element("field-rod_length")
+    assert "Warning" not in speed.props["hint"] and "Warning" not in rod.props["hint"]
+    form.set("field-speed", "10000 rpm")  # 2 * 0.094 m * 10000 / 60 = 31.3 m/s
+    assert speed.props["hint"].startswith("Warning: mean piston speed 31.3 m/s"), speed.props
+    assert speed.error is None and "cb-warning" in speed.classes
+    assert form.rows("orders-table"), "a warned engine computes"
+    form.set("field-rod_length", "250 mm")  # 5.32 crank radii
+    assert rod.props["hint"].startswith("Warning: the rod is 5.32 crank radii long"), rod.props
+    form.set("field-rod_length", "120 mm")  # 2.55 crank radii
+    assert rod.props["hint"].startswith("Warning: the rod is 2.55 crank radii long"), rod.props
+    form.set("field-rod_length", "155 mm")
+    form.set("field-speed", "9000 rpm")  # 28.2 m/s
+    assert "Warning" not in speed.props["hint"] and "Warning" not in rod.props["hint"]
+    assert "cb-warning" not in speed.classes
+
+
+#: bounding boxes of the visible form fields of the open tab (message and hint included)
+FIELD_BOXES = """() => [...document.querySelectorAll('.q-tab-panel .q-field')]
+    .filter((e) => e.offsetParent !== null)
+    .map((e) => { const r = e.getBoundingClientRect();
+                  const b = e.querySelector('.q-field__bottom');
+                  const m = b ? b.getBoundingClientRect() : r;
+                  return [Math.min(r.left, m.left), r.top, Math.max(r.right, m.right),
+                          Math.max(r.bottom, m.bottom), e.innerText.slice(0, 30)]; })"""
+
+
+def _overlaps(boxes: list[list]) -> list[tuple[str, str]]:
+    return [
+        (a[4], b[4])
+        for i, a in enumerate(boxes)
+        for b in boxes[i + 1 :]
+        if min(a[2], b[2]) - max(a[0], b[0]) > 1 and min(a[3], b[3]) - max(a[1], b[1]) > 1
+    ]
+
+
+def test_warnings_and_messages_cover_no_field(server: str, page) -> None:
+    """A warning and a long message sit under their field and push the next one down: no
+    two fields of the Engine tab overlap (desktop width)."""
+    expect = pytest.importorskip("playwright.sync_api").expect
+    page.set_viewport_size({"width": 1280, "height": 800})
+    page.goto(server + "/?preset=v10-72")
+    expect(_field(page, "field-name")).to_have_value(re.compile("V10 72 deg"))
+    _field(page, "field-speed").fill("10000 rpm")
+    _field(page, "field-rod_length").fill("250 mm")
+    expect(page.locator(".cb-warning")).to_have_count(2)
+    expect(page.locator(".cb-warning .q-field__messages").first).to_contain_text(
+        "Warning: the rod is 5.32 crank radii long"
+    )
+    _field(page, "field-bank_angle").fill("90 deg")  # the long firing-order message
+    expect(page.locator(".q-field--error")).to_have_count(1)
+    boxes = page.evaluate(FIELD_BOXES)
+    assert len(boxes) >= 15 and not _overlaps(boxes), _overlaps(boxes)
+    _shoot(page, "warnings_and_message")

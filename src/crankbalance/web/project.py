@@ -363,6 +363,8 @@ class Project:
     extras: dict[str, Any] = field(default_factory=dict)
     errors: dict[str, str] = field(default_factory=dict)
     general_error: str = ""
+    #: plausibility warnings of a valid engine by field key (shown beside the field)
+    warnings: dict[str, str] = field(default_factory=dict)
     #: the crank editor: throw angles (None: from the firing order), custom throws
     #: (position, angle, banks) and mass overrides (target, numbers, mass, value), as texts
     throw_angles: list[str] | None = None
@@ -557,6 +559,7 @@ class Project:
                 else:
                     self.general_error = self.message(error)
         self.errors = errors
+        self.warnings = {} if self.spec is None else plausibility(self.spec)
         return errors
 
     def message(self, error: InputError) -> str:
@@ -662,6 +665,34 @@ def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
         raise InputError(
             source, type(error).__name__, f"cannot be read as an engine file ({detail})"
         ) from None
+
+
+# --------------------------------------------------------------------------- warnings
+#: highest plausible mean piston speed [m/s]
+MAX_PISTON_SPEED = 30.0
+#: usual range of the rod length in crank radii (rod ratio l/r)
+ROD_RATIO = (2.8, 4.5)
+
+
+def plausibility(spec: EngineSpec) -> dict[str, str]:
+    """Warnings (not errors) about a valid engine whose numbers are unusual, by field key:
+    a mean piston speed 2 s n = 2 r omega / pi above :data:`MAX_PISTON_SPEED`, a rod
+    length outside :data:`ROD_RATIO` crank radii."""
+    ct = spec.crank_train
+    warnings = {}
+    piston_speed = 2.0 * ct.crank_radius * spec.speed / math.pi
+    if piston_speed > MAX_PISTON_SPEED:
+        warnings["speed"] = (
+            f"Warning: mean piston speed {piston_speed:.3g} m/s, above about "
+            f"{MAX_PISTON_SPEED:g} m/s; check the speed and the crank radius"
+        )
+    ratio = ct.rod_length / ct.crank_radius
+    if not ROD_RATIO[0] <= ratio <= ROD_RATIO[1]:
+        warnings["rod_length"] = (
+            f"Warning: the rod is {ratio:.3g} crank radii long, outside the usual "
+            f"{ROD_RATIO[0]:g}-{ROD_RATIO[1]:g}; check the rod length and the crank radius"
+        )
+    return warnings
 
 
 # --------------------------------------------------------------------------- messages

@@ -8,7 +8,7 @@ from nicegui import ui
 
 from .. import figures
 from .crank_editor import CrankEditor
-from .project import BALANCING_FIELDS, ENGINE_FIELDS
+from .project import BALANCING_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import Tab
 
 
@@ -16,6 +16,7 @@ class EngineTab(Tab):
     name = "engine"
 
     def build(self) -> None:
+        ui.add_css(".cb-warning .q-field__messages { color: #a15c00; font-weight: 500; }")
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Engine general parameters").classes("text-subtitle1")
@@ -39,6 +40,16 @@ class EngineTab(Tab):
 
     def show_errors(self, errors: dict[str, str]) -> None:
         self.editor.show_errors(errors)
+        warnings = self.page.project.warnings
+        for key in ("speed", "rod_length"):
+            element = self.page.inputs[key]
+            text = warnings.get(key, FIELD_BY_KEY[key].hint)
+            if element.props.get("hint") != text:
+                element.props(f'hint="{text}"')
+                if key in warnings:
+                    element.classes(add="cb-warning")
+                else:
+                    element.classes(remove="cb-warning")
 
     def reset(self) -> None:
         self.editor.rebuild()
