@@ -1,6 +1,8 @@
 """The crank editor (throw angles, custom throws, mass overrides), messages in the words of
-the form and plausibility warnings: NiceGUI's simulated User for the form logic, Playwright
-in Debian's chromium for building an odd-fire V10 from the V10 preset."""
+the form, plausibility warnings, the balance factor explained and a counterweight CG radius
+offered: NiceGUI's simulated User for the form logic, then (last in the file: the sync
+Playwright tests keep an event loop running) Debian's chromium for building an odd-fire V10
+from the V10 preset and for the layout of messages and warnings."""
 
 from __future__ import annotations
 
@@ -99,79 +101,6 @@ async def test_mass_override_rows(user: User, form) -> None:
     assert form.rows("mass-table")[1]["reciprocating"] == "1.0400"
 
 
-# --------------------------------------------------------------------------- in a browser
-SHOTS = ROOT / "shots"
-
-
-def _field(page, key: str):
-    return page.locator(f"[data-testid={key}]").first
-
-
-def _shoot(page, name: str) -> None:
-    """Screenshots at desktop and phone width (looked at by hand; not committed)."""
-    SHOTS.mkdir(exist_ok=True)
-    page.evaluate("window.scrollTo(0, 0)")  # the fixed header at the top of the picture
-    for width, height in ((1280, 800), (390, 844)):
-        page.set_viewport_size({"width": width, "height": height})
-        page.screenshot(path=str(SHOTS / f"{name}_{width}.png"), full_page=True)
-    page.set_viewport_size({"width": 1500, "height": 1000})
-
-
-def test_odd_fire_v10_in_the_browser(server: str, page, tmp_path: Path) -> None:
-    """The V10-72 preset at a 90 deg bank angle keeps its crank (five throws 72 deg apart,
-    the Dodge Viper's odd-fire V10): the firing order no longer gives the crank, the message
-    says to give the throw angles, the editor fills them from the last valid engine, and
-    the page's orders equal ``crankbalance analyze`` of the engine file the page saves."""
-    expect = pytest.importorskip("playwright.sync_api").expect
-    errors: list[str] = []
-    page.on("pageerror", lambda e: errors.append(str(e)))
-    page.goto(server + "/?preset=v10-72")
-    expect(_field(page, "field-name")).to_have_value(re.compile("V10 72 deg"))
-    _field(page, "field-bank_angle").fill("90 deg")
-    message = page.locator(".q-field--error .q-field__bottom").first
-    expect(message).to_contain_text("Firing order = [1, 6, 9, 7, 10, 8, 4, 2, 5, 3]")
-    expect(message).to_contain_text("give the crank as throw angles (crank editor)")
-    assert "crank_train" not in message.inner_text()
-    _shoot(page, "v10_refused")
-    _field(page, "editor-give-angles").click()
-    expect(_field(page, "throw_angles-4")).to_have_value("108 deg")
-    expect(page.locator(".q-field--error")).to_have_count(0)
-    _field(page, "field-name").fill("V10 90 deg, odd fire")
-    expect(page.locator(".q-header")).to_contain_text("computed")
-    _shoot(page, "v10_odd_fire_engine")
-    with page.expect_download() as info:
-        page.get_by_role("button", name="Save TOML").click()
-    saved = tmp_path / "v10-odd.toml"
-    info.value.save_as(saved)
-    text = saved.read_text()
-    assert 'bank_angle = "90 deg"' in text
-    assert 'throw_angles = ["324 deg", "180 deg", "36 deg", "252 deg", "108 deg"]' in text
-    cli = subprocess.run(
-        [sys.executable, "-m", "crankbalance", "analyze", str(saved), "--format", "json"],
-        capture_output=True,
-        text=True,
-        check=True,
-    )
-    api = json.loads(cli.stdout)
-    page.get_by_role("tab", name="Results").click()
-    table = page.locator(".q-table tbody").first
-    expect(table.locator("tr")).to_have_count(len(api["free_forces"]))
-    expect(page.locator(".q-header")).to_contain_text("computed")
-    cells = [
-        [c.strip() for c in row.split("\t")] for row in table.inner_text().strip().splitlines()
-    ]
-    for row, force, moment in zip(cells, api["free_forces"], api["free_moments"], strict=True):
-        assert int(row[0]) == force["order"]
-        assert float(row[1]) == pytest.approx(force["amplitude_N"], rel=1e-4, abs=1e-6)
-        assert float(row[4]) == pytest.approx(moment["amplitude_Nm"], rel=1e-4, abs=1e-6)
-    even = analyze("v10-72").to_dict()
-    assert api["free_moments"][0]["amplitude_Nm"] != pytest.approx(
-        even["free_moments"][0]["amplitude_Nm"], rel=0.01
-    ), "the page shows the 90 deg engine, not the V10-72 preset"
-    _shoot(page, "v10_odd_fire_results")
-    assert not [e for e in errors if "Resize must be passed" not in e], errors
-
-
 # --------------------------------------------------------------------------- messages
 def test_messages_in_the_words_of_the_form() -> None:
     """Every message names the field by its label and other keys in words; no engine-file
@@ -249,6 +178,108 @@ async def test_plausibility_warnings_beside_the_field(user: User, form) -> None:
     form.set("field-speed", "9000 rpm")  # 28.2 m/s
     assert "Warning" not in speed.props["hint"] and "Warning" not in rod.props["hint"]
     assert "cb-warning" not in speed.classes
+
+
+# --------------------------------------------------------------------------- explanation
+async def test_balance_factor_explained_and_cg_radius_offered(user: User, form) -> None:
+    """The student's crossplane V8: balance factor 1 without a counterweight CG radius is
+    refused with an offer of 3/4 of the crank radius; taking it computes, 1 leaves the
+    first-order couple (reversed), 0.5 cancels it, as the text under the fields says."""
+    await user.open("/?preset=v8-crossplane")  # crank radius 47 mm
+    await form.see("0.5 per cylinder cancels it")
+    form.set("field-cw_balance_factor", "1")
+    message = form.error("field-cw_cg_radius")
+    assert message.startswith("Counterweight CG radius: is missing"), message
+    assert "e.g. 35.25 mm, 3/4 of the crank radius" in message, message
+    offer = form.element("offer-cw-cg-radius")
+    assert offer.visible and "35.25 mm" in offer.text
+    user.find(marker="offer-cw-cg-radius").click()
+    assert form.element("field-cw_cg_radius").value == "35.25 mm"
+    assert form.error("field-cw_cg_radius") is None and not offer.visible
+    couple = float(form.rows("orders-table")[0]["moment"])  # free, before balancing
+    assert couple > 1.0
+    units = {"N·m": 1.0, "kN·m": 1e3, "mN·m": 1e-3}
+    for factor, left in (("1", 1.0), ("0.5", 0.0)):
+        form.set("field-cw_balance_factor", factor)
+        assert form.error("field-cw_balance_factor") is None
+        summary = form.text("balance-summary")
+        found = re.search(r"Residual primary force [^,]*, moment (\S+) (\S*N·m)", summary)
+        assert found, summary
+        residual = float(found.group(1)) * units[found.group(2)]
+        assert residual == pytest.approx(left * couple, rel=1e-3, abs=1e-6), (factor, summary)
+
+
+# --------------------------------------------------------------------------- in a browser
+SHOTS = ROOT / "shots"
+
+
+def _field(page, key: str):
+    return page.locator(f"[data-testid={key}]").first
+
+
+def _shoot(page, name: str) -> None:
+    """Screenshots at desktop and phone width (looked at by hand; not committed)."""
+    SHOTS.mkdir(exist_ok=True)
+    page.evaluate("window.scrollTo(0, 0)")  # the fixed header at the top of the picture
+    for width, height in ((1280, 800), (390, 844)):
+        page.set_viewport_size({"width": width, "height": height})
+        page.screenshot(path=str(SHOTS / f"{name}_{width}.png"), full_page=True)
+    page.set_viewport_size({"width": 1500, "height": 1000})
+
+
+def test_odd_fire_v10_in_the_browser(server: str, page, tmp_path: Path) -> None:
+    """The V10-72 preset at a 90 deg bank angle keeps its crank (five throws 72 deg apart,
+    the Dodge Viper's odd-fire V10): the firing order no longer gives the crank, the message
+    says to give the throw angles, the editor fills them from the last valid engine, and
+    the page's orders equal ``crankbalance analyze`` of the engine file the page saves."""
+    expect = pytest.importorskip("playwright.sync_api").expect
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    page.goto(server + "/?preset=v10-72")
+    expect(_field(page, "field-name")).to_have_value(re.compile("V10 72 deg"))
+    _field(page, "field-bank_angle").fill("90 deg")
+    message = page.locator(".q-field--error .q-field__bottom").first
+    expect(message).to_contain_text("Firing order = [1, 6, 9, 7, 10, 8, 4, 2, 5, 3]")
+    expect(message).to_contain_text("give the crank as throw angles (crank editor)")
+    assert "crank_train" not in message.inner_text()
+    _shoot(page, "v10_refused")
+    _field(page, "editor-give-angles").click()
+    expect(_field(page, "throw_angles-4")).to_have_value("108 deg")
+    expect(page.locator(".q-field--error")).to_have_count(0)
+    _field(page, "field-name").fill("V10 90 deg, odd fire")
+    expect(page.locator(".q-header")).to_contain_text("computed")
+    _shoot(page, "v10_odd_fire_engine")
+    with page.expect_download() as info:
+        page.get_by_role("button", name="Save TOML").click()
+    saved = tmp_path / "v10-odd.toml"
+    info.value.save_as(saved)
+    text = saved.read_text()
+    assert 'bank_angle = "90 deg"' in text
+    assert 'throw_angles = ["324 deg", "180 deg", "36 deg", "252 deg", "108 deg"]' in text
+    cli = subprocess.run(
+        [sys.executable, "-m", "crankbalance", "analyze", str(saved), "--format", "json"],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    api = json.loads(cli.stdout)
+    page.get_by_role("tab", name="Results").click()
+    table = page.locator(".q-table tbody").first
+    expect(table.locator("tr")).to_have_count(len(api["free_forces"]))
+    expect(page.locator(".q-header")).to_contain_text("computed")
+    cells = [
+        [c.strip() for c in row.split("\t")] for row in table.inner_text().strip().splitlines()
+    ]
+    for row, force, moment in zip(cells, api["free_forces"], api["free_moments"], strict=True):
+        assert int(row[0]) == force["order"]
+        assert float(row[1]) == pytest.approx(force["amplitude_N"], rel=1e-4, abs=1e-6)
+        assert float(row[4]) == pytest.approx(moment["amplitude_Nm"], rel=1e-4, abs=1e-6)
+    even = analyze("v10-72").to_dict()
+    assert api["free_moments"][0]["amplitude_Nm"] != pytest.approx(
+        even["free_moments"][0]["amplitude_Nm"], rel=0.01
+    ), "the page shows the 90 deg engine, not the V10-72 preset"
+    _shoot(page, "v10_odd_fire_results")
+    assert not [e for e in errors if "Resize must be passed" not in e], errors
 
 
 #: bounding boxes of the visible form fields of the open tab (message and hint included)

@@ -558,9 +558,21 @@ class Project:
                     errors[key] = self.message(error)
                 else:
                     self.general_error = self.message(error)
+        offer = self.default_cw_cg_radius()
+        if "cw_cg_radius" in errors and offer and not self.texts.get("cw_cg_radius", "").strip():
+            errors["cw_cg_radius"] += f"; e.g. {offer}, {CW_CG_WORDS} (button below)"
         self.errors = errors
         self.warnings = {} if self.spec is None else plausibility(self.spec)
         return errors
+
+    def default_cw_cg_radius(self) -> str | None:
+        """The counterweight CG radius offered from the engine's geometry:
+        :data:`CW_CG_SHARE` of the crank radius (None while the crank radius is not valid)."""
+        try:
+            radius = parse_quantity(self.texts.get("crank_radius", "").strip(), "length", "r")
+        except InputError:
+            return None
+        return f"{round(CW_CG_SHARE * radius * 1e3, 2):g} mm" if radius > 0 else None
 
     def message(self, error: InputError) -> str:
         """``error`` in the words of the form (see :func:`form_message`)."""
@@ -666,6 +678,12 @@ def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
             source, type(error).__name__, f"cannot be read as an engine file ({detail})"
         ) from None
 
+
+# --------------------------------------------------------------------------- defaults
+#: counterweight CG radius offered, as a share of the crank radius: the 2021 paper's
+#: inline-3 has its counterweight CG at 30 mm on a 40 mm crank radius
+CW_CG_SHARE = 0.75
+CW_CG_WORDS = "3/4 of the crank radius, as the 2021 paper's 30 mm for 40 mm"
 
 # --------------------------------------------------------------------------- warnings
 #: highest plausible mean piston speed [m/s]
