@@ -107,7 +107,7 @@ def test_screenshots_of_every_tab(server: str, page) -> None:
     _field(page, "rod_length").fill("30 mm")  # a bad value: message beside the field
     # beside the field, once Quasar's hint-to-message transition is over
     playwright_api.expect(page.locator(".q-field--error .q-field__bottom").first).to_contain_text(
-        "rod_length = '30 mm': must exceed crank_radius"
+        "Rod length = 30 mm: must exceed crank radius"
     )
     page.screenshot(path=str(SHOTS / "engine_bad_input.png"))
     _field(page, "rod_length").fill("135 mm")

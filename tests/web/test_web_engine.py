@@ -106,7 +106,7 @@ async def test_totals_mode_and_layout_change(user: User, form) -> None:
     form.set("field-layout", "vee")
     assert "even number" in (form.error("field-cylinders") or ""), "3 cylinders in a vee"
     form.set("field-cylinders", "8")
-    assert "bank_angle" in (form.error("field-bank_angle") or ""), "a vee needs its bank angle"
+    assert "Bank angle" in (form.error("field-bank_angle") or ""), "a vee needs its bank angle"
     form.set("field-bank_angle", "90 deg")
     form.set("field-cw_webs", "")
     form.set("field-firing_order", "1, 5, 4, 8, 6, 3, 7, 2")  # the crossplane V8

@@ -167,6 +167,7 @@ class Page:
         else:
             element = ui.input(label=f.label, value=value, placeholder=f.hint, on_change=handler)
         element.classes("w-64").props(f'hint="{f.hint}"' if f.hint else "")
+        element.props("hide-bottom-space")  # a long message pushes the next field down
         element.props(f"data-testid=field-{f.key}").mark(f"field-{f.key}")
         element.without_auto_validation()
         self.inputs[f.key] = element
@@ -373,6 +374,8 @@ class Page:
     def show_errors(self) -> None:
         for key, element in self.inputs.items():
             element.error = self.project.errors.get(key)
+        for tab in self.tabs.values():
+            tab.show_errors(self.project.errors)
         self.general.set_text(self.project.general_error)
 
     def show_setting_errors(self, extra: dict[str, str] | None = None) -> None:

@@ -363,6 +363,13 @@ class Project:
     extras: dict[str, Any] = field(default_factory=dict)
     errors: dict[str, str] = field(default_factory=dict)
     general_error: str = ""
+    #: plausibility warnings of a valid engine by field key (shown beside the field)
+    warnings: dict[str, str] = field(default_factory=dict)
+    #: the crank editor: throw angles (None: from the firing order), custom throws
+    #: (position, angle, banks) and mass overrides (target, numbers, mass, value), as texts
+    throw_angles: list[str] | None = None
+    throws: list[dict[str, str]] = field(default_factory=list)
+    overrides: list[dict[str, str]] = field(default_factory=list)
     spec: EngineSpec | None = None
     computed: Computed | None = None
 
@@ -400,6 +407,10 @@ class Project:
             value = _pop_path(extras, f.path)
             if value is not None:
                 texts[f.key] = _format_value(value)
+        train = extras.get("crank_train", {})
+        angles = train.pop("throw_angles", None)
+        throws = train.pop("throw", [])
+        overrides = extras.get("masses", {}).pop("override", [])
         _prune(extras)
         for key, value in DEFAULTS.items():
             texts.setdefault(key, value)
@@ -416,6 +427,26 @@ class Project:
         if settings:
             new_settings.update({k: v for k, v in settings.items() if k in DEFAULT_SETTINGS})
         self.texts, self.extras, self.settings = texts, extras, new_settings
+        self.throw_angles = None if angles is None else [str(a) for a in angles]
+        self.throws = [
+            {
+                "position": str(t["position"]),
+                "angle": str(t.get("angle", "0 deg")),
+                "banks": ", ".join(str(b) for b in t["banks"]),
+            }
+            for t in throws
+        ]
+        self.overrides = [
+            {
+                "target": "cylinders" if "cylinders" in item else "throws",
+                "numbers": _format_value(item.get("cylinders", item.get("throws", []))),
+                "mass": key,
+                "value": _format_value(value),
+            }
+            for item in overrides
+            for key, value in item.items()
+            if key not in ("cylinders", "throws")
+        ]
         self.validate()
 
     # ------------------------------------------------------------------ editing
@@ -462,10 +493,56 @@ class Project:
             try:
                 value = check_field(f, text)
             except InputError as error:
-                errors[f.key] = str(error)
+                errors[f.key] = self.message(error)
                 continue
             _set_path(data, f.path, value)
+        self._editor_dict(data, errors)
         return data, errors
+
+    def _editor_dict(self, data: dict[str, Any], errors: dict[str, str]) -> None:
+        """Put the crank editor's tables into the engine-file dictionary ``data``; the
+        errors of single cells go to ``errors`` under the cell's key (``throw.2.banks``)."""
+
+        def angle(text: str, key: str) -> str:
+            try:
+                parse_quantity(text.strip(), "angle", key)
+            except InputError as error:
+                errors[key] = self.message(error)
+            return text.strip()
+
+        custom = self.texts.get("layout") == "custom"
+        if self.throw_angles is not None and not custom:
+            angles = [angle(a, f"throw_angles.{k}") for k, a in enumerate(self.throw_angles)]
+            _set_path(data, ("crank_train", "throw_angles"), angles)
+        if custom and self.throws:
+            throws = []
+            for k, row in enumerate(self.throws):
+                try:
+                    parse_quantity(row["position"].strip(), "length", f"throw.{k}.position")
+                except InputError as error:
+                    errors[f"throw.{k}.position"] = self.message(error)
+                banks = [b for b in row["banks"].replace(";", ",").split(",") if b.strip()]
+                throws.append(
+                    {
+                        "position": row["position"].strip(),
+                        "angle": angle(row["angle"], f"throw.{k}.angle"),
+                        "banks": [angle(b, f"throw.{k}.banks") for b in banks],
+                    }
+                )
+            _set_path(data, ("crank_train", "throw"), throws)
+        items = []
+        for k, row in enumerate(self.overrides):
+            numbers = F(f"override.{k}.numbers", ("override", str(k), "numbers"), "", "intlist")
+            try:
+                targets = check_field(numbers, row["numbers"])
+                value = check_field(FIELD_BY_KEY[row["mass"]], row["value"])
+            except InputError as error:
+                part = "numbers" if error.field == numbers.key else "value"
+                errors[f"override.{k}.{part}"] = self.message(error)
+                continue
+            items.append({row["target"]: targets, row["mass"]: value})
+        if self.overrides:
+            _set_path(data, ("masses", "override"), items)
 
     def validate(self) -> dict[str, str]:
         """Check every field, then the whole engine through the spec model."""
@@ -476,13 +553,38 @@ class Project:
             try:
                 self.spec = spec_from_dict(data)
             except InputError as error:
-                f = self.field_for(error.field)
-                if f is not None:
-                    errors[f.key] = str(error)
+                key = self.key_for(error.field)
+                if key is not None:
+                    errors[key] = self.message(error)
                 else:
-                    self.general_error = str(error)
+                    self.general_error = self.message(error)
+        offer = self.default_cw_cg_radius()
+        if "cw_cg_radius" in errors and offer and not self.texts.get("cw_cg_radius", "").strip():
+            errors["cw_cg_radius"] += f"; e.g. {offer}, {CW_CG_WORDS} (button below)"
         self.errors = errors
+        self.warnings = {} if self.spec is None else plausibility(self.spec)
         return errors
+
+    def default_cw_cg_radius(self) -> str | None:
+        """The counterweight CG radius offered from the engine's geometry:
+        :data:`CW_CG_SHARE` of the crank radius (None while the crank radius is not valid)."""
+        try:
+            radius = parse_quantity(self.texts.get("crank_radius", "").strip(), "length", "r")
+        except InputError:
+            return None
+        return f"{round(CW_CG_SHARE * radius * 1e3, 2):g} mm" if radius > 0 else None
+
+    def message(self, error: InputError) -> str:
+        """``error`` in the words of the form (see :func:`form_message`)."""
+        return form_message(error)
+
+    def key_for(self, dotted: str) -> str | None:
+        """The key of the form field or crank-editor cell an InputError's field belongs to."""
+        cell = _cell_for(dotted)
+        if cell is not None:
+            return cell
+        f = self.field_for(dotted)
+        return None if f is None else f.key
 
     def field_for(self, dotted: str) -> FormField | None:
         """The visible form field an InputError belongs to (None: a general message)."""
@@ -512,11 +614,11 @@ class Project:
             study = balance_engine(self.spec, orders=max(orders, 2))
             error = ""
         except InputError as exc:
-            f = self.field_for(exc.field)
-            if f is not None:
-                self.errors[f.key] = str(exc)
+            key = self.key_for(exc.field)
+            if key is not None:
+                self.errors[key] = self.message(exc)
             else:
-                self.general_error = str(exc)
+                self.general_error = self.message(exc)
             return None
         self.computed = Computed(self.spec, analysis, study, time.perf_counter() - t0, error)
         return self.computed
@@ -575,6 +677,142 @@ def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
         raise InputError(
             source, type(error).__name__, f"cannot be read as an engine file ({detail})"
         ) from None
+
+
+# --------------------------------------------------------------------------- defaults
+#: counterweight CG radius offered, as a share of the crank radius: the 2021 paper's
+#: inline-3 has its counterweight CG at 30 mm on a 40 mm crank radius
+CW_CG_SHARE = 0.75
+CW_CG_WORDS = "3/4 of the crank radius, as the 2021 paper's 30 mm for 40 mm"
+
+# --------------------------------------------------------------------------- warnings
+#: highest plausible mean piston speed [m/s]
+MAX_PISTON_SPEED = 30.0
+#: usual range of the rod length in crank radii (rod ratio l/r)
+ROD_RATIO = (2.8, 4.5)
+
+
+def plausibility(spec: EngineSpec) -> dict[str, str]:
+    """Warnings (not errors) about a valid engine whose numbers are unusual, by field key:
+    a mean piston speed 2 s n = 2 r omega / pi above :data:`MAX_PISTON_SPEED`, a rod
+    length outside :data:`ROD_RATIO` crank radii."""
+    ct = spec.crank_train
+    warnings = {}
+    piston_speed = 2.0 * ct.crank_radius * spec.speed / math.pi
+    if piston_speed > MAX_PISTON_SPEED:
+        warnings["speed"] = (
+            f"Warning: mean piston speed {piston_speed:.3g} m/s, above about "
+            f"{MAX_PISTON_SPEED:g} m/s; check the speed and the crank radius"
+        )
+    ratio = ct.rod_length / ct.crank_radius
+    if not ROD_RATIO[0] <= ratio <= ROD_RATIO[1]:
+        warnings["rod_length"] = (
+            f"Warning: the rod is {ratio:.3g} crank radii long, outside the usual "
+            f"{ROD_RATIO[0]:g}-{ROD_RATIO[1]:g}; check the rod length and the crank radius"
+        )
+    return warnings
+
+
+# --------------------------------------------------------------------------- messages
+_CELL = re.compile(
+    r"crank_train\.(throw_angles)\[(\d+)\]|crank_train\.(throw)\[(\d+)\]\.?(\w*)"
+    r"|masses\.(override)\[(\d+)\]\.?(\w*)"
+)
+#: words of keys that have no field of their own in the form
+_KEY_WORDS = {
+    "crank_train.throw_angles": "Throw angles (crank editor)",
+    "crank_train.throw": "Custom throws (crank editor)",
+    "crank_train.crank_offset": "Crank offset",
+    "masses.override": "Mass overrides (crank editor)",
+    "counterweights.scope": "Counterweight scope",
+    "counterweights.web_offset": "Counterweight web offset",
+    "description": "Description",
+}
+
+
+def _cell_for(dotted: str) -> str | None:
+    """The crank-editor cell an engine-file key points at (``throw.2.banks``), or None."""
+    m = _CELL.fullmatch(dotted)
+    if m is None:
+        table = re.fullmatch(r"crank_train\.(throw_angles|throw)|masses\.(override)\b.*", dotted)
+        return None if table is None else table.group(1) or table.group(2)
+    if m.group(1):
+        return f"throw_angles.{m.group(2)}"
+    if m.group(3):
+        part = m.group(5) if m.group(5) in ("position", "angle", "banks") else "banks"
+        return f"throw.{m.group(4)}.{part}"
+    part = "numbers" if m.group(8) in ("", "cylinders", "throws") else "value"
+    return f"override.{m.group(7)}.{part}"
+
+
+def label_of(dotted: str) -> str:
+    """The words of the form for a key of the engine file or a crank-editor cell."""
+    m = re.fullmatch(r"(?:crank_train\.)?throw_angles[.\[](\d+)\]?", dotted)
+    if m:
+        return f"Throw {int(m.group(1)) + 1} angle"
+    m = re.fullmatch(r"(?:crank_train\.)?throw[.\[](\d+)\]?\.?(\w*)", dotted)
+    if m:
+        return f"Throw {int(m.group(1)) + 1} {m.group(2) or 'table'}"
+    m = re.fullmatch(r"(?:masses\.)?override[.\[](\d+)\]?\.?(\w*)", dotted)
+    if m:
+        part = m.group(2)
+        what = part if part in ("", "numbers", "cylinders", "throws", "value") else None
+        words = FIELD_BY_KEY[part].label.lower() if what is None else (what or "row")
+        return f"Mass override {int(m.group(1)) + 1}: {words}"
+    if dotted in _KEY_WORDS:
+        return _KEY_WORDS[dotted]
+    f = _field_for(dotted)
+    return dotted if f is None else f.label
+
+
+def _words(text: str) -> str:
+    """Keys of the engine file inside a message replaced by the form's words (lower case),
+    references to the documentation dropped."""
+    text = re.sub(r"\s*\(see docs/[^)]*\)|;?\s*see docs/\S+", "", text)
+    text = text.replace("[[crank_train.throw]] tables", "custom throws (crank editor)")
+    for target in ("cylinders", "throws"):  # the target of a mass override
+        text = text.replace(f"`{target} = [...]`", f"the target {target.capitalize()}")
+
+    def word(m: re.Match[str]) -> str:
+        key = m.group(1) or m.group(2)
+        if key in SHORT_KEYS:
+            key = SHORT_KEYS[key]
+        elif "." not in key and "_" not in key and not m.group(1):
+            return m.group(0)
+        label = label_of(key)
+        if label == key:
+            return m.group(0)
+        return label[0].lower() + label[1:]
+
+    return re.sub(
+        r"`([^`=]+?)(?: = \[\.\.\.\])?`|\b([a-z][a-z0-9_]*(?:\.[a-z_]+)+|[a-z]+_[a-z0-9_]+)\b",
+        word,
+        text,
+    )
+
+
+#: bare key names used in messages, with the key of the form they stand for
+SHORT_KEYS: dict[str, str] = {f.path[-1]: f.dotted for f in FIELDS if len(f.path) > 1}
+SHORT_KEYS.update(
+    {
+        "throw_angles": "crank_train.throw_angles",
+        "crank_offset": "crank_train.crank_offset",
+        "cylinders": "crank_train.cylinders",
+    }
+)
+
+
+def form_message(error: InputError) -> str:
+    """An InputError in the words of the form: the field's label (``Rod length``), not the
+    engine-file key (``crank_train.rod_length``), and other keys in the text as labels."""
+    label = label_of(error.field)
+    if error.field == label:  # not a key of the engine file: a file name, a setting
+        label = error.field
+    value = error.value
+    shown = "" if value is None else f" = {value if isinstance(value, str) else repr(value)}"
+    if len(shown) > 83:
+        shown = shown[:80] + "..."
+    return f"{label}{shown}: {_words(error.allowed)}"
 
 
 # --------------------------------------------------------------------------- helpers

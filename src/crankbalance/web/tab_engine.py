@@ -7,14 +7,27 @@ from typing import Any
 from nicegui import ui
 
 from .. import figures
-from .project import BALANCING_FIELDS, ENGINE_FIELDS
+from .crank_editor import CrankEditor
+from .project import BALANCING_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import Tab
+
+#: what the balance factor does, shown under the balancing fields
+BALANCE_FACTOR_WORDS = (
+    "Balance factor k: the crank counterweights carry the rotating masses and k times the "
+    "reciprocating mass of the cylinders on each pin. On one cylinder, 0.5 halves the "
+    "first-order shake and turns it into a force rotating with the crank. On a 90 deg V pair "
+    "the two first-order forces add up to one forward force of one cylinder's size, turning "
+    "with the crank: k = 0.5 per cylinder cancels it (and the crossplane V8's first-order "
+    "couple); k = 1 reverses it instead of removing it. A backward first-order component, and "
+    "any of order 2 or higher, needs balance shafts."
+)
 
 
 class EngineTab(Tab):
     name = "engine"
 
     def build(self) -> None:
+        ui.add_css(".cb-warning .q-field__messages { color: #a15c00; font-weight: 500; }")
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Engine general parameters").classes("text-subtitle1")
@@ -26,6 +39,14 @@ class EngineTab(Tab):
                 with ui.grid(columns=2):
                     for f in BALANCING_FIELDS:
                         self.page.field(f)
+                self.offer_cg = (
+                    ui.button("", on_click=self._use_cg_radius)
+                    .props("outline dense no-caps data-testid=offer-cw-cg-radius")
+                    .mark("offer-cw-cg-radius")
+                )
+                ui.label(BALANCE_FACTOR_WORDS).classes("text-caption text-grey-8 max-w-md").mark(
+                    "balance-factor-explained"
+                )
             with ui.column().classes("grow min-w-[420px]"):
                 self.show_3d = (
                     ui.switch("Live 3-D view", value=True, on_change=self._toggle_3d)
@@ -33,6 +54,38 @@ class EngineTab(Tab):
                     .mark("show-3d")
                 )
                 self.crank_card = self.card("crank3d", "Crankshaft (3-D)", self._crank_figure)
+        self.editor = CrankEditor(self.page)
+        self.editor.build()
+
+    def show_errors(self, errors: dict[str, str]) -> None:
+        self.editor.show_errors(errors)
+        self._show_offer()
+        warnings = self.page.project.warnings
+        for key in ("speed", "rod_length"):
+            element = self.page.inputs[key]
+            text = warnings.get(key, FIELD_BY_KEY[key].hint)
+            if element.props.get("hint") != text:
+                element.props(f'hint="{text}"')
+                if key in warnings:
+                    element.classes(add="cb-warning")
+                else:
+                    element.classes(remove="cb-warning")
+
+    def _use_cg_radius(self) -> None:
+        offer = self.page.project.default_cw_cg_radius()
+        if offer:
+            self.page.inputs["cw_cg_radius"].set_value(offer)
+
+    def _show_offer(self) -> None:
+        """The button offering a counterweight CG radius, while that field is empty."""
+        project = self.page.project
+        offer = project.default_cw_cg_radius()
+        empty = not project.texts.get("cw_cg_radius", "").strip()
+        self.offer_cg.set_visibility(bool(offer) and empty)
+        self.offer_cg.set_text(f"Use counterweight CG radius {offer} (3/4 of the crank radius)")
+
+    def reset(self) -> None:
+        self.editor.rebuild()
 
     def _toggle_3d(self) -> None:
         """The 3-D view can be switched off (software WebGL is heavy on small machines)."""

@@ -113,6 +113,9 @@ class Tab(ABC):
     def reset(self) -> None:  # noqa: B027 (optional: only study tabs keep results)
         """Forget the results of the previous project (a new one was loaded)."""
 
+    def show_errors(self, errors: dict[str, str]) -> None:  # noqa: B027 (optional)
+        """Show the messages of the tab's own inputs (``errors`` by key)."""
+
     def card(self, name: str, title: str, builder: Callable[[], Any | None]) -> FigureCard:
         """A figure card of this tab, refreshed with the tab."""
         card = FigureCard(self.page, name, title, builder)
