@@ -17,7 +17,6 @@ every figure comes from :mod:`crankbalance.figures`, the tabs only lay them out.
 from __future__ import annotations
 
 import logging
-import time
 from collections.abc import Callable
 from typing import Any
 
@@ -27,7 +26,7 @@ from ..errors import InputError
 from ..io.engine_file import list_presets
 from . import studies
 from .exports import table_csv
-from .project import FIELD_BY_KEY, MAX_BYTES, FormField, Project, read_text
+from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_masses import MassesTab
@@ -48,6 +47,12 @@ TABS = (
     ("shaft", "Balance shaft"),
     ("performance", "Performance"),
 )
+#: the tabs that show results of the computed engine (greyed, with the reason, while the
+#: form cannot be computed)
+RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+CSS = """
+.cb-stale { opacity: 0.45; }
+"""
 
 
 def root(preset: str | None = None) -> None:
@@ -74,8 +79,11 @@ class Page:
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]
-        self.last_update_ms = 0.0
         self.updates = 0
+        #: what the computed results belong to: (engine spec, orders); see :meth:`fresh`
+        self.computed_for: tuple[Any, int] | None = None
+        self.stale_notes: dict[str, Any] = {}
+        self.bodies: dict[str, Any] = {}
         message = ""
         name = preset or DEFAULT_PRESET
         try:
@@ -90,6 +98,7 @@ class Page:
     # ================================================================== layout
     def build(self) -> None:
         ui.page_title("crankbalance")
+        ui.add_css(CSS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (
@@ -107,7 +116,9 @@ class Page:
                 "flat color=white"
             ).mark("save-json")
             ui.space()
-            self.status = ui.label("").classes("text-caption").mark("status")
+            self.status = (
+                ui.label("").classes("text-body2").props("data-testid=status").mark("status")
+            )
         with (
             ui.expansion(
                 "Load a project file (.toml or .json, the engine-file format)", icon="upload_file"
@@ -131,7 +142,15 @@ class Page:
         ) as self.panels:
             for index, (name, _label) in enumerate(TABS):
                 with ui.tab_panel(name):
-                    self.tabs[name].build()
+                    if name in RESULT_TABS:
+                        self.stale_notes[name] = (
+                            ui.label("")
+                            .classes("text-negative text-body1")
+                            .props(f"data-testid={name}-stale")
+                            .mark(f"{name}-stale")
+                        )
+                    with ui.column().classes("w-full") as self.bodies[name]:
+                        self.tabs[name].build()
                     self._nav(index)
         self.update_all()
         if self.startup_message:
@@ -225,8 +244,8 @@ class Page:
 
     def compute_results(self) -> None:
         self.recompute()
-        if self.project.spec is None:
-            ui.notify("Correct the fields marked in red first", type="warning")
+        if self.fresh() is None:
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         self.go("results")
 
@@ -270,7 +289,6 @@ class Page:
         for key, element in self.setting_inputs.items():
             element.set_value(str(project.settings.get(key, "")))
         self.update_all()
-        self.results.follow_quantity()
 
     def save(self, fmt: str) -> None:
         try:
@@ -291,9 +309,9 @@ class Page:
     def download_data(self, what: str) -> None:
         from ..format import json_text
 
-        c = self.project.computed
-        if c is None or self.project.spec is None:
-            ui.notify("no valid engine to export", type="warning")
+        c = self.fresh()
+        if c is None:
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         if what == "analysis":
             send_download(
@@ -309,9 +327,9 @@ class Page:
     async def download_report(self) -> None:
         from .. import report
 
-        c = self.project.computed
+        c = self.fresh()
         if c is None or self.project.spec is None:
-            ui.notify("no valid engine to report", type="warning")
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         try:
             html = await run.io_bound(
@@ -329,36 +347,77 @@ class Page:
     # ================================================================== updates
     def update_all(self) -> None:
         """Show field errors and, for a valid engine, recompute and refresh what is shown."""
-        t0 = time.perf_counter()
         for key, element in self.inputs.items():
             f = FIELD_BY_KEY[key]
             element.set_visibility(self.project.active(f))
         self.recompute()
         self.show_errors()
-        self.last_update_ms = (time.perf_counter() - t0) * 1e3
-        c = self.project.computed
-        if self.project.spec is not None and c is not None:
-            self.updates += 1
-            self.status.set_text(
-                f"update {self.updates}: computed in {c.elapsed * 1e3:.0f} ms, page updated "
-                f"in {self.last_update_ms:.0f} ms"
-            )
+        self.show_state()
+
+    def orders(self) -> int:
+        """The highest order to compute (the setting; 8 while it is invalid)."""
+        try:
+            return int(studies.setting(self.project.settings, "orders"))
+        except InputError:
+            return 8
+
+    def fresh(self) -> Computed | None:
+        """The computed results when they belong to the form as it is now, else None (the
+        form has errors, or the engine it describes could not be computed)."""
+        spec = self.project.spec
+        if spec is None or self.computed_for is None or self.project.computed is None:
+            return None
+        return self.project.computed if self.computed_for == (spec, self.orders()) else None
+
+    def problem(self) -> str:
+        """Why the form cannot be computed: the messages of the fields (by their label) and
+        the general one."""
+        lines = [
+            f"{FIELD_BY_KEY[key].label}: {message}" for key, message in self.project.errors.items()
+        ]
+        if self.project.general_error:
+            lines.append(self.project.general_error)
+        return "; ".join(lines) or "the engine could not be computed"
+
+    def show_state(self) -> None:
+        """The header and every result tab say whether the results belong to the form."""
+        c = self.fresh()
+        self.updates += 1
+        if c is not None:
+            self.status.set_text(f"Results of: {c.spec.name}")
+            state = "current"
         else:
-            self.status.set_text("engine has errors: see the fields marked in red")
-        self.results.show_stale(self.project.spec is None)
+            fields = ", ".join(FIELD_BY_KEY[key].label for key in self.project.errors)
+            self.status.set_text(
+                f"Not computed: see {fields}" if fields else "Not computed: see the message above"
+            )
+            state = "error"
+        self.status.props(f"data-state={state} data-update={self.updates}")
+        shown = self.project.computed
+        for name, note in self.stale_notes.items():
+            note.set_text(
+                ""
+                if c is not None
+                else f"Not computed: {self.problem()}. The results below are those of the last "
+                f"valid engine ({shown.spec.name if shown else 'none'}), not of the form."
+            )
+            note.set_visibility(c is None)
+            self.bodies[name].classes(**{"add" if c is None else "remove": "cb-stale"})
 
     def recompute(self) -> None:
         self.show_setting_errors()
-        if self.project.spec is None:
+        spec = self.project.spec
+        if spec is None:
             return
-        try:
-            self.project.settings["orders"] = str(studies.setting(self.project.settings, "orders"))
-        except InputError:
-            self.project.settings["orders"] = "8"
+        orders = self.orders()
+        self.project.settings["orders"] = str(orders)
+        if self.fresh() is not None:
+            return  # the same engine and orders: nothing changed
         computed = self.project.compute()
         if computed is None:
             self.show_errors()
             return
+        self.computed_for = (spec, orders)
         for tab in self.tabs.values():
             for card in tab.cards:
                 card.stale = True

@@ -47,7 +47,10 @@ class FigureCard:
                         ).mark(f"download-{name}-{fmt}")
             self.note = ui.label("").classes("text-grey-7")
             self.plot = (
-                ui.plotly({"data": [], "layout": {}}).classes("w-full").mark(f"figure-{name}")
+                ui.plotly({"data": [], "layout": {}})
+                .classes("w-full")
+                .props(f"data-testid=figure-{name}")
+                .mark(f"figure-{name}")
             )
 
     def refresh(self) -> None:
@@ -129,10 +132,9 @@ class Tab(ABC):
         return builder
 
     def study_ready(self) -> Any | None:
-        c = self.page.project.computed
-        if c is None or self.page.project.spec is None:
-            ui.notify("Correct the engine first (fields marked in red)", type="warning")
-            return None
+        c = self.page.fresh()
+        if c is None:
+            ui.notify(f"Not computed: {self.page.problem()}", type="warning", multi_line=True)
         return c
 
     def study_error(self, error: InputError) -> None:
