@@ -164,3 +164,33 @@ def test_selectors_redraw_and_polar_opens_on_the_leading_component(server: str, 
     wait_title(page, "curves", r"^Free moments")
     assert state(page) == ("current", n), "a selector is not an edit of the engine"
     assert not [e for e in errors if "Resize must be passed" not in e], errors
+
+
+def test_phone_one_column_no_overlap(server: str, browser) -> None:
+    """At 390x844 the form is one column: no two visible fields overlap and none runs past
+    the screen; a long message under a field pushes the next field down."""
+    page = browser.new_page(viewport={"width": 390, "height": 844})
+    try:
+        page.goto(server + "/?preset=v10-72")
+        wait_update(page, 0, "current")
+        _, n = state(page)
+        field(page, "bank_angle").fill("90 deg")  # the solver's long message
+        wait_update(page, n, "error")
+        boxes = page.evaluate(
+            """() => [...document.querySelectorAll('.q-tab-panel [data-testid^=field-]')]
+                .filter((e) => e.offsetParent !== null)
+                .map((e) => { const f = e.closest('.q-field') || e;
+                              const r = f.getBoundingClientRect();
+                              return [e.dataset.testid, r.left, r.top, r.right, r.bottom]; })"""
+        )
+        assert len(boxes) >= 10, boxes
+        for name, left, _top, right, _bottom in boxes:
+            assert left >= 0 and right <= 390, f"{name} runs past the screen: {left}..{right}"
+        for i, (a, al, at, ar, ab) in enumerate(boxes):
+            for b, bl, bt, br, bb in boxes[i + 1 :]:
+                overlap = min(ar, br) > max(al, bl) and min(ab, bb) > max(at, bt)
+                assert not overlap, f"{a} and {b} overlap"
+        # one column: every field starts at the same left edge
+        assert len({round(left) for _, left, *_ in boxes}) <= 2, boxes
+    finally:
+        page.close()

@@ -52,6 +52,51 @@ TABS = (
 RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
 CSS = """
 .cb-stale { opacity: 0.45; }
+/* a message under a field takes its own lines instead of being drawn over the next field */
+.q-field__bottom { position: static; transform: none; white-space: normal; }
+.q-field--with-bottom { padding-bottom: 4px; }
+/* busy: shown by BUSY_JS when the server has not answered an action within 0.2 s */
+#cb-busy { display: none; }
+body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right: 0; height: 4px;
+  z-index: 9999; background: linear-gradient(90deg, #ffb300 30%, transparent 30%);
+  background-size: 200% 100%; animation: cb-slide 1s linear infinite; }
+@keyframes cb-slide { from { background-position: 100% 0; } to { background-position: -100% 0; } }
+/* narrow screens: one column, nothing wider than the screen */
+@media (max-width: 600px) {
+  .q-header { flex-wrap: wrap; row-gap: 4px; }
+  .q-tab-panel { padding: 8px 4px; }
+  .q-tab-panel .nicegui-grid { grid-template-columns: minmax(0, 1fr) !important; width: 100%; }
+  .q-tab-panel .nicegui-row { flex-direction: column; align-items: stretch; }
+  .q-tab-panel .q-card, .q-tab-panel .w-64, .q-tab-panel .w-48, .q-tab-panel .w-96 {
+    width: 100% !important; min-width: 0 !important; max-width: 100%; }
+  .q-tab-panel [class*="min-w-"] { min-width: 0 !important; width: 100%; }
+  .q-tab-panel .q-table__container { max-width: 100%; overflow-x: auto; }
+}
+"""
+#: the busy bar: an action of the page (an edit, a choice, a button) that the server has
+#: not answered within 0.2 s shows a moving bar at the top until its first answer arrives
+BUSY_JS = """
+<div id="cb-busy" data-testid="busy"></div>
+<script>
+(() => {
+  let timer = null;
+  const idle = () => {
+    clearTimeout(timer); timer = null; document.body.classList.remove('cb-busy');
+  };
+  const hook = () => {
+    const s = window.socket;
+    if (!s) { setTimeout(hook, 50); return; }
+    const emit = s.emit.bind(s);
+    s.emit = (name, ...args) => {
+      if (name === 'event' && timer === null)
+        timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
+      return emit(name, ...args);
+    };
+    s.onAny(idle);
+  };
+  hook();
+})();
+</script>
 """
 
 
@@ -99,6 +144,7 @@ class Page:
     def build(self) -> None:
         ui.page_title("crankbalance")
         ui.add_css(CSS)
+        ui.add_body_html(BUSY_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (
@@ -107,6 +153,7 @@ class Page:
                 )
                 .classes("w-56")
                 .props("dark dense options-dense")
+                .props("data-testid=preset")
                 .mark("preset")
             )
             ui.button("Save TOML", on_click=lambda: self.save("toml")).props(
