@@ -17,7 +17,6 @@ every figure comes from :mod:`crankbalance.figures`, the tabs only lay them out.
 from __future__ import annotations
 
 import logging
-import time
 from collections.abc import Callable
 from typing import Any
 
@@ -27,7 +26,7 @@ from ..errors import InputError
 from ..io.engine_file import list_presets
 from . import studies
 from .exports import table_csv
-from .project import FIELD_BY_KEY, MAX_BYTES, FormField, Project, read_text
+from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_masses import MassesTab
@@ -48,6 +47,57 @@ TABS = (
     ("shaft", "Balance shaft"),
     ("performance", "Performance"),
 )
+#: the tabs that show results of the computed engine (greyed, with the reason, while the
+#: form cannot be computed)
+RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+CSS = """
+.cb-stale { opacity: 0.45; }
+/* a message under a field takes its own lines instead of being drawn over the next field */
+.q-field__bottom { position: static; transform: none; white-space: normal; }
+.q-field--with-bottom { padding-bottom: 4px; }
+/* busy: shown by BUSY_JS when the server has not answered an action within 0.2 s */
+#cb-busy { display: none; }
+body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right: 0; height: 4px;
+  z-index: 9999; background: linear-gradient(90deg, #ffb300 30%, transparent 30%);
+  background-size: 200% 100%; animation: cb-slide 1s linear infinite; }
+@keyframes cb-slide { from { background-position: 100% 0; } to { background-position: -100% 0; } }
+/* narrow screens: one column, nothing wider than the screen */
+@media (max-width: 600px) {
+  .q-header { flex-wrap: wrap; row-gap: 4px; }
+  .q-tab-panel { padding: 8px 4px; }
+  .q-tab-panel .nicegui-grid { grid-template-columns: minmax(0, 1fr) !important; width: 100%; }
+  .q-tab-panel .nicegui-row { flex-direction: column; align-items: stretch; }
+  .q-tab-panel .q-card, .q-tab-panel .w-64, .q-tab-panel .w-48, .q-tab-panel .w-96 {
+    width: 100% !important; min-width: 0 !important; max-width: 100%; }
+  .q-tab-panel [class*="min-w-"] { min-width: 0 !important; width: 100%; }
+  .q-tab-panel .q-table__container { max-width: 100%; overflow-x: auto; }
+}
+"""
+#: the busy bar: an action of the page (an edit, a choice, a button) that the server has
+#: not answered within 0.2 s shows a moving bar at the top until its first answer arrives
+BUSY_JS = """
+<div id="cb-busy" data-testid="busy"></div>
+<script>
+(() => {
+  let timer = null;
+  const idle = () => {
+    clearTimeout(timer); timer = null; document.body.classList.remove('cb-busy');
+  };
+  const hook = () => {
+    const s = window.socket;
+    if (!s) { setTimeout(hook, 50); return; }
+    const emit = s.emit.bind(s);
+    s.emit = (name, ...args) => {
+      if (name === 'event' && timer === null)
+        timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
+      return emit(name, ...args);
+    };
+    s.onAny(idle);
+  };
+  hook();
+})();
+</script>
+"""
 
 
 def root(preset: str | None = None) -> None:
@@ -74,8 +124,11 @@ class Page:
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]
-        self.last_update_ms = 0.0
         self.updates = 0
+        #: what the computed results belong to: (engine spec, orders); see :meth:`fresh`
+        self.computed_for: tuple[Any, int] | None = None
+        self.stale_notes: dict[str, Any] = {}
+        self.bodies: dict[str, Any] = {}
         message = ""
         name = preset or DEFAULT_PRESET
         try:
@@ -90,6 +143,8 @@ class Page:
     # ================================================================== layout
     def build(self) -> None:
         ui.page_title("crankbalance")
+        ui.add_css(CSS)
+        ui.add_body_html(BUSY_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (
@@ -98,6 +153,7 @@ class Page:
                 )
                 .classes("w-56")
                 .props("dark dense options-dense")
+                .props("data-testid=preset")
                 .mark("preset")
             )
             ui.button("Save TOML", on_click=lambda: self.save("toml")).props(
@@ -107,7 +163,9 @@ class Page:
                 "flat color=white"
             ).mark("save-json")
             ui.space()
-            self.status = ui.label("").classes("text-caption").mark("status")
+            self.status = (
+                ui.label("").classes("text-body2").props("data-testid=status").mark("status")
+            )
         with (
             ui.expansion(
                 "Load a project file (.toml or .json, the engine-file format)", icon="upload_file"
@@ -131,7 +189,15 @@ class Page:
         ) as self.panels:
             for index, (name, _label) in enumerate(TABS):
                 with ui.tab_panel(name):
-                    self.tabs[name].build()
+                    if name in RESULT_TABS:
+                        self.stale_notes[name] = (
+                            ui.label("")
+                            .classes("text-negative text-body1")
+                            .props(f"data-testid={name}-stale")
+                            .mark(f"{name}-stale")
+                        )
+                    with ui.column().classes("w-full") as self.bodies[name]:
+                        self.tabs[name].build()
                     self._nav(index)
         self.update_all()
         if self.startup_message:
@@ -226,8 +292,8 @@ class Page:
 
     def compute_results(self) -> None:
         self.recompute()
-        if self.project.spec is None:
-            ui.notify("Correct the fields marked in red first", type="warning")
+        if self.fresh() is None:
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         self.go("results")
 
@@ -271,7 +337,6 @@ class Page:
         for key, element in self.setting_inputs.items():
             element.set_value(str(project.settings.get(key, "")))
         self.update_all()
-        self.results.follow_quantity()
 
     def save(self, fmt: str) -> None:
         try:
@@ -292,9 +357,9 @@ class Page:
     def download_data(self, what: str) -> None:
         from ..format import json_text
 
-        c = self.project.computed
-        if c is None or self.project.spec is None:
-            ui.notify("no valid engine to export", type="warning")
+        c = self.fresh()
+        if c is None:
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         if what == "analysis":
             send_download(
@@ -310,9 +375,9 @@ class Page:
     async def download_report(self) -> None:
         from .. import report
 
-        c = self.project.computed
+        c = self.fresh()
         if c is None or self.project.spec is None:
-            ui.notify("no valid engine to report", type="warning")
+            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
             return
         try:
             html = await run.io_bound(
@@ -330,36 +395,77 @@ class Page:
     # ================================================================== updates
     def update_all(self) -> None:
         """Show field errors and, for a valid engine, recompute and refresh what is shown."""
-        t0 = time.perf_counter()
         for key, element in self.inputs.items():
             f = FIELD_BY_KEY[key]
             element.set_visibility(self.project.active(f))
         self.recompute()
         self.show_errors()
-        self.last_update_ms = (time.perf_counter() - t0) * 1e3
-        c = self.project.computed
-        if self.project.spec is not None and c is not None:
-            self.updates += 1
-            self.status.set_text(
-                f"update {self.updates}: computed in {c.elapsed * 1e3:.0f} ms, page updated "
-                f"in {self.last_update_ms:.0f} ms"
-            )
+        self.show_state()
+
+    def orders(self) -> int:
+        """The highest order to compute (the setting; 8 while it is invalid)."""
+        try:
+            return int(studies.setting(self.project.settings, "orders"))
+        except InputError:
+            return 8
+
+    def fresh(self) -> Computed | None:
+        """The computed results when they belong to the form as it is now, else None (the
+        form has errors, or the engine it describes could not be computed)."""
+        spec = self.project.spec
+        if spec is None or self.computed_for is None or self.project.computed is None:
+            return None
+        return self.project.computed if self.computed_for == (spec, self.orders()) else None
+
+    def problem(self) -> str:
+        """Why the form cannot be computed: the messages of the fields (by their label) and
+        the general one."""
+        lines = [
+            f"{FIELD_BY_KEY[key].label}: {message}" for key, message in self.project.errors.items()
+        ]
+        if self.project.general_error:
+            lines.append(self.project.general_error)
+        return "; ".join(lines) or "the engine could not be computed"
+
+    def show_state(self) -> None:
+        """The header and every result tab say whether the results belong to the form."""
+        c = self.fresh()
+        self.updates += 1
+        if c is not None:
+            self.status.set_text(f"Results of: {c.spec.name}")
+            state = "current"
         else:
-            self.status.set_text("engine has errors: see the fields marked in red")
-        self.results.show_stale(self.project.spec is None)
+            fields = ", ".join(FIELD_BY_KEY[key].label for key in self.project.errors)
+            self.status.set_text(
+                f"Not computed: see {fields}" if fields else "Not computed: see the message above"
+            )
+            state = "error"
+        self.status.props(f"data-state={state} data-update={self.updates}")
+        shown = self.project.computed
+        for name, note in self.stale_notes.items():
+            note.set_text(
+                ""
+                if c is not None
+                else f"Not computed: {self.problem()}. The results below are those of the last "
+                f"valid engine ({shown.spec.name if shown else 'none'}), not of the form."
+            )
+            note.set_visibility(c is None)
+            self.bodies[name].classes(**{"add" if c is None else "remove": "cb-stale"})
 
     def recompute(self) -> None:
         self.show_setting_errors()
-        if self.project.spec is None:
+        spec = self.project.spec
+        if spec is None:
             return
-        try:
-            self.project.settings["orders"] = str(studies.setting(self.project.settings, "orders"))
-        except InputError:
-            self.project.settings["orders"] = "8"
+        orders = self.orders()
+        self.project.settings["orders"] = str(orders)
+        if self.fresh() is not None:
+            return  # the same engine and orders: nothing changed
         computed = self.project.compute()
         if computed is None:
             self.show_errors()
             return
+        self.computed_for = (spec, orders)
         for tab in self.tabs.values():
             for card in tab.cards:
                 card.stale = True

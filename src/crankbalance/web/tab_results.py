@@ -5,12 +5,13 @@ from __future__ import annotations
 
 from typing import Any
 
+import numpy as np
 from nicegui import ui
 
 from .. import figures
 from ..errors import InputError
 from ..format import text
-from .widgets import Tab, fmt_g
+from .widgets import FigureCard, Tab, fmt_g
 
 
 def order_rows(c: Any) -> list[dict[str, Any]]:
@@ -32,19 +33,42 @@ def order_rows(c: Any) -> list[dict[str, Any]]:
     return rows
 
 
+def leading_component(analysis: Any) -> tuple[figures.Quantity, str]:
+    """The quantity and order the curves and polar diagram open on: the free force or
+    moment of largest amplitude, a moment M counted as the force M / L with L the crank's
+    length (the ratio of the round-off levels of :func:`figures.roundoff_levels`), so that
+    a crossplane V8 opens on its first-order rocking couple, not on its small fourth-order
+    force. The bare crank's rotating masses (``"rotating"``) when every order is zero,
+    order 1 of the leading quantity when that is zero too."""
+    f = analysis.forces
+    tf, tm = figures.roundoff_levels(analysis.model, 1e-12)
+    forces = np.asarray(f.force_amplitude, dtype=float) / tf
+    moments = np.asarray(f.moment_amplitude, dtype=float) / tm
+    if max(forces.max(initial=0.0), moments.max(initial=0.0)) >= 1.0:
+        if forces.max(initial=0.0) >= moments.max(initial=0.0):
+            return "force", str(int(f.orders[int(np.argmax(forces))]))
+        return "moment", str(int(f.orders[int(np.argmax(moments))]))
+    if abs(f.rotating_force) >= tf or abs(f.rotating_couple) >= tm:
+        return (
+            "force" if abs(f.rotating_force) / tf >= abs(f.rotating_couple) / tm else "moment"
+        ), "rotating"
+    return figures.leading_quantity(analysis), "1"
+
+
 class ResultsTab(Tab):
     name = "results"
+    curves: FigureCard
+    polar: FigureCard
+
+    def __init__(self, page: Any) -> None:
+        super().__init__(page)
+        #: open the selectors on the leading component at the next computed engine (a new
+        #: project); a choice of the user is kept while the engine is edited
+        self.follow = True
+        self.quiet = False
 
     def build(self) -> None:
         page = self.page
-        self.stale_note = (
-            ui.label(
-                "The engine has errors (fields marked in red): the results below are those of "
-                "the last valid engine."
-            )
-            .classes("text-negative")
-            .mark("results-stale")
-        )
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card().classes("min-w-[340px]"):
                 ui.label("Balancing masses").classes("text-subtitle1")
@@ -65,7 +89,7 @@ class ResultsTab(Tab):
                     ui.button("Report HTML", on_click=page.download_report).props(
                         "outline dense"
                     ).mark("download-report")
-                page.setting("orders", page.recompute)
+                page.setting("orders", page.update_all)
             with ui.card().classes("grow"):
                 ui.label("Free forces and moments by order").classes("text-subtitle1")
                 self.orders_table = (
@@ -92,11 +116,12 @@ class ResultsTab(Tab):
             self.curve_quantity = (
                 ui.select(
                     ["force", "moment"],
-                    value=self.leading_quantity(),
+                    value="force",
                     label="Curves and polar: quantity",
-                    on_change=self.refresh,
+                    on_change=lambda: self.redraw(self.curves, self.polar),
                 )
                 .classes("w-48")
+                .props("data-testid=curve-quantity")
                 .mark("curve-quantity")
             )
             self.polar_order = (
@@ -104,9 +129,10 @@ class ResultsTab(Tab):
                     ["rotating"] + [str(k) for k in range(1, 9)],
                     value="1",
                     label="Polar diagram: order",
-                    on_change=self.refresh,
+                    on_change=lambda: self.redraw(self.polar),
                 )
                 .classes("w-48")
+                .props("data-testid=polar-order")
                 .mark("polar-order")
             )
         with ui.grid(columns=2).classes("w-full"):
@@ -120,7 +146,7 @@ class ResultsTab(Tab):
                 "Residuals before/after balancing",
                 self.computed(lambda c: figures.residuals_bar(c.study)),
             )
-            self.card(
+            self.curves = self.card(
                 "curves",
                 "Curves over a revolution, before and after balancing",
                 self.computed(
@@ -129,18 +155,35 @@ class ResultsTab(Tab):
                     )
                 ),
             )
-            self.card("polar", "Polar rotating-vector diagram", self.computed(self._polar))
+            self.polar = self.card(
+                "polar", "Polar rotating-vector diagram", self.computed(self._polar)
+            )
 
-    def refresh(self) -> None:
+    def redraw(self, *cards: FigureCard) -> None:
+        """A selector changed: redraw the figures it controls, now."""
+        if self.quiet:
+            return
+        for card in cards:
+            card.stale = True
         self.page.refresh_cards(self.name)
+
+    def reset(self) -> None:
+        self.follow = True
 
     def show(self, c: Any) -> None:
         self.orders_table.rows = order_rows(c)
         self.orders_table.update()
         choices = ["rotating", *(str(int(k)) for k in c.analysis.forces.orders)]
+        self.quiet = True  # the cards are redrawn after show() anyway
         if list(self.polar_order.options) != choices:  # follow the "Highest order" setting
             keep = self.polar_order.value if self.polar_order.value in choices else "1"
             self.polar_order.set_options(choices, value=keep)
+        if self.follow:
+            self.follow = False
+            quantity, order = leading_component(c.analysis)
+            self.curve_quantity.set_value(quantity)
+            self.polar_order.set_value(order)
+        self.quiet = False
         b = c.study.to_dict()
         lines = []
         cw = b["counterweight"]
@@ -166,24 +209,6 @@ class ResultsTab(Tab):
         )
         lines += [f"_{n}_" for n in b["notes"]]
         self.balance_summary.set_content("  \n".join(lines))
-
-    def show_stale(self, stale: bool) -> None:
-        """Say that the results are those of the last valid engine (while ``stale``)."""
-        self.stale_note.set_visibility(stale)
-
-    def follow_quantity(self) -> None:
-        """Start the curves and polar diagram of a newly loaded project on its leading
-        quantity."""
-        self.curve_quantity.set_value(self.leading_quantity())
-
-    def leading_quantity(self) -> figures.Quantity:
-        """Start the curves and polar diagram on the moment when every free force is zero
-        but a moment is not (an in-line 3): the first thing shown is then not a flat line."""
-        project = self.page.project
-        c = project.computed
-        if c is None:
-            c = project.compute() if project.spec is not None else None
-        return "force" if c is None else figures.leading_quantity(c.analysis)
 
     def _polar(self, c: Any) -> Any:
         order: Any = self.polar_order.value

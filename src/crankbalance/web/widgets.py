@@ -25,6 +25,17 @@ if TYPE_CHECKING:
 log = logging.getLogger("crankbalance.web")
 #: download formats of a figure card
 FigureFormat = Literal["png", "svg", "csv", "json"]
+#: layout of the figures on the page (not in their downloads): sized by their card, the
+#: legend inside the figure below the plot, so that a phone-wide card keeps the plot and
+#: its whole legend
+FIGURE_LAYOUT: dict[str, Any] = {"autosize": True}
+LEGEND: dict[str, Any] = {
+    "orientation": "h",
+    "x": 0,
+    "xanchor": "left",
+    "y": -0.12,
+    "yanchor": "top",
+}
 
 
 class FigureCard:
@@ -47,7 +58,10 @@ class FigureCard:
                         ).mark(f"download-{name}-{fmt}")
             self.note = ui.label("").classes("text-grey-7")
             self.plot = (
-                ui.plotly({"data": [], "layout": {}}).classes("w-full").mark(f"figure-{name}")
+                ui.plotly({"data": [], "layout": {}})
+                .classes("w-full")
+                .props(f"data-testid=figure-{name}")
+                .mark(f"figure-{name}")
             )
 
     def refresh(self) -> None:
@@ -61,7 +75,10 @@ class FigureCard:
             return
         self.note.set_text("")
         self.plot.set_visibility(True)
-        self.plot.update_figure(self.figure)
+        shown = self.figure.to_plotly_json()
+        shown["layout"] = {**shown.get("layout", {}), **FIGURE_LAYOUT}
+        shown["layout"]["legend"] = {**shown["layout"].get("legend", {}), **LEGEND}
+        self.plot.update_figure(shown)
         self.stale = False
 
     async def download(self, fmt: FigureFormat) -> None:
@@ -132,10 +149,9 @@ class Tab(ABC):
         return builder
 
     def study_ready(self) -> Any | None:
-        c = self.page.project.computed
-        if c is None or self.page.project.spec is None:
-            ui.notify("Correct the engine first (fields marked in red)", type="warning")
-            return None
+        c = self.page.fresh()
+        if c is None:
+            ui.notify(f"Not computed: {self.page.problem()}", type="warning", multi_line=True)
         return c
 
     def study_error(self, error: InputError) -> None:
