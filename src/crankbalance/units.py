@@ -265,9 +265,13 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
             quantity = magnitude * ureg.revolution / ureg.second
         try:
             return float(quantity.to(si_unit).magnitude)
-        except Exception:
-            pass
-    raise InputError(field, value, f"has the wrong unit for {_a(kind)}; write e.g. {example!r}")
+        except Exception:  # pint refuses the conversion: another dimension
+            raise InputError(field, value, _wrong_unit(kind, example)) from None
+    raise InputError(field, value, _wrong_unit(kind, example))
+
+
+def _wrong_unit(kind: str, example: str) -> str:
+    return f"has the wrong unit for {_a(kind)}; write e.g. {example!r}"
 
 
 def format_quantity(value: float, kind: str, digits: int = 12) -> str:
