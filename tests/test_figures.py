@@ -195,25 +195,152 @@ def test_zero_bars_say_balanced(paper: tuple, inline4: tuple) -> None:
 
 
 # --------------------------------------------------------------------------- 3-D
+def drawn_3d(fig) -> tuple[list, list, list]:
+    """What a 3-D figure draws, whatever the traces it is split into: line segments
+    (name, legend group, line style, end points [mm], hover text), markers (name, legend
+    group, colour, size, point [mm], hover text) and the legend's names in order."""
+    segments, markers, legend = [], [], []
+    for t in fig.data:
+        if t.showlegend:
+            legend.append(t.name)
+        n = len(t.x)
+        text = list(t.text) if isinstance(t.text, list | tuple) else [t.text] * n
+        points = [None if t.x[k] is None else (t.x[k], t.y[k], t.z[k]) for k in range(n)]
+        if t.mode == "markers":
+            size = t.marker.size
+            sizes = list(size) if isinstance(size, list | tuple) else [size] * n
+            for k in range(n):
+                markers.append(
+                    (t.name, t.legendgroup, t.marker.color, sizes[k], points[k], text[k])
+                )
+            continue
+        assert t.mode == "lines"
+        style = (t.line.color, t.line.width, t.line.dash, t.hoverinfo)
+        for k in range(0, n, 3):  # two points per segment, then a None break
+            assert points[k] is not None and points[k + 1] is not None
+            assert k + 2 == n or points[k + 2] is None
+            assert text[k] == text[k + 1]
+            segments.append((t.name, t.legendgroup, style, points[k], points[k + 1], text[k]))
+    return segments, markers, legend
+
+
 def test_crank_3d_has_every_mass(paper: tuple) -> None:
     a, b = paper
-    fig = figures.crank_3d(b.model, b)
+    segments, markers, legend = drawn_3d(figures.crank_3d(b.model, b))
     cw = b.result.counterweights
-    markers = [t for t in fig.data if t.mode == "markers" and t.legendgroup == "counterweights"]
-    assert len(markers) == cw.count
-    for t, y, d in zip(markers, cw.position, cw.direction, strict=True):
-        assert t.x[0] == pytest.approx(y * 1e3)
-        assert t.y[0] == pytest.approx(cw.cg_radius * np.sin(d) * 1e3)
-        assert t.z[0] == pytest.approx(cw.cg_radius * np.cos(d) * 1e3)
-    shaft_masses = [t for t in fig.data if t.mode == "markers" and "shaft" in t.legendgroup]
+    cws = [m for m in markers if m[1] == "counterweights"]
+    assert len(cws) == cw.count
+    for m, y, d in zip(cws, cw.position, cw.direction, strict=True):
+        assert m[4] == pytest.approx(
+            (y * 1e3, cw.cg_radius * np.sin(d) * 1e3, cw.cg_radius * np.cos(d) * 1e3)
+        )
+    shaft_masses = [m for m in markers if "shaft" in m[1]]
     assert len(shaft_masses) == 8  # two shafts per order, two masses each
-    pins = [t for t in fig.data if t.legendgroup == "pin"]
+    # one arm per mass, from its shaft's axis to the mass
+    arms = [s for s in segments if "shaft" in s[1] and s[3][0] == s[4][0]]
+    assert sorted(s[4] for s in arms) == sorted(m[4] for m in shaft_masses)
+    pins = [s for s in segments if s[1] == "pin"]
     assert len(pins) == 3
     r = a.model.crank_radius * 1e3
-    for t, phi in zip(pins, a.model.throw_angle, strict=True):
-        assert t.z[0] == pytest.approx(r * np.cos(phi)) and t.y[0] == pytest.approx(r * np.sin(phi))
+    for s, phi in zip(pins, a.model.throw_angle, strict=True):
+        assert s[3][2] == pytest.approx(r * np.cos(phi)) and s[3][1] == pytest.approx(
+            r * np.sin(phi)
+        )
+        assert s[5].startswith(f"throw {pins.index(s) + 1}: angle")
+    assert legend.count("counterweights") == 1 and legend.count("webs") == 1
     # bare crank from a model alone
-    assert not [t for t in figures.crank_3d(a.model).data if t.legendgroup == "counterweights"]
+    assert not [m for m in drawn_3d(figures.crank_3d(a.model))[1] if m[1] == "counterweights"]
+
+
+# Drawn by crank_3d before its segments were merged into one trace per legend entry
+# (one trace per segment then): segments, markers, bounding box of every point [mm], sums
+# of |coordinates| [mm] and of their squares [mm²] and of marker sizes, legend names in
+# order.
+LEGEND = ["crank axis / main journals", "crankpins", "webs", "cylinder axes (stroke)"]
+SHAFTS = [f"order-{k} shaft, {s}-rotating" for k in (1, 2) for s in ("co", "counter")]
+BEFORE_MERGE = {
+    ("paper-inline3", True): (
+        29,
+        12,
+        (-135.0, -135.0, -133.480762),
+        (135.0, 135.0, 255.0),
+        14107.8203,
+        1571887.5,
+        148.688688,
+        [*LEGEND, "counterweights", *SHAFTS],
+    ),
+    ("paper-inline3", False): (
+        13,
+        0,
+        (-135.0, -34.641016, -20.0),
+        (135.0, 34.641016, 255.0),
+        3732.1281,
+        481312.5,
+        0.0,
+        LEGEND,
+    ),
+    ("v12-60", True): (
+        43,
+        12,
+        (-336.0, -148.0, -40.703194),
+        (336.0, 148.0, 256.34352),
+        27769.87,
+        5441632.0,
+        216.0,
+        [*LEGEND, "counterweights"],
+    ),
+    ("radial5", True): (
+        11,
+        2,
+        (-75.0, -461.26241, -392.373242),
+        (75.0, 461.26241, 485.0),
+        6377.2762,
+        1810375.0,
+        36.0,
+        [*LEGEND, "counterweights"],
+    ),
+    ("single", False): (5, 0, (-31.0, 0.0, 0.0), (31.0, 0.0, 203.0), 623.0, 68297.5, 0.0, LEGEND),
+    ("w12", True): (
+        33,
+        8,
+        (-224.0, -256.34352, -23.5),
+        (224.0, 256.34352, 296.0),
+        18000.7474,
+        2878672.0,
+        144.0,
+        [*LEGEND, "counterweights"],
+    ),
+    ("boxer4", True): (
+        25,
+        8,
+        (-184.0, -274.0, 0.0),
+        (184.0, 274.0, 0.0),
+        8744.0,
+        1186432.0,
+        144.0,
+        [*LEGEND, "counterweights"],
+    ),
+}
+
+
+@pytest.mark.parametrize(("engine", "balanced"), list(BEFORE_MERGE))
+def test_crank_3d_draws_the_same_geometry_in_few_traces(engine: str, balanced: bool) -> None:
+    """Same points, sizes and legend as the one-trace-per-segment figure, in at most one
+    lines trace per line style and one markers trace per legend entry."""
+    b = balance_engine(engine)
+    fig = figures.crank_3d(b.model, b if balanced else None)
+    segments, markers, legend = drawn_3d(fig)
+    points = np.array([p for s in segments for p in s[3:5]] + [m[4] for m in markers])
+    n_seg, n_mark, lo, hi, coords, squares, sizes, names = BEFORE_MERGE[engine, balanced]
+    assert (len(segments), len(markers)) == (n_seg, n_mark)
+    assert points.min(axis=0) == pytest.approx(lo, abs=1e-6)
+    assert points.max(axis=0) == pytest.approx(hi, abs=1e-6)
+    assert np.abs(points).sum() == pytest.approx(coords, abs=1e-3)
+    assert np.square(points).sum() == pytest.approx(squares, rel=1e-9)
+    assert sum(m[3] for m in markers) == pytest.approx(sizes, abs=1e-5)
+    assert legend == names
+    styles = {(s[0], s[2]) for s in segments} | {(m[0], "markers") for m in markers}
+    assert len(fig.data) == len(styles)
 
 
 # --------------------------------------------------------------------------- residuals

@@ -613,12 +613,34 @@ def crank_3d(
     pos = m.throw_position
     span = float(np.ptp(pos)) if m.throws > 1 else 0.0
     end = span / 2 + 2 * web
-    fig = go.Figure()
+    # one trace per legend entry, kind (lines or markers) and style: segments joined with
+    # None breaks, hover text and marker size per point (a few traces build and draw much
+    # faster than one per segment: plotly validates every trace)
+    traces: dict[tuple[str, str, str], dict[str, Any]] = {}
+
+    def trace(mode: str, name: str, show: bool, **style: Any) -> dict[str, Any]:
+        key = (mode, name, repr(style))
+        if key not in traces:
+            traces[key] = {
+                "type": "scatter3d",
+                "mode": mode,
+                "name": name,
+                "legendgroup": style.pop("group", name),
+                "showlegend": show,
+                "x": [],
+                "y": [],
+                "z": [],
+                "text": [],
+                **style,
+            }
+        t = traces[key]
+        t["showlegend"] = t["showlegend"] or show
+        return t
 
     def line(
-        ys: list[float],
-        xs: list[float],
-        zs: list[float],
+        ys: tuple[float, float],
+        xs: tuple[float, float],
+        zs: tuple[float, float],
         name: str,
         color: str,
         width: float,
@@ -627,24 +649,32 @@ def crank_3d(
         dash: str = "solid",
         text: str | None = None,
     ) -> None:
-        fig.add_trace(
-            go.Scatter3d(
-                x=np.asarray(ys) * mm,
-                y=np.asarray(xs) * mm,
-                z=np.asarray(zs) * mm,
-                mode="lines",
-                line={"color": color, "width": width, "dash": dash},
-                name=name,
-                legendgroup=group,
-                showlegend=bool(show),
-                hoverinfo="text" if text else "name",
-                text=text,
-            )
+        t = trace(
+            "lines",
+            name,
+            show,
+            group=group,
+            line={"color": color, "width": width, "dash": dash},
+            hoverinfo="text" if text else "name",
         )
+        for out, values in ((t["x"], ys), (t["y"], xs), (t["z"], zs)):
+            if out:
+                out.append(None)
+            out.extend(v * mm for v in values)
+        t["text"].extend(([None] if len(t["text"]) else []) + [text, text])
+
+    def marker(
+        y: float, x: float, z: float, name: str, color: str, size: float, show: bool, text: str
+    ) -> None:
+        t = trace("markers", name, show, marker={"color": color, "opacity": 0.9}, hoverinfo="text")
+        t["marker"].setdefault("size", []).append(size)
+        for out, v in ((t["x"], y), (t["y"], x), (t["z"], z)):
+            out.append(v * mm)
+        t["text"].append(text)
 
     # main journals: the crank axis between and beyond the throws
     line(
-        [-end, end], [0, 0], [0, 0], "crank axis / main journals", COLORS["crank"], 8, "axis", True
+        (-end, end), (0, 0), (0, 0), "crank axis / main journals", COLORS["crank"], 8, "axis", True
     )
     for t in range(m.throws):
         phi = m.throw_angle[t]
@@ -654,23 +684,23 @@ def crank_3d(
             f"throw {t + 1}: angle {math.degrees(phi) % 360:.1f} deg, y {pos[t] * mm:.1f} mm,"
             f" rotating mass {m.throw_rotating_mass[t]:.3f} kg"
         )
-        line([y0, y1], [px, px], [pz, pz], "crankpins", "#1f3b73", 12, "pin", t == 0, text=text)
+        line((y0, y1), (px, px), (pz, pz), "crankpins", "#1f3b73", 12, "pin", True, text=text)
         for yw in (y0, y1):
-            line([yw, yw], [0, px], [0, pz], "webs", "#6b6b6b", 6, "web", t == 0 and yw == y0)
+            line((yw, yw), (0, px), (0, pz), "webs", "#6b6b6b", 6, "web", True)
     # cylinder axes from the crankpin's top-dead-centre circle outward
     for c in range(m.cylinders):
         beta = m.cylinder_bank[c]
         y = m.cylinder_position[c]
         r0, r1 = r + m.rod_length, r + m.rod_length + 2 * r
         line(
-            [y, y],
-            [r0 * math.sin(beta), r1 * math.sin(beta)],
-            [r0 * math.cos(beta), r1 * math.cos(beta)],
+            (y, y),
+            (r0 * math.sin(beta), r1 * math.sin(beta)),
+            (r0 * math.cos(beta), r1 * math.cos(beta)),
             "cylinder axes (stroke)",
             "#c7c7c7",
             10,
             "cyl",
-            c == 0,
+            True,
             text=f"cylinder {c + 1}: bank {math.degrees(beta):.1f} deg",
         )
     if balance_study is not None:
@@ -695,21 +725,17 @@ def crank_3d(
             for j in range(cw.count):
                 d, rho = float(cw.direction[j]), cw.cg_radius
                 cx, cz, y = rho * math.sin(d), rho * math.cos(d), float(cw.position[j])
-                line([y, y], [0, cx], [0, cz], label, color, 5, label, False)
-                fig.add_trace(
-                    go.Scatter3d(
-                        x=[y * mm],
-                        y=[cx * mm],
-                        z=[cz * mm],
-                        mode="markers",
-                        name=label,
-                        legendgroup=label,
-                        showlegend=j == 0,
-                        marker={"size": size(float(cw.mass[j])), "color": color, "opacity": 0.9},
-                        hoverinfo="text",
-                        text=f"{label}: web {int(cw.web[j])}, {cw.mass[j]:.4g} kg at "
-                        f"{rho * mm:.1f} mm, {math.degrees(d) % 360:.1f} deg",
-                    )
+                line((y, y), (0, cx), (0, cz), label, color, 5, label, False)
+                marker(
+                    y,
+                    cx,
+                    cz,
+                    label,
+                    color,
+                    size(float(cw.mass[j])),
+                    True,
+                    f"{label}: web {int(cw.web[j])}, {cw.mass[j]:.4g} kg at "
+                    f"{rho * mm:.1f} mm, {math.degrees(d) % 360:.1f} deg",
                 )
         # balance shafts beside the crank (schematic): primary left/right of the crank at
         # the height of the axis, secondary below; co-rotating on one side
@@ -726,9 +752,9 @@ def crank_3d(
                 sense = "co-rotating" if s.sense > 0 else "counter-rotating"
                 label = f"order-{group.order} shaft, {sense}"
                 line(
-                    [-half, half],
-                    [xc, xc],
-                    [zc, zc],
+                    (-half, half),
+                    (xc, xc),
+                    (zc, zc),
                     label,
                     color,
                     6,
@@ -739,38 +765,37 @@ def crank_3d(
                 for x in s.masses:
                     rho = s.cg_radius
                     mx, mz = xc + rho * math.sin(x.phase), zc + rho * math.cos(x.phase)
-                    line(
-                        [x.position, x.position], [xc, mx], [zc, mz], label, color, 4, label, False
+                    arm = (x.position, x.position), (xc, mx), (zc, mz)
+                    line(*arm, label, color, 4, label, False)
+                    marker(
+                        x.position,
+                        mx,
+                        mz,
+                        label,
+                        color,
+                        size(x.mass),
+                        False,
+                        f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
+                        f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg",
                     )
-                    fig.add_trace(
-                        go.Scatter3d(
-                            x=[x.position * mm],
-                            y=[mx * mm],
-                            z=[mz * mm],
-                            mode="markers",
-                            name=label,
-                            legendgroup=label,
-                            showlegend=False,
-                            marker={"size": size(x.mass), "color": color, "opacity": 0.9},
-                            hoverinfo="text",
-                            text=f"{label}: {x.mass:.4g} kg at {rho * mm:.1f} mm, y "
-                            f"{x.position * mm:.1f} mm, phase {math.degrees(x.phase):.1f} deg",
-                        )
-                    )
-    fig.update_layout(
-        template=TEMPLATE,
-        title=figure_title("Crankshaft at crank angle 0", m.name),
-        scene={
-            "xaxis_title": "y, crank axis [mm]",
-            "yaxis_title": "x [mm]",
-            "zaxis_title": "z [mm]",
+    for drawn in traces.values():
+        if not any(drawn["text"]):
+            del drawn["text"]
+    layout = {
+        "template": TEMPLATE,
+        "title": {"text": figure_title("Crankshaft at crank angle 0", m.name)},
+        "scene": {
+            "xaxis": {"title": {"text": "y, crank axis [mm]"}},
+            "yaxis": {"title": {"text": "x [mm]"}},
+            "zaxis": {"title": {"text": "z [mm]"}},
             "aspectmode": "data",
             "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}},
         },
-        legend={"orientation": "h", "y": -0.05},
-        margin={"l": 0, "r": 0, "t": 50, "b": 0},
-    )
-    return fig
+        "legend": {"orientation": "h", "y": -0.05},
+        "margin": {"l": 0, "r": 0, "t": 50, "b": 0},
+    }
+    # one validated construction (update_layout afterwards would validate the template twice)
+    return go.Figure(data=list(traces.values()), layout=layout)
 
 
 # --------------------------------------------------------------------------- residuals
