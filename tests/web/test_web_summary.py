@@ -8,6 +8,7 @@ Every wait is a wait for a state of the page with the hang guard of ``conftest.p
 from __future__ import annotations
 
 import re
+from pathlib import Path
 
 import pytest
 
@@ -15,7 +16,7 @@ pytest.importorskip("nicegui")
 
 from nicegui.testing.user import User  # noqa: E402
 
-pytestmark = pytest.mark.anyio
+ARTIFACTS = Path(__file__).resolve().parents[2] / "artifacts" / "screenshots"
 
 
 def shown(user: User, marker: str) -> bool:
@@ -27,6 +28,7 @@ def shown(user: User, marker: str) -> bool:
         return False
 
 
+@pytest.mark.anyio
 async def test_summary_crossplane_v8(user: User, form) -> None:
     """Crossplane V8: its free effect is the first-order rocking couple, forward, which
     crank counterweights (in opposition) cancel; no shaft is asked for it."""
@@ -40,6 +42,7 @@ async def test_summary_crossplane_v8(user: User, form) -> None:
     assert "Rotating masses" in card
 
 
+@pytest.mark.anyio
 async def test_summary_inline4(user: User, form) -> None:
     """Inline-4: its free effect is the second-order force, half forward and half backward:
     two balance shafts at twice crank speed, a counter-rotating pair."""
@@ -53,6 +56,7 @@ async def test_summary_inline4(user: User, form) -> None:
     assert "counterweights" not in first
 
 
+@pytest.mark.anyio
 async def test_summary_follows_the_engine(user: User, form) -> None:
     """The card is the computed engine's: a single cylinder's first order is forward
     (counterweights) and backward (a counter-rotating shaft at crank speed)."""
@@ -64,6 +68,7 @@ async def test_summary_follows_the_engine(user: User, form) -> None:
     assert "1× crank speed, counter-rotating for the backward part" in first
 
 
+@pytest.mark.anyio
 async def test_study_results_cleared_when_the_engine_changes(user: User, form) -> None:
     """Every study tab: a result computed for one engine is cleared, with "Not computed for
     this engine: re-run", once the form's engine is another; going back to the old engine
@@ -102,6 +107,7 @@ async def test_study_results_cleared_when_the_engine_changes(user: User, form) -
     assert shown(user, "counterweight-rerun")
 
 
+@pytest.mark.anyio
 async def test_shaft_result_cleared_when_the_engine_changes(user: User, form) -> None:
     await user.open("/?preset=inline4")
     user.find(marker="run-shaft").click()
@@ -110,3 +116,55 @@ async def test_shaft_result_cleared_when_the_engine_changes(user: User, form) ->
     await form.until(lambda: shown(user, "shaft-rerun"), "the rerun note")
     assert form.text("shaft-summary") == ""
     assert not shown(user, "figure-shaft")
+
+
+def test_study_result_marked_in_the_browser(server: str, page) -> None:
+    """Chromium: the inline-4's balance-shaft result is cleared with "Not computed for this
+    engine: re-run" when the crank radius is edited, and stays so after the edit is undone."""
+    expect = pytest.importorskip("playwright.sync_api").expect
+    import importlib.util
+
+    spec = importlib.util.spec_from_file_location(  # its helpers (importlib import mode)
+        "web_state_helpers", Path(__file__).with_name("test_web_state.py")
+    )
+    assert spec is not None and spec.loader is not None
+    helpers = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(helpers)
+    field, open_tab, state, wait_update = (
+        helpers.field,
+        helpers.open_tab,
+        helpers.state,
+        helpers.wait_update,
+    )
+
+    page.goto(server + "/?preset=inline4")
+    wait_update(page, 0, "current")
+    open_tab(page, "Results")
+    expect(page.locator("[data-testid=summary]").first).to_contain_text(
+        "two balance shafts at 2× crank speed, a counter-rotating pair"
+    )
+    open_tab(page, "Balance shaft")
+    page.get_by_role("button", name="Find the optimum").click()
+    summary = page.get_by_text("optimum mass position")
+    expect(summary).to_be_visible()
+    note = page.locator("[data-testid=shaft-rerun]").first
+    expect(note).to_be_hidden()
+    _, n = state(page)
+    open_tab(page, "Engine")
+    old = field(page, "crank_radius").input_value()
+    field(page, "crank_radius").fill("41 mm")
+    wait_update(page, n, "current")
+    open_tab(page, "Balance shaft")
+    expect(note).to_be_visible()
+    expect(note).to_contain_text("Not computed for this engine")
+    expect(summary).to_have_count(0)
+    page.screenshot(path=str(ARTIFACTS / "shaft-rerun.png"), full_page=True)
+    _, n = state(page)
+    open_tab(page, "Engine")
+    field(page, "crank_radius").fill(old)  # back to the engine of the result
+    wait_update(page, n, "current")
+    open_tab(page, "Balance shaft")
+    expect(note).to_be_visible()
+    expect(summary).to_have_count(0)
+    open_tab(page, "Results")
+    page.screenshot(path=str(ARTIFACTS / "results-summary-inline4.png"), full_page=True)
