@@ -16,7 +16,7 @@ from nicegui import run, ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import Tab, plot_or_none, send_download
+from .widgets import StudyTab, plot_or_none, send_download
 
 
 def radial_space(model: Any) -> float:
@@ -49,7 +49,7 @@ ALIASES = {
 }
 
 
-class CounterweightTab(Tab):
+class CounterweightTab(StudyTab):
     name = "counterweight"
     optimum: Any = None
 
@@ -74,6 +74,7 @@ class CounterweightTab(Tab):
                 )
             with ui.card().classes("grow"):
                 ui.label("Results").classes("text-subtitle1")
+                self.rerun_note()
                 self.cw_summary = ui.markdown("").mark("cw-summary")
                 self.cw_choice = (
                     ui.select(
@@ -103,6 +104,7 @@ class CounterweightTab(Tab):
             )
 
     def show(self, c: Any) -> None:
+        super().show(c)
         try:
             moment, mass, radius = studies.counterweight_requirement(c)
             self.cw_requirement.set_content(
@@ -118,8 +120,11 @@ class CounterweightTab(Tab):
             "clearance, so type your own limit."
         )
 
-    def reset(self) -> None:
+    def clear(self) -> None:
         self.optimum = None
+        self.cw_summary.set_content("")
+        for card in self.cards:
+            card.refresh()
 
     async def optimise(self) -> None:
         c = self.study_ready()
@@ -130,6 +135,7 @@ class CounterweightTab(Tab):
         if not str(settings.get("cw_max_radius", "")).strip():
             settings["cw_max_radius"] = f"{limit * 1e3:.6g} mm"  # the engine's space
         self.cw_summary.set_content("optimising …")
+        started = self.page.computed_for
         try:
             optimum = await run.io_bound(studies.run_counterweight, c, settings)
         except InputError as error:
@@ -142,6 +148,8 @@ class CounterweightTab(Tab):
             return
         if optimum is None:
             self.cw_summary.set_content("optimisation cancelled (server stopping): no result")
+            return
+        if not self.owns(started):  # the engine was edited while the optimiser ran
             return
         self.optimum = optimum
         self.cw_choice.set_options(studies.design_choices(optimum), value="least mass")

@@ -10,10 +10,10 @@ from nicegui import run, ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import Tab, fmt_g, plot_or_none
+from .widgets import StudyTab, fmt_g, plot_or_none
 
 
-class PerformanceTab(Tab):
+class PerformanceTab(StudyTab):
     name = "performance"
     result: Any = None
 
@@ -33,6 +33,7 @@ class PerformanceTab(Tab):
                     "run-performance"
                 )
             with ui.card().classes("grow"):
+                self.rerun_note()
                 self.performance_table = (
                     ui.table(
                         columns=[
@@ -58,14 +59,19 @@ class PerformanceTab(Tab):
             lambda: plot_or_none("sensitivity_figure", self.result),
         )
 
-    def reset(self) -> None:
+    def clear(self) -> None:
         self.result = None
+        self.performance_table.rows = []
+        self.performance_table.update()
+        for card in self.cards:
+            card.refresh()
 
     async def run_study(self) -> None:
         c = self.study_ready()
         if c is None:
             return
         settings = dict(self.page.project.settings)
+        started = self.page.computed_for
         try:
             result = await run.io_bound(studies.performance_study, c, settings)
         except InputError as error:
@@ -73,6 +79,8 @@ class PerformanceTab(Tab):
             return
         if result is None:
             ui.notify("sweep cancelled (server stopping): no result", type="warning")
+            return
+        if not self.owns(started):  # the engine was edited while the sweep ran
             return
         self.result = result
         rows = []

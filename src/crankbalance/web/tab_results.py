@@ -55,6 +55,95 @@ def leading_component(analysis: Any) -> tuple[figures.Quantity, str]:
     return figures.leading_quantity(analysis), "1"
 
 
+#: the components the summary card lists (the largest first); smaller ones are counted
+SUMMARY_ROWS = 4
+
+
+def _cure(order: int, quantity: str, forward: bool, backward: bool) -> str:
+    """What cancels a free ``quantity`` of ``order`` that has a forward (co-rotating) and/or
+    a backward (counter-rotating) part: crank counterweights take a first-order forward
+    part; a backward one, and any of order n >= 2, needs balance shafts at n times crank
+    speed, co-rotating for forward and counter-rotating for backward; a moment needs a pair
+    (two masses in opposition, a couple)."""
+    moment = quantity == "moment"
+    one = "a shaft pair (masses in opposition)" if moment else "a balance shaft"
+    speed = f"at {order}× crank speed"
+    parts = []
+    if forward:
+        parts.append(
+            ("crank counterweights in opposition (a couple)" if moment else "crank counterweights")
+            if order == 1
+            else f"{one} {speed}, co-rotating"
+        )
+    if backward:
+        parts.append(f"{one} {speed}, counter-rotating")
+    if len(parts) == 2 and order == 1:
+        return f"{parts[0]} for the forward part; {parts[1]} for the backward part"
+    if order >= 2 and forward and backward:
+        return (
+            f"two shaft pairs {speed} (one co-rotating, one counter-rotating)"
+            if moment
+            else f"two balance shafts {speed}, a counter-rotating pair (one co-rotating, one "
+            "counter-rotating)"
+        )
+    return "; ".join(parts)
+
+
+def summary_lines(c: Any) -> list[str]:
+    """The summary card of the computed engine ``c``: its largest free forces and moments
+    by order (before balancing), forward/backward, and what would cancel each, from the
+    analysis already computed. A moment M is ranked as the force M / L (L the crank's
+    length, as :func:`leading_component`); values below round-off count as zero."""
+    analysis = c.analysis
+    d = analysis.to_dict()
+    tf, tm = figures.roundoff_levels(analysis.model)
+    found: list[tuple[float, str]] = []
+    for f, m in zip(d["free_forces"], d["free_moments"], strict=True):
+        for row, quantity, unit, tiny, key in (
+            (f, "force", "N", tf, "N"),
+            (m, "moment", "N·m", tm, "Nm"),
+        ):
+            fwd, bwd = float(row[f"forward_{key}"]), float(row[f"backward_{key}"])
+            fwd, bwd = (fwd if fwd >= tiny else 0.0), (bwd if bwd >= tiny else 0.0)
+            if fwd == 0 and bwd == 0:
+                continue
+            amplitude = float(row[f"amplitude_{key}"])
+            split = (
+                "forward"
+                if bwd == 0
+                else "backward"
+                if fwd == 0
+                else f"forward {fmt_g(fwd)} {unit}, backward {fmt_g(bwd)} {unit}"
+            )
+            found.append(
+                (
+                    amplitude / tiny,
+                    f"**Order {row['order']} {quantity} {fmt_g(amplitude)} {unit}** ({split})"
+                    f" → {_cure(int(row['order']), quantity, fwd > 0, bwd > 0)}",
+                )
+            )
+    found.sort(key=lambda item: -item[0])
+    lines = [text for _, text in found[:SUMMARY_ROWS]]
+    if not lines:
+        lines.append("**No free force or moment** of the reciprocating masses up to this order.")
+    elif len(found) > SUMMARY_ROWS:
+        lines.append(f"_and {len(found) - SUMMARY_ROWS} smaller components (see the table)_")
+    rotating = d["rotating"]
+    force, couple = float(rotating["force_N"]), float(rotating["moment_Nm"])
+    if force >= tf or couple >= tm:
+        lines.append(
+            f"**Rotating masses** of the throws: force {fmt_g(force)} N, couple "
+            f"{fmt_g(couple)} N·m (first order, forward) → crank counterweights"
+        )
+    lines.append(
+        "_Forward turns with the crank, backward against it. Crank counterweights cancel "
+        "only first-order forward components; a backward one, and any of order n ≥ 2, needs "
+        "balance shafts at n× crank speed (co-rotating for forward, counter-rotating for "
+        "backward); a moment needs a pair in opposition._"
+    )
+    return lines
+
+
 class ResultsTab(Tab):
     name = "results"
     curves: FigureCard
@@ -69,6 +158,9 @@ class ResultsTab(Tab):
 
     def build(self) -> None:
         page = self.page
+        with ui.card().classes("w-full").mark("summary-card"):
+            ui.label("What is unbalanced and what would cancel it").classes("text-subtitle1")
+            self.summary = ui.markdown("").props("data-testid=summary").mark("summary")
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card().classes("min-w-[340px]"):
                 ui.label("Balancing masses").classes("text-subtitle1")
@@ -171,6 +263,7 @@ class ResultsTab(Tab):
         self.follow = True
 
     def show(self, c: Any) -> None:
+        self.summary.set_content("  \n".join(summary_lines(c)))
         self.orders_table.rows = order_rows(c)
         self.orders_table.update()
         choices = ["rotating", *(str(int(k)) for k in c.analysis.forces.orders)]

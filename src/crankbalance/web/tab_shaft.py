@@ -16,7 +16,7 @@ from nicegui import ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import Tab, plot_or_none
+from .widgets import StudyTab, plot_or_none
 
 #: argument names of the library -> the settings of this tab
 ALIASES = {"length": "bs_length", "diameter": "bs_diameter", "weight": "bs_weight"}
@@ -51,7 +51,7 @@ def applicability(analysis: Any) -> tuple[bool, str]:
     return True, f"For this engine's free {name} force of {force:.4g} N."
 
 
-class ShaftTab(Tab):
+class ShaftTab(StudyTab):
     name = "shaft"
     result: Any = None
 
@@ -65,11 +65,13 @@ class ShaftTab(Tab):
                     "run-shaft"
                 )
             with ui.card().classes("grow max-w-full"):
+                self.rerun_note()
                 self.applies = ui.markdown("").mark("shaft-applies")
                 self.shaft_summary = ui.markdown("").mark("shaft-summary")
         self.card("shaft", "Placement study", lambda: plot_or_none("shaft_study", self.result))
 
     def show(self, c: Any) -> None:
+        super().show(c)
         ok, why = applicability(c.analysis)
         self.applies.set_content(why)
         if ok:
@@ -79,11 +81,12 @@ class ShaftTab(Tab):
         if not ok and self.result is not None:
             self._clear()
 
-    def reset(self) -> None:
-        self.result = None
+    def clear(self) -> None:
+        self._clear()
 
     def _clear(self, text: str = "") -> None:
         self.result = None
+        self.result_for = None
         self.shaft_summary.set_content(text)
         for card in self.cards:
             card.refresh()
@@ -108,6 +111,8 @@ class ShaftTab(Tab):
                 )
                 return
             self._clear(show_error(self.page, error, ALIASES))
+            return
+        if not self.owns(self.page.computed_for):
             return
         self.result = study
         self.shaft_summary.set_content(

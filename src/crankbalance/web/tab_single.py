@@ -11,7 +11,7 @@ from nicegui import ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import Tab, plot_or_none
+from .widgets import StudyTab, plot_or_none
 
 #: argument names of the library -> the settings of this tab (messages beside the input)
 ALIASES = {
@@ -99,12 +99,13 @@ def rotor_mass_note(iso: dict[str, Any], given: str) -> str:
     )
 
 
-class SingleTab(Tab):
+class SingleTab(StudyTab):
     name = "single"
     result: Any = None
     rebalanced: Any = None
 
     def build(self) -> None:
+        self.rerun_note()
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card():
                 ui.label("Balance factor study").classes("text-subtitle1")
@@ -162,8 +163,16 @@ class SingleTab(Tab):
             )
             self.card("drilling", "Drilling plan to scale", self._drawing)
 
-    def reset(self) -> None:
+    def clear(self) -> None:
         self.result = self.rebalanced = None
+        for summary in (self.single_summary, self.iso_summary, self.iso_note):
+            summary.set_content("")
+        self.rebalance_summary.set_content("")
+        self.plan.set_content("Compute the study for the drilling plan.")
+        self.passes.rows = []
+        self.passes.set_visibility(False)
+        for card in self.cards:
+            card.refresh()
 
     def _drawing(self) -> Any | None:
         c = self.page.project.computed
@@ -187,6 +196,8 @@ class SingleTab(Tab):
             self.passes.set_visibility(False)
             for card in self.cards:
                 card.refresh()
+            return
+        if not self.owns(self.page.computed_for):
             return
         self.result, self.rebalanced = study, reb
         self.single_summary.set_content(

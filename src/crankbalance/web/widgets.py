@@ -161,6 +161,57 @@ class Tab(ABC):
             ui.notify(str(error), type="negative", multi_line=True)
 
 
+class StudyTab(Tab):
+    """A tab whose study runs when the user asks. Its result belongs to the engine it was run
+    for, :attr:`~.app.Page.computed_for` (the one rule of :meth:`~.app.Page.fresh`: results
+    belong to (engine spec, orders)). Once the form's computed engine is another one, the
+    result is cleared and the tab says "Not computed for this engine: re-run"; going back to
+    the old engine does not bring it back, only a new run does."""
+
+    #: :attr:`~.app.Page.computed_for` of the shown result; None while there is none
+    result_for: tuple[Any, int] | None = None
+
+    def rerun_note(self) -> None:
+        """The note shown in place of a cleared result (call it in :meth:`build`)."""
+        self.rerun = (
+            ui.label("")
+            .classes("text-orange-10 text-body1")
+            .props(f"data-testid={self.name}-rerun")
+            .mark(f"{self.name}-rerun")
+        )
+        self.rerun.set_visibility(False)
+
+    @abstractmethod
+    def clear(self) -> None:
+        """Forget the study's result and empty everything that shows it."""
+
+    def show(self, c: Any) -> None:
+        if self.result_for is not None and self.result_for != self.page.computed_for:
+            self.drop(c.spec.name)
+
+    def reset(self) -> None:
+        self.result_for = None
+        self.clear()
+        self.rerun.set_visibility(False)
+
+    def owns(self, started: tuple[Any, int] | None) -> bool:
+        """After a run that started on the engine ``started``: whether its result may be
+        shown (the form's engine is still that one); else the result is dropped."""
+        if started is not None and started == self.page.computed_for:
+            self.result_for = started
+            self.rerun.set_visibility(False)
+            return True
+        c = self.page.project.computed
+        self.drop(c.spec.name if c is not None else "")
+        return False
+
+    def drop(self, engine: str) -> None:
+        self.result_for = None
+        self.clear()
+        self.rerun.set_text(f"Not computed for this engine ({engine}): re-run the study.")
+        self.rerun.set_visibility(True)
+
+
 def plot_or_none(name: str, *args: Any) -> Any | None:
     """The figure ``figures.<name>(*args)``, or None while an argument is missing."""
     if any(a is None for a in args):
