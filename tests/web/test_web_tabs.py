@@ -31,7 +31,7 @@ def _open(page: Any, server: str, preset: str, tab: str) -> list[str]:
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     page.goto(f"{server}/?preset={preset}")
-    playwright_api.expect(page.locator(".q-header")).to_contain_text(re.compile("computed"))
+    playwright_api.expect(page.locator(".q-header")).to_contain_text("Results of:")
     page.get_by_role("tab", name=tab).click()
     playwright_api.expect(page.get_by_role("tab", name=tab)).to_have_attribute(
         "aria-selected", "true"
