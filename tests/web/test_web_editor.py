@@ -247,7 +247,7 @@ def test_odd_fire_v10_in_the_browser(server: str, page, tmp_path: Path) -> None:
     expect(_field(page, "throw_angles-4")).to_have_value("108 deg")
     expect(page.locator(".q-field--error")).to_have_count(0)
     _field(page, "field-name").fill("V10 90 deg, odd fire")
-    expect(page.locator(".q-header")).to_contain_text("computed")
+    expect(page.locator(".q-header")).to_contain_text("Results of:")
     _shoot(page, "v10_odd_fire_engine")
     with page.expect_download() as info:
         page.get_by_role("button", name="Save TOML").click()
@@ -266,7 +266,7 @@ def test_odd_fire_v10_in_the_browser(server: str, page, tmp_path: Path) -> None:
     page.get_by_role("tab", name="Results").click()
     table = page.locator(".q-table tbody").first
     expect(table.locator("tr")).to_have_count(len(api["free_forces"]))
-    expect(page.locator(".q-header")).to_contain_text("computed")
+    expect(page.locator(".q-header")).to_contain_text("Results of:")
     cells = [
         [c.strip() for c in row.split("\t")] for row in table.inner_text().strip().splitlines()
     ]

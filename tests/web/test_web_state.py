@@ -74,7 +74,7 @@ def test_never_stale_v10_odd_fire_with_shafts(server: str, page) -> None:
     assert "computed in" not in header.inner_text()
     assert "Results of" not in header.inner_text()
     # the reason is the solver's, beside the firing order
-    expect(page.locator(".q-field--error").first).to_contain_text("throw_angles")
+    expect(page.locator(".q-field--error").first).to_contain_text("throw angles (crank editor)")
     # every result tab says so, with the reason, and greys what it still shows
     for tab, name in (
         ("Results", "results"),
@@ -87,7 +87,7 @@ def test_never_stale_v10_odd_fire_with_shafts(server: str, page) -> None:
         note = page.locator(f"[data-testid={name}-stale]").first
         expect(note).to_be_visible()
         expect(note).to_contain_text("Not computed")
-        expect(note).to_contain_text("throw_angles")
+        expect(note).to_contain_text("throw angles (crank editor)")
         expect(note).to_contain_text("not of the form")
     # a download of the old engine's numbers is refused
     open_tab(page, "Results")
