@@ -210,7 +210,7 @@ async def test_balance_factor_explained_and_cg_radius_offered(user: User, form) 
 
 
 # --------------------------------------------------------------------------- in a browser
-SHOTS = ROOT / "shots"
+SHOTS = ROOT / "artifacts" / "screenshots"  # ignored by git, as the e2e screenshots
 
 
 def _field(page, key: str):
@@ -219,7 +219,7 @@ def _field(page, key: str):
 
 def _shoot(page, name: str) -> None:
     """Screenshots at desktop and phone width (looked at by hand; not committed)."""
-    SHOTS.mkdir(exist_ok=True)
+    SHOTS.mkdir(parents=True, exist_ok=True)
     page.evaluate("window.scrollTo(0, 0)")  # the fixed header at the top of the picture
     for width, height in ((1280, 800), (390, 844)):
         page.set_viewport_size({"width": width, "height": height})
