@@ -48,6 +48,23 @@ CRF = ["--reciprocating-mass", "282.12 g", "--crank-radius", "26.9 mm"]
 OPTIMIZE = ["counterweight", "optimize", "--first-moment", "7880 g*mm", "--quiet"]
 
 
+#: a counterweight profile given by its requirement and shape (counterweight export)
+PROFILE = [
+    "--first-moment",
+    "7880 g*mm",
+    "--web-radius",
+    "20 mm",
+    "--rectangle-height",
+    "20 mm",
+    "--trapezoid-angle",
+    "20 deg",
+    "--segment-radius",
+    "50 mm",
+    "--segment-angle",
+    "120 deg",
+]
+
+
 def refused(args: list[str], needle: str, capsys: pytest.CaptureFixture[str]) -> str:
     """Run the CLI; assert exit 2, one line on stderr that names ``needle``, no output."""
     code, out, err = run_cli(args, capsys)
@@ -241,18 +258,7 @@ IGNORED = [
         [
             "counterweight",
             "export",
-            "--first-moment",
-            "7880 g*mm",
-            "--web-radius",
-            "20 mm",
-            "--rectangle-height",
-            "20 mm",
-            "--trapezoid-angle",
-            "20 deg",
-            "--segment-radius",
-            "50 mm",
-            "--segment-angle",
-            "120 deg",
+            *PROFILE,
             "--thickness",
             "5 mm",
             "-o",
@@ -379,18 +385,7 @@ EXTRAS = [
         [
             "counterweight",
             "export",
-            "--first-moment",
-            "7880 g*mm",
-            "--web-radius",
-            "20 mm",
-            "--rectangle-height",
-            "20 mm",
-            "--trapezoid-angle",
-            "20 deg",
-            "--segment-radius",
-            "50 mm",
-            "--segment-angle",
-            "120 deg",
+            *PROFILE,
             "-o",
             "x.step",
         ],

@@ -2,7 +2,7 @@
 
 Every file crankbalance writes goes through this module (a test scans the package for
 direct writes). A write goes to a hidden temporary file in the destination folder,
-``.NAME.XXXXXXXXXXXX.tmp``, which is flushed, synced to the disk and then renamed over
+``.NAME.<12 hex digits>.tmp``, which is flushed, synced to the disk and then renamed over
 ``NAME`` in one step: the file is always either wholly the old content or wholly the new.
 Any error (a full disk, permissions, an exception of the code writing) removes the
 temporary file, leaves ``NAME`` untouched and raises :class:`WriteError`. Only a process
