@@ -120,8 +120,17 @@ def test_v8_bank_firing_intervals() -> None:
         out = merit(batch([model]), target="none")
         assert out["interval_dev_rad"][0] == 0.0
         assert out["bank_interval_dev_rad"][0] == pytest.approx(bank, abs=1e-12)
-    out = merit(batch([cross]), target="none")
+    out = merit(batch([cross, flat]), target="none")
     assert out["mirror_rad"][0] == pytest.approx(PI)  # throws 0 90 270 180: 1 and 4 opposite
+    assert out["mirror_rad"][1] == 0.0
+
+
+def test_flat_four_boxer_sides_fire_180_and_540_apart() -> None:
+    """Boxer 1-3-2-4: cylinders 1, 3 on one side fire at 0 and 180 deg, 2, 4 at 360 and
+    540 deg: each side 180 then 540 deg apart, 180 deg off even."""
+    out = merit(batch([as_model("boxer4")]), target="none")
+    assert out["interval_dev_rad"][0] == 0.0
+    assert out["bank_interval_dev_rad"][0] == pytest.approx(PI, abs=1e-12)
 
 
 def random_candidates(topology: EngineModel, size: int, seed: int) -> Candidates:

@@ -114,8 +114,8 @@ def merit(
 
     References
     ----------
-    Free forces: Den Hartog (1956) ch. 5 (textbook); torsional excitation by the vector
-    sum of the cylinders' harmonics: Den Hartog (1956) ch. 5, Wilson (1956) vol. 2.
+    Free forces and the vector sum of the cylinders' torque harmonics (phase diagrams,
+    major and minor orders): Den Hartog (1956) ch. 5 (textbook).
     """
     topo = candidates.topology
     if target not in TARGETS:
@@ -399,7 +399,8 @@ def torsional_excitation(
     k = np.asarray(orders, dtype=float)
     value = np.empty((alpha.shape[0], k.size))
     for j, order in enumerate(k):  # one order at a time: temporaries of (B, C)
-        value[:, j] = np.abs(np.exp(1j * order * alpha) @ w)
+        angle = order * alpha
+        value[:, j] = np.hypot(np.cos(angle) @ w, np.sin(angle) @ w)
     value /= np.abs(w).sum()
     return np.where(value < 1e-12, 0.0, value)
 
