@@ -278,19 +278,26 @@ def pareto(values: ArrayLike) -> NDArray[np.bool_]:
     front = np.empty((0, v.shape[1]))
     for start in range(0, v.shape[0], BLOCK):
         block = sorted_v[start : start + BLOCK]
-        beaten = _dominated(block, front) | _dominated(block, block)
-        keep[order[start : start + BLOCK]] = ~beaten
-        front = np.concatenate([front, block[~beaten]])
+        alive = np.flatnonzero(~_dominated(block, front))
+        alive = alive[~_dominated(block[alive], block[alive])]
+        keep[order[start + alive]] = True
+        front = np.concatenate([front, block[alive]])
     return keep
 
 
 def _dominated(rows: NDArray, by: NDArray) -> NDArray[np.bool_]:
-    """Whether each of ``rows`` is dominated by one of ``by`` (a block of ``by`` at once)."""
+    """Whether each of ``rows`` is dominated by one of ``by`` (a slice of ``by`` at once,
+    objective by objective: (rows, by) temporaries, never (rows, by, K))."""
     out = np.zeros(rows.shape[0], bool)
     for start in range(0, by.shape[0], 16 * BLOCK):
-        b = by[None, start : start + 16 * BLOCK, :]
-        r = rows[:, None, :]
-        out |= np.any(np.all(b <= r, axis=-1) & np.any(b < r, axis=-1), axis=-1)
+        b = by[start : start + 16 * BLOCK]
+        no_worse = np.ones((rows.shape[0], b.shape[0]), bool)
+        better = np.zeros_like(no_worse)
+        for k in range(rows.shape[1]):
+            mine, theirs = rows[:, k, None], b[None, :, k]
+            no_worse &= theirs <= mine
+            better |= theirs < mine
+        out |= (no_worse & better).any(axis=1)
     return out
 
 
