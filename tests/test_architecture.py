@@ -29,6 +29,8 @@ PHYSICS = (
     "engine_cycle",
     "tolerance",
     "explore.orders",
+    "explore.merit",
+    "explore.rank",
 )
 EDGES = {
     "figures",
