@@ -92,10 +92,11 @@ def assert_moments_match(study: sc.ScatterStudy, expected: np.ndarray) -> None:
     assert np.all(np.abs(sampled - expected) <= 5 * err + 1e-30), (sampled, expected)
 
 
-def test_sensitivities_agree_with_free_forces() -> None:
+@pytest.mark.parametrize("preset", ["v8-crossplane", "inline4", "boxer4", "v6-60", "w12"])
+def test_sensitivities_agree_with_free_forces(preset: str) -> None:
     # the linear map of the Monte Carlo against the library's free forces of an engine
     # whose masses are one draw of deviations (exact kinematics)
-    model = v8()
+    model = build_model(load_engine(preset))
     s = sc.sensitivities(model, PLANES, 0.5)
     c = model.cylinders
     rng = np.random.default_rng(3)

@@ -183,7 +183,8 @@ class TwoPlanePlan(ResultMixin):
     influence : ndarray of complex, shape (2, 2)
         Influence matrix used, reading change per correction [-].
     influence_method : str
-        How it was found: ``"rigid"``, ``"rank-one update"`` or ``"least squares"``.
+        How it was found: ``"rigid"``, ``"given"`` (by the caller), ``"rank-one update"`` or
+        ``"least squares"`` (:func:`estimate_influence`).
     unbalance : ndarray of complex, shape (2,)
         Unbalance in the correction planes, :math:`A^{-1}R` [kg m].
     correction : ndarray of complex, shape (2,)
