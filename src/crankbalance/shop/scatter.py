@@ -325,6 +325,55 @@ class _Sampler:
         return out
 
 
+class _Tally:
+    """Sums, histograms and pass counts over the chunks of a Monte Carlo."""
+
+    def __init__(
+        self,
+        upper: NDArray[np.float64],
+        tolerance: NDArray | None,
+        forces: NDArray | None,
+        moments: NDArray | None,
+    ):
+        k = len(OUTPUTS)
+        self.limits = (tolerance, forces, moments)
+        self.bin_scale = (BINS / upper).astype(np.float32)
+        self.offsets = np.arange(k) * (BINS + 1)
+        self.counts = np.zeros(k * (BINS + 1), dtype=np.int64)
+        self.sum = np.zeros(k)
+        self.sum_squares = np.zeros(k)
+        self.peak = np.zeros(k)
+        self.second = np.zeros((len(PHASORS), 3))
+        self.passed = np.zeros(3, dtype=np.int64)  # grade, free, all
+
+    def add(self, x: NDArray[np.float32]) -> None:
+        """Count one chunk of phasors, shape (S, 20): real parts, then imaginary parts."""
+        q = len(PHASORS)
+        re, im = x[:, :q], x[:, q:]
+        self.second[:, 0] += np.einsum("ij,ij->j", re, re, dtype=float)
+        self.second[:, 1] += np.einsum("ij,ij->j", im, im, dtype=float)
+        self.second[:, 2] += np.einsum("ij,ij->j", re, im, dtype=float)
+        size = np.sqrt(re * re + im * im)  # (S, 10)
+        mag = np.empty((x.shape[0], len(OUTPUTS)), dtype=np.float32)
+        mag[:, :2] = size[:, :2]  # planes
+        mag[:, 2:] = size[:, 2::2] + size[:, 3::2]  # |forward| + |backward|
+        self.sum += mag.sum(axis=0, dtype=float)
+        self.sum_squares += np.einsum("ij,ij->j", mag, mag, dtype=float)
+        np.maximum(self.peak, mag.max(axis=0), out=self.peak)
+        index = np.minimum((mag * self.bin_scale).astype(np.int64), BINS) + self.offsets
+        self.counts += np.bincount(index.ravel(), minlength=self.counts.size)
+        tolerance, forces, moments = self.limits
+        ok_grade = np.ones(x.shape[0], dtype=bool)
+        if tolerance is not None:
+            ok_grade = np.all(mag[:, :2] <= tolerance, axis=1)
+        ok_free = np.ones(x.shape[0], dtype=bool)
+        if forces is not None:
+            ok_free &= np.all(mag[:, 2:4] <= forces, axis=1)
+        if moments is not None:
+            ok_free &= np.all(mag[:, 4:6] <= moments, axis=1)
+        self.passed += [ok_grade.sum(), ok_free.sum(), (ok_grade & ok_free).sum()]
+
+
 def scatter_study(
     model: EngineModel,
     parts: tuple[PartScatter, ...] | list[PartScatter],
@@ -414,46 +463,16 @@ def scatter_study(
     rms_bound = np.sqrt([sum(analytic[k, :2].sum() for k in g) * len(g) for g in _GROUPS])
     upper = np.where(rms_bound > 0, HISTOGRAM_RMS * rms_bound, 1.0)
 
-    bin_scale = (BINS / upper).astype(np.float32)
     sampler = _Sampler(parts, scale_step, c)
     rng = np.random.default_rng(seed)
     matrix = np.concatenate([s.real, s.imag], axis=1).astype(np.float32)  # (2C, 20)
-    q = len(PHASORS)
-    counts = np.zeros(len(OUTPUTS) * (BINS + 1), dtype=np.int64)
-    offsets = np.arange(len(OUTPUTS)) * (BINS + 1)
-    sum_mag = np.zeros(len(OUTPUTS))
-    sum_sq = np.zeros(len(OUTPUTS))
-    peak = np.zeros(len(OUTPUTS))
-    second = np.zeros((q, 3))
-    passed = np.zeros(3, dtype=np.int64)  # grade, free, all
+    tally = _Tally(upper, tolerance, forces, moments)
     for start in range(0, int(samples), int(chunk)):
         size = min(int(chunk), int(samples) - start)
-        x = sampler.draw(rng, size) @ matrix  # (S, 20): real parts, then imaginary parts
-        re, im = x[:, :q], x[:, q:]
-        second[:, 0] += np.einsum("ij,ij->j", re, re, dtype=float)
-        second[:, 1] += np.einsum("ij,ij->j", im, im, dtype=float)
-        second[:, 2] += np.einsum("ij,ij->j", re, im, dtype=float)
-        size_q = np.sqrt(re * re + im * im)  # (S, 10)
-        mag = np.empty((size, len(OUTPUTS)), dtype=np.float32)
-        mag[:, :2] = size_q[:, :2]
-        mag[:, 2:] = size_q[:, 2::2] + size_q[:, 3::2]
-        sum_mag += mag.sum(axis=0, dtype=float)
-        sum_sq += np.einsum("ij,ij->j", mag, mag, dtype=float)
-        np.maximum(peak, mag.max(axis=0), out=peak)
-        index = np.minimum((mag * bin_scale).astype(np.int64), BINS) + offsets
-        counts += np.bincount(index.ravel(), minlength=counts.size)
-        ok_grade = np.ones(size, dtype=bool)
-        if tolerance is not None:
-            ok_grade = np.all(mag[:, :2] <= tolerance, axis=1)
-        ok_free = np.ones(size, dtype=bool)
-        if forces is not None:
-            ok_free &= np.all(mag[:, 2:4] <= forces, axis=1)
-        if moments is not None:
-            ok_free &= np.all(mag[:, 4:6] <= moments, axis=1)
-        passed += [ok_grade.sum(), ok_free.sum(), (ok_grade & ok_free).sum()]
+        tally.add(sampler.draw(rng, size) @ matrix)
 
     n = int(samples)
-    table = counts.reshape(len(OUTPUTS), BINS + 1)
+    table = tally.counts.reshape(len(OUTPUTS), BINS + 1)
     levels = np.array(QUANTILE_LEVELS)
     grade_given = tolerance is not None
     free_given = forces is not None or moments is not None
@@ -461,9 +480,9 @@ def scatter_study(
         samples=n,
         seed=seed,
         outputs=OUTPUTS,
-        mean=sum_mag / n,
-        rms=np.sqrt(sum_sq / n),
-        maximum=peak,
+        mean=tally.sum / n,
+        rms=np.sqrt(tally.sum_squares / n),
+        maximum=tally.peak,
         quantile_levels=levels,
         quantiles=np.array(
             [_quantiles(row, u, levels) for row, u in zip(table, upper, strict=True)]
@@ -472,7 +491,7 @@ def scatter_study(
         histogram_upper=upper,
         overflow=table[:, BINS],
         phasors=PHASORS,
-        moments=second / n,
+        moments=tally.second / n,
         moments_analytic=analytic,
         sources=sources,
         variance_share=share,
@@ -480,9 +499,9 @@ def scatter_study(
         plane_tolerance=tolerance,
         force_limit=forces,
         moment_limit=moments,
-        p_grade=float(passed[0] / n) if grade_given else None,
-        p_free=float(passed[1] / n) if free_given else None,
-        p_all=float(passed[2] / n) if grade_given or free_given else None,
+        p_grade=float(tally.passed[0] / n) if grade_given else None,
+        p_free=float(tally.passed[1] / n) if free_given else None,
+        p_all=float(tally.passed[2] / n) if grade_given or free_given else None,
     )
 
 
