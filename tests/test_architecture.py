@@ -31,6 +31,8 @@ PHYSICS = (
     "explore.orders",
     "explore.merit",
     "explore.rank",
+    "shop.planes",
+    "shop.scatter",
 )
 EDGES = {
     "figures",
