@@ -87,7 +87,7 @@ def pin_shares(cylinder_throw: ArrayLike, values: ArrayLike, throws: int) -> NDA
     Parameters
     ----------
     cylinder_throw : array_like of int, shape (C,)
-        Index (0-based) of the throw each cylinder sits on.
+        Index (0-based) of the throw each cylinder sits on [-].
     values : array_like, shape (C,)
         One mass per cylinder [kg].
     throws : int
