@@ -18,6 +18,16 @@ Methods, all exact for the objective they state:
     cylinder, each part at most once, bounds :math:`L \le W_c \le U` and the objective
     :math:`U - L`. Cylinders are interchangeable for a spread, so the parts of the first
     kind are taken in increasing index along the cylinders (symmetry breaking).
+``"milp"`` with ``objective="free"``
+    Least free forces and couples the sets cause in the running engine, orders 1 to
+    ``orders``, with the crank balanced for the mean set (one bob-weight per pin, rotating
+    share plus ``fraction`` of the reciprocating share of the mean of all listed parts):
+    the sum over the orders of the largest force plus the largest couple divided by the
+    half-length of the crank, each phasor's magnitude measured by the regular polygon of
+    :data:`POLYGON_SIDES` sides (``max_k Re(z e^{-i 2 pi k / K})``, within
+    :math:`\cos(\pi/K)` of :math:`|z|`, linear in the assignment: exact for that
+    measure); the true amplitudes are reported. The cylinders are not interchangeable
+    here, so there is no symmetry breaking.
 ``"pairing"``
     Two kinds paired on a separable objective by ``scipy.optimize.linear_sum_assignment``:
     the sum over the sets of the weighted squared deviation of the set weights from the
@@ -40,18 +50,23 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass
+from collections.abc import Callable
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..model import EngineModel
 from ..results import ResultMixin
+from ..shaking import free_forces
 
 #: largest number of assignments the exhaustive search visits
 EXHAUSTIVE_LIMIT = 2_000_000
 #: objectives of the matching
-OBJECTIVES = ("spread", "variance")
+OBJECTIVES = ("spread", "variance", "free")
+#: sides of the polygon that measures a phasor's magnitude in the free-force objective
+POLYGON_SIDES = 16
 METHODS = ("milp", "pairing", "exhaustive", "as-listed")
 
 
@@ -161,6 +176,9 @@ class Matching(ResultMixin):
         from the piston or the small end; rotating: from the big end).
     removed_total : float
         Sum of the material to remove [kg].
+    free_force, free_couple : ndarray, shape (orders,)
+        With the free-force objective: the largest free force [N] and couple [N*m] of
+        each order the sets cause (crank balanced for the mean set); empty otherwise.
     """
 
     method: str
@@ -178,6 +196,8 @@ class Matching(ResultMixin):
     remove_reciprocating: NDArray[np.float64]
     remove_rotating: NDArray[np.float64]
     removed_total: float
+    free_force: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    free_couple: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
 
 
 def _weights(weights: tuple[float, float]) -> tuple[float, float]:
@@ -209,11 +229,115 @@ def _means(inventory: Inventory) -> tuple[float, float]:
     return rec, rot
 
 
+@dataclass(frozen=True)
+class FreeForceBasis(ResultMixin):
+    """The free-force phasors of the sets, linear in the parts' masses.
+
+    Component j of the phasors is, for order n = j // 4 + 1, the forward force, the
+    backward force, the forward couple / ``length`` and the backward couple / ``length``.
+
+    Attributes
+    ----------
+    reciprocating : ndarray of complex, shape (C, J)
+        Phasors of 1 kg of reciprocating mass in each cylinder [N/kg].
+    rotating : ndarray of complex, shape (C, J)
+        Phasors of 1 kg of rotating mass on each cylinder's pin [N/kg].
+    constant : ndarray of complex, shape (J,)
+        Phasors of the allowances and of the crank balanced for the mean set [N].
+    length : float
+        Half-length of the crank, the couples' divisor [m].
+    orders : int
+        Highest order.
+    """
+
+    reciprocating: NDArray[np.complex128]
+    rotating: NDArray[np.complex128]
+    constant: NDArray[np.complex128]
+    length: float
+    orders: int
+
+
+def _components(model: EngineModel, length: float, orders: int) -> NDArray[np.complex128]:
+    """The phasor components of an engine's free forces (FreeForceBasis order)."""
+    forces = free_forces(model, orders)
+    fwd = forces.force_forward.copy()
+    cfwd = forces.couple_forward.copy()
+    fwd[0] += forces.rotating_force
+    cfwd[0] += forces.rotating_couple
+    return np.stack(
+        [fwd, forces.force_backward, cfwd / length, forces.couple_backward / length], axis=1
+    ).ravel()
+
+
+def free_force_basis(
+    model: EngineModel, inventory: Inventory, fraction: float = 0.5, orders: int = 2
+) -> FreeForceBasis:
+    """The free-force phasors the sets cause, per kilogram in each cylinder.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (layout, kinematics, speed); its masses are not used.
+    inventory : Inventory
+        The parts: the mean of all listed parts is the set the crank is balanced for.
+    fraction : float
+        Fraction of the reciprocating share in the bob-weights [-].
+    orders : int
+        Highest order (1 to 8).
+
+    Returns
+    -------
+    FreeForceBasis
+        Phasors per kilogram [N/kg] and the constant part [N].
+    """
+    from ..single_cylinder import check_balance_factor
+
+    check_balance_factor(fraction, "fraction")
+    if isinstance(orders, bool) or not isinstance(orders, int) or not 1 <= orders <= 8:
+        raise InputError("orders", orders, "must be a whole number from 1 to 8")
+    count, throws = model.cylinders, model.throws
+    length = float(np.max(np.abs(model.throw_position))) or float(model.crank_radius)
+    none = replace(model, reciprocating_mass=np.zeros(count), throw_rotating_mass=np.zeros(throws))
+    rec = np.array(
+        [
+            _components(replace(none, reciprocating_mass=np.eye(count)[c]), length, orders)
+            for c in range(count)
+        ]
+    )
+    pins = np.eye(throws)[model.cylinder_throw]
+    rot = np.array(
+        [_components(replace(none, throw_rotating_mass=pin), length, orders) for pin in pins]
+    )
+    mean_rec, mean_rot = _means(inventory)
+    rods = np.bincount(model.cylinder_throw, minlength=throws)
+    # the crank, balanced for the mean set
+    balance = np.asarray(-rods * (mean_rot + fraction * mean_rec), dtype=np.float64)
+    constant = _components(replace(none, throw_rotating_mass=balance), length, orders)
+    constant = constant + rec.sum(axis=0) * inventory.reciprocating_allowance
+    constant = constant + rot.sum(axis=0) * inventory.rotating_allowance
+    return FreeForceBasis(rec, rot, constant, length, orders)
+
+
+def _polygon(z: NDArray[np.complex128]) -> NDArray[np.float64]:
+    """The polygonal magnitude of phasors: max over the sides of Re(z e^-i theta_k)."""
+    turns = np.exp(-2j * np.pi * np.arange(POLYGON_SIDES) / POLYGON_SIDES)
+    return np.max((np.asarray(z)[..., None] * turns).real, axis=-1)
+
+
+def _phasors(inventory: Inventory, part: NDArray, basis: FreeForceBasis) -> NDArray:
+    """The free-force phasors of an assignment [N]."""
+    rec, rot = _set_weights(inventory, part)
+    rec = rec - inventory.reciprocating_allowance  # the allowances are in the constant
+    rot = rot - inventory.rotating_allowance
+    return basis.constant + rec @ basis.reciprocating + rot @ basis.rotating
+
+
 def objective_value(
     inventory: Inventory,
     part: NDArray[np.int64],
     objective: str = "spread",
     weights: tuple[float, float] = (1.0, 1.0),
+    basis: FreeForceBasis | None = None,
 ) -> float:
     """The objective of an assignment (see the module docstring).
 
@@ -223,17 +347,23 @@ def objective_value(
         The parts.
     part : ndarray of int, shape (K, C)
         Index of the part of each kind in each cylinder.
-    objective : {"spread", "variance"}
-        Weighted spread [kg] or weighted sum of squared deviations from the mean of all
-        listed parts [kg^2].
+    objective : {"spread", "variance", "free"}
+        Weighted spread [kg], weighted sum of squared deviations from the mean of all
+        listed parts [kg^2], or the free forces and couples (module docstring) [N].
     weights : tuple of float
         Weights of the reciprocating and rotating terms [-].
+    basis : FreeForceBasis, optional
+        The engine's phasors, for the ``"free"`` objective.
 
     Returns
     -------
     float
-        The objective [kg] or [kg^2].
+        The objective [kg], [kg^2] or, for ``"free"``, [N].
     """
+    if objective == "free":
+        if basis is None:
+            raise InputError("objective", objective, "needs the engine (model)")
+        return float(np.sum(_polygon(_phasors(inventory, np.asarray(part), basis))))
     w_rec, w_rot = _weights(weights)
     rec, rot = _set_weights(inventory, np.asarray(part))
     if objective == "spread":
@@ -253,6 +383,9 @@ def match_parts(
     objective: str | None = None,
     weights: tuple[float, float] = (1.0, 1.0),
     time_limit: float = 60.0,
+    model: EngineModel | None = None,
+    fraction: float = 0.5,
+    orders: int = 2,
 ) -> Matching:
     """Assign parts to cylinders (see the module docstring for the methods).
 
@@ -264,14 +397,20 @@ def match_parts(
         Number of cylinders (sets).
     method : {"milp", "pairing", "exhaustive", "as-listed"}
         How to assign.
-    objective : {"spread", "variance"}, optional
-        What to minimise: ``"spread"`` for ``milp``, ``"variance"`` for ``pairing`` (the
-        only one each solves); ``exhaustive`` takes either (``"spread"`` by default).
+    objective : {"spread", "variance", "free"}, optional
+        What to minimise: ``"spread"`` (default) or ``"free"`` for ``milp``, ``"variance"``
+        for ``pairing``; ``exhaustive`` takes any.
     weights : tuple of float
         Weights of the reciprocating and rotating terms [-].
     time_limit : float
         Longest MILP solve [s]; when it is reached, the best assignment found is returned
         with ``optimal`` False and the proven lower ``bound`` of the objective.
+    model : EngineModel, optional
+        The engine, for the ``"free"`` objective (its layout, kinematics and speed).
+    fraction : float
+        Fraction of the reciprocating share in the bob-weights [-] (``"free"``).
+    orders : int
+        Highest order of the free forces (``"free"``).
 
     Returns
     -------
@@ -290,24 +429,33 @@ def match_parts(
     weights = _weights(weights)
     if method not in METHODS:
         raise InputError("method", method, f"must be one of {', '.join(METHODS)}")
-    solves = {"milp": "spread", "pairing": "variance"}
-    goal = objective or solves.get(method, "spread")
+    solves = {"milp": ("spread", "free"), "pairing": ("variance",)}
+    goal = objective or solves.get(method, ("spread",))[0]
     if goal not in OBJECTIVES:
         raise InputError("objective", goal, f"must be one of {', '.join(OBJECTIVES)}")
-    if method in solves and goal != solves[method]:
+    if method in solves and goal not in solves[method]:
         raise InputError(
-            "objective", goal, f"method {method!r} minimises the {solves[method]} only"
+            "objective", goal, f"method {method!r} minimises the {' or '.join(solves[method])}"
         )
+    basis = None
+    if goal == "free":
+        if model is None:
+            raise InputError("objective", goal, "needs the engine (model) the sets go in")
+        if model.cylinders != cylinders:
+            raise InputError(
+                "cylinders", cylinders, f"must be the engine's {model.cylinders} cylinders"
+            )
+        basis = free_force_basis(model, inventory, fraction, orders)
     bound: float | None = None  # proven lower bound of the objective; None: optimal
     if method == "as-listed":
         part, bound = np.tile(np.arange(cylinders), (len(inventory.kinds), 1)), 0.0
     elif method == "pairing":
         part = _pairing(inventory, cylinders, weights)
     elif method == "exhaustive":
-        part = _exhaustive(inventory, cylinders, goal, weights)
+        part = _exhaustive(inventory, cylinders, goal, weights, basis)
     else:
-        part, bound = _milp(inventory, cylinders, weights, time_limit)
-    return _matching(inventory, part, method, goal, weights, bound)
+        part, bound = _milp(inventory, cylinders, weights, time_limit, basis)
+    return _matching(inventory, part, method, goal, weights, bound, basis)
 
 
 def _matching(
@@ -317,9 +465,15 @@ def _matching(
     objective: str,
     weights: tuple[float, float],
     bound: float | None,
+    basis: FreeForceBasis | None = None,
 ) -> Matching:
     part = np.asarray(part, dtype=np.int64)
-    value = objective_value(inventory, part, objective, weights)
+    value = objective_value(inventory, part, objective, weights, basis)
+    force = couple = np.zeros(0)
+    if basis is not None:
+        z = np.abs(_phasors(inventory, part, basis)).reshape(basis.orders, 4)
+        force = z[:, 0] + z[:, 1]
+        couple = (z[:, 2] + z[:, 3]) * basis.length
     rec, rot = _set_weights(inventory, part)
     remove_rec, remove_rot = rec - rec.min(), rot - rot.min()
     ids = tuple(
@@ -342,6 +496,8 @@ def _matching(
         remove_reciprocating=remove_rec,
         remove_rotating=remove_rot,
         removed_total=float(remove_rec.sum() + remove_rot.sum()),
+        free_force=force,
+        free_couple=couple,
     )
 
 
@@ -402,11 +558,17 @@ def _rectangular_pairs(cost: NDArray, cylinders: int) -> tuple[NDArray, NDArray]
 
 
 def _exhaustive(
-    inventory: Inventory, cylinders: int, objective: str, weights: tuple[float, float]
+    inventory: Inventory,
+    cylinders: int,
+    objective: str,
+    weights: tuple[float, float],
+    basis: FreeForceBasis | None,
 ) -> NDArray[np.int64]:
-    """Every assignment up to the order of the cylinders; the best (first found on ties)."""
+    """Every assignment (up to the order of the cylinders, unless the objective is the free
+    force); the best (first found on ties)."""
     kinds = inventory.kinds
-    count = math.comb(kinds[0].count, cylinders)
+    ordered = objective == "free"  # the cylinders are not interchangeable
+    count = (math.perm if ordered else math.comb)(kinds[0].count, cylinders)
     for kind in kinds[1:]:
         count *= math.perm(kind.count, cylinders)
     if count > EXHAUSTIVE_LIMIT:
@@ -415,7 +577,8 @@ def _exhaustive(
             "exhaustive",
             f"would visit {count} assignments (at most {EXHAUSTIVE_LIMIT}); use 'milp'",
         )
-    firsts = list(itertools.combinations(range(kinds[0].count), cylinders))
+    choose = itertools.permutations if ordered else itertools.combinations
+    firsts = list(choose(range(kinds[0].count), cylinders))
     others = [
         np.array(list(itertools.permutations(range(k.count), cylinders)), dtype=np.int64)
         for k in kinds[1:]
@@ -424,7 +587,7 @@ def _exhaustive(
     for first in firsts:
         for rest in itertools.product(*(range(len(o)) for o in others)):
             part = np.array([first, *(o[i] for o, i in zip(others, rest, strict=True))])
-            value = objective_value(inventory, part, objective, weights)
+            value = objective_value(inventory, part, objective, weights, basis)
             if value < best_value:
                 best_value, best = value, part
     assert best is not None
@@ -432,9 +595,14 @@ def _exhaustive(
 
 
 def _milp(
-    inventory: Inventory, cylinders: int, weights: tuple[float, float], time_limit: float
+    inventory: Inventory,
+    cylinders: int,
+    weights: tuple[float, float],
+    time_limit: float,
+    basis: FreeForceBasis | None = None,
 ) -> tuple[NDArray[np.int64], float | None]:
-    """Least weighted spread by mixed-integer linear programming (module docstring)."""
+    """The least weighted spread, or with ``basis`` the least free forces, by mixed-integer
+    linear programming (module docstring)."""
     from scipy.optimize import Bounds, LinearConstraint, milp
     from scipy.sparse import lil_array
 
@@ -442,10 +610,6 @@ def _milp(
     c_count = cylinders
     offsets = np.cumsum([0] + [k.count * c_count for k in kinds])
     n_x = int(offsets[-1])
-    u_rec, l_rec, u_rot, l_rot = n_x, n_x + 1, n_x + 2, n_x + 3
-    n_var = n_x + 4
-    # grams: the set weights are hundreds, the spreads single units
-    scale = 1000.0
 
     def var(k: int, i: int, c: int) -> int:
         return int(offsets[k]) + i * c_count + c
@@ -457,27 +621,11 @@ def _milp(
         for i in range(kind.count):  # each part at most once (exactly when no spares)
             least = 1.0 if kind.count == c_count else 0.0
             rows.append(({var(k, i, c): 1.0 for c in range(c_count)}, least, 1.0))
-    for c in range(c_count):
-        for top, bottom, share, allowance in (
-            (u_rec, l_rec, "reciprocating", inventory.reciprocating_allowance),
-            (u_rot, l_rot, "rotating", inventory.rotating_allowance),
-        ):
-            weight = {
-                var(k, i, c): scale * float(getattr(kind, share)[i])
-                for k, kind in enumerate(kinds)
-                for i in range(kind.count)
-            }
-            base = scale * allowance
-            rows.append(({**weight, top: -1.0}, -np.inf, -base))  # W_c <= U
-            rows.append(({**weight, bottom: -1.0}, -base, np.inf))  # W_c >= L
-    # symmetry: cylinders are interchangeable for a spread, so the first kind's part
-    # index increases along the cylinders (with no spares: part c in cylinder c)
-    fixed = kinds[0].count == c_count
-    for c in range(c_count - 1 if not fixed else 0):
-        row = {var(0, i, c): float(i) for i in range(kinds[0].count)}
-        for i in range(kinds[0].count):
-            row[var(0, i, c + 1)] = row.get(var(0, i, c + 1), 0.0) - float(i)
-        rows.append((row, -np.inf, -1.0))
+    if basis is None:
+        scale, cost_extra, fixed = _spread_rows(inventory, c_count, var, n_x, weights, rows)
+    else:
+        scale, cost_extra, fixed = _free_rows(inventory, c_count, var, n_x, basis, rows)
+    n_var = n_x + cost_extra.size
     matrix = lil_array((len(rows), n_var))
     low = np.empty(len(rows))
     high = np.empty(len(rows))
@@ -485,15 +633,13 @@ def _milp(
         for column, value in coefficients.items():
             matrix[r, column] = value
         low[r], high[r] = lo, hi
-    cost = np.zeros(n_var)
-    w_rec, w_rot = weights
-    cost[[u_rec, l_rec, u_rot, l_rot]] = [w_rec, -w_rec, w_rot, -w_rot]
+    cost = np.concatenate([np.zeros(n_x), cost_extra])
     integrality = np.zeros(n_var)
     integrality[:n_x] = 1
     lower = np.zeros(n_var)
     upper = np.ones(n_var)
     lower[n_x:], upper[n_x:] = -np.inf, np.inf
-    if fixed:
+    if fixed:  # the first kind's part c in cylinder c
         upper[: c_count * c_count] = np.eye(c_count).ravel()
         lower[: c_count * c_count] = np.eye(c_count).ravel()
     result = milp(
@@ -518,6 +664,72 @@ def _milp(
     if result.status == 0:
         return part, None
     return part, max(float(result.mip_dual_bound or 0.0) / scale, 0.0)
+
+
+Rows = list[tuple[dict[int, float], float, float]]
+
+
+def _spread_rows(
+    inventory: Inventory,
+    c_count: int,
+    var: Callable[[int, int, int], int],
+    n_x: int,
+    weights: tuple[float, float],
+    rows: Rows,
+) -> tuple[float, NDArray[np.float64], bool]:
+    """Rows and costs of the spread: L <= W_c <= U per share; the symmetry breaking."""
+    kinds = inventory.kinds
+    u_rec, l_rec, u_rot, l_rot = n_x, n_x + 1, n_x + 2, n_x + 3
+    scale = 1000.0  # grams: the set weights are hundreds, the spreads single units
+    for c in range(c_count):
+        for top, bottom, share, allowance in (
+            (u_rec, l_rec, "reciprocating", inventory.reciprocating_allowance),
+            (u_rot, l_rot, "rotating", inventory.rotating_allowance),
+        ):
+            weight = {
+                var(k, i, c): scale * float(getattr(kind, share)[i])
+                for k, kind in enumerate(kinds)
+                for i in range(kind.count)
+            }
+            base = scale * allowance
+            rows.append(({**weight, top: -1.0}, -np.inf, -base))  # W_c <= U
+            rows.append(({**weight, bottom: -1.0}, -base, np.inf))  # W_c >= L
+    # symmetry: cylinders are interchangeable for a spread, so the first kind's part
+    # index increases along the cylinders (with no spares: part c in cylinder c)
+    fixed = kinds[0].count == c_count
+    for c in range(c_count - 1 if not fixed else 0):
+        row = {var(0, i, c): float(i) for i in range(kinds[0].count)}
+        for i in range(kinds[0].count):
+            row[var(0, i, c + 1)] = row.get(var(0, i, c + 1), 0.0) - float(i)
+        rows.append((row, -np.inf, -1.0))
+    w_rec, w_rot = weights
+    return scale, np.array([w_rec, -w_rec, w_rot, -w_rot]), fixed
+
+
+def _free_rows(
+    inventory: Inventory,
+    c_count: int,
+    var: Callable[[int, int, int], int],
+    n_x: int,
+    basis: FreeForceBasis,
+    rows: Rows,
+) -> tuple[float, NDArray[np.float64], bool]:
+    """Rows and costs of the free forces: Re(z_j e^-i theta_k) <= t_j, minimise sum t_j."""
+    turns = np.exp(-2j * np.pi * np.arange(POLYGON_SIDES) / POLYGON_SIDES)
+    components = basis.constant.size
+    for j in range(components):
+        for turn in turns:
+            row: dict[int, float] = {n_x + j: -1.0}
+            for k, kind in enumerate(inventory.kinds):
+                for c in range(c_count):
+                    unit_rec = (basis.reciprocating[c, j] * turn).real
+                    unit_rot = (basis.rotating[c, j] * turn).real
+                    for i in range(kind.count):
+                        value = kind.reciprocating[i] * unit_rec + kind.rotating[i] * unit_rot
+                        if value:
+                            row[var(k, i, c)] = float(value)
+            rows.append((row, -np.inf, -float((basis.constant[j] * turn).real)))
+    return 1.0, np.ones(components), False
 
 
 @dataclass(frozen=True)
