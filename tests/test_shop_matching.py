@@ -228,3 +228,21 @@ def test_free_objective_needs_the_engine() -> None:
         match_parts(inventory, 3, "milp", "free")
     with pytest.raises(InputError, match="engine's 4 cylinders"):
         match_parts(inventory, 3, "milp", "free", model=engine("inline4"))
+
+
+def test_results_are_json_ready() -> None:
+    """Every result converts through results.to_jsonable (the CLI's JSON output)."""
+    import json
+
+    from crankbalance.shop.bobweights import bob_weights, remaining_forces
+
+    inventory = load_parts_file(EXAMPLES / "v8_parts.csv")
+    model = engine("v8-crossplane")
+    matched = match_parts(inventory, 8, "as-listed", "free", model=model)
+    machined = machine_to_lightest(inventory, 8)
+    weights = bob_weights(model, 0.5, matched.rotating, matched.reciprocating)
+    left = remaining_forces(model, 0.5, matched.reciprocating)
+    for result in (matched, machined, weights, left, inventory):
+        text = json.dumps(result.to_dict())
+        assert "NaN" not in text
+    assert matched.to_dict()["ids"][0] == ["P1", "W1", "G1", "L1", "R1", "S1"]
