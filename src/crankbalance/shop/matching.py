@@ -36,8 +36,8 @@ Methods, all exact for the objective they state:
     depends on the pair alone); with no spares this is the variance of the set weights
     times the number of cylinders.
 ``"exhaustive"``
-    Every assignment (up to the order of the cylinders), for small sets: the check of the
-    two others, on either objective.
+    Every assignment (up to the order of the cylinders, except for the free forces), for
+    small sets: the check of the others, on any objective.
 ``"as-listed"``
     Part i of every kind in cylinder i: the starting point the others improve on.
 
@@ -551,8 +551,7 @@ def _rectangular_pairs(cost: NDArray, cylinders: int) -> tuple[NDArray, NDArray]
     square[n1:, :n2] = 0.0  # second-kind part j unused
     rows, cols = linear_sum_assignment(square)
     pairs = [(r, c) for r, c in zip(rows, cols, strict=True) if r < n1 and c < n2]
-    if len(pairs) != cylinders:
-        raise AssertionError("pairing: the square problem did not give one pair a cylinder")
+    assert len(pairs) == cylinders, "the square problem gives exactly one pair per cylinder"
     first, second = zip(*pairs, strict=True)
     return np.array(first), np.array(second)
 
