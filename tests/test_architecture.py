@@ -33,6 +33,8 @@ PHYSICS = (
     "explore.rank",
     "shop.planes",
     "shop.scatter",
+    "shop.matching",
+    "shop.bobweights",
 )
 EDGES = {
     "figures",

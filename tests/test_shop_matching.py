@@ -1,0 +1,248 @@
+"""Matching parts to cylinders (crankbalance.shop.matching): the exact methods against
+exhaustive search on small sets, and hand calculations."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+
+from crankbalance.errors import InputError
+from crankbalance.io.parts_file import load_parts_file
+from crankbalance.shop.matching import (
+    Inventory,
+    PartKind,
+    machine_to_lightest,
+    match_parts,
+    objective_value,
+)
+
+from .conftest import EXAMPLES
+
+G = 1e-3  # kg per gram
+
+
+def kind(name: str, rec: list[float], rot: list[float] | None = None) -> PartKind:
+    """A kind from masses in grams (rotating zero when not given)."""
+    rot = rot or [0.0] * len(rec)
+    ids = tuple(f"{name}{i + 1}" for i in range(len(rec)))
+    return PartKind(name, ids, np.array(rec) * G, np.array(rot) * G)
+
+
+def hand_inventory() -> Inventory:
+    return Inventory((kind("piston", [500, 502, 504]), kind("pin", [10, 11, 12])))
+
+
+def test_pairing_and_milp_by_hand() -> None:
+    """Pistons 500, 502, 504 g and pins 10, 11, 12 g. As listed: sets 510, 513, 516 g
+    (spread 6 g). Heavy piston with light pin: 500 + 12, 502 + 11, 504 + 10 = 512, 513,
+    514 g: spread 2 g, the least (the set of piston 500 g weighs at most 512 g, that of
+    piston 504 g at least 514 g). Material off to the lightest set: 0, 1, 2 g, 3 g in
+    all."""
+    inventory = hand_inventory()
+    listed = match_parts(inventory, 3, "as-listed")
+    assert listed.reciprocating / G == pytest.approx([510, 513, 516])
+    assert not listed.optimal
+    for method in ("milp", "pairing"):
+        matched = match_parts(inventory, 3, method)
+        assert matched.optimal
+        assert matched.reciprocating_spread / G == pytest.approx(2.0)
+        assert sorted(matched.reciprocating / G) == pytest.approx([512, 513, 514])
+        assert sorted(matched.remove_reciprocating / G) == pytest.approx([0, 1, 2])
+        assert matched.removed_total / G == pytest.approx(3.0)
+        assert matched.rotating_spread == 0.0
+        for piston, pin in matched.ids:  # heavy piston with light pin
+            assert int(piston[-1]) + int(pin[-1]) == 4
+
+
+def test_machine_to_lightest_by_hand() -> None:
+    """Pistons to 500 g (remove 0, 2, 4 g), pins to 10 g (0, 1, 2 g): 9 g off, every set
+    510 g; with a spare piston 499 g the three lightest (499, 500, 502) are used."""
+    machined = machine_to_lightest(hand_inventory(), 3)
+    assert machined.remove_reciprocating[0] / G == pytest.approx([0, 2, 4])
+    assert machined.remove_reciprocating[1] / G == pytest.approx([0, 1, 2])
+    assert machined.removed_total / G == pytest.approx(9.0)
+    assert machined.reciprocating / G == pytest.approx(510.0)
+    spare = Inventory((kind("piston", [500, 502, 504, 499]), kind("pin", [10, 11, 12])))
+    machined = machine_to_lightest(spare, 3)
+    assert machined.used[0] == ("piston1", "piston2", "piston4")
+    assert machined.remove_reciprocating[0] / G == pytest.approx([1, 3, 0])
+
+
+def random_inventory(seed: int, counts: tuple[int, ...], cylinders: int) -> Inventory:
+    """Kinds as in an engine: reciprocating-only, a rod with both ends, rotating-only."""
+    rng = np.random.default_rng(seed)
+    kinds = []
+    for k, count in enumerate(counts):
+        rec = 400 + 2.0 * rng.standard_normal(count)
+        rot = 450 + 2.0 * rng.standard_normal(count)
+        if k % 3 == 0:
+            rot[:] = 0.0
+        elif k % 3 == 2:
+            rec[:] = 0.0
+        kinds.append(kind(f"k{k}", list(np.round(rec, 1)), list(np.round(rot, 1))))
+    return Inventory(tuple(kinds), 1.0 * G, 4.0 * G)
+
+
+CASES = [
+    (1, (4, 4, 4), 4),
+    (2, (4, 5, 4), 4),  # a spare of the rod-like kind
+    (3, (5, 4, 4), 4),  # a spare of the first kind (the symmetry-breaking one)
+    (4, (3, 3, 3, 3), 3),
+]
+
+
+@pytest.mark.parametrize(("seed", "counts", "cylinders"), CASES)
+def test_milp_equals_exhaustive_spread(seed: int, counts: tuple[int, ...], cylinders: int) -> None:
+    inventory = random_inventory(seed, counts, cylinders)
+    for weights in ((1.0, 1.0), (1.0, 0.0), (0.3, 1.0)):
+        milp = match_parts(inventory, cylinders, "milp", weights=weights)
+        full = match_parts(inventory, cylinders, "exhaustive", "spread", weights=weights)
+        assert milp.optimal
+        assert milp.objective_value == pytest.approx(full.objective_value, rel=1e-9, abs=1e-12)
+        assert milp.bound == pytest.approx(milp.objective_value)
+
+
+@pytest.mark.parametrize(
+    ("seed", "counts", "cylinders"),
+    [(5, (4, 4), 4), (6, (5, 4), 4), (7, (4, 6), 4), (8, (6, 6), 5), (9, (6, 5), 4)],
+)
+def test_pairing_equals_exhaustive_variance(
+    seed: int, counts: tuple[int, ...], cylinders: int
+) -> None:
+    inventory = random_inventory(seed, counts, cylinders)
+    inventory = Inventory((inventory.kinds[0], inventory.kinds[1]), 0.0, 4.0 * G)
+    for weights in ((1.0, 1.0), (1.0, 0.0), (0.0, 1.0)):
+        paired = match_parts(inventory, cylinders, "pairing", weights=weights)
+        full = match_parts(inventory, cylinders, "exhaustive", "variance", weights=weights)
+        assert paired.objective_value == pytest.approx(full.objective_value, rel=1e-9, abs=1e-15)
+        # every part used at most once, one of each kind per cylinder
+        for row in paired.part:
+            assert len(set(row.tolist())) == cylinders
+
+
+def test_objective_value_of_a_result_is_consistent() -> None:
+    inventory = random_inventory(11, (4, 4, 4), 4)
+    matched = match_parts(inventory, 4, "milp")
+    assert objective_value(inventory, matched.part) == pytest.approx(matched.objective_value)
+    spread = matched.reciprocating_spread + matched.rotating_spread
+    assert matched.objective_value == pytest.approx(spread)
+    removed = np.sum(matched.reciprocating - matched.reciprocating.min())
+    removed += np.sum(matched.rotating - matched.rotating.min())
+    assert matched.removed_total == pytest.approx(removed)
+    # allowances are in every set: 1 g reciprocating, 4 g rotating
+    part = matched.part
+    rec = sum(k.reciprocating[part[i]] for i, k in enumerate(inventory.kinds)) + 1.0 * G
+    assert matched.reciprocating == pytest.approx(rec)
+
+
+def test_v8_example_matching() -> None:
+    """The example V8 parts: the matched sets spread no more than the sets as listed,
+    and (found with a proven bound) no less than the bound."""
+    inventory = load_parts_file(EXAMPLES / "v8_parts.csv")
+    listed = match_parts(inventory, 8, "as-listed")
+    matched = match_parts(inventory, 8, "milp", time_limit=120.0)
+    assert matched.objective_value <= listed.objective_value
+    assert matched.bound <= matched.objective_value + 1e-12
+    assert len(matched.ids) == 8
+    assert all(len(set(row.tolist())) == 8 for row in matched.part)
+    machined = machine_to_lightest(inventory, 8)
+    assert machined.removed_total > 0
+
+
+def test_bad_input() -> None:
+    inventory = hand_inventory()
+    with pytest.raises(InputError, match=r"piston = 3: parts listed; 4 cylinders need"):
+        match_parts(inventory, 4)
+    with pytest.raises(InputError, match="method"):
+        match_parts(inventory, 3, "greedy")
+    with pytest.raises(InputError, match="minimises the spread or free"):
+        match_parts(inventory, 3, "milp", "variance")
+    three = Inventory((*inventory.kinds, kind("rings", [40, 41, 42])))
+    with pytest.raises(InputError, match="pairs two kinds"):
+        match_parts(three, 3, "pairing")
+    big = random_inventory(1, (9, 9, 9, 9), 9)
+    with pytest.raises(InputError, match="exhaustive"):
+        match_parts(big, 9, "exhaustive")
+    with pytest.raises(InputError, match="weights"):
+        match_parts(inventory, 3, weights=(0.0, 0.0))
+    with pytest.raises(InputError, match="cylinders"):
+        match_parts(inventory, 0)
+
+
+def engine(preset: str):
+    from crankbalance.io.engine_file import load_engine
+    from crankbalance.studies.build import build_model
+
+    return build_model(load_engine(preset))
+
+
+@pytest.mark.parametrize(
+    ("preset", "seed", "counts"), [("inline3", 21, (3, 3, 3)), ("inline4", 22, (4, 4))]
+)
+def test_free_force_milp_equals_exhaustive(preset: str, seed: int, counts: tuple) -> None:
+    """The free-force objective (polygonal magnitudes, exact for that measure): the MILP
+    reaches the exhaustive optimum over every ordered assignment."""
+    model = engine(preset)
+    inventory = random_inventory(seed, counts, model.cylinders)
+    milp = match_parts(inventory, model.cylinders, "milp", "free", model=model)
+    full = match_parts(inventory, model.cylinders, "exhaustive", "free", model=model)
+    assert milp.optimal
+    assert milp.objective_value == pytest.approx(full.objective_value, rel=1e-7)
+    listed = match_parts(inventory, model.cylinders, "as-listed", "free", model=model)
+    assert milp.objective_value <= listed.objective_value * (1 + 1e-9)
+
+
+def test_free_forces_of_a_matching_against_shaking() -> None:
+    """The reported free forces equal those of shaking.free_forces for an engine with the
+    sets' reciprocating masses and, on each pin, its rotating parts minus the bob-weight
+    of the mean set (rotating share plus half the reciprocating share): an independent
+    path through the library."""
+    import dataclasses
+
+    from crankbalance.shaking import free_forces
+
+    model = engine("inline3")
+    inventory = random_inventory(23, (3, 4, 3), 3)
+    matched = match_parts(inventory, 3, "as-listed", "free", model=model, orders=2)
+    mean_rec = inventory.reciprocating_allowance + sum(
+        k.reciprocating.mean() for k in inventory.kinds
+    )
+    mean_rot = inventory.rotating_allowance + sum(k.rotating.mean() for k in inventory.kinds)
+    running = dataclasses.replace(
+        model,
+        reciprocating_mass=matched.reciprocating,
+        throw_rotating_mass=matched.rotating - (mean_rot + 0.5 * mean_rec),
+    )
+    forces = free_forces(running, 2)
+    first = forces.force_forward[0] + forces.rotating_force
+    expected = [abs(first) + abs(forces.force_backward[0]), forces.force_amplitude[1]]
+    assert matched.free_force == pytest.approx(expected, rel=1e-9)
+    couple = forces.couple_forward[0] + forces.rotating_couple
+    expected = [abs(couple) + abs(forces.couple_backward[0]), forces.moment_amplitude[1]]
+    assert matched.free_couple == pytest.approx(expected, rel=1e-9)
+
+
+def test_free_objective_needs_the_engine() -> None:
+    inventory = hand_inventory()
+    with pytest.raises(InputError, match="needs the engine"):
+        match_parts(inventory, 3, "milp", "free")
+    with pytest.raises(InputError, match="engine's 4 cylinders"):
+        match_parts(inventory, 3, "milp", "free", model=engine("inline4"))
+
+
+def test_results_are_json_ready() -> None:
+    """Every result converts through results.to_jsonable (the CLI's JSON output)."""
+    import json
+
+    from crankbalance.shop.bobweights import bob_weights, remaining_forces
+
+    inventory = load_parts_file(EXAMPLES / "v8_parts.csv")
+    model = engine("v8-crossplane")
+    matched = match_parts(inventory, 8, "as-listed", "free", model=model)
+    machined = machine_to_lightest(inventory, 8)
+    weights = bob_weights(model, 0.5, matched.rotating, matched.reciprocating)
+    left = remaining_forces(model, 0.5, matched.reciprocating)
+    for result in (matched, machined, weights, left, inventory):
+        text = json.dumps(result.to_dict())
+        assert "NaN" not in text
+    assert matched.to_dict()["ids"][0] == ["P1", "W1", "G1", "L1", "R1", "S1"]
