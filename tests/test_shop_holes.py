@@ -447,3 +447,41 @@ def test_radial_rebalance_stops_short_of_the_axis() -> None:
     )
     with pytest.raises(InputError, match="through the crank axis"):
         rebalance(0.3, 0.4, 0.3, 0.2, 2.0, 6.2 * MM, 26.9 * MM, holes, 1 * GMM)
+
+
+def test_rebalance_file_and_command_with_a_drill_point(tmp_path, capsys) -> None:
+    """The rebalance parts file takes ``point_angle`` and ``depth_to`` for holes; the
+    command's JSON and table say what the depth is read to."""
+    import json
+    from pathlib import Path
+
+    from crankbalance.cli import main
+
+    example = Path(__file__).resolve().parents[1] / "examples" / "crf250r_rebalance.toml"
+    text = example.read_text()
+    start = text.index("[correction]")
+    end = text.index("[tolerance]")
+    correction = (
+        '[correction]\nmethod = "holes"\nradius = "40 mm"\ndiameter = "8 mm"\nnumber = 2\n'
+        'point_angle = "118 deg"\ndepth_to = "tip"\n\n'
+    )
+    path = tmp_path / "pointed.toml"
+    path.write_text(text[:start] + correction + text[end:])
+    assert main(["rebalance", "--parts", str(path), "--format", "json"]) is None
+    payload = json.loads(capsys.readouterr().out)
+    for case in payload["cases"]:
+        assert case["correction"]["point_angle_deg"] == pytest.approx(118.0)
+        assert case["correction"]["depth_to"] == "tip"
+        assert case["passed"]
+        last = case["iterations"][-1]
+        one = hole_mass_properties(8 * MM, last["depth_m"], "tip", "axial", 40 * MM)
+        assert last["removed_unbalance_kg_m"] == pytest.approx(
+            4 * float(one.first_moment), rel=1e-9
+        )
+    assert main(["rebalance", "--parts", str(path)]) is None
+    assert "depth to tip [mm]" in capsys.readouterr().out
+    path.write_text(text[:start] + correction.replace("118 deg", "200 deg") + text[end:])
+    with pytest.raises(SystemExit) as exit_:
+        main(["rebalance", "--parts", str(path)])
+    assert exit_.value.code == 2
+    assert "correction.point_angle = '200 deg'" in capsys.readouterr().err
