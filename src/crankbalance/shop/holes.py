@@ -536,28 +536,9 @@ def drilling_plan(
     inner = radius if direction == "axial" else radius - max_shoulder
     pitch_sine = (diameter + spacing) / (2.0 * inner)
     pitch = 2.0 * math.asin(pitch_sine) if pitch_sine <= 1 else math.inf
-    edge_sine = (diameter / 2 + edge_distance) / inner
-    edge_angle = math.asin(edge_sine) if edge_sine <= 1 else math.inf
-    if web_sector is None:
-        room_low = room_high = math.pi / 2
-    else:
-        start, end = (float(a) for a in web_sector)
-        if not (math.isfinite(start) and math.isfinite(end)):
-            raise InputError("web_sector", web_sector, "must be two finite angles [rad]")
-        width = (end - start) % (2 * math.pi) or 2 * math.pi
-        offset = (centre - start) % (2 * math.pi)
-        room_low, room_high = offset - edge_angle, width - offset - edge_angle
-        if min(room_low, room_high) < 0:
-            where = "light" if heavy_metal else "heavy"
-            raise InputError(
-                "web_sector",
-                web_sector,
-                f"the {where} spot at {math.degrees(centre) % 360:.4g} deg is not on the web "
-                f"with the edge distance {edge_distance * 1e3:.4g} mm; give the sector of "
-                "the counterweight that holds it",
-            )
-    # a hole more than 90 deg from the correction's direction works against it
-    room_low, room_high = min(room_low, math.pi / 2), min(room_high, math.pi / 2)
+    room_low, room_high = _room(
+        web_sector, centre, (diameter / 2 + edge_distance) / inner, edge_distance, heavy_metal
+    )
     slug_rho = 0.0 if slug_density is None else float(slug_density)
 
     def moment(depth: float) -> float:
@@ -568,7 +549,7 @@ def drilling_plan(
         removed = float(hole.first_moment)
         if not heavy_metal:
             return removed
-        shoulder = max(depth - h, 0.0) if depth_to == "tip" else depth
+        shoulder = float(hole_geometry(diameter, depth, depth_to, point_angle).shoulder_depth)
         slug_radius = radius if direction == "axial" else radius - shoulder / 2
         slug = slug_rho * math.pi * diameter**2 / 4 * shoulder * slug_radius
         return slug - removed
@@ -629,6 +610,37 @@ def drilling_plan(
         "max_depth, a larger drill, a larger radius, less spacing"
         + ("" if heavy_metal else ", or heavy metal at the light spot"),
     )
+
+
+def _room(
+    web_sector: tuple[float, float] | None,
+    centre: float,
+    edge_sine: float,
+    edge_distance: float,
+    heavy_metal: bool,
+) -> tuple[float, float]:
+    """How far the outermost holes may sit on either side of ``centre`` [rad]: within the
+    web sector less the edge distance (``edge_sine``: its sine at the innermost radius), and
+    within 90 deg, beyond which a hole works against the correction."""
+    if web_sector is None:
+        return math.pi / 2, math.pi / 2
+    start, end = (float(a) for a in web_sector)
+    if not (math.isfinite(start) and math.isfinite(end)):
+        raise InputError("web_sector", web_sector, "must be two finite angles [rad]")
+    edge_angle = math.asin(edge_sine) if edge_sine <= 1 else math.inf
+    width = (end - start) % (2 * math.pi) or 2 * math.pi
+    offset = (centre - start) % (2 * math.pi)
+    low, high = offset - edge_angle, width - offset - edge_angle
+    if min(low, high) < 0:
+        where = "light" if heavy_metal else "heavy"
+        raise InputError(
+            "web_sector",
+            web_sector,
+            f"the {where} spot at {math.degrees(centre) % 360:.4g} deg is not on the web "
+            f"with the edge distance {edge_distance * 1e3:.4g} mm; give the sector of the "
+            "counterweight that holds it",
+        )
+    return min(low, math.pi / 2), min(high, math.pi / 2)
 
 
 def _depth_for_moment(moment: Callable[[float], float], target: float, max_depth: float) -> float:
