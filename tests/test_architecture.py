@@ -35,6 +35,7 @@ PHYSICS = (
     "shop.scatter",
     "shop.matching",
     "shop.bobweights",
+    "shop.holes",
 )
 EDGES = {
     "figures",

@@ -43,16 +43,22 @@ from numpy.typing import ArrayLike, NDArray
 from .errors import InputError, check_positive, check_range
 from .kinematics import KINEMATICS_MODELS, KinematicsModel, piston_acceleration
 from .results import ResultMixin
+from .shop.holes import (
+    FLAT_BOTTOM,
+    STEEL_DENSITY,
+    DepthReference,
+    HoleDirection,
+    depth_for_volume,
+    hole_geometry,
+    hole_mass_properties,
+    round_depth,
+)
 
 #: Range of balance factors accepted as input (0 = rotating mass only, 2 = 200 %).
 BALANCE_FACTOR_RANGE: tuple[float, float] = (0.0, 2.0)
 
-#: Density of crankshaft steel used when none is given [kg/m^3] (Hoem and Røsholm (2016), Appendix
-# E).
-STEEL_DENSITY = 7850.0
 
 CorrectionKind = Literal["holes", "face"]
-HoleDirection = Literal["axial", "radial"]
 FaceOrientation = Literal["axial", "radial"]
 
 
@@ -649,6 +655,18 @@ class _Layer(ABC):
         """First moment taken off all webs [kg m]."""
         return self.mass_per_depth * depth * self.centroid_radius(depth)
 
+    def removed_mass(self, depth: float) -> float:
+        """Mass taken off all webs at that depth [kg]."""
+        return self.mass_per_depth * depth
+
+    def deepen(self, depth: float, mass: float) -> float:
+        """Depth at which ``mass`` more than at ``depth`` has come off [m]."""
+        return depth + mass / self.mass_per_depth
+
+    def innermost_radius(self, depth: float) -> float:
+        """Radius of the cut's deepest point at that depth (>0: short of the crank axis) [m]."""
+        return self.centroid_radius(2.0 * depth)
+
 
 @dataclass(frozen=True)
 class DrilledHoles(_Layer, ResultMixin):
@@ -665,7 +683,7 @@ class DrilledHoles(_Layer, ResultMixin):
         Holes per web.
     direction : {"axial", "radial"}
         Axial holes (parallel to the crank axis) keep their centroid at ``radius``; radial
-        holes drilled inward from the rim have their centroid at ``radius - depth/2``.
+        holes drilled inward from the rim have theirs at ``radius`` less the centroid depth.
     webs : int
         Webs carrying the same correction (2 keeps a single-cylinder crank dynamically
         balanced, Hoem and Røsholm (2016), Sec. 4.1.3).
@@ -673,8 +691,15 @@ class DrilledHoles(_Layer, ResultMixin):
         Crank material density [kg/m^3].
     depth_resolution : float
         Machining step the depth is rounded to [m] (0 for none).
+    point_angle : float
+        Included drill-point angle [rad]: :data:`~crankbalance.shop.holes.FLAT_BOTTOM` (pi,
+        the default: flat-bottomed holes, as in Hoem and Røsholm (2016), whose numbers it
+        reproduces) or e.g. :data:`~crankbalance.shop.holes.DEFAULT_POINT_ANGLE` (118°).
+    depth_to : {"shoulder", "tip"}
+        What the depth is read to (the same for a flat bottom).
 
-    Flat-bottomed holes: the drill-point cone is neglected.
+    Volume, mass and centroid of each hole are those of
+    :func:`crankbalance.shop.holes.hole_mass_properties`, drill point included.
     """
 
     diameter: float
@@ -684,6 +709,8 @@ class DrilledHoles(_Layer, ResultMixin):
     webs: int = 2
     density: float = STEEL_DENSITY
     depth_resolution: float = 1e-6
+    point_angle: float = FLAT_BOTTOM
+    depth_to: DepthReference = "shoulder"
     kind: str = field(default="holes", init=False)
 
     def __post_init__(self) -> None:
@@ -692,15 +719,53 @@ class DrilledHoles(_Layer, ResultMixin):
         if self.direction not in ("axial", "radial"):
             raise InputError("hole_direction", self.direction, "must be 'axial' or 'radial'")
         self._check_layer()
+        hole_geometry(self.diameter, 0.0, self.depth_to, self.point_angle)  # checks both
 
     @property
     def mass_per_depth(self) -> float:
-        """Mass removed per metre of depth, all holes on all webs [kg/m]."""
+        """Mass removed per metre of depth below the point, all holes on all webs [kg/m]."""
         return self.density * math.pi * self.diameter**2 / 4.0 * self.number * self.webs
 
     @property
     def _cuts_inward(self) -> bool:
         return self.direction == "radial"
+
+    @property
+    def _holes(self) -> int:
+        return self.number * self.webs
+
+    def removed_unbalance(self, depth: float) -> float:
+        """First moment taken off all webs [kg m]."""
+        hole = hole_mass_properties(
+            self.diameter,
+            depth,
+            self.depth_to,
+            self.direction,
+            self.radius,
+            self.density,
+            self.point_angle,
+        )
+        return float(hole.first_moment) * self._holes
+
+    def removed_mass(self, depth: float) -> float:
+        """Mass taken off all webs at that depth [kg]."""
+        geometry = hole_geometry(self.diameter, depth, self.depth_to, self.point_angle)
+        return self.density * float(geometry.volume) * self._holes
+
+    def deepen(self, depth: float, mass: float) -> float:
+        """Depth at which ``mass`` more than at ``depth`` has come off [m] (depth 0: no
+        hole yet, not the point alone)."""
+        removed = self.removed_mass(depth) if depth > 0 else 0.0
+        volume = (removed + mass) / (self.density * self._holes)
+        return depth_for_volume(self.diameter, volume, self.depth_to, self.point_angle)
+
+    def innermost_radius(self, depth: float) -> float:
+        """Radius of the drill tip (radial holes) or of the hole axes (axial) [m]."""
+        if self.direction == "axial":
+            return self.radius
+        return self.radius - float(
+            hole_geometry(self.diameter, depth, self.depth_to, self.point_angle).tip_depth
+        )
 
 
 @dataclass(frozen=True)
@@ -756,10 +821,6 @@ def _check_count(name: str, value: int) -> int:
     if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 1:
         raise InputError(name, value, "must be a whole number >= 1")
     return int(value)
-
-
-def _round(depth: float, resolution: float) -> float:
-    return depth if resolution <= 0 else round(depth / resolution) * resolution
 
 
 # ---------------------------------------------------------------------------------------
@@ -961,10 +1022,10 @@ def rebalance(
             # step 3: the next layer starts at the present depth
             radius = correction.centroid_radius(2.0 * depth)
             mass = to_correct / radius  # step 4
-            depth = _round(
-                depth + mass / correction.mass_per_depth, correction.depth_resolution
+            depth = round_depth(
+                correction.deepen(depth, mass), correction.depth_resolution
             )  # step 5
-            if not correction.centroid_radius(2.0 * depth) > 0:
+            if not correction.innermost_radius(depth) > 0:
                 raise InputError(
                     "correction",
                     correction.kind,
@@ -982,7 +1043,7 @@ def rebalance(
                     correction_radius=radius,
                     correction_mass=mass,
                     depth=depth,
-                    removed_mass=correction.mass_per_depth * depth,
+                    removed_mass=correction.removed_mass(depth),
                     removed_unbalance=removed,
                     residual=residual,
                     within_tolerance=ok,

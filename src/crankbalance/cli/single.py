@@ -491,7 +491,7 @@ def rebalance_command(
                 "iter",
                 "r_corr [mm]",
                 "m_corr [g]",
-                "depth [mm]",
+                _depth_header(res.correction),
                 "removed [g]",
                 "residual [g*mm]",
                 "within",
@@ -516,6 +516,13 @@ def _parts_json(side: Any) -> dict[str, Any]:
     }
 
 
+def _depth_header(correction: Any) -> str:
+    """The depth column's header: what the depth of pointed holes is read to."""
+    if correction.kind == "holes" and correction.point_angle != math.pi:
+        return f"depth to {correction.depth_to} [mm]"
+    return "depth [mm]"
+
+
 def _correction_json(correction: Any) -> dict[str, Any]:
     out: dict[str, Any] = {"kind": correction.kind, "radius_m": correction.radius}
     if correction.kind == "face":
@@ -526,6 +533,11 @@ def _correction_json(correction: Any) -> dict[str, Any]:
             "number": correction.number,
             "direction": correction.direction,
         }
+        if correction.point_angle != math.pi:  # flat-bottomed holes: no point to state
+            out |= {
+                "point_angle_deg": math.degrees(correction.point_angle),
+                "depth_to": correction.depth_to,
+            }
     return out | {
         "webs": correction.webs,
         "density_kg_m3": correction.density,

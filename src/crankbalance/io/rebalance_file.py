@@ -11,6 +11,7 @@ and :func:`crankbalance.studies.rebalance.rebalance_parts` says what is still mi
 
 from __future__ import annotations
 
+import math
 import os
 from functools import partial
 from pathlib import Path
@@ -38,6 +39,7 @@ Area = Annotated[float, _quantity("area")]
 Density = Annotated[float, _quantity("density")]
 Speed = Annotated[float, _quantity("speed")]
 Unbalance = Annotated[float, _quantity("unbalance")]
+Angle = Annotated[float, _quantity("angle")]
 
 
 class _Strict(BaseModel):
@@ -133,6 +135,8 @@ class Correction(_Strict):
     diameter: Length | None = None
     number: int | None = Field(default=None, ge=1, le=1000)
     direction: Literal["axial", "radial"] | None = None
+    point_angle: Angle | None = None
+    depth_to: Literal["shoulder", "tip"] | None = None
     webs: int = Field(default=2, ge=1, le=64)
     density: Density | None = None
     depth_resolution: Length | None = None
@@ -140,6 +144,8 @@ class Correction(_Strict):
     @model_validator(mode="after")
     def _check(self) -> Correction:
         _positive(self, ("radius", "area", "diameter", "density"))
+        if self.point_angle is not None and not 0 < self.point_angle <= math.pi:
+            raise FieldProblem("point_angle", "must be above 0 and at most 180 deg (flat bottom)")
         if self.depth_resolution is not None and self.depth_resolution < 0:
             raise FieldProblem("depth_resolution", "must not be negative")
         for name, keys in METHOD_KEYS.items():
@@ -158,7 +164,7 @@ class Correction(_Strict):
 #: [correction] keys that belong to one method only
 METHOD_KEYS: dict[str, tuple[str, ...]] = {
     "face": ("area", "orientation"),
-    "holes": ("diameter", "number", "direction"),
+    "holes": ("diameter", "number", "direction", "point_angle", "depth_to"),
 }
 
 

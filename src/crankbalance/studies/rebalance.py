@@ -17,6 +17,7 @@ from typing import Any
 from ..errors import InputError
 from ..io.rebalance_file import Correction, Parts, RebalanceFile, Tolerance
 from ..results import ResultMixin
+from ..shop.holes import FLAT_BOTTOM
 from ..single_cylinder import (
     STEEL_DENSITY,
     DrilledHoles,
@@ -102,6 +103,8 @@ def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
         webs=table.webs,
         density=density,
         depth_resolution=resolution,
+        point_angle=FLAT_BOTTOM if table.point_angle is None else table.point_angle,
+        depth_to=table.depth_to or "shoulder",
     )
 
 
