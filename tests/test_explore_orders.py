@@ -232,6 +232,40 @@ def test_chunks_equal_the_whole() -> None:
             np.testing.assert_array_equal(joined, getattr(whole, name), err_msg=name)
 
 
+def lehmer_rank(order: tuple[int, ...]) -> int:
+    """Lexicographic rank of an order among the orders from cylinder 1, by hand."""
+    rest = list(order[1:])
+    return sum(
+        sum(later < c for later in rest[k + 1 :]) * math.factorial(len(rest) - 1 - k)
+        for k, c in enumerate(rest)
+    )
+
+
+def test_twelve_cylinders_by_chunk() -> None:
+    # 11! = 39 916 800 indices: a chunk anywhere is unranked without the rest
+    p = orders.problem("inline", 12, 2)
+    assert orders.count(p) == 39_916_800
+    start = 20_000_000  # (orders near the end are mirror images of earlier ones)
+    found = orders.chunk(p, start, start + 700)
+    assert found.size > 0 and found.index.min() >= start and found.index.max() < start + 700
+    for order, index in zip(sequences(found), found.index.tolist(), strict=True):
+        assert lehmer_rank(order) == index
+    # shared pins: the W12's consistent orders, chunked and whole
+    w12 = orders.problem("w", 12, 4, bank_angle=math.pi / 3)
+    whole = enumerate_all(w12)
+    assert whole.size == 256 and int(whole.equivalents.sum()) == 480
+    step = orders.count(w12) // 7 + 1
+    parts = [
+        orders.chunk(w12, a, min(a + step, orders.count(w12)))
+        for a in range(0, orders.count(w12), step)
+    ]
+    np.testing.assert_array_equal(np.concatenate([c.index for c in parts]), whole.index)
+    preset = build_model(parse_engine_text(preset_text("w12")))
+    assert any(
+        preset.firing_order in orders.equivalent_orders(w12, order) for order in sequences(whole)
+    )
+
+
 def test_split_pin_v6_90() -> None:
     # a 90 deg V6 cannot fire evenly on shared pins; split pins allow every order
     assert enumerate_all(orders.problem("vee", 6, 4, bank_angle=V90)).size == 0
