@@ -70,14 +70,21 @@ def built(
 
 
 def brute_force(
-    preset: str, n: int, strokes: int, bank: float | None, mirror_map: dict[int, int]
+    preset: str,
+    n: int,
+    strokes: int,
+    bank: float | None,
+    mirror_map: dict[int, int],
+    reversal_map: dict[int, int] | None = None,
 ) -> tuple[set[tuple[int, ...]], set[tuple[int, ...]]]:
     """Every order from cylinder 1 that studies.build accepts, and the least of each class.
 
     Classes by hand: an order and the same sequence renumbered with ``mirror_map`` (the
-    engine numbered from the other end), read again from cylinder 1. The index order of
-    the module with even firing is the lexicographic order of the sequences, so the least
-    sequence of a class is its canonical candidate.
+    engine numbered from the other end), read again from cylinder 1; with
+    ``reversal_map`` also the reversed sequence renumbered with it (run backwards, a
+    vee's banks swap) and its mirror. The index order of the module with even firing is
+    the lexicographic order of the sequences, so the least sequence of a class is its
+    canonical candidate.
     """
     consistent: set[tuple[int, ...]] = set()
     for rest in itertools.permutations(range(2, n + 1)):
@@ -87,7 +94,15 @@ def brute_force(
         except InputError:
             continue
         consistent.add(order)
-    least = {min(order, mapped(order, mirror_map)) for order in consistent}
+
+    def images(order: tuple[int, ...]) -> list[tuple[int, ...]]:
+        found = [order, mapped(order, mirror_map)]
+        if reversal_map is not None:
+            backwards = mapped(order[::-1], reversal_map)
+            found += [backwards, mapped(backwards, mirror_map)]
+        return found
+
+    least = {min(images(order)) for order in consistent}
     return consistent, least
 
 
@@ -194,6 +209,40 @@ def test_against_brute_force_and_build(
         # the crank puts each cylinder at its firing top dead centre at its fire angle
         tdc = found.fire_angle[k] + found.throw_angle[k][p.topology.cylinder_throw]
         assert gap(tdc - p.topology.cylinder_bank).max() < 1e-9
+
+
+@pytest.mark.parametrize(
+    ("preset", "layout", "n", "bank", "mirror_map", "reversal_map"),
+    [
+        (
+            "inline6",
+            "inline",
+            6,
+            None,
+            {c: 7 - c for c in range(1, 7)},
+            {c: c for c in range(1, 7)},
+        ),
+        ("v8-crossplane", "vee", 8, V90, CASES[4][5], {c: (c + 3) % 8 + 1 for c in range(1, 9)}),
+    ],
+)
+def test_time_reversal_against_brute_force(
+    preset: str,
+    layout: str,
+    n: int,
+    bank: float | None,
+    mirror_map: dict[int, int],
+    reversal_map: dict[int, int],
+) -> None:
+    p = orders.problem(layout, n, 4, bank_angle=bank, reversal=True)
+    found = enumerate_all(p)
+    consistent, least = brute_force(preset, n, 4, bank, mirror_map, reversal_map)
+    assert set(sequences(found)) == least
+    assert int(found.equivalents.sum()) == len(consistent)
+    # an uneven pattern whose reverse is no rotation of itself has no reversed twin
+    steps = [math.radians(a) for a in (200, 240, 280)]
+    one_way = orders.problem("inline", 3, 4, intervals=steps, reversal=True)
+    both = orders.problem("inline", 3, 4, intervals=steps)
+    np.testing.assert_array_equal(enumerate_all(one_way).index, enumerate_all(both).index)
 
 
 def test_classes_partition_all_orders() -> None:
