@@ -86,7 +86,8 @@ class Problem:
         Whether an engine numbered from the other end (its mirror image) is the same.
     reversal : bool
         Whether an engine run backwards (the reverse firing order on the mirrored crank)
-        is the same.
+        is the same; not applied when the pistons are offset or the reversed interval
+        pattern is no rotation of the pattern.
     """
 
     layout: str
@@ -293,7 +294,9 @@ def _make_plan(p: Problem) -> _Plan:
     )
     j = np.arange(n)
     kappa = next((k for k in range(n) if np.allclose(steps[(k - j) % n], steps, 0, _TOL)), None)
-    signs = (1, -1) if p.reversal and kappa is not None else (1,)
+    # run backwards, an offset piston pin is offset the other way: no longer the engine
+    backwards = p.reversal and kappa is not None and p.topology.offset == 0
+    signs = (1, -1) if backwards else (1,)
     throw_of = p.topology.cylinder_throw
     throw_first = np.array([np.flatnonzero(throw_of == t)[0] for t in range(p.topology.throws)])
     return _Plan(
