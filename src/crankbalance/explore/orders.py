@@ -520,7 +520,9 @@ def _orbit(
 ) -> NDArray[np.int64]:
     """Index of each allowed equivalent description (B, G); disallowed ones are max int.
 
-    ``index``, when given, is the rows' own index (allowed), used for the identity.
+    The rows are allowed; a symmetry keeps pins shared and cranks planar or not, so an
+    image can only be disallowed by a fixed crank. ``index``, when given, is the rows' own
+    index, used for the identity.
     """
     plan = problem._plan
     out = np.empty((slots.shape[0], len(plan.group)), dtype=np.int64)
@@ -530,8 +532,10 @@ def _orbit(
             out[:, g] = index
             continue
         image, image_rot = _transform(plan, to, s, slots, rot)
-        ok = _crank(problem, image, image_rot)[2]
-        out[:, g] = np.where(ok, _rank(plan, image, image_rot), np.iinfo(np.int64).max)
+        out[:, g] = _rank(plan, image, image_rot)
+        if problem.fixed_throw_angles is not None:  # the rest holds for every image
+            ok = _crank(problem, image, image_rot)[2]
+            out[:, g] = np.where(ok, out[:, g], np.iinfo(np.int64).max)
     return out
 
 
