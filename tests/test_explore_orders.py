@@ -70,14 +70,21 @@ def built(
 
 
 def brute_force(
-    preset: str, n: int, strokes: int, bank: float | None, mirror_map: dict[int, int]
+    preset: str,
+    n: int,
+    strokes: int,
+    bank: float | None,
+    mirror_map: dict[int, int],
+    reversal_map: dict[int, int] | None = None,
 ) -> tuple[set[tuple[int, ...]], set[tuple[int, ...]]]:
     """Every order from cylinder 1 that studies.build accepts, and the least of each class.
 
     Classes by hand: an order and the same sequence renumbered with ``mirror_map`` (the
-    engine numbered from the other end), read again from cylinder 1. The index order of
-    the module with even firing is the lexicographic order of the sequences, so the least
-    sequence of a class is its canonical candidate.
+    engine numbered from the other end), read again from cylinder 1; with
+    ``reversal_map`` also the reversed sequence renumbered with it (run backwards, a
+    vee's banks swap) and its mirror. The index order of the module with even firing is
+    the lexicographic order of the sequences, so the least sequence of a class is its
+    canonical candidate.
     """
     consistent: set[tuple[int, ...]] = set()
     for rest in itertools.permutations(range(2, n + 1)):
@@ -87,7 +94,15 @@ def brute_force(
         except InputError:
             continue
         consistent.add(order)
-    least = {min(order, mapped(order, mirror_map)) for order in consistent}
+
+    def images(order: tuple[int, ...]) -> list[tuple[int, ...]]:
+        found = [order, mapped(order, mirror_map)]
+        if reversal_map is not None:
+            backwards = mapped(order[::-1], reversal_map)
+            found += [backwards, mapped(backwards, mirror_map)]
+        return found
+
+    least = {min(images(order)) for order in consistent}
     return consistent, least
 
 
@@ -196,6 +211,40 @@ def test_against_brute_force_and_build(
         assert gap(tdc - p.topology.cylinder_bank).max() < 1e-9
 
 
+@pytest.mark.parametrize(
+    ("preset", "layout", "n", "bank", "mirror_map", "reversal_map"),
+    [
+        (
+            "inline6",
+            "inline",
+            6,
+            None,
+            {c: 7 - c for c in range(1, 7)},
+            {c: c for c in range(1, 7)},
+        ),
+        ("v8-crossplane", "vee", 8, V90, CASES[4][5], {c: (c + 3) % 8 + 1 for c in range(1, 9)}),
+    ],
+)
+def test_time_reversal_against_brute_force(
+    preset: str,
+    layout: str,
+    n: int,
+    bank: float | None,
+    mirror_map: dict[int, int],
+    reversal_map: dict[int, int],
+) -> None:
+    p = orders.problem(layout, n, 4, bank_angle=bank, reversal=True)
+    found = enumerate_all(p)
+    consistent, least = brute_force(preset, n, 4, bank, mirror_map, reversal_map)
+    assert set(sequences(found)) == least
+    assert int(found.equivalents.sum()) == len(consistent)
+    # an uneven pattern whose reverse is no rotation of itself has no reversed twin
+    steps = [math.radians(a) for a in (200, 240, 280)]
+    one_way = orders.problem("inline", 3, 4, intervals=steps, reversal=True)
+    both = orders.problem("inline", 3, 4, intervals=steps)
+    np.testing.assert_array_equal(enumerate_all(one_way).index, enumerate_all(both).index)
+
+
 def test_classes_partition_all_orders() -> None:
     p = orders.problem("vee", 8, 4, bank_angle=V90)
     found = enumerate_all(p)
@@ -232,6 +281,40 @@ def test_chunks_equal_the_whole() -> None:
             np.testing.assert_array_equal(joined, getattr(whole, name), err_msg=name)
 
 
+def lehmer_rank(order: tuple[int, ...]) -> int:
+    """Lexicographic rank of an order among the orders from cylinder 1, by hand."""
+    rest = list(order[1:])
+    return sum(
+        sum(later < c for later in rest[k + 1 :]) * math.factorial(len(rest) - 1 - k)
+        for k, c in enumerate(rest)
+    )
+
+
+def test_twelve_cylinders_by_chunk() -> None:
+    # 11! = 39 916 800 indices: a chunk anywhere is unranked without the rest
+    p = orders.problem("inline", 12, 2)
+    assert orders.count(p) == 39_916_800
+    start = 20_000_000  # (orders near the end are mirror images of earlier ones)
+    found = orders.chunk(p, start, start + 700)
+    assert found.size > 0 and found.index.min() >= start and found.index.max() < start + 700
+    for order, index in zip(sequences(found), found.index.tolist(), strict=True):
+        assert lehmer_rank(order) == index
+    # shared pins: the W12's consistent orders, chunked and whole
+    w12 = orders.problem("w", 12, 4, bank_angle=math.pi / 3)
+    whole = enumerate_all(w12)
+    assert whole.size == 256 and int(whole.equivalents.sum()) == 480
+    step = orders.count(w12) // 7 + 1
+    parts = [
+        orders.chunk(w12, a, min(a + step, orders.count(w12)))
+        for a in range(0, orders.count(w12), step)
+    ]
+    np.testing.assert_array_equal(np.concatenate([c.index for c in parts]), whole.index)
+    preset = build_model(parse_engine_text(preset_text("w12")))
+    assert any(
+        preset.firing_order in orders.equivalent_orders(w12, order) for order in sequences(whole)
+    )
+
+
 def test_split_pin_v6_90() -> None:
     # a 90 deg V6 cannot fire evenly on shared pins; split pins allow every order
     assert enumerate_all(orders.problem("vee", 6, 4, bank_angle=V90)).size == 0
@@ -257,6 +340,11 @@ def test_base_masses_and_broken_symmetry() -> None:
     heavy = replace(base, reciprocating_mass=base.reciprocating_mass * [1.1, 1, 1, 1])
     lopsided = enumerate_all(orders.problem("inline", 4, 4, base=heavy))
     assert lopsided.size == 6 and lopsided.equivalents.tolist() == [1] * 6
+    # an offset piston pin: run backwards it is offset the other way, another engine
+    offset = replace(base, offset=0.001)
+    one_way = orders.problem("inline", 4, 4, base=offset, reversal=True)
+    assert orders.equivalent_orders(one_way, (1, 3, 4, 2)) == [(1, 3, 4, 2)]
+    assert orders.problem("inline", 4, 4, base=offset).topology.offset == 0.001
     with pytest.raises(InputError, match="base"):
         orders.problem("inline", 6, 4, base=base)
 

@@ -86,7 +86,8 @@ class Problem:
         Whether an engine numbered from the other end (its mirror image) is the same.
     reversal : bool
         Whether an engine run backwards (the reverse firing order on the mirrored crank)
-        is the same.
+        is the same; not applied when the pistons are offset or the reversed interval
+        pattern is no rotation of the pattern.
     """
 
     layout: str
@@ -293,7 +294,9 @@ def _make_plan(p: Problem) -> _Plan:
     )
     j = np.arange(n)
     kappa = next((k for k in range(n) if np.allclose(steps[(k - j) % n], steps, 0, _TOL)), None)
-    signs = (1, -1) if p.reversal and kappa is not None else (1,)
+    # run backwards, an offset piston pin is offset the other way: no longer the engine
+    backwards = p.reversal and kappa is not None and p.topology.offset == 0
+    signs = (1, -1) if backwards else (1,)
     throw_of = p.topology.cylinder_throw
     throw_first = np.array([np.flatnonzero(throw_of == t)[0] for t in range(p.topology.throws)])
     return _Plan(
@@ -379,6 +382,56 @@ def _unrank(plan: _Plan, index: NDArray[np.int64]) -> tuple[NDArray[np.int64], N
     return slots, rot
 
 
+def _consistent(
+    problem: Problem, start: int, stop: int
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """Indices, slots and rotations of the orders in ``[start, stop)`` whose cylinders
+    sharing a crankpin agree on its angle, by increasing index.
+
+    The Lehmer digits are chosen slot after slot; a prefix whose cylinders already
+    disagree on a pin is dropped with the whole block of indices it starts, so a
+    shared-pin layout never visits most of its inconsistent orders.
+    """
+    plan = problem._plan
+    m = plan.cylinders - 1
+    bank, throw_of = problem.topology.cylinder_bank, problem.topology.cylinder_throw
+    out: list[tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]] = []
+    for r in range(start // plan.span, (stop - 1) // plan.span + 1 if stop > start else 0):
+        lo_end, hi_end = start - r * plan.span, stop - r * plan.span
+        lo = np.zeros(1, dtype=np.int64)  # first index of each prefix's block
+        rest = np.arange(1, m + 1, dtype=np.int64)[None, :]
+        slots = np.zeros((1, m + 1), dtype=np.int64)
+        pin = np.full((1, problem.topology.throws), np.nan)
+        pin[0, throw_of[0]] = np.remainder(bank[0] - plan.times[r, 0], 2 * np.pi)
+        for k in range(m):
+            width = int(plan.factorial[k])
+            digit = np.tile(np.arange(m - k), lo.size)
+            parent = np.repeat(np.arange(lo.size), m - k)
+            child_lo = lo[parent] + digit * width
+            cylinder = rest[parent, digit]
+            angle = np.remainder(bank[cylinder] - plan.times[r, k + 1], 2 * np.pi)
+            known = pin[parent, throw_of[cylinder]]
+            ok = (child_lo < hi_end) & (child_lo + width > lo_end)
+            ok &= np.isnan(known) | (_gap(angle - known) < _TOL)
+            parent, digit, cylinder, angle = parent[ok], digit[ok], cylinder[ok], angle[ok]
+            lo = child_lo[ok]
+            slots = slots[parent]
+            slots[np.arange(lo.size), cylinder] = k + 1
+            pin = pin[parent]
+            pin[np.arange(lo.size), throw_of[cylinder]] = angle
+            keep = np.arange(m - 1 - k)[None, :]
+            rest = np.take_along_axis(rest[parent], keep + (keep >= digit[:, None]), axis=1)
+        out.append((lo + r * plan.span, slots, np.full(lo.size, r, dtype=np.int64)))
+    if not out:
+        empty = np.zeros(0, dtype=np.int64)
+        return empty, np.zeros((0, m + 1), dtype=np.int64), empty
+    return (
+        np.concatenate([o[0] for o in out]),
+        np.concatenate([o[1] for o in out]),
+        np.concatenate([o[2] for o in out]),
+    )
+
+
 def _rank(plan: _Plan, slots: NDArray[np.int64], rot: NDArray[np.int64]) -> NDArray[np.int64]:
     """Inverse of :func:`_unrank`."""
     rest = np.argsort(slots, axis=1)[:, 1:]
@@ -444,12 +497,10 @@ def chunk(problem: Problem, start: int, stop: int) -> Candidates:
     total = count(problem)
     if not 0 <= start <= stop <= total:
         raise InputError("chunk", (start, stop), f"0 <= start <= stop <= {total}")
-    plan = problem._plan
-    index = np.arange(start, stop, dtype=np.int64)
-    slots, rot = _unrank(plan, index)
+    index, slots, rot = _consistent(problem, start, stop)
     fire, throw, ok = _crank(problem, slots, rot)
     index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
-    images = _orbit(problem, slots, rot)
+    images = _orbit(problem, slots, rot, index)
     keep = np.min(images, axis=1) == index
     return Candidates(
         topology=problem.topology,
@@ -461,14 +512,30 @@ def chunk(problem: Problem, start: int, stop: int) -> Candidates:
     )
 
 
-def _orbit(problem: Problem, slots: NDArray[np.int64], rot: NDArray[np.int64]) -> NDArray[np.int64]:
-    """Index of each allowed equivalent description (B, G); disallowed ones are max int."""
+def _orbit(
+    problem: Problem,
+    slots: NDArray[np.int64],
+    rot: NDArray[np.int64],
+    index: NDArray[np.int64] | None = None,
+) -> NDArray[np.int64]:
+    """Index of each allowed equivalent description (B, G); disallowed ones are max int.
+
+    The rows are allowed; a symmetry keeps pins shared and cranks planar or not, so an
+    image can only be disallowed by a fixed crank. ``index``, when given, is the rows' own
+    index, used for the identity.
+    """
     plan = problem._plan
     out = np.empty((slots.shape[0], len(plan.group)), dtype=np.int64)
+    n = plan.cylinders
     for g, (to, s) in enumerate(plan.group):
+        if index is not None and s == 1 and np.array_equal(to, np.arange(n)):
+            out[:, g] = index
+            continue
         image, image_rot = _transform(plan, to, s, slots, rot)
-        ok = _crank(problem, image, image_rot)[2]
-        out[:, g] = np.where(ok, _rank(plan, image, image_rot), np.iinfo(np.int64).max)
+        out[:, g] = _rank(plan, image, image_rot)
+        if problem.fixed_throw_angles is not None:  # the rest holds for every image
+            ok = _crank(problem, image, image_rot)[2]
+            out[:, g] = np.where(ok, out[:, g], np.iinfo(np.int64).max)
     return out
 
 
