@@ -230,6 +230,15 @@ def test_sample_is_repeatable_and_covers_its_draws() -> None:
     assert set(a.top["index"]) <= set(drawn.tolist())
 
 
+def test_a_span_is_a_slice_of_the_whole() -> None:
+    part = run(None, shaking, chunk=9, keep=KEEP, span=(30, 75), source=SixOrders)
+    whole = SixOrders.chunk(None, 30, 75)
+    assert part.covered == 45 and part.candidates == whole.size
+    assert set(part.top["index"]) <= set(whole.index.tolist())
+    with pytest.raises(InputError, match="span"):
+        run(None, shaking, span=(75, 30), source=SixOrders)
+
+
 def test_progress_line_and_bad_settings() -> None:
     stream = io.StringIO()
     run(None, shaking, chunk=60, source=SixOrders, progress=progress_line(stream, every=0))

@@ -269,9 +269,14 @@ def evaluate_task(
     )
 
 
-def tasks(total: int, chunk: int = CHUNK, sample: Sample | None = None) -> list[Task]:
-    """The tasks of a run: ranges of ``chunk`` consecutive indices of ``[0, total)``, or
-    the sorted distinct indices of ``sample`` in groups of ``chunk``.
+def tasks(
+    total: int,
+    chunk: int = CHUNK,
+    sample: Sample | None = None,
+    span: tuple[int, int] | None = None,
+) -> list[Task]:
+    """The tasks of a run: ranges of ``chunk`` consecutive indices of ``[0, total)`` (or of
+    ``span``), or the sorted distinct indices of ``sample`` in groups of ``chunk``.
 
     Parameters
     ----------
@@ -281,6 +286,9 @@ def tasks(total: int, chunk: int = CHUNK, sample: Sample | None = None) -> list[
         Indices per task [-].
     sample : Sample or None
         Draw indices at random instead of taking them all.
+    span : (int, int) or None
+        Only the indices from ``span[0]`` to before ``span[1]`` [-] (a slice of a large
+        enumeration: a benchmark, or one job of many); default all.
 
     Returns
     -------
@@ -289,13 +297,16 @@ def tasks(total: int, chunk: int = CHUNK, sample: Sample | None = None) -> list[
     """
     if chunk < 1:
         raise InputError("chunk", chunk, "1 or more")
+    low, high = (0, total) if span is None else span
+    if not 0 <= low <= high <= total:
+        raise InputError("span", list(span or ()), f"0 <= start <= stop <= {total}")
     if sample is None:
-        return [(s, min(s + chunk, total)) for s in range(0, total, chunk)]
+        return [(s, min(s + chunk, high)) for s in range(low, high, chunk)]
     if sample.draws < 1:
         raise InputError("draws", sample.draws, "1 or more")
     rng = np.random.default_rng(sample.seed)
-    # integers below 2**63: a W16's 1.3e12 and more fit
-    drawn = np.unique(rng.integers(0, total, size=sample.draws, dtype=np.int64))
+    # integers below 2**63: a V16's 1.3e12 and more fit
+    drawn = np.unique(rng.integers(low, high, size=sample.draws, dtype=np.int64))
     return [drawn[s : s + chunk] for s in range(0, drawn.size, chunk)]
 
 
@@ -351,7 +362,7 @@ def _client(stack: ExitStack, scheduler: str | None, workers: int | None) -> Any
             threads_per_worker=1,
             processes=True,
             dashboard_address=None,
-            silence_logs=40,  # logging.ERROR
+            silence_logs=50,  # logging.CRITICAL: no tracebacks of the shutdown
         )
     )
     return stack.enter_context(Client(cluster))
@@ -404,6 +415,7 @@ def run(
     scheduler: str | None = None,
     workers: int | None = None,
     sample: Sample | None = None,
+    span: tuple[int, int] | None = None,
     progress: Callable[[int, int, float], None] | None = None,
     source: Any = None,
 ) -> RunResult:
@@ -433,6 +445,8 @@ def run(
         Worker processes of a dask LocalCluster started for the run.
     sample : Sample or None
         Draw indices at random instead of enumerating them all.
+    span : (int, int) or None
+        Only the indices from ``span[0]`` to before ``span[1]``; default all.
     progress : callable or None
         ``progress(indices done, indices in all, seconds)``, after each task
         (:func:`progress_line` prints one).
@@ -460,7 +474,9 @@ def run(
     if keep.n < 1:
         raise InputError("top", keep.n, "1 or more")
     total = int(_enumeration(source).count(problem))
-    todo = tasks(total, chunk, sample)
+    todo = tasks(total, chunk, sample, span)
+    if output is not None and not todo:
+        raise InputError("output", output, "a run with at least one candidate to write")
     covered_all = sum(t[1] - t[0] if isinstance(t, tuple) else t.size for t in todo)
     work = functools.partial(
         evaluate_task, problem, evaluate, select, keep, output is not None, source
@@ -498,8 +514,6 @@ def run(
             passed += part.passed
             if progress is not None:
                 progress(done, covered_all, time.perf_counter() - began)
-        if output is not None and not todo:
-            raise InputError("problem", total, "at least one candidate")
     return RunResult(
         total=total,
         covered=done,
