@@ -200,10 +200,7 @@ def _pareto(keep: Keep, rows: Columns) -> Columns:
     """The non-dominated rows over ``keep.objectives``, by increasing index."""
     if not keep.objectives or rows["index"].size == 0:
         return _take(rows, np.zeros(0, dtype=np.int64)) if keep.objectives else {}
-    if keep.pareto is None:
-        from .rank import pareto
-    else:
-        pareto = keep.pareto
+    pareto = keep.pareto or importlib.import_module(".rank", __package__).pareto
     mask = np.asarray(pareto(_matrix(rows, keep.objectives)), dtype=bool)
     kept = np.flatnonzero(mask)
     return _take(rows, kept[np.argsort(rows["index"][kept], kind="stable")])
