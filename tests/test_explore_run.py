@@ -189,6 +189,21 @@ def test_dask_local_cluster_gives_exactly_the_in_process_result(tmp_path: Path) 
     _same(read_parquet(tmp_path / "a.parquet"), read_parquet(tmp_path / "b.parquet"))
 
 
+@pytest.mark.slow
+def test_an_existing_cluster_by_its_address() -> None:
+    from dask.distributed import LocalCluster
+
+    here = run(None, shaking, chunk=30, keep=KEEP, source=SixOrders)
+    with (
+        hang_guard(600),
+        LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster,
+    ):
+        address = cluster.scheduler_address
+        there = run(None, shaking, chunk=30, keep=KEEP, source=SixOrders, scheduler=address)
+    _same(here.pareto, there.pareto)
+    _same(here.top, there.top)
+
+
 def test_a_failing_chunk_names_its_candidates_and_leaves_no_file(tmp_path: Path) -> None:
     out = tmp_path / "fail.parquet"
     with pytest.raises(ChunkError, match=r"candidates 40\.\.49 failed: FloatingPointError"):
