@@ -28,6 +28,9 @@ PHYSICS = (
     "rotor_bench",
     "engine_cycle",
     "tolerance",
+    "explore.orders",
+    "explore.merit",
+    "explore.rank",
 )
 EDGES = {
     "figures",
@@ -64,7 +67,7 @@ def imported_modules(path: Path) -> set[str]:
 
 def test_physics_modules_do_not_import_edges() -> None:
     for name in PHYSICS:
-        path = SRC / f"{name}.py"
+        path = SRC / f"{name.replace('.', '/')}.py"
         bad = imported_modules(path) & EDGES
         assert not bad, f"{name}.py imports edge modules {bad} (DESIGN.md: physics stays pure)"
 

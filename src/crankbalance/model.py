@@ -138,3 +138,52 @@ class EngineModel:
     def cylinder_position(self) -> NDArray[np.float64]:
         """Axial position of each cylinder [m]."""
         return self.throw_position[self.cylinder_throw]
+
+
+def standard_layout(
+    layout: str, cylinders: int, bank_angle: float = 0.0, pitch: float = 0.0
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
+    """Throws and cylinders of a standard layout, numbered as in the module docstring.
+
+    Parameters
+    ----------
+    layout : {"inline", "boxer", "vee", "w", "radial"}
+        Layout name, as in the engine file.
+    cylinders : int
+        Number of cylinders (even for vee and boxer, a multiple of 3 for W).
+    bank_angle : float
+        Vee angle V, or the angle between neighbouring banks of a W [rad]; not used for
+        the other layouts.
+    pitch : float
+        Distance between neighbouring throws along the crank axis [m].
+
+    Returns
+    -------
+    throw_position : ndarray, shape (T,)
+        Axial position of each throw [m from the crank's mid-point].
+    cylinder_throw : ndarray of int, shape (C,)
+        Index of the throw each cylinder sits on.
+    cylinder_bank : ndarray, shape (C,)
+        Bank angle of each cylinder [rad].
+    """
+    n = cylinders
+    t = {"vee": n // 2, "w": n // 3, "radial": 1}.get(layout, n)
+    positions = ((np.arange(t) - (t - 1) / 2.0) * pitch).astype(float)
+    v = bank_angle
+    throw_of: NDArray
+    banks: NDArray
+    if layout == "inline":
+        throw_of, banks = np.arange(n), np.zeros(n)
+    elif layout == "boxer":
+        throw_of = np.arange(n)
+        banks = np.where(np.arange(n) % 2 == 0, -np.pi / 2, np.pi / 2)
+    elif layout == "vee":
+        throw_of = np.tile(np.arange(t), 2)
+        banks = np.repeat([-v / 2, v / 2], t)
+    elif layout == "w":
+        throw_of = np.tile(np.arange(t), 3)
+        banks = np.repeat([-v, 0.0, v], t)
+    else:  # radial
+        throw_of = np.zeros(n, dtype=np.int64)
+        banks = 2 * np.pi * np.arange(n) / n
+    return positions, throw_of.astype(np.int64), banks.astype(np.float64)

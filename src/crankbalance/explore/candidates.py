@@ -22,7 +22,9 @@ class Candidates:
     topology : EngineModel
         The shared layout; its own throw angles and firing order are not used.
     throw_angle : ndarray, shape (B, T)
-        Throw angles [rad] in [0, 2π), throw 1 at 0 (the crank's rigid rotation removed).
+        Throw angles [rad] in [0, 2π), as ``studies.build`` derives them with cylinder 1
+        firing at crank angle 0 (the crank's rigid rotation removed): throw 1 sits at
+        cylinder 1's bank angle (0 for in-line engines).
     firing_order : ndarray of int, shape (B, C)
         Cylinder numbers (1-based, crankbalance's numbering) in firing sequence, starting
         with cylinder 1.

@@ -13,8 +13,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel
-from ..spec import EngineSpec, MassOverride, throw_count
+from ..model import ConrodSplit, EngineModel, standard_layout
+from ..spec import EngineSpec, MassOverride
 
 
 def build_model(spec: EngineSpec) -> EngineModel:
@@ -59,28 +59,9 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
             np.array([k for k, t in enumerate(ct.throw) for _ in t.banks]),
             np.array([b for t in ct.throw for b in t.banks], dtype=float),
         )
-    n = ct.cylinder_count
-    t = throw_count(ct.layout, n)
-    pitch = ct.crank_pitch or 0.0
-    positions = (np.arange(t) - (t - 1) / 2.0) * pitch
-    v = ct.bank_angle or 0.0
-    throw_of: NDArray
-    banks: NDArray
-    if ct.layout == "inline":
-        throw_of, banks = np.arange(n), np.zeros(n)
-    elif ct.layout == "boxer":
-        throw_of = np.arange(n)
-        banks = np.where(np.arange(n) % 2 == 0, -np.pi / 2, np.pi / 2)
-    elif ct.layout == "vee":
-        throw_of = np.tile(np.arange(t), 2)
-        banks = np.repeat([-v / 2, v / 2], t)
-    elif ct.layout == "w":
-        throw_of = np.tile(np.arange(t), 3)
-        banks = np.repeat([-v, 0.0, v], t)
-    else:  # radial
-        throw_of = np.zeros(n, dtype=np.int64)
-        banks = 2 * np.pi * np.arange(n) / n
-    return positions, throw_of.astype(np.int64), banks.astype(float)
+    return standard_layout(
+        ct.layout, ct.cylinder_count, ct.bank_angle or 0.0, ct.crank_pitch or 0.0
+    )
 
 
 def _throw_angles(

@@ -1,0 +1,292 @@
+"""Enumeration of firing orders and their equivalences (issue 15, explore.orders).
+
+Known results (inline-4 flat crank, the makers' V8 orders, the 270/450 twins), counts
+against a brute force written here independently of the module (every permutation,
+the crank from ``studies.build``, the mirror maps by hand), chunking, and the partition of
+all orders into classes. The makers' maps are also in docs/explorer.md.
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+import re
+from dataclasses import replace
+
+import numpy as np
+import pytest
+
+from crankbalance.errors import InputError
+from crankbalance.explore import orders
+from crankbalance.io.engine_file import parse_engine_text, preset_text
+from crankbalance.model import EngineModel
+from crankbalance.studies.build import build_model
+
+V90 = math.pi / 2
+#: GM small-block V8: odd cylinders 1-3-5-7 on the left bank, even 2-4-6-8 on the right,
+#: front to rear, clockwise seen from the front, so a crankpin reaches the right bank
+#: first: right = crankbalance's bank A (cylinders 1..4 from the front), left = bank B.
+GM = {2: 1, 4: 2, 6: 3, 8: 4, 1: 5, 3: 6, 5: 7, 7: 8}
+#: Ford 289/302 and 351W: right bank 1-2-3-4, left bank 5-6-7-8 front to rear, clockwise:
+#: the right bank leads, so Ford's numbers are crankbalance's.
+FORD = {c: c for c in range(1, 9)}
+
+
+def mapped(order: tuple[int, ...], numbering: dict[int, int]) -> tuple[int, ...]:
+    """A maker's firing order in crankbalance's numbering, from cylinder 1."""
+    ours = [numbering[c] for c in order]
+    k = ours.index(1)
+    return tuple(ours[k:] + ours[:k])
+
+
+def enumerate_all(problem: orders.Problem) -> orders.Candidates:
+    return orders.chunk(problem, 0, orders.count(problem))
+
+
+def sequences(candidates: orders.Candidates) -> list[tuple[int, ...]]:
+    return [tuple(int(c) for c in row) for row in candidates.firing_order]
+
+
+def gap(a: np.ndarray) -> np.ndarray:
+    return np.abs(np.remainder(np.asarray(a) + np.pi, 2 * np.pi) - np.pi)
+
+
+def built(
+    preset: str, order: tuple[int, ...], strokes: int | None = None, bank: float | None = None
+) -> EngineModel:
+    """A preset with this firing order (and its crank from it: throw_angles dropped)."""
+    text = re.sub(r"throw_angles = \[[^\]]*\]\n", "", preset_text(preset))
+    text = re.sub(r"firing_order = \[[^\]]*\].*\n", "", text)
+    text = re.sub(
+        r"cylinders = \d+", f"cylinders = {len(order)}\nfiring_order = {list(order)}", text
+    )
+    if strokes is not None:
+        text = re.sub(r"strokes = \d", f"strokes = {strokes}", text)
+    if bank is not None:
+        text = re.sub(
+            r'bank_angle = "[^"]*"', f'bank_angle = "{math.degrees(bank):.12g} deg"', text
+        )
+    return build_model(parse_engine_text(text))
+
+
+def brute_force(
+    preset: str, n: int, strokes: int, bank: float | None, mirror_map: dict[int, int]
+) -> tuple[set[tuple[int, ...]], set[tuple[int, ...]]]:
+    """Every order from cylinder 1 that studies.build accepts, and the least of each class.
+
+    Classes by hand: an order and the same sequence renumbered with ``mirror_map`` (the
+    engine numbered from the other end), read again from cylinder 1. The index order of
+    the module with even firing is the lexicographic order of the sequences, so the least
+    sequence of a class is its canonical candidate.
+    """
+    consistent: set[tuple[int, ...]] = set()
+    for rest in itertools.permutations(range(2, n + 1)):
+        order = (1, *rest)
+        try:
+            built(preset, order, strokes, bank)
+        except InputError:
+            continue
+        consistent.add(order)
+    least = {min(order, mapped(order, mirror_map)) for order in consistent}
+    return consistent, least
+
+
+# --------------------------------------------------------------------------- known results
+def test_inline4_flat_crank_orders() -> None:
+    p = orders.problem("inline", 4, 4, crank="flat")
+    found = enumerate_all(p)
+    # 3! = 6 orders from cylinder 1; renumbering from the other end pairs 1-2-3-4 with
+    # 1-4-3-2 and 1-3-2-4 with 1-4-2-3, while 1-2-4-3 and 1-3-4-2 are their own mirror
+    assert sequences(found) == [(1, 2, 3, 4), (1, 2, 4, 3), (1, 3, 2, 4), (1, 3, 4, 2)]
+    assert found.equivalents.tolist() == [2, 1, 2, 1]
+    assert orders.equivalent_orders(p, (1, 2, 3, 4)) == [(1, 2, 3, 4), (1, 4, 3, 2)]
+    # the usual crank (outer throws up, inner down) allows exactly the two known orders
+    usual = orders.problem("inline", 4, 4, fixed_throw_angles=[0, math.pi, math.pi, 0])
+    assert sequences(enumerate_all(usual)) == [(1, 2, 4, 3), (1, 3, 4, 2)]
+    np.testing.assert_allclose(enumerate_all(usual).throw_angle[:, 1:3], math.pi)
+    # run backwards, 1-3-4-2 is 1-2-4-3: one engine when time reversal counts
+    reversed_too = orders.problem("inline", 4, 4, reversal=True)
+    assert orders.equivalent_orders(reversed_too, (1, 3, 4, 2)) == [(1, 2, 4, 3), (1, 3, 4, 2)]
+    assert orders.equivalent_orders(p, (3, 4, 2, 1)) == [(1, 3, 4, 2)]  # any start
+
+
+def test_v8_crossplane_makers_orders() -> None:
+    p = orders.problem("vee", 8, 4, bank_angle=V90, crank="cross")
+    found = enumerate_all(p)
+    assert np.all(gap(found.fire_angle * 4) < 1e-9)  # even firing: every 90 deg
+    listed = set(sequences(found))
+    gm = mapped((1, 8, 4, 3, 6, 5, 7, 2), GM)
+    ford_302 = mapped((1, 5, 4, 2, 6, 3, 7, 8), FORD)
+    ford_351w = mapped((1, 3, 7, 2, 6, 5, 4, 8), FORD)
+    assert gm == ford_302 == (1, 5, 4, 2, 6, 3, 7, 8)  # one order under two numberings
+    classes = {order: orders.equivalent_orders(p, order) for order in (gm, ford_351w)}
+    # the 351W's order is the 302's numbered from the other end: one engine, mirrored
+    assert classes[gm] == classes[ford_351w] == [(1, 3, 7, 2, 6, 5, 4, 8), gm]
+    assert len(listed & set(classes[gm])) == 1
+    # counted apart when mirror images are not the same engine: which end is throw 1
+    apart = orders.problem("vee", 8, 4, bank_angle=V90, crank="cross", mirror=False)
+    assert {gm, ford_351w} <= set(sequences(enumerate_all(apart)))
+    # both cranks are crossplane: throws 90 deg apart, not all in one plane
+    for order in (gm, ford_351w):
+        relative = built("v8-crossplane", order).throw_angle
+        relative = relative - relative[0]
+        assert np.all(gap(4 * relative) < 1e-9) and not np.all(gap(2 * relative) < 1e-9)
+    # the flat-plane V8 orders are the other consistent ones
+    flat = enumerate_all(orders.problem("vee", 8, 4, bank_angle=V90, crank="flat"))
+    assert np.all(gap(2 * (flat.throw_angle - flat.throw_angle[:, :1])) < 1e-9)
+    every = enumerate_all(orders.problem("vee", 8, 4, bank_angle=V90))
+    assert sorted(sequences(every)) == sorted(sequences(flat) + sequences(found))
+
+
+def test_uneven_twins_270_450() -> None:
+    two_pi = 2 * math.pi
+    # in-line twin: cylinder 2 fires 270 or 450 deg after cylinder 1 (crank at 90 or 270
+    # deg): mirror images of one engine
+    p = orders.problem("inline", 2, 4, intervals=[0.75 * two_pi, 1.25 * two_pi])
+    assert orders.count(p) == 2
+    found = enumerate_all(p)
+    assert found.size == 1 and found.equivalents.tolist() == [2]
+    np.testing.assert_allclose(found.fire_angle, [[0.0, 0.75 * two_pi]])
+    ref = build_model(parse_engine_text(preset_text("inline2-270")))
+    rel = ref.throw_angle - ref.throw_angle[0]
+    ours = found.throw_angle[0] - found.throw_angle[0, 0]
+    assert gap(ours - rel).max() < 1e-9 or gap(ours + rel).max() < 1e-9
+    assert orders.equivalent_orders(p, (1, 2)) == [(1, 2), (2, 1)]
+    # 90 deg vee twin on one pin: bank B must fire 90 deg (mod 360) after bank A, so 450
+    vee = orders.problem("vee", 2, 4, bank_angle=V90, intervals=[1.25 * two_pi, 0.75 * two_pi])
+    found = enumerate_all(vee)
+    assert found.size == 1
+    np.testing.assert_allclose(found.fire_angle, [[0.0, 1.25 * two_pi]])
+
+
+# --------------------------------------------------------------------------- brute force
+CASES = [
+    # preset, layout, cylinders, strokes, bank angle, numbering from the other end
+    ("inline4", "inline", 4, 4, None, {1: 4, 2: 3, 3: 2, 4: 1}),
+    ("inline6", "inline", 6, 4, None, {c: 7 - c for c in range(1, 7)}),
+    ("inline5", "inline", 5, 2, None, {c: 6 - c for c in range(1, 6)}),
+    ("boxer6", "boxer", 6, 4, None, {c: 7 - c for c in range(1, 7)}),
+    ("v8-crossplane", "vee", 8, 4, V90, {1: 4, 2: 3, 3: 2, 4: 1, 5: 8, 6: 7, 7: 6, 8: 5}),
+    ("v8-crossplane", "vee", 6, 2, math.pi / 3, {1: 3, 2: 2, 3: 1, 4: 6, 5: 5, 6: 4}),
+    ("w12", "w", 6, 4, math.pi / 3, {1: 2, 2: 1, 3: 4, 4: 3, 5: 6, 6: 5}),
+]
+
+
+@pytest.mark.parametrize(("preset", "layout", "n", "strokes", "bank", "mirror_map"), CASES)
+def test_against_brute_force_and_build(
+    preset: str,
+    layout: str,
+    n: int,
+    strokes: int,
+    bank: float | None,
+    mirror_map: dict[int, int],
+) -> None:
+    p = orders.problem(layout, n, strokes, bank_angle=bank)
+    assert orders.count(p) == math.factorial(n - 1)
+    found = enumerate_all(p)
+    consistent, least = brute_force(preset, n, strokes, bank, mirror_map)
+    assert set(sequences(found)) == least
+    assert int(found.equivalents.sum()) == len(consistent)
+    assert np.all(np.diff(found.index) > 0)
+    for k, order in enumerate(sequences(found)):
+        model = built(preset, order, strokes, bank)
+        assert gap(found.throw_angle[k] - model.throw_angle).max() < 1e-9, order
+        # the crank puts each cylinder at its firing top dead centre at its fire angle
+        tdc = found.fire_angle[k] + found.throw_angle[k][p.topology.cylinder_throw]
+        assert gap(tdc - p.topology.cylinder_bank).max() < 1e-9
+
+
+def test_classes_partition_all_orders() -> None:
+    p = orders.problem("vee", 8, 4, bank_angle=V90)
+    found = enumerate_all(p)
+    seen: dict[tuple[int, ...], tuple[int, ...]] = {}
+    for order, size in zip(sequences(found), found.equivalents.tolist(), strict=True):
+        members = orders.equivalent_orders(p, order)
+        assert members[0] == order and len(members) == size
+        for member in members:
+            assert member not in seen, f"{member} in the classes of {seen.get(member)} and {order}"
+            seen[member] = order
+            assert orders.equivalent_orders(p, member) == members
+    for rest in itertools.permutations(range(2, 9)):
+        order = (1, *rest)
+        try:
+            orders.equivalent_orders(p, order)
+        except InputError:
+            assert order not in seen
+            continue
+        assert order in seen
+
+
+def test_chunks_equal_the_whole() -> None:
+    for p in (
+        orders.problem("inline", 7, 4),
+        orders.problem("vee", 8, 4, bank_angle=V90),
+        orders.problem("inline", 4, 4, intervals=[math.pi, 2 * math.pi, math.pi / 2, math.pi / 2]),
+    ):
+        whole = enumerate_all(p)
+        edges = [0, 1, 2, 17, 100, 101, orders.count(p) // 2, orders.count(p)]
+        edges = sorted({min(e, orders.count(p)) for e in edges})
+        parts = [orders.chunk(p, a, b) for a, b in itertools.pairwise(edges)]
+        for name in ("throw_angle", "firing_order", "fire_angle", "equivalents", "index"):
+            joined = np.concatenate([getattr(c, name) for c in parts])
+            np.testing.assert_array_equal(joined, getattr(whole, name), err_msg=name)
+
+
+def test_split_pin_v6_90() -> None:
+    # a 90 deg V6 cannot fire evenly on shared pins; split pins allow every order
+    assert enumerate_all(orders.problem("vee", 6, 4, bank_angle=V90)).size == 0
+    p = orders.problem("vee", 6, 4, bank_angle=V90, crank="split")
+    assert p.topology.throws == 6
+    np.testing.assert_array_equal(p.topology.throw_position[:3], p.topology.throw_position[3:])
+    found = enumerate_all(p)
+    assert int(found.equivalents.sum()) == math.factorial(5)
+    # GM's even-firing 90 deg V6 (odd cylinders left, even right, right bank leading as
+    # in the V8), firing 1-6-5-4-3-2: the two pins of each pair are 30 deg apart
+    order = mapped((1, 6, 5, 4, 3, 2), {2: 1, 4: 2, 6: 3, 1: 4, 3: 5, 5: 6})
+    k = sequences(found).index(orders.equivalent_orders(p, order)[0])
+    split = found.throw_angle[k, 3:] - found.throw_angle[k, :3]
+    assert np.all(np.isclose(gap(split), math.radians(30)))
+
+
+def test_base_masses_and_broken_symmetry() -> None:
+    base = built("inline4", (1, 3, 4, 2))
+    p = orders.problem("inline", 4, 4, base=base)
+    np.testing.assert_array_equal(p.topology.reciprocating_mass, base.reciprocating_mass)
+    np.testing.assert_array_equal(p.topology.throw_position, base.throw_position)
+    # a heavier piston in cylinder 1: numbered from the other end it is another engine
+    heavy = replace(base, reciprocating_mass=base.reciprocating_mass * [1.1, 1, 1, 1])
+    lopsided = enumerate_all(orders.problem("inline", 4, 4, base=heavy))
+    assert lopsided.size == 6 and lopsided.equivalents.tolist() == [1] * 6
+    with pytest.raises(InputError, match="base"):
+        orders.problem("inline", 6, 4, base=base)
+
+
+@pytest.mark.parametrize(
+    ("kwargs", "field"),
+    [
+        ({"layout": "star", "cylinders": 4, "strokes": 4}, "layout"),
+        ({"layout": "inline", "cylinders": 0, "strokes": 4}, "cylinders"),
+        ({"layout": "inline", "cylinders": 21, "strokes": 4}, "cylinders"),
+        ({"layout": "vee", "cylinders": 7, "strokes": 4, "bank_angle": 1.0}, "cylinders"),
+        ({"layout": "inline", "cylinders": 4, "strokes": 3}, "strokes"),
+        ({"layout": "vee", "cylinders": 8, "strokes": 4}, "bank_angle"),
+        ({"layout": "inline", "cylinders": 4, "strokes": 4, "bank_angle": 1.0}, "bank_angle"),
+        ({"layout": "inline", "cylinders": 4, "strokes": 4, "crank": "split"}, "crank"),
+        ({"layout": "inline", "cylinders": 4, "strokes": 4, "crank": "bent"}, "crank"),
+        ({"layout": "inline", "cylinders": 2, "strokes": 4, "intervals": [1, 2]}, "intervals"),
+        ({"layout": "inline", "cylinders": 4, "strokes": 4, "fixed_throw_angles": [0]}, "fixed"),
+    ],
+)
+def test_bad_input_names_the_field(kwargs: dict, field: str) -> None:
+    with pytest.raises(InputError, match=field):
+        orders.problem(**kwargs)
+
+
+def test_bad_chunk_and_order() -> None:
+    p = orders.problem("vee", 8, 4, bank_angle=V90)
+    with pytest.raises(InputError, match="chunk"):
+        orders.chunk(p, 0, orders.count(p) + 1)
+    with pytest.raises(InputError, match="firing_order"):
+        orders.equivalent_orders(p, (1, 2, 3))
+    with pytest.raises(InputError, match="crankpin"):
+        orders.equivalent_orders(p, (1, 2, 3, 4, 5, 6, 7, 8))

@@ -1,0 +1,156 @@
+"""Ranking of the explorer (explore.rank): the filter language, the Pareto front against
+brute force, and the mergeability of the Pareto front and the top-N over chunks."""
+
+from __future__ import annotations
+
+import numpy as np
+import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
+from hypothesis.extra.numpy import arrays
+
+from crankbalance.errors import InputError
+from crankbalance.explore.rank import BLOCK, column_name, pareto, parse_filter, top
+
+COLUMNS = {
+    "F1_N": np.array([0.0, 1.0, 2.0, 0.0]),
+    "M1_Nm": np.array([0.0, 0.0, 3.0, 5.0]),
+    "cw_mass_kg": np.array([4.0, 3.0, 2.0, 1.0]),
+    "shafts": np.array([0.0, 2.0, 2.0, 4.0]),
+}
+
+
+@pytest.mark.parametrize(
+    ("text", "kept"),
+    [
+        ("F1 == 0 and M1 == 0", [True, False, False, False]),
+        ("F1_N <= 1 or cw_mass > 1.5 and shafts >= 2", [True, True, True, True]),
+        ("(F1_N <= 1 or cw_mass > 1.5) and shafts >= 2", [False, True, True, True]),
+        ("not (F1 > 0)", [True, False, False, True]),
+        ("0 < F1 <= 2", [False, True, True, False]),
+        ("abs(F1 - 2) < 0.5", [False, False, True, False]),
+        ("F1 + 2 * M1 / 2 - -1 >= 6", [False, False, True, True]),
+        ("cw_mass_kg != 3", [True, False, True, True]),
+        ("1e-6 >= F1", [True, False, False, True]),
+    ],
+)
+def test_filter_language(text: str, kept: list[bool]) -> None:
+    assert parse_filter(text, COLUMNS)(COLUMNS).tolist() == kept
+
+
+@pytest.mark.parametrize(
+    ("text", "says"),
+    [
+        ("F1 <=", "not an expression"),
+        ("F1 + 1", "a condition"),
+        ("F1 and M1", "join conditions"),
+        ("(F1 < 1) < 2", "compares numbers"),
+        ("F3 < 1", "unknown column 'F3'"),
+        ("__import__('os').system('true')", "abs"),
+        ("F1.real < 1", "column names"),
+        ("F1 < 'a'", "is not a number"),
+        ("F1 < True", "is not a number"),
+        ("[F1][0] < 1", "column names"),
+        ("F1 < 1 if M1 else 2", "column names"),
+        ("F1 ** 2 < 1", "column names"),
+        ("lambda: 1", "column names"),
+    ],
+)
+def test_bad_filters_name_the_text(text: str, says: str) -> None:
+    with pytest.raises(InputError) as error:
+        parse_filter(text, COLUMNS, field="--filter")
+    assert error.value.field == "--filter"
+    assert error.value.value == text
+    assert says in error.value.allowed
+
+
+def test_column_names_with_or_without_units() -> None:
+    assert column_name("F1", COLUMNS) == "F1_N"
+    assert column_name("M1_Nm", COLUMNS) == "M1_Nm"
+    assert column_name("shafts", COLUMNS) == "shafts"
+    with pytest.raises(InputError) as error:
+        column_name("M1_N", COLUMNS, field="--objectives")
+    assert error.value.field == "--objectives" and "F1, M1, cw_mass, shafts" in str(error.value)
+
+
+def brute_pareto(v: np.ndarray) -> np.ndarray:
+    """Row i is on the front unless some row is <= in every column and < in one."""
+    keep = np.ones(len(v), bool)
+    for i in range(len(v)):
+        for j in range(len(v)):
+            if np.all(v[j] <= v[i]) and np.any(v[j] < v[i]):
+                keep[i] = False
+    return keep
+
+
+# small integers: many ties and duplicate rows
+objectives = st.integers(1, 4).flatmap(
+    lambda k: arrays(
+        np.float64, st.tuples(st.integers(0, 40), st.just(k)), elements=st.integers(0, 5)
+    )
+)
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=150)
+@given(objectives)
+def test_pareto_is_the_brute_force_front(values: np.ndarray) -> None:
+    assert pareto(values).tolist() == brute_pareto(values).tolist()
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=150)
+@given(objectives, st.data())
+def test_pareto_merges_over_chunks(values: np.ndarray, data: st.DataObject) -> None:
+    """pareto(concat(pareto of each chunk)) == pareto(all), whatever the split."""
+    cuts = sorted(data.draw(st.lists(st.integers(0, len(values)), max_size=4)))
+    kept = []
+    for part in np.split(np.arange(len(values)), cuts):
+        kept.append(part[pareto(values[part])])
+    survivors = np.concatenate(kept) if kept else np.arange(0)
+    merged = survivors[pareto(values[survivors])]
+    assert sorted(merged.tolist()) == np.flatnonzero(pareto(values)).tolist()
+
+
+def test_pareto_across_blocks() -> None:
+    """More rows than one block of the sweep, a front spread over several blocks."""
+    rng = np.random.default_rng(7)
+    values = rng.integers(0, 30, (3 * BLOCK + 17, 3)).astype(float)
+    values[::5, 0] = 30 - values[::5, 1]  # anti-correlated rows: a wide front
+    assert pareto(values).tolist() == brute_pareto(values).tolist()
+    assert pareto(np.empty((0, 2))).tolist() == []
+    assert pareto(np.ones((3, 0))).tolist() == [True] * 3
+    with pytest.raises(InputError):
+        pareto([[np.nan, 1.0]])
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=150)
+@given(
+    arrays(np.float64, st.integers(0, 40), elements=st.integers(0, 6)),
+    st.integers(1, 8),
+    st.data(),
+)
+def test_top_merges_over_chunks(key: np.ndarray, n: int, data: st.DataObject) -> None:
+    """Ties are broken by the candidates' index, so top of the chunks' tops is top of all,
+    in the same order."""
+    index = np.array(data.draw(st.permutations(range(len(key)))), dtype=np.int64)
+    values = {"X1": key}
+    whole = index[top(values, "X1", n, index)]
+    cuts = sorted(data.draw(st.lists(st.integers(0, len(key)), max_size=4)))
+    kept = np.concatenate(
+        [
+            part[top({"X1": key[part]}, "X1", n, index[part])]
+            for part in np.split(np.arange(len(key)), cuts)
+        ]
+    )
+    merged = index[kept][top({"X1": key[kept]}, "X1", n, index[kept])]
+    assert merged.tolist() == whole.tolist()
+    expected = sorted(range(len(key)), key=lambda i: (key[i], index[i]))[:n]
+    assert whole.tolist() == index[expected].tolist()
+
+
+def test_top_checks_its_arguments() -> None:
+    assert top(COLUMNS, "cw_mass", 2).tolist() == [3, 2]
+    with pytest.raises(InputError) as error:
+        top(COLUMNS, "cw_mass", 0, field="--top")
+    assert error.value.field == "--top"
+    with pytest.raises(InputError):
+        top(COLUMNS, "nothing", 3)
