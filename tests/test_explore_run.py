@@ -20,6 +20,7 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
+from crankbalance.explore import merit, orders
 from crankbalance.explore.candidates import Candidates
 from crankbalance.explore.run import ChunkError, Keep, Sample, progress_line, run, tasks
 from crankbalance.io.engine_file import load_engine
@@ -105,7 +106,7 @@ def _small_moment(rows: dict[str, np.ndarray], limit: float) -> np.ndarray:
     return rows["M1_Nm"] <= limit
 
 
-KEEP = Keep(objectives=("M1_Nm", "M2_Nm"), key="M2_Nm", n=7, pareto=brute_pareto)
+KEEP = Keep(objectives=("M1_Nm", "M2_Nm"), key="M2_Nm", n=7)
 
 
 def _same(a: dict[str, np.ndarray], b: dict[str, np.ndarray]) -> None:
@@ -191,15 +192,21 @@ def test_dask_local_cluster_gives_exactly_the_in_process_result(tmp_path: Path) 
 
 @pytest.mark.slow
 def test_an_existing_cluster_by_its_address() -> None:
+    """The real enumeration and figures of merit (balancing included) on a cluster given
+    by its address: the result of the run in this process."""
     from dask.distributed import LocalCluster
 
-    here = run(None, shaking, chunk=30, keep=KEEP, source=SixOrders)
+    problem = orders.problem("inline", 6, 4)
+    evaluate = functools.partial(merit.merit, target="counterweights", balance_factor=0.5)
+    keep = Keep(objectives=("M1_Nm", "M2_Nm", "cw_mass_kg"), key="residual_M_Nm", n=9)
+    here = run(problem, evaluate, chunk=16, keep=keep)
     with (
         hang_guard(600),
         LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster,
     ):
         address = cluster.scheduler_address
-        there = run(None, shaking, chunk=30, keep=KEEP, source=SixOrders, scheduler=address)
+        there = run(problem, evaluate, chunk=16, keep=keep, scheduler=address)
+    assert here.candidates == there.candidates == orders.chunk(problem, 0, 120).size
     _same(here.pareto, there.pareto)
     _same(here.top, there.top)
 

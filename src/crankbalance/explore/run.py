@@ -24,14 +24,13 @@ guarantees.
 from __future__ import annotations
 
 import functools
-import importlib
 import math
 import sys
 import time
 from collections import deque
 from collections.abc import Callable, Generator, Iterable, Mapping
 from contextlib import ExitStack
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from typing import IO, Any
 
 import numpy as np
@@ -57,8 +56,9 @@ ROW_COLUMNS = ("index", "equivalents", "firing_order", "throw_angle_rad")
 
 @dataclass(frozen=True)
 class Keep:
-    """What stays in memory: the Pareto set over ``objectives`` (all minimised) and the
-    ``n`` rows of smallest ``key`` (ties broken by the smaller index).
+    """What stays in memory: the Pareto set over ``objectives`` (all minimised,
+    :func:`crankbalance.explore.rank.pareto`) and the ``n`` rows of smallest ``key`` (ties
+    broken by the smaller index, :func:`crankbalance.explore.rank.top`).
 
     Parameters
     ----------
@@ -68,17 +68,11 @@ class Keep:
         Column of the top-N list; None for none.
     n : int
         Length of the top-N list.
-    pareto : callable or None
-        ``pareto(values (B, K)) -> bool (B,)``, the non-dominated rows; default
-        :func:`crankbalance.explore.rank.pareto`.
     """
 
     objectives: tuple[str, ...] = ()
     key: str | None = None
     n: int = 20
-    pareto: Callable[[NDArray[np.float64]], NDArray[np.bool_]] | None = field(
-        default=None, compare=False
-    )
 
 
 @dataclass(frozen=True)
@@ -200,7 +194,8 @@ def _pareto(keep: Keep, rows: Columns) -> Columns:
     """The non-dominated rows over ``keep.objectives``, by increasing index."""
     if not keep.objectives or rows["index"].size == 0:
         return _take(rows, np.zeros(0, dtype=np.int64)) if keep.objectives else {}
-    pareto = keep.pareto or importlib.import_module(".rank", __package__).pareto
+    from .rank import pareto
+
     mask = np.asarray(pareto(_matrix(rows, keep.objectives)), dtype=bool)
     kept = np.flatnonzero(mask)
     return _take(rows, kept[np.argsort(rows["index"][kept], kind="stable")])
@@ -210,8 +205,10 @@ def _top(keep: Keep, rows: Columns) -> Columns:
     """The ``keep.n`` rows of smallest ``keep.key``, ties by the smaller index."""
     if keep.key is None:
         return {}
-    order = np.lexsort((rows["index"], _matrix(rows, [keep.key])[:, 0]))
-    return _take(rows, order[: keep.n])
+    from .rank import top
+
+    _matrix(rows, [keep.key])  # finite
+    return _take(rows, top(rows, keep.key, keep.n, index=rows["index"]))
 
 
 def _merge(keep: Keep, a: Columns, b: Columns, kind: str) -> Columns:
@@ -225,7 +222,11 @@ def _merge(keep: Keep, a: Columns, b: Columns, kind: str) -> Columns:
 # ------------------------------------------------------------------------------ tasks
 def _enumeration(source: Any) -> Any:
     """``source``, or by default :mod:`crankbalance.explore.orders`."""
-    return importlib.import_module(".orders", __package__) if source is None else source
+    if source is None:
+        from . import orders
+
+        return orders
+    return source
 
 
 def _candidates(problem: Any, task: Task, source: Any) -> tuple[Candidates, int]:
