@@ -74,6 +74,9 @@ def test_table_and_csv_agree(capsys: pytest.CaptureFixture[str]) -> None:
         (["--mode-shape", "wavy"], "--mode-shape"),
         (["--workers", "2", "--scheduler", "tcp://127.0.0.1:1"], "--workers"),
         (["--output", "/no/such/folder/x.parquet"], "--output"),
+        (["--output", "."], "--output"),
+        (["--engine", "inline4", "--cylinders", "6"], "--engine"),
+        (["--scheduler", "tcp://"], "--scheduler"),
     ],
 )
 def test_bad_options_are_one_line(

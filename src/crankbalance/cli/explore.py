@@ -11,6 +11,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 from collections.abc import Mapping
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -28,6 +29,10 @@ if TYPE_CHECKING:
     from ..options import ExploreOptions
 
 FORMATS = ("table", "json", "csv")
+#: chunks looked at for a candidate before the run (:func:`_probe`)
+PROBES = 16
+#: a dask scheduler's address, ``tcp://10.0.0.5:8786``
+SCHEDULER = re.compile(r"^[a-z]+://[^\s/:]+(:\d+)?$")
 #: the module of the dist extra each option needs
 DIST = {"workers": "distributed", "scheduler": "distributed", "output": "pyarrow"}
 
@@ -42,15 +47,20 @@ def _problem(o: ExploreOptions, typed: Mapping[str, Any]) -> Any:
         from ..studies.build import build_model
 
         base = build_model(load_engine(o.engine))
-    with named_as_typed(typed):
-        return orders.problem(
-            o.layout,
-            o.cylinders,
-            o.strokes,
-            bank_angle=o.bank_angle,
-            crank=o.crank,
-            base=base,
-        )
+    try:
+        with named_as_typed(typed):
+            return orders.problem(
+                o.layout,
+                o.cylinders,
+                o.strokes,
+                bank_angle=o.bank_angle,
+                crank=o.crank,
+                base=base,
+            )
+    except InputError as error:
+        if error.field != "base":
+            raise
+        raise InputError("--engine", o.engine, error.allowed) from None
 
 
 def _mode_shape(text: str) -> str | list[float]:
@@ -71,15 +81,31 @@ def _mode_shape(text: str) -> str | list[float]:
 
 
 def _probe(problem: Any, chunk: int) -> Candidates:
-    """One candidate of the problem, to learn the columns before the run."""
+    """Candidates of the problem, to learn the columns before the run: those of the first
+    chunk that has any among the first :data:`PROBES`; else the topology's own crank and
+    firing order (the columns do not depend on the values)."""
+    import numpy as np
+
     from ..explore import orders
+    from ..explore.candidates import Candidates
 
     total = orders.count(problem)
-    for start in range(0, total, chunk):
+    starts = range(0, total, chunk)
+    for start in starts[:PROBES]:
         found = orders.chunk(problem, start, min(start + chunk, total))
         if found.size:
             return found
-    raise InputError("--cylinders", problem.topology.cylinders, "a layout with a firing order")
+    if len(starts) <= PROBES:
+        raise InputError("--cylinders", problem.topology.cylinders, "a layout with a firing order")
+    t = problem.topology
+    return Candidates(
+        topology=t,
+        throw_angle=t.throw_angle[None, :],
+        firing_order=np.array([t.firing_order], dtype=np.int64),
+        fire_angle=np.zeros((1, t.cylinders)),
+        equivalents=np.ones(1, dtype=np.int64),
+        index=np.zeros(1, dtype=np.int64),
+    )
 
 
 def _order_text(order: NDArray[Any]) -> str:
@@ -173,8 +199,12 @@ def explore(
     for name, module in DIST.items():
         if given[name] is not None:
             require_extra("dist", module)
-    if output is not None and not Path(output).resolve().parent.is_dir():
+    if output is not None and (
+        not output.strip() or Path(output).is_dir() or not Path(output).resolve().parent.is_dir()
+    ):
         raise InputError("--output", output, "a file in an existing directory")
+    if o.scheduler is not None and not SCHEDULER.match(o.scheduler):
+        raise InputError("--scheduler", o.scheduler, "an address PROTOCOL://HOST:PORT")
     typed = {k: options[k] for k in ("layout", "cylinders", "strokes", "crank")}
     typed |= {"bank_angle": options["bank_angle"]}
     problem = _problem(o, typed)

@@ -350,7 +350,7 @@ def _client(stack: ExitStack, scheduler: str | None, workers: int | None) -> Any
     if scheduler is not None:
         try:
             return stack.enter_context(Client(scheduler, timeout="30s"))
-        except (OSError, TimeoutError) as error:
+        except (OSError, TimeoutError, ValueError) as error:
             raise InputError(
                 "scheduler", scheduler, f"the address of a running dask scheduler ({error})"
             ) from None
