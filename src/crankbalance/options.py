@@ -538,6 +538,32 @@ class PlotOptions(StudyOptions):
         return self
 
 
+class ExploreOptions(StudyOptions):
+    """``explore``: the design-space explorer (docs/explorer.md)."""
+
+    layout: Literal["inline", "vee", "boxer", "w"] = Field("inline", title="Layout")
+    cylinders: Whole = Field(4, ge=1, le=20, title="Cylinders")
+    strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle (2 or 4)")
+    bank_angle: Angle | None = Field(None, title="Vee or W bank angle")
+    crank: Literal["any", "flat", "cross", "split"] = Field("any", title="Crank family")
+    engine: str | None = Field(None, title="Engine file or preset giving masses and geometry")
+    target: Literal["none", "counterweights", "primary", "secondary"] = Field(
+        "counterweights", title="Balancing target"
+    )
+    balance_factor: Factor = Field(0.0, title="Balance factor")
+    mode_shape: str = Field("uniform", title="Torsional mode shape")
+    orders: Whole = Field(8, ge=1, le=MAX_ORDER, title="Highest order")
+    objectives: str = Field("F1,M1,F2,M2", title="Pareto objectives (comma separated)")
+    filter: str | None = Field(None, title="Filter")
+    top: Whole = Field(20, ge=1, le=100_000, title="Rows of the top-N table")
+    top_key: str | None = Field(None, title="Column of the top-N table")
+    chunk: Whole = Field(8192, ge=1, le=1_000_000, title="Candidates per task")
+    workers: Whole | None = Field(None, ge=1, le=1024, title="Workers of a LocalCluster")
+    scheduler: str | None = Field(None, title="Address of a dask scheduler")
+    sample: Whole | None = Field(None, ge=1, le=10**12, title="Random draws (search)")
+    seed: Whole = Field(0, ge=0, le=2**32 - 1, title="Random seed")
+
+
 Options = TypeVar("Options", bound=StudyOptions)
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 

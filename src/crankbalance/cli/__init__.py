@@ -59,6 +59,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "web": ("crankbalance.cli.web:web", "Serve the web application on 127.0.0.1."),
     "plot": ("crankbalance.cli.plot:plot", "Draw a figure of an engine (PNG, SVG, HTML)."),
     "report": ("crankbalance.cli.report:report", "Engine balancing report (HTML or PDF)."),
+    "explore": (
+        "crankbalance.cli.explore:explore",
+        "Every firing order and crank of a layout, ranked.",
+    ),
 }
 
 

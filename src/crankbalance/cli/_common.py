@@ -35,6 +35,7 @@ EXTRAS: dict[str, tuple[str, ...]] = {
     "web": ("nicegui", "plotly", "kaleido"),
     "geometry": ("shapely", "trimesh", "pymoo"),
     "cad": ("build123d",),
+    "dist": ("distributed", "pyarrow"),
 }
 
 
