@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import functools
 import math
+import threading
 from typing import Any
 
 import numpy as np
@@ -139,6 +140,9 @@ class ExploreTab(StudyTab):
     top = 20
 
     def build(self) -> None:
+        # the explorer's modules and columns load in a thread: on the event loop their
+        # first import (seconds on a busy machine) would stall every page of the server
+        threading.Thread(target=_columns, daemon=True).start()
         self.texts = {k: v[1] for k, v in SETTINGS.items()}
         self.fields: dict[str, Any] = {}
         with ui.row().classes("w-full items-start gap-4"):
