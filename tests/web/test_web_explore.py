@@ -34,7 +34,13 @@ def shoot(page, name: str) -> None:
     page.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
 
 
+def connected(page) -> None:
+    """Wait until the page's websocket is connected (a click before it would be lost)."""
+    page.wait_for_function("() => window.socket && window.socket.connected")
+
+
 def explore_inline4(page) -> None:
+    connected(page)
     open_tab(page, "Explorer")
     page.get_by_role("button", name="Explore").click()
     expect(page.locator("[data-testid=explore-summary]").first).to_contain_text("distinct engines")
@@ -91,6 +97,7 @@ def test_a_large_problem_points_to_the_command_line(server: str, browser) -> Non
     page = browser.new_page(viewport={"width": 1280, "height": 800})
     try:
         page.goto(server + "/")
+        connected(page)
         open_tab(page, "Explorer")
         page.locator("[data-testid=explore-cylinders]").first.fill("10")
         message = page.locator(".q-field--error", has_text="--workers").first

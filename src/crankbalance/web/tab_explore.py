@@ -244,6 +244,7 @@ class ExploreTab(StudyTab):
     async def run(self) -> None:
         parsed = self.check()
         if parsed is None:
+            self.summary.set_content("Not run: see the message beside the field.")
             return
         problem, objectives, select, top, bank_angle = parsed
         started = self.settings()
