@@ -9,6 +9,7 @@ all imported when the command runs, dask and pyarrow only when asked for.
 
 from __future__ import annotations
 
+import dataclasses
 import functools
 import math
 import re
@@ -127,6 +128,21 @@ def _records(rows: Mapping[str, NDArray[Any]], names: list[str]) -> list[dict[st
     return out
 
 
+def _write_plot(plot: str, result: Any, objectives: tuple[str, ...]) -> None:
+    """The scatter of the run's candidates (its top-N list and Pareto set) over the first
+    two objectives, written atomically (png, svg or html by the suffix)."""
+    from .. import figures, render
+    from ..io.files import write_atomic
+
+    points = figures.explore_points(result.top, result.pareto)
+    fig = figures.explore_scatter(
+        points, result.pareto, objectives[0], objectives[1], total=result.rows
+    )
+    fmt = Path(plot).suffix.lower().lstrip(".")
+    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
+    click.echo(f"wrote {plot}", err=True)
+
+
 @click.command()
 @click.option(
     "--layout", default="inline", show_default=True, help="inline, vee, boxer or w (broad arrow)."
@@ -180,9 +196,20 @@ def _records(rows: Mapping[str, NDArray[Any]], names: list[str]) -> list[dict[st
     default=None,
     help="A progress line on stderr [default: when the run has more than 8 tasks].",
 )
+@click.option(
+    "--plot",
+    type=click.Path(dir_okay=False),
+    help="Figure of the candidates over the first two objectives, Pareto set highlighted "
+    "(.png, .svg or .html; the best 50 000 by the top-N key when there are more).",
+)
 @format_option(FORMATS)
 def explore(
-    fmt: str, filter_text: str | None, output: str | None, progress: bool | None, **options: Any
+    fmt: str,
+    filter_text: str | None,
+    output: str | None,
+    progress: bool | None,
+    plot: str | None,
+    **options: Any,
 ) -> None:
     """Every firing order and crank of a layout: figures of merit, Pareto front, top-N."""
     import numpy as np
@@ -205,6 +232,11 @@ def explore(
         raise InputError("--output", output, "a file in an existing directory")
     if o.scheduler is not None and not SCHEDULER.match(o.scheduler):
         raise InputError("--scheduler", o.scheduler, "an address PROTOCOL://HOST:PORT")
+    if plot is not None:
+        from .plot import check_output
+
+        check_output(plot, (".png", ".svg", ".html"), "--plot")
+        require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
     typed = {k: options[k] for k in ("layout", "cylinders", "strokes", "crank")}
     typed |= {"bank_angle": options["bank_angle"]}
     problem = _problem(o, typed)
@@ -225,7 +257,13 @@ def explore(
     key = rank.column_name(o.top_key, columns, "--top-key") if o.top_key else None
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
+    if plot is not None and (len(objectives) < 2 or key is None):
+        raise InputError("--plot", plot, "two --objectives (its axes) and a top-N key")
     keep = Keep(objectives=objectives, key=key, n=o.top)
+    if plot is not None:  # the figure's candidates: the best by the key, up to its limit
+        from ..figures import EXPLORE_POINTS
+
+        keep = Keep(objectives=objectives, key=key, n=max(o.top, EXPLORE_POINTS))
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "--filter")
     sample = None if o.sample is None else Sample(draws=o.sample, seed=o.seed)
     tasks = math.ceil((o.sample or orders.count(problem)) / o.chunk)
@@ -242,6 +280,9 @@ def explore(
         sample=sample,
         progress=progress_line() if show else None,
     )
+    if plot is not None:
+        _write_plot(plot, result, objectives)
+        result = dataclasses.replace(result, top={k: v[: o.top] for k, v in result.top.items()})
     names = [n for n in columns if n in result.top or n in result.pareto]
     shown = list(dict.fromkeys([*objectives, *([keep.key] if keep.key else [])]))
     for part in (result.top, result.pareto):

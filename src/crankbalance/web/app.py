@@ -29,6 +29,7 @@ from .exports import table_csv
 from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
+from .tab_explore import ExploreTab
 from .tab_masses import MassesTab
 from .tab_performance import PerformanceTab
 from .tab_results import ResultsTab, order_rows
@@ -46,6 +47,7 @@ TABS = (
     ("single", "Single cylinder"),
     ("shaft", "Balance shaft"),
     ("performance", "Performance"),
+    ("explore", "Explorer"),
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
@@ -121,6 +123,7 @@ class Page:
             SingleTab(self),
             ShaftTab(self),
             PerformanceTab(self),
+            ExploreTab(self),
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]

@@ -1,0 +1,364 @@
+"""The Explorer tab: every firing order and crank of a layout (docs/explorer.md), ranked.
+
+The problem (layout, cylinders, strokes, bank angle, crank family), the two objectives of
+the scatter and Pareto set, a filter and the rows of the table are this tab's own settings:
+they are not part of the engine, and the result belongs to them (the never-stale rule of
+:class:`~.widgets.StudyTab`, with the settings in place of the engine): once a setting is
+changed the result is cleared and the tab says to re-run. The run is
+:func:`crankbalance.explore.run.run` in this process, in a worker thread, on the plain engine
+of the enumeration (``orders.PLAIN``), for problems of at most :data:`MAX_INDICES` firing
+orders; larger ones are for ``crankbalance explore --workers N``.
+
+A click on a row of the table (or on a point of the scatter) loads that candidate as the
+current engine: the form's layout, cylinders, strokes, bank angle, firing order and throw
+angles are set, the rest of the engine (masses, geometry) is kept.
+"""
+
+from __future__ import annotations
+
+import functools
+import math
+import threading
+from typing import Any
+
+import numpy as np
+from nicegui import run, ui
+
+from .. import figures
+from ..errors import InputError
+from .widgets import StudyTab, fmt_g
+
+#: most firing orders (indices of the enumeration) the page explores in its own process
+MAX_INDICES = 50_000
+#: the tab's settings: key -> (label, default, hint)
+SETTINGS: dict[str, tuple[str, str, str]] = {
+    "layout": ("Layout", "inline", "inline, vee, boxer or w"),
+    "cylinders": ("Cylinders", "4", "e.g. 6"),
+    "strokes": ("Strokes per cycle", "4", "2 or 4"),
+    "bank_angle": ("Bank angle", "", "vee / W only, e.g. 90 deg"),
+    "crank": ("Crank family", "any", "any, flat or cross"),
+    "x": ("Objective (x axis)", "M1", "a column, e.g. F2, M1, X1p5"),
+    "y": ("Objective (y axis)", "M2", "a column, e.g. M2, cw_mass"),
+    "filter": ("Filter", "", "e.g. F1 == 0 and M1 == 0 (empty: all)"),
+    "top": ("Rows of the table", "20", "1 to 1000"),
+}
+CHOICES = {
+    "layout": ("inline", "vee", "boxer", "w"),
+    "strokes": ("4", "2"),
+    "crank": ("any", "flat", "cross"),
+}
+#: the table's key: the largest moment left after crank counterweights
+KEY = "residual_M_Nm"
+
+
+@functools.lru_cache(maxsize=8)
+def _columns(orders: int = 8) -> tuple[str, ...]:
+    """The explorer's columns (those of the inline-4, the same for every problem)."""
+    from ..explore import merit
+    from ..explore import orders as enumeration
+
+    problem = enumeration.problem("inline", 4, 4)
+    return tuple(merit.merit(enumeration.chunk(problem, 0, 1), orders=orders))
+
+
+def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float | None]:
+    """The problem, the two objectives, the filter, the table's rows and the bank angle
+    [rad] from the tab's texts; an :class:`InputError` names the setting's key."""
+    from ..explore import orders, rank
+    from ..options import ExploreOptions, parse_options
+
+    values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
+    o = parse_options(
+        ExploreOptions,
+        {k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank", "top")},
+    )
+    if o.top > 1000:
+        raise InputError("top", values["top"], "1 to 1000 rows")
+    columns = _columns()
+    x = rank.column_name(values["x"] or "", columns, "x")
+    y = rank.column_name(values["y"] or "", columns, "y")
+    text = values["filter"]
+    chosen = None if text is None else rank.parse_filter(text, columns, "filter")
+    problem = orders.problem(o.layout, o.cylinders, o.strokes, o.bank_angle, crank=o.crank)
+    total = orders.count(problem)
+    if total > MAX_INDICES:
+        raise InputError(
+            "cylinders",
+            o.cylinders,
+            f"a problem of at most {MAX_INDICES:,} firing orders in the web app (this one has "
+            f"{total:,}): run it with `crankbalance explore --workers N` (docs/explorer.md)",
+        )
+    return problem, (x, y), chosen, o.top, o.bank_angle
+
+
+def explore(problem: Any, objectives: tuple[str, str], select: Any) -> Any:
+    """The run of the tab: every candidate kept (at most :data:`MAX_INDICES`), the Pareto
+    set over the two objectives, the rows by increasing :data:`KEY`."""
+    from ..explore import merit
+    from ..explore.run import Keep
+    from ..explore.run import run as run_explore
+
+    keep = Keep(objectives=objectives, key=KEY, n=MAX_INDICES)
+    return run_explore(problem, merit.merit, select=select, keep=keep)
+
+
+def candidate_file(
+    data: dict[str, Any], problem: Any, bank_angle: float | None, row: dict[str, Any]
+) -> dict[str, Any]:
+    """The engine-file dictionary ``data`` (the current engine) with the crank of the
+    explorer's candidate ``row`` of ``problem``: layout, cylinders, strokes, bank angle
+    [rad], firing order and throw angles; custom throws, mass overrides and the webs list
+    (their counts follow the crank) are dropped."""
+    order = [int(c) for c in row["firing_order"]]
+    train = dict(data.get("crank_train", {}))
+    for key in ("throw", "bank_angle", "throw_angles", "crank_offset"):
+        train.pop(key, None)
+    train.update(
+        layout=problem.layout,
+        cylinders=len(order),
+        strokes=int(problem.strokes),
+        firing_order=order,
+        throw_angles=[f"{math.degrees(a) % 360:.6g} deg" for a in row["throw_angle_rad"]],
+    )
+    if bank_angle is not None and problem.layout in ("vee", "w"):
+        train["bank_angle"] = f"{math.degrees(bank_angle):.9g} deg"
+    out = {k: v for k, v in data.items() if k != "crank_train"}
+    out["crank_train"] = train
+    out["name"] = f"Explorer {problem.layout}-{len(order)} {'-'.join(map(str, order))}"
+    out.get("masses", {}).pop("override", None)
+    out.get("counterweights", {}).pop("webs", None)
+    return out
+
+
+class ExploreTab(StudyTab):
+    name = "explore"
+    result: Any = None
+    problem: Any = None
+    objectives: tuple[str, str] = ("F2_N", "M2_Nm")
+    chosen: int | None = None
+    bank_angle: float | None = None
+    top = 20
+
+    def build(self) -> None:
+        # the explorer's modules and columns load in a thread: on the event loop their
+        # first import (seconds on a busy machine) would stall every page of the server
+        threading.Thread(target=_columns, daemon=True).start()
+        self.texts = {k: v[1] for k, v in SETTINGS.items()}
+        self.fields: dict[str, Any] = {}
+        with ui.row().classes("w-full items-start gap-4"):
+            with ui.card().classes("w-64"):
+                ui.label("Problem").classes("text-subtitle1")
+                for key, (label, default, hint) in SETTINGS.items():
+                    self._field(key, label, default, hint)
+                with ui.row().classes("items-center gap-2"):
+                    ui.button("Explore", on_click=self.run).props("color=primary").mark(
+                        "explore-run"
+                    )
+                    self.spinner = ui.spinner(size="md").props("data-testid=explore-busy")
+                    self.spinner.set_visibility(False)
+            with ui.card().classes("min-w-0").style("flex: 1 1 0"):
+                ui.label("Results").classes("text-subtitle1")
+                self.rerun_note()
+                self.summary = (
+                    ui.markdown("").props("data-testid=explore-summary").mark("explore-summary")
+                )
+                self.table = (
+                    ui.table(columns=[], rows=[], row_key="index")
+                    .classes("w-full")
+                    .props("dense flat data-testid=explore-table")
+                    .mark("explore-table")
+                )
+                self.table.on("rowClick", self.on_row)
+                ui.label("Click a row (or a point) to load that engine in the form.").classes(
+                    "text-grey-7"
+                )
+        with ui.grid(columns=2).classes("w-full"):
+            scatter = self.card("explore-scatter", "Candidates and Pareto set", self._scatter)
+            self.card("explore-candidate", "Chosen candidate", self._candidate)
+        scatter.plot.on("plotly_click", self.on_point)
+
+    def _field(self, key: str, label: str, default: str, hint: str) -> None:
+        def changed(event: Any, key: str = key) -> None:
+            self.texts[key] = "" if event.value is None else str(event.value)
+            self.check()
+
+        element: Any
+        if key in CHOICES:
+            element = ui.select(list(CHOICES[key]), value=default, label=label, on_change=changed)
+        else:
+            element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
+            element.props(f'hint="{hint}"')
+        element.classes("w-full").props(f"data-testid=explore-{key} hide-bottom-space")
+        element.mark(f"explore-{key}").without_auto_validation()
+        self.fields[key] = element
+
+    # ------------------------------------------------------------------ settings
+    def settings(self) -> tuple[tuple[str, str], ...]:
+        return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
+
+    def check(self) -> Any | None:
+        """Show the settings' errors beside their fields; the parsed settings or None. A
+        result of other settings is dropped."""
+        for element in self.fields.values():
+            element.error = None
+        if self.result_for is not None and self.result_for != self.settings():
+            self.drop("these settings")
+        try:
+            return parse(self.texts)
+        except InputError as error:
+            key = error.field if error.field in self.fields else "layout"
+            names = {"bank_angle": "bank angle", "x": "x objective", "y": "y objective"}
+            message = str(error).replace(f"{error.field} =", f"{names.get(key, key)} =", 1)
+            self.fields[key].error = message
+            return None
+
+    # ------------------------------------------------------------------ StudyTab
+    def show(self, c: Any) -> None:
+        """The engine's changes do not touch the result: it belongs to the tab's settings."""
+
+    def reset(self) -> None:
+        """A new project (or a candidate loaded from here) keeps the explorer's result."""
+
+    def clear(self) -> None:
+        self.result = None
+        self.chosen = None
+        self.summary.set_content("")
+        self.table.rows = []
+        self.table.update()
+        for card in self.cards:
+            card.refresh()
+
+    def owns(self, started: Any) -> bool:
+        if started == self.settings():
+            self.result_for = started
+            self.rerun.set_visibility(False)
+            return True
+        self.drop("these settings")
+        return False
+
+    def drop(self, engine: str) -> None:
+        super().drop(engine)
+        self.rerun.set_text("Not computed for these settings: re-run the exploration.")
+
+    # ------------------------------------------------------------------ run
+    async def run(self) -> None:
+        parsed = self.check()
+        if parsed is None:
+            self.summary.set_content("Not run: see the message beside the field.")
+            return
+        problem, objectives, select, top, bank_angle = parsed
+        started = self.settings()
+        self.spinner.set_visibility(True)
+        self.summary.set_content("exploring …")
+        try:
+            result = await run.io_bound(explore, problem, objectives, select)
+        except InputError as error:
+            self.summary.set_content(str(error))
+            return
+        finally:
+            self.spinner.set_visibility(False)
+        if result is None:
+            self.summary.set_content("exploration cancelled (server stopping): no result")
+            return
+        if not self.owns(started):
+            return
+        self.result, self.problem, self.objectives, self.top = result, problem, objectives, top
+        self.bank_angle = bank_angle
+        self.chosen = int(result.top["index"][0]) if result.rows else None
+        self.summary.set_content(
+            f"{result.total:,} firing orders, **{result.candidates:,} distinct engines**, "
+            f"{result.rows:,} kept by the filter, Pareto set of "
+            f"{result.pareto['index'].size if result.pareto else 0} over `{objectives[0]}` and "
+            f"`{objectives[1]}` ({result.seconds:.2f} s). The table is ordered by `{KEY}` (the "
+            "largest moment left after crank counterweights); figures are of the plain engine "
+            "of the enumeration (docs/explorer.md)."
+        )
+        self._fill_table()
+        for card in self.cards:
+            card.refresh()
+
+    def _fill_table(self) -> None:
+        rows = self.result.top if self.result is not None and self.result.rows else {}
+        names = list(dict.fromkeys([*self.objectives, KEY]))
+        self.table.columns = [
+            {"name": "rank", "label": "#", "field": "rank"},
+            {"name": "order", "label": "firing order", "field": "order", "align": "left"},
+            {"name": "throws", "label": "throws [deg]", "field": "throws", "align": "left"},
+            {"name": "equivalents", "label": "equiv", "field": "equivalents"},
+            *({"name": n, "label": n, "field": n} for n in names),
+        ]
+        self.table.rows = [
+            {
+                "rank": k + 1,
+                "index": int(rows["index"][k]),
+                "order": "-".join(str(int(c)) for c in rows["firing_order"][k]),
+                "throws": ", ".join(
+                    f"{math.degrees(a) % 360:.0f}" for a in rows["throw_angle_rad"][k]
+                ),
+                "equivalents": int(rows["equivalents"][k]),
+                **{n: fmt_g(rows[n][k]) for n in names},
+            }
+            for k in range(min(self.top, rows["index"].size if rows else 0))
+        ]
+        self.table.update()
+
+    # ------------------------------------------------------------------ figures
+    def _row(self, index: int | None) -> dict[str, Any] | None:
+        if self.result is None or index is None or not self.result.rows:
+            return None
+        rows = self.result.top
+        found = np.flatnonzero(rows["index"] == index)
+        return {n: v[found[0]] for n, v in rows.items()} if found.size else None
+
+    def _scatter(self) -> Any | None:
+        if self.result is None or not self.result.rows:
+            return None
+        return figures.explore_scatter(
+            self.result.top,
+            self.result.pareto,
+            *self.objectives,
+            title="Candidates",
+            total=self.result.rows,
+        )
+
+    def _candidate(self) -> Any | None:
+        row = self._row(self.chosen)
+        return None if row is None else figures.explore_candidate(row)
+
+    # ------------------------------------------------------------------ load
+    def on_row(self, event: Any) -> None:
+        args = event.args if isinstance(event.args, list) else [event.args]
+        row = next((a for a in args if isinstance(a, dict) and "index" in a), None)
+        if row is not None:
+            self.load(int(row["index"]))
+
+    def on_point(self, event: Any) -> None:
+        points = (event.args or {}).get("points") or []
+        if points and points[0].get("customdata") is not None:
+            self.load(int(points[0]["customdata"]))
+
+    def load(self, index: int) -> None:
+        """Load the candidate of enumeration index ``index`` as the current engine."""
+        from ..spec import spec_from_dict
+        from .app import DEFAULT_PRESET
+        from .project import Project
+
+        row = self._row(index)
+        if row is None:
+            return
+        project = self.page.project
+        spec = project.spec or Project.from_preset(DEFAULT_PRESET).spec
+        assert spec is not None
+        try:
+            data = candidate_file(spec.to_file_dict(), self.problem, self.bank_angle, row)
+            new = spec_from_dict(data)
+        except InputError as error:
+            ui.notify(f"Cannot load this candidate: {error}", type="negative", multi_line=True)
+            return
+        self.chosen = index
+        self.page.load(Project.from_spec(new, dict(project.settings)))
+        for card in self.cards:
+            if card.name == "explore-candidate":
+                card.refresh()
+        order = "-".join(str(int(c)) for c in row["firing_order"])
+        ui.notify(f"Loaded firing order {order} as the current engine", type="positive")

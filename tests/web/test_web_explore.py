@@ -1,0 +1,106 @@
+"""The Explorer tab in a real browser (Playwright driving Debian's chromium): explore the
+inline-4 4-stroke, see the scatter and the table, load a candidate as the current engine
+and find it on the Engine and Results tabs; a bad filter is named beside its field.
+
+Screenshots at 1280x800 and 390x844 go to ``shots/`` of the checkout (not committed).
+Every wait is a wait for a state of the page with the hang guard of ``conftest.py``.
+"""
+
+from __future__ import annotations
+
+import re
+from pathlib import Path
+
+import pytest
+
+from crankbalance.explore import orders
+
+pytest.importorskip("nicegui")
+playwright_api = pytest.importorskip("playwright.sync_api")
+expect = playwright_api.expect
+
+SHOTS = Path(__file__).resolve().parents[2] / "shots"
+
+
+def open_tab(page, name: str) -> None:
+    page.get_by_role("tab", name=name, exact=True).click()
+    expect(page.get_by_role("tab", name=name, exact=True)).to_have_attribute(
+        "aria-selected", "true"
+    )
+
+
+def shoot(page, name: str) -> None:
+    SHOTS.mkdir(exist_ok=True)
+    page.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
+
+
+def connected(page) -> None:
+    """Wait until the page's websocket is connected (a click before it would be lost)."""
+    page.wait_for_function("() => window.socket && window.socket.connected")
+
+
+def explore_inline4(page) -> None:
+    connected(page)
+    open_tab(page, "Explorer")
+    page.get_by_role("button", name="Explore").click()
+    expect(page.locator("[data-testid=explore-summary]").first).to_contain_text("distinct engines")
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
+def test_explore_and_load_a_candidate(server: str, browser, width: int, height: int) -> None:
+    page = browser.new_page(viewport={"width": width, "height": height})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    try:
+        page.goto(server + "/")
+        expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+        explore_inline4(page)
+        problem = orders.problem("inline", 4, 4)
+        engines = orders.chunk(problem, 0, orders.count(problem))
+        table = page.locator("[data-testid=explore-table]").first
+        # one row per distinct engine of the inline-4 (4 of the 6 orders from cylinder 1)
+        expect(table.locator("tbody tr")).to_have_count(engines.size)
+        for order in engines.firing_order:
+            expect(table).to_contain_text("-".join(str(c) for c in order))
+        scatter = page.locator("[data-testid=figure-explore-scatter]").first
+        expect(scatter.locator(".scatterlayer .point").first).to_be_attached()
+        expect(scatter).to_contain_text("Pareto set")
+        shoot(page, f"explore-{width}x{height}")
+        # a click on the row of 1-3-4-2 loads it as the current engine
+        table.locator("tbody tr", has_text="1-3-4-2").first.click()
+        status = page.locator("[data-testid=status]").first
+        expect(status).to_contain_text("Explorer inline-4 1-3-4-2")
+        open_tab(page, "Engine")
+        order = page.locator("[data-testid=field-firing_order]").first
+        expect(order).to_have_value(re.compile(r"^1\D+3\D+4\D+2$"))
+        expect(page.locator("[data-testid=field-cylinders]").first).to_have_value("4")
+        shoot(page, f"explore-engine-{width}x{height}")
+        open_tab(page, "Results")
+        expect(page.locator("[data-testid=results-stale]").first).to_be_hidden()
+        expect(status).to_contain_text("Results of: Explorer inline-4 1-3-4-2")
+        # the explorer keeps its result; a bad filter is named beside the field and the
+        # result, which belongs to the settings, is cleared
+        open_tab(page, "Explorer")
+        expect(table.locator("tbody tr")).to_have_count(engines.size)
+        page.locator("[data-testid=explore-filter]").first.fill("F1 <")
+        message = page.locator(".q-field--error", has_text="filter").first
+        expect(message).to_contain_text("F1 <")
+        expect(page.locator("[data-testid=explore-rerun]").first).to_be_visible()
+        expect(table.locator("tbody tr")).to_have_count(0)
+        shoot(page, f"explore-bad-filter-{width}x{height}")
+        assert not [e for e in errors if "Resize must be passed" not in e], errors
+    finally:
+        page.close()
+
+
+def test_a_large_problem_points_to_the_command_line(server: str, browser) -> None:
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    try:
+        page.goto(server + "/")
+        connected(page)
+        open_tab(page, "Explorer")
+        page.locator("[data-testid=explore-cylinders]").first.fill("10")
+        message = page.locator(".q-field--error", has_text="--workers").first
+        expect(message).to_contain_text("362,880")
+    finally:
+        page.close()
