@@ -59,6 +59,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
     "web": ("crankbalance.cli.web:web", "Serve the web application on 127.0.0.1."),
     "plot": ("crankbalance.cli.plot:plot", "Draw a figure of an engine (PNG, SVG, HTML)."),
     "report": ("crankbalance.cli.report:report", "Engine balancing report (HTML or PDF)."),
+    "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
 }
 
 
