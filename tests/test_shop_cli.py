@@ -203,3 +203,28 @@ def test_sheet_pdf_text(study, holes, tmp_path: Path, capsys: pytest.CaptureFixt
     flat = " ".join(words.split())
     for key in _key_numbers(study, holes):
         assert key.replace(" ", "") in flat.replace(" ", ""), key
+
+
+def test_part_scatter_is_the_files_sample_deviation() -> None:
+    from crankbalance.io.parts_file import load_parts_file
+    from crankbalance.studies.shop import part_scatter
+
+    inventory = load_parts_file(PARTS)
+    scatter = {p.name: p for p in part_scatter(inventory)}
+    pistons = next(k for k in inventory.kinds if k.name == "piston")
+    mean = sum(pistons.reciprocating) / pistons.count
+    hand = math.sqrt(sum((m - mean) ** 2 for m in pistons.reciprocating) / (pistons.count - 1))
+    assert scatter["piston"].sigma == pytest.approx(hand, rel=1e-12)
+    assert scatter["piston"].kind == "reciprocating"
+    assert scatter["rod (big end)"].kind == "rotating"
+    assert scatter["rod (small end)"].kind == "reciprocating"
+
+
+def test_light_spot_readings_turn_the_plan_half_a_turn(holes) -> None:  # type: ignore[no-untyped-def]
+    # the same numbers read as light spots: the unbalance is opposite, so is every hole
+    light = hole_plan(parse_options(ShopOptions, {**PLAN, "convention": "light"}))
+    for heavy, turned in zip(holes.holes, light.holes, strict=True):
+        assert turned.number == heavy.number and turned.depth == heavy.depth
+        np.testing.assert_allclose(
+            np.exp(1j * turned.angles), -np.exp(1j * heavy.angles), atol=1e-12
+        )

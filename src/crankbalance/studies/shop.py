@@ -259,15 +259,14 @@ def part_scatter(inventory: Inventory) -> tuple[PartScatter, ...]:
     (reciprocating, rotating), the sample standard deviation of the weighed shares [kg]
     (a rod gives its small end and its big end)."""
     out = []
+    ends = {"reciprocating": "small end", "rotating": "big end"}
     for kind in inventory.kinds:
+        both = bool(np.any(kind.reciprocating) and np.any(kind.rotating))  # a rod
         for share, values in (("reciprocating", kind.reciprocating), ("rotating", kind.rotating)):
             if np.any(values) and kind.count > 1:
-                label = (
-                    kind.name
-                    if not np.all(kind.rotating * kind.reciprocating)
-                    else (f"{kind.name} ({'small end' if share == 'reciprocating' else 'big end'})")
-                )
-                out.append(PartScatter(label, share, float(np.std(values, ddof=1))))  # type: ignore[arg-type]
+                label = f"{kind.name} ({ends[share]})" if both else kind.name
+                sigma = float(np.std(values, ddof=1))
+                out.append(PartScatter(label, share, sigma))  # type: ignore[arg-type]
     return tuple(out)
 
 
