@@ -506,6 +506,70 @@ class RebalancePartsOptions(StudyOptions):
     tolerance: Requirement | None = Field(None, title="Permissible residual unbalance")
 
 
+def _reading(value: Any) -> Any:
+    """A balancing-machine reading as typed, ``"12.5 g @ 40 mm, 35 deg"``: the amount (a
+    mass, 0 or more) at a radius, and the angle; -> (mass [kg], radius [m], angle [rad])."""
+    if not isinstance(value, str):
+        return value
+    amount, _at, rest = value.partition("@")
+    radius, _comma, where = rest.partition(",")
+    if not (_at and _comma):
+        raise InputError("", value, f"must be {READING_WORDS}")
+    mass = parse_quantity(amount, "mass", "")
+    size = parse_quantity(radius, "length", "")
+    turn = parse_quantity(where, "angle", "")
+    inside = [(mass, "mass", 0.0), (size, "length", RANGES["length"][0])]
+    for number_, kind, low in (*inside, (turn, "angle", RANGES["angle"][0])):
+        if not low <= number_ <= RANGES[kind][1]:
+            raise InputError("", value, f"must be {READING_WORDS}, in range")
+    return (mass, size, turn)
+
+
+def _pair(value: Any) -> Any:
+    """Two values as typed, ``"0 mm, 400 mm"``, as a list."""
+    return [part.strip() for part in value.split(",")] if isinstance(value, str) else value
+
+
+#: a balancing-machine reading in words
+READING_WORDS = "an amount at a radius and an angle, e.g. '12.5 g @ 40 mm, 35 deg'"
+Reading = Annotated[tuple[float, float, float], BeforeValidator(_reading)]
+#: two axial positions (measuring or correction planes, bearings) [m]
+Positions = Annotated[list[Position], BeforeValidator(_pair), Field(min_length=2, max_length=2)]
+
+
+class ShopOptions(StudyOptions):
+    """The balance shop (issue 16): matching, bob-weights, readings to a hole plan, ISO check."""
+
+    fraction: Factor = Field(0.5, title="Reciprocating fraction in the bob-weights")
+    method: Literal["milp", "pairing", "exhaustive", "as-listed"] = "milp"
+    time_limit: Time = Field(60.0, le=3600.0, title="Matching time limit")
+    reading: list[Reading] = Field([], max_length=2, title="Readings, one per measuring plane")
+    convention: Literal["heavy", "light"] = "heavy"
+    measuring_planes: Positions | None = Field(None, title="Measuring planes")
+    correction_planes: Positions | None = Field(None, title="Correction planes")
+    hole_diameter: Length = Field(0.008, title="Drill diameter")
+    hole_radius: Length | None = Field(None, title="Radius of the holes")
+    max_depth: Length = Field(0.015, title="Deepest hole")
+    depth_to: Literal["shoulder", "tip"] | None = None
+    point_angle: Angle = Field(math.radians(118.0), gt=0, le=math.pi, title="Drill point angle")
+    direction: Literal["axial", "radial"] = "axial"
+    spacing: LengthOrZero = Field(0.002, title="Material between holes")
+    depth_resolution: LengthOrZero = Field(0.0001, title="Machining step")
+    density: Density = Field(7850.0, title="Crank material density")
+    slug_density: Density | None = Field(None, title="Heavy-metal density (add instead)")
+    grade: str = Field("G6.3", title="ISO 21940-11 grade")
+    rotor_mass: Mass | None = Field(None, title="Crank mass")
+    speed: Speed | None = Field(None, title="Largest service speed")
+    bearings: Positions | None = Field(None, title="Main bearings")
+    center_of_mass: Position | None = Field(None, title="Centre of mass")
+
+    @model_validator(mode="after")
+    def _two_readings(self) -> ShopOptions:
+        if len(self.reading) == 1:
+            raise InputError("reading", None, "must be given twice, one per measuring plane")
+        return self
+
+
 class ToleranceOptions(StudyOptions):
     """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes."""
 

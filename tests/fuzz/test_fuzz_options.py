@@ -151,6 +151,80 @@ ENGINE_CYCLE = {
 }
 OUTPUT = ["OUT/x.html", "OUT/x.txt", "/no/such/folder/x.html", "OUT", ""]
 
+V8_PARTS = str(ROOT / "examples" / "v8_parts.csv")
+SHOP_ENGINE = {"--engine": ["v8-crossplane", "inline4", "no-such-engine", ""]}
+SHOP_PARTS = {
+    "--method": ["as-listed", "pairing", "milp", *CHOICE],
+    "--time-limit": quantity("time", "5 s"),
+    "--fraction": number("0.5", "50%"),
+}
+SHOP_PLAN = {
+    "--reading": [
+        "12.5 g @ 40 mm, 35 deg",
+        "nan g @ 40 mm, 0 deg",
+        "12.5 g",
+        "1e308 g @ 1 mm, 0 deg",
+    ],
+    "--convention": ["heavy", "light", *CHOICE],
+    "--measuring-planes": ["0 mm, 400 mm", "0 mm, 0 mm", "0 mm", "nan mm, 1 mm", ""],
+    "--correction-planes": ["50 mm, 350 mm", "50 mm, 50 mm", "1e308 mm, 0 mm", ""],
+    "--hole-diameter": quantity("length", "8 mm"),
+    "--hole-radius": quantity("length", "45 mm"),
+    "--max-depth": quantity("length", "15 mm"),
+    "--depth-to": ["tip", "shoulder", *CHOICE],
+    "--point-angle": quantity("angle", "118 deg", "180 deg"),
+    "--direction": ["axial", "radial", *CHOICE],
+    "--spacing": quantity("length", "2 mm", "0 mm"),
+    "--depth-resolution": quantity("length", "0.1 mm", "0 mm"),
+    "--density": quantity("density", "7850 kg/m^3"),
+    "--slug-density": quantity("density", "18000 kg/m^3", "1000 kg/m^3"),
+    "--grade": ["G6.3", "G2.5", "G7", ""],
+    "--rotor-mass": quantity("mass", "25 kg"),
+    "--speed": quantity("speed", "5500 rpm"),
+    "--bearings": ["-20 mm, 420 mm", "0 mm, 0 mm", ""],
+    "--center-of-mass": quantity("length", "200 mm"),
+}
+SHOP_PLAN_BASE = [
+    "--reading",
+    "12.5 g @ 40 mm, 35 deg",
+    "--reading",
+    "8 g @ 40 mm, 200 deg",
+    "--measuring-planes",
+    "0 mm, 400 mm",
+    "--correction-planes",
+    "50 mm, 350 mm",
+    "--hole-radius",
+    "45 mm",
+    "--depth-to",
+    "tip",
+    "--rotor-mass",
+    "25 kg",
+]
+SHOP = {
+    "match": {**SHOP_ENGINE, **SHOP_PARTS},
+    "bobweights": {**SHOP_ENGINE, **SHOP_PARTS},
+    "plan": {**SHOP_ENGINE, **SHOP_PLAN},
+    "scatter": {
+        **SHOP_ENGINE,
+        "--fraction": number("0.5"),
+        "--correction-planes": SHOP_PLAN["--correction-planes"],
+        "--rotor-mass": SHOP_PLAN["--rotor-mass"],
+        "--grade": SHOP_PLAN["--grade"],
+        "--speed": SHOP_PLAN["--speed"],
+        "--bearings": SHOP_PLAN["--bearings"],
+        "--samples": number("1000"),
+        "--seed": number("0", "7"),
+        "--scale-step": quantity("mass", "0.1 g", "0"),
+    },
+    "sheet": {
+        **SHOP_ENGINE,
+        **SHOP_PARTS,
+        **SHOP_PLAN,
+        "--output": OUTPUT,
+        "--chromium": ["/no/such/chromium", ""],
+    },
+}
+
 COMMAND_TABLE: dict[str, Command] = {
     "analyze": Command(
         ["analyze"],
@@ -494,11 +568,24 @@ COMMAND_TABLE: dict[str, Command] = {
             "--sample": ["10", *NUMBERS],
             "--seed": number("1"),
             "--output": ["OUT/x.parquet", "/no/such/folder/x.parquet", "OUT", ""],
+            "--plot": ["OUT/x.png", "OUT/x.html", "OUT/x.txt", "/no/such/folder/x.svg", ""],
             "--progress": [FLAG],
             "--no-progress": [FLAG],
             "--format": FORMATS_CSV,
         },
     ),
+    **{
+        f"shop {name}": Command(
+            ["shop", name],
+            [[V8_PARTS, "OUT/missing.csv", "OUT", ""]] if name != "plan" else [],
+            (["--engine", "v8-crossplane", "--method", "as-listed"] if name != "plan" else [])
+            + (SHOP_PLAN_BASE if name in ("plan", "sheet") else [])
+            + (["--correction-planes", "-200 mm, 200 mm"] if name == "scatter" else [])
+            + (["--output", "OUT/s.html"] if name == "sheet" else []),
+            {**options, "--format": FORMATS} if name != "sheet" else options,
+        )
+        for name, options in SHOP.items()
+    },
     "report": Command(
         ["report"],
         [["inline4", "single", "no-such-engine"]],

@@ -63,6 +63,7 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "crankbalance.cli.explore:explore",
         "Every firing order and crank of a layout, ranked.",
     ),
+    "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
 }
 
 

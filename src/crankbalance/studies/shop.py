@@ -1,0 +1,312 @@
+"""The balance shop as one study (issue 16): from an engine and its weighed parts to matched
+sets, bob-weights, the hole plan of a two-plane reading and the ISO 21940-11 sign-off.
+
+The physics is in :mod:`crankbalance.shop` (matching, bob-weights, holes, planes, scatter);
+this module only derives their inputs from an engine, a parts file and the settings of
+:class:`crankbalance.options.ShopOptions`, and gathers the results. The ``shop`` commands, the
+shop sheet and the example call these functions; nothing else derives these quantities.
+"""
+
+from __future__ import annotations
+
+import os
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..model import EngineModel
+from ..options import ShopOptions
+from ..results import ResultMixin
+from ..shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
+from ..shop.holes import DrillingPlan, drilling_plan
+from ..shop.matching import Inventory, MachineToLightest, Matching, machine_to_lightest, match_parts
+from ..shop.planes import (
+    PlaneCheck,
+    TwoPlanePlan,
+    iso_check,
+    plan_correction,
+    predicted_residual,
+    reading_unbalance,
+)
+from ..shop.scatter import PartScatter, ScatterStudy, scatter_study
+
+
+@dataclass(frozen=True)
+class PartsStudy(ResultMixin):
+    """Matched sets and bob-weights of an engine's weighed parts.
+
+    Attributes
+    ----------
+    engine : str
+        Engine name.
+    parts_source : str
+        The parts file.
+    cylinders : int
+        Cylinders filled.
+    inventory : Inventory
+        The weighed parts [kg].
+    as_listed : Matching
+        Part i of every kind in cylinder i [kg].
+    matching : Matching
+        The matched sets (``ShopOptions.method``) [kg].
+    machined : MachineToLightest
+        The alternative: every part machined to the lightest of its kind [kg].
+    crank_radius : float
+        Radius the bob-weights are clamped at [m].
+    bob_weights : BobWeights
+        Bob-weight per crankpin from the matched sets [kg].
+    remaining : RemainingForces
+        Free forces [N] and couples [N m] the fraction leaves (orders 1 and 2).
+    """
+
+    engine: str
+    parts_source: str
+    cylinders: int
+    inventory: Inventory
+    as_listed: Matching
+    matching: Matching
+    machined: MachineToLightest
+    crank_radius: float
+    bob_weights: BobWeights
+    remaining: RemainingForces
+
+
+@dataclass(frozen=True)
+class HolePlan(ResultMixin):
+    """A two-plane reading turned into holes per correction plane, and the ISO check.
+
+    Attributes
+    ----------
+    plan : TwoPlanePlan
+        Unbalance and correction per correction plane [kg m].
+    holes : tuple of DrillingPlan
+        The holes (or heavy-metal slugs) of each correction plane, in the order given.
+    residual : ndarray of complex, shape (2,)
+        Predicted residual per correction plane after the holes [kg m].
+    check : PlaneCheck
+        ISO 21940-11 check of the predicted residual.
+    grade : str
+        The balance quality grade checked.
+    rotor_mass : float
+        Crank mass of the check [kg].
+    speed : float
+        Largest service speed of the check [rad/s].
+    bearings : ndarray, shape (2,)
+        Main-bearing positions of the check [m].
+    center_of_mass : float
+        Axial position of the crank's centre of mass [m].
+    """
+
+    plan: TwoPlanePlan
+    holes: tuple[DrillingPlan, ...]
+    residual: NDArray[np.complex128]
+    check: PlaneCheck
+    grade: str
+    rotor_mass: float
+    speed: float
+    bearings: NDArray[np.float64]
+    center_of_mass: float
+
+
+@dataclass(frozen=True)
+class ShopStudy(ResultMixin):
+    """Everything the shop sheet shows: the parts study and, with readings, the hole plan.
+
+    Attributes
+    ----------
+    parts : PartsStudy
+        Matched sets, material to remove, bob-weights.
+    holes : HolePlan or None
+        The hole plan and the ISO sign-off (None without readings).
+    settings : dict
+        The settings used (:class:`~crankbalance.options.ShopOptions`, SI).
+    """
+
+    parts: PartsStudy
+    holes: HolePlan | None
+    settings: dict[str, Any]
+
+
+def engine_model(engine: Any) -> tuple[str, EngineModel]:
+    """The name and model of ``engine``: a preset name, an engine file or an EngineSpec."""
+    from ..io.engine_file import load_engine
+    from ..spec import EngineSpec
+    from .build import build_model
+
+    spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
+    return spec.name, build_model(spec)
+
+
+def parts_study(
+    engine: Any, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
+) -> PartsStudy:
+    """Match the parts of ``parts`` (a parts file or an Inventory) to the cylinders of
+    ``engine`` and give the bob-weights of the matched sets (``options.fraction``)."""
+    from ..io.parts_file import load_parts_file
+
+    name, model = engine_model(engine)
+    source = "inventory" if isinstance(parts, Inventory) else str(parts)
+    inventory = parts if isinstance(parts, Inventory) else load_parts_file(parts)
+    cylinders = len(model.cylinder_throw)
+    inventory.check(cylinders, "engine")
+    matched = match_parts(
+        inventory,
+        cylinders,
+        options.method,
+        time_limit=options.time_limit,
+        model=model,
+        fraction=options.fraction,
+    )
+    return PartsStudy(
+        engine=name,
+        parts_source=source,
+        cylinders=cylinders,
+        inventory=inventory,
+        as_listed=match_parts(inventory, cylinders, "as-listed"),
+        matching=matched,
+        machined=machine_to_lightest(inventory, cylinders),
+        crank_radius=model.crank_radius,
+        bob_weights=bob_weights(model, options.fraction, matched.rotating, matched.reciprocating),
+        remaining=remaining_forces(model, options.fraction, matched.reciprocating),
+    )
+
+
+def _required(options: ShopOptions, *names: str) -> None:
+    for name in names:
+        if getattr(options, name) is None:
+            raise InputError(name, None, "is required to plan the holes")
+
+
+def hole_plan(options: ShopOptions, speed: float | None = None) -> HolePlan:
+    """The two readings of ``options`` turned into holes per correction plane, and the ISO
+    check of the predicted residual (``speed`` [rad/s]: the engine's, when ``options.speed``
+    is not given)."""
+    if not options.reading:
+        raise InputError("reading", None, "is required (twice, one per measuring plane)")
+    _required(options, "measuring_planes", "correction_planes", "hole_radius", "depth_to")
+    _required(options, "rotor_mass")
+    speed = options.speed if options.speed is not None else speed
+    if speed is None:
+        raise InputError("speed", None, "is required for the ISO check (or give an engine)")
+    mass, radius, angle = np.array(options.reading, dtype=float).T
+    reading = reading_unbalance(mass, radius, angle, options.convention)
+    assert options.correction_planes is not None and options.hole_radius is not None
+    assert options.measuring_planes is not None
+    assert options.depth_to is not None and options.rotor_mass is not None
+    plan = plan_correction(
+        reading, options.measuring_planes, options.correction_planes, options.hole_radius
+    )
+    holes = tuple(
+        drilling_plan(
+            float(plan.amount[j]),
+            float(plan.remove_angle[j]),
+            options.hole_diameter,
+            options.hole_radius,
+            options.max_depth,
+            options.depth_to,
+            direction=options.direction,
+            point_angle=options.point_angle,
+            density=options.density,
+            spacing=options.spacing,
+            depth_resolution=options.depth_resolution,
+            slug_density=options.slug_density,
+        )
+        for j in range(2)
+    )
+    # the holes take their correction off the heavy spot: they add minus it
+    residual = predicted_residual(plan, [-h.correction for h in holes])
+    bearings = np.asarray(options.bearings or options.correction_planes, dtype=float)
+    centre = float(bearings.mean()) if options.center_of_mass is None else options.center_of_mass
+    check = iso_check(
+        residual,
+        options.grade,
+        options.rotor_mass,
+        speed,
+        bearings,
+        centre,
+        options.correction_planes,
+    )
+    return HolePlan(
+        plan=plan,
+        holes=holes,
+        residual=residual,
+        check=check,
+        grade=options.grade,
+        rotor_mass=options.rotor_mass,
+        speed=speed,
+        bearings=bearings,
+        center_of_mass=centre,
+    )
+
+
+def shop_study(
+    engine: Any, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
+) -> ShopStudy:
+    """The whole shop sheet: :func:`parts_study`, and :func:`hole_plan` when the options
+    hold readings (the engine's speed for the ISO check unless ``options.speed``)."""
+    study = parts_study(engine, parts, options)
+    holes = None
+    if options.reading:
+        holes = hole_plan(options, engine_model(engine)[1].speed)
+    return ShopStudy(parts=study, holes=holes, settings=options.model_dump())
+
+
+def part_scatter(inventory: Inventory) -> tuple[PartScatter, ...]:
+    """The scatter of every kind of part as the parts file shows it: per kind and share
+    (reciprocating, rotating), the sample standard deviation of the weighed shares [kg]
+    (a rod gives its small end and its big end)."""
+    out = []
+    ends = {"reciprocating": "small end", "rotating": "big end"}
+    for kind in inventory.kinds:
+        both = bool(np.any(kind.reciprocating) and np.any(kind.rotating))  # a rod
+        for share, values in (("reciprocating", kind.reciprocating), ("rotating", kind.rotating)):
+            if np.any(values) and kind.count > 1:
+                label = f"{kind.name} ({ends[share]})" if both else kind.name
+                sigma = float(np.std(values, ddof=1))
+                out.append(PartScatter(label, share, sigma))  # type: ignore[arg-type]
+    return tuple(out)
+
+
+def scatter_of_parts(
+    engine: Any,
+    parts: str | os.PathLike[str] | Inventory,
+    options: ShopOptions,
+    samples: int,
+    seed: int = 0,
+    scale_step: float = 0.0,
+) -> ScatterStudy:
+    """Monte Carlo of the parts file's scatter (:func:`part_scatter`) for ``engine`` balanced
+    with ``options.fraction``; with ``rotor_mass`` and correction planes given, the
+    probability of meeting ``options.grade`` (planes from the crankshaft mid-point)."""
+    from ..io.parts_file import load_parts_file
+    from ..shop.planes import plane_tolerances
+
+    _name, model = engine_model(engine)
+    inventory = parts if isinstance(parts, Inventory) else load_parts_file(parts)
+    if options.correction_planes is None:
+        raise InputError("correction_planes", None, "is required for the residual per plane")
+    tolerance = None
+    if options.rotor_mass is not None:
+        bearings = options.bearings or options.correction_planes
+        centre = options.center_of_mass
+        _allocation, tolerance = plane_tolerances(
+            options.grade,
+            options.rotor_mass,
+            options.speed or model.speed,
+            bearings,
+            float(np.mean(bearings)) if centre is None else centre,
+            options.correction_planes,
+        )
+    return scatter_study(
+        model,
+        part_scatter(inventory),
+        options.correction_planes,
+        options.fraction,
+        samples,
+        seed=seed,
+        scale_step=scale_step,
+        plane_tolerance=tolerance,
+    )
