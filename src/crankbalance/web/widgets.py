@@ -154,22 +154,36 @@ class Tab(ABC):
             ui.notify(f"Not computed: {self.page.problem()}", type="warning", multi_line=True)
         return c
 
-    def study_error(self, error: InputError) -> None:
-        if error.field in self.page.setting_inputs:
-            self.page.show_setting_errors({error.field: str(error)})
-        else:
-            ui.notify(str(error), type="negative", multi_line=True)
-
 
 class StudyTab(Tab):
-    """A tab whose study runs when the user asks. Its result belongs to the engine it was run
-    for, :attr:`~.app.Page.computed_for` (the one rule of :meth:`~.app.Page.fresh`: results
-    belong to (engine spec, orders)). Once the form's computed engine is another one, the
-    result is cleared and the tab says "Not computed for this engine: re-run"; going back to
-    the old engine does not bring it back, only a new run does."""
+    """A tab whose study runs when the user asks. Its result belongs to what it was run for,
+    :meth:`stamp`: the engine (:attr:`~.app.Page.computed_for`, the one rule of
+    :meth:`~.app.Page.fresh`: results belong to (engine spec, orders)) and the study's own
+    settings as typed (those whose keys start with :attr:`prefixes`). Once the form's
+    computed engine is another one, or one of those settings is edited, the result is
+    cleared and the tab says "Not computed for this engine (or these settings): re-run";
+    going back to the old engine or value does not bring it back, only a new run does."""
 
-    #: :attr:`~.app.Page.computed_for` of the shown result; None while there is none
-    result_for: tuple[Any, int] | None = None
+    #: :meth:`stamp` of the shown result; None while there is none
+    result_for: tuple[Any, ...] | None = None
+    #: the setting keys of this study start with one of these (``("cw_",)``)
+    prefixes: tuple[str, ...] = ()
+
+    def stamp(self) -> tuple[Any, ...]:
+        """What a run started now belongs to: the engine and the study's settings."""
+        own = tuple(
+            (key, str(value).strip())
+            for key, value in sorted(self.page.project.settings.items())
+            if key.startswith(self.prefixes)
+        )
+        return (self.page.computed_for, own)
+
+    def settings(self, *keys: str) -> None:
+        """The inputs of the study's settings (inside the current layout element); an edit
+        of one marks the shown result as not computed for these settings."""
+        for key in keys:
+            assert key.startswith(self.prefixes), f"{key} is no setting of the {self.name} tab"
+            self.page.setting(key, self.settings_changed)
 
     def rerun_note(self) -> None:
         """The note shown in place of a cleared result (call it in :meth:`build`)."""
@@ -186,29 +200,37 @@ class StudyTab(Tab):
         """Forget the study's result and empty everything that shows it."""
 
     def show(self, c: Any) -> None:
-        if self.result_for is not None and self.result_for != self.page.computed_for:
-            self.drop(c.spec.name)
+        if self.result_for is not None and self.result_for[0] != self.page.computed_for:
+            self.drop(f"this engine ({c.spec.name})")
+
+    def settings_changed(self) -> None:
+        if self.result_for is not None and self.result_for != self.stamp():
+            self.drop("these settings")
 
     def reset(self) -> None:
         self.result_for = None
         self.clear()
         self.rerun.set_visibility(False)
 
-    def owns(self, started: tuple[Any, int] | None) -> bool:
-        """After a run that started on the engine ``started``: whether its result may be
-        shown (the form's engine is still that one); else the result is dropped."""
-        if started is not None and started == self.page.computed_for:
+    def owns(self, started: tuple[Any, ...]) -> bool:
+        """After a run that started at :meth:`stamp` ``started``: whether its result may be
+        shown (the form's engine and the study's settings are still those); else the
+        result is dropped."""
+        now = self.stamp()
+        if started[0] is not None and started == now:
             self.result_for = started
             self.rerun.set_visibility(False)
             return True
         c = self.page.project.computed
-        self.drop(c.spec.name if c is not None else "")
+        engine = f"this engine ({c.spec.name if c is not None else ''})"
+        self.drop(engine if started[0] != now[0] else "these settings")
         return False
 
-    def drop(self, engine: str) -> None:
+    def drop(self, what: str) -> None:
+        """Clear the result: it was computed for another engine or other settings."""
         self.result_for = None
         self.clear()
-        self.rerun.set_text(f"Not computed for this engine ({engine}): re-run the study.")
+        self.rerun.set_text(f"Not computed for {what}: re-run the study.")
         self.rerun.set_visibility(True)
 
 
