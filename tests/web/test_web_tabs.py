@@ -18,11 +18,9 @@ pytest.importorskip("nicegui")
 playwright_api = pytest.importorskip("playwright.sync_api")
 
 #: screenshots for a person to look at (not committed): CRANKBALANCE_SHOTS=folder
+from .conftest import DRAWN  # noqa: E402
+
 SHOTS = os.environ.get("CRANKBALANCE_SHOTS")
-#: true once every plotly figure visible in the open tab panel is drawn with its data
-DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
-    .filter((e) => e.offsetParent !== null)
-    .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
 #: plotly complains when a figure in a hidden tab panel is resized; harmless
 BENIGN = ("Resize must be passed a displayed plot div element",)
 
@@ -57,6 +55,7 @@ def _shoot(page: Any, name: str) -> None:
     page.wait_for_function(DRAWN)
     for width, height in ((1280, 800), (390, 844)):
         page.set_viewport_size({"width": width, "height": height})
+        page.wait_for_function(DRAWN)  # redrawn for the new width
         page.evaluate("window.scrollTo(0, 0)")
         page.screenshot(path=f"{SHOTS}/{name}-{width}.png", full_page=True)
     page.set_viewport_size({"width": 1500, "height": 1000})

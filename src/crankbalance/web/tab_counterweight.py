@@ -16,7 +16,7 @@ from nicegui import run, ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, plot_or_none, send_download
+from .widgets import StudyTab, button_row, plot_or_none, send_download
 
 
 def radial_space(model: Any) -> float:
@@ -86,7 +86,7 @@ class CounterweightTab(StudyTab):
                     .classes("w-48")
                     .mark("cw-choice")
                 )
-                with ui.row().classes("gap-1"):
+                with button_row():
                     for fmt in ("svg", "dxf", "stl"):
                         ui.button(
                             f"Export {fmt.upper()}", on_click=lambda f=fmt: self.export_design(f)

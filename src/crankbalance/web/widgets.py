@@ -33,9 +33,63 @@ LEGEND: dict[str, Any] = {
     "orientation": "h",
     "x": 0,
     "xanchor": "left",
-    "y": -0.12,
-    "yanchor": "top",
+    "y": 0,
+    "yref": "container",
+    "yanchor": "bottom",
 }
+#: plotly's height of a figure that sets none [px]
+DEFAULT_HEIGHT = 450
+#: on a phone (below 600 px) a horizontal legend puts about one entry on a line: the
+#: figure grows by this for each entry [px], so the plot keeps its height; figures with
+#: subplots side by side keep at least this width per column [px] and scroll in their card
+PHONE_LEGEND_LINE = 26
+PHONE_COLUMN = 280
+#: characters of a figure's title line shown on one line (longer titles wrap at a space)
+TITLE_LINE = 36
+#: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
+FIGURE_CSS = """
+.cb-figure-box { width: 100%; overflow-x: auto; }
+.cb-figure { height: var(--cb-height); }
+@media (max-width: 600px) {
+  .cb-figure { height: var(--cb-phone-height) !important; min-width: var(--cb-phone-width); }
+}
+"""
+
+
+def button_row() -> Any:
+    """A row of buttons that wraps (and stays a row on a phone, where the page's rows turn
+    into columns)."""
+    return ui.element("div").classes("flex flex-wrap items-center gap-1")
+
+
+def legend_entries(data: list[dict[str, Any]]) -> int:
+    """How many entries the legend of a figure (its traces as plotly JSON) shows."""
+    groups = set()
+    for trace in data:
+        if trace.get("showlegend") is False or not trace.get("name"):
+            continue
+        groups.add(trace.get("legendgroup") or id(trace))
+    return len(groups)
+
+
+def subplot_columns(layout: dict[str, Any]) -> int:
+    """How many subplots stand side by side (distinct x domains of the 2-D axes)."""
+    starts = {
+        round(float(axis.get("domain", [0, 1])[0]), 3)
+        for key, axis in layout.items()
+        if key.startswith("xaxis") and isinstance(axis, dict)
+    }
+    return max(1, len(starts))
+
+
+def wrap_title(text: str, width: int = TITLE_LINE) -> str:
+    """A figure title whose first line is longer than ``width`` characters, broken at the
+    last space before it (plotly does not wrap titles; a phone would cut them)."""
+    first, sep, rest = text.partition("<br>")
+    if len(first) <= width or " " not in first[:width]:
+        return text
+    cut = first.rfind(" ", 0, width)
+    return first[:cut] + "<br>" + first[cut + 1 :] + sep + rest
 
 
 class FigureCard:
@@ -48,21 +102,24 @@ class FigureCard:
         self.figure: Any | None = None
         self.stale = True
         with ui.card().classes("w-full") as self.card:
-            with ui.row().classes("w-full items-center justify-between"):
+            with ui.element("div").classes(
+                "w-full flex flex-wrap items-center justify-between gap-1"
+            ):
                 ui.label(title).classes("text-subtitle1")
-                with ui.row().classes("gap-1"):
+                with button_row():
                     formats: tuple[FigureFormat, ...] = ("png", "svg", "csv", "json")
                     for fmt in formats:
                         ui.button(fmt.upper(), on_click=lambda f=fmt: self.download(f)).props(
                             "flat dense size=sm"
                         ).mark(f"download-{name}-{fmt}")
             self.note = ui.label("").classes("text-grey-7")
-            self.plot = (
-                ui.plotly({"data": [], "layout": {}})
-                .classes("w-full")
-                .props(f"data-testid=figure-{name}")
-                .mark(f"figure-{name}")
-            )
+            with ui.element("div").classes("cb-figure-box"):
+                self.plot = (
+                    ui.plotly({"data": [], "layout": {}})
+                    .classes("w-full cb-figure")
+                    .props(f"data-testid=figure-{name}")
+                    .mark(f"figure-{name}")
+                )
 
     def refresh(self) -> None:
         try:
@@ -76,8 +133,19 @@ class FigureCard:
         self.note.set_text("")
         self.plot.set_visibility(True)
         shown = self.figure.to_plotly_json()
-        shown["layout"] = {**shown.get("layout", {}), **FIGURE_LAYOUT}
-        shown["layout"]["legend"] = {**shown["layout"].get("legend", {}), **LEGEND}
+        layout = {**shown.get("layout", {}), **FIGURE_LAYOUT}
+        layout["legend"] = {**layout.get("legend", {}), **LEGEND}
+        title = layout.get("title")
+        if isinstance(title, dict) and isinstance(title.get("text"), str):
+            layout["title"] = {**title, "text": wrap_title(title["text"])}
+        # the height goes to the element (CSS), so that a phone can make room for the legend
+        height = int(layout.pop("height", None) or DEFAULT_HEIGHT)
+        phone = height + PHONE_LEGEND_LINE * legend_entries(shown.get("data", []))
+        self.plot.style(
+            f"--cb-height: {height}px; --cb-phone-height: {phone}px; "
+            f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
+        )
+        shown["layout"] = layout
         self.plot.update_figure(shown)
         self.stale = False
 
