@@ -45,7 +45,7 @@ DEFAULT_HEIGHT = 450
 PHONE_LEGEND_LINE = 26
 PHONE_COLUMN = 280
 #: characters of a figure's title line shown on one line (longer titles wrap at a space)
-TITLE_LINE = 36
+TITLE_LINE = 32
 #: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
 FIGURE_CSS = """
 .cb-figure-box { width: 100%; overflow-x: auto; }
