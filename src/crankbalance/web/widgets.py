@@ -44,14 +44,16 @@ DEFAULT_HEIGHT = 450
 #: subplots side by side keep at least this width per column [px] and scroll in their card
 PHONE_LEGEND_LINE = 26
 PHONE_COLUMN = 280
-#: characters of a figure's title line shown on one line (longer titles wrap at a space)
-TITLE_LINE = 32
+#: characters of a figure's title line shown on one line (longer titles wrap at a space;
+#: on a phone the title's font is smaller, so that this many fit the width)
+TITLE_LINE = 48
 #: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
 FIGURE_CSS = """
 .cb-figure-box { width: 100%; overflow-x: auto; }
 .cb-figure { height: var(--cb-height); }
 @media (max-width: 600px) {
   .cb-figure { height: var(--cb-phone-height) !important; min-width: var(--cb-phone-width); }
+  .cb-figure .gtitle { font-size: 12px !important; }
 }
 """
 
