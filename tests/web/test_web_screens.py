@@ -75,6 +75,14 @@ BENIGN = ("Resize must be passed a displayed plot div element",)
 def _open_tab(page: Any, tab: str) -> None:
     page.get_by_role("tab", name=tab, exact=True).click()
     expect(page.get_by_role("tab", name=tab, exact=True)).to_have_attribute("aria-selected", "true")
+    page.wait_for_function(SETTLED)  # the panels' slide is over
+
+
+#: one tab panel shown and no Quasar transition running (while the panels slide, the old
+#: and the new one are both on the page, partly off the screen)
+SETTLED = """() => [...document.querySelectorAll('.q-tab-panel')]
+        .filter((p) => p.offsetParent !== null).length === 1
+    && !document.querySelector('[class*="q-transition--"][class*="-active"]')"""
 
 
 def _run_study(page: Any, tab: str) -> None:
