@@ -21,6 +21,7 @@ error names the field the user typed.
 from __future__ import annotations
 
 import math
+import re
 import types
 from collections.abc import Callable, Mapping
 from functools import partial
@@ -78,6 +79,8 @@ MAX_SWEEP = 21
 MAX_SHAFT_POINTS = 2001
 #: most bearings, unbalance masses or phases of one balance shaft (``shaft check``)
 MAX_SHAFT_ITEMS = 64
+#: most holes drilled side by side in one web (one rebalancing)
+MAX_HOLES = 12
 #: the largest harmonic order any study computes
 MAX_ORDER = 64
 
@@ -243,6 +246,9 @@ class RebalanceOptions(StudyOptions):
         None, title="Counterweight CG radius", description="empty: crank radius"
     )
     hole_diameter: Length = Field(0.008, title="Drill diameter", description="e.g. 8 mm")
+    holes: Whole = Field(
+        1, ge=1, le=MAX_HOLES, title="Holes per web", description="side by side, e.g. 2"
+    )
     hole_radius: Length | None = Field(
         None, title="Hole radius", description="empty: counterweight CG radius"
     )
@@ -784,7 +790,7 @@ def parse_options(
             ) from None
         if isinstance(inner, InputError) and not loc:  # a check across fields
             field, text = inner.field, inner.allowed
-            text = text if text.startswith(("must", "the ")) else f"must be {text}"
+            text = text if text.startswith("the ") else predicate(text)
             raise InputError(name(field), given.get(field, inner.value), text) from None
         if key not in model.model_fields:
             raise InputError(name(key), value, str(first.get("msg", ""))) from None
@@ -794,10 +800,32 @@ def parse_options(
         elif first["type"] in ("finite_number",) or (
             isinstance(inner, ValueError) and "finite" in str(inner)
         ):
-            text = f"{text} (finite)"
-        if not text.startswith("must"):
-            text = f"must be {text}"
-        raise InputError(name(key), value, text) from None
+            text = _finite(text)
+        raise InputError(name(key), value, predicate(text)) from None
+
+
+#: how a message about a value goes on after the value ("'5 kg' has the wrong unit ...")
+VERBS = ("must ", "has ", "is ", "needs ", "cannot ")
+
+
+def predicate(text: str) -> str:
+    """A message about a value as what is said of it, so that "FIELD = VALUE: TEXT" and
+    "Label: VALUE TEXT" read as sentences: a description of what is allowed ("a number
+    from 1 to 64") becomes "must be a number from 1 to 64"; "a density needs a unit, ..."
+    becomes "needs a unit, ..."; "must ...", "has the wrong unit ..." stay."""
+    if text.startswith(VERBS):
+        return text
+    found = re.match(r"an? \w+ (needs .*)", text)
+    if found:
+        return found.group(1)
+    return f"must be {text}"
+
+
+def _finite(text: str) -> str:
+    """What is allowed, said to be finite: "a whole number from 1 to 64" -> "a finite whole
+    number from 1 to 64"."""
+    found = re.match(r"an? (.*)", text)
+    return f"a finite {found.group(1)}" if found else f"{text} (a finite number)"
 
 
 def default_text(model: type[StudyOptions], name: str) -> str:

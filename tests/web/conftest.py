@@ -33,6 +33,14 @@ from crankbalance.web.app import root  # noqa: E402
 HANG_GUARD = 180.0
 ROOT = Path(__file__).resolve().parents[2]
 CHROMIUM = "/usr/bin/chromium"
+#: (browser) every plotly figure visible in the open tab panel is drawn with its data and
+#: laid out for the window as it is now: after a change of the window's size plotly redraws
+#: a moment later, and a 3-D scene is blank until then (its canvas is cleared by the resize)
+DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
+    .filter((e) => e.offsetParent !== null)
+    .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0
+                  && e._fullLayout
+                  && Math.abs(e._fullLayout.width - e.getBoundingClientRect().width) < 1)"""
 
 
 async def until(condition: Callable[[], Any], what: str = "the page to finish") -> None:

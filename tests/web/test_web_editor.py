@@ -19,6 +19,8 @@ from nicegui.testing.user import User
 from crankbalance.io.engine_file import load_engine
 from crankbalance.studies.engine import analyze
 
+from .conftest import DRAWN
+
 pytestmark = pytest.mark.anyio
 ROOT = Path(__file__).resolve().parents[2]
 
@@ -223,6 +225,7 @@ def _shoot(page, name: str) -> None:
     page.evaluate("window.scrollTo(0, 0)")  # the fixed header at the top of the picture
     for width, height in ((1280, 800), (390, 844)):
         page.set_viewport_size({"width": width, "height": height})
+        page.wait_for_function(DRAWN)  # redrawn for the new width (else a blank 3-D scene)
         page.screenshot(path=str(SHOTS / f"{name}_{width}.png"), full_page=True)
     page.set_viewport_size({"width": 1500, "height": 1000})
 

@@ -18,11 +18,9 @@ pytest.importorskip("nicegui")
 playwright_api = pytest.importorskip("playwright.sync_api")
 
 #: screenshots for a person to look at (not committed): CRANKBALANCE_SHOTS=folder
+from .conftest import DRAWN  # noqa: E402
+
 SHOTS = os.environ.get("CRANKBALANCE_SHOTS")
-#: true once every plotly figure visible in the open tab panel is drawn with its data
-DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
-    .filter((e) => e.offsetParent !== null)
-    .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
 #: plotly complains when a figure in a hidden tab panel is resized; harmless
 BENIGN = ("Resize must be passed a displayed plot div element",)
 
@@ -57,6 +55,7 @@ def _shoot(page: Any, name: str) -> None:
     page.wait_for_function(DRAWN)
     for width, height in ((1280, 800), (390, 844)):
         page.set_viewport_size({"width": width, "height": height})
+        page.wait_for_function(DRAWN)  # redrawn for the new width
         page.evaluate("window.scrollTo(0, 0)")
         page.screenshot(path=f"{SHOTS}/{name}-{width}.png", full_page=True)
     page.set_viewport_size({"width": 1500, "height": 1000})
@@ -221,4 +220,148 @@ def test_counterweight_radial_space_from_the_engine(server: str, page: Any) -> N
             radius > 108.0
         )
     _shoot(page, "counterweight-space")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def _rerun(page: Any, tab: str) -> Any:
+    return page.locator(f"[data-testid={tab}-rerun]").first
+
+
+def test_study_result_belongs_to_its_settings(server: str, page: Any) -> None:
+    """A study's result belongs to (engine, that study's settings): editing one of its
+    settings after a run clears it and says so; typing the old value back does not bring
+    it back, only a new run does. Another study's setting leaves it alone."""
+    errors = _open(page, server, "single", "Single cylinder")
+    page.get_by_role("button", name="Compute study").click()
+    _text(page, "Holes:", r"Passes:|none")
+    # the optimiser's settings are not this study's: its result stays
+    page.get_by_role("tab", name="Counterweight design").click()
+    _setting(page, "cw_iterations").fill("2")
+    _setting(page, "cw_population").fill("64")
+    playwright_api.expect(_setting(page, "cw_population")).to_have_value("64")
+    page.get_by_role("tab", name="Single cylinder").click()
+    _text(page, "Primary force", r"Least peak at")
+    note = _rerun(page, "single")
+    playwright_api.expect(note).to_be_hidden()
+    _setting(page, "sc_balance_factor").fill("0.6")
+    playwright_api.expect(note).to_contain_text("Not computed for these settings: re-run")
+    panel = page.locator(".q-tab-panel:visible").first
+    playwright_api.expect(panel).to_contain_text("Compute the study for the drilling plan.")
+    playwright_api.expect(panel.locator(".js-plotly-plot:visible")).to_have_count(0)
+    assert "Least peak at" not in panel.inner_text()
+    _setting(page, "sc_balance_factor").fill("0.5")  # the old value: still not computed
+    playwright_api.expect(_setting(page, "sc_balance_factor")).to_have_value("0.5")
+    playwright_api.expect(note).to_be_visible()
+    assert "Least peak at" not in panel.inner_text()
+    page.get_by_role("button", name="Compute study").click()
+    _text(page, "Primary force", r"Least peak at")
+    playwright_api.expect(note).to_be_hidden()
+    # the counterweight optimiser: its density edited after a run
+    page.get_by_role("tab", name="Counterweight design").click()
+    page.get_by_role("button", name="Optimise").click()
+    _text(page, "feasible designs", r"Least mass:")
+    _setting(page, "cw_density").fill("2700 kg/m^3")
+    playwright_api.expect(_rerun(page, "counterweight")).to_contain_text(
+        "Not computed for these settings: re-run"
+    )
+    panel = page.locator(".q-tab-panel:visible").first
+    assert "feasible designs" not in panel.inner_text()
+    playwright_api.expect(panel.locator(".js-plotly-plot:visible")).to_have_count(0)
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def _field_of(page: Any, key: str) -> Any:
+    """The Quasar field of the setting ``key`` (its label, input and message)."""
+    return page.locator(
+        f".q-field:has([data-testid=setting-{key}]), .q-field[data-testid=setting-{key}]"
+    ).first
+
+
+#: tab, setting, text typed, message shown under it
+TYPED = (
+    (
+        "Single cylinder",
+        "sc_balance_factor",
+        "3",
+        "Balance factor: '3' must be a number from 0 to 2",
+    ),
+    ("Single cylinder", "rb_holes", "0", "Holes per web: '0' must be a whole number from 1 to 12"),
+    (
+        "Single cylinder",
+        "rb_hole_diameter",
+        "8 kg",
+        "Drill diameter: '8 kg' has the wrong unit for a length; write e.g. '40 mm'",
+    ),
+    (
+        "Counterweight design",
+        "cw_density",
+        "8000",
+        "Density: '8000' needs a unit, e.g. '7850 kg/m^3'",
+    ),
+    (
+        "Counterweight design",
+        "cw_min_balance",
+        "nan",
+        "Smallest balance [%]: 'nan' must be a finite number from 1 to 1000",
+    ),
+    (
+        "Counterweight design",
+        "cw_max_radius",
+        "1e9 mm",
+        "Largest radial space: '1e9 mm' must be a length with a unit, e.g. '40 mm', from "
+        "0.001 mm to 100000 mm",
+    ),
+)
+
+
+def test_setting_messages_in_the_words_of_the_form(server: str, page: Any) -> None:
+    """A wrong unit, a missing unit, a NaN, a value out of range typed into settings: the
+    message under each field names it by its label and reads as a sentence (no key, no
+    "must be has the wrong unit")."""
+    errors = _open(page, server, "single", "Single cylinder")
+    for tab, key, typed, shown in TYPED:
+        page.get_by_role("tab", name=tab).click()
+        _setting(page, key).fill(typed)
+        field = _field_of(page, key)
+        playwright_api.expect(field).to_contain_text(shown)
+        text = field.inner_text()
+        for internal in ("sc_", "rb_", "cw_", "must be has", "must be a density"):
+            assert internal not in text, text
+    _shoot(page, "setting-messages")
+    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+
+
+def test_holes_per_web_in_the_drilling_plan(server: str, page: Any) -> None:
+    """*Holes per web*: three holes per web drill a third as deep as one (axial holes at the
+    same radius); the plan, its table and its drawing equal the library's rebalancing."""
+    from crankbalance.io.engine_file import load_engine
+    from crankbalance.options import RebalanceOptions, SingleCylinderOptions
+    from crankbalance.studies.build import build_model
+    from crankbalance.studies.cylinder import rebalance_cylinder
+
+    model = build_model(load_engine("single"))
+    one, three = (
+        rebalance_cylinder(
+            model, SingleCylinderOptions(), RebalanceOptions(new_reciprocating="359 g", holes=n)
+        )
+        for n in (1, 3)
+    )
+    assert three.iterations[-1].depth == pytest.approx(one.iterations[-1].depth / 3, rel=0.02)
+    errors = _open(page, server, "single", "Single cylinder")
+    _setting(page, "rb_new_reciprocating").fill("359 g")
+    _setting(page, "rb_holes").fill("3")
+    page.get_by_role("button", name="Compute study").click()
+    plan = _text(page, "Holes:", r"3 per web on 2 webs \(6 in all\)")
+    depth = three.iterations[-1].depth
+    assert f"Depth: {depth * 1e3:.3f} mm" in plan
+    assert f"{one.iterations[-1].depth * 1e3:.3f} mm" not in plan
+    removed = three.iterations[-1].removed_mass
+    assert f"Mass removed per web: {removed / 2 * 1e3:.2f} g" in plan
+    page.wait_for_function(DRAWN)
+    holes = page.evaluate(
+        """() => [...document.querySelectorAll('.js-plotly-plot')]
+        .flatMap((e) => e._fullData || []).filter((t) => t.legendgroup === 'holes').length"""
+    )
+    assert holes == 3
+    _shoot(page, "single-three-holes")
     assert not [e for e in errors if not e.startswith(BENIGN)], errors

@@ -164,7 +164,9 @@ def rebalance_cylinder(
     cw_mass = options.cw_mass
     if cw_mass is None:
         cw_mass = counterweight_moment(old_rot, old_rec, single.balance_factor, r) / radius
-    holes = DrilledHoles(diameter=options.hole_diameter, radius=options.hole_radius or radius)
+    holes = DrilledHoles(
+        diameter=options.hole_diameter, radius=options.hole_radius or radius, number=options.holes
+    )
     return rebalance(
         old_rot,
         old_rec,

@@ -13,36 +13,39 @@ from typing import TYPE_CHECKING
 from nicegui import ui
 
 from ..errors import InputError
-from .studies import SETTING_FIELDS
+from .studies import SETTING_FIELDS, worded
 
 if TYPE_CHECKING:
     from .app import Page
 
 
-def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[str | None, str]:
-    """(the setting key the message belongs to, or None; the message without the key).
+#: library arguments whose value is no number the user typed (a correction's kind)
+UNTYPED = frozenset({"correction"})
 
-    ``aliases`` maps argument names of the library to the tab's setting keys. The message
-    is the value given and what is allowed; a field that is no setting keeps only that."""
+
+def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[str | None, str]:
+    """(the setting key the message belongs to, or None; the message in the form's words).
+
+    ``aliases`` maps argument names of the library to the tab's setting keys. A message of
+    a setting names it by its label (:func:`~.studies.worded`); one of no setting is the
+    value given and what is wrong."""
     aliases = aliases or {}
     key = aliases.get(error.field, error.field)
-    given = "" if error.value is None else f"{error.value!r}: "
+    value = None if error.field in UNTYPED else error.value
     text = error.allowed
     for name, setting in aliases.items():  # library names inside the text, as labelled
         if setting in SETTING_FIELDS:
             text = re.sub(rf"\b{name}\b", SETTING_FIELDS[setting][0], text)
-    return (key if key in SETTING_FIELDS else None), f"{given}{text}"
+    if key in SETTING_FIELDS:
+        return key, worded(key, value, text)
+    return None, text if value is None else f"{value!r}: {text}"
 
 
 def show_error(page: Page, error: InputError, aliases: dict[str, str] | None = None) -> str:
-    """Show a study's error beside its setting (and in a notification naming the setting's
-    label, the input may be scrolled away); returns the message as shown in the tab."""
+    """Show a study's error beside its setting (and in a notification, the input may be
+    scrolled away); returns the message as shown in the tab."""
     key, text = in_words(error, aliases)
-    if key is None:
-        ui.notify(text, type="negative", multi_line=True)
-        return text
-    worded = f"{SETTING_FIELDS[key][0]}: {text}"
-    if key in page.setting_inputs:
+    if key is not None and key in page.setting_inputs:
         page.show_setting_errors({key: text})
-    ui.notify(worded, type="negative", multi_line=True)
-    return worded
+    ui.notify(text, type="negative", multi_line=True)
+    return text

@@ -280,6 +280,7 @@ DEFAULT_SETTINGS: dict[str, Any] = {
     "rb_cw_mass": "",
     "rb_cw_radius": "",
     "rb_hole_diameter": "8 mm",
+    "rb_holes": "1",
     "rb_hole_radius": "",
     # balance shaft
     "bs_length": "300 mm",
@@ -862,7 +863,7 @@ def _settings_from_text(text: str) -> dict[str, Any]:
 def _settings_problem(settings: dict[str, Any]) -> str | None:
     """The message of the first setting of a saved project that is unknown, not a text or
     a number, or not a valid value (None when all are good)."""
-    from .studies import check_settings  # studies imports this module
+    from .studies import setting_errors  # studies imports this module
 
     for key, value in settings.items():
         if key not in DEFAULT_SETTINGS:
@@ -876,8 +877,8 @@ def _settings_problem(settings: dict[str, Any]) -> str | None:
         else:
             continue
         return str(InputError(key, value, allowed))
-    errors = check_settings({k: v for k, v in settings.items() if k not in SETTING_CHOICES})
-    return next(iter(errors.values()), None)
+    errors = setting_errors({k: v for k, v in settings.items() if k not in SETTING_CHOICES})
+    return next((str(error) for error in errors.values()), None)
 
 
 def _pop_path(data: dict[str, Any], path: tuple[str, ...]) -> Any:

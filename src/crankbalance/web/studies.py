@@ -19,6 +19,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import (
+    VERBS,
     AnalysisOptions,
     CounterweightOptions,
     Options,
@@ -68,9 +69,7 @@ def options(settings: dict[str, Any], model: type[Options]) -> Options:
         text = str(settings.get(key, "")).strip()
         if not text:
             if info.default is not None:
-                raise InputError(
-                    key, None, f"{info.title or name} is required ({allowed(model, name)})"
-                )
+                raise InputError(key, None, f"must be given: {allowed(model, name)}")
             continue
         kind, _ = field_kind(model, name)
         values[name] = _split(text) if kind == "list" else text
@@ -93,9 +92,18 @@ def setting(settings: dict[str, Any], key: str) -> Any:
 
 
 def check_settings(settings: dict[str, Any]) -> dict[str, str]:
-    """Messages of the settings that do not validate, by key (empty ones are checked when
-    their study runs)."""
-    errors: dict[str, str] = {}
+    """Messages of the settings that do not validate, by key, in the words of the form
+    (:func:`worded`; empty ones are checked when their study runs)."""
+    return {
+        key: worded(key, error.value, error.allowed)
+        for key, error in setting_errors(settings).items()
+    }
+
+
+def setting_errors(settings: dict[str, Any]) -> dict[str, InputError]:
+    """The errors of the settings that do not validate, by key, each naming its key and the
+    text as given (a saved project's settings line is refused with it)."""
+    errors: dict[str, InputError] = {}
     for prefix, model in PREFIXES.items():
         for name in model.model_fields:
             key = prefix + name
@@ -106,8 +114,17 @@ def check_settings(settings: dict[str, Any]) -> dict[str, str]:
             try:
                 parse_options(model, {name: value}, _namer(prefix))
             except InputError as error:
-                errors[key] = str(InputError(key, text, error.allowed))
+                errors[key] = InputError(key, text, error.allowed)
     return errors
+
+
+def worded(key: str, value: Any, allowed: str) -> str:
+    """A message about a setting in the words of the form: its label, the value as typed and
+    what is wrong ("Density: '5 kg' has the wrong unit for a density; write e.g. ...")."""
+    label = SETTING_FIELDS[key][0] if key in SETTING_FIELDS else key
+    if allowed.startswith(VERBS):  # said of the value: "'5 kg' has the wrong unit ..."
+        return f"{label} {allowed}" if value is None else f"{label}: {value!r} {allowed}"
+    return f"{label}: {allowed}" if value is None else f"{label} ({value!r}): {allowed}"
 
 
 # --------------------------------------------------------------------------- counterweight
@@ -161,7 +178,9 @@ def _single(computed: Computed, settings: dict[str, Any]) -> SingleCylinderOptio
     o = options(settings, SingleCylinderOptions)
     count = computed.analysis.model.cylinders
     if o.cylinder > count:
-        raise InputError("sc_cylinder", o.cylinder, f"Cylinder must be a number from 1 to {count}")
+        raise InputError(
+            "sc_cylinder", o.cylinder, f"must be a whole number from 1 to {count} (the engine's)"
+        )
     return o
 
 

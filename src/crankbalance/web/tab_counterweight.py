@@ -16,7 +16,7 @@ from nicegui import run, ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, plot_or_none, send_download
+from .widgets import StudyTab, button_row, plot_or_none, send_download
 
 
 def radial_space(model: Any) -> float:
@@ -51,6 +51,7 @@ ALIASES = {
 
 class CounterweightTab(StudyTab):
     name = "counterweight"
+    prefixes = ("cw_",)
     optimum: Any = None
 
     def build(self) -> None:
@@ -58,7 +59,7 @@ class CounterweightTab(StudyTab):
             with ui.card():
                 ui.label("Main constraining parameters").classes("text-subtitle1")
                 self.cw_requirement = ui.markdown("").mark("cw-requirement")
-                for key in (
+                self.settings(
                     "cw_density",
                     "cw_max_mass",
                     "cw_max_radius",
@@ -66,8 +67,7 @@ class CounterweightTab(StudyTab):
                     "cw_iterations",
                     "cw_population",
                     "cw_seed",
-                ):
-                    self.page.setting(key)
+                )
                 self.cw_space = ui.markdown("").classes("text-grey-8 max-w-xs").mark("cw-space")
                 ui.button("Optimise", on_click=self.optimise).props("color=primary").mark(
                     "optimise"
@@ -86,7 +86,7 @@ class CounterweightTab(StudyTab):
                     .classes("w-48")
                     .mark("cw-choice")
                 )
-                with ui.row().classes("gap-1"):
+                with button_row():
                     for fmt in ("svg", "dxf", "stl"):
                         ui.button(
                             f"Export {fmt.upper()}", on_click=lambda f=fmt: self.export_design(f)
@@ -135,7 +135,7 @@ class CounterweightTab(StudyTab):
         if not str(settings.get("cw_max_radius", "")).strip():
             settings["cw_max_radius"] = f"{limit * 1e3:.6g} mm"  # the engine's space
         self.cw_summary.set_content("optimising …")
-        started = self.page.computed_for
+        started = self.stamp()
         try:
             optimum = await run.io_bound(studies.run_counterweight, c, settings)
         except InputError as error:
@@ -149,7 +149,7 @@ class CounterweightTab(StudyTab):
         if optimum is None:
             self.cw_summary.set_content("optimisation cancelled (server stopping): no result")
             return
-        if not self.owns(started):  # the engine was edited while the optimiser ran
+        if not self.owns(started):  # the engine or a setting was edited meanwhile
             return
         self.optimum = optimum
         self.cw_choice.set_options(studies.design_choices(optimum), value="least mass")

@@ -9,7 +9,7 @@ from nicegui import ui
 from .. import figures
 from .crank_editor import CrankEditor
 from .project import BALANCING_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
-from .widgets import Tab
+from .widgets import FIGURE_CSS, Tab
 
 #: what the balance factor does, shown under the balancing fields
 BALANCE_FACTOR_WORDS = (
@@ -28,6 +28,7 @@ class EngineTab(Tab):
 
     def build(self) -> None:
         ui.add_css(".cb-warning .q-field__messages { color: #a15c00; font-weight: 500; }")
+        ui.add_css(FIGURE_CSS)  # the figures of every tab
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Engine general parameters").classes("text-subtitle1")

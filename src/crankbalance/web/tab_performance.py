@@ -15,20 +15,20 @@ from .widgets import StudyTab, fmt_g, plot_or_none
 
 class PerformanceTab(StudyTab):
     name = "performance"
+    prefixes = ("pf_",)
     result: Any = None
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card():
                 ui.label("One cylinder of this engine").classes("text-subtitle1")
-                for key in (
+                self.settings(
                     "pf_bore",
                     "pf_balance_factors",
                     "pf_crank_inertia",
                     "pf_friction_coefficient",
                     "pf_journal_diameter",
-                ):
-                    self.page.setting(key)
+                )
                 ui.button("Run the sweep", on_click=self.run_study).props("color=primary").mark(
                     "run-performance"
                 )
@@ -71,7 +71,7 @@ class PerformanceTab(StudyTab):
         if c is None:
             return
         settings = dict(self.page.project.settings)
-        started = self.page.computed_for
+        started = self.stamp()
         try:
             result = await run.io_bound(studies.performance_study, c, settings)
         except InputError as error:
@@ -80,7 +80,7 @@ class PerformanceTab(StudyTab):
         if result is None:
             ui.notify("sweep cancelled (server stopping): no result", type="warning")
             return
-        if not self.owns(started):  # the engine was edited while the sweep ran
+        if not self.owns(started):  # the engine or a setting was edited meanwhile
             return
         self.result = result
         rows = []

@@ -11,7 +11,7 @@ from nicegui import ui
 from .. import figures
 from ..errors import InputError
 from ..format import text
-from .widgets import FigureCard, Tab, fmt_g
+from .widgets import FigureCard, Tab, button_row, fmt_g
 
 
 def order_rows(c: Any) -> list[dict[str, Any]]:
@@ -165,7 +165,7 @@ class ResultsTab(Tab):
             with ui.card().classes("min-w-[340px]"):
                 ui.label("Balancing masses").classes("text-subtitle1")
                 self.balance_summary = ui.markdown("").mark("balance-summary")
-                with ui.row().classes("gap-1"):
+                with button_row():
                     ui.button(
                         "Analysis JSON", on_click=lambda: page.download_data("analysis")
                     ).props("outline dense").mark("download-analysis")

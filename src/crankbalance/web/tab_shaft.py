@@ -53,14 +53,14 @@ def applicability(analysis: Any) -> tuple[bool, str]:
 
 class ShaftTab(StudyTab):
     name = "shaft"
+    prefixes = ("bs_",)
     result: Any = None
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card().classes("max-w-full"):
                 ui.label("Shaft and objective").classes("text-subtitle1")
-                for key in ("bs_length", "bs_diameter", "bs_weight"):
-                    self.page.setting(key)
+                self.settings("bs_length", "bs_diameter", "bs_weight")
                 ui.button("Find the optimum", on_click=self.run_study).props("color=primary").mark(
                     "run-shaft"
                 )
@@ -101,6 +101,7 @@ class ShaftTab(StudyTab):
             self._clear()
             ui.notify("The placement study does not apply to this engine", type="warning")
             return
+        started = self.stamp()
         try:
             study, which = studies.shaft_placement(c, self.page.project.settings)
         except InputError as error:
@@ -112,7 +113,7 @@ class ShaftTab(StudyTab):
                 return
             self._clear(show_error(self.page, error, ALIASES))
             return
-        if not self.owns(self.page.computed_for):
+        if not self.owns(started):
             return
         self.result = study
         self.shaft_summary.set_content(

@@ -21,7 +21,8 @@ ALIASES = {
     "target_balance_factor": "sc_balance_factor",
     "hole_diameter": "rb_hole_diameter",
     "correction_radius": "rb_hole_radius",
-    "correction": "rb_hole_diameter",
+    "correction": "rb_holes",
+    "holes": "rb_holes",
 }
 #: columns of the passes table (the thesis' steps 3-8, one row per pass)
 PASS_COLUMNS = [
@@ -101,6 +102,7 @@ def rotor_mass_note(iso: dict[str, Any], given: str) -> str:
 
 class SingleTab(StudyTab):
     name = "single"
+    prefixes = ("sc_", "rb_")
     result: Any = None
     rebalanced: Any = None
 
@@ -109,29 +111,27 @@ class SingleTab(StudyTab):
         with ui.row().classes("w-full items-start gap-4"):
             with ui.card():
                 ui.label("Balance factor study").classes("text-subtitle1")
-                for key in ("sc_cylinder", "sc_balance_factor"):
-                    self.page.setting(key)
+                self.settings("sc_cylinder", "sc_balance_factor")
                 ui.button("Compute study", on_click=self.run_study).props("color=primary").mark(
                     "run-single"
                 )
                 self.single_summary = ui.markdown("").mark("single-summary")
             with ui.card():
                 ui.label("ISO 21940-11 check").classes("text-subtitle1")
-                for key in ("sc_grade", "sc_rotor_mass", "sc_residual"):
-                    self.page.setting(key)
+                self.settings("sc_grade", "sc_rotor_mass", "sc_residual")
                 self.iso_summary = ui.markdown("").mark("iso-summary")
                 self.iso_note = ui.markdown("").classes("text-orange-10").mark("iso-rotor-mass")
             with ui.card():
                 ui.label("Rebalancing after new parts").classes("text-subtitle1")
-                for key in (
+                self.settings(
                     "rb_new_reciprocating",
                     "rb_new_rotating",
                     "rb_cw_mass",
                     "rb_cw_radius",
                     "rb_hole_diameter",
+                    "rb_holes",
                     "rb_hole_radius",
-                ):
-                    self.page.setting(key)
+                )
                 self.rebalance_summary = ui.markdown("").mark("rebalance-summary")
             with ui.card().classes("grow max-w-full"):
                 ui.label("Drilling plan").classes("text-subtitle1")
@@ -186,6 +186,7 @@ class SingleTab(StudyTab):
         if c is None:
             return
         s = self.page.project.settings
+        started = self.stamp()
         try:
             study = studies.single_study(c, s)
             iso = studies.iso_check(c, s)
@@ -197,7 +198,7 @@ class SingleTab(StudyTab):
             for card in self.cards:
                 card.refresh()
             return
-        if not self.owns(self.page.computed_for):
+        if not self.owns(started):
             return
         self.result, self.rebalanced = study, reb
         self.single_summary.set_content(

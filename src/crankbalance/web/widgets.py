@@ -33,9 +33,65 @@ LEGEND: dict[str, Any] = {
     "orientation": "h",
     "x": 0,
     "xanchor": "left",
-    "y": -0.12,
-    "yanchor": "top",
+    "y": 0,
+    "yref": "container",
+    "yanchor": "bottom",
 }
+#: plotly's height of a figure that sets none [px]
+DEFAULT_HEIGHT = 450
+#: on a phone (below 600 px) a horizontal legend puts about one entry on a line: the
+#: figure grows by this for each entry [px], so the plot keeps its height; figures with
+#: subplots side by side keep at least this width per column [px] and scroll in their card
+PHONE_LEGEND_LINE = 26
+PHONE_COLUMN = 280
+#: characters of a figure's title line shown on one line (longer titles wrap at a space;
+#: on a phone the title's font is smaller, so that this many fit the width)
+TITLE_LINE = 48
+#: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
+FIGURE_CSS = """
+.cb-figure-box { width: 100%; overflow-x: auto; }
+.cb-figure { height: var(--cb-height); }
+@media (max-width: 600px) {
+  .cb-figure { height: var(--cb-phone-height) !important; min-width: var(--cb-phone-width); }
+  .cb-figure .gtitle { font-size: 12px !important; }
+}
+"""
+
+
+def button_row() -> Any:
+    """A row of buttons that wraps (and stays a row on a phone, where the page's rows turn
+    into columns)."""
+    return ui.element("div").classes("flex flex-wrap items-center gap-1")
+
+
+def legend_entries(data: list[dict[str, Any]]) -> int:
+    """How many entries the legend of a figure (its traces as plotly JSON) shows."""
+    groups = set()
+    for trace in data:
+        if trace.get("showlegend") is False or not trace.get("name"):
+            continue
+        groups.add(trace.get("legendgroup") or id(trace))
+    return len(groups)
+
+
+def subplot_columns(layout: dict[str, Any]) -> int:
+    """How many subplots stand side by side (distinct x domains of the 2-D axes)."""
+    starts = {
+        round(float(axis.get("domain", [0, 1])[0]), 3)
+        for key, axis in layout.items()
+        if key.startswith("xaxis") and isinstance(axis, dict)
+    }
+    return max(1, len(starts))
+
+
+def wrap_title(text: str, width: int = TITLE_LINE) -> str:
+    """A figure title whose first line is longer than ``width`` characters, broken at the
+    last space before it (plotly does not wrap titles; a phone would cut them)."""
+    first, sep, rest = text.partition("<br>")
+    if len(first) <= width or " " not in first[:width]:
+        return text
+    cut = first.rfind(" ", 0, width)
+    return first[:cut] + "<br>" + first[cut + 1 :] + sep + rest
 
 
 class FigureCard:
@@ -48,21 +104,24 @@ class FigureCard:
         self.figure: Any | None = None
         self.stale = True
         with ui.card().classes("w-full") as self.card:
-            with ui.row().classes("w-full items-center justify-between"):
+            with ui.element("div").classes(
+                "w-full flex flex-wrap items-center justify-between gap-1"
+            ):
                 ui.label(title).classes("text-subtitle1")
-                with ui.row().classes("gap-1"):
+                with button_row():
                     formats: tuple[FigureFormat, ...] = ("png", "svg", "csv", "json")
                     for fmt in formats:
                         ui.button(fmt.upper(), on_click=lambda f=fmt: self.download(f)).props(
                             "flat dense size=sm"
                         ).mark(f"download-{name}-{fmt}")
             self.note = ui.label("").classes("text-grey-7")
-            self.plot = (
-                ui.plotly({"data": [], "layout": {}})
-                .classes("w-full")
-                .props(f"data-testid=figure-{name}")
-                .mark(f"figure-{name}")
-            )
+            with ui.element("div").classes("cb-figure-box"):
+                self.plot = (
+                    ui.plotly({"data": [], "layout": {}})
+                    .classes("w-full cb-figure")
+                    .props(f"data-testid=figure-{name}")
+                    .mark(f"figure-{name}")
+                )
 
     def refresh(self) -> None:
         try:
@@ -76,8 +135,19 @@ class FigureCard:
         self.note.set_text("")
         self.plot.set_visibility(True)
         shown = self.figure.to_plotly_json()
-        shown["layout"] = {**shown.get("layout", {}), **FIGURE_LAYOUT}
-        shown["layout"]["legend"] = {**shown["layout"].get("legend", {}), **LEGEND}
+        layout = {**shown.get("layout", {}), **FIGURE_LAYOUT}
+        layout["legend"] = {**layout.get("legend", {}), **LEGEND}
+        title = layout.get("title")
+        if isinstance(title, dict) and isinstance(title.get("text"), str):
+            layout["title"] = {**title, "text": wrap_title(title["text"])}
+        # the height goes to the element (CSS), so that a phone can make room for the legend
+        height = int(layout.pop("height", None) or DEFAULT_HEIGHT)
+        phone = height + PHONE_LEGEND_LINE * legend_entries(shown.get("data", []))
+        self.plot.style(
+            f"--cb-height: {height}px; --cb-phone-height: {phone}px; "
+            f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
+        )
+        shown["layout"] = layout
         self.plot.update_figure(shown)
         self.stale = False
 
@@ -154,22 +224,36 @@ class Tab(ABC):
             ui.notify(f"Not computed: {self.page.problem()}", type="warning", multi_line=True)
         return c
 
-    def study_error(self, error: InputError) -> None:
-        if error.field in self.page.setting_inputs:
-            self.page.show_setting_errors({error.field: str(error)})
-        else:
-            ui.notify(str(error), type="negative", multi_line=True)
-
 
 class StudyTab(Tab):
-    """A tab whose study runs when the user asks. Its result belongs to the engine it was run
-    for, :attr:`~.app.Page.computed_for` (the one rule of :meth:`~.app.Page.fresh`: results
-    belong to (engine spec, orders)). Once the form's computed engine is another one, the
-    result is cleared and the tab says "Not computed for this engine: re-run"; going back to
-    the old engine does not bring it back, only a new run does."""
+    """A tab whose study runs when the user asks. Its result belongs to what it was run for,
+    :meth:`stamp`: the engine (:attr:`~.app.Page.computed_for`, the one rule of
+    :meth:`~.app.Page.fresh`: results belong to (engine spec, orders)) and the study's own
+    settings as typed (those whose keys start with :attr:`prefixes`). Once the form's
+    computed engine is another one, or one of those settings is edited, the result is
+    cleared and the tab says "Not computed for this engine (or these settings): re-run";
+    going back to the old engine or value does not bring it back, only a new run does."""
 
-    #: :attr:`~.app.Page.computed_for` of the shown result; None while there is none
-    result_for: tuple[Any, int] | None = None
+    #: :meth:`stamp` of the shown result; None while there is none
+    result_for: tuple[Any, ...] | None = None
+    #: the setting keys of this study start with one of these (``("cw_",)``)
+    prefixes: tuple[str, ...] = ()
+
+    def stamp(self) -> tuple[Any, ...]:
+        """What a run started now belongs to: the engine and the study's settings."""
+        own = tuple(
+            (key, str(value).strip())
+            for key, value in sorted(self.page.project.settings.items())
+            if key.startswith(self.prefixes)
+        )
+        return (self.page.computed_for, own)
+
+    def settings(self, *keys: str) -> None:
+        """The inputs of the study's settings (inside the current layout element); an edit
+        of one marks the shown result as not computed for these settings."""
+        for key in keys:
+            assert key.startswith(self.prefixes), f"{key} is no setting of the {self.name} tab"
+            self.page.setting(key, self.settings_changed)
 
     def rerun_note(self) -> None:
         """The note shown in place of a cleared result (call it in :meth:`build`)."""
@@ -186,29 +270,37 @@ class StudyTab(Tab):
         """Forget the study's result and empty everything that shows it."""
 
     def show(self, c: Any) -> None:
-        if self.result_for is not None and self.result_for != self.page.computed_for:
-            self.drop(c.spec.name)
+        if self.result_for is not None and self.result_for[0] != self.page.computed_for:
+            self.drop(f"this engine ({c.spec.name})")
+
+    def settings_changed(self) -> None:
+        if self.result_for is not None and self.result_for != self.stamp():
+            self.drop("these settings")
 
     def reset(self) -> None:
         self.result_for = None
         self.clear()
         self.rerun.set_visibility(False)
 
-    def owns(self, started: tuple[Any, int] | None) -> bool:
-        """After a run that started on the engine ``started``: whether its result may be
-        shown (the form's engine is still that one); else the result is dropped."""
-        if started is not None and started == self.page.computed_for:
+    def owns(self, started: tuple[Any, ...]) -> bool:
+        """After a run that started at :meth:`stamp` ``started``: whether its result may be
+        shown (the form's engine and the study's settings are still those); else the
+        result is dropped."""
+        now = self.stamp()
+        if started[0] is not None and started == now:
             self.result_for = started
             self.rerun.set_visibility(False)
             return True
         c = self.page.project.computed
-        self.drop(c.spec.name if c is not None else "")
+        engine = f"this engine ({c.spec.name if c is not None else ''})"
+        self.drop(engine if started[0] != now[0] else "these settings")
         return False
 
-    def drop(self, engine: str) -> None:
+    def drop(self, what: str) -> None:
+        """Clear the result: it was computed for another engine or other settings."""
         self.result_for = None
         self.clear()
-        self.rerun.set_text(f"Not computed for this engine ({engine}): re-run the study.")
+        self.rerun.set_text(f"Not computed for {what}: re-run the study.")
         self.rerun.set_visibility(True)
 
 
