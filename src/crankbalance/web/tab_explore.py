@@ -193,7 +193,7 @@ class ExploreTab(StudyTab):
         self.fields[key] = element
 
     # ------------------------------------------------------------------ settings
-    def settings(self) -> tuple[tuple[str, str], ...]:
+    def current_settings(self) -> tuple[tuple[str, str], ...]:
         return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
 
     def check(self) -> Any | None:
@@ -201,7 +201,7 @@ class ExploreTab(StudyTab):
         result of other settings is dropped."""
         for element in self.fields.values():
             element.error = None
-        if self.result_for is not None and self.result_for != self.settings():
+        if self.result_for is not None and self.result_for != self.current_settings():
             self.drop("these settings")
         try:
             return parse(self.texts)
@@ -229,7 +229,7 @@ class ExploreTab(StudyTab):
             card.refresh()
 
     def owns(self, started: Any) -> bool:
-        if started == self.settings():
+        if started == self.current_settings():
             self.result_for = started
             self.rerun.set_visibility(False)
             return True
@@ -247,7 +247,7 @@ class ExploreTab(StudyTab):
             self.summary.set_content("Not run: see the message beside the field.")
             return
         problem, objectives, select, top, bank_angle = parsed
-        started = self.settings()
+        started = self.current_settings()
         self.spinner.set_visibility(True)
         self.summary.set_content("exploring …")
         try:
