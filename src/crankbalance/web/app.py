@@ -99,21 +99,6 @@ BUSY_JS = """
 </script>
 """
 
-#: plotly.js (1.3 MB, NiceGUI's ``nicegui-plotly`` module) fetched and compiled while the
-#: page loads, not only once the first figure is mounted: a ``modulepreload`` link to the
-#: module's address in the page's import map (which carries any path prefix)
-PRELOAD_PLOTLY = """
-<script>
-(() => {
-  const map = document.querySelector('script[type=importmap]');
-  const url = map && JSON.parse(map.textContent).imports['nicegui-plotly'];
-  if (url) document.head.append(Object.assign(document.createElement('link'),
-    {rel: 'modulepreload', href: url}));
-})();
-</script>
-"""
-
-
 def root(preset: str | None = None) -> None:
     """The page: ``/`` or ``/?preset=v8-crossplane``."""
     Page(preset).build()
@@ -158,7 +143,6 @@ class Page:
     def build(self) -> None:
         ui.page_title("crankbalance")
         ui.add_css(CSS)
-        ui.add_head_html(PRELOAD_PLOTLY)
         ui.add_body_html(BUSY_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
