@@ -99,6 +99,7 @@ BUSY_JS = """
 </script>
 """
 
+
 def root(preset: str | None = None) -> None:
     """The page: ``/`` or ``/?preset=v8-crossplane``."""
     Page(preset).build()
