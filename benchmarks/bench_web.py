@@ -63,6 +63,9 @@ COUNT_PLOTS = """() => {
     }
 }"""
 GUARD_MS = 180_000  # hang guard of every wait, not a timing target
+#: how often a wait looks at the page [ms]: Playwright's default polling waits for
+#: animation frames, which a page among several (``--sessions``) may not get for minutes
+POLL = 20
 #: the figures whose PNG download is timed: (figure name, tab label)
 PNG_FIGURES = (("crank3d", "Engine"), ("orders", "Results"))
 
@@ -77,7 +80,7 @@ async def first_load(browser: Any, url: str) -> float:
     page = await new_page(browser, url)
     t0 = time.perf_counter()
     await page.goto(f"{url}/?preset={ENGINE}")
-    await page.wait_for_function(DRAWN)
+    await page.wait_for_function(DRAWN, polling=POLL)
     elapsed = time.perf_counter() - t0
     await page.close()
     return elapsed
@@ -93,8 +96,8 @@ async def preset_switches(page: Any, count: int) -> list[float]:
         await option.wait_for()
         t0 = time.perf_counter()
         await option.click()
-        await page.wait_for_function(f"() => ({UPDATE})() > {before}")
-        await page.wait_for_function(DRAWN)
+        await page.wait_for_function(f"() => ({UPDATE})() > {before}", polling=POLL)
+        await page.wait_for_function(DRAWN, polling=POLL)
         times.append(time.perf_counter() - t0)
     return times
 
@@ -105,7 +108,7 @@ async def png_downloads(page: Any, count: int) -> dict[str, list[float]]:
     for k in range(count + 1):
         for name, tab in PNG_FIGURES:
             await page.get_by_role("tab", name=tab, exact=True).click()
-            await page.wait_for_function(DRAWN)
+            await page.wait_for_function(DRAWN, polling=POLL)
             card = page.locator(".q-card", has=page.locator(f"[data-testid=figure-{name}]"))
             button = card.get_by_role("button", name="PNG", exact=True)
             t0 = time.perf_counter()
@@ -131,7 +134,7 @@ async def edits(page: Any, count: int, offset: int, errors: list[str]) -> list[f
         plots = await page.evaluate("() => window.cbPlots")
         t0 = time.perf_counter()
         await page.locator(f"[data-testid=field-{key}]").first.fill(value)
-        await page.wait_for_function(f"() => window.cbPlots > {plots}")
+        await page.wait_for_function(f"() => window.cbPlots > {plots}", polling=POLL)
         times.append(time.perf_counter() - t0)
         if await page.locator(".q-field--error").count():
             errors.append(
@@ -146,7 +149,7 @@ async def session(
     page = await new_page(browser, url)
     page.on("pageerror", lambda e: errors.append(str(e)))
     await page.goto(f"{url}/?preset={ENGINE}")
-    await page.wait_for_function(DRAWN)
+    await page.wait_for_function(DRAWN, polling=POLL)
     times = await edits(page, count, offset, errors)
     await page.close()
     return times
@@ -162,7 +165,7 @@ async def run(url: str, repeat: int, count: int, sessions: int) -> dict[str, Any
         loads = [await first_load(browser, url) for _ in range(repeat)]
         page = await new_page(browser, url)
         await page.goto(f"{url}/?preset={ENGINE}")
-        await page.wait_for_function(DRAWN)
+        await page.wait_for_function(DRAWN, polling=POLL)
         switches = await preset_switches(page, repeat)
         await page.close()
         page = await browser.new_page(
@@ -170,7 +173,7 @@ async def run(url: str, repeat: int, count: int, sessions: int) -> dict[str, Any
         )
         page.set_default_timeout(GUARD_MS)
         await page.goto(f"{url}/?preset={ENGINE}")
-        await page.wait_for_function(DRAWN)
+        await page.wait_for_function(DRAWN, polling=POLL)
         pngs = await png_downloads(page, repeat)
         await page.close()
         groups = await asyncio.gather(
