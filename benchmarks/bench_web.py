@@ -122,12 +122,14 @@ async def png_downloads(page: Any, count: int) -> dict[str, list[float]]:
 
 
 async def edits(page: Any, count: int, offset: int, errors: list[str]) -> list[float]:
-    """``count`` edits of the V12 (crank radius and speed in turn), each to a new value."""
+    """``count`` edits of the V12 (crank radius and speed in turn), each to a new value
+    (never the preset's 47 mm: an unchanged value redraws nothing and would be waited for
+    in vain)."""
     await page.evaluate(COUNT_PLOTS)
     times = []
     for k in range(count):
         key, value = (
-            ("crank_radius", f"{40 + (k + offset) % 9} mm")
+            ("crank_radius", f"{40 + (k + offset) % 9}.5 mm")
             if k % 2 == 0
             else ("speed", f"{5000 + 10 * (k + offset)} rpm")
         )
