@@ -8,24 +8,33 @@ named:
   figure of the open tab is drawn (the server is warm: one page was opened before);
 - preset switch: choosing another preset in the header until the header shows the new
   engine and the figures are redrawn;
+- PNG download: clicking a figure's PNG button until the browser has the file, after the
+  first export of the server (which starts the kept Chromium of ``render.to_image``), for
+  the 3-D crank of the Engine tab and the orders bar of the Results tab in turn;
 - edit -> figure: typing a new crank radius or speed of the V12 (12 cylinders) until the
   page has redrawn the figure (plotly's ``afterplot``); p50 and p95 of ``--edits`` edits,
   in each of ``--sessions`` pages editing different engines at once.
 
-The reference, measured in the same run, is the server's own work for one edit, in this
-process: validating the form, analysis and balancing, and building the figure the page
-shows (the 3-D crank); the ratio says what the page adds to the computation.
+The references, measured in the same run in this process: for an edit, the server's own
+work (validating the form, analysis and balancing, and building the figure the page shows,
+the 3-D crank); for a PNG, ``render.to_image`` of the same figure (after its first). The
+ratio says what the page adds to the computation; for the first load and the preset
+switch, whose work has no in-process twin, the ratio to the edit reference (p50) says how
+many edits' worth of this machine's time they take, which keeps runs on a machine with a
+different load comparable. The load average before and after is printed. With
+``--sessions`` above 1 every session's p50 and p95 are printed too.
 
     python benchmarks/bench_web.py [--repeat 5] [--edits 20] [--sessions 1]
 
 Targets (issue 14, item 9; issue 13, "web: edit -> updated figures, 12 cylinders"): first
-load 2 s, preset switch 0.5 s, edit -> figure p95 0.15 s.
+load 2 s, preset switch 0.5 s, PNG after the first 1 s, edit -> figure p95 0.15 s.
 """
 
 from __future__ import annotations
 
 import argparse
 import asyncio
+import os
 import statistics
 import time
 from typing import Any
@@ -54,6 +63,11 @@ COUNT_PLOTS = """() => {
     }
 }"""
 GUARD_MS = 180_000  # hang guard of every wait, not a timing target
+#: how often a wait looks at the page [ms]: Playwright's default polling waits for
+#: animation frames, which a page among several (``--sessions``) may not get for minutes
+POLL = 20
+#: the figures whose PNG download is timed: (figure name, tab label)
+PNG_FIGURES = (("crank3d", "Engine"), ("orders", "Results"))
 
 
 async def new_page(browser: Any, url: str) -> Any:
@@ -66,7 +80,7 @@ async def first_load(browser: Any, url: str) -> float:
     page = await new_page(browser, url)
     t0 = time.perf_counter()
     await page.goto(f"{url}/?preset={ENGINE}")
-    await page.wait_for_function(DRAWN)
+    await page.wait_for_function(DRAWN, polling=POLL)
     elapsed = time.perf_counter() - t0
     await page.close()
     return elapsed
@@ -82,26 +96,47 @@ async def preset_switches(page: Any, count: int) -> list[float]:
         await option.wait_for()
         t0 = time.perf_counter()
         await option.click()
-        await page.wait_for_function(f"() => ({UPDATE})() > {before}")
-        await page.wait_for_function(DRAWN)
+        await page.wait_for_function(f"() => ({UPDATE})() > {before}", polling=POLL)
+        await page.wait_for_function(DRAWN, polling=POLL)
         times.append(time.perf_counter() - t0)
     return times
 
 
+async def png_downloads(page: Any, count: int) -> dict[str, list[float]]:
+    """``count`` PNG downloads of each figure of :data:`PNG_FIGURES`, after a first one."""
+    times: dict[str, list[float]] = {name: [] for name, _ in PNG_FIGURES}
+    for k in range(count + 1):
+        for name, tab in PNG_FIGURES:
+            await page.get_by_role("tab", name=tab, exact=True).click()
+            await page.wait_for_function(DRAWN, polling=POLL)
+            card = page.locator(".q-card", has=page.locator(f"[data-testid=figure-{name}]"))
+            button = card.get_by_role("button", name="PNG", exact=True)
+            t0 = time.perf_counter()
+            async with page.expect_download() as info:
+                await button.click()
+            download = await info.value
+            await download.path()
+            if k > 0:  # the first export starts the server's kept Chromium
+                times[name].append(time.perf_counter() - t0)
+    return times
+
+
 async def edits(page: Any, count: int, offset: int, errors: list[str]) -> list[float]:
-    """``count`` edits of the V12 (crank radius and speed in turn), each to a new value."""
+    """``count`` edits of the V12 (crank radius and speed in turn), each to a new value
+    (never the preset's 47 mm: an unchanged value redraws nothing and would be waited for
+    in vain)."""
     await page.evaluate(COUNT_PLOTS)
     times = []
     for k in range(count):
         key, value = (
-            ("crank_radius", f"{40 + (k + offset) % 9} mm")
+            ("crank_radius", f"{40 + (k + offset) % 9}.5 mm")
             if k % 2 == 0
             else ("speed", f"{5000 + 10 * (k + offset)} rpm")
         )
         plots = await page.evaluate("() => window.cbPlots")
         t0 = time.perf_counter()
         await page.locator(f"[data-testid=field-{key}]").first.fill(value)
-        await page.wait_for_function(f"() => window.cbPlots > {plots}")
+        await page.wait_for_function(f"() => window.cbPlots > {plots}", polling=POLL)
         times.append(time.perf_counter() - t0)
         if await page.locator(".q-field--error").count():
             errors.append(
@@ -116,7 +151,7 @@ async def session(
     page = await new_page(browser, url)
     page.on("pageerror", lambda e: errors.append(str(e)))
     await page.goto(f"{url}/?preset={ENGINE}")
-    await page.wait_for_function(DRAWN)
+    await page.wait_for_function(DRAWN, polling=POLL)
     times = await edits(page, count, offset, errors)
     await page.close()
     return times
@@ -132,8 +167,16 @@ async def run(url: str, repeat: int, count: int, sessions: int) -> dict[str, Any
         loads = [await first_load(browser, url) for _ in range(repeat)]
         page = await new_page(browser, url)
         await page.goto(f"{url}/?preset={ENGINE}")
-        await page.wait_for_function(DRAWN)
+        await page.wait_for_function(DRAWN, polling=POLL)
         switches = await preset_switches(page, repeat)
+        await page.close()
+        page = await browser.new_page(
+            viewport={"width": 1280, "height": 800}, accept_downloads=True
+        )
+        page.set_default_timeout(GUARD_MS)
+        await page.goto(f"{url}/?preset={ENGINE}")
+        await page.wait_for_function(DRAWN, polling=POLL)
+        pngs = await png_downloads(page, repeat)
         await page.close()
         groups = await asyncio.gather(
             *(session(browser, url, count, 7 * k, errors) for k in range(sessions))
@@ -142,7 +185,8 @@ async def run(url: str, repeat: int, count: int, sessions: int) -> dict[str, Any
     return {
         "loads": loads,
         "switches": switches,
-        "edits": [t for group in groups for t in group],
+        "pngs": pngs,
+        "groups": groups,
         "errors": errors,
     }
 
@@ -165,6 +209,28 @@ def reference(count: int) -> list[float]:
     return times
 
 
+def png_reference(count: int) -> dict[str, list[float]]:
+    """``render.to_image`` of the figures of :data:`PNG_FIGURES` for the V12 in this process,
+    after a first export: ``count`` each [s]."""
+    from crankbalance import figures, render
+    from crankbalance.web.project import Project
+
+    c = Project.from_preset(ENGINE).compute()
+    assert c is not None
+    built = {
+        "crank3d": figures.crank_3d(c.analysis.model, c.study),
+        "orders": figures.orders_bar(c.analysis),
+    }
+    render.to_image(built["orders"], "png")
+    times: dict[str, list[float]] = {name: [] for name, _ in PNG_FIGURES}
+    for _ in range(count):
+        for name, _tab in PNG_FIGURES:
+            t0 = time.perf_counter()
+            render.to_image(built[name], "png")
+            times[name].append(time.perf_counter() - t0)
+    return times
+
+
 def percentile(values: list[float], q: float) -> float:
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, int(round(q / 100 * (len(ordered) - 1))))]
@@ -178,32 +244,47 @@ def main() -> None:
     parser.add_argument("--edits", type=int, default=20)
     parser.add_argument("--sessions", type=int, default=1)
     args = parser.parse_args()
+    load_before = os.getloadavg()[0]
     ref = reference(args.edits)
+    png_ref = png_reference(args.repeat)
     with running_server(timeout=GUARD_MS / 1000) as url:
         result = asyncio.run(run(url, args.repeat, args.edits, args.sessions))
     ref_p50, ref_p95 = percentile(ref, 50), percentile(ref, 95)
-    edit = result["edits"]
+    groups: list[list[float]] = result["groups"]
+    edit = [t for group in groups for t in group]
+    n = args.sessions
     rows = [
-        ("first load, median [s]", statistics.median(result["loads"]), 2.0, None),
-        ("preset switch, median [s]", statistics.median(result["switches"]), 0.5, None),
-        (
-            f"edit -> figure p50, {args.sessions} session(s) [s]",
-            percentile(edit, 50),
-            None,
-            ref_p50,
+        ("first load, median [s]", statistics.median(result["loads"]), 2.0, ref_p50),
+        ("preset switch, median [s]", statistics.median(result["switches"]), 0.5, ref_p50),
+        *(
+            (
+                f"PNG {name} after the first, median [s]",
+                statistics.median(result["pngs"][name]),
+                1.0,
+                statistics.median(png_ref[name]),
+            )
+            for name, _tab in PNG_FIGURES
         ),
-        (
-            f"edit -> figure p95, {args.sessions} session(s) [s]",
-            percentile(edit, 95),
-            0.15,
-            ref_p95,
-        ),
+        (f"edit -> figure p50, {n} session(s) [s]", percentile(edit, 50), None, ref_p50),
+        (f"edit -> figure p95, {n} session(s) [s]", percentile(edit, 95), 0.15, ref_p95),
     ]
+    if n > 1:
+        for k, group in enumerate(groups):
+            rows.append(
+                (f"  session {k + 1}: edit -> figure p50 [s]", percentile(group, 50), None, ref_p50)
+            )
+            rows.append(
+                (f"  session {k + 1}: edit -> figure p95 [s]", percentile(group, 95), 0.15, ref_p95)
+            )
     print(
-        f"{ENGINE}, {args.repeat} loads/switches, {len(edit)} edits, errors {len(result['errors'])}"
+        f"{ENGINE}, {args.repeat} loads/switches/PNGs, {len(edit)} edits in {n} session(s), "
+        f"errors {len(result['errors'])}; load average {load_before:.1f} before, "
+        f"{os.getloadavg()[0]:.1f} after ({os.cpu_count()} cores)"
     )
     print(
-        f"reference (server work of one edit, in process): p50 {ref_p50:.3f} s, p95 {ref_p95:.3f} s"
+        f"references (in process): server work of one edit p50 {ref_p50:.3f} s, "
+        f"p95 {ref_p95:.3f} s; PNG "
+        + ", ".join(f"{name} {statistics.median(png_ref[name]):.3f} s" for name, _ in PNG_FIGURES)
     )
     print(f"{'measure':44s} {'measured':>9s} {'target':>7s} {'ratio to ref':>12s}")
     for label, value, target, ref_value in rows:

@@ -183,7 +183,12 @@ class Page:
                 on_rejected=self.on_rejected,
                 max_file_size=MAX_BYTES,
             ).props("accept=.toml,.json flat bordered").classes("w-96").mark("upload")
-        self.general = ui.label("").classes("text-negative text-body1").mark("general-error")
+        self.general = (
+            ui.label("")
+            .classes("text-negative text-body1")
+            .props("data-testid=general-error")
+            .mark("general-error")
+        )
         with ui.tabs().classes("w-full") as self.tab_bar:
             for name, label in TABS:
                 ui.tab(name, label=label).mark(f"tab-{name}")
