@@ -84,6 +84,10 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
         expect(holes.locator(".main-svg").first).to_be_attached()
         SHOTS.mkdir(exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
+        with page.expect_download() as download:
+            page.get_by_role("button", name="Shop sheet HTML").click()
+        sheet = Path(download.value.path()).read_text(encoding="utf-8")
+        assert "Balance shop sheet: V8" in sheet and bobs[0] in sheet
         # a bad reading: named beside its field in the field's words; the result is gone
         page.locator("[data-testid=shop-reading_2]").first.fill("8 g")
         message = page.locator(".q-field--error", has_text="Reading, plane 2").first
@@ -94,3 +98,23 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
         assert not [e for e in errors if "Resize must be passed" not in e], errors
     finally:
         page.close()
+
+
+def test_parse_names_the_field() -> None:
+    """The tab's settings are refused on the field that holds the mistake."""
+    from crankbalance.errors import InputError
+    from crankbalance.web.tab_shop import parse
+
+    parts = PARTS.read_text(encoding="utf-8")
+    inventory, options = parse({"parts": parts})  # no readings: the parts study only
+    assert options.reading == [] and len(inventory.kinds) > 1
+    cases = {
+        "parts": {"parts": "part,id\npiston,P1"},
+        "reading_2": {"parts": parts, "reading_1": TYPED["reading_1"]},
+        "rotor_mass": {"parts": parts, **{k: v for k, v in TYPED.items() if k != "rotor_mass"}},
+        "hole_radius": {"parts": parts, **TYPED, "hole_radius": "45"},
+    }
+    for field, texts in cases.items():
+        with pytest.raises(InputError) as error:
+            parse(texts)
+        assert error.value.field == field, (field, error.value)
