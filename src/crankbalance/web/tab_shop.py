@@ -113,8 +113,15 @@ class ShopTab(StudyTab):
                             "flat dense size=sm"
                         ).mark("shop-sheet")
                 self.rerun_note()
-                self.summary = ui.markdown("").props("data-testid=shop-summary")
-                self.verdict = ui.label("").classes("text-body1").props("data-testid=shop-verdict")
+                self.summary = (
+                    ui.markdown("").props("data-testid=shop-summary").mark("shop-summary")
+                )
+                self.verdict = (
+                    ui.label("")
+                    .classes("text-body1")
+                    .props("data-testid=shop-verdict")
+                    .mark("shop-verdict")
+                )
                 ui.label("Matched sets").classes("text-subtitle2")
                 self.sets = self._table("shop-sets", "cylinder")
                 ui.label("Bob-weights per crankpin").classes("text-subtitle2")
@@ -126,6 +133,7 @@ class ShopTab(StudyTab):
             ui.table(columns=[], rows=[], row_key=key)
             .classes("w-full")
             .props(f"dense flat data-testid={testid}")
+            .mark(testid)
         )
 
     def _field(self, key: str, label: str, default: str, hint: str) -> None:
@@ -143,7 +151,7 @@ class ShopTab(StudyTab):
             element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
             element.props(f'hint="{hint}"')
         element.classes("w-full").props(f"data-testid=shop-{key} hide-bottom-space")
-        element.without_auto_validation()
+        element.mark(f"shop-{key}").without_auto_validation()
         self.fields[key] = element
 
     def load_example(self) -> None:
