@@ -56,6 +56,24 @@ def open_tab(page, name: str) -> None:
     )
 
 
+@pytest.mark.anyio
+async def test_shop_result_cleared_when_the_engine_changes(user, form) -> None:
+    """The result belongs to the engine it was run for: another rod length clears it.
+    (Simulated user, before the browser tests: sync Playwright's loop would be running.)"""
+    await user.open("/?preset=v8-crossplane")
+    await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
+    user.find(marker="shop-example").click()
+    for key, value in TYPED.items():
+        form.set(f"shop-{key}", value)
+    user.find(marker="shop-run").click()
+    await form.until(lambda: "ISO 21940-11" in form.text("shop-verdict"), "the shop study")
+    assert len(form.rows("shop-bobweights")) == 4
+    form.set("field-rod_length", "150 mm")
+    await form.until(lambda: form.rows("shop-bobweights") == [], "the result cleared")
+    assert "Not computed for this engine" in form.element("shop-rerun").text
+    assert form.text("shop-verdict") == ""
+
+
 @pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
 def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, height: int) -> None:
     bobs, verdict = expected()
@@ -118,20 +136,3 @@ def test_parse_names_the_field() -> None:
         with pytest.raises(InputError) as error:
             parse(texts)
         assert error.value.field == field, (field, error.value)
-
-
-@pytest.mark.anyio
-async def test_shop_result_cleared_when_the_engine_changes(user, form) -> None:
-    """The result belongs to the engine it was run for: another rod length clears it."""
-    await user.open("/?preset=v8-crossplane")
-    await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
-    user.find(marker="shop-example").click()
-    for key, value in TYPED.items():
-        form.set(f"shop-{key}", value)
-    user.find(marker="shop-run").click()
-    await form.until(lambda: "ISO 21940-11" in form.text("shop-verdict"), "the shop study")
-    assert len(form.rows("shop-bobweights")) == 4
-    form.set("field-rod_length", "150 mm")
-    await form.until(lambda: form.rows("shop-bobweights") == [], "the result cleared")
-    assert "Not computed for this engine" in form.element("shop-rerun").text
-    assert form.text("shop-verdict") == ""
