@@ -34,6 +34,7 @@ from .tab_masses import MassesTab
 from .tab_performance import PerformanceTab
 from .tab_results import ResultsTab, order_rows
 from .tab_shaft import ShaftTab
+from .tab_shop import ShopTab
 from .tab_single import SingleTab
 from .widgets import Tab, send_download
 
@@ -48,6 +49,7 @@ TABS = (
     ("shaft", "Balance shaft"),
     ("performance", "Performance"),
     ("explore", "Explorer"),
+    ("shop", "Balance shop"),
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
@@ -124,6 +126,7 @@ class Page:
             ShaftTab(self),
             PerformanceTab(self),
             ExploreTab(self),
+            ShopTab(self),
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]

@@ -1,0 +1,305 @@
+"""The Balance shop tab: weighed parts to matched sets, bob-weights, a hole plan and the
+ISO 21940-11 sign-off (issue 16; docs/balance_shop.md, "Commands and the shop sheet").
+
+The parts file is pasted (or loaded from ``examples/v8_parts.csv``); the engine is the
+page's current engine; the settings are those of :class:`crankbalance.options.ShopOptions`
+as a shop person types them (units in the text). The run is
+:func:`crankbalance.studies.shop.shop_study` in a worker thread; without readings only the
+parts study is shown. The result belongs to the engine and the settings it was run for (the
+never-stale rule of :class:`~.widgets.StudyTab`): once either changes it is cleared and the
+tab says to re-run. "Shop sheet HTML" downloads :func:`crankbalance.shop_sheet.sheet_html`.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+from typing import Any
+
+from nicegui import run, ui
+
+from .. import figures
+from ..errors import InputError
+from ..format import text
+from .widgets import StudyTab, button_row, send_download
+
+#: the worked example's parts file (docs/balance_shop.md)
+EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "v8_parts.csv"
+#: the tab's settings: key -> (label, default, hint); "parts" is the pasted parts file
+SETTINGS: dict[str, tuple[str, str, str]] = {
+    "parts": ("Parts (CSV)", "", "part,id,mass [g],big_end [g],small_end [g]"),
+    "fraction": ("Reciprocating fraction", "0.5", "e.g. 50% or 0.5"),
+    "reading_1": ("Reading, plane 1", "", "e.g. 12.5 g @ 40 mm, 35 deg"),
+    "reading_2": ("Reading, plane 2", "", "e.g. 8 g @ 40 mm, 200 deg"),
+    "convention": ("The machine shows the", "heavy", "heavy or light spot"),
+    "measuring_planes": ("Measuring planes", "", "e.g. 0 mm, 400 mm"),
+    "correction_planes": ("Correction planes", "", "e.g. 50 mm, 350 mm"),
+    "hole_diameter": ("Drill diameter", "8 mm", "e.g. 8 mm"),
+    "hole_radius": ("Radius of the holes", "", "e.g. 45 mm"),
+    "max_depth": ("Deepest hole", "15 mm", "e.g. 15 mm"),
+    "depth_to": ("Depth read to the", "tip", "tip or shoulder"),
+    "rotor_mass": ("Crank mass", "", "e.g. 25 kg"),
+    "bearings": ("Main bearings", "", "e.g. -20 mm, 420 mm (empty: the correction planes)"),
+    "grade": ("ISO 21940-11 grade", "G6.3", "e.g. G6.3"),
+}
+CHOICES = {"convention": ("heavy", "light"), "depth_to": ("tip", "shoulder")}
+#: settings that only the hole plan needs (the parts study runs without them)
+PLAN = ("measuring_planes", "correction_planes", "hole_radius", "rotor_mass", "bearings")
+
+
+def parse(texts: dict[str, str]) -> tuple[Any, Any]:
+    """The inventory and the :class:`~crankbalance.options.ShopOptions` of the tab's
+    texts; an :class:`InputError` names the setting's key (``parts`` for the parts file)."""
+    from ..io.parts_file import parts_from_csv
+    from ..options import ShopOptions, parse_options
+
+    values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
+    if values["parts"] is None:
+        raise InputError("parts", None, "paste a parts file (CSV) or load the example")
+    try:
+        inventory = parts_from_csv(values["parts"], source="parts")
+    except InputError as error:
+        raise InputError("parts", None, str(error)) from None
+    readings = [values["reading_1"], values["reading_2"]]
+    if readings.count(None) == 1:
+        missing = "reading_1" if readings[0] is None else "reading_2"
+        raise InputError(missing, None, "is required: give both readings or none")
+    given: dict[str, Any] = {
+        k: v for k, v in values.items() if k not in ("parts", "reading_1", "reading_2")
+    }
+    if None in readings:  # no readings: the parts study only
+        given = {k: v for k, v in given.items() if k not in PLAN}
+        given["depth_to"] = None
+    else:
+        for key in PLAN[:-1]:
+            if given[key] is None:
+                raise InputError(key, None, "is required to plan the holes")
+        given["reading"] = readings
+    try:
+        options = parse_options(ShopOptions, given)
+    except InputError as error:
+        if error.field == "reading":
+            index = 2 if error.value == readings[1] else 1
+            raise InputError(f"reading_{index}", error.value, error.allowed) from None
+        raise
+    return inventory, options
+
+
+class ShopTab(StudyTab):
+    name = "shop"
+    study: Any = None
+
+    def build(self) -> None:
+        self.texts = {k: v[1] for k, v in SETTINGS.items()}
+        self.fields: dict[str, Any] = {}
+        with ui.row().classes("w-full items-start gap-4"):
+            with ui.card().classes("w-96"):
+                ui.label("Parts and readings").classes("text-subtitle1")
+                for key, (label, default, hint) in SETTINGS.items():
+                    self._field(key, label, default, hint)
+                with ui.row().classes("items-center gap-2"):
+                    ui.button("Load example", on_click=self.load_example).props("outline").mark(
+                        "shop-example"
+                    )
+                    ui.button("Run", on_click=self.run).props("color=primary").mark("shop-run")
+                    self.spinner = ui.spinner(size="md").props("data-testid=shop-busy")
+                    self.spinner.set_visibility(False)
+            with ui.card().classes("min-w-0").style("flex: 1 1 0"):
+                with ui.element("div").classes(
+                    "w-full flex flex-wrap items-center justify-between gap-1"
+                ):
+                    ui.label("Results").classes("text-subtitle1")
+                    with button_row():
+                        ui.button("Shop sheet HTML", on_click=self.download).props(
+                            "flat dense size=sm"
+                        ).mark("shop-sheet")
+                self.rerun_note()
+                self.summary = (
+                    ui.markdown("").props("data-testid=shop-summary").mark("shop-summary")
+                )
+                self.verdict = (
+                    ui.label("")
+                    .classes("text-body1")
+                    .props("data-testid=shop-verdict")
+                    .mark("shop-verdict")
+                )
+                ui.label("Matched sets").classes("text-subtitle2")
+                self.sets = self._table("shop-sets", "cylinder")
+                ui.label("Bob-weights per crankpin").classes("text-subtitle2")
+                self.bobs = self._table("shop-bobweights", "pin")
+        self.card("shop-holes", "Hole plan", self._holes)
+
+    def _table(self, testid: str, key: str) -> Any:
+        return (
+            ui.table(columns=[], rows=[], row_key=key)
+            .classes("w-full")
+            .props(f"dense flat data-testid={testid}")
+            .mark(testid)
+        )
+
+    def _field(self, key: str, label: str, default: str, hint: str) -> None:
+        def changed(event: Any, key: str = key) -> None:
+            self.texts[key] = "" if event.value is None else str(event.value)
+            self.check()
+
+        element: Any
+        if key in CHOICES:
+            element = ui.select(list(CHOICES[key]), value=default, label=label, on_change=changed)
+        elif key == "parts":
+            element = ui.textarea(label=label, value=default, placeholder=hint, on_change=changed)
+            element.props("rows=6")
+        else:
+            element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
+            element.props(f'hint="{hint}"')
+        element.classes("w-full").props(f"data-testid=shop-{key} hide-bottom-space")
+        element.mark(f"shop-{key}").without_auto_validation()
+        self.fields[key] = element
+
+    def load_example(self) -> None:
+        if not EXAMPLE.is_file():
+            ui.notify(f"The example {EXAMPLE.name} is not installed here", type="warning")
+            return
+        self.fields["parts"].set_value(EXAMPLE.read_text(encoding="utf-8"))
+
+    # ------------------------------------------------------------------ settings
+    def stamp(self) -> tuple[Any, ...]:
+        """The engine and the tab's settings as typed."""
+        own = tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
+        return (self.page.computed_for, own)
+
+    def check(self) -> tuple[Any, Any] | None:
+        """Show the settings' errors beside their fields (in the field's label words); the
+        parsed settings or None. A result of other settings is dropped."""
+        for element in self.fields.values():
+            element.error = None
+        self.settings_changed()
+        try:
+            return parse(self.texts)
+        except InputError as error:
+            key = error.field if error.field in self.fields else "parts"
+            label = SETTINGS[key][0]
+            message = str(error)
+            if key == "parts":
+                message = f"{label}: {error.allowed}"
+            elif message.startswith(error.field):
+                message = label + message[len(error.field) :]
+            self.fields[key].error = message
+            return None
+
+    # ------------------------------------------------------------------ StudyTab
+    def clear(self) -> None:
+        self.study = None
+        self.summary.set_content("")
+        self.verdict.set_text("")
+        for table in (self.sets, self.bobs):
+            table.rows = []
+            table.update()
+        for card in self.cards:
+            card.refresh()
+
+    # ------------------------------------------------------------------ run
+    async def run(self) -> None:
+        from ..studies.shop import shop_study
+
+        parsed = self.check()
+        if parsed is None:
+            self.summary.set_content("Not run: see the message beside the field.")
+            return
+        c = self.study_ready()
+        if c is None:
+            return
+        inventory, options = parsed
+        started = self.stamp()
+        self.spinner.set_visibility(True)
+        self.summary.set_content("running …")
+        try:
+            study = await run.io_bound(shop_study, c.spec, inventory, options)
+        except InputError as error:
+            self.summary.set_content(str(error))
+            return
+        finally:
+            self.spinner.set_visibility(False)
+        if study is None:
+            self.summary.set_content("run cancelled (server stopping): no result")
+            return
+        if not self.owns(started):
+            return
+        self.study = study
+        self.show_study()
+
+    def show_study(self) -> None:
+        p = self.study.parts
+        m, b = p.matching, p.bob_weights
+        proven = "proven optimal" if m.optimal else "best found within the time limit"
+        self.summary.set_content(
+            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({proven}); spread "
+            f"{text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
+            f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
+            f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
+            f"{text(p.machined.removed_total, 'mass', 4)})."
+        )
+        self.sets.columns = [
+            {"name": "cylinder", "label": "cylinder", "field": "cylinder"},
+            *({"name": k, "label": k, "field": k, "align": "left"} for k in m.kinds),
+            {"name": "recip", "label": "reciprocating", "field": "recip"},
+            {"name": "rot", "label": "rotating", "field": "rot"},
+        ]
+        self.sets.rows = [
+            {
+                "cylinder": c + 1,
+                **dict(zip(m.kinds, m.ids[c], strict=True)),
+                "recip": text(m.reciprocating[c], "mass", 5),
+                "rot": text(m.rotating[c], "mass", 5),
+            }
+            for c in range(p.cylinders)
+        ]
+        self.sets.update()
+        self.bobs.columns = [
+            {"name": n, "label": label, "field": n}
+            for n, label in (
+                ("pin", "crankpin"),
+                ("rods", "rods"),
+                ("rot", "rotating"),
+                ("recip", "reciprocating"),
+                ("bob", "bob-weight"),
+            )
+        ]
+        self.bobs.rows = [
+            {
+                "pin": t + 1,
+                "rods": int(b.rods_on_pin[t]),
+                "rot": text(b.rotating[t], "mass", 5),
+                "recip": text(b.reciprocating[t], "mass", 5),
+                "bob": text(b.bob_weight[t], "mass", 5),
+            }
+            for t in range(len(b.bob_weight))
+        ]
+        self.bobs.update()
+        h = self.study.holes
+        if h is None:
+            self.verdict.set_text("No readings: no hole plan and no ISO check.")
+        else:
+            planes = "; ".join(
+                f"plane {j + 1}: residual {text(abs(h.residual[j]), 'unbalance', 3)} of "
+                f"{text(h.check.tolerance[j], 'unbalance', 3)}"
+                for j in range(2)
+            )
+            verdict = "PASS" if h.check.passed else "FAIL"
+            self.verdict.set_text(f"ISO 21940-11 {h.grade}: {verdict} ({planes})")
+        for card in self.cards:
+            card.refresh()
+
+    def _holes(self) -> Any | None:
+        holes = None if self.study is None else self.study.holes
+        return None if holes is None else figures.hole_plan(holes)
+
+    async def download(self) -> None:
+        from ..shop_sheet import sheet_html
+
+        if self.study is None:
+            ui.notify("Run the balance shop first", type="warning")
+            return
+        name = self.study.parts.engine.replace(" ", "-")
+        page = await run.io_bound(sheet_html, self.study)
+        if page is None:  # NiceGUI is shutting down
+            return
+        send_download(page, f"shop-{name}.html", "text/html")

@@ -1,0 +1,138 @@
+"""The Balance shop tab in a real browser (Playwright driving Debian's chromium): the
+v8-crossplane preset, the example parts loaded, two balancing-machine readings, a run; the
+bob-weights and the ISO verdict are those :mod:`crankbalance.studies.shop` computes for the
+same inputs; a bad reading is named beside its field and clears the result.
+
+Screenshots at 1280x800 and 390x844 go to ``shots/`` of the checkout (not committed).
+Every wait is a wait for a state of the page with the hang guard of ``conftest.py``.
+"""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+import pytest
+
+from crankbalance.format import text
+from crankbalance.options import ShopOptions, parse_options
+from crankbalance.studies.shop import shop_study
+
+pytest.importorskip("nicegui")
+playwright_api = pytest.importorskip("playwright.sync_api")
+expect = playwright_api.expect
+
+ROOT = Path(__file__).resolve().parents[2]
+SHOTS = ROOT / "shots"
+PARTS = ROOT / "examples" / "v8_parts.csv"
+#: the tab's settings as typed (those of examples/v8_shop.py)
+TYPED = {
+    "reading_1": "12.5 g @ 40 mm, 35 deg",
+    "reading_2": "8 g @ 40 mm, 200 deg",
+    "measuring_planes": "0 mm, 400 mm",
+    "correction_planes": "50 mm, 350 mm",
+    "hole_radius": "45 mm",
+    "rotor_mass": "25 kg",
+    "bearings": "-20 mm, 420 mm",
+}
+
+
+def expected() -> tuple[list[str], str]:
+    """The bob-weights and the ISO verdict's words from the study itself (the tab's
+    defaults: fraction 0.5, 8 mm drill, 15 mm deepest, depth to the tip, G6.3)."""
+    values = {k: v for k, v in TYPED.items() if not k.startswith("reading")}
+    values["reading"] = [TYPED["reading_1"], TYPED["reading_2"]]
+    options = parse_options(ShopOptions, {**values, "depth_to": "tip", "fraction": "0.5"})
+    study = shop_study("v8-crossplane", PARTS, options)
+    bobs = [text(w, "mass", 5) for w in study.parts.bob_weights.bob_weight]
+    assert study.holes is not None
+    verdict = f"ISO 21940-11 {study.holes.grade}: {'PASS' if study.holes.check.passed else 'FAIL'}"
+    return bobs, verdict
+
+
+def open_tab(page, name: str) -> None:
+    page.get_by_role("tab", name=name, exact=True).click()
+    expect(page.get_by_role("tab", name=name, exact=True)).to_have_attribute(
+        "aria-selected", "true"
+    )
+
+
+@pytest.mark.anyio
+async def test_shop_result_cleared_when_the_engine_changes(user, form) -> None:
+    """The result belongs to the engine it was run for: another rod length clears it.
+    (Simulated user, before the browser tests: sync Playwright's loop would be running.)"""
+    await user.open("/?preset=v8-crossplane")
+    await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
+    user.find(marker="shop-example").click()
+    for key, value in TYPED.items():
+        form.set(f"shop-{key}", value)
+    user.find(marker="shop-run").click()
+    await form.until(lambda: "ISO 21940-11" in form.text("shop-verdict"), "the shop study")
+    assert len(form.rows("shop-bobweights")) == 4
+    form.set("field-rod_length", "150 mm")
+    await form.until(lambda: form.rows("shop-bobweights") == [], "the result cleared")
+    assert "Not computed for this engine" in form.element("shop-rerun").text
+    assert form.text("shop-verdict") == ""
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
+def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, height: int) -> None:
+    bobs, verdict = expected()
+    page = browser.new_page(viewport={"width": width, "height": height})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    try:
+        page.goto(server + "/?preset=v8-crossplane")
+        expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+        page.wait_for_function("() => window.socket && window.socket.connected")
+        open_tab(page, "Balance shop")
+        page.get_by_role("button", name="Load example").click()
+        expect(page.locator("[data-testid=shop-parts]").first).to_have_value(
+            PARTS.read_text(encoding="utf-8")
+        )
+        for key, value in TYPED.items():
+            page.locator(f"[data-testid=shop-{key}]").first.fill(value)
+        page.get_by_role("button", name="Run", exact=True).click()
+        shown = page.locator("[data-testid=shop-verdict]").first
+        expect(shown).to_contain_text(verdict)
+        table = page.locator("[data-testid=shop-bobweights]").first
+        expect(table.locator("tbody tr")).to_have_count(len(bobs))
+        for row, bob in enumerate(bobs):
+            expect(table.locator("tbody tr").nth(row).locator("td").last).to_have_text(bob)
+        holes = page.locator("[data-testid=figure-shop-holes]").first
+        expect(holes.locator(".main-svg").first).to_be_attached()
+        SHOTS.mkdir(exist_ok=True)
+        page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
+        with page.expect_download() as download:
+            page.get_by_role("button", name="Shop sheet HTML").click()
+        sheet = Path(download.value.path()).read_text(encoding="utf-8")
+        assert "Balance shop sheet: V8" in sheet and bobs[0] in sheet
+        # a bad reading: named beside its field in the field's words; the result is gone
+        page.locator("[data-testid=shop-reading_2]").first.fill("8 g")
+        message = page.locator(".q-field--error", has_text="Reading, plane 2").first
+        expect(message).to_contain_text("an amount at a radius and an angle")
+        expect(page.locator("[data-testid=shop-rerun]").first).to_be_visible()
+        expect(table.locator("tbody tr")).to_have_count(0)
+        page.screenshot(path=str(SHOTS / f"shop-bad-{width}x{height}.png"), full_page=True)
+        assert not [e for e in errors if "Resize must be passed" not in e], errors
+    finally:
+        page.close()
+
+
+def test_parse_names_the_field() -> None:
+    """The tab's settings are refused on the field that holds the mistake."""
+    from crankbalance.errors import InputError
+    from crankbalance.web.tab_shop import parse
+
+    parts = PARTS.read_text(encoding="utf-8")
+    inventory, options = parse({"parts": parts})  # no readings: the parts study only
+    assert options.reading == [] and len(inventory.kinds) > 1
+    cases = {
+        "parts": {"parts": "part,id\npiston,P1"},
+        "reading_2": {"parts": parts, "reading_1": TYPED["reading_1"]},
+        "rotor_mass": {"parts": parts, **{k: v for k, v in TYPED.items() if k != "rotor_mass"}},
+        "hole_radius": {"parts": parts, **TYPED, "hole_radius": "45"},
+    }
+    for field, texts in cases.items():
+        with pytest.raises(InputError) as error:
+            parse(texts)
+        assert error.value.field == field, (field, error.value)
