@@ -78,11 +78,18 @@ def _open_tab(page: Any, tab: str) -> None:
     page.wait_for_function(SETTLED)  # the panels' slide is over
 
 
-#: one tab panel shown and no Quasar transition running (while the panels slide, the old
-#: and the new one are both on the page, partly off the screen)
-SETTLED = """() => [...document.querySelectorAll('.q-tab-panel')]
-        .filter((p) => p.offsetParent !== null).length === 1
-    && !document.querySelector('[class*="q-transition--"][class*="-active"]')"""
+#: one tab panel shown, no Quasar transition running and the panel in its place (while the
+#: panels slide, the old and the new one are both on the page, partly off the screen; the
+#: transition's classes come a frame after the switch, so its place is checked too)
+SETTLED = """() => {
+    const shown = [...document.querySelectorAll('.q-tab-panel')]
+        .filter((p) => p.offsetParent !== null);
+    if (shown.length !== 1) return false;
+    if (document.querySelector('[class*="q-transition--"][class*="-active"]')) return false;
+    const panel = shown[0].getBoundingClientRect();
+    const home = shown[0].parentElement.getBoundingClientRect();
+    return Math.abs(panel.left - home.left) < 0.5;
+}"""
 
 
 def _run_study(page: Any, tab: str) -> None:
