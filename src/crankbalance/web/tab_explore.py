@@ -26,7 +26,7 @@ from nicegui import run, ui
 
 from .. import figures
 from ..errors import InputError
-from .widgets import StudyTab, fmt_g
+from .widgets import StudyTab, TabSettingsMixin, fmt_g
 
 #: most firing orders (indices of the enumeration) the page explores in its own process
 MAX_INDICES = 50_000
@@ -130,7 +130,8 @@ def candidate_file(
     return out
 
 
-class ExploreTab(StudyTab):
+class ExploreTab(TabSettingsMixin, StudyTab):
+    choices = CHOICES
     name = "explore"
     result: Any = None
     problem: Any = None
@@ -149,7 +150,7 @@ class ExploreTab(StudyTab):
             with ui.card().classes("w-64"):
                 ui.label("Problem").classes("text-subtitle1")
                 for key, (label, default, hint) in SETTINGS.items():
-                    self._field(key, label, default, hint)
+                    self.field(key, label, default, hint)
                 with ui.row().classes("items-center gap-2"):
                     ui.button("Explore", on_click=self.run).props("color=primary").mark(
                         "explore-run"
@@ -177,25 +178,7 @@ class ExploreTab(StudyTab):
             self.card("explore-candidate", "Chosen candidate", self._candidate)
         scatter.plot.on("plotly_click", self.on_point)
 
-    def _field(self, key: str, label: str, default: str, hint: str) -> None:
-        def changed(event: Any, key: str = key) -> None:
-            self.texts[key] = "" if event.value is None else str(event.value)
-            self.check()
-
-        element: Any
-        if key in CHOICES:
-            element = ui.select(list(CHOICES[key]), value=default, label=label, on_change=changed)
-        else:
-            element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
-            element.props(f'hint="{hint}"')
-        element.classes("w-full").props(f"data-testid=explore-{key} hide-bottom-space")
-        element.mark(f"explore-{key}").without_auto_validation()
-        self.fields[key] = element
-
     # ------------------------------------------------------------------ settings
-    def current_settings(self) -> tuple[tuple[str, str], ...]:
-        return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
-
     def check(self) -> Any | None:
         """Show the settings' errors beside their fields; the parsed settings or None. A
         result of other settings is dropped."""

@@ -20,7 +20,7 @@ from nicegui import run, ui
 from .. import figures
 from ..errors import InputError
 from ..format import text
-from .widgets import StudyTab, button_row, send_download
+from .widgets import StudyTab, TabSettingsMixin, button_row, send_download
 
 #: the worked example's parts file (docs/balance_shop.md)
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "v8_parts.csv"
@@ -84,7 +84,9 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     return inventory, options
 
 
-class ShopTab(StudyTab):
+class ShopTab(TabSettingsMixin, StudyTab):
+    choices = CHOICES
+    multiline = ("parts",)
     name = "shop"
     study: Any = None
 
@@ -95,7 +97,7 @@ class ShopTab(StudyTab):
             with ui.card().classes("w-96"):
                 ui.label("Parts and readings").classes("text-subtitle1")
                 for key, (label, default, hint) in SETTINGS.items():
-                    self._field(key, label, default, hint)
+                    self.field(key, label, default, hint)
                 with ui.row().classes("items-center gap-2"):
                     ui.button("Load example", on_click=self.load_example).props("outline").mark(
                         "shop-example"
@@ -135,24 +137,6 @@ class ShopTab(StudyTab):
             .props(f"dense flat data-testid={testid}")
             .mark(testid)
         )
-
-    def _field(self, key: str, label: str, default: str, hint: str) -> None:
-        def changed(event: Any, key: str = key) -> None:
-            self.texts[key] = "" if event.value is None else str(event.value)
-            self.check()
-
-        element: Any
-        if key in CHOICES:
-            element = ui.select(list(CHOICES[key]), value=default, label=label, on_change=changed)
-        elif key == "parts":
-            element = ui.textarea(label=label, value=default, placeholder=hint, on_change=changed)
-            element.props("rows=6")
-        else:
-            element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
-            element.props(f'hint="{hint}"')
-        element.classes("w-full").props(f"data-testid=shop-{key} hide-bottom-space")
-        element.mark(f"shop-{key}").without_auto_validation()
-        self.fields[key] = element
 
     def load_example(self) -> None:
         if not EXAMPLE.is_file():

@@ -9,7 +9,7 @@ from __future__ import annotations
 
 import logging
 from abc import ABC, abstractmethod
-from collections.abc import Callable
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal
 
 from nicegui import run, ui
@@ -330,3 +330,45 @@ def send_download(content: str | bytes, filename: str, media_type: str) -> None:
     download implementations, e.g. NiceGUI's simulated user)."""
     data = content.encode("utf-8") if isinstance(content, str) else content
     ui.download.content(data, filename, media_type)
+
+
+class TabSettingsMixin:
+    """A study tab whose settings are its own fields (not the project's settings): their
+    texts in :attr:`texts`, the inputs in :attr:`fields`, each input named
+    ``<tab name>-<key>`` for tests. An edit stores the text and calls ``self.check()``."""
+
+    name: str
+    texts: dict[str, str]
+    fields: dict[str, Any]
+    #: key -> the choices of a select
+    choices: Mapping[str, Sequence[str]] = {}
+    #: keys of multi-line text areas
+    multiline: tuple[str, ...] = ()
+    #: the tab's own: shows the settings' errors beside their fields
+    check: Callable[[], Any]
+
+    def field(self, key: str, label: str, default: str, hint: str) -> None:
+        """One input of the tab's settings, in the current layout element."""
+
+        def changed(event: Any, key: str = key) -> None:
+            self.texts[key] = "" if event.value is None else str(event.value)
+            self.check()
+
+        element: Any
+        if key in self.choices:
+            element = ui.select(
+                list(self.choices[key]), value=default, label=label, on_change=changed
+            )
+        elif key in self.multiline:
+            element = ui.textarea(label=label, value=default, placeholder=hint, on_change=changed)
+            element.props("rows=6")
+        else:
+            element = ui.input(label=label, value=default, placeholder=hint, on_change=changed)
+            element.props(f'hint="{hint}"')
+        element.classes("w-full").props(f"data-testid={self.name}-{key} hide-bottom-space")
+        element.mark(f"{self.name}-{key}").without_auto_validation()
+        self.fields[key] = element
+
+    def current_settings(self) -> tuple[tuple[str, str], ...]:
+        """The tab's settings as typed: what its result belongs to."""
+        return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
