@@ -2,7 +2,7 @@
 inline-4 4-stroke, see the scatter and the table, load a candidate as the current engine
 and find it on the Engine and Results tabs; a bad filter is named beside its field.
 
-Screenshots at 1280x800 and 390x844 go to ``shots/`` of the checkout (not committed).
+Screenshots at 1280x800 and 390x844 go to ``artifacts/screenshots/`` (ignored by git).
 Every wait is a wait for a state of the page with the hang guard of ``conftest.py``.
 """
 
@@ -19,7 +19,7 @@ pytest.importorskip("nicegui")
 playwright_api = pytest.importorskip("playwright.sync_api")
 expect = playwright_api.expect
 
-SHOTS = Path(__file__).resolve().parents[2] / "shots"
+SHOTS = Path(__file__).resolve().parents[2] / "artifacts" / "screenshots"  # ignored by git
 
 
 def open_tab(page, name: str) -> None:
@@ -30,7 +30,7 @@ def open_tab(page, name: str) -> None:
 
 
 def shoot(page, name: str) -> None:
-    SHOTS.mkdir(exist_ok=True)
+    SHOTS.mkdir(parents=True, exist_ok=True)
     page.screenshot(path=str(SHOTS / f"{name}.png"), full_page=True)
 
 

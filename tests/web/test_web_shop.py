@@ -3,7 +3,7 @@ v8-crossplane preset, the example parts loaded, two balancing-machine readings, 
 bob-weights and the ISO verdict are those :mod:`crankbalance.studies.shop` computes for the
 same inputs; a bad reading is named beside its field and clears the result.
 
-Screenshots at 1280x800 and 390x844 go to ``shots/`` of the checkout (not committed).
+Screenshots at 1280x800 and 390x844 go to ``artifacts/screenshots/`` (ignored by git).
 Every wait is a wait for a state of the page with the hang guard of ``conftest.py``.
 """
 
@@ -22,7 +22,7 @@ playwright_api = pytest.importorskip("playwright.sync_api")
 expect = playwright_api.expect
 
 ROOT = Path(__file__).resolve().parents[2]
-SHOTS = ROOT / "shots"
+SHOTS = ROOT / "artifacts" / "screenshots"  # ignored by git
 PARTS = ROOT / "examples" / "v8_parts.csv"
 #: the tab's settings as typed (those of examples/v8_shop.py)
 TYPED = {
@@ -100,7 +100,7 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
             expect(table.locator("tbody tr").nth(row).locator("td").last).to_have_text(bob)
         holes = page.locator("[data-testid=figure-shop-holes]").first
         expect(holes.locator(".main-svg").first).to_be_attached()
-        SHOTS.mkdir(exist_ok=True)
+        SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
         with page.expect_download() as download:
             page.get_by_role("button", name="Shop sheet HTML").click()
