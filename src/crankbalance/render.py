@@ -161,6 +161,7 @@ class _Exporter:
                 BrowserClosedError,
                 BrowserFailedError,
                 ChannelClosedError,
+                concurrent.futures.CancelledError,  # the browser died during the call
                 concurrent.futures.TimeoutError,
             ):
                 self._close_browser()  # the browser died or hangs: a fresh one, once
