@@ -403,3 +403,21 @@ def test_cli_cycle_plot(capsys, tmp_path):
     assert code == 0, err
     page = out.read_text()
     assert "cylinder 2" in page and "Torque of each cylinder" in page
+
+
+@pytest.mark.parametrize(
+    ("preset", "rpm", "excursion", "required"),
+    [("inline4", 2000, 346.9, 0.7886), ("v8-crossplane", 5500, 232.0, 0.0632)],
+)
+def test_worked_example_of_the_docs(preset, rpm, excursion, required):
+    """The table of docs/engine_cycle.md (the command's default Wiebe model, 1 %)."""
+    model = dataclasses.replace(as_model(preset), speed=rpm * math.pi / 30)
+    result = engine_cycle_all(
+        model,
+        _cli_wiebe(),
+        bore=2 * model.crank_radius,
+        crank_inertia=0.05,
+        speed_fluctuation_target=0.01,
+    )
+    assert result.energy_excursion == pytest.approx(excursion, abs=0.05)
+    assert result.required_inertia == pytest.approx(required, abs=5e-5)
