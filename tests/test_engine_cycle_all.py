@@ -421,3 +421,27 @@ def test_worked_example_of_the_docs(preset, rpm, excursion, required):
     )
     assert result.energy_excursion == pytest.approx(excursion, abs=0.05)
     assert result.required_inertia == pytest.approx(required, abs=5e-5)
+
+
+def test_cli_cycle_options_typed_override_the_engine(capsys):
+    args = ["cycle", "--engine", "inline4", "--crank-inertia", "0.1 kg*m^2", "--format", "json"]
+    code, base, err = _cli(args, capsys)
+    assert code == 0, err
+    typed = ["--speed", "3000 rpm", "--reciprocating-mass", "500 g", "--bore", "80 mm"]
+    code, data, err = _cli([*args, *typed], capsys)
+    assert code == 0, err
+    assert data["speed_rad_s"] == pytest.approx(100 * math.pi)
+    assert data["engine"]["reciprocating_mass_kg"] == pytest.approx([0.5] * 4)
+    assert data["engine"]["bore_m"] == pytest.approx(0.08)
+    assert base["engine"]["bore_m"] == pytest.approx(2 * as_model("inline4").crank_radius)
+    # the inertia torque scales with m w^2: order 2 of an inline-4
+    ratio = 0.5 / float(as_model("inline4").reciprocating_mass[0]) * (3000 / 6000) ** 2
+    peak = np.max(np.abs(data["curves"]["inertia_torque_Nm"]))
+    assert peak == pytest.approx(ratio * np.max(np.abs(base["curves"]["inertia_torque_Nm"])))
+
+
+def test_result_to_dict_is_json_ready():
+    model = as_model("v2-90")
+    data = engine_cycle_all(model, WIEBE, bore=0.07, crank_inertia=0.05).to_dict()
+    assert data["throw_force"][0][0].keys() == {"re", "im"}
+    json.dumps(data)

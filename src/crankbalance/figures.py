@@ -1626,7 +1626,7 @@ def engine_torque_figure(result: Any) -> go.Figure:
     fig.update_yaxes(title_text="[N·m]", row=1, col=1)
     fig.update_yaxes(title_text="[N·m]", row=2, col=1)
     fig.update_yaxes(title_text="[rpm]", row=3, col=1)
-    fig.update_xaxes(title_text="crank angle after the first firing [deg]", row=3, col=1)
+    fig.update_xaxes(title_text="crank angle from the first firing TDC [deg]", row=3, col=1)
     fig.update_layout(
         template=TEMPLATE,
         height=800,
