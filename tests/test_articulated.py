@@ -16,6 +16,7 @@ independent references.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 
 import numpy as np
 import pytest
@@ -32,6 +33,7 @@ from crankbalance.articulated import (
     piston_position,
 )
 from crankbalance.errors import InputError
+from crankbalance.model import EngineModel
 
 
 def _radial(
@@ -317,3 +319,197 @@ def test_bad_geometry_is_refused_with_the_field_named() -> None:
             link_pin_angle=good.link_pin_angle,
             link_big_end_mass=good.link_big_end_mass,
         )
+
+
+# ----------------------------------------------------------------- engine file and model
+ARTICULATED_PRESETS = ["radial5-kinner", "radial7-scarab", "radial9-r985"]
+#: masses as totals only: the link rods' big ends cannot be placed
+TOTALS_ONLY = {"reciprocating": "1.5 kg", "rotating": "5 kg"}
+
+
+def _preset_dict(name: str) -> dict:
+    import tomllib
+
+    from crankbalance.io.engine_file import preset_text
+
+    return tomllib.loads(preset_text(name))
+
+
+def _model(data: dict) -> EngineModel:
+    from crankbalance.spec import spec_from_dict
+    from crankbalance.studies.build import build_model
+
+    return build_model(spec_from_dict(data))
+
+
+@pytest.mark.parametrize("name", ARTICULATED_PRESETS)
+def test_zero_link_pin_radius_engine_equals_the_simple_radial(name: str) -> None:
+    """An articulated engine file with link pin radius 0 and link rods as long as the master
+    rod is the simple radial (every rod on the pin): the same FreeForces to 1e-9."""
+    from crankbalance.shaking import exact_time_domain, free_forces
+
+    data = _preset_dict(name)
+    art = data["crank_train"]["articulated"]
+    art["link_pin_radius"] = "0 mm"
+    art["link_rod_length"] = data["crank_train"]["rod_length"]
+    zero = _model(data)
+    del data["crank_train"]["articulated"]
+    simple = _model(data)
+    assert zero.articulation is not None and simple.articulation is None
+    a, b = free_forces(zero, 12), free_forces(simple, 12)
+    scale = np.abs(b.force_forward).max()
+    for key in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
+        assert np.abs(getattr(a, key) - getattr(b, key)).max() < 1e-9 * scale, key
+    assert a.rotating_force == pytest.approx(b.rotating_force, rel=1e-15)
+    theta = np.linspace(0, 2 * np.pi, 37)
+    fa, _ = exact_time_domain(zero, theta)
+    fb, _ = exact_time_domain(simple, theta)
+    assert np.abs(fa - fb).max() < 1e-9 * np.abs(fb).max()
+
+
+@pytest.mark.parametrize("name", ARTICULATED_PRESETS)
+def test_preset_builds_its_rods_from_the_engine_file(name: str) -> None:
+    data = _preset_dict(name)
+    model = _model(data)
+    art = model.articulation
+    assert art is not None
+    ct = data["crank_train"]
+    n = ct["cylinders"]
+    master = ct["articulated"]["master_cylinder"] - 1
+    links = np.arange(n) != master
+    assert art.master == master
+    assert art.rod_length[master] == pytest.approx(model.rod_length)
+    assert np.all(art.rod_length[links] < model.rod_length)
+    # default link pin angles: the angles between each cylinder and the master
+    gap = np.exp(1j * (art.link_pin_angle - art.bank_angle + art.bank_angle[master]))
+    assert np.allclose(gap[links], 1.0, rtol=0, atol=1e-14)
+    # the link rods' big ends: the conrod split over the link rod length
+    for split in model.conrods:
+        c = split.cylinder - 1
+        expected = 0.0 if c == master else split.rotating
+        assert art.link_big_end_mass[c] == pytest.approx(expected)
+    # every big end is counted with the crank's rotating mass, as for plain rods
+    total = sum(s.rotating for s in model.conrods)
+    mass = data["masses"]
+    web = 2 * float(mass["crank_web"].split()[0]) * float(mass["crank_web_cg_radius"].split()[0])
+    r_mm = model.crank_radius * 1e3
+    parts = (float(mass["crankpin"].split()[0]) + web / r_mm) / 1e3
+    assert model.throw_rotating_mass[0] == pytest.approx(parts + total)
+
+
+def test_link_rod_split_uses_the_link_rod_length() -> None:
+    data = _preset_dict("radial5-kinner")
+    masses = data["masses"]
+    del masses["conrod_rotating_fraction"]
+    masses["conrod_cg_from_big_end"] = "100 mm"
+    masses["override"][0].pop("conrod_rotating_fraction")
+    masses["override"][0]["conrod_cg_from_big_end"] = "60 mm"
+    model = _model(data)
+    link = data["crank_train"]["articulated"]["link_rod_length"]
+    l_link = float(link.split()[0]) * 1e-3
+    split = model.conrods[1]
+    assert split.rotating == pytest.approx(0.55 * (l_link - 0.1) / l_link)
+    assert model.articulation is not None
+    assert model.articulation.link_big_end_mass[1] == pytest.approx(split.rotating)
+    master = model.conrods[0]
+    assert master.rotating == pytest.approx(2.2 * (0.254 - 0.06) / 0.254)
+
+
+@pytest.mark.parametrize(
+    "change, field, words",
+    [
+        (
+            lambda d: d["crank_train"]["articulated"].update(link_rod_length="100 mm"),
+            "crank_train.articulated.link_rod_length",
+            "must exceed",
+        ),
+        (
+            lambda d: d["crank_train"]["articulated"].update(master_cylinder=6),
+            "crank_train.articulated.master_cylinder",
+            "1..5",
+        ),
+        (
+            lambda d: d["crank_train"]["articulated"].update(link_pin_angles=["0 deg"] * 3),
+            "crank_train.articulated.link_pin_angles",
+            "one angle per cylinder",
+        ),
+        (
+            lambda d: d["crank_train"]["articulated"].update(link_pin_angles=["1 deg"] * 5),
+            "crank_train.articulated.link_pin_angles",
+            "master cylinder",
+        ),
+        (
+            lambda d: d["crank_train"]["articulated"].update(link_pin_radius="-2 mm"),
+            "crank_train.articulated.link_pin_radius",
+            "negative",
+        ),
+        (
+            lambda d: d["crank_train"]["articulated"].update(knuckle="1 mm"),
+            "crank_train.articulated.knuckle",
+            "unknown key",
+        ),
+        (lambda d: d.update(kinematics="series"), "kinematics", "exact"),
+        (lambda d: d.update(masses=TOTALS_ONLY), "masses.conrod", "articulated"),
+    ],
+)
+def test_bad_articulated_tables_name_the_field(
+    change: Callable[[dict], object], field: str, words: str
+) -> None:
+    from crankbalance.spec import spec_from_dict
+
+    data = _preset_dict("radial5-kinner")
+    change(data)
+    with pytest.raises(InputError) as caught:
+        spec_from_dict(data)
+    assert caught.value.field == field
+    assert words in str(caught.value)
+
+
+def test_articulated_table_needs_a_radial() -> None:
+    from crankbalance.spec import spec_from_dict
+
+    data = _preset_dict("radial5-kinner")
+    data["crank_train"].update(layout="inline", crank_pitch="120 mm")
+    with pytest.raises(InputError) as caught:
+        spec_from_dict(data)
+    assert caught.value.field == "crank_train.articulated.master_cylinder"
+    assert "radial" in str(caught.value)
+
+
+# ----------------------------------------------------------------- end to end
+@pytest.mark.parametrize("name", ARTICULATED_PRESETS)
+def test_analyze_and_balance_see_the_articulated_forces(
+    name: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The command line prints the articulated phasors (not the simple model's), and the
+    balance's time-domain check, computed from the exact articulated motion, finds the
+    same amplitudes before balancing."""
+    import json
+
+    from crankbalance.articulated import harmonics as articulated_harmonics
+
+    from .conftest import run_cli
+
+    model = _model(_preset_dict(name))
+    assert model.articulation is not None
+    h = articulated_harmonics(model.articulation, 8)
+    w2 = model.speed**2
+    rec, big = model.reciprocating_mass, model.articulation.link_big_end_mass
+    amplitude = w2 * (
+        np.abs(rec @ h.piston_forward + big @ h.link_forward)
+        + np.abs(rec @ h.piston_backward + big @ h.link_backward)
+    )
+    code, out, err = run_cli(["analyze", name, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(out)
+    printed = np.array([row["amplitude_N"] for row in data["free_forces"]])
+    assert np.allclose(printed, amplitude, rtol=1e-9, atol=1e-6)
+    # the simple model has no second order in a radial; the articulated one has
+    assert printed[1] > 0.05 * printed[0]
+    code, out, err = run_cli(["balance", name, "--format", "json"], capsys)
+    assert code == 0, err
+    balance = json.loads(out)
+    checks = {row["component"]: row for row in balance["components"]}
+    for order in (1, 2, 4):
+        before = checks[f"order{order}"]["force_before_N"]
+        assert before == pytest.approx(amplitude[order - 1], rel=1e-6)
