@@ -25,6 +25,7 @@ from scipy.optimize import brentq
 from crankbalance import kinematics
 from crankbalance.articulated import (
     ArticulatedRods,
+    cylinder_coefficients,
     dead_centres,
     default_link_pin_angles,
     even_stroke_angles,
@@ -282,6 +283,20 @@ def test_phasors_rebuild_the_exact_time_domain_force() -> None:
     ).sum(0)
     exact = inertia_force(rods, mass, ends, theta, speed).sum(axis=1)
     assert np.abs(rebuilt - exact).max() < 1e-10 * np.abs(exact).max()
+
+
+def test_default_link_pin_angles_keep_the_first_order_and_no_odd_orders() -> None:
+    """Closed form (docs/theory.md): with gamma_k = beta_k - beta_m the link pin's lateral
+    coordinate in its cylinder's frame is a pure first harmonic, so every link piston has
+    exactly a slider-crank's first harmonic (c_1 = 1) and no odd harmonic above it; a
+    shifted link pin angle breaks both."""
+    plain = cylinder_coefficients(_radial(n=9), 7)
+    assert np.abs(plain[:, 0] - 1.0).max() < 1e-14
+    assert np.abs(plain[:, 2::2]).max() < 1e-14
+    assert np.abs(plain[1:, 1] - plain[0, 1]).max() > 1e-3  # the even orders do change
+    shifted = cylinder_coefficients(_radial(n=9, gamma_shift=math.radians(1.0)), 7)
+    assert np.abs(shifted[1:, 0] - 1.0).min() > 1e-5
+    assert np.abs(shifted[1:, 2]).min() > 1e-6
 
 
 def test_sampling_is_free_of_aliasing() -> None:
@@ -578,3 +593,41 @@ def test_the_documented_tables_are_the_examples_output(capsys: pytest.CaptureFix
     missing = [line for line in printed if line not in doc]
     assert len(printed) > 40
     assert not missing, "docs/theory.md lacks the example's lines:\n" + "\n".join(missing[:5])
+
+
+def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> None:
+    """The balance shop builds its basis from one kilogram per cylinder (reciprocating, and
+    big end with its pin). For an articulated radial the sum of those unit engines, weighted
+    by the real masses, must give the engine's free forces: the link pins' phasors follow
+    each cylinder's big-end mass, not a fixed table."""
+    from dataclasses import replace
+
+    from crankbalance.shaking import free_forces
+
+    model = _model(_preset_dict("radial7-scarab"))
+    c, t = model.cylinders, model.throws
+    none = replace(
+        model,
+        reciprocating_mass=np.zeros(c),
+        throw_rotating_mass=np.zeros(t),
+        cylinder_rotating_mass=np.zeros(c),
+    )
+    whole = free_forces(model, 6)
+    total = np.zeros(6, dtype=complex)
+    rotating = 0j
+    for k in range(c):
+        unit = np.eye(c)[k]
+        rec = free_forces(replace(none, reciprocating_mass=unit), 6)
+        end = free_forces(
+            replace(none, throw_rotating_mass=np.ones(t), cylinder_rotating_mass=unit), 6
+        )
+        total += model.reciprocating_mass[k] * rec.force_forward
+        total += model.cylinder_rotating_mass[k] * end.force_forward
+        rotating += model.cylinder_rotating_mass[k] * end.rotating_force
+    rest = model.throw_rotating_mass - model.cylinder_rotating_mass.sum()
+    rotating += free_forces(replace(none, throw_rotating_mass=rest), 6).rotating_force
+    assert np.abs(total - whole.force_forward).max() < 1e-9 * np.abs(whole.force_forward).max()
+    assert rotating == pytest.approx(whole.rotating_force, rel=1e-12)
+    # and the link pins do matter: without them the second order differs
+    bare = free_forces(replace(model, cylinder_rotating_mass=np.zeros(c)), 6)
+    assert abs(bare.force_forward[1] - whole.force_forward[1]) > 1e-3 * abs(whole.force_forward[1])
