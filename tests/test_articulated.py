@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -246,15 +247,7 @@ def test_even_stroke_angles_give_the_master_stroke_by_root_finding() -> None:
     independent construction; the shifts mirror about the master and stay small."""
     rods = _radial(n=7)
     angles = even_stroke_angles(rods)
-    shifted = ArticulatedRods(
-        master=rods.master,
-        crank_radius=rods.crank_radius,
-        bank_angle=rods.bank_angle,
-        rod_length=rods.rod_length,
-        link_pin_radius=rods.link_pin_radius,
-        link_pin_angle=angles,
-        offset=rods.offset,
-    )
+    shifted = replace(rods, link_pin_angle=angles)
     got = dead_centres(shifted)
     shift = angles - rods.link_pin_angle
     assert shift[0] == 0.0
@@ -333,36 +326,15 @@ def test_link_pin_masses_add_their_own_forces() -> None:
 # ----------------------------------------------------------------- bad input
 def test_bad_geometry_is_refused_with_the_field_named() -> None:
     good = _radial()
-    with pytest.raises(InputError, match="rod_length"):
-        ArticulatedRods(
-            master=0,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=np.full(5, 0.1),
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            offset=good.offset,
-        )
-    with pytest.raises(InputError, match="master"):
-        ArticulatedRods(
-            master=5,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=good.rod_length,
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            offset=good.offset,
-        )
-    with pytest.raises(InputError, match="link_pin_radius"):
-        ArticulatedRods(
-            master=1,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=good.rod_length,
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            offset=good.offset,
-        )
+    for change, words in (
+        ({"rod_length": np.full(5, 0.1)}, "rod_length"),
+        ({"master": 5}, "master"),
+        ({"master": 1}, "link_pin_radius"),
+        ({"offset": np.zeros(4)}, "offset"),
+        ({"link_pin_radius": -good.link_pin_radius}, "link_pin_radius"),
+    ):
+        with pytest.raises(InputError, match=words):
+            replace(good, **change)
 
 
 # ----------------------------------------------------------------- engine file and model
@@ -600,8 +572,6 @@ def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> N
     big end with its pin). For an articulated radial the sum of those unit engines, weighted
     by the real masses, must give the engine's free forces: the link pins' phasors follow
     each cylinder's big-end mass, not a fixed table."""
-    from dataclasses import replace
-
     from crankbalance.shaking import free_forces
 
     model = _model(_preset_dict("radial7-scarab"))

@@ -49,7 +49,7 @@ the full geometry, :class:`ArticulatedRods`, which every function here takes.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -704,7 +704,7 @@ def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) 
     start = np.asarray(rods.link_pin_angle, dtype=float)
 
     def excess(shift: NDArray) -> NDArray:
-        trial = _with_angles(rods, start + np.where(links, shift, 0.0))
+        trial = replace(rods, link_pin_angle=start + np.where(links, shift, 0.0))
         return dead_centres(trial).stroke - target
 
     low = np.full(rods.cylinders, -float(search))
@@ -730,16 +730,3 @@ def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) 
         ):
             break
     return np.where(links, start + 0.5 * (low + high), 0.0)
-
-
-def _with_angles(rods: ArticulatedRods, angles: NDArray) -> ArticulatedRods:
-    """The same assembly with other link pin angles."""
-    return ArticulatedRods(
-        master=rods.master,
-        crank_radius=rods.crank_radius,
-        bank_angle=rods.bank_angle,
-        rod_length=rods.rod_length,
-        link_pin_radius=rods.link_pin_radius,
-        link_pin_angle=angles,
-        offset=rods.offset,
-    )
