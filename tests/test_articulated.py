@@ -601,3 +601,22 @@ def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> N
     # and the link pins do matter: without them the second order differs
     bare = free_forces(replace(model, cylinder_rotating_mass=np.zeros(c)), 6)
     assert abs(bare.force_forward[1] - whole.force_forward[1]) > 1e-3 * abs(whole.force_forward[1])
+
+
+def test_single_cylinder_studies_take_the_master_and_refuse_a_link(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """A link piston is no slider-crank: the single-cylinder view refuses it by name, and
+    takes the master cylinder, which is one."""
+    from crankbalance.studies.cylinder import cylinder_of
+
+    from .conftest import run_cli
+
+    model = _model(_preset_dict("radial7-scarab"))
+    master = cylinder_of(model, 1)
+    assert master.rod_length == model.rod_length
+    with pytest.raises(InputError) as caught:
+        cylinder_of(model, 3)
+    assert caught.value.field == "cylinder" and "master cylinder (1)" in str(caught.value)
+    out = run_cli(["plot", "single", "radial7-scarab", "--cylinder", "2", "-o", "x.html"], capsys)
+    assert out[0] == 2 and "link rod" in out[2]
