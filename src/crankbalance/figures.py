@@ -71,6 +71,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
+from .format import moment_point
 from .results import ResultMixin
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -466,7 +467,11 @@ def curves_figure(
         col=1,
     )
     fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
-    name = "moments about the mid-point" if quantity == "moment" else "forces"
+    name = "forces"
+    if quantity == "moment":
+        name = f"moments about {moment_point(analysis.model.moment_reference)}".replace(
+            "the crankshaft mid-point", "the mid-point"
+        )
     fig.update_layout(
         template=TEMPLATE,
         title=figure_title(f"Free {name}", analysis.model.name),

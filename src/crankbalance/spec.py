@@ -120,7 +120,8 @@ class Throw(_Strict):
     """One crank throw of a custom layout."""
 
     position: Length = Field(
-        description="axial position of the throw mid-plane from the crank mid-point"
+        description="axial position of the throw mid-plane along the crank axis (any origin: "
+        "positions are taken from the middle of the throws' extent)"
     )
     angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
     banks: list[Angle] = Field(
@@ -175,6 +176,28 @@ class CrankTrain(_Strict):
     throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
     throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
     articulated: Articulated | None = None
+    bank_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=3,
+        description="bore offset of each bank (vee, boxer: 2 banks; W: 3), added to "
+        "pin_offset + crank_offset for the cylinders of that bank",
+    )
+    cylinder_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="bore offset of each cylinder, added to pin_offset + crank_offset",
+    )
+    rod_positions: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="axial position of each cylinder's rod on its crankpin, from the "
+        "throw's mid-plane (side-by-side rods)",
+    )
+    moment_reference: Length = Field(
+        default=0.0,
+        description="point moments are taken about, along the crank axis from the crank's "
+        "mid-point (the middle of the throws' extent)",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
@@ -240,12 +263,47 @@ class CrankTrain(_Strict):
                     "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
                 )
         n_cyl = self.cylinder_count
+        self._check_offsets(n_cyl)
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
                 raise FieldProblem(
                     "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
                 )
         return self
+
+    def _check_offsets(self, n_cyl: int) -> None:
+        """Per-bank and per-cylinder offsets and rod positions: one per bank or cylinder,
+        and every cylinder's total offset short enough for its rod."""
+        banks = BANKS.get(self.layout)
+        if self.bank_offsets is not None:
+            if banks is None:
+                raise FieldProblem(
+                    "bank_offsets",
+                    f"is for layouts with banks (vee, boxer, w), not '{self.layout}'; give "
+                    "cylinder_offsets (one per cylinder) instead",
+                )
+            if len(self.bank_offsets) != banks:
+                raise FieldProblem(
+                    "bank_offsets", f"needs one offset per bank: {banks} for '{self.layout}'"
+                )
+            if self.cylinder_offsets is not None:
+                raise FieldProblem(
+                    "cylinder_offsets", "give either bank_offsets or cylinder_offsets, not both"
+                )
+        for key in ("cylinder_offsets", "rod_positions"):
+            values = getattr(self, key)
+            if values is not None and len(values) != n_cyl:
+                raise FieldProblem(key, f"needs one length per cylinder: {n_cyl} for this engine")
+        shared = self.pin_offset + self.crank_offset
+        extra = list(self.cylinder_offsets or self.bank_offsets or [0.0])
+        worst = max(abs(shared + e) for e in extra)
+        if self.rod_length <= self.crank_radius + worst:
+            key = "cylinder_offsets" if self.cylinder_offsets else "bank_offsets"
+            raise FieldProblem(
+                key,
+                f"the largest total offset ({worst * 1e3:g} mm, with pin_offset and "
+                "crank_offset) leaves no rod: rod_length must exceed crank_radius plus it",
+            )
 
     @property
     def cylinder_count(self) -> int:
@@ -268,12 +326,13 @@ def _check_articulated(ct: CrankTrain) -> None:
     n = ct.cylinder_count
     if art.master_cylinder > n:
         raise FieldProblem(f"{where}.master_cylinder", f"must be a cylinder number 1..{n}")
-    offset = abs(ct.pin_offset + ct.crank_offset)
+    shared = ct.pin_offset + ct.crank_offset
+    offset = max(abs(shared + extra) for extra in (ct.cylinder_offsets or [0.0]))
     need = ct.crank_radius + art.link_pin_radius + offset
     if art.link_rod_length <= need:
         raise FieldProblem(
             f"{where}.link_rod_length",
-            "must exceed crank_radius plus link_pin_radius plus the total offset "
+            "must exceed crank_radius plus link_pin_radius plus the largest total offset "
             f"({need * 1e3:g} mm)",
         )
     if art.link_pin_angles is not None:
@@ -287,6 +346,10 @@ def _check_articulated(ct: CrankTrain) -> None:
                 f"{where}.link_pin_angles",
                 f"entry {art.master_cylinder} is the master cylinder's: it must be 0 deg",
             )
+
+
+#: Number of banks of the layouts that take ``bank_offsets`` (docs/engine_file.md).
+BANKS: dict[str, int] = {"vee": 2, "boxer": 2, "w": 3}
 
 
 def throw_count(layout: str, cylinders: int) -> int:
