@@ -649,3 +649,19 @@ def test_offsets_per_cylinder_enter_the_articulated_motion() -> None:
     # the offsets change the result against the same engine without them
     plain = free_forces(_model(_preset_dict("radial5-kinner")), 24)
     assert np.abs(plain.force_forward - f.force_forward).max() > 1.0
+
+
+def test_analysis_json_states_the_rods_and_strokes() -> None:
+    from crankbalance.articulated import dead_centres
+    from crankbalance.studies.engine import analyze
+
+    data = analyze("radial7-scarab").to_dict()["engine"]["articulated"]
+    model = _model(_preset_dict("radial7-scarab"))
+    rods = model.articulated_rods
+    assert rods is not None
+    centres = dead_centres(rods)
+    assert data["master_cylinder"] == 1
+    assert data["stroke_m"] == pytest.approx(centres.stroke, rel=1e-11)
+    assert data["stroke_m"][0] == pytest.approx(2 * model.crank_radius, rel=1e-12)
+    assert data["tdc_angle_deg"] == pytest.approx(np.degrees(centres.tdc_angle), abs=1e-9)
+    assert "articulated" not in analyze("radial5").to_dict()["engine"]
