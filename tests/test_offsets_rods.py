@@ -9,6 +9,7 @@ the same engine with its pin split into two throws by hand (the issue's workarou
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -471,3 +472,41 @@ def test_ducati_and_harley_presets_by_hand() -> None:
     engine = analyze("ducati-916").to_dict()["engine"]
     assert engine["cylinder_axial_m"] == [-0.01, 0.01]
     assert engine["cylinder_offset_m"] == [0.0, 0.0]
+
+
+def test_explorer_merits_take_per_cylinder_offsets_and_a_moved_reference() -> None:
+    """The explorer's batch columns equal the one-engine analysis and solver for a W12 whose
+    cylinders have their own offsets and whose moments are taken 30 mm off its middle."""
+    from crankbalance.balancing import ShaftOptions
+    from crankbalance.explore.merit import merit
+
+    from .test_explore_merit import random_candidates
+
+    base = build_model(load_engine("w12"))
+    topology = replace(
+        base,
+        cylinder_offset=np.linspace(-0.004, 0.005, base.cylinders),
+        throw_position=base.throw_position - 0.03,
+    )
+    cands = random_candidates(topology, 4, seed=5)
+    shaft = ShaftOptions(cg_radius=0.03, length=0.2)
+    cw = CounterweightOptions(cg_radius=topology.crank_radius, angle="optimal", balance_factor=0.4)
+    out = merit(cands, target="secondary", shafts=shaft, balance_factor=0.4)
+    scale = float(topology.reciprocating_mass.sum() * topology.crank_radius * topology.speed**2)
+    for i in range(cands.size):
+        model = replace(topology, throw_angle=cands.throw_angle[i])
+        f = free_forces(model, 8)
+        for k, n in enumerate(f.orders):
+            assert out[f"F{n}_N"][i] == pytest.approx(f.force_amplitude[k], abs=1e-9 * scale)
+            assert out[f"M{n}_Nm"][i] == pytest.approx(f.moment_amplitude[k], abs=1e-9 * scale)
+        one = balance(model, cw, shaft, shaft, 8)
+        assert one.counterweights is not None
+        assert out["cw_mass_kg"][i] == pytest.approx(one.counterweights.mass.sum(), rel=1e-7)
+    # the offsets matter: the same cranks with one offset give other forces
+    plain = merit(
+        replace(cands, topology=replace(topology, cylinder_offset=np.zeros(base.cylinders))),
+        target="secondary",
+        shafts=shaft,
+        balance_factor=0.4,
+    )
+    assert np.abs(plain["F1_N"] - out["F1_N"]).max() > 1e-4 * scale
