@@ -510,3 +510,29 @@ def test_explorer_merits_take_per_cylinder_offsets_and_a_moved_reference() -> No
         balance_factor=0.4,
     )
     assert np.abs(plain["F1_N"] - out["F1_N"]).max() > 1e-4 * scale
+
+
+def test_balance_factor_share_sits_at_the_rods_places() -> None:
+    """With a balance factor b the counterweights carry the rotating masses and b times the
+    reciprocating masses, each at its own axial place: their couple is, by hand,
+    -r w^2 e^{i phi} [(m_b2 - m_b1) a + b (m_2 - m_1) a] for rods at -a and +a."""
+    m = make_model(
+        throw_angle=[30.0],
+        throw_position=[0.0],
+        cylinder_throw=[0, 0],
+        bank_deg=[-45.0, 45.0],
+        offset=[0.0, 0.0],
+        axial=[-A, A],
+        big_end=[0.30, 0.36],
+        rotating=[2.66],
+        reciprocating=[0.6, 0.7],
+    )
+    b = 0.5
+    res = balance(m, CounterweightOptions(0.03, balance_factor=b, method="individual"))
+    cw = res.counterweights
+    assert cw is not None
+    turn = m.crank_radius * np.exp(1j * m.throw_angle[0])
+    want_c = -turn * ((0.36 - 0.30) * A + b * (0.7 - 0.6) * A)
+    want_f = -turn * (2.66 + b * 1.3)
+    assert (cw.moments * cw.position).sum() == pytest.approx(want_c, rel=1e-12)
+    assert cw.moments.sum() == pytest.approx(want_f, rel=1e-12)
