@@ -624,6 +624,7 @@ def crank_3d(
     pos = m.throw_position
     span = float(np.ptp(pos)) if m.throws > 1 else 0.0
     end = span / 2 + 2 * web
+    middle = -m.moment_reference  # the crank's mid-point, from the moment reference point
     # one trace per legend entry, kind (lines or markers) and style: segments joined with
     # None breaks, hover text and marker size per point (a few traces build and draw much
     # faster than one per segment: plotly validates every trace)
@@ -685,7 +686,14 @@ def crank_3d(
 
     # main journals: the crank axis between and beyond the throws
     line(
-        (-end, end), (0, 0), (0, 0), "crank axis / main journals", COLORS["crank"], 8, "axis", True
+        (middle - end, middle + end),
+        (0, 0),
+        (0, 0),
+        "crank axis / main journals",
+        COLORS["crank"],
+        8,
+        "axis",
+        True,
     )
     for t in range(m.throws):
         phi = m.throw_angle[t]
