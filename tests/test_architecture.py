@@ -29,6 +29,7 @@ PHYSICS = (
     "engine_cycle",
     "engine_cycle_all",
     "tolerance",
+    "articulated",
     "explore.orders",
     "explore.merit",
     "explore.rank",

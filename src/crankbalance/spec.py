@@ -120,7 +120,8 @@ class Throw(_Strict):
     """One crank throw of a custom layout."""
 
     position: Length = Field(
-        description="axial position of the throw mid-plane from the crank mid-point"
+        description="axial position of the throw mid-plane along the crank axis (any origin: "
+        "positions are taken from the middle of the throws' extent)"
     )
     angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
     banks: list[Angle] = Field(
@@ -128,6 +129,35 @@ class Throw(_Strict):
         max_length=MAX_CYLINDERS,
         description="bank angle of each cylinder on this pin",
     )
+
+
+class Articulated(_Strict):
+    """Master-and-link rods of a radial engine (``[crank_train.articulated]``).
+
+    The master rod is the conrod of the master cylinder (its length ``rod_length``); every
+    other cylinder's rod is a link rod pinned to the master rod's big end. Rod masses are
+    the ``[masses]`` conrod fields of each cylinder (overrides for the master or the links).
+    """
+
+    master_cylinder: Whole = Field(default=1, ge=1, description="cylinder of the master rod")
+    link_pin_radius: Length = Field(
+        description="distance of each link pin from the centre of the master rod's big end"
+    )
+    link_rod_length: Length = Field(description="centre distance of each link rod")
+    link_pin_angles: list[Angle] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="angle of each cylinder's link pin from the master rod's axis, one per "
+        "cylinder (the master's 0); default: the angle between the cylinder and the master",
+    )
+
+    @model_validator(mode="after")
+    def _check(self) -> Articulated:
+        if self.link_pin_radius < 0:
+            raise FieldProblem("link_pin_radius", "must not be negative")
+        if self.link_rod_length <= 0:
+            raise FieldProblem("link_rod_length", "must be greater than zero")
+        return self
 
 
 class CrankTrain(_Strict):
@@ -145,6 +175,29 @@ class CrankTrain(_Strict):
     crank_offset: Length = 0.0
     throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
     throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
+    articulated: Articulated | None = None
+    bank_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=3,
+        description="bore offset of each bank (vee, boxer: 2 banks; W: 3), added to "
+        "pin_offset + crank_offset for the cylinders of that bank",
+    )
+    cylinder_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="bore offset of each cylinder, added to pin_offset + crank_offset",
+    )
+    rod_positions: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="axial position of each cylinder's rod on its crankpin, from the "
+        "throw's mid-plane (side-by-side rods)",
+    )
+    moment_reference: Length = Field(
+        default=0.0,
+        description="point moments are taken about, along the crank axis from the crank's "
+        "mid-point (the middle of the throws' extent)",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
@@ -210,6 +263,7 @@ class CrankTrain(_Strict):
                     "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
                 )
         n_cyl = self.cylinder_count
+        self._check_offsets(n_cyl)
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
                 raise FieldProblem(
@@ -217,12 +271,85 @@ class CrankTrain(_Strict):
                 )
         return self
 
+    def _check_offsets(self, n_cyl: int) -> None:
+        """Per-bank and per-cylinder offsets and rod positions: one per bank or cylinder,
+        and every cylinder's total offset short enough for its rod."""
+        banks = BANKS.get(self.layout)
+        if self.bank_offsets is not None:
+            if banks is None:
+                raise FieldProblem(
+                    "bank_offsets",
+                    f"is for layouts with banks (vee, boxer, w), not '{self.layout}'; give "
+                    "cylinder_offsets (one per cylinder) instead",
+                )
+            if len(self.bank_offsets) != banks:
+                raise FieldProblem(
+                    "bank_offsets", f"needs one offset per bank: {banks} for '{self.layout}'"
+                )
+            if self.cylinder_offsets is not None:
+                raise FieldProblem(
+                    "cylinder_offsets", "give either bank_offsets or cylinder_offsets, not both"
+                )
+        for key in ("cylinder_offsets", "rod_positions"):
+            values = getattr(self, key)
+            if values is not None and len(values) != n_cyl:
+                raise FieldProblem(key, f"needs one length per cylinder: {n_cyl} for this engine")
+        shared = self.pin_offset + self.crank_offset
+        extra = list(self.cylinder_offsets or self.bank_offsets or [0.0])
+        worst = max(abs(shared + e) for e in extra)
+        if self.rod_length <= self.crank_radius + worst:
+            key = "cylinder_offsets" if self.cylinder_offsets else "bank_offsets"
+            raise FieldProblem(
+                key,
+                f"the largest total offset ({worst * 1e3:g} mm, with pin_offset and "
+                "crank_offset) leaves no rod: rod_length must exceed crank_radius plus it",
+            )
+
     @property
     def cylinder_count(self) -> int:
         if self.layout == "custom":
             return sum(len(t.banks) for t in self.throw or [])
         assert self.cylinders is not None
         return self.cylinders
+
+
+def _check_articulated(ct: CrankTrain) -> None:
+    """The ``[crank_train.articulated]`` table against the rest of the crank train."""
+    art = ct.articulated
+    if art is None:
+        return
+    where = "crank_train.articulated"
+    if ct.layout != "radial":
+        raise FieldProblem(
+            f"{where}.master_cylinder", "master-and-link rods need layout = 'radial'"
+        )
+    n = ct.cylinder_count
+    if art.master_cylinder > n:
+        raise FieldProblem(f"{where}.master_cylinder", f"must be a cylinder number 1..{n}")
+    shared = ct.pin_offset + ct.crank_offset
+    offset = max(abs(shared + extra) for extra in (ct.cylinder_offsets or [0.0]))
+    need = ct.crank_radius + art.link_pin_radius + offset
+    if art.link_rod_length <= need:
+        raise FieldProblem(
+            f"{where}.link_rod_length",
+            "must exceed crank_radius plus link_pin_radius plus the largest total offset "
+            f"({need * 1e3:g} mm)",
+        )
+    if art.link_pin_angles is not None:
+        if len(art.link_pin_angles) != n:
+            raise FieldProblem(
+                f"{where}.link_pin_angles",
+                f"needs one angle per cylinder ({n}), 0 for the master cylinder",
+            )
+        if art.link_pin_angles[art.master_cylinder - 1] != 0:
+            raise FieldProblem(
+                f"{where}.link_pin_angles",
+                f"entry {art.master_cylinder} is the master cylinder's: it must be 0 deg",
+            )
+
+
+#: Number of banks of the layouts that take ``bank_offsets`` (docs/engine_file.md).
+BANKS: dict[str, int] = {"vee": 2, "boxer": 2, "w": 3}
 
 
 def throw_count(layout: str, cylinders: int) -> int:
@@ -457,6 +584,7 @@ class EngineSpec(_Strict):
                         f"masses.override[{k}].throws",
                         f"throw {number} does not exist (1..{n_throw})",
                     )
+        _check_articulated_engine(self)
         if self.counterweights is not None and self.counterweights.webs is not None:
             if len(self.counterweights.webs) != 2 * n_throw:
                 raise FieldProblem(
@@ -468,6 +596,24 @@ class EngineSpec(_Strict):
     def to_file_dict(self) -> dict[str, Any]:
         """The spec as an engine-file dictionary (quantities as unit strings)."""
         return self.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+
+
+def _check_articulated_engine(spec: EngineSpec) -> None:
+    """What master-and-link rods need beyond the crank train: exact kinematics and the
+    rod masses (the link rods' big ends move with the link pins, not with the crankpin)."""
+    if spec.crank_train.articulated is None:
+        return
+    _check_articulated(spec.crank_train)
+    if spec.kinematics != "exact":
+        raise FieldProblem(
+            "kinematics", "master-and-link rods (crank_train.articulated) need 'exact'"
+        )
+    if spec.masses.conrod is None:
+        raise FieldProblem(
+            "masses.conrod",
+            "is required with crank_train.articulated: give the rod masses with their split "
+            "(the master rod's by an override of the master cylinder, or the link rods')",
+        )
 
 
 # --------------------------------------------------------------------------- errors

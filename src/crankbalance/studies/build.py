@@ -12,8 +12,9 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ..articulated import Articulation, default_link_pin_angles
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel, standard_layout
+from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle
 from ..spec import EngineSpec, MassOverride
 
 
@@ -21,31 +22,75 @@ def build_model(spec: EngineSpec) -> EngineModel:
     """Turn a validated :class:`~crankbalance.spec.EngineSpec` into an :class:`EngineModel`."""
     ct = spec.crank_train
     positions, cylinder_throw, banks = _layout(spec)
-    angles = _throw_angles(spec, cylinder_throw, banks, positions.size)
-    rec, big_ends, conrods = _cylinder_masses(spec, cylinder_throw.size)
+    n = cylinder_throw.size
+    offsets = cylinder_offsets(spec)
+    angles = _throw_angles(spec, cylinder_throw, banks, positions.size, offsets)
+    rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, n))
     rot, from_parts = _throw_masses(spec, positions.size)
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
         if from_parts[t]:
             rot[t] += big_ends[c]
-    n = cylinder_throw.size
+    axial = np.zeros(n) if ct.rod_positions is None else np.array(ct.rod_positions, dtype=float)
+    missing = np.flatnonzero((axial != 0) & ~np.array(_has_conrod(spec, n)))
+    if missing.size:
+        c = int(missing[0])
+        raise InputError(
+            "crank_train.rod_positions",
+            f"{axial[c] * 1e3:g} mm (cylinder {c + 1})",
+            "a rod off its throw's mid-plane needs its conrod mass and split (masses.conrod "
+            "with conrod_rotating_fraction or conrod_cg_from_big_end): its big end turns at "
+            "the rod's place and makes a rotating couple",
+        )
+    # moments about the crank's mid-point (the middle of the throws' extent), or the point
+    # moment_reference from it: every axial position of the model is measured from there
+    middle = 0.5 * (positions.min() + positions.max())
     return EngineModel(
         name=spec.name,
         speed=spec.speed,
         kinematics=spec.kinematics,
         crank_radius=ct.crank_radius,
         rod_length=ct.rod_length,
-        offset=ct.pin_offset + ct.crank_offset,
         strokes=ct.strokes,
         throw_angle=angles,
-        throw_position=positions,
+        throw_position=positions - (middle + ct.moment_reference),
         throw_rotating_mass=rot,
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
         reciprocating_mass=rec,
+        cylinder_offset=offsets,
+        cylinder_axial=axial,
+        cylinder_rotating_mass=big_ends,
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
+        articulation=_articulation(spec, banks),
     )
+
+
+def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
+    """Each cylinder's total offset [m]: ``pin_offset + crank_offset`` plus its bank's
+    entry of ``bank_offsets`` or its own entry of ``cylinder_offsets``.
+
+    Banks (docs/engine_file.md): vee A (cylinders 1..T) and B (T+1..2T); W the banks at
+    -V, 0, +V, numbered bank after bank; boxer the odd cylinders (bank -90 deg) and the
+    even ones (+90 deg).
+    """
+    ct = spec.crank_train
+    n = ct.cylinder_count
+    out = np.full(n, ct.pin_offset + ct.crank_offset)
+    if ct.cylinder_offsets is not None:
+        out += np.array(ct.cylinder_offsets, dtype=float)
+    elif ct.bank_offsets is not None:
+        if ct.layout == "boxer":
+            bank = np.arange(n) % 2
+        else:
+            bank = np.arange(n) // (n // len(ct.bank_offsets))
+        out += np.array(ct.bank_offsets, dtype=float)[bank]
+    return out
+
+
+def _has_conrod(spec: EngineSpec, n: int) -> list[bool]:
+    return [row["conrod"] is not None for row in _overrides(spec, "cylinders", n)]
 
 
 # --------------------------------------------------------------------------- layout
@@ -65,7 +110,7 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
 
 
 def _throw_angles(
-    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int
+    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int, offsets: NDArray
 ) -> NDArray:
     ct = spec.crank_train
     if ct.layout == "custom":
@@ -80,8 +125,12 @@ def _throw_angles(
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
     fire_time = np.empty(n)
     fire_time[np.array(order) - 1] = np.arange(n) * interval
-    # cylinder c is at its firing TDC at crank angle t_c: theta + phi - beta = 0
-    cyl_angle = np.mod(banks - fire_time, 2 * np.pi)
+    # cylinder c is at its firing TDC at crank angle t_c + t0: theta + phi - beta = psi_c,
+    # psi_c = asin(e_c / (l + r)) its offset slider-crank's TDC angle (0 without offset);
+    # t0 = psi of the first cylinder to fire, so one offset for all changes no throw angle
+    tdc = tdc_angle(offsets, ct.crank_radius, ct.rod_length)
+    first = int(order[0]) - 1
+    cyl_angle = np.mod(banks + (tdc - tdc[first]) - fire_time, 2 * np.pi)
     angles = np.full(throws, np.nan)
     for c in range(n):
         t = cylinder_throw[c]
@@ -90,6 +139,16 @@ def _throw_angles(
             continue
         gap = math.remainder(cyl_angle[c] - angles[t], 2 * np.pi)
         if abs(gap) > 1e-9:
+            other = int(np.flatnonzero(cylinder_throw == t)[0])
+            if abs(math.remainder(gap - (tdc[c] - tdc[other]), 2 * np.pi)) < 1e-9:
+                raise InputError(
+                    "crank_train.firing_order",
+                    list(order),
+                    f"cylinders {other + 1} and {c + 1} share throw {t + 1} but their offsets "
+                    f"({offsets[other] * 1e3:g} and {offsets[c] * 1e3:g} mm) put their top dead "
+                    f"centres {math.degrees(abs(tdc[c] - tdc[other])):.4g} deg apart, so they "
+                    "cannot fire at even intervals; give the crank as crank_train.throw_angles",
+                )
             raise InputError(
                 "crank_train.firing_order",
                 list(order),
@@ -123,13 +182,14 @@ def _overrides(spec: EngineSpec, kind: str, count: int) -> list[dict[str, float]
     return rows
 
 
-def _cylinder_masses(spec: EngineSpec, n: int) -> tuple[NDArray, NDArray, list[ConrodSplit]]:
-    rod = spec.crank_train.rod_length
+def _cylinder_masses(spec: EngineSpec, rods: NDArray) -> tuple[NDArray, NDArray, list[ConrodSplit]]:
+    n = rods.size
     rec = np.zeros(n)
     big_end = np.zeros(n)
     conrods: list[ConrodSplit] = []
     for c, row in enumerate(_overrides(spec, "cylinders", n)):
         conrod = row["conrod"]
+        rod = float(rods[c])
         if conrod is not None:
             if row["conrod_cg_from_big_end"] is not None:
                 d = row["conrod_cg_from_big_end"]
@@ -184,3 +244,37 @@ def _throw_masses(spec: EngineSpec, t: int) -> tuple[NDArray, NDArray]:
             web_r = row["crank_web_cg_radius"] or 0.0
             rot[k] = row["crankpin"] + 2.0 * web * web_r / r
     return rot, from_parts
+
+
+# --------------------------------------------------------------------------- articulated rods
+def _rod_lengths(spec: EngineSpec, n: int) -> NDArray:
+    """Centre distance of each cylinder's rod: the link rods' for the link cylinders of an
+    articulated radial, ``rod_length`` otherwise."""
+    ct = spec.crank_train
+    rods = np.full(n, ct.rod_length)
+    art = ct.articulated
+    if art is not None:
+        rods[:] = art.link_rod_length
+        rods[art.master_cylinder - 1] = ct.rod_length
+    return rods
+
+
+def _articulation(spec: EngineSpec, banks: NDArray) -> Articulation | None:
+    """The master-and-link rods of ``[crank_train.articulated]`` (None without it)."""
+    art = spec.crank_train.articulated
+    if art is None:
+        return None
+    n = banks.size
+    master = art.master_cylinder - 1
+    links = np.arange(n) != master
+    angles = (
+        np.array(art.link_pin_angles, dtype=float)
+        if art.link_pin_angles is not None
+        else default_link_pin_angles(banks, master)
+    )
+    return Articulation(
+        master=master,
+        link_rod_length=np.where(links, art.link_rod_length, 0.0),
+        link_pin_radius=np.where(links, art.link_pin_radius, 0.0),
+        link_pin_angle=np.where(links, angles, 0.0),
+    )

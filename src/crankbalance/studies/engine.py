@@ -1,5 +1,5 @@
 """The analysis study: from an engine (file, preset, spec or model) to its free forces and
-moments, in the JSON contract ``crankbalance.analysis/2`` (docs/json.md)."""
+moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..format import keyed, text
+from ..format import keyed, moment_point, text
 from ..io.engine_file import load_engine
 from ..model import EngineModel
 from ..options import AnalysisOptions, parse_options
@@ -19,7 +19,7 @@ from ..shaking import Curves, FreeForces, curves, free_forces
 from ..spec import EngineSpec
 from .build import build_model
 
-SCHEMA = "crankbalance.analysis/2"
+SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
 CONROD_KEYS: dict[str, str | tuple[str, float]] = {
     "mass": "mass_kg",
@@ -104,11 +104,14 @@ class Analysis:
                 "crank_radius_m": m.crank_radius,
                 "rod_length_m": m.rod_length,
                 "rod_ratio": m.rod_ratio,
-                "offset_m": m.offset,
+                "cylinder_offset_m": m.cylinder_offset,
+                "cylinder_axial_m": m.cylinder_axial,
+                "moment_reference_m": m.moment_reference,
                 "throw_angle_deg": np.degrees(m.throw_angle),
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,
                 "cylinder_bank_deg": np.degrees(m.cylinder_bank),
+                **articulated_summary(m),
             },
             "masses": {
                 "reciprocating_kg": m.reciprocating_mass,
@@ -124,7 +127,7 @@ class Analysis:
                 "moment_phase_deg": _phase(1j * f.rotating_couple),
             },
             "conventions": "phases: direction at crank angle 0, degrees from +z toward +x; "
-            "moments about the crankshaft mid-point",
+            f"moments about {moment_point(m.moment_reference)}",
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)
@@ -139,6 +142,28 @@ def engine_summary(m: EngineModel) -> dict[str, Any]:
         "throws": m.throws,
         "speed_rad_s": m.speed,
         "kinematics": m.kinematics,
+    }
+
+
+def articulated_summary(m: EngineModel) -> dict[str, Any]:
+    """``{"articulated": ...}`` for an engine with master-and-link rods, else ``{}``: the
+    rods' geometry and each piston's stroke and top dead centre (docs/json.md)."""
+    rods = m.articulated_rods
+    if rods is None:
+        return {}
+    from ..articulated import dead_centres
+
+    centres = dead_centres(rods)
+    return {
+        "articulated": {
+            "master_cylinder": rods.master + 1,
+            "rod_length_m": rods.rod_length,
+            "link_pin_radius_m": rods.link_pin_radius,
+            "link_pin_angle_deg": np.degrees(rods.link_pin_angle),
+            "stroke_m": centres.stroke,
+            "tdc_angle_deg": np.degrees(centres.tdc_angle),
+            "tdc_travel_m": centres.tdc_travel,
+        }
     }
 
 
