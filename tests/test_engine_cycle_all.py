@@ -55,7 +55,9 @@ def _relative(a: np.ndarray, b: np.ndarray) -> float:
     [(0.0, 4, WIEBE), (0.004, 4, WIEBE), (0.0, 2, WIEBE), (-0.003, 2, "table")],
 )
 def test_one_cylinder_engine_equals_engine_cycle(offset, strokes, pressure):
-    model = dataclasses.replace(as_model("single"), offset=offset, strokes=strokes)
+    model = dataclasses.replace(
+        as_model("single"), cylinder_offset=np.array([offset]), strokes=strokes
+    )
     if pressure == "table":
         angle = np.radians(np.arange(-180.0, 180.0, 2.0))
         pressure = (angle, 1e5 + 40e5 * np.exp(-((angle - 0.2) ** 2) / 0.1))
@@ -76,7 +78,7 @@ def test_one_cylinder_pin_force_is_the_bearing_load_of_engine_cycle():
     """With balance factor 0 and no crank weight, engine_cycle's main-bearing load of a
     single cylinder (the force its crank puts on the bearings) is the rod's force on the
     pin: the same force, two codes."""
-    model = dataclasses.replace(as_model("single"), offset=0.002)
+    model = dataclasses.replace(as_model("single"), cylinder_offset=np.array([0.002]))
     spec = cycle_cylinder(
         model, 1, crank_inertia=0.03, journal_diameter=0.03, friction_coefficient=0.0
     )
@@ -135,7 +137,8 @@ def test_pin_and_side_forces_of_inertia_sum_to_the_free_force(preset):
     side forces on the walls, is the free force of crankbalance.shaking (exact time
     domain): the same physics by two codes. The side forces carry the rods' obliquity, so
     the pin forces alone do not make the free force (checked too)."""
-    model = dataclasses.replace(as_model(preset), offset=0.002)
+    base = as_model(preset)
+    model = dataclasses.replace(base, cylinder_offset=np.full(base.cylinders, 0.002))
     result = engine_cycle_all(
         model, WIEBE, bore=0.08, crank_inertia=0.5, samples_per_revolution=180
     )
@@ -478,3 +481,26 @@ def test_firing_angles_are_top_dead_centres_in_the_order(case):
         seq = fire[np.array(order) - 1]
         steps = np.mod(np.diff(seq), cycle)
         assert steps.sum() <= cycle + 1e-9, "reached in the order within one cycle"
+
+
+@pytest.mark.parametrize("preset", ["inline4", "v8-crossplane"])
+def test_pin_and_side_forces_with_offsets_per_cylinder(preset):
+    """Each cylinder's own offset (alternating signs, as in a VR bank) reaches the cycle:
+    pins plus walls still make the free force of the exact time domain, which has the
+    offsets per cylinder too (two codes)."""
+    base = as_model(preset)
+    offsets = np.where(np.arange(base.cylinders) % 2, 0.004, -0.002)
+    model = dataclasses.replace(base, cylinder_offset=offsets)
+    result = engine_cycle_all(
+        model, WIEBE, bore=0.08, crank_inertia=0.5, samples_per_revolution=180
+    )
+    free, _ = exact_time_domain(model, result.crank_angle)
+    pins = result.throw_force_inertia.sum(axis=0)
+    sides = result.side_force_inertia.sum(axis=0)
+    assert _relative(pins + sides, free) < 1e-9
+
+
+def test_articulated_radial_is_refused():
+    """Link pistons are no slider-cranks: the whole-engine cycle says so, naming the table."""
+    with pytest.raises(InputError, match="crank_train.articulated"):
+        engine_cycle_all(as_model("radial5-kinner"), WIEBE, bore=0.08, crank_inertia=0.5)

@@ -454,6 +454,13 @@ def engine_cycle_all(
         raise InputError(
             "samples_per_revolution", samples_per_revolution, "must be a whole number, at least 36"
         )
+    if model.articulation is not None:
+        raise InputError(
+            "crank_train.articulated",
+            "master-and-link rods",
+            "the whole-engine cycle models every cylinder as a plain slider-crank; an "
+            "articulated radial's link pistons are not (analyze gives their free forces)",
+        )
     count = model.cylinders
     sources = _sources(pressure, count)
     fire = _fire_angles(model, fire_angle)
@@ -468,10 +475,10 @@ def engine_cycle_all(
             rod_length=model.rod_length,
             reciprocating_mass=float(mass),
             crank_inertia=crank_inertia,
-            offset=model.offset,
+            offset=float(offset),
             crankcase_pressure=crankcase_pressure,
         )
-        for mass in model.reciprocating_mass
+        for mass, offset in zip(model.reciprocating_mass, model.cylinder_offset, strict=True)
     ]
     shape = (count, theta.size)
     pressures, gas_t, inertia_t = np.empty(shape), np.empty(shape), np.empty(shape)
