@@ -481,8 +481,7 @@ def order_harmonics(
     theta = np.asarray(angle, dtype=float)
     n = np.asarray(orders, dtype=float)
     basis = np.exp(-1j * np.outer(theta, n))  # (S, n)
-    out: NDArray[np.complex128] = np.asarray(values, dtype=float) @ basis * (2.0 / theta.size)
-    return out
+    return np.asarray(np.asarray(values, dtype=float) @ basis * (2.0 / theta.size), dtype=complex)
 
 
 @dataclass(frozen=True)
@@ -614,11 +613,12 @@ class ForcedResponse(ResultMixin):
     section_torque : ndarray of complex, shape (P, n, N-1)
         Torque in every section per order, :math:`(k_s + i n\omega c_s)(X_s - X_{s+1})`
         [N m].
-    amplitude_sum : ndarray, shape (P, N)
-        Sum over the orders of the amplitudes of each mass [rad] (the largest the
-        superposed orders can reach; an upper bound of the synthesised peak).
-    torque_sum : ndarray, shape (P, N-1)
-        Sum over the orders of the section torque amplitudes [N m].
+    amplitude_peak : ndarray, shape (P, N)
+        Synthesised amplitude of each mass: the largest magnitude over a cycle of the sum
+        of all orders with their phases, :math:`\max_\theta|\mathrm{Re}\sum_n X_n
+        e^{in\theta}|` [rad].
+    torque_peak : ndarray, shape (P, N-1)
+        Synthesised vibratory torque of each section, likewise [N m].
     damper_power : ndarray, shape (P,)
         Mean power dissipated in the damper section, summed over the orders [W]; zeros
         without a damper.
@@ -633,8 +633,8 @@ class ForcedResponse(ResultMixin):
     orders: NDArray[np.float64]
     amplitude: NDArray[np.complex128] = field(repr=False)
     section_torque: NDArray[np.complex128] = field(repr=False)
-    amplitude_sum: NDArray[np.float64] = field(repr=False)
-    torque_sum: NDArray[np.float64] = field(repr=False)
+    amplitude_peak: NDArray[np.float64] = field(repr=False)
+    torque_peak: NDArray[np.float64] = field(repr=False)
     damper_power: NDArray[np.float64] = field(repr=False)
     total_dissipated_power: NDArray[np.float64] = field(repr=False)
     input_power: NDArray[np.float64] = field(repr=False)
@@ -700,12 +700,42 @@ def forced_response(
         orders=orders,
         amplitude=amplitude,
         section_torque=section_torque,
-        amplitude_sum=np.abs(amplitude).sum(axis=1),
-        torque_sum=np.abs(section_torque).sum(axis=1),
+        amplitude_peak=synthesised_peak(amplitude, orders),
+        torque_peak=synthesised_peak(section_torque, orders),
         damper_power=damper_power,
         total_dissipated_power=dissipated.sum(axis=(1, 2)),
         input_power=input_power,
     )
+
+
+def synthesised_peak(harmonics: ArrayLike, orders: ArrayLike) -> NDArray[np.float64]:
+    r"""Largest magnitude over one cycle of a signal given by its order harmonics.
+
+    :math:`\max_\theta \big|\mathrm{Re}\sum_n X_n e^{i n \theta}\big|`, sampled at 16
+    points per period of the highest order over the period of the lowest order step.
+
+    Parameters
+    ----------
+    harmonics : array_like of complex, shape (P, n, ...)
+        Harmonics :math:`X_n` on axis 1 [any unit].
+    orders : array_like, shape (n,)
+        Their orders [-], multiples of the first.
+
+    Returns
+    -------
+    ndarray, shape (P, ...)
+        The peak [the harmonics' unit].
+    """
+    n = np.asarray(orders, dtype=float)
+    x = np.moveaxis(np.asarray(harmonics, dtype=complex), 1, -1)  # (P, ..., n)
+    period = 2.0 * math.pi / float(n.min())
+    samples = int(math.ceil(16 * n.max() / n.min()))
+    theta = np.linspace(0.0, period, samples, endpoint=False)
+    basis = np.exp(1j * np.outer(n, theta))
+    out = np.empty(x.shape[:-1])
+    for p in range(x.shape[0]):  # one speed at a time: (..., samples) stays small
+        out[p] = np.abs(np.real(x[p] @ basis)).max(axis=-1)
+    return out
 
 
 def critical_speeds(
@@ -767,3 +797,159 @@ def order_vector_sum(
     beta = np.ones_like(t) if weight is None else np.asarray(weight, dtype=float)
     n = np.asarray(orders, dtype=float)
     return np.abs(np.exp(-1j * np.outer(n, t)) @ beta)
+
+
+@dataclass(frozen=True)
+class ResonanceCheck(ResultMixin):
+    """One crossing of an engine order with a natural frequency, and the response there.
+
+    Attributes
+    ----------
+    mode : int
+        Mode index (1: the first elastic mode).
+    order : float
+        Engine order [-].
+    speed : float
+        Crank speed of the crossing [rad/s].
+    relative_excitation : float
+        Vector sum of the order over the cylinders weighted by the mode shape at their
+        throws (:func:`order_vector_sum`) [-].
+    front_amplitude : float
+        Front end's synthesised amplitude (all orders) [rad].
+    crank_twist : float
+        Synthesised twist front end to flywheel [rad].
+    max_section_torque : float
+        Largest synthesised vibratory torque of a section [N m].
+    damper_power : float
+        Power the damper dissipates, summed over the orders [W].
+    """
+
+    mode: int
+    order: float
+    speed: float
+    relative_excitation: float
+    front_amplitude: float
+    crank_twist: float
+    max_section_torque: float
+    damper_power: float
+
+
+@dataclass(frozen=True)
+class TorsionalStudy(ResultMixin):
+    """Result of :func:`torsional_study`: the torsional model of an engine's crank train.
+
+    Attributes
+    ----------
+    train : CrankTrain
+        The chain with the load when one is given.
+    modes : TorsionalModes
+        Natural modes of ``train``.
+    modes_free : TorsionalModes
+        Natural modes of the chain without the load (free-free engine); the same as
+        ``modes`` without a load.
+    excitation : EngineExcitation
+        Torque harmonics of the cylinders.
+    response : ForcedResponse
+        The sweep over the speed range.
+    resonances : tuple of ResonanceCheck
+        Every crossing of an order with an elastic mode in the speed range, by speed.
+    front_amplitude : ndarray, shape (P,)
+        Front end's synthesised amplitude over the sweep (all orders) [rad].
+    crank_twist : ndarray, shape (P,)
+        Synthesised twist front end to flywheel over the sweep [rad].
+    damper_allowed_power : float or None
+        Power the damper may dissipate [W], None when not given.
+    """
+
+    train: CrankTrain
+    modes: TorsionalModes
+    modes_free: TorsionalModes
+    excitation: EngineExcitation
+    response: ForcedResponse = field(repr=False)
+    resonances: tuple[ResonanceCheck, ...]
+    front_amplitude: NDArray[np.float64] = field(repr=False)
+    crank_twist: NDArray[np.float64] = field(repr=False)
+    damper_allowed_power: float | None = None
+
+    @property
+    def damper_max_power(self) -> float:
+        """Largest damper power over the sweep and the resonances [W]."""
+        at = [r.damper_power for r in self.resonances]
+        return float(max([float(self.response.damper_power.max()), *at]))
+
+
+def _summaries(
+    train: CrankTrain, response: ForcedResponse
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    flywheel = train.throw_index[-1] + 1
+    twist = response.amplitude[..., train.front_index] - response.amplitude[..., flywheel]
+    return response.amplitude_peak[:, train.front_index], synthesised_peak(twist, response.orders)
+
+
+def torsional_study(
+    train: CrankTrain,
+    excitation: EngineExcitation,
+    speed: ArrayLike,
+    damper_allowed_power: float | None = None,
+) -> TorsionalStudy:
+    """Natural modes, forced response over ``speed``, resonances and the damper check.
+
+    Parameters
+    ----------
+    train : CrankTrain
+        The chain (:func:`crank_train`).
+    excitation : EngineExcitation
+        Torque harmonics of the cylinders (:func:`engine_excitation`).
+    speed : array_like, shape (P,)
+        Crank speeds of the sweep, ascending [rad/s].
+    damper_allowed_power : float, optional
+        Power the damper may dissipate [W].
+
+    Returns
+    -------
+    TorsionalStudy
+        Modes, sweep, resonances [rad/s, rad, N m, W].
+    """
+    omega = np.atleast_1d(_positive("speed", speed))
+    modes = natural_modes(train.inertia, train.stiffness)
+    with_load = "load" in train.names
+    modes_free = natural_modes(train.inertia[:-1], train.stiffness[:-1]) if with_load else modes
+    response = forced_response(train, excitation, omega)
+    front, twist = _summaries(train, response)
+    crossings = critical_speeds(
+        modes.frequency, excitation.orders, float(omega.min()), float(omega.max())
+    )
+    checks = []
+    if crossings:
+        at = forced_response(train, excitation, [s for _m, _n, s in crossings])
+        front_at, twist_at = _summaries(train, at)
+        throw_of_cylinder = train.throw_index[excitation.cylinder_throw]
+        for i, (mode, order, speed_i) in enumerate(crossings):
+            weight = modes.mode_shape[throw_of_cylinder, mode]
+            checks.append(
+                ResonanceCheck(
+                    mode=mode,
+                    order=order,
+                    speed=speed_i,
+                    relative_excitation=float(
+                        order_vector_sum(excitation.fire_angle, [order], weight)[0]
+                    ),
+                    front_amplitude=float(front_at[i]),
+                    crank_twist=float(twist_at[i]),
+                    max_section_torque=float(at.torque_peak[i].max()),
+                    damper_power=float(at.damper_power[i]),
+                )
+            )
+    if damper_allowed_power is not None:
+        _positive("damper_allowed_power", damper_allowed_power)
+    return TorsionalStudy(
+        train=train,
+        modes=modes,
+        modes_free=modes_free,
+        excitation=excitation,
+        response=response,
+        resonances=tuple(checks),
+        front_amplitude=front,
+        crank_twist=twist,
+        damper_allowed_power=damper_allowed_power,
+    )
