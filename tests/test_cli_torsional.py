@@ -120,3 +120,59 @@ def test_bad_input_names_the_option(capsys, args: list[str], option: str) -> Non
 def test_engine_is_required(capsys) -> None:
     code, _out, err = run_cli(["torsional"], capsys)
     assert code == 2 and "--engine" in err
+
+
+def test_worked_example_of_the_docs(payload: dict, capsys) -> None:
+    """docs/torsional.md, worked example: the numbers that do not depend on the sweep's grid
+    (modes, the resonance mode 2 x order 6 computed at its crossing speed)."""
+    hz = [m["frequency_Hz"] for m in payload["modes"]][:4]
+    np.testing.assert_allclose(hz, [300.1, 490.6, 1368.0, 2367.5], atol=0.05)
+    (r,) = [r for r in payload["resonances"] if r["mode"] == 2 and r["order"] == 6]
+    assert r["speed_rad_s"] * 30 / math.pi == pytest.approx(4906, abs=0.5)
+    assert r["relative_excitation"] == pytest.approx(3.229, abs=5e-4)
+    assert math.degrees(r["crank_twist_rad"]) == pytest.approx(0.4906, abs=5e-5)
+    assert r["max_section_torque_Nm"] == pytest.approx(1135.8, abs=0.05)
+    assert r["damper_power_W"] == pytest.approx(359.5, abs=0.05)
+    code, out, err = run_cli([*BASE, "--format", "json"], capsys)
+    assert code == 0, err
+    bare = json.loads(out)
+    assert bare["modes"][0]["frequency_Hz"] == pytest.approx(442.8, abs=0.05)
+    (r,) = [r for r in bare["resonances"] if r["mode"] == 1 and r["order"] == 6]
+    assert r["speed_rad_s"] * 30 / math.pi == pytest.approx(4428, abs=0.5)
+    assert math.degrees(r["crank_twist_rad"]) == pytest.approx(1.2817, abs=5e-4)
+
+
+def test_pressure_table_gives_the_gas_torque_of_the_table(capsys, tmp_path: Path) -> None:
+    """--pressure-csv (the tables of ``cycle``): a table of the default Wiebe model sampled
+    every degree gives the same resonances as the model (to the table's interpolation);
+    the Wiebe options are refused with a table."""
+    from crankbalance.engine_cycle import CylinderSpec, WiebeCombustion, wiebe_pressure
+
+    model = as_model("inline6")
+    wiebe = WiebeCombustion(13.5, math.radians(-25.0), math.radians(50.0))
+    spec = CylinderSpec(
+        bore=2 * model.crank_radius,
+        crank_radius=model.crank_radius,
+        rod_length=model.rod_length,
+        reciprocating_mass=float(model.reciprocating_mass[0]),
+        crank_inertia=0.1,
+    )
+    angle = np.arange(-360.0, 360.0, 0.25)
+    table = tmp_path / "wiebe.csv"
+    pressure = wiebe_pressure(np.radians(angle), spec, wiebe, 4)
+    table.write_text(
+        "angle_deg,pressure_bar\n"
+        + "\n".join(f"{a:.6f},{p / 1e5:.9f}" for a, p in zip(angle, pressure, strict=True))
+    )
+    code, out, err = run_cli([*BASE, "--format", "json"], capsys)
+    model_run = json.loads(out)
+    code, out, err = run_cli([*BASE, "--format", "json", "--pressure-csv", str(table)], capsys)
+    assert code == 0, err
+    table_run = json.loads(out)
+    a = [r["crank_twist_rad"] for r in model_run["resonances"]]
+    b = [r["crank_twist_rad"] for r in table_run["resonances"]]
+    np.testing.assert_allclose(b, a, rtol=0.02)
+    code, _out, err = run_cli(
+        [*BASE, "--pressure-csv", str(table), "--compression-ratio", "10"], capsys
+    )
+    assert code == 2 and "--compression-ratio" in err

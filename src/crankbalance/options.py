@@ -693,7 +693,7 @@ class TorsionalOptions(StudyOptions):
     highest_order: Number = Field(12.0, ge=0.5, le=MAX_ORDER, title="Highest engine order")
     throw_inertia: Inertia | None = Field(None, title="Inertia of one throw with its big ends")
     throw_stiffness: TorsionalStiffness | None = Field(
-        None, title="Stiffness between throws (default: Carter's formula)"
+        None, title="Stiffness between throws (default: Carter's formula, an approximation)"
     )
     journal_diameter: Length = Field(0.060, title="Main journal diameter")
     pin_diameter: Length = Field(0.050, title="Crankpin diameter")
@@ -722,6 +722,9 @@ class TorsionalOptions(StudyOptions):
     ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
     burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
     intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: list[str] = Field(
+        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    )
 
     @model_validator(mode="after")
     def _consistent(self) -> TorsionalOptions:

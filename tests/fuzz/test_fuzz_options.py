@@ -569,6 +569,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--ignition": quantity("angle", "-25 deg"),
             "--burn-duration": quantity("angle", "50 deg"),
             "--intake-pressure": quantity("pressure", "1 bar"),
+            "--pressure-csv": ENGINE_CYCLE["--pressure-csv"],
             "--plot": OUTPUT,
             "--format": FORMATS_CSV,
         },

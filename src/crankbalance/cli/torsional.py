@@ -74,6 +74,14 @@ def _options(function: Any) -> Any:
 @click.option("--engine", default=None, help="Engine file or preset (required).")
 @_options
 @click.option(
+    "--pressure-csv",
+    multiple=True,
+    type=click.Path(exists=True, dir_okay=False),
+    help="Cylinder pressure table instead of the Wiebe model (as 'cycle': crank angle [deg "
+    "from firing TDC], absolute pressure [bar]); one for every cylinder, or one per cylinder "
+    "in cylinder order.",
+)
+@click.option(
     "--plot",
     type=click.Path(dir_okay=False),
     help="Campbell diagram and forced response (.png, .svg or .html).",
@@ -92,8 +100,14 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
     """
     from ..options import TorsionalOptions
     from ..results import require_finite
+    from ._common import refuse_unused
+    from .performance import WIEBE_OPTIONS
 
-    o = parse_settings(TorsionalOptions, options)
+    o = parse_settings(TorsionalOptions, {**options, "pressure_csv": list(options["pressure_csv"])})
+    refuse_unused(
+        {name: not o.pressure_csv for name in WIEBE_OPTIONS},
+        "only acts on the Wiebe combustion model, not with --pressure-csv",
+    )
     if plot is not None:
         from ._common import require_extra
         from .plot import check_output
@@ -124,9 +138,9 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
     import numpy as np
 
     from .. import torsional as tv
-    from ..engine_cycle import WiebeCombustion
     from ..engine_cycle_all import engine_cycle_all
     from ..studies.engine import as_model
+    from .performance import _pressure_source
 
     model = as_model(o.engine)
     high = o.speed_max if o.speed_max is not None else model.speed
@@ -170,12 +184,7 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
         shaft_damping_ratio=o.shaft_damping_ratio,
         **damper,
     )
-    pressure = WiebeCombustion(
-        compression_ratio=o.compression_ratio,
-        ignition_angle=o.ignition,
-        burn_duration=o.burn_duration,
-        intake_pressure=o.intake_pressure,
-    )
+    pressure = _pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
     cycle = engine_cycle_all(
         model,
         pressure,
