@@ -289,3 +289,27 @@ def test_forced_response_against_time_integration(inline6: tuple) -> None:
     assert np.abs(twist_time - twist_harm).max() < 1e-3 * scale
     peak = tv.synthesised_peak((x[:, train.front_index] - x[:, flywheel])[None, :], orders)[0]
     assert peak == pytest.approx(np.abs(twist_time).max(), rel=2e-3)
+
+
+def test_holzer_residual_vanishes_at_the_natural_frequencies(inline6: tuple) -> None:
+    """Second method for a many-mass chain: Holzer's table (Den Hartog 1956, Sec. 5.2; Ker
+    Wilson 1956). Start with a twist of 1 at the first mass; at w^2 each mass adds
+    J_i w^2 th_i to the shaft torque and the next twist is th_i - torque/k_i; the torque
+    left after the last mass is zero at a natural frequency only."""
+    _, _, train = inline6
+    j, k = train.inertia, train.stiffness
+
+    def residual(omega: float) -> float:
+        theta, torque = 1.0, 0.0
+        for i in range(j.size):
+            torque += j[i] * omega**2 * theta
+            if i < k.size:
+                theta -= torque / k[i]
+        return torque
+
+    modes = tv.natural_modes(j, k)
+    scale = float(np.sum(j)) * modes.frequency[-1] ** 2
+    for omega in modes.frequency[1:]:
+        assert abs(residual(omega)) < 1e-8 * scale
+        # and it changes sign across each natural frequency
+        assert residual(omega * 0.999) * residual(omega * 1.001) < 0
