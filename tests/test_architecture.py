@@ -28,6 +28,7 @@ PHYSICS = (
     "rotor_bench",
     "engine_cycle",
     "engine_cycle_all",
+    "torsional",
     "tolerance",
     "articulated",
     "explore.orders",

@@ -652,6 +652,103 @@ class ExploreOptions(StudyOptions):
     seed: Whole = Field(0, ge=0, le=2**32 - 1, title="Random seed")
 
 
+#: the range of a torsional stiffness [N m/rad] (a model engine's crank to a ship's shafting)
+TORSIONAL_STIFFNESS_RANGE = (1.0, 1e11)
+_TORSIONAL_EXAMPLE = "5e5 N*m/rad"
+
+
+def _torsional_stiffness(value: Any) -> float:
+    """A torsional stiffness written with its unit per radian: ``"5e5 N*m/rad"``."""
+    low, high = TORSIONAL_STIFFNESS_RANGE
+    words = (
+        f"a torsional stiffness such as {_TORSIONAL_EXAMPLE!r}, from {low:g} to {high:g} N*m/rad"
+    )
+    if not isinstance(value, str) or "rad" not in value:
+        raise InputError("", value, f"must be {words}")
+    stiffness = parse_quantity(value.replace("/rad", "").replace("/ rad", ""), "torque", "")
+    if not low <= stiffness <= high:
+        raise InputError("", value, f"must be {words}")
+    return stiffness
+
+
+#: a torsional stiffness [N m/rad]
+TorsionalStiffness = Annotated[float, BeforeValidator(_torsional_stiffness)]
+#: a frequency [Hz] of a torsional system
+Frequency = Annotated[float, _quantity("frequency"), Field(gt=0, le=1e5)]
+#: a power [W] (the heat a damper may dissipate)
+Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
+#: a damping ratio [-]
+DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
+
+
+class TorsionalOptions(StudyOptions):
+    """``torsional``: the crank train's lumped torsional model (docs/torsional.md): the
+    speed range and orders, the throws' inertia and stiffness (given, or Carter's formula
+    from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion."""
+
+    engine: str | None = Field(None, title="Engine file or preset")
+    speed_min: Speed = Field(600 * _RPM, title="Lowest speed")
+    speed_max: Speed | None = Field(None, title="Highest speed (default: the engine's)")
+    speed_points: Whole = Field(400, ge=10, le=2001, title="Speeds of the sweep")
+    highest_order: Number = Field(12.0, ge=0.5, le=MAX_ORDER, title="Highest engine order")
+    throw_inertia: Inertia | None = Field(None, title="Inertia of one throw with its big ends")
+    throw_stiffness: TorsionalStiffness | None = Field(
+        None, title="Stiffness between throws (default: Carter's formula, an approximation)"
+    )
+    journal_diameter: Length = Field(0.060, title="Main journal diameter")
+    pin_diameter: Length = Field(0.050, title="Crankpin diameter")
+    journal_length: Length = Field(0.025, title="Main journal length")
+    pin_length: Length = Field(0.025, title="Crankpin length")
+    web_thickness: Length = Field(0.020, title="Web thickness")
+    web_width: Length = Field(0.090, title="Web width")
+    shear_modulus: Modulus = Field(80e9, title="Shear modulus of the crank")
+    front_inertia: Inertia = Field(0.010, title="Pulley, timing gear and damper hub")
+    front_stiffness: TorsionalStiffness | None = Field(
+        None, title="Front end to throw 1 (default: the throws')"
+    )
+    flywheel_inertia: Inertia = Field(0.15, title="Flywheel and clutch")
+    flywheel_stiffness: TorsionalStiffness | None = Field(
+        None, title="Last throw to flywheel (default: the throws')"
+    )
+    damper_inertia: Inertia | None = Field(None, title="Damper ring (none: no damper)")
+    damper_frequency: Frequency | None = Field(None, title="Damper tuning frequency")
+    damper_damping_ratio: DampingRatio = Field(0.15, title="Damper damping ratio")
+    damper_allowed_power: Power | None = Field(None, title="Power the damper may dissipate")
+    load_inertia: Inertia | None = Field(None, title="Driven load (none: free end)")
+    load_stiffness: TorsionalStiffness | None = Field(None, title="Flywheel to load")
+    shaft_damping_ratio: DampingRatio = Field(0.02, title="Crank's own damping ratio")
+    bore: Length | None = Field(None, title="Bore (default: square)")
+    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
+    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: list[str] = Field(
+        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    )
+
+    @model_validator(mode="after")
+    def _consistent(self) -> TorsionalOptions:
+        if self.engine is None:
+            raise InputError("engine", None, "the engine file or preset is needed")
+        if self.speed_max is not None and self.speed_max <= self.speed_min:
+            raise InputError("speed_max", self.speed_max, "must be above the lowest speed")
+        if (self.damper_inertia is None) != (self.damper_frequency is None):
+            raise InputError(
+                "damper_frequency" if self.damper_inertia is not None else "damper_inertia",
+                None,
+                "the damper needs both its ring inertia and its tuning frequency",
+            )
+        if self.damper_allowed_power is not None and self.damper_inertia is None:
+            raise InputError("damper_allowed_power", None, "needs a damper (damper inertia)")
+        if (self.load_inertia is None) != (self.load_stiffness is None):
+            raise InputError(
+                "load_stiffness" if self.load_inertia is not None else "load_inertia",
+                None,
+                "the load needs both its inertia and the stiffness to the flywheel",
+            )
+        return self
+
+
 Options = TypeVar("Options", bound=StudyOptions)
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 
