@@ -396,7 +396,21 @@ FluctuationTarget = Annotated[float, BeforeValidator(_factor), Field(ge=1e-6, le
 MAX_PRESSURE_TABLES = 64
 
 
-class CycleOptions(StudyOptions):
+class CombustionOptions(StudyOptions):
+    """The gas pressure of a cycle: the Wiebe model (Hoem and Røsholm 2016) or pressure
+    tables, one for every cylinder or one per cylinder; shared by ``cycle``,
+    ``sensitivity`` and ``torsional``."""
+
+    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
+    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: list[str] = Field(
+        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    )
+
+
+class CycleOptions(CombustionOptions):
     """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
     engine (``engine`` without ``cylinder``: every cylinder firing), its gas pressure (the
     Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel."""
@@ -414,13 +428,6 @@ class CycleOptions(StudyOptions):
     friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
     speed: Speed = Field(9000 * _RPM, title="Mean speed")
     strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle")
-    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
-    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
-    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
-    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: list[str] = Field(
-        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
-    )
     balance_factor: Factor = Field(0.5, title="Balance factor")
     flywheel_inertia: Inertia | None = Field(None, title="Flywheel inertia (added to the crank)")
     speed_fluctuation_target: FluctuationTarget | None = Field(
@@ -681,7 +688,7 @@ Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
 DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
 
 
-class TorsionalOptions(StudyOptions):
+class TorsionalOptions(CombustionOptions):
     """``torsional``: the crank train's lumped torsional model (docs/torsional.md): the
     speed range and orders, the throws' inertia and stiffness (given, or Carter's formula
     from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion."""
@@ -718,13 +725,6 @@ class TorsionalOptions(StudyOptions):
     load_stiffness: TorsionalStiffness | None = Field(None, title="Flywheel to load")
     shaft_damping_ratio: DampingRatio = Field(0.02, title="Crank's own damping ratio")
     bore: Length | None = Field(None, title="Bore (default: square)")
-    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
-    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
-    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
-    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: list[str] = Field(
-        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
-    )
 
     @model_validator(mode="after")
     def _consistent(self) -> TorsionalOptions:

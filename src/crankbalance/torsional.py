@@ -215,8 +215,9 @@ def throw_inertias(
     else:
         base = np.broadcast_to(_positive("throw_inertia", throw_inertia), (model.throws,))
     angle = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
-    slope = piston_velocity(angle, r, model.rod_length, model.offset)
-    share = np.asarray(model.reciprocating_mass, dtype=float) * float(np.mean(slope**2))
+    offset = np.asarray(model.cylinder_offset, dtype=float)
+    slope = piston_velocity(angle[:, None], r, model.rod_length, offset[None, :])  # (S, C)
+    share = np.asarray(model.reciprocating_mass, dtype=float) * np.mean(slope**2, axis=0)
     out = np.array(base, dtype=float)
     np.add.at(out, np.asarray(model.cylinder_throw, dtype=int), share)
     return out
