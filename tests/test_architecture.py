@@ -27,6 +27,7 @@ PHYSICS = (
     "friction",
     "rotor_bench",
     "engine_cycle",
+    "main_bearings",
     "tolerance",
     "explore.orders",
     "explore.merit",
