@@ -27,6 +27,7 @@ PHYSICS = (
     "friction",
     "rotor_bench",
     "engine_cycle",
+    "engine_cycle_all",
     "main_bearings",
     "tolerance",
     "explore.orders",

@@ -638,32 +638,23 @@ def engine_cycle(
     indicated = 0.0
     for spec, ph in zip(specs, phase, strict=True):
         local = theta - ph
-        r, l_, e = spec.crank_radius, spec.rod_length, spec.offset
         p = _pressure(local, spec, pressure, strokes)
         pressures.append(p)
-        s1 = kinematics.piston_velocity(local, r, l_, e)  # ds/dtheta [m/rad]
-        s2 = kinematics.piston_acceleration(local, r, l_, e)  # d2s/dtheta2 [m/rad^2]
-        u = e - r * np.sin(local)
-        q = np.sqrt(l_**2 - u**2)
-        gas = (p - spec.crankcase_pressure) * spec.piston_area
-        inertial = spec.reciprocating_mass * w**2 * s2
-        rod_z = inertial + gas  # rod force on piston, z
-        rod_x = rod_z * u / q
-        pin_x, pin_z = r * np.sin(local), r * np.cos(local)
-        # torque of the force -F_rod at the crankpin, positive with rotation
-        gas_t.append(pin_z * (-gas * u / q) - pin_x * (-gas))
-        inertia_t.append(pin_z * (-inertial * u / q) - pin_x * (-inertial))
-        excess = spec.balance_factor * spec.reciprocating_mass * r * w**2
+        f = cylinder_forces(local, spec, p, w)
+        rod_z = f.inertia + f.gas  # rod force on piston, z
+        rod_x = rod_z * f.u / f.q
+        gas_t.append(f.gas_torque)
+        inertia_t.append(f.inertia_torque)
+        excess = spec.balance_factor * spec.reciprocating_mass * spec.crank_radius * w**2
         bz = -rod_z - excess * np.cos(local) - spec.crankshaft_weight
         bx = -rod_x - excess * np.sin(local)
         inline.append(bz)
         transverse.append(bx)
-        shake_z.append(-inertial - excess * np.cos(local))
+        shake_z.append(-f.inertia - excess * np.cos(local))
         shake_x.append(-excess * np.sin(local))
-        slope_sq.append(spec.reciprocating_mass * s1**2)
-        slope_dd.append(2 * spec.reciprocating_mass * s1 * s2)
-        volume = spec.piston_area * (-kinematics.piston_position(local, r, l_, e))
-        indicated += float(np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(volume, -1) - volume)))
+        slope_sq.append(spec.reciprocating_mass * f.slope**2)
+        slope_dd.append(2 * spec.reciprocating_mass * f.slope * f.curvature)
+        indicated += f.indicated_work
     inline_a, transverse_a = np.array(inline), np.array(transverse)
     load = np.hypot(inline_a, transverse_a)
     lever = np.array([0.5 * c.journal_diameter * c.friction_coefficient for c in specs])
@@ -710,6 +701,109 @@ def engine_cycle(
         peak_shaking_inline=float(np.abs(shake_z_a.sum(axis=0)).max()),
         peak_shaking_transverse=float(np.abs(shake_x_a.sum(axis=0)).max()),
         peak_shaking_force=float(np.hypot(shake_z_a.sum(axis=0), shake_x_a.sum(axis=0)).max()),
+    )
+
+
+@dataclass(frozen=True)
+class CylinderForces(ResultMixin):
+    r"""The forces of one cylinder's crank train over the crank angle (:func:`cylinder_forces`).
+
+    Attributes
+    ----------
+    gas : ndarray
+        Gas force on the piston, :math:`(p - p_{cc})A_p`, pushing it toward the crank [N].
+    inertia : ndarray
+        Reciprocating inertia force :math:`m_{rec}\ddot s` along the cylinder axis, away
+        from the crank [N]; the rod's force on the piston along the axis is
+        ``gas + inertia``.
+    u, q : ndarray
+        Transverse and axial components of the rod from big end to small end [m]; the
+        rod's force on the piston across the axis is ``(gas + inertia) * u / q``.
+    gas_torque, inertia_torque : ndarray
+        Torque on the crank of the gas and of the inertia part of the rod force, positive
+        with rotation [N m].
+    slope, curvature : ndarray
+        :math:`ds/d\theta` [m/rad] and :math:`d^2s/d\theta^2` [m/rad^2] of the piston.
+    indicated_work : float
+        Closed-loop integral of p dV over the samples (trapezoids) [J].
+    """
+
+    gas: NDArray = field(repr=False)
+    inertia: NDArray = field(repr=False)
+    u: NDArray = field(repr=False)
+    q: NDArray = field(repr=False)
+    gas_torque: NDArray = field(repr=False)
+    inertia_torque: NDArray = field(repr=False)
+    slope: NDArray = field(repr=False)
+    curvature: NDArray = field(repr=False)
+    indicated_work: float
+
+
+def cylinder_forces(
+    angle: NDArray, cylinder: CylinderSpec, pressure: NDArray, speed: float
+) -> CylinderForces:
+    r"""Gas and reciprocating inertia forces of one cylinder and their torques on the crank.
+
+    With the exact slider-crank of :mod:`crankbalance.kinematics` (crank angle
+    :math:`\theta` from the cylinder axis, crankpin at :math:`r(\sin\theta, \cos\theta)`):
+
+    .. math::
+        F_g = (p - p_{cc})A_p,\qquad F_i = m_{rec}\,\omega^2 s''(\theta),\qquad
+        u = e - r\sin\theta,\quad q = \sqrt{l^2 - u^2}
+
+        T = z_{pin}F_x - x_{pin}F_z \text{ of } \mathbf F = -(F_g + F_i)(1, u/q)
+
+    The rod is a two-force member: it pushes the piston with
+    :math:`(F_g + F_i)(1, u/q)` in (axis, across) and the crankpin with the opposite force.
+    This is the one place both :func:`engine_cycle` and the whole-engine cycle
+    (:func:`crankbalance.engine_cycle_all.engine_cycle_all`) take those forces from.
+
+    Parameters
+    ----------
+    angle : ndarray
+        Crank angle from the cylinder's firing TDC [rad].
+    cylinder : CylinderSpec
+        Geometry, reciprocating mass and crankcase pressure.
+    pressure : ndarray
+        Absolute cylinder pressure at each angle [Pa].
+    speed : float
+        Crank speed [rad/s].
+
+    Returns
+    -------
+    CylinderForces
+        The forces [N], the rod's components [m], torques [N m], the piston's slope and
+        curvature, and the indicated work [J].
+
+    References
+    ----------
+    Hoem and Røsholm (2016), Sec. 2.3; Den Hartog (1956), Sec. 5.3.
+    """
+    local = angle
+    r, l_, e = cylinder.crank_radius, cylinder.rod_length, cylinder.offset
+    p = pressure
+    s1 = kinematics.piston_velocity(local, r, l_, e)  # ds/dtheta [m/rad]
+    s2 = kinematics.piston_acceleration(local, r, l_, e)  # d2s/dtheta2 [m/rad^2]
+    u = e - r * np.sin(local)
+    q = np.sqrt(l_**2 - u**2)
+    gas = (p - cylinder.crankcase_pressure) * cylinder.piston_area
+    inertial = cylinder.reciprocating_mass * speed**2 * s2
+    pin_x, pin_z = r * np.sin(local), r * np.cos(local)
+    # torque of the force -F_rod at the crankpin, positive with rotation
+    gas_t = pin_z * (-gas * u / q) - pin_x * (-gas)
+    inertia_t = pin_z * (-inertial * u / q) - pin_x * (-inertial)
+    volume = cylinder.piston_area * (-kinematics.piston_position(local, r, l_, e))
+    indicated = float(np.sum(0.5 * (p + np.roll(p, -1)) * (np.roll(volume, -1) - volume)))
+    return CylinderForces(
+        gas=gas,
+        inertia=inertial,
+        u=u,
+        q=q,
+        gas_torque=gas_t,
+        inertia_torque=inertia_t,
+        slope=s1,
+        curvature=s2,
+        indicated_work=indicated,
     )
 
 

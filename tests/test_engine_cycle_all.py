@@ -1,0 +1,279 @@
+"""The whole engine over one working cycle (crankbalance.engine_cycle_all, issue 18 item 2):
+against the single-cylinder engine cycle, closed forms of the inertia torque, the free
+forces of crankbalance.shaking, the energy balance and a re-integration of the speed."""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+
+from crankbalance.engine_cycle import (
+    CylinderSpec,
+    WiebeCombustion,
+    cylinder_volume,
+    engine_cycle,
+    wiebe_pressure,
+)
+from crankbalance.engine_cycle_all import (
+    energy_excursion,
+    engine_cycle_all,
+    firing_angles,
+    flywheel_inertia,
+)
+from crankbalance.errors import InputError
+from crankbalance.shaking import exact_time_domain
+from crankbalance.studies.engine import as_model
+from crankbalance.studies.performance import cycle_cylinder
+
+WIEBE = WiebeCombustion(
+    compression_ratio=12.0, ignition_angle=math.radians(-20), burn_duration=math.radians(50)
+)
+
+
+def _no_gas(strokes: int = 4) -> tuple[np.ndarray, np.ndarray]:
+    """A pressure table at the crankcase pressure: no gas force."""
+    angle = np.radians(np.arange(0.0, 180.0 * strokes, 5.0)) - np.pi * strokes / 2
+    return angle, np.full_like(angle, 1.0e5)
+
+
+def _relative(a: np.ndarray, b: np.ndarray) -> float:
+    return float(np.max(np.abs(np.asarray(a) - np.asarray(b))) / np.max(np.abs(b)))
+
+
+# ---------------------------------------------------------------- one cylinder, two codes
+@pytest.mark.parametrize(
+    ("offset", "strokes", "pressure"),
+    [(0.0, 4, WIEBE), (0.004, 4, WIEBE), (0.0, 2, WIEBE), (-0.003, 2, "table")],
+)
+def test_one_cylinder_engine_equals_engine_cycle(offset, strokes, pressure):
+    model = dataclasses.replace(as_model("single"), offset=offset, strokes=strokes)
+    if pressure == "table":
+        angle = np.radians(np.arange(-180.0, 180.0, 2.0))
+        pressure = (angle, 1e5 + 40e5 * np.exp(-((angle - 0.2) ** 2) / 0.1))
+    spec = cycle_cylinder(
+        model, 1, crank_inertia=0.03, journal_diameter=0.03, friction_coefficient=0.0
+    )
+    single = engine_cycle(spec, model.speed, pressure, strokes)
+    whole = engine_cycle_all(model, pressure, bore=spec.bore, crank_inertia=0.03)
+    for name in ("gas_torque", "inertia_torque", "speed", "crank_acceleration"):
+        assert _relative(getattr(whole, name), getattr(single, name)) < 1e-9, name
+    assert _relative(whole.torque, single.net_torque) < 1e-9, "no friction: net = gas + inertia"
+    assert _relative(whole.pressure, single.pressure) < 1e-9
+    assert whole.speed_fluctuation == pytest.approx(single.speed_fluctuation, rel=1e-9)
+    assert whole.indicated_work == pytest.approx(single.indicated_work, rel=1e-12)
+
+
+def test_one_cylinder_pin_force_is_the_bearing_load_of_engine_cycle():
+    """With balance factor 0 and no crank weight, engine_cycle's main-bearing load of a
+    single cylinder (the force its crank puts on the bearings) is the rod's force on the
+    pin: the same force, two codes."""
+    model = dataclasses.replace(as_model("single"), offset=0.002)
+    spec = cycle_cylinder(
+        model, 1, crank_inertia=0.03, journal_diameter=0.03, friction_coefficient=0.0
+    )
+    single = engine_cycle(spec, model.speed, WIEBE, 4)
+    whole = engine_cycle_all(model, WIEBE, bore=spec.bore, crank_inertia=0.03)
+    bearing = single.inline_load[0] + 1j * single.transverse_load[0]
+    assert _relative(whole.throw_force[0], bearing) < 1e-9
+
+
+# ---------------------------------------------------------------- inertia torque, closed form
+def test_inline4_inertia_torque_has_even_orders_only_den_hartog():
+    """Inline-4 (pins 0, 180, 180, 0), no gas: the inertia torque is 4 x the even orders of
+    one cylinder's, Den Hartog (1956) Sec. 5.3: T = m r^2 w^2 [(l/4) sin t - 1/2 sin 2t -
+    (3l/4) sin 3t - (l^2/4) sin 4t ...]; harmonics at l = 0.25 from the exact kinematics
+    0.0635, -0.5001, -0.1921, -0.0161 (the values of tests/test_dynamics.py)."""
+    base = as_model("inline4")
+    model = dataclasses.replace(base, rod_length=base.crank_radius / 0.25)
+    result = engine_cycle_all(
+        model, _no_gas(), bore=0.08, crank_inertia=0.2, samples_per_revolution=256
+    )
+    m = float(model.reciprocating_mass[0])
+    scale = m * model.crank_radius**2 * model.speed**2
+    torque, th = result.inertia_torque / scale, result.angle
+    b = np.array([2 * np.mean(torque * np.sin(n * th)) for n in range(9)])
+    a = np.array([2 * np.mean(torque * np.cos(n * th)) for n in range(9)])
+    assert np.max(np.abs(b[1::2])) < 1e-9 and np.max(np.abs(a[1:])) < 1e-9, "odd orders cancel"
+    assert b[2] == pytest.approx(4 * -0.5001, abs=4 * 6e-5), "order 2: 4 x Den Hartog"
+    assert b[4] == pytest.approx(4 * -0.0161, abs=4 * 6e-5), "order 4: 4 x Den Hartog"
+    assert b[2] == pytest.approx(-2.0, abs=4 * 5e-3), "series to l^2: -1/2 per cylinder"
+    assert b[4] == pytest.approx(-(0.25**2), abs=4 * 5e-3), "series to l^2: -l^2/4 per cyl."
+    assert np.allclose(result.gas_torque, 0.0, atol=1e-12), "no gas force"
+
+
+def test_vee_twin_90_torque_is_the_sum_of_two_phased_single_cylinders():
+    model = as_model("v2-90")
+    whole = engine_cycle_all(model, WIEBE, bore=0.07, crank_inertia=0.05)
+    fire = np.degrees(whole.fire_angle)
+    assert np.mod(fire[1] - fire[0], 720) == pytest.approx(450.0), "90 deg V-twin: 450/270"
+    spec = cycle_cylinder(
+        model, 1, bore=0.07, crank_inertia=0.05, journal_diameter=0.03, friction_coefficient=0
+    )
+    parts = [
+        engine_cycle(spec, model.speed, WIEBE, 4, phases=[ph])
+        for ph in whole.fire_angle - whole.fire_angle[0]
+    ]
+    for name in ("gas_torque", "inertia_torque"):
+        total = sum(getattr(p, name) for p in parts)
+        assert _relative(getattr(whole, name), total) < 1e-9, name
+    assert _relative(whole.cylinder_gas_torque[1], parts[1].gas_torque) < 1e-9
+
+
+# ---------------------------------------------------------------- forces: two codes
+@pytest.mark.parametrize("preset", ["inline4", "v8-crossplane", "w12", "radial5", "v2-90"])
+def test_pin_and_side_forces_of_inertia_sum_to_the_free_force(preset):
+    """Sum over throws of the rods' inertia force on the pins, plus the pistons' inertia
+    side forces on the walls, is the free force of crankbalance.shaking (exact time
+    domain): the same physics by two codes. The side forces carry the rods' obliquity, so
+    the pin forces alone do not make the free force (checked too)."""
+    model = dataclasses.replace(as_model(preset), offset=0.002)
+    result = engine_cycle_all(
+        model, WIEBE, bore=0.08, crank_inertia=0.5, samples_per_revolution=180
+    )
+    free, _ = exact_time_domain(model, result.crank_angle)
+    pins = result.throw_force_inertia.sum(axis=0)
+    sides = result.side_force_inertia.sum(axis=0)
+    assert _relative(pins + sides, free) < 1e-9
+    assert np.max(np.abs(sides)) > 1e-3 * np.max(np.abs(free)), "obliquity is not negligible"
+
+
+@pytest.mark.parametrize("preset", ["inline4", "v8-crossplane", "v6-90", "boxer2"])
+def test_torque_is_the_moment_of_the_pin_forces(preset):
+    """The crank torque computed per cylinder in its own frame equals the moment about the
+    crank axis of ``throw_force`` at the crankpins, Im(conj(pin) F)."""
+    model = as_model(preset)
+    result = engine_cycle_all(model, WIEBE, bore=0.08, crank_inertia=0.5)
+    pin = model.crank_radius * np.exp(
+        1j * (result.crank_angle[None, :] + model.throw_angle[:, None])
+    )
+    moment = np.imag(np.conj(pin) * result.throw_force).sum(axis=0)
+    assert _relative(moment, result.torque) < 1e-9
+    # the gas forces are internal: pins + walls + heads (F_g along each axis) sum to zero
+    gas_pins = (result.throw_force - result.throw_force_inertia).sum(axis=0)
+    gas_sides = (result.side_force - result.side_force_inertia).sum(axis=0)
+    area = math.pi * 0.08**2 / 4
+    heads = ((result.pressure - 1e5) * area * np.exp(1j * model.cylinder_bank)[:, None]).sum(0)
+    assert np.max(np.abs(gas_pins + gas_sides + heads)) < 1e-9 * np.max(np.abs(heads))
+
+
+# ---------------------------------------------------------------- energy and flywheel
+@pytest.mark.parametrize("preset", ["inline4", "v8-crossplane", "inline2-2stroke"])
+def test_mean_torque_times_cycle_is_the_indicated_work(preset):
+    model = as_model(preset)
+    result = engine_cycle_all(model, WIEBE, bore=0.08, crank_inertia=0.5)
+    cycle = math.pi * model.strokes
+    assert result.mean_torque * cycle == pytest.approx(result.indicated_work, rel=5e-3)
+    # against an independent, finer p-V integration of one cylinder times the count
+    spec = CylinderSpec(
+        bore=0.08,
+        crank_radius=model.crank_radius,
+        rod_length=model.rod_length,
+        reciprocating_mass=0.3,
+        crank_inertia=1.0,
+    )
+    theta = np.linspace(-np.pi, np.pi, 20001)
+    p = wiebe_pressure(theta, spec, WIEBE, model.strokes)
+    v = cylinder_volume(theta, 0.08, model.crank_radius, model.rod_length, 12.0)
+    work = model.cylinders * np.trapezoid(p, v)
+    assert result.mean_torque * cycle == pytest.approx(work, rel=5e-3), "0.5 % (issue 7)"
+    assert abs(np.mean(result.inertia_torque)) < 1e-9 * np.max(np.abs(result.inertia_torque))
+    assert result.indicated_power == pytest.approx(result.mean_torque * model.speed)
+
+
+@pytest.mark.parametrize("preset", ["single", "inline4", "v8-crossplane", "v6-90", "radial5"])
+@pytest.mark.parametrize("target", [0.005, 0.02])
+def test_flywheel_sizing_checked_by_reintegration(preset, target):
+    model = as_model(preset)
+    result = engine_cycle_all(
+        model, WIEBE, bore=0.08, crank_inertia=0.5, speed_fluctuation_target=target
+    )
+    assert result.required_inertia > 0
+    assert result.required_inertia_fluctuation == pytest.approx(target, rel=0.02)
+    again = engine_cycle_all(model, WIEBE, bore=0.08, crank_inertia=result.required_inertia)
+    assert again.speed_fluctuation == pytest.approx(result.required_inertia_fluctuation, rel=1e-9)
+    # the speed satisfies the equation of motion: acceleration = w dw/dtheta
+    step = again.angle[1] - again.angle[0]
+    fd = again.speed * np.gradient(again.speed, step)
+    inner = slice(10, -10)
+    assert np.allclose(
+        fd[inner],
+        again.crank_acceleration[inner],
+        atol=2e-3 * np.max(np.abs(again.crank_acceleration)),
+    )
+
+
+def test_flywheel_closed_form_on_a_sine_torque():
+    """T = T0 sin(k theta): E swings by 2 T0 / k, so I = 2 T0 / (k delta w^2)."""
+    theta = np.linspace(0, 4 * np.pi, 1440, endpoint=False)
+    inertia, swing = flywheel_inertia(theta, 50.0 + 120.0 * np.sin(3 * theta), 300.0, 0.01)
+    assert swing == pytest.approx(2 * 120.0 / 3, rel=1e-4)
+    assert inertia == pytest.approx(2 * 120.0 / 3 / (0.01 * 300.0**2), rel=1e-4)
+    assert energy_excursion(theta, np.full_like(theta, 7.0)) == 0.0
+
+
+# ---------------------------------------------------------------- firing
+def test_firing_angles_even_and_uneven():
+    four = as_model("inline4")  # 1-3-4-2 on pins 0, 180, 180, 0
+    fire = firing_angles(four.cylinder_angle, four.cylinder_bank, four.firing_order, 4)
+    assert np.degrees(fire) == pytest.approx([0, 540, 180, 360])
+    twin = as_model("inline2-270")
+    fire = firing_angles(twin.cylinder_angle, twin.cylinder_bank, twin.firing_order, 4)
+    assert np.degrees(fire) == pytest.approx([0, 270]), "270 deg twin fires 270/450"
+    v6 = as_model("v6-90")  # no firing order: the most even choice on pins 120 deg apart
+    fire = np.sort(np.degrees(engine_cycle_all(v6, WIEBE, bore=0.09, crank_inertia=1).fire_angle))
+    gaps = np.diff(np.append(fire, fire[0] + 720))
+    assert gaps.sum() == pytest.approx(720) and np.max(np.abs(gaps - 120)) == pytest.approx(30)
+    v8 = as_model("v8-crossplane")
+    fire = firing_angles(v8.cylinder_angle, v8.cylinder_bank, v8.firing_order, 4)
+    assert np.degrees(np.sort(fire)) == pytest.approx(np.arange(0, 720, 90))
+    # every firing angle is a top dead centre of its cylinder
+    assert np.allclose(np.cos(fire + v8.cylinder_angle - v8.cylinder_bank), 1.0)
+
+
+def test_pressure_per_cylinder():
+    model = as_model("inline2-180")
+    weak = dataclasses.replace(WIEBE, intake_pressure=0.5e5)
+    both = engine_cycle_all(model, [WIEBE, weak], bore=0.07, crank_inertia=0.05)
+    same = engine_cycle_all(model, WIEBE, bore=0.07, crank_inertia=0.05)
+    assert _relative(both.cylinder_gas_torque[0], same.cylinder_gas_torque[0]) < 1e-12
+    assert both.indicated_work < same.indicated_work
+
+
+@pytest.mark.parametrize(
+    ("call", "field"),
+    [
+        (lambda m: engine_cycle_all(m, [WIEBE], bore=0.08, crank_inertia=1), "pressure"),
+        (
+            lambda m: engine_cycle_all(
+                m, WIEBE, bore=0.08, crank_inertia=1, fire_angle=[0, 1, 2, 3]
+            ),
+            "fire_angle (cylinder 2)",
+        ),
+        (
+            lambda m: engine_cycle_all(
+                m, WIEBE, bore=0.08, crank_inertia=1, speed_fluctuation_target=0.0
+            ),
+            "speed_fluctuation_target",
+        ),
+        (lambda m: engine_cycle_all(m, WIEBE, bore=0.0, crank_inertia=1), "bore"),
+        (
+            lambda m: engine_cycle_all(m, WIEBE, bore=0.08, crank_inertia=float("nan")),
+            "crank_inertia",
+        ),
+        (
+            lambda m: firing_angles(m.cylinder_angle, m.cylinder_bank, [1, 2, 2, 4], 4),
+            "crank_train.firing_order",
+        ),
+        (
+            lambda m: firing_angles(m.cylinder_angle, m.cylinder_bank, [1, 3, 2, 4], 2),
+            "crank_train.firing_order",
+        ),
+    ],
+)
+def test_bad_input_names_the_field(call, field):
+    with pytest.raises(InputError) as error:
+        call(as_model("inline4"))
+    assert error.value.field == field
