@@ -844,6 +844,10 @@ def main_bearing_loads(
     every = np.concatenate([loads.load, reactions]).T  # (S, L + B)
     journal = bending_moment_at(xb, positions, every).T
     pin = bending_moment_at(yt, positions, every).T
+    # what is below round-off of the loads' moments is exactly zero (an end journal)
+    tiny = 1e-12 * float(np.abs(every).sum(axis=1).max(initial=0.0)) * float(np.ptp(positions))
+    journal = np.where(np.abs(journal) <= tiny, 0.0, journal)
+    pin = np.where(np.abs(pin) <= tiny, 0.0, pin)
     bearing_load = -reactions
     magnitude = np.abs(bearing_load)
     return MainBearingLoads(

@@ -64,6 +64,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Every firing order and crank of a layout, ranked.",
     ),
     "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
+    "bearings": (
+        "crankbalance.cli.bearings:bearings",
+        "Main-bearing loads and crank bending over the engine cycle.",
+    ),
 }
 
 
