@@ -362,3 +362,57 @@ def test_bad_input_names_the_field() -> None:
         main_bearing_loads(loads, [-0.5, 0.0, 0.1], y, "indeterminate", stiffness)
     with pytest.raises(InputError, match="journal_diameter"):
         CrankSection(0.0, 0.04, 0.02, 0.09)
+
+
+# ------------------------------------------------------------------ whole engine
+
+
+@pytest.mark.parametrize("engine", ["inline4", "v8-crossplane", "boxer2"])
+@pytest.mark.parametrize("model", ["determinate", "indeterminate"])
+def test_bearing_and_liner_forces_add_up_to_the_shaking_force(engine: str, model: str) -> None:
+    """Without gas, at constant speed, the forces the crank train puts on the block are the
+    main-bearing loads plus the pistons' side forces on the liners; they must add up to the
+    free inertia force of shaking.exact_time_domain plus the rotating masses and the
+    counterweights (balancing.point_mass_history), and the same for the couple: the
+    rod-force route (engine_cycle_all, crank loads, beam reactions) against the direct sum
+    of the masses' accelerations."""
+    from crankbalance.balancing import point_mass_history
+    from crankbalance.engine_cycle_all import engine_cycle_all
+    from crankbalance.shaking import exact_time_domain
+    from crankbalance.studies.engine import balance_engine
+    from crankbalance.studies.loads import _counterweight_arrays
+
+    study = balance_engine(engine)
+    m, balance = study.model, study.result
+    table = (np.radians([-300.0, -100.0, 100.0, 300.0]), np.full(4, 1e5))
+    cycle = engine_cycle_all(m, table, bore=0.08, crank_inertia=1.0, samples_per_revolution=90)
+    theta = cycle.crank_angle
+    loads = crank_loads(
+        theta,
+        cycle.throw_force,
+        m.throw_angle,
+        m.throw_position,
+        m.throw_rotating_mass,
+        m.crank_radius,
+        m.speed,
+        **_counterweight_arrays(balance),
+    )
+    bearings = default_bearing_positions(m.throw_position, m.crank_radius)
+    stiffness = uniform_stiffness(bearings.min() - 0.1, bearings.max() + 0.1, 5e4)
+    result = main_bearing_loads(loads, bearings, m.throw_position, model, stiffness)
+    side = cycle.side_force_inertia  # (C, S)
+    on_block = result.load.sum(axis=0) + side.sum(axis=0)
+    couple_on_block = (bearings[:, None] * result.load).sum(axis=0) + (
+        m.cylinder_position[:, None] * side
+    ).sum(axis=0)
+    recip, recip_couple = exact_time_domain(m, theta)
+    rot = m.throw_rotating_mass * m.crank_radius * np.exp(1j * m.throw_angle)
+    cw = balance.counterweights
+    masses, mass_couple = point_mass_history(
+        m.speed, theta, [(rot, m.throw_position), (cw.moments, cw.position)]
+    )
+    scale = np.abs(result.load).max() + np.abs(side).max()  # the size of the parts
+    np.testing.assert_allclose(on_block, recip + masses, atol=1e-9 * scale)
+    np.testing.assert_allclose(
+        couple_on_block, recip_couple + mass_couple, atol=1e-9 * scale * np.ptp(bearings)
+    )

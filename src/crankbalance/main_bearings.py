@@ -726,7 +726,7 @@ class MainBearingLoads(ResultMixin):
 
 def bearing_friction(
     load: ArrayLike,
-    speed: ArrayLike,
+    speed: float,
     journal_diameter: float,
     friction_coefficient: float,
     viscosity: float | None = None,
@@ -745,8 +745,8 @@ def bearing_friction(
     ----------
     load : array_like of complex, shape (B, S)
         Bearing loads over the cycle [N].
-    speed : array_like, shape (S,) or scalar
-        Crank speed [rad/s]; the powers use its mean.
+    speed : float
+        Time-mean crank speed [rad/s] (the power of an angle-mean torque).
     journal_diameter : float
         Main-journal diameter [m].
     friction_coefficient : float
@@ -764,7 +764,7 @@ def bearing_friction(
         Per bearing.
     """
     magnitude = np.abs(np.asarray(load, dtype=complex))
-    mean_speed = float(np.mean(np.asarray(speed, dtype=float)))
+    mean_speed = check_positive("speed", speed)
     coulomb = friction_torque(friction_coefficient, magnitude, journal_diameter).mean(axis=-1)
     petroff = None
     given = [v is not None for v in (viscosity, bearing_length, clearance)]

@@ -339,7 +339,7 @@ def bearing_loads(
         )
         fr = bearing_friction(
             r.load,
-            cycle.speed,
+            cycle.speed_mean,  # the time mean: angle-mean torque x it is the mean power
             section.journal_diameter,
             o.friction_coefficient,
             o.viscosity,
