@@ -1584,7 +1584,16 @@ def bearing_loads_figure(
         raise InputError("model", model, "'determinate' or 'indeterminate'")
     go = _go()
     many = list(studies) if isinstance(studies, (list, tuple)) else [studies]
-    names = list(labels) if labels is not None else [f"case {k + 1}" for k in range(len(many))]
+    names = (
+        list(labels)
+        if labels is not None
+        else [
+            "no counterweights"
+            if s.balance.counterweights is None
+            else f"{s.balance.counterweights.count} counterweights"
+            for s in many
+        ]
+    )
     if len(names) != len(many):
         raise InputError("labels", labels, f"needs one label per study ({len(many)})")
     bearings = many[0].results[model].bearing_position.size
@@ -1613,7 +1622,7 @@ def bearing_loads_figure(
                     name=name,
                     legendgroup=name,
                     showlegend=k == 0,
-                    line={"color": ORDER_COLORS[n % len(ORDER_COLORS)], "dash": dash},
+                    line={"color": COLORS["total"], "dash": dash},
                     text=[f"{a:.0f} deg" for a in deg],
                     hovertemplate="crank %{text}<br>x %{x:.4g} N<br>z %{y:.4g} N<extra></extra>",
                 ),
@@ -1625,9 +1634,9 @@ def bearing_loads_figure(
                     x=deg,
                     y=np.abs(r.journal_moment[k]),
                     mode="lines",
-                    name=f"{name}, journal {k + 1}",
-                    legendgroup=name,
-                    showlegend=False,
+                    name=f"journal {k + 1}",
+                    legendgroup=f"journal {k + 1}",
+                    showlegend=n == 0,
                     line={"color": ORDER_COLORS[k % len(ORDER_COLORS)], "dash": dash},
                     hovertemplate=f"{name}, journal {k + 1}<br>crank %{{x:.0f}} deg<br>"
                     "|M| %{y:.4g} N·m<extra></extra>",
@@ -1658,7 +1667,7 @@ def bearing_loads_figure(
         title=figure_title(
             f"Main-bearing loads over the cycle ({model} crank)",
             first.model.name,
-            f"{first.cycle.speed_mean * 30 / math.pi:.0f} rpm; journal colours by journal",
+            f"{first.cycle.speed_mean * 30 / math.pi:.0f} rpm",
         ),
     )
     return fig
