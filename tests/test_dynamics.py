@@ -463,8 +463,11 @@ def test_cli_bench_cycle_sensitivity_outputs(tmp_path):
     )
     assert history.read_text().startswith("time_s,")
     result, data = _run_cli(["cycle", "--speed", "6000 rpm", "--format", "json"])
-    assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/2"
+    assert result.exit_code == 0 and data["schema"] == "crankbalance.cycle/3"
+    assert "cylinder" in data and "flywheel" not in data
     assert data["summary"]["energy_check_ratio"] == pytest.approx(1.0, abs=5e-3)
+    angle = np.array(data["curves"]["cycle_angle_rad"])
+    assert angle[0] == pytest.approx(-2 * np.pi) and np.all(np.diff(angle) > 0), "not folded"
     result, _ = _run_cli(["cycle", "--format", "csv"])
     assert result.stdout.splitlines()[0].startswith("angle_deg,pressure_bar")
     result, data = _run_cli(["sensitivity", "--balance-factors", "0:1:0.5", "--format", "json"])
@@ -578,7 +581,7 @@ def test_sensitivity_refuses_bad_factors_before_computing():
 
 
 def test_cli_cycle_engine_options_given_override_the_engine():
-    result, data = _run_cli(["cycle", "--engine", "single", "--format", "json"])
+    result, data = _run_cli(["cycle", "--engine", "single", "--cylinder", "1", "--format", "json"])
     assert result.exit_code == 0, result.output
     from_engine = data["cylinder"]["crank_radius_m"]
     result, data = _run_cli(
@@ -586,6 +589,8 @@ def test_cli_cycle_engine_options_given_override_the_engine():
             "cycle",
             "--engine",
             "single",
+            "--cylinder",
+            "1",
             "--stroke",
             "60 mm",
             "--reciprocating-mass",

@@ -5,7 +5,9 @@ forces of crankbalance.shaking, the energy balance and a re-integration of the s
 from __future__ import annotations
 
 import dataclasses
+import json
 import math
+from typing import Any
 
 import numpy as np
 import pytest
@@ -27,6 +29,8 @@ from crankbalance.errors import InputError
 from crankbalance.shaking import exact_time_domain
 from crankbalance.studies.engine import as_model
 from crankbalance.studies.performance import cycle_cylinder
+
+from .conftest import run_cli
 
 WIEBE = WiebeCombustion(
     compression_ratio=12.0, ignition_angle=math.radians(-20), burn_duration=math.radians(50)
@@ -277,3 +281,167 @@ def test_bad_input_names_the_field(call, field):
     with pytest.raises(InputError) as error:
         call(as_model("inline4"))
     assert error.value.field == field
+
+
+# ---------------------------------------------------------------- command line
+def _cli(args: list[str], capsys: pytest.CaptureFixture[str]) -> tuple[int, Any, str]:
+    code, out, err = run_cli(args, capsys)
+    data = json.loads(out) if code == 0 and "json" in args else out
+    return code, data, err
+
+
+def test_cli_cycle_runs_every_cylinder_by_default(capsys):
+    args = ["cycle", "--engine", "v8-crossplane", "--crank-inertia", "0.05 kg*m^2"]
+    code, data, err = _cli([*args, "--format", "json"], capsys)
+    assert code == 0, err
+    assert data["schema"] == "crankbalance.cycle/3" and "cylinder" not in data
+    engine = data["engine"]
+    assert engine["cylinders"] == 8 and engine["firing_order"] == [1, 5, 4, 8, 6, 3, 7, 2]
+    assert np.degrees(engine["firing_interval_rad"]) == pytest.approx([90.0] * 8)
+    curves = data["curves"]
+    assert np.shape(curves["cylinder_torque_Nm"]) == (8, 1440)
+    assert np.shape(curves["throw_force_z_N"]) == (4, 1440)
+    # the command gives what the study gives
+    model = as_model("v8-crossplane")
+    result = engine_cycle_all(model, _cli_wiebe(), bore=2 * model.crank_radius, crank_inertia=0.05)
+    assert curves["torque_Nm"] == pytest.approx(result.torque.tolist(), rel=1e-9, abs=1e-6)
+    assert data["summary"]["mean_torque_Nm"] == pytest.approx(result.mean_torque, rel=1e-9)
+    assert "flywheel" not in data
+    code, text, err = _cli(args, capsys)
+    assert code == 0 and "all 8 cylinders" in text and "intervals 90/90" in text
+
+
+def _cli_wiebe() -> WiebeCombustion:
+    """The Wiebe model of the command's defaults."""
+    return WiebeCombustion(
+        compression_ratio=13.5,
+        ignition_angle=math.radians(-25.0),
+        burn_duration=math.radians(50.0),
+        intake_pressure=1e5,
+    )
+
+
+def test_cli_cycle_flywheel_sizing(capsys):
+    args = ["cycle", "--engine", "inline4", "--crank-inertia", "0.05 kg*m^2"]
+    code, data, err = _cli([*args, "--speed-fluctuation-target", "1%", "--format", "json"], capsys)
+    assert code == 0, err
+    fly = data["flywheel"]
+    assert fly["speed_fluctuation_target"] == pytest.approx(0.01)
+    assert fly["check_speed_fluctuation"] == pytest.approx(0.01, rel=0.02)
+    assert fly["required_flywheel_inertia_kg_m2"] == pytest.approx(
+        fly["required_inertia_kg_m2"] - 0.05
+    )
+    flywheel = f"{fly['required_flywheel_inertia_kg_m2']} kg*m^2"
+    code, again, err = _cli([*args, "--flywheel-inertia", flywheel, "--format", "json"], capsys)
+    assert code == 0, err
+    assert again["engine"]["flywheel_inertia_kg_m2"] == pytest.approx(
+        fly["required_flywheel_inertia_kg_m2"]
+    )
+    assert again["summary"]["speed_fluctuation"] == pytest.approx(
+        fly["check_speed_fluctuation"], rel=1e-9
+    )
+    # one cylinder: sized on its net torque (with friction), checked by engine_cycle
+    one = ["cycle", "--engine", "inline4", "--cylinder", "2", "--speed-fluctuation-target", "0.02"]
+    code, data, err = _cli([*one, "--format", "json"], capsys)
+    assert code == 0, err
+    assert data["flywheel"]["check_speed_fluctuation"] == pytest.approx(0.02, rel=0.02)
+
+
+def test_cli_cycle_pressure_table_per_cylinder(capsys, tmp_path):
+    angle = np.arange(-360, 360, 5.0)
+    paths = []
+    for k, peak in enumerate((40.0, 20.0)):
+        path = tmp_path / f"p{k}.csv"
+        pressure = 1.0 + peak * np.exp(-(((angle - 10) / 30) ** 2))
+        path.write_text("\n".join(f"{a},{p}" for a, p in zip(angle, pressure, strict=True)))
+        paths.append(str(path))
+    base = ["cycle", "--engine", "inline2-180", "--crank-inertia", "0.05 kg*m^2"]
+    code, data, err = _cli(
+        [*base, "--pressure-csv", paths[0], "--pressure-csv", paths[1], "--format", "json"],
+        capsys,
+    )
+    assert code == 0, err
+    peaks = np.max(data["curves"]["cylinder_pressure_Pa"], axis=1)
+    assert peaks == pytest.approx([41e5, 21e5], rel=0.01)
+    code, _, err = _cli([*base, "--pressure-csv", paths[0]], capsys)
+    assert code == 0, err
+    three = [*base, *(["--pressure-csv", paths[0]] * 3)]
+    code, _, err = _cli(three, capsys)
+    assert code == 2 and "--pressure-csv" in err and "one per cylinder (2)" in err
+
+
+@pytest.mark.parametrize(
+    ("args", "needle"),
+    [
+        (["--balance-factor", "0.3"], "--balance-factor"),
+        (["--journal-diameter", "40 mm"], "--journal-diameter"),
+        (["--speed-fluctuation-target", "0"], "--speed-fluctuation-target"),
+        (["--speed-fluctuation-target", "60%"], "--speed-fluctuation-target"),
+        (["--flywheel-inertia", "-1 kg*m^2"], "--flywheel-inertia"),
+        (["--plot", "x.txt"], "--plot"),
+    ],
+)
+def test_cli_cycle_refuses(args, needle, capsys, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)
+    code, _, err = _cli(["cycle", "--engine", "inline4", *args], capsys)
+    assert code == 2 and err.startswith(f"error: {needle}"), err
+
+
+def test_cli_cycle_too_small_inertia_names_the_option_and_the_flywheel(capsys):
+    code, _, err = _cli(
+        ["cycle", "--engine", "paper-inline3", "--speed-fluctuation-target", "0.01"], capsys
+    )
+    assert code == 2 and err.startswith("error: --crank-inertia")
+    assert "needs" in err and "--flywheel-inertia" in err
+
+
+def test_cli_cycle_plot(capsys, tmp_path):
+    pytest.importorskip("plotly")
+    out = tmp_path / "torque.html"
+    args = ["cycle", "--engine", "v2-90", "--crank-inertia", "0.05 kg*m^2", "--plot", str(out)]
+    code, _, err = _cli(args, capsys)
+    assert code == 0, err
+    page = out.read_text()
+    assert "cylinder 2" in page and "Torque of each cylinder" in page
+
+
+@pytest.mark.parametrize(
+    ("preset", "rpm", "excursion", "required"),
+    [("inline4", 2000, 346.9, 0.7886), ("v8-crossplane", 5500, 232.0, 0.0632)],
+)
+def test_worked_example_of_the_docs(preset, rpm, excursion, required):
+    """The table of docs/engine_cycle.md (the command's default Wiebe model, 1 %)."""
+    model = dataclasses.replace(as_model(preset), speed=rpm * math.pi / 30)
+    result = engine_cycle_all(
+        model,
+        _cli_wiebe(),
+        bore=2 * model.crank_radius,
+        crank_inertia=0.05,
+        speed_fluctuation_target=0.01,
+    )
+    assert result.energy_excursion == pytest.approx(excursion, abs=0.05)
+    assert result.required_inertia == pytest.approx(required, abs=5e-5)
+
+
+def test_cli_cycle_options_typed_override_the_engine(capsys):
+    args = ["cycle", "--engine", "inline4", "--crank-inertia", "0.1 kg*m^2", "--format", "json"]
+    code, base, err = _cli(args, capsys)
+    assert code == 0, err
+    typed = ["--speed", "3000 rpm", "--reciprocating-mass", "500 g", "--bore", "80 mm"]
+    code, data, err = _cli([*args, *typed], capsys)
+    assert code == 0, err
+    assert data["speed_rad_s"] == pytest.approx(100 * math.pi)
+    assert data["engine"]["reciprocating_mass_kg"] == pytest.approx([0.5] * 4)
+    assert data["engine"]["bore_m"] == pytest.approx(0.08)
+    assert base["engine"]["bore_m"] == pytest.approx(2 * as_model("inline4").crank_radius)
+    # the inertia torque scales with m w^2: order 2 of an inline-4
+    ratio = 0.5 / float(as_model("inline4").reciprocating_mass[0]) * (3000 / 6000) ** 2
+    peak = np.max(np.abs(data["curves"]["inertia_torque_Nm"]))
+    assert peak == pytest.approx(ratio * np.max(np.abs(base["curves"]["inertia_torque_Nm"])))
+
+
+def test_result_to_dict_is_json_ready():
+    model = as_model("v2-90")
+    data = engine_cycle_all(model, WIEBE, bore=0.07, crank_inertia=0.05).to_dict()
+    assert data["throw_force"][0][0].keys() == {"re", "im"}
+    json.dumps(data)

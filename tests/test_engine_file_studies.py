@@ -16,10 +16,13 @@ from .conftest import run_cli
 
 def test_cycle_from_engine_file(capsys: pytest.CaptureFixture[str]) -> None:
     code, out, err = run_cli(
-        ["cycle", "--engine", "single", "--format", "json", "--balance-factor", "0.5"], capsys
+        ["cycle", "--engine", "single", "--cylinder", "1", "--format", "json"]
+        + ["--balance-factor", "0.5"],
+        capsys,
     )
     assert code == 0, err
     data = json.loads(out)
+    assert "engine" not in data, "one cylinder"
     model = as_model("single")
     assert data["cylinder"]["reciprocating_mass_kg"] == pytest.approx(model.reciprocating_mass[0])
     assert data["cylinder"]["crank_radius_m"] == pytest.approx(model.crank_radius)

@@ -60,6 +60,8 @@ TDC_TOLERANCE = 1e-6
 #: the largest target speed fluctuation a flywheel is sized for [-] (the energy method
 #: assumes a small fluctuation; beyond, the crank nearly stops within a cycle)
 MAX_FLUCTUATION_TARGET = 0.5
+#: the smallest one [-] (below, the inertia found is beyond any machine)
+MIN_FLUCTUATION_TARGET = 1e-6
 #: most cylinders whose firing angles are chosen without a firing order (every one of the
 #: 2^(C-1) choices of a four-stroke is tried)
 MAX_FREE_CYLINDERS = 16
@@ -216,7 +218,7 @@ def flywheel_inertia(
     speed : float
         Mean crank speed :math:`\bar\omega` [rad/s].
     target : float
-        Speed fluctuation :math:`\delta` to meet, above 0 and at most
+        Speed fluctuation :math:`\delta` to meet, from :data:`MIN_FLUCTUATION_TARGET` to
         :data:`MAX_FLUCTUATION_TARGET` [-].
 
     Returns
@@ -234,11 +236,11 @@ def flywheel_inertia(
     Sec. 5.4 (coefficient of fluctuation).
     """
     check_positive("speed", speed)
-    if not (0 < target <= MAX_FLUCTUATION_TARGET):
+    if not (MIN_FLUCTUATION_TARGET <= target <= MAX_FLUCTUATION_TARGET):
         raise InputError(
             "speed_fluctuation_target",
             target,
-            f"must be above 0 and at most {MAX_FLUCTUATION_TARGET:g}",
+            f"must be from {MIN_FLUCTUATION_TARGET:g} to {MAX_FLUCTUATION_TARGET:g}",
         )
     theta = np.asarray(angle, dtype=float)
     t = np.asarray(torque, dtype=float)
@@ -501,8 +503,6 @@ def engine_cycle_all(
     load = float(np.mean(gas_torque))
     driving = gas_torque - load
     work = np.concatenate([[0.0], np.cumsum(0.5 * (driving[1:] + driving[:-1]) * step)])
-    omega = _speed_from_energy(work, inertia_total, w, step)
-    acceleration = (driving - 0.5 * inertia_slope * omega**2) / inertia_total
     excursion = energy_excursion(theta, torque)
     required = achieved = None
     if speed_fluctuation_target is not None:
@@ -512,6 +512,18 @@ def engine_cycle_all(
         required = max(total - float(np.mean(variable)), 0.0)
         check = _speed_from_energy(work, required + variable, w, step)
         achieved = float(np.ptp(check) / w)
+    try:
+        omega = _speed_from_energy(work, inertia_total, w, step)
+    except InputError as error:
+        if required is None:
+            raise
+        raise InputError(
+            "crank_inertia",
+            crank_inertia,
+            f"{error.allowed}; a speed fluctuation of {speed_fluctuation_target:g} needs "
+            f"{required:.4g} kg m^2 of purely rotating inertia",
+        ) from None
+    acceleration = (driving - 0.5 * inertia_slope * omega**2) / inertia_total
     return EngineCycleResult(
         speed_mean=w,
         strokes=strokes,

@@ -8,7 +8,7 @@ histories from :func:`crankbalance.balancing.point_mass_history`), and turning a
 into a PNG, SVG or HTML file is :mod:`crankbalance.render`'s job.
 
 It is longer than the ~800 lines the layout aims at because it holds one builder per
-figure of every study (seventeen builders, 30-190 lines each) around one shared palette and title
+figure of every study (eighteen builders, 30-190 lines each) around one shared palette and title
 style; splitting it by study would spread that style over several modules for no gain in
 cohesion (each builder depends only on the palette and helpers at the top).
 
@@ -46,6 +46,7 @@ Other studies:
 - ``sensitivity_figure(result) -> Figure``          (engine_cycle.SensitivityResult)
 - ``bench_figure(result) -> Figure``                (rotor_bench.BenchResult)
 - ``cycle_figure(result) -> Figure``                (engine_cycle.CycleResult)
+- ``engine_torque_figure(result) -> Figure``        (engine_cycle_all.EngineCycleResult)
 - ``bearing_loads_figure(studies, model) -> Figure`` (studies.loads.BearingStudy, one or
     several overlaid): polar load diagram per main bearing, bending moment per journal
 
@@ -1669,6 +1670,77 @@ def bearing_loads_figure(
             first.model.name,
             f"{first.cycle.speed_mean * 30 / math.pi:.0f} rpm",
         ),
+    )
+    return fig
+
+
+def engine_torque_figure(result: Any) -> go.Figure:
+    """The whole engine's torque over the cycle, each cylinder's share, and the speed
+    (:class:`~crankbalance.engine_cycle_all.EngineCycleResult`); a single-cylinder
+    :class:`~crankbalance.engine_cycle.CycleResult` gets :func:`cycle_figure`."""
+    if not hasattr(result, "cylinder_gas_torque"):
+        return cycle_figure(result)
+    go = _go()
+    deg = np.degrees(np.asarray(result.angle))
+    fig = _subplots(
+        rows=3,
+        cols=1,
+        shared_xaxes=True,
+        vertical_spacing=0.06,
+        row_heights=[0.4, 0.4, 0.2],
+        subplot_titles=("Crank torque", "Torque of each cylinder (gas + inertia)", "Speed"),
+    )
+    for name, values, color in (
+        ("gas", result.gas_torque, COLORS["backward"]),
+        ("inertia", result.inertia_torque, COLORS["forward"]),
+        ("total", result.torque, COLORS["total"]),
+    ):
+        fig.add_trace(
+            go.Scatter(x=deg, y=values, name=f"{name} torque", line={"color": color}), row=1, col=1
+        )
+    fig.add_trace(
+        go.Scatter(
+            x=[deg[0], deg[-1]],
+            y=[result.mean_torque] * 2,
+            mode="lines",
+            name="mean torque",
+            line={"color": COLORS["after"], "dash": "dash"},
+        ),
+        row=1,
+        col=1,
+    )
+    shares = np.asarray(result.cylinder_gas_torque) + np.asarray(result.cylinder_inertia_torque)
+    for c, values in enumerate(shares):
+        fig.add_trace(
+            go.Scatter(
+                x=deg,
+                y=values,
+                name=f"cylinder {c + 1}",
+                line={"color": ORDER_COLORS[c % len(ORDER_COLORS)], "width": 1},
+            ),
+            row=2,
+            col=1,
+        )
+    fig.add_trace(
+        go.Scatter(
+            x=deg,
+            y=np.asarray(result.speed) * 30 / math.pi,
+            name="speed",
+            line={"color": COLORS["total"]},
+        ),
+        row=3,
+        col=1,
+    )
+    fig.update_yaxes(title_text="[N·m]", row=1, col=1)
+    fig.update_yaxes(title_text="[N·m]", row=2, col=1)
+    fig.update_yaxes(title_text="[rpm]", row=3, col=1)
+    fig.update_xaxes(title_text="crank angle from the first firing TDC [deg]", row=3, col=1)
+    fig.update_layout(
+        template=TEMPLATE,
+        height=800,
+        legend={"orientation": "h", "y": -0.08},
+        title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: mean torque "
+        f"{result.mean_torque:.4g} N·m, speed fluctuation {100 * result.speed_fluctuation:.3g} %",
     )
     return fig
 

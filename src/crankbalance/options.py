@@ -390,12 +390,21 @@ class BenchOptions(StudyOptions):
         return self
 
 
+#: the speed fluctuation a flywheel is sized for, from 1 ppm to 50 % [-]
+FluctuationTarget = Annotated[float, BeforeValidator(_factor), Field(ge=1e-6, le=0.5)]
+#: most pressure tables of one cycle (one per cylinder)
+MAX_PRESSURE_TABLES = 64
+
+
 class CycleOptions(StudyOptions):
-    """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) and its gas
-    pressure (the Wiebe model or a table)."""
+    """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
+    engine (``engine`` without ``cylinder``: every cylinder firing), its gas pressure (the
+    Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel."""
 
     engine: str | None = Field(None, title="Engine file or preset")
-    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+    cylinder: Whole | None = Field(
+        None, ge=1, le=10_000, title="Cylinder of the engine (none: all cylinders)"
+    )
     bore: Length = Field(0.0768, title="Bore")
     stroke: Length = Field(0.0538, title="Stroke")
     rod_length: Length = Field(0.1035, title="Conrod length")
@@ -409,12 +418,21 @@ class CycleOptions(StudyOptions):
     ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
     burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
     intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: str | None = Field(None, title="Cylinder pressure table")
+    pressure_csv: list[str] = Field(
+        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    )
     balance_factor: Factor = Field(0.5, title="Balance factor")
+    flywheel_inertia: Inertia | None = Field(None, title="Flywheel inertia (added to the crank)")
+    speed_fluctuation_target: FluctuationTarget | None = Field(
+        None, title="Speed fluctuation to size the flywheel for"
+    )
 
 
 class SensitivityOptions(CycleOptions):
     """``sensitivity``: the cycle swept over balance factors and reciprocating-mass scales."""
+
+    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+    pressure_csv: list[str] = Field([], max_length=1, title="Cylinder pressure table")
 
     balance_factors: BalanceFactors = Field([0.1 * k for k in range(11)], title="Balance factors")
     mass_scales: list[Annotated[Number, Field(gt=0, le=10)]] = Field(

@@ -498,7 +498,14 @@ COMMAND_TABLE: dict[str, Command] = {
         ["cycle"],
         [],
         [],
-        {**ENGINE_CYCLE, "--balance-factor": number("0.5"), "--format": FORMATS_CSV},
+        {
+            **ENGINE_CYCLE,
+            "--balance-factor": number("0.5"),
+            "--flywheel-inertia": quantity("inertia", "0.05 kg*m^2"),
+            "--speed-fluctuation-target": number("0.01", "2%"),
+            "--plot": OUTPUT,
+            "--format": FORMATS_CSV,
+        },
     ),
     "sensitivity": Command(
         ["sensitivity"],

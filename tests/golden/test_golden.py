@@ -41,6 +41,7 @@ RENAMED: list[tuple[str, str, float] | tuple[str, str, float, str]] = [
     (r"^speed_rad_s$", "speed_rpm", RPM, r"cycle-.*|sensitivity-.*"),
     (r"^curves\.speed_rad_s", "curves.speed_rpm", RPM),
     (r"^curves\.pressure_Pa", "curves.pressure_bar", 1e-5),
+    (r"^curves\.cycle_angle_rad", "curves.angle_deg", 180.0 / math.pi, r"cycle-.*"),
     (r"^(rotor|cylinder)\.(\w+?)_(m|kg|kg_m|kg_m2|m_s2|N|Pa)(\.\d+)?$", r"\1.\2\4", 1.0),
     # counterweight/2: angles in degrees
     (r"^((least_mass|least_radius|pareto\.\d+|design)\.\w+?)_deg$", r"\1_rad", DEG),
@@ -98,6 +99,10 @@ DELIBERATE: dict[str, dict[str, str]] = {
         r"^unbalanced\.\d+$": "text in the one vocabulary (format.py): N·m, no 2.155e+04"
     },
     "rebalance-crf250r": {r"^name$": "the example's name cites the thesis by author and year"},
+    "cycle-engine": {
+        r"^curves\.cycle_angle_rad\.": "cycle/3: the angle over the 720 deg cycle, which "
+        "cycle/2 folded into [0, 360) as angle_deg"
+    },
     "shaft-inline3-engine": {r"^paper\.(source|note)$": "cites Kim (2018) by author and year"},
     "shaft-inline4-engine": {r"^paper\.source$": "cites Kim (2018) by author and year"},
     "tolerance-crf250r": {r"^grade\.examples$": "cites the thesis by author and year"},

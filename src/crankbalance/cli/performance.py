@@ -88,8 +88,10 @@ CYLINDER_KEYS: dict[str, str | tuple[str, float]] = {
     "crankshaft_weight": "crankshaft_weight_N",
     "crankcase_pressure": "crankcase_pressure_Pa",
 }
-#: the curves of ``cycle`` in JSON: SI values (the CSV keeps bar and rpm)
+#: the curves of ``cycle`` in JSON: SI values (the CSV keeps degrees, bar and rpm); the
+#: angle over a whole cycle (720 deg for a four-stroke) in rad, not folded into [0, 360)
 CURVE_KEYS: dict[str, str | tuple[str, float]] = {
+    "angle_deg": ("cycle_angle_rad", math.pi / 180.0),
     "pressure_bar": ("pressure_Pa", 1e5),
     "speed_rpm": ("speed_rad_s", 1.0 / _RPM),
 }
@@ -462,9 +464,9 @@ def _engine_options(function: Any) -> Any:
         ),
         click.option(
             "--cylinder",
-            default="1",
-            show_default=True,
-            help="With --engine: the cylinder studied.",
+            default=None,
+            help="With --engine: the cylinder studied alone ('cycle': default all cylinders "
+            "at once; 'sensitivity': default 1).",
         ),
         click.option("--bore", default="76.8 mm", show_default=True),
         click.option("--stroke", default="53.8 mm", show_default=True),
@@ -496,9 +498,11 @@ def _engine_options(function: Any) -> Any:
         ),
         click.option(
             "--pressure-csv",
+            multiple=True,
             type=click.Path(exists=True, dir_okay=False),
             help="Cylinder pressure table instead of the Wiebe model: columns "
-            "crank angle [deg from firing TDC], absolute pressure [bar].",
+            "crank angle [deg from firing TDC], absolute pressure [bar]. 'cycle' of a whole "
+            "engine: one for every cylinder, or repeated once per cylinder in cylinder order.",
         ),
     ]
     for option in reversed(options):
@@ -510,19 +514,43 @@ def _engine_options(function: Any) -> Any:
 WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
 
 
+def _pressure_source(o: CycleOptions, cylinders: int = 1) -> Any:
+    """The Wiebe model of the options, or the pressure tables (one, or one per cylinder)."""
+    from ..engine_cycle import WiebeCombustion
+
+    if o.pressure_csv:
+        from ..io.pressure_csv import read_pressure_csv
+
+        if len(o.pressure_csv) not in (1, cylinders):
+            raise InputError(
+                "--pressure-csv",
+                f"{len(o.pressure_csv)} files",
+                f"give one table for every cylinder, or one per cylinder ({cylinders})",
+            )
+        tables = [read_pressure_csv(path) for path in o.pressure_csv]
+        return tables[0] if len(tables) == 1 else tables
+    return WiebeCombustion(
+        compression_ratio=o.compression_ratio,
+        ignition_angle=o.ignition,
+        burn_duration=o.burn_duration,
+        intake_pressure=o.intake_pressure,
+    )
+
+
 def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
     """The cylinder, its pressure source, speed and stroke count of ``cycle`` and
     ``sensitivity`` from their validated options (:class:`~crankbalance.options.CycleOptions`);
     an option that would be ignored is refused."""
-    from ..engine_cycle import CylinderSpec, WiebeCombustion
+    from ..engine_cycle import CylinderSpec
 
     given = given_options()
     refuse_unused({"cylinder": o.engine is not None}, "only acts with --engine", given)
     refuse_unused(
-        {name: o.pressure_csv is None for name in WIEBE_OPTIONS},
+        {name: not o.pressure_csv for name in WIEBE_OPTIONS},
         "only acts on the Wiebe combustion model, not with --pressure-csv",
         given,
     )
+    number = o.cylinder or 1
     geometry = {
         "crank_radius": o.stroke / 2,
         "rod_length": o.rod_length,
@@ -532,7 +560,7 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
     speed, strokes = o.speed, o.strokes
     settings = {
         "bore": o.bore,
-        "crank_inertia": o.crank_inertia,
+        "crank_inertia": o.crank_inertia + (o.flywheel_inertia or 0.0),
         "balance_factor": o.balance_factor,
         "journal_diameter": o.journal_diameter,
         "friction_coefficient": o.friction_coefficient,
@@ -545,7 +573,7 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
         from ..studies.performance import cycle_cylinder
 
         model = as_model(o.engine)
-        cylinder_of(model, o.cylinder, "--cylinder")
+        cylinder_of(model, number, "--cylinder")
         # the engine's values, except where an option was given on the command line
         typed = {
             key: geometry[key]
@@ -556,21 +584,10 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
             )
             if option in given
         }
-        cylinder = cycle_cylinder(model, o.cylinder, **settings, **typed)
+        cylinder = cycle_cylinder(model, number, **settings, **typed)
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    if o.pressure_csv:
-        from ..io.pressure_csv import read_pressure_csv
-
-        pressure: Any = read_pressure_csv(o.pressure_csv)
-    else:
-        pressure = WiebeCombustion(
-            compression_ratio=o.compression_ratio,
-            ignition_angle=o.ignition,
-            burn_duration=o.burn_duration,
-            intake_pressure=o.intake_pressure,
-        )
-    return cylinder, pressure, speed, strokes
+    return cylinder, _pressure_source(o), speed, strokes
 
 
 SUMMARY_KEYS = (
@@ -589,34 +606,116 @@ SUMMARY_KEYS = (
 )
 
 
+#: the summary of ``cycle`` of a whole engine: result attribute -> JSON key
+ENGINE_SUMMARY_KEYS = (
+    ("mean_torque", "mean_torque_Nm"),
+    ("indicated_work", "indicated_work_J"),
+    ("indicated_power", "indicated_power_W"),
+    ("peak_torque", "peak_torque_Nm"),
+    ("min_torque", "min_torque_Nm"),
+    ("speed_fluctuation", "speed_fluctuation"),
+    ("energy_excursion", "energy_excursion_J"),
+)
+
+
 @click.command()
 @_engine_options
 @click.option(
     "--balance-factor",
     default="0.5",
     show_default=True,
-    help="Share of the reciprocating mass on the counterweight, on top of 100 % of "
-    "the rotating mass.",
+    help="One cylinder: share of the reciprocating mass on the counterweight, on top of "
+    "100 % of the rotating mass.",
+)
+@click.option(
+    "--flywheel-inertia",
+    default=None,
+    help="Flywheel inertia, added to --crank-inertia, e.g. '0.05 kg*m^2'.",
+)
+@click.option(
+    "--speed-fluctuation-target",
+    default=None,
+    help="Size the flywheel for this speed fluctuation (max - min)/mean, e.g. '0.01' or "
+    "'1%' (from 1e-6 to 0.5).",
+)
+@click.option(
+    "--plot",
+    type=click.Path(dir_okay=False),
+    help="Figure of the torque over the cycle with each cylinder's share (.png, .svg or .html).",
 )
 @format_option(FORMATS)
-def cycle(fmt: str, balance_factor: str, **options: Any) -> None:
-    """One engine cycle of a single cylinder: torques, main-bearing loads, speed fluctuation.
+def cycle(
+    fmt: str,
+    balance_factor: str,
+    flywheel_inertia: str | None,
+    speed_fluctuation_target: str | None,
+    plot: str | None,
+    **options: Any,
+) -> None:
+    """One engine cycle: torques, speed fluctuation, flywheel sizing.
 
-    CSV output gives the curves over the crank angle (the polar load diagram is the
-    transverse against the in-line main-bearing load).
+    With --engine, every cylinder fires in its turn (firing order, bank angles, shared
+    crankpins): crank torque of each cylinder and of the engine, speed fluctuation, and
+    the flywheel for --speed-fluctuation-target. With --cylinder N (or without --engine,
+    the cylinder typed as options), one cylinder alone, with its main-bearing loads and
+    friction at --balance-factor.
+
+    CSV output gives the curves over the crank angle (for one cylinder, the polar load
+    diagram is the transverse against the in-line main-bearing load).
     """
+    from ..options import CycleOptions
+
+    o = parse_settings(
+        CycleOptions,
+        {
+            **options,
+            "pressure_csv": list(options["pressure_csv"]),
+            "balance_factor": balance_factor,
+            "flywheel_inertia": flywheel_inertia,
+            "speed_fluctuation_target": speed_fluctuation_target,
+        },
+    )
+    if plot is not None:
+        from ._common import require_extra
+        from .plot import check_output
+
+        check_output(plot, (".png", ".svg", ".html"), "--plot")
+        require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
+    if o.engine is not None and o.cylinder is None:
+        result, payload, curves = _whole_engine_cycle(o)
+    else:
+        result, payload, curves = _one_cylinder_cycle(o)
+    require_finite(payload)
+    if plot is not None:
+        _write_cycle_plot(plot, result)
+    if fmt == "json":
+        _emit_json("crankbalance.cycle/3", payload)
+    elif fmt == "csv":
+        keys = list(curves)
+        _emit_csv(keys, list(zip(*(curves[k] for k in keys), strict=True)))
+    else:
+        _echo_cycle(payload)
+
+
+def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str, Any]]:
+    """``cycle`` of one cylinder: the result, the JSON payload and the CSV curves."""
     import numpy as np
 
     from ..engine_cycle import engine_cycle
-    from ..options import CycleOptions
+    from ..studies.performance import size_cylinder_flywheel
 
-    o = parse_settings(CycleOptions, {**options, "balance_factor": balance_factor})
     cylinder, pressure, speed, strokes = _engine_from_options(o)
     result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
     summary = {label: getattr(result, name) for name, label in SUMMARY_KEYS}
     summary["energy_check_ratio"] = (
         result.gas_work / result.indicated_work if (result.indicated_work) else 1.0
     )
+    flywheel = None
+    if o.speed_fluctuation_target is not None:
+        sizing = size_cylinder_flywheel(cylinder, result, pressure, o.speed_fluctuation_target)
+        flywheel = _flywheel_keys(
+            o, sizing.required_inertia, sizing.energy_excursion, sizing.achieved_fluctuation
+        )
     curves = {
         "angle_deg": np.degrees(result.angle),
         "pressure_bar": result.pressure[0] / 1e5,
@@ -635,20 +734,184 @@ def cycle(fmt: str, balance_factor: str, **options: Any) -> None:
         "speed_rad_s": speed,
         "strokes": strokes,
         "summary": summary,
+        **({"flywheel": flywheel} if flywheel else {}),
         "curves": keyed({k: v.tolist() for k, v in curves.items()}, CURVE_KEYS),
     }
-    require_finite(payload)
-    if fmt == "json":
-        _emit_json("crankbalance.cycle/2", payload)
-    elif fmt == "csv":
-        keys = list(curves)
-        _emit_csv(keys, list(zip(*(curves[k] for k in keys), strict=True)))
+    return result, payload, curves
+
+
+def _flywheel_keys(
+    o: CycleOptions, required: float, excursion: float, achieved: float
+) -> dict[str, float]:
+    """The ``flywheel`` part of the JSON of ``cycle``."""
+    return {
+        "speed_fluctuation_target": float(o.speed_fluctuation_target or 0.0),
+        "energy_excursion_J": excursion,
+        "required_inertia_kg_m2": required,
+        "required_flywheel_inertia_kg_m2": max(required - o.crank_inertia, 0.0),
+        "check_speed_fluctuation": achieved,
+    }
+
+
+def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str, Any]]:
+    """``cycle`` of every cylinder of ``--engine``: the result, the JSON payload and the CSV
+    curves; an option that acts on one cylinder only is refused."""
+    import numpy as np
+
+    from ..studies.engine import as_model
+    from ..studies.performance import cycle_model, whole_engine_cycle
+
+    given = given_options()
+    refuse_unused(
+        {name: False for name in ("balance_factor", "journal_diameter", "friction_coefficient")},
+        "acts on one cylinder's bearing (give --cylinder N): the whole engine's cycle has "
+        "no bearing model",
+        given,
+    )
+    refuse_unused(
+        {name: not o.pressure_csv for name in WIEBE_OPTIONS},
+        "only acts on the Wiebe combustion model, not with --pressure-csv",
+        given,
+    )
+    assert o.engine is not None
+    model = cycle_model(
+        as_model(o.engine),
+        speed=o.speed if "speed" in given else None,
+        strokes=o.strokes if "strokes" in given else None,
+        crank_radius=o.stroke / 2 if "stroke" in given else None,
+        rod_length=o.rod_length if "rod_length" in given else None,
+        reciprocating_mass=o.reciprocating_mass if "reciprocating_mass" in given else None,
+    )
+    pressure = _pressure_source(o, model.cylinders)
+    inertia = o.crank_inertia + (o.flywheel_inertia or 0.0)
+    try:
+        result = whole_engine_cycle(
+            model,
+            pressure,
+            crank_inertia=inertia,
+            bore=o.bore if "bore" in given else None,
+            speed_fluctuation_target=o.speed_fluctuation_target,
+        )
+    except InputError as error:
+        if error.field != "crank_inertia":
+            raise
+        hint = "" if o.speed_fluctuation_target else " (or size it: --speed-fluctuation-target)"
+        raise InputError(
+            "--crank-inertia" if o.flywheel_inertia is None else "--flywheel-inertia",
+            f"{inertia:.4g} kg*m^2 of crank and flywheel",
+            f"{error.allowed}; add a flywheel with --flywheel-inertia{hint}",
+        ) from None
+    summary = {label: getattr(result, name) for name, label in ENGINE_SUMMARY_KEYS}
+    summary["max_crank_acceleration_rad_s2"] = float(np.abs(result.crank_acceleration).max())
+    summary["energy_check_ratio"] = (
+        result.gas_work / result.indicated_work if result.indicated_work else 1.0
+    )
+    flywheel = None
+    if result.required_inertia is not None:
+        flywheel = _flywheel_keys(
+            o,
+            result.required_inertia,
+            result.energy_excursion,
+            float(result.required_inertia_fluctuation or 0.0),
+        )
+    order = list(model.firing_order)
+    fire = result.fire_angle
+    sequence = fire[np.array(order) - 1]
+    intervals = np.diff(np.append(sequence, sequence[0] + np.pi * model.strokes))
+    engine = {
+        "name": model.name,
+        "cylinders": model.cylinders,
+        "throws": model.throws,
+        "bore_m": o.bore if "bore" in given else 2.0 * model.crank_radius,
+        "crank_radius_m": model.crank_radius,
+        "rod_length_m": model.rod_length,
+        "offset_m": model.offset,
+        "reciprocating_mass_kg": model.reciprocating_mass.tolist(),
+        "crank_inertia_kg_m2": o.crank_inertia,
+        "flywheel_inertia_kg_m2": o.flywheel_inertia or 0.0,
+        "firing_order": order,
+        "fire_angle_rad": fire.tolist(),
+        "firing_interval_rad": np.mod(intervals, np.pi * model.strokes).tolist(),
+    }
+    curves: dict[str, Any] = {
+        "angle_deg": np.degrees(result.angle),
+        "crank_angle_deg": np.degrees(result.crank_angle),
+        "gas_torque_Nm": result.gas_torque,
+        "inertia_torque_Nm": result.inertia_torque,
+        "torque_Nm": result.torque,
+        "speed_rpm": result.speed * 30 / np.pi,
+        "crank_acceleration_rad_s2": result.crank_acceleration,
+    }
+    for c in range(model.cylinders):
+        curves[f"cylinder{c + 1}_torque_Nm"] = (
+            result.cylinder_gas_torque[c] + result.cylinder_inertia_torque[c]
+        )
+    for c in range(model.cylinders):
+        curves[f"cylinder{c + 1}_pressure_bar"] = result.pressure[c] / 1e5
+    for t in range(model.throws):
+        curves[f"throw{t + 1}_force_z_N"] = result.throw_force[t].real
+        curves[f"throw{t + 1}_force_x_N"] = result.throw_force[t].imag
+    json_curves = {
+        "cycle_angle_rad": result.angle.tolist(),
+        "crank_angle_rad": result.crank_angle.tolist(),
+        "gas_torque_Nm": result.gas_torque.tolist(),
+        "inertia_torque_Nm": result.inertia_torque.tolist(),
+        "torque_Nm": result.torque.tolist(),
+        "speed_rad_s": result.speed.tolist(),
+        "crank_acceleration_rad_s2": result.crank_acceleration.tolist(),
+        "cylinder_torque_Nm": (
+            result.cylinder_gas_torque + result.cylinder_inertia_torque
+        ).tolist(),
+        "cylinder_pressure_Pa": result.pressure.tolist(),
+        "throw_force_z_N": result.throw_force.real.tolist(),
+        "throw_force_x_N": result.throw_force.imag.tolist(),
+    }
+    payload = {
+        "engine": engine,
+        "speed_rad_s": result.speed_mean,
+        "strokes": result.strokes,
+        "summary": summary,
+        **({"flywheel": flywheel} if flywheel else {}),
+        "curves": json_curves,
+    }
+    return result, payload, curves
+
+
+def _echo_cycle(payload: dict[str, Any]) -> None:
+    """The text output of ``cycle``: a header, the summary and the flywheel."""
+    import math as _math
+
+    speed, strokes = payload["speed_rad_s"], payload["strokes"]
+    if "engine" in payload:
+        engine = payload["engine"]
+        steps = "/".join(f"{_math.degrees(a):.4g}" for a in engine["firing_interval_rad"])
+        click.echo(
+            f"{engine['name']}: all {engine['cylinders']} cylinders, {text(speed, 'speed')}, "
+            f"{strokes}-stroke, firing order {'-'.join(map(str, engine['firing_order']))} "
+            f"(intervals {steps} deg)"
+        )
     else:
         click.echo(
             f"single cylinder, {text(speed, 'speed')}, {strokes}-stroke, "
-            f"balance factor {number(o.balance_factor)}"
+            f"balance factor {number(payload['cylinder']['balance_factor'])}"
         )
-        echo_table(["quantity", "value"], [[k, number(v, 5)] for k, v in summary.items()])
+    rows = [[k, number(v, 5)] for k, v in payload["summary"].items()]
+    if "flywheel" in payload:
+        rows += [
+            [k, number(v, 5)] for k, v in payload["flywheel"].items() if k not in payload["summary"]
+        ]
+    echo_table(["quantity", "value"], rows)
+
+
+def _write_cycle_plot(plot: str, result: Any) -> None:
+    """The torque figure of ``cycle``, written atomically (png, svg or html by suffix)."""
+    from .. import figures, render
+    from ..io.files import write_atomic
+
+    fig = figures.engine_torque_figure(result)
+    fmt = Path(plot).suffix.lower().lstrip(".")
+    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
+    click.echo(f"wrote {plot}", err=True)
 
 
 @click.command()
@@ -673,10 +936,13 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
 
     values = {
         **options,
+        "pressure_csv": list(options["pressure_csv"]),
         "balance_factor": 0.0,  # swept: the cylinder's own factor is not used
         "balance_factors": _number_list(balance_factors, "--balance-factors"),
         "mass_scales": _number_list(mass_scales, "--mass-scales"),
     }
+    if values["cylinder"] is None:  # the schema's default: cylinder 1
+        del values["cylinder"]
     o = parse_settings(SensitivityOptions, values)
     cylinder, pressure, speed, strokes = _engine_from_options(o)
     result = balance_sensitivity(

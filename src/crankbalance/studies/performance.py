@@ -1,14 +1,24 @@
-"""One cylinder of an engine as the engine-cycle model sees it (Hoem and Røsholm 2016,
-Sec. 2.3 and 5): the engine's geometry and the cylinder's reciprocating mass, with the
-bearing and inertia settings of the study. The CLI (``cycle``, ``sensitivity``) and the
-web application's performance tab both build their cylinder here.
+"""The engine as the engine-cycle models see it (Hoem and Røsholm 2016, Sec. 2.3 and 5).
+
+* one cylinder (:func:`cycle_cylinder`): the engine's geometry and the cylinder's
+  reciprocating mass, with the bearing and inertia settings of the study; the CLI
+  (``cycle --cylinder``, ``sensitivity``) and the web application's performance tab build
+  their cylinder here; its flywheel sizing (:func:`size_cylinder_flywheel`);
+* the whole engine (:func:`cycle_model`, :func:`whole_engine_cycle`): every cylinder
+  firing (:mod:`crankbalance.engine_cycle_all`), for ``cycle --engine``.
 """
 
 from __future__ import annotations
 
+import dataclasses
+from dataclasses import dataclass
 from typing import Any
 
-from ..engine_cycle import CylinderSpec
+import numpy as np
+
+from .. import kinematics
+from ..engine_cycle import CycleResult, CylinderSpec, PressureSource, engine_cycle
+from ..engine_cycle_all import EngineCycleResult, engine_cycle_all, flywheel_inertia
 from ..model import EngineModel
 from .cylinder import cylinder_of
 
@@ -45,4 +55,96 @@ def cycle_cylinder(
         journal_diameter=journal_diameter,
         friction_coefficient=friction_coefficient,
         **values,
+    )
+
+
+def cycle_model(
+    model: EngineModel,
+    *,
+    speed: float | None = None,
+    strokes: int | None = None,
+    crank_radius: float | None = None,
+    rod_length: float | None = None,
+    reciprocating_mass: float | None = None,
+) -> EngineModel:
+    """The engine of the whole-engine cycle: ``model`` with the values given here (the
+    options typed on the command line) in place of its own: speed [rad/s], strokes, crank
+    radius [m], rod length [m], and one reciprocating mass [kg] for every cylinder."""
+    changes: dict[str, Any] = {}
+    if speed is not None:
+        changes["speed"] = float(speed)
+    if strokes is not None:
+        changes["strokes"] = int(strokes)
+    if crank_radius is not None:
+        changes["crank_radius"] = float(crank_radius)
+    if rod_length is not None:
+        changes["rod_length"] = float(rod_length)
+    if reciprocating_mass is not None:
+        changes["reciprocating_mass"] = np.full(model.cylinders, float(reciprocating_mass))
+    return dataclasses.replace(model, **changes)
+
+
+def whole_engine_cycle(
+    model: EngineModel,
+    pressure: PressureSource | list[PressureSource],
+    *,
+    crank_inertia: float,
+    bore: float | None = None,
+    speed_fluctuation_target: float | None = None,
+) -> EngineCycleResult:
+    """All cylinders of ``model`` over one working cycle
+    (:func:`~crankbalance.engine_cycle_all.engine_cycle_all`); without a bore the engine is
+    taken as square (bore = stroke), as :func:`cycle_cylinder` does."""
+    return engine_cycle_all(
+        model,
+        pressure,
+        bore=bore if bore is not None else 2.0 * model.crank_radius,
+        crank_inertia=crank_inertia,
+        speed_fluctuation_target=speed_fluctuation_target,
+    )
+
+
+@dataclass(frozen=True)
+class FlywheelSizing:
+    """The rotating inertia one cylinder's cycle needs for a target speed fluctuation.
+
+    ``required_inertia`` [kg m^2] is the purely rotating inertia (crank and flywheel) from
+    :func:`~crankbalance.engine_cycle_all.flywheel_inertia` on the cylinder's net torque
+    (gas, inertia, friction), less the mean inertia of its reciprocating parts;
+    ``achieved_fluctuation`` [-] is the fluctuation of the cycle re-run with it (the
+    check); ``energy_excursion`` [J].
+    """
+
+    target: float
+    required_inertia: float
+    energy_excursion: float
+    achieved_fluctuation: float
+
+
+def size_cylinder_flywheel(
+    cylinder: CylinderSpec,
+    result: CycleResult,
+    pressure: PressureSource,
+    target: float,
+) -> FlywheelSizing:
+    """Flywheel sizing of the single-cylinder cycle ``result`` of ``cylinder`` (run by
+    :func:`~crankbalance.engine_cycle.engine_cycle`), checked by re-running that cycle with
+    the inertia found."""
+    total, excursion = flywheel_inertia(result.angle, result.net_torque, result.speed_mean, target)
+    slope = kinematics.piston_velocity(
+        result.angle, cylinder.crank_radius, cylinder.rod_length, cylinder.offset
+    )
+    required = max(total - float(np.mean(cylinder.reciprocating_mass * slope**2)), 0.0)
+    check = engine_cycle(
+        dataclasses.replace(cylinder, crank_inertia=required),
+        result.speed_mean,
+        pressure,
+        result.strokes,  # type: ignore[arg-type]
+        samples_per_revolution=result.angle.size * 2 // result.strokes,
+    )
+    return FlywheelSizing(
+        target=float(target),
+        required_inertia=required,
+        energy_excursion=excursion,
+        achieved_fluctuation=check.speed_fluctuation,
     )
