@@ -29,7 +29,7 @@ def test_json_contract(capsys: pytest.CaptureFixture[str]) -> None:
     assert data["counterweights"]["count"] == 8
     assert "approximation" in data["stiffness"]["note"]
     samples = 72 * 2  # a four-stroke cycle is two revolutions
-    assert len(data["angle_deg"]) == samples
+    assert len(data["crank_angle_rad"]) == samples
     for name in ("determinate", "indeterminate"):
         model = data["models"][name]
         assert [b["bearing"] for b in model["bearings"]] == [1, 2, 3, 4, 5]

@@ -190,7 +190,7 @@ def print_table(data: dict[str, Any]) -> None:
         f"{e['name']}: {number(s['speed_rad_s'] * 30 / math.pi, 5)} rpm, "
         f"{'gas and inertia' if s['gas'] else 'inertia only'}, "
         f"{'no counterweights' if cw is None else str(cw['count']) + ' counterweights'}, "
-        f"{'rigid bearings' if s['bearing_stiffness_N_m'] is None else 'elastic bearings'}"
+        f"{'rigid bearings' if s['bearing_stiffness_N_per_m'] is None else 'elastic bearings'}"
     )
     det, ind = data["models"]["determinate"], data["models"]["indeterminate"]
     header = [

@@ -115,8 +115,8 @@ class BearingStudy:
                         "max_load_N": float(r.max_load[k]),
                         "mean_load_N": float(r.mean_load[k]),
                         "equivalent_load_N": float(r.equivalent_load[k]),
-                        "peak_load_angle_deg": float(
-                            np.degrees(r.angle[int(np.argmax(np.abs(r.load[k])))])
+                        "peak_load_crank_angle_rad": float(
+                            r.angle[int(np.argmax(np.abs(r.load[k])))]
                         ),
                         "max_journal_moment_Nm": float(r.max_journal_moment[k]),
                         "coulomb_friction_torque_Nm": float(fr.coulomb_torque[k]),
@@ -169,7 +169,7 @@ class BearingStudy:
                 "web_offset_m": self.web_offset,
                 "youngs_modulus_Pa": s.youngs_modulus,
                 "poisson_ratio": s.poisson_ratio,
-                "bearing_stiffness_N_m": o.bearing_stiffness,
+                "bearing_stiffness_N_per_m": o.bearing_stiffness,
                 "friction_coefficient": o.friction_coefficient,
                 "viscosity_Pa_s": o.viscosity,
                 "bearing_length_m": o.bearing_length,
@@ -194,7 +194,7 @@ class BearingStudy:
             "models": models,
         }
         if curves:
-            out["angle_deg"] = np.degrees(self.results["indeterminate"].angle)
+            out["crank_angle_rad"] = self.results["indeterminate"].angle
         result = to_jsonable(out)
         assert isinstance(result, dict)
         return result
