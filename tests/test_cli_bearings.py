@@ -139,3 +139,46 @@ def test_refusals(args: list[str], needle: str, capsys: pytest.CaptureFixture[st
     assert code == 2, (code, out, err)
     assert len(lines) == 1 and lines[0].startswith("error: ") and needle in lines[0], err
     assert out == ""
+
+
+def test_figure_overlays_studies() -> None:
+    """One trace per bearing and study in the polar row, one per journal and study below;
+    the labels name the studies."""
+    pytest.importorskip("plotly")
+    from crankbalance import figures
+    from crankbalance.errors import InputError
+    from crankbalance.studies.loads import bearing_loads
+
+    eight = bearing_loads("inline4", {"samples": 36, "gas": False})
+    four = bearing_loads("inline4", {"samples": 36, "gas": False, "webs": [1, 0, 0, 1] * 2})
+    fig = figures.bearing_loads_figure([eight, four], "determinate", ("8 CW", "4 CW"))
+    assert len(fig.data) == 2 * (5 + 5)
+    assert {t.name for t in fig.data if t.showlegend} >= {"8 CW", "4 CW", "journal 3"}
+    polar = [t for t in fig.data if t.name == "4 CW"]
+    load = four.results["determinate"].load
+    np.testing.assert_allclose(polar[2].y, load[2].real)  # z vertically
+    np.testing.assert_allclose(polar[2].x, load[2].imag)  # x across
+    with pytest.raises(InputError, match="labels"):
+        figures.bearing_loads_figure([eight, four], labels=("one",))
+    with pytest.raises(InputError, match="model"):
+        figures.bearing_loads_figure(eight, "rigid")
+
+
+def test_study_takes_a_balancing_result() -> None:
+    """A balancing result given to the study is used as it is: the same numbers as the
+    pattern given as an option; a pattern given twice is refused."""
+    from crankbalance.errors import InputError
+    from crankbalance.studies.engine import balance_engine
+    from crankbalance.studies.loads import bearing_loads
+
+    webs = [1, 0, 0, 1] * 2
+    settings = {"samples": 36}
+    solved = balance_engine("inline4", webs=tuple(webs))
+    given = bearing_loads("inline4", settings, balance=solved)
+    typed = bearing_loads("inline4", {**settings, "webs": webs})
+    for name in ("determinate", "indeterminate"):
+        np.testing.assert_allclose(given.results[name].load, typed.results[name].load)
+    with pytest.raises(InputError, match="webs"):
+        bearing_loads("inline4", {**settings, "webs": webs}, balance=solved)
+    with pytest.raises(InputError, match="balance"):
+        bearing_loads("inline3", settings, balance=solved)

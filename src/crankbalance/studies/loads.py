@@ -21,6 +21,7 @@ from typing import Any
 import numpy as np
 from numpy.typing import NDArray
 
+from ..errors import InputError
 from ..main_bearings import (
     CRANK_MODELS,
     CrankSection,
@@ -36,7 +37,8 @@ from ..model import EngineModel
 from ..options import BearingOptions, parse_options
 from ..results import to_jsonable
 from ..spec import EngineSpec
-from .engine import balance_engine, balance_options, engine_summary
+from .build import build_model
+from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
 
 SCHEMA = "crankbalance.bearings/1"
 
@@ -256,6 +258,7 @@ def crank_section(model: EngineModel, web_offset: float, o: BearingOptions) -> C
 def bearing_loads(
     engine: str | os.PathLike[str] | EngineSpec,
     options: BearingOptions | Mapping[str, Any] | None = None,
+    balance: BalanceStudy | None = None,
 ) -> BearingStudy:
     """Main-bearing loads and crank bending of an engine over one working cycle.
 
@@ -266,6 +269,10 @@ def bearing_loads(
         pattern, overridden by ``options.webs`` and ``options.balance_factor``).
     options : BearingOptions or mapping, optional
         The study's settings (:class:`crankbalance.options.BearingOptions`).
+    balance : BalanceStudy, optional
+        Counterweights already solved for this engine
+        (:func:`crankbalance.studies.engine.balance_engine`); then ``options.webs`` and
+        ``options.balance_factor`` must be left empty.
 
     Returns
     -------
@@ -286,8 +293,18 @@ def bearing_loads(
         overrides["balance_factor"] = o.balance_factor
     if o.webs is not None:
         overrides["webs"] = tuple(o.webs)
-    study = balance_engine(spec, **overrides)
-    model, balance = study.model, study.result
+    if balance is None:
+        balance = balance_engine(spec, **overrides)
+    elif overrides:
+        name = next(iter(overrides))
+        raise InputError(
+            name, getattr(o, name), "is set by the balancing result given; leave it empty"
+        )
+    model, solved = balance.model, balance.result
+    if model.throws != build_model(spec).throws:
+        raise InputError(
+            "balance", model.name, f"must be a balancing result of the engine {spec.name!r}"
+        )
     from ..balancing import default_web_offset
 
     given_offset = balance_options(spec)[0].web_offset
@@ -311,7 +328,7 @@ def bearing_loads(
         model.crank_radius,
         cycle.speed,
         cycle.crank_acceleration,
-        **_counterweight_arrays(balance),
+        **_counterweight_arrays(solved),
     )
     bearings = (
         np.asarray(o.bearing, dtype=float)
@@ -349,7 +366,7 @@ def bearing_loads(
         results[name] = dataclasses.replace(r, friction=fr)
     return BearingStudy(
         model=model,
-        balance=balance,
+        balance=solved,
         cycle=cycle,
         options=o,
         section=section,
