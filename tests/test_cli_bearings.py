@@ -131,6 +131,8 @@ def test_table_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> N
         (["--samples", "10"], "--samples"),
         (["--bearing-stiffness", "-1 N/m"], "--bearing-stiffness"),
         (["--plot", "x.txt"], "--plot"),
+        (["--clearance", "30 um"], "--clearance"),
+        (["--bearing-length", "20 mm"], "--bearing-length"),
     ],
 )
 def test_refusals(args: list[str], needle: str, capsys: pytest.CaptureFixture[str]) -> None:
@@ -182,3 +184,26 @@ def test_study_takes_a_balancing_result() -> None:
         bearing_loads("inline4", {**settings, "webs": webs}, balance=solved)
     with pytest.raises(InputError, match="balance"):
         bearing_loads("inline3", settings, balance=solved)
+
+
+def test_clearance_in_the_contact_model(capsys: pytest.CaptureFixture[str]) -> None:
+    """--clearance with --bearing-stiffness acts on the indeterminate crank only; with the
+    Petroff inputs too it also sets the Petroff torque."""
+    base = ["inline4", "--samples", "36", "--bearing-stiffness", "5e8 N/m"]
+    elastic = _json(base, capsys)
+    ring = _json([*base, "--clearance", "30 um"], capsys)
+    assert ring["settings"]["clearance_in_contact_model"] is True
+    assert elastic["settings"]["clearance_in_contact_model"] is False
+    assert ring["models"]["determinate"] == elastic["models"]["determinate"]
+    a = [b["mean_load_N"] for b in elastic["models"]["indeterminate"]["bearings"]]
+    b = [b["mean_load_N"] for b in ring["models"]["indeterminate"]["bearings"]]
+    assert not np.allclose(a, b, rtol=1e-3)
+    both = _json(
+        [*base, "--clearance", "30 um", "--viscosity", "0.01 Pa*s", "--bearing-length", "2 cm"],
+        capsys,
+    )
+    assert both["models"]["indeterminate"]["bearings"][0]["petroff_friction_torque_Nm"] > 0
+    assert (
+        both["models"]["indeterminate"]["bearings"]
+        != elastic["models"]["indeterminate"]["bearings"]
+    )

@@ -416,3 +416,63 @@ def test_bearing_and_liner_forces_add_up_to_the_shaking_force(engine: str, model
     np.testing.assert_allclose(
         couple_on_block, recip_couple + mass_couple, atol=1e-9 * scale * np.ptp(bearings)
     )
+
+
+# ------------------------------------------------------------------ bearing clearance
+
+
+def test_clearance_zero_is_the_elastic_model() -> None:
+    """No clearance: the ring contact is the linear elastic bearing, so the Newton
+    solution on the condensed FE beam equals the force method's reactions."""
+    from crankbalance.main_bearings import clearance_reactions
+
+    loads, bearings, y, stiffness = _inline4_loads()
+    elastic = continuous_beam_reactions(bearings, loads.position, loads.load, stiffness, 3e8)
+    ring = clearance_reactions(bearings, loads.position, loads.load, stiffness, 3e8, 0.0)
+    np.testing.assert_allclose(ring, elastic, rtol=1e-7, atol=1e-7 * np.abs(elastic).max())
+
+
+@pytest.mark.parametrize("lift_ratio", [0.0, 0.3, 0.8, 1.5])
+def test_clearance_two_span_beam_closed_form(lift_ratio: float) -> None:
+    """Two equal spans on three stiff rings of clearance c, a downward load P at mid-span
+    of span 1. A and B touch at the bottom of their rings, C (which must hold the beam
+    down) at the top: C is lifted 2c against the line A-B. Without C the free end would
+    rise delta_C = P L^3 / (16 EI) (slope at B of the loaded span times L); the hold-down
+    force falls linearly with the lift, R_C = R_C0 (1 - 2c/delta_C), and C lets go for
+    2c >= delta_C, leaving the lever rule on A and B (superposition of a support
+    settlement, Gere and Timoshenko)."""
+    from crankbalance.main_bearings import clearance_reactions
+
+    length, ei, p = 0.1, 3e4, -1000.0
+    delta_c = abs(p) * length**3 / (16 * ei)
+    clearance = lift_ratio * delta_c / 2
+    stiffness = uniform_stiffness(0.0, 2 * length, ei)
+    support = [0.0, length, 2 * length]
+    force = np.array([[p + 0j]])
+    k = 1e13  # rings stiffer than the beam by far: the rigid-contact limit
+    ring = clearance_reactions(support, [length / 2], force, stiffness, k, clearance)[:, 0]
+    rigid = continuous_beam_reactions(support, [length / 2], force, stiffness)[:, 0]
+    lever = np.array([-p / 2, -p / 2, 0.0])
+    share = max(1.0 - lift_ratio, 0.0)
+    expected = lever + share * (rigid - lever)
+    np.testing.assert_allclose(ring, expected, atol=1e-5 * abs(p))
+    assert abs(ring.imag).max() < 1e-9 * abs(p)  # a load in z stays in z
+
+
+def test_clearance_equilibrium_and_unloaded_rings() -> None:
+    from crankbalance.main_bearings import clearance_reactions
+
+    loads, bearings, y, stiffness = _inline4_loads()
+    ring = clearance_reactions(bearings, loads.position, loads.load, stiffness, 5e8, 30e-6)
+    scale = np.abs(loads.load).max()
+    np.testing.assert_allclose(-ring.sum(axis=0), loads.total, atol=1e-8 * scale)
+    moment = ((loads.position)[:, None] * loads.load).sum(axis=0)
+    np.testing.assert_allclose(-(bearings[:, None] * ring).sum(axis=0), moment, atol=1e-8 * scale)
+    # self-equilibrated loads (no net force or moment) inside the clearance: the crank
+    # floats, no ring is touched, nothing is carried
+    balanced = [[1.0], [-2.0], [1.0]]
+    still = clearance_reactions([-0.1, 0.1], [0.0, 0.05, 0.1], balanced, stiffness, 1e8, 1e-3)
+    assert np.abs(still).max() < 1e-9
+    # a couple on two rings: the lever rule, R = M / span, whatever the clearance
+    couple = clearance_reactions([-0.1, 0.1], [0.0, 0.05], [[1.0], [-1.0]], stiffness, 1e8, 1e-3)
+    np.testing.assert_allclose(couple[:, 0], [-0.25, 0.25], rtol=1e-6)

@@ -646,6 +646,187 @@ def continuous_beam_reactions(
     return np.asarray(sol[:nb, :half] + 1j * sol[:nb, half:])
 
 
+def condensed_stiffness(
+    bearing_positions: ArrayLike,
+    load_position: ArrayLike,
+    stiffness: CrankStiffness,
+) -> tuple[NDArray, NDArray]:
+    r"""The free crank beam condensed onto its bearing points (exact for point loads).
+
+    Euler-Bernoulli beam elements (:func:`crankbalance.beam.element_matrices`, cubic
+    Hermite, exact between point loads for a piecewise-constant EI) with a node at every
+    stiffness step, bearing and load; static condensation onto the bearings' deflections
+    :math:`u_B`: with the applied loads :math:`f`,
+
+    .. math:: R = K_c\,u_B - L f,\qquad K_c = K_{BB} - K_{BI}K_{II}^{-1}K_{IB},\quad
+              L f = f_B - K_{BI}K_{II}^{-1}f_I
+
+    where ``R`` are the forces the bearings put on the crank.
+
+    Parameters
+    ----------
+    bearing_positions : array_like, shape (B,)
+        Bearing positions [m].
+    load_position : array_like, shape (L,)
+        Positions of the loads [m].
+    stiffness : CrankStiffness
+        EI along the crank; must cover every bearing and load.
+
+    Returns
+    -------
+    condensed : ndarray, shape (B, B)
+        :math:`K_c` [N/m].
+    transfer : ndarray, shape (B, L)
+        :math:`L`, the loads carried over to the bearing points [-].
+    """
+    from .beam import ShaftSection, element_matrices
+
+    xb = _check_bearing_positions(bearing_positions)
+    yl = _vector("load_position", load_position)
+    nodes = np.unique(np.concatenate([stiffness.edges, xb, yl]))
+    n = nodes.size
+    k = np.zeros((2 * n, 2 * n))
+    modulus = 210e9  # any: the section below is chosen to give the segment's EI
+    for e in range(n - 1):
+        ei = float(stiffness.at(0.5 * (nodes[e] + nodes[e + 1])))
+        diameter = (64 * ei / (math.pi * modulus)) ** 0.25
+        ke, _ = element_matrices(nodes[e + 1] - nodes[e], ShaftSection(diameter, 0.0, modulus))
+        k[2 * e : 2 * e + 4, 2 * e : 2 * e + 4] += ke
+    index = {float(x): i for i, x in enumerate(nodes)}
+    b = np.array([2 * index[float(x)] for x in xb])
+    inner = np.setdiff1d(np.arange(2 * n), b)
+    k_bi = k[np.ix_(b, inner)]
+    solve = np.linalg.solve(k[np.ix_(inner, inner)], np.eye(inner.size))
+    condensed = k[np.ix_(b, b)] - k_bi @ solve @ k[np.ix_(inner, b)]
+    place = np.zeros((2 * n, yl.size))
+    place[[2 * index[float(y)] for y in yl], np.arange(yl.size)] = 1.0
+    transfer = place[b] - k_bi @ solve @ place[inner]
+    # the free beam moves as a rigid body without effort: remove the round-off that the
+    # condensation leaves in those two modes, and any negative eigenvalue it left
+    rigid, _ = np.linalg.qr(np.stack([np.ones(xb.size), xb - xb.mean()], axis=1))
+    project = np.eye(xb.size) - rigid @ rigid.T
+    condensed = project @ (0.5 * (condensed + condensed.T)) @ project
+    values, vectors = np.linalg.eigh(condensed)
+    return (vectors * np.maximum(values, 0.0)) @ vectors.T, transfer
+
+
+#: the Newton iterations of the clearance solution stop when the force residual is this
+#: small against the loads (or after :data:`CLEARANCE_ITERATIONS`)
+CLEARANCE_TOLERANCE = 1e-8
+CLEARANCE_ITERATIONS = 200
+
+
+def clearance_reactions(
+    bearing_positions: ArrayLike,
+    load_position: ArrayLike,
+    loads: ArrayLike,
+    stiffness: CrankStiffness,
+    bearing_stiffness: float,
+    clearance: float,
+) -> NDArray[np.complex128]:
+    r"""Bearing reactions of the continuous crank in bearings with radial clearance.
+
+    Each bearing is a ring of radial clearance :math:`c` with a contact stiffness
+    :math:`k`: the journal, displaced by :math:`u` (complex, :math:`z + i x`), feels
+    :math:`R = -k\,(|u| - c)^+\,u/|u|`. The crank's displacement at the bearings
+    minimises the convex potential energy
+
+    .. math:: \Pi(u) = \tfrac12 u^T K_c u - u^T L f + \sum_k \tfrac{k}{2}((|u_k| - c)^+)^2
+
+    (:func:`condensed_stiffness`; both planes at once, coupled by the rings), found for
+    every crank angle by Newton's method with a backtracking line search from the
+    elastic solution without clearance. A journal inside its clearance carries nothing;
+    with :math:`c = 0` this is the elastic model of :func:`continuous_beam_reactions`.
+    When nothing at all holds the crank (the loads balance and every journal floats
+    inside its clearance) its position is not unique, the reactions (zero) are.
+
+    Parameters
+    ----------
+    bearing_positions : array_like, shape (B,)
+        Bearing positions [m].
+    load_position : array_like, shape (L,)
+        Positions of the loads [m].
+    loads : array_like of complex, shape (L, S)
+        Loads on the crank [N].
+    stiffness : CrankStiffness
+        EI along the crank.
+    bearing_stiffness : float
+        Contact stiffness of each bearing beyond its clearance [N/m].
+    clearance : float
+        Radial clearance of each bearing [m].
+
+    Returns
+    -------
+    ndarray of complex, shape (B, S)
+        Reaction of each bearing on the crank [N].
+    """
+    from .errors import ResultError
+
+    k = check_positive("bearing_stiffness", bearing_stiffness)
+    if not (math.isfinite(clearance) and clearance >= 0):
+        raise InputError("clearance", clearance, "must be a finite length >= 0 m")
+    yl = _vector("load_position", load_position)
+    p = np.asarray(loads, dtype=complex).reshape(yl.size, -1)
+    condensed, transfer = condensed_stiffness(bearing_positions, yl, stiffness)
+    nb = condensed.shape[0]
+    force = transfer @ p  # (B, S), the loads at the bearing points
+    # real unknowns per sample: the z then the x displacement of every bearing
+    big_k = np.kron(np.eye(2), condensed)
+    rhs = np.concatenate([force.real, force.imag]).T  # (S, 2B)
+    scale = max(float(np.abs(p).sum(axis=0).max(initial=0.0)), 1e-300)
+    ridge = 1e-12 * k * np.eye(2 * nb)  # a floating crank: the smallest-move position
+
+    def energy(u: NDArray) -> NDArray:
+        uz, ux = u[:, :nb], u[:, nb:]
+        gap = np.maximum(np.hypot(uz, ux) - clearance, 0.0)
+        elastic = 0.5 * np.einsum("si,ij,sj->s", u, big_k, u) - (u * rhs).sum(axis=1)
+        return np.asarray(elastic + 0.5 * k * (gap**2).sum(axis=1) + 0.5e-12 * k * (u * u).sum(1))
+
+    def contact(u: NDArray) -> tuple[NDArray, NDArray]:
+        """Ring forces on the crank (as +gradient terms) and their Hessian blocks."""
+        uz, ux = u[:, :nb], u[:, nb:]
+        r = np.hypot(uz, ux)
+        touching = r > clearance
+        safe = np.where(r > 0, r, 1.0)
+        factor = np.where(touching, 1.0 - clearance / safe, 0.0)
+        grad = k * np.concatenate([factor * uz, factor * ux], axis=1)
+        nz, nx = uz / safe, ux / safe
+        radial = np.where(touching, clearance / safe, 0.0)
+        hess = np.zeros((u.shape[0], 2 * nb, 2 * nb))
+        i = np.arange(nb)
+        hess[:, i, i] = k * (factor + radial * nz * nz)
+        hess[:, nb + i, nb + i] = k * (factor + radial * nx * nx)
+        hess[:, i, nb + i] = hess[:, nb + i, i] = k * radial * nz * nx
+        return grad, hess
+
+    u = np.linalg.solve(big_k + k * np.eye(2 * nb), rhs.T).T  # no clearance: elastic
+    # a Newton step from inside the clearance (where only the ridge holds the crank) may be
+    # huge: no step moves a journal by more than a few clearances and elastic deflections
+    reach = 4.0 * clearance + 10.0 * float(np.abs(u).max(initial=0.0)) + 1e-30
+    for _ in range(CLEARANCE_ITERATIONS):
+        grad_c, hess_c = contact(u)
+        residual = u @ big_k.T - rhs + grad_c + u @ ridge
+        if np.abs(residual).max() <= CLEARANCE_TOLERANCE * scale:
+            break
+        step = np.linalg.solve(big_k + hess_c + ridge, -residual[..., None])[..., 0]
+        longest = np.abs(step).max(axis=1)
+        t = np.minimum(1.0, reach / np.where(longest > 0, longest, 1.0))
+        now = energy(u)
+        for _ in range(60):  # backtracking until the energy decreases enough
+            trial = u + t[:, None] * step
+            better = energy(trial) <= now + 1e-4 * t * (residual * step).sum(axis=1)
+            if better.all():
+                break
+            t = np.where(better, t, 0.5 * t)
+        u = u + t[:, None] * step
+    else:
+        raise ResultError("bearing clearance solution (Newton did not converge)", math.nan)
+    # the ring forces from the beam's side, R = K_c u - L f: in equilibrium with the loads
+    # to round-off (the rings' law holds to the Newton tolerance)
+    beam = u @ big_k.T - rhs
+    return np.asarray((beam[:, :nb] + 1j * beam[:, nb:]).T)
+
+
 # --------------------------------------------------------------------------------------
 # Results
 # --------------------------------------------------------------------------------------
@@ -798,6 +979,7 @@ def main_bearing_loads(
     model: CrankModel = "indeterminate",
     stiffness: CrankStiffness | None = None,
     bearing_stiffness: ArrayLike | None = None,
+    clearance: float | None = None,
 ) -> MainBearingLoads:
     """Main-bearing loads and crank bending over the cycle for one crank model.
 
@@ -815,6 +997,9 @@ def main_bearing_loads(
         EI along the crank; needed for ``"indeterminate"``.
     bearing_stiffness : float or array_like, shape (B,), optional
         Radial bearing stiffness [N/m] (indeterminate model); None for rigid.
+    clearance : float, optional
+        Radial clearance of every bearing [m] (indeterminate model with a scalar
+        ``bearing_stiffness``: :func:`clearance_reactions`); None for none.
 
     Returns
     -------
@@ -826,20 +1011,37 @@ def main_bearing_loads(
     xb = _check_bearing_positions(bearing_positions)
     yt = _vector("throw_position", throw_position)
     if model == "determinate":
-        if bearing_stiffness is not None:
-            raise InputError(
-                "bearing_stiffness",
-                np.asarray(bearing_stiffness).tolist(),
-                "only acts in the indeterminate model (the determinate crank's reactions "
-                "do not depend on the bearings' stiffness)",
-            )
+        for name, value in (("bearing_stiffness", bearing_stiffness), ("clearance", clearance)):
+            if value is not None:
+                raise InputError(
+                    name,
+                    np.asarray(value).tolist(),
+                    "only acts in the indeterminate model (the determinate crank's reactions "
+                    "do not depend on the bearings' stiffness or clearance)",
+                )
         reactions = determinate_reactions(xb, yt, loads.position, loads.throw, loads.load)
     else:
         if stiffness is None:
             raise InputError("stiffness", None, "is needed by the indeterminate model")
-        reactions = continuous_beam_reactions(
-            xb, loads.position, loads.load, stiffness, bearing_stiffness
-        )
+        if clearance is None:
+            reactions = continuous_beam_reactions(
+                xb, loads.position, loads.load, stiffness, bearing_stiffness
+            )
+        elif bearing_stiffness is None or np.ndim(bearing_stiffness) != 0:
+            raise InputError(
+                "clearance",
+                clearance,
+                "needs one bearing stiffness (the rings' contact stiffness) to act",
+            )
+        else:
+            reactions = clearance_reactions(
+                xb,
+                loads.position,
+                loads.load,
+                stiffness,
+                float(np.asarray(bearing_stiffness)),
+                clearance,
+            )
     positions = np.concatenate([loads.position, xb])
     every = np.concatenate([loads.load, reactions]).T  # (S, L + B)
     journal = bending_moment_at(xb, positions, every).T

@@ -488,19 +488,28 @@ class BearingOptions(StudyOptions):
     friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
     viscosity: Viscosity | None = Field(None, title="Oil viscosity (Petroff)")
     bearing_length: Length | None = Field(None, title="Bearing length (Petroff)")
-    clearance: Length | None = Field(None, title="Radial clearance (Petroff)")
+    clearance: Length | None = Field(
+        None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
+    )
 
     @model_validator(mode="after")
     def _petroff(self) -> BearingOptions:
         trio = ("viscosity", "bearing_length", "clearance")
         given = [name for name in trio if getattr(self, name) is not None]
-        if given and len(given) < 3:
+        if given and given != ["clearance"] and len(given) < 3:
             missing = next(name for name in trio if getattr(self, name) is None)
             raise InputError(
                 given[0],
                 getattr(self, given[0]),
                 f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
                 "viscosity, bearing length and clearance together",
+            )
+        if given == ["clearance"] and self.bearing_stiffness is None:
+            raise InputError(
+                "clearance",
+                self.clearance,
+                "needs a bearing stiffness (the rings' contact) or viscosity and bearing "
+                "length (Petroff friction) to act",
             )
         return self
 

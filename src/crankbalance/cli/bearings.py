@@ -102,7 +102,12 @@ def _list(value: str | None) -> list[str] | None:
 @click.option("--friction-coefficient", default="0.005", show_default=True)
 @click.option("--viscosity", default=None, help="Oil viscosity, for the Petroff friction.")
 @click.option("--bearing-length", default=None, help="Bearing length, for the Petroff friction.")
-@click.option("--clearance", default=None, help="Radial clearance, for the Petroff friction.")
+@click.option(
+    "--clearance",
+    default=None,
+    help="Radial clearance of the main bearings: in the contact model with "
+    "--bearing-stiffness, in the Petroff friction with --viscosity and --bearing-length.",
+)
 @click.option("--curves", is_flag=True, help="JSON: add the load and moment curves over the cycle.")
 @click.option(
     "--plot",
@@ -190,7 +195,11 @@ def print_table(data: dict[str, Any]) -> None:
         f"{e['name']}: {number(s['speed_rad_s'] * 30 / math.pi, 5)} rpm, "
         f"{'gas and inertia' if s['gas'] else 'inertia only'}, "
         f"{'no counterweights' if cw is None else str(cw['count']) + ' counterweights'}, "
-        f"{'rigid bearings' if s['bearing_stiffness_N_per_m'] is None else 'elastic bearings'}"
+        + (
+            "rigid bearings"
+            if s["bearing_stiffness_N_per_m"] is None
+            else "elastic bearings" + (" with clearance" if s["clearance_in_contact_model"] else "")
+        )
     )
     det, ind = data["models"]["determinate"], data["models"]["indeterminate"]
     header = [

@@ -176,6 +176,7 @@ class BearingStudy:
                 "viscosity_Pa_s": o.viscosity,
                 "bearing_length_m": o.bearing_length,
                 "clearance_m": o.clearance,
+                "clearance_in_contact_model": bool(o.clearance and o.bearing_stiffness),
             },
             "counterweights": None
             if cw is None
@@ -353,6 +354,7 @@ def bearing_loads(
             name,  # type: ignore[arg-type]
             stiffness,
             o.bearing_stiffness if name == "indeterminate" else None,
+            o.clearance if name == "indeterminate" and o.bearing_stiffness else None,
         )
         fr = bearing_friction(
             r.load,
@@ -361,7 +363,7 @@ def bearing_loads(
             o.friction_coefficient,
             o.viscosity,
             o.bearing_length,
-            o.clearance,
+            o.clearance if o.viscosity is not None else None,  # Petroff takes all three
         )
         results[name] = dataclasses.replace(r, friction=fr)
     return BearingStudy(
