@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 import pytest
+from hypothesis import given, settings
+from hypothesis import strategies as st
 
 from crankbalance.engine_cycle import (
     CylinderSpec,
@@ -445,3 +447,34 @@ def test_result_to_dict_is_json_ready():
     data = engine_cycle_all(model, WIEBE, bore=0.07, crank_inertia=0.05).to_dict()
     assert data["throw_force"][0][0].keys() == {"re", "im"}
     json.dumps(data)
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=60)
+@given(
+    st.integers(1, 7).flatmap(
+        lambda n: st.tuples(
+            st.lists(st.integers(0, 23), min_size=n, max_size=n),
+            st.lists(st.sampled_from([-45, 0, 45]), min_size=n, max_size=n),
+            st.permutations(list(range(1, n + 1))) | st.none(),
+            st.sampled_from([2, 4]),
+        )
+    )
+)
+def test_firing_angles_are_top_dead_centres_in_the_order(case):
+    """Any crank (pins at multiples of 15 deg, banks -45/0/45 deg), any or no order: the
+    angles are top dead centres within one cycle, reached in the order; or the order is
+    refused naming crank_train.firing_order."""
+    pins, banks, order, strokes = case
+    phi, beta = np.radians(np.array(pins) * 15.0), np.radians(np.array(banks, dtype=float))
+    try:
+        fire = firing_angles(phi, beta, order, strokes)
+    except InputError as error:
+        assert order is not None and error.field == "crank_train.firing_order"
+        return
+    cycle = np.pi * strokes
+    assert np.all((fire >= 0) & (fire < cycle))
+    assert np.allclose(np.cos(fire + phi - beta), 1.0), "each a top dead centre"
+    if order is not None:
+        seq = fire[np.array(order) - 1]
+        steps = np.mod(np.diff(seq), cycle)
+        assert steps.sum() <= cycle + 1e-9, "reached in the order within one cycle"
