@@ -9,6 +9,7 @@ Every wait is a wait for a state of the page with the hang guard of ``conftest.p
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -106,6 +107,12 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
             page.get_by_role("button", name="Shop sheet HTML").click()
         sheet = Path(download.value.path()).read_text(encoding="utf-8")
         assert "Balance shop sheet: V8" in sheet and bobs[0] in sheet
+        # the embedded study: schema /2, every key with its unit (docs/json.md)
+        data = sheet.split('id="crankbalance-data">', 1)[1].split("</script>", 1)[0]
+        study = json.loads(data.replace("<\\/", "</"))["study"]
+        assert '"schema":"crankbalance.shop-sheet/2"' in data.replace(" ", "")
+        assert len(study["parts"]["bob_weights"]["bob_weight_kg"]) == len(bobs)
+        assert all(0 <= a < 360 for h in study["holes"]["holes"] for a in h["angles_deg"])
         # a bad reading: named beside its field in the field's words; the result is gone
         page.locator("[data-testid=shop-reading_2]").first.fill("8 g")
         message = page.locator(".q-field--error", has_text="Reading, plane 2").first
