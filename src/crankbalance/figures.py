@@ -1690,18 +1690,25 @@ def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
 
 
 # --------------------------------------------------------------------------- balance shop
+#: font size of the hole plan's panel titles [px]
+HOLE_TITLE_SIZE = 12
+
+
 def hole_plan(result: Any) -> go.Figure:
     """The holes of a two-plane correction to scale (mm), one panel per correction plane,
     seen along the crank axis: 0° (crankpin 1) straight up, angles counterclockwise as the
     crank's throw angles; the hole circle, the heavy spot, each hole with its angle and the
     depth (:class:`~crankbalance.studies.shop.HolePlan`)."""
     go = _go()
+    # two short lines per panel, so that the two titles stay apart on a phone (a panel is
+    # about 180 px wide there: tests/web/test_web_shop.py measures them at 390 px)
     titles = [
-        f"plane {j + 1} at {p * 1e3:.4g} mm: {h.number} × Ø{h.diameter * 1e3:.3g} mm, "
-        f"{h.depth * 1e3:.4g} mm to the {h.depth_to}"
+        f"plane {j + 1} at {p * 1e3:.4g} mm<br>{h.number} × Ø{h.diameter * 1e3:.3g} mm, "
+        f"{h.depth * 1e3:.4g} mm to {h.depth_to}"
         for j, (p, h) in enumerate(zip(result.plan.correction_planes, result.holes, strict=True))
     ]
-    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.08)
+    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.14)
+    fig.update_annotations(font={"size": HOLE_TITLE_SIZE})
     ring = np.linspace(0.0, 2 * np.pi, 91)
     for j, holes in enumerate(result.holes):
         col = j + 1
@@ -1765,10 +1772,13 @@ def hole_plan(result: Any) -> go.Figure:
                 row=1,
                 col=col,
             )
+            # neighbouring labels on two radii between the hole circle and the panel's
+            # edge, so that holes a pitch apart do not print their angles on one another
+            at = r + (reach - r) * (0.45 if k % 2 == 0 else 0.85)
             fig.add_trace(
                 go.Scatter(
-                    x=[1.25 * cx],
-                    y=[1.25 * cy],
+                    x=[at * np.sin(phi)],
+                    y=[at * np.cos(phi)],
                     mode="text",
                     text=[label],
                     showlegend=False,
@@ -1787,7 +1797,8 @@ def hole_plan(result: Any) -> go.Figure:
         )
     fig.update_layout(
         template=TEMPLATE,
-        height=520,
+        height=560,
+        margin={"t": 150},  # the figure's title, then two lines of panel titles
         legend={"orientation": "h", "y": -0.2},
         title=figure_title("Hole plan", note="along the crank axis; angles as the throw angles"),
     )

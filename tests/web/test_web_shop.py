@@ -50,6 +50,29 @@ def expected() -> tuple[list[str], str]:
     return bobs, verdict
 
 
+def _overlap(a: dict[str, float], b: dict[str, float]) -> bool:
+    """Whether two bounding boxes (Playwright's x, y, width, height) intersect."""
+    apart_x = a["x"] + a["width"] <= b["x"] or b["x"] + b["width"] <= a["x"]
+    apart_y = a["y"] + a["height"] <= b["y"] or b["y"] + b["height"] <= a["y"]
+    return not (apart_x or apart_y)
+
+
+def panel_titles_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
+    """The hole plan's two panel titles, as the browser lays them out, neither intersect
+    each other nor the figure's title, and lie inside the figure."""
+    titles = figure.locator(".annotation-text", has_text="plane")
+    expect(titles).to_have_count(2)
+    boxes = [titles.nth(k).bounding_box() for k in range(2)]
+    main = figure.locator(".gtitle").first.bounding_box()
+    whole = figure.locator(".main-svg").first.bounding_box()
+    assert None not in (*boxes, main, whole)
+    assert not _overlap(boxes[0], boxes[1]), boxes
+    for box in boxes:
+        assert not _overlap(box, main), (box, main)
+        assert whole["x"] <= box["x"] and box["x"] + box["width"] <= whole["x"] + whole["width"]
+        assert whole["y"] <= box["y"]
+
+
 def open_tab(page, name: str) -> None:
     page.get_by_role("tab", name=name, exact=True).click()
     expect(page.get_by_role("tab", name=name, exact=True)).to_have_attribute(
@@ -101,6 +124,7 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
             expect(table.locator("tbody tr").nth(row).locator("td").last).to_have_text(bob)
         holes = page.locator("[data-testid=figure-shop-holes]").first
         expect(holes.locator(".main-svg").first).to_be_attached()
+        panel_titles_stay_apart(holes)
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
         with page.expect_download() as download:
