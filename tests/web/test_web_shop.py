@@ -74,10 +74,15 @@ def panel_titles_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
 
 
 def open_tab(page, name: str) -> None:
+    """Open a tab and wait until its panel has slid into place (a click during the slide,
+    on "Load example", was lost once under load)."""
+    from .test_web_screens import SETTLED
+
     page.get_by_role("tab", name=name, exact=True).click()
     expect(page.get_by_role("tab", name=name, exact=True)).to_have_attribute(
         "aria-selected", "true"
     )
+    page.wait_for_function(SETTLED)
 
 
 @pytest.mark.anyio
