@@ -67,6 +67,7 @@ moments in N·m, lengths in mm, masses in kg.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -600,6 +601,123 @@ def _zero_reach(analysis: Analysis, quantity: str, tiny: float) -> float:
 
 
 # --------------------------------------------------------------------------- 3-D crank
+#: the 3-D crank's frame: room around the drawing on every side, as a share of its largest
+#: extent; the shortest axis drawn at least this share of the longest (a single's crank is
+#: a few mm long, a radial's cylinders reach 400 mm: the short axis keeps its scale and
+#: gets empty room, so its tick labels do not crowd); tick labels per axis of full length;
+#: the camera's direction (from the front, a little from the right and above)
+SCENE_MARGIN = 0.08
+SCENE_MIN_ASPECT = 0.4
+SCENE_TICKS = 8
+SCENE_EYE = (0.7, -1.9, 0.6)
+#: the view the camera's distance is fitted to: plotly's vertical field of view [rad], the
+#: width / height of the scene it must fit (a half-width web card; a wider figure only
+#: gains room), and the share of that view the box may fill
+SCENE_FOV = math.pi / 4
+SCENE_VIEW_ASPECT = 1.25
+SCENE_FILL = 0.7
+
+
+def scene_box_fits(ratios: ArrayLike, eye: ArrayLike) -> bool:
+    """Whether the eight corners of a plotly scene box (sides ``ratios``, the aspect
+    ratios, centred on the origin) seen in perspective from ``eye`` (looking at the
+    centre, z up, vertical field of view :data:`SCENE_FOV`) lie within
+    :data:`SCENE_FILL` of a view :data:`SCENE_VIEW_ASPECT` times as wide as high."""
+    position = np.asarray(eye, dtype=float)
+    forward = -position / np.linalg.norm(position)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    half = np.asarray(ratios, dtype=float) / 2
+    corners = np.array(np.meshgrid(*[(-h, h) for h in half])).reshape(3, -1).T
+    relative = corners - position
+    depth = relative @ forward
+    if np.any(depth <= 0):
+        return False
+    tangent = math.tan(SCENE_FOV / 2) * SCENE_FILL
+    across = np.abs(relative @ right) / depth
+    high = np.abs(relative @ up) / depth
+    return bool(np.all(across <= tangent * SCENE_VIEW_ASPECT) and np.all(high <= tangent))
+
+
+def _fitted_eye(ratios: Sequence[float]) -> NDArray[np.float64]:
+    """The camera along :data:`SCENE_EYE` at the least distance (to 1 %) from which the
+    box of ``ratios`` fits the view (:func:`scene_box_fits`)."""
+    direction = np.asarray(SCENE_EYE, dtype=float)
+    direction /= np.linalg.norm(direction)
+    near, far = 0.1, 50.0
+    while far / near > 1.01:
+        middle = math.sqrt(near * far)
+        near, far = (near, middle) if scene_box_fits(ratios, middle * direction) else (middle, far)
+    return far * direction
+
+
+#: no tick label within this share of an axis' length from its ends, where three axes meet
+#: and their labels would run into each other
+SCENE_TICK_EDGE = 0.1
+
+
+def _scene_ticks(span: Sequence[float], count: int) -> list[float]:
+    """At most about ``count`` round tick values (1, 2 or 5 times a power of ten apart) in
+    ``span``, none within :data:`SCENE_TICK_EDGE` of its ends."""
+    low, high = float(span[0]), float(span[1])
+    edge = SCENE_TICK_EDGE * (high - low)
+    raw = (high - low) / max(count, 1)
+    power = 10.0 ** math.floor(math.log10(raw))
+    step = next(f * power for f in (1.0, 2.0, 5.0, 10.0) if f * power >= raw)
+    first = math.ceil((low + edge) / step)
+    last = math.floor((high - edge) / step)
+    return [clean_tick(k * step) for k in range(first, last + 1)]
+
+
+def clean_tick(value: float) -> float:
+    """A tick value without float noise (``3 * 0.1`` -> ``0.3``, no ``-0.0``)."""
+    return float(f"{value:.12g}") + 0.0
+
+
+def crank_3d_scene(traces: list[dict[str, Any]]) -> dict[str, Any]:
+    """The scene of the 3-D crank that frames every trace: per axis a range holding every
+    point of ``traces`` (plotly ``scatter3d`` dictionaries, ``None`` breaks skipped) with
+    :data:`SCENE_MARGIN` of room, widened about its centre to at least
+    :data:`SCENE_MIN_ASPECT` of the longest; the box to scale (aspect ratio of the
+    ranges), at most :data:`SCENE_TICKS` tick labels on the longest axis and fewer on the
+    shorter ones, and the camera along :data:`SCENE_EYE` as near as the whole box fits
+    the view (:func:`scene_box_fits`)."""
+    lows, highs = [], []
+    for key in ("x", "y", "z"):
+        values = [float(v) for t in traces for v in t.get(key, []) if v is not None]
+        lows.append(min(values, default=-1.0))
+        highs.append(max(values, default=1.0))
+    largest = max(max(h - lo for lo, h in zip(lows, highs, strict=True)), 1.0)
+    pad = SCENE_MARGIN * largest
+    ranges = []
+    for lo, h in zip(lows, highs, strict=True):
+        half = max((h - lo) / 2 + pad, SCENE_MIN_ASPECT * (largest / 2 + pad))
+        centre = (lo + h) / 2
+        ranges.append([centre - half, centre + half])
+    longest = max(h - lo for lo, h in ranges)
+    ratios = [(h - lo) / longest for lo, h in ranges]
+    eye = _fitted_eye(ratios)
+    # tick labels by the length an axis shows: its share of the box, foreshortened by the
+    # angle it makes with the line of sight (an axis seen end-on would crowd its labels)
+    sight = eye / np.linalg.norm(eye)
+    shown = [ratio * math.sqrt(max(0.0, 1.0 - sight[k] ** 2)) for k, ratio in enumerate(ratios)]
+    axes = {
+        f"{key}axis": {
+            "range": span,
+            "tickmode": "array",
+            "tickvals": _scene_ticks(span, max(2, round(SCENE_TICKS * length))),
+        }
+        for key, span, length in zip(("x", "y", "z"), ranges, shown, strict=True)
+    }
+    return {
+        **axes,
+        "aspectmode": "manual",
+        "aspectratio": dict(zip(("x", "y", "z"), ratios, strict=True)),
+        "camera": {"eye": dict(zip(("x", "y", "z"), (float(v) for v in eye), strict=True))},
+    }
+
+
 def crank_3d(
     model: EngineModel | Analysis | BalanceStudy, balance_study: BalanceStudy | None = None
 ) -> go.Figure:
@@ -803,16 +921,14 @@ def crank_3d(
     for drawn in traces.values():
         if not any(drawn["text"]):
             del drawn["text"]
+    scene = crank_3d_scene(list(traces.values()))
+    scene["xaxis"]["title"] = {"text": "y, crank axis [mm]"}
+    scene["yaxis"]["title"] = {"text": "x [mm]"}
+    scene["zaxis"]["title"] = {"text": "z [mm]"}
     layout = {
         "template": TEMPLATE,
         "title": {"text": figure_title("Crankshaft at crank angle 0", m.name)},
-        "scene": {
-            "xaxis": {"title": {"text": "y, crank axis [mm]"}},
-            "yaxis": {"title": {"text": "x [mm]"}},
-            "zaxis": {"title": {"text": "z [mm]"}},
-            "aspectmode": "data",
-            "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}},
-        },
+        "scene": scene,
         "legend": {"orientation": "h", "y": -0.05},
         "margin": {"l": 0, "r": 0, "t": 50, "b": 0},
     }
@@ -1986,18 +2102,25 @@ def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
 
 
 # --------------------------------------------------------------------------- balance shop
+#: font size of the hole plan's panel titles [px]
+HOLE_TITLE_SIZE = 12
+
+
 def hole_plan(result: Any) -> go.Figure:
     """The holes of a two-plane correction to scale (mm), one panel per correction plane,
     seen along the crank axis: 0° (crankpin 1) straight up, angles counterclockwise as the
     crank's throw angles; the hole circle, the heavy spot, each hole with its angle and the
     depth (:class:`~crankbalance.studies.shop.HolePlan`)."""
     go = _go()
+    # two short lines per panel, so that the two titles stay apart on a phone (a panel is
+    # about 180 px wide there: tests/web/test_web_shop.py measures them at 390 px)
     titles = [
-        f"plane {j + 1} at {p * 1e3:.4g} mm: {h.number} × Ø{h.diameter * 1e3:.3g} mm, "
-        f"{h.depth * 1e3:.4g} mm to the {h.depth_to}"
+        f"plane {j + 1} at {p * 1e3:.4g} mm<br>{h.number} × Ø{h.diameter * 1e3:.3g} mm, "
+        f"{h.depth * 1e3:.4g} mm to {h.depth_to}"
         for j, (p, h) in enumerate(zip(result.plan.correction_planes, result.holes, strict=True))
     ]
-    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.08)
+    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.14)
+    fig.update_annotations(font={"size": HOLE_TITLE_SIZE})
     ring = np.linspace(0.0, 2 * np.pi, 91)
     for j, holes in enumerate(result.holes):
         col = j + 1
@@ -2061,10 +2184,13 @@ def hole_plan(result: Any) -> go.Figure:
                 row=1,
                 col=col,
             )
+            # neighbouring labels on two radii between the hole circle and the panel's
+            # edge, so that holes a pitch apart do not print their angles on one another
+            at = r + (reach - r) * (0.45 if k % 2 == 0 else 0.85)
             fig.add_trace(
                 go.Scatter(
-                    x=[1.25 * cx],
-                    y=[1.25 * cy],
+                    x=[at * np.sin(phi)],
+                    y=[at * np.cos(phi)],
                     mode="text",
                     text=[label],
                     showlegend=False,
@@ -2083,7 +2209,8 @@ def hole_plan(result: Any) -> go.Figure:
         )
     fig.update_layout(
         template=TEMPLATE,
-        height=520,
+        height=560,
+        margin={"t": 150},  # the figure's title, then two lines of panel titles
         legend={"orientation": "h", "y": -0.2},
         title=figure_title("Hole plan", note="along the crank axis; angles as the throw angles"),
     )

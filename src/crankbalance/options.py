@@ -57,6 +57,8 @@ RANGES["position"] = (-RANGES["length"][1], RANGES["length"][1])  # axial positi
 RANGES["angle"] = (-RANGES["angle"][1], RANGES["angle"][1])
 for _kind in ("unbalance", "force", "torque"):
     RANGES[_kind] = (0.0, RANGES[_kind][1])
+#: the included angle of a drill point [rad]: above 0 (open), at most 180 deg (a flat bottom)
+RANGES["point_angle"] = (0.0, math.pi)
 #: (low, low is open, high, high is open) of a value
 Bounds = tuple[float | None, bool, float | None, bool]
 #: the smallest first moment a counterweight or a balance shaft is sized for [kg m]
@@ -154,6 +156,12 @@ Modulus = Annotated[float, _quantity("modulus"), _range("modulus")]
 Pressure = Annotated[float, _quantity("pressure"), _range("pressure")]
 Viscosity = Annotated[float, _quantity("viscosity"), _range("viscosity")]
 Angle = Annotated[float, _quantity("angle"), _range("angle")]
+#: a drill point's included angle: above 0, at most 180 deg (flat-bottomed holes)
+PointAngle = Annotated[
+    float,
+    _quantity("angle"),
+    Field(gt=RANGES["point_angle"][0], le=RANGES["point_angle"][1]),
+]
 Number = Annotated[float, BeforeValidator(_number)]
 Whole = Annotated[int, BeforeValidator(_number)]
 #: a balance factor: 0.28 or "28%", from 0 to 2
@@ -617,6 +625,8 @@ class RebalancePartsOptions(StudyOptions):
     face_area: Area | None = Field(None, title="Face area ground per web")
     hole_diameter: Length | None = Field(None, title="Drill diameter")
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
+    depth_to: Literal["shoulder", "tip"] | None = Field(None, title="Depth read to")
     density: Density | None = Field(None, title="Crank material density")
     depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
     grade: str | None = Field(None, title="ISO 21940-11 grade")
@@ -670,7 +680,7 @@ class ShopOptions(StudyOptions):
     hole_radius: Length | None = Field(None, title="Radius of the holes")
     max_depth: Length = Field(0.015, title="Deepest hole")
     depth_to: Literal["shoulder", "tip"] | None = None
-    point_angle: Angle = Field(math.radians(118.0), gt=0, le=math.pi, title="Drill point angle")
+    point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
     direction: Literal["axial", "radial"] = "axial"
     spacing: LengthOrZero = Field(0.002, title="Material between holes")
     depth_resolution: LengthOrZero = Field(0.0001, title="Machining step")

@@ -428,6 +428,8 @@ COMMAND_TABLE: dict[str, Command] = {
             "--hole-diameter": quantity("length", "8 mm"),
             "--holes": number("2"),
             "--hole-direction": ["axial", "radial", *CHOICE],
+            "--point-angle": quantity("angle", "118 deg", "180 deg"),
+            "--depth-to": ["shoulder", "tip", *CHOICE],
             "--density": quantity("density", "7850 kg/m^3"),
             "--depth-resolution": quantity("length", "0.001 mm"),
             "--grade": ["G6.3", "G2.5", "G7", ""],
