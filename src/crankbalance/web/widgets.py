@@ -7,6 +7,7 @@ imports the shell or a tab at run time (only for type checking), so there is no 
 
 from __future__ import annotations
 
+import json
 import logging
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping, Sequence
@@ -94,6 +95,59 @@ def wrap_title(text: str, width: int = TITLE_LINE) -> str:
     return first[:cut] + "<br>" + first[cut + 1 :] + sep + rest
 
 
+#: how long the server waits for the browser to make an image [s]: a hang guard (a 3-D
+#: figure in software WebGL on a loaded machine takes seconds), not a timing target
+IMAGE_TIMEOUT = 180.0
+#: the answer of :data:`IMAGE_JS` when the page has no drawn figure to take the traces from
+NOT_DRAWN = "not drawn"
+#: a figure's PNG/SVG made and downloaded by plotly.js in the browser: the traces drawn in
+#: the card's plot (a copy: plotly.js adds to the traces it plots) or those sent with it, the
+#: figure's own layout and size; the busy bar shows meanwhile; answers "ok" or why not
+IMAGE_JS = """(async () => {
+  const plot = getElement(%(id)d);
+  const gd = plot && plot.$el;
+  const sent = %(data)s;
+  if (!plot || !plot.Plotly || (!sent && !(gd && gd.data && gd.data.length))) return "%(missing)s";
+  const data = sent || JSON.parse(JSON.stringify(gd.data,
+    (key, value) => (ArrayBuffer.isView(value) ? Array.from(value) : value)));
+  document.body.classList.add("cb-busy");
+  try {
+    await plot.Plotly.downloadImage({data, layout: %(layout)s, config: {}}, %(options)s);
+    return "ok";
+  } catch (error) {
+    return "failed: " + error;
+  } finally {
+    document.body.classList.remove("cb-busy");
+  }
+})()"""
+
+
+def image_size(figure: Any) -> tuple[int, int]:
+    """Width and height of a figure's image [px]: :func:`crankbalance.render.to_image`'s (the
+    figure's own, else 1000 x 600)."""
+    layout = figure.layout
+    return int(layout.width or 1000), int(layout.height or 600)
+
+
+def browser_image_js(
+    plot_id: int, figure: Any, fmt: str, name: str, with_data: bool = False
+) -> str:
+    """The JavaScript of :data:`IMAGE_JS` for ``figure`` shown in the plot element
+    ``plot_id``: its layout (and its traces when ``with_data``) as JSON, the image's format,
+    size (:func:`image_size`) and file name ``<name>.<fmt>``."""
+    from plotly.utils import PlotlyJSONEncoder
+
+    width, height = image_size(figure)
+    options = {"format": fmt, "width": width, "height": height, "scale": 1, "filename": name}
+    return IMAGE_JS % {
+        "id": plot_id,
+        "data": json.dumps(figure.data, cls=PlotlyJSONEncoder) if with_data else "null",
+        "missing": NOT_DRAWN,
+        "layout": json.dumps(figure.layout, cls=PlotlyJSONEncoder),
+        "options": json.dumps(options),
+    }
+
+
 class FigureCard:
     """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
 
@@ -164,17 +218,40 @@ class FigureCard:
                 figure_json(self.figure, self.title), f"{self.name}.json", "application/json"
             )
         else:
-            try:
-                data = await run.io_bound(render.to_image, self.figure, fmt)
-            except Exception as error:  # kaleido / browser problems must not kill the page
-                log.warning("image export failed: %s", error)
-                ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
+            await self.image(fmt)
+
+    async def image(self, fmt: Literal["png", "svg"]) -> None:
+        """A PNG or SVG of the figure, made by plotly.js in the user's browser from the traces
+        already drawn (no server round trip through kaleido), with the figure's own layout
+        and size (that of :func:`crankbalance.render.to_image`, not the page's: its width and
+        height, else 1000 x 600 px). Where the browser cannot (the figure is not drawn yet,
+        or plotly.js fails there), the server's :func:`~crankbalance.render.to_image`."""
+        figure = self.figure
+        assert figure is not None
+        result = await ui.run_javascript(
+            browser_image_js(self.plot.id, figure, fmt, self.name), timeout=IMAGE_TIMEOUT
+        )
+        if result == "ok" or result is None:  # done, or the page was closed meanwhile
+            return
+        if result == NOT_DRAWN:  # the page has not drawn it yet: the figure's traces with it
+            result = await ui.run_javascript(
+                browser_image_js(self.plot.id, figure, fmt, self.name, with_data=True),
+                timeout=IMAGE_TIMEOUT,
+            )
+            if result == "ok" or result is None:
                 return
-            if data is None:  # NiceGUI is shutting down: the export was cancelled
-                ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
-                return
-            media = "image/png" if fmt == "png" else "image/svg+xml"
-            send_download(data, f"{self.name}.{fmt}", media)
+        log.warning("image export in the browser failed (%s): made by the server", result)
+        try:
+            data = await run.io_bound(render.to_image, figure, fmt)
+        except Exception as error:  # kaleido / browser problems must not kill the page
+            log.warning("image export failed: %s", error)
+            ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
+            return
+        if data is None:  # NiceGUI is shutting down: the export was cancelled
+            ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
+            return
+        media = "image/png" if fmt == "png" else "image/svg+xml"
+        send_download(data, f"{self.name}.{fmt}", media)
 
 
 class Tab(ABC):
