@@ -148,6 +148,17 @@ def browser_image_js(
     }
 
 
+#: the note of a figure card whose 3-D view comes after the page's first paint
+DRAWING = "Drawing the 3-D view …"
+#: plotly trace types drawn with WebGL (a 3-D scene)
+WEBGL_TRACES = ("scatter3d", "mesh3d", "surface", "cone", "streamtube", "isosurface", "volume")
+
+
+def webgl(figure: dict[str, Any]) -> bool:
+    """Whether a figure (plotly JSON) draws a WebGL scene."""
+    return any(trace.get("type") in WEBGL_TRACES for trace in figure.get("data", []))
+
+
 class FigureCard:
     """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
 
@@ -157,6 +168,9 @@ class FigureCard:
         self.page, self.name, self.title, self.builder = page, name, title, builder
         self.figure: Any | None = None
         self.stale = True
+        #: a WebGL figure not sent yet (see :meth:`refresh`) and the timer that sends it
+        self.held: dict[str, Any] | None = None
+        self.draw_later: Any | None = None
         with ui.card().classes("w-full") as self.card:
             with ui.element("div").classes(
                 "w-full flex flex-wrap items-center justify-between gap-1"
@@ -202,8 +216,26 @@ class FigureCard:
             f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
         )
         shown["layout"] = layout
-        self.plot.update_figure(shown)
         self.stale = False
+        if webgl(shown) and not self.plot.client.has_socket_connection:
+            # the page is being built: its first paint (the form and the 2-D results) comes
+            # first, the 3-D scene (software WebGL: the heaviest drawing of the page) after
+            self.held = shown
+            self.note.set_text(DRAWING)
+            if self.draw_later is None:
+                with self.card:
+                    self.draw_later = ui.timer(0, self.draw_held, once=True)
+            return
+        self.held = None
+        self.plot.update_figure(shown)
+
+    def draw_held(self) -> None:
+        """Send the figure held back while the page was built (runs once the browser has
+        connected, i.e. after the page's first paint)."""
+        if self.held is not None:
+            self.note.set_text("")
+            self.plot.update_figure(self.held)
+            self.held = None
 
     async def download(self, fmt: FigureFormat) -> None:
         if self.figure is None or self.stale:
