@@ -4,13 +4,16 @@ Starts ``crankbalance web`` in a subprocess and drives Debian's chromium with Pl
 (async API). Measured from the browser, each a median of ``--repeat`` (5) unless a p95 is
 named:
 
-- first load: a new page opened on the V12 until the header shows its results and every
-  figure of the open tab is drawn (the server is warm: one page was opened before);
+- first load: a new page opened on the V12 (the server is warm: one page was opened
+  before), timed three ways: the browser's first contentful paint; the page shown with its
+  results (the header says "current", the form is laid out and painted); every figure of
+  the open tab drawn, the 3-D crank included (it is sent after the first paint);
 - preset switch: choosing another preset in the header until the header shows the new
   engine and the figures are redrawn;
-- PNG download: clicking a figure's PNG button until the browser has the file, after the
-  first export of the server (which starts the kept Chromium of ``render.to_image``), for
-  the 3-D crank of the Engine tab and the orders bar of the Results tab in turn;
+- PNG download: clicking a figure's PNG button until the browser has the file (made by
+  plotly.js in the page; the server's ``render.to_image`` only where the browser cannot),
+  after a first one, for the 3-D crank of the Engine tab and the orders bar of the Results
+  tab in turn;
 - edit -> figure: typing a new crank radius or speed of the V12 (12 cylinders) until the
   page has redrawn the figure (plotly's ``afterplot``); p50 and p95 of ``--edits`` edits,
   in each of ``--sessions`` pages editing different engines at once.
@@ -24,7 +27,10 @@ many edits' worth of this machine's time they take, which keeps runs on a machin
 different load comparable. The load average before and after is printed. With
 ``--sessions`` above 1 every session's p50 and p95 are printed too.
 
-    python benchmarks/bench_web.py [--repeat 5] [--edits 20] [--sessions 1]
+    python benchmarks/bench_web.py [--repeat 5] [--edits 20] [--sessions 1] [--sessions-only]
+
+A page that NiceGUI reloads during the edits (its connection dropped and its client
+deleted) ends its session with an error: its edit is lost and would be waited for in vain.
 
 Targets (issue 14, item 9; issue 13, "web: edit -> updated figures, 12 cylinders"): first
 load 2 s, preset switch 0.5 s, PNG after the first 1 s, edit -> figure p95 0.15 s.
