@@ -103,6 +103,45 @@ def server_images(names: tuple[str, ...]) -> dict[str, bytes]:
     return {name: render.to_image(built[name](), "png") for name in names}
 
 
+@pytest.mark.anyio
+async def test_the_server_makes_the_image_where_the_browser_cannot(user, form) -> None:
+    """Simulated user (no browser): the page's answer to the image request is set by a rule.
+    plotly.js failing in the browser -> the server's render.to_image PNG of the figure (its
+    size); the page not drawn yet -> asked again with the traces sent along."""
+    import re
+
+    from crankbalance.web.widgets import NOT_DRAWN
+
+    asked: list[str] = []
+
+    def answer(match: re.Match) -> str:
+        code = match.group(0)
+        asked.append(code)
+        # first the layout only (the page would take the traces it shows), then with them
+        return NOT_DRAWN if "const sent = null;" in code else "failed: no WebGL (test)"
+
+    user.javascript_rules[re.compile(r"(?s).*downloadImage.*")] = answer
+    await user.open(f"/?preset={ENGINE}")
+    data = await form.download("download-orders-png")
+    assert len(asked) == 2 and '"type": "bar"' in asked[1], "the traces sent the second time"
+    pixels = png_pixels(data)
+    assert pixels.shape == (600, 1000, 3), f"render.to_image's size, got {pixels.shape}"
+
+
+@pytest.mark.anyio
+async def test_a_page_that_does_not_answer_is_told(user, form, monkeypatch) -> None:
+    """No answer to the image request within the wait -> a message, no download, no error."""
+    from crankbalance.web import widgets
+
+    monkeypatch.setattr(widgets, "IMAGE_TIMEOUT", 0.5)
+    await user.open(f"/?preset={ENGINE}")
+    before = len(user.download.http_responses)
+    user.find(marker="download-orders-svg").click()
+    await form.see("the page did not answer")
+    assert len(user.download.http_responses) == before
+
+
+# after the simulated-user tests: the module's chromium (sync Playwright) runs its own loop
 def test_png_and_svg_are_made_in_the_browser(server: str, page, tmp_path: Path) -> None:
     errors: list[str] = []
     page.on("pageerror", lambda error: errors.append(str(error)))

@@ -260,18 +260,21 @@ class FigureCard:
         or plotly.js fails there), the server's :func:`~crankbalance.render.to_image`."""
         figure = self.figure
         assert figure is not None
-        result = await ui.run_javascript(
-            browser_image_js(self.plot.id, figure, fmt, self.name), timeout=IMAGE_TIMEOUT
-        )
+        try:
+            result = await ui.run_javascript(
+                browser_image_js(self.plot.id, figure, fmt, self.name), timeout=IMAGE_TIMEOUT
+            )
+            if result == NOT_DRAWN:  # the page has not drawn it yet: its traces are sent too
+                result = await ui.run_javascript(
+                    browser_image_js(self.plot.id, figure, fmt, self.name, with_data=True),
+                    timeout=IMAGE_TIMEOUT,
+                )
+        except TimeoutError:  # the page did not answer (e.g. it was reloaded meanwhile)
+            log.warning("image export: the browser did not answer within %g s", IMAGE_TIMEOUT)
+            ui.notify(f"{fmt.upper()} export: the page did not answer; try again", type="warning")
+            return
         if result == "ok" or result is None:  # done, or the page was closed meanwhile
             return
-        if result == NOT_DRAWN:  # the page has not drawn it yet: the figure's traces with it
-            result = await ui.run_javascript(
-                browser_image_js(self.plot.id, figure, fmt, self.name, with_data=True),
-                timeout=IMAGE_TIMEOUT,
-            )
-            if result == "ok" or result is None:
-                return
         log.warning("image export in the browser failed (%s): made by the server", result)
         try:
             data = await run.io_bound(render.to_image, figure, fmt)
