@@ -30,6 +30,7 @@ PHYSICS = (
     "engine_cycle_all",
     "tolerance",
     "articulated",
+    "numbering",
     "explore.orders",
     "explore.merit",
     "explore.rank",

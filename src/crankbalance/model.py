@@ -127,6 +127,10 @@ class EngineModel:
         motion (:func:`crankbalance.shaking.cylinder_coefficients`), and the link rods'
         big ends (``cylinder_rotating_mass``, counted in ``throw_rotating_mass`` like
         every big end) add their motion relative to the crankpin.
+    maker_number : tuple of int or None
+        The maker's number of each cylinder (by crankbalance's number) when the engine
+        file gives its firing order in a maker's numbering (``crank_train.numbering`` or
+        ``maker_numbers``); only shown in outputs, no computation uses it. None otherwise.
     """
 
     name: str
@@ -148,6 +152,7 @@ class EngineModel:
     conrods: tuple[ConrodSplit, ...] = field(default=())
     firing_order_given: bool = True
     articulation: Articulation | None = None
+    maker_number: tuple[int, ...] | None = None
 
     @property
     def rod_ratio(self) -> float:

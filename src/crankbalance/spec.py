@@ -26,6 +26,7 @@ from pydantic import (
 )
 
 from .errors import InputError
+from .numbering import SCHEMES
 from .units import RANGES, format_quantity, parse_quantity, range_si
 
 Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
@@ -193,6 +194,18 @@ class CrankTrain(_Strict):
         description="axial position of each cylinder's rod on its crankpin, from the "
         "throw's mid-plane (side-by-side rods)",
     )
+    numbering: str | None = Field(
+        default=None,
+        max_length=40,
+        description="the maker's cylinder numbering firing_order is written in: "
+        + ", ".join(SCHEMES),
+    )
+    maker_numbers: list[Whole] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="crankbalance's number of each of the maker's cylinders 1, 2, ... "
+        "(firing_order is then in the maker's numbers)",
+    )
     moment_reference: Length = Field(
         default=0.0,
         description="point moments are taken about, along the crank axis from the crank's "
@@ -264,6 +277,7 @@ class CrankTrain(_Strict):
                 )
         n_cyl = self.cylinder_count
         self._check_offsets(n_cyl)
+        self._check_numbering(n_cyl)
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
                 raise FieldProblem(
@@ -304,6 +318,41 @@ class CrankTrain(_Strict):
                 f"the largest total offset ({worst * 1e3:g} mm, with pin_offset and "
                 "crank_offset) leaves no rod: rod_length must exceed crank_radius plus it",
             )
+
+    def _check_numbering(self, n_cyl: int) -> None:
+        """``numbering`` names a scheme for this layout; ``maker_numbers`` is a map."""
+        if self.numbering is not None:
+            if self.maker_numbers is not None:
+                raise FieldProblem(
+                    "maker_numbers", "give either numbering (a named scheme) or maker_numbers"
+                )
+            scheme = SCHEMES.get(self.numbering)
+            if scheme is None:
+                raise FieldProblem("numbering", "must be one of " + ", ".join(SCHEMES))
+            if scheme.layout != self.layout:
+                raise FieldProblem(
+                    "numbering",
+                    f"'{self.numbering}' numbers a {scheme.layout} engine, not layout "
+                    f"'{self.layout}'; give maker_numbers (crankbalance's number of each of "
+                    "the maker's cylinders) instead",
+                )
+        if self.maker_numbers is not None and sorted(self.maker_numbers) != list(
+            range(1, n_cyl + 1)
+        ):
+            raise FieldProblem(
+                "maker_numbers",
+                f"must give crankbalance's number of each of the maker's cylinders 1..{n_cyl}: "
+                f"a permutation of 1..{n_cyl}",
+            )
+
+    def maker_map(self) -> tuple[int, ...] | None:
+        """crankbalance's number of each of the maker's cylinders (entry k - 1 for the
+        maker's k), or None when the engine file uses crankbalance's numbering."""
+        if self.maker_numbers is not None:
+            return tuple(int(c) for c in self.maker_numbers)
+        if self.numbering is not None:
+            return SCHEMES[self.numbering].to_crankbalance(self.cylinder_count)
+        return None
 
     @property
     def cylinder_count(self) -> int:

@@ -15,6 +15,7 @@ from numpy.typing import NDArray
 from ..articulated import Articulation, default_link_pin_angles
 from ..errors import InputError
 from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle
+from ..numbering import check_firing_order, firing_tdc_angles, to_crankbalance_order
 from ..spec import EngineSpec, MassOverride
 
 
@@ -25,6 +26,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
     n = cylinder_throw.size
     offsets = cylinder_offsets(spec)
     angles = _throw_angles(spec, cylinder_throw, banks, positions.size, offsets)
+    _check_given_crank(spec, angles[cylinder_throw], banks, offsets, positions.size)
     rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, n))
     rot, from_parts = _throw_masses(spec, positions.size)
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
@@ -60,10 +62,11 @@ def build_model(spec: EngineSpec) -> EngineModel:
         cylinder_offset=offsets,
         cylinder_axial=axial,
         cylinder_rotating_mass=big_ends,
-        firing_order=tuple(ct.firing_order or range(1, n + 1)),
+        firing_order=tuple(firing_order(spec) or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
         articulation=_articulation(spec, banks),
+        maker_number=maker_numbers(spec),
     )
 
 
@@ -121,7 +124,7 @@ def _throw_angles(
     if throws == 1:
         return np.zeros(1)
     n = cylinder_throw.size
-    order = ct.firing_order or list(range(1, n + 1))
+    order = firing_order(spec) or list(range(1, n + 1))
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
     fire_time = np.empty(n)
     fire_time[np.array(order) - 1] = np.arange(n) * interval
@@ -143,7 +146,7 @@ def _throw_angles(
             if abs(math.remainder(gap - (tdc[c] - tdc[other]), 2 * np.pi)) < 1e-9:
                 raise InputError(
                     "crank_train.firing_order",
-                    list(order),
+                    ct.firing_order or list(order),
                     f"cylinders {other + 1} and {c + 1} share throw {t + 1} but their offsets "
                     f"({offsets[other] * 1e3:g} and {offsets[c] * 1e3:g} mm) put their top dead "
                     f"centres {math.degrees(abs(tdc[c] - tdc[other])):.4g} deg apart, so they "
@@ -151,12 +154,55 @@ def _throw_angles(
                 )
             raise InputError(
                 "crank_train.firing_order",
-                list(order),
+                ct.firing_order or list(order),
                 f"with even firing intervals of {math.degrees(interval):g} deg this order puts the "
                 f"cylinders on throw {t + 1} at different throw angles; give the crank as "
                 "crank_train.throw_angles (the firing order then only names the sequence)",
             )
     return angles
+
+
+# --------------------------------------------------------------------------- numbering
+def firing_order(spec: EngineSpec) -> list[int] | None:
+    """The firing order in crankbalance's numbering (``crank_train.firing_order`` mapped
+    from the maker's numbers by ``numbering`` or ``maker_numbers``), None when not given."""
+    ct = spec.crank_train
+    if ct.firing_order is None:
+        return None
+    to_ours = ct.maker_map()
+    if to_ours is None:
+        return [int(c) for c in ct.firing_order]
+    return to_crankbalance_order(ct.firing_order, to_ours)
+
+
+def maker_numbers(spec: EngineSpec) -> tuple[int, ...] | None:
+    """The maker's number of each cylinder, by crankbalance's number; None without a
+    maker's numbering."""
+    to_ours = spec.crank_train.maker_map()
+    if to_ours is None:
+        return None
+    maker = [0] * len(to_ours)
+    for m, c in enumerate(to_ours, start=1):
+        maker[c - 1] = m
+    return tuple(maker)
+
+
+def _check_given_crank(
+    spec: EngineSpec, cylinder_angle: NDArray, banks: NDArray, offsets: NDArray, throws: int
+) -> None:
+    """A firing order given with a crank it does not set (``throw_angles``, custom throws,
+    one throw) must be one that crank fires in (:func:`numbering.check_firing_order`)."""
+    ct = spec.crank_train
+    derived = ct.layout != "custom" and ct.throw_angles is None and throws > 1
+    order = firing_order(spec)
+    if order is None or derived:
+        return
+    tdc = firing_tdc_angles(
+        cylinder_angle, banks, tdc_angle(offsets, ct.crank_radius, ct.rod_length)
+    )
+    check_firing_order(
+        tdc, order, ct.strokes, "crank_train.firing_order", ct.firing_order, maker_numbers(spec)
+    )
 
 
 # --------------------------------------------------------------------------- masses
