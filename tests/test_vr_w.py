@@ -58,12 +58,6 @@ def spec(data: dict[str, Any], **train: Any) -> Any:
     return spec_from_dict(out)
 
 
-def cylinder_offsets(model: EngineModel) -> np.ndarray:
-    """Each cylinder's total offset: ``cylinder_offset`` when the model carries it."""
-    per = getattr(model, "cylinder_offset", None)
-    return np.full(model.cylinders, model.offset) if per is None else np.asarray(per)
-
-
 # --------------------------------------------------------------------------- hand reference
 def position_harmonics(r: float, l: float, e: float) -> np.ndarray:
     """S_n, n = -ORDERS..ORDERS, of s(psi) = sum S_n exp(i n psi), by the FFT of samples of
@@ -152,6 +146,31 @@ def test_w_from_vr_numbering() -> None:
     assert throw_of.tolist() == [0, 1, 2, 3] * 3
 
 
+def test_bore_offset_sign_from_the_geometry() -> None:
+    """The sign of each row's offset from the drawing: both rows' bore axes pass through a
+    point D below the crank axis (away from the heads), D = bore_offset / sin(v/2). The
+    wrist pin, found on that line at the rod length from the crankpin, is where
+    kinematics.piston_position puts it with the model's cylinder_offset."""
+    from crankbalance.kinematics import piston_position
+
+    model = build_model(load_engine("vr6"))
+    r, l = model.crank_radius, model.rod_length
+    depth = 0.0125 / math.sin(7.5 * DEG)
+    meet = np.array([0.0, -depth])  # (x, z)
+    for c in (0, 1):  # row A, row B
+        beta = float(model.cylinder_bank[c])
+        axis = np.array([math.sin(beta), math.cos(beta)])
+        foot = meet - (meet @ axis) * axis  # foot of the perpendicular from the crank axis
+        for crank in np.linspace(0, 2 * np.pi, 13):
+            pin = r * np.array([math.sin(crank), math.cos(crank)])
+            # |foot + s axis - pin| = l, the root away from the crank
+            b = (foot - pin) @ axis
+            q = (foot - pin) @ (foot - pin) - l**2
+            s_geo = -b + math.sqrt(b * b - q)
+            s_model = piston_position(crank - beta, r, l, model.cylinder_offset[c])
+            assert s_geo == pytest.approx(float(s_model), abs=1e-12), (c, crank)
+
+
 # --------------------------------------------------------------------------- crank
 def test_vr6_pin_split_is_the_published_22_deg() -> None:
     """At even firing the two rows' pins are split by v + 2 asin(e/(l+r)): 15 deg +
@@ -198,9 +217,8 @@ def test_w12_firing_is_even() -> None:
     """Every cylinder of the W12 preset reaches its top dead centre (crank angle
     asin(e/(l+r)) past its axis) 60 deg after the one before it in the firing order."""
     model = build_model(load_engine("w12-vw"))
-    e = cylinder_offsets(model) if hasattr(model, "cylinder_offset") else None
-    if e is None:  # before per-cylinder offsets: the build's own rows
-        e = vr_rows(12, 2) * 0.0125
+    e = np.array([-0.0125, 0.0125] * 6)  # rows A and B of both banks
+    assert np.allclose(model.cylinder_offset, e)
     tdc = np.arcsin(e / (model.rod_length + model.crank_radius))
     fire = np.mod(model.cylinder_bank + tdc - model.cylinder_angle, 4 * np.pi)
     order = np.array(model.firing_order) - 1
@@ -244,10 +262,113 @@ def test_vr6_even_firing_orders_1_and_2_vanish() -> None:
     assert f.moment_amplitude[0] > 0.01 * scale * 0.045
 
 
-def test_vr6_zero_offset_matches_hand_sum() -> None:
-    model = build_model(spec(VR6, bore_offset=None))
-    hand = hand_phasors(vr6_by_hand(0.0), model.crank_radius, model.rod_length, model.speed)
-    assert_phasors(model, hand, "VR6 without bore offset")
+@pytest.mark.parametrize("e", [0.0, 0.0125])
+def test_vr6_matches_hand_sum(e: float) -> None:
+    """Every order's phasors of the VR6, with and without its bore offset, are the
+    cylinder-by-cylinder hand sum."""
+    model = build_model(spec(VR6, bore_offset=f"{e * 1e3:g} mm"))
+    assert np.allclose(model.cylinder_offset, [-e, e] * 3)
+    hand = hand_phasors(vr6_by_hand(e), model.crank_radius, model.rod_length, model.speed)
+    assert_phasors(model, hand, f"VR6 with bore offset {e * 1e3:g} mm")
+
+
+def test_vr6_equals_six_hand_throws_with_offsets() -> None:
+    """The VR6 with its offset rows is the model of six throws written by hand (angles,
+    banks, offsets and places of vr6_by_hand): the same phasors and the same curves."""
+    vr = build_model(spec(VR6))
+    rows = vr6_by_hand(0.0125)
+    by_hand = EngineModel(
+        name="six throws by hand",
+        speed=vr.speed,
+        kinematics="exact",
+        crank_radius=0.04515,
+        rod_length=0.164,
+        strokes=4,
+        throw_angle=np.array([row[1] for row in rows]),
+        throw_position=np.array([row[4] for row in rows]),
+        throw_rotating_mass=np.full(6, 1.1),
+        cylinder_throw=np.arange(6),
+        cylinder_bank=np.array([row[2] for row in rows]),
+        reciprocating_mass=np.full(6, 0.8),
+        cylinder_offset=np.array([row[3] for row in rows]),
+        cylinder_axial=np.zeros(6),
+        cylinder_rotating_mass=np.zeros(6),
+        firing_order=(1, 5, 3, 6, 2, 4),
+    )
+    a, b = free_forces(vr, ORDERS), free_forces(by_hand, ORDERS)
+    for name in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
+        assert np.allclose(getattr(a, name), getattr(b, name), rtol=1e-12, atol=1e-9), name
+    assert a.rotating_force == pytest.approx(b.rotating_force, abs=1e-9)
+    assert a.rotating_couple == pytest.approx(b.rotating_couple, abs=1e-9)
+
+
+def test_vr6_order_3_closed_form() -> None:
+    """Order 3 of the VR6 at even firing: each row's cylinders fire at multiples of 120 deg,
+    so F3+ = 3 m (3w)^2 [S3(-e) e^{i(-3 d - v/2)} + S3(e) e^{i(3 d + v/2)}] and
+    F3- = 3 m (3w)^2 [S-3(-e) e^{i(3 d - v/2)} + S-3(e) e^{i(-3 d + v/2)}], d = asin(e/(l+r)),
+    S_n the piston position's harmonics (hand FFT); zero without offset (no odd harmonics)."""
+    r, l, e, v = 0.04515, 0.164, 0.0125, 15 * DEG
+    model = build_model(spec(VR6))
+    w = model.speed
+    d = math.asin(e / (l + r))
+    sa, sb = position_harmonics(r, l, -e), position_harmonics(r, l, e)
+    k = 3 * 0.8 * (3 * w) ** 2
+    fwd = k * (
+        sa[ORDERS + 3] * np.exp(1j * (-3 * d - v / 2))
+        + sb[ORDERS + 3] * np.exp(1j * (3 * d + v / 2))
+    )
+    bwd = k * (
+        sa[ORDERS - 3] * np.exp(1j * (3 * d - v / 2))
+        + sb[ORDERS - 3] * np.exp(1j * (-3 * d + v / 2))
+    )
+    f = free_forces(model, ORDERS)
+    scale = 0.8 * r * w**2
+    assert abs(f.force_forward[2] - fwd) < 1e-9 * scale
+    assert abs(f.force_backward[2] - bwd) < 1e-9 * scale
+    assert abs(fwd) > 1e-4 * scale  # the offset's odd harmonic is there
+    plain = free_forces(build_model(spec(VR6, bore_offset=None)), ORDERS)
+    assert plain.force_amplitude[2] < 1e-9 * scale
+
+
+def w_by_hand(preset: str) -> tuple[EngineModel, list[tuple[float, ...]]]:
+    """A W preset cylinder by cylinder: rows -V/2 -+ v/2 (bank 1, cylinders 1..n/2) and
+    +V/2 -+ v/2 (bank 2), odd cylinders of a bank in row A (offset -e), pairs at one place,
+    fired every 720/n deg in the preset's order, pins at beta + asin(e/(l+r)) - t."""
+    data = load_engine(preset)
+    ct = data.crank_train
+    model = build_model(data)
+    n, half = ct.cylinder_count, ct.cylinder_count // 2
+    assert ct.bank_angle is not None and ct.vr_angle is not None and ct.crank_pitch
+    fire = {c: k * 4 * math.pi / n for k, c in enumerate(ct.firing_order or [])}
+    rows = []
+    for c in range(1, n + 1):
+        k = (c - 1) % half  # place along the crank
+        sign = -1 if k % 2 == 0 else 1
+        centre = (-1 if c <= half else 1) * ct.bank_angle / 2
+        beta = centre + sign * ct.vr_angle / 2
+        e = sign * ct.bore_offset
+        phi = beta + math.asin(e / (ct.rod_length + ct.crank_radius)) - fire[c]
+        m = float(model.reciprocating_mass[c - 1])
+        rows.append((m, phi, beta, e, (k - (half - 1) / 2) * ct.crank_pitch))
+    return model, rows
+
+
+@pytest.mark.parametrize("preset", ["w8", "w12-vw", "w16"])
+def test_w_presets_match_hand_sum(preset: str) -> None:
+    model, rows = w_by_hand(preset)
+    hand = hand_phasors(rows, model.crank_radius, model.rod_length, model.speed)
+    assert_phasors(model, hand, preset)
+
+
+def test_vr6_preset_matches_hand_sum_with_its_pin_split() -> None:
+    """The preset gives the maker's 22 deg split: pins at -t -+ 11 deg, offsets -+12.5 mm."""
+    model = build_model(load_engine("vr6"))
+    rows = [
+        (float(model.reciprocating_mass[0]), *row[1:4], (c - 3.5) * 0.045)
+        for c, row in enumerate(vr6_by_hand(0.0125, 22 * DEG), start=1)
+    ]
+    hand = hand_phasors(rows, model.crank_radius, model.rod_length, model.speed)
+    assert_phasors(model, hand, "vr6 preset")
 
 
 @pytest.mark.parametrize("preset", ["vr6", "w8", "w12-vw", "w16"])

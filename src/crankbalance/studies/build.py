@@ -13,7 +13,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel, standard_layout, vr_rows
+from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
 from ..spec import EngineSpec, MassOverride
 
 
@@ -41,7 +41,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
         reciprocating_mass=rec,
-        cylinder_offset=np.full(n, ct.pin_offset + ct.crank_offset),
+        cylinder_offset=_cylinder_offsets(spec),
         cylinder_axial=np.zeros(n),
         cylinder_rotating_mass=big_ends,
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
@@ -86,8 +86,7 @@ def _throw_angles(
     n = cylinder_throw.size
     order = ct.firing_order or list(range(1, n + 1))
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
-    fire_time = np.empty(n)
-    fire_time[np.array(order) - 1] = np.arange(n) * interval
+    fire_time = _fire_times(spec)
     # cylinder c is at its firing TDC at crank angle t_c: theta + phi - beta = 0
     cyl_angle = np.mod(banks - fire_time, 2 * np.pi)
     angles = np.full(throws, np.nan)
@@ -127,7 +126,7 @@ def _vr_row_of(spec: EngineSpec) -> NDArray:
     return vr_rows(ct.cylinder_count, 2 if ct.layout == "w" else 1)
 
 
-def vr_offsets(spec: EngineSpec) -> NDArray:
+def _cylinder_offsets(spec: EngineSpec) -> NDArray:
     """Total offset of each cylinder [m]: crank offset plus wrist-pin offset, and for VR
     rows the bore offset, negative in row A and positive in row B (the sign of
     :mod:`crankbalance.kinematics`: positive on the side the crankpin moves toward after
@@ -153,7 +152,7 @@ def _vr_throw_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
     fire_time = _fire_times(spec)
     rows = _vr_row_of(spec)
     if ct.pin_split is None:
-        tdc = np.arcsin(vr_offsets(spec) / (ct.rod_length + ct.crank_radius))
+        tdc = tdc_angle(_cylinder_offsets(spec), ct.crank_radius, ct.rod_length)
         return np.mod(banks + tdc - fire_time, 2 * np.pi)
     narrow = ct.vr_angle if ct.layout == "w" else ct.bank_angle
     assert narrow is not None
