@@ -431,10 +431,21 @@ def test_vr_keys_refused_elsewhere() -> None:
 def test_explorer_refuses_vr() -> None:
     with pytest.raises(InputError) as info:
         problem("vr", 6, 4)
-    assert "does not enumerate VR engines" in info.value.allowed
+    assert "not enumerated by the explorer" in info.value.allowed
 
 
 def test_presets_listed() -> None:
     names = list_presets()
     for name in ("vr6", "w8", "w12-vw", "w16", "w12"):
         assert name in names
+
+
+def test_explore_command_refuses_vr(capsys: pytest.CaptureFixture[str]) -> None:
+    """`crankbalance explore --layout vr`: one line naming the option, exit status 2."""
+    from crankbalance.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(["explore", "--layout", "vr", "--cylinders", "6"])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1
+    assert "--layout = 'vr': is not enumerated by the explorer" in err
