@@ -455,3 +455,10 @@ def test_explore_command_refuses_vr(capsys: pytest.CaptureFixture[str]) -> None:
     err = capsys.readouterr().err
     assert stop.value.code == 2 and err.count("\n") == 1
     assert "--layout = 'vr': is not enumerated by the explorer" in err
+    with pytest.raises(SystemExit) as stop:
+        main(
+            ["explore", "--layout", "w", "--cylinders", "12", "--bank-angle", "72 deg"]
+            + ["--engine", "w12-vw"]
+        )
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and "--engine = 'w12-vw': is not enumerated" in err
