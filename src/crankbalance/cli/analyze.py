@@ -32,6 +32,12 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         f"{text(e['speed_rad_s'], 'speed')}, "
         f"r/l = {number(e['rod_ratio'])}, kinematics: {e['kinematics']}"
     )
+    for key, words in (
+        ("cylinder_offset_m", "Offset per cylinder"),
+        ("cylinder_axial_m", "Rod position on its pin per cylinder"),
+    ):
+        if any(e[key]):
+            click.echo(f"{words}: " + ", ".join(text(v, "length") for v in e[key]))
     masses = data["masses"]
     click.echo(
         "Masses: reciprocating per cylinder "
