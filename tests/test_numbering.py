@@ -259,9 +259,13 @@ def test_bad_numbering(patch: dict[str, Any], field: str, words: str) -> None:
 
 
 # --------------------------------------------------------------------------- properties
+#: base presets of the property test: (preset, cylinders per throw count)
+BASES = {"inline": ("inline4", 1), "vee": ("v8-crossplane", 2), "vr": ("vr6", 1), "w-vr": ("w8", 2)}
+
+
 @PROPERTY
 @given(
-    layout=st.sampled_from(["inline", "vee"]),
+    layout=st.sampled_from(sorted(BASES)),
     throws=st.integers(2, 6),
     strokes=st.sampled_from([2, 4]),
     vee=st.sampled_from([60, 72, 90, 120, 180]),
@@ -270,27 +274,43 @@ def test_bad_numbering(patch: dict[str, Any], field: str, words: str) -> None:
 def test_the_crank_of_an_even_order_accepts_it(
     layout: str, throws: int, strokes: int, vee: int, seed: int
 ) -> None:
-    """For an even-firing inline or vee engine built from a random order, the crank given
-    as throw_angles accepts that order, and the order the crank offers passes too."""
-    n = throws * (2 if layout == "vee" else 1)
+    """For an even-firing inline, vee, VR or W-from-VR engine built from a random order
+    (VR rows with their bore offset, so each row's top dead centre is shifted), the crank
+    given as throw_angles accepts that order at its even intervals, and the order the
+    crank offers passes too."""
+    name, per_throw = BASES[layout]
+    n = throws * per_throw
     rng = np.random.default_rng(seed)
     order = [1, *(int(c) + 2 for c in rng.permutation(n - 1))]
-    data = preset("v8-crossplane" if layout == "vee" else "inline4")
+    data = preset(name)
     ct = data["crank_train"]
     ct.update(cylinders=n, strokes=strokes, firing_order=order)
+    ct.pop("pin_split", None)  # the crank from the order
     if layout == "vee":
         ct["bank_angle"] = f"{vee} deg"
     try:
         m = model_of(data)
     except InputError as error:  # no even crank for this order on shared pins
-        assert "throw_angles" in str(error) and layout == "vee"
+        assert "throw_angles" in str(error) and layout in ("vee", "w-vr")
         return
     ct["throw_angles"] = degrees(m.throw_angle)
     assert model_of(data).firing_order == tuple(order)
-    theta = np.mod(m.cylinder_bank - m.throw_angle[m.cylinder_throw], 2 * math.pi)
+    psi = np.arcsin(m.cylinder_offset / (m.crank_radius + m.rod_length))
+    theta = np.mod(m.cylinder_bank + psi - m.throw_angle[m.cylinder_throw], 2 * math.pi)
     steps = order_intervals(theta, order, strokes)
     np.testing.assert_allclose(steps, 2 * math.pi * strokes / 2 / n, atol=1e-9)
     offered, gaps = crank_order(theta, 1, strokes)
     assert math.isclose(float(gaps.sum()), math.pi * strokes)
     ct["firing_order"] = offered
     model_of(data)
+    # the second and third swapped: intervals 2, a turn less 1, 2, then 1 each (in even
+    # intervals, each at most half a turn: a two-stroke, or a four-stroke of 4 or more):
+    # a turn more than the cycle, unless both reach top dead centre together
+    if (
+        n > 2
+        and (strokes == 2 or n >= 4)
+        and abs(math.remainder(theta[order[1] - 1] - theta[order[2] - 1], 2 * math.pi)) > 1e-6
+    ):
+        ct["firing_order"] = [order[0], order[2], order[1], *order[3:]]
+        with pytest.raises(InputError, match="crank_train.firing_order"):
+            model_of(data)
