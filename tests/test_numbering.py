@@ -19,9 +19,11 @@ from typing import Any
 
 import numpy as np
 import pytest
+from click.testing import CliRunner
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
+from crankbalance.cli.analyze import analyze as cli_analyze
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import list_presets, preset_text
 from crankbalance.numbering import SCHEMES, crank_order, order_intervals
@@ -119,6 +121,12 @@ def test_porsche_order_is_the_crankbalance_order() -> None:
     assert engine["firing_order"] == [1, 6, 3, 2, 5, 4]
     assert engine["firing_order_maker"] == [1, 6, 2, 4, 3, 5]
     assert engine["maker_number"] == [1, 4, 2, 5, 3, 6]
+    table = CliRunner().invoke(cli_analyze, ["boxer6"])
+    assert table.exit_code == 0, table.output
+    assert (
+        "Firing order 1-6-2-4-3-5 in the maker's numbering, 1-6-3-2-5-4 in crankbalance's "
+        "(maker's cylinder: crankbalance's 1: 1, 2: 3, 3: 5, 4: 2, 5: 4, 6: 6)"
+    ) in table.output
 
 
 def v8(order: list[int], numbering: str | None) -> dict[str, Any]:
