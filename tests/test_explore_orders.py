@@ -55,8 +55,10 @@ def gap(a: np.ndarray) -> np.ndarray:
 def built(
     preset: str, order: tuple[int, ...], strokes: int | None = None, bank: float | None = None
 ) -> EngineModel:
-    """A preset with this firing order (and its crank from it: throw_angles dropped)."""
+    """A preset with this firing order in crankbalance's numbering (a maker's numbering
+    dropped) and its crank from it (throw_angles dropped)."""
     text = re.sub(r"throw_angles = \[[^\]]*\]\n", "", preset_text(preset))
+    text = re.sub(r"numbering = .*\n", "", text)
     text = re.sub(r"firing_order = \[[^\]]*\].*\n", "", text)
     text = re.sub(
         r"cylinders = \d+", f"cylinders = {len(order)}\nfiring_order = {list(order)}", text

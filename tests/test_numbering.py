@@ -322,3 +322,26 @@ def test_the_crank_of_an_even_order_accepts_it(
         ct["firing_order"] = [order[0], order[2], order[1], *order[3:]]
         with pytest.raises(InputError, match="crank_train.firing_order"):
             model_of(data)
+
+
+def test_explorer_candidate_keeps_the_makers_numbering() -> None:
+    """The web explorer's candidate (an order in crankbalance's numbering) written into an
+    engine in Porsche's numbering is written in Porsche's numbers: the same engine."""
+    pytest.importorskip("nicegui")
+    from types import SimpleNamespace
+
+    from crankbalance.web.tab_explore import candidate_file
+
+    data = preset("boxer6")
+    base = model_of(data)
+    problem = SimpleNamespace(layout="boxer", strokes=4)
+    row = {"firing_order": [1, 6, 3, 2, 5, 4], "throw_angle_rad": list(base.throw_angle)}
+    out = candidate_file(data, problem, None, row)
+    assert out["crank_train"]["numbering"] == "porsche-boxer"
+    assert out["crank_train"]["firing_order"] == [1, 6, 2, 4, 3, 5]
+    same_engine(model_of(out), base)
+    # another cylinder count: the numbering is dropped with the crank's other counts
+    row = {"firing_order": [1, 4, 3, 2], "throw_angle_rad": [0.0, math.pi, math.pi, 0.0]}
+    out = candidate_file(data, problem, None, row)
+    assert "numbering" not in out["crank_train"]
+    assert out["crank_train"]["firing_order"] == [1, 4, 3, 2]
