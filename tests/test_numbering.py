@@ -345,3 +345,49 @@ def test_explorer_candidate_keeps_the_makers_numbering() -> None:
     out = candidate_file(data, problem, None, row)
     assert "numbering" not in out["crank_train"]
     assert out["crank_train"]["firing_order"] == [1, 4, 3, 2]
+
+
+@pytest.mark.parametrize(
+    ("throws_deg", "banks_deg", "strokes"),
+    [
+        ([0, 120, 240, 0, 120, 240], [-45, -45, -45, 45, 45, 45], 4),  # odd-fire V6
+        ([0, 90, 270, 180], [0, 0, 0, 0], 4),  # crossplane inline-4
+        ([0, 180, 180, 0], [0, 0, 0, 0], 4),  # flat inline-4
+        ([0, 180, 180, 0], [0, 0, 0, 0], 2),
+        ([0, 0, 90, 210, 300], [-30, 30, -30, 30, 0], 4),
+        ([0, 120, 240], [0, 0, 0], 2),
+    ],
+)
+def test_engine_cycle_fires_what_the_check_accepts(
+    throws_deg: list[float], banks_deg: list[float], strokes: int
+) -> None:
+    """Every order from cylinder 1 (brute force): the engine cycle's firing angles exist
+    exactly for the orders the build accepts, increase along the order within one cycle,
+    and have the check's intervals."""
+    import itertools
+
+    from crankbalance.engine_cycle_all import firing_angles
+    from crankbalance.numbering import check_firing_order
+
+    phi, beta = np.radians(throws_deg), np.radians(banks_deg)
+    theta = np.mod(beta - phi, 2 * math.pi)
+    n, cycle = phi.size, math.pi * strokes
+    accepted = 0
+    for rest in itertools.permutations(range(2, n + 1)):
+        order = [1, *rest]
+        try:
+            check_firing_order(theta, order, strokes, "crank_train.firing_order", order)
+        except InputError:
+            with pytest.raises(InputError, match="crank_train.firing_order"):
+                firing_angles(phi, beta, order, strokes)
+            continue
+        accepted += 1
+        fire = firing_angles(phi, beta, order, strokes)
+        times = np.mod(fire[np.array(order) - 1] - fire[0], cycle)
+        assert np.all(np.diff(times) >= -1e-9), (order, times)
+        steps = np.diff(np.append(times, cycle))
+        shortest = order_intervals(theta, order, strokes)
+        if math.isclose(float(shortest.sum()), cycle):
+            np.testing.assert_allclose(steps, shortest, atol=1e-9)
+        np.testing.assert_allclose(np.mod(fire + phi - beta + 1e-9, 2 * math.pi), 1e-9, atol=1e-8)
+    assert accepted > 0

@@ -193,7 +193,8 @@ def order_intervals(tdc: ArrayLike, order: Sequence[int], strokes: int) -> NDArr
     next top dead centre: by :math:`(\theta_{next} - \theta_{this}) \bmod 2\pi`, a full
     turn for a four-stroke when both reach top dead centre together (the cam makes them
     fire a revolution apart), nothing for a two-stroke (which fires at every top dead
-    centre, so both fire together). The order fits the crank when these intervals add up
+    centre, so both fire together; a cylinder firing with the first is listed right after
+    it, so from the last back to the first it is a full turn). The order fits the crank when these intervals add up
     to at most one cycle (4π four-stroke, 2π two-stroke); a four-stroke whose intervals
     add up to 2π fires all its cylinders in one revolution and none in the next (a 180 deg
     twin), and any one interval may take that revolution.
@@ -219,7 +220,7 @@ def order_intervals(tdc: ArrayLike, order: Sequence[int], strokes: int) -> NDArr
     if strokes == 4:
         return np.where(same, 2 * np.pi, step)
     step = np.where(same, 0.0, step)
-    if step.size and not np.any(step):  # all together: the last interval closes the cycle
+    if step.size and same[-1]:  # the last at the first's top dead centre: a turn to it
         step[-1] = 2 * np.pi
     return step
 
