@@ -28,6 +28,8 @@ PHYSICS = (
     "rotor_bench",
     "engine_cycle",
     "engine_cycle_all",
+    "torsional",
+    "main_bearings",
     "tolerance",
     "articulated",
     "numbering",

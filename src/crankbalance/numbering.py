@@ -194,10 +194,10 @@ def order_intervals(tdc: ArrayLike, order: Sequence[int], strokes: int) -> NDArr
     turn for a four-stroke when both reach top dead centre together (the cam makes them
     fire a revolution apart), nothing for a two-stroke (which fires at every top dead
     centre, so both fire together; a cylinder firing with the first is listed right after
-    it, so from the last back to the first it is a full turn). The order fits the crank when these intervals add up
-    to at most one cycle (4π four-stroke, 2π two-stroke); a four-stroke whose intervals
-    add up to 2π fires all its cylinders in one revolution and none in the next (a 180 deg
-    twin), and any one interval may take that revolution.
+    it, so from the last back to the first it is a full turn). The order fits the crank
+    when these intervals add up to at most one cycle (4π four-stroke, 2π two-stroke); a
+    four-stroke whose intervals add up to 2π fires all its cylinders in one revolution
+    and none in the next (a 180 deg twin), and any one interval may take that revolution.
 
     Parameters
     ----------

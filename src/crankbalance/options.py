@@ -57,6 +57,8 @@ RANGES["position"] = (-RANGES["length"][1], RANGES["length"][1])  # axial positi
 RANGES["angle"] = (-RANGES["angle"][1], RANGES["angle"][1])
 for _kind in ("unbalance", "force", "torque"):
     RANGES[_kind] = (0.0, RANGES[_kind][1])
+#: the included angle of a drill point [rad]: above 0 (open), at most 180 deg (a flat bottom)
+RANGES["point_angle"] = (0.0, math.pi)
 #: (low, low is open, high, high is open) of a value
 Bounds = tuple[float | None, bool, float | None, bool]
 #: the smallest first moment a counterweight or a balance shaft is sized for [kg m]
@@ -154,6 +156,12 @@ Modulus = Annotated[float, _quantity("modulus"), _range("modulus")]
 Pressure = Annotated[float, _quantity("pressure"), _range("pressure")]
 Viscosity = Annotated[float, _quantity("viscosity"), _range("viscosity")]
 Angle = Annotated[float, _quantity("angle"), _range("angle")]
+#: a drill point's included angle: above 0, at most 180 deg (flat-bottomed holes)
+PointAngle = Annotated[
+    float,
+    _quantity("angle"),
+    Field(gt=RANGES["point_angle"][0], le=RANGES["point_angle"][1]),
+]
 Number = Annotated[float, BeforeValidator(_number)]
 Whole = Annotated[int, BeforeValidator(_number)]
 #: a balance factor: 0.28 or "28%", from 0 to 2
@@ -396,7 +404,21 @@ FluctuationTarget = Annotated[float, BeforeValidator(_factor), Field(ge=1e-6, le
 MAX_PRESSURE_TABLES = 64
 
 
-class CycleOptions(StudyOptions):
+class CombustionOptions(StudyOptions):
+    """The gas pressure of a cycle: the Wiebe model (Hoem and Røsholm 2016) or pressure
+    tables, one for every cylinder or one per cylinder; shared by ``cycle``,
+    ``sensitivity`` and ``torsional``."""
+
+    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
+    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: list[str] = Field(
+        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    )
+
+
+class CycleOptions(CombustionOptions):
     """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
     engine (``engine`` without ``cylinder``: every cylinder firing), its gas pressure (the
     Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel."""
@@ -414,13 +436,6 @@ class CycleOptions(StudyOptions):
     friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
     speed: Speed = Field(9000 * _RPM, title="Mean speed")
     strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle")
-    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
-    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
-    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
-    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: list[str] = Field(
-        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
-    )
     balance_factor: Factor = Field(0.5, title="Balance factor")
     flywheel_inertia: Inertia | None = Field(None, title="Flywheel inertia (added to the crank)")
     speed_fluctuation_target: FluctuationTarget | None = Field(
@@ -438,6 +453,94 @@ class SensitivityOptions(CycleOptions):
     mass_scales: list[Annotated[Number, Field(gt=0, le=10)]] = Field(
         [1.0], min_length=1, max_length=MAX_SWEEP, title="Reciprocating-mass scales"
     )
+
+
+#: most main bearings one crank may be given (``bearings --bearing``)
+MAX_MAIN_BEARINGS = 64
+#: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
+#: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
+MAX_CLEARANCE_STIFFNESS = 1e10
+
+
+class BearingOptions(CombustionOptions):
+    """``bearings``: main-bearing loads and crank bending over the engine cycle
+    (docs/main_bearings.md). Crank dimensions left empty are taken from the crank radius
+    and the web offset (proportions of an automotive crank, docs/main_bearings.md)."""
+
+    speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
+    samples: Whole = Field(360, ge=36, le=3600, title="Samples per revolution")
+    gas: bool = Field(True, title="Gas forces", description="off: inertia forces only")
+    bore: Length | None = Field(
+        None, title="Bore", description="empty: square engine (bore = stroke)"
+    )
+    # a multi-cylinder automotive engine's combustion (CombustionOptions' defaults are the
+    # thesis' motorcycle single)
+    compression_ratio: Number = Field(10.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-20.0), title="Start of combustion from firing TDC")
+    crank_inertia: Inertia = Field(
+        0.15, title="Crank + flywheel inertia", description="sets the speed fluctuation"
+    )
+    balance_factor: Factor | None = Field(
+        None, title="Balance factor", description="empty: the engine file's"
+    )
+    webs: list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]] | None = Field(
+        None,
+        min_length=2,
+        max_length=2 * MAX_MAIN_BEARINGS,
+        title="Counterweight webs (0/1, two per throw)",
+        description="empty: the engine file's",
+    )
+    journal_diameter: Length | None = Field(None, title="Main-journal diameter")
+    pin_diameter: Length | None = Field(None, title="Crankpin diameter")
+    web_thickness: Length | None = Field(None, title="Web thickness (axial)")
+    web_width: Length | None = Field(None, title="Web width (across the arm)")
+    modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
+    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
+    bearing: list[Position] | None = Field(
+        None, min_length=2, max_length=MAX_MAIN_BEARINGS, title="Main-bearing positions"
+    )
+    bearing_stiffness: Stiffness | None = Field(
+        None, title="Radial bearing stiffness", description="empty: rigid bearings"
+    )
+    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
+    viscosity: Viscosity | None = Field(None, title="Oil viscosity (Petroff)")
+    bearing_length: Length | None = Field(None, title="Bearing length (Petroff)")
+    clearance: Length | None = Field(
+        None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
+    )
+
+    @model_validator(mode="after")
+    def _petroff(self) -> BearingOptions:
+        trio = ("viscosity", "bearing_length", "clearance")
+        given = [name for name in trio if getattr(self, name) is not None]
+        if given and given != ["clearance"] and len(given) < 3:
+            missing = next(name for name in trio if getattr(self, name) is None)
+            raise InputError(
+                given[0],
+                getattr(self, given[0]),
+                f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
+                "viscosity, bearing length and clearance together",
+            )
+        if (
+            self.clearance is not None
+            and self.bearing_stiffness is not None
+            and self.bearing_stiffness > MAX_CLEARANCE_STIFFNESS
+        ):
+            raise InputError(
+                "bearing_stiffness",
+                self.bearing_stiffness,
+                f"must be at most {MAX_CLEARANCE_STIFFNESS:g} N/m with a clearance (the "
+                "contact solution converges up to there; stiffer rings are the model "
+                "without clearance)",
+            )
+        if given == ["clearance"] and self.bearing_stiffness is None:
+            raise InputError(
+                "clearance",
+                self.clearance,
+                "needs a bearing stiffness (the rings' contact) or viscosity and bearing "
+                "length (Petroff friction) to act",
+            )
+        return self
 
 
 class ShaftSectionOptions(StudyOptions):
@@ -522,6 +625,8 @@ class RebalancePartsOptions(StudyOptions):
     face_area: Area | None = Field(None, title="Face area ground per web")
     hole_diameter: Length | None = Field(None, title="Drill diameter")
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
+    depth_to: Literal["shoulder", "tip"] | None = Field(None, title="Depth read to")
     density: Density | None = Field(None, title="Crank material density")
     depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
     grade: str | None = Field(None, title="ISO 21940-11 grade")
@@ -575,7 +680,7 @@ class ShopOptions(StudyOptions):
     hole_radius: Length | None = Field(None, title="Radius of the holes")
     max_depth: Length = Field(0.015, title="Deepest hole")
     depth_to: Literal["shoulder", "tip"] | None = None
-    point_angle: Angle = Field(math.radians(118.0), gt=0, le=math.pi, title="Drill point angle")
+    point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
     direction: Literal["axial", "radial"] = "axial"
     spacing: LengthOrZero = Field(0.002, title="Material between holes")
     depth_resolution: LengthOrZero = Field(0.0001, title="Machining step")
@@ -650,6 +755,96 @@ class ExploreOptions(StudyOptions):
     scheduler: str | None = Field(None, title="Address of a dask scheduler")
     sample: Whole | None = Field(None, ge=1, le=10**12, title="Random draws (search)")
     seed: Whole = Field(0, ge=0, le=2**32 - 1, title="Random seed")
+
+
+#: the range of a torsional stiffness [N m/rad] (a model engine's crank to a ship's shafting)
+TORSIONAL_STIFFNESS_RANGE = (1.0, 1e11)
+_TORSIONAL_EXAMPLE = "5e5 N*m/rad"
+
+
+def _torsional_stiffness(value: Any) -> float:
+    """A torsional stiffness written with its unit per radian: ``"5e5 N*m/rad"``."""
+    low, high = TORSIONAL_STIFFNESS_RANGE
+    words = (
+        f"a torsional stiffness such as {_TORSIONAL_EXAMPLE!r}, from {low:g} to {high:g} N*m/rad"
+    )
+    if not isinstance(value, str) or "rad" not in value:
+        raise InputError("", value, f"must be {words}")
+    stiffness = parse_quantity(value.replace("/rad", "").replace("/ rad", ""), "torque", "")
+    if not low <= stiffness <= high:
+        raise InputError("", value, f"must be {words}")
+    return stiffness
+
+
+#: a torsional stiffness [N m/rad]
+TorsionalStiffness = Annotated[float, BeforeValidator(_torsional_stiffness)]
+#: a frequency [Hz] of a torsional system
+Frequency = Annotated[float, _quantity("frequency"), Field(gt=0, le=1e5)]
+#: a power [W] (the heat a damper may dissipate)
+Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
+#: a damping ratio [-]
+DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
+
+
+class TorsionalOptions(CombustionOptions):
+    """``torsional``: the crank train's lumped torsional model (docs/torsional.md): the
+    speed range and orders, the throws' inertia and stiffness (given, or Carter's formula
+    from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion."""
+
+    engine: str | None = Field(None, title="Engine file or preset")
+    speed_min: Speed = Field(600 * _RPM, title="Lowest speed")
+    speed_max: Speed | None = Field(None, title="Highest speed (default: the engine's)")
+    speed_points: Whole = Field(400, ge=10, le=2001, title="Speeds of the sweep")
+    highest_order: Number = Field(12.0, ge=0.5, le=MAX_ORDER, title="Highest engine order")
+    throw_inertia: Inertia | None = Field(None, title="Inertia of one throw with its big ends")
+    throw_stiffness: TorsionalStiffness | None = Field(
+        None, title="Stiffness between throws (default: Carter's formula, an approximation)"
+    )
+    journal_diameter: Length = Field(0.060, title="Main journal diameter")
+    pin_diameter: Length = Field(0.050, title="Crankpin diameter")
+    journal_length: Length = Field(0.025, title="Main journal length")
+    pin_length: Length = Field(0.025, title="Crankpin length")
+    web_thickness: Length = Field(0.020, title="Web thickness")
+    web_width: Length = Field(0.090, title="Web width")
+    shear_modulus: Modulus = Field(80e9, title="Shear modulus of the crank")
+    front_inertia: Inertia = Field(0.010, title="Pulley, timing gear and damper hub")
+    front_stiffness: TorsionalStiffness | None = Field(
+        None, title="Front end to throw 1 (default: the throws')"
+    )
+    flywheel_inertia: Inertia = Field(0.15, title="Flywheel and clutch")
+    flywheel_stiffness: TorsionalStiffness | None = Field(
+        None, title="Last throw to flywheel (default: the throws')"
+    )
+    damper_inertia: Inertia | None = Field(None, title="Damper ring (none: no damper)")
+    damper_frequency: Frequency | None = Field(None, title="Damper tuning frequency")
+    damper_damping_ratio: DampingRatio = Field(0.15, title="Damper damping ratio")
+    damper_allowed_power: Power | None = Field(None, title="Power the damper may dissipate")
+    load_inertia: Inertia | None = Field(None, title="Driven load (none: free end)")
+    load_stiffness: TorsionalStiffness | None = Field(None, title="Flywheel to load")
+    shaft_damping_ratio: DampingRatio = Field(0.02, title="Crank's own damping ratio")
+    bore: Length | None = Field(None, title="Bore (default: square)")
+
+    @model_validator(mode="after")
+    def _consistent(self) -> TorsionalOptions:
+        if self.engine is None:
+            raise InputError("engine", None, "the engine file or preset is needed")
+        if self.speed_max is not None and self.speed_max <= self.speed_min:
+            raise InputError("speed_max", self.speed_max, "must be above the lowest speed")
+        if (self.damper_inertia is None) != (self.damper_frequency is None):
+            raise InputError(
+                "damper_frequency" if self.damper_inertia is not None else "damper_inertia",
+                None,
+                "the damper needs both its ring inertia and its tuning frequency",
+            )
+        if self.damper_allowed_power is not None and self.damper_inertia is None:
+            raise InputError("damper_allowed_power", None, "needs a damper (damper inertia)")
+        if (self.load_inertia is None) != (self.load_stiffness is None):
+            raise InputError(
+                "load_stiffness" if self.load_inertia is not None else "load_inertia",
+                None,
+                "the load needs both its inertia and the stiffness to the flywheel",
+            )
+        return self
 
 
 Options = TypeVar("Options", bound=StudyOptions)

@@ -63,7 +63,15 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "crankbalance.cli.explore:explore",
         "Every firing order and crank of a layout, ranked.",
     ),
+    "torsional": (
+        "crankbalance.cli.torsional:torsional",
+        "Torsional vibration of the crank train: modes, resonances, damper.",
+    ),
     "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
+    "bearings": (
+        "crankbalance.cli.bearings:bearings",
+        "Main-bearing loads and crank bending over the engine cycle.",
+    ),
 }
 
 
