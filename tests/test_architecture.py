@@ -32,6 +32,7 @@ PHYSICS = (
     "main_bearings",
     "tolerance",
     "articulated",
+    "numbering",
     "explore.orders",
     "explore.merit",
     "explore.rank",
