@@ -28,6 +28,7 @@ PHYSICS = (
     "rotor_bench",
     "engine_cycle",
     "tolerance",
+    "articulated",
     "explore.orders",
     "explore.merit",
     "explore.rank",

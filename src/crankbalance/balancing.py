@@ -1387,6 +1387,14 @@ def stack_models(models: Sequence[EngineModel]) -> EngineBatch:
     """
     if not models:
         raise InputError("models", [], "at least one engine")
+    for i, m in enumerate(models):
+        if m.articulation is not None:
+            raise InputError(
+                f"models[{i}]",
+                m.name,
+                "has master-and-link rods, which the batch solver does not model; "
+                "balance it on its own (balance)",
+            )
     first = models[0]
     for i, m in enumerate(models):
         same = (

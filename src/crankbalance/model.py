@@ -21,6 +21,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import NDArray
 
+from .articulated import ArticulatedRods
 from .results import ResultMixin
 
 
@@ -98,6 +99,12 @@ class EngineModel:
         The two-mass split of each conrod given by its mass, empty when none is.
     firing_order_given : bool
         False when the spec gave no firing order and ``firing_order`` is the cylinder order.
+    articulation : ArticulatedRods or None
+        Master-and-link rods of a radial (:mod:`crankbalance.articulated`); None when
+        every rod's big end is on its crankpin. When given, the reciprocating forces of
+        the cylinders follow the exact articulated motion, and the link rods' big ends
+        (counted in ``throw_rotating_mass`` like every big end) add their motion relative
+        to the crankpin.
     """
 
     name: str
@@ -116,6 +123,7 @@ class EngineModel:
     firing_order: tuple[int, ...]
     conrods: tuple[ConrodSplit, ...] = field(default=())
     firing_order_given: bool = True
+    articulation: ArticulatedRods | None = None
 
     @property
     def rod_ratio(self) -> float:

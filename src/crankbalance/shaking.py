@@ -34,6 +34,7 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from .articulated import harmonics, inertia_force
 from .kinematics import (
     CHUNK,
     KinematicsModel,
@@ -141,6 +142,8 @@ def free_forces(
         orders,
     )
     fwd, bwd, cfwd, cbwd = _phasors(coeff, sums)
+    if model.articulation is not None:
+        fwd, bwd, cfwd, cbwd = articulated_phasors(model, orders)
     turn = np.exp(1j * model.throw_angle)
     rotating = accel * model.throw_rotating_mass
     return FreeForces(
@@ -472,8 +475,70 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
     couple : ndarray of complex, shape (M,)
         Its couple :math:`\\sum y F` about the crankshaft mid-point [N·m].
     """
+    if model.articulation is not None:
+        phi, y = _single_throw(model)
+        force = inertia_force(
+            model.articulation,
+            model.reciprocating_mass,
+            np.asarray(angle, dtype=float) + phi,
+            model.speed,
+        )
+        return force, y * force
     theta = np.asarray(angle, dtype=float)[:, None]
     psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]
     acc = piston_acceleration(psi, model.crank_radius, model.rod_length, model.offset, model.speed)
     force = -model.reciprocating_mass[None, :] * acc * np.exp(1j * model.cylinder_bank)[None, :]
     return force.sum(axis=1), (force * model.cylinder_position[None, :]).sum(axis=1)
+
+
+# --------------------------------------------------------------------------- articulated rods
+def articulated_phasors(
+    model: EngineModel, orders: int
+) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    r"""Reciprocating phasors of a radial with master-and-link rods (``model.articulation``).
+
+    Parameters
+    ----------
+    model : EngineModel
+        A one-throw engine whose ``articulation`` is set.
+    orders : int
+        Highest harmonic order K.
+
+    Returns
+    -------
+    force_forward, force_backward, couple_forward, couple_backward : ndarray, shape (K,)
+        Complex phasors :math:`F_n^{\pm}` [N] and :math:`C_n^{\pm}` [N·m] of the pistons
+        and of the link rods' big ends beyond the crankpin
+        (:func:`crankbalance.articulated.harmonics`), at crank angle 0 of the throw.
+
+    Notes
+    -----
+    A throw at angle :math:`arphi` turns the phasors of the articulated assembly (taken
+    at its own crank angle) by :math:`e^{\pm inarphi}`; the couple is the force times
+    the throw's axial position.
+    """
+    art = model.articulation
+    if art is None:
+        raise ValueError("articulated_phasors: the model has no articulated rods")
+    phi, y = _single_throw(model)
+    h = harmonics(art, orders)
+    n = h.orders
+    w2 = model.speed**2
+    fwd = w2 * (
+        model.reciprocating_mass @ h.piston_forward + art.link_big_end_mass @ h.link_forward
+    )
+    bwd = w2 * (
+        model.reciprocating_mass @ h.piston_backward + art.link_big_end_mass @ h.link_backward
+    )
+    fwd = fwd * np.exp(1j * n * phi)
+    bwd = bwd * np.exp(-1j * n * phi)
+    return fwd, bwd, y * fwd, y * bwd
+
+
+def _single_throw(model: EngineModel) -> tuple[float, float]:
+    """Angle [rad] and axial position [m] of the one throw of an articulated radial."""
+    if model.throws != 1 or model.articulation is None:
+        raise ValueError("master-and-link rods sit on one throw (a radial)")
+    if model.articulation.cylinders != model.cylinders:
+        raise ValueError("the articulated rods need one entry per cylinder of the model")
+    return float(model.throw_angle[0]), float(model.throw_position[0])

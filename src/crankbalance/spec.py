@@ -130,6 +130,35 @@ class Throw(_Strict):
     )
 
 
+class Articulated(_Strict):
+    """Master-and-link rods of a radial engine (``[crank_train.articulated]``).
+
+    The master rod is the conrod of the master cylinder (its length ``rod_length``); every
+    other cylinder's rod is a link rod pinned to the master rod's big end. Rod masses are
+    the ``[masses]`` conrod fields of each cylinder (overrides for the master or the links).
+    """
+
+    master_cylinder: Whole = Field(default=1, ge=1, description="cylinder of the master rod")
+    link_pin_radius: Length = Field(
+        description="distance of each link pin from the centre of the master rod's big end"
+    )
+    link_rod_length: Length = Field(description="centre distance of each link rod")
+    link_pin_angles: list[Angle] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="angle of each cylinder's link pin from the master rod's axis, one per "
+        "cylinder (the master's 0); default: the angle between the cylinder and the master",
+    )
+
+    @model_validator(mode="after")
+    def _check(self) -> Articulated:
+        if self.link_pin_radius < 0:
+            raise FieldProblem("link_pin_radius", "must not be negative")
+        if self.link_rod_length <= 0:
+            raise FieldProblem("link_rod_length", "must be greater than zero")
+        return self
+
+
 class CrankTrain(_Strict):
     """Layout and geometry of the crank train."""
 
@@ -145,6 +174,7 @@ class CrankTrain(_Strict):
     crank_offset: Length = 0.0
     throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
     throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
+    articulated: Articulated | None = None
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
@@ -223,6 +253,40 @@ class CrankTrain(_Strict):
             return sum(len(t.banks) for t in self.throw or [])
         assert self.cylinders is not None
         return self.cylinders
+
+
+def _check_articulated(ct: CrankTrain) -> None:
+    """The ``[crank_train.articulated]`` table against the rest of the crank train."""
+    art = ct.articulated
+    if art is None:
+        return
+    where = "crank_train.articulated"
+    if ct.layout != "radial":
+        raise FieldProblem(
+            f"{where}.master_cylinder", "master-and-link rods need layout = 'radial'"
+        )
+    n = ct.cylinder_count
+    if art.master_cylinder > n:
+        raise FieldProblem(f"{where}.master_cylinder", f"must be a cylinder number 1..{n}")
+    offset = abs(ct.pin_offset + ct.crank_offset)
+    need = ct.crank_radius + art.link_pin_radius + offset
+    if art.link_rod_length <= need:
+        raise FieldProblem(
+            f"{where}.link_rod_length",
+            "must exceed crank_radius plus link_pin_radius plus the total offset "
+            f"({need * 1e3:g} mm)",
+        )
+    if art.link_pin_angles is not None:
+        if len(art.link_pin_angles) != n:
+            raise FieldProblem(
+                f"{where}.link_pin_angles",
+                f"needs one angle per cylinder ({n}), 0 for the master cylinder",
+            )
+        if art.link_pin_angles[art.master_cylinder - 1] != 0:
+            raise FieldProblem(
+                f"{where}.link_pin_angles",
+                f"entry {art.master_cylinder} is the master cylinder's: it must be 0 deg",
+            )
 
 
 def throw_count(layout: str, cylinders: int) -> int:
@@ -457,6 +521,7 @@ class EngineSpec(_Strict):
                         f"masses.override[{k}].throws",
                         f"throw {number} does not exist (1..{n_throw})",
                     )
+        _check_articulated_engine(self)
         if self.counterweights is not None and self.counterweights.webs is not None:
             if len(self.counterweights.webs) != 2 * n_throw:
                 raise FieldProblem(
@@ -468,6 +533,24 @@ class EngineSpec(_Strict):
     def to_file_dict(self) -> dict[str, Any]:
         """The spec as an engine-file dictionary (quantities as unit strings)."""
         return self.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+
+
+def _check_articulated_engine(spec: EngineSpec) -> None:
+    """What master-and-link rods need beyond the crank train: exact kinematics and the
+    rod masses (the link rods' big ends move with the link pins, not with the crankpin)."""
+    if spec.crank_train.articulated is None:
+        return
+    _check_articulated(spec.crank_train)
+    if spec.kinematics != "exact":
+        raise FieldProblem(
+            "kinematics", "master-and-link rods (crank_train.articulated) need 'exact'"
+        )
+    if spec.masses.conrod is None:
+        raise FieldProblem(
+            "masses.conrod",
+            "is required with crank_train.articulated: give the rod masses with their split "
+            "(the master rod's by an override of the master cylinder, or the link rods')",
+        )
 
 
 # --------------------------------------------------------------------------- errors

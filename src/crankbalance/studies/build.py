@@ -12,6 +12,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
+from ..articulated import ArticulatedRods, default_link_pin_angles
 from ..errors import InputError
 from ..model import ConrodSplit, EngineModel, standard_layout
 from ..spec import EngineSpec, MassOverride
@@ -22,7 +23,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
     ct = spec.crank_train
     positions, cylinder_throw, banks = _layout(spec)
     angles = _throw_angles(spec, cylinder_throw, banks, positions.size)
-    rec, big_ends, conrods = _cylinder_masses(spec, cylinder_throw.size)
+    rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, cylinder_throw.size))
     rot, from_parts = _throw_masses(spec, positions.size)
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
         if from_parts[t]:
@@ -45,6 +46,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
+        articulation=_articulation(spec, banks, big_ends),
     )
 
 
@@ -123,13 +125,14 @@ def _overrides(spec: EngineSpec, kind: str, count: int) -> list[dict[str, float]
     return rows
 
 
-def _cylinder_masses(spec: EngineSpec, n: int) -> tuple[NDArray, NDArray, list[ConrodSplit]]:
-    rod = spec.crank_train.rod_length
+def _cylinder_masses(spec: EngineSpec, rods: NDArray) -> tuple[NDArray, NDArray, list[ConrodSplit]]:
+    n = rods.size
     rec = np.zeros(n)
     big_end = np.zeros(n)
     conrods: list[ConrodSplit] = []
     for c, row in enumerate(_overrides(spec, "cylinders", n)):
         conrod = row["conrod"]
+        rod = float(rods[c])
         if conrod is not None:
             if row["conrod_cg_from_big_end"] is not None:
                 d = row["conrod_cg_from_big_end"]
@@ -184,3 +187,42 @@ def _throw_masses(spec: EngineSpec, t: int) -> tuple[NDArray, NDArray]:
             web_r = row["crank_web_cg_radius"] or 0.0
             rot[k] = row["crankpin"] + 2.0 * web * web_r / r
     return rot, from_parts
+
+
+# --------------------------------------------------------------------------- articulated rods
+def _rod_lengths(spec: EngineSpec, n: int) -> NDArray:
+    """Centre distance of each cylinder's rod: the link rods' for the link cylinders of an
+    articulated radial, ``rod_length`` otherwise."""
+    ct = spec.crank_train
+    rods = np.full(n, ct.rod_length)
+    art = ct.articulated
+    if art is not None:
+        rods[:] = art.link_rod_length
+        rods[art.master_cylinder - 1] = ct.rod_length
+    return rods
+
+
+def _articulation(spec: EngineSpec, banks: NDArray, big_ends: NDArray) -> ArticulatedRods | None:
+    """The master-and-link rods of ``[crank_train.articulated]`` (None without it)."""
+    ct = spec.crank_train
+    art = ct.articulated
+    if art is None:
+        return None
+    n = banks.size
+    master = art.master_cylinder - 1
+    links = np.arange(n) != master
+    angles = (
+        np.array(art.link_pin_angles, dtype=float)
+        if art.link_pin_angles is not None
+        else default_link_pin_angles(banks, master)
+    )
+    return ArticulatedRods(
+        master=master,
+        crank_radius=ct.crank_radius,
+        bank_angle=np.asarray(banks, dtype=float),
+        rod_length=_rod_lengths(spec, n),
+        link_pin_radius=np.where(links, art.link_pin_radius, 0.0),
+        link_pin_angle=np.where(links, angles, 0.0),
+        link_big_end_mass=np.where(links, big_ends, 0.0),
+        offset=ct.pin_offset + ct.crank_offset,
+    )
