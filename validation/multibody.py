@@ -103,10 +103,18 @@ ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
         "45 deg V-twin on one pin, rods in one plane (preset)",
         lambda: _engine(preset_text("v2-45")),
     ),
+    "radial5-kinner": (
+        "5-cylinder radial, master and link rods (preset: Kinner K-5)",
+        lambda: _engine(preset_text("radial5-kinner")),
+    ),
+    "radial9-r985": (
+        "9-cylinder radial, master and link rods (preset: P&W R-985)",
+        lambda: _engine(preset_text("radial9-r985")),
+    ),
 }
 #: the engines the test runs (issue 17 item 6 names the side-by-side V-twin, the
 #: articulated radial-5 and the VR6; the others are in the results table)
-TEST_ENGINES: tuple[str, ...] = ("single-desaxe", "v2-45", "v8-crossplane")
+TEST_ENGINES: tuple[str, ...] = ("single-desaxe", "v2-45", "v8-crossplane", "radial5-kinner")
 
 
 def cylinder_offsets(model: EngineModel) -> NDArray[np.float64]:
@@ -252,27 +260,53 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
         ground_joints.append((joint, np.eye(3), np.array(position)))
 
     offsets, axial = cylinder_offsets(model), cylinder_axial(model)
-    for c in range(model.cylinders):
+    art = model.articulation
+    lengths = np.full(model.cylinders, l) if art is None else np.asarray(art.rod_length)
+    # the master rod first: the link rods hang on it
+    order = list(range(model.cylinders))
+    if art is not None:
+        order.remove(art.master)
+        order.insert(0, art.master)
+    master_body, master_pin, master_axis = -1, np.zeros(3), np.zeros(3)
+    for c in order:
         phi = float(model.cylinder_angle[c])
         beta = float(model.cylinder_bank[c])
-        y, e = float(axial[c]), float(offsets[c])
+        y, e, rod_l = float(axial[c]), float(offsets[c]), float(lengths[c])
         along = np.array([math.sin(beta), 0.0, math.cos(beta)])  # bank axis
         side = np.array([math.cos(beta), 0.0, -math.sin(beta)])  # toward increasing angle
-        pin = np.array([r * math.sin(phi), y, r * math.cos(phi)])
-        # the wrist pin where the rod of length l from the crankpin meets the path
-        lateral = e - float(pin @ side)
-        s = float(pin @ along) + math.sqrt(l * l - lateral * lateral)
+        crankpin = np.array([r * math.sin(phi), y, r * math.cos(phi)])
+        link = art is not None and c != art.master
+        if link:
+            assert art is not None
+            # link pin: on the master rod at rho from its big-end centre, gamma from its
+            # axis in the sense of rotation (a turn about +y)
+            rho, gamma = float(art.link_pin_radius[c]), float(art.link_pin_angle[c])
+            turn = np.array(
+                [
+                    [math.cos(gamma), 0.0, math.sin(gamma)],
+                    [0.0, 1.0, 0.0],
+                    [-math.sin(gamma), 0.0, math.cos(gamma)],
+                ]
+            )
+            big_end = master_pin + rho * (turn @ master_axis)
+        else:
+            big_end = crankpin
+        # the wrist pin where the rod from its big end meets the cylinder's path
+        lateral = e - float(big_end @ side)
+        s = float(big_end @ along) + math.sqrt(rod_l * rod_l - lateral * lateral)
         wrist = s * along + e * side + y * y_axis
-        u = (wrist - pin) / l
+        u = (wrist - big_end) / rod_l
         rod = rods[c]
         d = rod.cg_from_big_end
-        across = rod.mass * d * (l - d)  # the two-mass inertia, about y and the other normal
+        across = rod.mass * d * (rod_l - d)  # the two-mass inertia, about y and the other normal
         rod_tensor = across * (np.eye(3) - np.outer(u, u)) + 1e-2 * across * np.outer(u, u)
         rod_body = mbs.CreateRigidBody(
             inertia=RigidBodyInertia(rod.mass, rod_tensor),
-            referencePosition=(pin + d * u).tolist(),
+            referencePosition=(big_end + d * u).tolist(),
             show=False,
         )
+        if art is not None and c == art.master:
+            master_body, master_pin, master_axis = rod_body, crankpin, u
         piston_mass = float(model.reciprocating_mass[c] - rod.reciprocating)
         if piston_mass <= 0:
             raise ValueError(
@@ -285,7 +319,10 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
         )
         bodies += 2
         mbs.CreateRevoluteJoint(
-            itemNumbers=[crank, rod_body], position=pin.tolist(), axis=y_axis.tolist(), show=False
+            itemNumbers=[master_body if link else crank, rod_body],
+            position=big_end.tolist(),
+            axis=y_axis.tolist(),
+            show=False,
         )
         mbs.CreateGenericJoint(
             itemNumbers=[piston, rod_body],

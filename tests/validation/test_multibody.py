@@ -90,6 +90,22 @@ def test_the_comparison_sees_a_one_percent_change() -> None:
         assert _failures(rows), f"a model with {what} passed the comparison"
 
 
+def test_master_and_link_rods_are_not_the_simple_radial() -> None:
+    """The articulated radial's simulation (master rod carrying the link rods) agrees with
+    crankbalance's articulated model and not with the simple one (every rod on the pin),
+    whose second order is a tenth of it: the multibody model sees the articulation."""
+    _require_exudyn()
+    sim, rows = _run("radial5-kinner")
+    assert not _failures(rows)
+    model = multibody.ENGINES["radial5-kinner"][1]()
+    assert model.articulation is not None
+    simple = multibody.compare(
+        "radial5-kinner", dataclasses.replace(model, articulation=None), sim.phasors
+    )
+    second = next(r for r in simple if r.quantity == "force" and r.order == 2)
+    assert not second.passed, "the simple radial's second order matched the articulated one"
+
+
 def test_the_fourier_analysis_reads_a_known_curve_back() -> None:
     """The harness's sampling and sign conventions on a curve whose phasors are known:
     z + i x = F+ e^{i n theta} + F- e^{-i n theta}, couple C = -i (M_z + i M_x)."""
