@@ -103,6 +103,14 @@ ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
         "45 deg V-twin on one pin, rods in one plane (preset)",
         lambda: _engine(preset_text("v2-45")),
     ),
+    "boxer6": (
+        "boxer-6 (preset): opposed cylinders on their own throws",
+        lambda: _engine(preset_text("boxer6")),
+    ),
+    "w12": (
+        "W12 broad arrow, three rods on each of four pins (preset)",
+        lambda: _engine(preset_text("w12")),
+    ),
     "radial5-kinner": (
         "5-cylinder radial, master and link rods (preset: Kinner K-5)",
         lambda: _engine(preset_text("radial5-kinner")),
@@ -240,8 +248,9 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
     def drive(_mbs: object, t: float, _item: int, _par: object) -> list[float]:
         return [0.0, 0.0, 0.0, 0.0, crank_angle(t, w), 0.0]
 
-    # only the rotation about y: its reaction is a torque about the crank axis alone
-    mbs.CreateGenericJoint(
+    # only the rotation about y: its reaction is a torque about the crank axis alone (its
+    # frame turns about y with the prescribed angle, which leaves a y component one)
+    drive_joint = mbs.CreateGenericJoint(
         itemNumbers=[ground, crank],
         position=[0.0, 0.0, 0.0],
         constrainedAxes=[0, 0, 0, 0, 1, 0],
@@ -249,7 +258,8 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
         show=False,
     )
     span = 0.1 + float(np.max(np.abs(model.throw_position)))
-    ground_joints: list[tuple[int, NDArray, NDArray]] = []  # (joint, its axes, its position)
+    # every joint to the ground: (joint, its axes, its position)
+    ground_joints: list[tuple[int, NDArray, NDArray]] = [(drive_joint, np.eye(3), np.zeros(3))]
     for position, fixed in (([0.0, -span, 0.0], [1, 1, 1]), ([0.0, span, 0.0], [1, 0, 1])):
         joint = mbs.CreateGenericJoint(
             itemNumbers=[ground, crank],
