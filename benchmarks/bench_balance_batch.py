@@ -74,7 +74,7 @@ def minimal_numpy(b: EngineBatch, orders: int = 8) -> tuple[np.ndarray, ...]:
     with nothing else: no options, no degenerate cases, no chunks."""
     topo = b.topology
     r, w = b.crank_radius, b.speed
-    coeff = harmonic_coefficients(r / b.rod_length, orders, b.offset / r)
+    coeff = harmonic_coefficients(r / b.rod_length, orders, b.cylinder_offset[:, 0] / r)
     delta = b.throw_angle[:, topo.cylinder_throw] - topo.cylinder_bank
     load = 0.5 * b.reciprocating_mass * (r * w**2)[:, None] * np.exp(1j * topo.cylinder_bank)
     turn = np.exp(1j * np.arange(1, orders + 1)[None, :, None] * delta[:, None, :])

@@ -44,7 +44,8 @@ def per_call(func, repeat: int = 7, number: int = 2000) -> tuple[float, float]:
 def main() -> None:
     model = build_model(load_engine("v12-60"))
     orders = 8
-    c = harmonic_coefficients(model.rod_ratio, orders, model.offset / model.crank_radius)
+    e = model.cylinder_offset[0]  # the preset: one offset for every cylinder
+    c = harmonic_coefficients(model.rod_ratio, orders, e / model.crank_radius)
     phi, beta = model.cylinder_angle, model.cylinder_bank
     y, mass = model.cylinder_position, model.reciprocating_mass
     n = np.arange(1, orders + 1)[:, None]

@@ -45,7 +45,6 @@ def one_engine(e: dict[str, np.ndarray], k: int) -> EngineModel:
         kinematics="exact",
         crank_radius=float(e["crank_radius"][k]),
         rod_length=float(e["rod_length"][k]),
-        offset=float(e["offset"][k]),
         strokes=4,
         throw_angle=e["throw_angle"][k],
         throw_position=e["position"][k],
@@ -53,6 +52,9 @@ def one_engine(e: dict[str, np.ndarray], k: int) -> EngineModel:
         cylinder_throw=np.arange(CYLINDERS),
         cylinder_bank=e["bank"][k],
         reciprocating_mass=e["mass"][k],
+        cylinder_offset=np.full(CYLINDERS, e["offset"][k]),
+        cylinder_axial=np.zeros(CYLINDERS),
+        cylinder_rotating_mass=np.zeros(CYLINDERS),
         firing_order=tuple(range(1, CYLINDERS + 1)),
     )
 

@@ -59,7 +59,7 @@ def one_cylinder_force(model: EngineModel, order: int) -> float:
     c = harmonic_coefficients(
         model.rod_ratio,
         order,
-        model.offset / model.crank_radius,
+        model.cylinder_offset[0] / model.crank_radius,
         model.kinematics,  # type: ignore[arg-type]
     )
     return float(model.reciprocating_mass[0] * model.crank_radius * model.speed**2) * abs(

@@ -341,10 +341,11 @@ def test_base_masses_and_broken_symmetry() -> None:
     lopsided = enumerate_all(orders.problem("inline", 4, 4, base=heavy))
     assert lopsided.size == 6 and lopsided.equivalents.tolist() == [1] * 6
     # an offset piston pin: run backwards it is offset the other way, another engine
-    offset = replace(base, offset=0.001)
+    offset = replace(base, cylinder_offset=np.full(base.cylinders, 0.001))
     one_way = orders.problem("inline", 4, 4, base=offset, reversal=True)
     assert orders.equivalent_orders(one_way, (1, 3, 4, 2)) == [(1, 3, 4, 2)]
-    assert orders.problem("inline", 4, 4, base=offset).topology.offset == 0.001
+    topology = orders.problem("inline", 4, 4, base=offset).topology
+    assert topology.cylinder_offset.tolist() == [0.001] * 4
     with pytest.raises(InputError, match="base"):
         orders.problem("inline", 6, 4, base=base)
 

@@ -37,7 +37,6 @@ def three_on_one_plane() -> EngineModel:
         kinematics="first-order",
         crank_radius=0.04,
         rod_length=0.14,
-        offset=0.0,
         strokes=4,
         throw_angle=np.radians([0.0, 120.0, 240.0]),
         throw_position=np.zeros(3),
@@ -45,6 +44,9 @@ def three_on_one_plane() -> EngineModel:
         cylinder_throw=np.arange(3),
         cylinder_bank=np.zeros(3),
         reciprocating_mass=np.full(3, 0.4),
+        cylinder_offset=np.zeros(3),
+        cylinder_axial=np.zeros(3),
+        cylinder_rotating_mass=np.zeros(3),
         firing_order=(1, 2, 3),
     )
 

@@ -384,6 +384,26 @@ def default_web_offset(model: EngineModel) -> float:
     return pitch / 4.0 if pitch is not None else model.crank_radius / 2.0
 
 
+def _throw_targets(model: EngineModel, balance_factor: float) -> tuple[NDArray, NDArray]:
+    """Per throw, the unbalance the crank counterweights carry [kg·m] (rotating masses plus
+    ``balance_factor`` times the reciprocating masses on the pin, at the throw angle) and
+    its first moment about the moment reference point [kg·m²], each mass at its own axial
+    position (big ends and rods of side-by-side rods at the rod's position)."""
+    r = model.crank_radius
+    turn = np.exp(1j * model.throw_angle)
+    rec = model.reciprocating_mass
+    pin_rec = np.bincount(model.cylinder_throw, weights=rec, minlength=model.throws)
+    # the rods' own axial places: exact zeros added when every rod is in its throw's plane
+    pin_rec_a = np.bincount(
+        model.cylinder_throw, weights=rec * model.cylinder_axial, minlength=model.throws
+    )
+    force = model.throw_rotating_mass * r * turn + balance_factor * (pin_rec * r * turn)
+    couple = force * model.throw_position + (
+        model.throw_axial_moment + balance_factor * pin_rec_a
+    ) * (r * turn)
+    return force, couple
+
+
 def _throw_pitch(throw_position: NDArray) -> float | None:
     """Smallest non-zero axial distance between throws [m], None without one."""
     if throw_position.size > 1:
@@ -770,23 +790,20 @@ def balance(
     Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
     """
     forces = free_forces(model, max(orders, 2))
-    r, w = model.crank_radius, model.speed
+    w = model.speed
     w2 = w**2
     force_scale, length = _scale(model)
     notes: list[str] = []
-    rot_moment = model.throw_rotating_mass * r * np.exp(1j * model.throw_angle)  # kg·m
-    pin_rec = np.bincount(
-        model.cylinder_throw, weights=model.reciprocating_mass, minlength=model.throws
-    )
-    rec_moment = pin_rec * r * np.exp(1j * model.throw_angle)
     fb = counterweights.balance_factor if counterweights else 0.0
-    target = rot_moment + fb * rec_moment  # per throw: what the crank counterweights carry
+    rot_moment, rot_couple = _throw_targets(model, 0.0)  # kg·m, kg·m² per throw
+    # per throw: what the crank counterweights carry, and its first moment along the crank
+    target, target_couple = _throw_targets(model, fb)
 
     cw: Counterweights | None = None
     cw_rotating: NDArray | None = None
     if counterweights is not None:
         scope = counterweights.scope
-        whole_f, whole_c = target.sum(), (target * model.throw_position).sum()
+        whole_f, whole_c = target.sum(), target_couple.sum()
         size = force_scale / w2
         if scope == "auto":
             balanced = abs(whole_f) < ZERO * size and abs(whole_c) < ZERO * size * length
@@ -805,7 +822,7 @@ def balance(
             part_targets = [
                 (
                     complex(target[mask].sum()),
-                    complex((target[mask] * model.throw_position[mask]).sum()),
+                    complex(target_couple[mask].sum()),
                 )
                 for mask, _ in _parts(model, "halves", throw_of_web)
             ]
@@ -823,7 +840,7 @@ def balance(
                 rot_parts = [
                     (
                         complex(rot_moment[mask].sum()),
-                        complex((rot_moment[mask] * model.throw_position[mask]).sum()),
+                        complex(rot_couple[mask].sum()),
                     )
                     for mask, _ in _parts(model, "halves", throw_of_web)
                 ]
@@ -831,7 +848,7 @@ def balance(
                 model,
                 fixed,
                 complex(rot_moment.sum()),
-                complex((rot_moment * model.throw_position).sum()),
+                complex(rot_couple.sum()),
                 rot_parts,
             ).moments
 
@@ -1050,9 +1067,11 @@ def verify(
     crank_turn = np.exp(1j * theta)
 
     # rotating: crank masses and the counterweight share that carries them
-    rot = (model.throw_rotating_mass * r * np.exp(1j * model.throw_angle))[:, None] * crank_turn
+    turn = np.exp(1j * model.throw_angle)
+    rot = (model.throw_rotating_mass * r * turn)[:, None] * crank_turn
     rot_f = w**2 * rot.sum(axis=0)
     rot_c = w**2 * (model.throw_position[:, None] * rot).sum(axis=0)
+    rot_c += w**2 * ((model.throw_axial_moment * r * turn)[:, None] * crank_turn).sum(axis=0)
     if model.kinematics == "exact":
         rec_f, rec_c = exact_time_domain(model, theta)
     else:
@@ -1169,17 +1188,9 @@ def counterweight_angle_sweep(
     """
     throw_of_web, y = web_layout(model, options.web_offset, options.webs)
     _, length = _scale(model)
-    r = model.crank_radius
-    pin_rec = np.bincount(
-        model.cylinder_throw, weights=model.reciprocating_mass, minlength=model.throws
-    )
-    target = (
-        (model.throw_rotating_mass + options.balance_factor * pin_rec)
-        * r
-        * np.exp(1j * model.throw_angle)
-    )
+    target, target_couple = _throw_targets(model, options.balance_factor)
     a = np.array([np.ones_like(y), y / length], dtype=complex)
-    b = -np.array([target.sum(), (target * model.throw_position).sum() / length])
+    b = -np.array([target.sum(), target_couple.sum() / length])
     opposite = model.throw_angle[throw_of_web] + np.pi
     side = np.sign(np.round(y / length, 12))
     moment, residual = pattern_masses(a, b, opposite, side, angles)
@@ -1201,8 +1212,10 @@ class EngineBatch:
 
     The ``topology`` fixes what the engines share: the throws' axial positions, the throw
     and bank angle of each cylinder and the kinematics model. Each engine has its own throw
-    angles, masses, crank radius, conrod length, offset and speed. Build it with
-    :func:`engine_batch` or :func:`stack_models`.
+    angles, masses, crank radius, conrod length, cylinder offsets and speed. Build it with
+    :func:`engine_batch` or :func:`stack_models`. Rods side by side on a pin
+    (``topology.cylinder_axial`` not zero) are refused there: the batch solvers put every
+    rod and big end in its throw's plane.
 
     Parameters
     ----------
@@ -1215,8 +1228,10 @@ class EngineBatch:
         Rotating mass of each throw at the crank radius [kg].
     reciprocating_mass : ndarray, shape (E, C)
         Reciprocating mass of each cylinder [kg].
-    crank_radius, rod_length, offset : ndarray, shape (E,)
-        Crank radius, conrod length, crank plus wrist-pin offset [m].
+    crank_radius, rod_length : ndarray, shape (E,)
+        Crank radius and conrod length [m].
+    cylinder_offset : ndarray, shape (E, C)
+        Each cylinder's total offset (crank, wrist-pin and bank offsets) [m].
     speed : ndarray, shape (E,)
         Crank speed [rad/s].
     """
@@ -1227,7 +1242,7 @@ class EngineBatch:
     reciprocating_mass: NDArray[np.float64]
     crank_radius: NDArray[np.float64]
     rod_length: NDArray[np.float64]
-    offset: NDArray[np.float64]
+    cylinder_offset: NDArray[np.float64]
     speed: NDArray[np.float64]
 
     @property
@@ -1244,7 +1259,7 @@ class EngineBatch:
             reciprocating_mass=self.reciprocating_mass[index].copy(),
             crank_radius=float(self.crank_radius[index]),
             rod_length=float(self.rod_length[index]),
-            offset=float(self.offset[index]),
+            cylinder_offset=self.cylinder_offset[index].copy(),
             speed=float(self.speed[index]),
         )
 
@@ -1258,7 +1273,7 @@ class EngineBatch:
         "reciprocating_mass",
         "crank_radius",
         "rod_length",
-        "offset",
+        "cylinder_offset",
         "speed",
     )
 
@@ -1272,7 +1287,7 @@ def engine_batch(
     reciprocating_mass: ArrayLike | None = None,
     crank_radius: ArrayLike | None = None,
     rod_length: ArrayLike | None = None,
-    offset: ArrayLike | None = None,
+    cylinder_offset: ArrayLike | None = None,
     speed: ArrayLike | None = None,
 ) -> EngineBatch:
     """Engines of one topology from arrays; what is not given is the topology's value.
@@ -1293,8 +1308,10 @@ def engine_batch(
         Rotating mass of each throw at the crank radius [kg].
     reciprocating_mass : array_like, shape (E, C) or (C,), optional
         Reciprocating mass of each cylinder [kg].
-    crank_radius, rod_length, offset : array_like, shape (E,) or scalar, optional
-        Crank radius, conrod length, crank plus wrist-pin offset [m].
+    crank_radius, rod_length : array_like, shape (E,) or scalar, optional
+        Crank radius and conrod length [m].
+    cylinder_offset : array_like, shape (E, C) or (C,), optional
+        Each cylinder's total offset (crank, wrist-pin and bank offsets) [m].
     speed : array_like, shape (E,) or scalar, optional
         Crank speed [rad/s].
 
@@ -1308,15 +1325,23 @@ def engine_batch(
     InputError
         If the arrays disagree on the number of engines or have the wrong shape, or an
         engine has a non-finite value, a crank radius or speed not above zero, a negative
-        mass, or a conrod not longer than the crank radius plus the offset.
+        mass, or a conrod not longer than the crank radius plus the offset; or the
+        topology has rods side by side on a pin (``cylinder_axial`` not zero).
     """
+    if np.any(topology.cylinder_axial):
+        raise InputError(
+            "crank_train.rod_positions",
+            [float(a) for a in topology.cylinder_axial],
+            "rods in their throw's plane (all zero) for the batch solvers (explorer, "
+            "batch balancing); analyse and balance this engine on its own",
+        )
     tails = {
         "throw_angle": (topology.throws,),
         "throw_rotating_mass": (topology.throws,),
         "reciprocating_mass": (topology.cylinders,),
         "crank_radius": (),
         "rod_length": (),
-        "offset": (),
+        "cylinder_offset": (topology.cylinders,),
         "speed": (),
     }
     arguments = {
@@ -1325,7 +1350,7 @@ def engine_batch(
         "reciprocating_mass": reciprocating_mass,
         "crank_radius": crank_radius,
         "rod_length": rod_length,
-        "offset": offset,
+        "cylinder_offset": cylinder_offset,
         "speed": speed,
     }
     given = {k: np.asarray(v, dtype=float) for k, v in arguments.items() if v is not None}
@@ -1350,7 +1375,8 @@ def engine_batch(
 
 def _check_engines(values: dict[str, NDArray]) -> None:
     """Raise :class:`InputError` for the first engine with an impossible value."""
-    r, length, e = values["crank_radius"], values["rod_length"], values["offset"]
+    r, length = values["crank_radius"], values["rod_length"]
+    e = np.abs(values["cylinder_offset"]).max(axis=-1, initial=0.0)
     checks = [(name, np.isfinite(a), "must be finite") for name, a in values.items()]
     checks += [
         ("crank_radius", r > 0, "must be greater than zero"),
@@ -1418,7 +1444,7 @@ def stack_models(models: Sequence[EngineModel]) -> EngineBatch:
         reciprocating_mass=[m.reciprocating_mass for m in models],
         crank_radius=[m.crank_radius for m in models],
         rod_length=[m.rod_length for m in models],
-        offset=[m.offset for m in models],
+        cylinder_offset=[m.cylinder_offset for m in models],
         speed=[m.speed for m in models],
     )
 
@@ -1793,10 +1819,15 @@ def _chunk_forces(batch: EngineBatch, orders: int) -> _ChunkForces:
     """The free forces of every engine (:func:`free_forces`, stacked)."""
     topo = batch.topology
     r = batch.crank_radius
-    ratio, offset = r / batch.rod_length, batch.offset / r
-    if np.all(ratio == ratio[0]) and np.all(offset == offset[0]):  # computed once if shared
-        ratio, offset = ratio[:1], offset[:1]
-    coeff = harmonic_coefficients(ratio, orders, offset, topo.kinematics)  # type: ignore[arg-type]
+    ratio, offset = r / batch.rod_length, batch.cylinder_offset / r[:, None]
+    if np.all(offset == offset[:, :1]):  # one offset per engine: coefficients per engine
+        if np.all(ratio == ratio[0]) and np.all(offset == offset[0, 0]):  # computed once
+            ratio, offset = ratio[:1], offset[:1]
+        coeff = harmonic_coefficients(ratio, orders, offset[:, 0], topo.kinematics)  # type: ignore[arg-type]
+        each = False
+    else:  # per cylinder
+        coeff = harmonic_coefficients(ratio[:, None], orders, offset, topo.kinematics)  # type: ignore[arg-type]
+        each = True
     phasors = reciprocating_phasors(
         coeff,
         batch.reciprocating_mass,
@@ -1805,6 +1836,7 @@ def _chunk_forces(batch: EngineBatch, orders: int) -> _ChunkForces:
         topo.cylinder_position,
         r,
         batch.speed,
+        per_cylinder=each,
     )
     scale, length = _scales(
         batch.throw_rotating_mass,

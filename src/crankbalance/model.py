@@ -6,7 +6,15 @@ mid-point, z along the cylinder axis of an in-line engine, x across. A throw at 
 :math:`\varphi` has its crankpin at :math:`r(\sin(\theta+\varphi), \cos(\theta+\varphi))`
 in (x, z) when the first throw is at crank angle :math:`\theta`. A cylinder's bank angle
 :math:`\beta` is the angle of its axis from z about the crank axis, in the same sense.
-The cylinder is at top dead centre when :math:`\theta + \varphi - \beta = 0`.
+A cylinder without offset is at top dead centre when :math:`\theta + \varphi - \beta = 0`;
+with the offset e (``cylinder_offset``) at :math:`\theta + \varphi - \beta =
+\arcsin(e/(l+r))` (:func:`tdc_angle`).
+
+Each cylinder has its own offset (crank offset, wrist-pin offset and the bore offset of its
+bank) and its own axial position: its throw's position plus ``cylinder_axial``, the place
+of its rod on a pin it shares side by side with other rods. Axial positions are measured
+from the moment reference point (the crank's mid-point unless the engine file moves it,
+docs/engine_file.md): every lever arm of a moment is a position of the model.
 
 Numbering of cylinders (docs/engine_file.md): in-line and boxer: one per throw from the
 y < 0 end; vee: bank A (bank angle :math:`-V/2`) is 1..T, bank B (:math:`+V/2`) is T+1..2T,
@@ -19,7 +27,7 @@ from __future__ import annotations
 from dataclasses import dataclass, field
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from .articulated import ArticulatedRods
 from .results import ResultMixin
@@ -82,17 +90,30 @@ class EngineModel:
         Piston kinematics model, see :func:`crankbalance.kinematics.harmonic_coefficients`.
     strokes : int
         Strokes per working cycle (2 or 4).
-    crank_radius, rod_length, offset : float
-        [m]; ``offset`` is crank offset plus wrist-pin offset.
+    crank_radius, rod_length : float
+        [m].
     speed : float
         Crank speed [rad/s].
     throw_angle, throw_position, throw_rotating_mass : ndarray, shape (T,)
-        [rad], [m along the crank axis from the mid-point], [kg at the crank radius,
-        crankpin, webs reduced to the crank radius and all big ends on the pin].
+        [rad], [m along the crank axis from the moment reference point (the crank's
+        mid-point by default)], [kg at the crank radius, crankpin, webs reduced to the
+        crank radius and all big ends on the pin].
     cylinder_throw : ndarray of int, shape (C,)
         Index of the throw each cylinder sits on.
     cylinder_bank, reciprocating_mass : ndarray, shape (C,)
         [rad], [kg].
+    cylinder_offset : ndarray, shape (C,)
+        Each cylinder's total offset [m]: crank offset plus wrist-pin offset plus the bore
+        offset of its bank, the lateral distance of its wrist-pin path from the crank axis
+        (sign as in :mod:`crankbalance.kinematics`).
+    cylinder_axial : ndarray, shape (C,)
+        Axial position of each cylinder's rod on its crankpin, from the throw's centre
+        along the crank axis [m] (0: in the throw's mid-plane).
+    cylinder_rotating_mass : ndarray, shape (C,)
+        The rotating part of each rod's big end [kg] that ``throw_rotating_mass`` includes
+        and that sits at the rod's own axial position (0 where the big end is not known
+        apart from the throw's total); it moves no mass, only where the throw's rotating
+        mass acts along the crank axis (:attr:`throw_rotating_moment`).
     firing_order : tuple of int
         Cylinder numbers (1-based) in firing order.
     conrods : tuple of ConrodSplit
@@ -112,7 +133,6 @@ class EngineModel:
     kinematics: str
     crank_radius: float
     rod_length: float
-    offset: float
     strokes: int
     throw_angle: NDArray[np.float64]
     throw_position: NDArray[np.float64]
@@ -120,6 +140,9 @@ class EngineModel:
     cylinder_throw: NDArray[np.int64]
     cylinder_bank: NDArray[np.float64]
     reciprocating_mass: NDArray[np.float64]
+    cylinder_offset: NDArray[np.float64]
+    cylinder_axial: NDArray[np.float64]
+    cylinder_rotating_mass: NDArray[np.float64]
     firing_order: tuple[int, ...]
     conrods: tuple[ConrodSplit, ...] = field(default=())
     firing_order_given: bool = True
@@ -144,8 +167,60 @@ class EngineModel:
 
     @property
     def cylinder_position(self) -> NDArray[np.float64]:
-        """Axial position of each cylinder [m]."""
-        return self.throw_position[self.cylinder_throw]
+        """Axial position of each cylinder's rod [m]: its throw's plus ``cylinder_axial``."""
+        return self.throw_position[self.cylinder_throw] + self.cylinder_axial
+
+    @property
+    def throw_axial_moment(self) -> NDArray[np.float64]:
+        r"""First moment of each throw's big ends about the throw's centre,
+        :math:`\sum_c m_{b,c}\,a_c` over the rods on the throw [kg m], shape (T,)."""
+        return np.bincount(
+            self.cylinder_throw,
+            self.cylinder_rotating_mass * self.cylinder_axial,
+            minlength=self.throws,
+        ).astype(float)
+
+    @property
+    def throw_rotating_moment(self) -> NDArray[np.float64]:
+        r"""First moment of each throw's rotating mass about the moment reference point,
+        :math:`m_t y_t + \sum_c m_{b,c} a_c` [kg m], shape (T,): the lever arm of the
+        rotating couple, with the big ends of side-by-side rods at their own positions."""
+        return self.throw_rotating_mass * self.throw_position + self.throw_axial_moment
+
+    def __post_init__(self) -> None:
+        c = self.cylinder_bank.shape
+        for name in ("cylinder_offset", "cylinder_axial", "cylinder_rotating_mass"):
+            if np.shape(getattr(self, name)) != c:
+                raise ValueError(f"EngineModel.{name}: shape {c} (one per cylinder) expected")
+
+
+def tdc_angle(
+    offset: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike
+) -> NDArray[np.float64]:
+    r"""Crank angle from the cylinder axis at which an offset piston is at top dead centre.
+
+    Parameters
+    ----------
+    offset : array_like
+        Lateral distance of the wrist-pin path from the crank axis [m], signed as in
+        :mod:`crankbalance.kinematics`.
+    crank_radius : array_like
+        Crank radius [m].
+    rod_length : array_like
+        Conrod length [m].
+
+    Returns
+    -------
+    ndarray
+        :math:`\psi_{TDC} = \arcsin(e/(l+r))` [rad]: crankpin, big end and wrist pin in
+        one line, the piston farthest from the crank axis.
+
+    References
+    ----------
+    The desaxé slider-crank of machine-dynamics texts, e.g. Taylor (1985) ch. 8.
+    """
+    e = np.asarray(offset, dtype=float)
+    return np.arcsin(e / (np.asarray(rod_length, dtype=float) + np.asarray(crank_radius)))
 
 
 def standard_layout(

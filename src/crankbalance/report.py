@@ -40,7 +40,7 @@ from .results import to_jsonable
 if TYPE_CHECKING:  # pragma: no cover
     from .figures import Quantity
 
-REPORT_SCHEMA = "crankbalance.report/2"
+REPORT_SCHEMA = "crankbalance.report/3"
 
 
 @dataclass(frozen=True)
@@ -264,7 +264,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         ["crank radius [mm]", e["crank_radius_m"] * 1e3],
         ["rod length [mm]", e["rod_length_m"] * 1e3],
         ["rod ratio r/l", e["rod_ratio"]],
-        ["offset [mm]", e["offset_m"] * 1e3],
+        ["offset per cylinder [mm]", _distinct(list(e["cylinder_offset_m"]), 1e3)],
+        ["rod position on its pin [mm]", _distinct(list(e["cylinder_axial_m"]), 1e3)],
         ["kinematics", e["kinematics"]],
         [
             "firing order",

@@ -125,27 +125,26 @@ def free_forces(
     Appl. Sci. 2021 (matrix formulation of the free forces and moments, any number of
     cranks, in-line and V); Den Hartog (1956) ch. 5.
     """
-    mode = kinematics or model.kinematics
-    offset = model.offset / model.crank_radius
-    coeff = (
-        cached_exact_coefficients(model.rod_ratio, offset, orders)
-        if mode == "exact"
-        else harmonic_coefficients(model.rod_ratio, orders, offset, mode)  # type: ignore[arg-type]
-    )
+    coeff = cylinder_coefficients(model, orders, kinematics)
     accel = model.crank_radius * model.speed**2  # r w^2 [m/s^2]
     bank = model.cylinder_bank
-    sums = _cylinder_sums(
-        0.5 * accel * model.reciprocating_mass,
-        model.cylinder_angle - bank,
-        bank,
-        model.cylinder_position,
-        orders,
+    fwd, bwd, cfwd, cbwd = _phasors(
+        _cylinder_sums(
+            0.5 * accel * model.reciprocating_mass,
+            model.cylinder_angle - bank,
+            bank,
+            model.cylinder_position,
+            orders,
+            coeff,
+            per_cylinder=True,
+        )
     )
-    fwd, bwd, cfwd, cbwd = _phasors(coeff, sums)
     if model.articulation is not None:
         fwd, bwd, cfwd, cbwd = articulated_phasors(model, orders)
     turn = np.exp(1j * model.throw_angle)
     rotating = accel * model.throw_rotating_mass
+    # the big ends of side-by-side rods at their own axial places (exact zeros otherwise)
+    couple = rotating * model.throw_position + accel * model.throw_axial_moment
     return FreeForces(
         orders=np.arange(1, orders + 1),
         force_forward=fwd,
@@ -153,8 +152,44 @@ def free_forces(
         couple_forward=cfwd,
         couple_backward=cbwd,
         rotating_force=complex(np.vdot(rotating, turn)),
-        rotating_couple=complex(np.vdot(rotating * model.throw_position, turn)),
+        rotating_couple=complex(np.vdot(couple, turn)),
     )
+
+
+def cylinder_coefficients(
+    model: EngineModel, orders: int = 8, kinematics: KinematicsModel | None = None
+) -> NDArray[np.complex128]:
+    r"""Harmonic coefficients :math:`c_{n,c}` of each cylinder's normalised piston inertia.
+
+    Row c belongs to cylinder c (its own offset ``model.cylinder_offset[c]``); the phasor
+    sums of :func:`free_forces` weight each cylinder by its own row. This is the one place
+    the per-cylinder kinematics enters the free forces.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    orders : int
+        Highest harmonic order K.
+    kinematics : {"exact", "series", "first-order"}, optional
+        Overrides ``model.kinematics``.
+
+    Returns
+    -------
+    ndarray of complex, shape (C, K)
+        :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
+        (:func:`crankbalance.kinematics.harmonic_coefficients`) [-].
+    """
+    mode = kinematics or model.kinematics
+    ratio = model.cylinder_offset / model.crank_radius
+    shared, index = np.unique(ratio, return_inverse=True)
+    rows = [
+        cached_exact_coefficients(model.rod_ratio, float(e), orders)
+        if mode == "exact"
+        else harmonic_coefficients(model.rod_ratio, orders, float(e), mode)  # type: ignore[arg-type]
+        for e in shared
+    ]
+    return np.asarray(rows, dtype=complex).reshape(shared.size, orders)[index.reshape(-1)]
 
 
 def reciprocating_phasors(
@@ -165,19 +200,23 @@ def reciprocating_phasors(
     position: ArrayLike,
     crank_radius: ArrayLike,
     speed: ArrayLike,
+    per_cylinder: bool = False,
 ) -> tuple[NDArray, NDArray, NDArray, NDArray]:
     r"""Forward and backward phasors of force and couple, by order, for many engines at once.
 
     Parameters
     ----------
-    coefficients : array_like of complex, shape (..., K)
+    coefficients : array_like of complex, shape (..., K) or (..., C, K)
         Harmonic coefficients :math:`c_n` of orders 1..K of the normalised piston
-        inertia [-].
+        inertia [-], shared by the cylinders of an engine or, with ``per_cylinder``, one
+        row per cylinder (:func:`cylinder_coefficients`).
     mass, throw_angle, bank, position : array_like, shape (..., C)
         Per cylinder: reciprocating mass [kg], throw angle [rad], bank angle [rad],
         axial position [m]. Pad absent cylinders of smaller engines with zero mass.
     crank_radius, speed : array_like, shape (...)
         Crank radius [m] and crank speed [rad/s].
+    per_cylinder : bool
+        True when ``coefficients`` has a cylinder axis (shape (..., C, K)).
 
     Returns
     -------
@@ -191,7 +230,9 @@ def reciprocating_phasors(
     """
     c = np.asarray(coefficients)
     return _phasors(
-        c, _engine_sums(mass, throw_angle, bank, position, crank_radius, speed, c.shape[-1])
+        _engine_sums(
+            mass, throw_angle, bank, position, crank_radius, speed, c.shape[-1], c, per_cylinder
+        )
     )
 
 
@@ -200,9 +241,9 @@ def reciprocating_phasors(
 SMALL = 1024
 
 
-def _phasors(coefficients: NDArray, sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """:math:`F^+, F^-, C^+, C^-` from the coefficients and the sums of :func:`_cylinder_sums`."""
-    phasors = coefficients[..., None, :] * sums  # (..., 4, K)
+def _phasors(sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`."""
+    phasors = sums.copy()
     np.conjugate(phasors[..., 1::2, :], out=phasors[..., 1::2, :])
     return phasors[..., 0, :], phasors[..., 1, :], phasors[..., 2, :], phasors[..., 3, :]
 
@@ -215,16 +256,25 @@ def _engine_sums(
     crank_radius: ArrayLike,
     speed: ArrayLike,
     orders: int,
+    coefficients: NDArray | None = None,
+    per_cylinder: bool = False,
 ) -> NDArray[np.complex128]:
     """:func:`_cylinder_sums` from the arguments of :func:`reciprocating_phasors`."""
     beta = np.asarray(bank, dtype=float)
     half = 0.5 * np.asarray(crank_radius, dtype=float) * np.asarray(speed, dtype=float) ** 2
     p = np.multiply(mass, half[..., None])
-    return _cylinder_sums(p, np.subtract(throw_angle, beta), beta, position, orders)
+    theta = np.subtract(throw_angle, beta)
+    return _cylinder_sums(p, theta, beta, position, orders, coefficients, per_cylinder)
 
 
 def _cylinder_sums(
-    p: NDArray, theta: NDArray, beta: NDArray, position: ArrayLike, orders: int
+    p: NDArray,
+    theta: NDArray,
+    beta: NDArray,
+    position: ArrayLike,
+    orders: int,
+    coefficients: NDArray | None = None,
+    per_cylinder: bool = False,
 ) -> NDArray[np.complex128]:
     r"""The four sums over the cylinders behind the phasors of :func:`reciprocating_phasors`.
 
@@ -232,19 +282,37 @@ def _cylinder_sums(
     :math:`z_c = e^{i\theta_c}`, :math:`\theta_c = \varphi_c - \beta_c` (arrays of shape
     (..., C)), the rows of the result (axis -2) are :math:`G_0 = \sum_c w_c z_c^n`,
     :math:`G_1 = \sum_c \bar w_c z_c^n` and the same weighted by the axial position
-    :math:`y_c`, :math:`G_2` and :math:`G_3`, so that :math:`F_n^+ = c_n G_0`,
-    :math:`F_n^- = \overline{c_n G_1}` (as :math:`\sum w \bar z^n = \overline{\sum \bar w
-    z^n}`), :math:`C_n^+ = c_n G_2` and :math:`C_n^- = \overline{c_n G_3}`. Shape
-    ``(..., 4, orders)``.
+    :math:`y_c`, :math:`G_2` and :math:`G_3`. Shape ``(..., 4, orders)``.
+
+    Without ``coefficients`` these are the bare sums. With coefficients :math:`c_n` shared
+    by the cylinders (shape (..., K)) each row is multiplied by them, so that
+    :math:`F_n^+ = c_n G_0`, :math:`F_n^- = \overline{c_n G_1}` (as :math:`\sum w \bar
+    z^n = \overline{\sum \bar w z^n}`), :math:`C_n^+ = c_n G_2` and :math:`C_n^- =
+    \overline{c_n G_3}` once :func:`_phasors` conjugates rows 1 and 3. With
+    ``per_cylinder`` coefficients :math:`c_{n,c}` (shape (..., C, K)) each cylinder's power
+    is weighted by its own row, :math:`F_n^+ = \sum_c c_{n,c} w_c z_c^n` and so on; when
+    all the rows are equal the shared row is factored out instead (the same numbers, to
+    the last bit, as an engine whose cylinders share one offset).
     """
+    if coefficients is not None and per_cylinder:
+        if np.all(coefficients == coefficients[..., :1, :]):
+            coefficients, per_cylinder = coefficients[..., 0, :], False
+        else:
+            return _weighted_sums(p, theta, beta, position, orders, coefficients)
     w = p * np.exp(1j * beta)
     wy = w * position
     weights = np.empty(wy.shape[:-1] + (4,) + wy.shape[-1:], dtype=complex)  # (..., 4, C)
     weights[..., 0, :] = w
     weights[..., 2, :] = wy
     np.conjugate(weights[..., 0::2, :], out=weights[..., 1::2, :])
+    sums = weights @ _powers(theta, orders)
+    return sums if coefficients is None else coefficients[..., None, :] * sums
+
+
+def _powers(theta: NDArray, orders: int) -> NDArray[np.complex128]:
+    """:math:`z_c^n = e^{in\theta_c}` of orders 1..K, shape (..., C, K)."""
     if theta.size * orders <= SMALL:  # one engine: the fewest numpy calls
-        return weights @ np.exp(1j * theta[..., None] * np.arange(1.0, orders + 1))
+        return np.exp(1j * theta[..., None] * np.arange(1.0, orders + 1))
     # many: z**1 .. z**K by doubling, z**(m+1..2m) = z**(1..m) * z**m, orders first so
     # that every product runs over all the engines and cylinders at once
     powers = np.empty((orders,) + theta.shape, dtype=complex)  # (K, ..., C)
@@ -254,7 +322,23 @@ def _cylinder_sums(
         step = min(done, orders - done)
         np.multiply(powers[:step], powers[done - 1], out=powers[done : done + step])
         done += step
-    return weights @ powers.transpose(tuple(range(1, powers.ndim)) + (0,))  # @ (..., C, K)
+    return powers.transpose(tuple(range(1, powers.ndim)) + (0,))  # (..., C, K)
+
+
+def _weighted_sums(
+    p: NDArray,
+    theta: NDArray,
+    beta: NDArray,
+    position: ArrayLike,
+    orders: int,
+    coefficients: NDArray,
+) -> NDArray[np.complex128]:
+    """:func:`_cylinder_sums` with a row of coefficients per cylinder (shape (..., C, K))."""
+    w = p * np.exp(1j * beta)
+    y = np.asarray(position, dtype=float)
+    z = coefficients * _powers(theta, orders)  # (..., C, K)
+    rows = [w, np.conj(w), w * y, np.conj(w) * y]
+    return np.stack([np.einsum("...c,...ck->...k", r, z) for r in rows], axis=-2)
 
 
 def batch_amplitudes(
@@ -486,7 +570,9 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
         return force, y * force
     theta = np.asarray(angle, dtype=float)[:, None]
     psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]
-    acc = piston_acceleration(psi, model.crank_radius, model.rod_length, model.offset, model.speed)
+    acc = piston_acceleration(
+        psi, model.crank_radius, model.rod_length, model.cylinder_offset[None, :], model.speed
+    )
     force = -model.reciprocating_mass[None, :] * acc * np.exp(1j * model.cylinder_bank)[None, :]
     return force.sum(axis=1), (force * model.cylinder_position[None, :]).sum(axis=1)
 

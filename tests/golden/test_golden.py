@@ -26,6 +26,7 @@ DEG = math.pi / 180.0  # degrees -> radians
 #: on the case names it is limited to])
 RENAMED: list[tuple[str, str, float] | tuple[str, str, float, str]] = [
     # analysis/2, balance/2: speeds in rad/s, conrod splits with their units
+    (r"^engine\.cylinder_offset_m\.\d+$", "engine.offset_m", 1.0),  # one offset per cylinder
     (r"^engine\.speed_rad_s$", "engine.speed_rpm", RPM),
     (r"^(masses\.conrods\.\d+)\.mass_kg$", r"\1.mass", 1.0),
     (r"^(masses\.conrods\.\d+)\.(rotating|reciprocating)_kg$", r"\1.\2", 1.0),
@@ -87,6 +88,12 @@ DROPPED: dict[str, dict[str, str]] = {
     "tolerance-crf250r": {
         r"^permissible_unbalance_gmm$": "non-SI duplicate of permissible_unbalance_kg_m"
     },
+}
+
+#: keys new on purpose: {pattern: why}; the value must be zero (what the engines of the
+#: golden files had before the key existed)
+ADDED: dict[str, str] = {
+    r"^engine\.cylinder_axial_m\.\d+$": "rods' axial places on a shared pin, issue 17",
 }
 
 #: keys whose value depends on the run, not on the engine
@@ -160,6 +167,8 @@ def test_golden(name: str) -> None:
         if VOLATILE.search(key) or key.endswith("schema"):
             continue
         old, factor = old_key(key, name)
+        if old not in golden and any(re.search(p, key) for p in ADDED) and value == 0:
+            continue
         if old not in golden:
             problems.append(f"{key}: new key (not in the golden file as {old})")
             continue

@@ -36,9 +36,8 @@ from ..balancing import (
     engine_batch,
 )
 from ..errors import InputError
-from ..kinematics import harmonic_coefficients
 from ..model import EngineModel
-from ..shaking import reciprocating_phasors
+from ..shaking import cylinder_coefficients, reciprocating_phasors
 from .candidates import Candidates
 
 Target = Literal["none", "counterweights", "primary", "secondary"]
@@ -244,12 +243,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
     """
     topo = candidates.topology
     r, w = topo.crank_radius, topo.speed
-    coeff = harmonic_coefficients(
-        topo.rod_ratio,
-        orders,
-        topo.offset / r,
-        topo.kinematics,  # type: ignore[arg-type]
-    )
+    coeff = cylinder_coefficients(topo, orders)  # (C, K), shared by the candidates
     phi = candidates.throw_angle
     fwd, bwd, cfwd, cbwd = reciprocating_phasors(
         coeff,
@@ -259,6 +253,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
         topo.cylinder_position,
         r,
         w,
+        per_cylinder=True,
     )
     rotating = topo.throw_rotating_mass * r * w**2 * np.exp(1j * phi)  # (B, T)
     # the analysis JSON's round-off rule (studies.engine.Analysis.to_dict)
@@ -282,7 +277,9 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
             out[f"{name}{n + 1}f_{unit}"] = forward
             out[f"{name}{n + 1}b_{unit}"] = backward
     out["Frot_N"] = size(rotating.sum(axis=-1))
-    out["Mrot_Nm"] = size((rotating * topo.throw_position).sum(axis=-1))
+    # the big ends of side-by-side rods at their own places (exact zeros otherwise)
+    couple = rotating * topo.throw_position + topo.throw_axial_moment * r * w**2 * np.exp(1j * phi)
+    out["Mrot_Nm"] = size(couple.sum(axis=-1))
     return out
 
 

@@ -235,9 +235,10 @@ def _topology(
     t = positions.size
     if base is None:
         name = f"plain {layout} {n}"
-        scalars = (PLAIN["speed"], "exact", PLAIN["crank_radius"], PLAIN["rod_length"], 0.0)
+        scalars = (PLAIN["speed"], "exact", PLAIN["crank_radius"], PLAIN["rod_length"])
         rot = np.full(t, PLAIN["throw_rotating_mass"])
         rec = np.full(n, PLAIN["reciprocating_mass"])
+        offset, axial, big_end = np.zeros(n), np.zeros(n), np.zeros(n)
     else:
         same = (
             base.cylinders == n
@@ -254,22 +255,24 @@ def _topology(
                 + ")",
             )
         name = base.name
-        scalars = (base.speed, base.kinematics, base.crank_radius, base.rod_length, base.offset)
+        scalars = (base.speed, base.kinematics, base.crank_radius, base.rod_length)
         positions = base.throw_position.astype(float)
         rot = base.throw_rotating_mass.astype(float)
         rec = base.reciprocating_mass.astype(float)
-    if split:  # one pin per cylinder, at its group's position, with its share of the mass
+        offset = base.cylinder_offset.astype(float)
+        axial = base.cylinder_axial.astype(float)
+        big_end = base.cylinder_rotating_mass.astype(float)
+    if split:  # one pin per cylinder, at its rod's position, with its share of the mass
         share = np.bincount(throw_of, minlength=t)[throw_of]
-        positions, rot = positions[throw_of], rot[throw_of] / share
-        throw_of = np.arange(n, dtype=np.int64)
-    speed, kinematics, radius, rod, offset = scalars
+        positions, rot = positions[throw_of] + axial, rot[throw_of] / share
+        throw_of, axial = np.arange(n, dtype=np.int64), np.zeros(n)
+    speed, kinematics, radius, rod = scalars
     return EngineModel(
         name=name,
         speed=float(speed),
         kinematics=str(kinematics),
         crank_radius=float(radius),
         rod_length=float(rod),
-        offset=float(offset),
         strokes=strokes,
         throw_angle=np.zeros(positions.size),
         throw_position=positions,
@@ -277,6 +280,9 @@ def _topology(
         cylinder_throw=throw_of,
         cylinder_bank=banks,
         reciprocating_mass=rec,
+        cylinder_offset=offset,
+        cylinder_axial=axial,
+        cylinder_rotating_mass=big_end,
         firing_order=tuple(range(1, n + 1)),
         firing_order_given=False,
     )
@@ -295,7 +301,7 @@ def _make_plan(p: Problem) -> _Plan:
     j = np.arange(n)
     kappa = next((k for k in range(n) if np.allclose(steps[(k - j) % n], steps, 0, _TOL)), None)
     # run backwards, an offset piston pin is offset the other way: no longer the engine
-    backwards = p.reversal and kappa is not None and p.topology.offset == 0
+    backwards = p.reversal and kappa is not None and not np.any(p.topology.cylinder_offset)
     signs = (1, -1) if backwards else (1,)
     throw_of = p.topology.cylinder_throw
     throw_first = np.array([np.flatnonzero(throw_of == t)[0] for t in range(p.topology.throws)])
@@ -321,11 +327,13 @@ def _symmetries(
     y becomes ±y (−y: numbering from the other end, the mirror image), the bank angle β
     becomes s β + α for some rigid rotation α of the whole engine about the crank axis, and
     s = −1 (time reversal) turns crank angles and fire angles into their negatives. It is
-    kept when every cylinder lands on a cylinder with the same reciprocating mass whose
-    throw has the same rotating mass, and cylinders sharing a throw land on one throw.
+    kept when every cylinder lands on a cylinder with the same reciprocating mass, offset
+    and big-end mass whose throw has the same rotating mass, and cylinders sharing a throw
+    land on one throw.
     """
     y, b = m.cylinder_position, m.cylinder_bank
     rec, rot = m.reciprocating_mass, m.throw_rotating_mass[m.cylinder_throw]
+    own = np.stack([m.cylinder_offset, m.cylinder_rotating_mass])  # (2, C)
     size = 1e-9 * (1.0 + float(np.max(np.abs(y))))
     same_throw = m.cylinder_throw[:, None] == m.cylinder_throw[None, :]
     found: dict[tuple[tuple[int, ...], int], NDArray[np.int64]] = {}
@@ -337,6 +345,7 @@ def _symmetries(
                     & (_gap(b[None, :] - (s * b[:, None] + alpha)) < _TOL)
                     & np.isclose(rec[None, :], rec[:, None], rtol=1e-9, atol=0)
                     & np.isclose(rot[None, :], rot[:, None], rtol=1e-9, atol=0)
+                    & np.all(np.isclose(own[:, None, :], own[:, :, None], 1e-9, 0), axis=0)
                 )
                 if not np.all(hit.sum(axis=1) == 1):
                     continue

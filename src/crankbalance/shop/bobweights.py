@@ -225,6 +225,7 @@ def remaining_forces(
         model,
         reciprocating_mass=_per_cylinder(rec, model.cylinders, "reciprocating"),
         throw_rotating_mass=-weights.fraction * weights.reciprocating,
+        cylinder_rotating_mass=np.zeros(model.cylinders),  # the balance at the throw centre
     )
     forces = free_forces(engine, orders)
     fwd = forces.force_forward.copy()

@@ -297,7 +297,12 @@ def free_force_basis(
         raise InputError("orders", orders, "must be a whole number from 1 to 8")
     count, throws = model.cylinders, model.throws
     length = float(np.max(np.abs(model.throw_position))) or float(model.crank_radius)
-    none = replace(model, reciprocating_mass=np.zeros(count), throw_rotating_mass=np.zeros(throws))
+    none = replace(
+        model,
+        reciprocating_mass=np.zeros(count),
+        throw_rotating_mass=np.zeros(throws),
+        cylinder_rotating_mass=np.zeros(count),
+    )
     rec = np.array(
         [
             _components(replace(none, reciprocating_mass=np.eye(count)[c]), length, orders)
@@ -305,8 +310,16 @@ def free_force_basis(
         ]
     )
     pins = np.eye(throws)[model.cylinder_throw]
+    # 1 kg on cylinder c's big end: on its throw, at its rod's axial place on the pin
     rot = np.array(
-        [_components(replace(none, throw_rotating_mass=pin), length, orders) for pin in pins]
+        [
+            _components(
+                replace(none, throw_rotating_mass=pin, cylinder_rotating_mass=np.eye(count)[c]),
+                length,
+                orders,
+            )
+            for c, pin in enumerate(pins)
+        ]
     )
     mean_rec, mean_rot = _means(inventory)
     rods = np.bincount(model.cylinder_throw, minlength=throws)

@@ -50,10 +50,9 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_nonnegative
-from ..kinematics import harmonic_coefficients
 from ..model import EngineModel
 from ..results import ResultMixin
-from ..shaking import reciprocating_phasors
+from ..shaking import cylinder_coefficients, reciprocating_phasors
 from ..single_cylinder import check_balance_factor
 from .planes import _pair, transfer_matrix
 
@@ -168,13 +167,9 @@ def sensitivities(
     y = model.cylinder_position
     c = model.cylinders
     lever = transfer_matrix(y, planes)  # (2, C)
-    coefficients = harmonic_coefficients(
-        model.rod_ratio,
-        2,
-        model.offset / r,
-        model.kinematics,  # type: ignore[arg-type]
-    )
-    unit = np.eye(c)  # C engines, each with 1 kg in one cylinder
+    # C engines, each with 1 kg in one cylinder: engine k has cylinder k's coefficients
+    coefficients = cylinder_coefficients(model, 2)
+    unit = np.eye(c)
     fwd, bwd, cfwd, cbwd = reciprocating_phasors(
         coefficients, unit, model.cylinder_angle, model.cylinder_bank, y, r, w
     )

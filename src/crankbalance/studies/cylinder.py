@@ -85,7 +85,7 @@ def cylinder_of(model: EngineModel, number: int, field: str = "cylinder") -> Cyl
         rotating_mass=float(model.throw_rotating_mass[throw]) / rods,
         crank_radius=float(model.crank_radius),
         rod_length=float(model.rod_length),
-        offset=float(model.offset),
+        offset=float(model.cylinder_offset[k]),
         speed=float(model.speed),
     )
 

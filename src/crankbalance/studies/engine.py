@@ -1,5 +1,5 @@
 """The analysis study: from an engine (file, preset, spec or model) to its free forces and
-moments, in the JSON contract ``crankbalance.analysis/2`` (docs/json.md)."""
+moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
 
 from __future__ import annotations
 
@@ -19,7 +19,7 @@ from ..shaking import Curves, FreeForces, curves, free_forces
 from ..spec import EngineSpec
 from .build import build_model
 
-SCHEMA = "crankbalance.analysis/2"
+SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
 CONROD_KEYS: dict[str, str | tuple[str, float]] = {
     "mass": "mass_kg",
@@ -104,7 +104,8 @@ class Analysis:
                 "crank_radius_m": m.crank_radius,
                 "rod_length_m": m.rod_length,
                 "rod_ratio": m.rod_ratio,
-                "offset_m": m.offset,
+                "cylinder_offset_m": m.cylinder_offset,
+                "cylinder_axial_m": m.cylinder_axial,
                 "throw_angle_deg": np.degrees(m.throw_angle),
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,

@@ -1,7 +1,7 @@
 """A JSON API beside the web pages, on the same server (``crankbalance web``).
 
 * ``GET  /api/presets``: the engine library.
-* ``POST /api/analyze``: body an engine file -> the ``crankbalance.analysis/2`` JSON.
+* ``POST /api/analyze``: body an engine file -> the ``crankbalance.analysis/3`` JSON.
 * ``POST /api/balance``: the same -> the ``crankbalance.balance/2`` JSON.
 
 What a request must be (``docs/web.md``, "JSON API"), checked in this order:
