@@ -48,6 +48,7 @@ Usage::
 from __future__ import annotations
 
 import argparse
+import dataclasses
 import math
 import sys
 import time
@@ -88,6 +89,15 @@ def _desaxe_single() -> EngineModel:
     return _engine(text)
 
 
+def _side_by_side_twin() -> EngineModel:
+    """The 45 deg twin of the preset with its two rods side by side on the pin, 20 mm apart
+    (as a Ducati's; the model's cylinder_axial, the pin split by nothing else)."""
+    model = _engine(preset_text("v2-45"))
+    return dataclasses.replace(
+        model, name="v2-45 side-by-side", cylinder_axial=np.array([-0.010, 0.010])
+    )
+
+
 #: name: (what it checks, model builder)
 ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
     "single-desaxe": (
@@ -111,6 +121,10 @@ ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
         "W12 broad arrow, three rods on each of four pins (preset)",
         lambda: _engine(preset_text("w12")),
     ),
+    "v2-45-side-by-side": (
+        "45 deg V-twin on one pin, rods side by side 20 mm apart (rocking couple)",
+        _side_by_side_twin,
+    ),
     "radial5-kinner": (
         "5-cylinder radial, master and link rods (preset: Kinner K-5)",
         lambda: _engine(preset_text("radial5-kinner")),
@@ -122,17 +136,12 @@ ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
 }
 #: the engines the test runs (issue 17 item 6 names the side-by-side V-twin, the
 #: articulated radial-5 and the VR6; the others are in the results table)
-TEST_ENGINES: tuple[str, ...] = ("single-desaxe", "v2-45", "v8-crossplane", "radial5-kinner")
-
-
-def cylinder_offsets(model: EngineModel) -> NDArray[np.float64]:
-    """Sideways offset of each cylinder's wrist-pin path [m]."""
-    return np.full(model.cylinders, float(model.offset))
-
-
-def cylinder_axial(model: EngineModel) -> NDArray[np.float64]:
-    """Axial position of each cylinder's rod and piston [m from the crank mid-point]."""
-    return np.asarray(model.cylinder_position, dtype=float)
+TEST_ENGINES: tuple[str, ...] = (
+    "single-desaxe",
+    "v8-crossplane",
+    "v2-45-side-by-side",
+    "radial5-kinner",
+)
 
 
 # --------------------------------------------------------------------------- the model
@@ -160,9 +169,16 @@ class Phasors:
 
 @dataclass(frozen=True)
 class Simulation:
-    """One multibody run: its phasors, the steps per revolution and the solver's time [s]."""
+    """The multibody result of one engine.
+
+    ``phasors``: Richardson's extrapolation of the runs with ``steps`` and ``steps // 2``
+    steps per revolution, (4 X(h) - X(2h)) / 3, which removes the integrator's error in h**2
+    (docs/validation.md, "Step size and convergence"); ``raw``: the run with ``steps``
+    alone. ``seconds``: the solver's time of both runs.
+    """
 
     phasors: Phasors
+    raw: Phasors
     steps: int
     bodies: int
     seconds: float
@@ -201,10 +217,27 @@ def crank_angle(t: float, speed: float) -> float:
 
 
 def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Simulation:
-    """Run the EXUDYN model of ``model`` and take the Fourier series of its ground loads.
+    """Run the EXUDYN model of ``model`` with ``steps`` and ``steps // 2`` steps per
+    revolution and extrapolate (:class:`Simulation`)."""
+    if steps < 8 or steps % 2:
+        raise ValueError(f"steps per revolution must be even and at least 8, not {steps}")
+    fine, bodies, seconds = solve(model, steps, orders)
+    coarse, _bodies, more = solve(model, steps // 2, orders)
+    names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
+    extrapolated = Phasors(
+        *((4 * getattr(fine, name) - getattr(coarse, name)) / 3 for name in names)
+    )
+    return Simulation(extrapolated, fine, steps, bodies, seconds + more)
+
+
+def solve(
+    model: EngineModel, steps: int = STEPS, orders: int = ORDERS
+) -> tuple[Phasors, int, float]:
+    """Run the EXUDYN model of ``model`` once and take the Fourier series of its ground loads.
 
     One revolution's start from rest, one at constant speed, ``steps`` steps per
     revolution (generalized-alpha, spectral radius 0.9, full Newton, sparse solver).
+    Returns the phasors, the number of bodies and the solver's time [s].
     """
     import exudyn as exu
     from exudyn.utilities import ObjectGround, RigidBodyInertia, SensorObject
@@ -269,7 +302,7 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
         )
         ground_joints.append((joint, np.eye(3), np.array(position)))
 
-    offsets, axial = cylinder_offsets(model), cylinder_axial(model)
+    offsets, axial = model.cylinder_offset, model.cylinder_position
     art = model.articulation
     lengths = np.full(model.cylinders, l) if art is None else np.asarray(art.rod_length)
     # the master rod first: the link rods hang on it
@@ -393,7 +426,7 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
             times, force, moment = f_data[:, 0], f_global, m_global
         else:
             force, moment = force + f_global, moment + m_global
-    return Simulation(_fourier(times, force, moment, w, orders), steps, bodies, seconds)
+    return _fourier(times, force, moment, w, orders), bodies, seconds
 
 
 def _fourier(times: NDArray, force: NDArray, moment: NDArray, speed: float, orders: int) -> Phasors:
@@ -420,6 +453,7 @@ class Row:
     exudyn: float
     phasor_error: float  # max |difference| of the forward and backward phasors
     limit: float
+    floor: float  # 1e-4 of the largest first-order amplitude
 
     @property
     def difference(self) -> float:
@@ -445,7 +479,7 @@ def first_order_scales(model: EngineModel, ref: Phasors) -> tuple[float, float]:
         accel * float(np.max(model.reciprocating_mass)),
         accel * float(np.max(model.throw_rotating_mass)),
     )
-    arm = max(model.crank_radius, float(np.max(np.abs(cylinder_axial(model)))))
+    arm = max(model.crank_radius, float(np.max(np.abs(model.cylinder_position))))
     return force, max(float(ref.moment_amplitude[0]), force * arm)
 
 
@@ -473,6 +507,7 @@ def compare(engine: str, model: EngineModel, simulated: Phasors, orders: int = O
                     exudyn=float(a_sim[k]),
                     phasor_error=float(err[k]),
                     limit=max(RELATIVE * float(a_ref[k]), floors[quantity]),
+                    floor=floors[quantity],
                 )
             )
     return rows
@@ -499,7 +534,9 @@ def table(results: Sequence[tuple[str, Simulation, list[Row]]]) -> str:
         "(model and acceptance: `docs/validation.md`). Amplitude of each order, the largest",
         "magnitude over a revolution, |X+| + |X-| of its forward and backward phasors; forces",
         "in N, moments in N·m about the crankshaft mid-point; order 1 includes the rotating",
-        "masses. *rel. diff.* is |EXUDYN - crankbalance| / crankbalance (blank where",
+        "masses. EXUDYN's phasors are extrapolated from runs with N and N/2 steps per",
+        "revolution (docs/validation.md). *rel. diff.* is |EXUDYN - crankbalance| /",
+        "crankbalance (blank where",
         "crankbalance's amplitude is zero); *phasor diff.* the larger difference of the",
         "forward and backward phasors; *limit* 0.5 % of the order's amplitude or 1e-4 of the",
         "largest first-order amplitude, whichever is larger.",
@@ -507,8 +544,8 @@ def table(results: Sequence[tuple[str, Simulation, list[Row]]]) -> str:
     ]
     for engine, sim, _rows in results:
         lines.append(
-            f"- **{engine}**: {ENGINES[engine][0]}; {sim.bodies} bodies, {sim.steps} steps "
-            "per revolution"
+            f"- **{engine}**: {ENGINES[engine][0]}; {sim.bodies} bodies, N = {sim.steps} "
+            "steps per revolution"
         )
     lines += [
         "",
@@ -528,20 +565,29 @@ def table(results: Sequence[tuple[str, Simulation, list[Row]]]) -> str:
 
 
 def convergence(engine: str, steps: Sequence[int]) -> str:
-    """The worst phasor error relative to its limit, and the worst relative error of the
-    orders above the floor, against the steps per revolution."""
+    """Against the steps per revolution: the worst phasor difference relative to its limit,
+    and the worst relative difference of the orders whose limit is 0.5 % of their own
+    amplitude, of a single run and of the extrapolation from it and the run with half the
+    steps."""
+    model = ENGINES[engine][1]()
     lines = [
         f"step-size convergence, {engine}",
-        "steps/rev  worst error/limit  worst relative error (orders above the floor)  solver s",
+        "steps/rev  single run: worst/limit  worst relative  |  extrapolated: worst/limit  "
+        "worst relative",
     ]
+
+    def worst(phasors: Phasors) -> tuple[float, float]:
+        rows = compare(engine, model, phasors)
+        own = [r.phasor_error / r.crankbalance for r in rows if r.limit > r.floor]
+        return max(r.phasor_error / r.limit for r in rows), max(own, default=0.0)
+
+    runs = {n: solve(model, n)[0] for n in sorted({*steps, *(n // 2 for n in steps)})}
     for n in steps:
-        sim, rows = run(engine, n)
-        worst = max(row.phasor_error / row.limit for row in rows)
-        relative = max(
-            (r.phasor_error / r.crankbalance for r in rows if r.limit == RELATIVE * r.crankbalance),
-            default=0.0,
-        )
-        lines.append(f"{n:9d}  {worst:17.3g}  {relative:45.3e}  {sim.seconds:8.2f}")
+        half = runs[n // 2]
+        names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
+        rich = Phasors(*((4 * getattr(runs[n], k) - getattr(half, k)) / 3 for k in names))
+        (a, b), (c, d) = worst(runs[n]), worst(rich)
+        lines.append(f"{n:9d}  {a:22.3g}  {b:14.2e}  |  {c:25.3g}  {d:14.2e}")
     return "\n".join(lines) + "\n"
 
 
