@@ -27,6 +27,7 @@ from crankbalance.articulated import (
     ArticulatedRods,
     dead_centres,
     default_link_pin_angles,
+    even_stroke_angles,
     harmonics,
     inertia_force,
     motion,
@@ -234,6 +235,31 @@ def test_link_strokes_differ_and_mirror_about_the_master() -> None:
         assert got.stroke[k] == pytest.approx(got.stroke[mirror], abs=1e-13)
         assert got.tdc_lag[k] == pytest.approx(-got.tdc_lag[mirror], abs=1e-11)
         assert abs(got.stroke[k] - 2 * r) > 1e-6
+
+
+def test_even_stroke_angles_give_the_master_stroke_by_root_finding() -> None:
+    """The shifted link pin angles give every link piston a stroke of 2r, checked with the
+    independent construction; the shifts mirror about the master and stay small."""
+    rods = _radial(n=7)
+    angles = even_stroke_angles(rods)
+    shifted = ArticulatedRods(
+        master=rods.master,
+        crank_radius=rods.crank_radius,
+        bank_angle=rods.bank_angle,
+        rod_length=rods.rod_length,
+        link_pin_radius=rods.link_pin_radius,
+        link_pin_angle=angles,
+        link_big_end_mass=rods.link_big_end_mass,
+    )
+    got = dead_centres(shifted)
+    shift = angles - rods.link_pin_angle
+    assert shift[0] == 0.0
+    for k in range(1, 7):
+        _t, top = _reference_dead_centre(shifted, k, got.tdc_angle[k])
+        _b, bottom = _reference_dead_centre(shifted, k, got.bdc_angle[k])
+        assert top - bottom == pytest.approx(2 * rods.crank_radius, abs=1e-11)
+        assert shift[k] == pytest.approx(-shift[7 - k], abs=1e-12)
+        assert 0 < abs(shift[k]) < math.radians(3.0)
 
 
 # ----------------------------------------------------------------- harmonics

@@ -537,3 +537,81 @@ def inertia_force(
     mass = np.asarray(reciprocating_mass, dtype=float)[None, :]
     force = mass * s2 * axis + np.asarray(rods.link_big_end_mass)[None, :] * (big2 - pin2)
     return np.asarray(-(float(speed) ** 2) * force.sum(axis=1), dtype=complex)
+
+
+def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) -> NDArray:
+    r"""Link pin angles that give every link piston the master piston's stroke.
+
+    Each link piston's motion depends on its own link pin only, so each angle is found on
+    its own: bisection on the shift :math:`\delta_k` of :math:`\gamma_k` within
+    :math:`\pm` ``search`` until the stroke equals the master's (:func:`dead_centres`).
+
+    Parameters
+    ----------
+    rods : ArticulatedRods
+        The rod assembly; its link pin angles are the start of the search.
+    search : float
+        Largest shift of a link pin angle tried, either way [rad].
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        Link pin angles [rad] (the master's 0) at which every stroke equals the master's
+        to 1e-12 of the crank radius.
+
+    Notes
+    -----
+    This is why makers set the link pin angles a little away from the angles between the
+    cylinders (``docs/theory.md``, "Articulated rods"): with :math:`\gamma_k = \beta_k -
+    \beta_m` the link strokes are longer than the master's. One angle evens out the
+    strokes; the top dead centre positions (the compression ratios) then still differ a
+    little, which the link rod lengths or the pistons make up.
+    Raises :class:`~crankbalance.errors.InputError` when no shift within ``search``
+    reaches the master's stroke.
+    """
+    m = int(rods.master)
+    links = np.arange(rods.cylinders) != m
+    target = 2.0 * rods.crank_radius if rods.offset == 0 else dead_centres(rods).stroke[m]
+    start = np.asarray(rods.link_pin_angle, dtype=float)
+
+    def excess(shift: NDArray) -> NDArray:
+        trial = _with_angles(rods, start + np.where(links, shift, 0.0))
+        return dead_centres(trial).stroke - target
+
+    low = np.full(rods.cylinders, -float(search))
+    high = np.full(rods.cylinders, float(search))
+    f_low, f_high = excess(low), excess(high)
+    bad = links & (np.sign(f_low) == np.sign(f_high))
+    if np.any(bad):
+        k = int(np.flatnonzero(bad)[0])
+        raise InputError(
+            "link_pin_angle",
+            float(np.degrees(start[k])),
+            f"no shift within {np.degrees(search):g} deg gives cylinder {k + 1} the master's "
+            "stroke",
+        )
+    for _ in range(200):
+        mid = 0.5 * (low + high)
+        f_mid = excess(mid)
+        left = np.sign(f_mid) == np.sign(f_low)
+        low, f_low = np.where(left, mid, low), np.where(left, f_mid, f_low)
+        high = np.where(left, high, mid)
+        if np.all(np.abs(f_mid[links]) < 1e-12 * rods.crank_radius) or np.all(
+            (high - low)[links] < 1e-15
+        ):
+            break
+    return np.where(links, start + 0.5 * (low + high), 0.0)
+
+
+def _with_angles(rods: ArticulatedRods, angles: NDArray) -> ArticulatedRods:
+    """The same assembly with other link pin angles."""
+    return ArticulatedRods(
+        master=rods.master,
+        crank_radius=rods.crank_radius,
+        bank_angle=rods.bank_angle,
+        rod_length=rods.rod_length,
+        link_pin_radius=rods.link_pin_radius,
+        link_pin_angle=angles,
+        link_big_end_mass=rods.link_big_end_mass,
+        offset=rods.offset,
+    )
