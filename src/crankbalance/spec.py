@@ -28,8 +28,10 @@ from pydantic import (
 from .errors import InputError
 from .units import RANGES, format_quantity, parse_quantity, range_si
 
-Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
-LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
+Layout = Literal["inline", "vee", "boxer", "w", "radial", "vr", "custom"]
+LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "vr", "custom")
+#: The two kinds of W engine: three banks on one pin each, or two VR banks (docs/engine_file.md).
+W_TYPES: tuple[str, ...] = ("broad-arrow", "vr")
 Kinematics = Literal["exact", "series", "first-order"]
 
 # --------------------------------------------------------------------------- limits
@@ -175,17 +177,40 @@ class CrankTrain(_Strict):
     throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
     throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
     articulated: Articulated | None = None
+    w_type: Literal["broad-arrow", "vr"] | None = Field(
+        default=None,
+        description="layout w: 'broad-arrow' (three banks, default) or 'vr' (two VR banks)",
+    )
+    vr_angle: Angle | None = Field(
+        default=None, description="W from VR banks: narrow angle between the rows of each bank"
+    )
+    bore_offset: Length = Field(
+        default=0.0,
+        description="VR rows: distance of each row's bore axes from the crank axis, positive "
+        "when the rows' axes meet beyond the crank axis (away from the head)",
+    )
+    pin_split: Angle | None = Field(
+        default=None,
+        description="VR rows: angle between the crankpins of the two rows (default: the split "
+        "even firing needs)",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
         r, l = self.crank_radius, self.rod_length
         if r <= 0:
             raise FieldProblem("crank_radius", "must be greater than zero")
-        if l <= r + abs(self.pin_offset + self.crank_offset):
+        self._check_vr()
+        offset = abs(self.pin_offset + self.crank_offset) + (
+            abs(self.bore_offset) if self.has_vr_rows else 0.0
+        )
+        if l <= r + offset:
             raise FieldProblem(
                 "rod_length",
                 "must exceed crank_radius plus the total offset "
-                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)",
+                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm"
+                + (", bore offset included" if self.has_vr_rows and self.bore_offset else "")
+                + ")",
             )
         if self.layout == "custom":
             if not self.throw:
@@ -212,23 +237,30 @@ class CrankTrain(_Strict):
                 raise FieldProblem(
                     "cylinders", f"a {self.layout} engine needs an even number of cylinders"
                 )
-            if self.layout == "w" and n % 3:
+            if self.layout == "w" and n % 3 and not self.has_vr_rows:
                 raise FieldProblem(
                     "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
                 )
+            if self.layout == "w" and self.has_vr_rows and (n % 2 or n < 4):
+                raise FieldProblem(
+                    "cylinders",
+                    "a W engine from two VR banks needs an even number of cylinders, at least 4",
+                )
+            if self.layout == "vr" and n < 2:
+                raise FieldProblem("cylinders", "a VR engine needs at least 2 cylinders")
             if self.layout == "radial" and n < 3:
                 raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
-            if self.layout in ("vee", "w"):
+            if self.layout in ("vee", "w", "vr"):
                 if self.bank_angle is None:
                     raise FieldProblem("bank_angle", f"is required for layout '{self.layout}'")
-                limit = 180.0 if self.layout == "vee" else 90.0
+                limit = 90.0 if self.layout == "w" and not self.has_vr_rows else 180.0
                 if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
                     raise FieldProblem(
                         "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
                     )
             elif self.bank_angle is not None:
                 raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
-            throws = throw_count(self.layout, n)
+            throws = throw_count(self.layout, n, self.w_type)
             if throws > 1 and self.crank_pitch is None:
                 raise FieldProblem(
                     "crank_pitch", "is required for an engine with more than one throw"
@@ -246,6 +278,43 @@ class CrankTrain(_Strict):
                     "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
                 )
         return self
+
+    @property
+    def has_vr_rows(self) -> bool:
+        """True for layout "vr" and for a W from VR banks (``w_type = "vr"``)."""
+        return self.layout == "vr" or (self.layout == "w" and self.w_type == "vr")
+
+    def _check_vr(self) -> None:
+        """The keys of VR rows (docs/engine_file.md, "VR and W from VR banks")."""
+        if self.w_type is not None and self.layout != "w":
+            raise FieldProblem("w_type", f"is only used with layout 'w' (not '{self.layout}')")
+        is_w_vr = self.layout == "w" and self.w_type == "vr"
+        if self.vr_angle is not None and not is_w_vr:
+            raise FieldProblem(
+                "vr_angle",
+                "is only used with layout 'w' and w_type = 'vr' (a VR engine's narrow angle "
+                "is its bank_angle)",
+            )
+        if is_w_vr:
+            if self.vr_angle is None:
+                raise FieldProblem("vr_angle", "is required for a W from VR banks (w_type = 'vr')")
+            if not 0 < math.degrees(self.vr_angle) < 90.0 + 1e-9:
+                raise FieldProblem("vr_angle", "must lie in (0, 90] deg")
+        for key, given in (
+            ("bore_offset", self.bore_offset != 0),
+            ("pin_split", self.pin_split is not None),
+        ):
+            if given and not self.has_vr_rows:
+                raise FieldProblem(
+                    key, "is only used with layout 'vr' or layout 'w' with w_type = 'vr'"
+                )
+        if self.pin_split is not None and self.has_vr_rows:
+            if self.throw_angles is not None:
+                raise FieldProblem(
+                    "pin_split", "give either pin_split or throw_angles (the whole crank), not both"
+                )
+            if not 0 <= math.degrees(self.pin_split) < 180.0:
+                raise FieldProblem("pin_split", "must lie in [0, 180) deg")
 
     @property
     def cylinder_count(self) -> int:
@@ -289,8 +358,11 @@ def _check_articulated(ct: CrankTrain) -> None:
             )
 
 
-def throw_count(layout: str, cylinders: int) -> int:
-    """Number of crank throws of a standard layout."""
+def throw_count(layout: str, cylinders: int, w_type: str | None = None) -> int:
+    """Number of crank throws of a standard layout (``w_type`` "vr": a W from VR banks,
+    one throw per cylinder)."""
+    if layout == "w" and w_type == "vr":
+        return cylinders
     return {
         "inline": cylinders,
         "boxer": cylinders,
@@ -507,7 +579,7 @@ class EngineSpec(_Strict):
             raise FieldProblem("speed", "must be greater than zero")
         ct = self.crank_train
         n_cyl = ct.cylinder_count
-        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl)
+        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl, ct.w_type)
         for k, item in enumerate(self.masses.override):
             for number in item.cylinders or []:
                 if not 1 <= number <= n_cyl:

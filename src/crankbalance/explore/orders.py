@@ -165,6 +165,14 @@ def problem(
     Problem
         The problem, ready for :func:`count` and :func:`chunk`.
     """
+    if layout == "vr":
+        raise InputError(
+            "layout",
+            layout,
+            f"one of {', '.join(LAYOUTS)}: the explorer does not enumerate VR engines or Ws "
+            "from VR banks (their offset rows and one pin per cylinder); analyse one with "
+            "`crankbalance analyze` and an engine file (docs/engine_file.md)",
+        )
     if layout not in LAYOUTS:
         raise InputError("layout", layout, f"one of {', '.join(LAYOUTS)}")
     if isinstance(cylinders, bool) or not isinstance(cylinders, (int, np.integer)):

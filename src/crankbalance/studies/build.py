@@ -14,7 +14,7 @@ from numpy.typing import NDArray
 
 from ..articulated import ArticulatedRods, default_link_pin_angles
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel, standard_layout
+from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
 from ..spec import EngineSpec, MassOverride
 
 
@@ -42,7 +42,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
         reciprocating_mass=rec,
-        cylinder_offset=np.full(n, ct.pin_offset + ct.crank_offset),
+        cylinder_offset=_cylinder_offsets(spec),
         cylinder_axial=np.zeros(n),
         cylinder_rotating_mass=big_ends,
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
@@ -64,7 +64,11 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
             np.array([b for t in ct.throw for b in t.banks], dtype=float),
         )
     return standard_layout(
-        ct.layout, ct.cylinder_count, ct.bank_angle or 0.0, ct.crank_pitch or 0.0
+        ct.layout,
+        ct.cylinder_count,
+        ct.bank_angle or 0.0,
+        ct.crank_pitch or 0.0,
+        ct.vr_angle if ct.layout == "w" and ct.has_vr_rows else None,
     )
 
 
@@ -77,13 +81,14 @@ def _throw_angles(
         return np.array([t.angle for t in ct.throw])
     if ct.throw_angles is not None:
         return np.array(ct.throw_angles, dtype=float)
+    if ct.has_vr_rows:
+        return _vr_throw_angles(spec, banks)
     if throws == 1:
         return np.zeros(1)
     n = cylinder_throw.size
     order = ct.firing_order or list(range(1, n + 1))
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
-    fire_time = np.empty(n)
-    fire_time[np.array(order) - 1] = np.arange(n) * interval
+    fire_time = _fire_times(spec)
     # cylinder c is at its firing TDC at crank angle t_c: theta + phi - beta = 0
     cyl_angle = np.mod(banks - fire_time, 2 * np.pi)
     angles = np.full(throws, np.nan)
@@ -102,6 +107,59 @@ def _throw_angles(
                 "crank_train.throw_angles (the firing order then only names the sequence)",
             )
     return angles
+
+
+def _fire_times(spec: EngineSpec) -> NDArray:
+    """Crank angle at which each cylinder reaches its firing top dead centre, with even
+    firing intervals in the order of ``firing_order`` (cylinder 1 first by default) [rad]."""
+    ct = spec.crank_train
+    n = ct.cylinder_count
+    order = ct.firing_order or list(range(1, n + 1))
+    interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
+    fire_time = np.empty(n)
+    fire_time[np.array(order) - 1] = np.arange(n) * interval
+    return fire_time
+
+
+# --------------------------------------------------------------------------- VR rows
+def _vr_row_of(spec: EngineSpec) -> NDArray:
+    """Row (-1: A, +1: B) of each cylinder of a VR engine or a W from VR banks."""
+    ct = spec.crank_train
+    return vr_rows(ct.cylinder_count, 2 if ct.layout == "w" else 1)
+
+
+def _cylinder_offsets(spec: EngineSpec) -> NDArray:
+    """Total offset of each cylinder [m]: crank offset plus wrist-pin offset, and for VR
+    rows the bore offset, negative in row A and positive in row B (the sign of
+    :mod:`crankbalance.kinematics`: positive on the side the crankpin moves toward after
+    top dead centre; the rows' bore axes meet beyond the crank axis when ``bore_offset``
+    is positive, docs/engine_file.md)."""
+    ct = spec.crank_train
+    base = ct.pin_offset + ct.crank_offset
+    if not ct.has_vr_rows:
+        return np.full(ct.cylinder_count, base)
+    return base + _vr_row_of(spec) * ct.bore_offset
+
+
+def _vr_throw_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
+    """Throw angles of a VR engine or a W from VR banks (one throw per cylinder).
+
+    Without ``pin_split`` every cylinder reaches its top dead centre (crank angle
+    :math:`\arcsin(e/(l+r))` past its axis for an offset e) at its even firing time, so
+    the two rows' pins are split by :math:`v + 2\arcsin(e/(l+r))`. With ``pin_split`` the
+    pins sit at ``pin_split / 2`` either side of the angle a cylinder on the VR bank's centre
+    line would need, as the maker's crank is given (the firing is then even only when the
+    split is the one above)."""
+    ct = spec.crank_train
+    fire_time = _fire_times(spec)
+    rows = _vr_row_of(spec)
+    if ct.pin_split is None:
+        tdc = tdc_angle(_cylinder_offsets(spec), ct.crank_radius, ct.rod_length)
+        return np.mod(banks + tdc - fire_time, 2 * np.pi)
+    narrow = ct.vr_angle if ct.layout == "w" else ct.bank_angle
+    assert narrow is not None
+    centre = banks - rows * narrow / 2
+    return np.mod(centre + rows * ct.pin_split / 2 - fire_time, 2 * np.pi)
 
 
 # --------------------------------------------------------------------------- masses
