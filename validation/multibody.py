@@ -125,6 +125,14 @@ ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
         "45 deg V-twin on one pin, rods side by side 20 mm apart (rocking couple)",
         _side_by_side_twin,
     ),
+    "vr6": (
+        "VR6 15 deg (preset): one pin per cylinder split 22 deg, rows' bores offset -/+12.5 mm",
+        lambda: _engine(preset_text("vr6")),
+    ),
+    "w12-vw": (
+        "W12 from two VR banks (preset): 72 deg between the banks, rows offset in each",
+        lambda: _engine(preset_text("w12-vw")),
+    ),
     "radial5-kinner": (
         "5-cylinder radial, master and link rods (preset: Kinner K-5)",
         lambda: _engine(preset_text("radial5-kinner")),
@@ -141,6 +149,7 @@ TEST_ENGINES: tuple[str, ...] = (
     "v8-crossplane",
     "v2-45-side-by-side",
     "radial5-kinner",
+    "vr6",
 )
 
 

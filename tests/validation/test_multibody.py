@@ -109,6 +109,25 @@ def test_master_and_link_rods_are_not_the_simple_radial() -> None:
     assert not second.passed, "the simple radial's second order matched the articulated one"
 
 
+def test_the_vr6_rows_offsets_are_seen() -> None:
+    """The VR6's third-order force comes from its rows' bore offsets (-/+12.5 mm): the
+    simulation agrees with crankbalance's model of them and not with the same engine
+    without offsets (no third order) or with one offset for both rows."""
+    _require_exudyn()
+    sim, rows = _run("vr6")
+    assert not _failures(rows)
+    model = multibody.ENGINES["vr6"][1]()
+    assert np.ptp(model.cylinder_offset) > 0, "the VR6 preset lost its row offsets"
+    third = next(r for r in rows if r.quantity == "force" and r.order == 3)
+    assert third.exudyn > 10 * third.limit, "the third order is not above the floor"
+    for wrong in (0 * model.cylinder_offset, np.abs(model.cylinder_offset)):
+        other = multibody.compare(
+            "vr6", dataclasses.replace(model, cylinder_offset=wrong), sim.phasors
+        )
+        third = next(r for r in other if r.quantity == "force" and r.order == 3)
+        assert not third.passed, f"offsets {wrong} passed the third order"
+
+
 def test_the_fourier_analysis_reads_a_known_curve_back() -> None:
     """The harness's sampling and sign conventions on a curve whose phasors are known:
     z + i x = F+ e^{i n theta} + F- e^{-i n theta}, couple C = -i (M_z + i M_x)."""
