@@ -54,6 +54,7 @@ import sys
 import time
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass
+from typing import Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -98,49 +99,35 @@ def _side_by_side_twin() -> EngineModel:
     )
 
 
+#: presets run as they are: name: what each checks
+PRESETS: dict[str, str] = {
+    "inline4": "flat-crank inline-4 (preset)",
+    "v8-crossplane": "90 deg crossplane V8 (preset): first-order rotating couple",
+    "v2-45": "45 deg V-twin on one pin, rods in one plane (preset)",
+    "boxer6": "boxer-6 (preset): opposed cylinders on their own throws",
+    "w12": "W12 broad arrow, three rods on each of four pins (preset)",
+    "vr6": "VR6 15 deg (preset): one pin per cylinder split 22 deg, rows' bores offset -/+12.5 mm",
+    "w12-vw": "W12 from two VR banks (preset): 72 deg between the banks, rows offset in each",
+    "radial5-kinner": "5-cylinder radial, master and link rods (preset: Kinner K-5)",
+    "radial9-r985": "9-cylinder radial, master and link rods (preset: P&W R-985)",
+}
+
+
+def _preset(name: str) -> Callable[[], EngineModel]:
+    return lambda: _engine(preset_text(name))
+
+
 #: name: (what it checks, model builder)
 ENGINES: dict[str, tuple[str, Callable[[], EngineModel]]] = {
     "single-desaxe": (
         "single cylinder, crank offset 6 mm + wrist-pin offset 2 mm (odd orders appear)",
         _desaxe_single,
     ),
-    "inline4": ("flat-crank inline-4 (preset)", lambda: _engine(preset_text("inline4"))),
-    "v8-crossplane": (
-        "90 deg crossplane V8 (preset): first-order rotating couple",
-        lambda: _engine(preset_text("v8-crossplane")),
-    ),
-    "v2-45": (
-        "45 deg V-twin on one pin, rods in one plane (preset)",
-        lambda: _engine(preset_text("v2-45")),
-    ),
-    "boxer6": (
-        "boxer-6 (preset): opposed cylinders on their own throws",
-        lambda: _engine(preset_text("boxer6")),
-    ),
-    "w12": (
-        "W12 broad arrow, three rods on each of four pins (preset)",
-        lambda: _engine(preset_text("w12")),
-    ),
     "v2-45-side-by-side": (
         "45 deg V-twin on one pin, rods side by side 20 mm apart (rocking couple)",
         _side_by_side_twin,
     ),
-    "vr6": (
-        "VR6 15 deg (preset): one pin per cylinder split 22 deg, rows' bores offset -/+12.5 mm",
-        lambda: _engine(preset_text("vr6")),
-    ),
-    "w12-vw": (
-        "W12 from two VR banks (preset): 72 deg between the banks, rows offset in each",
-        lambda: _engine(preset_text("w12-vw")),
-    ),
-    "radial5-kinner": (
-        "5-cylinder radial, master and link rods (preset: Kinner K-5)",
-        lambda: _engine(preset_text("radial5-kinner")),
-    ),
-    "radial9-r985": (
-        "9-cylinder radial, master and link rods (preset: P&W R-985)",
-        lambda: _engine(preset_text("radial9-r985")),
-    ),
+    **{name: (what, _preset(name)) for name, what in PRESETS.items()},
 }
 #: the engines the test runs (issue 17 item 6 names the side-by-side V-twin, the
 #: articulated radial-5 and the VR6; the others are in the results table)
@@ -232,11 +219,13 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
         raise ValueError(f"steps per revolution must be even and at least 8, not {steps}")
     fine, bodies, seconds = solve(model, steps, orders)
     coarse, _bodies, more = solve(model, steps // 2, orders)
+    return Simulation(extrapolate(fine, coarse), fine, steps, bodies, seconds + more)
+
+
+def extrapolate(fine: Phasors, coarse: Phasors) -> Phasors:
+    """Richardson's extrapolation (4 X(h) - X(2h)) / 3 of phasors whose error is in h**2."""
     names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
-    extrapolated = Phasors(
-        *((4 * getattr(fine, name) - getattr(coarse, name)) / 3 for name in names)
-    )
-    return Simulation(extrapolated, fine, steps, bodies, seconds + more)
+    return Phasors(*((4 * getattr(fine, k) - getattr(coarse, k)) / 3 for k in names))
 
 
 def solve(
@@ -319,7 +308,8 @@ def solve(
     if art is not None:
         order.remove(art.master)
         order.insert(0, art.master)
-    master_body, master_pin, master_axis = -1, np.zeros(3), np.zeros(3)
+    master_body: Any = None  # the master rod, its crankpin and its axis (unit vector)
+    master_pin, master_axis = np.zeros(3), np.zeros(3)
     for c in order:
         phi = float(model.cylinder_angle[c])
         beta = float(model.cylinder_bank[c])
@@ -592,10 +582,7 @@ def convergence(engine: str, steps: Sequence[int]) -> str:
 
     runs = {n: solve(model, n)[0] for n in sorted({*steps, *(n // 2 for n in steps)})}
     for n in steps:
-        half = runs[n // 2]
-        names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
-        rich = Phasors(*((4 * getattr(runs[n], k) - getattr(half, k)) / 3 for k in names))
-        (a, b), (c, d) = worst(runs[n]), worst(rich)
+        (a, b), (c, d) = worst(runs[n]), worst(extrapolate(runs[n], runs[n // 2]))
         lines.append(f"{n:9d}  {a:22.3g}  {b:14.2e}  |  {c:25.3g}  {d:14.2e}")
     return "\n".join(lines) + "\n"
 
