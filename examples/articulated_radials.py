@@ -16,6 +16,7 @@ Run: ``python examples/articulated_radials.py``.
 from __future__ import annotations
 
 import dataclasses
+from dataclasses import replace
 
 import numpy as np
 
@@ -30,13 +31,16 @@ ORDERS = 4
 def main() -> None:
     for name in PRESETS:
         model = as_model(name)
-        rods = model.articulation
-        assert rods is not None
-        even = dataclasses.replace(rods, link_pin_angle=even_stroke_angles(rods))
+        rods, links = model.articulated_rods, model.articulation
+        assert rods is not None and links is not None
+        angles = even_stroke_angles(rods)
+        evened = dataclasses.replace(model, articulation=replace(links, link_pin_angle=angles))
+        even = evened.articulated_rods
+        assert even is not None
         engines = {
             "simple": dataclasses.replace(model, articulation=None),
             "articulated": model,
-            "even strokes": dataclasses.replace(model, articulation=even),
+            "even strokes": evened,
         }
         amplitude = {k: free_forces(m, ORDERS).force_amplitude for k, m in engines.items()}
         print(f"## {model.name} ({name}), {model.speed * 30 / np.pi:.0f} rpm")

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
+from dataclasses import replace
 
 import numpy as np
 import pytest
@@ -25,6 +26,7 @@ from scipy.optimize import brentq
 from crankbalance import kinematics
 from crankbalance.articulated import (
     ArticulatedRods,
+    cylinder_coefficients,
     dead_centres,
     default_link_pin_angles,
     even_stroke_angles,
@@ -43,9 +45,8 @@ def _radial(
     rho: float = 0.055,
     r: float = 0.0667,
     l_master: float = 0.25,
-    offset: float = 0.0,
+    offset: float | list[float] = 0.0,
     gamma_shift: float = 0.0,
-    link_mass: float = 0.4,
 ) -> ArticulatedRods:
     beta = 2 * np.pi * np.arange(n) / n
     links = np.arange(n) != master
@@ -57,9 +58,13 @@ def _radial(
         rod_length=np.where(links, l_master - rho, l_master),
         link_pin_radius=np.where(links, rho, 0.0),
         link_pin_angle=gamma,
-        link_big_end_mass=np.where(links, link_mass, 0.0),
-        offset=offset,
+        offset=np.broadcast_to(np.asarray(offset, dtype=float), (n,)).copy(),
     )
+
+
+def _big_ends(rods: ArticulatedRods, mass: float = 0.4) -> np.ndarray:
+    """Big-end masses of the rods: ``mass`` for the links, a heavier master's."""
+    return np.where(np.arange(rods.cylinders) == rods.master, 2.0, mass)
 
 
 # ----------------------------------------------------------------- independent geometry
@@ -77,11 +82,11 @@ def _along(point: np.ndarray, beta: float, rod: float, offset: float) -> float:
 
 def _reference(rods: ArticulatedRods, theta: float) -> tuple[np.ndarray, np.ndarray]:
     """Link pins (C, 2) and travels (C,) at crank angle theta, built with angles."""
-    m, r, e = rods.master, rods.crank_radius, rods.offset
+    m, r, e = rods.master, rods.crank_radius, np.asarray(rods.offset)
     pin = r * np.array([math.cos(theta), math.sin(theta)])
     beta = np.asarray(rods.bank_angle)
-    sm = _along(pin, beta[m], rods.rod_length[m], e)
-    small = sm * np.array([math.cos(beta[m]), math.sin(beta[m])]) + e * np.array(
+    sm = _along(pin, beta[m], rods.rod_length[m], e[m])
+    small = sm * np.array([math.cos(beta[m]), math.sin(beta[m])]) + e[m] * np.array(
         [-math.sin(beta[m]), math.cos(beta[m])]
     )
     rod_angle = math.atan2(small[1] - pin[1], small[0] - pin[0])
@@ -90,7 +95,7 @@ def _reference(rods: ArticulatedRods, theta: float) -> tuple[np.ndarray, np.ndar
     for c in range(beta.size):
         a = rod_angle + rods.link_pin_angle[c]
         links[c] = pin + rods.link_pin_radius[c] * np.array([math.cos(a), math.sin(a)])
-        travel[c] = sm if c == m else _along(links[c], beta[c], rods.rod_length[c], e)
+        travel[c] = sm if c == m else _along(links[c], beta[c], rods.rod_length[c], e[c])
     return links, travel
 
 
@@ -124,7 +129,7 @@ def test_master_piston_is_exactly_a_slider_crank(offset: float) -> None:
 
 
 def test_zero_link_pin_radius_gives_plain_slider_cranks_on_the_pin() -> None:
-    rods = _radial(n=9, rho=0.0, link_mass=0.0)
+    rods = _radial(n=9, rho=0.0)
     theta = np.linspace(0, 2 * np.pi, 61)
     got = motion(rods, theta)
     psi = theta[:, None] - rods.bank_angle[None, :]
@@ -138,7 +143,7 @@ def test_zero_link_pin_radius_gives_plain_slider_cranks_on_the_pin() -> None:
 def test_zero_link_pin_radius_harmonics_equal_the_simple_models() -> None:
     """Per kilogram at 1 rad/s the simple model has F_n^+ = (r/2) c_n e^{i(1-n) beta} and
     F_n^- = (r/2) conj(c_n) e^{i(1+n) beta} (crankbalance.shaking docstring, throw angle 0)."""
-    rods = _radial(n=5, rho=0.0, link_mass=0.0)
+    rods = _radial(n=5, rho=0.0)
     h = harmonics(rods, orders=8)
     r, l = rods.crank_radius, rods.rod_length[0]
     c = kinematics.exact_coefficients(r / l, 8)
@@ -242,15 +247,7 @@ def test_even_stroke_angles_give_the_master_stroke_by_root_finding() -> None:
     independent construction; the shifts mirror about the master and stay small."""
     rods = _radial(n=7)
     angles = even_stroke_angles(rods)
-    shifted = ArticulatedRods(
-        master=rods.master,
-        crank_radius=rods.crank_radius,
-        bank_angle=rods.bank_angle,
-        rod_length=rods.rod_length,
-        link_pin_radius=rods.link_pin_radius,
-        link_pin_angle=angles,
-        link_big_end_mass=rods.link_big_end_mass,
-    )
+    shifted = replace(rods, link_pin_angle=angles)
     got = dead_centres(shifted)
     shift = angles - rods.link_pin_angle
     assert shift[0] == 0.0
@@ -264,19 +261,35 @@ def test_even_stroke_angles_give_the_master_stroke_by_root_finding() -> None:
 
 # ----------------------------------------------------------------- harmonics
 def test_phasors_rebuild_the_exact_time_domain_force() -> None:
-    rods = _radial(n=7, master=3, gamma_shift=math.radians(0.7), offset=0.002)
+    offsets = [0.002, 0.0, -0.001, 0.002, 0.003, 0.0, 0.001]
+    rods = _radial(n=7, master=3, gamma_shift=math.radians(0.7), offset=offsets)
     mass = np.linspace(1.1, 1.7, 7)
+    ends = _big_ends(rods)
     speed = 190.0
     h = harmonics(rods, orders=40)
-    forward = speed**2 * (mass @ h.piston_forward + rods.link_big_end_mass @ h.link_forward)
-    backward = speed**2 * (mass @ h.piston_backward + rods.link_big_end_mass @ h.link_backward)
+    forward = speed**2 * (mass @ h.piston_forward + ends @ h.link_forward)
+    backward = speed**2 * (mass @ h.piston_backward + ends @ h.link_backward)
     theta = np.linspace(0, 2 * np.pi, 53)
     n = h.orders[:, None]
     rebuilt = (
         forward[:, None] * np.exp(1j * n * theta) + backward[:, None] * np.exp(-1j * n * theta)
     ).sum(0)
-    exact = inertia_force(rods, mass, theta, speed)
+    exact = inertia_force(rods, mass, ends, theta, speed).sum(axis=1)
     assert np.abs(rebuilt - exact).max() < 1e-10 * np.abs(exact).max()
+
+
+def test_default_link_pin_angles_keep_the_first_order_and_no_odd_orders() -> None:
+    """Closed form (docs/theory.md): with gamma_k = beta_k - beta_m the link pin's lateral
+    coordinate in its cylinder's frame is a pure first harmonic, so every link piston has
+    exactly a slider-crank's first harmonic (c_1 = 1) and no odd harmonic above it; a
+    shifted link pin angle breaks both."""
+    plain = cylinder_coefficients(_radial(n=9), 7)
+    assert np.abs(plain[:, 0] - 1.0).max() < 1e-14
+    assert np.abs(plain[:, 2::2]).max() < 1e-14
+    assert np.abs(plain[1:, 1] - plain[0, 1]).max() > 1e-3  # the even orders do change
+    shifted = cylinder_coefficients(_radial(n=9, gamma_shift=math.radians(1.0)), 7)
+    assert np.abs(shifted[1:, 0] - 1.0).min() > 1e-5
+    assert np.abs(shifted[1:, 2]).min() > 1e-6
 
 
 def test_sampling_is_free_of_aliasing() -> None:
@@ -286,9 +299,7 @@ def test_sampling_is_free_of_aliasing() -> None:
     # the same harmonics from four times the samples, by direct quadrature of the exact force
     n = 4 * h.samples
     theta = 2 * np.pi * np.arange(n) / n
-    force = inertia_force(rods, np.ones(5), theta, 1.0) - inertia_force(
-        rods, np.zeros(5), theta, 1.0
-    )
+    force = inertia_force(rods, np.ones(5), np.zeros(5), theta, 1.0).sum(axis=1)
     orders = np.arange(1, 9)
     forward = (force[None, :] * np.exp(-1j * orders[:, None] * theta)).mean(axis=1)
     assert np.abs(forward - h.piston_forward.sum(axis=0)).max() < 1e-15
@@ -300,14 +311,14 @@ def test_link_pin_masses_add_their_own_forces() -> None:
     rods = _radial(n=5, rho=0.06)
     theta = np.linspace(0, 2 * np.pi, 11)
     d = 1e-4
-    mass = np.zeros(5)
-    got = inertia_force(rods, mass, theta, 1.0)
+    ends = _big_ends(rods)
+    got = inertia_force(rods, np.zeros(5), ends, theta, 1.0).sum(axis=1)
     expected = np.zeros(theta.size, dtype=complex)
     for j, t in enumerate(theta):
         pins = [_reference(rods, t + k * d)[0] for k in (-1, 0, 1)]
         accel = (pins[0] - 2 * pins[1] + pins[2]) / d**2  # (C, 2)
         crankpin = -rods.crank_radius * np.array([math.cos(t), math.sin(t)])
-        extra = -(rods.link_big_end_mass[:, None] * (accel - crankpin)).sum(axis=0)
+        extra = -(ends[:, None] * (accel - crankpin)).sum(axis=0)
         expected[j] = extra[0] + 1j * extra[1]
     assert np.abs(got - expected).max() < 1e-5 * np.abs(expected).max()
 
@@ -315,36 +326,15 @@ def test_link_pin_masses_add_their_own_forces() -> None:
 # ----------------------------------------------------------------- bad input
 def test_bad_geometry_is_refused_with_the_field_named() -> None:
     good = _radial()
-    with pytest.raises(InputError, match="rod_length"):
-        ArticulatedRods(
-            master=0,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=np.full(5, 0.1),
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            link_big_end_mass=good.link_big_end_mass,
-        )
-    with pytest.raises(InputError, match="master"):
-        ArticulatedRods(
-            master=5,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=good.rod_length,
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            link_big_end_mass=good.link_big_end_mass,
-        )
-    with pytest.raises(InputError, match="link_pin_radius"):
-        ArticulatedRods(
-            master=1,
-            crank_radius=good.crank_radius,
-            bank_angle=good.bank_angle,
-            rod_length=good.rod_length,
-            link_pin_radius=good.link_pin_radius,
-            link_pin_angle=good.link_pin_angle,
-            link_big_end_mass=good.link_big_end_mass,
-        )
+    for change, words in (
+        ({"rod_length": np.full(5, 0.1)}, "rod_length"),
+        ({"master": 5}, "master"),
+        ({"master": 1}, "link_pin_radius"),
+        ({"offset": np.zeros(4)}, "offset"),
+        ({"link_pin_radius": -good.link_pin_radius}, "link_pin_radius"),
+    ):
+        with pytest.raises(InputError, match=words):
+            replace(good, **change)
 
 
 # ----------------------------------------------------------------- engine file and model
@@ -397,7 +387,7 @@ def test_zero_link_pin_radius_engine_equals_the_simple_radial(name: str) -> None
 def test_preset_builds_its_rods_from_the_engine_file(name: str) -> None:
     data = _preset_dict(name)
     model = _model(data)
-    art = model.articulation
+    art = model.articulated_rods
     assert art is not None
     ct = data["crank_train"]
     n = ct["cylinders"]
@@ -412,8 +402,7 @@ def test_preset_builds_its_rods_from_the_engine_file(name: str) -> None:
     # the link rods' big ends: the conrod split over the link rod length
     for split in model.conrods:
         c = split.cylinder - 1
-        expected = 0.0 if c == master else split.rotating
-        assert art.link_big_end_mass[c] == pytest.approx(expected)
+        assert model.cylinder_rotating_mass[c] == pytest.approx(split.rotating)
     # every big end is counted with the crank's rotating mass, as for plain rods
     total = sum(s.rotating for s in model.conrods)
     mass = data["masses"]
@@ -436,7 +425,8 @@ def test_link_rod_split_uses_the_link_rod_length() -> None:
     split = model.conrods[1]
     assert split.rotating == pytest.approx(0.55 * (l_link - 0.1) / l_link)
     assert model.articulation is not None
-    assert model.articulation.link_big_end_mass[1] == pytest.approx(split.rotating)
+    assert model.cylinder_rotating_mass[1] == pytest.approx(split.rotating)
+    assert model.articulation.link_rod_length[1] == pytest.approx(l_link)
     master = model.conrods[0]
     assert master.rotating == pytest.approx(2.2 * (0.254 - 0.06) / 0.254)
 
@@ -517,10 +507,11 @@ def test_analyze_and_balance_see_the_articulated_forces(
     from .conftest import run_cli
 
     model = _model(_preset_dict(name))
-    assert model.articulation is not None
-    h = articulated_harmonics(model.articulation, 8)
+    rods = model.articulated_rods
+    assert rods is not None
+    h = articulated_harmonics(rods, 8)
     w2 = model.speed**2
-    rec, big = model.reciprocating_mass, model.articulation.link_big_end_mass
+    rec, big = model.reciprocating_mass, model.cylinder_rotating_mass
     amplitude = w2 * (
         np.abs(rec @ h.piston_forward + big @ h.link_forward)
         + np.abs(rec @ h.piston_backward + big @ h.link_backward)
@@ -539,3 +530,74 @@ def test_analyze_and_balance_see_the_articulated_forces(
     for order in (1, 2, 4):
         before = checks[f"order{order}"]["force_before_N"]
         assert before == pytest.approx(amplitude[order - 1], rel=1e-6)
+
+
+@pytest.mark.parametrize("name", ARTICULATED_PRESETS)
+def test_engine_phasors_equal_the_exact_time_domain(name: str) -> None:
+    """The free forces of an articulated preset (cylinder_coefficients rows plus the link
+    pins' phasors) rebuild the exact time-domain force of every cylinder's masses."""
+    from crankbalance.shaking import exact_time_domain, free_forces, phasor_curve
+
+    model = _model(_preset_dict(name))
+    f = free_forces(model, 24)
+    theta = np.linspace(0, 2 * np.pi, 91)
+    force, couple = exact_time_domain(model, theta)
+    rebuilt = phasor_curve(f.force_forward, f.force_backward, f.orders, theta).sum(axis=0)
+    assert np.abs(force - rebuilt).max() < 1e-9 * np.abs(force).max()
+    assert np.abs(couple).max() == 0.0  # one throw at the mid-point: no couple
+
+
+def test_the_documented_tables_are_the_examples_output(capsys: pytest.CaptureFixture[str]) -> None:
+    """docs/theory.md, "Articulated rods", shows what examples/articulated_radials.py prints."""
+    import importlib.util
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[1]
+    spec = importlib.util.spec_from_file_location(
+        "articulated_radials", root / "examples" / "articulated_radials.py"
+    )
+    assert spec is not None and spec.loader is not None
+    example = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(example)
+    example.main()
+    printed = [line for line in capsys.readouterr().out.splitlines() if line.startswith("|")]
+    doc = (root / "docs" / "theory.md").read_text(encoding="utf-8").splitlines()
+    missing = [line for line in printed if line not in doc]
+    assert len(printed) > 40
+    assert not missing, "docs/theory.md lacks the example's lines:\n" + "\n".join(missing[:5])
+
+
+def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> None:
+    """The balance shop builds its basis from one kilogram per cylinder (reciprocating, and
+    big end with its pin). For an articulated radial the sum of those unit engines, weighted
+    by the real masses, must give the engine's free forces: the link pins' phasors follow
+    each cylinder's big-end mass, not a fixed table."""
+    from crankbalance.shaking import free_forces
+
+    model = _model(_preset_dict("radial7-scarab"))
+    c, t = model.cylinders, model.throws
+    none = replace(
+        model,
+        reciprocating_mass=np.zeros(c),
+        throw_rotating_mass=np.zeros(t),
+        cylinder_rotating_mass=np.zeros(c),
+    )
+    whole = free_forces(model, 6)
+    total = np.zeros(6, dtype=complex)
+    rotating = 0j
+    for k in range(c):
+        unit = np.eye(c)[k]
+        rec = free_forces(replace(none, reciprocating_mass=unit), 6)
+        end = free_forces(
+            replace(none, throw_rotating_mass=np.ones(t), cylinder_rotating_mass=unit), 6
+        )
+        total += model.reciprocating_mass[k] * rec.force_forward
+        total += model.cylinder_rotating_mass[k] * end.force_forward
+        rotating += model.cylinder_rotating_mass[k] * end.rotating_force
+    rest = model.throw_rotating_mass - model.cylinder_rotating_mass.sum()
+    rotating += free_forces(replace(none, throw_rotating_mass=rest), 6).rotating_force
+    assert np.abs(total - whole.force_forward).max() < 1e-9 * np.abs(whole.force_forward).max()
+    assert rotating == pytest.approx(whole.rotating_force, rel=1e-12)
+    # and the link pins do matter: without them the second order differs
+    bare = free_forces(replace(model, cylinder_rotating_mass=np.zeros(c)), 6)
+    assert abs(bare.force_forward[1] - whole.force_forward[1]) > 1e-3 * abs(whole.force_forward[1])

@@ -40,11 +40,16 @@ end is counted with the crank's rotating masses at the crankpin (as for plain ro
 this module adds the remainder :math:`n_k\,(L_k - P)'' = n_k c_k D''` as the *link pin*
 part of the force. The rods' own moments of inertia about their centres of gravity are
 not modelled (as for the plain rods).
+
+An engine model keeps only what the rest of the model lacks (:class:`Articulation`: the
+master cylinder, the link rod lengths, the link pin radii and angles);
+:meth:`Articulation.rods` joins it with the crank radius, bank angles and offsets into
+the full geometry, :class:`ArticulatedRods`, which every function here takes.
 """
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -64,11 +69,11 @@ ALIAS_TOLERANCE = 1e-14
 
 @dataclass(frozen=True)
 class ArticulatedRods(ResultMixin):
-    r"""Geometry and link-rod masses of a master-and-link rod assembly on one crankpin.
+    r"""Geometry of a master-and-link rod assembly on one crankpin.
 
     Arrays have one entry per cylinder (numbering of ``docs/engine_file.md``); the entries
-    of the master cylinder describe the master rod (link pin radius, angle and big-end
-    mass there are zero).
+    of the master cylinder describe the master rod (link pin radius and angle there are
+    zero).
 
     Parameters
     ----------
@@ -87,18 +92,15 @@ class ArticulatedRods(ResultMixin):
     link_pin_angle : ndarray, shape (C,)
         :math:`\gamma_k`, angle of link pin k from the master rod's axis (big end toward
         small end), in the sense of rotation [rad]; 0 at ``master``.
-    link_big_end_mass : ndarray, shape (C,)
-        :math:`n_k`, big-end part of the two-mass split of link rod k (it moves with the
-        link pin) [kg]; 0 at ``master``.
-    offset : float
-        Crank offset plus wrist-pin offset of every cylinder [m] (sign of
-        :mod:`crankbalance.kinematics`).
+    offset : ndarray, shape (C,)
+        Lateral distance of each cylinder's wrist-pin path from the crank axis [m]
+        (crank offset plus wrist-pin offset, sign of :mod:`crankbalance.kinematics`).
 
     Notes
     -----
     The usual design puts link pin k at :math:`\gamma_k = \beta_k - \beta_m`, the angle
     between cylinder k and the master cylinder (:func:`default_link_pin_angles`); makers
-    move it by a degree or two to even out the strokes (:func:`dead_centres`).
+    move it by a degree or so to even out the strokes (:func:`even_stroke_angles`).
     """
 
     master: int
@@ -107,27 +109,19 @@ class ArticulatedRods(ResultMixin):
     rod_length: NDArray[np.float64]
     link_pin_radius: NDArray[np.float64]
     link_pin_angle: NDArray[np.float64]
-    link_big_end_mass: NDArray[np.float64]
-    offset: float = 0.0
+    offset: NDArray[np.float64]
 
     def __post_init__(self) -> None:
         count = np.asarray(self.bank_angle).size
-        for name in ("rod_length", "link_pin_radius", "link_pin_angle", "link_big_end_mass"):
-            value = np.asarray(getattr(self, name), dtype=float)
-            if value.shape != (count,):
-                raise InputError(name, value.tolist(), f"needs one entry per cylinder ({count})")
-            if not np.all(np.isfinite(value)):
-                raise InputError(name, value.tolist(), "must be finite numbers")
+        _check_rows(self, ("rod_length", "link_pin_radius", "link_pin_angle", "offset"), count)
         if isinstance(self.master, bool) or not 0 <= int(self.master) < count:
             raise InputError("master", self.master, f"must be a cylinder index 0..{count - 1}")
         if not (np.isfinite(self.crank_radius) and self.crank_radius > 0):
             raise InputError("crank_radius", self.crank_radius, "must be greater than zero")
         if np.any(np.asarray(self.link_pin_radius) < 0):
             raise InputError("link_pin_radius", self.link_pin_radius, "must not be negative")
-        if np.any(np.asarray(self.link_big_end_mass) < 0):
-            raise InputError("link_big_end_mass", self.link_big_end_mass, "must not be negative")
         m = int(self.master)
-        if self.link_pin_radius[m] != 0 or self.link_big_end_mass[m] != 0:
+        if self.link_pin_radius[m] != 0 or self.link_pin_angle[m] != 0:
             raise InputError(
                 "link_pin_radius",
                 float(self.link_pin_radius[m]),
@@ -147,6 +141,95 @@ class ArticulatedRods(ResultMixin):
         r""":math:`c_k = \rho_k e^{i\gamma_k}/l_m`, link pin k's place on the master rod [-]."""
         rho = np.asarray(self.link_pin_radius, dtype=float)
         return rho * np.exp(1j * np.asarray(self.link_pin_angle)) / self.rod_length[self.master]
+
+
+def _check_rows(obj: object, names: tuple[str, ...], count: int) -> None:
+    """Every named field one finite number per cylinder (a frozen dataclass's arrays)."""
+    for name in names:
+        value = np.asarray(getattr(obj, name), dtype=float)
+        if value.shape != (count,):
+            raise InputError(name, value.tolist(), f"needs one entry per cylinder ({count})")
+        if not np.all(np.isfinite(value)):
+            raise InputError(name, value.tolist(), "must be finite numbers")
+
+
+@dataclass(frozen=True)
+class Articulation(ResultMixin):
+    r"""The master-and-link rods of an engine model: what its other fields do not hold.
+
+    Parameters
+    ----------
+    master : int
+        Index of the master cylinder (0-based); its rod is the model's ``rod_length``.
+    link_rod_length : ndarray, shape (C,)
+        Centre distance of each link rod, link pin to wrist pin [m]; 0 at ``master``.
+    link_pin_radius : ndarray, shape (C,)
+        :math:`\rho_k`, distance of link pin k from the centre of the master rod's big
+        end [m]; 0 at ``master``.
+    link_pin_angle : ndarray, shape (C,)
+        :math:`\gamma_k`, angle of link pin k from the master rod's axis [rad]; 0 at
+        ``master``.
+
+    Notes
+    -----
+    The big-end mass of each link rod is the model's ``cylinder_rotating_mass`` (the
+    rotating part of each rod's two-mass split), counted in the throw's rotating mass;
+    see the module docstring.
+    """
+
+    master: int
+    link_rod_length: NDArray[np.float64]
+    link_pin_radius: NDArray[np.float64]
+    link_pin_angle: NDArray[np.float64]
+
+    def __post_init__(self) -> None:
+        count = np.asarray(self.link_rod_length).size
+        _check_rows(self, ("link_rod_length", "link_pin_radius", "link_pin_angle"), count)
+        if isinstance(self.master, bool) or not 0 <= int(self.master) < count:
+            raise InputError("master", self.master, f"must be a cylinder index 0..{count - 1}")
+        if self.link_rod_length[int(self.master)] != 0:
+            raise InputError(
+                "link_rod_length",
+                float(self.link_rod_length[int(self.master)]),
+                "the master cylinder has no link rod: its entry must be zero",
+            )
+
+    def rods(
+        self,
+        crank_radius: float,
+        rod_length: float,
+        bank_angle: ArrayLike,
+        offset: ArrayLike,
+    ) -> ArticulatedRods:
+        """The full geometry with the engine's crank, master rod, bank angles and offsets.
+
+        Parameters
+        ----------
+        crank_radius : float
+            Crank throw radius [m].
+        rod_length : float
+            Master rod centre distance [m].
+        bank_angle : array_like, shape (C,)
+            Bank angle of each cylinder [rad].
+        offset : array_like, shape (C,)
+            Lateral offset of each cylinder's wrist-pin path [m].
+
+        Returns
+        -------
+        ArticulatedRods
+            The assembly, checked (every rod reaches its wrist-pin path).
+        """
+        rods = np.array(self.link_rod_length, dtype=float)
+        rods[int(self.master)] = rod_length
+        return ArticulatedRods(
+            master=int(self.master),
+            crank_radius=float(crank_radius),
+            bank_angle=np.asarray(bank_angle, dtype=float),
+            rod_length=rods,
+            link_pin_radius=np.asarray(self.link_pin_radius, dtype=float),
+            link_pin_angle=np.asarray(self.link_pin_angle, dtype=float),
+            offset=np.broadcast_to(np.asarray(offset, dtype=float), rods.shape).copy(),
+        )
 
 
 def _reach_text(cylinder: int) -> str:
@@ -264,7 +347,7 @@ def piston_position(rods: ArticulatedRods, motion_: ArticulatedMotion) -> NDArra
 
 
 def _slider(
-    local: NDArray, local1: NDArray, local2: NDArray, rod: ArrayLike, offset: float
+    local: NDArray, local1: NDArray, local2: NDArray, rod: ArrayLike, offset: ArrayLike
 ) -> tuple[NDArray, NDArray, NDArray]:
     """Travel of a wrist pin and its first two derivatives from its big end in the
     cylinder's frame (``local = a + ib`` and the derivatives by the crank angle)."""
@@ -281,15 +364,16 @@ def _slider(
 
 def _kinematics(rods: ArticulatedRods, theta: NDArray) -> tuple[NDArray, ...]:
     """Big ends (M, C) complex and travels (M, C) with derivatives by the crank angle."""
-    r, e, m = rods.crank_radius, rods.offset, int(rods.master)
+    r, m = rods.crank_radius, int(rods.master)
+    e = np.asarray(rods.offset, dtype=float)
     turn = np.exp(1j * theta)[:, None]
     pin, pin1, pin2 = r * turn, 1j * r * turn, -r * turn
     axis = np.exp(1j * np.asarray(rods.bank_angle, dtype=float))[None, :]
     rod = np.asarray(rods.rod_length, dtype=float)
     # master piston: slider-crank on the crankpin
     um = axis[:, m : m + 1]
-    sm, sm1, sm2 = _slider(pin * um.conj(), pin1 * um.conj(), pin2 * um.conj(), rod[m], e)
-    rod_axis = (sm + 1j * e) * um - pin  # D = Q_m - P
+    sm, sm1, sm2 = _slider(pin * um.conj(), pin1 * um.conj(), pin2 * um.conj(), rod[m], e[m])
+    rod_axis = (sm + 1j * e[m]) * um - pin  # D = Q_m - P
     rod_axis1, rod_axis2 = sm1 * um - pin1, sm2 * um - pin2
     c = rods.link_factor[None, :]
     big, big1, big2 = pin + c * rod_axis, pin1 + c * rod_axis1, pin2 + c * rod_axis2
@@ -314,12 +398,16 @@ def reach_problem(rods: ArticulatedRods) -> int | None:
 
     Notes
     -----
-    The master rod reaches when :math:`l_m > r + |e|`. A link pin stays within
+    The master rod reaches when :math:`l_m > r + |e_m|`. A link pin stays within
     :math:`r + \\rho_k` of the crank axis, so :math:`l_k > r + \\rho_k + |e|` suffices;
     a shorter rod is refused although it might reach on the path it actually sweeps.
     """
     rod = np.asarray(rods.rod_length, dtype=float)
-    need = rods.crank_radius + np.asarray(rods.link_pin_radius, dtype=float) + abs(rods.offset)
+    need = (
+        rods.crank_radius
+        + np.asarray(rods.link_pin_radius, dtype=float)
+        + np.abs(np.asarray(rods.offset, dtype=float))
+    )
     short = np.flatnonzero(~(rod > need))
     return int(short[0]) if short.size else None
 
@@ -506,18 +594,22 @@ def harmonics(rods: ArticulatedRods, orders: int = 8) -> ArticulatedHarmonics:
 def inertia_force(
     rods: ArticulatedRods,
     reciprocating_mass: ArrayLike,
+    big_end_mass: ArrayLike,
     angle: ArrayLike,
     speed: float,
 ) -> NDArray[np.complex128]:
-    r"""Reciprocating inertia force of the assembly on the block versus crank angle, exactly.
+    r"""Inertia force of each cylinder's moving masses on the block versus crank angle, exactly.
 
     Parameters
     ----------
     rods : ArticulatedRods
-        The rod assembly (with the link rods' big-end masses).
+        The rod assembly.
     reciprocating_mass : array_like, shape (C,)
         Mass moving with each wrist pin: piston, wrist pin and the small-end part of the
         rod [kg].
+    big_end_mass : array_like, shape (C,)
+        Big-end part of each rod [kg]; a link rod's moves with its link pin (the master
+        rod's turns with the crankpin and adds nothing here).
     angle : array_like, shape (M,)
         Crank angles of the throw [rad].
     speed : float
@@ -525,8 +617,8 @@ def inertia_force(
 
     Returns
     -------
-    ndarray of complex, shape (M,)
-        :math:`-\sum_c m_c \ddot Q_c - \sum_k n_k(\ddot L_k - \ddot P)` as
+    ndarray of complex, shape (M, C)
+        :math:`-m_c \ddot Q_c - n_c(\ddot L_c - \ddot P)` of each cylinder c as
         :math:`F_z + iF_x` [N]; the masses turning with the crankpin (every big end
         included) are the rotating part, outside this force.
     """
@@ -535,8 +627,45 @@ def inertia_force(
     axis = np.exp(1j * np.asarray(rods.bank_angle, dtype=float))[None, :]
     pin2 = -rods.crank_radius * np.exp(1j * theta)[:, None]
     mass = np.asarray(reciprocating_mass, dtype=float)[None, :]
-    force = mass * s2 * axis + np.asarray(rods.link_big_end_mass)[None, :] * (big2 - pin2)
-    return np.asarray(-(float(speed) ** 2) * force.sum(axis=1), dtype=complex)
+    ends = np.asarray(big_end_mass, dtype=float)[None, :]
+    force = mass * s2 * axis + ends * (big2 - pin2)
+    return np.asarray(-(float(speed) ** 2) * force, dtype=complex)
+
+
+def cylinder_coefficients(rods: ArticulatedRods, orders: int = 8) -> NDArray[np.complex128]:
+    r"""Harmonic coefficients of each piston's normalised inertia, as a slider-crank's.
+
+    Parameters
+    ----------
+    rods : ArticulatedRods
+        The rod assembly.
+    orders : int
+        Highest harmonic order K [-].
+
+    Returns
+    -------
+    ndarray of complex, shape (C, K)
+        :math:`c_{n,c} = a_n - i b_n` with :math:`-\ddot s_c/(r\omega^2) = \sum_n
+        \mathrm{Re}(c_{n,c} e^{in\psi_c})`, :math:`\psi_c = \theta - \beta_c` [-]: the form
+        of :func:`crankbalance.kinematics.harmonic_coefficients` and of
+        :func:`crankbalance.shaking.cylinder_coefficients`, so a link piston takes the
+        place of a slider-crank row. The master's row is the slider-crank's.
+
+    Notes
+    -----
+    Every piston moves along its own axis, so its force per kilogram,
+    :math:`-\ddot s_c u_c`, has the forward phasor :math:`\tfrac{r}{2} c_{n,c}
+    e^{i(1-n)\beta_c}` (:func:`harmonics`), from which :math:`c_{n,c}` is read. The link
+    pins' own forces are not along a cylinder axis: they are the ``link_forward`` and
+    ``link_backward`` phasors of :func:`harmonics`.
+    """
+    h = harmonics(rods, orders)
+    n = h.orders[None, :]
+    beta = np.asarray(rods.bank_angle, dtype=float)[:, None]
+    return np.asarray(
+        (2.0 / rods.crank_radius) * h.piston_forward * np.exp(-1j * (1 - n) * beta),
+        dtype=complex,
+    )
 
 
 def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) -> NDArray:
@@ -571,11 +700,11 @@ def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) 
     """
     m = int(rods.master)
     links = np.arange(rods.cylinders) != m
-    target = 2.0 * rods.crank_radius if rods.offset == 0 else dead_centres(rods).stroke[m]
+    target = dead_centres(rods).stroke[m]
     start = np.asarray(rods.link_pin_angle, dtype=float)
 
     def excess(shift: NDArray) -> NDArray:
-        trial = _with_angles(rods, start + np.where(links, shift, 0.0))
+        trial = replace(rods, link_pin_angle=start + np.where(links, shift, 0.0))
         return dead_centres(trial).stroke - target
 
     low = np.full(rods.cylinders, -float(search))
@@ -601,17 +730,3 @@ def even_stroke_angles(rods: ArticulatedRods, search: float = np.radians(15.0)) 
         ):
             break
     return np.where(links, start + 0.5 * (low + high), 0.0)
-
-
-def _with_angles(rods: ArticulatedRods, angles: NDArray) -> ArticulatedRods:
-    """The same assembly with other link pin angles."""
-    return ArticulatedRods(
-        master=rods.master,
-        crank_radius=rods.crank_radius,
-        bank_angle=rods.bank_angle,
-        rod_length=rods.rod_length,
-        link_pin_radius=rods.link_pin_radius,
-        link_pin_angle=angles,
-        link_big_end_mass=rods.link_big_end_mass,
-        offset=rods.offset,
-    )

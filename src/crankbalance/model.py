@@ -35,7 +35,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .articulated import ArticulatedRods
+from .articulated import ArticulatedRods, Articulation
 from .results import ResultMixin
 
 
@@ -126,12 +126,13 @@ class EngineModel:
         The two-mass split of each conrod given by its mass, empty when none is.
     firing_order_given : bool
         False when the spec gave no firing order and ``firing_order`` is the cylinder order.
-    articulation : ArticulatedRods or None
-        Master-and-link rods of a radial (:mod:`crankbalance.articulated`); None when
-        every rod's big end is on its crankpin. When given, the reciprocating forces of
-        the cylinders follow the exact articulated motion, and the link rods' big ends
-        (counted in ``throw_rotating_mass`` like every big end) add their motion relative
-        to the crankpin.
+    articulation : Articulation or None
+        Master-and-link rods of a radial (:mod:`crankbalance.articulated`): the master
+        cylinder, link rod lengths, link pin radii and angles; None when every rod's big
+        end is on its crankpin. When given, the pistons follow the exact articulated
+        motion (:func:`crankbalance.shaking.cylinder_coefficients`), and the link rods'
+        big ends (``cylinder_rotating_mass``, counted in ``throw_rotating_mass`` like
+        every big end) add their motion relative to the crankpin.
     """
 
     name: str
@@ -152,7 +153,7 @@ class EngineModel:
     firing_order: tuple[int, ...]
     conrods: tuple[ConrodSplit, ...] = field(default=())
     firing_order_given: bool = True
-    articulation: ArticulatedRods | None = None
+    articulation: Articulation | None = None
 
     @property
     def rod_ratio(self) -> float:
@@ -192,6 +193,15 @@ class EngineModel:
         :math:`m_t y_t + \sum_c m_{b,c} a_c` [kg m], shape (T,): the lever arm of the
         rotating couple, with the big ends of side-by-side rods at their own positions."""
         return self.throw_rotating_mass * self.throw_position + self.throw_axial_moment
+
+    @property
+    def articulated_rods(self) -> ArticulatedRods | None:
+        """The full geometry of the master-and-link rods (None without ``articulation``)."""
+        if self.articulation is None:
+            return None
+        return self.articulation.rods(
+            self.crank_radius, self.rod_length, self.cylinder_bank, self.cylinder_offset
+        )
 
     def __post_init__(self) -> None:
         c = self.cylinder_bank.shape

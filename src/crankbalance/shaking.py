@@ -34,7 +34,10 @@ from dataclasses import dataclass
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from .articulated import harmonics, inertia_force
+from .articulated import cylinder_coefficients as articulated_coefficients
+from .articulated import harmonics as articulated_harmonics
+from .articulated import inertia_force as articulated_inertia_force
+from .errors import InputError
 from .kinematics import (
     CHUNK,
     KinematicsModel,
@@ -140,7 +143,8 @@ def free_forces(
         )
     )
     if model.articulation is not None:
-        fwd, bwd, cfwd, cbwd = articulated_phasors(model, orders)
+        link = _link_pin_phasors(model, orders)
+        fwd, bwd, cfwd, cbwd = fwd + link[0], bwd + link[1], cfwd + link[2], cbwd + link[3]
     turn = np.exp(1j * model.throw_angle)
     rotating = accel * model.throw_rotating_mass
     # the big ends of side-by-side rods at their own axial places (exact zeros otherwise)
@@ -163,7 +167,9 @@ def cylinder_coefficients(
 
     Row c belongs to cylinder c (its own offset ``model.cylinder_offset[c]``); the phasor
     sums of :func:`free_forces` weight each cylinder by its own row. This is the one place
-    the per-cylinder kinematics enters the free forces.
+    the per-cylinder kinematics enters the free forces. With master-and-link rods
+    (``model.articulation``) the rows are those of the exact articulated piston motion
+    (:func:`crankbalance.articulated.cylinder_coefficients`; exact kinematics only).
 
     Parameters
     ----------
@@ -181,6 +187,8 @@ def cylinder_coefficients(
         (:func:`crankbalance.kinematics.harmonic_coefficients`) [-].
     """
     mode = kinematics or model.kinematics
+    if model.articulation is not None:
+        return _articulated_rows(model, orders, mode)
     ratio = model.cylinder_offset / model.crank_radius
     shared, index = np.unique(ratio, return_inverse=True)
     rows = [
@@ -560,14 +568,7 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
         Its couple :math:`\\sum y F` about the crankshaft mid-point [N·m].
     """
     if model.articulation is not None:
-        phi, y = _single_throw(model)
-        force = inertia_force(
-            model.articulation,
-            model.reciprocating_mass,
-            np.asarray(angle, dtype=float) + phi,
-            model.speed,
-        )
-        return force, y * force
+        return _articulated_time_domain(model, angle)
     theta = np.asarray(angle, dtype=float)[:, None]
     psi = theta + (model.cylinder_angle - model.cylinder_bank)[None, :]
     acc = piston_acceleration(
@@ -578,53 +579,58 @@ def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, ND
 
 
 # --------------------------------------------------------------------------- articulated rods
-def articulated_phasors(
-    model: EngineModel, orders: int
-) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    r"""Reciprocating phasors of a radial with master-and-link rods (``model.articulation``).
+def _articulated_rows(model: EngineModel, orders: int, mode: str) -> NDArray[np.complex128]:
+    """:func:`cylinder_coefficients` of a radial with master-and-link rods: every piston's
+    own coefficients from its exact motion
+    (:func:`crankbalance.articulated.cylinder_coefficients`)."""
+    rods = model.articulated_rods
+    assert rods is not None
+    if mode != "exact":
+        raise InputError(
+            "kinematics",
+            mode,
+            "master-and-link rods are modelled with the exact kinematics only: 'exact'",
+        )
+    _single_throw(model)
+    return articulated_coefficients(rods, orders)
 
-    Parameters
-    ----------
-    model : EngineModel
-        A one-throw engine whose ``articulation`` is set.
-    orders : int
-        Highest harmonic order K.
 
-    Returns
-    -------
-    force_forward, force_backward, couple_forward, couple_backward : ndarray, shape (K,)
-        Complex phasors :math:`F_n^{\pm}` [N] and :math:`C_n^{\pm}` [N·m] of the pistons
-        and of the link rods' big ends beyond the crankpin
-        (:func:`crankbalance.articulated.harmonics`), at crank angle 0 of the throw.
+def _link_pin_phasors(model: EngineModel, orders: int) -> tuple[NDArray, ...]:
+    r"""Forward and backward phasors of force [N] and couple [N·m] of the link rods' big
+    ends beyond the crankpin: :math:`-n_k(\ddot L_k - \ddot P)`, with :math:`n_k` the
+    rods' big-end masses (``cylinder_rotating_mass``), turned by the throw angle
+    :math:`\varphi` as :math:`e^{\pm in\varphi}`, the couple at each rod's axial position."""
+    rods = model.articulated_rods
+    assert rods is not None
+    phi, _y = _single_throw(model)
+    h = articulated_harmonics(rods, orders)
+    turn = np.exp(1j * h.orders * phi)
+    mass = model.speed**2 * model.cylinder_rotating_mass
+    lever = mass * model.cylinder_position
+    fwd, bwd = mass @ h.link_forward * turn, mass @ h.link_backward * np.conj(turn)
+    cfwd, cbwd = lever @ h.link_forward * turn, lever @ h.link_backward * np.conj(turn)
+    return fwd, bwd, cfwd, cbwd
 
-    Notes
-    -----
-    A throw at angle :math:`arphi` turns the phasors of the articulated assembly (taken
-    at its own crank angle) by :math:`e^{\pm inarphi}`; the couple is the force times
-    the throw's axial position.
-    """
-    art = model.articulation
-    if art is None:
-        raise ValueError("articulated_phasors: the model has no articulated rods")
-    phi, y = _single_throw(model)
-    h = harmonics(art, orders)
-    n = h.orders
-    w2 = model.speed**2
-    fwd = w2 * (
-        model.reciprocating_mass @ h.piston_forward + art.link_big_end_mass @ h.link_forward
+
+def _articulated_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, NDArray]:
+    """:func:`exact_time_domain` of a radial with master-and-link rods."""
+    rods = model.articulated_rods
+    assert rods is not None
+    phi, _y = _single_throw(model)
+    force = articulated_inertia_force(
+        rods,
+        model.reciprocating_mass,
+        model.cylinder_rotating_mass,
+        np.asarray(angle, dtype=float) + phi,
+        model.speed,
     )
-    bwd = w2 * (
-        model.reciprocating_mass @ h.piston_backward + art.link_big_end_mass @ h.link_backward
-    )
-    fwd = fwd * np.exp(1j * n * phi)
-    bwd = bwd * np.exp(-1j * n * phi)
-    return fwd, bwd, y * fwd, y * bwd
+    return force.sum(axis=1), (force * model.cylinder_position[None, :]).sum(axis=1)
 
 
 def _single_throw(model: EngineModel) -> tuple[float, float]:
     """Angle [rad] and axial position [m] of the one throw of an articulated radial."""
-    if model.throws != 1 or model.articulation is None:
-        raise ValueError("master-and-link rods sit on one throw (a radial)")
-    if model.articulation.cylinders != model.cylinders:
-        raise ValueError("the articulated rods need one entry per cylinder of the model")
+    if model.throws != 1:
+        raise InputError(
+            "articulation", model.throws, "master-and-link rods sit on one throw (a radial)"
+        )
     return float(model.throw_angle[0]), float(model.throw_position[0])

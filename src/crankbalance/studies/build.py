@@ -12,7 +12,7 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..articulated import ArticulatedRods, default_link_pin_angles
+from ..articulated import Articulation, default_link_pin_angles
 from ..errors import InputError
 from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
 from ..spec import EngineSpec, MassOverride
@@ -48,7 +48,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
-        articulation=_articulation(spec, banks, big_ends),
+        articulation=_articulation(spec, banks),
     )
 
 
@@ -262,10 +262,9 @@ def _rod_lengths(spec: EngineSpec, n: int) -> NDArray:
     return rods
 
 
-def _articulation(spec: EngineSpec, banks: NDArray, big_ends: NDArray) -> ArticulatedRods | None:
+def _articulation(spec: EngineSpec, banks: NDArray) -> Articulation | None:
     """The master-and-link rods of ``[crank_train.articulated]`` (None without it)."""
-    ct = spec.crank_train
-    art = ct.articulated
+    art = spec.crank_train.articulated
     if art is None:
         return None
     n = banks.size
@@ -276,13 +275,9 @@ def _articulation(spec: EngineSpec, banks: NDArray, big_ends: NDArray) -> Articu
         if art.link_pin_angles is not None
         else default_link_pin_angles(banks, master)
     )
-    return ArticulatedRods(
+    return Articulation(
         master=master,
-        crank_radius=ct.crank_radius,
-        bank_angle=np.asarray(banks, dtype=float),
-        rod_length=_rod_lengths(spec, n),
+        link_rod_length=np.where(links, art.link_rod_length, 0.0),
         link_pin_radius=np.where(links, art.link_pin_radius, 0.0),
         link_pin_angle=np.where(links, angles, 0.0),
-        link_big_end_mass=np.where(links, big_ends, 0.0),
-        offset=ct.pin_offset + ct.crank_offset,
     )
