@@ -371,11 +371,11 @@ def test_vr6_preset_matches_hand_sum_with_its_pin_split() -> None:
     assert_phasors(model, hand, "vr6 preset")
 
 
-@pytest.mark.parametrize("preset", ["vr6", "w8", "w12-vw", "w16"])
+@pytest.mark.parametrize("preset", ["VR6 at even firing", "vr6", "w8", "w12-vw", "w16"])
 def test_phasors_against_exact_time_domain(preset: str) -> None:
     """The phasors of 40 orders, summed into curves, are the force and couple of the
     exact slider-crank acceleration of every cylinder (shaking.exact_time_domain)."""
-    model = build_model(load_engine(preset))
+    model = build_model(spec(VR6) if preset.startswith("VR6") else load_engine(preset))
     orders = 40
     f = free_forces(model, orders)
     theta = np.linspace(0, 2 * np.pi, 97)
@@ -431,10 +431,21 @@ def test_vr_keys_refused_elsewhere() -> None:
 def test_explorer_refuses_vr() -> None:
     with pytest.raises(InputError) as info:
         problem("vr", 6, 4)
-    assert "does not enumerate VR engines" in info.value.allowed
+    assert "not enumerated by the explorer" in info.value.allowed
 
 
 def test_presets_listed() -> None:
     names = list_presets()
     for name in ("vr6", "w8", "w12-vw", "w16", "w12"):
         assert name in names
+
+
+def test_explore_command_refuses_vr(capsys: pytest.CaptureFixture[str]) -> None:
+    """`crankbalance explore --layout vr`: one line naming the option, exit status 2."""
+    from crankbalance.cli import main
+
+    with pytest.raises(SystemExit) as stop:
+        main(["explore", "--layout", "vr", "--cylinders", "6"])
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and err.count("\n") == 1
+    assert "--layout = 'vr': is not enumerated by the explorer" in err

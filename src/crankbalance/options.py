@@ -754,6 +754,8 @@ def allowed(model: type[StudyOptions], name: str) -> str:
         return f"{count} values, each {_range_words(quantity, _bounds(inner))}"
     if base is str:
         return "a text"
+    if get_origin(base) is Literal:
+        return "one of " + ", ".join(str(choice) for choice in get_args(base))
     if any(getattr(m, "func", None) is _zero_or_length for m in _metadata(model, name)):
         return ZERO_OR_LENGTH
     if name == "angle" and model is BalanceOptions:

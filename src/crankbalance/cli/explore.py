@@ -219,6 +219,8 @@ def explore(
     from ..options import ExploreOptions
     from ..results import require_finite
 
+    if options.get("layout") == "vr":
+        raise InputError("--layout", "vr", orders.VR_REFUSED)
     o = parse_settings(ExploreOptions, {**options, "filter": filter_text})
     if o.scheduler is not None and o.workers is not None:
         raise InputError("--workers", options["workers"], "not with --scheduler")
