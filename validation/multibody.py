@@ -301,7 +301,7 @@ def solve(
         ground_joints.append((joint, np.eye(3), np.array(position)))
 
     offsets, axial = model.cylinder_offset, model.cylinder_position
-    art = model.articulation
+    art = model.articulated_rods  # the full geometry: rod lengths, link pins
     lengths = np.full(model.cylinders, l) if art is None else np.asarray(art.rod_length)
     # the master rod first: the link rods hang on it
     order = list(range(model.cylinders))
