@@ -9,12 +9,15 @@ the same engine with its pin split into two throws by hand (the issue's workarou
 from __future__ import annotations
 
 import math
+from dataclasses import replace
 
 import numpy as np
 import pytest
+from scipy.optimize import minimize_scalar
 
 from crankbalance.balancing import CounterweightOptions, balance, engine_batch
 from crankbalance.errors import InputError
+from crankbalance.io.engine_file import load_engine
 from crankbalance.kinematics import harmonic_coefficients, piston_position
 from crankbalance.model import EngineModel
 from crankbalance.shaking import (
@@ -25,6 +28,9 @@ from crankbalance.shaking import (
     phasor_curve,
     reciprocating_phasors,
 )
+from crankbalance.spec import EngineSpec, spec_from_dict
+from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import analyze
 
 
 def make_model(
@@ -298,3 +304,209 @@ def test_batch_takes_per_cylinder_offsets() -> None:
         np.testing.assert_allclose(
             result.counterweights.moments[k], one.counterweights.moments, rtol=1e-9, atol=1e-15
         )
+
+
+# --------------------------------------------------------------------------- engine file
+def spec_of(name: str, **crank_train: object) -> EngineSpec:
+    data = load_engine(name).to_file_dict()
+    data["crank_train"].update(crank_train)
+    return spec_from_dict(data)
+
+
+def test_bank_offsets_go_to_the_cylinders_of_their_bank() -> None:
+    """vee: bank A = cylinders 1..T, B = T+1..2T; W: bank after bank; boxer: odd cylinders
+    (bank -90 deg) and even ones (+90 deg); pin and crank offsets added to every one."""
+    vee = build_model(spec_of("v6-90", bank_offsets=["1 mm", "-2 mm"], pin_offset="0.5 mm"))
+    np.testing.assert_allclose(vee.cylinder_offset, [1.5e-3] * 3 + [-1.5e-3] * 3, atol=1e-15)
+    crank = [f"{a} deg" for a in np.degrees(build_model(load_engine("w12")).throw_angle)]
+    w = build_model(spec_of("w12", bank_offsets=["1 mm", "0 mm", "-1 mm"], throw_angles=crank))
+    np.testing.assert_allclose(w.cylinder_offset, np.repeat([1e-3, 0.0, -1e-3], 4), atol=1e-15)
+    assert np.all(np.diff(np.degrees(w.cylinder_bank)[::4]) > 0), "banks -V, 0, +V"
+    boxer = build_model(spec_of("boxer4", bank_offsets=["2 mm", "-3 mm"]))
+    np.testing.assert_allclose(boxer.cylinder_offset, [2e-3, -3e-3] * 2, atol=1e-15)
+    np.testing.assert_allclose(np.degrees(boxer.cylinder_bank), [-90, 90] * 2)
+    each = build_model(spec_of("inline3", cylinder_offsets=["1 mm", "2 mm", "-4 mm"]))
+    np.testing.assert_allclose(each.cylinder_offset, [1e-3, 2e-3, -4e-3], atol=1e-15)
+
+
+@pytest.mark.parametrize(
+    ("name", "fields", "field", "words"),
+    [
+        ("inline4", {"bank_offsets": ["1 mm"]}, "bank_offsets", "cylinder_offsets"),
+        ("v6-90", {"bank_offsets": ["1 mm"]}, "bank_offsets", "one offset per bank: 2"),
+        (
+            "v6-90",
+            {"bank_offsets": ["1 mm", "1 mm"], "cylinder_offsets": ["1 mm"] * 6},
+            "cylinder_offsets",
+            "not both",
+        ),
+        ("inline4", {"cylinder_offsets": ["1 mm"] * 3}, "cylinder_offsets", "4 for this"),
+        ("v2-90", {"rod_positions": ["10 mm"]}, "rod_positions", "one length per cylinder"),
+        ("inline3", {"cylinder_offsets": ["0 mm", "0 mm", "-110 mm"]}, "cylinder_offsets", "rod"),
+    ],
+)
+def test_bad_offsets_and_rod_positions_are_refused(
+    name: str, fields: dict[str, object], field: str, words: str
+) -> None:
+    with pytest.raises(InputError) as error:
+        spec_of(name, **fields)
+    assert error.value.field == f"crank_train.{field}"
+    assert words in str(error.value)
+
+
+def test_rod_positions_need_the_conrod_to_place_the_big_end() -> None:
+    data = load_engine("v2-90").to_file_dict()
+    data["crank_train"]["rod_positions"] = ["-10 mm", "10 mm"]
+    data["masses"] = {"reciprocating": "400 g", "rotating": "1.5 kg"}
+    with pytest.raises(InputError) as error:
+        build_model(spec_from_dict(data))
+    assert error.value.field == "crank_train.rod_positions"
+    assert "conrod" in str(error.value)
+
+
+def tdc_crank_angles(m: EngineModel) -> np.ndarray:
+    """Crank angle of each cylinder's top dead centre, found numerically: the piston
+    position at its largest (no formula of the TDC angle used)."""
+    out = []
+    for c in range(m.cylinders):
+        shift = m.cylinder_angle[c] - m.cylinder_bank[c]
+
+        def minus_s(theta: float, shift: float = shift, c: int = c) -> float:
+            return -float(
+                piston_position(theta + shift, m.crank_radius, m.rod_length, m.cylinder_offset[c])
+            )
+
+        grid = np.linspace(0, 2 * np.pi, 3601)
+        start = grid[np.argmin([minus_s(t) for t in grid])]
+        found = minimize_scalar(
+            minus_s, bracket=(start - 0.01, start, start + 0.01), tol=1e-12, method="brent"
+        )
+        out.append(found.x)
+    return np.array(out)
+
+
+@pytest.mark.parametrize(
+    ("name", "fields"),
+    [
+        ("inline3", {"cylinder_offsets": ["0 mm", "6 mm", "-9 mm"]}),
+        ("inline4", {"cylinder_offsets": ["3 mm", "0 mm", "-2 mm", "8 mm"]}),
+        ("boxer4", {"bank_offsets": ["4 mm", "-7 mm"]}),
+    ],
+)
+def test_even_firing_stays_even_with_offset_cylinders(name: str, fields: dict[str, object]) -> None:
+    """The k-th cylinder to fire reaches its top dead centre k firing intervals after the
+    first (modulo a turn), each piston's TDC found numerically from its position."""
+    spec = spec_of(name, **fields)
+    m = build_model(spec)
+    n = m.cylinders
+    interval = 4 * np.pi / n
+    order = list(m.firing_order)
+    tdc = tdc_crank_angles(m)
+    for k, cylinder in enumerate(order):
+        gap = tdc[cylinder - 1] - tdc[order[0] - 1] - k * interval
+        assert abs(math.remainder(gap, 2 * np.pi)) < 1e-7, (name, cylinder, np.degrees(gap))
+    # without the TDC correction the firing would be uneven by asin(e / (l + r))
+    assert np.ptp(m.cylinder_offset) > 0
+
+
+def test_offsets_on_a_shared_pin_cannot_fire_evenly() -> None:
+    with pytest.raises(InputError) as error:
+        build_model(spec_of("v8-flatplane", bank_offsets=["3 mm", "-3 mm"]))
+    assert error.value.field == "crank_train.firing_order"
+    assert "top dead centres" in str(error.value)
+
+
+def test_moment_reference_moves_every_couple_by_the_force() -> None:
+    r"""About a point p from the mid-point: C_p = sum (y - p) F = C - p F, each phasor and the
+    rotating couple; the forces and the counterweight masses do not change."""
+    p = 0.05
+    mid = build_model(load_engine("v8-crossplane"))
+    moved = build_model(spec_of("v8-crossplane", moment_reference="50 mm"))
+    assert moved.moment_reference == pytest.approx(p, abs=1e-15)
+    a, b = free_forces(mid, 6), free_forces(moved, 6)
+    scale = float(mid.reciprocating_mass.sum() * mid.crank_radius * mid.speed**2)
+    np.testing.assert_allclose(b.force_forward, a.force_forward, rtol=0, atol=1e-12 * scale)
+    np.testing.assert_allclose(
+        b.couple_forward, a.couple_forward - p * a.force_forward, rtol=0, atol=1e-12 * scale
+    )
+    np.testing.assert_allclose(
+        b.couple_backward, a.couple_backward - p * a.force_backward, rtol=0, atol=1e-12 * scale
+    )
+    assert b.rotating_couple == pytest.approx(a.rotating_couple - p * a.rotating_force)
+    for scope in ("whole", "halves"):
+        options = CounterweightOptions(0.04, balance_factor=0.5, scope=scope)
+        x, y = balance(mid, options).counterweights, balance(moved, options).counterweights
+        assert x is not None and y is not None
+        np.testing.assert_allclose(y.mass, x.mass, rtol=1e-9)
+        np.testing.assert_allclose(y.position, x.position - p, atol=1e-12)
+    text = analyze(moved).to_dict()["conventions"]
+    assert "50 mm from the crankshaft mid-point" in text
+
+
+def test_custom_positions_are_taken_from_the_crank_mid_point() -> None:
+    """A custom crank measured from its nose (all positions shifted) has the moments of the
+    same crank measured from its middle; moment_reference then moves the point."""
+    data = load_engine("v6-60").to_file_dict()
+    for throw in data["crank_train"]["throw"]:
+        throw["position"] = f"{float(throw['position'].split()[0]) + 300.0} mm"
+    nose = build_model(spec_from_dict(data))
+    middle = build_model(load_engine("v6-60"))
+    np.testing.assert_allclose(nose.throw_position, middle.throw_position, atol=1e-12)
+    a, b = free_forces(nose, 4), free_forces(middle, 4)
+    np.testing.assert_allclose(a.couple_forward, b.couple_forward, atol=1e-9)
+
+
+def test_ducati_and_harley_presets_by_hand() -> None:
+    """Ducati 916: the first-order couple of rods 20 mm apart on a 90-degree common pin is
+    a backward couple of m r w^2 a (a = 10 mm; hand calculation above); the Harley's
+    knife-and-fork rods in one plane leave no couple at all."""
+    d = build_model(load_engine("ducati-916"))
+    np.testing.assert_allclose(d.cylinder_axial, [-0.01, 0.01])
+    f = free_forces(d, 2)
+    mrw2 = d.reciprocating_mass[0] * d.crank_radius * d.speed**2
+    assert f.moment_amplitude[0] == pytest.approx(mrw2 * 0.01, rel=1e-12)
+    assert 150 < f.moment_amplitude[0] < 250, "the issue's case: 191 N m"
+    h = build_model(load_engine("harley-45"))
+    assert np.all(h.cylinder_axial == 0.0)
+    assert np.all(free_forces(h, 8).moment_amplitude == 0.0)
+    engine = analyze("ducati-916").to_dict()["engine"]
+    assert engine["cylinder_axial_m"] == [-0.01, 0.01]
+    assert engine["cylinder_offset_m"] == [0.0, 0.0]
+
+
+def test_explorer_merits_take_per_cylinder_offsets_and_a_moved_reference() -> None:
+    """The explorer's batch columns equal the one-engine analysis and solver for a W12 whose
+    cylinders have their own offsets and whose moments are taken 30 mm off its middle."""
+    from crankbalance.balancing import ShaftOptions
+    from crankbalance.explore.merit import merit
+
+    from .test_explore_merit import random_candidates
+
+    base = build_model(load_engine("w12"))
+    topology = replace(
+        base,
+        cylinder_offset=np.linspace(-0.004, 0.005, base.cylinders),
+        throw_position=base.throw_position - 0.03,
+    )
+    cands = random_candidates(topology, 4, seed=5)
+    shaft = ShaftOptions(cg_radius=0.03, length=0.2)
+    cw = CounterweightOptions(cg_radius=topology.crank_radius, angle="optimal", balance_factor=0.4)
+    out = merit(cands, target="secondary", shafts=shaft, balance_factor=0.4)
+    scale = float(topology.reciprocating_mass.sum() * topology.crank_radius * topology.speed**2)
+    for i in range(cands.size):
+        model = replace(topology, throw_angle=cands.throw_angle[i])
+        f = free_forces(model, 8)
+        for k, n in enumerate(f.orders):
+            assert out[f"F{n}_N"][i] == pytest.approx(f.force_amplitude[k], abs=1e-9 * scale)
+            assert out[f"M{n}_Nm"][i] == pytest.approx(f.moment_amplitude[k], abs=1e-9 * scale)
+        one = balance(model, cw, shaft, shaft, 8)
+        assert one.counterweights is not None
+        assert out["cw_mass_kg"][i] == pytest.approx(one.counterweights.mass.sum(), rel=1e-7)
+    # the offsets matter: the same cranks with one offset give other forces
+    plain = merit(
+        replace(cands, topology=replace(topology, cylinder_offset=np.zeros(base.cylinders))),
+        target="secondary",
+        shafts=shaft,
+        balance_factor=0.4,
+    )
+    assert np.abs(plain["F1_N"] - out["F1_N"]).max() > 1e-4 * scale

@@ -95,19 +95,22 @@ def hand_phasors(
 def vr6_by_hand(e: float, split: float | None = None) -> list[tuple[float, ...]]:
     """The VR6 of :data:`VR6` written out cylinder by cylinder: odd cylinders in row A
     (-7.5 deg, offset -e), even in row B (+7.5 deg, +e), 45 mm apart from the crank's
-    mid-point; firing order 1-5-3-6-2-4 every 120 deg; each pin at beta + asin(e/(l+r)) - t
-    (or, given a split, at -t -+ split/2)."""
+    mid-point; firing order 1-5-3-6-2-4 every 120 deg after cylinder 1, which is at top dead
+    centre at crank angle d1 = asin(-e/(l+r)); each pin at beta + asin(e/(l+r)) - d1 - t
+    (or, given a split, at -t -+ split/2, turned so that cylinder 1's pin is at -7.5 deg,
+    where even firing puts it)."""
     r, l, p = 0.04515, 0.164, 0.045
     fire = {1: 0, 5: 120, 3: 240, 6: 360, 2: 480, 4: 600}
+    first = math.asin(-e / (l + r))
     rows = []
     for c in range(1, 7):
         sign = -1 if c % 2 else 1
         beta = sign * 7.5 * DEG
         ec = sign * e
         if split is None:
-            phi = beta + math.asin(ec / (l + r)) - fire[c] * DEG
+            phi = beta + math.asin(ec / (l + r)) - first - fire[c] * DEG
         else:
-            phi = sign * split / 2 - fire[c] * DEG
+            phi = sign * split / 2 - fire[c] * DEG + (split / 2 - 7.5 * DEG)
         rows.append((0.8, phi, beta, ec, (c - 3.5) * p))
     return rows
 
@@ -303,24 +306,22 @@ def test_vr6_equals_six_hand_throws_with_offsets() -> None:
 
 
 def test_vr6_order_3_closed_form() -> None:
-    """Order 3 of the VR6 at even firing: each row's cylinders fire at multiples of 120 deg,
-    so F3+ = 3 m (3w)^2 [S3(-e) e^{i(-3 d - v/2)} + S3(e) e^{i(3 d + v/2)}] and
-    F3- = 3 m (3w)^2 [S-3(-e) e^{i(3 d - v/2)} + S-3(e) e^{i(-3 d + v/2)}], d = asin(e/(l+r)),
+    """Order 3 of the VR6 at even firing: each row's cylinders fire at multiples of 120 deg
+    after cylinder 1 (at top dead centre at crank angle d1 = -d, d = asin(e/(l+r))), so
+    F3+ = 3 m (3w)^2 [S3(-e) e^{i(3(-d - d1) - v/2)} + S3(e) e^{i(3(d - d1) + v/2)}] and
+    F3- = 3 m (3w)^2 [S-3(-e) e^{i(-3(-d - d1) - v/2)} + S-3(e) e^{i(-3(d - d1) + v/2)}],
     S_n the piston position's harmonics (hand FFT); zero without offset (no odd harmonics)."""
     r, l, e, v = 0.04515, 0.164, 0.0125, 15 * DEG
     model = build_model(spec(VR6))
     w = model.speed
     d = math.asin(e / (l + r))
+    d1 = -d
     sa, sb = position_harmonics(r, l, -e), position_harmonics(r, l, e)
     k = 3 * 0.8 * (3 * w) ** 2
-    fwd = k * (
-        sa[ORDERS + 3] * np.exp(1j * (-3 * d - v / 2))
-        + sb[ORDERS + 3] * np.exp(1j * (3 * d + v / 2))
-    )
-    bwd = k * (
-        sa[ORDERS - 3] * np.exp(1j * (3 * d - v / 2))
-        + sb[ORDERS - 3] * np.exp(1j * (-3 * d + v / 2))
-    )
+    row_a, row_b = np.exp(1j * (3 * (-d - d1) - v / 2)), np.exp(1j * (3 * (d - d1) + v / 2))
+    fwd = k * (sa[ORDERS + 3] * row_a + sb[ORDERS + 3] * row_b)
+    row_a, row_b = np.exp(1j * (-3 * (-d - d1) - v / 2)), np.exp(1j * (-3 * (d - d1) + v / 2))
+    bwd = k * (sa[ORDERS - 3] * row_a + sb[ORDERS - 3] * row_b)
     f = free_forces(model, ORDERS)
     scale = 0.8 * r * w**2
     assert abs(f.force_forward[2] - fwd) < 1e-9 * scale
@@ -333,13 +334,17 @@ def test_vr6_order_3_closed_form() -> None:
 def w_by_hand(preset: str) -> tuple[EngineModel, list[tuple[float, ...]]]:
     """A W preset cylinder by cylinder: rows -V/2 -+ v/2 (bank 1, cylinders 1..n/2) and
     +V/2 -+ v/2 (bank 2), odd cylinders of a bank in row A (offset -e), pairs at one place,
-    fired every 720/n deg in the preset's order, pins at beta + asin(e/(l+r)) - t."""
+    fired every 720/n deg in the preset's order after the first, which is at top dead
+    centre at crank angle d1 = asin(e1/(l+r)); pins at beta + asin(e/(l+r)) - d1 - t."""
     data = load_engine(preset)
     ct = data.crank_train
     model = build_model(data)
     n, half = ct.cylinder_count, ct.cylinder_count // 2
     assert ct.bank_angle is not None and ct.vr_angle is not None and ct.crank_pitch
     fire = {c: k * 4 * math.pi / n for k, c in enumerate(ct.firing_order or [])}
+    one = (ct.firing_order or [1])[0]  # row A or B of the first to fire, by its place k
+    e1 = (-1 if ((one - 1) % half) % 2 == 0 else 1) * ct.bore_offset
+    first = math.asin(e1 / (ct.rod_length + ct.crank_radius))
     rows = []
     for c in range(1, n + 1):
         k = (c - 1) % half  # place along the crank
@@ -347,7 +352,7 @@ def w_by_hand(preset: str) -> tuple[EngineModel, list[tuple[float, ...]]]:
         centre = (-1 if c <= half else 1) * ct.bank_angle / 2
         beta = centre + sign * ct.vr_angle / 2
         e = sign * ct.bore_offset
-        phi = beta + math.asin(e / (ct.rod_length + ct.crank_radius)) - fire[c]
+        phi = beta + math.asin(e / (ct.rod_length + ct.crank_radius)) - first - fire[c]
         m = float(model.reciprocating_mass[c - 1])
         rows.append((m, phi, beta, e, (k - (half - 1) / 2) * ct.crank_pitch))
     return model, rows
@@ -402,7 +407,8 @@ def test_phasors_against_exact_time_domain(preset: str) -> None:
         ({"pin_split": "200 deg"}, "crank_train.pin_split", "[0, 180)"),
         ({"bank_angle": None}, "crank_train.bank_angle", "required for layout 'vr'"),
         ({"cylinders": 1}, "crank_train.cylinders", "at least 2"),
-        ({"bore_offset": "130 mm"}, "crank_train.rod_length", "bore offset included"),
+        ({"bore_offset": "130 mm"}, "crank_train.bore_offset", "leaves no rod"),
+        ({"bank_offsets": ["1 mm", "2 mm"]}, "crank_train.bank_offsets", "bore_offset"),
     ],
 )
 def test_vr_refusals(train: dict[str, Any], field: str, words: str) -> None:

@@ -404,6 +404,13 @@ def _throw_targets(model: EngineModel, balance_factor: float) -> tuple[NDArray, 
     return force, couple
 
 
+def _middle(throw_position: NDArray) -> float:
+    """The crank's mid-point [m]: the middle of the throws' extent, measured from the moment
+    reference point (0 unless the engine file moves the reference; minus
+    ``EngineModel.moment_reference``)."""
+    return 0.5 * float(throw_position.min() + throw_position.max())
+
+
 def _throw_pitch(throw_position: NDArray) -> float | None:
     """Smallest non-zero axial distance between throws [m], None without one."""
     if throw_position.size > 1:
@@ -418,7 +425,8 @@ def _parts(model: EngineModel, scope: str, throw_of_web: NDArray) -> list[tuple[
     """(throw mask, web mask) of each part the counterweights must balance on its own."""
     if scope == "whole":
         return [(np.ones(model.throws, bool), np.ones(throw_of_web.size, bool))]
-    y = model.throw_position
+    # halves of the crank about its own middle (not the moment reference point)
+    y = model.throw_position - _middle(model.throw_position)
     if np.any(np.abs(y) < 1e-12) or model.throws < 2:
         raise InputError(
             "counterweights.scope",
@@ -553,7 +561,7 @@ def solve_counterweights(
             np.where(mass > 0, direction, 0.0),
         )
     opposite = model.throw_angle[throw_of_web] + np.pi
-    side = np.sign(np.round(y / length, 12))
+    side = np.sign(np.round((y - _middle(model.throw_position)) / length, 12))
     if options.angle == "optimal":
         alpha, m_c = _optimal_pattern(a, b, opposite, side)
     else:
@@ -1192,7 +1200,7 @@ def counterweight_angle_sweep(
     a = np.array([np.ones_like(y), y / length], dtype=complex)
     b = -np.array([target.sum(), target_couple.sum() / length])
     opposite = model.throw_angle[throw_of_web] + np.pi
-    side = np.sign(np.round(y / length, 12))
+    side = np.sign(np.round((y - _middle(model.throw_position)) / length, 12))
     moment, residual = pattern_masses(a, b, opposite, side, angles)
     return AngleSweep(np.asarray(angles, dtype=float), np.abs(moment) / options.cg_radius, residual)
 
@@ -2042,7 +2050,8 @@ def _counterweights_batch(
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
             opposite = batch.throw_angle[engines][:, webs.throw] + np.pi
-            side = np.sign(np.round(normal, 12))
+            middle = _middle(topo.throw_position) / length[group[0]]
+            side = np.sign(np.round(normal - middle, 12))
             if angle is None and options.angle == "optimal":
                 turn, m_c = _optimal_patterns(a, b, opposite, side)
             else:

@@ -71,6 +71,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
+from .format import moment_point
 from .results import ResultMixin
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -466,7 +467,11 @@ def curves_figure(
         col=1,
     )
     fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
-    name = "moments about the mid-point" if quantity == "moment" else "forces"
+    name = "forces"
+    if quantity == "moment":
+        name = f"moments about {moment_point(analysis.model.moment_reference)}".replace(
+            "the crankshaft mid-point", "the mid-point"
+        )
     fig.update_layout(
         template=TEMPLATE,
         title=figure_title(f"Free {name}", analysis.model.name),
@@ -619,6 +624,7 @@ def crank_3d(
     pos = m.throw_position
     span = float(np.ptp(pos)) if m.throws > 1 else 0.0
     end = span / 2 + 2 * web
+    middle = -m.moment_reference  # the crank's mid-point, from the moment reference point
     # one trace per legend entry, kind (lines or markers) and style: segments joined with
     # None breaks, hover text and marker size per point (a few traces build and draw much
     # faster than one per segment: plotly validates every trace)
@@ -680,7 +686,14 @@ def crank_3d(
 
     # main journals: the crank axis between and beyond the throws
     line(
-        (-end, end), (0, 0), (0, 0), "crank axis / main journals", COLORS["crank"], 8, "axis", True
+        (middle - end, middle + end),
+        (0, 0),
+        (0, 0),
+        "crank axis / main journals",
+        COLORS["crank"],
+        8,
+        "axis",
+        True,
     )
     for t in range(m.throws):
         phi = m.throw_angle[t]

@@ -123,6 +123,14 @@ def text(value: float, kind: str, digits: int = 4) -> str:
     return f"{shown} {unit}"
 
 
+def moment_point(reference: float) -> str:
+    """The point moments are taken about, in words: the crankshaft mid-point, or the point
+    ``reference`` [m] from it along +y (``EngineModel.moment_reference``)."""
+    if abs(reference) < 1e-12:
+        return "the crankshaft mid-point"
+    return f"the point {text(reference, 'length')} from the crankshaft mid-point along +y"
+
+
 def plural(count: int, word: str, many: str | None = None) -> str:
     """``plural(1, "throw")`` -> ``1 throw``; ``plural(3, "throw")`` -> ``3 throws``."""
     return f"{count} {word if count == 1 else (many or word + 's')}"

@@ -178,6 +178,12 @@ class EngineModel:
         return self.throw_position[self.cylinder_throw] + self.cylinder_axial
 
     @property
+    def moment_reference(self) -> float:
+        """Position of the moment reference point from the crank's mid-point (the middle of
+        the throws' extent) along the crank axis [m]; 0 unless the engine file moves it."""
+        return -0.5 * float(self.throw_position.min() + self.throw_position.max())
+
+    @property
     def throw_axial_moment(self) -> NDArray[np.float64]:
         r"""First moment of each throw's big ends about the throw's centre,
         :math:`\sum_c m_{b,c}\,a_c` over the rods on the throw [kg m], shape (T,)."""

@@ -34,7 +34,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from .errors import InputError
-from .format import angle, convert, number
+from .format import angle, convert, moment_point, number
 from .results import to_jsonable
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -184,7 +184,7 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
         ),
         (
             "curves-moment",
-            "Free moments about the crankshaft mid-point versus crank angle.",
+            f"Free moments about {moment_point(a.model.moment_reference)} versus crank angle.",
             figures.curves_figure(a, s, "moment"),
         ),
     ]
@@ -341,7 +341,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     parts.append("<h2>Free forces and moments</h2>")
     parts.append(
         "<p>Reciprocating masses, by order; amplitude = largest magnitude over a "
-        "revolution = |forward| + |backward|; moments about the crankshaft mid-point; "
+        "revolution = |forward| + |backward|; moments about "
+        f"{moment_point(report.study.model.moment_reference)}; "
         "phases at crank angle 0 from +z toward +x.</p>"
     )
     rows = [

@@ -122,7 +122,8 @@ class Throw(_Strict):
     """One crank throw of a custom layout."""
 
     position: Length = Field(
-        description="axial position of the throw mid-plane from the crank mid-point"
+        description="axial position of the throw mid-plane along the crank axis (any origin: "
+        "positions are taken from the middle of the throws' extent)"
     )
     angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
     banks: list[Angle] = Field(
@@ -194,6 +195,28 @@ class CrankTrain(_Strict):
         description="VR rows: angle between the crankpins of the two rows (default: the split "
         "even firing needs)",
     )
+    bank_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=3,
+        description="bore offset of each bank (vee, boxer: 2 banks; W: 3), added to "
+        "pin_offset + crank_offset for the cylinders of that bank",
+    )
+    cylinder_offsets: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="bore offset of each cylinder, added to pin_offset + crank_offset",
+    )
+    rod_positions: list[Length] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="axial position of each cylinder's rod on its crankpin, from the "
+        "throw's mid-plane (side-by-side rods)",
+    )
+    moment_reference: Length = Field(
+        default=0.0,
+        description="point moments are taken about, along the crank axis from the crank's "
+        "mid-point (the middle of the throws' extent)",
+    )
 
     @model_validator(mode="after")
     def _check(self) -> CrankTrain:
@@ -201,16 +224,11 @@ class CrankTrain(_Strict):
         if r <= 0:
             raise FieldProblem("crank_radius", "must be greater than zero")
         self._check_vr()
-        offset = abs(self.pin_offset + self.crank_offset) + (
-            abs(self.bore_offset) if self.has_vr_rows else 0.0
-        )
-        if l <= r + offset:
+        if l <= r + abs(self.pin_offset + self.crank_offset):
             raise FieldProblem(
                 "rod_length",
                 "must exceed crank_radius plus the total offset "
-                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm"
-                + (", bore offset included" if self.has_vr_rows and self.bore_offset else "")
-                + ")",
+                f"(rod {l * 1e3:g} mm, crank radius {r * 1e3:g} mm)",
             )
         if self.layout == "custom":
             if not self.throw:
@@ -272,12 +290,58 @@ class CrankTrain(_Strict):
                     "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
                 )
         n_cyl = self.cylinder_count
+        self._check_offsets(n_cyl)
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
                 raise FieldProblem(
                     "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
                 )
         return self
+
+    def _check_offsets(self, n_cyl: int) -> None:
+        """Per-bank and per-cylinder offsets and rod positions: one per bank or cylinder,
+        and every cylinder's total offset short enough for its rod."""
+        banks = BANKS.get(self.layout)
+        if self.bank_offsets is not None:
+            if self.has_vr_rows:
+                raise FieldProblem(
+                    "bank_offsets",
+                    "is not used with VR rows: give bore_offset (the rows' offset) and, "
+                    "cylinder by cylinder, cylinder_offsets",
+                )
+            if banks is None:
+                raise FieldProblem(
+                    "bank_offsets",
+                    f"is for layouts with banks (vee, boxer, w), not '{self.layout}'; give "
+                    "cylinder_offsets (one per cylinder) instead",
+                )
+            if len(self.bank_offsets) != banks:
+                raise FieldProblem(
+                    "bank_offsets", f"needs one offset per bank: {banks} for '{self.layout}'"
+                )
+            if self.cylinder_offsets is not None:
+                raise FieldProblem(
+                    "cylinder_offsets", "give either bank_offsets or cylinder_offsets, not both"
+                )
+        for key in ("cylinder_offsets", "rod_positions"):
+            values = getattr(self, key)
+            if values is not None and len(values) != n_cyl:
+                raise FieldProblem(key, f"needs one length per cylinder: {n_cyl} for this engine")
+        shared = self.pin_offset + self.crank_offset
+        extra = list(self.cylinder_offsets or self.bank_offsets or [0.0])
+        rows = (-self.bore_offset, self.bore_offset) if self.has_vr_rows else (0.0,)
+        worst = max(abs(shared + e + b) for e in extra for b in rows)
+        if self.rod_length <= self.crank_radius + worst:
+            key = "cylinder_offsets" if self.cylinder_offsets else "bank_offsets"
+            if not (self.cylinder_offsets or self.bank_offsets):
+                key = "bore_offset"
+            raise FieldProblem(
+                key,
+                f"the largest total offset ({worst * 1e3:g} mm, with pin_offset and "
+                "crank_offset"
+                + (" and the rows' bore_offset" if self.has_vr_rows else "")
+                + ") leaves no rod: rod_length must exceed crank_radius plus it",
+            )
 
     @property
     def has_vr_rows(self) -> bool:
@@ -356,6 +420,10 @@ def _check_articulated(ct: CrankTrain) -> None:
                 f"{where}.link_pin_angles",
                 f"entry {art.master_cylinder} is the master cylinder's: it must be 0 deg",
             )
+
+
+#: Number of banks of the layouts that take ``bank_offsets`` (docs/engine_file.md).
+BANKS: dict[str, int] = {"vee": 2, "boxer": 2, "w": 3}
 
 
 def throw_count(layout: str, cylinders: int, w_type: str | None = None) -> int:

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..format import json_text, number, plural, text
+from ..format import json_text, moment_point, number, plural, text
 from ._common import echo_table, format_option, option_name
 
 
@@ -55,7 +55,7 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "
-        "(moments about the crankshaft mid-point):"
+        f"(moments about {moment_point(e['moment_reference_m'])}):"
     )
     rows = [
         [

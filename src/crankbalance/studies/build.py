@@ -22,13 +22,28 @@ def build_model(spec: EngineSpec) -> EngineModel:
     """Turn a validated :class:`~crankbalance.spec.EngineSpec` into an :class:`EngineModel`."""
     ct = spec.crank_train
     positions, cylinder_throw, banks = _layout(spec)
-    angles = _throw_angles(spec, cylinder_throw, banks, positions.size)
-    rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, cylinder_throw.size))
+    n = cylinder_throw.size
+    offsets = cylinder_offsets(spec)
+    angles = _throw_angles(spec, cylinder_throw, banks, positions.size, offsets)
+    rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, n))
     rot, from_parts = _throw_masses(spec, positions.size)
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
         if from_parts[t]:
             rot[t] += big_ends[c]
-    n = cylinder_throw.size
+    axial = np.zeros(n) if ct.rod_positions is None else np.array(ct.rod_positions, dtype=float)
+    missing = np.flatnonzero((axial != 0) & ~np.array(_has_conrod(spec, n)))
+    if missing.size:
+        c = int(missing[0])
+        raise InputError(
+            "crank_train.rod_positions",
+            f"{axial[c] * 1e3:g} mm (cylinder {c + 1})",
+            "a rod off its throw's mid-plane needs its conrod mass and split (masses.conrod "
+            "with conrod_rotating_fraction or conrod_cg_from_big_end): its big end turns at "
+            "the rod's place and makes a rotating couple",
+        )
+    # moments about the crank's mid-point (the middle of the throws' extent), or the point
+    # moment_reference from it: every axial position of the model is measured from there
+    middle = 0.5 * (positions.min() + positions.max())
     return EngineModel(
         name=spec.name,
         speed=spec.speed,
@@ -37,19 +52,50 @@ def build_model(spec: EngineSpec) -> EngineModel:
         rod_length=ct.rod_length,
         strokes=ct.strokes,
         throw_angle=angles,
-        throw_position=positions,
+        throw_position=positions - (middle + ct.moment_reference),
         throw_rotating_mass=rot,
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
         reciprocating_mass=rec,
-        cylinder_offset=_cylinder_offsets(spec),
-        cylinder_axial=np.zeros(n),
+        cylinder_offset=offsets,
+        cylinder_axial=axial,
         cylinder_rotating_mass=big_ends,
         firing_order=tuple(ct.firing_order or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
         articulation=_articulation(spec, banks),
     )
+
+
+def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
+    """Each cylinder's total offset [m]: ``pin_offset + crank_offset`` plus its bank's
+    entry of ``bank_offsets`` or its own entry of ``cylinder_offsets``, and in VR rows
+    (layout vr, or w with w_type vr) the rows' ``bore_offset``, negative in row A and
+    positive in row B (the sign of :mod:`crankbalance.kinematics`: the rows' bore axes meet
+    beyond the crank axis when ``bore_offset`` is positive).
+
+    Banks (docs/engine_file.md): vee A (cylinders 1..T) and B (T+1..2T); W the banks at
+    -V, 0, +V, numbered bank after bank; boxer the odd cylinders (bank -90 deg) and the
+    even ones (+90 deg).
+    """
+    ct = spec.crank_train
+    n = ct.cylinder_count
+    out = np.full(n, ct.pin_offset + ct.crank_offset)
+    if ct.has_vr_rows:
+        out += _vr_row_of(spec) * ct.bore_offset
+    if ct.cylinder_offsets is not None:
+        out += np.array(ct.cylinder_offsets, dtype=float)
+    elif ct.bank_offsets is not None:
+        if ct.layout == "boxer":
+            bank = np.arange(n) % 2
+        else:
+            bank = np.arange(n) // (n // len(ct.bank_offsets))
+        out += np.array(ct.bank_offsets, dtype=float)[bank]
+    return out
+
+
+def _has_conrod(spec: EngineSpec, n: int) -> list[bool]:
+    return [row["conrod"] is not None for row in _overrides(spec, "cylinders", n)]
 
 
 # --------------------------------------------------------------------------- layout
@@ -73,7 +119,7 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
 
 
 def _throw_angles(
-    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int
+    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, throws: int, offsets: NDArray
 ) -> NDArray:
     ct = spec.crank_train
     if ct.layout == "custom":
@@ -81,16 +127,20 @@ def _throw_angles(
         return np.array([t.angle for t in ct.throw])
     if ct.throw_angles is not None:
         return np.array(ct.throw_angles, dtype=float)
-    if ct.has_vr_rows:
-        return _vr_throw_angles(spec, banks)
+    if ct.has_vr_rows and ct.pin_split is not None:
+        return _vr_pin_split_angles(spec, banks)
     if throws == 1:
         return np.zeros(1)
     n = cylinder_throw.size
     order = ct.firing_order or list(range(1, n + 1))
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
     fire_time = _fire_times(spec)
-    # cylinder c is at its firing TDC at crank angle t_c: theta + phi - beta = 0
-    cyl_angle = np.mod(banks - fire_time, 2 * np.pi)
+    # cylinder c is at its firing TDC at crank angle t_c + t0: theta + phi - beta = psi_c,
+    # psi_c = asin(e_c / (l + r)) its offset slider-crank's TDC angle (0 without offset);
+    # t0 = psi of the first cylinder to fire, so one offset for all changes no throw angle
+    tdc = tdc_angle(offsets, ct.crank_radius, ct.rod_length)
+    first = int(order[0]) - 1
+    cyl_angle = np.mod(banks + (tdc - tdc[first]) - fire_time, 2 * np.pi)
     angles = np.full(throws, np.nan)
     for c in range(n):
         t = cylinder_throw[c]
@@ -99,6 +149,16 @@ def _throw_angles(
             continue
         gap = math.remainder(cyl_angle[c] - angles[t], 2 * np.pi)
         if abs(gap) > 1e-9:
+            other = int(np.flatnonzero(cylinder_throw == t)[0])
+            if abs(math.remainder(gap - (tdc[c] - tdc[other]), 2 * np.pi)) < 1e-9:
+                raise InputError(
+                    "crank_train.firing_order",
+                    list(order),
+                    f"cylinders {other + 1} and {c + 1} share throw {t + 1} but their offsets "
+                    f"({offsets[other] * 1e3:g} and {offsets[c] * 1e3:g} mm) put their top dead "
+                    f"centres {math.degrees(abs(tdc[c] - tdc[other])):.4g} deg apart, so they "
+                    "cannot fire at even intervals; give the crank as crank_train.throw_angles",
+                )
             raise InputError(
                 "crank_train.firing_order",
                 list(order),
@@ -128,38 +188,24 @@ def _vr_row_of(spec: EngineSpec) -> NDArray:
     return vr_rows(ct.cylinder_count, 2 if ct.layout == "w" else 1)
 
 
-def _cylinder_offsets(spec: EngineSpec) -> NDArray:
-    """Total offset of each cylinder [m]: crank offset plus wrist-pin offset, and for VR
-    rows the bore offset, negative in row A and positive in row B (the sign of
-    :mod:`crankbalance.kinematics`: positive on the side the crankpin moves toward after
-    top dead centre; the rows' bore axes meet beyond the crank axis when ``bore_offset``
-    is positive, docs/engine_file.md)."""
+def _vr_pin_split_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
+    """Throw angles of a VR engine or a W from VR banks whose crank is given by its
+    ``pin_split`` (one throw per cylinder).
+
+    The pins sit ``pin_split / 2`` either side of the angle a cylinder on its VR bank's
+    centre line would need at its even firing time, -t + gamma -+ pin_split / 2 (rows A, B),
+    the whole crank turned so that the first cylinder to fire has its pin where even firing
+    puts it; the firing is even only when the split is the one even firing needs,
+    v + 2 asin(e / (l + r)) (docs/engine_file.md, "VR and W from VR banks")."""
     ct = spec.crank_train
-    base = ct.pin_offset + ct.crank_offset
-    if not ct.has_vr_rows:
-        return np.full(ct.cylinder_count, base)
-    return base + _vr_row_of(spec) * ct.bore_offset
-
-
-def _vr_throw_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
-    """Throw angles of a VR engine or a W from VR banks (one throw per cylinder).
-
-    Without ``pin_split`` every cylinder reaches its top dead centre (crank angle
-    :math:`\arcsin(e/(l+r))` past its axis for an offset e) at its even firing time, so
-    the two rows' pins are split by :math:`v + 2\arcsin(e/(l+r))`. With ``pin_split`` the
-    pins sit at ``pin_split / 2`` either side of the angle a cylinder on the VR bank's centre
-    line would need, as the maker's crank is given (the firing is then even only when the
-    split is the one above)."""
-    ct = spec.crank_train
+    assert ct.pin_split is not None
     fire_time = _fire_times(spec)
     rows = _vr_row_of(spec)
-    if ct.pin_split is None:
-        tdc = tdc_angle(_cylinder_offsets(spec), ct.crank_radius, ct.rod_length)
-        return np.mod(banks + tdc - fire_time, 2 * np.pi)
     narrow = ct.vr_angle if ct.layout == "w" else ct.bank_angle
     assert narrow is not None
-    centre = banks - rows * narrow / 2
-    return np.mod(centre + rows * ct.pin_split / 2 - fire_time, 2 * np.pi)
+    raw = banks - rows * narrow / 2 + rows * ct.pin_split / 2 - fire_time
+    first = (ct.firing_order or [1])[0] - 1
+    return np.mod(raw + (banks[first] - fire_time[first] - raw[first]), 2 * np.pi)
 
 
 # --------------------------------------------------------------------------- masses

@@ -10,7 +10,7 @@ from typing import Any
 
 import numpy as np
 
-from ..format import keyed, text
+from ..format import keyed, moment_point, text
 from ..io.engine_file import load_engine
 from ..model import EngineModel
 from ..options import AnalysisOptions, parse_options
@@ -106,6 +106,7 @@ class Analysis:
                 "rod_ratio": m.rod_ratio,
                 "cylinder_offset_m": m.cylinder_offset,
                 "cylinder_axial_m": m.cylinder_axial,
+                "moment_reference_m": m.moment_reference,
                 "throw_angle_deg": np.degrees(m.throw_angle),
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,
@@ -125,7 +126,7 @@ class Analysis:
                 "moment_phase_deg": _phase(1j * f.rotating_couple),
             },
             "conventions": "phases: direction at crank angle 0, degrees from +z toward +x; "
-            "moments about the crankshaft mid-point",
+            f"moments about {moment_point(m.moment_reference)}",
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)
