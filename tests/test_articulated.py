@@ -601,3 +601,67 @@ def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> N
     # and the link pins do matter: without them the second order differs
     bare = free_forces(replace(model, cylinder_rotating_mass=np.zeros(c)), 6)
     assert abs(bare.force_forward[1] - whole.force_forward[1]) > 1e-3 * abs(whole.force_forward[1])
+
+
+def test_single_cylinder_studies_take_the_master_and_refuse_a_link(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """A link piston is no slider-crank: the single-cylinder view refuses it by name, and
+    takes the master cylinder, which is one."""
+    from crankbalance.studies.cylinder import cylinder_of
+
+    from .conftest import run_cli
+
+    model = _model(_preset_dict("radial7-scarab"))
+    master = cylinder_of(model, 1)
+    assert master.rod_length == model.rod_length
+    with pytest.raises(InputError) as caught:
+        cylinder_of(model, 3)
+    assert caught.value.field == "cylinder" and "master cylinder (1)" in str(caught.value)
+    out = run_cli(["plot", "single", "radial7-scarab", "--cylinder", "2", "-o", "x.html"], capsys)
+    assert out[0] == 2 and "link rod" in out[2]
+
+
+def test_offsets_per_cylinder_enter_the_articulated_motion() -> None:
+    """cylinder_offsets of an articulated radial reach the articulated geometry; its free
+    forces still rebuild the exact time-domain force, and the master piston stays the
+    offset slider-crank of the kinematics module."""
+    from crankbalance.shaking import exact_time_domain, free_forces, phasor_curve
+
+    data = _preset_dict("radial5-kinner")
+    offsets = ["2 mm", "-1 mm", "0 mm", "3 mm", "1.5 mm"]
+    data["crank_train"]["cylinder_offsets"] = offsets
+    model = _model(data)
+    rods = model.articulated_rods
+    assert rods is not None
+    expected = [float(s.split()[0]) * 1e-3 for s in offsets]
+    assert np.allclose(rods.offset, expected)
+    f = free_forces(model, 24)
+    theta = np.linspace(0, 2 * np.pi, 61)
+    force, _ = exact_time_domain(model, theta)
+    rebuilt = phasor_curve(f.force_forward, f.force_backward, f.orders, theta).sum(axis=0)
+    assert np.abs(force - rebuilt).max() < 1e-9 * np.abs(force).max()
+    got = motion(rods, theta, model.speed)
+    a = kinematics.piston_acceleration(
+        theta, model.crank_radius, model.rod_length, rods.offset[0], model.speed
+    )
+    assert np.allclose(got.travel_acceleration[:, 0], a, rtol=1e-12, atol=1e-6)
+    # the offsets change the result against the same engine without them
+    plain = free_forces(_model(_preset_dict("radial5-kinner")), 24)
+    assert np.abs(plain.force_forward - f.force_forward).max() > 1.0
+
+
+def test_analysis_json_states_the_rods_and_strokes() -> None:
+    from crankbalance.articulated import dead_centres
+    from crankbalance.studies.engine import analyze
+
+    data = analyze("radial7-scarab").to_dict()["engine"]["articulated"]
+    model = _model(_preset_dict("radial7-scarab"))
+    rods = model.articulated_rods
+    assert rods is not None
+    centres = dead_centres(rods)
+    assert data["master_cylinder"] == 1
+    assert data["stroke_m"] == pytest.approx(centres.stroke, rel=1e-11)
+    assert data["stroke_m"][0] == pytest.approx(2 * model.crank_radius, rel=1e-12)
+    assert data["tdc_angle_deg"] == pytest.approx(np.degrees(centres.tdc_angle), abs=1e-9)
+    assert "articulated" not in analyze("radial5").to_dict()["engine"]

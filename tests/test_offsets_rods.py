@@ -8,8 +8,10 @@ the same engine with its pin split into two throws by hand (the issue's workarou
 
 from __future__ import annotations
 
+import json
 import math
 from dataclasses import replace
+from pathlib import Path
 
 import numpy as np
 import pytest
@@ -31,6 +33,8 @@ from crankbalance.shaking import (
 from crankbalance.spec import EngineSpec, spec_from_dict
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import analyze
+
+from .conftest import run_cli
 
 
 def make_model(
@@ -510,3 +514,51 @@ def test_explorer_merits_take_per_cylinder_offsets_and_a_moved_reference() -> No
         balance_factor=0.4,
     )
     assert np.abs(plain["F1_N"] - out["F1_N"]).max() > 1e-4 * scale
+
+
+def test_balance_factor_share_sits_at_the_rods_places() -> None:
+    """With a balance factor b the counterweights carry the rotating masses and b times the
+    reciprocating masses, each at its own axial place: their couple is, by hand,
+    -r w^2 e^{i phi} [(m_b2 - m_b1) a + b (m_2 - m_1) a] for rods at -a and +a."""
+    m = make_model(
+        throw_angle=[30.0],
+        throw_position=[0.0],
+        cylinder_throw=[0, 0],
+        bank_deg=[-45.0, 45.0],
+        offset=[0.0, 0.0],
+        axial=[-A, A],
+        big_end=[0.30, 0.36],
+        rotating=[2.66],
+        reciprocating=[0.6, 0.7],
+    )
+    b = 0.5
+    res = balance(m, CounterweightOptions(0.03, balance_factor=b, method="individual"))
+    cw = res.counterweights
+    assert cw is not None
+    turn = m.crank_radius * np.exp(1j * m.throw_angle[0])
+    want_c = -turn * ((0.36 - 0.30) * A + b * (0.7 - 0.6) * A)
+    want_f = -turn * (2.66 + b * 1.3)
+    assert (cw.moments * cw.position).sum() == pytest.approx(want_c, rel=1e-12)
+    assert cw.moments.sum() == pytest.approx(want_f, rel=1e-12)
+
+
+def test_cli_names_rod_positions_offsets_and_the_reference(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    code, out, _ = run_cli(["analyze", "ducati-916"], capsys)
+    assert code == 0
+    assert "Rod position on its pin per cylinder: -10 mm, 10 mm" in out
+    assert "moments about the crankshaft mid-point" in out
+    data = load_engine("inline3").to_file_dict()
+    data["crank_train"].update(cylinder_offsets=["1 mm", "0 mm", "-2 mm"], moment_reference="40 mm")
+    path = tmp_path / "engine.json"
+    path.write_text(json.dumps(data))
+    code, out, _ = run_cli(["analyze", str(path)], capsys)
+    assert code == 0
+    assert "Offset per cylinder: 1 mm, 0 mm, -2 mm" in out
+    assert "moments about the point 40 mm from the crankshaft mid-point" in out
+    data["crank_train"]["bank_offsets"] = ["1 mm"]
+    path.write_text(json.dumps(data))
+    code, _, err = run_cli(["analyze", str(path)], capsys)
+    assert code == 2
+    assert "crank_train.bank_offsets" in err

@@ -318,7 +318,7 @@ def test_engine_cylinder_study_matches_plain_call() -> None:
         model.speed,
         0.4,
         rod_length=model.rod_length,
-        offset=model.offset,
+        offset=float(model.cylinder_offset[0]),
     )
     assert study.peak_resultant == pytest.approx(plain.peak_resultant, rel=1e-12)
     with pytest.raises(InputError, match="cylinder"):

@@ -401,12 +401,13 @@ def _check_articulated(ct: CrankTrain) -> None:
     n = ct.cylinder_count
     if art.master_cylinder > n:
         raise FieldProblem(f"{where}.master_cylinder", f"must be a cylinder number 1..{n}")
-    offset = abs(ct.pin_offset + ct.crank_offset)
+    shared = ct.pin_offset + ct.crank_offset
+    offset = max(abs(shared + extra) for extra in (ct.cylinder_offsets or [0.0]))
     need = ct.crank_radius + art.link_pin_radius + offset
     if art.link_rod_length <= need:
         raise FieldProblem(
             f"{where}.link_rod_length",
-            "must exceed crank_radius plus link_pin_radius plus the total offset "
+            "must exceed crank_radius plus link_pin_radius plus the largest total offset "
             f"({need * 1e3:g} mm)",
         )
     if art.link_pin_angles is not None:

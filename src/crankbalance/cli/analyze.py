@@ -32,6 +32,20 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         f"{text(e['speed_rad_s'], 'speed')}, "
         f"r/l = {number(e['rod_ratio'])}, kinematics: {e['kinematics']}"
     )
+    for key, words in (
+        ("cylinder_offset_m", "Offset per cylinder"),
+        ("cylinder_axial_m", "Rod position on its pin per cylinder"),
+    ):
+        if any(e[key]):
+            click.echo(f"{words}: " + ", ".join(text(v, "length") for v in e[key]))
+    if "articulated" in e:
+        art = e["articulated"]
+        click.echo(
+            f"Master-and-link rods: master cylinder {art['master_cylinder']}, link pins at "
+            f"{text(max(art['link_pin_radius_m']), 'length')}; strokes "
+            + _distinct([1e3 * s for s in art["stroke_m"]])
+            + " mm"
+        )
     masses = data["masses"]
     click.echo(
         "Masses: reciprocating per cylinder "

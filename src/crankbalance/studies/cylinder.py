@@ -75,6 +75,7 @@ def cylinder_of(model: EngineModel, number: int, field: str = "cylinder") -> Cyl
     if not 1 <= number <= count:
         raise InputError(field, number, f"must be a cylinder number from 1 to {count}")
     k = int(number) - 1
+    _check_not_link(model, k, field)
     throw = int(model.cylinder_throw[k])
     rods = int(np.count_nonzero(model.cylinder_throw == throw))
     return Cylinder(
@@ -88,6 +89,20 @@ def cylinder_of(model: EngineModel, number: int, field: str = "cylinder") -> Cyl
         offset=float(model.cylinder_offset[k]),
         speed=float(model.speed),
     )
+
+
+def _check_not_link(model: EngineModel, k: int, field: str) -> None:
+    """A link rod's cylinder of an articulated radial is no slider-crank: refused."""
+    art = model.articulation
+    if art is not None and k != art.master:
+        raise InputError(
+            field,
+            k + 1,
+            "is driven by a link rod of the master-and-link rods "
+            "(crank_train.articulated), not a plain slider-crank; the single-cylinder "
+            f"studies take the master cylinder ({art.master + 1}), the engine's free forces "
+            "include every link (analyze)",
+        )
 
 
 def cylinder_study(

@@ -111,6 +111,7 @@ class Analysis:
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,
                 "cylinder_bank_deg": np.degrees(m.cylinder_bank),
+                **articulated_summary(m),
             },
             "masses": {
                 "reciprocating_kg": m.reciprocating_mass,
@@ -141,6 +142,28 @@ def engine_summary(m: EngineModel) -> dict[str, Any]:
         "throws": m.throws,
         "speed_rad_s": m.speed,
         "kinematics": m.kinematics,
+    }
+
+
+def articulated_summary(m: EngineModel) -> dict[str, Any]:
+    """``{"articulated": ...}`` for an engine with master-and-link rods, else ``{}``: the
+    rods' geometry and each piston's stroke and top dead centre (docs/json.md)."""
+    rods = m.articulated_rods
+    if rods is None:
+        return {}
+    from ..articulated import dead_centres
+
+    centres = dead_centres(rods)
+    return {
+        "articulated": {
+            "master_cylinder": rods.master + 1,
+            "rod_length_m": rods.rod_length,
+            "link_pin_radius_m": rods.link_pin_radius,
+            "link_pin_angle_deg": np.degrees(rods.link_pin_angle),
+            "stroke_m": centres.stroke,
+            "tdc_angle_deg": np.degrees(centres.tdc_angle),
+            "tdc_travel_m": centres.tdc_travel,
+        }
     }
 
 

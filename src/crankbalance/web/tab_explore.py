@@ -108,11 +108,16 @@ def candidate_file(
     """The engine-file dictionary ``data`` (the current engine) with the crank of the
     explorer's candidate ``row`` of ``problem``: layout, cylinders, strokes, bank angle
     [rad], firing order and throw angles; custom throws, mass overrides and the webs list
-    (their counts follow the crank) are dropped."""
+    (their counts follow the crank) are dropped, and so are the per-bank and per-cylinder
+    offsets and rod positions unless the layout and the number of cylinders stay."""
     order = [int(c) for c in row["firing_order"]]
     train = dict(data.get("crank_train", {}))
+    same = train.get("layout") == problem.layout and train.get("cylinders") == len(order)
     for key in ("throw", "bank_angle", "throw_angles", "crank_offset"):
         train.pop(key, None)
+    if not same:
+        for key in ("bank_offsets", "cylinder_offsets", "rod_positions"):
+            train.pop(key, None)
     train.update(
         layout=problem.layout,
         cylinders=len(order),
