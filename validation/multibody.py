@@ -48,7 +48,6 @@ Usage::
 from __future__ import annotations
 
 import argparse
-import dataclasses
 import math
 import sys
 import time
@@ -92,10 +91,13 @@ def _desaxe_single() -> EngineModel:
 
 def _side_by_side_twin() -> EngineModel:
     """The 45 deg twin of the preset with its two rods side by side on the pin, 20 mm apart
-    (as a Ducati's; the model's cylinder_axial, the pin split by nothing else)."""
-    model = _engine(preset_text("v2-45"))
-    return dataclasses.replace(
-        model, name="v2-45 side-by-side", cylinder_axial=np.array([-0.010, 0.010])
+    (as a Ducati's), by the engine file's ``rod_positions``."""
+    return _engine(
+        preset_text("v2-45")
+        .replace('name = "V-twin 45 deg, common crankpin"', 'name = "v2-45 side-by-side"')
+        .replace(
+            'bank_angle = "45 deg"', 'bank_angle = "45 deg"\nrod_positions = ["-10 mm", "10 mm"]'
+        )
     )
 
 
@@ -106,6 +108,8 @@ PRESETS: dict[str, str] = {
     "v2-45": "45 deg V-twin on one pin, rods in one plane (preset)",
     "boxer6": "boxer-6 (preset): opposed cylinders on their own throws",
     "w12": "W12 broad arrow, three rods on each of four pins (preset)",
+    "ducati-916": "90 deg L-twin, rods side by side 20 mm apart (preset: Ducati 916)",
+    "harley-45": "45 deg twin, knife-and-fork rods in one plane (preset: Harley Evolution)",
     "vr6": "VR6 15 deg (preset): one pin per cylinder split 22 deg, rows' bores offset -/+12.5 mm",
     "w12-vw": "W12 from two VR banks (preset): 72 deg between the banks, rows offset in each",
     "radial5-kinner": "5-cylinder radial, master and link rods (preset: Kinner K-5)",
@@ -220,6 +224,17 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
     fine, bodies, seconds = solve(model, steps, orders)
     coarse, _bodies, more = solve(model, steps // 2, orders)
     return Simulation(extrapolate(fine, coarse), fine, steps, bodies, seconds + more)
+
+
+def about(phasors: Phasors, point: float) -> Phasors:
+    """The same loads with the moments taken about the point ``point`` [m] along the crank
+    axis instead of y = 0: the couple of a force F at y becomes (y - point) F."""
+    return Phasors(
+        phasors.force_forward,
+        phasors.force_backward,
+        phasors.couple_forward - point * phasors.force_forward,
+        phasors.couple_backward - point * phasors.force_backward,
+    )
 
 
 def extrapolate(fine: Phasors, coarse: Phasors) -> Phasors:

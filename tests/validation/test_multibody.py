@@ -128,6 +128,30 @@ def test_the_vr6_rows_offsets_are_seen() -> None:
         assert not third.passed, f"offsets {wrong} passed the third order"
 
 
+def test_side_by_side_rods_and_the_moment_reference() -> None:
+    """The side-by-side twin's rocking couple (rods 20 mm apart by the engine file's
+    rod_positions) is in the simulation and missing from the same twin with its rods in one
+    plane; and crankbalance's moments about a point moved by ``moment_reference`` are the
+    simulation's moments taken about that point."""
+    _require_exudyn()
+    sim, rows = _run("v2-45-side-by-side")
+    assert not _failures(rows)
+    model = multibody.ENGINES["v2-45-side-by-side"][1]()
+    np.testing.assert_allclose(model.cylinder_axial, [-0.010, 0.010])
+    first = next(r for r in rows if r.quantity == "moment" and r.order == 1)
+    assert first.exudyn > 10 * first.limit, "no rocking couple above the floor"
+    flat = dataclasses.replace(model, cylinder_axial=np.zeros(2))
+    assert _failures(multibody.compare("flat", flat, sim.phasors)), "rods in one plane passed"
+
+    text = multibody.preset_text("v2-45").replace(
+        'bank_angle = "45 deg"',
+        'bank_angle = "45 deg"\nrod_positions = ["-10 mm", "10 mm"]\nmoment_reference = "35 mm"',
+    )
+    moved = multibody._engine(text)
+    assert not _failures(multibody.compare("moved", moved, multibody.about(sim.phasors, 0.035)))
+    assert _failures(multibody.compare("moved", moved, sim.phasors)), "the reference did not move"
+
+
 def test_the_fourier_analysis_reads_a_known_curve_back() -> None:
     """The harness's sampling and sign conventions on a curve whose phasors are known:
     z + i x = F+ e^{i n theta} + F- e^{-i n theta}, couple C = -i (M_z + i M_x)."""
