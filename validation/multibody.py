@@ -112,7 +112,10 @@ PRESETS: dict[str, str] = {
     "harley-45": "45 deg twin, knife-and-fork rods in one plane (preset: Harley Evolution)",
     "vr6": "VR6 15 deg (preset): one pin per cylinder split 22 deg, rows' bores offset -/+12.5 mm",
     "w12-vw": "W12 from two VR banks (preset): 72 deg between the banks, rows offset in each",
+    "w8": "W8 from two VR banks (preset)",
+    "w16": "W16 from two VR banks (preset)",
     "radial5-kinner": "5-cylinder radial, master and link rods (preset: Kinner K-5)",
+    "radial7-scarab": "7-cylinder radial, master and link rods (preset: Warner Scarab)",
     "radial9-r985": "9-cylinder radial, master and link rods (preset: P&W R-985)",
 }
 
