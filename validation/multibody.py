@@ -60,7 +60,7 @@ from numpy.typing import NDArray
 
 from crankbalance.io.engine_file import parse_engine_text, preset_text
 from crankbalance.model import EngineModel
-from crankbalance.shaking import free_forces
+from crankbalance.shaking import FreeForces, free_forces
 from crankbalance.studies.build import build_model
 
 #: the default steps per revolution: the error of generalized-alpha falls as the square of
@@ -148,26 +148,27 @@ TEST_ENGINES: tuple[str, ...] = (
 
 
 # --------------------------------------------------------------------------- the model
-@dataclass(frozen=True)
-class Phasors:
-    """Forward and backward phasors by order, orders 1..K (convention of crankbalance).
+#: Phasors by order are crankbalance's own :class:`~crankbalance.shaking.FreeForces`, with the
+#: rotating masses inside order 1 (``rotating_force`` and ``rotating_couple`` zero): the
+#: multibody model carries them and cannot tell them apart.
+Phasors = FreeForces
 
-    ``force_forward[k]`` belongs to order k + 1; forces [N], couples [N m], complex
-    :math:`z + i x`; the rotating masses are included in order 1.
-    """
 
-    force_forward: NDArray[np.complex128]
-    force_backward: NDArray[np.complex128]
-    couple_forward: NDArray[np.complex128]
-    couple_backward: NDArray[np.complex128]
-
-    @property
-    def force_amplitude(self) -> NDArray[np.float64]:
-        return np.abs(self.force_forward) + np.abs(self.force_backward)
-
-    @property
-    def moment_amplitude(self) -> NDArray[np.float64]:
-        return np.abs(self.couple_forward) + np.abs(self.couple_backward)
+def _phasors(
+    force_forward: NDArray,
+    force_backward: NDArray,
+    couple_forward: NDArray,
+    couple_backward: NDArray,
+) -> FreeForces:
+    return FreeForces(
+        orders=np.arange(1, np.size(force_forward) + 1),
+        force_forward=force_forward,
+        force_backward=force_backward,
+        couple_forward=couple_forward,
+        couple_backward=couple_backward,
+        rotating_force=0j,
+        rotating_couple=0j,
+    )
 
 
 @dataclass(frozen=True)
@@ -193,7 +194,7 @@ def reference(model: EngineModel, orders: int = ORDERS) -> Phasors:
     ff, cf = f.force_forward.copy(), f.couple_forward.copy()
     ff[0] += f.rotating_force
     cf[0] += f.rotating_couple
-    return Phasors(ff, f.force_backward.copy(), cf, f.couple_backward.copy())
+    return _phasors(ff, f.force_backward.copy(), cf, f.couple_backward.copy())
 
 
 def _about_centre(points: list[tuple[float, NDArray, NDArray]]) -> tuple[float, NDArray, NDArray]:
@@ -232,7 +233,7 @@ def simulate(model: EngineModel, steps: int = STEPS, orders: int = ORDERS) -> Si
 def about(phasors: Phasors, point: float) -> Phasors:
     """The same loads with the moments taken about the point ``point`` [m] along the crank
     axis instead of y = 0: the couple of a force F at y becomes (y - point) F."""
-    return Phasors(
+    return _phasors(
         phasors.force_forward,
         phasors.force_backward,
         phasors.couple_forward - point * phasors.force_forward,
@@ -243,7 +244,7 @@ def about(phasors: Phasors, point: float) -> Phasors:
 def extrapolate(fine: Phasors, coarse: Phasors) -> Phasors:
     """Richardson's extrapolation (4 X(h) - X(2h)) / 3 of phasors whose error is in h**2."""
     names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
-    return Phasors(*((4 * getattr(fine, k) - getattr(coarse, k)) / 3 for k in names))
+    return _phasors(*((4 * getattr(fine, k) - getattr(coarse, k)) / 3 for k in names))
 
 
 def solve(
@@ -455,7 +456,7 @@ def _fourier(times: NDArray, force: NDArray, moment: NDArray, speed: float, orde
     c = -1j * (moment[last, 2] + 1j * moment[last, 0])  # couple C, M = iC
     turn = np.exp(-1j * np.arange(1, orders + 1)[:, None] * theta[None, :])
     n = theta.size
-    return Phasors(turn @ f / n, turn.conj() @ f / n, turn @ c / n, turn.conj() @ c / n)
+    return _phasors(turn @ f / n, turn.conj() @ f / n, turn @ c / n, turn.conj() @ c / n)
 
 
 # --------------------------------------------------------------------------- comparison
