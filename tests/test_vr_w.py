@@ -230,28 +230,36 @@ def test_w12_firing_is_even() -> None:
 
 
 # --------------------------------------------------------------------------- forces
-def test_vr6_without_offset_equals_six_custom_throws() -> None:
-    """The VR6 with no bore offset is the custom engine of six throws at the hand angles
-    +-7.5 - t (the old way of entering it): the same phasors to round-off."""
-    vr = build_model(spec(VR6, bore_offset=None))
+@pytest.mark.parametrize("e", [0.0, 0.0125])
+def test_vr6_equals_six_custom_throws(e: float) -> None:
+    """The VR6 is the custom engine of six throws at the hand angles of vr6_by_hand (the
+    old way of entering it; its offsets as cylinder_offsets, -+e): the same phasors,
+    rotating masses and crank to round-off."""
+    vr = build_model(spec(VR6, bore_offset=f"{e * 1e3:g} mm"))
+    rows = vr6_by_hand(e)
     throws = [
         {"position": f"{(c - 3.5) * 45:g} mm", "angle": f"{row[1] / DEG:.12f} deg"}
         | {"banks": [f"{row[2] / DEG:g} deg"]}
-        for c, row in enumerate(vr6_by_hand(0.0), start=1)
+        for c, row in enumerate(rows, start=1)
     ]
     train = {k: v for k, v in VR6["crank_train"].items() if k in ("crank_radius", "rod_length")}
-    custom = spec_from_dict(
-        {
-            **VR6,
-            "crank_train": {"layout": "custom", "firing_order": [1, 5, 3, 6, 2, 4], **train}
-            | {"throw": throws},
-        }
+    train |= {"cylinder_offsets": [f"{row[3] * 1e3:g} mm" for row in rows]}
+    custom = build_model(
+        spec_from_dict(
+            {
+                **VR6,
+                "crank_train": {"layout": "custom", "firing_order": [1, 5, 3, 6, 2, 4], **train}
+                | {"throw": throws},
+            }
+        )
     )
-    a, b = free_forces(vr, ORDERS), free_forces(build_model(custom), ORDERS)
+    a, b = free_forces(vr, ORDERS), free_forces(custom, ORDERS)
     for name in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
         assert np.allclose(getattr(a, name), getattr(b, name), rtol=1e-9, atol=1e-6), name
-    gap = np.remainder(vr.throw_angle - build_model(custom).throw_angle + np.pi, 2 * np.pi)
+    assert a.rotating_couple == pytest.approx(b.rotating_couple, abs=1e-6)
+    gap = np.remainder(vr.throw_angle - custom.throw_angle + np.pi, 2 * np.pi)
     assert np.abs(gap - np.pi).max() < 1e-12
+    assert np.allclose(vr.cylinder_offset, custom.cylinder_offset, atol=1e-15)
 
 
 def test_vr6_even_firing_orders_1_and_2_vanish() -> None:
@@ -455,3 +463,10 @@ def test_explore_command_refuses_vr(capsys: pytest.CaptureFixture[str]) -> None:
     err = capsys.readouterr().err
     assert stop.value.code == 2 and err.count("\n") == 1
     assert "--layout = 'vr': is not enumerated by the explorer" in err
+    with pytest.raises(SystemExit) as stop:
+        main(
+            ["explore", "--layout", "w", "--cylinders", "12", "--bank-angle", "72 deg"]
+            + ["--engine", "w12-vw"]
+        )
+    err = capsys.readouterr().err
+    assert stop.value.code == 2 and "--engine = 'w12-vw': is not enumerated" in err

@@ -47,7 +47,10 @@ def _problem(o: ExploreOptions, typed: Mapping[str, Any]) -> Any:
         from ..io.engine_file import load_engine
         from ..studies.build import build_model
 
-        base = build_model(load_engine(o.engine))
+        spec = load_engine(o.engine)
+        if spec.crank_train.has_vr_rows:
+            raise InputError("--engine", o.engine, orders.VR_REFUSED)
+        base = build_model(spec)
     try:
         with named_as_typed(typed):
             return orders.problem(
