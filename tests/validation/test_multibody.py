@@ -19,6 +19,7 @@ import importlib.util
 import sys
 from pathlib import Path
 from types import ModuleType
+from typing import Any
 
 import numpy as np
 import pytest
@@ -50,14 +51,15 @@ def _require_exudyn() -> None:
 
 
 @functools.cache
-def _run(engine: str) -> tuple[object, list]:
+def _run(engine: str) -> tuple[Any, list]:
     return multibody.run(engine)
 
 
 def _failures(rows: list) -> str:
     return "\n".join(
         f"{r.engine} {r.quantity} order {r.order}: crankbalance {r.crankbalance:.6g}, EXUDYN "
-        f"{r.exudyn:.6g}, phasor difference {r.phasor_error:.3g} > limit {r.limit:.3g}"
+        f"{r.exudyn:.6g}, amplitude difference {r.difference:.3g}, phasor difference "
+        f"{r.phasor_error:.3g}, limit {r.limit:.3g}"
         for r in rows
         if not r.passed
     )
@@ -75,9 +77,10 @@ def test_every_order_agrees_with_exudyn(engine: str) -> None:
     # the single run with the finest step passes too: the extrapolation only sharpens it
     raw = multibody.compare(engine, multibody.ENGINES[engine][1](), sim.raw)
     assert not _failures(raw), f"{engine}, without the extrapolation:\n{_failures(raw)}"
-    # the simulation carries the engine's loads, not zeros that pass everywhere
-    first = next(r for r in rows if r.quantity == "force" and r.order == 1)
-    assert first.exudyn > 0.5 * first.crankbalance > 0
+    # the engine has a load far above its limit, which the simulation reproduced: not
+    # zeros that pass everywhere
+    biggest = max(rows, key=lambda r: r.crankbalance / r.limit)
+    assert biggest.crankbalance > 100 * biggest.limit, f"{engine}: no load above the floor"
 
 
 def test_the_comparison_sees_a_one_percent_change() -> None:
