@@ -504,3 +504,43 @@ def test_articulated_radial_is_refused():
     """Link pistons are no slider-cranks: the whole-engine cycle says so, naming the table."""
     with pytest.raises(InputError, match="crank_train.articulated"):
         engine_cycle_all(as_model("radial5-kinner"), WIEBE, bore=0.08, crank_inertia=0.5)
+
+
+@pytest.mark.parametrize("preset", ["vr6", "w12-vw", "w8"])
+def test_offset_cylinders_fire_at_their_real_top_dead_centre(preset):
+    """VR rows' bore offsets move each piston's top dead centre asin(e/(l+r)) past its
+    axis: every cylinder fires where its piston is at the top (piston velocity zero, by
+    the slider-crank of kinematics, a second code), so the VW W12's even crank fires every
+    60 deg (its crank is built for even firing with the offsets; the reviewer found
+    53.1/66.9 deg when the offsets were left out of the firing angles)."""
+    from crankbalance.kinematics import piston_position, piston_velocity
+
+    model = as_model(preset)
+    result = engine_cycle_all(
+        model, WIEBE, bore=0.08, crank_inertia=0.5, samples_per_revolution=180
+    )
+    axis = result.fire_angle + model.cylinder_angle - model.cylinder_bank
+    r, length = model.crank_radius, model.rod_length
+    velocity = piston_velocity(axis, r, length, model.cylinder_offset)
+    assert np.max(np.abs(velocity)) < 1e-12 * r
+    near = piston_position(
+        axis[:, None] + np.array([-1e-3, 1e-3]), r, length, model.cylinder_offset[:, None]
+    )
+    assert np.all(near < piston_position(axis, r, length, model.cylinder_offset)[:, None])
+    if preset == "w12-vw":
+        fire = np.sort(result.fire_angle)
+        steps = np.diff(np.append(fire, fire[0] + 4 * np.pi))
+        np.testing.assert_allclose(np.degrees(steps), 60.0, atol=1e-9)
+
+
+def test_one_cylinder_fires_once_a_cycle_in_the_output(capsys):
+    """`cycle --engine single`: the firing interval of a single is the whole cycle (720
+    deg), not the 0 deg that folding it into [0, cycle) gave."""
+    from .conftest import run_cli
+
+    code, out, _ = run_cli(["cycle", "--engine", "single", "--format", "json"], capsys)
+    assert code == 0
+    engine = json.loads(out)["engine"]
+    assert engine["firing_interval_rad"] == pytest.approx([4 * math.pi])
+    code, out, _ = run_cli(["cycle", "--engine", "single"], capsys)
+    assert "one cylinder" in out and "intervals 720 deg" in out

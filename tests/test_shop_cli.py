@@ -19,8 +19,9 @@ from .conftest import EXAMPLES, run_cli
 
 PARTS = str(EXAMPLES / "v8_parts.csv")
 #: A time limit the matching never reaches, even on a machine many times busier than
-#: usual (600 s, the largest allowed): the fixture's and the command's matchings are then both the proven optimum, not
-#: what each found before a 60 s limit (HiGHS takes ~12 s here on a busy machine).
+#: usual (600 s, the largest allowed): the fixture's and the command's matchings are then
+#: both the proven optimum, not what each found before a 60 s limit (HiGHS takes ~12 s
+#: here on a busy machine).
 PROVEN_LIMIT = 600.0
 PROVEN = ["--time-limit", f"{PROVEN_LIMIT:g} s"]
 ENGINE = "v8-crossplane"

@@ -52,8 +52,8 @@ from .engine_cycle import (
     cylinder_forces,
 )
 from .errors import InputError, check_positive
-from .model import EngineModel
-from .numbering import order_intervals
+from .model import EngineModel, tdc_angle
+from .numbering import firing_tdc_angles, order_intervals
 from .results import ResultMixin
 
 #: a cylinder's firing angle may differ from one of its top dead centres by this much [rad]
@@ -73,12 +73,15 @@ def firing_angles(
     cylinder_bank: ArrayLike,
     firing_order: Sequence[int] | None,
     strokes: int,
+    tdc_shift: ArrayLike | None = None,
 ) -> NDArray[np.float64]:
     r"""Crank angle of the first throw at which each cylinder fires, in [0, cycle).
 
-    Cylinder c is at a top dead centre at :math:`\theta_c = \beta_c - \varphi_c` (mod
-    :math:`2\pi`). A two-stroke fires at every top dead centre. A four-stroke fires at
-    one of its two per cycle: the first cylinder of the firing order fires at
+    Cylinder c is at a top dead centre at :math:`\theta_c = \beta_c + \psi_c - \varphi_c`
+    (mod :math:`2\pi`, :func:`crankbalance.numbering.firing_tdc_angles`; :math:`\psi_c`
+    the top dead centre of an offset slider-crank past its axis, 0 without offset). A
+    two-stroke fires at every top dead centre. A four-stroke fires at one of its two per
+    cycle: the first cylinder of the firing order fires at
     :math:`\theta_c \in [0, 2\pi)`, and each next one at its next top dead centre, a
     full turn later when it is at top dead centre with the one before (the shortest
     intervals of :func:`crankbalance.numbering.order_intervals`, the same check
@@ -105,6 +108,9 @@ def firing_angles(
         Cylinder numbers (1-based) in firing order, each once; None when not known.
     strokes : {2, 4}
         Cycle type.
+    tdc_shift : array_like, shape (C,), optional
+        :math:`\psi_c` of each cylinder, :func:`crankbalance.model.tdc_angle` of its offset
+        [rad]; zeros when not given.
 
     Returns
     -------
@@ -127,8 +133,9 @@ def firing_angles(
     phi = np.asarray(cylinder_angle, dtype=float).reshape(-1)
     beta = np.asarray(cylinder_bank, dtype=float).reshape(-1)
     n = phi.size
+    shift = np.zeros(n) if tdc_shift is None else np.asarray(tdc_shift, dtype=float).reshape(-1)
     if firing_order is None:
-        return _free_firing(phi, beta, strokes)
+        return _free_firing(phi, beta, strokes, shift)
     order = list(firing_order)
     if beta.size != n or sorted(order) != list(range(1, n + 1)):
         raise InputError(
@@ -137,7 +144,7 @@ def firing_angles(
             f"must name each of the {n} cylinders once (numbers 1 to {n})",
         )
     cycle = math.pi * strokes
-    tdc = np.mod(beta - phi, 2 * np.pi)
+    tdc = firing_tdc_angles(phi, beta, shift)
     index = np.array(order) - 1
     steps = order_intervals(tdc, order, strokes)  # the shortest, the last back to the first
     if steps.sum() > cycle + TDC_TOLERANCE:
@@ -160,13 +167,15 @@ def firing_angles(
     return np.mod(times, cycle)
 
 
-def _free_firing(phi: NDArray, beta: NDArray, strokes: int) -> NDArray[np.float64]:
+def _free_firing(phi: NDArray, beta: NDArray, strokes: int, shift: NDArray) -> NDArray[np.float64]:
     """Firing angles without a firing order (see :func:`firing_angles`)."""
     n = phi.size
     cycle = math.pi * strokes
-    tdc = np.mod(beta - phi, 2 * np.pi)
+    tdc = firing_tdc_angles(phi, beta, shift)
     try:
-        even: NDArray[np.float64] | None = firing_angles(phi, beta, list(range(1, n + 1)), strokes)
+        even: NDArray[np.float64] | None = firing_angles(
+            phi, beta, list(range(1, n + 1)), strokes, shift
+        )
     except InputError:  # the cylinders do not reach top dead centre in the order 1..C
         even = None
     if even is not None:
@@ -289,11 +298,13 @@ class EngineCycleResult(ResultMixin):
     strokes : int
         Strokes per working cycle (2 or 4).
     angle : ndarray, shape (S,)
-        Crank angle after the firing TDC of the first cylinder of the firing order [rad],
-        from minus to plus half a cycle.
+        Crank angle of the first cylinder of the firing order from its axis (its firing
+        TDC without offset; the origin of the one-cylinder model) [rad], from minus to
+        plus half a cycle.
     crank_angle : ndarray, shape (S,)
-        Crank angle of the first throw at the same samples, ``angle + fire_angle[first]``
-        [rad] (throw t's crankpin is at :math:`r e^{i(\theta + \varphi_t)}`).
+        Crank angle of the first throw at the same samples, ``angle + fire_angle[first] -
+        psi[first]`` [rad] (:math:`\psi` the top dead centre of an offset slider-crank past
+        its axis; throw t's crankpin is at :math:`r e^{i(\theta + \varphi_t)}`).
     fire_angle : ndarray, shape (C,)
         Crank angle of the first throw at which each cylinder fires [rad], in [0, cycle).
     pressure : ndarray, shape (C, S)
@@ -466,6 +477,7 @@ def engine_cycle_all(
     count = model.cylinders
     sources = _sources(pressure, count)
     fire = _fire_angles(model, fire_angle)
+    psi = _tdc_shift(model)
     cycle = math.pi * strokes
     first = model.firing_order[0] - 1 if model.firing_order_given else 0
     theta = _cycle_samples(strokes, int(samples_per_revolution))
@@ -490,7 +502,10 @@ def engine_cycle_all(
     inertia_slope = np.zeros(theta.size)
     indicated = 0.0
     for c, spec in enumerate(specs):
-        local = theta - (fire[c] - fire[first])  # crank angle from this cylinder's firing
+        # this cylinder's crank angle from its axis, where the one-cylinder model (and
+        # ``theta`` for the first cylinder) has its origin: its firing top dead centre is
+        # psi_c past the axis, so the cylinders fire at their real top dead centres
+        local = theta - (fire[c] - fire[first]) + (psi[c] - psi[first])
         p = _pressure(local, spec, sources[c], strokes)
         f = cylinder_forces(local, spec, p, w)
         axis = np.exp(1j * model.cylinder_bank[c])
@@ -537,7 +552,7 @@ def engine_cycle_all(
         speed_mean=w,
         strokes=strokes,
         angle=theta,
-        crank_angle=theta + fire[first],
+        crank_angle=theta + fire[first] - psi[first],
         fire_angle=fire,
         pressure=pressures,
         cylinder_gas_torque=gas_t,
@@ -581,15 +596,23 @@ def _sources(pressure: object, count: int) -> list[PressureSource]:
     return [pressure] * count  # type: ignore[list-item]
 
 
+def _tdc_shift(model: EngineModel) -> NDArray[np.float64]:
+    """Each cylinder's top dead centre past its axis (its offset slider-crank) [rad]."""
+    return np.asarray(
+        tdc_angle(model.cylinder_offset, model.crank_radius, model.rod_length), dtype=float
+    ).reshape(-1)
+
+
 def _fire_angles(model: EngineModel, fire_angle: ArrayLike | None) -> NDArray[np.float64]:
     """The firing angles of the model, or the given ones checked against its crank."""
+    shift = _tdc_shift(model)
     if fire_angle is None:
         order = model.firing_order if model.firing_order_given else None
-        return firing_angles(model.cylinder_angle, model.cylinder_bank, order, model.strokes)
+        return firing_angles(model.cylinder_angle, model.cylinder_bank, order, model.strokes, shift)
     fire = np.asarray(fire_angle, dtype=float).reshape(-1)
     if fire.size != model.cylinders or not np.all(np.isfinite(fire)):
         raise InputError("fire_angle", fire_angle, f"must give {model.cylinders} finite angles")
-    gap = np.remainder(fire + model.cylinder_angle - model.cylinder_bank + np.pi, 2 * np.pi)
+    gap = np.remainder(fire + model.cylinder_angle - model.cylinder_bank - shift + np.pi, 2 * np.pi)
     off = np.flatnonzero(np.abs(gap - np.pi) > TDC_TOLERANCE)
     if off.size:
         c = int(off[0])
@@ -597,6 +620,6 @@ def _fire_angles(model: EngineModel, fire_angle: ArrayLike | None) -> NDArray[np
             f"fire_angle (cylinder {c + 1})",
             f"{math.degrees(fire[c]):g} deg",
             "must be a top dead centre of that cylinder: crank angle + throw angle - bank "
-            "angle a multiple of 360 deg",
+            "angle - its offset's top-dead-centre angle asin(e/(l+r)) a multiple of 360 deg",
         )
     return np.mod(fire, math.pi * model.strokes)

@@ -810,7 +810,10 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
         "flywheel_inertia_kg_m2": o.flywheel_inertia or 0.0,
         "firing_order": order,
         "fire_angle_rad": fire.tolist(),
-        "firing_interval_rad": np.mod(intervals, np.pi * model.strokes).tolist(),
+        # one cylinder fires once a cycle: its interval is the cycle, not 0
+        "firing_interval_rad": (
+            np.mod(intervals, np.pi * model.strokes) if model.cylinders > 1 else intervals
+        ).tolist(),
     }
     curves: dict[str, Any] = {
         "angle_deg": np.degrees(result.angle),
@@ -865,7 +868,13 @@ def _echo_cycle(payload: dict[str, Any]) -> None:
         engine = payload["engine"]
         steps = "/".join(f"{_math.degrees(a):.4g}" for a in engine["firing_interval_rad"])
         click.echo(
-            f"{engine['name']}: all {engine['cylinders']} cylinders, {text(speed, 'speed')}, "
+            f"{engine['name']}: "
+            + (
+                f"all {engine['cylinders']} cylinders"
+                if engine["cylinders"] > 1
+                else "one cylinder"
+            )
+            + f", {text(speed, 'speed')}, "
             f"{strokes}-stroke, firing order {'-'.join(map(str, engine['firing_order']))} "
             f"(intervals {steps} deg)"
         )
