@@ -130,6 +130,35 @@ def test_messages_name_the_field_by_its_label(preset: str, key: str, text: str, 
     assert not re.search(r"crank_train|articulated|_offsets|_positions|link_\w+", message), message
 
 
+#: a preset whose layout shows each detail field
+SHOWN_ON = {
+    "bank_offsets": "v2-90",
+    "rod_positions": "ducati-916",
+    "cylinder_offsets": "ducati-916",
+    "moment_reference": "ducati-916",
+    "master_cylinder": "radial9-r985",
+    "link_pin_radius": "radial9-r985",
+    "link_rod_length": "radial9-r985",
+    "link_pin_angles": "radial9-r985",
+}
+
+
+@pytest.mark.parametrize("key", sorted(SHOWN_ON))
+def test_unparsable_text_in_every_detail_field(key: str) -> None:
+    """Text that is no value of the field's kind is refused under the field by its label,
+    and the engine computes again once the field is emptied."""
+    f = FIELD_BY_KEY[key]
+    project = Project.from_preset(SHOWN_ON[key])
+    assert project.active(f), f"{key} is not shown on {SHOWN_ON[key]}"
+    bad = {"int": "three", "choice": "sideways"}.get(f.kind, "1 mm, 12 parsecs")
+    message = project.set(key, bad).get(key, "")
+    assert message.startswith(f.label), (key, message)
+    assert "crank_train" not in message and "docs/" not in message, message
+    assert project.spec is None
+    good = Project.from_preset(SHOWN_ON[key]).texts.get(key, "")
+    assert project.set(key, good) == {} and project.spec is not None
+
+
 def test_both_kinds_of_offset_refused_together() -> None:
     project = Project.from_preset("ducati-916")
     project.set("bank_offsets", "1 mm, 1 mm")
