@@ -4,13 +4,16 @@ Starts ``crankbalance web`` in a subprocess and drives Debian's chromium with Pl
 (async API). Measured from the browser, each a median of ``--repeat`` (5) unless a p95 is
 named:
 
-- first load: a new page opened on the V12 until the header shows its results and every
-  figure of the open tab is drawn (the server is warm: one page was opened before);
+- first load: a new page opened on the V12 (the server is warm: one page was opened
+  before), timed three ways: the browser's first contentful paint; the page shown with its
+  results (the header says "current", the form is laid out and painted); every figure of
+  the open tab drawn, the 3-D crank included (it is sent after the first paint);
 - preset switch: choosing another preset in the header until the header shows the new
   engine and the figures are redrawn;
-- PNG download: clicking a figure's PNG button until the browser has the file, after the
-  first export of the server (which starts the kept Chromium of ``render.to_image``), for
-  the 3-D crank of the Engine tab and the orders bar of the Results tab in turn;
+- PNG download: clicking a figure's PNG button until the browser has the file (made by
+  plotly.js in the page; the server's ``render.to_image`` only where the browser cannot),
+  after a first one, for the 3-D crank of the Engine tab and the orders bar of the Results
+  tab in turn;
 - edit -> figure: typing a new crank radius or speed of the V12 (12 cylinders) until the
   page has redrawn the figure (plotly's ``afterplot``); p50 and p95 of ``--edits`` edits,
   in each of ``--sessions`` pages editing different engines at once.
@@ -24,7 +27,10 @@ many edits' worth of this machine's time they take, which keeps runs on a machin
 different load comparable. The load average before and after is printed. With
 ``--sessions`` above 1 every session's p50 and p95 are printed too.
 
-    python benchmarks/bench_web.py [--repeat 5] [--edits 20] [--sessions 1]
+    python benchmarks/bench_web.py [--repeat 5] [--edits 20] [--sessions 1] [--sessions-only]
+
+A page that NiceGUI reloads during the edits (its connection dropped and its client
+deleted) ends its session with an error: its edit is lost and would be waited for in vain.
 
 Targets (issue 14, item 9; issue 13, "web: edit -> updated figures, 12 cylinders"): first
 load 2 s, preset switch 0.5 s, PNG after the first 1 s, edit -> figure p95 0.15 s.
@@ -53,6 +59,16 @@ DRAWN = """() => {
         .filter((e) => e.offsetParent !== null)
         .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0);
 }"""
+#: the page is shown with its results: the header says the results are those of the form,
+#: the form's fields are laid out and the browser has painted
+SHOWN = """() => {
+    const s = document.querySelector('[data-testid=status]');
+    const f = document.querySelector('[data-testid=field-crank_radius]');
+    return s && s.dataset.state === 'current' && f && f.offsetParent !== null &&
+        performance.getEntriesByName('first-contentful-paint').length > 0;
+}"""
+#: the browser's first contentful paint [ms from the start of the navigation]
+FIRST_PAINT = "() => performance.getEntriesByName('first-contentful-paint')[0].startTime"
 #: count plotly's redraws of every figure of the page in window.cbPlots
 COUNT_PLOTS = """() => {
     window.cbPlots = window.cbPlots || 0;
@@ -76,14 +92,20 @@ async def new_page(browser: Any, url: str) -> Any:
     return page
 
 
-async def first_load(browser: Any, url: str) -> float:
+async def first_load(browser: Any, url: str) -> tuple[float, float, float]:
+    """One first load: the browser's first contentful paint, the page shown with its results
+    (:data:`SHOWN`) and every figure of the open tab drawn, the 3-D crank included
+    (:data:`DRAWN`) [s from the start of the navigation]."""
     page = await new_page(browser, url)
     t0 = time.perf_counter()
-    await page.goto(f"{url}/?preset={ENGINE}")
+    await page.goto(f"{url}/?preset={ENGINE}", wait_until="commit")
+    await page.wait_for_function(SHOWN, polling=POLL)
+    shown = time.perf_counter() - t0
     await page.wait_for_function(DRAWN, polling=POLL)
-    elapsed = time.perf_counter() - t0
+    drawn = time.perf_counter() - t0
+    paint = await page.evaluate(FIRST_PAINT) / 1000
     await page.close()
-    return elapsed
+    return paint, shown, drawn
 
 
 async def preset_switches(page: Any, count: int) -> list[float]:
@@ -136,7 +158,16 @@ async def edits(page: Any, count: int, offset: int, errors: list[str]) -> list[f
         plots = await page.evaluate("() => window.cbPlots")
         t0 = time.perf_counter()
         await page.locator(f"[data-testid=field-{key}]").first.fill(value)
-        await page.wait_for_function(f"() => window.cbPlots > {plots}", polling=POLL)
+        # a page that NiceGUI reloaded (its client dropped) has no counter: the edit is lost
+        # and would be waited for in vain, so the wait ends and the session stops there
+        await page.wait_for_function(
+            f"() => window.cbPlots === undefined || window.cbPlots > {plots}", polling=POLL
+        )
+        if await page.evaluate("() => window.cbPlots === undefined"):
+            errors.append(
+                f"edit {k + 1} ({key} = {value}): the page was reloaded (connection lost)"
+            )
+            break
         times.append(time.perf_counter() - t0)
         if await page.locator(".q-field--error").count():
             errors.append(
@@ -157,12 +188,20 @@ async def session(
     return times
 
 
-async def run(url: str, repeat: int, count: int, sessions: int) -> dict[str, Any]:
+async def run(
+    url: str, repeat: int, count: int, sessions: int, sessions_only: bool = False
+) -> dict[str, Any]:
     from playwright.async_api import async_playwright
 
     errors: list[str] = []
     async with async_playwright() as p:
         browser = await p.chromium.launch(executable_path=CHROMIUM, args=list(CHROMIUM_FLAGS))
+        if sessions_only:
+            groups = await asyncio.gather(
+                *(session(browser, url, count, 7 * k, errors) for k in range(sessions))
+            )
+            await browser.close()
+            return {"groups": groups, "errors": errors}
         await first_load(browser, url)  # warm the server (imports, first page)
         loads = [await first_load(browser, url) for _ in range(repeat)]
         page = await new_page(browser, url)
@@ -232,6 +271,8 @@ def png_reference(count: int) -> dict[str, list[float]]:
 
 
 def percentile(values: list[float], q: float) -> float:
+    if not values:
+        return float("nan")
     ordered = sorted(values)
     return ordered[min(len(ordered) - 1, int(round(q / 100 * (len(ordered) - 1))))]
 
@@ -243,28 +284,47 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--edits", type=int, default=20)
     parser.add_argument("--sessions", type=int, default=1)
+    parser.add_argument(
+        "--sessions-only",
+        action="store_true",
+        help="only the edits of --sessions pages at once (no loads, switches or PNGs)",
+    )
     args = parser.parse_args()
     load_before = os.getloadavg()[0]
     ref = reference(args.edits)
-    png_ref = png_reference(args.repeat)
+    png_ref = {} if args.sessions_only else png_reference(args.repeat)
     with running_server(timeout=GUARD_MS / 1000) as url:
-        result = asyncio.run(run(url, args.repeat, args.edits, args.sessions))
+        result = asyncio.run(run(url, args.repeat, args.edits, args.sessions, args.sessions_only))
     ref_p50, ref_p95 = percentile(ref, 50), percentile(ref, 95)
     groups: list[list[float]] = result["groups"]
     edit = [t for group in groups for t in group]
     n = args.sessions
-    rows = [
-        ("first load, median [s]", statistics.median(result["loads"]), 2.0, ref_p50),
-        ("preset switch, median [s]", statistics.median(result["switches"]), 0.5, ref_p50),
-        *(
-            (
-                f"PNG {name} after the first, median [s]",
-                statistics.median(result["pngs"][name]),
-                1.0,
-                statistics.median(png_ref[name]),
-            )
-            for name, _tab in PNG_FIGURES
-        ),
+    rows = (
+        []
+        if args.sessions_only
+        else [
+            *(
+                (f"first load: {what}, median [s]", statistics.median(times), target, ref_p50)
+                for what, times, target in zip(
+                    ("first paint", "page and results shown", "3-D view drawn too"),
+                    zip(*result["loads"], strict=True),
+                    (None, 2.0, None),
+                    strict=True,
+                )
+            ),
+            ("preset switch, median [s]", statistics.median(result["switches"]), 0.5, ref_p50),
+            *(
+                (
+                    f"PNG {name} after the first, median [s]",
+                    statistics.median(result["pngs"][name]),
+                    1.0,
+                    statistics.median(png_ref[name]),
+                )
+                for name, _tab in PNG_FIGURES
+            ),
+        ]
+    )
+    rows += [
         (f"edit -> figure p50, {n} session(s) [s]", percentile(edit, 50), None, ref_p50),
         (f"edit -> figure p95, {n} session(s) [s]", percentile(edit, 95), 0.15, ref_p95),
     ]
@@ -277,20 +337,21 @@ def main() -> None:
                 (f"  session {k + 1}: edit -> figure p95 [s]", percentile(group, 95), 0.15, ref_p95)
             )
     print(
-        f"{ENGINE}, {args.repeat} loads/switches/PNGs, {len(edit)} edits in {n} session(s), "
+        f"{ENGINE}, {0 if args.sessions_only else args.repeat} loads/switches/PNGs, "
+        f"{len(edit)} of {n * args.edits} edits done in {n} session(s), "
         f"errors {len(result['errors'])}; load average {load_before:.1f} before, "
         f"{os.getloadavg()[0]:.1f} after ({os.cpu_count()} cores)"
     )
     print(
         f"references (in process): server work of one edit p50 {ref_p50:.3f} s, "
         f"p95 {ref_p95:.3f} s; PNG "
-        + ", ".join(f"{name} {statistics.median(png_ref[name]):.3f} s" for name, _ in PNG_FIGURES)
+        + ", ".join(f"{name} {statistics.median(times):.3f} s" for name, times in png_ref.items())
     )
-    print(f"{'measure':44s} {'measured':>9s} {'target':>7s} {'ratio to ref':>12s}")
+    print(f"{'measure':50s} {'measured':>9s} {'target':>7s} {'ratio to ref':>12s}")
     for label, value, target, ref_value in rows:
         t = "" if target is None else f"{target:.2f}"
         r = "" if ref_value is None else f"{value / ref_value:.1f}"
-        print(f"{label:44s} {value:9.3f} {t:>7s} {r:>12s}")
+        print(f"{label:50s} {value:9.3f} {t:>7s} {r:>12s}")
     for error in result["errors"][:5]:
         print("error:", error)
 

@@ -321,3 +321,90 @@ def test_rebalance_file_and_api_agree() -> None:
     assert [case.target_balance_factor for case in study.cases][0] == 0.28
     assert study.tolerance_source == "ISO 21940-11 G 6.3, 2.7 kg, 15200 rpm"
     assert study.old.rotating_mass == pytest.approx(0.28269)
+
+
+#: the example's crank drilled instead of ground: two 8 mm axial holes per web at 40 mm
+HOLES = ["--method", "holes", "--correction-radius", "40 mm", "--hole-diameter", "8 mm"]
+HOLES += ["--holes", "2"]
+
+
+def _rebalance_json(capsys, extra: list[str]) -> dict:  # type: ignore[type-arg]
+    """The rebalance of the example with holes and ``extra``: its table prints, its JSON."""
+    args = ["rebalance", "--parts", str(EXAMPLE), *HOLES, *extra]
+    code, _, err = run(capsys, args)
+    assert code == 0, err
+    code, out, err = run(capsys, [*args, "--format", "json"])
+    assert code == 0, err
+    return json.loads(out)
+
+
+def test_rebalance_drill_point_options_against_the_closed_form(capsys) -> None:
+    """--point-angle and --depth-to drill pointed holes: the unbalance removed is that of
+    the closed-form volume (a cylinder plus a cone of height h = (d/2)/tan(point/2), read
+    to the shoulder; a cylinder h shorter plus the cone, read to the tip), and the same
+    correction needs h/3 less depth read to the shoulder, 2h/3 more read to the tip, than
+    flat-bottomed holes (docs/balance_shop.md, "Holes")."""
+    import math
+
+    a, density, radius, holes = 4e-3, 7850.0, 40e-3, 4  # 2 webs x 2 holes
+    h = a / math.tan(math.radians(118.0 / 2))
+    cone = math.pi * a**2 * h / 3
+
+    def volume(depth: float, depth_to: str | None) -> float:
+        if depth_to is None:
+            return math.pi * a**2 * depth
+        shank = depth if depth_to == "shoulder" else depth - h
+        return math.pi * a**2 * shank + cone
+
+    first: dict[str | None, float] = {}
+    for depth_to in (None, "shoulder", "tip"):
+        extra = [] if depth_to is None else ["--point-angle", "118 deg", "--depth-to", depth_to]
+        payload = _rebalance_json(capsys, extra)
+        for case in payload["cases"]:
+            assert case["passed"]
+            correction = case["correction"]
+            if depth_to is None:  # flat-bottomed: no point, no reference to state
+                assert "point_angle_deg" not in correction and "depth_to" not in correction
+            else:
+                assert correction["point_angle_deg"] == pytest.approx(118.0)
+                assert correction["depth_to"] == depth_to
+            for it in case["iterations"]:
+                exact = holes * density * volume(it["depth_m"], depth_to) * radius
+                assert it["removed_unbalance_kg_m"] == pytest.approx(exact, rel=1e-9)
+        first[depth_to] = payload["cases"][0]["iterations"][0]["depth_m"]
+    step = 1e-6 + 1e-12  # the example's machining step, 0.001 mm
+    assert first[None] - first["shoulder"] == pytest.approx(h / 3, abs=step)
+    assert first["tip"] - first[None] == pytest.approx(2 * h / 3, abs=step)
+
+
+def test_rebalance_flat_point_keeps_the_thesis_numbers(capsys) -> None:
+    """A 180 deg point is the flat bottom of the default: the same output, number for
+    number (the thesis' Table 6.2 stays reproducible with the default)."""
+    default = _rebalance_json(capsys, [])
+    flat = _rebalance_json(capsys, ["--point-angle", "180 deg"])
+    assert flat == default
+
+
+@pytest.mark.parametrize(
+    ("extra", "option", "words"),
+    [
+        (HOLES + ["--point-angle", "200 deg", "--depth-to", "tip"], "--point-angle",
+         "greater than 0 deg and at most 180 deg"),
+        (HOLES + ["--point-angle", "0 deg", "--depth-to", "tip"], "--point-angle",
+         "greater than 0 deg"),
+        (HOLES + ["--point-angle", "nan deg", "--depth-to", "tip"], "--point-angle", "one number"),
+        (HOLES + ["--point-angle", "118 mm", "--depth-to", "tip"], "--point-angle", "angle"),
+        (HOLES + ["--point-angle", "118 deg"], "--point-angle", "needs --depth-to"),
+        (HOLES + ["--depth-to", "tip"], "--depth-to", "pointed holes only"),
+        (HOLES + ["--point-angle", "180 deg", "--depth-to", "tip"], "--depth-to",
+         "pointed holes only"),
+        (["--point-angle", "118 deg", "--depth-to", "tip"], "--point-angle",
+         "does not apply to method 'face'"),
+        (["--depth-to", "shoulder"], "--depth-to", "does not apply to method 'face'"),
+    ],
+)  # fmt: skip
+def test_rebalance_drill_point_refused_where_ignored(capsys, extra, option, words) -> None:
+    """Bad or ignored drill-point options: one line naming the option, exit 2."""
+    code, out, err = run(capsys, ["rebalance", "--parts", str(EXAMPLE), *extra])
+    assert code == 2 and out == ""
+    assert err.count("\n") == 1 and option in err and words in err, err

@@ -3,7 +3,8 @@
 Known results (inline-4 flat crank, the makers' V8 orders, the 270/450 twins), counts
 against a brute force written here independently of the module (every permutation,
 the crank from ``studies.build``, the mirror maps by hand), chunking, and the partition of
-all orders into classes. The makers' maps are also in docs/explorer.md.
+all orders into classes. The makers' maps come from crankbalance.numbering
+(docs/engine_file.md, "Makers' numbering").
 """
 
 from __future__ import annotations
@@ -20,16 +21,16 @@ from crankbalance.errors import InputError
 from crankbalance.explore import orders
 from crankbalance.io.engine_file import parse_engine_text, preset_text
 from crankbalance.model import EngineModel
+from crankbalance.numbering import SCHEMES
 from crankbalance.studies.build import build_model
 
 V90 = math.pi / 2
-#: GM small-block V8: odd cylinders 1-3-5-7 on the left bank, even 2-4-6-8 on the right,
-#: front to rear, clockwise seen from the front, so a crankpin reaches the right bank
-#: first: right = crankbalance's bank A (cylinders 1..4 from the front), left = bank B.
-GM = {2: 1, 4: 2, 6: 3, 8: 4, 1: 5, 3: 6, 5: 7, 7: 8}
-#: Ford 289/302 and 351W: right bank 1-2-3-4, left bank 5-6-7-8 front to rear, clockwise:
-#: the right bank leads, so Ford's numbers are crankbalance's.
-FORD = {c: c for c in range(1, 9)}
+#: the makers' V8 numberings, from their one place (crankbalance.numbering, where the rules
+#: and sources are): GM numbers along the crank, odd cylinders on the left bank, even on the
+#: right (crankbalance's bank A); Ford bank after bank, the right bank first: its numbers
+#: are crankbalance's. maker's number -> crankbalance's.
+GM = dict(enumerate(SCHEMES["gm-vee"].to_crankbalance(8), start=1))
+FORD = dict(enumerate(SCHEMES["ford-vee"].to_crankbalance(8), start=1))
 
 
 def mapped(order: tuple[int, ...], numbering: dict[int, int]) -> tuple[int, ...]:
@@ -54,8 +55,10 @@ def gap(a: np.ndarray) -> np.ndarray:
 def built(
     preset: str, order: tuple[int, ...], strokes: int | None = None, bank: float | None = None
 ) -> EngineModel:
-    """A preset with this firing order (and its crank from it: throw_angles dropped)."""
+    """A preset with this firing order in crankbalance's numbering (a maker's numbering
+    dropped) and its crank from it (throw_angles dropped)."""
     text = re.sub(r"throw_angles = \[[^\]]*\]\n", "", preset_text(preset))
+    text = re.sub(r"numbering = .*\n", "", text)
     text = re.sub(r"firing_order = \[[^\]]*\].*\n", "", text)
     text = re.sub(
         r"cylinders = \d+", f"cylinders = {len(order)}\nfiring_order = {list(order)}", text
@@ -325,7 +328,7 @@ def test_split_pin_v6_90() -> None:
     assert int(found.equivalents.sum()) == math.factorial(5)
     # GM's even-firing 90 deg V6 (odd cylinders left, even right, right bank leading as
     # in the V8), firing 1-6-5-4-3-2: the two pins of each pair are 30 deg apart
-    order = mapped((1, 6, 5, 4, 3, 2), {2: 1, 4: 2, 6: 3, 1: 4, 3: 5, 5: 6})
+    order = mapped((1, 6, 5, 4, 3, 2), dict(enumerate(SCHEMES["gm-vee"].to_crankbalance(6), 1)))
     k = sequences(found).index(orders.equivalent_orders(p, order)[0])
     split = found.throw_angle[k, 3:] - found.throw_angle[k, :3]
     assert np.all(np.isclose(gap(split), math.radians(30)))

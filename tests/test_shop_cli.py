@@ -18,6 +18,11 @@ from crankbalance.studies.shop import hole_plan, parts_study
 from .conftest import EXAMPLES, run_cli
 
 PARTS = str(EXAMPLES / "v8_parts.csv")
+#: A time limit the matching never reaches, even on a machine many times busier than
+#: usual (600 s, the largest allowed): the fixture's and the command's matchings are then both the proven optimum, not
+#: what each found before a 60 s limit (HiGHS takes ~12 s here on a busy machine).
+PROVEN_LIMIT = 600.0
+PROVEN = ["--time-limit", f"{PROVEN_LIMIT:g} s"]
 ENGINE = "v8-crossplane"
 #: the worked example's readings and planes (docs/balance_shop.md)
 PLAN = {
@@ -43,7 +48,7 @@ def plan_args() -> list[str]:
 
 @pytest.fixture(scope="module")
 def study():  # type: ignore[no-untyped-def]
-    return parts_study(ENGINE, PARTS, ShopOptions())
+    return parts_study(ENGINE, PARTS, ShopOptions(time_limit=f"{PROVEN_LIMIT:g} s"))
 
 
 @pytest.fixture(scope="module")
@@ -52,17 +57,19 @@ def holes():  # type: ignore[no-untyped-def]
 
 
 def test_match_json_and_table(study, capsys: pytest.CaptureFixture[str]) -> None:  # type: ignore[no-untyped-def]
-    code, out, _ = run_cli(["shop", "match", PARTS, "--engine", ENGINE, "--format", "json"], capsys)
+    code, out, _ = run_cli(
+        ["shop", "match", PARTS, "--engine", ENGINE, *PROVEN, "--format", "json"], capsys
+    )
     assert code == 0
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.shop.match/1"
+    assert data["schema"] == "crankbalance.shop.match/2"
     got = data["result"]["matching"]
     assert [tuple(ids) for ids in got["ids"]] == list(study.matching.ids)
-    assert got["removed_total"] == pytest.approx(study.matching.removed_total, rel=1e-9)
+    assert got["removed_total_kg"] == pytest.approx(study.matching.removed_total, rel=1e-9)
     # every cylinder holds one part of each kind, no part twice
     for k, _kind in enumerate(study.matching.kinds):
         assert len({ids[k] for ids in got["ids"]}) == 8
-    code, out, _ = run_cli(["shop", "match", PARTS, "--engine", ENGINE], capsys)
+    code, out, _ = run_cli(["shop", "match", PARTS, "--engine", ENGINE, *PROVEN], capsys)
     assert code == 0
     assert f"material to remove {study.matching.removed_total * 1e3:.1f} g" in out
     assert f"remove {study.machined.removed_total * 1e3:.1f} g" in out
@@ -70,10 +77,10 @@ def test_match_json_and_table(study, capsys: pytest.CaptureFixture[str]) -> None
 
 def test_bobweights_against_hand_sum(study, capsys: pytest.CaptureFixture[str]) -> None:  # type: ignore[no-untyped-def]
     code, out, _ = run_cli(
-        ["shop", "bobweights", PARTS, "--engine", ENGINE, "--format", "json"], capsys
+        ["shop", "bobweights", PARTS, "--engine", ENGINE, *PROVEN, "--format", "json"], capsys
     )
     assert code == 0
-    got = np.array(json.loads(out)["result"]["bob_weight"])
+    got = np.array(json.loads(out)["result"]["bob_weight_kg"])
     # crossplane V8: two rods per pin; the pin of cylinder c is the model's cylinder_throw
     from crankbalance.studies.shop import engine_model
 
@@ -89,7 +96,7 @@ def test_plan_json_keeps_the_statics(holes, capsys: pytest.CaptureFixture[str]) 
     code, out, _ = run_cli(["shop", "plan", *plan_args(), "--format", "json"], capsys)
     assert code == 0
     got = json.loads(out)["result"]
-    per_plane = [complex(u["re"], u["im"]) for u in got["plan"]["unbalance"]]
+    per_plane = [complex(u["re"], u["im"]) for u in got["plan"]["unbalance_kg_m"]]
     np.testing.assert_allclose(per_plane, holes.plan.unbalance, rtol=1e-9)
     # by hand: the readings, 12.5 g at 40 mm, 35° in z = 0 and 8 g at 40 mm, 200° in z = 0.4,
     # have the resultant and the moment of the corrections' planes at 0.05 and 0.35 m
@@ -100,8 +107,8 @@ def test_plan_json_keeps_the_statics(holes, capsys: pytest.CaptureFixture[str]) 
     assert 0.05 * u1 + 0.35 * u2 == pytest.approx(0.4 * r2, abs=1e-12)
     for j, plan in enumerate(got["holes"]):
         assert plan["number"] == holes.holes[j].number >= 1
-        assert plan["depth"] <= 0.015 + 1e-12  # the max depth
-        residual = complex(got["residual"][j]["re"], got["residual"][j]["im"])
+        assert plan["depth_m"] <= 0.015 + 1e-12  # the max depth
+        residual = complex(got["residual_kg_m"][j]["re"], got["residual_kg_m"][j]["im"])
         assert abs(residual) == pytest.approx(holes.holes[j].residual_amount, rel=1e-6, abs=1e-12)
     assert got["check"]["passed"] is True
     code, out, _ = run_cli(["shop", "plan", *plan_args()], capsys)
@@ -157,7 +164,11 @@ def test_scatter_is_the_studys(capsys: pytest.CaptureFixture[str]) -> None:
         ShopOptions, {"correction_planes": "-200 mm, 200 mm", "rotor_mass": "25 kg"}
     )
     direct = scatter_of_parts(ENGINE, PARTS, options, 20000, 3, 1e-4)
-    np.testing.assert_allclose(got["mean"], direct.mean, rtol=1e-9)
+    np.testing.assert_allclose(got["residual"]["mean_kg_m"], direct.mean[:2], rtol=1e-9)
+    np.testing.assert_allclose(got["force"]["mean_N"], direct.mean[2:4], rtol=1e-9)
+    np.testing.assert_allclose(got["moment"]["mean_Nm"], direct.mean[4:], rtol=1e-9)
+    assert got["residual"]["outputs"] == list(direct.outputs[:2])
+    np.testing.assert_allclose(got["residual"]["limit_kg_m"], direct.plane_tolerance, rtol=1e-9)
     assert got["p_grade"] == pytest.approx(direct.p_grade)
     assert 0.0 <= got["p_grade"] <= 1.0
 
@@ -180,7 +191,8 @@ def test_sheet_html(study, holes, tmp_path: Path, capsys: pytest.CaptureFixture[
     pytest.importorskip("plotly")
     target = tmp_path / "sheet.html"
     code, _, err = run_cli(
-        ["shop", "sheet", PARTS, "--engine", ENGINE, "-o", str(target), *plan_args()], capsys
+        ["shop", "sheet", PARTS, "--engine", ENGINE, *PROVEN, "-o", str(target), *plan_args()],
+        capsys,
     )
     assert code == 0, err
     page = target.read_text()
@@ -194,7 +206,8 @@ def test_sheet_pdf_text(study, holes, tmp_path: Path, capsys: pytest.CaptureFixt
     pytest.importorskip("kaleido")
     target = tmp_path / "sheet.pdf"
     code, _, err = run_cli(
-        ["shop", "sheet", PARTS, "--engine", ENGINE, "-o", str(target), *plan_args()], capsys
+        ["shop", "sheet", PARTS, "--engine", ENGINE, *PROVEN, "-o", str(target), *plan_args()],
+        capsys,
     )
     assert code == 0, err
     words = subprocess.run(
@@ -228,3 +241,83 @@ def test_light_spot_readings_turn_the_plan_half_a_turn(holes) -> None:  # type: 
         np.testing.assert_allclose(
             np.exp(1j * turned.angles), -np.exp(1j * heavy.angles), atol=1e-12
         )
+
+
+#: the unit suffixes of docs/json.md (the shop's second moments add kg2_m2, N2, N2_m2 and
+#: the variance objective kg2)
+SUFFIXES = ("_kg", "_m", "_m2", "_m3", "_kg_m", "_kg_m3", "_N", "_Nm", "_s", "_rad_s", "_deg")
+SUFFIXES += ("_kg2", "_kg2_m2", "_N2", "_N2_m2")
+#: keys of numbers without a unit: counts, indices, ratios, probabilities, flags
+DIMENSIONLESS = {
+    "fraction", "cylinders", "rods_on_pin", "part", "number", "share_a", "ratio", "samples",
+    "seed", "quantile_levels", "histogram", "overflow", "variance_share", "p_grade", "p_free",
+    "p_all", "influence",
+}  # fmt: skip
+
+
+def _numeric_keys(value: object, key: str = "") -> set[str]:
+    """The keys whose value is a number, a list of them or a complex number {re, im}."""
+    if isinstance(value, dict):
+        if set(value) == {"re", "im"}:
+            return {key}
+        return set().union(*(_numeric_keys(v, k) for k, v in value.items()), set())
+    if isinstance(value, list):
+        return set().union(*(_numeric_keys(v, key) for v in value), set())
+    if isinstance(value, int | float) and not isinstance(value, bool):
+        return {key}
+    return set()
+
+
+@pytest.mark.parametrize("command", ["match", "bobweights", "plan", "scatter"])
+def test_every_json_key_names_its_unit(command: str, capsys: pytest.CaptureFixture[str]) -> None:
+    """docs/json.md: every key of a number with a unit names it; angles in [0, 360) degrees."""
+    args = {
+        "match": ["shop", "match", PARTS, "--engine", ENGINE],
+        "bobweights": ["shop", "bobweights", PARTS, "--engine", ENGINE],
+        "plan": ["shop", "plan", *plan_args()],
+        "scatter": ["shop", "scatter", PARTS, "--engine", ENGINE, "--rotor-mass", "25 kg"]
+        + ["--correction-planes", "-200 mm, 200 mm", "--samples", "2000"],
+    }[command]
+    code, out, err = run_cli([*args, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(out)
+    assert data["schema"] == f"crankbalance.shop.{command}/2"
+    bare = {k for k in _numeric_keys(data["result"]) if k not in DIMENSIONLESS}
+    assert {k for k in bare if not k.endswith(SUFFIXES)} == set()
+
+
+def test_plan_json_angles_are_degrees(holes, capsys: pytest.CaptureFixture[str]) -> None:  # type: ignore[no-untyped-def]
+    code, out, _ = run_cli(["shop", "plan", *plan_args(), "--format", "json"], capsys)
+    assert code == 0
+    got = json.loads(out)["result"]
+    heavy = np.degrees(holes.plan.remove_angle) % 360
+    np.testing.assert_allclose(got["plan"]["remove_angle_deg"], heavy, rtol=1e-9)
+    for j, plan in enumerate(got["holes"]):
+        np.testing.assert_allclose(
+            plan["angles_deg"], np.degrees(holes.holes[j].angles) % 360, rtol=1e-9
+        )
+        assert all(0 <= a < 360 for a in plan["angles_deg"])
+        assert plan["point_angle_deg"] == pytest.approx(118.0)  # the default drill point
+        assert plan["depth_m"] == pytest.approx(holes.holes[j].depth, rel=1e-9)
+
+
+def test_sheet_embeds_the_keyed_study(study, holes) -> None:  # type: ignore[no-untyped-def]
+    import re
+
+    from crankbalance.shop_sheet import sheet_html
+    from crankbalance.studies.shop import ShopStudy
+
+    pytest.importorskip("plotly")
+    settings = parse_options(ShopOptions, PLAN).model_dump()
+    page = sheet_html(ShopStudy(parts=study, holes=holes, settings=settings))
+    found = re.search(r'id="crankbalance-data">(.*?)</script>', page)
+    assert found is not None
+    data = json.loads(found.group(1).replace("<\\/", "</"))
+    assert data["schema"] == "crankbalance.shop-sheet/2"
+    bare = {k for k in _numeric_keys(data["study"]) if k not in DIMENSIONLESS}
+    assert {k for k in bare if not k.endswith(SUFFIXES)} == set()
+    reading = data["study"]["settings"]["reading"][0]
+    assert reading == {"mass_kg": 0.0125, "radius_m": 0.04, "angle_deg": pytest.approx(35.0)}
+    assert data["study"]["settings"]["speed_rad_s"] == pytest.approx(5500 * math.pi / 30)
+    got = data["study"]["parts"]["bob_weights"]["bob_weight_kg"]
+    np.testing.assert_allclose(got, study.bob_weights.bob_weight, rtol=1e-9)

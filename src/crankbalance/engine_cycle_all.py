@@ -53,6 +53,7 @@ from .engine_cycle import (
 )
 from .errors import InputError, check_positive
 from .model import EngineModel
+from .numbering import order_intervals
 from .results import ResultMixin
 
 #: a cylinder's firing angle may differ from one of its top dead centres by this much [rad]
@@ -78,12 +79,15 @@ def firing_angles(
     Cylinder c is at a top dead centre at :math:`\theta_c = \beta_c - \varphi_c` (mod
     :math:`2\pi`). A two-stroke fires at every top dead centre. A four-stroke fires at
     one of its two per cycle: the first cylinder of the firing order fires at
-    :math:`\theta_c \in [0, 2\pi)`, and the k-th (from 0) at whichever of its two top dead
-    centres lies nearer the even-firing time :math:`t_0 + k\,4\pi/C`. When the crank allows
-    even firing (as :mod:`crankbalance.studies.build` derives the throw angles from the
-    firing order), this gives exactly the even intervals; for a crank given by its throw
-    angles it gives the intervals nearest to even (a 90° V-twin on one pin: 450°/270°, a
-    270° inline twin: 270°/450°).
+    :math:`\theta_c \in [0, 2\pi)`, and each next one at its next top dead centre, a
+    full turn later when it is at top dead centre with the one before (the shortest
+    intervals of :func:`crankbalance.numbering.order_intervals`, the same check
+    :mod:`crankbalance.studies.build` makes of a firing order given with its crank); they
+    must add up to at most one cycle. When they add up to one revolution (every cylinder
+    fires in one), the empty revolution goes into the interval that leaves the firing most
+    even (a 90° V-twin on one pin: 450°/270°, a 270° inline twin: 270°/450°). When the
+    crank allows even firing (as :mod:`crankbalance.studies.build` derives the throw angles
+    from the firing order), this gives exactly the even intervals.
 
     Without a firing order (``None``): the order 1, 2, ..., C when it fires evenly on this
     crank (what :mod:`crankbalance.studies.build` assumes), otherwise the choice of one
@@ -135,19 +139,8 @@ def firing_angles(
     cycle = math.pi * strokes
     tdc = np.mod(beta - phi, 2 * np.pi)
     index = np.array(order) - 1
-    start = float(tdc[index[0]])
-    times = np.empty(n)
-    for k, c in enumerate(index):
-        base = start + float(np.mod(tdc[c] - start, 2 * np.pi))
-        if base >= start + 2 * np.pi - 1e-12:
-            base -= 2 * np.pi  # the same top dead centre as the first cylinder's
-        if strokes == 4:
-            ideal = start + k * cycle / n
-            later = base + 2 * np.pi
-            base = later if abs(later - ideal) < abs(base - ideal) - 1e-12 else base
-        times[c] = base
-    sequence = times[index]
-    if np.any(np.diff(sequence) < -TDC_TOLERANCE):
+    steps = order_intervals(tdc, order, strokes)  # the shortest, the last back to the first
+    if steps.sum() > cycle + TDC_TOLERANCE:
         raise InputError(
             "crank_train.firing_order",
             order,
@@ -155,6 +148,15 @@ def firing_angles(
             f"within one cycle ({math.degrees(cycle):g} deg) of this crank; give the order "
             "in which the cylinders reach top dead centre, or give the firing angles",
         )
+    if steps.sum() < cycle - TDC_TOLERANCE:  # a four-stroke firing all in one revolution:
+        # the empty revolution goes into the interval that leaves the firing most even
+        choices = steps[None, :] + 2 * np.pi * np.eye(n)
+        deviation = np.abs(choices - cycle / n)
+        worst = deviation.max(axis=1)
+        best = np.flatnonzero(worst <= worst.min() + TDC_TOLERANCE)
+        steps = choices[best[np.argmin((deviation[best] ** 2).sum(axis=1))]]
+    times = np.empty(n)
+    times[index] = float(tdc[index[0]]) + np.concatenate([[0.0], np.cumsum(steps[:-1])])
     return np.mod(times, cycle)
 
 

@@ -8,7 +8,7 @@ histories from :func:`crankbalance.balancing.point_mass_history`), and turning a
 into a PNG, SVG or HTML file is :mod:`crankbalance.render`'s job.
 
 It is longer than the ~800 lines the layout aims at because it holds one builder per
-figure of every study (seventeen builders, 30-190 lines each) around one shared palette and title
+figure of every study (eighteen builders, 30-190 lines each) around one shared palette and title
 style; splitting it by study would spread that style over several modules for no gain in
 cohesion (each builder depends only on the palette and helpers at the top).
 
@@ -47,6 +47,8 @@ Other studies:
 - ``bench_figure(result) -> Figure``                (rotor_bench.BenchResult)
 - ``cycle_figure(result) -> Figure``                (engine_cycle.CycleResult)
 - ``engine_torque_figure(result) -> Figure``        (engine_cycle_all.EngineCycleResult)
+- ``bearing_loads_figure(studies, model) -> Figure`` (studies.loads.BearingStudy, one or
+    several overlaid): polar load diagram per main bearing, bending moment per journal
 
 Design-space explorer (:mod:`crankbalance.explore`, rows of its run):
 
@@ -65,6 +67,7 @@ moments in N·m, lengths in mm, masses in kg.
 from __future__ import annotations
 
 import math
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any, Literal
 
@@ -598,6 +601,123 @@ def _zero_reach(analysis: Analysis, quantity: str, tiny: float) -> float:
 
 
 # --------------------------------------------------------------------------- 3-D crank
+#: the 3-D crank's frame: room around the drawing on every side, as a share of its largest
+#: extent; the shortest axis drawn at least this share of the longest (a single's crank is
+#: a few mm long, a radial's cylinders reach 400 mm: the short axis keeps its scale and
+#: gets empty room, so its tick labels do not crowd); tick labels per axis of full length;
+#: the camera's direction (from the front, a little from the right and above)
+SCENE_MARGIN = 0.08
+SCENE_MIN_ASPECT = 0.4
+SCENE_TICKS = 8
+SCENE_EYE = (0.7, -1.9, 0.6)
+#: the view the camera's distance is fitted to: plotly's vertical field of view [rad], the
+#: width / height of the scene it must fit (a half-width web card; a wider figure only
+#: gains room), and the share of that view the box may fill
+SCENE_FOV = math.pi / 4
+SCENE_VIEW_ASPECT = 1.25
+SCENE_FILL = 0.7
+
+
+def scene_box_fits(ratios: ArrayLike, eye: ArrayLike) -> bool:
+    """Whether the eight corners of a plotly scene box (sides ``ratios``, the aspect
+    ratios, centred on the origin) seen in perspective from ``eye`` (looking at the
+    centre, z up, vertical field of view :data:`SCENE_FOV`) lie within
+    :data:`SCENE_FILL` of a view :data:`SCENE_VIEW_ASPECT` times as wide as high."""
+    position = np.asarray(eye, dtype=float)
+    forward = -position / np.linalg.norm(position)
+    right = np.cross(forward, [0.0, 0.0, 1.0])
+    right /= np.linalg.norm(right)
+    up = np.cross(right, forward)
+    half = np.asarray(ratios, dtype=float) / 2
+    corners = np.array(np.meshgrid(*[(-h, h) for h in half])).reshape(3, -1).T
+    relative = corners - position
+    depth = relative @ forward
+    if np.any(depth <= 0):
+        return False
+    tangent = math.tan(SCENE_FOV / 2) * SCENE_FILL
+    across = np.abs(relative @ right) / depth
+    high = np.abs(relative @ up) / depth
+    return bool(np.all(across <= tangent * SCENE_VIEW_ASPECT) and np.all(high <= tangent))
+
+
+def _fitted_eye(ratios: Sequence[float]) -> NDArray[np.float64]:
+    """The camera along :data:`SCENE_EYE` at the least distance (to 1 %) from which the
+    box of ``ratios`` fits the view (:func:`scene_box_fits`)."""
+    direction = np.asarray(SCENE_EYE, dtype=float)
+    direction /= np.linalg.norm(direction)
+    near, far = 0.1, 50.0
+    while far / near > 1.01:
+        middle = math.sqrt(near * far)
+        near, far = (near, middle) if scene_box_fits(ratios, middle * direction) else (middle, far)
+    return far * direction
+
+
+#: no tick label within this share of an axis' length from its ends, where three axes meet
+#: and their labels would run into each other
+SCENE_TICK_EDGE = 0.1
+
+
+def _scene_ticks(span: Sequence[float], count: int) -> list[float]:
+    """At most about ``count`` round tick values (1, 2 or 5 times a power of ten apart) in
+    ``span``, none within :data:`SCENE_TICK_EDGE` of its ends."""
+    low, high = float(span[0]), float(span[1])
+    edge = SCENE_TICK_EDGE * (high - low)
+    raw = (high - low) / max(count, 1)
+    power = 10.0 ** math.floor(math.log10(raw))
+    step = next(f * power for f in (1.0, 2.0, 5.0, 10.0) if f * power >= raw)
+    first = math.ceil((low + edge) / step)
+    last = math.floor((high - edge) / step)
+    return [clean_tick(k * step) for k in range(first, last + 1)]
+
+
+def clean_tick(value: float) -> float:
+    """A tick value without float noise (``3 * 0.1`` -> ``0.3``, no ``-0.0``)."""
+    return float(f"{value:.12g}") + 0.0
+
+
+def crank_3d_scene(traces: list[dict[str, Any]]) -> dict[str, Any]:
+    """The scene of the 3-D crank that frames every trace: per axis a range holding every
+    point of ``traces`` (plotly ``scatter3d`` dictionaries, ``None`` breaks skipped) with
+    :data:`SCENE_MARGIN` of room, widened about its centre to at least
+    :data:`SCENE_MIN_ASPECT` of the longest; the box to scale (aspect ratio of the
+    ranges), at most :data:`SCENE_TICKS` tick labels on the longest axis and fewer on the
+    shorter ones, and the camera along :data:`SCENE_EYE` as near as the whole box fits
+    the view (:func:`scene_box_fits`)."""
+    lows, highs = [], []
+    for key in ("x", "y", "z"):
+        values = [float(v) for t in traces for v in t.get(key, []) if v is not None]
+        lows.append(min(values, default=-1.0))
+        highs.append(max(values, default=1.0))
+    largest = max(max(h - lo for lo, h in zip(lows, highs, strict=True)), 1.0)
+    pad = SCENE_MARGIN * largest
+    ranges = []
+    for lo, h in zip(lows, highs, strict=True):
+        half = max((h - lo) / 2 + pad, SCENE_MIN_ASPECT * (largest / 2 + pad))
+        centre = (lo + h) / 2
+        ranges.append([centre - half, centre + half])
+    longest = max(h - lo for lo, h in ranges)
+    ratios = [(h - lo) / longest for lo, h in ranges]
+    eye = _fitted_eye(ratios)
+    # tick labels by the length an axis shows: its share of the box, foreshortened by the
+    # angle it makes with the line of sight (an axis seen end-on would crowd its labels)
+    sight = eye / np.linalg.norm(eye)
+    shown = [ratio * math.sqrt(max(0.0, 1.0 - sight[k] ** 2)) for k, ratio in enumerate(ratios)]
+    axes = {
+        f"{key}axis": {
+            "range": span,
+            "tickmode": "array",
+            "tickvals": _scene_ticks(span, max(2, round(SCENE_TICKS * length))),
+        }
+        for key, span, length in zip(("x", "y", "z"), ranges, shown, strict=True)
+    }
+    return {
+        **axes,
+        "aspectmode": "manual",
+        "aspectratio": dict(zip(("x", "y", "z"), ratios, strict=True)),
+        "camera": {"eye": dict(zip(("x", "y", "z"), (float(v) for v in eye), strict=True))},
+    }
+
+
 def crank_3d(
     model: EngineModel | Analysis | BalanceStudy, balance_study: BalanceStudy | None = None
 ) -> go.Figure:
@@ -801,16 +921,14 @@ def crank_3d(
     for drawn in traces.values():
         if not any(drawn["text"]):
             del drawn["text"]
+    scene = crank_3d_scene(list(traces.values()))
+    scene["xaxis"]["title"] = {"text": "y, crank axis [mm]"}
+    scene["yaxis"]["title"] = {"text": "x [mm]"}
+    scene["zaxis"]["title"] = {"text": "z [mm]"}
     layout = {
         "template": TEMPLATE,
         "title": {"text": figure_title("Crankshaft at crank angle 0", m.name)},
-        "scene": {
-            "xaxis": {"title": {"text": "y, crank axis [mm]"}},
-            "yaxis": {"title": {"text": "x [mm]"}},
-            "zaxis": {"title": {"text": "z [mm]"}},
-            "aspectmode": "data",
-            "camera": {"eye": {"x": 0.7, "y": -1.9, "z": 0.6}},
-        },
+        "scene": scene,
         "legend": {"orientation": "h", "y": -0.05},
         "margin": {"l": 0, "r": 0, "t": 50, "b": 0},
     }
@@ -1579,6 +1697,112 @@ def cycle_figure(result: Any) -> go.Figure:
     return fig
 
 
+# ------------------------------------------------------------------ main-bearing loads
+#: line styles of the studies a bearing-load figure overlays (first: solid)
+STUDY_DASHES = ("solid", "dash", "dot", "dashdot")
+
+
+def bearing_loads_figure(
+    studies: Any, model: str = "indeterminate", labels: tuple[str, ...] | None = None
+) -> go.Figure:
+    """Polar load diagram of every main bearing (top row: the force of the crank on the
+    bearing over the cycle, x across horizontally, z along the cylinder axis vertically)
+    and the bending moment at every journal over the cycle (bottom) of one crank model
+    (:class:`~crankbalance.studies.loads.BearingStudy`, or a sequence of them overlaid,
+    e.g. 4 and 8 counterweights; ``labels`` names each)."""
+    if model not in ("determinate", "indeterminate"):
+        raise InputError("model", model, "'determinate' or 'indeterminate'")
+    go = _go()
+    many = list(studies) if isinstance(studies, (list, tuple)) else [studies]
+    names = (
+        list(labels)
+        if labels is not None
+        else [
+            "no counterweights"
+            if s.balance.counterweights is None
+            else f"{s.balance.counterweights.count} counterweights"
+            for s in many
+        ]
+    )
+    if len(names) != len(many):
+        raise InputError("labels", labels, f"needs one label per study ({len(many)})")
+    bearings = many[0].results[model].bearing_position.size
+    cols = max(bearings, 1)
+    fig = _subplots(
+        rows=2,
+        cols=cols,
+        specs=[[{} for _ in range(cols)], [{"colspan": cols}] + [None] * (cols - 1)],
+        row_heights=[0.45, 0.55],
+        vertical_spacing=0.14,
+        horizontal_spacing=0.03,
+        subplot_titles=[f"bearing {k + 1}" for k in range(cols)]
+        + [f"bending moment at the journals ({model} crank)"],
+    )
+    reach = max(float(np.abs(s.results[model].load).max()) for s in many) * 1.1 or 1.0
+    for n, (study, name) in enumerate(zip(many, names, strict=True)):
+        r = study.results[model]
+        dash = STUDY_DASHES[n % len(STUDY_DASHES)]
+        deg = np.degrees(r.angle)
+        for k in range(r.bearing_position.size):
+            fig.add_trace(
+                go.Scatter(
+                    x=r.load[k].imag,
+                    y=r.load[k].real,
+                    mode="lines",
+                    name=name,
+                    legendgroup=name,
+                    showlegend=k == 0,
+                    line={"color": COLORS["total"], "dash": dash},
+                    text=[f"{a:.0f} deg" for a in deg],
+                    hovertemplate="crank %{text}<br>x %{x:.4g} N<br>z %{y:.4g} N<extra></extra>",
+                ),
+                row=1,
+                col=k + 1,
+            )
+            fig.add_trace(
+                go.Scatter(
+                    x=deg,
+                    y=np.abs(r.journal_moment[k]),
+                    mode="lines",
+                    name=f"journal {k + 1}",
+                    legendgroup=f"journal {k + 1}",
+                    showlegend=n == 0,
+                    line={"color": ORDER_COLORS[k % len(ORDER_COLORS)], "dash": dash},
+                    hovertemplate=f"{name}, journal {k + 1}<br>crank %{{x:.0f}} deg<br>"
+                    "|M| %{y:.4g} N·m<extra></extra>",
+                ),
+                row=2,
+                col=1,
+            )
+    for k in range(cols):
+        axis = "x" if k == 0 else f"x{k + 1}"
+        fig.update_xaxes(range=[-reach, reach], title_text="x [N]", row=1, col=k + 1)
+        fig.update_yaxes(
+            range=[-reach, reach],
+            scaleanchor=axis,
+            scaleratio=1,
+            title_text="z [N]" if k == 0 else None,
+            showticklabels=k == 0,
+            row=1,
+            col=k + 1,
+        )
+    fig.update_xaxes(title_text="crank angle of throw 1 [deg]", row=2, col=1)
+    fig.update_yaxes(title_text="|M| [N·m]", row=2, col=1)
+    first = many[0]
+    fig.update_layout(
+        template=TEMPLATE,
+        height=700,
+        width=max(900, 220 * cols),
+        legend={"orientation": "h", "y": -0.12},
+        title=figure_title(
+            f"Main-bearing loads over the cycle ({model} crank)",
+            first.model.name,
+            f"{first.cycle.speed_mean * 30 / math.pi:.0f} rpm",
+        ),
+    )
+    return fig
+
+
 def engine_torque_figure(result: Any) -> go.Figure:
     """The whole engine's torque over the cycle, each cylinder's share, and the speed
     (:class:`~crankbalance.engine_cycle_all.EngineCycleResult`); a single-cylinder
@@ -1878,18 +2102,25 @@ def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
 
 
 # --------------------------------------------------------------------------- balance shop
+#: font size of the hole plan's panel titles [px]
+HOLE_TITLE_SIZE = 12
+
+
 def hole_plan(result: Any) -> go.Figure:
     """The holes of a two-plane correction to scale (mm), one panel per correction plane,
     seen along the crank axis: 0° (crankpin 1) straight up, angles counterclockwise as the
     crank's throw angles; the hole circle, the heavy spot, each hole with its angle and the
     depth (:class:`~crankbalance.studies.shop.HolePlan`)."""
     go = _go()
+    # two short lines per panel, so that the two titles stay apart on a phone (a panel is
+    # about 180 px wide there: tests/web/test_web_shop.py measures them at 390 px)
     titles = [
-        f"plane {j + 1} at {p * 1e3:.4g} mm: {h.number} × Ø{h.diameter * 1e3:.3g} mm, "
-        f"{h.depth * 1e3:.4g} mm to the {h.depth_to}"
+        f"plane {j + 1} at {p * 1e3:.4g} mm<br>{h.number} × Ø{h.diameter * 1e3:.3g} mm, "
+        f"{h.depth * 1e3:.4g} mm to {h.depth_to}"
         for j, (p, h) in enumerate(zip(result.plan.correction_planes, result.holes, strict=True))
     ]
-    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.08)
+    fig = _subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.14)
+    fig.update_annotations(font={"size": HOLE_TITLE_SIZE})
     ring = np.linspace(0.0, 2 * np.pi, 91)
     for j, holes in enumerate(result.holes):
         col = j + 1
@@ -1953,10 +2184,13 @@ def hole_plan(result: Any) -> go.Figure:
                 row=1,
                 col=col,
             )
+            # neighbouring labels on two radii between the hole circle and the panel's
+            # edge, so that holes a pitch apart do not print their angles on one another
+            at = r + (reach - r) * (0.45 if k % 2 == 0 else 0.85)
             fig.add_trace(
                 go.Scatter(
-                    x=[1.25 * cx],
-                    y=[1.25 * cy],
+                    x=[at * np.sin(phi)],
+                    y=[at * np.cos(phi)],
                     mode="text",
                     text=[label],
                     showlegend=False,
@@ -1975,7 +2209,8 @@ def hole_plan(result: Any) -> go.Figure:
         )
     fig.update_layout(
         template=TEMPLATE,
-        height=520,
+        height=560,
+        margin={"t": 150},  # the figure's title, then two lines of panel titles
         legend={"orientation": "h", "y": -0.2},
         title=figure_title("Hole plan", note="along the crank axis; angles as the throw angles"),
     )

@@ -19,7 +19,13 @@ docs/engine_file.md): every lever arm of a moment is a position of the model.
 Numbering of cylinders (docs/engine_file.md): in-line and boxer: one per throw from the
 y < 0 end; vee: bank A (bank angle :math:`-V/2`) is 1..T, bank B (:math:`+V/2`) is T+1..2T,
 cylinders k and k+T share throw k; W: banks :math:`-V, 0, +V` numbered bank after bank;
-radial: cylinder k at bank angle :math:`(k-1)\,360°/n`; custom: throw after throw.
+radial: cylinder k at bank angle :math:`(k-1)\,360°/n`; custom: throw after throw;
+VR (narrow-angle vee with one crankpin per cylinder): cylinder k on throw k, odd cylinders in
+row A (:math:`-V/2`), even in row B (:math:`+V/2`); W from VR banks (``w_type = "vr"``): VR
+bank 1 (centre :math:`-V/2`) holds cylinders 1..n/2, VR bank 2 (:math:`+V/2`) n/2+1..n, each
+a VR engine of narrow angle :math:`v` (its rows at :math:`\mp v/2` about the bank centre, odd
+cylinders of the bank in row A); cylinder k on throw k, and cylinders k and k + n/2 on two
+throws at the same axial place (one pin, or a pin split in two).
 """
 
 from __future__ import annotations
@@ -127,6 +133,10 @@ class EngineModel:
         motion (:func:`crankbalance.shaking.cylinder_coefficients`), and the link rods'
         big ends (``cylinder_rotating_mass``, counted in ``throw_rotating_mass`` like
         every big end) add their motion relative to the crankpin.
+    maker_number : tuple of int or None
+        The maker's number of each cylinder (by crankbalance's number) when the engine
+        file gives its firing order in a maker's numbering (``crank_train.numbering`` or
+        ``maker_numbers``); only shown in outputs, no computation uses it. None otherwise.
     """
 
     name: str
@@ -148,6 +158,7 @@ class EngineModel:
     conrods: tuple[ConrodSplit, ...] = field(default=())
     firing_order_given: bool = True
     articulation: Articulation | None = None
+    maker_number: tuple[int, ...] | None = None
 
     @property
     def rod_ratio(self) -> float:
@@ -240,21 +251,31 @@ def tdc_angle(
 
 
 def standard_layout(
-    layout: str, cylinders: int, bank_angle: float = 0.0, pitch: float = 0.0
+    layout: str,
+    cylinders: int,
+    bank_angle: float = 0.0,
+    pitch: float = 0.0,
+    vr_angle: float | None = None,
 ) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
     """Throws and cylinders of a standard layout, numbered as in the module docstring.
 
     Parameters
     ----------
-    layout : {"inline", "boxer", "vee", "w", "radial"}
+    layout : {"inline", "boxer", "vee", "w", "radial", "vr"}
         Layout name, as in the engine file.
     cylinders : int
-        Number of cylinders (even for vee and boxer, a multiple of 3 for W).
+        Number of cylinders (even for vee, boxer and a W from VR banks, a multiple of 3 for
+        a broad-arrow W).
     bank_angle : float
-        Vee angle V, or the angle between neighbouring banks of a W [rad]; not used for
-        the other layouts.
+        Vee angle V, the angle between neighbouring banks of a broad-arrow W, the angle
+        between the two VR banks of a W from VR banks, or the narrow angle between the two
+        rows of a VR engine [rad]; not used for the other layouts.
     pitch : float
-        Distance between neighbouring throws along the crank axis [m].
+        Distance between neighbouring throws along the crank axis [m]; for a W from VR banks
+        the distance between neighbouring pairs of throws.
+    vr_angle : float, optional
+        Layout "w" only: when given, the W is built from two VR banks and this is the narrow
+        angle v between the two rows of each VR bank [rad]; None for a broad-arrow W.
 
     Returns
     -------
@@ -265,6 +286,8 @@ def standard_layout(
     cylinder_bank : ndarray, shape (C,)
         Bank angle of each cylinder [rad].
     """
+    if layout == "vr" or (layout == "w" and vr_angle is not None):
+        return _vr_layout(cylinders, bank_angle, pitch, vr_angle)
     n = cylinders
     t = {"vee": n // 2, "w": n // 3, "radial": 1}.get(layout, n)
     positions = ((np.arange(t) - (t - 1) / 2.0) * pitch).astype(float)
@@ -286,3 +309,47 @@ def standard_layout(
         throw_of = np.zeros(n, dtype=np.int64)
         banks = 2 * np.pi * np.arange(n) / n
     return positions, throw_of.astype(np.int64), banks.astype(np.float64)
+
+
+def vr_rows(cylinders: int, vr_banks: int = 1) -> NDArray[np.int64]:
+    """Row of each cylinder of a VR engine or of a W from VR banks: -1 for row A, +1 for row B.
+
+    Parameters
+    ----------
+    cylinders : int
+        Number of cylinders (even when ``vr_banks`` is 2).
+    vr_banks : {1, 2}
+        1 for layout "vr", 2 for a W from VR banks.
+
+    Returns
+    -------
+    ndarray of int, shape (C,)
+        -1 for the row at minus half the narrow angle about its VR bank's centre line, +1
+        for the row at plus half: odd cylinders of each VR bank (counted from its first
+        cylinder) in row A, even in row B.
+    """
+    per_bank = cylinders // vr_banks
+    k = np.tile(np.arange(per_bank), vr_banks)
+    return np.where(k % 2 == 0, -1, 1).astype(np.int64)
+
+
+def _vr_layout(
+    cylinders: int, bank_angle: float, pitch: float, vr_angle: float | None
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
+    """:func:`standard_layout` of a VR engine (``vr_angle`` None, ``bank_angle`` its narrow
+    angle) or of a W from two VR banks (``bank_angle`` between the banks, ``vr_angle``)."""
+    n = cylinders
+    if vr_angle is None:  # VR: one row of throws, rows alternating along the crank
+        rows = vr_rows(n, 1)
+        positions = (np.arange(n) - (n - 1) / 2.0) * pitch
+        banks = rows * bank_angle / 2
+    else:  # W: VR bank 1 on throws 1..n/2, VR bank 2 on n/2+1..n, pairs at one place
+        half = n // 2
+        rows = vr_rows(n, 2)
+        positions = np.tile((np.arange(half) - (half - 1) / 2.0) * pitch, 2)
+        banks = np.repeat([-bank_angle / 2, bank_angle / 2], half) + rows * vr_angle / 2
+    return (
+        positions.astype(np.float64),
+        np.arange(n, dtype=np.int64),
+        banks.astype(np.float64),
+    )

@@ -57,6 +57,8 @@ RANGES["position"] = (-RANGES["length"][1], RANGES["length"][1])  # axial positi
 RANGES["angle"] = (-RANGES["angle"][1], RANGES["angle"][1])
 for _kind in ("unbalance", "force", "torque"):
     RANGES[_kind] = (0.0, RANGES[_kind][1])
+#: the included angle of a drill point [rad]: above 0 (open), at most 180 deg (a flat bottom)
+RANGES["point_angle"] = (0.0, math.pi)
 #: (low, low is open, high, high is open) of a value
 Bounds = tuple[float | None, bool, float | None, bool]
 #: the smallest first moment a counterweight or a balance shaft is sized for [kg m]
@@ -154,6 +156,12 @@ Modulus = Annotated[float, _quantity("modulus"), _range("modulus")]
 Pressure = Annotated[float, _quantity("pressure"), _range("pressure")]
 Viscosity = Annotated[float, _quantity("viscosity"), _range("viscosity")]
 Angle = Annotated[float, _quantity("angle"), _range("angle")]
+#: a drill point's included angle: above 0, at most 180 deg (flat-bottomed holes)
+PointAngle = Annotated[
+    float,
+    _quantity("angle"),
+    Field(gt=RANGES["point_angle"][0], le=RANGES["point_angle"][1]),
+]
 Number = Annotated[float, BeforeValidator(_number)]
 Whole = Annotated[int, BeforeValidator(_number)]
 #: a balance factor: 0.28 or "28%", from 0 to 2
@@ -447,6 +455,94 @@ class SensitivityOptions(CycleOptions):
     )
 
 
+#: most main bearings one crank may be given (``bearings --bearing``)
+MAX_MAIN_BEARINGS = 64
+#: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
+#: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
+MAX_CLEARANCE_STIFFNESS = 1e10
+
+
+class BearingOptions(CombustionOptions):
+    """``bearings``: main-bearing loads and crank bending over the engine cycle
+    (docs/main_bearings.md). Crank dimensions left empty are taken from the crank radius
+    and the web offset (proportions of an automotive crank, docs/main_bearings.md)."""
+
+    speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
+    samples: Whole = Field(360, ge=36, le=3600, title="Samples per revolution")
+    gas: bool = Field(True, title="Gas forces", description="off: inertia forces only")
+    bore: Length | None = Field(
+        None, title="Bore", description="empty: square engine (bore = stroke)"
+    )
+    # a multi-cylinder automotive engine's combustion (CombustionOptions' defaults are the
+    # thesis' motorcycle single)
+    compression_ratio: Number = Field(10.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-20.0), title="Start of combustion from firing TDC")
+    crank_inertia: Inertia = Field(
+        0.15, title="Crank + flywheel inertia", description="sets the speed fluctuation"
+    )
+    balance_factor: Factor | None = Field(
+        None, title="Balance factor", description="empty: the engine file's"
+    )
+    webs: list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]] | None = Field(
+        None,
+        min_length=2,
+        max_length=2 * MAX_MAIN_BEARINGS,
+        title="Counterweight webs (0/1, two per throw)",
+        description="empty: the engine file's",
+    )
+    journal_diameter: Length | None = Field(None, title="Main-journal diameter")
+    pin_diameter: Length | None = Field(None, title="Crankpin diameter")
+    web_thickness: Length | None = Field(None, title="Web thickness (axial)")
+    web_width: Length | None = Field(None, title="Web width (across the arm)")
+    modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
+    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
+    bearing: list[Position] | None = Field(
+        None, min_length=2, max_length=MAX_MAIN_BEARINGS, title="Main-bearing positions"
+    )
+    bearing_stiffness: Stiffness | None = Field(
+        None, title="Radial bearing stiffness", description="empty: rigid bearings"
+    )
+    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
+    viscosity: Viscosity | None = Field(None, title="Oil viscosity (Petroff)")
+    bearing_length: Length | None = Field(None, title="Bearing length (Petroff)")
+    clearance: Length | None = Field(
+        None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
+    )
+
+    @model_validator(mode="after")
+    def _petroff(self) -> BearingOptions:
+        trio = ("viscosity", "bearing_length", "clearance")
+        given = [name for name in trio if getattr(self, name) is not None]
+        if given and given != ["clearance"] and len(given) < 3:
+            missing = next(name for name in trio if getattr(self, name) is None)
+            raise InputError(
+                given[0],
+                getattr(self, given[0]),
+                f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
+                "viscosity, bearing length and clearance together",
+            )
+        if (
+            self.clearance is not None
+            and self.bearing_stiffness is not None
+            and self.bearing_stiffness > MAX_CLEARANCE_STIFFNESS
+        ):
+            raise InputError(
+                "bearing_stiffness",
+                self.bearing_stiffness,
+                f"must be at most {MAX_CLEARANCE_STIFFNESS:g} N/m with a clearance (the "
+                "contact solution converges up to there; stiffer rings are the model "
+                "without clearance)",
+            )
+        if given == ["clearance"] and self.bearing_stiffness is None:
+            raise InputError(
+                "clearance",
+                self.clearance,
+                "needs a bearing stiffness (the rings' contact) or viscosity and bearing "
+                "length (Petroff friction) to act",
+            )
+        return self
+
+
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 
@@ -529,6 +625,8 @@ class RebalancePartsOptions(StudyOptions):
     face_area: Area | None = Field(None, title="Face area ground per web")
     hole_diameter: Length | None = Field(None, title="Drill diameter")
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
+    depth_to: Literal["shoulder", "tip"] | None = Field(None, title="Depth read to")
     density: Density | None = Field(None, title="Crank material density")
     depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
     grade: str | None = Field(None, title="ISO 21940-11 grade")
@@ -582,7 +680,7 @@ class ShopOptions(StudyOptions):
     hole_radius: Length | None = Field(None, title="Radius of the holes")
     max_depth: Length = Field(0.015, title="Deepest hole")
     depth_to: Literal["shoulder", "tip"] | None = None
-    point_angle: Angle = Field(math.radians(118.0), gt=0, le=math.pi, title="Drill point angle")
+    point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
     direction: Literal["axial", "radial"] = "axial"
     spacing: LengthOrZero = Field(0.002, title="Material between holes")
     depth_resolution: LengthOrZero = Field(0.0001, title="Machining step")
@@ -869,6 +967,8 @@ def allowed(model: type[StudyOptions], name: str) -> str:
         return f"{count} values, each {_range_words(quantity, _bounds(inner))}"
     if base is str:
         return "a text"
+    if get_origin(base) is Literal:
+        return "one of " + ", ".join(str(choice) for choice in get_args(base))
     if any(getattr(m, "func", None) is _zero_or_length for m in _metadata(model, name)):
         return ZERO_OR_LENGTH
     if name == "angle" and model is BalanceOptions:

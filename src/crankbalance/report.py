@@ -140,6 +140,17 @@ def _table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
+def _maker_order(model: Any) -> str:
+    """`` (maker's numbering: 1-6-2-4-3-5)`` when the engine file used a maker's numbering."""
+    if model.maker_number is None or not model.firing_order_given:
+        return ""
+    return (
+        " (maker's numbering: "
+        + "-".join(str(model.maker_number[c - 1]) for c in model.firing_order)
+        + ")"
+    )
+
+
 def _distinct(values: list[float], scale: float = 1.0, digits: int = 5) -> str:
     shown = [fmt(v * scale, digits) for v in values]
     return shown[0] if len(set(shown)) == 1 else ", ".join(shown)
@@ -270,7 +281,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         [
             "firing order",
             "-".join(str(c) for c in report.study.model.firing_order)
-            + ("" if report.study.model.firing_order_given else " (not given: cylinder order)"),
+            + ("" if report.study.model.firing_order_given else " (not given: cylinder order)")
+            + _maker_order(report.study.model),
         ],
     ]
     parts.append(_table(["quantity", "value"], rows))

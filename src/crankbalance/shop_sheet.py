@@ -22,7 +22,7 @@ from .errors import InputError
 from .format import json_text, text
 from .report import CSS, _figure_html, _table
 
-SHEET_SCHEMA = "crankbalance.shop-sheet/1"
+SHEET_SCHEMA = "crankbalance.shop-sheet/2"
 
 
 def _g(value: float) -> str:
@@ -134,7 +134,10 @@ def sheet_html(study: Any, static: bool = False) -> str:
             f"{text(h.speed, 'speed')}: {verdict}</b>. Checked by: ____________ "
             "Date: ____________</p>"
         )
-    data = json_text({"schema": SHEET_SCHEMA, "study": study}, indent=None).replace("</", "<\\/")
+    from .studies.shop import shop_json
+
+    data = json_text({"schema": SHEET_SCHEMA, "study": shop_json(study)}, indent=None)
+    data = data.replace("</", "<\\/")
     return (
         '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
         f"<title>{esc(p.engine)}: balance shop sheet</title>\n<style>{CSS}</style>\n"

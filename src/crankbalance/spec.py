@@ -26,10 +26,13 @@ from pydantic import (
 )
 
 from .errors import InputError
+from .numbering import SCHEMES
 from .units import RANGES, format_quantity, parse_quantity, range_si
 
-Layout = Literal["inline", "vee", "boxer", "w", "radial", "custom"]
-LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "custom")
+Layout = Literal["inline", "vee", "boxer", "w", "radial", "vr", "custom"]
+LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "vr", "custom")
+#: The two kinds of W engine: three banks on one pin each, or two VR banks (docs/engine_file.md).
+W_TYPES: tuple[str, ...] = ("broad-arrow", "vr")
 Kinematics = Literal["exact", "series", "first-order"]
 
 # --------------------------------------------------------------------------- limits
@@ -176,6 +179,23 @@ class CrankTrain(_Strict):
     throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
     throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
     articulated: Articulated | None = None
+    w_type: Literal["broad-arrow", "vr"] | None = Field(
+        default=None,
+        description="layout w: 'broad-arrow' (three banks, default) or 'vr' (two VR banks)",
+    )
+    vr_angle: Angle | None = Field(
+        default=None, description="W from VR banks: narrow angle between the rows of each bank"
+    )
+    bore_offset: Length = Field(
+        default=0.0,
+        description="VR rows: distance of each row's bore axes from the crank axis, positive "
+        "when the rows' axes meet beyond the crank axis (away from the head)",
+    )
+    pin_split: Angle | None = Field(
+        default=None,
+        description="VR rows: angle between the crankpins of the two rows (default: the split "
+        "even firing needs)",
+    )
     bank_offsets: list[Length] | None = Field(
         default=None,
         max_length=3,
@@ -193,6 +213,18 @@ class CrankTrain(_Strict):
         description="axial position of each cylinder's rod on its crankpin, from the "
         "throw's mid-plane (side-by-side rods)",
     )
+    numbering: str | None = Field(
+        default=None,
+        max_length=40,
+        description="the maker's cylinder numbering firing_order is written in: "
+        + ", ".join(SCHEMES),
+    )
+    maker_numbers: list[Whole] | None = Field(
+        default=None,
+        max_length=MAX_CYLINDERS,
+        description="crankbalance's number of each of the maker's cylinders 1, 2, ... "
+        "(firing_order is then in the maker's numbers)",
+    )
     moment_reference: Length = Field(
         default=0.0,
         description="point moments are taken about, along the crank axis from the crank's "
@@ -204,6 +236,7 @@ class CrankTrain(_Strict):
         r, l = self.crank_radius, self.rod_length
         if r <= 0:
             raise FieldProblem("crank_radius", "must be greater than zero")
+        self._check_vr()
         if l <= r + abs(self.pin_offset + self.crank_offset):
             raise FieldProblem(
                 "rod_length",
@@ -235,23 +268,30 @@ class CrankTrain(_Strict):
                 raise FieldProblem(
                     "cylinders", f"a {self.layout} engine needs an even number of cylinders"
                 )
-            if self.layout == "w" and n % 3:
+            if self.layout == "w" and n % 3 and not self.has_vr_rows:
                 raise FieldProblem(
                     "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
                 )
+            if self.layout == "w" and self.has_vr_rows and (n % 2 or n < 4):
+                raise FieldProblem(
+                    "cylinders",
+                    "a W engine from two VR banks needs an even number of cylinders, at least 4",
+                )
+            if self.layout == "vr" and n < 2:
+                raise FieldProblem("cylinders", "a VR engine needs at least 2 cylinders")
             if self.layout == "radial" and n < 3:
                 raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
-            if self.layout in ("vee", "w"):
+            if self.layout in ("vee", "w", "vr"):
                 if self.bank_angle is None:
                     raise FieldProblem("bank_angle", f"is required for layout '{self.layout}'")
-                limit = 180.0 if self.layout == "vee" else 90.0
+                limit = 90.0 if self.layout == "w" and not self.has_vr_rows else 180.0
                 if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
                     raise FieldProblem(
                         "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
                     )
             elif self.bank_angle is not None:
                 raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
-            throws = throw_count(self.layout, n)
+            throws = throw_count(self.layout, n, self.w_type)
             if throws > 1 and self.crank_pitch is None:
                 raise FieldProblem(
                     "crank_pitch", "is required for an engine with more than one throw"
@@ -264,6 +304,7 @@ class CrankTrain(_Strict):
                 )
         n_cyl = self.cylinder_count
         self._check_offsets(n_cyl)
+        self._check_numbering(n_cyl)
         if self.firing_order is not None:
             if sorted(self.firing_order) != list(range(1, n_cyl + 1)):
                 raise FieldProblem(
@@ -276,6 +317,12 @@ class CrankTrain(_Strict):
         and every cylinder's total offset short enough for its rod."""
         banks = BANKS.get(self.layout)
         if self.bank_offsets is not None:
+            if self.has_vr_rows:
+                raise FieldProblem(
+                    "bank_offsets",
+                    "is not used with VR rows: give bore_offset (the rows' offset) and, "
+                    "cylinder by cylinder, cylinder_offsets",
+                )
             if banks is None:
                 raise FieldProblem(
                     "bank_offsets",
@@ -296,14 +343,91 @@ class CrankTrain(_Strict):
                 raise FieldProblem(key, f"needs one length per cylinder: {n_cyl} for this engine")
         shared = self.pin_offset + self.crank_offset
         extra = list(self.cylinder_offsets or self.bank_offsets or [0.0])
-        worst = max(abs(shared + e) for e in extra)
+        rows = (-self.bore_offset, self.bore_offset) if self.has_vr_rows else (0.0,)
+        worst = max(abs(shared + e + b) for e in extra for b in rows)
         if self.rod_length <= self.crank_radius + worst:
             key = "cylinder_offsets" if self.cylinder_offsets else "bank_offsets"
+            if not (self.cylinder_offsets or self.bank_offsets):
+                key = "bore_offset"
             raise FieldProblem(
                 key,
                 f"the largest total offset ({worst * 1e3:g} mm, with pin_offset and "
-                "crank_offset) leaves no rod: rod_length must exceed crank_radius plus it",
+                "crank_offset"
+                + (" and the rows' bore_offset" if self.has_vr_rows else "")
+                + ") leaves no rod: rod_length must exceed crank_radius plus it",
             )
+
+    def _check_numbering(self, n_cyl: int) -> None:
+        """``numbering`` names a scheme for this layout; ``maker_numbers`` is a map."""
+        if self.numbering is not None:
+            if self.maker_numbers is not None:
+                raise FieldProblem(
+                    "maker_numbers", "give either numbering (a named scheme) or maker_numbers"
+                )
+            scheme = SCHEMES.get(self.numbering)
+            if scheme is None:
+                raise FieldProblem("numbering", "must be one of " + ", ".join(SCHEMES))
+            if scheme.layout != self.layout:
+                raise FieldProblem(
+                    "numbering",
+                    f"'{self.numbering}' numbers a {scheme.layout} engine, not layout "
+                    f"'{self.layout}'; give maker_numbers (crankbalance's number of each of "
+                    "the maker's cylinders) instead",
+                )
+        if self.maker_numbers is not None and sorted(self.maker_numbers) != list(
+            range(1, n_cyl + 1)
+        ):
+            raise FieldProblem(
+                "maker_numbers",
+                f"must give crankbalance's number of each of the maker's cylinders 1..{n_cyl}: "
+                f"a permutation of 1..{n_cyl}",
+            )
+
+    def maker_map(self) -> tuple[int, ...] | None:
+        """crankbalance's number of each of the maker's cylinders (entry k - 1 for the
+        maker's k), or None when the engine file uses crankbalance's numbering."""
+        if self.maker_numbers is not None:
+            return tuple(int(c) for c in self.maker_numbers)
+        if self.numbering is not None:
+            return SCHEMES[self.numbering].to_crankbalance(self.cylinder_count)
+        return None
+
+    @property
+    def has_vr_rows(self) -> bool:
+        """True for layout "vr" and for a W from VR banks (``w_type = "vr"``)."""
+        return self.layout == "vr" or (self.layout == "w" and self.w_type == "vr")
+
+    def _check_vr(self) -> None:
+        """The keys of VR rows (docs/engine_file.md, "VR and W from VR banks")."""
+        if self.w_type is not None and self.layout != "w":
+            raise FieldProblem("w_type", f"is only used with layout 'w' (not '{self.layout}')")
+        is_w_vr = self.layout == "w" and self.w_type == "vr"
+        if self.vr_angle is not None and not is_w_vr:
+            raise FieldProblem(
+                "vr_angle",
+                "is only used with layout 'w' and w_type = 'vr' (a VR engine's narrow angle "
+                "is its bank_angle)",
+            )
+        if is_w_vr:
+            if self.vr_angle is None:
+                raise FieldProblem("vr_angle", "is required for a W from VR banks (w_type = 'vr')")
+            if not 0 < math.degrees(self.vr_angle) < 90.0 + 1e-9:
+                raise FieldProblem("vr_angle", "must lie in (0, 90] deg")
+        for key, given in (
+            ("bore_offset", self.bore_offset != 0),
+            ("pin_split", self.pin_split is not None),
+        ):
+            if given and not self.has_vr_rows:
+                raise FieldProblem(
+                    key, "is only used with layout 'vr' or layout 'w' with w_type = 'vr'"
+                )
+        if self.pin_split is not None and self.has_vr_rows:
+            if self.throw_angles is not None:
+                raise FieldProblem(
+                    "pin_split", "give either pin_split or throw_angles (the whole crank), not both"
+                )
+            if not 0 <= math.degrees(self.pin_split) < 180.0:
+                raise FieldProblem("pin_split", "must lie in [0, 180) deg")
 
     @property
     def cylinder_count(self) -> int:
@@ -352,8 +476,11 @@ def _check_articulated(ct: CrankTrain) -> None:
 BANKS: dict[str, int] = {"vee": 2, "boxer": 2, "w": 3}
 
 
-def throw_count(layout: str, cylinders: int) -> int:
-    """Number of crank throws of a standard layout."""
+def throw_count(layout: str, cylinders: int, w_type: str | None = None) -> int:
+    """Number of crank throws of a standard layout (``w_type`` "vr": a W from VR banks,
+    one throw per cylinder)."""
+    if layout == "w" and w_type == "vr":
+        return cylinders
     return {
         "inline": cylinders,
         "boxer": cylinders,
@@ -570,7 +697,7 @@ class EngineSpec(_Strict):
             raise FieldProblem("speed", "must be greater than zero")
         ct = self.crank_train
         n_cyl = ct.cylinder_count
-        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl)
+        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl, ct.w_type)
         for k, item in enumerate(self.masses.override):
             for number in item.cylinders or []:
                 if not 1 <= number <= n_cyl:

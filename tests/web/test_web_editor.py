@@ -17,6 +17,7 @@ import pytest
 from nicegui.testing.user import User
 
 from crankbalance.io.engine_file import load_engine
+from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import analyze
 
 from .conftest import DRAWN
@@ -59,6 +60,25 @@ async def test_crossplane_inline4_from_the_preset(user: User, form) -> None:
     assert abs(float(rows[0]["moment"]) - ref["free_moments"][0]["amplitude_Nm"]) < 1e-3 * max(
         1.0, ref["free_moments"][0]["amplitude_Nm"]
     )
+
+
+async def test_w_from_vr_banks_gives_one_angle_per_cylinder(user: User, form) -> None:
+    """A W from VR banks has one throw per cylinder: switching the throw angles on gives the
+    twelve angles of the W12's crank (not four, as a broad-arrow W12 would have), and the
+    engine stays the same."""
+    await user.open("/?preset=w12-vw")
+    await form.see("Crank editor")
+    model = build_model(load_engine("w12-vw"))
+    with user:
+        form.element("editor-give-angles").value = True
+    shown = [form.element(f"throw_angles-{k}").value for k in range(12)]
+    assert len(shown) == 12 and all(shown)
+    errors = {k: v.error for k, v in form.page_inputs().items() if v.error}
+    assert not errors, errors
+    rows = form.rows("orders-table")
+    ref = analyze(model).to_dict()
+    moment = ref["free_moments"][0]["amplitude_Nm"]
+    assert abs(float(rows[0]["moment"]) - moment) < 1e-3 * moment  # angles shown rounded
 
 
 async def test_split_pin_v6_as_custom_throws(user: User, form) -> None:

@@ -9,6 +9,7 @@ Every wait is a wait for a state of the page with the hang guard of ``conftest.p
 
 from __future__ import annotations
 
+import json
 from pathlib import Path
 
 import pytest
@@ -49,11 +50,39 @@ def expected() -> tuple[list[str], str]:
     return bobs, verdict
 
 
+def _overlap(a: dict[str, float], b: dict[str, float]) -> bool:
+    """Whether two bounding boxes (Playwright's x, y, width, height) intersect."""
+    apart_x = a["x"] + a["width"] <= b["x"] or b["x"] + b["width"] <= a["x"]
+    apart_y = a["y"] + a["height"] <= b["y"] or b["y"] + b["height"] <= a["y"]
+    return not (apart_x or apart_y)
+
+
+def panel_titles_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
+    """The hole plan's two panel titles, as the browser lays them out, neither intersect
+    each other nor the figure's title, and lie inside the figure."""
+    titles = figure.locator(".annotation-text", has_text="plane")
+    expect(titles).to_have_count(2)
+    boxes = [titles.nth(k).bounding_box() for k in range(2)]
+    main = figure.locator(".gtitle").first.bounding_box()
+    whole = figure.locator(".main-svg").first.bounding_box()
+    assert None not in (*boxes, main, whole)
+    assert not _overlap(boxes[0], boxes[1]), boxes
+    for box in boxes:
+        assert not _overlap(box, main), (box, main)
+        assert whole["x"] <= box["x"] and box["x"] + box["width"] <= whole["x"] + whole["width"]
+        assert whole["y"] <= box["y"]
+
+
 def open_tab(page, name: str) -> None:
+    """Open a tab and wait until its panel has slid into place (a click during the slide,
+    on "Load example", was lost once under load)."""
+    from .test_web_screens import SETTLED
+
     page.get_by_role("tab", name=name, exact=True).click()
     expect(page.get_by_role("tab", name=name, exact=True)).to_have_attribute(
         "aria-selected", "true"
     )
+    page.wait_for_function(SETTLED)
 
 
 @pytest.mark.anyio
@@ -100,12 +129,19 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
             expect(table.locator("tbody tr").nth(row).locator("td").last).to_have_text(bob)
         holes = page.locator("[data-testid=figure-shop-holes]").first
         expect(holes.locator(".main-svg").first).to_be_attached()
+        panel_titles_stay_apart(holes)
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
         with page.expect_download() as download:
             page.get_by_role("button", name="Shop sheet HTML").click()
         sheet = Path(download.value.path()).read_text(encoding="utf-8")
         assert "Balance shop sheet: V8" in sheet and bobs[0] in sheet
+        # the embedded study: schema /2, every key with its unit (docs/json.md)
+        data = sheet.split('id="crankbalance-data">', 1)[1].split("</script>", 1)[0]
+        study = json.loads(data.replace("<\\/", "</"))["study"]
+        assert '"schema":"crankbalance.shop-sheet/2"' in data.replace(" ", "")
+        assert len(study["parts"]["bob_weights"]["bob_weight_kg"]) == len(bobs)
+        assert all(0 <= a < 360 for h in study["holes"]["holes"] for a in h["angles_deg"])
         # a bad reading: named beside its field in the field's words; the result is gone
         page.locator("[data-testid=shop-reading_2]").first.fill("8 g")
         message = page.locator(".q-field--error", has_text="Reading, plane 2").first

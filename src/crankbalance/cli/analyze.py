@@ -38,6 +38,15 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
     ):
         if any(e[key]):
             click.echo(f"{words}: " + ", ".join(text(v, "length") for v in e[key]))
+    if "firing_order_maker" in e:
+        pairs = sorted(zip(e["maker_number"], range(1, e["cylinders"] + 1), strict=True))
+        click.echo(
+            "Firing order " + "-".join(map(str, e["firing_order_maker"])) + " in the maker's "
+            "numbering, " + "-".join(map(str, e["firing_order"])) + " in crankbalance's "
+            "(maker's cylinder: crankbalance's " + ", ".join(f"{a}: {b}" for a, b in pairs) + ")"
+        )
+    elif "firing_order" in e:
+        click.echo("Firing order " + "-".join(map(str, e["firing_order"])))
     if "articulated" in e:
         art = e["articulated"]
         click.echo(

@@ -47,7 +47,10 @@ def _problem(o: ExploreOptions, typed: Mapping[str, Any]) -> Any:
         from ..io.engine_file import load_engine
         from ..studies.build import build_model
 
-        base = build_model(load_engine(o.engine))
+        spec = load_engine(o.engine)
+        if spec.crank_train.has_vr_rows:
+            raise InputError("--engine", o.engine, orders.VR_REFUSED)
+        base = build_model(spec)
     try:
         with named_as_typed(typed):
             return orders.problem(
@@ -219,6 +222,8 @@ def explore(
     from ..options import ExploreOptions
     from ..results import require_finite
 
+    if options.get("layout") == "vr":
+        raise InputError("--layout", "vr", orders.VR_REFUSED)
     o = parse_settings(ExploreOptions, {**options, "filter": filter_text})
     if o.scheduler is not None and o.workers is not None:
         raise InputError("--workers", options["workers"], "not with --scheduler")

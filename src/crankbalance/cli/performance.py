@@ -510,38 +510,12 @@ def _engine_options(function: Any) -> Any:
     return function
 
 
-#: the options of the Wiebe combustion model (a --pressure-csv table replaces them)
-WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
-
-
-def _pressure_source(o: CycleOptions, cylinders: int = 1) -> Any:
-    """The Wiebe model of the options, or the pressure tables (one, or one per cylinder)."""
-    from ..engine_cycle import WiebeCombustion
-
-    if o.pressure_csv:
-        from ..io.pressure_csv import read_pressure_csv
-
-        if len(o.pressure_csv) not in (1, cylinders):
-            raise InputError(
-                "--pressure-csv",
-                f"{len(o.pressure_csv)} files",
-                f"give one table for every cylinder, or one per cylinder ({cylinders})",
-            )
-        tables = [read_pressure_csv(path) for path in o.pressure_csv]
-        return tables[0] if len(tables) == 1 else tables
-    return WiebeCombustion(
-        compression_ratio=o.compression_ratio,
-        ignition_angle=o.ignition,
-        burn_duration=o.burn_duration,
-        intake_pressure=o.intake_pressure,
-    )
-
-
 def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
     """The cylinder, its pressure source, speed and stroke count of ``cycle`` and
     ``sensitivity`` from their validated options (:class:`~crankbalance.options.CycleOptions`);
     an option that would be ignored is refused."""
     from ..engine_cycle import CylinderSpec
+    from ..studies.performance import WIEBE_OPTIONS, pressure_source
 
     given = given_options()
     refuse_unused({"cylinder": o.engine is not None}, "only acts with --engine", given)
@@ -587,7 +561,7 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
         cylinder = cycle_cylinder(model, number, **settings, **typed)
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    return cylinder, _pressure_source(o), speed, strokes
+    return cylinder, pressure_source(o), speed, strokes
 
 
 SUMMARY_KEYS = (
@@ -759,7 +733,12 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     import numpy as np
 
     from ..studies.engine import as_model
-    from ..studies.performance import cycle_model, whole_engine_cycle
+    from ..studies.performance import (
+        WIEBE_OPTIONS,
+        cycle_model,
+        pressure_source,
+        whole_engine_cycle,
+    )
 
     given = given_options()
     refuse_unused(
@@ -782,7 +761,7 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
         rod_length=o.rod_length if "rod_length" in given else None,
         reciprocating_mass=o.reciprocating_mass if "reciprocating_mass" in given else None,
     )
-    pressure = _pressure_source(o, model.cylinders)
+    pressure = pressure_source(o, model.cylinders)
     inertia = o.crank_inertia + (o.flywheel_inertia or 0.0)
     try:
         result = whole_engine_cycle(

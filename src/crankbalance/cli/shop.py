@@ -122,9 +122,11 @@ def _named() -> Iterator[None]:
 
 
 def _echo_json(schema: str, result: Any) -> None:
+    """The JSON of a shop result, every key with its unit (:func:`studies.shop.shop_json`)."""
     from ..format import json_text
+    from ..studies.shop import shop_json
 
-    click.echo(json_text({"schema": schema, "result": result}))
+    click.echo(json_text({"schema": schema, "result": shop_json(result)}))
 
 
 def _g(value: float) -> str:
@@ -143,13 +145,13 @@ def shop() -> None:
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
-    from ..studies.shop import parts_study
+    from ..studies.shop import MATCH_SCHEMA, parts_study
 
     options = _settings(values)
     with _named():
         study = parts_study(engine, parts, options)
     if fmt == "json":
-        _echo_json("crankbalance.shop.match/1", study)
+        _echo_json(MATCH_SCHEMA, study)
         return
     m = study.matching
     rows = [
@@ -178,13 +180,13 @@ def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def bobweights(parts: str, engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
-    from ..studies.shop import parts_study
+    from ..studies.shop import BOBWEIGHTS_SCHEMA, parts_study
 
     options = _settings(values)
     with _named():
         study = parts_study(engine, parts, options)
     if fmt == "json":
-        _echo_json("crankbalance.shop.bobweights/1", study.bob_weights)
+        _echo_json(BOBWEIGHTS_SCHEMA, study.bob_weights)
         return
     b = study.bob_weights
     echo_table(
@@ -246,14 +248,14 @@ def echo_hole_plan(result: Any) -> None:
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
-    from ..studies.shop import engine_model, hole_plan
+    from ..studies.shop import PLAN_SCHEMA, engine_model, hole_plan
 
     options = _settings(values)
     speed = engine_model(engine)[1].speed if engine is not None else None
     with _named():
         result = hole_plan(options, speed)
     if fmt == "json":
-        _echo_json("crankbalance.shop.plan/1", result)
+        _echo_json(PLAN_SCHEMA, result)
         return
     echo_hole_plan(result)
 
@@ -280,7 +282,7 @@ def scatter(
 ) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
     from ..errors import InputError
-    from ..studies.shop import scatter_of_parts
+    from ..studies.shop import SCATTER_SCHEMA, scatter_of_parts
     from ..units import parse_quantity
 
     options = _settings(values)
@@ -292,7 +294,7 @@ def scatter(
     with _named():
         result = scatter_of_parts(engine, parts, options, count, start, step)
     if fmt == "json":
-        _echo_json("crankbalance.shop.scatter/1", result)
+        _echo_json(SCATTER_SCHEMA, result)
         return
     kinds = ("unbalance", "unbalance", "force", "force", "moment", "moment")
     at = list(result.quantile_levels).index(0.95)

@@ -298,6 +298,16 @@ def balance_factor(
 @click.option("--hole-diameter", help="Drill diameter, e.g. '8 mm'.")
 @click.option("--holes", default=None, help="Holes per web (1 to 1000).")
 @click.option("--hole-direction", type=click.Choice(["axial", "radial"]), default=None)
+@click.option(
+    "--point-angle",
+    help="Drill point included angle, e.g. '118 deg' (default 180 deg: flat-bottomed holes).",
+)
+@click.option(
+    "--depth-to",
+    type=click.Choice(["shoulder", "tip"]),
+    default=None,
+    help="What the depths of pointed holes are read to (required with --point-angle).",
+)
 @click.option("--density", help="Crank material density, default '7850 kg/m^3'.")
 @click.option("--depth-resolution", help="Machining step, default '0.001 mm'.")
 @click.option("--grade", help="ISO 21940-11 grade for the tolerance, e.g. G6.3.")
@@ -326,6 +336,8 @@ def rebalance_command(
     hole_diameter: str | None,
     holes: str | None,
     hole_direction: str | None,
+    point_angle: str | None,
+    depth_to: str | None,
     density: str | None,
     depth_resolution: str | None,
     grade: str | None,
@@ -360,6 +372,8 @@ def rebalance_command(
             "face_area": face_area,
             "hole_diameter": hole_diameter,
             "holes": holes,
+            "point_angle": point_angle,
+            "depth_to": depth_to,
             "density": density,
             "depth_resolution": depth_resolution,
             "grade": grade,
@@ -417,6 +431,8 @@ def rebalance_command(
         ("diameter", hole_diameter, "hole_diameter"),
         ("number", typed.holes, "holes"),
         ("direction", hole_direction, "hole_direction"),
+        ("point_angle", point_angle, "point_angle"),
+        ("depth_to", depth_to, "depth_to"),
         ("density", density, "density"),
         ("depth_resolution", depth_resolution, "depth_resolution"),
     )
@@ -436,7 +452,9 @@ def rebalance_command(
             data.get("tolerance", {}).pop("unbalance", None)
             put(f"tolerance.{key}", text, key)
     try:
-        study = rebalance_parts(rebalance_file_from_dict(data, source))
+        parts = rebalance_file_from_dict(data, source)
+        _drill_point_used(parts, typed, point_angle, depth_to)
+        study = rebalance_parts(parts)
     except InputError as error:
         named = origin.get(error.field.split("[")[0])
         if named is None:
@@ -504,6 +522,42 @@ def rebalance_command(
             f"{res.achieved_balance_factor:.4f}"
         )
     click.echo(f"({BALANCE_FACTOR_NOTE})")
+
+
+def _drill_point_used(
+    parts: Any, typed: Any, point_angle: str | None, depth_to: str | None
+) -> None:
+    """Refuse the drill-point options where they would be ignored or leave the depth
+    unstated: ``--depth-to`` for flat-bottomed holes (one depth, nothing to read it to),
+    ``--point-angle`` below 180 deg without the depth reference (the point changes the depth
+    by a third to two thirds of its height, docs/balance_shop.md). With the face method the
+    file's schema refuses both (``METHOD_KEYS``)."""
+    correction = parts.correction
+    if correction is None or correction.method != "holes":
+        if point_angle is not None or depth_to is not None:
+            option = "--point-angle" if point_angle is not None else "--depth-to"
+            raise InputError(
+                option,
+                point_angle if point_angle is not None else depth_to,
+                "applies to drilled holes only: give --method holes (or method = "
+                '"holes" in the [correction] of the parts file)',
+            )
+        return
+    pointed = correction.point_angle is not None and correction.point_angle < math.pi
+    if depth_to is not None and not pointed:
+        raise InputError(
+            "--depth-to",
+            depth_to,
+            "applies to pointed holes only: give --point-angle below 180 deg (flat-bottomed "
+            "holes have one depth)",
+        )
+    if typed.point_angle is not None and pointed and correction.depth_to is None:
+        raise InputError(
+            "--point-angle",
+            point_angle,
+            "needs --depth-to shoulder|tip: what the depths are read to (with a point the "
+            "depth to the tip is the depth to the shoulder plus the point's height)",
+        )
 
 
 def _parts_json(side: Any) -> dict[str, Any]:

@@ -102,8 +102,8 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
     """
     from ..options import TorsionalOptions
     from ..results import require_finite
+    from ..studies.performance import WIEBE_OPTIONS
     from ._common import refuse_unused
-    from .performance import WIEBE_OPTIONS
 
     o = parse_settings(TorsionalOptions, {**options, "pressure_csv": list(options["pressure_csv"])})
     refuse_unused(
@@ -142,7 +142,7 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
     from .. import torsional as tv
     from ..engine_cycle_all import engine_cycle_all
     from ..studies.engine import as_model
-    from .performance import _pressure_source
+    from ..studies.performance import pressure_source
 
     model = as_model(o.engine)
     high = o.speed_max if o.speed_max is not None else model.speed
@@ -186,7 +186,7 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
         shaft_damping_ratio=o.shaft_damping_ratio,
         **damper,
     )
-    pressure = _pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
+    pressure = pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
     cycle = engine_cycle_all(
         model,
         pressure,

@@ -35,6 +35,12 @@ from .candidates import Candidates
 
 #: Layouts the explorer enumerates.
 LAYOUTS = ("inline", "boxer", "vee", "w", "radial")
+#: Why layout "vr" (and a W from VR banks) is refused: docs/explorer.md.
+VR_REFUSED = (
+    "is not enumerated by the explorer: VR engines and Ws from VR banks have offset rows "
+    "and one pin per cylinder; analyse one with `crankbalance analyze` and an engine file "
+    "(docs/engine_file.md)"
+)
 #: Crank families: every crank the orders imply, planar cranks only, non-planar only, or
 #: one crankpin per cylinder (vee and W).
 CRANKS = ("any", "flat", "cross", "split")
@@ -165,6 +171,8 @@ def problem(
     Problem
         The problem, ready for :func:`count` and :func:`chunk`.
     """
+    if layout == "vr":
+        raise InputError("layout", layout, VR_REFUSED)
     if layout not in LAYOUTS:
         raise InputError("layout", layout, f"one of {', '.join(LAYOUTS)}")
     if isinstance(cylinders, bool) or not isinstance(cylinders, (int, np.integer)):

@@ -14,7 +14,8 @@ from numpy.typing import NDArray
 
 from ..articulated import Articulation, default_link_pin_angles
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle
+from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
+from ..numbering import check_firing_order, firing_tdc_angles, to_crankbalance_order
 from ..spec import EngineSpec, MassOverride
 
 
@@ -25,6 +26,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
     n = cylinder_throw.size
     offsets = cylinder_offsets(spec)
     angles = _throw_angles(spec, cylinder_throw, banks, positions.size, offsets)
+    _check_given_crank(spec, angles[cylinder_throw], banks, offsets, positions.size)
     rec, big_ends, conrods = _cylinder_masses(spec, _rod_lengths(spec, n))
     rot, from_parts = _throw_masses(spec, positions.size)
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
@@ -60,16 +62,20 @@ def build_model(spec: EngineSpec) -> EngineModel:
         cylinder_offset=offsets,
         cylinder_axial=axial,
         cylinder_rotating_mass=big_ends,
-        firing_order=tuple(ct.firing_order or range(1, n + 1)),
+        firing_order=tuple(firing_order(spec) or range(1, n + 1)),
         conrods=tuple(conrods),
         firing_order_given=ct.firing_order is not None,
         articulation=_articulation(spec, banks),
+        maker_number=maker_numbers(spec),
     )
 
 
 def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
     """Each cylinder's total offset [m]: ``pin_offset + crank_offset`` plus its bank's
-    entry of ``bank_offsets`` or its own entry of ``cylinder_offsets``.
+    entry of ``bank_offsets`` or its own entry of ``cylinder_offsets``, and in VR rows
+    (layout vr, or w with w_type vr) the rows' ``bore_offset``, negative in row A and
+    positive in row B (the sign of :mod:`crankbalance.kinematics`: the rows' bore axes meet
+    beyond the crank axis when ``bore_offset`` is positive).
 
     Banks (docs/engine_file.md): vee A (cylinders 1..T) and B (T+1..2T); W the banks at
     -V, 0, +V, numbered bank after bank; boxer the odd cylinders (bank -90 deg) and the
@@ -78,6 +84,8 @@ def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
     ct = spec.crank_train
     n = ct.cylinder_count
     out = np.full(n, ct.pin_offset + ct.crank_offset)
+    if ct.has_vr_rows:
+        out += _vr_row_of(spec) * ct.bore_offset
     if ct.cylinder_offsets is not None:
         out += np.array(ct.cylinder_offsets, dtype=float)
     elif ct.bank_offsets is not None:
@@ -105,7 +113,11 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
             np.array([b for t in ct.throw for b in t.banks], dtype=float),
         )
     return standard_layout(
-        ct.layout, ct.cylinder_count, ct.bank_angle or 0.0, ct.crank_pitch or 0.0
+        ct.layout,
+        ct.cylinder_count,
+        ct.bank_angle or 0.0,
+        ct.crank_pitch or 0.0,
+        ct.vr_angle if ct.layout == "w" and ct.has_vr_rows else None,
     )
 
 
@@ -118,13 +130,14 @@ def _throw_angles(
         return np.array([t.angle for t in ct.throw])
     if ct.throw_angles is not None:
         return np.array(ct.throw_angles, dtype=float)
+    if ct.has_vr_rows and ct.pin_split is not None:
+        return _vr_pin_split_angles(spec, banks)
     if throws == 1:
         return np.zeros(1)
     n = cylinder_throw.size
-    order = ct.firing_order or list(range(1, n + 1))
+    order = firing_order(spec) or list(range(1, n + 1))
     interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
-    fire_time = np.empty(n)
-    fire_time[np.array(order) - 1] = np.arange(n) * interval
+    fire_time = _fire_times(spec)
     # cylinder c is at its firing TDC at crank angle t_c + t0: theta + phi - beta = psi_c,
     # psi_c = asin(e_c / (l + r)) its offset slider-crank's TDC angle (0 without offset);
     # t0 = psi of the first cylinder to fire, so one offset for all changes no throw angle
@@ -143,7 +156,7 @@ def _throw_angles(
             if abs(math.remainder(gap - (tdc[c] - tdc[other]), 2 * np.pi)) < 1e-9:
                 raise InputError(
                     "crank_train.firing_order",
-                    list(order),
+                    ct.firing_order or list(order),
                     f"cylinders {other + 1} and {c + 1} share throw {t + 1} but their offsets "
                     f"({offsets[other] * 1e3:g} and {offsets[c] * 1e3:g} mm) put their top dead "
                     f"centres {math.degrees(abs(tdc[c] - tdc[other])):.4g} deg apart, so they "
@@ -151,12 +164,96 @@ def _throw_angles(
                 )
             raise InputError(
                 "crank_train.firing_order",
-                list(order),
+                ct.firing_order or list(order),
                 f"with even firing intervals of {math.degrees(interval):g} deg this order puts the "
                 f"cylinders on throw {t + 1} at different throw angles; give the crank as "
                 "crank_train.throw_angles (the firing order then only names the sequence)",
             )
     return angles
+
+
+# --------------------------------------------------------------------------- numbering
+def firing_order(spec: EngineSpec) -> list[int] | None:
+    """The firing order in crankbalance's numbering (``crank_train.firing_order`` mapped
+    from the maker's numbers by ``numbering`` or ``maker_numbers``), None when not given."""
+    ct = spec.crank_train
+    if ct.firing_order is None:
+        return None
+    to_ours = ct.maker_map()
+    if to_ours is None:
+        return [int(c) for c in ct.firing_order]
+    return to_crankbalance_order(ct.firing_order, to_ours)
+
+
+def maker_numbers(spec: EngineSpec) -> tuple[int, ...] | None:
+    """The maker's number of each cylinder, by crankbalance's number; None without a
+    maker's numbering."""
+    to_ours = spec.crank_train.maker_map()
+    if to_ours is None:
+        return None
+    maker = [0] * len(to_ours)
+    for m, c in enumerate(to_ours, start=1):
+        maker[c - 1] = m
+    return tuple(maker)
+
+
+def _check_given_crank(
+    spec: EngineSpec, cylinder_angle: NDArray, banks: NDArray, offsets: NDArray, throws: int
+) -> None:
+    """A firing order given with a crank it does not set evenly (``throw_angles``, custom
+    throws, one throw, VR rows' ``pin_split``) must be one that crank fires in
+    (:func:`numbering.check_firing_order`)."""
+    ct = spec.crank_train
+    split = ct.has_vr_rows and ct.pin_split is not None
+    derived = ct.layout != "custom" and ct.throw_angles is None and not split and throws > 1
+    order = firing_order(spec)
+    if order is None or derived:
+        return
+    tdc = firing_tdc_angles(
+        cylinder_angle, banks, tdc_angle(offsets, ct.crank_radius, ct.rod_length)
+    )
+    check_firing_order(
+        tdc, order, ct.strokes, "crank_train.firing_order", ct.firing_order, maker_numbers(spec)
+    )
+
+
+def _fire_times(spec: EngineSpec) -> NDArray:
+    """Crank angle at which each cylinder reaches its firing top dead centre, with even
+    firing intervals in the order of ``firing_order`` (cylinder 1 first by default) [rad]."""
+    ct = spec.crank_train
+    n = ct.cylinder_count
+    order = firing_order(spec) or list(range(1, n + 1))
+    interval = (2 * np.pi if ct.strokes == 2 else 4 * np.pi) / n
+    fire_time = np.empty(n)
+    fire_time[np.array(order) - 1] = np.arange(n) * interval
+    return fire_time
+
+
+# --------------------------------------------------------------------------- VR rows
+def _vr_row_of(spec: EngineSpec) -> NDArray:
+    """Row (-1: A, +1: B) of each cylinder of a VR engine or a W from VR banks."""
+    ct = spec.crank_train
+    return vr_rows(ct.cylinder_count, 2 if ct.layout == "w" else 1)
+
+
+def _vr_pin_split_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
+    """Throw angles of a VR engine or a W from VR banks whose crank is given by its
+    ``pin_split`` (one throw per cylinder).
+
+    The pins sit ``pin_split / 2`` either side of the angle a cylinder on its VR bank's
+    centre line would need at its even firing time, -t + gamma -+ pin_split / 2 (rows A, B),
+    the whole crank turned so that the first cylinder to fire has its pin where even firing
+    puts it; the firing is even only when the split is the one even firing needs,
+    v + 2 asin(e / (l + r)) (docs/engine_file.md, "VR and W from VR banks")."""
+    ct = spec.crank_train
+    assert ct.pin_split is not None
+    fire_time = _fire_times(spec)
+    rows = _vr_row_of(spec)
+    narrow = ct.vr_angle if ct.layout == "w" else ct.bank_angle
+    assert narrow is not None
+    raw = banks - rows * narrow / 2 + rows * ct.pin_split / 2 - fire_time
+    first = (firing_order(spec) or [1])[0] - 1
+    return np.mod(raw + (banks[first] - fire_time[first] - raw[first]), 2 * np.pi)
 
 
 # --------------------------------------------------------------------------- masses

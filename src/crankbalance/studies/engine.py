@@ -112,6 +112,7 @@ class Analysis:
                 "cylinder_throw": m.cylinder_throw + 1,
                 "cylinder_bank_deg": np.degrees(m.cylinder_bank),
                 **articulated_summary(m),
+                **firing_summary(m),
             },
             "masses": {
                 "reciprocating_kg": m.reciprocating_mass,
@@ -165,6 +166,19 @@ def articulated_summary(m: EngineModel) -> dict[str, Any]:
             "tdc_travel_m": centres.tdc_travel,
         }
     }
+
+
+def firing_summary(m: EngineModel) -> dict[str, Any]:
+    """The firing order (crankbalance's numbering) when the engine file gives one, and with a
+    maker's numbering also each cylinder's maker's number and the order in the maker's
+    numbers (docs/json.md)."""
+    if not m.firing_order_given:
+        return {}
+    out: dict[str, Any] = {"firing_order": list(m.firing_order)}
+    if m.maker_number is not None:
+        out["maker_number"] = list(m.maker_number)
+        out["firing_order_maker"] = [m.maker_number[c - 1] for c in m.firing_order]
+    return out
 
 
 def _phase(value: complex) -> float:

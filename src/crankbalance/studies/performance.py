@@ -148,3 +148,33 @@ def size_cylinder_flywheel(
         energy_excursion=excursion,
         achieved_fluctuation=check.speed_fluctuation,
     )
+
+
+#: the options of the Wiebe combustion model (a pressure table replaces them)
+WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
+
+
+def pressure_source(o: Any, cylinders: int = 1) -> Any:
+    """The gas pressure of ``cycle``, ``sensitivity``, ``torsional`` and ``bearings`` from
+    their :class:`~crankbalance.options.CombustionOptions`: the pressure tables (one for
+    every cylinder, or one per cylinder), else the Wiebe model of the options."""
+    from ..engine_cycle import WiebeCombustion
+    from ..errors import InputError
+
+    if o.pressure_csv:
+        from ..io.pressure_csv import read_pressure_csv
+
+        if len(o.pressure_csv) not in (1, cylinders):
+            raise InputError(
+                "--pressure-csv",
+                f"{len(o.pressure_csv)} files",
+                f"give one table for every cylinder, or one per cylinder ({cylinders})",
+            )
+        tables = [read_pressure_csv(path) for path in o.pressure_csv]
+        return tables[0] if len(tables) == 1 else tables
+    return WiebeCombustion(
+        compression_ratio=o.compression_ratio,
+        ignition_angle=o.ignition,
+        burn_duration=o.burn_duration,
+        intake_pressure=o.intake_pressure,
+    )

@@ -9,6 +9,7 @@ shop sheet and the example call these functions; nothing else derives these quan
 
 from __future__ import annotations
 
+import dataclasses
 import os
 from dataclasses import dataclass
 from typing import Any
@@ -17,9 +18,10 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..format import keyed
 from ..model import EngineModel
 from ..options import ShopOptions
-from ..results import ResultMixin
+from ..results import ResultMixin, to_jsonable
 from ..shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
 from ..shop.holes import DrillingPlan, drilling_plan
 from ..shop.matching import Inventory, MachineToLightest, Matching, machine_to_lightest, match_parts
@@ -310,3 +312,203 @@ def scatter_of_parts(
         scale_step=scale_step,
         plane_tolerance=tolerance,
     )
+
+
+# ---------------------------------------------------------------------------------------
+# JSON: every key that carries a unit names it (docs/json.md), angles in degrees
+# ---------------------------------------------------------------------------------------
+
+#: the schemas of the shop's JSON outputs (docs/json.md)
+MATCH_SCHEMA = "crankbalance.shop.match/2"
+BOBWEIGHTS_SCHEMA = "crankbalance.shop.bobweights/2"
+PLAN_SCHEMA = "crankbalance.shop.plan/2"
+SCATTER_SCHEMA = "crankbalance.shop.scatter/2"
+
+_DEG = 180.0 / np.pi
+Names = dict[str, str | tuple[str, float]]
+
+#: per result dataclass, its fields' JSON keys (``format.keyed``): the unit in a suffix,
+#: radians turned into degrees; fields not listed are dimensionless or text
+_KEYS: dict[str, Names] = {
+    "PartKind": {"reciprocating": "reciprocating_kg", "rotating": "rotating_kg"},
+    "Inventory": {
+        "reciprocating_allowance": "reciprocating_allowance_kg",
+        "rotating_allowance": "rotating_allowance_kg",
+    },
+    "Matching": {
+        "reciprocating": "reciprocating_kg",
+        "rotating": "rotating_kg",
+        "reciprocating_spread": "reciprocating_spread_kg",
+        "rotating_spread": "rotating_spread_kg",
+        "remove_reciprocating": "remove_reciprocating_kg",
+        "remove_rotating": "remove_rotating_kg",
+        "removed_total": "removed_total_kg",
+        "free_force": "free_force_N",
+        "free_couple": "free_couple_Nm",
+    },
+    "MachineToLightest": {
+        "remove_reciprocating": "remove_reciprocating_kg",
+        "remove_rotating": "remove_rotating_kg",
+        "reciprocating": "reciprocating_kg",
+        "rotating": "rotating_kg",
+        "removed_total": "removed_total_kg",
+    },
+    "BobWeights": {
+        "rotating": "rotating_kg",
+        "reciprocating": "reciprocating_kg",
+        "bob_weight": "bob_weight_kg",
+    },
+    "RemainingForces": {
+        "force_forward": "force_forward_N",
+        "force_backward": "force_backward_N",
+        "couple_forward": "couple_forward_Nm",
+        "couple_backward": "couple_backward_Nm",
+        "force_amplitude": "force_amplitude_N",
+        "couple_amplitude": "couple_amplitude_Nm",
+    },
+    "PartsStudy": {"crank_radius": "crank_radius_m"},
+    "TwoPlanePlan": {
+        "measuring_planes": "measuring_planes_m",
+        "correction_planes": "correction_planes_m",
+        "reading": "reading_kg_m",
+        "unbalance": "unbalance_kg_m",
+        "correction": "correction_kg_m",
+        "amount": "amount_kg_m",
+        "remove_angle": ("remove_angle_deg", _DEG),
+        "add_angle": ("add_angle_deg", _DEG),
+        "correction_radius": "correction_radius_m",
+        "mass": "mass_kg",
+        "applied_runs": "applied_runs_kg_m",
+        "reading_changes": "reading_changes_kg_m",
+    },
+    "DrillingPlan": {
+        "diameter": "diameter_m",
+        "point_angle": ("point_angle_deg", _DEG),
+        "radius": "radius_m",
+        "unbalance": "unbalance_kg_m",
+        "angles": ("angles_deg", _DEG),
+        "pitch": ("pitch_deg", _DEG),
+        "depth": "depth_m",
+        "shoulder_depth": "shoulder_depth_m",
+        "tip_depth": "tip_depth_m",
+        "hole_mass": "hole_mass_kg",
+        "slug_length": "slug_length_m",
+        "hole_moment": "hole_moment_kg_m",
+        "correction": "correction_kg_m",
+        "residual": "residual_kg_m",
+        "residual_amount": "residual_amount_kg_m",
+    },
+    # the keys of crankbalance.tolerance/2
+    "PlaneAllocation": {
+        "total": "total_kg_m",
+        "bearing_a": "bearing_a_kg_m",
+        "bearing_b": "bearing_b_kg_m",
+        "plane_1": "plane_1_kg_m",
+        "plane_2": "plane_2_kg_m",
+    },
+    "ToleranceVerdict": {"residual": "residual_kg_m", "permissible": "permissible_kg_m"},
+    "PlaneCheck": {"tolerance": "tolerance_kg_m", "residual": "residual_kg_m"},
+    "HolePlan": {
+        "residual": "residual_kg_m",
+        "rotor_mass": "rotor_mass_kg",
+        "speed": "speed_rad_s",
+        "bearings": "bearings_m",
+        "center_of_mass": "center_of_mass_m",
+    },
+}
+
+#: the unit of a matching's objective (and its bound), by objective
+_OBJECTIVE_SUFFIX = {"spread": "_kg", "variance": "_kg2", "free": "_N"}
+
+#: the JSON keys of the settings (:class:`~crankbalance.options.ShopOptions`, SI)
+_SETTING_KEYS: Names = {
+    "time_limit": "time_limit_s",
+    "measuring_planes": "measuring_planes_m",
+    "correction_planes": "correction_planes_m",
+    "hole_diameter": "hole_diameter_m",
+    "hole_radius": "hole_radius_m",
+    "max_depth": "max_depth_m",
+    "point_angle": ("point_angle_deg", _DEG),
+    "spacing": "spacing_m",
+    "depth_resolution": "depth_resolution_m",
+    "density": "density_kg_m3",
+    "slug_density": "slug_density_kg_m3",
+    "rotor_mass": "rotor_mass_kg",
+    "speed": "speed_rad_s",
+    "bearings": "bearings_m",
+    "center_of_mass": "center_of_mass_m",
+}
+
+#: the scatter's six magnitudes (:data:`crankbalance.shop.scatter.OUTPUTS`) and ten phasors
+#: (``PHASORS``) in three groups of one unit each: (group, slice of outputs, slice of
+#: phasors, suffix of a magnitude, suffix of a second moment)
+_SCATTER_GROUPS = (
+    ("residual", slice(0, 2), slice(0, 2), "_kg_m", "_kg2_m2"),
+    ("force", slice(2, 4), slice(2, 6), "_N", "_N2"),
+    ("moment", slice(4, 6), slice(6, 10), "_Nm", "_N2_m2"),
+)
+
+
+def _scatter_json(study: ScatterStudy) -> dict[str, Any]:
+    """The scatter study with one unit per key: its arrays over the six magnitudes (mixed
+    kg m, N and N m) split into the groups ``residual`` (planes 1, 2), ``force`` and
+    ``moment`` (orders 1, 2)."""
+    limits = (study.plane_tolerance, study.force_limit, study.moment_limit)
+    out: dict[str, Any] = {
+        "samples": study.samples,
+        "seed": study.seed,
+        "quantile_levels": study.quantile_levels,
+        "sources": study.sources,
+    }
+    for (group, at, phasor, unit, square), limit in zip(_SCATTER_GROUPS, limits, strict=True):
+        out[group] = {
+            "outputs": study.outputs[at],
+            "mean" + unit: study.mean[at],
+            "rms" + unit: study.rms[at],
+            "maximum" + unit: study.maximum[at],
+            "quantiles" + unit: study.quantiles[at],
+            "histogram": study.histogram[at],
+            "histogram_upper" + unit: study.histogram_upper[at],
+            "overflow": study.overflow[at],
+            "variance_share": study.variance_share[:, at],
+            "dominant": study.dominant[at],
+            "limit" + unit: limit,
+            "phasors": study.phasors[phasor],
+            "moments" + square: study.moments[phasor],
+            "moments_analytic" + square: study.moments_analytic[phasor],
+        }
+    return out | {"p_grade": study.p_grade, "p_free": study.p_free, "p_all": study.p_all}
+
+
+def _settings_json(settings: dict[str, Any]) -> dict[str, Any]:
+    out = keyed(to_jsonable(settings, "settings"), _SETTING_KEYS)
+    out["reading"] = [
+        {"mass_kg": mass, "radius_m": radius, "angle_deg": angle * _DEG}
+        for mass, radius, angle in out["reading"]
+    ]
+    return out
+
+
+def shop_json(result: Any, path: str = "") -> Any:
+    """The JSON form of a shop result (PartsStudy, BobWeights, HolePlan, ScatterStudy,
+    ShopStudy): the dataclasses' fields with the unit of each in its key's suffix
+    (``bob_weight_kg``, ``depth_m``, ``residual_kg_m``) and angles in degrees
+    (``angles_deg``), as every JSON output has them (docs/json.md)."""
+    if isinstance(result, ScatterStudy):
+        return to_jsonable(_scatter_json(result), path)
+    if dataclasses.is_dataclass(result) and not isinstance(result, type):
+        name = type(result).__name__
+        fields = {
+            f.name: shop_json(getattr(result, f.name), f"{path}.{f.name}".lstrip("."))
+            for f in dataclasses.fields(result)
+        }
+        names = dict(_KEYS.get(name, {}))
+        if isinstance(result, Matching):
+            suffix = _OBJECTIVE_SUFFIX[result.objective]
+            names |= {"objective_value": "objective_value" + suffix, "bound": "bound" + suffix}
+        if isinstance(result, ShopStudy):
+            fields["settings"] = _settings_json(result.settings)
+        return keyed(fields, names)
+    if isinstance(result, list | tuple):
+        return [shop_json(value, f"{path}[{k}]") for k, value in enumerate(result)]
+    return to_jsonable(result, path)

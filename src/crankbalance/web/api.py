@@ -136,7 +136,11 @@ def check_work(spec: EngineSpec, orders: int = ORDERS) -> None:
     :data:`MAX_WORK`, before any computing."""
     train = spec.crank_train
     cylinders = train.cylinder_count
-    throws = len(train.throw) if train.throw is not None else throw_count(train.layout, cylinders)
+    throws = (
+        len(train.throw)
+        if train.throw is not None
+        else throw_count(train.layout, cylinders, train.w_type)
+    )
     work = (cylinders + throws) * orders
     if work > MAX_WORK:
         raise InputError(

@@ -35,7 +35,7 @@ def serve(
         show=show,
         storage_secret=secrets.token_hex(16),
         show_welcome_message=False,
-        reconnect_timeout=10.0,
+        reconnect_timeout=60.0,  # see docs/web.md, "Speed": a page busy drawing answers pings late
         **options,
     )
 

@@ -102,6 +102,19 @@ def explore(problem: Any, objectives: tuple[str, str], select: Any) -> Any:
     return run_explore(problem, merit.merit, select=select, keep=keep)
 
 
+def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
+    """The candidate's order (crankbalance's numbering) in the engine's maker's numbering
+    when the engine file has one (``numbering`` or ``maker_numbers``), else unchanged."""
+    from ..numbering import SCHEMES, to_maker_order
+
+    if train.get("maker_numbers") is not None:
+        return to_maker_order(order, [int(c) for c in train["maker_numbers"]])
+    scheme = SCHEMES.get(str(train.get("numbering")))
+    if scheme is None:
+        return order
+    return to_maker_order(order, scheme.to_crankbalance(len(order)))
+
+
 def candidate_file(
     data: dict[str, Any], problem: Any, bank_angle: float | None, row: dict[str, Any]
 ) -> dict[str, Any]:
@@ -109,20 +122,22 @@ def candidate_file(
     explorer's candidate ``row`` of ``problem``: layout, cylinders, strokes, bank angle
     [rad], firing order and throw angles; custom throws, mass overrides and the webs list
     (their counts follow the crank) are dropped, and so are the per-bank and per-cylinder
-    offsets and rod positions unless the layout and the number of cylinders stay."""
+    offsets and rod positions unless the layout and the number of cylinders stay (then a
+    maker's numbering stays too, and the firing order is written in it)."""
     order = [int(c) for c in row["firing_order"]]
     train = dict(data.get("crank_train", {}))
     same = train.get("layout") == problem.layout and train.get("cylinders") == len(order)
     for key in ("throw", "bank_angle", "throw_angles", "crank_offset"):
         train.pop(key, None)
     if not same:
-        for key in ("bank_offsets", "cylinder_offsets", "rod_positions"):
+        for key in ("bank_offsets", "cylinder_offsets", "rod_positions", "numbering"):
             train.pop(key, None)
+        train.pop("maker_numbers", None)
     train.update(
         layout=problem.layout,
         cylinders=len(order),
         strokes=int(problem.strokes),
-        firing_order=order,
+        firing_order=_in_maker_numbers(train, order),
         throw_angles=[f"{math.degrees(a) % 360:.6g} deg" for a in row["throw_angle_rad"]],
     )
     if bank_angle is not None and problem.layout in ("vee", "w"):

@@ -7,6 +7,7 @@ imports the shell or a tab at run time (only for type checking), so there is no 
 
 from __future__ import annotations
 
+import json
 import logging
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Mapping, Sequence
@@ -94,6 +95,70 @@ def wrap_title(text: str, width: int = TITLE_LINE) -> str:
     return first[:cut] + "<br>" + first[cut + 1 :] + sep + rest
 
 
+#: how long the server waits for the browser to make an image [s]: a hang guard (a 3-D
+#: figure in software WebGL on a loaded machine takes seconds), not a timing target
+IMAGE_TIMEOUT = 180.0
+#: the answer of :data:`IMAGE_JS` when the page has no drawn figure to take the traces from
+NOT_DRAWN = "not drawn"
+#: a figure's PNG/SVG made and downloaded by plotly.js in the browser: the traces drawn in
+#: the card's plot (a copy: plotly.js adds to the traces it plots) or those sent with it, the
+#: figure's own layout and size; the busy bar shows meanwhile; answers "ok" or why not
+IMAGE_JS = """(async () => {
+  const plot = getElement(%(id)d);
+  const gd = plot && plot.$el;
+  const sent = %(data)s;
+  if (!plot || !plot.Plotly || (!sent && !(gd && gd.data && gd.data.length))) return "%(missing)s";
+  const data = sent || JSON.parse(JSON.stringify(gd.data,
+    (key, value) => (ArrayBuffer.isView(value) ? Array.from(value) : value)));
+  document.body.classList.add("cb-busy");
+  try {
+    await plot.Plotly.downloadImage({data, layout: %(layout)s, config: {}}, %(options)s);
+    return "ok";
+  } catch (error) {
+    return "failed: " + error;
+  } finally {
+    document.body.classList.remove("cb-busy");
+  }
+})()"""
+
+
+def image_size(figure: Any) -> tuple[int, int]:
+    """Width and height of a figure's image [px]: :func:`crankbalance.render.to_image`'s (the
+    figure's own, else 1000 x 600)."""
+    layout = figure.layout
+    return int(layout.width or 1000), int(layout.height or 600)
+
+
+def browser_image_js(
+    plot_id: int, figure: Any, fmt: str, name: str, with_data: bool = False
+) -> str:
+    """The JavaScript of :data:`IMAGE_JS` for ``figure`` shown in the plot element
+    ``plot_id``: its layout (and its traces when ``with_data``) as JSON, the image's format,
+    size (:func:`image_size`) and file name ``<name>.<fmt>``."""
+    from plotly.utils import PlotlyJSONEncoder
+
+    width, height = image_size(figure)
+    options = {"format": fmt, "width": width, "height": height, "scale": 1, "filename": name}
+    return IMAGE_JS % {
+        "id": plot_id,
+        "data": json.dumps(figure.data, cls=PlotlyJSONEncoder) if with_data else "null",
+        "missing": NOT_DRAWN,
+        "layout": json.dumps(figure.layout, cls=PlotlyJSONEncoder),
+        "options": json.dumps(options),
+    }
+
+
+#: the note of a figure card whose 3-D view comes after the page's first paint
+DRAWING = "Drawing the 3-D view …"
+#: plotly trace types drawn with WebGL (a 3-D scene)
+WEBGL_TRACES = ("scatter3d", "mesh3d", "surface", "cone", "streamtube", "isosurface", "volume")
+
+
+def webgl(figure: dict[str, Any]) -> bool:
+    """Whether a figure (plotly JSON) draws a WebGL scene."""
+    return any(trace.get("type") in WEBGL_TRACES for trace in figure.get("data", []))
+
+
 class FigureCard:
     """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
 
@@ -103,6 +168,9 @@ class FigureCard:
         self.page, self.name, self.title, self.builder = page, name, title, builder
         self.figure: Any | None = None
         self.stale = True
+        #: a WebGL figure not sent yet (see :meth:`refresh`) and the timer that sends it
+        self.held: dict[str, Any] | None = None
+        self.draw_later: Any | None = None
         with ui.card().classes("w-full") as self.card:
             with ui.element("div").classes(
                 "w-full flex flex-wrap items-center justify-between gap-1"
@@ -148,8 +216,26 @@ class FigureCard:
             f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
         )
         shown["layout"] = layout
-        self.plot.update_figure(shown)
         self.stale = False
+        if webgl(shown) and not self.plot.client.has_socket_connection:
+            # the page is being built: its first paint (the form and the 2-D results) comes
+            # first, the 3-D scene (software WebGL: the heaviest drawing of the page) after
+            self.held = shown
+            self.note.set_text(DRAWING)
+            if self.draw_later is None:
+                with self.card:
+                    self.draw_later = ui.timer(0, self.draw_held, once=True)
+            return
+        self.held = None
+        self.plot.update_figure(shown)
+
+    def draw_held(self) -> None:
+        """Send the figure held back while the page was built (runs once the browser has
+        connected, i.e. after the page's first paint)."""
+        if self.held is not None:
+            self.note.set_text("")
+            self.plot.update_figure(self.held)
+            self.held = None
 
     async def download(self, fmt: FigureFormat) -> None:
         if self.figure is None or self.stale:
@@ -164,17 +250,43 @@ class FigureCard:
                 figure_json(self.figure, self.title), f"{self.name}.json", "application/json"
             )
         else:
-            try:
-                data = await run.io_bound(render.to_image, self.figure, fmt)
-            except Exception as error:  # kaleido / browser problems must not kill the page
-                log.warning("image export failed: %s", error)
-                ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
-                return
-            if data is None:  # NiceGUI is shutting down: the export was cancelled
-                ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
-                return
-            media = "image/png" if fmt == "png" else "image/svg+xml"
-            send_download(data, f"{self.name}.{fmt}", media)
+            await self.image(fmt)
+
+    async def image(self, fmt: Literal["png", "svg"]) -> None:
+        """A PNG or SVG of the figure, made by plotly.js in the user's browser from the traces
+        already drawn (no server round trip through kaleido), with the figure's own layout
+        and size (that of :func:`crankbalance.render.to_image`, not the page's: its width and
+        height, else 1000 x 600 px). Where the browser cannot (the figure is not drawn yet,
+        or plotly.js fails there), the server's :func:`~crankbalance.render.to_image`."""
+        figure = self.figure
+        assert figure is not None
+        try:
+            result = await ui.run_javascript(
+                browser_image_js(self.plot.id, figure, fmt, self.name), timeout=IMAGE_TIMEOUT
+            )
+            if result == NOT_DRAWN:  # the page has not drawn it yet: its traces are sent too
+                result = await ui.run_javascript(
+                    browser_image_js(self.plot.id, figure, fmt, self.name, with_data=True),
+                    timeout=IMAGE_TIMEOUT,
+                )
+        except TimeoutError:  # the page did not answer (e.g. it was reloaded meanwhile)
+            log.warning("image export: the browser did not answer within %g s", IMAGE_TIMEOUT)
+            ui.notify(f"{fmt.upper()} export: the page did not answer; try again", type="warning")
+            return
+        if result == "ok" or result is None:  # done, or the page was closed meanwhile
+            return
+        log.warning("image export in the browser failed (%s): made by the server", result)
+        try:
+            data = await run.io_bound(render.to_image, figure, fmt)
+        except Exception as error:  # kaleido / browser problems must not kill the page
+            log.warning("image export failed: %s", error)
+            ui.notify(f"{fmt.upper()} export failed: {error}", type="negative")
+            return
+        if data is None:  # NiceGUI is shutting down: the export was cancelled
+            ui.notify(f"{fmt.upper()} export cancelled (server stopping)", type="warning")
+            return
+        media = "image/png" if fmt == "png" else "image/svg+xml"
+        send_download(data, f"{self.name}.{fmt}", media)
 
 
 class Tab(ABC):
