@@ -1,5 +1,6 @@
 """The crank train's detail fields of the Engine tab: offsets per bank and per cylinder, rod
-positions on a shared pin, the moment reference and a radial's master-and-link rods.
+positions on a shared pin, the moment reference, a radial's master-and-link rods, and the
+VR rows (layout vr, a W from VR banks: W type, VR angle, bore offset, pin split).
 
 First the project code on its own (every preset that uses these keys loads into the form's
 fields, not into the kept-as-is extras, and load -> save TOML -> load gives the same
@@ -36,6 +37,10 @@ PRESETS = {
     "radial5-kinner": "link_pin_radius",
     "radial7-scarab": "link_pin_radius",
     "radial9-r985": "link_pin_radius",
+    "vr6": "pin_split",
+    "w8": "vr_angle",
+    "w12-vw": "vr_angle",
+    "w16": "vr_angle",
 }
 
 
@@ -116,6 +121,10 @@ def test_rod_positions_scale_the_rocking_couple() -> None:
         ("radial9-r985", "link_pin_angles", "0 deg, 40 deg", "needs one angle per cylinder (9)"),
         ("radial9-r985", "master_cylinder", "12", "must be a cylinder number 1..9"),
         ("inline4", "bank_offsets", "1 mm, 1 mm", "give bore offset of each cylinder"),
+        ("w12-vw", "vr_angle", "100 deg", "must lie in (0, 90] deg"),
+        ("w12-vw", "bank_offsets", "1 mm, 1 mm, 1 mm", "give bore offset of the VR rows"),
+        ("vr6", "pin_split", "200 deg", "must lie in [0, 180) deg"),
+        ("vr6", "bore_offset", "130 mm", "leaves no rod"),
     ],
 )
 def test_messages_name_the_field_by_its_label(preset: str, key: str, text: str, words: str) -> None:
@@ -140,6 +149,10 @@ SHOWN_ON = {
     "link_pin_radius": "radial9-r985",
     "link_rod_length": "radial9-r985",
     "link_pin_angles": "radial9-r985",
+    "w_type": "w12-vw",
+    "vr_angle": "w12-vw",
+    "bore_offset": "vr6",
+    "pin_split": "vr6",
 }
 
 
@@ -150,7 +163,9 @@ def test_unparsable_text_in_every_detail_field(key: str) -> None:
     f = FIELD_BY_KEY[key]
     project = Project.from_preset(SHOWN_ON[key])
     assert project.active(f), f"{key} is not shown on {SHOWN_ON[key]}"
-    bad = {"int": "three", "choice": "sideways"}.get(f.kind, "1 mm, 12 parsecs")
+    bad = {"int": "three", "choice": "sideways", "quantity": "12 parsecs"}.get(
+        f.kind, "1 mm, 12 parsecs"
+    )
     message = project.set(key, bad).get(key, "")
     assert message.startswith(f.label), (key, message)
     assert "crank_train" not in message and "docs/" not in message, message
@@ -201,6 +216,19 @@ async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, 
         "link_pin_angles",
     }
     assert form.element("field-link_pin_radius").value == "56 mm"
+    await user.open("/?preset=w12-vw")
+    await form.see("Offsets, rod positions and radial rods")
+    vr_rows = {"bore_offset", "pin_split"}
+    common = {"cylinder_offsets", "moment_reference", "rod_positions"}
+    assert _shown(form) == common | vr_rows | {"w_type", "vr_angle"}
+    form.set("field-w_type", "broad-arrow")  # three banks: offsets per bank, no VR rows
+    form.set("field-vr_angle", "")
+    form.set("field-bore_offset", "")
+    assert _shown(form) == common | {"w_type", "bank_offsets"}
+    await user.open("/?preset=vr6")
+    await form.see("Offsets, rod positions and radial rods")
+    assert _shown(form) == {"cylinder_offsets", "moment_reference"} | vr_rows
+    assert form.element("field-pin_split").value == "22 deg"
 
 
 async def test_results_follow_the_detail_fields(user: User, form) -> None:
@@ -309,7 +337,7 @@ def test_radial9_link_pin_radius_in_the_browser(server: str, page) -> None:
     _shoot(page, "radial9_link_pin_radius")
 
 
-@pytest.mark.parametrize("preset", ["ducati-916", "radial9-r985"])
+@pytest.mark.parametrize("preset", ["ducati-916", "radial9-r985", "w12-vw"])
 def test_detail_fields_on_a_phone(server: str, browser: Any, preset: str) -> None:
     """At 390x844 the Engine tab's fields, the detail fields among them, neither overlap
     nor run past the screen (screenshots for a person to look at)."""
@@ -324,13 +352,13 @@ def test_detail_fields_on_a_phone(server: str, browser: Any, preset: str) -> Non
         page.wait_for_function(DRAWN)
         shown = page.evaluate(BOXES)
         names = {name for name, *_ in shown["fields"]}
-        assert {"field-rod_positions", "field-moment_reference"} <= names, names
+        assert {"field-cylinder_offsets", "field-moment_reference"} <= names, names
         assert not _overlaps(shown["fields"]), _overlaps(shown["fields"])
         for name, left, _top, right, _bottom in shown["fields"]:
             assert left >= -0.5 and right <= PHONE["width"] + 0.5, f"{name} runs past"
         assert shown["width"] <= PHONE["width"], "the page scrolls sideways"
         SHOTS.mkdir(parents=True, exist_ok=True)
-        page.locator("[data-testid=field-rod_positions]").first.scroll_into_view_if_needed()
+        page.locator("[data-testid=field-moment_reference]").first.scroll_into_view_if_needed()
         page.screenshot(path=str(SHOTS / f"details_{preset}_390.png"))
     finally:
         page.close()

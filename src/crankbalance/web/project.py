@@ -23,7 +23,15 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from ..errors import InputError
-from ..spec import LAYOUTS, Counterweights, CrankTrain, EngineSpec, ShaftSet, spec_from_dict
+from ..spec import (
+    LAYOUTS,
+    W_TYPES,
+    Counterweights,
+    CrankTrain,
+    EngineSpec,
+    ShaftSet,
+    spec_from_dict,
+)
 from ..units import parse_quantity
 
 Kind = Literal[
@@ -90,7 +98,7 @@ ENGINE_FIELDS: tuple[FormField, ...] = (
         ("crank_train", "bank_angle"),
         "Bank angle",
         unit="angle",
-        hint="vee / W only, e.g. 90 deg",
+        hint="vee / W / VR only, e.g. 90 deg",
     ),
     F("crank_pitch", ("crank_train", "crank_pitch"), "Crank pitch", hint="e.g. 90 mm"),
     F("crank_radius", ("crank_train", "crank_radius"), "Crank radius", hint="e.g. 40 mm"),
@@ -194,12 +202,48 @@ BALANCING_FIELDS: tuple[FormField, ...] = (
 #: positions on shared pins, the moment reference and a radial's master-and-link rods
 DETAIL_FIELDS: tuple[FormField, ...] = (
     F(
+        "w_type",
+        ("crank_train", "w_type"),
+        "W type",
+        "choice",
+        options=W_TYPES,
+        hint="broad-arrow: three banks on each pin; vr: two VR banks (empty: broad-arrow)",
+        layouts=("w",),
+    ),
+    F(
+        "vr_angle",
+        ("crank_train", "vr_angle"),
+        "VR angle",
+        unit="angle",
+        hint="narrow angle between the rows of each VR bank, e.g. 15 deg",
+        group="w-vr",
+        layouts=("w",),
+    ),
+    F(
+        "bore_offset",
+        ("crank_train", "bore_offset"),
+        "Bore offset of the VR rows",
+        hint="each row's bore axes from the crank axis, e.g. 12.5 mm (empty: 0 mm)",
+        group="vr-rows",
+        layouts=("vr", "w"),
+    ),
+    F(
+        "pin_split",
+        ("crank_train", "pin_split"),
+        "Pin split of the VR rows",
+        unit="angle",
+        hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
+        group="vr-rows",
+        layouts=("vr", "w"),
+    ),
+    F(
         "bank_offsets",
         ("crank_train", "bank_offsets"),
         "Bore offset of each bank",
         "quantitylist",
         hint="one per bank (vee, boxer: 2; W: 3), e.g. 0 mm, 5 mm",
         layouts=("vee", "boxer", "w"),
+        group="banks",
     ),
     F(
         "cylinder_offsets",
@@ -556,7 +600,7 @@ class Project:
     def active(self, f: FormField) -> bool:
         """Whether a field takes part in the engine (parts/totals, conrod split, shafts)."""
         s = self.settings
-        if f.layouts and self.texts.get("layout") not in f.layouts:
+        if f.layouts and not self._means_something(f):
             return bool(self.texts.get(f.key, "").strip())
         if f.group in ("parts", "fraction", "cg") and s["mass_mode"] != "parts":
             return False
@@ -567,6 +611,19 @@ class Project:
         if f.group in ("primary", "secondary") and not f.key.endswith("arrangement"):
             return self.texts.get(f"{f.group}_arrangement", "none") != "none"
         return True
+
+    def _means_something(self, f: FormField) -> bool:
+        """Whether a detail field means something for the layout (and W type) in the form:
+        the VR rows' fields for layout vr and a W from VR banks, the VR angle for the latter."""
+        layout = self.texts.get("layout")
+        w_vr = layout == "w" and self.texts.get("w_type") == "vr"
+        if f.group == "w-vr":
+            return w_vr
+        if f.group == "vr-rows":
+            return layout == "vr" or w_vr
+        if f.group == "banks":  # a W from VR banks gives its offsets per cylinder
+            return layout in f.layouts and not w_vr
+        return layout in f.layouts
 
     def file_dict(self) -> tuple[dict[str, Any], dict[str, str]]:
         """The engine-file dictionary of the form, and the errors of single fields."""

@@ -27,8 +27,9 @@ DETAIL_WORDS = (
     "Lengths separated by commas. Offsets move a cylinder's bore axis off the crank axis "
     "(added to the wrist-pin offset); rod positions place each rod along its crankpin "
     "(side-by-side rods on a shared pin make a rocking couple); moments are taken about the "
-    "moment reference. A radial engine gets master-and-link rods from the link pin radius "
-    "and link rod length. Fields of other layouts are hidden while empty."
+    "moment reference. A VR engine, or a W from two VR banks (W type vr), has its rows' bore "
+    "offset and pin split; a radial engine gets master-and-link rods from the link pin "
+    "radius and link rod length. Fields of other layouts are hidden while empty."
 )
 
 
@@ -50,6 +51,8 @@ class EngineTab(Tab):
                 with ui.grid(columns=2):
                     for f in DETAIL_FIELDS:
                         self.page.field(f)
+                # emptied when the layout is no longer W (else it is refused there)
+                self.page.inputs["w_type"].props("clearable")
             with ui.card():
                 ui.label("Balancing components parameters").classes("text-subtitle1")
                 with ui.grid(columns=2):
