@@ -22,6 +22,7 @@ BAD_BY_KIND = {
     "int": "three",
     "float": "half",
     "intlist": "1, x, 3",
+    "quantitylist": "1 mm, 12 parsecs",
     "choice": "sideways",
     "angle_or_optimal": "steep",
 }
@@ -65,6 +66,8 @@ async def test_bad_input_in_every_field(user: User, form, caplog) -> None:
     for f in FIELDS:
         if f.kind == "text":
             continue  # the engine name takes any text
+        if f.layouts:
+            continue  # hidden on this engine's layout: tests/web/test_web_engine_fields.py
         _mode_for(user, form, f.key)
         marker = f"field-{f.key}"
         element = form.element(marker)

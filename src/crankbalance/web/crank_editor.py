@@ -187,10 +187,9 @@ class CrankEditor:
             cylinders = int(self.project.texts.get("cylinders", ""))
         except ValueError:
             return 0
-        train = self.project.extras.get("crank_train", {})
-        w_type = train.get("w_type") if isinstance(train, dict) else None
-        layout = self.project.texts.get("layout", "inline")
-        return throw_count(layout, max(cylinders, 0), w_type if isinstance(w_type, str) else None)
+        texts = self.project.texts
+        w_type = texts.get("w_type", "").strip() or None  # a field of the Engine tab
+        return throw_count(texts.get("layout", "inline"), max(cylinders, 0), w_type)
 
     def give_angles(self, on: bool) -> None:
         """Switch the throw angles on (filled with the crank of the last valid engine,

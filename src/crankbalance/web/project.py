@@ -23,10 +23,20 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from ..errors import InputError
-from ..spec import LAYOUTS, Counterweights, CrankTrain, EngineSpec, ShaftSet, spec_from_dict
+from ..spec import (
+    LAYOUTS,
+    W_TYPES,
+    Counterweights,
+    CrankTrain,
+    EngineSpec,
+    ShaftSet,
+    spec_from_dict,
+)
 from ..units import parse_quantity
 
-Kind = Literal["text", "quantity", "int", "float", "intlist", "choice", "angle_or_optimal"]
+Kind = Literal[
+    "text", "quantity", "quantitylist", "int", "float", "intlist", "choice", "angle_or_optimal"
+]
 SETTINGS_TAG = "# crankbalance-web settings: "
 SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag names it
 #: largest engine file or project the web page and the API take [bytes]: an engine file is
@@ -55,6 +65,9 @@ class FormField:
     options: tuple[str, ...] = ()
     hint: str = ""
     group: str = ""  # "parts", "totals", "fraction", "cg", "primary", "secondary", ...
+    #: layouts the field means something for (empty: all); shown for the others only
+    #: while it holds a value, so that a value is never dropped unseen
+    layouts: tuple[str, ...] = ()
 
     @property
     def dotted(self) -> str:
@@ -85,7 +98,7 @@ ENGINE_FIELDS: tuple[FormField, ...] = (
         ("crank_train", "bank_angle"),
         "Bank angle",
         unit="angle",
-        hint="vee / W only, e.g. 90 deg",
+        hint="vee / W / VR only, e.g. 90 deg",
     ),
     F("crank_pitch", ("crank_train", "crank_pitch"), "Crank pitch", hint="e.g. 90 mm"),
     F("crank_radius", ("crank_train", "crank_radius"), "Crank radius", hint="e.g. 40 mm"),
@@ -185,6 +198,113 @@ BALANCING_FIELDS: tuple[FormField, ...] = (
         group="secondary",
     ),
 )
+#: the crank train's details beyond the general fields: offsets per bank or cylinder, rod
+#: positions on shared pins, the moment reference and a radial's master-and-link rods
+DETAIL_FIELDS: tuple[FormField, ...] = (
+    F(
+        "w_type",
+        ("crank_train", "w_type"),
+        "W type",
+        "choice",
+        options=W_TYPES,
+        hint="broad-arrow: three banks on each pin; vr: two VR banks (empty: broad-arrow)",
+        layouts=("w",),
+    ),
+    F(
+        "vr_angle",
+        ("crank_train", "vr_angle"),
+        "VR angle",
+        unit="angle",
+        hint="narrow angle between the rows of each VR bank, e.g. 15 deg",
+        group="w-vr",
+        layouts=("w",),
+    ),
+    F(
+        "bore_offset",
+        ("crank_train", "bore_offset"),
+        "Bore offset of the VR rows",
+        hint="each row's bore axes from the crank axis, e.g. 12.5 mm (empty: 0 mm)",
+        group="vr-rows",
+        layouts=("vr", "w"),
+    ),
+    F(
+        "pin_split",
+        ("crank_train", "pin_split"),
+        "Pin split of the VR rows",
+        unit="angle",
+        hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
+        group="vr-rows",
+        layouts=("vr", "w"),
+    ),
+    F(
+        "bank_offsets",
+        ("crank_train", "bank_offsets"),
+        "Bore offset of each bank",
+        "quantitylist",
+        hint="one per bank (vee, boxer: 2; W: 3), e.g. 0 mm, 5 mm",
+        layouts=("vee", "boxer", "w"),
+        group="banks",
+    ),
+    F(
+        "cylinder_offsets",
+        ("crank_train", "cylinder_offsets"),
+        "Bore offset of each cylinder",
+        "quantitylist",
+        hint="one per cylinder, e.g. 0 mm, 2 mm, 0 mm (not with the offsets per bank)",
+    ),
+    F(
+        "rod_positions",
+        ("crank_train", "rod_positions"),
+        "Rod positions on the pin",
+        "quantitylist",
+        hint="one per cylinder from the throw's mid-plane, e.g. -10 mm, 10 mm "
+        "(side-by-side rods; empty: all 0)",
+        layouts=("vee", "boxer", "w", "radial", "custom"),
+    ),
+    F(
+        "moment_reference",
+        ("crank_train", "moment_reference"),
+        "Moment reference",
+        hint="point moments are taken about, from the crank's mid-point (empty: 0 mm)",
+    ),
+    F(
+        "master_cylinder",
+        ("crank_train", "articulated", "master_cylinder"),
+        "Master rod's cylinder",
+        "int",
+        hint="master-and-link rods (empty: 1)",
+        group="articulated",
+        layouts=("radial",),
+    ),
+    F(
+        "link_pin_radius",
+        ("crank_train", "articulated", "link_pin_radius"),
+        "Link pin radius",
+        hint="link pins from the master's big-end centre, e.g. 56 mm "
+        "(empty with the link rod length: each rod on the pin)",
+        group="articulated",
+        layouts=("radial",),
+    ),
+    F(
+        "link_rod_length",
+        ("crank_train", "articulated", "link_rod_length"),
+        "Link rod length",
+        hint="centre distance of each link rod, e.g. 198 mm",
+        group="articulated",
+        layouts=("radial",),
+    ),
+    F(
+        "link_pin_angles",
+        ("crank_train", "articulated", "link_pin_angles"),
+        "Link pin angles",
+        "quantitylist",
+        unit="angle",
+        hint="one per cylinder from the master rod's axis, the master's 0 deg "
+        "(empty: each cylinder's angle from the master)",
+        group="articulated",
+        layouts=("radial",),
+    ),
+)
 MASS_FIELDS: tuple[FormField, ...] = (
     F(
         "piston",
@@ -242,7 +362,7 @@ MASS_FIELDS: tuple[FormField, ...] = (
         group="totals",
     ),
 )
-FIELDS: tuple[FormField, ...] = ENGINE_FIELDS + BALANCING_FIELDS + MASS_FIELDS
+FIELDS: tuple[FormField, ...] = ENGINE_FIELDS + DETAIL_FIELDS + BALANCING_FIELDS + MASS_FIELDS
 FIELD_BY_KEY: dict[str, FormField] = {f.key: f for f in FIELDS}
 FIELD_BY_PATH: dict[str, FormField] = {f.dotted: f for f in FIELDS}
 DEFAULTS: dict[str, str] = {
@@ -335,6 +455,17 @@ def check_field(f: FormField, text: str) -> Any:
             raise InputError(
                 where, text, "must be whole numbers separated by commas, e.g. 1, 3, 2"
             ) from None
+    if f.kind == "quantitylist":
+        parts = [p.strip() for p in text.replace(";", ",").split(",") if p.strip()]
+        example = "0 deg, 40 deg, 80 deg" if f.unit == "angle" else "-10 mm, 10 mm"
+        for part in parts:
+            try:
+                parse_quantity(part, f.unit, where)
+            except InputError as error:
+                raise InputError(
+                    where, part, f"{error.allowed}; give them separated by commas, e.g. {example}"
+                ) from None
+        return parts
     if f.kind == "angle_or_optimal":
         if text.lower() == "optimal":
             return "optimal"
@@ -469,6 +600,8 @@ class Project:
     def active(self, f: FormField) -> bool:
         """Whether a field takes part in the engine (parts/totals, conrod split, shafts)."""
         s = self.settings
+        if f.layouts and not self._means_something(f):
+            return bool(self.texts.get(f.key, "").strip())
         if f.group in ("parts", "fraction", "cg") and s["mass_mode"] != "parts":
             return False
         if f.group == "totals" and s["mass_mode"] != "totals":
@@ -478,6 +611,19 @@ class Project:
         if f.group in ("primary", "secondary") and not f.key.endswith("arrangement"):
             return self.texts.get(f"{f.group}_arrangement", "none") != "none"
         return True
+
+    def _means_something(self, f: FormField) -> bool:
+        """Whether a detail field means something for the layout (and W type) in the form:
+        the VR rows' fields for layout vr and a W from VR banks, the VR angle for the latter."""
+        layout = self.texts.get("layout")
+        w_vr = layout == "w" and self.texts.get("w_type") == "vr"
+        if f.group == "w-vr":
+            return w_vr
+        if f.group == "vr-rows":
+            return layout == "vr" or w_vr
+        if f.group == "banks":  # a W from VR banks gives its offsets per cylinder
+            return layout in f.layouts and not w_vr
+        return layout in f.layouts
 
     def file_dict(self) -> tuple[dict[str, Any], dict[str, str]]:
         """The engine-file dictionary of the form, and the errors of single fields."""
@@ -724,6 +870,7 @@ _KEY_WORDS = {
     "crank_train.throw_angles": "Throw angles (crank editor)",
     "crank_train.throw": "Custom throws (crank editor)",
     "crank_train.crank_offset": "Crank offset",
+    "crank_train.articulated": "Master-and-link rods",
     "masses.override": "Mass overrides (crank editor)",
     "counterweights.scope": "Counterweight scope",
     "counterweights.web_offset": "Counterweight web offset",
@@ -810,6 +957,8 @@ def form_message(error: InputError) -> str:
     if error.field == label:  # not a key of the engine file: a file name, a setting
         label = error.field
     value = error.value
+    if isinstance(value, list):  # a list field as the form writes it: "-10 mm, 10 mm"
+        value = _format_value(value)
     shown = "" if value is None else f" = {value if isinstance(value, str) else repr(value)}"
     if len(shown) > 83:
         shown = shown[:80] + "..."

@@ -8,7 +8,7 @@ from nicegui import ui
 
 from .. import figures
 from .crank_editor import CrankEditor
-from .project import BALANCING_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
+from .project import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import FIGURE_CSS, Tab
 
 #: what the balance factor does, shown under the balancing fields
@@ -20,6 +20,16 @@ BALANCE_FACTOR_WORDS = (
     "with the crank: k = 0.5 per cylinder cancels it (and the crossplane V8's first-order "
     "couple); k = 1 reverses it instead of removing it. A backward first-order component, and "
     "any of order 2 or higher, needs balance shafts."
+)
+
+#: what the detail fields are, shown above them
+DETAIL_WORDS = (
+    "Lengths separated by commas. Offsets move a cylinder's bore axis off the crank axis "
+    "(added to the wrist-pin offset); rod positions place each rod along its crankpin "
+    "(side-by-side rods on a shared pin make a rocking couple); moments are taken about the "
+    "moment reference. A VR engine, or a W from two VR banks (W type vr), has its rows' bore "
+    "offset and pin split; a radial engine gets master-and-link rods from the link pin "
+    "radius and link rod length. Fields of other layouts are hidden while empty."
 )
 
 
@@ -35,6 +45,14 @@ class EngineTab(Tab):
                 with ui.grid(columns=2):
                     for f in ENGINE_FIELDS:
                         self.page.field(f)
+            with ui.card().mark("engine-details"):
+                ui.label("Offsets, rod positions and radial rods").classes("text-subtitle1")
+                ui.label(DETAIL_WORDS).classes("text-caption text-grey-8 max-w-md")
+                with ui.grid(columns=2):
+                    for f in DETAIL_FIELDS:
+                        self.page.field(f)
+                # emptied when the layout is no longer W (else it is refused there)
+                self.page.inputs["w_type"].props("clearable")
             with ui.card():
                 ui.label("Balancing components parameters").classes("text-subtitle1")
                 with ui.grid(columns=2):
