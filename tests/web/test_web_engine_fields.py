@@ -32,6 +32,7 @@ SHOTS = Path(os.environ.get("CRANKBALANCE_SHOTS") or ROOT / "artifacts" / "scree
 DETAIL_KEYS = {f.key for f in DETAIL_FIELDS}
 #: presets that use the detail keys, and the form field each one must fill
 PRESETS = {
+    "boxer6": "numbering",  # written in Porsche's numbering
     "ducati-916": "rod_positions",
     "harley-45": None,  # knife-and-fork rods: no rod positions, all in the mid-plane
     "radial5-kinner": "link_pin_radius",
@@ -191,14 +192,22 @@ def _shown(form: Any) -> set[str]:
 
 async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, form) -> None:
     """Rod positions for shared pins, offsets per bank for the layouts with banks, the
-    master-and-link rods for a radial; offsets per cylinder and the moment reference for
-    every layout; a field of another layout stays shown while it holds a value."""
+    master-and-link rods for a radial, a maker's named numbering for vee and boxer;
+    offsets per cylinder, the moment reference and a maker's numbers for every layout; a
+    field of another layout stays shown while it holds a value."""
     await user.open("/?preset=inline4")
     await form.see("Offsets, rod positions and radial rods")
-    assert _shown(form) == {"cylinder_offsets", "moment_reference"}
+    assert _shown(form) == {"cylinder_offsets", "moment_reference", "maker_numbers"}
     form.set("field-layout", "vee")
     form.set("field-bank_angle", "90 deg")
-    assert _shown(form) == {"cylinder_offsets", "moment_reference", "bank_offsets", "rod_positions"}
+    assert _shown(form) == {
+        "cylinder_offsets",
+        "moment_reference",
+        "maker_numbers",
+        "numbering",
+        "bank_offsets",
+        "rod_positions",
+    }
     form.set("field-rod_positions", "-5 mm, 5 mm, -5 mm, 5 mm")
     form.set("field-bank_angle", "")
     form.set("field-layout", "inline")  # the value stays in sight, and counts
@@ -209,6 +218,7 @@ async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, 
     assert _shown(form) == {
         "cylinder_offsets",
         "moment_reference",
+        "maker_numbers",
         "rod_positions",
         "master_cylinder",
         "link_pin_radius",
@@ -219,7 +229,7 @@ async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, 
     await user.open("/?preset=w12-vw")
     await form.see("Offsets, rod positions and radial rods")
     vr_rows = {"bore_offset", "pin_split"}
-    common = {"cylinder_offsets", "moment_reference", "rod_positions"}
+    common = {"cylinder_offsets", "moment_reference", "maker_numbers", "rod_positions"}
     assert _shown(form) == common | vr_rows | {"w_type", "vr_angle"}
     form.set("field-w_type", "broad-arrow")  # three banks: offsets per bank, no VR rows
     form.set("field-vr_angle", "")
@@ -227,7 +237,7 @@ async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, 
     assert _shown(form) == common | {"w_type", "bank_offsets"}
     await user.open("/?preset=vr6")
     await form.see("Offsets, rod positions and radial rods")
-    assert _shown(form) == {"cylinder_offsets", "moment_reference"} | vr_rows
+    assert _shown(form) == {"cylinder_offsets", "moment_reference", "maker_numbers"} | vr_rows
     assert form.element("field-pin_split").value == "22 deg"
 
 

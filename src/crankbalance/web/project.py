@@ -23,6 +23,7 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from ..errors import InputError
+from ..numbering import SCHEMES
 from ..spec import (
     LAYOUTS,
     W_TYPES,
@@ -235,6 +236,24 @@ DETAIL_FIELDS: tuple[FormField, ...] = (
         hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
         group="vr-rows",
         layouts=("vr", "w"),
+    ),
+    F(
+        "numbering",
+        ("crank_train", "numbering"),
+        "Maker's numbering",
+        "choice",
+        options=tuple(SCHEMES),
+        hint="the firing order is then written in the maker's cylinder numbers "
+        "(e.g. porsche-boxer: 1, 6, 2, 4, 3, 5; empty: crankbalance's numbering)",
+        layouts=("vee", "boxer"),
+    ),
+    F(
+        "maker_numbers",
+        ("crank_train", "maker_numbers"),
+        "Maker's numbers",
+        "intlist",
+        hint="crankbalance's number of each of the maker's cylinders, e.g. 5, 1, 6, 2, 7, "
+        "3, 8, 4; the firing order is then in the maker's numbers (empty: none)",
     ),
     F(
         "bank_offsets",
