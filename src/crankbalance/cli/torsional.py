@@ -199,6 +199,7 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
         load_inertia=o.load_inertia,
         load_stiffness=o.load_stiffness,
         shaft_damping_ratio=o.shaft_damping_ratio,
+        throw_names=tv.crank_stations(model)[1],
         **damper,
     )
     pressure = pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
