@@ -208,3 +208,27 @@ def test_clearance_in_the_contact_model(capsys: pytest.CaptureFixture[str]) -> N
         both["models"]["indeterminate"]["bearings"]
         != elastic["models"]["indeterminate"]["bearings"]
     )
+
+
+@pytest.mark.parametrize("engine", ["w8", "w12-vw", "w16"])
+@pytest.mark.parametrize("given", [False, True])
+def test_w_engines_with_throws_sharing_a_plane(
+    engine: str, given: bool, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """W engines built from VR banks have two throws in every plane: one bearing bay per
+    plane (default or given bearings), and the bearing loads carry the crank (their mean
+    over the cycle of the sum is the loads', checked in the physics tests; here each
+    model's loads are finite and every bearing between two planes is loaded)."""
+    from crankbalance.main_bearings import crank_planes
+    from crankbalance.studies.engine import as_model
+
+    planes = crank_planes(as_model(engine).throw_position)[0]
+    pitch = float(np.diff(planes).min())
+    bearings = np.concatenate([[planes[0] - pitch / 2], (planes[1:] + planes[:-1]) / 2])
+    bearings = np.concatenate([bearings, [planes[-1] + pitch / 2]])
+    extra = [a for b in bearings for a in ("--bearing", f"{b * 1000:.6f} mm")] if given else []
+    data = _json([engine, "--samples", "72", *extra], capsys)
+    np.testing.assert_allclose(data["bearing_position_m"], bearings, atol=1e-8)
+    for name in ("determinate", "indeterminate"):
+        loads = [b["mean_load_N"] for b in data["models"][name]["bearings"]]
+        assert len(loads) == planes.size + 1 and min(loads) > 0

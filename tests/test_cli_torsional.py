@@ -117,6 +117,48 @@ def test_bad_input_names_the_option(capsys, args: list[str], option: str) -> Non
     assert len(err.strip().splitlines()) == 1 and option in err, err
 
 
+def test_damper_power_without_a_damper_names_the_damper_options(capsys) -> None:
+    code, _out, err = run_cli([*BASE, "--damper-allowed-power", "1kW"], capsys)
+    assert code == 2
+    assert "--damper-allowed-power" in err and "--damper-inertia" in err, err
+    assert "(damper inertia)" not in err
+
+
+@pytest.mark.parametrize(
+    ("option", "value"),
+    [
+        ("--journal-diameter", "60 mm"),
+        ("--pin-diameter", "50 mm"),
+        ("--journal-length", "25 mm"),
+        ("--pin-length", "25 mm"),
+        ("--web-thickness", "20 mm"),
+        ("--web-width", "90 mm"),
+        ("--shear-modulus", "80 GPa"),
+    ],
+)
+@pytest.mark.parametrize(
+    "stiffnesses",
+    [
+        ["--throw-stiffness", "5e5 N*m/rad"],
+        [
+            "--throw-stiffness",
+            "5e5 N*m/rad",
+            "--front-stiffness",
+            "5e5 N*m/rad",
+            "--flywheel-stiffness",
+            "5e5 N*m/rad",
+        ],
+    ],
+)
+def test_carter_dimensions_with_a_given_throw_stiffness_are_refused(
+    capsys, option: str, value: str, stiffnesses: list[str]
+) -> None:
+    code, out, err = run_cli([*BASE, *stiffnesses, option, value], capsys)
+    assert code == 2 and out == ""
+    assert len(err.strip().splitlines()) == 1, err
+    assert option in err and "--throw-stiffness" in err, err
+
+
 def test_engine_is_required(capsys) -> None:
     code, _out, err = run_cli(["torsional"], capsys)
     assert code == 2 and "--engine" in err

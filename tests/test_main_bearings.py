@@ -14,11 +14,13 @@ from crankbalance import friction
 from crankbalance.beam import ShaftSection, beam_statics, element_matrices
 from crankbalance.errors import InputError
 from crankbalance.main_bearings import (
+    CrankLoads,
     CrankSection,
     CrankStiffness,
     bearing_friction,
     continuous_beam_reactions,
     crank_loads,
+    crank_planes,
     crank_stiffness,
     default_bearing_positions,
     main_bearing_loads,
@@ -232,6 +234,46 @@ def test_default_bearings() -> None:
         default_bearing_positions(y, 1.0), [-0.184, -0.092, 0.0, 0.092, 0.184], atol=1e-15
     )
     np.testing.assert_allclose(default_bearing_positions([0.01], 0.03), [-0.02, 0.04])
+
+
+@pytest.mark.parametrize("model", ["determinate", "indeterminate"])
+def test_coplanar_throws_load_their_plane_together(model: str) -> None:
+    """A W-like crank, two throws in each of three planes (listed bank by bank, so not in
+    axial order): the default bearings, the stepped beam and the bearing loads are those
+    of the three-throw crank whose throws carry the two coplanar throws' forces summed by
+    hand; and the loads balance the crank (force and moment)."""
+    y3 = np.array([-0.046, 0.0, 0.046])
+    y6 = np.concatenate([y3, y3])
+    phi = np.radians([0.0, 120.0, 240.0, 72.0, 192.0, 312.0])
+    loads = crank_loads(
+        ANGLE, _random_forces((6, ANGLE.size)), phi, y6, np.full(6, 0.5), 0.04, 600.0
+    )
+    planes, plane_of_throw = crank_planes(y6)
+    np.testing.assert_allclose(planes, y3, atol=1e-15)
+    assert plane_of_throw.tolist() == [0, 1, 2, 0, 1, 2]
+    bearings = default_bearing_positions(y6, 0.04)
+    np.testing.assert_allclose(bearings, [-0.069, -0.023, 0.023, 0.069], atol=1e-15)
+    section = CrankSection(0.055, 0.045, 0.010, 0.09)
+    stiffness = crank_stiffness(y6, 0.015, 0.04, section, bearings[0], bearings[-1])
+    stiffness3 = crank_stiffness(y3, 0.015, 0.04, section, bearings[0], bearings[-1])
+    np.testing.assert_allclose(stiffness.edges, stiffness3.edges)
+    np.testing.assert_allclose(stiffness.stiffness, stiffness3.stiffness)
+    summed = CrankLoads(
+        angle=loads.angle,
+        position=y3,
+        throw=np.arange(3),
+        kind=("throw",) * 3,
+        load=loads.load[:3] + loads.load[3:],
+    )
+    result = main_bearing_loads(loads, bearings, y6, model, stiffness)
+    by_hand = main_bearing_loads(summed, bearings, y3, model, stiffness3)
+    scale = np.abs(loads.load).max()
+    np.testing.assert_allclose(result.load, by_hand.load, atol=1e-9 * scale)
+    np.testing.assert_allclose(result.load.sum(axis=0), loads.total, atol=1e-9 * scale)
+    for y0 in (-0.3, 0.0, 0.117):
+        bearing_moment = ((bearings - y0)[:, None] * result.load).sum(axis=0)
+        load_moment = ((loads.position - y0)[:, None] * loads.load).sum(axis=0)
+        np.testing.assert_allclose(bearing_moment, load_moment, atol=1e-9 * scale)
 
 
 # ------------------------------------------------------------------ second method: FE

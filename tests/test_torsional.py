@@ -313,3 +313,83 @@ def test_holzer_residual_vanishes_at_the_natural_frequencies(inline6: tuple) -> 
         assert abs(residual(omega)) < 1e-8 * scale
         # and it changes sign across each natural frequency
         assert residual(omega * 0.999) * residual(omega * 1.001) < 0
+
+
+def _permuted_throws(model, order):  # type: ignore[no-untyped-def]
+    """The same engine with its throws listed in ``order`` (cylinders unchanged)."""
+    import dataclasses
+
+    order = np.asarray(order)
+    new_index = np.argsort(order)  # old throw t is listed at new_index[t]
+    return dataclasses.replace(
+        model,
+        throw_angle=np.asarray(model.throw_angle)[order],
+        throw_position=np.asarray(model.throw_position)[order],
+        throw_rotating_mass=np.asarray(model.throw_rotating_mass)[order],
+        cylinder_throw=new_index[np.asarray(model.cylinder_throw)],
+    )
+
+
+def test_w12_from_vr_banks_has_one_throw_mass_per_plane() -> None:
+    """w12-vw lists its 12 throws bank by bank at six axial positions (two per plane): the
+    chain has six throw masses, each the sum of its two throws' inertias, in axial order,
+    and every cylinder drives its plane's mass."""
+    model = as_model("w12-vw")
+    station, names = tv.crank_stations(model)
+    y = np.asarray(model.throw_position)
+    assert np.unique(station).size == 6
+    for s in range(6):
+        assert np.ptp(y[station == s]) < 1e-9
+    assert np.all(np.diff([y[station == s][0] for s in range(6)]) > 0), "front to rear"
+    assert names[0] == "throws 1+7"
+    inertia = tv.throw_inertias(model)
+    assert inertia.size == 6
+    lam = model.crank_radius / model.rod_length
+    share = model.reciprocating_mass[0] * model.crank_radius**2 / 2 * (1 + lam**2 / 4)
+    rotating = np.asarray(model.throw_rotating_mass) * model.crank_radius**2
+    pistons = np.bincount(np.asarray(model.cylinder_throw), minlength=12)
+    by_hand = np.bincount(station, weights=rotating + pistons * share)
+    np.testing.assert_allclose(inertia, by_hand, rtol=lam**4)
+    train = tv.crank_train(inertia, 5e5, 0.01, 5e5, 0.2, 5e5, throw_names=names)
+    assert train.throw_index.size == 6
+    assert [train.names[i] for i in train.throw_index] == list(names)
+    assert train.stiffness.size == 7  # front, 5 throw-to-throw gaps, flywheel
+
+
+def test_throws_listed_out_of_order_give_the_same_chain(inline6: tuple) -> None:
+    """The inline-6 with its throws listed 4, 1, 6, 2, 5, 3: the same inertias, natural
+    frequencies and throw torques as in axial order."""
+    model, cycle, _ = inline6
+    shuffled = _permuted_throws(model, [3, 0, 5, 1, 4, 2])
+    assert tv.crank_stations(shuffled)[1] == (
+        "throw 2",
+        "throw 4",
+        "throw 6",
+        "throw 1",
+        "throw 5",
+        "throw 3",
+    )
+    np.testing.assert_allclose(tv.throw_inertias(shuffled), tv.throw_inertias(model), rtol=1e-12)
+    k = 4e5
+    trains = [tv.crank_train(tv.throw_inertias(m), k, 0.01, k, 0.15, k) for m in (model, shuffled)]
+    modes = [tv.natural_modes(t.inertia, t.stiffness).frequency for t in trains]
+    np.testing.assert_allclose(modes[1], modes[0], rtol=1e-10)
+    ex = tv.engine_excitation(cycle, model)
+    ex_shuffled = tv.engine_excitation(cycle, shuffled)
+    speed = float(cycle.speed_mean)
+    np.testing.assert_allclose(
+        ex_shuffled.throw_torque(speed), ex.throw_torque(speed), atol=1e-9 * np.abs(ex.gas).max()
+    )
+
+
+def test_v8_one_throw_per_plane_is_unchanged() -> None:
+    """A V8 (two cylinders on each of four pins, one throw per plane): one mass per throw,
+    the throw with its two pistons' shares (the series of test_reciprocating_share_series)."""
+    model = as_model("v8-crossplane")
+    station, names = tv.crank_stations(model)
+    assert station.tolist() == [0, 1, 2, 3]
+    assert names == ("throw 1", "throw 2", "throw 3", "throw 4")
+    lam = model.crank_radius / model.rod_length
+    share = model.reciprocating_mass[0] * model.crank_radius**2 / 2 * (1 + lam**2 / 4)
+    expected = np.asarray(model.throw_rotating_mass) * model.crank_radius**2 + 2 * share
+    np.testing.assert_allclose(tv.throw_inertias(model), expected, rtol=lam**4)

@@ -57,6 +57,8 @@ CRANK_MODELS: tuple[str, ...] = ("determinate", "indeterminate")
 
 #: relative tolerance of the position checks (a bearing at a throw, webs that touch)
 _TINY = 1e-9
+#: throws closer than this along the crank share one plane (:func:`crank_planes`) [m]
+PLANE_TOLERANCE = 1e-6
 
 
 # --------------------------------------------------------------------------------------
@@ -217,37 +219,60 @@ def crank_loads(
     )
 
 
-def default_bearing_positions(throw_position: ArrayLike, end_overhang: float) -> NDArray:
-    """One main bearing between neighbouring throws and one at each end (``T + 1``).
+def crank_planes(throw_position: ArrayLike) -> tuple[NDArray[np.float64], NDArray[np.int64]]:
+    """The axial planes of a crank's throws: throws closer than ``PLANE_TOLERANCE`` share one.
 
-    Between two throws the bearing sits at the mid-point; the end bearings sit half the
-    smallest throw pitch beyond the end throws (``end_overhang`` beyond them for a single
-    throw).
+    Throws of different banks can sit in one plane (a W engine built from VR banks: two
+    throws at every axial position); the crank then has one throw's length, webs and
+    bearing bay per plane, and the loads of the throws in a plane act together there.
 
     Parameters
     ----------
     throw_position : array_like, shape (T,)
-        Axial positions of the throws, in order along the crank [m].
+        Axial positions of the throws, in any order [m].
+
+    Returns
+    -------
+    planes : ndarray, shape (P,)
+        Axial position of each plane, ascending [m] (the mean of its throws).
+    plane_of_throw : ndarray of int, shape (T,)
+        Plane (0-based) of each throw [-].
+    """
+    y = _vector("throw_position", throw_position)
+    order = np.argsort(y, kind="stable")
+    new_plane = np.diff(y[order]) > PLANE_TOLERANCE
+    plane_sorted = np.concatenate([[0], np.cumsum(new_plane)]).astype(np.int64)
+    plane_of_throw = np.empty(y.size, dtype=np.int64)
+    plane_of_throw[order] = plane_sorted
+    count = np.bincount(plane_of_throw)
+    planes = np.bincount(plane_of_throw, weights=y) / count
+    return planes, plane_of_throw
+
+
+def default_bearing_positions(throw_position: ArrayLike, end_overhang: float) -> NDArray:
+    """One main bearing between neighbouring throw planes and one at each end (``P + 1``).
+
+    Throws in one axial plane (:func:`crank_planes`) share their bay. Between two planes
+    the bearing sits at the mid-point; the end bearings sit half the smallest plane pitch
+    beyond the end planes (``end_overhang`` beyond them for a single plane).
+
+    Parameters
+    ----------
+    throw_position : array_like, shape (T,)
+        Axial positions of the throws, in any order [m].
     end_overhang : float
         Distance of an end bearing from a single throw [m] (only used for T = 1).
 
     Returns
     -------
-    ndarray, shape (T + 1,)
-        Bearing positions, ascending [m].
+    ndarray, shape (P + 1,)
+        Bearing positions, ascending [m] (P the number of throw planes).
     """
-    y = np.sort(_vector("throw_position", throw_position))
+    y = crank_planes(throw_position)[0]
     if y.size == 1:
         d = check_positive("end_overhang", end_overhang)
         return np.array([y[0] - d, y[0] + d])
     gaps = np.diff(y)
-    if np.any(gaps <= _TINY * max(float(np.ptp(y)), 1.0)):
-        raise InputError(
-            "throw_position",
-            y.tolist(),
-            "needs each throw at its own axial position for the default bearings: give the "
-            "bearing positions",
-        )
     half = 0.5 * float(gaps.min())
     return np.concatenate([[y[0] - half], 0.5 * (y[1:] + y[:-1]), [y[-1] + half]])
 
@@ -429,7 +454,8 @@ def crank_stiffness(
     Parameters
     ----------
     throw_position : array_like, shape (T,)
-        Axial positions of the throws [m].
+        Axial positions of the throws [m]; throws in one plane (:func:`crank_planes`)
+        share their webs and crankpin length.
     web_offset : float
         Axial distance of each web's mid-plane from its throw's mid-plane [m].
     crank_radius : float
@@ -444,7 +470,7 @@ def crank_stiffness(
     CrankStiffness
         Segments and their EI.
     """
-    y = np.sort(_vector("throw_position", throw_position))
+    y = crank_planes(throw_position)[0]
     o = check_positive("web_offset", web_offset)
     h = section.web_thickness
     if h >= 2 * o:

@@ -837,7 +837,11 @@ class TorsionalOptions(CombustionOptions):
                 "the damper needs both its ring inertia and its tuning frequency",
             )
         if self.damper_allowed_power is not None and self.damper_inertia is None:
-            raise InputError("damper_allowed_power", None, "needs a damper (damper inertia)")
+            raise InputError(
+                "damper_allowed_power",
+                None,
+                "needs a damper: give --damper-inertia and --damper-frequency",
+            )
         if (self.load_inertia is None) != (self.load_stiffness is None):
             raise InputError(
                 "load_stiffness" if self.load_inertia is not None else "load_inertia",

@@ -50,6 +50,7 @@ from scipy import linalg
 
 from .errors import InputError
 from .kinematics import piston_velocity
+from .main_bearings import crank_planes
 from .model import EngineModel
 from .results import ResultMixin
 
@@ -178,10 +179,39 @@ def natural_modes(inertia: ArrayLike, stiffness: ArrayLike) -> TorsionalModes:
     return TorsionalModes(frequency=omega, mode_shape=shapes, nodes=nodes)
 
 
+def crank_stations(model: EngineModel) -> tuple[NDArray[np.int64], tuple[str, ...]]:
+    """The throw masses of the chain: one per axial plane of the crank, front to rear.
+
+    Throws sharing an axial position (:func:`~crankbalance.main_bearings.crank_planes`;
+    a W engine built from VR banks has two in every plane) are one mass of the chain, and
+    the chain runs in axial order whatever the order the throws are listed in.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (its throw positions).
+
+    Returns
+    -------
+    station_of_throw : ndarray of int, shape (T,)
+        Station (0-based, front first) of each throw [-].
+    names : tuple of str
+        Name of each station: ``throw 3``, or ``throws 1+7`` for throws in one plane.
+    """
+    station = crank_planes(model.throw_position)[1]
+    names = tuple(
+        ("throw " if np.sum(station == p) == 1 else "throws ")
+        + "+".join(str(t + 1) for t in np.flatnonzero(station == p))
+        for p in range(int(station.max()) + 1)
+    )
+    return station, names
+
+
 def throw_inertias(
     model: EngineModel, throw_inertia: ArrayLike | None = None
 ) -> NDArray[np.float64]:
-    r"""One inertia per throw: the throw with its big ends plus its pistons' mean share.
+    r"""One inertia per crank station (:func:`crank_stations`): its throws with their big
+    ends plus their pistons' mean share.
 
     .. math::
         J_t = J_{throw,t} + \sum_{c \in t} m_c\,\overline{s_c'^2},\qquad
@@ -206,8 +236,9 @@ def throw_inertias(
 
     Returns
     -------
-    ndarray, shape (T,)
-        Inertia of each throw with its reciprocating share [kg m^2].
+    ndarray, shape (P,)
+        Inertia of each station (throws in one plane added), front first, with the
+        reciprocating share [kg m^2].
     """
     r = model.crank_radius
     if throw_inertia is None:
@@ -218,9 +249,10 @@ def throw_inertias(
     offset = np.asarray(model.cylinder_offset, dtype=float)
     slope = piston_velocity(angle[:, None], r, model.rod_length, offset[None, :])  # (S, C)
     share = np.asarray(model.reciprocating_mass, dtype=float) * np.mean(slope**2, axis=0)
-    out = np.array(base, dtype=float)
-    np.add.at(out, np.asarray(model.cylinder_throw, dtype=int), share)
-    return out
+    per_throw = np.array(base, dtype=float)
+    np.add.at(per_throw, np.asarray(model.cylinder_throw, dtype=int), share)
+    station = crank_stations(model)[0]
+    return np.bincount(station, weights=per_throw).astype(float)
 
 
 def carter_stiffness(
@@ -344,6 +376,7 @@ def crank_train(
     load_inertia: float | None = None,
     load_stiffness: float | None = None,
     shaft_damping_ratio: float = 0.0,
+    throw_names: tuple[str, ...] | None = None,
 ) -> CrankTrain:
     r"""The chain of a crank train: damper ring, front, throws, flywheel, load.
 
@@ -385,6 +418,8 @@ def crank_train(
         needed with ``load_inertia``.
     shaft_damping_ratio : float
         Damping ratio ζ of the crank's own damping [-], from 0 to 0.5.
+    throw_names : tuple of str, optional
+        Name of each throw mass (:func:`crank_stations`); default ``throw 1``, ...
 
     Returns
     -------
@@ -421,8 +456,10 @@ def crank_train(
     inertia.append(float(_positive("front_inertia", front_inertia)))
     stiffness.append(float(_positive("front_stiffness", front_stiffness)))
     damping.append(0.0)
+    if throw_names is not None and len(throw_names) != throws:
+        raise InputError("throw_names", throw_names, f"needs one name per throw mass ({throws})")
     for t in range(throws):
-        names.append(f"throw {t + 1}")
+        names.append(f"throw {t + 1}" if throw_names is None else throw_names[t])
         inertia.append(float(jt[t]))
         if t < throws - 1:
             stiffness.append(float(kt[t]))
@@ -504,7 +541,8 @@ class EngineExcitation(ResultMixin):
     inertia : ndarray of complex, shape (C, n)
         Inertia-torque harmonics :math:`I_n` at ω0 [N m].
     cylinder_throw : ndarray of int, shape (C,)
-        Throw each cylinder drives.
+        Throw mass of the chain each cylinder drives (its crank station,
+        :func:`crank_stations`: throws in one plane are one mass).
     fire_angle : ndarray, shape (C,)
         Firing crank angle :math:`t_c` of each cylinder [rad]; cylinder c's harmonic is
         the first-firing cylinder's times :math:`e^{-i n (t_c - t_1)}` for equal cylinders.
@@ -593,7 +631,7 @@ def engine_excitation(
         reference_speed=float(cycle.speed_mean),
         gas=order_harmonics(theta, cycle.cylinder_gas_torque, orders),
         inertia=order_harmonics(theta, cycle.cylinder_inertia_torque, orders),
-        cylinder_throw=np.asarray(model.cylinder_throw, dtype=np.int64),
+        cylinder_throw=crank_stations(model)[0][np.asarray(model.cylinder_throw, dtype=int)],
         fire_angle=np.asarray(cycle.fire_angle, dtype=float),
         mean_torque=float(cycle.mean_torque),
     )

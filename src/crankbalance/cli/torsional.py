@@ -56,6 +56,17 @@ _FIELDS = (
     "intake_pressure",
 )
 
+#: the crank dimensions of Carter's formula: unused when --throw-stiffness is given
+CARTER_OPTIONS = (
+    "journal_diameter",
+    "pin_diameter",
+    "journal_length",
+    "pin_length",
+    "web_thickness",
+    "web_width",
+    "shear_modulus",
+)
+
 
 def _options(function: Any) -> Any:
     from ..options import TorsionalOptions, default_text
@@ -109,6 +120,10 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
     refuse_unused(
         {name: not o.pressure_csv for name in WIEBE_OPTIONS},
         "only acts on the Wiebe combustion model, not with --pressure-csv",
+    )
+    refuse_unused(
+        {name: o.throw_stiffness is None for name in CARTER_OPTIONS},
+        "only acts through Carter's formula, not with --throw-stiffness",
     )
     if plot is not None:
         from ._common import require_extra
@@ -184,6 +199,7 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
         load_inertia=o.load_inertia,
         load_stiffness=o.load_stiffness,
         shaft_damping_ratio=o.shaft_damping_ratio,
+        throw_names=tv.crank_stations(model)[1],
         **damper,
     )
     pressure = pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
