@@ -29,6 +29,7 @@ PHYSICS = (
     "engine_cycle",
     "engine_cycle_all",
     "torsional",
+    "main_bearings",
     "tolerance",
     "articulated",
     "explore.orders",

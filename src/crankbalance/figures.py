@@ -8,7 +8,7 @@ histories from :func:`crankbalance.balancing.point_mass_history`), and turning a
 into a PNG, SVG or HTML file is :mod:`crankbalance.render`'s job.
 
 It is longer than the ~800 lines the layout aims at because it holds one builder per
-figure of every study (seventeen builders, 30-190 lines each) around one shared palette and title
+figure of every study (eighteen builders, 30-190 lines each) around one shared palette and title
 style; splitting it by study would spread that style over several modules for no gain in
 cohesion (each builder depends only on the palette and helpers at the top).
 
@@ -47,6 +47,8 @@ Other studies:
 - ``bench_figure(result) -> Figure``                (rotor_bench.BenchResult)
 - ``cycle_figure(result) -> Figure``                (engine_cycle.CycleResult)
 - ``engine_torque_figure(result) -> Figure``        (engine_cycle_all.EngineCycleResult)
+- ``bearing_loads_figure(studies, model) -> Figure`` (studies.loads.BearingStudy, one or
+    several overlaid): polar load diagram per main bearing, bending moment per journal
 
 Design-space explorer (:mod:`crankbalance.explore`, rows of its run):
 
@@ -1575,6 +1577,112 @@ def cycle_figure(result: Any) -> go.Figure:
         legend={"orientation": "h", "y": -0.08},
         title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
         f"friction power {result.friction_power:.4g} W",
+    )
+    return fig
+
+
+# ------------------------------------------------------------------ main-bearing loads
+#: line styles of the studies a bearing-load figure overlays (first: solid)
+STUDY_DASHES = ("solid", "dash", "dot", "dashdot")
+
+
+def bearing_loads_figure(
+    studies: Any, model: str = "indeterminate", labels: tuple[str, ...] | None = None
+) -> go.Figure:
+    """Polar load diagram of every main bearing (top row: the force of the crank on the
+    bearing over the cycle, x across horizontally, z along the cylinder axis vertically)
+    and the bending moment at every journal over the cycle (bottom) of one crank model
+    (:class:`~crankbalance.studies.loads.BearingStudy`, or a sequence of them overlaid,
+    e.g. 4 and 8 counterweights; ``labels`` names each)."""
+    if model not in ("determinate", "indeterminate"):
+        raise InputError("model", model, "'determinate' or 'indeterminate'")
+    go = _go()
+    many = list(studies) if isinstance(studies, (list, tuple)) else [studies]
+    names = (
+        list(labels)
+        if labels is not None
+        else [
+            "no counterweights"
+            if s.balance.counterweights is None
+            else f"{s.balance.counterweights.count} counterweights"
+            for s in many
+        ]
+    )
+    if len(names) != len(many):
+        raise InputError("labels", labels, f"needs one label per study ({len(many)})")
+    bearings = many[0].results[model].bearing_position.size
+    cols = max(bearings, 1)
+    fig = _subplots(
+        rows=2,
+        cols=cols,
+        specs=[[{} for _ in range(cols)], [{"colspan": cols}] + [None] * (cols - 1)],
+        row_heights=[0.45, 0.55],
+        vertical_spacing=0.14,
+        horizontal_spacing=0.03,
+        subplot_titles=[f"bearing {k + 1}" for k in range(cols)]
+        + [f"bending moment at the journals ({model} crank)"],
+    )
+    reach = max(float(np.abs(s.results[model].load).max()) for s in many) * 1.1 or 1.0
+    for n, (study, name) in enumerate(zip(many, names, strict=True)):
+        r = study.results[model]
+        dash = STUDY_DASHES[n % len(STUDY_DASHES)]
+        deg = np.degrees(r.angle)
+        for k in range(r.bearing_position.size):
+            fig.add_trace(
+                go.Scatter(
+                    x=r.load[k].imag,
+                    y=r.load[k].real,
+                    mode="lines",
+                    name=name,
+                    legendgroup=name,
+                    showlegend=k == 0,
+                    line={"color": COLORS["total"], "dash": dash},
+                    text=[f"{a:.0f} deg" for a in deg],
+                    hovertemplate="crank %{text}<br>x %{x:.4g} N<br>z %{y:.4g} N<extra></extra>",
+                ),
+                row=1,
+                col=k + 1,
+            )
+            fig.add_trace(
+                go.Scatter(
+                    x=deg,
+                    y=np.abs(r.journal_moment[k]),
+                    mode="lines",
+                    name=f"journal {k + 1}",
+                    legendgroup=f"journal {k + 1}",
+                    showlegend=n == 0,
+                    line={"color": ORDER_COLORS[k % len(ORDER_COLORS)], "dash": dash},
+                    hovertemplate=f"{name}, journal {k + 1}<br>crank %{{x:.0f}} deg<br>"
+                    "|M| %{y:.4g} N·m<extra></extra>",
+                ),
+                row=2,
+                col=1,
+            )
+    for k in range(cols):
+        axis = "x" if k == 0 else f"x{k + 1}"
+        fig.update_xaxes(range=[-reach, reach], title_text="x [N]", row=1, col=k + 1)
+        fig.update_yaxes(
+            range=[-reach, reach],
+            scaleanchor=axis,
+            scaleratio=1,
+            title_text="z [N]" if k == 0 else None,
+            showticklabels=k == 0,
+            row=1,
+            col=k + 1,
+        )
+    fig.update_xaxes(title_text="crank angle of throw 1 [deg]", row=2, col=1)
+    fig.update_yaxes(title_text="|M| [N·m]", row=2, col=1)
+    first = many[0]
+    fig.update_layout(
+        template=TEMPLATE,
+        height=700,
+        width=max(900, 220 * cols),
+        legend={"orientation": "h", "y": -0.12},
+        title=figure_title(
+            f"Main-bearing loads over the cycle ({model} crank)",
+            first.model.name,
+            f"{first.cycle.speed_mean * 30 / math.pi:.0f} rpm",
+        ),
     )
     return fig
 

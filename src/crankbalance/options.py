@@ -447,6 +447,80 @@ class SensitivityOptions(CycleOptions):
     )
 
 
+#: most main bearings one crank may be given (``bearings --bearing``)
+MAX_MAIN_BEARINGS = 64
+
+
+class BearingOptions(StudyOptions):
+    """``bearings``: main-bearing loads and crank bending over the engine cycle
+    (docs/main_bearings.md). Crank dimensions left empty are taken from the crank radius
+    and the web offset (proportions of an automotive crank, docs/main_bearings.md)."""
+
+    speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
+    samples: Whole = Field(360, ge=36, le=3600, title="Samples per revolution")
+    gas: bool = Field(True, title="Gas forces", description="off: inertia forces only")
+    bore: Length | None = Field(
+        None, title="Bore", description="empty: square engine (bore = stroke)"
+    )
+    compression_ratio: Number = Field(10.5, gt=1, le=100, title="Compression ratio")
+    ignition: Angle = Field(math.radians(-20.0), title="Start of combustion from firing TDC")
+    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
+    pressure_csv: str | None = Field(None, title="Cylinder pressure table")
+    crank_inertia: Inertia = Field(
+        0.15, title="Crank + flywheel inertia", description="sets the speed fluctuation"
+    )
+    balance_factor: Factor | None = Field(
+        None, title="Balance factor", description="empty: the engine file's"
+    )
+    webs: list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]] | None = Field(
+        None,
+        min_length=2,
+        max_length=2 * MAX_MAIN_BEARINGS,
+        title="Counterweight webs (0/1, two per throw)",
+        description="empty: the engine file's",
+    )
+    journal_diameter: Length | None = Field(None, title="Main-journal diameter")
+    pin_diameter: Length | None = Field(None, title="Crankpin diameter")
+    web_thickness: Length | None = Field(None, title="Web thickness (axial)")
+    web_width: Length | None = Field(None, title="Web width (across the arm)")
+    modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
+    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
+    bearing: list[Position] | None = Field(
+        None, min_length=2, max_length=MAX_MAIN_BEARINGS, title="Main-bearing positions"
+    )
+    bearing_stiffness: Stiffness | None = Field(
+        None, title="Radial bearing stiffness", description="empty: rigid bearings"
+    )
+    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
+    viscosity: Viscosity | None = Field(None, title="Oil viscosity (Petroff)")
+    bearing_length: Length | None = Field(None, title="Bearing length (Petroff)")
+    clearance: Length | None = Field(
+        None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
+    )
+
+    @model_validator(mode="after")
+    def _petroff(self) -> BearingOptions:
+        trio = ("viscosity", "bearing_length", "clearance")
+        given = [name for name in trio if getattr(self, name) is not None]
+        if given and given != ["clearance"] and len(given) < 3:
+            missing = next(name for name in trio if getattr(self, name) is None)
+            raise InputError(
+                given[0],
+                getattr(self, given[0]),
+                f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
+                "viscosity, bearing length and clearance together",
+            )
+        if given == ["clearance"] and self.bearing_stiffness is None:
+            raise InputError(
+                "clearance",
+                self.clearance,
+                "needs a bearing stiffness (the rings' contact) or viscosity and bearing "
+                "length (Petroff friction) to act",
+            )
+        return self
+
+
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 

@@ -68,6 +68,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "Torsional vibration of the crank train: modes, resonances, damper.",
     ),
     "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
+    "bearings": (
+        "crankbalance.cli.bearings:bearings",
+        "Main-bearing loads and crank bending over the engine cycle.",
+    ),
 }
 
 

@@ -1,0 +1,249 @@
+"""``crankbalance bearings ENGINE``: main-bearing loads and crank bending over the engine
+cycle, both crank models (docs/main_bearings.md)."""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import click
+
+from ..format import json_text, number
+from ._common import (
+    echo_table,
+    format_option,
+    given_options,
+    option_name,
+    parse_settings,
+    refuse_unused,
+    require_extra,
+)
+
+#: the options of the Wiebe combustion model
+WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
+#: the fields of the physics' errors that are options of this command under another name
+PHYSICS_FIELDS = {"bearing_positions": "bearing", "counterweights.webs": "webs"}
+#: the Petroff friction options (all three or none)
+PETROFF_OPTIONS = ("viscosity", "bearing_length", "clearance")
+
+
+def _list(value: str | None) -> list[str] | None:
+    """A comma-separated option as a list of its items (None when not given)."""
+    if value is None:
+        return None
+    return [item.strip() for item in value.split(",") if item.strip()] or [value]
+
+
+@click.command()
+@click.argument("engine")
+@format_option(("table", "json"))
+@click.option("--speed", default=None, help="Mean crank speed, e.g. '6000 rpm' (default: engine).")
+@click.option(
+    "--samples", default="360", show_default=True, help="Crank-angle samples per revolution."
+)
+@click.option(
+    "--gas/--no-gas",
+    default=True,
+    show_default=True,
+    help="Gas forces from the Wiebe model (or --pressure-csv); --no-gas: inertia only.",
+)
+@click.option("--bore", default=None, help="Bore (default: square engine, bore = stroke).")
+@click.option("--compression-ratio", default="10.5", show_default=True)
+@click.option(
+    "--ignition", default="-20 deg", show_default=True, help="Start of combustion from firing TDC."
+)
+@click.option("--burn-duration", default="50 deg", show_default=True)
+@click.option(
+    "--intake-pressure",
+    default="1 bar",
+    show_default=True,
+    help="Pressure at the start of compression (load).",
+)
+@click.option(
+    "--pressure-csv",
+    type=click.Path(exists=True, dir_okay=False),
+    help="Cylinder pressure table for every cylinder instead of the Wiebe model: crank "
+    "angle [deg from firing TDC], absolute pressure [bar].",
+)
+@click.option(
+    "--crank-inertia",
+    default="0.15 kg*m^2",
+    show_default=True,
+    help="Inertia of the purely rotating parts (crank, flywheel): the speed fluctuation.",
+)
+@click.option(
+    "--balance-factor", default=None, help="Balance factor of the counterweights (default: file)."
+)
+@click.option(
+    "--webs",
+    default=None,
+    help="Counterweight pattern, 0/1 per web, two per throw: '1,0,0,1,1,0,0,1' "
+    "(default: the engine file's, else every web).",
+)
+@click.option("--journal-diameter", default=None, help="Main-journal diameter (default 1.3 r).")
+@click.option("--pin-diameter", default=None, help="Crankpin diameter (default 1.1 r).")
+@click.option(
+    "--web-thickness", default=None, help="Axial web thickness (default 0.75 web offset)."
+)
+@click.option("--web-width", default=None, help="Web width across the arm (default 2.2 r).")
+@click.option("--modulus", default="210 GPa", show_default=True, help="Young's modulus.")
+@click.option("--poisson", default="0.3", show_default=True, help="Poisson's ratio.")
+@click.option(
+    "--bearing",
+    multiple=True,
+    help="Main-bearing position along the crank from its mid-point (repeat; default: one "
+    "between neighbouring throws and one at each end).",
+)
+@click.option(
+    "--bearing-stiffness",
+    default=None,
+    help="Radial stiffness of each main bearing, e.g. '5e8 N/m' (default: rigid).",
+)
+@click.option("--friction-coefficient", default="0.005", show_default=True)
+@click.option("--viscosity", default=None, help="Oil viscosity, for the Petroff friction.")
+@click.option("--bearing-length", default=None, help="Bearing length, for the Petroff friction.")
+@click.option(
+    "--clearance",
+    default=None,
+    help="Radial clearance of the main bearings: in the contact model with "
+    "--bearing-stiffness, in the Petroff friction with --viscosity and --bearing-length.",
+)
+@click.option("--curves", is_flag=True, help="JSON: add the load and moment curves over the cycle.")
+@click.option(
+    "--plot",
+    default=None,
+    help="Write the polar load diagrams and the journal bending moments: .png, .svg, .html.",
+)
+def bearings(
+    engine: str,
+    fmt: str,
+    curves: bool,
+    plot: str | None,
+    webs: str | None,
+    bearing: tuple[str, ...],
+    **options: Any,
+) -> None:
+    """Main-bearing loads and crank bending of ENGINE over one working cycle.
+
+    Every cylinder fires in turn (gas and reciprocating inertia through the rods); the
+    throws' rotating masses and the counterweights load the crank too. Two crank models:
+    determinate (each throw on its two neighbouring bearings) and indeterminate (a
+    continuous beam on all bearings; its stiffness is an equivalent-stiffness
+    approximation, docs/main_bearings.md).
+    """
+    from ..errors import InputError
+    from ..options import BearingOptions
+    from ..studies.loads import bearing_loads
+
+    given = given_options()
+    o = parse_settings(
+        BearingOptions,
+        {**options, "webs": _list(webs), "bearing": list(bearing) or None},
+    )
+    refuse_unused(
+        {name: o.gas and o.pressure_csv is None for name in WIEBE_OPTIONS},
+        "only acts on the Wiebe combustion model (not with --pressure-csv or --no-gas)",
+        given,
+    )
+    refuse_unused({"pressure_csv": o.gas, "bore": o.gas}, "only acts with gas forces", given)
+    refuse_unused({"curves": fmt == "json"}, "only acts with --format json", given)
+    if plot is not None:
+        from .plot import check_output
+
+        check_output(plot, (".png", ".svg", ".html"), "--plot")
+        require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
+    typed: dict[str, Any] = {**options, "webs": webs, "bearing": list(bearing) or None}
+    try:
+        study = bearing_loads(engine, o)
+    except InputError as error:
+        # an error of the physics about a setting names its option, with what was typed
+        name = PHYSICS_FIELDS.get(error.field, error.field)
+        if name not in BearingOptions.model_fields or (
+            name == "webs" and o.webs is None  # the engine file's pattern
+        ):
+            raise
+        shown = typed.get(name) if name in given or name in ("webs", "bearing") else None
+        raise InputError(
+            option_name(name), error.value if shown is None else shown, error.allowed
+        ) from None
+    data = study.to_dict(curves=curves)  # checked finite by to_jsonable
+    if plot is not None:
+        _write_plot(plot, study)
+    if fmt == "json":
+        click.echo(json_text(data))
+        return
+    print_table(data)
+
+
+def _write_plot(plot: str, study: Any) -> None:
+    from pathlib import Path
+
+    from .. import figures, render
+    from ..io.files import write_atomic
+
+    fig = figures.bearing_loads_figure(study)
+    fmt = Path(plot).suffix.lower().lstrip(".")
+    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
+    click.echo(f"wrote {plot}", err=True)
+
+
+def print_table(data: dict[str, Any]) -> None:
+    """The bearing table of both crank models and the crankpin bending."""
+    e, s = data["engine"], data["settings"]
+    cw = data["counterweights"]
+    click.echo(
+        f"{e['name']}: {number(s['speed_rad_s'] * 30 / math.pi, 5)} rpm, "
+        f"{'gas and inertia' if s['gas'] else 'inertia only'}, "
+        f"{'no counterweights' if cw is None else str(cw['count']) + ' counterweights'}, "
+        + (
+            "rigid bearings"
+            if s["bearing_stiffness_N_per_m"] is None
+            else "elastic bearings" + (" with clearance" if s["clearance_in_contact_model"] else "")
+        )
+    )
+    det, ind = data["models"]["determinate"], data["models"]["indeterminate"]
+    header = [
+        "bearing",
+        "y mm",
+        "max N det",
+        "max N ind",
+        "mean N det",
+        "mean N ind",
+        "|M| N·m ind",
+        "friction W ind",
+    ]
+    rows = [
+        [
+            str(a["bearing"]),
+            f"{a['position_m'] * 1e3:.1f}",
+            number(a["max_load_N"], 5),
+            number(b["max_load_N"], 5),
+            number(a["mean_load_N"], 5),
+            number(b["mean_load_N"], 5),
+            number(b["max_journal_moment_Nm"], 5),
+            number(b["coulomb_friction_power_W"], 4),
+        ]
+        for a, b in zip(det["bearings"], ind["bearings"], strict=True)
+    ]
+    echo_table(header, rows)
+    click.echo("")
+    echo_table(
+        ["throw", "y mm", "pin |M| N·m det", "pin |M| N·m ind"],
+        [
+            [
+                str(a["throw"]),
+                f"{a['position_m'] * 1e3:.1f}",
+                number(a["max_pin_moment_Nm"], 5),
+                number(b["max_pin_moment_Nm"], 5),
+            ]
+            for a, b in zip(det["throws"], ind["throws"], strict=True)
+        ],
+    )
+    click.echo(
+        f"\nCoulomb friction of all main bearings: {number(det['coulomb_friction_power_W'], 4)} W "
+        f"(determinate), {number(ind['coulomb_friction_power_W'], 4)} W (indeterminate)"
+    )
+    if ind["petroff_friction_power_W"] is not None:
+        petroff = number(ind["petroff_friction_power_W"], 4)
+        click.echo(f"Petroff friction of all main bearings: {petroff} W")
+    click.echo(f"note: indeterminate model: {data['stiffness']['note']}")

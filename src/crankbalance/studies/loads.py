@@ -1,0 +1,379 @@
+"""The main-bearing load study: from an engine, its counterweights and a cycle setting to the
+loads of every main bearing and the bending of the crank (docs/main_bearings.md).
+
+The chain: the engine file's counterweights (with the study's overrides of the pattern and
+the balance factor) from :func:`crankbalance.studies.engine.balance_engine`; the whole
+engine over one working cycle (gas and reciprocating inertia through the rods, every
+cylinder at its firing phase) from :func:`crankbalance.engine_cycle_all.engine_cycle_all`;
+then the loads on the crank and both crank models of :mod:`crankbalance.main_bearings`.
+The CLI (``crankbalance bearings``) and the example ``examples/inline4_counterweights.py``
+call :func:`bearing_loads`.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import os
+from collections.abc import Mapping
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..main_bearings import (
+    CRANK_MODELS,
+    CrankSection,
+    CrankStiffness,
+    MainBearingLoads,
+    bearing_friction,
+    crank_loads,
+    crank_stiffness,
+    default_bearing_positions,
+    main_bearing_loads,
+)
+from ..model import EngineModel
+from ..options import BearingOptions, parse_options
+from ..results import to_jsonable
+from ..spec import EngineSpec
+from .build import build_model
+from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
+
+SCHEMA = "crankbalance.bearings/1"
+
+#: default crank proportions when a dimension is not given (docs/main_bearings.md): main
+#: journal and crankpin diameters and web width as multiples of the crank radius, web
+#: thickness as a multiple of the web offset
+DEFAULT_PROPORTIONS = {
+    "journal_diameter": 1.3,
+    "pin_diameter": 1.1,
+    "web_width": 2.2,
+    "web_thickness": 0.75,
+}
+#: what every output says of the indeterminate model's stiffness
+STIFFNESS_NOTE = (
+    "equivalent-stiffness approximation: the crank as a straight stepped beam (journals, "
+    "webs, crankpins); checked against finite elements of the same beam, not of a real crank"
+)
+
+
+@dataclass(frozen=True)
+class BearingStudy:
+    """Main-bearing loads of one engine over its cycle, both crank models (see
+    :func:`bearing_loads`).
+
+    Attributes
+    ----------
+    model : EngineModel
+        The engine.
+    balance : balancing.BalanceResult
+        Its counterweights (the pattern and balance factor studied).
+    cycle : engine_cycle_all.EngineCycleResult
+        The whole engine over one working cycle (pin forces, speed).
+    options : BearingOptions
+        The study's settings.
+    section : CrankSection
+        Crank dimensions used (given or from the default proportions).
+    web_offset : float
+        Axial distance of a web from its throw mid-plane [m].
+    stiffness : CrankStiffness
+        EI along the crank.
+    bore : float
+        Bore [m].
+    results : dict of str to MainBearingLoads
+        ``"determinate"`` and ``"indeterminate"``, with friction.
+    """
+
+    model: EngineModel
+    balance: Any
+    cycle: Any
+    options: BearingOptions
+    section: CrankSection
+    web_offset: float
+    stiffness: CrankStiffness
+    bore: float
+    results: dict[str, MainBearingLoads]
+
+    @property
+    def bearing_positions(self) -> NDArray[np.float64]:
+        """Main-bearing positions [m]."""
+        return self.results["indeterminate"].bearing_position
+
+    def to_dict(self, curves: bool = False) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.bearings/1`` (docs/json.md); ``curves`` adds the
+        polar load and bending-moment curves over the cycle."""
+        o, s = self.options, self.section
+        cw = self.balance.counterweights
+        models: dict[str, Any] = {}
+        for name, r in self.results.items():
+            fr = r.friction
+            assert fr is not None
+            models[name] = {
+                "bearings": [
+                    {
+                        "bearing": k + 1,
+                        "position_m": float(r.bearing_position[k]),
+                        "max_load_N": float(r.max_load[k]),
+                        "mean_load_N": float(r.mean_load[k]),
+                        "equivalent_load_N": float(r.equivalent_load[k]),
+                        "peak_load_crank_angle_rad": float(
+                            r.angle[int(np.argmax(np.abs(r.load[k])))]
+                        ),
+                        "max_journal_moment_Nm": float(r.max_journal_moment[k]),
+                        "coulomb_friction_torque_Nm": float(fr.coulomb_torque[k]),
+                        "coulomb_friction_power_W": float(fr.coulomb_power[k]),
+                        "petroff_friction_torque_Nm": None
+                        if fr.petroff_torque is None
+                        else float(fr.petroff_torque[k]),
+                    }
+                    for k in range(r.bearing_position.size)
+                ],
+                "throws": [
+                    {
+                        "throw": t + 1,
+                        "position_m": float(r.throw_position[t]),
+                        "max_pin_moment_Nm": float(r.max_pin_moment[t]),
+                    }
+                    for t in range(r.throw_position.size)
+                ],
+                "largest_load_N": float(r.max_load.max()),
+                "largest_journal_moment_Nm": float(r.max_journal_moment.max()),
+                "largest_pin_moment_Nm": float(r.max_pin_moment.max()),
+                "coulomb_friction_power_W": float(fr.coulomb_power.sum()),
+                "petroff_friction_power_W": None
+                if fr.petroff_power is None
+                else float(fr.petroff_power.sum()),
+            }
+            if curves:
+                models[name]["curves"] = {
+                    "load_z_N": r.load.real,
+                    "load_x_N": r.load.imag,
+                    "journal_moment_z_Nm": r.journal_moment.real,
+                    "journal_moment_x_Nm": r.journal_moment.imag,
+                    "pin_moment_z_Nm": r.pin_moment.real,
+                    "pin_moment_x_Nm": r.pin_moment.imag,
+                }
+        out: dict[str, Any] = {
+            "schema": SCHEMA,
+            "engine": engine_summary(self.model),
+            "settings": {
+                "speed_rad_s": float(self.cycle.speed_mean),
+                "strokes": int(self.cycle.strokes),
+                "gas": o.gas,
+                "bore_m": self.bore,
+                "crank_inertia_kg_m2": o.crank_inertia,
+                "speed_fluctuation": float(self.cycle.speed_fluctuation),
+                "journal_diameter_m": s.journal_diameter,
+                "pin_diameter_m": s.pin_diameter,
+                "web_thickness_m": s.web_thickness,
+                "web_width_m": s.web_width,
+                "web_offset_m": self.web_offset,
+                "youngs_modulus_Pa": s.youngs_modulus,
+                "poisson_ratio": s.poisson_ratio,
+                "bearing_stiffness_N_per_m": o.bearing_stiffness,
+                "friction_coefficient": o.friction_coefficient,
+                "viscosity_Pa_s": o.viscosity,
+                "bearing_length_m": o.bearing_length,
+                "clearance_m": o.clearance,
+                "clearance_in_contact_model": bool(o.clearance and o.bearing_stiffness),
+            },
+            "counterweights": None
+            if cw is None
+            else {
+                "count": cw.count,
+                "webs": cw.web,
+                "total_mass_kg": float(cw.mass.sum()),
+                "cg_radius_m": cw.cg_radius,
+                "mass_kg": cw.mass,
+                "direction_deg": np.degrees(cw.direction),
+            },
+            "stiffness": {
+                "edges_m": self.stiffness.edges,
+                "bending_stiffness_Nm2": self.stiffness.stiffness,
+                "note": STIFFNESS_NOTE,
+            },
+            "bearing_position_m": self.bearing_positions,
+            "models": models,
+        }
+        if curves:
+            out["crank_angle_rad"] = self.results["indeterminate"].angle
+        result = to_jsonable(out)
+        assert isinstance(result, dict)
+        return result
+
+
+def _counterweight_arrays(balance: Any) -> dict[str, Any]:
+    """The counterweights (and the extra crank masses of a single counter-rotating primary
+    shaft) as the arrays of :func:`crankbalance.main_bearings.crank_loads`: first moments
+    at one common radius."""
+    parts = [c for c in (balance.counterweights, balance.extra_counterweights) if c is not None]
+    if not parts:
+        return {}
+    radius = parts[0].cg_radius
+    return {
+        "counterweight_mass": np.concatenate([c.mass * c.cg_radius / radius for c in parts]),
+        "counterweight_radius": radius,
+        "counterweight_direction": np.concatenate([c.direction for c in parts]),
+        "counterweight_position": np.concatenate([c.position for c in parts]),
+        "counterweight_throw": np.concatenate([c.throw - 1 for c in parts]),
+    }
+
+
+def _pressure(o: BearingOptions) -> Any:
+    """The cylinder pressure source: Wiebe, a table, or the crankcase pressure (no gas)."""
+    from ..engine_cycle import WiebeCombustion
+
+    if not o.gas:
+        return (np.radians([-300.0, -100.0, 100.0, 300.0]), np.full(4, 1e5))
+    if o.pressure_csv:
+        from ..io.pressure_csv import read_pressure_csv
+
+        return read_pressure_csv(o.pressure_csv)
+    return WiebeCombustion(
+        compression_ratio=o.compression_ratio,
+        ignition_angle=o.ignition,
+        burn_duration=o.burn_duration,
+        intake_pressure=o.intake_pressure,
+    )
+
+
+def crank_section(model: EngineModel, web_offset: float, o: BearingOptions) -> CrankSection:
+    """The crank's dimensions: as given, else :data:`DEFAULT_PROPORTIONS` of the crank
+    radius (diameters, web width) and of the web offset (web thickness)."""
+    base = {
+        "journal_diameter": model.crank_radius,
+        "pin_diameter": model.crank_radius,
+        "web_width": model.crank_radius,
+        "web_thickness": web_offset,
+    }
+    values = {
+        name: getattr(o, name)
+        if getattr(o, name) is not None
+        else DEFAULT_PROPORTIONS[name] * base[name]
+        for name in DEFAULT_PROPORTIONS
+    }
+    return CrankSection(**values, youngs_modulus=o.modulus, poisson_ratio=o.poisson)
+
+
+def bearing_loads(
+    engine: str | os.PathLike[str] | EngineSpec,
+    options: BearingOptions | Mapping[str, Any] | None = None,
+    balance: BalanceStudy | None = None,
+) -> BearingStudy:
+    """Main-bearing loads and crank bending of an engine over one working cycle.
+
+    Parameters
+    ----------
+    engine : str, path or EngineSpec
+        Preset name, engine file or validated spec (its [counterweights] table sets the
+        pattern, overridden by ``options.webs`` and ``options.balance_factor``).
+    options : BearingOptions or mapping, optional
+        The study's settings (:class:`crankbalance.options.BearingOptions`).
+    balance : BalanceStudy, optional
+        Counterweights already solved for this engine
+        (:func:`crankbalance.studies.engine.balance_engine`); then ``options.webs`` and
+        ``options.balance_factor`` must be left empty.
+
+    Returns
+    -------
+    BearingStudy
+        Both crank models with friction.
+    """
+    from ..engine_cycle_all import engine_cycle_all
+    from ..io.engine_file import load_engine
+
+    o = (
+        options
+        if isinstance(options, BearingOptions)
+        else parse_options(BearingOptions, dict(options or {}))
+    )
+    spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
+    overrides: dict[str, Any] = {}
+    if o.balance_factor is not None:
+        overrides["balance_factor"] = o.balance_factor
+    if o.webs is not None:
+        overrides["webs"] = tuple(o.webs)
+    if balance is None:
+        balance = balance_engine(spec, **overrides)
+    elif overrides:
+        name = next(iter(overrides))
+        raise InputError(
+            name, getattr(o, name), "is set by the balancing result given; leave it empty"
+        )
+    model, solved = balance.model, balance.result
+    if model.throws != build_model(spec).throws:
+        raise InputError(
+            "balance", model.name, f"must be a balancing result of the engine {spec.name!r}"
+        )
+    from ..balancing import default_web_offset
+
+    given_offset = balance_options(spec)[0].web_offset
+    web_offset = float(given_offset if given_offset is not None else default_web_offset(model))
+    section = crank_section(model, web_offset, o)
+    bore = o.bore if o.bore is not None else 2.0 * model.crank_radius
+    cycle = engine_cycle_all(
+        model,
+        _pressure(o),
+        bore=bore,
+        crank_inertia=o.crank_inertia,
+        speed=o.speed,
+        samples_per_revolution=o.samples,
+    )
+    loads = crank_loads(
+        cycle.crank_angle,
+        cycle.throw_force,
+        model.throw_angle,
+        model.throw_position,
+        model.throw_rotating_mass,
+        model.crank_radius,
+        cycle.speed,
+        cycle.crank_acceleration,
+        **_counterweight_arrays(solved),
+    )
+    bearings = (
+        np.asarray(o.bearing, dtype=float)
+        if o.bearing is not None
+        else default_bearing_positions(model.throw_position, 2.0 * web_offset)
+    )
+    ends = np.concatenate([bearings, loads.position])
+    stiffness = crank_stiffness(
+        model.throw_position,
+        web_offset,
+        model.crank_radius,
+        section,
+        float(ends.min()),
+        float(ends.max()),
+    )
+    results: dict[str, MainBearingLoads] = {}
+    for name in CRANK_MODELS:
+        r = main_bearing_loads(
+            loads,
+            bearings,
+            model.throw_position,
+            name,  # type: ignore[arg-type]
+            stiffness,
+            o.bearing_stiffness if name == "indeterminate" else None,
+            o.clearance if name == "indeterminate" and o.bearing_stiffness else None,
+        )
+        fr = bearing_friction(
+            r.load,
+            cycle.speed_mean,  # the time mean: angle-mean torque x it is the mean power
+            section.journal_diameter,
+            o.friction_coefficient,
+            o.viscosity,
+            o.bearing_length,
+            o.clearance if o.viscosity is not None else None,  # Petroff takes all three
+        )
+        results[name] = dataclasses.replace(r, friction=fr)
+    return BearingStudy(
+        model=model,
+        balance=solved,
+        cycle=cycle,
+        options=o,
+        section=section,
+        web_offset=web_offset,
+        stiffness=stiffness,
+        bore=float(bore),
+        results=results,
+    )
