@@ -534,20 +534,22 @@ MAX_SWEEP_CASES = 64
 def _web_pattern(value: Any) -> str:
     """A counterweight pattern as written: ``all``, ``none``, ``file`` or 0/1 per web,
     ``1,0,0,1``; returned in one spelling (lower-case name, or the digits joined by commas)."""
+    shown = value
     if isinstance(value, (list, tuple)):
         value = ",".join(str(v) for v in value)
+    allowed = "must be all, none, file or 0/1 per web (two per throw) such as 1,0,0,1"
     if not isinstance(value, str):
-        raise ValueError("must be all, none, file or 0/1 per web such as 1,0,0,1")
+        raise InputError("patterns", shown, allowed)
     text = value.strip().lower()
     if text in NAMED_PATTERNS:
         return text
     items = [item.strip() for item in text.split(",")]
     if len(items) < 2 or any(item not in ("0", "1") for item in items):
-        raise ValueError("must be all, none, file or 0/1 per web (two per throw) such as 1,0,0,1")
+        raise InputError("patterns", shown, allowed)
     if len(items) > 2 * MAX_MAIN_BEARINGS:
-        raise ValueError(f"must list at most {2 * MAX_MAIN_BEARINGS} webs")
+        raise InputError("patterns", shown, f"must list at most {2 * MAX_MAIN_BEARINGS} webs")
     if "1" not in items:
-        raise ValueError("has no counterweight (all zeros): write none")
+        raise InputError("patterns", shown, "has no counterweight (all zeros): write none")
     return ",".join(items)
 
 
