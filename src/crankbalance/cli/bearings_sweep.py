@@ -14,6 +14,7 @@ from typing import Any
 import click
 
 from ..format import json_text, number
+from ..studies.balance_loads import COLUMNS, case_rows
 from ._common import (
     echo_table,
     format_option,
@@ -27,21 +28,6 @@ from .performance import _number_list
 
 #: options of ``bearings`` that this command does not take (swept, or a single run's)
 NOT_SHARED = ("balance_factor", "webs", "curves", "fmt", "plot", "engine")
-#: the CSV and table columns of a case (crank model chosen by --crank-model)
-COLUMNS = (
-    ("pattern", "pattern"),
-    ("balance_factor", "f_b"),
-    ("counterweight_mass_kg", "CW kg"),
-    ("worst_bearing", "worst"),
-    ("largest_load_N", "max N"),
-    ("largest_mean_load_N", "mean N"),
-    ("largest_journal_moment_Nm", "journal N·m"),
-    ("largest_pin_moment_Nm", "pin N·m"),
-    ("coulomb_friction_power_W", "friction W"),
-    ("order1_force_N", "free F1 N"),
-    ("order1_moment_Nm", "free M1 N·m"),
-    ("rotating_moment_Nm", "free Mrot N·m"),
-)
 
 
 def _name(field: str) -> str:
@@ -151,20 +137,6 @@ def bearings_sweep(
         writer.writerows(["" if v is None else v for v in row] for row in rows)
         return
     print_table(data, rows)
-
-
-def case_rows(data: dict[str, Any]) -> list[list[Any]]:
-    """One row per case of the JSON (``crankbalance.bearings-sweep/1``), in :data:`COLUMNS`
-    order, for the crank model of ``data["crank_model"]``."""
-    rows = []
-    for case in data["cases"]:
-        values = {
-            **case,
-            **case["free_forces"],
-            **case["models"][data["crank_model"]],
-        }
-        rows.append([values[key] for key, _ in COLUMNS])
-    return rows
 
 
 def _write_plot(plot: str, study: Any) -> None:

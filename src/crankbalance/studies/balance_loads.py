@@ -31,6 +31,32 @@ from .loads import BearingStudy, bearing_loads
 SCHEMA = "crankbalance.bearings-sweep/1"
 #: the residual components reported as the free forces left after balancing
 RESIDUAL_COMPONENTS = ("rotating", "order1", "order2")
+#: the columns of a case in the CLI's table and CSV and the web tab's table: key of the
+#: JSON (a case's, its free forces' or its crank model's), short label
+COLUMNS = (
+    ("pattern", "pattern"),
+    ("balance_factor", "f_b"),
+    ("counterweight_mass_kg", "CW kg"),
+    ("worst_bearing", "worst"),
+    ("largest_load_N", "max N"),
+    ("largest_mean_load_N", "mean N"),
+    ("largest_journal_moment_Nm", "journal N·m"),
+    ("largest_pin_moment_Nm", "pin N·m"),
+    ("coulomb_friction_power_W", "friction W"),
+    ("order1_force_N", "free F1 N"),
+    ("order1_moment_Nm", "free M1 N·m"),
+    ("rotating_moment_Nm", "free Mrot N·m"),
+)
+
+
+def case_rows(data: dict[str, Any]) -> list[list[Any]]:
+    """One row per case of the JSON (``crankbalance.bearings-sweep/1``), in :data:`COLUMNS`
+    order, for the crank model of ``data["crank_model"]``."""
+    rows = []
+    for case in data["cases"]:
+        values = {**case, **case["free_forces"], **case["models"][data["crank_model"]]}
+        rows.append([values[key] for key, _ in COLUMNS])
+    return rows
 
 
 @dataclass(frozen=True)
