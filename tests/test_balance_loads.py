@@ -142,7 +142,7 @@ def test_v8_free_first_order_moment_vanishes_at_half() -> None:
     """Crossplane V8 (90 deg): the counterweights carry the rotating masses and f_b of the
     reciprocating ones; the first-order couple of the pistons is a rotating couple of half
     the reciprocating masses, so it is cancelled at f_b = 0.5 and grows as |f_b - 0.5|
-    (Taylor, The Internal-Combustion Engine in Theory and Practice, vol. 2)."""
+    (Taylor (1985), vol. 2, the balance of vee engines)."""
     sweep = bearing_sweep(
         "v8-crossplane", {"patterns": ["all"], "balance_factors": [0.3, 0.4, 0.5, 0.6]}, FAST
     )
