@@ -132,6 +132,7 @@ def test_table_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[str]) -> N
         (["--bearing-stiffness", "-1 N/m"], "--bearing-stiffness"),
         (["--plot", "x.txt"], "--plot"),
         (["--clearance", "30 um"], "--clearance"),
+        (["--clearance", "30 um", "--bearing-stiffness", "1e11 N/m"], "--bearing-stiffness"),
         (["--bearing-length", "20 mm"], "--bearing-length"),
     ],
 )

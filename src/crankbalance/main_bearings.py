@@ -776,12 +776,6 @@ def clearance_reactions(
     scale = max(float(np.abs(p).sum(axis=0).max(initial=0.0)), 1e-300)
     ridge = 1e-12 * k * np.eye(2 * nb)  # a floating crank: the smallest-move position
 
-    def energy(u: NDArray) -> NDArray:
-        uz, ux = u[:, :nb], u[:, nb:]
-        gap = np.maximum(np.hypot(uz, ux) - clearance, 0.0)
-        elastic = 0.5 * np.einsum("si,ij,sj->s", u, big_k, u) - (u * rhs).sum(axis=1)
-        return np.asarray(elastic + 0.5 * k * (gap**2).sum(axis=1) + 0.5e-12 * k * (u * u).sum(1))
-
     def contact(u: NDArray) -> tuple[NDArray, NDArray]:
         """Ring forces on the crank (as +gradient terms) and their Hessian blocks."""
         uz, ux = u[:, :nb], u[:, nb:]
@@ -803,6 +797,10 @@ def clearance_reactions(
     # a Newton step from inside the clearance (where only the ridge holds the crank) may be
     # huge: no step moves a journal by more than a few clearances and elastic deflections
     reach = 4.0 * clearance + 10.0 * float(np.abs(u).max(initial=0.0)) + 1e-30
+
+    def gradient(v: NDArray) -> NDArray:
+        return np.asarray(v @ big_k.T - rhs + contact(v)[0] + v @ ridge)
+
     for _ in range(CLEARANCE_ITERATIONS):
         grad_c, hess_c = contact(u)
         residual = u @ big_k.T - rhs + grad_c + u @ ridge
@@ -810,17 +808,26 @@ def clearance_reactions(
             break
         step = np.linalg.solve(big_k + hess_c + ridge, -residual[..., None])[..., 0]
         longest = np.abs(step).max(axis=1)
-        t = np.minimum(1.0, reach / np.where(longest > 0, longest, 1.0))
-        now = energy(u)
-        for _ in range(60):  # backtracking until the energy decreases enough
-            trial = u + t[:, None] * step
-            better = energy(trial) <= now + 1e-4 * t * (residual * step).sum(axis=1)
-            if better.all():
-                break
-            t = np.where(better, t, 0.5 * t)
+        high = np.minimum(1.0, reach / np.where(longest > 0, longest, 1.0))
+        # exact line search: the energy is convex along the step, so its slope
+        # g(u + t d) . d rises with t; bisect for its zero (slopes, not energies: no
+        # cancellation of large energies)
+        low = np.zeros_like(high)
+        done = (gradient(u + high[:, None] * step) * step).sum(axis=1) <= 0
+        t = high.copy()
+        for _ in range(60):
+            mid = 0.5 * (low + high)
+            rising = (gradient(u + mid[:, None] * step) * step).sum(axis=1) > 0
+            high = np.where(rising, mid, high)
+            low = np.where(rising, low, mid)
+        t = np.where(done, t, 0.5 * (low + high))
         u = u + t[:, None] * step
     else:
-        raise ResultError("bearing clearance solution (Newton did not converge)", math.nan)
+        raise ResultError(
+            "bearing clearance solution (Newton did not converge; a softer bearing "
+            "stiffness converges)",
+            math.nan,
+        )
     # the ring forces from the beam's side, R = K_c u - L f: in equilibrium with the loads
     # to round-off (the rings' law holds to the Newton tolerance)
     beam = u @ big_k.T - rhs

@@ -449,6 +449,9 @@ class SensitivityOptions(CycleOptions):
 
 #: most main bearings one crank may be given (``bearings --bearing``)
 MAX_MAIN_BEARINGS = 64
+#: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
+#: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
+MAX_CLEARANCE_STIFFNESS = 1e10
 
 
 class BearingOptions(StudyOptions):
@@ -510,6 +513,18 @@ class BearingOptions(StudyOptions):
                 getattr(self, given[0]),
                 f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
                 "viscosity, bearing length and clearance together",
+            )
+        if (
+            self.clearance is not None
+            and self.bearing_stiffness is not None
+            and self.bearing_stiffness > MAX_CLEARANCE_STIFFNESS
+        ):
+            raise InputError(
+                "bearing_stiffness",
+                self.bearing_stiffness,
+                f"must be at most {MAX_CLEARANCE_STIFFNESS:g} N/m with a clearance (the "
+                "contact solution converges up to there; stiffer rings are the model "
+                "without clearance)",
             )
         if given == ["clearance"] and self.bearing_stiffness is None:
             raise InputError(
