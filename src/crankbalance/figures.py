@@ -1803,6 +1803,96 @@ def bearing_loads_figure(
     return fig
 
 
+#: the panels of :func:`bearing_sweep_figure`: key of a case's metrics, axis title
+SWEEP_PANELS = (
+    ("largest_load_N", "largest bearing load [N]"),
+    ("coulomb_friction_power_W", "friction, all main bearings [W]"),
+    ("largest_journal_moment_Nm", "largest journal |M| [N·m]"),
+    ("counterweight_mass_kg", "counterweight mass [kg]"),
+)
+
+
+def bearing_sweep_figure(sweep: Any) -> go.Figure:
+    """Bearing loads against balance (:class:`~crankbalance.studies.balance_loads.
+    SweepStudy`): the largest bearing load, the friction of all main bearings, the largest
+    bending moment at a journal and the counterweight mass against the balance factor, one
+    line per pattern (``none`` a dotted level), and the peak load of every bearing per case
+    (bars), all of the sweep's crank model."""
+    go = _go()
+    model = sweep.options.crank_model
+    data = sweep.to_dict()
+    fig = _subplots(
+        rows=3,
+        cols=2,
+        specs=[[{}, {}], [{}, {}], [{"colspan": 2}, None]],
+        row_heights=[0.3, 0.3, 0.4],
+        vertical_spacing=0.1,
+        horizontal_spacing=0.1,
+        subplot_titles=[title for _, title in SWEEP_PANELS]
+        + [f"peak load of each bearing per case ({model} crank)"],
+    )
+    factors = [float(f) for f in sweep.options.balance_factors]
+    span = [min(factors), max(factors)] if factors else [0.0, 1.0]
+    patterns = list(dict.fromkeys(case["pattern"] for case in data["cases"]))
+    for n, pattern in enumerate(patterns):
+        cases = [c for c in data["cases"] if c["pattern"] == pattern]
+        color = ORDER_COLORS[n % len(ORDER_COLORS)]
+        none = pattern == "none"
+        for p, (key, title) in enumerate(SWEEP_PANELS):
+            values = [c[key] if key in c else c["models"][model][key] for c in cases]
+            fig.add_trace(
+                go.Scatter(
+                    x=span if none else [c["balance_factor"] for c in cases],
+                    y=values * 2 if none else values,
+                    mode="lines" if none else "lines+markers",
+                    name=pattern,
+                    legendgroup=pattern,
+                    showlegend=p == 0,
+                    line={"color": color, "dash": "dot" if none else "solid"},
+                    hovertemplate=f"{pattern}<br>balance factor %{{x:.3g}}<br>"
+                    f"{title.split(' [')[0]} %{{y:.4g}}<extra></extra>",
+                ),
+                row=1 + p // 2,
+                col=1 + p % 2,
+            )
+    bearings = [b["bearing"] for b in data["cases"][0]["models"][model]["bearings"]]
+    for case in data["cases"]:
+        label = case["pattern"] + (
+            "" if case["balance_factor"] is None else f", f_b {case['balance_factor']:.3g}"
+        )
+        fig.add_trace(
+            go.Bar(
+                x=[f"bearing {k}" for k in bearings],
+                y=[b["max_load_N"] for b in case["models"][model]["bearings"]],
+                name=label,
+                showlegend=False,
+                marker={"color": ORDER_COLORS[patterns.index(case["pattern"]) % len(ORDER_COLORS)]},
+                hovertemplate=f"{label}<br>%{{x}}<br>peak %{{y:.4g}} N<extra></extra>",
+            ),
+            row=3,
+            col=1,
+        )
+    for p, (_, title) in enumerate(SWEEP_PANELS):
+        fig.update_xaxes(title_text="balance factor", row=1 + p // 2, col=1 + p % 2)
+        unit = title.split(" [")[-1].rstrip("]")
+        fig.update_yaxes(title_text=unit, row=1 + p // 2, col=1 + p % 2)
+    fig.update_yaxes(title_text="N", row=3, col=1)
+    speed = data["settings"]["speed_rad_s"] * 30 / math.pi
+    fig.update_layout(
+        template=TEMPLATE,
+        barmode="group",
+        height=900,
+        width=1000,
+        legend={"orientation": "h", "y": -0.08},
+        title=figure_title(
+            f"Main-bearing loads against balance ({model} crank)",
+            data["engine"]["name"],
+            f"{speed:.0f} rpm",
+        ),
+    )
+    return fig
+
+
 def engine_torque_figure(result: Any) -> go.Figure:
     """The whole engine's torque over the cycle, each cylinder's share, and the speed
     (:class:`~crankbalance.engine_cycle_all.EngineCycleResult`); a single-cylinder

@@ -543,6 +543,83 @@ class BearingOptions(CombustionOptions):
         return self
 
 
+#: the named counterweight patterns of a bearing sweep (``bearings-sweep --pattern``):
+#: a counterweight on every web, none at all, or the engine file's own pattern
+NAMED_PATTERNS = ("all", "none", "file")
+#: most counterweight patterns of one bearing sweep
+MAX_PATTERNS = 8
+#: most cases (patterns times balance factors; ``none`` counts once) of one bearing sweep:
+#: each case is a balance solve and both crank models over the cycle
+MAX_SWEEP_CASES = 64
+
+
+def _web_pattern(value: Any) -> str:
+    """A counterweight pattern as written: ``all``, ``none``, ``file`` or 0/1 per web,
+    ``1,0,0,1``; returned in one spelling (lower-case name, or the digits joined by commas)."""
+    shown = value
+    if isinstance(value, (list, tuple)):
+        value = ",".join(str(v) for v in value)
+    allowed = "must be all, none, file or 0/1 per web (two per throw) such as 1,0,0,1"
+    if not isinstance(value, str):
+        raise InputError("patterns", shown, allowed)
+    text = value.strip().lower()
+    if text in NAMED_PATTERNS:
+        return text
+    items = [item.strip() for item in text.split(",")]
+    if len(items) < 2 or any(item not in ("0", "1") for item in items):
+        raise InputError("patterns", shown, allowed)
+    if len(items) > 2 * MAX_MAIN_BEARINGS:
+        raise InputError("patterns", shown, f"must list at most {2 * MAX_MAIN_BEARINGS} webs")
+    if "1" not in items:
+        raise InputError("patterns", shown, "has no counterweight (all zeros): write none")
+    return ",".join(items)
+
+
+class BearingSweepOptions(StudyOptions):
+    """``bearings-sweep``: the main-bearing loads over counterweight patterns and balance
+    factors (docs/main_bearings.md); the loads' own settings are :class:`BearingOptions`.
+    ``none`` is one case whatever the balance factors."""
+
+    patterns: list[Annotated[str, BeforeValidator(_web_pattern)]] = Field(
+        ["all"],
+        min_length=1,
+        max_length=MAX_PATTERNS,
+        title="Counterweight patterns",
+        description="all, none, file or 0/1 per web: 1,0,0,1,1,0,0,1",
+    )
+    balance_factors: BalanceFactors = Field(
+        [0.0, 0.25, 0.5, 0.75, 1.0], title="Balance factors", description="e.g. 0.4, 0.5, 0.6"
+    )
+    crank_model: Literal["indeterminate", "determinate"] = Field(
+        "indeterminate", title="Crank model of the table and the figure"
+    )
+
+    @model_validator(mode="after")
+    def _bounded(self) -> BearingSweepOptions:
+        if len(set(self.patterns)) < len(self.patterns):
+            twice = next(p for p in self.patterns if self.patterns.count(p) > 1)
+            raise InputError(
+                "patterns", self.patterns, f"must give each pattern once ({twice} twice)"
+            )
+        if len(set(self.balance_factors)) < len(self.balance_factors):
+            again = next(f for f in self.balance_factors if self.balance_factors.count(f) > 1)
+            raise InputError(
+                "balance_factors",
+                self.balance_factors,
+                f"must give each balance factor once ({again:g} twice)",
+            )
+        swept = sum(p != "none" for p in self.patterns)
+        cases = swept * len(self.balance_factors) + ("none" in self.patterns)
+        if cases > MAX_SWEEP_CASES:
+            raise InputError(
+                "patterns",
+                ", ".join(self.patterns),
+                f"must make at most {MAX_SWEEP_CASES} cases (patterns other than none times "
+                f"balance factors, and none once): here {cases}",
+            )
+        return self
+
+
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 

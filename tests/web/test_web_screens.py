@@ -32,6 +32,7 @@ TABS = (
     "Single cylinder",
     "Balance shaft",
     "Performance",
+    "Crank loads",
 )
 #: the button of a tab's study and a text only its result (or its refusal) shows
 ACTIONS = {
@@ -39,6 +40,7 @@ ACTIONS = {
     "Single cylinder": ("Compute study", r"Passes:|Holes:"),
     "Balance shaft": ("Find the optimum", r"optimum mass position|does not apply|needs no"),
     "Performance": ("Run the sweep", r"Peak shaking N[\s\S]*\b0\.75\b"),
+    "Crank loads": ("Run", r"Lowest peak bearing load"),
 }
 PHONE = {"width": 390, "height": 844}
 DESKTOP = {"width": 1280, "height": 800}

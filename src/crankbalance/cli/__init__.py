@@ -72,6 +72,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "crankbalance.cli.bearings:bearings",
         "Main-bearing loads and crank bending over the engine cycle.",
     ),
+    "bearings-sweep": (
+        "crankbalance.cli.bearings_sweep:bearings_sweep",
+        "Bearing loads, friction and crank bending against counterweights and balance factor.",
+    ),
 }
 
 

@@ -30,6 +30,7 @@ from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, read
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
+from .tab_loads import LoadsTab
 from .tab_masses import MassesTab
 from .tab_performance import PerformanceTab
 from .tab_results import ResultsTab, order_rows
@@ -50,6 +51,7 @@ TABS = (
     ("performance", "Performance"),
     ("explore", "Explorer"),
     ("shop", "Balance shop"),
+    ("loads", "Crank loads"),
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
@@ -127,6 +129,7 @@ class Page:
             PerformanceTab(self),
             ExploreTab(self),
             ShopTab(self),
+            LoadsTab(self),
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]

@@ -1,0 +1,224 @@
+"""The Crank loads tab: main-bearing loads, friction and crank bending of the current engine
+against the counterweight pattern and the balance factor (issue 18 item 4;
+docs/main_bearings.md, "Sweep of patterns and balance factors").
+
+The settings are those of ``crankbalance bearings-sweep`` (:class:`crankbalance.options.
+BearingSweepOptions` and a few of :class:`~crankbalance.options.BearingOptions`, the rest
+at their defaults), as typed. The run is :func:`crankbalance.studies.balance_loads.
+bearing_sweep` in a worker thread. The result belongs to the engine and the settings it was
+run for (the never-stale rule of :class:`~.widgets.StudyTab`): once either changes it is
+cleared and the tab says to re-run. Shown: a table (one row per case, the CLI's columns),
+the polar load diagrams of every pattern at the middle balance factor overlaid, and the
+sweep figure (metrics against the balance factor, peak load per bearing per case).
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+from nicegui import run, ui
+
+from .. import figures
+from ..errors import InputError
+from .widgets import StudyTab, TabSettingsMixin
+
+#: the tab's settings: key -> (label, default, hint)
+SETTINGS: dict[str, tuple[str, str, str]] = {
+    "patterns": (
+        "Counterweight patterns",
+        "all; none",
+        "all, none, file or 0/1 per web (two per throw); patterns separated by ;",
+    ),
+    "balance_factors": ("Balance factors", "0.4, 0.5, 0.6", "e.g. 0.4, 0.5, 0.6"),
+    "crank_model": ("Crank model", "indeterminate", "continuous beam or lever rule"),
+    "gas": ("Gas forces", "on", "off: inertia forces only"),
+    "speed": ("Mean speed", "", "empty: the engine's"),
+    "samples": ("Samples per revolution", "120", "36 to 3600"),
+    "bearing_stiffness": ("Radial bearing stiffness", "", "empty: rigid, e.g. 5e8 N/m"),
+    "friction_coefficient": ("Friction coefficient", "0.005", "e.g. 0.005"),
+}
+CHOICES = {"crank_model": ("indeterminate", "determinate"), "gas": ("on", "off")}
+#: the settings of the sweep itself; the others are the loads' (BearingOptions)
+SWEEP = ("patterns", "balance_factors", "crank_model")
+
+
+def _items(text: str, separator: str) -> list[str] | None:
+    items = [item.strip() for item in text.split(separator) if item.strip()]
+    return items or None
+
+
+def parse(texts: dict[str, str]) -> tuple[Any, Any]:
+    """The :class:`~crankbalance.options.BearingSweepOptions` and
+    :class:`~crankbalance.options.BearingOptions` of the tab's texts; an
+    :class:`InputError` names the setting's key."""
+    from ..options import BearingOptions, BearingSweepOptions, parse_options
+
+    values = {k: texts.get(k, "").strip() for k in SETTINGS}
+    sweep = parse_options(
+        BearingSweepOptions,
+        {
+            "patterns": _items(values["patterns"], ";"),
+            "balance_factors": _items(values["balance_factors"], ","),
+            "crank_model": values["crank_model"] or None,
+        },
+    )
+    if values["gas"] not in CHOICES["gas"]:
+        raise InputError("gas", values["gas"], "must be on or off")
+    loads = parse_options(
+        BearingOptions,
+        {
+            **{k: (v or None) for k, v in values.items() if k not in (*SWEEP, "gas")},
+            "gas": values["gas"] == "on",
+        },
+    )
+    return sweep, loads
+
+
+class LoadsTab(TabSettingsMixin, StudyTab):
+    choices = CHOICES
+    name = "loads"
+    study: Any = None
+
+    def build(self) -> None:
+        self.texts = {k: v[1] for k, v in SETTINGS.items()}
+        self.fields: dict[str, Any] = {}
+        with ui.row().classes("w-full items-start gap-4"):
+            with ui.card().classes("w-96"):
+                ui.label("Patterns and balance factors").classes("text-subtitle1")
+                for key, (label, default, hint) in SETTINGS.items():
+                    self.field(key, label, default, hint)
+                with ui.row().classes("items-center gap-2"):
+                    ui.button("Run", on_click=self.run).props("color=primary").mark("loads-run")
+                    self.spinner = ui.spinner(size="md").props("data-testid=loads-busy")
+                    self.spinner.set_visibility(False)
+            with ui.card().classes("min-w-0").style("flex: 1 1 0"):
+                ui.label("Bearing loads against balance").classes("text-subtitle1")
+                self.rerun_note()
+                self.summary = (
+                    ui.markdown("").props("data-testid=loads-summary").mark("loads-summary")
+                )
+                self.table = (
+                    ui.table(columns=[], rows=[], row_key="case")
+                    .classes("w-full")
+                    .props("dense flat data-testid=loads-cases")
+                    .mark("loads-cases")
+                )
+        self.card("loads-polar", "Polar load diagrams (middle balance factor)", self._polar)
+        self.card("loads-sweep", "Loads, friction and bending against balance", self._sweep)
+
+    # ------------------------------------------------------------------ settings
+    def stamp(self) -> tuple[Any, ...]:
+        """The engine and the tab's settings as typed."""
+        return (self.page.computed_for, self.current_settings())
+
+    def check(self) -> tuple[Any, Any] | None:
+        """Show the settings' errors beside their fields (in the field's label words); the
+        parsed settings or None. A result of other settings is dropped."""
+        for element in self.fields.values():
+            element.error = None
+        self.settings_changed()
+        try:
+            return parse(self.texts)
+        except InputError as error:
+            self.show_error(error)
+            return None
+
+    def show_error(self, error: InputError) -> None:
+        key = error.field if error.field in self.fields else "patterns"
+        label = SETTINGS[key][0]
+        message = str(error)
+        if message.startswith(error.field):
+            message = label + message[len(error.field) :]
+        self.fields[key].error = message
+
+    # ------------------------------------------------------------------ StudyTab
+    def clear(self) -> None:
+        self.study = None
+        self.summary.set_content("")
+        self.table.rows = []
+        self.table.update()
+        for card in self.cards:
+            card.refresh()
+
+    # ------------------------------------------------------------------ run
+    async def run(self) -> None:
+        from ..studies.balance_loads import bearing_sweep
+
+        parsed = self.check()
+        if parsed is None:
+            self.summary.set_content("Not run: see the message beside the field.")
+            return
+        c = self.study_ready()
+        if c is None:
+            return
+        sweep, loads = parsed
+        started = self.stamp()
+        self.spinner.set_visibility(True)
+        self.summary.set_content("running …")
+        try:
+            study = await run.io_bound(bearing_sweep, c.spec, sweep, loads)
+        except InputError as error:
+            self.summary.set_content(str(error))
+            if error.field in self.fields:
+                self.show_error(error)
+            return
+        finally:
+            self.spinner.set_visibility(False)
+        if study is None:
+            self.summary.set_content("run cancelled (server stopping): no result")
+            return
+        if not self.owns(started):
+            return
+        self.study = study
+        self.show_study()
+
+    def show_study(self) -> None:
+        from ..format import number
+        from ..studies.balance_loads import COLUMNS, case_rows
+
+        data = self.study.to_dict()
+        rows = case_rows(data)
+        best = min(rows, key=lambda row: row[4])
+        s = data["settings"]
+        self.summary.set_content(
+            f"{data['engine']['name']}: {len(rows)} cases, {data['crank_model']} crank, "
+            f"{'gas and inertia' if s['gas'] else 'inertia only'}. Lowest peak bearing load: "
+            f"{best[0]}"
+            + ("" if best[1] is None else f" at balance factor {number(best[1], 3)}")
+            + f" ({number(best[4], 5)} N on bearing {best[3]})."
+        )
+        self.table.columns = [
+            {"name": key, "label": label, "field": key, "align": "left" if i == 0 else "right"}
+            for i, (key, label) in enumerate(COLUMNS)
+        ]
+        self.table.rows = [
+            {
+                "case": n,
+                **{
+                    key: "–" if v is None else (v if isinstance(v, (str, int)) else number(v, 5))
+                    for (key, _), v in zip(COLUMNS, row, strict=True)
+                },
+            }
+            for n, row in enumerate(rows)
+        ]
+        self.table.update()
+        for card in self.cards:
+            card.refresh()
+
+    def _polar(self) -> Any | None:
+        if self.study is None:
+            return None
+        factors = sorted(self.study.options.balance_factors)
+        middle = factors[len(factors) // 2]
+        cases = [
+            c for c in self.study.cases if c.balance_factor in (None, middle)
+        ]  # one per pattern
+        labels = tuple(
+            c.pattern + ("" if c.balance_factor is None else f", f_b {middle:.3g}") for c in cases
+        )
+        return figures.bearing_loads_figure(
+            [c.study for c in cases], self.study.options.crank_model, labels
+        )
+
+    def _sweep(self) -> Any | None:
+        return None if self.study is None else figures.bearing_sweep_figure(self.study)
