@@ -15,6 +15,7 @@ import click
 
 from ..format import json_text, number
 from ..studies.balance_loads import COLUMNS, case_rows
+from ..studies.performance import WIEBE_OPTIONS
 from ._common import (
     echo_table,
     format_option,
@@ -23,7 +24,7 @@ from ._common import (
     refuse_unused,
     require_extra,
 )
-from .bearings import PHYSICS_FIELDS, WIEBE_OPTIONS, bearings
+from .bearings import PHYSICS_FIELDS, bearings
 from .performance import _number_list
 
 #: options of ``bearings`` that this command does not take (swept, or a single run's)
@@ -95,9 +96,17 @@ def bearings_sweep(
         },
         _name,
     )
-    o = parse_options(BearingOptions, {**options, "bearing": list(bearing) or None}, option_name)
+    o = parse_options(
+        BearingOptions,
+        {
+            **options,
+            "bearing": list(bearing) or None,
+            "pressure_csv": list(options["pressure_csv"]),
+        },
+        option_name,
+    )
     refuse_unused(
-        {name: o.gas and o.pressure_csv is None for name in WIEBE_OPTIONS},
+        {name: o.gas and not o.pressure_csv for name in WIEBE_OPTIONS},
         "only acts on the Wiebe combustion model (not with --pressure-csv or --no-gas)",
         given,
     )
