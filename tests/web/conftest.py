@@ -132,6 +132,11 @@ class Form:
         assert len(found) == 1, f"expected one element marked {marker!r}, found {len(found)}"
         return next(iter(found))
 
+    def open(self, tab: str) -> None:
+        """Open a tab as a click on it would: a tab other than Engine and Results is built
+        when it is first opened."""
+        self.user.find(marker=f"tab-{tab}").click()
+
     def set(self, marker: str, value: Any) -> None:
         """Set an input or select as typing/choosing would (fires its on_change)."""
         with self.user:

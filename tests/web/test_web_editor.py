@@ -101,6 +101,7 @@ async def test_split_pin_v6_as_custom_throws(user: User, form) -> None:
         form.set(f"throw-{n + k}-angle", f"{degrees:g} deg")
         form.set(f"throw-{n + k}-banks", "45 deg")
     assert not {k: v.error for k, v in form.page_inputs().items() if v.error}
+    form.open("masses")
     assert len(form.rows("mass-table")) == 6
     assert {r["throw"] for r in form.rows("mass-table")} == {1, 2, 3, 4, 5, 6}
 
@@ -110,6 +111,7 @@ async def test_mass_override_rows(user: User, form) -> None:
     await form.see("Crank editor")
     user.find(marker="editor-add-override").click()
     form.set("override-0-value", "600 g")  # piston of cylinder 1
+    form.open("masses")
     rows = form.rows("mass-table")
     assert rows[0]["reciprocating"] == "1.0400" and rows[1]["reciprocating"] == "0.9400"
     form.set("override-0-numbers", "1, 9")

@@ -68,6 +68,7 @@ async def test_paper_inline3_typed_in_gives_table2(user: User, form) -> None:
 
 async def test_masses_shown_as_you_type(user: User, form) -> None:
     await user.open("/")
+    form.open("masses")
     before = form.text("mass-summary")
     # paper inline-3: m_rec = 0.5 + 0.24 + 0.6/3 = 0.94 kg (2021 paper Table 1)
     assert "0.9400 kg" in before, before
@@ -96,6 +97,7 @@ async def test_results_table_matches_api(user: User, form) -> None:
 
 async def test_totals_mode_and_layout_change(user: User, form) -> None:
     await user.open("/")
+    form.open("masses")
     with user:
         form.element("mass-mode").value = "totals"
     assert form.error("field-reciprocating"), "totals mode without totals must say so"

@@ -91,6 +91,7 @@ async def test_shop_result_cleared_when_the_engine_changes(user, form) -> None:
     (Simulated user, before the browser tests: sync Playwright's loop would be running.)"""
     await user.open("/?preset=v8-crossplane")
     await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
+    form.open("shop")
     user.find(marker="shop-example").click()
     for key, value in TYPED.items():
         form.set(f"shop-{key}", value)

@@ -15,6 +15,7 @@ pytestmark = pytest.mark.anyio
 
 async def test_counterweight_design_tab(user: User, form) -> None:
     await user.open("/")
+    form.open("counterweight")
     required = form.text("cw-requirement")
     cw = balance_engine("paper-inline3").result.counterweights
     # first moment m_c r_c of Table 2's counterweight: 1.2413 kg x 30 mm = 37239 g*mm
@@ -40,6 +41,7 @@ async def test_counterweight_design_tab(user: User, form) -> None:
 
 async def test_counterweight_bad_constraint(user: User, form) -> None:
     await user.open("/")
+    form.open("counterweight")
     form.set("setting-cw_density", "8000 kg")
     assert "density" in (form.error("setting-cw_density") or "")
     form.set("setting-cw_iterations", "many")
@@ -53,6 +55,7 @@ async def test_counterweight_bad_constraint(user: User, form) -> None:
 
 async def test_single_cylinder_tab(user: User, form) -> None:
     await user.open("/?preset=single")
+    form.open("single")
     form.set("setting-sc_balance_factor", "0.6")
     form.set("setting-sc_residual", "5 g*mm")
     user.find(marker="run-single").click()
@@ -73,6 +76,7 @@ async def test_single_cylinder_tab(user: User, form) -> None:
 
 async def test_single_cylinder_bad_inputs(user: User, form) -> None:
     await user.open("/?preset=single")
+    form.open("single")
     form.set("setting-sc_cylinder", "2")
     user.find(marker="run-single").click()
     await form.until(lambda: form.error("setting-sc_cylinder"))
@@ -86,6 +90,7 @@ async def test_single_cylinder_bad_inputs(user: User, form) -> None:
 
 async def test_balance_shaft_tab(user: User, form) -> None:
     await user.open("/?preset=inline4")
+    form.open("shaft")
     user.find(marker="run-shaft").click()
     await form.until(lambda: "optimum" in form.text("shaft-summary"))
     assert "of the shaft length" in form.text("shaft-summary")
@@ -97,6 +102,7 @@ async def test_balance_shaft_tab(user: User, form) -> None:
 
 async def test_performance_tab(user: User, form) -> None:
     await user.open("/?preset=single")
+    form.open("performance")
     form.set("setting-pf_balance_factors", "0, 0.5, 1")
     user.find(marker="run-performance").click()
     await form.until(lambda: len(form.rows("performance-table")) == 3)

@@ -74,12 +74,15 @@ async def test_study_results_cleared_when_the_engine_changes(user: User, form) -
     this engine: re-run", once the form's engine is another; going back to the old engine
     does not bring it back, a new run does."""
     await user.open("/")
+    form.open("counterweight")
     form.set("setting-cw_iterations", "3")
     form.set("setting-cw_population", "64")
     user.find(marker="optimise").click()
     await form.until(lambda: "feasible designs" in form.text("cw-summary"), "the optimiser")
+    form.open("single")
     user.find(marker="run-single").click()
     await form.until(lambda: "Primary force" in form.text("single-summary"), "the study")
+    form.open("performance")
     form.set("setting-pf_balance_factors", "0, 1")
     user.find(marker="run-performance").click()
     await form.until(lambda: len(form.rows("performance-table")) == 2, "the sweep")
@@ -110,6 +113,7 @@ async def test_study_results_cleared_when_the_engine_changes(user: User, form) -
 @pytest.mark.anyio
 async def test_shaft_result_cleared_when_the_engine_changes(user: User, form) -> None:
     await user.open("/?preset=inline4")
+    form.open("shaft")
     user.find(marker="run-shaft").click()
     await form.until(lambda: "optimum" in form.text("shaft-summary"), "the placement study")
     form.set("field-crank_radius", "41 mm")

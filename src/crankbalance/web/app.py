@@ -56,6 +56,13 @@ TABS = (
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
 RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+#: the tabs built with the page (its first screen); every other tab's content is built when
+#: the tab is first opened (:meth:`Page.open_tab`), which keeps the page the server sends
+#: (and the browser mounts) small: about a third of the elements of all nine tabs
+FIRST_SCREEN = ("engine", "results")
+#: shown in a tab's panel until its content is built (the panel the browser switches to
+#: before the server's answer arrives; the busy bar shows too after 0.2 s)
+OPENING = "Opening the tab …"
 CSS = """
 .cb-stale { opacity: 0.45; }
 /* a message under a field takes its own lines instead of being drawn over the next field */
@@ -211,7 +218,18 @@ class Page:
                             .mark(f"{name}-stale")
                         )
                     with ui.column().classes("w-full") as self.bodies[name]:
-                        self.tabs[name].build()
+                        if name in FIRST_SCREEN:
+                            self.tabs[name].build()
+                            self.tabs[name].built = True
+                        else:  # built when first opened (:meth:`open_tab`)
+                            with (
+                                ui.row()
+                                .classes("items-center gap-2")
+                                .props(f"data-testid={name}-opening")
+                                .mark(f"{name}-opening")
+                            ):
+                                ui.spinner(size="md")
+                                ui.label(OPENING)
                     self._nav(index)
         self.update_all()
         if self.startup_message:
@@ -299,7 +317,28 @@ class Page:
         self.preset_name = event.value
 
     def on_tab(self, event: Any) -> None:
+        self.open_tab(str(event.value))
         self.refresh_cards(str(event.value))
+
+    def open_tab(self, name: str) -> None:
+        """Build a tab's content the first time it is opened, showing the project as it is:
+        the form's values, the computed engine's numbers (:meth:`Tab.show`), the messages of
+        its fields and settings. Its settings live in the project (``project.settings``),
+        validated and saved whether or not the tab was ever opened."""
+        tab = self.tabs.get(name)
+        if tab is None or tab.built:
+            return
+        body = self.bodies[name]
+        body.clear()
+        with body:
+            tab.build()
+        tab.built = True
+        for key, element in self.inputs.items():
+            element.set_visibility(self.project.active(FIELD_BY_KEY[key]))
+        if self.project.computed is not None:
+            tab.show(self.project.computed)
+        self.show_errors()
+        self.show_setting_errors()
 
     def go(self, tab: str) -> None:
         self.panels.set_value(tab)
@@ -338,7 +377,7 @@ class Page:
 
     def load(self, project: Project) -> None:
         self.project = project
-        for tab in self.tabs.values():
+        for tab in self.built_tabs():
             tab.reset()
         for key, element in self.inputs.items():
             value = project.texts.get(key, "")
@@ -480,7 +519,7 @@ class Page:
             self.show_errors()
             return
         self.computed_for = (spec, orders)
-        for tab in self.tabs.values():
+        for tab in self.built_tabs():
             for card in tab.cards:
                 card.stale = True
         self.show_numbers()
@@ -494,7 +533,7 @@ class Page:
     def show_errors(self) -> None:
         for key, element in self.inputs.items():
             element.error = self.project.errors.get(key)
-        for tab in self.tabs.values():
+        for tab in self.built_tabs():
             tab.show_errors(self.project.errors)
         self.general.set_text(self.project.general_error)
 
@@ -510,8 +549,12 @@ class Page:
         c = self.project.computed
         if c is None:
             return
-        for tab in self.tabs.values():
+        for tab in self.built_tabs():
             tab.show(c)
+
+    def built_tabs(self) -> list[Tab]:
+        """The tabs whose content exists (the first screen and those opened so far)."""
+        return [tab for tab in self.tabs.values() if tab.built]
 
 
 def _report_html(report: Any, spec: Any, orders: int) -> str:

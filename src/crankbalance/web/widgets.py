@@ -291,12 +291,17 @@ class FigureCard:
 
 class Tab(ABC):
     """One tab of the page. The shell (:class:`~.app.Page`) calls :meth:`build` inside the
-    tab's panel, :meth:`show` after each recompute of a valid engine and :meth:`reset` when
-    another project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed
-    by the shell when the tab is shown)."""
+    tab's panel (with the page, or when the tab is first opened: :attr:`built`),
+    :meth:`show` after each recompute of a valid engine and :meth:`reset` when another
+    project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed by the
+    shell when the tab is shown)."""
 
     #: the tab's name in :data:`~.app.TABS`
     name = ""
+    #: whether :meth:`build` has run: the shell builds the first screen's tabs with the
+    #: page and every other tab when it is first opened, and calls :meth:`show`,
+    #: :meth:`reset` and :meth:`show_errors` only on built tabs
+    built = False
 
     def __init__(self, page: Page) -> None:
         self.page = page
