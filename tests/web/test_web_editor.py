@@ -120,6 +120,8 @@ async def test_mass_override_rows(user: User, form) -> None:
     )
     form.set("override-0-numbers", "x")
     assert "whole numbers" in form.error("override-0-numbers")
+    # the header names the editor's cell in words (it raised KeyError on such keys once)
+    assert "Not computed: see Mass override 1" in user.find(marker="status").elements.pop().text
     form.set("override-0-numbers", "2")
     assert form.error("override-0-numbers") is None
     assert form.rows("mass-table")[1]["reciprocating"] == "1.0400"

@@ -26,7 +26,7 @@ from ..errors import InputError
 from ..io.engine_file import list_presets
 from . import studies
 from .exports import table_csv
-from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, read_text
+from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, label_of, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
@@ -488,7 +488,10 @@ class Page:
             self.status.set_text(f"Results of: {c.spec.name}")
             state = "current"
         else:
-            fields = ", ".join(FIELD_BY_KEY[key].label for key in self.project.errors)
+            fields = ", ".join(
+                FIELD_BY_KEY[key].label if key in FIELD_BY_KEY else label_of(key)
+                for key in self.project.errors
+            )  # a crank-editor cell (throw.0.position, override.0.value) by its words
             self.status.set_text(
                 f"Not computed: see {fields}" if fields else "Not computed: see the message above"
             )
