@@ -30,6 +30,7 @@ LAZY = {
     "performance": "setting-pf_journal_diameter",
     "explore": "explore-table",
     "shop": "shop-summary",
+    "loads": "loads-summary",
 }
 LABELS = dict(TABS)
 #: plotly complains when a figure in a hidden tab panel is resized; harmless

@@ -57,6 +57,7 @@ async def test_loads_result_cleared_when_the_engine_changes(user, form) -> None:
     sync Playwright's loop would be running.)"""
     await user.open("/?preset=inline4")
     await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
+    form.open("loads")  # built when first opened
     for key, value in TYPED.items():
         form.set(f"loads-{key}", value)
     user.find(marker="loads-run").click()
