@@ -78,7 +78,14 @@ def _open_tab(page: Any, tab: str) -> None:
     page.get_by_role("tab", name=tab, exact=True).click()
     expect(page.get_by_role("tab", name=tab, exact=True)).to_have_attribute("aria-selected", "true")
     page.wait_for_function(SETTLED)  # the panels' slide is over
+    page.wait_for_function(BUILT)  # a tab built on first opening has its content
+    page.wait_for_function(SETTLED)
 
+
+#: the shown tab panel holds its content, not the placeholder of a tab still being built
+#: (web/app.py builds the hidden tabs when first opened)
+BUILT = """() => ![...document.querySelectorAll('[data-testid$="-opening"]')]
+    .some((e) => e.offsetParent !== null)"""
 
 #: one tab panel shown, no Quasar transition running and the panel in its place (while the
 #: panels slide, the old and the new one are both on the page, partly off the screen; the
@@ -160,6 +167,7 @@ def test_every_tab_fits_a_phone(server: str, browser: Any, preset: str) -> None:
             _shoot(page, preset, k, tab)
             page.set_viewport_size(PHONE)
             page.wait_for_function(DRAWN)
+            page.wait_for_function(SETTLED)  # laid out again at the phone's width
             _check_phone(page, preset, tab)
     finally:
         page.close()
