@@ -26,8 +26,10 @@ from .conftest import DRAWN, ROOT  # noqa: E402
 ENGINE = "v12-60"
 ARTIFACTS = ROOT / "artifacts" / "exports"
 #: share of pixels allowed to differ by more than 10 % of full scale in any channel between
-#: the browser's and kaleido's PNG of a 2-D figure (both are plotly.js 3 in a Chromium; text
-#: anti-aliasing may differ at glyph edges)
+#: the browser's and kaleido's PNG of a figure (both are plotly.js 3 in a Chromium; text
+#: anti-aliasing may differ at glyph edges, and the browser draws a 3-D scene at the
+#: image's own pixels where kaleido draws it at twice and scales it down: the lines'
+#: edges differ, on 0.26 % of the V12 crank's pixels when this was written)
 PIXEL_SHARE = 0.01
 BENIGN = ("Resize must be passed a displayed plot div element",)
 
@@ -173,9 +175,9 @@ def test_png_and_svg_are_made_in_the_browser(server: str, page, tmp_path: Path) 
         )
         # not blank: the figure is drawn (more than the background colour)
         assert len(np.unique(browser[name].reshape(-1, 3), axis=0)) > 20, name
-    differ = np.abs(browser["orders"] - server_px["orders"]).max(axis=2) > 25
-    assert differ.mean() < PIXEL_SHARE, (
-        f"orders bar: {differ.mean():.2%} of the pixels differ from render.to_image's PNG"
-    )
+        differ = np.abs(browser[name] - server_px[name]).max(axis=2) > 25
+        assert differ.mean() < PIXEL_SHARE, (
+            f"{name}: {differ.mean():.2%} of the pixels differ from render.to_image's PNG"
+        )
     # plotly's resize of a figure in a tab just hidden, known and harmless (test_web_e2e.py)
     assert not [e for e in errors if not e.startswith(BENIGN)], errors
