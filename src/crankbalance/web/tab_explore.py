@@ -22,7 +22,7 @@ import threading
 from typing import Any
 
 import numpy as np
-from nicegui import run, ui
+from nicegui import ui
 
 from .. import figures
 from ..errors import InputError
@@ -151,6 +151,8 @@ def candidate_file(
 
 
 class ExploreTab(TabSettingsMixin, StudyTab):
+    settings_table = SETTINGS
+    fallback = "layout"
     choices = CHOICES
     name = "explore"
     result: Any = None
@@ -204,15 +206,11 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         result of other settings is dropped."""
         for element in self.fields.values():
             element.error = None
-        if self.result_for is not None and self.result_for != self.current_settings():
-            self.drop("these settings")
+        self.settings_changed()
         try:
             return parse(self.texts)
         except InputError as error:
-            key = error.field if error.field in self.fields else "layout"
-            names = {"bank_angle": "bank angle", "x": "x objective", "y": "y objective"}
-            message = str(error).replace(f"{error.field} =", f"{names.get(key, key)} =", 1)
-            self.fields[key].error = message
+            self.show_error(error)
             return None
 
     # ------------------------------------------------------------------ StudyTab
@@ -231,8 +229,12 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         for card in self.cards:
             card.refresh()
 
+    def stamp(self) -> tuple[Any, ...]:
+        """What a run belongs to: the tab's settings (not the form's engine)."""
+        return self.current_settings()
+
     def owns(self, started: Any) -> bool:
-        if started == self.current_settings():
+        if started == self.stamp():
             self.result_for = started
             self.rerun.set_visibility(False)
             return True
@@ -245,26 +247,13 @@ class ExploreTab(TabSettingsMixin, StudyTab):
 
     # ------------------------------------------------------------------ run
     async def run(self) -> None:
-        parsed = self.check()
-        if parsed is None:
-            self.summary.set_content("Not run: see the message beside the field.")
+        def work(parsed: tuple[Any, ...], _: Any) -> Any:
+            return explore(*parsed[:3])
+
+        done = await self.run_study(work, "exploring …", engine=False)
+        if done is None:
             return
-        problem, objectives, select, top, bank_angle = parsed
-        started = self.current_settings()
-        self.spinner.set_visibility(True)
-        self.summary.set_content("exploring …")
-        try:
-            result = await run.io_bound(explore, problem, objectives, select)
-        except InputError as error:
-            self.summary.set_content(str(error))
-            return
-        finally:
-            self.spinner.set_visibility(False)
-        if result is None:
-            self.summary.set_content("exploration cancelled (server stopping): no result")
-            return
-        if not self.owns(started):
-            return
+        (problem, objectives, _select, top, bank_angle), result = done
         self.result, self.problem, self.objectives, self.top = result, problem, objectives, top
         self.bank_angle = bank_angle
         self.chosen = int(result.top["index"][0]) if result.rows else None

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from nicegui import run, ui
+from nicegui import ui
 
 from .. import figures
 from ..errors import InputError
@@ -75,6 +75,8 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
 
 
 class LoadsTab(TabSettingsMixin, StudyTab):
+    settings_table = SETTINGS
+    fallback = "patterns"
     choices = CHOICES
     name = "loads"
     study: Any = None
@@ -107,10 +109,6 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         self.card("loads-sweep", "Loads, friction and bending against balance", self._sweep)
 
     # ------------------------------------------------------------------ settings
-    def stamp(self) -> tuple[Any, ...]:
-        """The engine and the tab's settings as typed."""
-        return (self.page.computed_for, self.current_settings())
-
     def check(self) -> tuple[Any, Any] | None:
         """Show the settings' errors beside their fields (in the field's label words); the
         parsed settings or None. A result of other settings is dropped."""
@@ -122,14 +120,6 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         except InputError as error:
             self.show_error(error)
             return None
-
-    def show_error(self, error: InputError) -> None:
-        key = error.field if error.field in self.fields else "patterns"
-        label = SETTINGS[key][0]
-        message = str(error)
-        if message.startswith(error.field):
-            message = label + message[len(error.field) :]
-        self.fields[key].error = message
 
     # ------------------------------------------------------------------ StudyTab
     def clear(self) -> None:
@@ -144,33 +134,13 @@ class LoadsTab(TabSettingsMixin, StudyTab):
     async def run(self) -> None:
         from ..studies.balance_loads import bearing_sweep
 
-        parsed = self.check()
-        if parsed is None:
-            self.summary.set_content("Not run: see the message beside the field.")
-            return
-        c = self.study_ready()
-        if c is None:
-            return
-        sweep, loads = parsed
-        started = self.stamp()
-        self.spinner.set_visibility(True)
-        self.summary.set_content("running …")
-        try:
-            study = await run.io_bound(bearing_sweep, c.spec, sweep, loads)
-        except InputError as error:
-            self.summary.set_content(str(error))
-            if error.field in self.fields:
-                self.show_error(error)
-            return
-        finally:
-            self.spinner.set_visibility(False)
-        if study is None:
-            self.summary.set_content("run cancelled (server stopping): no result")
-            return
-        if not self.owns(started):
-            return
-        self.study = study
-        self.show_study()
+        def work(parsed: tuple[Any, Any], c: Any) -> Any:
+            return bearing_sweep(c.spec, *parsed)
+
+        done = await self.run_study(work, "running …")
+        if done is not None:
+            self.study = done[1]
+            self.show_study()
 
     def show_study(self) -> None:
         from ..format import number

@@ -85,6 +85,8 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
 
 
 class ShopTab(TabSettingsMixin, StudyTab):
+    settings_table = SETTINGS
+    fallback = "parts"
     choices = CHOICES
     multiline = ("parts",)
     name = "shop"
@@ -145,11 +147,6 @@ class ShopTab(TabSettingsMixin, StudyTab):
         self.fields["parts"].set_value(EXAMPLE.read_text(encoding="utf-8"))
 
     # ------------------------------------------------------------------ settings
-    def stamp(self) -> tuple[Any, ...]:
-        """The engine and the tab's settings as typed."""
-        own = tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
-        return (self.page.computed_for, own)
-
     def check(self) -> tuple[Any, Any] | None:
         """Show the settings' errors beside their fields (in the field's label words); the
         parsed settings or None. A result of other settings is dropped."""
@@ -159,15 +156,14 @@ class ShopTab(TabSettingsMixin, StudyTab):
         try:
             return parse(self.texts)
         except InputError as error:
-            key = error.field if error.field in self.fields else "parts"
-            label = SETTINGS[key][0]
-            message = str(error)
-            if key == "parts":
-                message = f"{label}: {error.allowed}"
-            elif message.startswith(error.field):
-                message = label + message[len(error.field) :]
-            self.fields[key].error = message
+            self.show_error(error)
             return None
+
+    def show_error(self, error: InputError) -> None:
+        if error.field in self.fields and error.field != "parts":
+            super().show_error(error)
+        else:  # the parts table: its reader's own words (line and column)
+            self.fields["parts"].error = f"{SETTINGS['parts'][0]}: {error.allowed}"
 
     # ------------------------------------------------------------------ StudyTab
     def clear(self) -> None:
@@ -184,31 +180,13 @@ class ShopTab(TabSettingsMixin, StudyTab):
     async def run(self) -> None:
         from ..studies.shop import shop_study
 
-        parsed = self.check()
-        if parsed is None:
-            self.summary.set_content("Not run: see the message beside the field.")
-            return
-        c = self.study_ready()
-        if c is None:
-            return
-        inventory, options = parsed
-        started = self.stamp()
-        self.spinner.set_visibility(True)
-        self.summary.set_content("running …")
-        try:
-            study = await run.io_bound(shop_study, c.spec, inventory, options)
-        except InputError as error:
-            self.summary.set_content(str(error))
-            return
-        finally:
-            self.spinner.set_visibility(False)
-        if study is None:
-            self.summary.set_content("run cancelled (server stopping): no result")
-            return
-        if not self.owns(started):
-            return
-        self.study = study
-        self.show_study()
+        def work(parsed: tuple[Any, Any], c: Any) -> Any:
+            return shop_study(c.spec, *parsed)
+
+        done = await self.run_study(work, "running …")
+        if done is not None:
+            self.study = done[1]
+            self.show_study()
 
     def show_study(self) -> None:
         p = self.study.parts

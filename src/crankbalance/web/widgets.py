@@ -460,14 +460,26 @@ class TabSettingsMixin:
     ``<tab name>-<key>`` for tests. An edit stores the text and calls ``self.check()``."""
 
     name: str
+    page: Page
     texts: dict[str, str]
     fields: dict[str, Any]
+    #: key -> (label, default text, hint) of each setting, in the order of the form
+    settings_table: Mapping[str, tuple[str, str, str]]
+    #: the setting beside which an error that names none of the tab's settings is shown
+    fallback: str
     #: key -> the choices of a select
     choices: Mapping[str, Sequence[str]] = {}
     #: keys of multi-line text areas
     multiline: tuple[str, ...] = ()
     #: the tab's own: shows the settings' errors beside their fields
     check: Callable[[], Any]
+    #: the tab's own (:class:`StudyTab`): whether the result of a run that started at
+    #: ``started`` may be shown
+    owns: Callable[[Any], bool]
+    study_ready: Callable[[], Any | None]
+    #: the tab's summary (markdown) and busy spinner
+    summary: Any
+    spinner: Any
 
     def field(self, key: str, label: str, default: str, hint: str) -> None:
         """One input of the tab's settings, in the current layout element."""
@@ -494,3 +506,50 @@ class TabSettingsMixin:
     def current_settings(self) -> tuple[tuple[str, str], ...]:
         """The tab's settings as typed: what its result belongs to."""
         return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
+
+    def stamp(self) -> tuple[Any, ...]:
+        """What a run started now belongs to: the engine and the tab's settings as typed."""
+        return (self.page.computed_for, self.current_settings())
+
+    def show_error(self, error: InputError) -> None:
+        """An error of the settings beside its field, in the words of the form (the field's
+        label in place of its key); one that names no setting of the tab beside
+        :attr:`fallback`."""
+        key = error.field if error.field in self.fields else self.fallback
+        message = str(error)
+        if message.startswith(error.field):
+            message = self.settings_table[key][0] + message[len(error.field) :]
+        self.fields[key].error = message
+
+    async def run_study(
+        self, work: Callable[[Any, Any], Any], running: str, engine: bool = True
+    ) -> tuple[Any, Any] | None:
+        """Run ``work(settings, computed engine)`` in a worker thread: the settings parsed by
+        :meth:`check` (with ``engine``, only while the form's engine is computed: else
+        None), the spinner shown and the summary saying ``running`` meanwhile. The settings
+        and the result, or None when it cannot run, fails (the summary says why; an error
+        of one of the tab's settings shows beside it too), is cancelled, or the engine or
+        settings were changed meanwhile (:meth:`owns`)."""
+        parsed = self.check()
+        if parsed is None:
+            self.summary.set_content("Not run: see the message beside the field.")
+            return None
+        c = self.study_ready() if engine else None
+        if engine and c is None:
+            return None
+        started = self.stamp()
+        self.spinner.set_visibility(True)
+        self.summary.set_content(running)
+        try:
+            result = await run.io_bound(work, parsed, c)
+        except InputError as error:
+            self.summary.set_content(str(error))
+            if error.field in self.fields:
+                self.show_error(error)
+            return None
+        finally:
+            self.spinner.set_visibility(False)
+        if result is None:
+            self.summary.set_content("run cancelled (server stopping): no result")
+            return None
+        return (parsed, result) if self.owns(started) else None
