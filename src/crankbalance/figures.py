@@ -390,78 +390,46 @@ def curves_figure(
         values = getattr(source, name)
         return _clean(values if k is None else values[k], tiny)
 
+    def add(row: int, values: NDArray[np.float64], group: str, **trace: Any) -> None:
+        """One curve in ``row``, in the legend (``group``) once, from the top row."""
+        scatter = go.Scatter(x=deg, y=values, legendgroup=group, showlegend=row == 1, **trace)
+        fig.add_trace(scatter, row=row, col=1)
+
     for row, comp in ((1, "x"), (2, "z")):
-        first = row == 1
-        fig.add_trace(
-            go.Scatter(
-                x=deg,
-                y=y(c, f"total_{key}{comp}"),
-                name="reciprocating total",
-                line={"color": COLORS["total"], "width": 2.5},
-                legendgroup="total",
-                showlegend=first,
-            ),
-            row=row,
-            col=1,
-        )
+        total = {"color": COLORS["total"], "width": 2.5}
+        add(row, y(c, f"total_{key}{comp}"), "total", name="reciprocating total", line=total)
         for k, n in enumerate(c.orders):
             if n > top or amplitude[k] < tiny:
                 continue
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(c, f"{key}{comp}", k),
-                    name=f"order {int(n)}",
-                    line={
-                        "color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)],
-                        "width": 1.2,
-                        "dash": "dot",
-                    },
-                    legendgroup=f"order{n}",
-                    showlegend=first,
-                    visible=True if n <= 2 else "legendonly",
-                ),
-                row=row,
-                col=1,
+            add(
+                row,
+                y(c, f"{key}{comp}", k),
+                f"order{n}",
+                name=f"order {int(n)}",
+                line={
+                    "color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)],
+                    "width": 1.2,
+                    "dash": "dot",
+                },
+                visible=True if n <= 2 else "legendonly",
             )
-        fig.add_trace(
-            go.Scatter(
-                x=deg,
-                y=y(c, f"rotating_{key}{comp}"),
-                name="rotating masses (bare crank)",
-                line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
-                legendgroup="rotating",
-                showlegend=first,
-                visible=True if after is None else "legendonly",
-            ),
-            row=row,
-            col=1,
+        add(
+            row,
+            y(c, f"rotating_{key}{comp}"),
+            "rotating",
+            name="rotating masses (bare crank)",
+            line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
+            visible=True if after is None else "legendonly",
         )
         if after is not None:
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(after, f"before_{key}{comp}"),
-                    name="engine before balancing",
-                    line={"color": COLORS["before"], "width": 2},
-                    legendgroup="before",
-                    showlegend=first,
-                ),
-                row=row,
-                col=1,
-            )
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(after, f"after_{key}{comp}"),
-                    name="engine after balancing",
-                    line={"color": COLORS["after"], "width": 2.5},
-                    legendgroup="after",
-                    showlegend=first,
-                ),
-                row=row,
-                col=1,
-            )
+            for when, width in (("before", 2), ("after", 2.5)):
+                add(
+                    row,
+                    y(after, f"{when}_{key}{comp}"),
+                    when,
+                    name=f"engine {when} balancing",
+                    line={"color": COLORS[when], "width": width},
+                )
         fig.update_yaxes(title_text=f"{quantity} {comp} [{unit}]", row=row, col=1)
     fig.update_xaxes(
         title_text="crank angle [deg]",
