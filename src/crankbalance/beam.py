@@ -278,6 +278,29 @@ def beam_statics(
     return reactions, deflection, coefficients
 
 
+def _past_loads(x: ArrayLike, load_positions: NDArray) -> tuple[NDArray, NDArray]:
+    """Stations along the shaft and their distances past every point load (batched).
+
+    Parameters
+    ----------
+    x : array_like, shape (n,) or (..., n)
+        Stations along the shaft [m]; one row is shared by every batch of loads.
+    load_positions : ndarray, shape (..., n_loads)
+        Positions of the point loads [m].
+
+    Returns
+    -------
+    stations : ndarray, shape (..., n)
+        ``x`` broadcast to the batch of loads [m].
+    past : ndarray, shape (..., n, n_loads)
+        ``stations - load_position`` for every station and load [m] (negative before the
+        load).
+    """
+    x = np.asarray(x, dtype=float)
+    xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
+    return xx, xx[..., :, None] - load_positions[..., None, :]
+
+
 def deflection_at(
     x: NDArray,
     load_positions: NDArray,
@@ -315,11 +338,8 @@ def deflection_at(
     ----------
     Gere & Timoshenko, Mechanics of Materials (superposition, singularity functions).
     """
-    x = np.asarray(x, dtype=float)
-    xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
-    g = _influence(
-        xx[..., :, None] - load_positions[..., None, :], bending_stiffness, shear_flexibility
-    )
+    xx, past = _past_loads(x, load_positions)
+    g = _influence(past, bending_stiffness, shear_flexibility)
     return coefficients[..., :1] + coefficients[..., 1:] * xx + (g * loads[..., None, :]).sum(-1)
 
 
@@ -340,9 +360,7 @@ def bending_moment_at(x: NDArray, load_positions: NDArray, loads: NDArray) -> ND
     ndarray, shape (..., n)
         Bending-moment phasors at ``x`` [N m].
     """
-    x = np.asarray(x, dtype=float)
-    xx = x if x.ndim > 1 else np.broadcast_to(x, load_positions.shape[:-1] + x.shape)
-    arm = np.maximum(xx[..., :, None] - load_positions[..., None, :], 0.0)
+    arm = np.maximum(_past_loads(x, load_positions)[1], 0.0)
     return (arm * loads[..., None, :]).sum(-1)
 
 

@@ -411,6 +411,25 @@ def _check_strokes(strokes: int) -> None:
         raise InputError("strokes", strokes, "must be 2 or 4")
 
 
+def _check_samples(samples_per_revolution: int) -> None:
+    """Raise :class:`~crankbalance.errors.InputError` unless the angle resolution of a
+    cycle is a whole number (not a bool) of at least 36 samples per revolution.
+
+    Parameters
+    ----------
+    samples_per_revolution : int
+        Samples of one crank revolution [-].
+    """
+    if (
+        isinstance(samples_per_revolution, bool)
+        or not isinstance(samples_per_revolution, (int, np.integer))
+        or samples_per_revolution < 36
+    ):
+        raise InputError(
+            "samples_per_revolution", samples_per_revolution, "must be a whole number, at least 36"
+        )
+
+
 def tabulated_pressure(
     angle: ArrayLike, table_angle: ArrayLike, table_pressure: ArrayLike, strokes: Strokes = 4
 ) -> NDArray:
@@ -615,14 +634,7 @@ def engine_cycle(
     if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
         raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")
     check_positive("speed", speed)
-    if (
-        isinstance(samples_per_revolution, bool)
-        or not isinstance(samples_per_revolution, (int, np.integer))
-        or samples_per_revolution < 36
-    ):
-        raise InputError(
-            "samples_per_revolution", samples_per_revolution, "must be a whole number, at least 36"
-        )
+    _check_samples(samples_per_revolution)
     count = len(specs)
     cycle_angle = np.pi * strokes
     if phases is None:

@@ -45,6 +45,7 @@ from numpy.typing import ArrayLike, NDArray
 from .engine_cycle import (
     CylinderSpec,
     PressureSource,
+    _check_samples,
     _check_strokes,
     _cycle_samples,
     _pressure,
@@ -459,14 +460,7 @@ def engine_cycle_all(
     check_positive("speed", w)
     check_positive("bore", bore)
     check_positive("crank_inertia", crank_inertia)
-    if (
-        isinstance(samples_per_revolution, bool)
-        or not isinstance(samples_per_revolution, (int, np.integer))
-        or samples_per_revolution < 36
-    ):
-        raise InputError(
-            "samples_per_revolution", samples_per_revolution, "must be a whole number, at least 36"
-        )
+    _check_samples(samples_per_revolution)
     if model.articulation is not None:
         raise InputError(
             "crank_train.articulated",

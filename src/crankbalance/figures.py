@@ -390,78 +390,46 @@ def curves_figure(
         values = getattr(source, name)
         return _clean(values if k is None else values[k], tiny)
 
+    def add(row: int, values: NDArray[np.float64], group: str, **trace: Any) -> None:
+        """One curve in ``row``, in the legend (``group``) once, from the top row."""
+        scatter = go.Scatter(x=deg, y=values, legendgroup=group, showlegend=row == 1, **trace)
+        fig.add_trace(scatter, row=row, col=1)
+
     for row, comp in ((1, "x"), (2, "z")):
-        first = row == 1
-        fig.add_trace(
-            go.Scatter(
-                x=deg,
-                y=y(c, f"total_{key}{comp}"),
-                name="reciprocating total",
-                line={"color": COLORS["total"], "width": 2.5},
-                legendgroup="total",
-                showlegend=first,
-            ),
-            row=row,
-            col=1,
-        )
+        total = {"color": COLORS["total"], "width": 2.5}
+        add(row, y(c, f"total_{key}{comp}"), "total", name="reciprocating total", line=total)
         for k, n in enumerate(c.orders):
             if n > top or amplitude[k] < tiny:
                 continue
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(c, f"{key}{comp}", k),
-                    name=f"order {int(n)}",
-                    line={
-                        "color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)],
-                        "width": 1.2,
-                        "dash": "dot",
-                    },
-                    legendgroup=f"order{n}",
-                    showlegend=first,
-                    visible=True if n <= 2 else "legendonly",
-                ),
-                row=row,
-                col=1,
+            add(
+                row,
+                y(c, f"{key}{comp}", k),
+                f"order{n}",
+                name=f"order {int(n)}",
+                line={
+                    "color": ORDER_COLORS[(int(n) - 1) % len(ORDER_COLORS)],
+                    "width": 1.2,
+                    "dash": "dot",
+                },
+                visible=True if n <= 2 else "legendonly",
             )
-        fig.add_trace(
-            go.Scatter(
-                x=deg,
-                y=y(c, f"rotating_{key}{comp}"),
-                name="rotating masses (bare crank)",
-                line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
-                legendgroup="rotating",
-                showlegend=first,
-                visible=True if after is None else "legendonly",
-            ),
-            row=row,
-            col=1,
+        add(
+            row,
+            y(c, f"rotating_{key}{comp}"),
+            "rotating",
+            name="rotating masses (bare crank)",
+            line={"color": COLORS["rotating"], "width": 1.5, "dash": "dash"},
+            visible=True if after is None else "legendonly",
         )
         if after is not None:
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(after, f"before_{key}{comp}"),
-                    name="engine before balancing",
-                    line={"color": COLORS["before"], "width": 2},
-                    legendgroup="before",
-                    showlegend=first,
-                ),
-                row=row,
-                col=1,
-            )
-            fig.add_trace(
-                go.Scatter(
-                    x=deg,
-                    y=y(after, f"after_{key}{comp}"),
-                    name="engine after balancing",
-                    line={"color": COLORS["after"], "width": 2.5},
-                    legendgroup="after",
-                    showlegend=first,
-                ),
-                row=row,
-                col=1,
-            )
+            for when, width in (("before", 2), ("after", 2.5)):
+                add(
+                    row,
+                    y(after, f"{when}_{key}{comp}"),
+                    when,
+                    name=f"engine {when} balancing",
+                    line={"color": COLORS[when], "width": width},
+                )
         fig.update_yaxes(title_text=f"{quantity} {comp} [{unit}]", row=row, col=1)
     fig.update_xaxes(
         title_text="crank angle [deg]",
@@ -1117,6 +1085,40 @@ def balance_factor_sweep(study: Any) -> go.Figure:
 
 
 # --------------------------------------------------------------------------- counterweight
+def _web_drawing(fig: go.Figure, reach: float, title: str) -> go.Figure:
+    """Finish a to-scale drawing of one crank web seen along the crank axis (the
+    counterweight profile, the drilling plan): the crank axis marked at the origin, x and
+    y in mm on equal scales over ``[-reach, reach]``, the legend below.
+
+    Parameters
+    ----------
+    fig : plotly.graph_objects.Figure
+        The drawing, its traces in mm; changed in place.
+    reach : float
+        Half the width and height of the drawn square [mm].
+    title : str
+        Title of the figure.
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+        ``fig``.
+    """
+    fig.add_trace(
+        _go().Scatter(
+            x=[0.0],
+            y=[0.0],
+            mode="markers",
+            name="crank axis",
+            marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
+        )
+    )
+    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
+    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
+    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2}, title=title)
+    return fig
+
+
 def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
     """Counterweight designs: every feasible design found (a sample of at most
     ``max_points``), the Pareto front of mass versus radial space, and the least-mass and
@@ -1219,26 +1221,13 @@ def counterweight_profile(design: Any) -> go.Figure:
             marker={"color": COLORS["after"], "size": 10, "symbol": "x"},
         )
     )
-    fig.add_trace(
-        go.Scatter(
-            x=[0.0],
-            y=[0.0],
-            mode="markers",
-            name="crank axis",
-            marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
-        )
-    )
-    reach = 1.1 * max(float(props.outer_radius) * 1e3, r)
-    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
-    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
-    fig.update_layout(
-        template=TEMPLATE,
-        legend={"orientation": "h", "y": -0.2},
-        title=f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
+    return _web_drawing(
+        fig,
+        1.1 * max(float(props.outer_radius) * 1e3, r),
+        f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
         f"{design.thickness * 1e3:.2f} mm, outer radius "
         f"{float(props.outer_radius) * 1e3:.2f} mm",
     )
-    return fig
 
 
 def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
@@ -1307,29 +1296,12 @@ def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
             marker={"color": ["black", COLORS["after"]], "size": 8, "symbol": "circle-open"},
         )
     )
-    fig.add_trace(
-        go.Scatter(
-            x=[0.0],
-            y=[0.0],
-            mode="markers",
-            name="crank axis",
-            marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
-        )
-    )
-    reach = 1.15 * max(outer, r)
-    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
-    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
     what = (
         f"{holes.number} × Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep, on each of {holes.webs} webs"
         if depth > 0
         else "no hole needed"
     )
-    fig.update_layout(
-        template=TEMPLATE,
-        legend={"orientation": "h", "y": -0.2},
-        title=figure_title("Drilling plan", note=what),
-    )
-    return fig
+    return _web_drawing(fig, 1.15 * max(outer, r), figure_title("Drilling plan", note=what))
 
 
 # --------------------------------------------------------------------------- balance shaft
@@ -1353,84 +1325,33 @@ def shaft_study(study: Any) -> go.Figure:
         ),
     )
     reactions = np.atleast_2d(np.asarray(study.reactions))
+
+    def add(row: int, col: int, **trace: Any) -> None:
+        fig.add_trace(go.Scatter(**{"x": x, **trace}), row=row, col=col)
+
     for b in range(reactions.shape[1]):
-        fig.add_trace(
-            go.Scatter(
-                x=x,
-                y=reactions[:, b],
-                name=f"bearing {b + 1}",
-                line={"color": ORDER_COLORS[b % len(ORDER_COLORS)]},
-            ),
-            row=1,
-            col=1,
-        )
-    fig.add_trace(
-        go.Scatter(
-            x=x,
-            y=study.reaction_difference,
-            name="largest - smallest",
-            line={"color": COLORS["total"], "dash": "dot"},
-        ),
-        row=1,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=x,
-            y=np.asarray(study.bending_measure) * 1e6,
-            name="bending measure A",
-            line={"color": COLORS["forward"]},
-        ),
-        row=1,
-        col=2,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=x, y=study.first_frequency, name="first frequency", line={"color": COLORS["rotating"]}
-        ),
-        row=2,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=x,
-            y=study.normalised_bending,
-            name="A / max A",
-            line={"color": COLORS["forward"], "dash": "dash"},
-        ),
-        row=2,
-        col=2,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=x,
-            y=study.normalised_secondary,
-            name=f"B / max B ({study.secondary})",
-            line={"color": COLORS["backward"], "dash": "dash"},
-        ),
-        row=2,
-        col=2,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=x,
-            y=study.objective,
-            name=f"J (w = {study.weight:g})",
-            line={"color": COLORS["total"], "width": 2.5},
-        ),
-        row=2,
-        col=2,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=[100 * study.optimum_position],
-            y=[study.optimum_objective],
-            mode="markers",
-            name=f"optimum {study.optimum_position:.1%}",
-            marker={"color": COLORS["after"], "size": 12},
-        ),
-        row=2,
-        col=2,
+        color = ORDER_COLORS[b % len(ORDER_COLORS)]
+        add(1, 1, y=reactions[:, b], name=f"bearing {b + 1}", line={"color": color})
+    difference = {"color": COLORS["total"], "dash": "dot"}
+    add(1, 1, y=study.reaction_difference, name="largest - smallest", line=difference)
+    bending = np.asarray(study.bending_measure) * 1e6
+    add(1, 2, y=bending, name="bending measure A", line={"color": COLORS["forward"]})
+    add(2, 1, y=study.first_frequency, name="first frequency", line={"color": COLORS["rotating"]})
+    for y, name, color in (
+        (study.normalised_bending, "A / max A", COLORS["forward"]),
+        (study.normalised_secondary, f"B / max B ({study.secondary})", COLORS["backward"]),
+    ):
+        add(2, 2, y=y, name=name, line={"color": color, "dash": "dash"})
+    objective = {"color": COLORS["total"], "width": 2.5}
+    add(2, 2, y=study.objective, name=f"J (w = {study.weight:g})", line=objective)
+    add(
+        2,
+        2,
+        x=[100 * study.optimum_position],
+        y=[study.optimum_objective],
+        mode="markers",
+        name=f"optimum {study.optimum_position:.1%}",
+        marker={"color": COLORS["after"], "size": 12},
     )
     fig.update_yaxes(title_text="load [N]", row=1, col=1)
     fig.update_yaxes(title_text="A [mm²]", row=1, col=2)
@@ -1570,131 +1491,139 @@ def sensitivity_figure(result: Any, indicators: tuple[str, ...] | None = None) -
     return fig
 
 
-def bench_figure(result: Any) -> go.Figure:
-    """Rotor test bench time histories: speed, motor and friction torque, bearing loads
-    (:class:`~crankbalance.rotor_bench.BenchResult`)."""
+def _stacked_figure(
+    x: ArrayLike,
+    panels: Sequence[tuple[str, str, Sequence[dict[str, Any]]]],
+    x_title: str,
+    title: str,
+    height: int,
+    **subplots: Any,
+) -> go.Figure:
+    """Histories stacked in rows over one shared x axis (the bench and engine-cycle figures).
+
+    Parameters
+    ----------
+    x : array_like
+        The shared abscissa of every trace that gives none of its own (time [s], crank
+        angle [deg]).
+    panels : sequence of (str, str, sequence of dict)
+        One per row, top to bottom: its subplot title, its y-axis title (the unit, e.g.
+        ``"[N]"``) and its traces, each the keyword arguments of a
+        ``plotly.graph_objects.Scatter`` (``name``, ``y``, ``line``, ...; ``x`` when not
+        the shared one).
+    x_title : str
+        Title of the x axis, written under the bottom row.
+    title : str
+        Title of the figure.
+    height : int
+        Height of the figure [px].
+    **subplots
+        Further arguments of ``plotly.subplots.make_subplots`` (e.g. ``row_heights``).
+
+    Returns
+    -------
+    plotly.graph_objects.Figure
+        The rows in order, the traces of a row in order, the legend below the figure.
+    """
     go = _go()
-    t = np.asarray(result.time)
     fig = _subplots(
-        rows=3,
+        rows=len(panels),
         cols=1,
         shared_xaxes=True,
         vertical_spacing=0.06,
-        subplot_titles=("Speed", "Torque", "Bearing loads"),
+        subplot_titles=tuple(panel[0] for panel in panels),
+        **subplots,
     )
-    fig.add_trace(
-        go.Scatter(
-            x=t,
-            y=np.asarray(result.speed) * 30 / math.pi,
-            name="speed",
-            line={"color": COLORS["total"]},
-        ),
-        row=1,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=t, y=result.motor_torque, name="motor torque", line={"color": COLORS["forward"]}
-        ),
-        row=2,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=t,
-            y=result.friction_torque,
-            name="friction torque",
-            line={"color": COLORS["backward"]},
-        ),
-        row=2,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=t, y=result.bearing_load_a, name="bearing A", line={"color": COLORS["counterweight"]}
-        ),
-        row=3,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(x=t, y=result.bearing_load_b, name="bearing B", line={"color": COLORS["after"]}),
-        row=3,
-        col=1,
-    )
-    fig.update_yaxes(title_text="[rpm]", row=1, col=1)
-    fig.update_yaxes(title_text="[N·m]", row=2, col=1)
-    fig.update_yaxes(title_text="[N]", row=3, col=1)
-    fig.update_xaxes(title_text="time [s]", row=3, col=1)
+    for row, (_, _, traces) in enumerate(panels, start=1):
+        for trace in traces:
+            fig.add_trace(go.Scatter(**{"x": x, **trace}), row=row, col=1)
+    for row, (_, y_title, _) in enumerate(panels, start=1):
+        fig.update_yaxes(title_text=y_title, row=row, col=1)
+    fig.update_xaxes(title_text=x_title, row=len(panels), col=1)
     fig.update_layout(
         template=TEMPLATE,
-        height=750,
+        height=height,
         legend={"orientation": "h", "y": -0.08},
-        title=f"Test bench: required torque {result.required_torque:.4g} N·m, "
-        f"friction power {result.friction_power:.4g} W",
+        title=title,
     )
     return fig
+
+
+def bench_figure(result: Any) -> go.Figure:
+    """Rotor test bench time histories: speed, motor and friction torque, bearing loads
+    (:class:`~crankbalance.rotor_bench.BenchResult`)."""
+    speed = {
+        "name": "speed",
+        "y": np.asarray(result.speed) * 30 / math.pi,
+        "line": {"color": COLORS["total"]},
+    }
+    torques = [
+        {"name": "motor torque", "y": result.motor_torque, "line": {"color": COLORS["forward"]}},
+        {
+            "name": "friction torque",
+            "y": result.friction_torque,
+            "line": {"color": COLORS["backward"]},
+        },
+    ]
+    loads = [
+        {
+            "name": "bearing A",
+            "y": result.bearing_load_a,
+            "line": {"color": COLORS["counterweight"]},
+        },
+        {"name": "bearing B", "y": result.bearing_load_b, "line": {"color": COLORS["after"]}},
+    ]
+    return _stacked_figure(
+        np.asarray(result.time),
+        (
+            ("Speed", "[rpm]", [speed]),
+            ("Torque", "[N·m]", torques),
+            ("Bearing loads", "[N]", loads),
+        ),
+        "time [s]",
+        f"Test bench: required torque {result.required_torque:.4g} N·m, "
+        f"friction power {result.friction_power:.4g} W",
+        750,
+    )
 
 
 def cycle_figure(result: Any) -> go.Figure:
     """Engine-cycle histories versus crank angle: torques, bearing load and shaking forces
     (:class:`~crankbalance.engine_cycle.CycleResult`)."""
-    go = _go()
-    deg = np.degrees(np.asarray(result.angle))
-    fig = _subplots(
-        rows=3,
-        cols=1,
-        shared_xaxes=True,
-        vertical_spacing=0.06,
-        subplot_titles=("Torques", "Main-bearing load", "Shaking forces"),
-    )
-    for name, values, color in (
-        ("gas", result.gas_torque, COLORS["backward"]),
-        ("inertia", result.inertia_torque, COLORS["forward"]),
-        ("friction", result.friction_torque, COLORS["rotating"]),
-        ("net", result.net_torque, COLORS["total"]),
-    ):
-        fig.add_trace(
-            go.Scatter(x=deg, y=values, name=f"{name} torque", line={"color": color}), row=1, col=1
+    torques = [
+        {"name": f"{name} torque", "y": values, "line": {"color": color}}
+        for name, values, color in (
+            ("gas", result.gas_torque, COLORS["backward"]),
+            ("inertia", result.inertia_torque, COLORS["forward"]),
+            ("friction", result.friction_torque, COLORS["rotating"]),
+            ("net", result.net_torque, COLORS["total"]),
         )
-    fig.add_trace(
-        go.Scatter(
-            x=deg, y=result.bearing_load, name="bearing load", line={"color": COLORS["after"]}
+    ]
+    load = {"name": "bearing load", "y": result.bearing_load, "line": {"color": COLORS["after"]}}
+    shaking = [
+        {
+            "name": "shaking in-line",
+            "y": result.shaking_inline,
+            "line": {"color": COLORS["forward"], "dash": "dash"},
+        },
+        {
+            "name": "shaking transverse",
+            "y": result.shaking_transverse,
+            "line": {"color": COLORS["backward"], "dash": "dash"},
+        },
+    ]
+    return _stacked_figure(
+        np.degrees(np.asarray(result.angle)),
+        (
+            ("Torques", "[N·m]", torques),
+            ("Main-bearing load", "[N]", [load]),
+            ("Shaking forces", "[N]", shaking),
         ),
-        row=2,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=deg,
-            y=result.shaking_inline,
-            name="shaking in-line",
-            line={"color": COLORS["forward"], "dash": "dash"},
-        ),
-        row=3,
-        col=1,
-    )
-    fig.add_trace(
-        go.Scatter(
-            x=deg,
-            y=result.shaking_transverse,
-            name="shaking transverse",
-            line={"color": COLORS["backward"], "dash": "dash"},
-        ),
-        row=3,
-        col=1,
-    )
-    fig.update_yaxes(title_text="[N·m]", row=1, col=1)
-    fig.update_yaxes(title_text="[N]", row=2, col=1)
-    fig.update_yaxes(title_text="[N]", row=3, col=1)
-    fig.update_xaxes(title_text="crank angle [deg]", row=3, col=1)
-    fig.update_layout(
-        template=TEMPLATE,
-        height=750,
-        legend={"orientation": "h", "y": -0.08},
-        title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
+        "crank angle [deg]",
+        f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: "
         f"friction power {result.friction_power:.4g} W",
+        750,
     )
-    return fig
 
 
 # ------------------------------------------------------------------ main-bearing loads
@@ -1899,69 +1828,51 @@ def engine_torque_figure(result: Any) -> go.Figure:
     :class:`~crankbalance.engine_cycle.CycleResult` gets :func:`cycle_figure`."""
     if not hasattr(result, "cylinder_gas_torque"):
         return cycle_figure(result)
-    go = _go()
     deg = np.degrees(np.asarray(result.angle))
-    fig = _subplots(
-        rows=3,
-        cols=1,
-        shared_xaxes=True,
-        vertical_spacing=0.06,
-        row_heights=[0.4, 0.4, 0.2],
-        subplot_titles=("Crank torque", "Torque of each cylinder (gas + inertia)", "Speed"),
-    )
-    for name, values, color in (
-        ("gas", result.gas_torque, COLORS["backward"]),
-        ("inertia", result.inertia_torque, COLORS["forward"]),
-        ("total", result.torque, COLORS["total"]),
-    ):
-        fig.add_trace(
-            go.Scatter(x=deg, y=values, name=f"{name} torque", line={"color": color}), row=1, col=1
+    torques = [
+        {"name": f"{name} torque", "y": values, "line": {"color": color}}
+        for name, values, color in (
+            ("gas", result.gas_torque, COLORS["backward"]),
+            ("inertia", result.inertia_torque, COLORS["forward"]),
+            ("total", result.torque, COLORS["total"]),
         )
-    fig.add_trace(
-        go.Scatter(
-            x=[deg[0], deg[-1]],
-            y=[result.mean_torque] * 2,
-            mode="lines",
-            name="mean torque",
-            line={"color": COLORS["after"], "dash": "dash"},
-        ),
-        row=1,
-        col=1,
+    ]
+    torques.append(
+        {
+            "x": [deg[0], deg[-1]],
+            "y": [result.mean_torque] * 2,
+            "mode": "lines",
+            "name": "mean torque",
+            "line": {"color": COLORS["after"], "dash": "dash"},
+        }
     )
     shares = np.asarray(result.cylinder_gas_torque) + np.asarray(result.cylinder_inertia_torque)
-    for c, values in enumerate(shares):
-        fig.add_trace(
-            go.Scatter(
-                x=deg,
-                y=values,
-                name=f"cylinder {c + 1}",
-                line={"color": ORDER_COLORS[c % len(ORDER_COLORS)], "width": 1},
-            ),
-            row=2,
-            col=1,
-        )
-    fig.add_trace(
-        go.Scatter(
-            x=deg,
-            y=np.asarray(result.speed) * 30 / math.pi,
-            name="speed",
-            line={"color": COLORS["total"]},
+    cylinders = [
+        {
+            "name": f"cylinder {c + 1}",
+            "y": values,
+            "line": {"color": ORDER_COLORS[c % len(ORDER_COLORS)], "width": 1},
+        }
+        for c, values in enumerate(shares)
+    ]
+    speed = {
+        "name": "speed",
+        "y": np.asarray(result.speed) * 30 / math.pi,
+        "line": {"color": COLORS["total"]},
+    }
+    return _stacked_figure(
+        deg,
+        (
+            ("Crank torque", "[N·m]", torques),
+            ("Torque of each cylinder (gas + inertia)", "[N·m]", cylinders),
+            ("Speed", "[rpm]", [speed]),
         ),
-        row=3,
-        col=1,
-    )
-    fig.update_yaxes(title_text="[N·m]", row=1, col=1)
-    fig.update_yaxes(title_text="[N·m]", row=2, col=1)
-    fig.update_yaxes(title_text="[rpm]", row=3, col=1)
-    fig.update_xaxes(title_text="crank angle from the first firing TDC [deg]", row=3, col=1)
-    fig.update_layout(
-        template=TEMPLATE,
-        height=800,
-        legend={"orientation": "h", "y": -0.08},
-        title=f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: mean torque "
+        "crank angle from the first firing TDC [deg]",
+        f"Engine cycle at {result.speed_mean * 30 / math.pi:.0f} rpm: mean torque "
         f"{result.mean_torque:.4g} N·m, speed fluctuation {100 * result.speed_fluctuation:.3g} %",
+        800,
+        row_heights=[0.4, 0.4, 0.2],
     )
-    return fig
 
 
 def torsional_figure(study: Any) -> go.Figure:
