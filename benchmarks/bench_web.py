@@ -14,8 +14,8 @@ named:
   plotly.js in the page; the server's ``render.to_image`` only where the browser cannot),
   after a first one, for the 3-D crank of the Engine tab and the orders bar of the Results
   tab in turn;
-- edit -> figure: typing a new crank radius or speed of the V12 (12 cylinders) until the
-  page has redrawn the figure (plotly's ``afterplot``); p50 and p95 of ``--edits`` edits,
+- edit -> figure: typing a new crank radius of the V12 (12 cylinders) until the page has
+  redrawn the 3-D crank (plotly's ``afterplot``); p50 and p95 of ``--edits`` edits,
   in each of ``--sessions`` pages editing different engines at once.
 
 The references, measured in the same run in this process: for an edit, the server's own
@@ -144,17 +144,13 @@ async def png_downloads(page: Any, count: int) -> dict[str, list[float]]:
 
 
 async def edits(page: Any, count: int, offset: int, errors: list[str]) -> list[float]:
-    """``count`` edits of the V12 (crank radius and speed in turn), each to a new value
-    (never the preset's 47 mm: an unchanged value redraws nothing and would be waited for
-    in vain)."""
+    """``count`` edits of the V12's crank radius, each to a new value (never the preset's
+    47 mm): an edit that leaves the 3-D crank as it is (the speed, or the same value)
+    redraws nothing (``FigureCard.refresh``) and would be waited for in vain."""
     await page.evaluate(COUNT_PLOTS)
     times = []
     for k in range(count):
-        key, value = (
-            ("crank_radius", f"{40 + (k + offset) % 9}.5 mm")
-            if k % 2 == 0
-            else ("speed", f"{5000 + 10 * (k + offset)} rpm")
-        )
+        key, value = "crank_radius", f"{40 + (k + offset) % 9}.5 mm"
         plots = await page.evaluate("() => window.cbPlots")
         t0 = time.perf_counter()
         await page.locator(f"[data-testid=field-{key}]").first.fill(value)

@@ -176,6 +176,8 @@ class FigureCard:
         #: a WebGL figure not sent yet (see :meth:`refresh`) and the timer that sends it
         self.held: dict[str, Any] | None = None
         self.draw_later: Any | None = None
+        #: the figure the browser has (JSON), sent again only when it changes
+        self.sent: str | None = None
         with ui.card().classes("w-full") as self.card:
             with ui.element("div").classes(
                 "w-full flex flex-wrap items-center justify-between gap-1"
@@ -197,6 +199,8 @@ class FigureCard:
                 )
 
     def refresh(self) -> None:
+        from plotly.utils import PlotlyJSONEncoder
+
         try:
             self.figure = self.builder()
         except InputError as error:
@@ -204,6 +208,7 @@ class FigureCard:
             self.note.set_text(str(error))
         if self.figure is None:
             self.plot.set_visibility(False)
+            self.sent = None
             return
         self.note.set_text("")
         self.plot.set_visibility(True)
@@ -222,6 +227,12 @@ class FigureCard:
         )
         shown["layout"] = layout
         self.stale = False
+        # an edit that leaves the figure as it is (the speed, for the 3-D crank) redraws
+        # nothing: a 3-D scene costs the browser a fifth of a second in software WebGL
+        sent = json.dumps(shown, cls=PlotlyJSONEncoder)
+        if sent == self.sent:
+            return
+        self.sent = sent
         if webgl(shown) and not self.plot.client.has_socket_connection:
             # the page is being built: its first paint (the form and the 2-D results) comes
             # first, the 3-D scene (software WebGL: the heaviest drawing of the page) after
