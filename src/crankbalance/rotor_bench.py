@@ -188,8 +188,8 @@ def disc_rotor(
     mass = (
         density * np.pi / 4 * (disc_diameter**2 * disc_thickness + journal_diameter**2 * journals)
     )
-    inertia = (
-        density * np.pi / 32 * (disc_diameter**4 * disc_thickness + journal_diameter**4 * journals)
+    inertia = stepped_rotor_inertia(
+        disc_diameter, disc_thickness, journal_diameter, length, density
     )
     if hole_mass >= mass:
         raise InputError("hole_mass", hole_mass, f"must be less than the rotor mass {mass:.4g} kg")
