@@ -166,6 +166,12 @@ async def test_save_then_load_round_trip(user: User, form) -> None:
     assert form.element("field-cylinders").value == "3"
     assert len(form.rows("orders-table")) == 6
     assert form.text("general-error") == ""
+    # the preset selector names no preset once the form holds an uploaded project, and the
+    # preset chosen before can be chosen again
+    assert form.element("preset").value is None, "the selector still names inline4"
+    with user:
+        form.element("preset").value = "inline4"
+    assert form.element("field-cylinders").value == "4"
 
 
 async def test_two_users_keep_their_own_projects() -> None:

@@ -153,7 +153,7 @@ class Page:
             message = f"{error}; loaded {DEFAULT_PRESET} instead"
             self.project = Project.from_preset(DEFAULT_PRESET)
             name = DEFAULT_PRESET
-        self.preset_name = name
+        self.preset_name: str | None = name
         self.startup_message = message
 
     # ================================================================== layout
@@ -313,8 +313,7 @@ class Page:
     def on_preset(self, event: Any) -> None:
         if not event.value or event.value == self.preset_name:
             return
-        self.load(Project.from_preset(event.value))
-        self.preset_name = event.value
+        self.load(Project.from_preset(event.value), preset=event.value)
 
     def on_tab(self, event: Any) -> None:
         self.open_tab(str(event.value))
@@ -375,8 +374,13 @@ class Page:
         self.general.set_text(message)
         ui.notify(message, type="negative", multi_line=True)
 
-    def load(self, project: Project) -> None:
+    def load(self, project: Project, preset: str | None = None) -> None:
+        """Show ``project`` in the form and every built tab. The preset selector shows
+        ``preset``, the preset it is, and is empty for any other project (an uploaded file,
+        an explorer candidate), so that it never names an engine the form does not hold."""
         self.project = project
+        self.preset_name = preset
+        self.preset_select.set_value(preset)
         for tab in self.built_tabs():
             tab.reset()
         for key, element in self.inputs.items():
