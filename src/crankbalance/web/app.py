@@ -113,6 +113,18 @@ BUSY_JS = """
 """
 
 
+def warm_up() -> None:
+    """Compute the default engine and build its 3-D crank once (the server runs this in the
+    background as it starts): the first page of a fresh server would otherwise wait for the
+    imports of the physics and of plotly's figure classes (about 0.6 s of a first load on
+    an idle machine, seconds on a busy one)."""
+    from .. import figures
+
+    c = Project.from_preset(DEFAULT_PRESET).compute()
+    if c is not None:
+        figures.crank_3d(c.analysis.model, c.study).to_plotly_json()
+
+
 def root(preset: str | None = None) -> None:
     """The page: ``/`` or ``/?preset=v8-crossplane``."""
     Page(preset).build()

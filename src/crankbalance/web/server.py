@@ -7,6 +7,7 @@ import secrets
 import socket
 import subprocess
 import sys
+import threading
 import time
 import urllib.request
 from collections.abc import Iterator
@@ -26,6 +27,7 @@ def serve(
 
     webapp.DEFAULT_PRESET = preset  # the server's default, set once before serving
     api.register(app)
+    app.on_startup(lambda: threading.Thread(target=webapp.warm_up, daemon=True).start())
     ui.run(
         webapp.root,
         host="127.0.0.1",
