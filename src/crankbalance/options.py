@@ -486,7 +486,26 @@ MAX_MAIN_BEARINGS = 64
 MAX_CLEARANCE_STIFFNESS = 1e10
 
 
-class BearingOptions(CombustionOptions):
+class CrankDimensionOptions(StudyOptions):
+    """The crank's dimensions ``bearings`` and ``torsional`` may be given; empty ones are
+    the engine's, from its crank radius and web offset
+    (:func:`crankbalance.studies.crank.crank_dimensions`), the same for both."""
+
+    journal_diameter: Length | None = Field(
+        None, title="Main journal diameter", description=ENGINE_DIMENSION_TEXT
+    )
+    pin_diameter: Length | None = Field(
+        None, title="Crankpin diameter", description=ENGINE_DIMENSION_TEXT
+    )
+    web_thickness: Length | None = Field(
+        None, title="Web thickness (axial)", description=ENGINE_DIMENSION_TEXT
+    )
+    web_width: Length | None = Field(
+        None, title="Web width (across the arm)", description=ENGINE_DIMENSION_TEXT
+    )
+
+
+class BearingOptions(CombustionOptions, CrankDimensionOptions):
     """``bearings``: main-bearing loads and crank bending over the engine cycle
     (docs/main_bearings.md). Crank dimensions left empty are taken from the crank radius
     and the web offset (proportions of an automotive crank,
@@ -512,18 +531,6 @@ class BearingOptions(CombustionOptions):
         max_length=2 * MAX_MAIN_BEARINGS,
         title="Counterweight webs (0/1, two per throw)",
         description="empty: the engine file's",
-    )
-    journal_diameter: Length | None = Field(
-        None, title="Main-journal diameter", description=ENGINE_DIMENSION_TEXT
-    )
-    pin_diameter: Length | None = Field(
-        None, title="Crankpin diameter", description=ENGINE_DIMENSION_TEXT
-    )
-    web_thickness: Length | None = Field(
-        None, title="Web thickness (axial)", description=ENGINE_DIMENSION_TEXT
-    )
-    web_width: Length | None = Field(
-        None, title="Web width (across the arm)", description=ENGINE_DIMENSION_TEXT
     )
     modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
     poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
@@ -894,7 +901,7 @@ Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
 DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
 
 
-class TorsionalOptions(CombustionOptions):
+class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     """``torsional``: the crank train's lumped torsional model (docs/torsional.md): the
     speed range and orders, the throws' inertia and stiffness (given, or Carter's formula
     from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion.
@@ -910,22 +917,12 @@ class TorsionalOptions(CombustionOptions):
     throw_stiffness: TorsionalStiffness | None = Field(
         None, title="Stiffness between throws (default: Carter's formula, an approximation)"
     )
-    journal_diameter: Length | None = Field(
-        None, title="Main journal diameter", description=ENGINE_DIMENSION_TEXT
-    )
-    pin_diameter: Length | None = Field(
-        None, title="Crankpin diameter", description=ENGINE_DIMENSION_TEXT
-    )
     journal_length: Length | None = Field(
         None, title="Main journal length", description=ENGINE_DIMENSION_TEXT
     )
     pin_length: Length | None = Field(
         None, title="Crankpin length", description=ENGINE_DIMENSION_TEXT
     )
-    web_thickness: Length | None = Field(
-        None, title="Web thickness", description=ENGINE_DIMENSION_TEXT
-    )
-    web_width: Length | None = Field(None, title="Web width", description=ENGINE_DIMENSION_TEXT)
     shear_modulus: Modulus = Field(80e9, title="Shear modulus of the crank")
     front_inertia: Inertia = Field(
         DEFAULT_FRONT_INERTIA, title="Pulley, timing gear and damper hub"
