@@ -116,6 +116,15 @@ def test_one_cylinder_of_an_engine_turns_the_engines_inertia(capsys) -> None:
     assert one["cylinder"]["crank_inertia_kg_m2"] == pytest.approx(
         rotating_inertia(as_model("inline4")), rel=1e-12
     )
+    sweep = _json(
+        capsys,
+        ["sensitivity", "--engine", "inline4", "--balance-factors", "0.5", "--format", "json"],
+    )
+    assert sweep["crank_inertia_from"] == "engine"
+    assert sweep["crank_inertia_kg_m2"] == pytest.approx(
+        rotating_inertia(as_model("inline4")), rel=1e-12
+    )
+    assert sweep["combustion"] == one["combustion"]
 
 
 def test_the_single_cylinder_cycle_keeps_the_thesis_inertia(capsys) -> None:
@@ -164,6 +173,7 @@ def test_text_outputs_show_what_was_assumed(capsys) -> None:
         ["bearings", "inline4", "--samples", "72"],
         ["torsional", "--engine", "inline4", "--speed-points", "20"],
         ["cycle", "--engine", "inline4"],
+        ["sensitivity", "--engine", "inline4", "--balance-factors", "0.5"],
     ):
         code, out, err = run_cli(args, capsys)
         assert code == 0, err

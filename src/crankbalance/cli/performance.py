@@ -947,16 +947,17 @@ def _echo_cycle(payload: dict[str, Any]) -> None:
 
 
 def _assumed_text(payload: dict[str, Any]) -> str:
-    """One line of the crank + flywheel inertia and the combustion ``cycle`` took."""
+    """One line of the crank + flywheel inertia and the combustion ``cycle`` or
+    ``sensitivity`` took."""
     from ..studies.performance import combustion_text
 
     if "engine" in payload:
         e = payload["engine"]
         inertia, flywheel = e["crank_inertia_kg_m2"], e["flywheel_inertia_kg_m2"]
         origin = e["crank_inertia_from"]
-    else:
-        inertia, flywheel = payload["cylinder"]["crank_inertia_kg_m2"], 0.0
-        origin = payload["crank_inertia_from"]
+    else:  # one cylinder (cycle) or the sweep of one cylinder (sensitivity)
+        inertia = payload.get("cylinder", payload)["crank_inertia_kg_m2"]
+        flywheel, origin = 0.0, payload["crank_inertia_from"]
     source = {
         "typed": "typed",
         "engine": "the engine's: front end + throws + flywheel, as 'torsional' and 'bearings'",
@@ -998,6 +999,7 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
     from ..engine_cycle import balance_sensitivity
     from ..options import SensitivityOptions
+    from ..studies.performance import combustion_summary
 
     values = {
         **options,
@@ -1035,6 +1037,7 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
         "strokes": strokes,
         "crank_inertia_kg_m2": cylinder.crank_inertia,
         "crank_inertia_from": _inertia_from(o),
+        "combustion": combustion_summary(o),
         "points": [dict(zip(header, row, strict=True)) for row in rows],
     }
     require_finite(payload)
@@ -1057,4 +1060,5 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
             "shake_x N",
             "shake N",
         ]
+        click.echo(_assumed_text(payload))
         echo_table(short, [[number(v) for v in row] for row in rows])

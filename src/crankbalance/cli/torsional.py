@@ -75,6 +75,8 @@ def _options(function: Any) -> Any:
         info = TorsionalOptions.model_fields[name]
         default = default_text(TorsionalOptions, name)
         shown = f" [default: {default}]" if default else ""
+        if not default and info.description:
+            shown = f" [{info.description}]"
         if name.endswith("_stiffness") and name != "damper_stiffness":
             shown += " E.g. '5e5 N*m/rad'."
         function = click.option(option_name(name), default=None, help=f"{info.title}.{shown}")(
