@@ -17,6 +17,22 @@ from .conftest import run_cli
 
 DAMPER = ["--damper-inertia", "0.004 kg*m^2", "--damper-frequency", "330 Hz"]
 BASE = ["torsional", "--engine", "inline6", "--speed-points", "40"]
+#: the crank dimensions of the worked example of docs/torsional.md, typed (the defaults are
+#: the engine's, from its crank radius and web offset: test_untyped_dimensions_...)
+TYPED = [
+    "--journal-diameter",
+    "60 mm",
+    "--pin-diameter",
+    "50 mm",
+    "--journal-length",
+    "25 mm",
+    "--pin-length",
+    "25 mm",
+    "--web-thickness",
+    "20 mm",
+    "--web-width",
+    "90 mm",
+]
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +43,7 @@ def payload() -> dict:
 
     result = CliRunner().invoke(
         cli,
-        [*BASE, *DAMPER, "--damper-allowed-power", "200 W", "--format", "json"],
+        [*BASE, *TYPED, *DAMPER, "--damper-allowed-power", "200 W", "--format", "json"],
     )
     assert result.exit_code == 0, result.output
     return json.loads(result.output)
@@ -42,6 +58,7 @@ def test_json_matches_the_physics(payload: dict) -> None:
     assert [m["name"] for m in payload["masses"]][:2] == ["damper ring", "front"]
     assert stiffness[0] == pytest.approx(0.004 * (2 * math.pi * 330.0) ** 2, rel=1e-9)
     np.testing.assert_allclose(stiffness[1:], k, rtol=1e-9)
+    assert len(payload["crank"]["dimensions"]["typed"]) == 6  # typed: they win
     np.testing.assert_allclose(inertia[2:8], tv.throw_inertias(model), rtol=1e-9)
     modes = tv.natural_modes(inertia, stiffness)
     got = [m["frequency_rad_s"] for m in payload["modes"]]
@@ -175,7 +192,7 @@ def test_worked_example_of_the_docs(payload: dict, capsys) -> None:
     assert math.degrees(r["crank_twist_rad"]) == pytest.approx(0.4906, abs=5e-5)
     assert r["max_section_torque_Nm"] == pytest.approx(1135.8, abs=0.05)
     assert r["damper_power_W"] == pytest.approx(359.5, abs=0.05)
-    code, out, err = run_cli([*BASE, "--format", "json"], capsys)
+    code, out, err = run_cli([*BASE, *TYPED, "--format", "json"], capsys)
     assert code == 0, err
     bare = json.loads(out)
     assert bare["modes"][0]["frequency_Hz"] == pytest.approx(442.8, abs=0.05)

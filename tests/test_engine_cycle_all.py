@@ -394,7 +394,16 @@ def test_cli_cycle_refuses(args, needle, capsys, tmp_path, monkeypatch):
 
 def test_cli_cycle_too_small_inertia_names_the_option_and_the_flywheel(capsys):
     code, _, err = _cli(
-        ["cycle", "--engine", "paper-inline3", "--speed-fluctuation-target", "0.01"], capsys
+        [
+            "cycle",
+            "--engine",
+            "paper-inline3",
+            "--crank-inertia",
+            "0.006 kg*m^2",  # below the cylinders' reciprocating share
+            "--speed-fluctuation-target",
+            "0.01",
+        ],
+        capsys,
     )
     assert code == 2 and err.startswith("error: --crank-inertia")
     assert "needs" in err and "--flywheel-inertia" in err

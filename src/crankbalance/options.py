@@ -404,10 +404,29 @@ FluctuationTarget = Annotated[float, BeforeValidator(_factor), Field(ge=1e-6, le
 MAX_PRESSURE_TABLES = 64
 
 
+#: the crank + flywheel inertia of ``cycle`` of the cylinder typed as options (without
+#: ``engine``): the thesis' motorcycle single (Hoem and Røsholm 2016) [kg m^2]
+THESIS_CRANK_INERTIA = 0.006
+#: what the torsional model and, through :func:`crankbalance.studies.crank.
+#: rotating_inertia`, every study of an engine assume of the front end (pulley, timing gear,
+#: damper hub) and of the flywheel with clutch when not typed: an automotive engine's
+#: [kg m^2] (docs/torsional.md)
+DEFAULT_FRONT_INERTIA = 0.010
+DEFAULT_FLYWHEEL_INERTIA = 0.15
+#: what an empty crank + flywheel inertia means in the option descriptions
+ENGINE_INERTIA_TEXT = (
+    "empty: the engine's, front end + throws + flywheel as the torsional model "
+    f"({DEFAULT_FRONT_INERTIA:g} + throws + {DEFAULT_FLYWHEEL_INERTIA:g} kg*m^2)"
+)
+#: what an empty crank dimension means in the option descriptions
+ENGINE_DIMENSION_TEXT = "empty: from the crank radius and web offset (as every study)"
+
+
 class CombustionOptions(StudyOptions):
     """The gas pressure of a cycle: the Wiebe model (Hoem and Røsholm 2016) or pressure
     tables, one for every cylinder or one per cylinder; shared by ``cycle``,
-    ``sensitivity`` and ``torsional``."""
+    ``sensitivity``, ``bearings`` and ``torsional`` with the same defaults (the thesis'
+    combustion, docs/engine_cycle.md)."""
 
     compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
     ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
@@ -431,7 +450,12 @@ class CycleOptions(CombustionOptions):
     stroke: Length = Field(0.0538, title="Stroke")
     rod_length: Length = Field(0.1035, title="Conrod length")
     reciprocating_mass: Mass = Field(0.282, title="Reciprocating mass")
-    crank_inertia: Inertia = Field(0.006, title="Crank + flywheel inertia")
+    crank_inertia: Inertia | None = Field(
+        None,
+        title="Crank + flywheel inertia",
+        description=f"empty: {THESIS_CRANK_INERTIA:g} kg*m^2 (the thesis' single) without "
+        f"an engine; with one, {ENGINE_INERTIA_TEXT.removeprefix('empty: ')}",
+    )
     journal_diameter: Length = Field(0.03, title="Main journal diameter")
     friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
     speed: Speed = Field(9000 * _RPM, title="Mean speed")
@@ -462,10 +486,32 @@ MAX_MAIN_BEARINGS = 64
 MAX_CLEARANCE_STIFFNESS = 1e10
 
 
-class BearingOptions(CombustionOptions):
+class CrankDimensionOptions(StudyOptions):
+    """The crank's dimensions ``bearings`` and ``torsional`` may be given; empty ones are
+    the engine's, from its crank radius and web offset
+    (:func:`crankbalance.studies.crank.crank_dimensions`), the same for both."""
+
+    journal_diameter: Length | None = Field(
+        None, title="Main journal diameter", description=ENGINE_DIMENSION_TEXT
+    )
+    pin_diameter: Length | None = Field(
+        None, title="Crankpin diameter", description=ENGINE_DIMENSION_TEXT
+    )
+    web_thickness: Length | None = Field(
+        None, title="Web thickness (axial)", description=ENGINE_DIMENSION_TEXT
+    )
+    web_width: Length | None = Field(
+        None, title="Web width (across the arm)", description=ENGINE_DIMENSION_TEXT
+    )
+
+
+class BearingOptions(CombustionOptions, CrankDimensionOptions):
     """``bearings``: main-bearing loads and crank bending over the engine cycle
     (docs/main_bearings.md). Crank dimensions left empty are taken from the crank radius
-    and the web offset (proportions of an automotive crank, docs/main_bearings.md)."""
+    and the web offset (proportions of an automotive crank,
+    :func:`crankbalance.studies.crank.crank_dimensions`), an empty crank + flywheel inertia
+    is the engine's (:func:`crankbalance.studies.crank.rotating_inertia`) and the combustion
+    is :class:`CombustionOptions`': the same as ``cycle --engine`` and ``torsional``."""
 
     speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
     samples: Whole = Field(360, ge=36, le=3600, title="Samples per revolution")
@@ -473,12 +519,8 @@ class BearingOptions(CombustionOptions):
     bore: Length | None = Field(
         None, title="Bore", description="empty: square engine (bore = stroke)"
     )
-    # a multi-cylinder automotive engine's combustion (CombustionOptions' defaults are the
-    # thesis' motorcycle single)
-    compression_ratio: Number = Field(10.5, gt=1, le=100, title="Compression ratio")
-    ignition: Angle = Field(math.radians(-20.0), title="Start of combustion from firing TDC")
-    crank_inertia: Inertia = Field(
-        0.15, title="Crank + flywheel inertia", description="sets the speed fluctuation"
+    crank_inertia: Inertia | None = Field(
+        None, title="Crank + flywheel inertia", description=ENGINE_INERTIA_TEXT
     )
     balance_factor: Factor | None = Field(
         None, title="Balance factor", description="empty: the engine file's"
@@ -490,10 +532,6 @@ class BearingOptions(CombustionOptions):
         title="Counterweight webs (0/1, two per throw)",
         description="empty: the engine file's",
     )
-    journal_diameter: Length | None = Field(None, title="Main-journal diameter")
-    pin_diameter: Length | None = Field(None, title="Crankpin diameter")
-    web_thickness: Length | None = Field(None, title="Web thickness (axial)")
-    web_width: Length | None = Field(None, title="Web width (across the arm)")
     modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
     poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
     bearing: list[Position] | None = Field(
@@ -863,10 +901,12 @@ Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
 DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
 
 
-class TorsionalOptions(CombustionOptions):
+class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     """``torsional``: the crank train's lumped torsional model (docs/torsional.md): the
     speed range and orders, the throws' inertia and stiffness (given, or Carter's formula
-    from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion."""
+    from the dimensions), front end, flywheel, damper, load, and the Wiebe combustion.
+    Crank dimensions left empty are those ``bearings`` uses
+    (:func:`crankbalance.studies.crank.crank_dimensions`)."""
 
     engine: str | None = Field(None, title="Engine file or preset")
     speed_min: Speed = Field(600 * _RPM, title="Lowest speed")
@@ -877,18 +917,20 @@ class TorsionalOptions(CombustionOptions):
     throw_stiffness: TorsionalStiffness | None = Field(
         None, title="Stiffness between throws (default: Carter's formula, an approximation)"
     )
-    journal_diameter: Length = Field(0.060, title="Main journal diameter")
-    pin_diameter: Length = Field(0.050, title="Crankpin diameter")
-    journal_length: Length = Field(0.025, title="Main journal length")
-    pin_length: Length = Field(0.025, title="Crankpin length")
-    web_thickness: Length = Field(0.020, title="Web thickness")
-    web_width: Length = Field(0.090, title="Web width")
+    journal_length: Length | None = Field(
+        None, title="Main journal length", description=ENGINE_DIMENSION_TEXT
+    )
+    pin_length: Length | None = Field(
+        None, title="Crankpin length", description=ENGINE_DIMENSION_TEXT
+    )
     shear_modulus: Modulus = Field(80e9, title="Shear modulus of the crank")
-    front_inertia: Inertia = Field(0.010, title="Pulley, timing gear and damper hub")
+    front_inertia: Inertia = Field(
+        DEFAULT_FRONT_INERTIA, title="Pulley, timing gear and damper hub"
+    )
     front_stiffness: TorsionalStiffness | None = Field(
         None, title="Front end to throw 1 (default: the throws')"
     )
-    flywheel_inertia: Inertia = Field(0.15, title="Flywheel and clutch")
+    flywheel_inertia: Inertia = Field(DEFAULT_FLYWHEEL_INERTIA, title="Flywheel and clutch")
     flywheel_stiffness: TorsionalStiffness | None = Field(
         None, title="Last throw to flywheel (default: the throws')"
     )

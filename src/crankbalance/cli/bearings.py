@@ -25,6 +25,14 @@ PHYSICS_FIELDS = {"bearing_positions": "bearing", "counterweights.webs": "webs"}
 PETROFF_OPTIONS = ("viscosity", "bearing_length", "clearance")
 
 
+def _combustion(name: str) -> str:
+    """The default of a combustion setting as typed: the one of every study
+    (:class:`~crankbalance.options.CombustionOptions`)."""
+    from ..options import CombustionOptions, default_text
+
+    return default_text(CombustionOptions, name)
+
+
 def _list(value: str | None) -> list[str] | None:
     """A comma-separated option as a list of its items (None when not given)."""
     if value is None:
@@ -46,9 +54,16 @@ def _list(value: str | None) -> list[str] | None:
     help="Gas forces from the Wiebe model (or --pressure-csv); --no-gas: inertia only.",
 )
 @click.option("--bore", default=None, help="Bore (default: square engine, bore = stroke).")
-@click.option("--compression-ratio", default="10.5", show_default=True)
 @click.option(
-    "--ignition", default="-20 deg", show_default=True, help="Start of combustion from firing TDC."
+    "--compression-ratio",
+    default=None,
+    help=f"Compression ratio [default: {_combustion('compression_ratio')}, as every study].",
+)
+@click.option(
+    "--ignition",
+    default=None,
+    help=f"Start of combustion from firing TDC [default: {_combustion('ignition')}, as every "
+    "study].",
 )
 @click.option("--burn-duration", default="50 deg", show_default=True)
 @click.option(
@@ -67,9 +82,10 @@ def _list(value: str | None) -> list[str] | None:
 )
 @click.option(
     "--crank-inertia",
-    default="0.15 kg*m^2",
-    show_default=True,
-    help="Inertia of the purely rotating parts (crank, flywheel): the speed fluctuation.",
+    default=None,
+    help="Inertia of the purely rotating parts (crank, flywheel): the speed fluctuation "
+    "(default: the engine's, front end + throws + flywheel as 'torsional' and 'cycle "
+    "--engine').",
 )
 @click.option(
     "--balance-factor", default=None, help="Balance factor of the counterweights (default: file)."
@@ -193,6 +209,26 @@ def _write_plot(plot: str, study: Any) -> None:
     click.echo(f"wrote {plot}", err=True)
 
 
+def assumed_text(s: dict[str, Any]) -> str:
+    """One line of what the study took for the crank, the flywheel and the combustion
+    (typed, or the engine's: the same for every study, docs/main_bearings.md)."""
+    typed = set(s["dimensions_typed"])
+
+    def mm(name: str) -> str:
+        return f"{s[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
+
+    from ..studies.performance import combustion_text
+
+    combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
+    return (
+        f"crank + flywheel {s['crank_inertia_kg_m2']:.4g} kg m^2"
+        + ("*" if s["crank_inertia_from"] == "engine" else "")
+        + f"; journal {mm('journal_diameter')}, pin {mm('pin_diameter')}, web "
+        f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "
+        "(* the engine's, as every study assumes)"
+    )
+
+
 def print_table(data: dict[str, Any]) -> None:
     """The bearing table of both crank models and the crankpin bending."""
     e, s = data["engine"], data["settings"]
@@ -207,6 +243,7 @@ def print_table(data: dict[str, Any]) -> None:
             else "elastic bearings" + (" with clearance" if s["clearance_in_contact_model"] else "")
         )
     )
+    click.echo(assumed_text(s))
     det, ind = data["models"]["determinate"], data["models"]["indeterminate"]
     header = [
         "bearing",

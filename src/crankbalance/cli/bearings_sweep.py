@@ -24,7 +24,7 @@ from ._common import (
     refuse_unused,
     require_extra,
 )
-from .bearings import PHYSICS_FIELDS, bearings
+from .bearings import PHYSICS_FIELDS, assumed_text, bearings
 from .performance import _number_list
 
 #: options of ``bearings`` that this command does not take (swept, or a single run's)
@@ -177,6 +177,7 @@ def print_table(data: dict[str, Any], rows: list[list[Any]]) -> None:
         f"{'gas and inertia' if s['gas'] else 'inertia only'}, {data['crank_model']} crank, "
         + ("rigid bearings" if s["bearing_stiffness_N_per_m"] is None else "elastic bearings")
     )
+    click.echo(assumed_text(s))
     echo_table(
         [label for _, label in COLUMNS],
         [[_cell(v) for v in row] for row in rows],

@@ -474,9 +474,10 @@ def _engine_options(function: Any) -> Any:
         click.option("--reciprocating-mass", default="282 g", show_default=True),
         click.option(
             "--crank-inertia",
-            default="0.006 kg*m^2",
-            show_default=True,
-            help="Inertia of all purely rotating parts incl. flywheel.",
+            default=None,
+            help="Inertia of all purely rotating parts incl. flywheel [default: 0.006 kg*m^2, "
+            "the thesis' single, without --engine; with --engine the engine's: front end + "
+            "throws + flywheel, as 'torsional' and 'bearings'].",
         ),
         click.option("--journal-diameter", default="30 mm", show_default=True),
         click.option("--friction-coefficient", default="0.005", show_default=True),
@@ -510,10 +511,33 @@ def _engine_options(function: Any) -> Any:
     return function
 
 
-def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
-    """The cylinder, its pressure source, speed and stroke count of ``cycle`` and
-    ``sensitivity`` from their validated options (:class:`~crankbalance.options.CycleOptions`);
-    an option that would be ignored is refused."""
+def crank_inertia(o: CycleOptions, model: Any = None) -> float:
+    """The crank + flywheel inertia of ``cycle`` and ``sensitivity`` before
+    ``--flywheel-inertia`` [kg m^2]: as typed; else, with an engine (``model``, the engine
+    as studied), its rotating inertia (:func:`crankbalance.studies.crank.rotating_inertia`,
+    the same as ``bearings`` and ``torsional``); else the thesis' single's."""
+    if o.crank_inertia is not None:
+        return float(o.crank_inertia)
+    if model is None:
+        from ..options import THESIS_CRANK_INERTIA
+
+        return THESIS_CRANK_INERTIA
+    from ..studies.crank import rotating_inertia
+
+    return rotating_inertia(model)
+
+
+def _inertia_from(o: CycleOptions) -> str:
+    """Where the crank + flywheel inertia came from: ``typed``, ``engine`` (the engine's
+    rotating inertia) or ``thesis`` (the thesis' single, without an engine)."""
+    return "typed" if o.crank_inertia is not None else "thesis" if o.engine is None else "engine"
+
+
+def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int, float]:
+    """The cylinder, its pressure source, speed, stroke count and crank + flywheel inertia
+    (before ``--flywheel-inertia``) of ``cycle`` and ``sensitivity`` from their validated
+    options (:class:`~crankbalance.options.CycleOptions`); an option that would be ignored
+    is refused."""
     from ..engine_cycle import CylinderSpec
     from ..studies.performance import WIEBE_OPTIONS, pressure_source
 
@@ -534,17 +558,19 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
     speed, strokes = o.speed, o.strokes
     settings = {
         "bore": o.bore,
-        "crank_inertia": o.crank_inertia + (o.flywheel_inertia or 0.0),
         "balance_factor": o.balance_factor,
         "journal_diameter": o.journal_diameter,
         "friction_coefficient": o.friction_coefficient,
     }
     if o.engine is None:
-        cylinder = CylinderSpec(**settings, **geometry)
+        inertia = crank_inertia(o)
+        cylinder = CylinderSpec(
+            **settings, **geometry, crank_inertia=inertia + (o.flywheel_inertia or 0.0)
+        )
     else:
         from ..studies.cylinder import cylinder_of
         from ..studies.engine import as_model
-        from ..studies.performance import cycle_cylinder
+        from ..studies.performance import cycle_cylinder, cycle_model
 
         model = as_model(o.engine)
         cylinder_of(model, number, "--cylinder")
@@ -558,10 +584,26 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int]:
             )
             if option in given
         }
-        cylinder = cycle_cylinder(model, number, **settings, **typed)
+        # the whole engine's inertia turns with this cylinder (its crank as typed; a typed
+        # reciprocating mass is this cylinder's alone)
+        inertia = crank_inertia(
+            o,
+            cycle_model(
+                model,
+                crank_radius=typed.get("crank_radius"),
+                rod_length=typed.get("rod_length"),
+            ),
+        )
+        cylinder = cycle_cylinder(
+            model,
+            number,
+            **settings,
+            **typed,
+            crank_inertia=inertia + (o.flywheel_inertia or 0.0),
+        )
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    return cylinder, pressure_source(o), speed, strokes
+    return cylinder, pressure_source(o), speed, strokes, inertia
 
 
 SUMMARY_KEYS = (
@@ -676,9 +718,9 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     import numpy as np
 
     from ..engine_cycle import engine_cycle
-    from ..studies.performance import size_cylinder_flywheel
+    from ..studies.performance import combustion_summary, size_cylinder_flywheel
 
-    cylinder, pressure, speed, strokes = _engine_from_options(o)
+    cylinder, pressure, speed, strokes, inertia = _engine_from_options(o)
     result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
     summary = {label: getattr(result, name) for name, label in SUMMARY_KEYS}
     summary["energy_check_ratio"] = (
@@ -688,7 +730,11 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     if o.speed_fluctuation_target is not None:
         sizing = size_cylinder_flywheel(cylinder, result, pressure, o.speed_fluctuation_target)
         flywheel = _flywheel_keys(
-            o, sizing.required_inertia, sizing.energy_excursion, sizing.achieved_fluctuation
+            o,
+            inertia,
+            sizing.required_inertia,
+            sizing.energy_excursion,
+            sizing.achieved_fluctuation,
         )
     curves = {
         "angle_deg": np.degrees(result.angle),
@@ -705,6 +751,8 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     }
     payload = {
         "cylinder": keyed(cylinder.to_dict(), CYLINDER_KEYS),
+        "crank_inertia_from": _inertia_from(o),
+        "combustion": combustion_summary(o),
         "speed_rad_s": speed,
         "strokes": strokes,
         "summary": summary,
@@ -715,14 +763,15 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
 
 
 def _flywheel_keys(
-    o: CycleOptions, required: float, excursion: float, achieved: float
+    o: CycleOptions, crank: float, required: float, excursion: float, achieved: float
 ) -> dict[str, float]:
-    """The ``flywheel`` part of the JSON of ``cycle``."""
+    """The ``flywheel`` part of the JSON of ``cycle`` (``crank``: the crank + flywheel
+    inertia used before ``--flywheel-inertia`` [kg m^2])."""
     return {
         "speed_fluctuation_target": float(o.speed_fluctuation_target or 0.0),
         "energy_excursion_J": excursion,
         "required_inertia_kg_m2": required,
-        "required_flywheel_inertia_kg_m2": max(required - o.crank_inertia, 0.0),
+        "required_flywheel_inertia_kg_m2": max(required - crank, 0.0),
         "check_speed_fluctuation": achieved,
     }
 
@@ -735,6 +784,7 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     from ..studies.engine import as_model
     from ..studies.performance import (
         WIEBE_OPTIONS,
+        combustion_summary,
         cycle_model,
         pressure_source,
         whole_engine_cycle,
@@ -762,7 +812,8 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
         reciprocating_mass=o.reciprocating_mass if "reciprocating_mass" in given else None,
     )
     pressure = pressure_source(o, model.cylinders)
-    inertia = o.crank_inertia + (o.flywheel_inertia or 0.0)
+    crank = crank_inertia(o, model)
+    inertia = crank + (o.flywheel_inertia or 0.0)
     try:
         result = whole_engine_cycle(
             model,
@@ -789,6 +840,7 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     if result.required_inertia is not None:
         flywheel = _flywheel_keys(
             o,
+            crank,
             result.required_inertia,
             result.energy_excursion,
             float(result.required_inertia_fluctuation or 0.0),
@@ -806,7 +858,8 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
         "rod_length_m": model.rod_length,
         "offset_m": model.cylinder_offset.tolist(),
         "reciprocating_mass_kg": model.reciprocating_mass.tolist(),
-        "crank_inertia_kg_m2": o.crank_inertia,
+        "crank_inertia_kg_m2": crank,
+        "crank_inertia_from": _inertia_from(o),
         "flywheel_inertia_kg_m2": o.flywheel_inertia or 0.0,
         "firing_order": order,
         "fire_angle_rad": fire.tolist(),
@@ -850,6 +903,7 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     }
     payload = {
         "engine": engine,
+        "combustion": combustion_summary(o),
         "speed_rad_s": result.speed_mean,
         "strokes": result.strokes,
         "summary": summary,
@@ -883,12 +937,36 @@ def _echo_cycle(payload: dict[str, Any]) -> None:
             f"single cylinder, {text(speed, 'speed')}, {strokes}-stroke, "
             f"balance factor {number(payload['cylinder']['balance_factor'])}"
         )
+    click.echo(_assumed_text(payload))
     rows = [[k, number(v, 5)] for k, v in payload["summary"].items()]
     if "flywheel" in payload:
         rows += [
             [k, number(v, 5)] for k, v in payload["flywheel"].items() if k not in payload["summary"]
         ]
     echo_table(["quantity", "value"], rows)
+
+
+def _assumed_text(payload: dict[str, Any]) -> str:
+    """One line of the crank + flywheel inertia and the combustion ``cycle`` or
+    ``sensitivity`` took."""
+    from ..studies.performance import combustion_text
+
+    if "engine" in payload:
+        e = payload["engine"]
+        inertia, flywheel = e["crank_inertia_kg_m2"], e["flywheel_inertia_kg_m2"]
+        origin = e["crank_inertia_from"]
+    else:  # one cylinder (cycle) or the sweep of one cylinder (sensitivity)
+        inertia = payload.get("cylinder", payload)["crank_inertia_kg_m2"]
+        flywheel, origin = 0.0, payload["crank_inertia_from"]
+    source = {
+        "typed": "typed",
+        "engine": "the engine's: front end + throws + flywheel, as 'torsional' and 'bearings'",
+        "thesis": "the thesis' single",
+    }[origin]
+    extra = f" + flywheel {flywheel:.4g}" if flywheel else ""
+    return f"crank + flywheel {inertia:.4g}{extra} kg m^2 ({source}); " + combustion_text(
+        payload["combustion"]
+    )
 
 
 def _write_cycle_plot(plot: str, result: Any) -> None:
@@ -921,6 +999,7 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
     from ..engine_cycle import balance_sensitivity
     from ..options import SensitivityOptions
+    from ..studies.performance import combustion_summary
 
     values = {
         **options,
@@ -932,7 +1011,7 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     if values["cylinder"] is None:  # the schema's default: cylinder 1
         del values["cylinder"]
     o = parse_settings(SensitivityOptions, values)
-    cylinder, pressure, speed, strokes = _engine_from_options(o)
+    cylinder, pressure, speed, strokes, _inertia = _engine_from_options(o)
     result = balance_sensitivity(
         cylinder,
         speed,
@@ -956,6 +1035,9 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     payload = {
         "speed_rad_s": speed,
         "strokes": strokes,
+        "crank_inertia_kg_m2": cylinder.crank_inertia,
+        "crank_inertia_from": _inertia_from(o),
+        "combustion": combustion_summary(o),
         "points": [dict(zip(header, row, strict=True)) for row in rows],
     }
     require_finite(payload)
@@ -978,4 +1060,5 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
             "shake_x N",
             "shake N",
         ]
+        click.echo(_assumed_text(payload))
         echo_table(short, [[number(v) for v in row] for row in rows])

@@ -17,7 +17,7 @@ from typing import Any
 import click
 
 from ..errors import InputError
-from ._common import echo_table, format_option, option_name, parse_settings
+from ._common import echo_table, format_option, named_as_typed, option_name, parse_settings
 
 _RPM = 30.0 / math.pi  # rad/s -> rpm
 FORMATS = ("table", "json", "csv")
@@ -75,6 +75,8 @@ def _options(function: Any) -> Any:
         info = TorsionalOptions.model_fields[name]
         default = default_text(TorsionalOptions, name)
         shown = f" [default: {default}]" if default else ""
+        if not default and info.description:
+            shown = f" [{info.description}]"
         if name.endswith("_stiffness") and name != "damper_stiffness":
             shown += " E.g. '5e5 N*m/rad'."
         function = click.option(option_name(name), default=None, help=f"{info.title}.{shown}")(
@@ -131,8 +133,10 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
 
         check_output(plot, (".png", ".svg", ".html"), "--plot")
         require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
-    study, model, speeds = run_study(o)
-    payload = study_payload(study, model)
+    typed = {name: options[name] for name in _FIELDS if options.get(name) is not None}
+    with named_as_typed(typed):
+        study, model, speeds, crank = run_study(o)
+    payload = study_payload(study, model, crank)
     require_finite(payload)
     if plot is not None:
         _write_plot(plot, study)
@@ -150,16 +154,20 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
         _echo(payload)
 
 
-def run_study(o: Any) -> tuple[Any, Any, Any]:
-    """The study of the validated options: (TorsionalStudy, EngineModel, speeds [rad/s])."""
+def run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
+    """The study of the validated options: (TorsionalStudy, EngineModel, speeds [rad/s],
+    what was assumed of the crank: the JSON's ``crank``)."""
     import numpy as np
 
     from .. import torsional as tv
     from ..engine_cycle_all import engine_cycle_all
-    from ..studies.engine import as_model
-    from ..studies.performance import pressure_source
+    from ..io.engine_file import load_engine
+    from ..studies.build import build_model
+    from ..studies.crank import DIMENSIONS, crank_dimensions, rotating_inertia, web_offset
+    from ..studies.performance import combustion_summary, pressure_source
 
-    model = as_model(o.engine)
+    spec = load_engine(o.engine)
+    model = build_model(spec)
     high = o.speed_max if o.speed_max is not None else model.speed
     if high <= o.speed_min:
         raise InputError(
@@ -168,16 +176,21 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
             f"must be below the engine's speed {high * _RPM:g} rpm (or give --speed-max)",
         )
     speeds = np.linspace(o.speed_min, high, o.speed_points)
+    dimensions = None
     if o.throw_stiffness is not None:
         k_throw = o.throw_stiffness
     else:
+        # the dimensions bearings uses for the same engine, where not typed
+        dimensions = crank_dimensions(
+            model, web_offset(spec, model), {name: getattr(o, name) for name in DIMENSIONS}
+        )
         k_throw = tv.carter_stiffness(
-            o.journal_diameter,
-            o.pin_diameter,
-            o.journal_length,
-            o.pin_length,
-            o.web_thickness,
-            o.web_width,
+            dimensions.journal_diameter,
+            dimensions.pin_diameter,
+            dimensions.journal_length,
+            dimensions.pin_length,
+            dimensions.web_thickness,
+            dimensions.web_width,
             model.crank_radius,
             o.shear_modulus,
         )
@@ -211,7 +224,16 @@ def run_study(o: Any) -> tuple[Any, Any, Any]:
     )
     excitation = tv.engine_excitation(cycle, model, o.highest_order)
     study = tv.torsional_study(train, excitation, speeds, o.damper_allowed_power)
-    return study, model, speeds
+    crank = {
+        "dimensions": None if dimensions is None else dimensions.to_dict(),
+        # front end + throws + flywheel: what cycle --engine and bearings take when their
+        # crank inertia is not typed (the chain's total without damper ring and load)
+        "rotating_inertia_kg_m2": rotating_inertia(
+            model, o.throw_inertia, o.front_inertia, o.flywheel_inertia
+        ),
+        "combustion": combustion_summary(o),
+    }
+    return study, model, speeds, crank
 
 
 def _modes(modes: Any, names: list[str]) -> list[dict[str, Any]]:
@@ -228,8 +250,9 @@ def _modes(modes: Any, names: list[str]) -> list[dict[str, Any]]:
     ]
 
 
-def study_payload(study: Any, model: Any) -> dict[str, Any]:
-    """The JSON of ``torsional`` (``crankbalance.torsional/1``, SI units in the keys)."""
+def study_payload(study: Any, model: Any, crank: dict[str, Any]) -> dict[str, Any]:
+    """The JSON of ``torsional`` (``crankbalance.torsional/1``, SI units in the keys);
+    ``crank`` is what :func:`run_study` assumed of the crank and the combustion."""
     import numpy as np
 
     train = study.train
@@ -263,6 +286,7 @@ def study_payload(study: Any, model: Any) -> dict[str, Any]:
             "fire_angle_rad": study.excitation.fire_angle.tolist(),
             "mean_torque_Nm": study.excitation.mean_torque,
         },
+        "crank": crank,
         "masses": [
             {"name": n, "inertia_kg_m2": float(j)}
             for n, j in zip(names, train.inertia, strict=True)
@@ -308,6 +332,7 @@ def _echo(payload: dict[str, Any]) -> None:
         f"{e['name']}: {e['cylinders']} cylinders, {e['strokes']}-stroke, firing order "
         + "-".join(map(str, e["firing_order"]))
     )
+    _echo_assumed(payload["crank"])
     echo_table(
         ["mass", "inertia [kg m^2]", "stiffness to next [N m/rad]"],
         [
@@ -382,6 +407,28 @@ def _echo(payload: dict[str, Any]) -> None:
     else:
         verdict = "within" if d["within_allowed"] else "ABOVE"
         click.echo(line + f"; {verdict} the allowed {d['allowed_power_W']:.1f} W.")
+
+
+def _echo_assumed(crank: dict[str, Any]) -> None:
+    """One line of the crank dimensions and combustion the study took (typed, or the
+    engine's: the same for every study, docs/torsional.md)."""
+    parts = [f"front + throws + flywheel {crank['rotating_inertia_kg_m2']:.4g} kg m^2"]
+    d = crank["dimensions"]
+    if d is not None:
+        typed = set(d["typed"])
+
+        def mm(name: str) -> str:
+            return f"{d[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
+
+        parts.append(
+            f"journal {mm('journal_diameter')} x {mm('journal_length')}, pin "
+            f"{mm('pin_diameter')} x {mm('pin_length')}, web {mm('web_thickness')} x "
+            f"{mm('web_width')} mm (* the engine's, as every study assumes)"
+        )
+    from ..studies.performance import combustion_text
+
+    parts.append(combustion_text(crank["combustion"]))
+    click.echo("; ".join(parts))
 
 
 def _write_plot(plot: str, study: Any) -> None:

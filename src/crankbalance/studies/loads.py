@@ -38,20 +38,18 @@ from ..options import BearingOptions, parse_options
 from ..results import to_jsonable
 from ..spec import EngineSpec
 from .build import build_model
-from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
-from .performance import pressure_source
+from .crank import (
+    DEFAULT_PROPORTIONS,
+    CrankDimensions,
+    crank_dimensions,
+    rotating_inertia,
+    web_offset,
+)
+from .engine import BalanceStudy, balance_engine, engine_summary
+from .performance import combustion_summary, pressure_source
 
 SCHEMA = "crankbalance.bearings/1"
 
-#: default crank proportions when a dimension is not given (docs/main_bearings.md): main
-#: journal and crankpin diameters and web width as multiples of the crank radius, web
-#: thickness as a multiple of the web offset
-DEFAULT_PROPORTIONS = {
-    "journal_diameter": 1.3,
-    "pin_diameter": 1.1,
-    "web_width": 2.2,
-    "web_thickness": 0.75,
-}
 #: what every output says of the indeterminate model's stiffness
 STIFFNESS_NOTE = (
     "equivalent-stiffness approximation: the crank as a straight stepped beam (journals, "
@@ -76,6 +74,12 @@ class BearingStudy:
         The study's settings.
     section : CrankSection
         Crank dimensions used (given or from the default proportions).
+    dimensions : CrankDimensions
+        The same, with the lengths and which were typed
+        (:func:`crankbalance.studies.crank.crank_dimensions`).
+    crank_inertia : float
+        Crank + flywheel inertia used [kg m^2] (given, or
+        :func:`crankbalance.studies.crank.rotating_inertia`).
     web_offset : float
         Axial distance of a web from its throw mid-plane [m].
     stiffness : CrankStiffness
@@ -91,6 +95,8 @@ class BearingStudy:
     cycle: Any
     options: BearingOptions
     section: CrankSection
+    dimensions: CrankDimensions
+    crank_inertia: float
     web_offset: float
     stiffness: CrankStiffness
     bore: float
@@ -163,13 +169,16 @@ class BearingStudy:
                 "strokes": int(self.cycle.strokes),
                 "gas": o.gas,
                 "bore_m": self.bore,
-                "crank_inertia_kg_m2": o.crank_inertia,
+                "crank_inertia_kg_m2": self.crank_inertia,
+                "crank_inertia_from": "engine" if o.crank_inertia is None else "typed",
+                "combustion": combustion_summary(o) if o.gas else None,
                 "speed_fluctuation": float(self.cycle.speed_fluctuation),
                 "journal_diameter_m": s.journal_diameter,
                 "pin_diameter_m": s.pin_diameter,
                 "web_thickness_m": s.web_thickness,
                 "web_width_m": s.web_width,
                 "web_offset_m": self.web_offset,
+                "dimensions_typed": list(self.dimensions.typed),
                 "youngs_modulus_Pa": s.youngs_modulus,
                 "poisson_ratio": s.poisson_ratio,
                 "bearing_stiffness_N_per_m": o.bearing_stiffness,
@@ -229,22 +238,14 @@ def _pressure(o: BearingOptions, cylinders: int) -> Any:
     return pressure_source(o, cylinders)
 
 
-def crank_section(model: EngineModel, web_offset: float, o: BearingOptions) -> CrankSection:
-    """The crank's dimensions: as given, else :data:`DEFAULT_PROPORTIONS` of the crank
-    radius (diameters, web width) and of the web offset (web thickness)."""
-    base = {
-        "journal_diameter": model.crank_radius,
-        "pin_diameter": model.crank_radius,
-        "web_width": model.crank_radius,
-        "web_thickness": web_offset,
-    }
-    values = {
-        name: getattr(o, name)
-        if getattr(o, name) is not None
-        else DEFAULT_PROPORTIONS[name] * base[name]
-        for name in DEFAULT_PROPORTIONS
-    }
-    return CrankSection(**values, youngs_modulus=o.modulus, poisson_ratio=o.poisson)
+def crank_section(dimensions: CrankDimensions, o: BearingOptions) -> CrankSection:
+    """The bending section of the crank's dimensions (:func:`.crank.crank_dimensions`:
+    as given, else :data:`DEFAULT_PROPORTIONS` of the crank radius and the web offset)."""
+    return CrankSection(
+        **{name: getattr(dimensions, name) for name in DEFAULT_PROPORTIONS},
+        youngs_modulus=o.modulus,
+        poisson_ratio=o.poisson,
+    )
 
 
 def bearing_loads(
@@ -297,17 +298,18 @@ def bearing_loads(
         raise InputError(
             "balance", model.name, f"must be a balancing result of the engine {spec.name!r}"
         )
-    from ..balancing import default_web_offset
-
-    given_offset = balance_options(spec)[0].web_offset
-    web_offset = float(given_offset if given_offset is not None else default_web_offset(model))
-    section = crank_section(model, web_offset, o)
+    offset = web_offset(spec, model)
+    dimensions = crank_dimensions(
+        model, offset, {name: getattr(o, name) for name in DEFAULT_PROPORTIONS}
+    )
+    section = crank_section(dimensions, o)
+    inertia = o.crank_inertia if o.crank_inertia is not None else rotating_inertia(model)
     bore = o.bore if o.bore is not None else 2.0 * model.crank_radius
     cycle = engine_cycle_all(
         model,
         _pressure(o, model.cylinders),
         bore=bore,
-        crank_inertia=o.crank_inertia,
+        crank_inertia=inertia,
         speed=o.speed,
         samples_per_revolution=o.samples,
     )
@@ -325,12 +327,12 @@ def bearing_loads(
     bearings = (
         np.asarray(o.bearing, dtype=float)
         if o.bearing is not None
-        else default_bearing_positions(model.throw_position, 2.0 * web_offset)
+        else default_bearing_positions(model.throw_position, 2.0 * offset)
     )
     ends = np.concatenate([bearings, loads.position])
     stiffness = crank_stiffness(
         model.throw_position,
-        web_offset,
+        offset,
         model.crank_radius,
         section,
         float(ends.min()),
@@ -363,7 +365,9 @@ def bearing_loads(
         cycle=cycle,
         options=o,
         section=section,
-        web_offset=web_offset,
+        dimensions=dimensions,
+        crank_inertia=float(inertia),
+        web_offset=offset,
         stiffness=stiffness,
         bore=float(bore),
         results=results,

@@ -154,6 +154,33 @@ def size_cylinder_flywheel(
 WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
 
 
+def combustion_summary(o: Any) -> dict[str, float] | None:
+    """The Wiebe combustion of :class:`~crankbalance.options.CombustionOptions` as the JSON
+    of ``cycle``, ``torsional`` and ``bearings`` shows it (SI units in the keys), the same
+    defaults for all; None with pressure tables."""
+    if o.pressure_csv:
+        return None
+    return {
+        "compression_ratio": float(o.compression_ratio),
+        "ignition_rad": float(o.ignition),
+        "burn_duration_rad": float(o.burn_duration),
+        "intake_pressure_Pa": float(o.intake_pressure),
+    }
+
+
+def combustion_text(summary: dict[str, float] | None) -> str:
+    """The combustion of :func:`combustion_summary` in words, for the text outputs."""
+    import math
+
+    if summary is None:
+        return "combustion: pressure tables"
+    return (
+        f"Wiebe combustion: compression {summary['compression_ratio']:g}, ignition "
+        f"{math.degrees(summary['ignition_rad']):g} deg, burn "
+        f"{math.degrees(summary['burn_duration_rad']):g} deg"
+    )
+
+
 def pressure_source(o: Any, cylinders: int = 1) -> Any:
     """The gas pressure of ``cycle``, ``sensitivity``, ``torsional`` and ``bearings`` from
     their :class:`~crankbalance.options.CombustionOptions`: the pressure tables (one for
