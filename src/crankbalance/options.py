@@ -299,8 +299,10 @@ class PerformanceOptions(StudyOptions):
         title="Balance factors",
         description="e.g. 0, 0.25, 0.5, 0.75, 1",
     )
-    crank_inertia: Inertia = Field(
-        0.006, title="Crank + flywheel inertia", description="e.g. 0.006 kg*m^2"
+    crank_inertia: Inertia | None = Field(
+        None,
+        title="Crank + flywheel inertia",
+        description="empty: the engine's (front end, throws and flywheel)",
     )
     friction_coefficient: FrictionCoefficient = Field(
         0.005, title="Bearing friction coefficient", description="e.g. 0.005"

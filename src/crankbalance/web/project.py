@@ -429,7 +429,7 @@ DEFAULT_SETTINGS: dict[str, Any] = {
     # performance
     "pf_bore": "",
     "pf_balance_factors": "0, 0.25, 0.5, 0.75, 1",
-    "pf_crank_inertia": "0.1 kg*m^2",
+    "pf_crank_inertia": "",
     "pf_friction_coefficient": "0.005",
     "pf_journal_diameter": "30 mm",
 }

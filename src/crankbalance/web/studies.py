@@ -11,7 +11,6 @@ page shows the message beside the input.
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable
 from typing import Any, Literal
 
@@ -259,8 +258,10 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5) for one cylinder of the engine (its reciprocating mass, crank radius,
     rod length, speed)."""
-    from ..engine_cycle import WiebeCombustion, balance_sensitivity
-    from ..studies.performance import cycle_cylinder
+    from ..engine_cycle import balance_sensitivity
+    from ..options import CombustionOptions
+    from ..studies.crank import rotating_inertia
+    from ..studies.performance import cycle_cylinder, pressure_source
 
     model = computed.analysis.model
     o = options(settings, PerformanceOptions)
@@ -275,13 +276,11 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
             model,
             1,
             bore=o.bore,
-            crank_inertia=o.crank_inertia,
+            crank_inertia=rotating_inertia(model) if o.crank_inertia is None else o.crank_inertia,
             journal_diameter=o.journal_diameter,
             friction_coefficient=o.friction_coefficient,
         )
-        pressure = WiebeCombustion(
-            compression_ratio=10.0, ignition_angle=math.radians(-25), burn_duration=math.radians(50)
-        )
+        pressure = pressure_source(CombustionOptions.model_validate({}))  # the studies' one default
         return balance_sensitivity(
             cylinder,
             float(model.speed),
