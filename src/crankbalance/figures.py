@@ -75,7 +75,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import InputError
-from .format import moment_point
+from .format import depth_read_to, moment_point
 from .results import ResultMixin
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -1230,6 +1230,29 @@ def counterweight_profile(design: Any) -> go.Figure:
     )
 
 
+def _radial_hole(holes: Any, depth: float, rim: float, phi: float) -> tuple[Any, Any]:
+    """Outline (x, y) [mm] of a hole drilled inward from the rim at radius ``rim`` [mm],
+    at ``phi`` [rad] from straight down, seen from the side: the full diameter down to the
+    shoulder, then the drill point to the tip (a flat bottom for a 180° point); ``depth``
+    [m] as read (:func:`crankbalance.shop.holes.hole_geometry`)."""
+    from .shop.holes import hole_geometry
+
+    g = hole_geometry(holes.diameter, depth, holes.depth_to, holes.point_angle)
+    half, tip = holes.diameter * 1e3 / 2, float(g.tip_depth) * 1e3
+    shoulder = float(g.shoulder_depth) * 1e3
+    # (depth from the rim, offset from the hole's axis) [mm] around the outline
+    outline = [(0.0, half), (tip, half), (tip, -half), (0.0, -half)]  # a flat bottom
+    if g.cone_height > 0 and shoulder > 0:
+        outline = [(0.0, half), (shoulder, half), (tip, 0.0), (shoulder, -half), (0.0, -half)]
+    elif g.cone_height > 0:  # shallower than its point: the point alone, narrower at the rim
+        entry = half * min(1.0, tip / (g.cone_height * 1e3))
+        outline = [(0.0, entry), (tip, 0.0), (0.0, -entry)]
+    inward, across = np.array([np.sin(phi), -np.cos(phi)]), np.array([np.cos(phi), np.sin(phi)])
+    points = [(rim - s) * inward + w * across for s, w in [*outline, outline[0]]]
+    x, y = np.array(points).T
+    return x, y
+
+
 def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
     """The drilled holes of a rebalancing to scale (mm), one web seen along the crank axis:
     the crank axis, the crankpin centre straight up, the holes on the counterweight side
@@ -1241,6 +1264,7 @@ def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
     if getattr(holes, "kind", "") != "holes":
         raise InputError("correction", getattr(holes, "kind", None), "the plan draws holes")
     depth = result.iterations[-1].depth if result.iterations else 0.0
+    to = depth_read_to(holes.point_angle, holes.depth_to)
     d, rh, r = holes.diameter * 1e3, holes.radius * 1e3, crank_radius * 1e3
     fig = go.Figure()
     outer = rh + 1.5 * d
@@ -1265,13 +1289,8 @@ def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
             cx, cy = rh * np.sin(phi), -rh * np.cos(phi)
             if holes.direction == "axial":
                 x, y = cx + d / 2 * np.cos(ring), cy + d / 2 * np.sin(ring)
-            else:  # drilled inward from the rim: the slot the drill leaves, seen from the side
-                dx, dy = np.sin(phi), -np.cos(phi)
-                ends = [(rh - depth * 1e3) * np.array([dx, dy]), rh * np.array([dx, dy])]
-                px, py = -dy * d / 2, dx * d / 2
-                corners = [ends[0] + (px, py), ends[1] + (px, py), ends[1] - (px, py)]
-                corners += [ends[0] - (px, py), ends[0] + (px, py)]
-                x, y = np.array(corners).T
+            else:  # drilled inward from the rim: the hole seen from the side, its point too
+                x, y = _radial_hole(holes, depth, rh, phi)
             fig.add_trace(
                 go.Scatter(
                     x=x,
@@ -1279,7 +1298,7 @@ def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
                     mode="lines",
                     fill="toself",
                     fillcolor="white",
-                    name=f"hole Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep",
+                    name=f"hole Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep{to}",
                     legendgroup="holes",
                     showlegend=k == 0,
                     line={"color": COLORS["after"], "width": 2},
@@ -1297,7 +1316,7 @@ def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
         )
     )
     what = (
-        f"{holes.number} × Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep, on each of {holes.webs} webs"
+        f"{holes.number} × Ø{d:.3g} mm, {depth * 1e3:.3f} mm deep{to}, on each of {holes.webs} webs"
         if depth > 0
         else "no hole needed"
     )

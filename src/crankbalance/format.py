@@ -29,6 +29,7 @@ __all__ = [
     "JSON_DIGITS",
     "angle",
     "clean_number",
+    "depth_read_to",
     "json_text",
     "number",
     "plural",
@@ -129,6 +130,13 @@ def moment_point(reference: float) -> str:
     if abs(reference) < 1e-12:
         return "the crankshaft mid-point"
     return f"the point {text(reference, 'length')} from the crankshaft mid-point along +y"
+
+
+def depth_read_to(point_angle: float, depth_to: str) -> str:
+    """What the depth of drilled holes is read to, after the depth: ``""`` for flat-bottomed
+    holes (``point_angle`` pi: one depth), else ``" to the tip"`` or ``" to the shoulder"``
+    (``point_angle`` [rad]; the depths of pointed holes differ by the point's height)."""
+    return "" if point_angle >= math.pi else f" to the {depth_to}"
 
 
 def plural(count: int, word: str, many: str | None = None) -> str:

@@ -162,6 +162,10 @@ PointAngle = Annotated[
     _quantity("angle"),
     Field(gt=RANGES["point_angle"][0], le=RANGES["point_angle"][1]),
 ]
+#: what the depth of a pointed hole is read to: the shoulder (where the cylinder ends) or
+#: the tip of the point (the same for a flat bottom); the choices of the web's selects
+DepthTo = Literal["shoulder", "tip"]
+DEPTH_TO: tuple[str, ...] = get_args(DepthTo)
 Number = Annotated[float, BeforeValidator(_number)]
 Whole = Annotated[int, BeforeValidator(_number)]
 #: a balance factor: 0.28 or "28%", from 0 to 2
@@ -254,6 +258,10 @@ class RebalanceOptions(StudyOptions):
         None, title="Counterweight CG radius", description="empty: crank radius"
     )
     hole_diameter: Length = Field(0.008, title="Drill diameter", description="e.g. 8 mm")
+    point_angle: PointAngle = Field(
+        math.pi, title="Drill point angle", description="e.g. 118 deg (180 deg: flat-bottomed)"
+    )
+    depth_to: DepthTo = Field("tip", title="Depth read to the", description="tip or shoulder")
     holes: Whole = Field(
         1, ge=1, le=MAX_HOLES, title="Holes per web", description="side by side, e.g. 2"
     )
@@ -743,7 +751,7 @@ class RebalancePartsOptions(StudyOptions):
     hole_diameter: Length | None = Field(None, title="Drill diameter")
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
     point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
-    depth_to: Literal["shoulder", "tip"] | None = Field(None, title="Depth read to")
+    depth_to: DepthTo | None = Field(None, title="Depth read to")
     density: Density | None = Field(None, title="Crank material density")
     depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
     grade: str | None = Field(None, title="ISO 21940-11 grade")
@@ -796,7 +804,7 @@ class ShopOptions(StudyOptions):
     hole_diameter: Length = Field(0.008, title="Drill diameter")
     hole_radius: Length | None = Field(None, title="Radius of the holes")
     max_depth: Length = Field(0.015, title="Deepest hole")
-    depth_to: Literal["shoulder", "tip"] | None = None
+    depth_to: DepthTo | None = None
     point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
     direction: Literal["axial", "radial"] = "axial"
     spacing: LengthOrZero = Field(0.002, title="Material between holes")

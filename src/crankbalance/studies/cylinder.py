@@ -166,8 +166,10 @@ def iso_check(model: EngineModel, options: SingleCylinderOptions) -> IsoCheck:
 def rebalance_cylinder(
     model: EngineModel, single: SingleCylinderOptions, options: RebalanceOptions
 ) -> RebalanceResult:
-    """Rebalance one cylinder's share of its throw after new parts, by drilled holes, to
-    the balance factor ``single.balance_factor`` and the ISO tolerance of :func:`iso_check`.
+    """Rebalance one cylinder's share of its throw after new parts, by drilled holes (of
+    ``options.point_angle``, flat-bottomed at 180 deg, their depths read to
+    ``options.depth_to``), to the balance factor ``single.balance_factor`` and the ISO
+    tolerance of :func:`iso_check`.
 
     Without a counterweight mass the crank is taken to be balanced to that factor with the
     old parts (the counterweight is what the factor needs at the CG radius).
@@ -180,7 +182,11 @@ def rebalance_cylinder(
     if cw_mass is None:
         cw_mass = counterweight_moment(old_rot, old_rec, single.balance_factor, r) / radius
     holes = DrilledHoles(
-        diameter=options.hole_diameter, radius=options.hole_radius or radius, number=options.holes
+        diameter=options.hole_diameter,
+        radius=options.hole_radius or radius,
+        number=options.holes,
+        point_angle=options.point_angle,
+        depth_to=options.depth_to,
     )
     return rebalance(
         old_rot,

@@ -419,6 +419,8 @@ DEFAULT_SETTINGS: dict[str, Any] = {
     "rb_cw_mass": "",
     "rb_cw_radius": "",
     "rb_hole_diameter": "8 mm",
+    "rb_point_angle": "180 deg",
+    "rb_depth_to": "tip",
     "rb_holes": "1",
     "rb_hole_radius": "",
     # balance shaft

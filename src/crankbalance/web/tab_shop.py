@@ -20,6 +20,7 @@ from nicegui import run, ui
 from .. import figures
 from ..errors import InputError
 from ..format import text
+from ..options import DEPTH_TO
 from .widgets import StudyTab, TabSettingsMixin, button_row, send_download
 
 #: the worked example's parts file (docs/balance_shop.md)
@@ -41,7 +42,7 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "bearings": ("Main bearings", "", "e.g. -20 mm, 420 mm (empty: the correction planes)"),
     "grade": ("ISO 21940-11 grade", "G6.3", "e.g. G6.3"),
 }
-CHOICES = {"convention": ("heavy", "light"), "depth_to": ("tip", "shoulder")}
+CHOICES = {"convention": ("heavy", "light"), "depth_to": DEPTH_TO}
 #: settings that only the hole plan needs (the parts study runs without them)
 PLAN = ("measuring_planes", "correction_planes", "hole_radius", "rotor_mass", "bearings")
 

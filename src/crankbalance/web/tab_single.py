@@ -1,14 +1,23 @@
 """The Single cylinder tab: the balance-factor study of one cylinder, the ISO 21940-11
 check and the rebalancing after new parts, carried to its drilling plan (holes: count,
-diameter, depth, radius, angle, mass removed per web, passes) with a drawing."""
+diameter, drill point, depth, radius, angle, mass removed per web, passes) with a drawing.
+
+The drill point (*Drill point angle*, *Depth read to the*) is that of
+:class:`~crankbalance.options.RebalanceOptions` (the one schema of the command line's
+``rebalance --point-angle/--depth-to`` and the Balance shop tab's settings): 180 deg, the
+default, drills flat-bottomed holes; a pointed drill's depths are read to its tip or to its
+shoulder, and the plan, the table and the drawing say which."""
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 from nicegui import ui
 
 from ..errors import InputError
+from ..format import depth_read_to
+from ..options import DEPTH_TO
 from . import studies
 from .messages import show_error
 from .widgets import StudyTab, plot_or_none
@@ -20,10 +29,14 @@ ALIASES = {
     "balance_factor": "sc_balance_factor",
     "target_balance_factor": "sc_balance_factor",
     "hole_diameter": "rb_hole_diameter",
+    "point_angle": "rb_point_angle",
+    "depth_to": "rb_depth_to",
     "correction_radius": "rb_hole_radius",
     "correction": "rb_holes",
     "holes": "rb_holes",
 }
+#: settings of this tab that are a choice among words (a select, not a text input)
+CHOICES = {"rb_depth_to": DEPTH_TO}
 #: columns of the passes table (the thesis' steps 3-8, one row per pass)
 PASS_COLUMNS = [
     {"name": "iteration", "label": "Pass", "field": "iteration"},
@@ -34,6 +47,21 @@ PASS_COLUMNS = [
     {"name": "residual", "label": "Residual [g·mm]", "field": "residual"},
     {"name": "within", "label": "Within tolerance", "field": "within"},
 ]
+
+
+def depth_words(holes: Any) -> str:
+    """What the depths of the plan are read to: "to the tip (118° drill point)" or "to the
+    shoulder (...)" for a pointed drill, "(flat-bottomed)" for a 180° point."""
+    to = depth_read_to(holes.point_angle, holes.depth_to)
+    if not to:
+        return "(flat-bottomed)"
+    return f"{to.strip()} ({math.degrees(holes.point_angle):.4g}° drill point)"
+
+
+def pass_columns(holes: Any) -> list[dict[str, Any]]:
+    """:data:`PASS_COLUMNS` with the depth's header naming what it is read to."""
+    to = depth_read_to(holes.point_angle, holes.depth_to)
+    return [{**c, "label": f"Depth{to} [mm]"} if c["name"] == "depth" else c for c in PASS_COLUMNS]
 
 
 def drilling_plan(result: Any) -> list[tuple[str, str]]:
@@ -57,7 +85,7 @@ def drilling_plan(result: Any) -> list[tuple[str, str]]:
             + ("axial (parallel to the crank axis)" if axial else "radial, inward from the rim"),
         ),
         ("Drill diameter", f"{holes.diameter * 1e3:.4g} mm"),
-        ("Depth", f"{last.depth * 1e3:.3f} mm (flat-bottomed)"),
+        ("Depth", f"{last.depth * 1e3:.3f} mm {depth_words(holes)}"),
         (
             "Radius" if axial else "Rim radius",
             f"{holes.radius * 1e3:.4g} mm from the crank axis",
@@ -129,9 +157,10 @@ class SingleTab(StudyTab):
                     "rb_cw_mass",
                     "rb_cw_radius",
                     "rb_hole_diameter",
-                    "rb_holes",
-                    "rb_hole_radius",
+                    "rb_point_angle",
                 )
+                self.choice("rb_depth_to")
+                self.settings("rb_holes", "rb_hole_radius")
                 self.rebalance_summary = ui.markdown("").mark("rebalance-summary")
             with ui.card().classes("grow max-w-full"):
                 ui.label("Drilling plan").classes("text-subtitle1")
@@ -162,6 +191,34 @@ class SingleTab(StudyTab):
                 lambda: plot_or_none("single_cylinder_polar", self.result),
             )
             self.card("drilling", "Drilling plan to scale", self._drawing)
+
+    def choice(self, key: str) -> None:
+        """The select of a setting that is a choice among words (:data:`CHOICES`), kept in
+        the project's settings like the text settings of :meth:`settings`: its label from
+        the options schema, its message beside it, an edit clears the shown result, a
+        loaded project sets it."""
+        assert key.startswith(self.prefixes), f"{key} is no setting of the {self.name} tab"
+        label = studies.SETTING_FIELDS[key][0]
+        page = self.page
+
+        def changed(event: Any) -> None:
+            page.project.settings[key] = "" if event.value is None else str(event.value)
+            page.show_setting_errors()
+            self.settings_changed()
+
+        element = (
+            ui.select(
+                list(CHOICES[key]),
+                label=label,
+                value=str(page.project.settings.get(key, "")) or None,
+                on_change=changed,
+            )
+            .classes("w-64")
+            .props(f"data-testid=setting-{key}")
+            .mark(f"setting-{key}")
+            .without_auto_validation()
+        )
+        page.setting_inputs[key] = element
 
     def clear(self) -> None:
         self.result = self.rebalanced = None
@@ -228,6 +285,7 @@ class SingleTab(StudyTab):
         )
         lines = [f"**{what}:** {value}" if what else value for what, value in drilling_plan(reb)]
         self.plan.set_content("  \n".join(lines))
+        self.passes.columns = pass_columns(reb.correction)
         self.passes.rows = pass_rows(reb)
         self.passes.set_visibility(bool(reb.iterations))
         self.passes.update()
