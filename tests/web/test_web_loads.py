@@ -63,6 +63,12 @@ async def test_loads_result_cleared_when_the_engine_changes(user, form) -> None:
     user.find(marker="loads-run").click()
     await form.until(lambda: "Lowest peak" in form.text("loads-summary"), "the sweep")
     assert len(form.rows("loads-cases")) == 5  # two patterns at two factors, none once
+    # what was assumed: the engine's crank + flywheel inertia, as every study takes it
+    from crankbalance.studies.crank import rotating_inertia
+    from crankbalance.studies.engine import as_model
+
+    inertia = rotating_inertia(as_model("inline4"))
+    assert f"Assumed: crank + flywheel {inertia:.4g}" in form.text("loads-summary")
     form.set("field-rod_length", "150 mm")
     await form.until(lambda: form.rows("loads-cases") == [], "the result cleared")
     assert "Not computed for this engine" in form.element("loads-rerun").text

@@ -209,26 +209,6 @@ def _write_plot(plot: str, study: Any) -> None:
     click.echo(f"wrote {plot}", err=True)
 
 
-def assumed_text(s: dict[str, Any]) -> str:
-    """One line of what the study took for the crank, the flywheel and the combustion
-    (typed, or the engine's: the same for every study, docs/main_bearings.md)."""
-    typed = set(s["dimensions_typed"])
-
-    def mm(name: str) -> str:
-        return f"{s[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
-
-    from ..studies.performance import combustion_text
-
-    combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
-    return (
-        f"crank + flywheel {s['crank_inertia_kg_m2']:.4g} kg m^2"
-        + ("*" if s["crank_inertia_from"] == "engine" else "")
-        + f"; journal {mm('journal_diameter')}, pin {mm('pin_diameter')}, web "
-        f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "
-        "(* the engine's, as every study assumes)"
-    )
-
-
 def print_table(data: dict[str, Any]) -> None:
     """The bearing table of both crank models and the crankpin bending."""
     e, s = data["engine"], data["settings"]
@@ -243,6 +223,8 @@ def print_table(data: dict[str, Any]) -> None:
             else "elastic bearings" + (" with clearance" if s["clearance_in_contact_model"] else "")
         )
     )
+    from ..studies.loads import assumed_text
+
     click.echo(assumed_text(s))
     det, ind = data["models"]["determinate"], data["models"]["indeterminate"]
     header = [

@@ -15,6 +15,7 @@ import click
 
 from ..format import json_text, number
 from ..studies.balance_loads import COLUMNS, case_rows
+from ..studies.loads import assumed_text
 from ..studies.performance import WIEBE_OPTIONS
 from ._common import (
     echo_table,
@@ -24,7 +25,7 @@ from ._common import (
     refuse_unused,
     require_extra,
 )
-from .bearings import PHYSICS_FIELDS, assumed_text, bearings
+from .bearings import PHYSICS_FIELDS, bearings
 from .performance import _number_list
 
 #: options of ``bearings`` that this command does not take (swept, or a single run's)

@@ -46,7 +46,7 @@ from .crank import (
     web_offset,
 )
 from .engine import BalanceStudy, balance_engine, engine_summary
-from .performance import combustion_summary, pressure_source
+from .performance import combustion_summary, combustion_text, pressure_source
 
 SCHEMA = "crankbalance.bearings/1"
 
@@ -371,4 +371,22 @@ def bearing_loads(
         stiffness=stiffness,
         bore=float(bore),
         results=results,
+    )
+
+
+def assumed_text(s: dict[str, Any]) -> str:
+    """One line of what the study took for the crank, the flywheel and the combustion
+    (typed, or the engine's: the same for every study, docs/main_bearings.md)."""
+    typed = set(s["dimensions_typed"])
+
+    def mm(name: str) -> str:
+        return f"{s[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
+
+    combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
+    return (
+        f"crank + flywheel {s['crank_inertia_kg_m2']:.4g} kg m^2"
+        + ("*" if s["crank_inertia_from"] == "engine" else "")
+        + f"; journal {mm('journal_diameter')}, pin {mm('pin_diameter')}, web "
+        f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "
+        "(* the engine's, as every study assumes)"
     )

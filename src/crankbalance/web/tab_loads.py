@@ -145,17 +145,19 @@ class LoadsTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         from ..format import number
         from ..studies.balance_loads import COLUMNS, case_rows
+        from ..studies.loads import assumed_text
 
         data = self.study.to_dict()
         rows = case_rows(data)
         best = min(rows, key=lambda row: row[4])
         s = data["settings"]
+        assumed = assumed_text(s).replace("*", "\\*")  # a star marks the engine's values
         self.summary.set_content(
             f"{data['engine']['name']}: {len(rows)} cases, {data['crank_model']} crank, "
             f"{'gas and inertia' if s['gas'] else 'inertia only'}. Lowest peak bearing load: "
             f"{best[0]}"
             + ("" if best[1] is None else f" at balance factor {number(best[1], 3)}")
-            + f" ({number(best[4], 5)} N on bearing {best[3]})."
+            + f" ({number(best[4], 5)} N on bearing {best[3]}).\n\nAssumed: {assumed}."
         )
         self.table.columns = [
             {"name": key, "label": label, "field": key, "align": "left" if i == 0 else "right"}
