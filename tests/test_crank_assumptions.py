@@ -77,9 +77,8 @@ def test_bearings_and_torsional_take_the_same_dimensions(capsys, bearings: dict)
         assert section["stiffness_Nm_rad"] == pytest.approx(k, rel=1e-12)
 
 
-def test_rotating_inertia_against_the_closed_form() -> None:
-    """front + throws + flywheel: m_rot r^2 per throw plus the reciprocating mass times the
-    mean of s'^2 over a turn, integrated by quadrature from the slider-crank velocity
+def _mean_slope2() -> float:
+    """The mean of s'^2 over a turn, by quadrature of the slider-crank velocity
     s' = r sin(a) (1 + lambda cos(a) / sqrt(1 - lambda^2 sin^2(a))) written here."""
     lam = R / ROD
 
@@ -90,11 +89,20 @@ def test_rotating_inertia_against_the_closed_form() -> None:
     mean = integrate.quad(slope2, 0.0, 2 * math.pi, epsabs=1e-14)[0] / (2 * math.pi)
     # the series of docs/torsional.md as a sanity check of the quadrature
     assert mean == pytest.approx(R**2 / 2 * (1 + lam**2 / 4), rel=2e-3)
-    throw = M_ROT * R**2 + M_REC * mean
-    expected = 0.010 + 4 * throw + 0.15
-    assert rotating_inertia(as_model("inline4")) == pytest.approx(expected, rel=1e-6)
-    typed = rotating_inertia(as_model("inline4"), 0.004, 0.02, 0.3)
-    assert typed == pytest.approx(0.02 + 4 * (0.004 + M_REC * mean) + 0.3, rel=1e-6)
+    return mean
+
+
+def test_rotating_inertia_against_the_closed_form() -> None:
+    """front + throws + flywheel: m_rot r^2 per throw, no pistons (the cycles add their
+    inertia m s'^2 as it varies over the turn); the torsional chain adds the pistons' mean
+    share m mean(s'^2) to each throw."""
+    expected = 0.010 + 4 * M_ROT * R**2 + 0.15
+    model = as_model("inline4")
+    assert rotating_inertia(model) == pytest.approx(expected, rel=1e-12)
+    typed = rotating_inertia(model, 0.004, 0.02, 0.3)
+    assert typed == pytest.approx(0.02 + 4 * 0.004 + 0.3, rel=1e-12)
+    chain = tv.throw_inertias(model).sum()
+    assert chain == pytest.approx(4 * (M_ROT * R**2 + M_REC * _mean_slope2()), rel=1e-6)
 
 
 def test_cycle_bearings_and_torsional_take_the_same_inertia(capsys, bearings: dict) -> None:
@@ -107,7 +115,7 @@ def test_cycle_bearings_and_torsional_take_the_same_inertia(capsys, bearings: di
     assert bearings["crank_inertia_from"] == "engine"
     assert torsional["crank"]["rotating_inertia_kg_m2"] == pytest.approx(engine, rel=1e-12)
     chain = sum(m["inertia_kg_m2"] for m in torsional["masses"])  # no damper, no load
-    assert chain == pytest.approx(engine, rel=1e-12)
+    assert chain == pytest.approx(engine + 4 * M_REC * _mean_slope2(), rel=1e-6)
 
 
 def test_one_cylinder_of_an_engine_turns_the_engines_inertia(capsys) -> None:
@@ -178,6 +186,12 @@ def test_text_outputs_show_what_was_assumed(capsys) -> None:
         code, out, err = run_cli(args, capsys)
         assert code == 0, err
         assert "kg m^2" in out and "compression 13.5, ignition -25 deg" in out, out
+    # a typed flywheel is named apart from the engine's inertia, for one cylinder too
+    engine = rotating_inertia(as_model("single"))
+    args = ["cycle", "--engine", "single", "--cylinder", "1", "--flywheel-inertia", "0.05 kg*m^2"]
+    code, out, err = run_cli(args, capsys)
+    assert code == 0, err
+    assert f"crank + flywheel {engine:.4g} + flywheel 0.05 kg m^2 (the engine's" in out, out
 
 
 def test_a_web_too_thick_for_the_derived_lengths_is_named() -> None:

@@ -207,6 +207,31 @@ def crank_stations(model: EngineModel) -> tuple[NDArray[np.int64], tuple[str, ..
     return station, names
 
 
+def rotating_throw_inertia(
+    model: EngineModel, throw_inertia: ArrayLike | None = None
+) -> NDArray[np.float64]:
+    r"""Inertia of each throw with its big ends, without its pistons: ``throw_inertia``, else
+    its rotating mass at the crank radius, :math:`J_{throw,t} = m_{rot,t} r^2`.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine.
+    throw_inertia : float or array_like, shape (T,), optional
+        Inertia of each throw (pin, webs, counterweights, big ends) [kg m^2].
+
+    Returns
+    -------
+    ndarray, shape (T,)
+        Inertia of each throw [kg m^2].
+    """
+    if throw_inertia is None:
+        return np.asarray(model.throw_rotating_mass, dtype=float) * model.crank_radius**2
+    return np.array(
+        np.broadcast_to(_positive("throw_inertia", throw_inertia), (model.throws,)), dtype=float
+    )
+
+
 def throw_inertias(
     model: EngineModel, throw_inertia: ArrayLike | None = None
 ) -> NDArray[np.float64]:
@@ -241,15 +266,12 @@ def throw_inertias(
         reciprocating share [kg m^2].
     """
     r = model.crank_radius
-    if throw_inertia is None:
-        base = np.asarray(model.throw_rotating_mass, dtype=float) * r**2
-    else:
-        base = np.broadcast_to(_positive("throw_inertia", throw_inertia), (model.throws,))
+    base = rotating_throw_inertia(model, throw_inertia)
     angle = np.linspace(0.0, 2.0 * math.pi, 3600, endpoint=False)
     offset = np.asarray(model.cylinder_offset, dtype=float)
     slope = piston_velocity(angle[:, None], r, model.rod_length, offset[None, :])  # (S, C)
     share = np.asarray(model.reciprocating_mass, dtype=float) * np.mean(slope**2, axis=0)
-    per_throw = np.array(base, dtype=float)
+    per_throw = base.copy()
     np.add.at(per_throw, np.asarray(model.cylinder_throw, dtype=int), share)
     station = crank_stations(model)[0]
     return np.bincount(station, weights=per_throw).astype(float)

@@ -710,7 +710,7 @@ def cycle(
         keys = list(curves)
         _emit_csv(keys, list(zip(*(curves[k] for k in keys), strict=True)))
     else:
-        _echo_cycle(payload)
+        _echo_cycle(payload, o.flywheel_inertia or 0.0)
 
 
 def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str, Any]]:
@@ -913,8 +913,9 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     return result, payload, curves
 
 
-def _echo_cycle(payload: dict[str, Any]) -> None:
-    """The text output of ``cycle``: a header, the summary and the flywheel."""
+def _echo_cycle(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> None:
+    """The text output of ``cycle``: a header, the summary and the flywheel
+    (``flywheel_inertia``: :func:`_assumed_text`)."""
     import math as _math
 
     speed, strokes = payload["speed_rad_s"], payload["strokes"]
@@ -937,7 +938,7 @@ def _echo_cycle(payload: dict[str, Any]) -> None:
             f"single cylinder, {text(speed, 'speed')}, {strokes}-stroke, "
             f"balance factor {number(payload['cylinder']['balance_factor'])}"
         )
-    click.echo(_assumed_text(payload))
+    click.echo(_assumed_text(payload, flywheel_inertia))
     rows = [[k, number(v, 5)] for k, v in payload["summary"].items()]
     if "flywheel" in payload:
         rows += [
@@ -946,9 +947,10 @@ def _echo_cycle(payload: dict[str, Any]) -> None:
     echo_table(["quantity", "value"], rows)
 
 
-def _assumed_text(payload: dict[str, Any]) -> str:
+def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str:
     """One line of the crank + flywheel inertia and the combustion ``cycle`` or
-    ``sensitivity`` took."""
+    ``sensitivity`` took (``flywheel_inertia``: that of ``--flywheel-inertia``, in the
+    inertia of one cylinder's payload) [kg m^2]."""
     from ..studies.performance import combustion_text
 
     if "engine" in payload:
@@ -956,8 +958,8 @@ def _assumed_text(payload: dict[str, Any]) -> str:
         inertia, flywheel = e["crank_inertia_kg_m2"], e["flywheel_inertia_kg_m2"]
         origin = e["crank_inertia_from"]
     else:  # one cylinder (cycle) or the sweep of one cylinder (sensitivity)
-        inertia = payload.get("cylinder", payload)["crank_inertia_kg_m2"]
-        flywheel, origin = 0.0, payload["crank_inertia_from"]
+        flywheel, origin = flywheel_inertia, payload["crank_inertia_from"]
+        inertia = payload.get("cylinder", payload)["crank_inertia_kg_m2"] - flywheel
     source = {
         "typed": "typed",
         "engine": "the engine's: front end + throws + flywheel, as 'torsional' and 'bearings'",
@@ -1060,5 +1062,5 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
             "shake_x N",
             "shake N",
         ]
-        click.echo(_assumed_text(payload))
+        click.echo(_assumed_text(payload, o.flywheel_inertia or 0.0))
         echo_table(short, [[number(v) for v in row] for row in rows])

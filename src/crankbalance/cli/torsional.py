@@ -216,21 +216,20 @@ def run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
         **damper,
     )
     pressure = pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
+    # front end + throws + flywheel, what cycle --engine and bearings take when their crank
+    # inertia is not typed (the cycle adds the pistons' inertia as it varies over the turn)
+    inertia = rotating_inertia(model, o.throw_inertia, o.front_inertia, o.flywheel_inertia)
     cycle = engine_cycle_all(
         model,
         pressure,
         bore=o.bore if o.bore is not None else 2.0 * model.crank_radius,
-        crank_inertia=float(train.inertia.sum()),
+        crank_inertia=inertia,
     )
     excitation = tv.engine_excitation(cycle, model, o.highest_order)
     study = tv.torsional_study(train, excitation, speeds, o.damper_allowed_power)
     crank = {
         "dimensions": None if dimensions is None else dimensions.to_dict(),
-        # front end + throws + flywheel: what cycle --engine and bearings take when their
-        # crank inertia is not typed (the chain's total without damper ring and load)
-        "rotating_inertia_kg_m2": rotating_inertia(
-            model, o.throw_inertia, o.front_inertia, o.flywheel_inertia
-        ),
+        "rotating_inertia_kg_m2": inertia,
         "combustion": combustion_summary(o),
     }
     return study, model, speeds, crank

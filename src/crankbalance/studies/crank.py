@@ -9,9 +9,9 @@
   automotive crank's proportions, docs/main_bearings.md), the crankpin and journal lengths
   the stretches between the webs of the bearings' stepped-beam model;
 * :func:`rotating_inertia` -- the inertia of everything that turns with the crank: front
-  end, one inertia per throw (:func:`crankbalance.torsional.throw_inertias`: the throw's
-  rotating masses at the crank radius and its pistons' mean share) and flywheel, the
-  total of the torsional model's chain without damper ring and load.
+  end, throws (their rotating masses at the crank radius) and flywheel, the torsional
+  model's chain without damper ring, load and the pistons' mean share (the cycles add the
+  pistons' inertia as it varies over the turn).
 
 The main-bearing study takes the dimensions for the crank's bending stiffness and the
 inertia for the speed fluctuation; the torsional study the dimensions for Carter's
@@ -171,13 +171,15 @@ def rotating_inertia(
     flywheel_inertia: float | None = None,
 ) -> float:
     r"""Inertia of everything that turns with the crank [kg m^2]: front end, throws and
-    flywheel, the total of the torsional model's chain without damper ring and load.
+    flywheel, without the pistons (the cycles add the reciprocating parts' inertia
+    :math:`m\,s'^2(\alpha)` as it varies over the turn; the torsional model's chain holds
+    its mean share on top, :func:`crankbalance.torsional.throw_inertias`).
 
-    .. math:: J = J_{front} + \sum_t J_t + J_{flywheel}
+    .. math:: J = J_{front} + \sum_t J_{throw,t} + J_{flywheel}
 
-    with :math:`J_t` of :func:`crankbalance.torsional.throw_inertias` (the throw's rotating
-    masses at the crank radius, or ``throw_inertia``, plus its pistons' mean share) and
-    the torsional study's defaults for the front end (:data:`~crankbalance.options.
+    with :math:`J_{throw,t}` of :func:`crankbalance.torsional.rotating_throw_inertia` (the
+    throw's rotating masses at the crank radius, or ``throw_inertia``) and the torsional
+    study's defaults for the front end (:data:`~crankbalance.options.
     DEFAULT_FRONT_INERTIA`, pulley, timing gear and damper hub) and the flywheel
     (:data:`~crankbalance.options.DEFAULT_FLYWHEEL_INERTIA`, flywheel and clutch) when
     not given.
@@ -197,8 +199,8 @@ def rotating_inertia(
     float
         The total [kg m^2].
     """
-    from ..torsional import throw_inertias
+    from ..torsional import rotating_throw_inertia
 
     front = DEFAULT_FRONT_INERTIA if front_inertia is None else float(front_inertia)
     flywheel = DEFAULT_FLYWHEEL_INERTIA if flywheel_inertia is None else float(flywheel_inertia)
-    return float(front + throw_inertias(model, throw_inertia).sum() + flywheel)
+    return float(front + rotating_throw_inertia(model, throw_inertia).sum() + flywheel)
