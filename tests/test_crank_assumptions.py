@@ -198,6 +198,10 @@ def test_a_web_too_thick_for_the_derived_lengths_is_named() -> None:
     model = as_model("inline4")
     with pytest.raises(InputError, match="journal") as error:
         crank_dimensions(model, 0.040)  # 0.092 - 0.08 - 0.03 < 0
+    # the web thickness was derived from the web offset: the message names the offset
+    assert error.value.field == "counterweights.web_offset"
+    with pytest.raises(InputError, match="journal") as error:
+        crank_dimensions(model, 0.030, {"web_thickness": 0.04})  # 0.092 - 0.06 - 0.04 < 0
     assert error.value.field == "web_thickness"
     typed = crank_dimensions(model, 0.040, {"journal_length": 0.01})
     assert typed.journal_length == 0.01 and typed.pin_length == pytest.approx(0.08 - 0.03)

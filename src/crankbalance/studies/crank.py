@@ -150,12 +150,19 @@ def crank_dimensions(
         if name in typed:
             values[name] = typed[name]
         elif length <= 0.0:
-            raise InputError(
-                "web_thickness",
-                h,
+            room = (
                 f"leaves no {name.replace('_length', '')} between the webs (web offset "
-                f"{offset:g} m{'' if pitch is None else f', throw pitch {pitch:g} m'}): "
-                "give a thinner web",
+                f"{offset:g} m{'' if pitch is None else f', throw pitch {pitch:g} m'})"
+            )
+            if "web_thickness" in typed:
+                raise InputError("web_thickness", h, f"{room}: give a thinner web")
+            # the web thickness was derived from the engine file's web offset: name that
+            raise InputError(
+                "counterweights.web_offset",
+                offset,
+                f"{room} with the default web thickness "
+                f"{DEFAULT_PROPORTIONS['web_thickness']:g} x web offset: give a smaller web "
+                "offset or type the web thickness",
             )
         else:
             values[name] = length

@@ -140,8 +140,8 @@ def browser_image_js(
     width, height = image_size(figure)
     options = {"format": fmt, "width": width, "height": height, "scale": 1, "filename": name}
     # a PNG's WebGL scene drawn at the image's own pixels (plotly's default, also kaleido's,
-    # draws it at twice the size and scales it down: in software WebGL that costs about a
-    # third more for the same image); an SVG keeps plotly's default for its embedded raster
+    # draws it at twice the size and scales it down: in software WebGL that takes about 1.4
+    # times as long for the same image); an SVG keeps plotly's default for its raster
     config = {"plotGlPixelRatio": 1} if fmt == "png" else {}
     return IMAGE_JS % {
         "id": plot_id,
