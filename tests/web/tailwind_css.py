@@ -85,21 +85,19 @@ def class_tokens(folder: Path = WEB) -> list[str]:
     tokens: set[str] = set()
     for path in sorted(folder.glob("*.py")):
         tree = ast.parse(path.read_text(), filename=str(path))
-        functions = {
-            node.name: node
-            for node in ast.walk(tree)
-            if isinstance(node, ast.FunctionDef | ast.AsyncFunctionDef)
-        }
-        for function in functions.values():
-            for call in _calls(function):
-                values: list[ast.AST] = []
-                if isinstance(call.func, ast.Attribute) and call.func.attr == "classes":
-                    values += call.args + [k.value for k in call.keywords]
-                values += [k.value for k in call.keywords if k.arg == "classes"]
-                for value in values:
-                    tokens |= _strings(value)
-                    if isinstance(value, ast.Name):
-                        tokens |= _parameter_strings(tree, functions, function, value.id)
+        around: dict[ast.AST, ast.AST] = {}  # a node -> the innermost function it is in
+        for function in ast.walk(tree):  # outer functions before the ones inside them
+            if isinstance(function, ast.FunctionDef | ast.AsyncFunctionDef):
+                around |= {node: function for node in ast.walk(function) if node is not function}
+        for call in _calls(tree):
+            values: list[ast.AST] = []
+            if isinstance(call.func, ast.Attribute) and call.func.attr == "classes":
+                values += call.args + [k.value for k in call.keywords]
+            values += [k.value for k in call.keywords if k.arg == "classes"]
+            for value in values:
+                tokens |= _strings(value)
+                if isinstance(value, ast.Name) and value in around:
+                    tokens |= _parameter_strings(tree, around[value], value.id)
     return sorted(tokens)
 
 
@@ -117,9 +115,7 @@ def _strings(node: ast.AST | None) -> set[str]:
     return {t for child in ast.iter_child_nodes(node) for t in _strings(child)} if node else set()
 
 
-def _parameter_strings(
-    tree: ast.Module, functions: dict[str, Any], function: Any, name: str
-) -> set[str]:
+def _parameter_strings(tree: ast.Module, function: Any, name: str) -> set[str]:
     """The strings a parameter ``name`` of ``function`` takes: its default, and what the
     calls of ``function`` (by its name) in ``tree`` pass for it."""
     args = function.args
@@ -147,18 +143,37 @@ def _parameter_strings(
 
 
 # ------------------------------------------------------------------ capture in the browser
+def open_page(browser: Any, url: str) -> Any:
+    """A new page at 1280x800 on :data:`PRESET`, its results shown."""
+    page = browser.new_page(viewport=DESKTOP)
+    page.set_default_timeout(GUARD_MS)
+    try:
+        page.goto(f"{url}/?preset={PRESET}")
+        page.wait_for_function(
+            "() => document.querySelector('[data-testid=status]')?.dataset.state === 'current'"
+        )
+    except BaseException:
+        page.close()
+        raise
+    return page
+
+
+def open_tab(page: Any, label: str) -> None:
+    """Click the tab ``label`` and wait until its panel is shown with its content."""
+    page.get_by_role("tab", name=label, exact=True).click()
+    page.wait_for_function(
+        "(t) => [...document.querySelectorAll('[role=tab]')].some((e) =>"
+        " e.getAttribute('aria-selected') === 'true' && e.textContent.trim() === t)",
+        arg=label,
+    )
+    page.wait_for_function(SETTLED)
+
+
 def _open_every_tab(page: Any) -> None:
     from crankbalance.web.app import TABS
 
     for _name, label in TABS:
-        tab = page.get_by_role("tab", name=label, exact=True)
-        tab.click()
-        page.wait_for_function(
-            "(t) => [...document.querySelectorAll('[role=tab]')].some((e) =>"
-            " e.getAttribute('aria-selected') === 'true' && e.textContent.trim() === t)",
-            arg=label,
-        )
-        page.wait_for_function(SETTLED)
+        open_tab(page, label)
 
 
 def _popups(page: Any) -> None:
@@ -179,13 +194,8 @@ def capture(browser: Any, url: str) -> str:
     """The CSS that the Tailwind runtime of the page at ``url`` (a server with
     ``tailwind=True``) generates for every tab at both widths and every class token of
     :func:`class_tokens`."""
-    page = browser.new_page(viewport=DESKTOP)
-    page.set_default_timeout(GUARD_MS)
+    page = open_page(browser, url)
     try:
-        page.goto(f"{url}/?preset={PRESET}")
-        page.wait_for_function(
-            "() => document.querySelector('[data-testid=status]')?.dataset.state === 'current'"
-        )
         for size in (DESKTOP, PHONE):
             page.set_viewport_size(size)
             _open_every_tab(page)

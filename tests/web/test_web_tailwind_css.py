@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import contextlib
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 
 import pytest
@@ -95,15 +96,31 @@ def test_rules_reader() -> None:
     ]
 
 
-def _open(page: Any, label: str) -> None:
-    page.get_by_role("tab", name=label, exact=True).click()
-    page.wait_for_function(
-        "(t) => [...document.querySelectorAll('[role=tab]')].some((e) =>"
-        " e.getAttribute('aria-selected') === 'true' && e.textContent.trim() === t)",
-        arg=label,
+def test_class_tokens(tmp_path: Path) -> None:
+    """:func:`tailwind_css.class_tokens` reads the classes written in the code: literal,
+    added or removed, passed as ``classes=``, and a parameter's default and the strings
+    its callers pass; a dict's keys and other strings are no classes."""
+    (tmp_path / "page.py").write_text(
+        "class A:\n"
+        "    def cell(self, key, width='w-32'):\n"
+        "        ui.input(key).classes(width).props('dense')\n"
+        "    def build(self):\n"
+        "        self.cell('a', 'w-28')\n"
+        "        self.cell('b', width='md:w-56')\n"
+        "        ui.row().classes('w-full\\n gap-2').classes(add='x-1', remove='x-2')\n"
+        "        ui.element('div', classes='min-w-[3px]')\n"
+        "class B:\n"
+        "    def build(self, on):\n"
+        "        ui.label('not a class').classes(**{'add' if on else 'remove': 'cb-y'})\n"
     )
+    assert tailwind_css.class_tokens(tmp_path) == [
+        *("cb-y", "gap-2", "md:w-56", "min-w-[3px]", "w-28", "w-32", "w-full", "x-1", "x-2")
+    ]
+
+
+def _open(page: Any, label: str) -> None:
+    tailwind_css.open_tab(page, label)
     page.mouse.move(0, 0)  # the tab is not hovered in the screenshot
-    page.wait_for_function(tailwind_css.SETTLED)
     page.wait_for_function(DRAWN)
     page.wait_for_function(tailwind_css.SETTLED)
     page.wait_for_function(STILL)
@@ -120,13 +137,7 @@ def _pages(browser: Any, urls: dict[str, str]) -> Iterator[dict[str, Any]]:
     pages = {}
     try:
         for mode, url in urls.items():
-            page = browser.new_page(viewport=tailwind_css.DESKTOP)
-            page.set_default_timeout(HANG_GUARD * 1000)
-            pages[mode] = page
-            page.goto(f"{url}/?preset={tailwind_css.PRESET}")
-            page.wait_for_function(
-                "() => document.querySelector('[data-testid=status]')?.dataset.state === 'current'"
-            )
+            pages[mode] = tailwind_css.open_page(browser, url)
         yield pages
     finally:
         for page in pages.values():
