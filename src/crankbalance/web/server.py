@@ -2,6 +2,8 @@
 
 from __future__ import annotations
 
+import hashlib
+import json
 import os
 import secrets
 import socket
@@ -12,15 +14,27 @@ import time
 import urllib.request
 from collections.abc import Iterator
 from contextlib import contextmanager
+from pathlib import Path
 from typing import Any
 
 from . import app as webapp
+
+#: the CSS NiceGUI's Tailwind runtime generates for this page, captured in a browser by
+#: ``tests/web/tailwind_css.py`` (see docs/web.md, "Speed"); served in its place
+TAILWIND_CSS = Path(__file__).parent / "static" / "tailwind.css"
+TAILWIND_URL = "/crankbalance/tailwind.css"
 
 
 def serve(
     port: int = 8080, preset: str = webapp.DEFAULT_PRESET, show: bool = False, **options: Any
 ) -> None:
-    """Serve :func:`crankbalance.web.app.root` on 127.0.0.1 (blocks until stopped)."""
+    """Serve :func:`crankbalance.web.app.root` on 127.0.0.1 (blocks until stopped).
+
+    The page's Tailwind classes are styled by :data:`TAILWIND_CSS`, a static stylesheet,
+    instead of NiceGUI's Tailwind compiler in the browser; ``tailwind=True`` (an option of
+    ``ui.run``) serves NiceGUI's compiler instead, as the tests that capture and check that
+    stylesheet need.
+    """
     from nicegui import app, ui
 
     from . import api
@@ -28,6 +42,11 @@ def serve(
     webapp.DEFAULT_PRESET = preset  # the server's default, set once before serving
     api.register(app)
     app.on_startup(lambda: threading.Thread(target=webapp.warm_up, daemon=True).start())
+    tailwind = bool(options.pop("tailwind", False))
+    if not tailwind:
+        app.add_static_file(local_file=TAILWIND_CSS, url_path=TAILWIND_URL)
+        version = hashlib.sha256(TAILWIND_CSS.read_bytes()).hexdigest()[:12]  # cache key
+        ui.add_head_html(f'<link rel="stylesheet" href="{TAILWIND_URL}?v={version}">', shared=True)
     ui.run(
         webapp.root,
         host="127.0.0.1",
@@ -38,24 +57,34 @@ def serve(
         storage_secret=secrets.token_hex(16),
         show_welcome_message=False,
         reconnect_timeout=60.0,  # see docs/web.md, "Speed": a page busy drawing answers pings late
+        tailwind=tailwind,
         **options,
     )
 
 
 @contextmanager
-def running_server(log: Any = subprocess.DEVNULL, timeout: float = 180.0) -> Iterator[str]:
+def running_server(
+    log: Any = subprocess.DEVNULL, timeout: float = 180.0, **options: Any
+) -> Iterator[str]:
     """``crankbalance web`` in a subprocess on a free port; yields its URL, stops it after.
 
     Used by the end-to-end tests and the benchmarks. ``PYTEST_CURRENT_TEST`` is removed
     from the server's environment (NiceGUI would otherwise think it runs under pytest).
     ``timeout`` [s] is a hang guard for the start, generous for a loaded machine.
+    ``options`` (JSON values) are passed to :func:`serve` instead of starting the command,
+    e.g. ``tailwind=True``.
     """
     with socket.socket() as probe:
         probe.bind(("127.0.0.1", 0))
         port = int(probe.getsockname()[1])
     env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
+    command = [sys.executable, "-m", "crankbalance", "web", "--port", str(port)]
+    if options:
+        call = "import json, sys; from crankbalance.web.server import serve; "
+        call += "serve(port=int(sys.argv[1]), **json.loads(sys.argv[2]))"
+        command = [sys.executable, "-c", call, str(port), json.dumps(options)]
     proc = subprocess.Popen(
-        [sys.executable, "-m", "crankbalance", "web", "--port", str(port)],
+        command,
         env=env,
         stdout=log,
         stderr=subprocess.STDOUT,
