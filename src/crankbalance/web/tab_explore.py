@@ -166,19 +166,8 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         # the explorer's modules and columns load in a thread: on the event loop their
         # first import (seconds on a busy machine) would stall every page of the server
         threading.Thread(target=_columns, daemon=True).start()
-        self.texts = {k: v[1] for k, v in SETTINGS.items()}
-        self.fields: dict[str, Any] = {}
         with ui.row().classes("w-full items-start gap-4"):
-            with ui.card().classes("w-64"):
-                ui.label("Problem").classes("text-subtitle1")
-                for key, (label, default, hint) in SETTINGS.items():
-                    self.field(key, label, default, hint)
-                with ui.row().classes("items-center gap-2"):
-                    ui.button("Explore", on_click=self.run).props("color=primary").mark(
-                        "explore-run"
-                    )
-                    self.spinner = ui.spinner(size="md").props("data-testid=explore-busy")
-                    self.spinner.set_visibility(False)
+            self.settings_card("Problem", "w-64", run_label="Explore")
             with ui.card().classes("min-w-0").style("flex: 1 1 0"):
                 ui.label("Results").classes("text-subtitle1")
                 self.rerun_note()

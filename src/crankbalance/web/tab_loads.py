@@ -79,20 +79,10 @@ class LoadsTab(TabSettingsMixin, StudyTab):
     fallback = "patterns"
     choices = CHOICES
     name = "loads"
-    study: Any = None
 
     def build(self) -> None:
-        self.texts = {k: v[1] for k, v in SETTINGS.items()}
-        self.fields: dict[str, Any] = {}
         with ui.row().classes("w-full items-start gap-4"):
-            with ui.card().classes("w-96"):
-                ui.label("Patterns and balance factors").classes("text-subtitle1")
-                for key, (label, default, hint) in SETTINGS.items():
-                    self.field(key, label, default, hint)
-                with ui.row().classes("items-center gap-2"):
-                    ui.button("Run", on_click=self.run).props("color=primary").mark("loads-run")
-                    self.spinner = ui.spinner(size="md").props("data-testid=loads-busy")
-                    self.spinner.set_visibility(False)
+            self.settings_card("Patterns and balance factors", "w-96")
             with ui.card().classes("min-w-0").style("flex: 1 1 0"):
                 ui.label("Bearing loads against balance").classes("text-subtitle1")
                 self.rerun_note()
@@ -131,16 +121,10 @@ class LoadsTab(TabSettingsMixin, StudyTab):
             card.refresh()
 
     # ------------------------------------------------------------------ run
-    async def run(self) -> None:
+    def study_function(self) -> Any:
         from ..studies.balance_loads import bearing_sweep
 
-        def work(parsed: tuple[Any, Any], c: Any) -> Any:
-            return bearing_sweep(c.spec, *parsed)
-
-        done = await self.run_study(work, "running …")
-        if done is not None:
-            self.study = done[1]
-            self.show_study()
+        return bearing_sweep
 
     def show_study(self) -> None:
         from ..format import number

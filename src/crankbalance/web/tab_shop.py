@@ -91,23 +91,18 @@ class ShopTab(TabSettingsMixin, StudyTab):
     choices = CHOICES
     multiline = ("parts",)
     name = "shop"
-    study: Any = None
 
     def build(self) -> None:
-        self.texts = {k: v[1] for k, v in SETTINGS.items()}
-        self.fields: dict[str, Any] = {}
         with ui.row().classes("w-full items-start gap-4"):
-            with ui.card().classes("w-96"):
-                ui.label("Parts and readings").classes("text-subtitle1")
-                for key, (label, default, hint) in SETTINGS.items():
-                    self.field(key, label, default, hint)
-                with ui.row().classes("items-center gap-2"):
-                    ui.button("Load example", on_click=self.load_example).props("outline").mark(
-                        "shop-example"
-                    )
-                    ui.button("Run", on_click=self.run).props("color=primary").mark("shop-run")
-                    self.spinner = ui.spinner(size="md").props("data-testid=shop-busy")
-                    self.spinner.set_visibility(False)
+            self.settings_card(
+                "Parts and readings",
+                "w-96",
+                before_run=lambda: (
+                    ui.button("Load example", on_click=self.load_example)
+                    .props("outline")
+                    .mark("shop-example")
+                ),
+            )
             with ui.card().classes("min-w-0").style("flex: 1 1 0"):
                 with ui.element("div").classes(
                     "w-full flex flex-wrap items-center justify-between gap-1"
@@ -178,16 +173,10 @@ class ShopTab(TabSettingsMixin, StudyTab):
             card.refresh()
 
     # ------------------------------------------------------------------ run
-    async def run(self) -> None:
+    def study_function(self) -> Any:
         from ..studies.shop import shop_study
 
-        def work(parsed: tuple[Any, Any], c: Any) -> Any:
-            return shop_study(c.spec, *parsed)
-
-        done = await self.run_study(work, "running …")
-        if done is not None:
-            self.study = done[1]
-            self.show_study()
+        return shop_study
 
     def show_study(self) -> None:
         p = self.study.parts

@@ -491,6 +491,34 @@ class TabSettingsMixin:
     #: the tab's summary (markdown) and busy spinner
     summary: Any
     spinner: Any
+    #: the result of the last run (:meth:`run`) and the tab's own way of showing it
+    study: Any = None
+    show_study: Callable[[], None]
+
+    def settings_card(
+        self,
+        title: str,
+        width: str,
+        run_label: str = "Run",
+        before_run: Callable[[], object] | None = None,
+    ) -> None:
+        """The card of the tab's settings, in the current layout element: an input per
+        setting of :attr:`settings_table` (with its default text), then a row of
+        ``before_run``'s buttons, the run button (:meth:`run`) and the busy spinner."""
+        self.texts = {k: v[1] for k, v in self.settings_table.items()}
+        self.fields = {}
+        with ui.card().classes(width):
+            ui.label(title).classes("text-subtitle1")
+            for key, (label, default, hint) in self.settings_table.items():
+                self.field(key, label, default, hint)
+            with ui.row().classes("items-center gap-2"):
+                if before_run is not None:
+                    before_run()
+                ui.button(run_label, on_click=self.run).props("color=primary").mark(
+                    f"{self.name}-run"
+                )
+                self.spinner = ui.spinner(size="md").props(f"data-testid={self.name}-busy")
+                self.spinner.set_visibility(False)
 
     def field(self, key: str, label: str, default: str, hint: str) -> None:
         """One input of the tab's settings, in the current layout element."""
@@ -531,6 +559,18 @@ class TabSettingsMixin:
         if message.startswith(error.field):
             message = self.settings_table[key][0] + message[len(error.field) :]
         self.fields[key].error = message
+
+    def study_function(self) -> Callable[..., Any]:
+        """The tab's study, ``function(engine spec, *parsed settings)`` (:meth:`run`)."""
+        raise NotImplementedError(f"the {self.name} tab runs its study its own way")
+
+    async def run(self) -> None:
+        """Run the tab's study (:meth:`study_function`) on the form's engine and show it."""
+        function = self.study_function()
+        done = await self.run_study(lambda parsed, c: function(c.spec, *parsed), "running …")
+        if done is not None:
+            self.study = done[1]
+            self.show_study()
 
     async def run_study(
         self, work: Callable[[Any, Any], Any], running: str, engine: bool = True
