@@ -152,6 +152,7 @@ def candidate_file(
 
 class ExploreTab(TabSettingsMixin, StudyTab):
     settings_table = SETTINGS
+    parse_settings = staticmethod(parse)
     fallback = "layout"
     choices = CHOICES
     name = "explore"
@@ -188,19 +189,6 @@ class ExploreTab(TabSettingsMixin, StudyTab):
             scatter = self.card("explore-scatter", "Candidates and Pareto set", self._scatter)
             self.card("explore-candidate", "Chosen candidate", self._candidate)
         scatter.plot.on("plotly_click", self.on_point)
-
-    # ------------------------------------------------------------------ settings
-    def check(self) -> Any | None:
-        """Show the settings' errors beside their fields; the parsed settings or None. A
-        result of other settings is dropped."""
-        for element in self.fields.values():
-            element.error = None
-        self.settings_changed()
-        try:
-            return parse(self.texts)
-        except InputError as error:
-            self.show_error(error)
-            return None
 
     # ------------------------------------------------------------------ StudyTab
     def show(self, c: Any) -> None:

@@ -76,6 +76,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
 
 class LoadsTab(TabSettingsMixin, StudyTab):
     settings_table = SETTINGS
+    parse_settings = staticmethod(parse)
     fallback = "patterns"
     choices = CHOICES
     name = "loads"
@@ -97,19 +98,6 @@ class LoadsTab(TabSettingsMixin, StudyTab):
                 )
         self.card("loads-polar", "Polar load diagrams (middle balance factor)", self._polar)
         self.card("loads-sweep", "Loads, friction and bending against balance", self._sweep)
-
-    # ------------------------------------------------------------------ settings
-    def check(self) -> tuple[Any, Any] | None:
-        """Show the settings' errors beside their fields (in the field's label words); the
-        parsed settings or None. A result of other settings is dropped."""
-        for element in self.fields.values():
-            element.error = None
-        self.settings_changed()
-        try:
-            return parse(self.texts)
-        except InputError as error:
-            self.show_error(error)
-            return None
 
     # ------------------------------------------------------------------ StudyTab
     def clear(self) -> None:

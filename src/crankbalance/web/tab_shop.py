@@ -87,6 +87,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
 
 class ShopTab(TabSettingsMixin, StudyTab):
     settings_table = SETTINGS
+    parse_settings = staticmethod(parse)
     fallback = "parts"
     choices = CHOICES
     multiline = ("parts",)
@@ -143,18 +144,6 @@ class ShopTab(TabSettingsMixin, StudyTab):
         self.fields["parts"].set_value(EXAMPLE.read_text(encoding="utf-8"))
 
     # ------------------------------------------------------------------ settings
-    def check(self) -> tuple[Any, Any] | None:
-        """Show the settings' errors beside their fields (in the field's label words); the
-        parsed settings or None. A result of other settings is dropped."""
-        for element in self.fields.values():
-            element.error = None
-        self.settings_changed()
-        try:
-            return parse(self.texts)
-        except InputError as error:
-            self.show_error(error)
-            return None
-
     def show_error(self, error: InputError) -> None:
         if error.field in self.fields and error.field != "parts":
             super().show_error(error)

@@ -482,11 +482,15 @@ class TabSettingsMixin:
     choices: Mapping[str, Sequence[str]] = {}
     #: keys of multi-line text areas
     multiline: tuple[str, ...] = ()
-    #: the tab's own: shows the settings' errors beside their fields
-    check: Callable[[], Any]
+    #: the tab's settings parsed from their texts (raises InputError naming the setting)
+    parse_settings: Callable[[dict[str, str]], Any]
+    #: the tab's study, ``function(engine spec, *parsed settings)``, for :meth:`run` (the
+    #: explorer, which needs no engine, has a run of its own)
+    study_function: Callable[[], Callable[..., Any]]
     #: the tab's own (:class:`StudyTab`): whether the result of a run that started at
     #: ``started`` may be shown
     owns: Callable[[Any], bool]
+    settings_changed: Callable[[], None]
     study_ready: Callable[[], Any | None]
     #: the tab's summary (markdown) and busy spinner
     summary: Any
@@ -546,6 +550,18 @@ class TabSettingsMixin:
         """The tab's settings as typed: what its result belongs to."""
         return tuple(sorted((k, v.strip()) for k, v in self.texts.items()))
 
+    def check(self) -> Any | None:
+        """Show the settings' errors beside their fields (in the field's label words); the
+        parsed settings or None. A result of other settings is dropped."""
+        for element in self.fields.values():
+            element.error = None
+        self.settings_changed()
+        try:
+            return self.parse_settings(self.texts)
+        except InputError as error:
+            self.show_error(error)
+            return None
+
     def stamp(self) -> tuple[Any, ...]:
         """What a run started now belongs to: the engine and the tab's settings as typed."""
         return (self.page.computed_for, self.current_settings())
@@ -559,10 +575,6 @@ class TabSettingsMixin:
         if message.startswith(error.field):
             message = self.settings_table[key][0] + message[len(error.field) :]
         self.fields[key].error = message
-
-    def study_function(self) -> Callable[..., Any]:
-        """The tab's study, ``function(engine spec, *parsed settings)`` (:meth:`run`)."""
-        raise NotImplementedError(f"the {self.name} tab runs its study its own way")
 
     async def run(self) -> None:
         """Run the tab's study (:meth:`study_function`) on the form's engine and show it."""
