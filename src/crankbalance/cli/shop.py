@@ -36,9 +36,13 @@ _PARTS_OPTIONS = (
         "--method",
         type=click.Choice(["milp", "pairing", "exhaustive", "as-listed"]),
         default=None,
-        help="Matching method (default milp: least spread, proven optimal within the time limit).",
+        help="Matching method (default milp: least spread, proven optimal within the time "
+        "limit; too large a problem is matched by a local search, said so in the output).",
     ),
-    click.option("--time-limit", help="Longest matching search, default '60 s'."),
+    click.option(
+        "--time-limit",
+        help="Longest matching, the building of the model included, default '60 s'.",
+    ),
     click.option(
         "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
     ),
@@ -108,15 +112,16 @@ def _settings(values: dict[str, Any]) -> Any:
 
 
 @contextlib.contextmanager
-def _named() -> Iterator[None]:
-    """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``)."""
+def _named(*others: str) -> Iterator[None]:
+    """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``;
+    also the ``others``, the command's own options)."""
     from ..errors import InputError
     from ..options import ShopOptions
 
     try:
         yield
     except InputError as error:
-        if error.field not in ShopOptions.model_fields:
+        if error.field not in ShopOptions.model_fields and error.field not in others:
             raise
         raise InputError(option_name(error.field), error.value, error.allowed) from None
 
@@ -160,9 +165,8 @@ def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
         for c in range(study.cylinders)
     ]
     echo_table(["cyl", *m.kinds, "recip.", "rotating", "remove recip.", "remove rot."], rows)
-    proven = "proven optimal" if m.optimal else "not proven optimal (time limit)"
     click.echo(
-        f"\n{m.method} ({proven}): spread reciprocating {_g(m.reciprocating_spread)}, rotating "
+        f"\n{m.method} ({m.status}): spread reciprocating {_g(m.reciprocating_spread)}, rotating "
         f"{_g(m.rotating_spread)}; material to remove {_g(m.removed_total)}"
     )
     listed = study.as_listed
@@ -198,8 +202,10 @@ def bobweights(parts: str, engine: str, fmt: str, **values: Any) -> None:
         ],
     )
     left = study.remaining
+    m = study.matching
+    click.echo(f"\nsets matched by {m.method} ({m.status})")
     click.echo(
-        f"\nfraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
+        f"fraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
         + "; ".join(
             f"order {k + 1} force {text(f, 'force')}, couple {text(c, 'moment')}"
             for k, (f, c) in enumerate(
@@ -291,7 +297,7 @@ def scatter(
     step = parse_quantity(scale_step, "mass", "--scale-step") if scale_step.strip() != "0" else 0.0
     if not 0 <= step <= 0.01:
         raise InputError("--scale-step", scale_step, "must be a mass from 0 to 10 g")
-    with _named():
+    with _named("samples"):
         result = scatter_of_parts(engine, parts, options, count, start, step)
     if fmt == "json":
         _echo_json(SCATTER_SCHEMA, result)
