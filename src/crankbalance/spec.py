@@ -746,9 +746,7 @@ def _check_override_overlap(overrides: list[MassOverride]) -> None:
                 f"masses.override[{k}].{target}", f"lists {word} {twice} twice; give it once"
             )
         given = [
-            name
-            for name in _CYLINDER_FIELDS + _THROW_FIELDS
-            if getattr(item, name) is not None
+            name for name in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(item, name) is not None
         ]
         for number in numbers:
             for name in given:

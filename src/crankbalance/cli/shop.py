@@ -71,6 +71,11 @@ _PLAN_OPTIONS = (
     click.option("--hole-radius", help="Radius of the axial holes (or of the rim), e.g. '45 mm'."),
     click.option("--max-depth", help="Deepest hole allowed, default '15 mm'."),
     click.option(
+        "--web-thickness",
+        help="Axial thickness of the web at the holes: the deepest axial hole, the widest "
+        "radial one (not given: holes at most 10 drill diameters deep).",
+    ),
+    click.option(
         "--depth-to",
         type=click.Choice(["shoulder", "tip"]),
         default=None,
@@ -124,6 +129,12 @@ def _named(*others: str) -> Iterator[None]:
         if error.field not in ShopOptions.model_fields and error.field not in others:
             raise
         raise InputError(option_name(error.field), error.value, error.allowed) from None
+
+
+#: the options of the drilling plan's settings, for its messages (studies.shop.hole_plan)
+_OPTION_NAMES = {
+    name: option_name(name) for name in ("hole_diameter", "max_depth", "hole_radius")
+} | {"web_thickness": "--web-thickness"}
 
 
 def _echo_json(schema: str, result: Any) -> None:
@@ -241,6 +252,9 @@ def echo_hole_plan(result: Any) -> None:
         + ["tolerance", "ISO"],
         rows,
     )
+    for j, holes in enumerate(result.holes):
+        if holes.note:
+            click.echo(f"plane {j + 1}: {holes.note}")
     verdict = "PASS" if result.check.passed else "FAIL"
     click.echo(
         f"\nISO 21940-11 {result.grade}, {text(result.rotor_mass, 'mass_kg')}, "
@@ -259,7 +273,7 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
     options = _settings(values)
     speed = engine_model(engine)[1].speed if engine is not None else None
     with _named():
-        result = hole_plan(options, speed)
+        result = hole_plan(options, speed, _OPTION_NAMES)
     if fmt == "json":
         _echo_json(PLAN_SCHEMA, result)
         return
@@ -345,6 +359,6 @@ def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: 
     require_extra("web", "plotly", *(("kaleido",) if pdf else ()))
     options = _settings(values)
     with _named():
-        study = shop_study(engine, parts, options)
+        study = shop_study(engine, parts, options, _OPTION_NAMES)
     path = write_sheet(study, output, chromium)
     click.echo(f"wrote {path}", err=True)

@@ -197,7 +197,7 @@ def _cells(line: str, where: str, labels: list[str]) -> list[str]:
             f"{where}, {_column(labels, index)}",
             cell,
             f"is not a valid CSV cell ({error}): a cell in double quotes ends on its line, "
-            'with a comma or the end of the line after its closing quote, and a quote inside '
+            "with a comma or the end of the line after its closing quote, and a quote inside "
             'it doubled ("")',
         ) from None
     for index, cell in enumerate(cells):

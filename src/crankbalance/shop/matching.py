@@ -1051,6 +1051,8 @@ def _free_rows(
         if clock.remaining() <= 0:
             return None
     return 1.0, np.ones(components), False
+
+
 @dataclass(frozen=True)
 class MachineToLightest(ResultMixin):
     """Every part used machined to the lightest of its kind (share by share).
