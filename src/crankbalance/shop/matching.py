@@ -84,7 +84,7 @@ MAX_PART_SLOTS = 128_000
 #: most nonzeros of the MILP's constraint matrix; a larger model is not built and the local
 #: search alone matches. Measured (docs/balance_shop.md, "Bounded work"): up to 100 598
 #: nonzeros (a spread over 6 kinds of 333 parts in 8 cylinders) the whole matching ended
-#: within 4 % of a 1 s and of a 5 s limit; at 201 862, 1.54 times a 1 s limit, and at
+#: within 5 % of a 1 s and of a 5 s limit; at 201 862, 1.54 times a 1 s limit, and at
 #: 809 446, 9.4 times (HiGHS's presolve looks at the clock between its steps only)
 MAX_MILP_NONZEROS = 100_000
 #: share of the time limit the local search before the MILP may take (it usually ends,
