@@ -421,3 +421,72 @@ def test_a_key_with_control_characters_is_quoted_in_the_message(tmp_path: Path) 
         load_engine(write_json(tmp_path, data))
     message = str(error.value)
     assert message.startswith('crank_train."bad\\nkey\\u001b[2J"') and "\n" not in message
+
+
+# --------------------------------------------------------------------------- overrides
+def with_overrides(*tables: dict[str, Any]) -> dict[str, Any]:
+    data = inline4()
+    data["masses"]["override"] = list(tables)
+    return data
+
+
+def test_two_overrides_giving_a_cylinder_the_same_mass_are_refused(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """Issue 25: two [[masses.override]] tables for cylinder 3; the later one used to win
+    without a word. One line names both tables."""
+    data = with_overrides(
+        {"cylinders": [3], "piston": "480 g"},
+        {"throws": [2], "crankpin": "420 g"},
+        {"cylinders": [1, 3], "piston": "490 g"},
+    )
+    code, out, err = run_cli(["analyze", str(write_json(tmp_path, data))], capsys)
+    one_line_error(
+        code,
+        out,
+        err,
+        "masses.override[0] and masses.override[2] both give cylinder 3 its piston",
+        "give it once",
+    )
+
+
+@pytest.mark.parametrize(
+    ("tables", "words"),
+    [
+        (
+            ({"throws": [2], "crankpin": "420 g"}, {"throws": [4, 2], "crankpin": "410 g"}),
+            "masses.override[0] and masses.override[1] both give throw 2 its crankpin",
+        ),
+        (  # the conrod's split given two ways: the later would replace the earlier
+            (
+                {"cylinders": [2], "conrod_rotating_fraction": 0.7},
+                {"cylinders": [2], "conrod_cg_from_big_end": "40 mm"},
+            ),
+            "masses.override[0] and masses.override[1] both give cylinder 2 its "
+            "conrod_cg_from_big_end",
+        ),
+        (({"cylinders": [3, 3], "piston": "480 g"},), "lists cylinder 3 twice"),
+        (({"throws": [1, 2, 1], "crankpin": "420 g"},), "lists throw 1 twice"),
+    ],
+)
+def test_overlapping_overrides_name_both_places(tables: tuple[Any, ...], words: str) -> None:
+    with pytest.raises(InputError, match=re.escape(words)):
+        load_engine_dict(with_overrides(*tables))
+
+
+def test_overrides_of_different_masses_for_one_cylinder_combine() -> None:
+    """Two tables that give one cylinder different masses lose nothing (the web's crank
+    editor writes one table per row): both apply."""
+    from crankbalance.studies.build import build_model
+
+    split = load_engine_dict(
+        with_overrides(
+            {"cylinders": [3], "piston": "480 g"}, {"cylinders": [3], "wrist_pin": "90 g"}
+        )
+    )
+    together = load_engine_dict(
+        with_overrides({"cylinders": [3], "piston": "480 g", "wrist_pin": "90 g"})
+    )
+    masses = build_model(split).reciprocating_mass
+    assert masses[2] != masses[0]  # the overrides apply to cylinder 3
+    assert masses.tolist() == pytest.approx(build_model(together).reciprocating_mass.tolist())

@@ -122,7 +122,7 @@ def test_plan_json_keeps_the_statics(holes, capsys: pytest.CaptureFixture[str]) 
         (["--reading", "12.5 g, 35 deg"], "--reading"),
         (["--hole-radius", "-4 mm"], "--hole-radius"),
         (["--correction-planes", "50 mm"], "--correction-planes"),
-        (["--max-depth", "0.5 mm"], "larger max_depth"),  # the plan says what to change
+        (["--max-depth", "0.5 mm"], "larger --max-depth"),  # the plan says what to change
         (["--depth-resolution", "-1 mm"], "--depth-resolution"),
         (["--rotor-mass", "nan kg"], "--rotor-mass"),
     ],
@@ -252,7 +252,7 @@ SUFFIXES += ("_kg2", "_kg2_m2", "_N2", "_N2_m2")
 DIMENSIONLESS = {
     "fraction", "cylinders", "rods_on_pin", "part", "number", "share_a", "ratio", "samples",
     "seed", "quantile_levels", "histogram", "overflow", "variance_share", "p_grade", "p_free",
-    "p_all", "influence",
+    "p_all", "influence", "gap",
 }  # fmt: skip
 
 

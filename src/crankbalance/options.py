@@ -752,6 +752,7 @@ class RebalancePartsOptions(StudyOptions):
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
     point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
     depth_to: DepthTo | None = Field(None, title="Depth read to")
+    web_thickness: Length | None = Field(None, title="Web thickness at the holes")
     density: Density | None = Field(None, title="Crank material density")
     depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
     grade: str | None = Field(None, title="ISO 21940-11 grade")
@@ -804,6 +805,7 @@ class ShopOptions(StudyOptions):
     hole_diameter: Length = Field(0.008, title="Drill diameter")
     hole_radius: Length | None = Field(None, title="Radius of the holes")
     max_depth: Length = Field(0.015, title="Deepest hole")
+    web_thickness: Length | None = Field(None, title="Web thickness at the holes")
     depth_to: DepthTo | None = None
     point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
     direction: Literal["axial", "radial"] = "axial"

@@ -33,7 +33,7 @@ from __future__ import annotations
 
 import math
 from abc import ABC, abstractmethod
-from collections.abc import Sequence
+from collections.abc import Mapping, Sequence
 from dataclasses import dataclass, field
 from typing import Literal
 
@@ -48,7 +48,9 @@ from .shop.holes import (
     STEEL_DENSITY,
     DepthReference,
     HoleDirection,
+    check_drill,
     depth_for_volume,
+    depth_limit,
     hole_geometry,
     hole_mass_properties,
     round_depth,
@@ -697,9 +699,14 @@ class DrilledHoles(_Layer, ResultMixin):
         reproduces) or e.g. :data:`~crankbalance.shop.holes.DEFAULT_POINT_ANGLE` (118°).
     depth_to : {"shoulder", "tip"}
         What the depth is read to (the same for a flat bottom).
+    web_thickness : float, optional
+        Axial thickness of the web at the holes [m]: an axial hole ends in it (tip depth at
+        most the thickness), a radial hole fits in it. None when not known: the drill's
+        reach alone limits the depth (:func:`crankbalance.shop.holes.depth_limit`).
 
     Volume, mass and centroid of each hole are those of
     :func:`crankbalance.shop.holes.hole_mass_properties`, drill point included.
+    :func:`rebalance` refuses a plan the drill cannot make (:meth:`check_plan`).
     """
 
     diameter: float
@@ -711,6 +718,7 @@ class DrilledHoles(_Layer, ResultMixin):
     depth_resolution: float = 1e-6
     point_angle: float = FLAT_BOTTOM
     depth_to: DepthReference = "shoulder"
+    web_thickness: float | None = None
     kind: str = field(default="holes", init=False)
 
     def __post_init__(self) -> None:
@@ -719,7 +727,72 @@ class DrilledHoles(_Layer, ResultMixin):
         if self.direction not in ("axial", "radial"):
             raise InputError("hole_direction", self.direction, "must be 'axial' or 'radial'")
         self._check_layer()
+        if self.web_thickness is not None:
+            check_positive("web_thickness", self.web_thickness)
         hole_geometry(self.diameter, 0.0, self.depth_to, self.point_angle)  # checks both
+
+    def check_drill(self, names: Mapping[str, str] | None = None) -> None:
+        """Refuse a drill these holes cannot be made with: smaller than
+        :data:`~crankbalance.shop.holes.MIN_DRILL_DIAMETER`, an axial hole that reaches
+        across the crank axis, a radial hole wider than the web.
+
+        Parameters
+        ----------
+        names : mapping of str to str, optional
+            How the user named ``hole_diameter``, ``correction_radius`` and
+            ``web_thickness`` (an option or a key of a file), for the message.
+        """
+        drill = _name(names, "hole_diameter")
+        check_drill(self.diameter, {"diameter": drill})
+        shown = f"{self.diameter * 1e3:.4g} mm"
+        if self.direction == "axial" and self.diameter >= 2 * self.radius:
+            raise InputError(
+                drill,
+                shown,
+                f"is too large for axial holes at {_name(names, 'correction_radius')} = "
+                f"{self.radius * 1e3:.4g} mm: a hole would reach across the crank axis; give a "
+                f"drill below {2e3 * self.radius:.4g} mm",
+            )
+        if self.direction == "radial" and self.web_thickness is not None:
+            if self.diameter > self.web_thickness:
+                raise InputError(
+                    drill,
+                    shown,
+                    f"is wider than the web, {_name(names, 'web_thickness')} = "
+                    f"{self.web_thickness * 1e3:.4g} mm: give a smaller drill",
+                )
+
+    def check_plan(self, depth: float, names: Mapping[str, str] | None = None) -> None:
+        """Refuse holes ``depth`` deep (as read to ``depth_to``) [m] that go deeper, to the
+        tip, than the drill reaches or than the web is thick (axial holes)
+        (:func:`~crankbalance.shop.holes.depth_limit`), proposing as many holes per web
+        as keep every hole within the limit.
+
+        Parameters
+        ----------
+        depth : float
+            Depth of every hole [m].
+        names : mapping of str to str, optional
+            How the user named ``hole_diameter``, ``holes`` and ``web_thickness``.
+        """
+        part = self.web_thickness if self.direction == "axial" else None
+        limit, words = depth_limit(
+            self.diameter, part, {"web_thickness": _name(names, "web_thickness")}
+        )
+        tip = float(hole_geometry(self.diameter, depth, self.depth_to, self.point_angle).tip_depth)
+        if tip <= limit * (1 + 1e-9):
+            return
+        deepest = limit - hole_geometry(self.diameter, 0.0, "tip", self.point_angle).cone_height
+        at_limit = self.removed_mass(limit if self.depth_to == "tip" else max(deepest, 0.0))
+        per_hole = at_limit / self._holes
+        needed = math.ceil(self.removed_mass(depth) / (per_hole * self.webs) - 1e-9)
+        raise InputError(
+            _name(names, "hole_diameter"),
+            f"{self.diameter * 1e3:.4g} mm",
+            f"would need {self.number} hole(s) per web {tip * 1e3:.4g} mm deep to the tip, "
+            f"deeper than {words}; spread the material over {needed} holes per web "
+            f"({_name(names, 'holes')}: {needed}), or give a larger drill",
+        )
 
     @property
     def mass_per_depth(self) -> float:
@@ -815,6 +888,11 @@ class FaceRemoval(_Layer, ResultMixin):
 
 
 Correction = DrilledHoles | FaceRemoval
+
+
+def _name(names: Mapping[str, str] | None, name: str) -> str:
+    """How the user named a quantity (``names``), else its name here."""
+    return name if names is None else names.get(name, name)
 
 
 def _check_count(name: str, value: int) -> int:
@@ -927,6 +1005,7 @@ def rebalance(
     tolerance: float,
     target_balance_factor: float | None = None,
     max_iterations: int = 10,
+    names: Mapping[str, str] | None = None,
 ) -> RebalanceResult:
     r"""Rebalance a single-cylinder crank after new parts (the thesis' eight steps).
 
@@ -950,6 +1029,10 @@ def rebalance(
         (factory) factor.
     max_iterations : int
         Passes of steps 3-8 before giving up.
+    names : mapping of str to str, optional
+        How the user named the correction's quantities (``hole_diameter``, ``holes``,
+        ``web_thickness``, ``correction_radius``: an option or a key of a file), for the
+        messages of :meth:`DrilledHoles.check_drill` and :meth:`DrilledHoles.check_plan`.
 
     Returns
     -------
@@ -983,6 +1066,8 @@ def rebalance(
     check_positive("tolerance", tolerance)
     if not (isinstance(max_iterations, int) and max_iterations >= 1):
         raise InputError("max_iterations", max_iterations, "must be an integer >= 1")
+    if isinstance(correction, DrilledHoles):
+        correction.check_drill(names)
     original = balance_factor_from_mass_properties(
         counterweight_mass,
         counterweight_radius,
@@ -1033,6 +1118,8 @@ def rebalance(
                     f"{correction.radius * 1e3:.4g} mm, through the crank axis; use a larger "
                     "face area, more or larger holes, or axial holes",
                 )
+            if isinstance(correction, DrilledHoles):
+                correction.check_plan(depth, names)
             removed = correction.removed_unbalance(depth)  # step 6
             residual = unbalance - removed  # step 7
             ok = abs(residual) <= tolerance  # step 8

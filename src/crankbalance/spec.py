@@ -711,6 +711,7 @@ class EngineSpec(_Strict):
                         f"masses.override[{k}].throws",
                         f"throw {number} does not exist (1..{n_throw})",
                     )
+        _check_override_overlap(self.masses.override)
         _check_articulated_engine(self)
         if self.counterweights is not None and self.counterweights.webs is not None:
             if len(self.counterweights.webs) != 2 * n_throw:
@@ -723,6 +724,41 @@ class EngineSpec(_Strict):
     def to_file_dict(self) -> dict[str, Any]:
         """The spec as an engine-file dictionary (quantities as unit strings)."""
         return self.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+
+
+#: override fields that give one quantity two ways (the later table would replace the
+#: earlier's, build.py): the conrod's split
+_SAME_QUANTITY = {"conrod_cg_from_big_end": "conrod_rotating_fraction"}
+
+
+def _check_override_overlap(overrides: list[MassOverride]) -> None:
+    """Refuse two ``[[masses.override]]`` tables that give one cylinder (or throw) the same
+    mass, which the later would replace without a word, and a number listed twice in one
+    table (docs/engine_file.md, "Overrides")."""
+    first: dict[tuple[str, int, str], int] = {}
+    for k, item in enumerate(overrides):
+        target = "cylinders" if item.cylinders is not None else "throws"
+        numbers = item.cylinders if item.cylinders is not None else item.throws or []
+        word = target[:-1]
+        if len(set(numbers)) < len(numbers):
+            twice = next(n for n in numbers if numbers.count(n) > 1)
+            raise FieldProblem(
+                f"masses.override[{k}].{target}", f"lists {word} {twice} twice; give it once"
+            )
+        given = [
+            name for name in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(item, name) is not None
+        ]
+        for number in numbers:
+            for name in given:
+                key = (target, number, _SAME_QUANTITY.get(name, name))
+                if key in first:
+                    raise FieldProblem(
+                        f"masses.override[{k}].{target}",
+                        f"masses.override[{first[key]}] and masses.override[{k}] both give "
+                        f"{word} {number} its {name} (the later would replace the "
+                        "earlier's without a word); give it once",
+                    )
+                first[key] = k
 
 
 def _check_articulated_engine(spec: EngineSpec) -> None:

@@ -36,9 +36,13 @@ _PARTS_OPTIONS = (
         "--method",
         type=click.Choice(["milp", "pairing", "exhaustive", "as-listed"]),
         default=None,
-        help="Matching method (default milp: least spread, proven optimal within the time limit).",
+        help="Matching method (default milp: least spread, proven optimal within the time "
+        "limit; too large a problem is matched by a local search, said so in the output).",
     ),
-    click.option("--time-limit", help="Longest matching search, default '60 s'."),
+    click.option(
+        "--time-limit",
+        help="Longest matching, the building of the model included, default '60 s'.",
+    ),
     click.option(
         "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
     ),
@@ -66,6 +70,11 @@ _PLAN_OPTIONS = (
     click.option("--hole-diameter", help="Drill diameter, default '8 mm'."),
     click.option("--hole-radius", help="Radius of the axial holes (or of the rim), e.g. '45 mm'."),
     click.option("--max-depth", help="Deepest hole allowed, default '15 mm'."),
+    click.option(
+        "--web-thickness",
+        help="Axial thickness of the web at the holes: the deepest axial hole, the widest "
+        "radial one (not given: holes at most 10 drill diameters deep).",
+    ),
     click.option(
         "--depth-to",
         type=click.Choice(["shoulder", "tip"]),
@@ -108,17 +117,24 @@ def _settings(values: dict[str, Any]) -> Any:
 
 
 @contextlib.contextmanager
-def _named() -> Iterator[None]:
-    """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``)."""
+def _named(*others: str) -> Iterator[None]:
+    """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``;
+    also the ``others``, the command's own options)."""
     from ..errors import InputError
     from ..options import ShopOptions
 
     try:
         yield
     except InputError as error:
-        if error.field not in ShopOptions.model_fields:
+        if error.field not in ShopOptions.model_fields and error.field not in others:
             raise
         raise InputError(option_name(error.field), error.value, error.allowed) from None
+
+
+#: the options of the drilling plan's settings, for its messages (studies.shop.hole_plan)
+_OPTION_NAMES = {
+    name: option_name(name) for name in ("hole_diameter", "max_depth", "hole_radius")
+} | {"web_thickness": "--web-thickness"}
 
 
 def _echo_json(schema: str, result: Any) -> None:
@@ -160,9 +176,8 @@ def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
         for c in range(study.cylinders)
     ]
     echo_table(["cyl", *m.kinds, "recip.", "rotating", "remove recip.", "remove rot."], rows)
-    proven = "proven optimal" if m.optimal else "not proven optimal (time limit)"
     click.echo(
-        f"\n{m.method} ({proven}): spread reciprocating {_g(m.reciprocating_spread)}, rotating "
+        f"\n{m.method} ({m.status}): spread reciprocating {_g(m.reciprocating_spread)}, rotating "
         f"{_g(m.rotating_spread)}; material to remove {_g(m.removed_total)}"
     )
     listed = study.as_listed
@@ -198,8 +213,10 @@ def bobweights(parts: str, engine: str, fmt: str, **values: Any) -> None:
         ],
     )
     left = study.remaining
+    m = study.matching
+    click.echo(f"\nsets matched by {m.method} ({m.status})")
     click.echo(
-        f"\nfraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
+        f"fraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
         + "; ".join(
             f"order {k + 1} force {text(f, 'force')}, couple {text(c, 'moment')}"
             for k, (f, c) in enumerate(
@@ -235,6 +252,9 @@ def echo_hole_plan(result: Any) -> None:
         + ["tolerance", "ISO"],
         rows,
     )
+    for j, holes in enumerate(result.holes):
+        if holes.note:
+            click.echo(f"plane {j + 1}: {holes.note}")
     verdict = "PASS" if result.check.passed else "FAIL"
     click.echo(
         f"\nISO 21940-11 {result.grade}, {text(result.rotor_mass, 'mass_kg')}, "
@@ -253,7 +273,7 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
     options = _settings(values)
     speed = engine_model(engine)[1].speed if engine is not None else None
     with _named():
-        result = hole_plan(options, speed)
+        result = hole_plan(options, speed, _OPTION_NAMES)
     if fmt == "json":
         _echo_json(PLAN_SCHEMA, result)
         return
@@ -291,7 +311,7 @@ def scatter(
     step = parse_quantity(scale_step, "mass", "--scale-step") if scale_step.strip() != "0" else 0.0
     if not 0 <= step <= 0.01:
         raise InputError("--scale-step", scale_step, "must be a mass from 0 to 10 g")
-    with _named():
+    with _named("samples"):
         result = scatter_of_parts(engine, parts, options, count, start, step)
     if fmt == "json":
         _echo_json(SCATTER_SCHEMA, result)
@@ -339,6 +359,6 @@ def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: 
     require_extra("web", "plotly", *(("kaleido",) if pdf else ()))
     options = _settings(values)
     with _named():
-        study = shop_study(engine, parts, options)
+        study = shop_study(engine, parts, options, _OPTION_NAMES)
     path = write_sheet(study, output, chromium)
     click.echo(f"wrote {path}", err=True)

@@ -299,6 +299,11 @@ def balance_factor(
 @click.option("--holes", default=None, help="Holes per web (1 to 1000).")
 @click.option("--hole-direction", type=click.Choice(["axial", "radial"]), default=None)
 @click.option(
+    "--web-thickness",
+    help="Axial thickness of the web at the holes, e.g. '14 mm' (the deepest axial hole; "
+    "not given: 10 drill diameters).",
+)
+@click.option(
     "--point-angle",
     help="Drill point included angle, e.g. '118 deg' (default 180 deg: flat-bottomed holes).",
 )
@@ -336,6 +341,7 @@ def rebalance_command(
     hole_diameter: str | None,
     holes: str | None,
     hole_direction: str | None,
+    web_thickness: str | None,
     point_angle: str | None,
     depth_to: str | None,
     density: str | None,
@@ -374,6 +380,7 @@ def rebalance_command(
             "holes": holes,
             "point_angle": point_angle,
             "depth_to": depth_to,
+            "web_thickness": web_thickness,
             "density": density,
             "depth_resolution": depth_resolution,
             "grade": grade,
@@ -433,6 +440,7 @@ def rebalance_command(
         ("direction", hole_direction, "hole_direction"),
         ("point_angle", point_angle, "point_angle"),
         ("depth_to", depth_to, "depth_to"),
+        ("web_thickness", web_thickness, "web_thickness"),
         ("density", density, "density"),
         ("depth_resolution", depth_resolution, "depth_resolution"),
     )
@@ -454,7 +462,7 @@ def rebalance_command(
     try:
         parts = rebalance_file_from_dict(data, source)
         _drill_point_used(parts, typed, point_angle, depth_to)
-        study = rebalance_parts(parts)
+        study = rebalance_parts(parts, names=_plan_names(parts, origin))
     except InputError as error:
         named = origin.get(error.field.split("[")[0])
         if named is None:
@@ -522,6 +530,21 @@ def rebalance_command(
             f"{res.achieved_balance_factor:.4f}"
         )
     click.echo(f"({BALANCE_FACTOR_NOTE})")
+
+
+def _plan_names(parts: Any, origin: dict[str, str]) -> dict[str, str]:
+    """How the messages of a correction plan name its quantities: the option that set a
+    key, the file's key, or both when neither gave it (``--holes or correction.number``)."""
+    names = dict(origin)
+    correction = parts.correction
+    for key, option in (
+        ("correction.number", "--holes"),
+        ("correction.web_thickness", "--web-thickness"),
+    ):
+        given = correction is not None and getattr(correction, key.split(".")[1]) is not None
+        if key not in names and not given:
+            names[key] = f"{option} or {key}"
+    return names
 
 
 def _drill_point_used(
@@ -592,6 +615,8 @@ def _correction_json(correction: Any) -> dict[str, Any]:
                 "point_angle_deg": math.degrees(correction.point_angle),
                 "depth_to": correction.depth_to,
             }
+        if correction.web_thickness is not None:
+            out["web_thickness_m"] = correction.web_thickness
     return out | {
         "webs": correction.webs,
         "density_kg_m3": correction.density,

@@ -68,6 +68,9 @@ KINDS: dict[str, str] = {
     "shell": "rotating",
     "oil": "allowance",
 }
+#: longest cell of a CSV parts file, in characters (a mark or a mass needs a few; the TOML
+#: file's quantities have the same bound)
+MAX_CELL_CHARS = MAX_QUANTITY_CHARS
 #: largest difference between a rod's weighed total and the sum of its two ends, as a
 #: fraction of the total (the two-end weighing loses a little to how the rod is held)
 ROD_SUM_TOLERANCE = 0.01
@@ -75,6 +78,8 @@ DOC = "docs/balance_shop.md"
 WHAT = "a parts file (.csv or .toml)"
 _HEADER = re.compile(r"^\s*(?P<name>[A-Za-z_]+)\s*(?:\[(?P<unit>[^\]]*)\])?\s*$")
 _MASS_COLUMNS = ("mass", "big_end", "small_end")
+#: control characters (NUL, escape, ...), which no cell may hold (a tab may)
+_CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
 
 
 @dataclass(frozen=True)
@@ -142,11 +147,13 @@ def parts_from_csv(text: str, source: str = "parts.csv") -> Inventory:
     if not lines:
         raise InputError("parts", source, "holds no header and no part; see " + DOC)
     number, header_line = lines[0]
-    columns = _header(_cells(header_line), f"{source}, line {number} (header)")
+    header = f"{source}, line {number} (header)"
+    columns = _header(_cells(header_line, header, []), header)
+    labels = [label for _, label, _ in columns]
     parts: list[_Part] = []
     for number, line in lines[1:]:
-        cells = _cells(line)
         where = f"{source}, line {number}"
+        cells = _cells(line, where, labels)
         if len(cells) > len(columns):
             raise InputError(
                 where, line, f"has {len(cells)} cells; the header names {len(columns)} columns"
@@ -175,8 +182,75 @@ def parts_from_csv(text: str, source: str = "parts.csv") -> Inventory:
     return _inventory(parts, source)
 
 
-def _cells(line: str) -> list[str]:
-    return next(csv.reader([line]))
+def _cells(line: str, where: str, labels: list[str]) -> list[str]:
+    """The cells of one line (strict CSV: a quoted cell ends on its line, its closing quote
+    is followed by a comma or the end of the line); a cell longer than
+    :data:`MAX_CELL_CHARS` or any other CSV error is an :class:`InputError` naming the line
+    and the column (its header ``labels``, or its number)."""
+    try:
+        cells = next(csv.reader([line], strict=True))
+    except csv.Error as error:
+        index, cell = _bad_cell(line)
+        if len(cell) > MAX_CELL_CHARS:
+            _too_long(where, labels, index, cell)
+        raise InputError(
+            f"{where}, {_column(labels, index)}",
+            cell,
+            f"is not a valid CSV cell ({error}): a cell in double quotes ends on its line, "
+            "with a comma or the end of the line after its closing quote, and a quote inside "
+            'it doubled ("")',
+        ) from None
+    for index, cell in enumerate(cells):
+        if len(cell) > MAX_CELL_CHARS:
+            _too_long(where, labels, index, cell)
+        control = _CONTROL.search(cell)
+        if control:
+            raise InputError(
+                f"{where}, {_column(labels, index)}",
+                cell,
+                f"holds the control character {control.group()!r} at character "
+                f"{control.start() + 1}; a cell is printable text",
+            )
+    return cells
+
+
+def _too_long(where: str, labels: list[str], index: int, cell: str) -> None:
+    raise InputError(
+        f"{where}, {_column(labels, index)}",
+        cell,
+        f"is {len(cell)} characters long; a cell holds at most {MAX_CELL_CHARS}",
+    )
+
+
+def _column(labels: list[str], index: int) -> str:
+    """A column as the user finds it: its header as written, else its number."""
+    if index < len(labels):
+        return labels[index]
+    if labels:
+        return f"column {index + 1} (the header names {len(labels)})"
+    return f"column {index + 1}"
+
+
+def _bad_cell(line: str) -> tuple[int, str]:
+    """Where the csv module stopped on a line: the line cut into cells at the commas outside
+    double quotes, the first that is no valid CSV cell on its own (its index, and the cell
+    as written)."""
+    cells, start, quoted = [], 0, False
+    for k, char in enumerate(line):
+        if char == '"':
+            quoted = not quoted
+        elif char == "," and not quoted:
+            cells.append(line[start:k])
+            start = k + 1
+    cells.append(line[start:])
+    for index, cell in enumerate(cells):
+        if len(cell) > MAX_CELL_CHARS:
+            return index, cell
+        try:
+            next(csv.reader([cell], strict=True), None)
+        except csv.Error:
+            return index, cell
+    return len(cells) - 1, cells[-1]
 
 
 def _header(cells: list[str], where: str) -> list[tuple[str, str, str | None]]:

@@ -19,7 +19,7 @@ import stat
 import tomllib
 from collections.abc import Iterator
 from pathlib import Path
-from typing import Any
+from typing import Any, NoReturn
 
 from ..errors import InputError
 
@@ -82,11 +82,23 @@ def read_text(path: str | os.PathLike[str], field: str, what: str, limit: int) -
         raise InputError(field, source, f"is larger than {limit} bytes; give {what}")
     try:
         text = raw.decode("utf-8-sig")
-    except UnicodeDecodeError:
-        text = "\x00"
+    except UnicodeDecodeError as error:
+        _binary(raw, error.start, field, source, what)
     if "\x00" in text:
-        raise InputError(field, source, f"must be UTF-8 text, not binary data; give {what}")
+        _binary(raw, raw.index(b"\x00"), field, source, what)
     return text
+
+
+def _binary(raw: bytes, at: int, field: str, source: str, what: str) -> NoReturn:
+    """Refuse binary data, naming the line and byte of the first NUL or non-UTF-8 byte."""
+    line = raw.count(b"\n", 0, at) + 1
+    column = at - (raw.rfind(b"\n", 0, at) + 1) + 1
+    raise InputError(
+        field,
+        source,
+        f"must be UTF-8 text, not binary data (byte {raw[at]:#04x} on line {line}, byte "
+        f"{column} of the line); give {what}",
+    )
 
 
 def _check_regular(mode: int, field: str, source: str, what: str) -> None:

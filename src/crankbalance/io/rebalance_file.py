@@ -137,13 +137,14 @@ class Correction(_Strict):
     direction: Literal["axial", "radial"] | None = None
     point_angle: Angle | None = None
     depth_to: Literal["shoulder", "tip"] | None = None
+    web_thickness: Length | None = None
     webs: int = Field(default=2, ge=1, le=64)
     density: Density | None = None
     depth_resolution: Length | None = None
 
     @model_validator(mode="after")
     def _check(self) -> Correction:
-        _positive(self, ("radius", "area", "diameter", "density"))
+        _positive(self, ("radius", "area", "diameter", "density", "web_thickness"))
         if self.point_angle is not None and not 0 < self.point_angle <= math.pi:
             raise FieldProblem("point_angle", "must be above 0 and at most 180 deg (flat bottom)")
         if self.depth_resolution is not None and self.depth_resolution < 0:
@@ -164,7 +165,7 @@ class Correction(_Strict):
 #: [correction] keys that belong to one method only
 METHOD_KEYS: dict[str, tuple[str, ...]] = {
     "face": ("area", "orientation"),
-    "holes": ("diameter", "number", "direction", "point_angle", "depth_to"),
+    "holes": ("diameter", "number", "direction", "point_angle", "depth_to", "web_thickness"),
 }
 
 

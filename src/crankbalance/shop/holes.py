@@ -34,13 +34,22 @@ holes, the shoulder at the largest depth for radial holes, where radial holes co
 The fewest holes whose depth stays within ``max_depth`` are used; the depth is rounded to the
 machining step and the residual predicted from the rounded depth.
 
+**What a drill can do** (:func:`check_drill`, :func:`depth_limit`). A correction plan takes
+no drill below :data:`MIN_DRILL_DIAMETER` (1 mm) and no hole deeper, to the tip, than
+:data:`MAX_DEPTH_RATIO` (10) times the drill, the reach of a standard jobber drill, nor
+deeper than the part (an axial hole in a web of a given thickness). An axial hole must not
+reach the crank axis (its drill smaller than twice its radius), a radial hole must fit in the
+web's thickness. A plan that needs deeper holes spreads the material over more holes, and
+says so (:attr:`DrillingPlan.note`); when no number of holes fits, it is refused, naming the
+drill and the limit.
+
 SI units throughout; angles in radians, counterclockwise seen along the crank axis.
 """
 
 from __future__ import annotations
 
 import math
-from collections.abc import Callable
+from collections.abc import Callable, Mapping
 from dataclasses import dataclass
 from typing import Literal
 
@@ -57,6 +66,14 @@ STEEL_DENSITY = 7850.0
 DEFAULT_POINT_ANGLE = math.radians(118.0)
 #: Point angle of a flat-bottomed hole [rad] (180°: no cone).
 FLAT_BOTTOM = math.pi
+
+#: Smallest drill a correction plan takes [m]: a smaller twist drill breaks in crank steel,
+#: and a hole of it takes off next to nothing (1 mm, 10 mm deep: 0.06 g of steel).
+MIN_DRILL_DIAMETER = 1e-3
+#: Deepest hole a correction plan takes, to the tip, in drill diameters: the reach of a
+#: standard (jobber) twist drill, whose flutes are about ten diameters long (DIN 338; an
+#: 8 mm drill: 75 mm); deeper holes need long-series or gun drills.
+MAX_DEPTH_RATIO = 10.0
 
 DepthReference = Literal["shoulder", "tip"]
 HoleDirection = Literal["axial", "radial"]
@@ -104,6 +121,78 @@ def cone_height(diameter: float, point_angle: float = DEFAULT_POINT_ANGLE) -> fl
             "must be an angle greater than 0 and at most 180 deg (pi rad, a flat bottom) [rad]",
         )
     return 0.0 if point_angle == math.pi else 0.5 * diameter / math.tan(0.5 * point_angle)
+
+
+def _mm(value: float) -> str:
+    return f"{value * 1e3:.4g} mm"
+
+
+def _named(names: Mapping[str, str] | None, name: str) -> str:
+    return name if names is None else names.get(name, name)
+
+
+def check_drill(diameter: float, names: Mapping[str, str] | None = None) -> float:
+    """Refuse a drill smaller than :data:`MIN_DRILL_DIAMETER`.
+
+    Parameters
+    ----------
+    diameter : float
+        Drill diameter [m].
+    names : mapping of str to str, optional
+        How the user named the quantities (``{"diameter": "--hole-diameter"}``).
+
+    Returns
+    -------
+    float
+        The diameter [m].
+    """
+    check_positive(_named(names, "diameter"), diameter)
+    if diameter < MIN_DRILL_DIAMETER * (1 - 1e-12):
+        raise InputError(
+            _named(names, "diameter"),
+            _mm(diameter),
+            f"must be at least {_mm(MIN_DRILL_DIAMETER)}: a smaller twist drill breaks in "
+            "crank steel and takes off next to nothing",
+        )
+    return float(diameter)
+
+
+def depth_limit(
+    diameter: float,
+    part_depth: float | None = None,
+    names: Mapping[str, str] | None = None,
+) -> tuple[float, str]:
+    """The deepest hole a drill may make in a part, to the tip, and where the limit comes
+    from: :data:`MAX_DEPTH_RATIO` drill diameters, or the part's depth when that is less.
+
+    Parameters
+    ----------
+    diameter : float
+        Drill diameter [m].
+    part_depth : float, optional
+        How deep the part is along the hole (the web's thickness for an axial hole) [m];
+        None when not known (then the drill's reach alone limits, and the words say so).
+    names : mapping of str to str, optional
+        How the user named the quantities (``{"web_thickness": "--web-thickness"}``).
+
+    Returns
+    -------
+    limit : float
+        Deepest tip depth [m].
+    words : str
+        The limit and where it comes from, for messages.
+    """
+    reach = MAX_DEPTH_RATIO * diameter
+    thickness = _named(names, "web_thickness")
+    if part_depth is not None and part_depth <= reach:
+        return float(part_depth), f"the part's depth, {thickness} = {_mm(part_depth)}"
+    words = (
+        f"{MAX_DEPTH_RATIO:g} times the {_mm(diameter)} drill, {_mm(reach)}, the reach of a "
+        "jobber drill"
+    )
+    if part_depth is None:
+        words += f" (the part's depth is not given: {thickness})"
+    return float(reach), words
 
 
 def _check_reference(depth_to: str) -> None:
@@ -368,6 +457,9 @@ class DrillingPlan(ResultMixin):
         ``unbalance - correction``, what remains [kg m].
     residual_amount : float
         ``abs(residual)`` [kg m].
+    note : str
+        Why the holes are more than ``max_depth`` alone would need, when a drill's reach or
+        the part's depth limited them (empty otherwise).
     """
 
     method: str
@@ -389,6 +481,7 @@ class DrillingPlan(ResultMixin):
     correction: complex
     residual: complex
     residual_amount: float
+    note: str = ""
 
 
 def _offsets(number: int, pitch: float) -> NDArray:
@@ -414,6 +507,7 @@ def drilling_plan(
     depth_resolution: float = 0.0,
     slug_density: float | None = None,
     max_holes: int = 12,
+    names: Mapping[str, str] | None = None,
 ) -> DrillingPlan:
     r"""Plan the holes (or heavy-metal slugs) that correct an unbalance in one plane.
 
@@ -449,7 +543,10 @@ def drilling_plan(
     outer_radius : float, optional
         Outer radius of the counterweight face, for axial holes [m].
     web_thickness : float, optional
-        Axial thickness of the web at the rim, for radial holes [m].
+        Axial thickness of the web [m]: a radial hole must fit in it (with
+        ``edge_distance`` to each face), an axial hole must end in it (its tip depth at most
+        the thickness). Not given, the drill's reach alone limits the depth
+        (:func:`depth_limit`).
     depth_resolution : float
         Machining step the depth is rounded to [m]; 0 for none.
     slug_density : float, optional
@@ -458,6 +555,9 @@ def drilling_plan(
         shoulder, instead of holes at the heavy spot.
     max_holes : int
         Most holes the plan may use.
+    names : mapping of str to str, optional
+        How the user named the parameters, for messages (``{"diameter":
+        "--hole-diameter", "max_depth": "--max-depth"}``).
 
     Returns
     -------
@@ -467,18 +567,23 @@ def drilling_plan(
     Raises
     ------
     InputError
-        When the correction cannot be made with these limits; the message says what to
-        change.
+        When the correction cannot be made with these limits, or the drill cannot make it
+        (:func:`check_drill`, a drill that crosses the crank axis or does not fit in the
+        web); the message names the drill and the limit, and says what to change.
 
     Notes
     -----
     With :math:`n` equal holes at offsets :math:`\delta_k` around the correction's
     direction, each must carry :math:`U / \sum_k \cos\delta_k`; the depth follows from
     :func:`hole_mass_properties` (monotonic in the depth) by root finding, then rounding.
+    The depth is held within ``max_depth``, :data:`MAX_DEPTH_RATIO` drill diameters and,
+    for axial holes, ``web_thickness`` (:func:`depth_limit`); when the last two call for
+    more holes than ``max_depth`` alone would, the plan's ``note`` says so.
     """
     check_nonnegative("unbalance", unbalance)
     if not math.isfinite(angle):
         raise InputError("angle", angle, "must be a finite angle [rad]")
+    check_drill(diameter, names)
     h = cone_height(diameter, point_angle)
     _check_reference(depth_to)
     _check_direction(direction)
@@ -501,17 +606,40 @@ def drilling_plan(
             "(heavy metal adds mass only when denser than what is drilled out)",
         )
     max_tip = max_depth + h if depth_to == "shoulder" else max_depth
-    max_shoulder = max(max_tip - h, 0.0)
     if direction == "radial" and max_tip >= radius:
         raise InputError(
-            "max_depth",
-            max_depth,
-            f"radial holes from the rim at {radius * 1e3:.4g} mm must end short of the crank "
-            f"axis: a tip depth below {radius * 1e3:.4g} mm",
+            _named(names, "max_depth"),
+            _mm(max_depth),
+            f"radial holes from the rim at {_named(names, 'radius')} = {_mm(radius)} must end "
+            f"short of the crank axis: a tip depth below {_mm(radius)}",
         )
+    if direction == "axial" and diameter >= 2 * radius:
+        raise InputError(
+            _named(names, "diameter"),
+            _mm(diameter),
+            f"is too large for axial holes at {_named(names, 'radius')} = {_mm(radius)}: a "
+            f"hole would reach across the crank axis; give a drill below {_mm(2 * radius)}",
+        )
+    # the deepest tip: max_depth, the drill's reach, an axial hole's web
+    part = web_thickness if direction == "axial" else None
+    reach_tip, reach_words = depth_limit(diameter, part, names)
+    limit_words = f"{_named(names, 'max_depth')} = {_mm(max_depth)} to the {depth_to}"
+    if reach_tip < max_tip:
+        max_tip, limit_words = reach_tip, reach_words
+        if max_tip <= h and depth_to == "shoulder":
+            raise InputError(
+                _named(names, "diameter"),
+                _mm(diameter),
+                f"has a point {_mm(h)} long, as deep as {reach_words} allows; give a smaller "
+                "drill or a larger point angle",
+            )
+    limit = max_tip - h if depth_to == "shoulder" else max_tip
+    max_shoulder = max(max_tip - h, 0.0)
     if slug_density is not None and max_shoulder <= 0:
         raise InputError(
-            "max_depth", max_depth, "leaves no room for a slug: the hole must go past its point"
+            _named(names, "max_depth"),
+            _mm(max_depth),
+            f"leaves no room for a slug as deep as {limit_words}: the hole must go past its point",
         )
     if direction == "axial" and outer_radius is not None:
         if radius + diameter / 2 + edge_distance > outer_radius:
@@ -525,10 +653,11 @@ def drilling_plan(
     if direction == "radial" and web_thickness is not None:
         if diameter + 2 * edge_distance > web_thickness:
             raise InputError(
-                "diameter",
-                diameter,
-                f"a radial hole needs the web {web_thickness * 1e3:.4g} mm thick to hold it "
-                f"with {edge_distance * 1e3:.4g} mm to each face; use a smaller drill",
+                _named(names, "diameter"),
+                _mm(diameter),
+                f"does not fit in the web, {_named(names, 'web_thickness')} = "
+                f"{_mm(web_thickness)} thick, with {_mm(edge_distance)} to each face; use a "
+                "smaller drill",
             )
     heavy_metal = slug_density is not None
     centre = angle + math.pi if heavy_metal else angle
@@ -556,21 +685,37 @@ def drilling_plan(
 
     unit = complex(math.cos(angle), math.sin(angle))
     target = complex(unbalance) * unit
-    best = 0.0
-    fits = 0
-    for number in range(1 if unbalance > 0 else 0, max_holes + 1):
+
+    def fewest(deepest: float) -> tuple[int | None, int, float]:
+        """The fewest holes that carry the unbalance, each at most ``deepest`` deep (None:
+        no number that fits), how many fit, and the most the fitting ones take [kg m]."""
+        best, fits = 0.0, 0
+        for number in range(1 if unbalance > 0 else 0, max_holes + 1):
+            offsets = _offsets(number, pitch if number > 1 else 0.0)
+            if number and (-offsets[0] > room_low or offsets[-1] > room_high):
+                break
+            fits = number
+            gain = float(np.sum(np.cos(offsets)))
+            if number and gain * moment(deepest) < unbalance:
+                best = max(best, gain * moment(deepest))
+                continue
+            return number, fits, best
+        return None, fits, best
+
+    found, fits, best = fewest(limit)
+    note = ""
+    if found is not None and limit < max_depth:
+        alone = fewest(max_depth)[0]
+        if alone is not None and alone < found:
+            note = f"split into {found} holes: {alone} would go deeper than {limit_words}"
+    if found is not None:
+        number = found
         offsets = _offsets(number, pitch if number > 1 else 0.0)
-        if number and (-offsets[0] > room_low or offsets[-1] > room_high):
-            break
-        fits = number
         gain = float(np.sum(np.cos(offsets)))
-        if number and gain * moment(max_depth) < unbalance:
-            best = max(best, gain * moment(max_depth))
-            continue
-        depth = _depth_for_moment(moment, unbalance / gain, max_depth) if number else 0.0
+        depth = _depth_for_moment(moment, unbalance / gain, limit) if number else 0.0
         depth = round_depth(depth, depth_resolution)
-        if depth > max_depth:  # rounded up past the limit: one step less
-            depth = math.floor(max_depth / depth_resolution) * depth_resolution
+        if depth > limit:  # rounded up past the limit: one step less
+            depth = math.floor(limit / depth_resolution) * depth_resolution
         per_hole = moment(depth) if number else 0.0
         angles = (centre + offsets) % (2 * math.pi)
         sign = -1.0 if heavy_metal else 1.0
@@ -599,15 +744,23 @@ def drilling_plan(
             correction=correction,
             residual=target - correction,
             residual_amount=abs(target - correction),
+            note=note,
         )
     what = "slugs" if heavy_metal else "holes"
+    deeper = (
+        f"a larger {_named(names, 'max_depth')}"
+        if limit == max_depth
+        else "a thicker part"
+        if limit_words.startswith("the part")
+        else "a larger drill"
+    )
     raise InputError(
         "unbalance",
-        unbalance,
-        f"needs {unbalance * 1e6:.4g} g*mm; at most {fits} {what} of {diameter * 1e3:.4g} mm "
-        f"fit (spacing {spacing * 1e3:.4g} mm, max_holes {max_holes}), taking "
-        f"{best * 1e6:.4g} g*mm at max_depth {max_depth * 1e3:.4g} mm; use a larger "
-        "max_depth, a larger drill, a larger radius, less spacing"
+        f"{unbalance * 1e6:.4g} g*mm",
+        f"is more than the holes take: at most {fits} {what} of {_mm(diameter)} "
+        f"({_named(names, 'diameter')}) fit (spacing {_mm(spacing)}, max_holes {max_holes}), "
+        f"taking {best * 1e6:.4g} g*mm as deep as {limit_words}; use {deeper}, a larger "
+        "drill or radius, less spacing"
         + ("" if heavy_metal else ", or heavy metal at the light spot"),
     )
 

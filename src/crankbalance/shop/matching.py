@@ -44,17 +44,32 @@ Methods, all exact for the objective they state:
 The alternative to matching is to machine every part of a kind to the lightest one used
 (:func:`machine_to_lightest`); either way the material to remove is reported, per set
 (matched) or per part (machined).
+
+**Bounded work.** The ``time_limit`` covers the whole of a ``"milp"`` matching, the
+building of its model included: the clock starts when :func:`match_parts` is called. The
+size is checked before anything is allocated: at most :data:`MAX_PART_SLOTS` part-slots
+(parts listed times cylinders). A local search (:func:`local_search`: single-part swaps
+and replacements by spares, best improvement first, until no move improves) runs first
+on a share :data:`SEARCH_SHARE` of the limit; the MILP is then built, the clock checked
+after every block of rows, and solved with what remains of the limit. A model of more than
+:data:`MAX_MILP_NONZEROS` nonzeros is not built at all: the local search takes the whole
+limit. The result says which: ``method`` is ``"milp"`` or ``"heuristic"``, ``status`` says
+in words whether the optimum is proven, and ``gap`` gives the relative optimality gap
+against the proven bound (None when no bound beyond zero is known). The exhaustive search
+checks the clock too. The module is over 800 lines because the five methods, the bounded
+MILP and the local search share the objectives and the set weights.
 """
 
 from __future__ import annotations
 
 import itertools
 import math
-from collections.abc import Callable
+import time
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..model import EngineModel
@@ -63,6 +78,22 @@ from ..shaking import free_forces
 
 #: largest number of assignments the exhaustive search visits
 EXHAUSTIVE_LIMIT = 2_000_000
+#: most part-slots (parts listed, all kinds, times cylinders) a matching takes: the parts
+#: file's 2000 parts on an engine's 64 cylinders; checked before anything is allocated
+MAX_PART_SLOTS = 128_000
+#: most nonzeros of the MILP's constraint matrix; a larger model is not built and the local
+#: search alone matches. Measured (docs/balance_shop.md, "Bounded work"): up to 100 598
+#: nonzeros (a spread over 6 kinds of 333 parts in 8 cylinders) the whole matching ended
+#: within 5 % of a 1 s and of a 5 s limit; at 201 862, 1.54 times a 1 s limit, and at
+#: 809 446, 9.4 times (HiGHS's presolve looks at the clock between its steps only)
+MAX_MILP_NONZEROS = 100_000
+#: share of the time limit the local search before the MILP may take (it usually ends,
+#: at a local optimum, in a fraction of it)
+SEARCH_SHARE = 0.25
+#: how many assignments the exhaustive search visits between two looks at the clock
+_CLOCK_EVERY = 2048
+#: the clock of the time limit (seconds, monotonic)
+_now = time.monotonic
 #: objectives of the matching
 OBJECTIVES = ("spread", "variance", "free")
 #: sides of the polygon that measures a phasor's magnitude in the free-force objective
@@ -150,17 +181,18 @@ class Matching(ResultMixin):
     Attributes
     ----------
     method : str
-        How the assignment was found (:data:`METHODS`).
+        How the assignment was found (:data:`METHODS`, or ``"heuristic"``: the local search
+        of a ``milp`` matching, see the module docstring).
     objective : str
-        ``"spread"`` or ``"variance"`` (:data:`OBJECTIVES`).
+        ``"spread"``, ``"variance"`` or ``"free"`` (:data:`OBJECTIVES`).
     objective_value : float
-        The objective reached [kg] (spread) or [kg^2] (variance).
+        The objective reached [kg] (spread), [kg^2] (variance) or [N] (free).
     optimal : bool
-        Whether the assignment is proven optimal for the objective (``as-listed`` never
-        is; ``milp`` is unless it reached its time limit).
+        Whether the assignment is proven optimal for the objective (``as-listed`` and
+        ``heuristic`` never are; ``milp`` is unless it reached its time limit).
     bound : float
-        Proven lower bound of the objective (the value itself when optimal; 0 for
-        ``as-listed``) [kg] or [kg^2].
+        Proven lower bound of the objective (the value itself when optimal; 0 when none is
+        known) [kg], [kg^2] or [N].
     kinds : tuple of str
         The kinds, in the order of ``part``.
     part : ndarray of int, shape (K, C)
@@ -179,6 +211,13 @@ class Matching(ResultMixin):
     free_force, free_couple : ndarray, shape (orders,)
         With the free-force objective: the largest free force [N] and couple [N*m] of
         each order the sets cause (crank balanced for the mean set); empty otherwise.
+    status : str
+        In words, how far the assignment is known to be optimal and why: ``"proven
+        optimal"``, or ``"not proven optimal: ..."`` with the reason (the time limit, a
+        local search), and the gap when a bound is known.
+    gap : float or None
+        Relative optimality gap, ``(objective_value - bound) / objective_value`` [-]; 0
+        when optimal, None when no bound above zero is known.
     """
 
     method: str
@@ -198,6 +237,27 @@ class Matching(ResultMixin):
     removed_total: float
     free_force: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
     free_couple: NDArray[np.float64] = field(default_factory=lambda: np.zeros(0))
+    status: str = "proven optimal"
+    gap: float | None = 0.0
+
+
+@dataclass(frozen=True)
+class _Clock:
+    """The time limit of one matching, started when it was called."""
+
+    start: float
+    limit: float
+
+    @classmethod
+    def started(cls, limit: float) -> _Clock:
+        return cls(_now(), float(limit))
+
+    @property
+    def end(self) -> float:
+        return self.start + self.limit
+
+    def remaining(self) -> float:
+        return self.end - _now()
 
 
 def _weights(weights: tuple[float, float]) -> tuple[float, float]:
@@ -373,20 +433,134 @@ def objective_value(
     float
         The objective [kg], [kg^2] or, for ``"free"``, [N].
     """
-    if objective == "free":
-        if basis is None:
-            raise InputError("objective", objective, "needs the engine (model)")
-        return float(np.sum(_polygon(_phasors(inventory, np.asarray(part), basis))))
-    w_rec, w_rot = _weights(weights)
+    if objective == "free" and basis is None:
+        raise InputError("objective", objective, "needs the engine (model)")
+    if objective not in OBJECTIVES:
+        raise InputError("objective", objective, f"must be one of {', '.join(OBJECTIVES)}")
     rec, rot = _set_weights(inventory, np.asarray(part))
-    if objective == "spread":
-        return w_rec * float(np.ptp(rec)) + w_rot * float(np.ptp(rot))
-    if objective == "variance":
-        mean_rec, mean_rot = _means(inventory)
-        return w_rec * float(np.sum((rec - mean_rec) ** 2)) + w_rot * float(
-            np.sum((rot - mean_rot) ** 2)
+    return float(_objectives(inventory, rec[None], rot[None], objective, weights, basis)[0])
+
+
+def _objectives(
+    inventory: Inventory,
+    rec: NDArray[np.float64],
+    rot: NDArray[np.float64],
+    objective: str,
+    weights: tuple[float, float],
+    basis: FreeForceBasis | None,
+) -> NDArray[np.float64]:
+    """The objective of many assignments at once, from their set weights of shape (M, C)."""
+    if objective == "free":
+        assert basis is not None
+        z = (
+            basis.constant
+            + (rec - inventory.reciprocating_allowance) @ basis.reciprocating
+            + (rot - inventory.rotating_allowance) @ basis.rotating
         )
-    raise InputError("objective", objective, f"must be one of {', '.join(OBJECTIVES)}")
+        return np.sum(_polygon(z), axis=-1)
+    w_rec, w_rot = _weights(weights)
+    if objective == "spread":
+        return w_rec * np.ptp(rec, axis=-1) + w_rot * np.ptp(rot, axis=-1)
+    mean_rec, mean_rot = _means(inventory)
+    return w_rec * np.sum((rec - mean_rec) ** 2, axis=-1) + w_rot * np.sum(
+        (rot - mean_rot) ** 2, axis=-1
+    )
+
+
+def local_search(
+    inventory: Inventory,
+    cylinders: int,
+    objective: str = "spread",
+    weights: tuple[float, float] = (1.0, 1.0),
+    basis: FreeForceBasis | None = None,
+    stop: float = math.inf,
+) -> tuple[NDArray[np.int64], bool]:
+    """A bounded heuristic matching: from the parts as listed, the best single move of one
+    kind in one cylinder (its part swapped with another cylinder's, or replaced by a
+    spare) is made while it lowers the objective, or leaves it and lowers the sum of the
+    squared deviations of the set weights from their mean (which moves the search off a
+    plateau: a spread does not change when a set that ties for the heaviest gets
+    lighter).
+
+    Each move is evaluated for all candidate parts at once; the memory is that of one
+    batch, (parts of a kind) x (cylinders). Every accepted move lowers the pair (objective,
+    deviations) in that order, so the search ends, at the latest when ``stop`` (a
+    ``time.monotonic()`` time) is reached.
+
+    Parameters
+    ----------
+    inventory : Inventory
+        The parts.
+    cylinders : int
+        Number of cylinders.
+    objective : {"spread", "variance", "free"}
+        What to lower (see :func:`objective_value`).
+    weights : tuple of float
+        Weights of the reciprocating and rotating terms [-].
+    basis : FreeForceBasis, optional
+        The engine's phasors, for ``"free"``.
+    stop : float
+        ``time.monotonic()`` time at which the search ends [s].
+
+    Returns
+    -------
+    part : ndarray of int, shape (K, C)
+        The assignment found.
+    converged : bool
+        True when no move lowers the objective (a local optimum), False when ``stop``
+        ended the search first.
+    """
+    kinds = inventory.kinds
+    part = np.tile(np.arange(cylinders, dtype=np.int64), (len(kinds), 1))
+    rec, rot = _set_weights(inventory, part)
+    value = float(_objectives(inventory, rec[None], rot[None], objective, weights, basis)[0])
+    spread = _deviations(rec, rot)
+    improved = True
+    while improved:
+        improved = False
+        for k, kind in enumerate(kinds):
+            where = np.full(kind.count, -1, dtype=np.int64)  # the cylinder of each part
+            where[part[k]] = np.arange(cylinders)
+            used = np.flatnonzero(where >= 0)
+            for c in range(cylinders):
+                if _now() >= stop:
+                    return part, False
+                p = int(part[k, c])
+                d_rec = kind.reciprocating - kind.reciprocating[p]
+                d_rot = kind.rotating - kind.rotating[p]
+                cand_rec = np.tile(rec, (kind.count, 1))
+                cand_rot = np.tile(rot, (kind.count, 1))
+                cand_rec[:, c] += d_rec
+                cand_rot[:, c] += d_rot
+                cand_rec[used, where[used]] -= d_rec[used]  # a swap: p goes where j was
+                cand_rot[used, where[used]] -= d_rot[used]
+                values = _objectives(inventory, cand_rec, cand_rot, objective, weights, basis)
+                tie = 1e-9 * abs(value)
+                j = int(np.argmin(values))
+                if not values[j] < value - tie:  # none lower: the deviations, at the same value
+                    spreads = np.where(
+                        np.abs(values - value) <= tie, _deviations(cand_rec, cand_rot), np.inf
+                    )
+                    j = int(np.argmin(spreads))
+                    if not spreads[j] < spread * (1 - 1e-9):
+                        continue
+                d = int(where[j])
+                part[k, c], where[j], where[p] = j, c, d
+                if d >= 0:
+                    part[k, d] = p
+                used = np.flatnonzero(where >= 0)
+                rec, rot, value = cand_rec[j], cand_rot[j], float(values[j])
+                spread = float(_deviations(rec, rot))
+                improved = True
+    return part, True
+
+
+def _deviations(rec: NDArray[np.float64], rot: NDArray[np.float64]) -> Any:
+    """Sum of the squared deviations of the set weights from their mean, per assignment
+    (the last axis is the cylinders') [kg^2]."""
+    rec_dev = rec - rec.mean(axis=-1, keepdims=True)
+    rot_dev = rot - rot.mean(axis=-1, keepdims=True)
+    return np.sum(rec_dev**2, axis=-1) + np.sum(rot_dev**2, axis=-1)
 
 
 def match_parts(
@@ -416,8 +590,10 @@ def match_parts(
     weights : tuple of float
         Weights of the reciprocating and rotating terms [-].
     time_limit : float
-        Longest MILP solve [s]; when it is reached, the best assignment found is returned
-        with ``optimal`` False and the proven lower ``bound`` of the objective.
+        Longest ``milp`` or ``exhaustive`` matching [s], from this call on (the MILP's
+        model building included); when it is reached, the best assignment found is
+        returned with ``optimal`` False, the proven lower ``bound`` and ``status`` saying
+        so (module docstring, "Bounded work").
     model : EngineModel, optional
         The engine, for the ``"free"`` objective (its layout, kinematics and speed).
     fraction : float
@@ -435,10 +611,21 @@ def match_parts(
     InputError
         If a kind has fewer parts than cylinders, the method does not solve the objective,
         ``pairing`` is asked for with other than two kinds, the exhaustive search would
-        exceed :data:`EXHAUSTIVE_LIMIT` assignments, or the MILP found no assignment in
-        its time limit.
+        exceed :data:`EXHAUSTIVE_LIMIT` assignments, or the parts and cylinders make more
+        than :data:`MAX_PART_SLOTS` part-slots.
     """
+    if not (isinstance(time_limit, int | float) and math.isfinite(time_limit) and time_limit > 0):
+        raise InputError("time_limit", time_limit, "must be a finite time above 0 [s]")
+    clock = _Clock.started(time_limit)
     inventory.check(cylinders)
+    slots = cylinders * sum(kind.count for kind in inventory.kinds)
+    if slots > MAX_PART_SLOTS:
+        raise InputError(
+            "parts",
+            slots,
+            f"part-slots (parts listed times {cylinders} cylinders); at most "
+            f"{MAX_PART_SLOTS} are matched: list fewer spares",
+        )
     weights = _weights(weights)
     if method not in METHODS:
         raise InputError("method", method, f"must be one of {', '.join(METHODS)}")
@@ -459,16 +646,60 @@ def match_parts(
                 "cylinders", cylinders, f"must be the engine's {model.cylinders} cylinders"
             )
         basis = free_force_basis(model, inventory, fraction, orders)
-    bound: float | None = None  # proven lower bound of the objective; None: optimal
     if method == "as-listed":
-        part, bound = np.tile(np.arange(cylinders), (len(inventory.kinds), 1)), 0.0
-    elif method == "pairing":
+        part = np.tile(np.arange(cylinders), (len(inventory.kinds), 1))
+        return _matching(
+            inventory, part, method, goal, weights, 0.0, basis, "as listed, not optimised"
+        )
+    if method == "pairing":
         part = _pairing(inventory, cylinders, weights)
-    elif method == "exhaustive":
-        part = _exhaustive(inventory, cylinders, goal, weights, basis)
-    else:
-        part, bound = _milp(inventory, cylinders, weights, time_limit, basis)
-    return _matching(inventory, part, method, goal, weights, bound, basis)
+        return _matching(inventory, part, method, goal, weights, None, basis)
+    if method == "exhaustive":
+        part, status = _exhaustive(inventory, cylinders, goal, weights, basis, clock)
+        bound = None if status is None else 0.0
+        return _matching(inventory, part, method, goal, weights, bound, basis, status)
+    return _milp_matching(inventory, cylinders, goal, weights, basis, clock)
+
+
+def _milp_matching(
+    inventory: Inventory,
+    cylinders: int,
+    objective: str,
+    weights: tuple[float, float],
+    basis: FreeForceBasis | None,
+    clock: _Clock,
+) -> Matching:
+    """The MILP within the time limit, after a local search (module docstring, "Bounded
+    work"): the better of the two assignments, with what is proven about it."""
+    slots = cylinders * sum(kind.count for kind in inventory.kinds)
+    nonzeros = _milp_nonzeros(inventory, cylinders, basis)
+    exact = nonzeros <= MAX_MILP_NONZEROS
+    stop = clock.start + (SEARCH_SHARE if exact else 1.0) * clock.limit
+    found, converged = local_search(inventory, cylinders, objective, weights, basis, stop)
+    why = "" if converged else "; the time limit ended the local search"
+    heuristic = "not proven optimal: a local search"
+    if not exact:
+        status = (
+            f"{heuristic}, as the MILP of {slots} part-slots would have {nonzeros} nonzeros, "
+            f"above its cap of {MAX_MILP_NONZEROS}{why}"
+        )
+        return _matching(inventory, found, "heuristic", objective, weights, 0.0, basis, status)
+    solved = _milp(inventory, cylinders, weights, clock, basis)
+    if solved is None:
+        status = f"{heuristic}, as the time limit ended the building of the MILP{why}"
+        return _matching(inventory, found, "heuristic", objective, weights, 0.0, basis, status)
+    part, bound = solved
+    if bound is None:  # proven optimal
+        assert part is not None
+        return _matching(inventory, part, "milp", objective, weights, None, basis)
+    low = max(bound, 0.0)
+    searched = objective_value(inventory, found, objective, weights, basis)
+    if part is not None and objective_value(inventory, part, objective, weights, basis) <= searched:
+        status = "not proven optimal: the time limit ended the MILP"
+        return _matching(inventory, part, "milp", objective, weights, low, basis, status)
+    what = "nothing" if part is None else "nothing better"
+    status = f"{heuristic}, as the MILP found {what} within the time limit{why}"
+    return _matching(inventory, found, "heuristic", objective, weights, low, basis, status)
 
 
 def _matching(
@@ -479,9 +710,20 @@ def _matching(
     weights: tuple[float, float],
     bound: float | None,
     basis: FreeForceBasis | None = None,
+    status: str | None = None,
 ) -> Matching:
+    """The Matching of an assignment; ``bound`` None: proven optimal."""
     part = np.asarray(part, dtype=np.int64)
     value = objective_value(inventory, part, objective, weights, basis)
+    low = value if bound is None else min(bound, value)
+    if bound is None or value == 0:
+        gap: float | None = 0.0
+    else:
+        gap = None if low <= 0 else (value - low) / value
+    if status is None:
+        status = "proven optimal"
+    if bound is not None and gap is not None and value > 0:
+        status += f" (gap {100 * gap:.3g} %)"
     force = couple = np.zeros(0)
     if basis is not None:
         z = np.abs(_phasors(inventory, part, basis)).reshape(basis.orders, 4)
@@ -498,7 +740,7 @@ def _matching(
         objective=objective,
         objective_value=value,
         optimal=bound is None,
-        bound=value if bound is None else min(bound, value),
+        bound=low,
         kinds=inventory.names,
         part=part,
         ids=ids,
@@ -511,6 +753,8 @@ def _matching(
         removed_total=float(remove_rec.sum() + remove_rot.sum()),
         free_force=force,
         free_couple=couple,
+        status=status,
+        gap=gap,
     )
 
 
@@ -575,9 +819,11 @@ def _exhaustive(
     objective: str,
     weights: tuple[float, float],
     basis: FreeForceBasis | None,
-) -> NDArray[np.int64]:
+    clock: _Clock,
+) -> tuple[NDArray[np.int64], str | None]:
     """Every assignment (up to the order of the cylinders, unless the objective is the free
-    force); the best (first found on ties)."""
+    force); the best (first found on ties), and None, or the status when the time limit
+    ended the search first."""
     kinds = inventory.kinds
     ordered = objective == "free"  # the cylinders are not interchangeable
     count = (math.perm if ordered else math.comb)(kinds[0].count, cylinders)
@@ -596,55 +842,111 @@ def _exhaustive(
         for k in kinds[1:]
     ]
     best_value, best = math.inf, None
+    visited = 0
     for first in firsts:
         for rest in itertools.product(*(range(len(o)) for o in others)):
             part = np.array([first, *(o[i] for o, i in zip(others, rest, strict=True))])
             value = objective_value(inventory, part, objective, weights, basis)
             if value < best_value:
                 best_value, best = value, part
+            visited += 1
+            if visited % _CLOCK_EVERY == 0 and clock.remaining() <= 0:
+                status = (
+                    f"not proven optimal: the time limit ended the search after {visited} "
+                    f"of {count} assignments"
+                )
+                return best, status  # type: ignore[return-value]
     assert best is not None
-    return best
+    return best, None
+
+
+def _milp_nonzeros(inventory: Inventory, cylinders: int, basis: FreeForceBasis | None) -> int:
+    """The most nonzeros the MILP's constraint matrix can have, counted before it is built."""
+    n_x = cylinders * sum(kind.count for kind in inventory.kinds)
+    assignment = 2 * n_x  # one part of each kind per cylinder; each part at most once
+    if basis is None:  # W_c <= U and W_c >= L per share and cylinder; the symmetry rows
+        symmetry = 2 * inventory.kinds[0].count * max(cylinders - 1, 0)
+        return assignment + 4 * (n_x + cylinders) + symmetry
+    return assignment + basis.constant.size * POLYGON_SIDES * (n_x + 1)
+
+
+class _Rows:
+    """The MILP's constraint matrix as blocks of coordinates, and the bounds of its rows."""
+
+    def __init__(self) -> None:
+        self.count = 0
+        self.low: list[NDArray[np.float64]] = []
+        self.high: list[NDArray[np.float64]] = []
+        self.coordinates: list[tuple[NDArray, NDArray, NDArray]] = []
+
+    def block(self, count: int, low: ArrayLike, high: ArrayLike) -> int:
+        """Add ``count`` rows with their bounds; the index of the first."""
+        first = self.count
+        self.low.append(np.broadcast_to(np.asarray(low, dtype=float), (count,)))
+        self.high.append(np.broadcast_to(np.asarray(high, dtype=float), (count,)))
+        self.count += count
+        return first
+
+    def entries(self, row: ArrayLike, column: ArrayLike, value: ArrayLike) -> None:
+        """Coefficients at (row, column), zeros left out."""
+        row, column, value = np.broadcast_arrays(row, column, np.asarray(value, dtype=float))
+        keep = value != 0
+        self.coordinates.append((row[keep].ravel(), column[keep].ravel(), value[keep].ravel()))
+
+    def matrix(self, columns: int) -> Any:
+        from scipy.sparse import coo_array
+
+        row, column, value = (np.concatenate(part) for part in zip(*self.coordinates, strict=True))
+        matrix = coo_array((value, (row, column)), shape=(self.count, columns)).tocsr()
+        matrix.sort_indices()
+        return matrix
 
 
 def _milp(
     inventory: Inventory,
     cylinders: int,
     weights: tuple[float, float],
-    time_limit: float,
+    clock: _Clock,
     basis: FreeForceBasis | None = None,
-) -> tuple[NDArray[np.int64], float | None]:
+) -> tuple[NDArray[np.int64] | None, float | None] | None:
     """The least weighted spread, or with ``basis`` the least free forces, by mixed-integer
-    linear programming (module docstring)."""
+    linear programming (module docstring), within what remains of the time limit.
+
+    Returns None when the time limit ends the building of the model; else the assignment
+    (None when the solver found none) and the proven lower bound (None: optimal)."""
     from scipy.optimize import Bounds, LinearConstraint, milp
-    from scipy.sparse import lil_array
 
     kinds = inventory.kinds
     c_count = cylinders
-    offsets = np.cumsum([0] + [k.count * c_count for k in kinds])
+    counts = [kind.count for kind in kinds]
+    offsets = np.concatenate([[0], np.cumsum(np.array(counts) * c_count)]).astype(np.int64)
     n_x = int(offsets[-1])
-
-    def var(k: int, i: int, c: int) -> int:
-        return int(offsets[k]) + i * c_count + c
-
-    rows: list[tuple[dict[int, float], float, float]] = []
-    for k, kind in enumerate(kinds):
-        for c in range(c_count):  # one part of each kind per cylinder
-            rows.append(({var(k, i, c): 1.0 for i in range(kind.count)}, 1.0, 1.0))
-        for i in range(kind.count):  # each part at most once (exactly when no spares)
-            least = 1.0 if kind.count == c_count else 0.0
-            rows.append(({var(k, i, c): 1.0 for c in range(c_count)}, least, 1.0))
+    # the column of part i of kind k in cylinder 0 (cylinder c: plus c), all kinds in turn
+    first_column = np.concatenate(
+        [offsets[k] + np.arange(n) * c_count for k, n in enumerate(counts)]
+    )
+    cylinder = np.arange(c_count)
+    rows = _Rows()
+    for k, count in enumerate(counts):
+        columns = offsets[k] + np.arange(count * c_count)  # part-major: i * C + c
+        one = rows.block(c_count, 1.0, 1.0)  # one part of each kind per cylinder
+        rows.entries(one + np.tile(cylinder, count), columns, 1.0)
+        least = 1.0 if count == c_count else 0.0  # each part at most once
+        once = rows.block(count, least, 1.0)
+        rows.entries(once + np.repeat(np.arange(count), c_count), columns, 1.0)
+    if clock.remaining() <= 0:
+        return None
     if basis is None:
-        scale, cost_extra, fixed = _spread_rows(inventory, c_count, var, n_x, weights, rows)
+        scale, cost_extra, fixed = _spread_rows(
+            inventory, c_count, first_column, n_x, weights, rows
+        )
     else:
-        scale, cost_extra, fixed = _free_rows(inventory, c_count, var, n_x, basis, rows)
+        built = _free_rows(inventory, c_count, first_column, n_x, basis, rows, clock)
+        if built is None:
+            return None
+        scale, cost_extra, fixed = built
     n_var = n_x + cost_extra.size
-    matrix = lil_array((len(rows), n_var))
-    low = np.empty(len(rows))
-    high = np.empty(len(rows))
-    for r, (coefficients, lo, hi) in enumerate(rows):
-        for column, value in coefficients.items():
-            matrix[r, column] = value
-        low[r], high[r] = lo, hi
+    matrix = rows.matrix(n_var)
     cost = np.concatenate([np.zeros(n_x), cost_extra])
     integrality = np.zeros(n_var)
     integrality[:n_x] = 1
@@ -654,66 +956,69 @@ def _milp(
     if fixed:  # the first kind's part c in cylinder c
         upper[: c_count * c_count] = np.eye(c_count).ravel()
         lower[: c_count * c_count] = np.eye(c_count).ravel()
+    remaining = clock.remaining()
+    if remaining <= 0:
+        return None
     result = milp(
         cost,
-        constraints=LinearConstraint(matrix.tocsr(), low, high),
+        constraints=LinearConstraint(matrix, np.concatenate(rows.low), np.concatenate(rows.high)),
         integrality=integrality,
         bounds=Bounds(lower, upper),
-        options={"mip_rel_gap": 0.0, "time_limit": float(time_limit)},
+        options={"mip_rel_gap": 0.0, "time_limit": remaining},
     )
+    dual = getattr(result, "mip_dual_bound", None)
+    bound = float(dual) / scale if dual is not None and math.isfinite(dual) else 0.0
     if result.x is None or result.status not in (0, 1):
-        raise InputError(
-            "method",
-            "milp",
-            f"found no assignment ({result.message}); give a longer time limit, or fewer "
-            "spares or kinds",
-        )
+        return None, bound
     x = np.round(result.x[:n_x]).astype(np.int64)
     part = np.empty((len(kinds), c_count), dtype=np.int64)
     for k, kind in enumerate(kinds):
         block = x[offsets[k] : offsets[k + 1]].reshape(kind.count, c_count)
         part[k] = np.argmax(block, axis=0)
-    if result.status == 0:
-        return part, None
-    return part, max(float(result.mip_dual_bound or 0.0) / scale, 0.0)
-
-
-Rows = list[tuple[dict[int, float], float, float]]
+    return part, None if result.status == 0 else bound
 
 
 def _spread_rows(
     inventory: Inventory,
     c_count: int,
-    var: Callable[[int, int, int], int],
+    first_column: NDArray,
     n_x: int,
     weights: tuple[float, float],
-    rows: Rows,
+    rows: _Rows,
 ) -> tuple[float, NDArray[np.float64], bool]:
-    """Rows and costs of the spread: L <= W_c <= U per share; the symmetry breaking."""
+    """Rows of the spread: L <= W_c <= U per share; the symmetry breaking; the costs of
+    (U_rec, L_rec, U_rot, L_rot)."""
     kinds = inventory.kinds
-    u_rec, l_rec, u_rot, l_rot = n_x, n_x + 1, n_x + 2, n_x + 3
     scale = 1000.0  # grams: the set weights are hundreds, the spreads single units
-    for c in range(c_count):
-        for top, bottom, share, allowance in (
-            (u_rec, l_rec, "reciprocating", inventory.reciprocating_allowance),
-            (u_rot, l_rot, "rotating", inventory.rotating_allowance),
-        ):
-            weight = {
-                var(k, i, c): scale * float(getattr(kind, share)[i])
-                for k, kind in enumerate(kinds)
-                for i in range(kind.count)
-            }
-            base = scale * allowance
-            rows.append(({**weight, top: -1.0}, -np.inf, -base))  # W_c <= U
-            rows.append(({**weight, bottom: -1.0}, -base, np.inf))  # W_c >= L
+    cylinder = np.arange(c_count)
+    columns = first_column[None, :] + cylinder[:, None]  # (C, parts)
+    shares = (
+        (np.concatenate([k.reciprocating for k in kinds]), inventory.reciprocating_allowance),
+        (np.concatenate([k.rotating for k in kinds]), inventory.rotating_allowance),
+    )
+    # per cylinder, per share: W_c - U <= -base, then W_c - L >= -base
+    low = np.tile([-np.inf, 0.0, -np.inf, 0.0], c_count)
+    high = np.tile([0.0, np.inf, 0.0, np.inf], c_count)
+    for s, (_, allowance) in enumerate(shares):
+        base = scale * allowance
+        high[2 * s :: 4] = -base
+        low[2 * s + 1 :: 4] = -base
+    first = rows.block(4 * c_count, low, high)
+    for s, (share, _) in enumerate(shares):
+        for bound in (0, 1):  # U, L
+            row = first + 4 * cylinder + 2 * s + bound
+            rows.entries(row[:, None], columns, scale * share[None, :])
+            rows.entries(row, n_x + 2 * s + bound, -1.0)
     # symmetry: cylinders are interchangeable for a spread, so the first kind's part
     # index increases along the cylinders (with no spares: part c in cylinder c)
-    fixed = kinds[0].count == c_count
-    for c in range(c_count - 1 if not fixed else 0):
-        row = {var(0, i, c): float(i) for i in range(kinds[0].count)}
-        for i in range(kinds[0].count):
-            row[var(0, i, c + 1)] = row.get(var(0, i, c + 1), 0.0) - float(i)
-        rows.append((row, -np.inf, -1.0))
+    n0 = kinds[0].count
+    fixed = n0 == c_count
+    if not fixed and c_count > 1:
+        first = rows.block(c_count - 1, -np.inf, -1.0)
+        index = np.arange(n0)
+        for c in range(c_count - 1):
+            rows.entries(first + c, index * c_count + c, index.astype(float))
+            rows.entries(first + c, index * c_count + c + 1, -index.astype(float))
     w_rec, w_rot = weights
     return scale, np.array([w_rec, -w_rec, w_rot, -w_rot]), fixed
 
@@ -721,26 +1026,30 @@ def _spread_rows(
 def _free_rows(
     inventory: Inventory,
     c_count: int,
-    var: Callable[[int, int, int], int],
+    first_column: NDArray,
     n_x: int,
     basis: FreeForceBasis,
-    rows: Rows,
-) -> tuple[float, NDArray[np.float64], bool]:
-    """Rows and costs of the free forces: Re(z_j e^-i theta_k) <= t_j, minimise sum t_j."""
+    rows: _Rows,
+    clock: _Clock,
+) -> tuple[float, NDArray[np.float64], bool] | None:
+    """Rows of the free forces: Re(z_j e^-i theta_k) <= t_j, minimise sum t_j; None when
+    the time limit is reached while they are built."""
     turns = np.exp(-2j * np.pi * np.arange(POLYGON_SIDES) / POLYGON_SIDES)
     components = basis.constant.size
+    rec = np.concatenate([k.reciprocating for k in inventory.kinds])
+    rot = np.concatenate([k.rotating for k in inventory.kinds])
+    columns = first_column[:, None] + np.arange(c_count)[None, :]  # (parts, C)
     for j in range(components):
-        for turn in turns:
-            row: dict[int, float] = {n_x + j: -1.0}
-            for k, kind in enumerate(inventory.kinds):
-                for c in range(c_count):
-                    unit_rec = (basis.reciprocating[c, j] * turn).real
-                    unit_rot = (basis.rotating[c, j] * turn).real
-                    for i in range(kind.count):
-                        value = kind.reciprocating[i] * unit_rec + kind.rotating[i] * unit_rot
-                        if value:
-                            row[var(k, i, c)] = float(value)
-            rows.append((row, -np.inf, -float((basis.constant[j] * turn).real)))
+        high = -(basis.constant[j] * turns).real
+        first = rows.block(POLYGON_SIDES, -np.inf, high)
+        for t, turn in enumerate(turns):
+            unit_rec = (basis.reciprocating[:, j] * turn).real
+            unit_rot = (basis.rotating[:, j] * turn).real
+            value = rec[:, None] * unit_rec[None, :] + rot[:, None] * unit_rot[None, :]
+            rows.entries(first + t, columns, value)
+            rows.entries(first + t, n_x + j, -1.0)
+        if clock.remaining() <= 0:
+            return None
     return 1.0, np.ones(components), False
 
 

@@ -91,6 +91,16 @@ BINS = 1000
 HISTOGRAM_RMS = 10.0
 #: engines drawn at once (memory of one chunk: about 1 kB per engine of 8 cylinders)
 CHUNK = 32768
+#: most random numbers one study draws (samples times the numbers per engine: two normal
+#: deviations per cylinder and one uniform per cylinder and uniform term), checked before
+#: any is drawn; measured (docs/balance_shop.md, "Tolerance statistics"): about 10^8 a
+#: second, so at most about 10 s on an idle machine (10^7 samples of a V8 with seven part
+#: types weighed on a scale: 7.2 * 10^8)
+MAX_RANDOM_NUMBERS = 1_000_000_000
+#: most parts of one type per cylinder (two bearing shells, two locks: a few)
+MAX_COUNT = 64
+#: most random numbers drawn at once (a chunk of engines: 128 MB in single precision)
+MAX_CHUNK_NUMBERS = 2**25
 
 
 @dataclass(frozen=True)
@@ -134,8 +144,14 @@ def _check_parts(parts: tuple[PartScatter, ...]) -> None:
                 f"{field}.distribution", part.distribution, "must be 'normal' or 'uniform'"
             )
         check_nonnegative(f"{field}.sigma", part.sigma)
-        if isinstance(part.count, bool) or not isinstance(part.count, int) or part.count < 1:
-            raise InputError(f"{field}.count", part.count, "must be a whole number, 1 or more")
+        if (
+            isinstance(part.count, bool)
+            or not isinstance(part.count, int)
+            or not 1 <= part.count <= MAX_COUNT
+        ):
+            raise InputError(
+                f"{field}.count", part.count, f"must be a whole number from 1 to {MAX_COUNT}"
+            )
 
 
 def sensitivities(
@@ -303,6 +319,10 @@ class _Sampler:
         self.normal = np.sqrt(normal).repeat(cylinders).astype(np.float32)  # (2C,)
         self.any_normal = bool(np.any(normal > 0))
         self.widths = [np.array(w, dtype=np.float32) for w in widths]
+        #: random numbers drawn per engine
+        self.numbers = (2 * cylinders if self.any_normal else 0) + cylinders * sum(
+            w.size for w in self.widths
+        )
 
     def draw(self, rng: np.random.Generator, size: int) -> NDArray[np.float32]:
         c = self.cylinders
@@ -396,7 +416,8 @@ def scatter_study(
     balance_factor : float
         Share of the reciprocating mass in the bob-weights [-] (0.5 for a 90° V8).
     samples : int
-        Engines to draw [-].
+        Engines to draw [-]; at most :data:`MAX_RANDOM_NUMBERS` random numbers in all,
+        checked before any is drawn.
     seed : int or None
         Seed of the random generator (PCG64); None draws fresh entropy.
     scale_step : float
@@ -408,7 +429,8 @@ def scatter_study(
         Largest force amplitude [N] and moment amplitude [N m] the scatter may add, for
         orders 1 and 2 (``inf``: no limit on that order).
     chunk : int
-        Engines drawn at once [-]; bounds the memory, changes no statistic's meaning.
+        Engines drawn at once [-]; bounds the memory (at most :data:`MAX_CHUNK_NUMBERS`
+        random numbers), changes no statistic's meaning.
 
     Returns
     -------
@@ -433,8 +455,25 @@ def scatter_study(
     forces = _limit("force_limit", force_limit)
     moments = _limit("moment_limit", moment_limit)
 
-    s = sensitivities(model, correction_planes, balance_factor)
     c = model.cylinders
+    sampler = _Sampler(parts, scale_step, c)
+    if int(samples) * sampler.numbers > MAX_RANDOM_NUMBERS:
+        raise InputError(
+            "samples",
+            samples,
+            f"would draw {int(samples) * sampler.numbers:.3g} random numbers ("
+            f"{sampler.numbers} per engine of {c} cylinders); at most "
+            f"{MAX_RANDOM_NUMBERS:.0e} are drawn: give at most "
+            f"{MAX_RANDOM_NUMBERS // sampler.numbers} samples",
+        )
+    if int(chunk) * sampler.numbers > MAX_CHUNK_NUMBERS:
+        raise InputError(
+            "chunk",
+            chunk,
+            f"engines of {sampler.numbers} random numbers each; at most "
+            f"{MAX_CHUNK_NUMBERS // sampler.numbers} are drawn at once",
+        )
+    s = sensitivities(model, correction_planes, balance_factor)
     sources, source_var = _source_variances(parts, scale_step)
     row_var = source_var.sum(axis=0).repeat(c)  # (2C,): rotating rows, reciprocating rows
     analytic = np.stack(
@@ -458,7 +497,6 @@ def scatter_study(
     rms_bound = np.sqrt([sum(analytic[k, :2].sum() for k in g) * len(g) for g in _GROUPS])
     upper = np.where(rms_bound > 0, HISTOGRAM_RMS * rms_bound, 1.0)
 
-    sampler = _Sampler(parts, scale_step, c)
     rng = np.random.default_rng(seed)
     matrix = np.concatenate([s.real, s.imag], axis=1).astype(np.float32)  # (2C, 20)
     tally = _Tally(upper, tolerance, forces, moments)

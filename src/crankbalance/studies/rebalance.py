@@ -105,7 +105,18 @@ def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
         depth_resolution=resolution,
         point_angle=FLAT_BOTTOM if table.point_angle is None else table.point_angle,
         depth_to=table.depth_to or "shoulder",
+        web_thickness=table.web_thickness,
     )
+
+
+#: the keys of ``[correction]`` that name the quantities of a correction plan's messages
+#: (:func:`crankbalance.single_cylinder.rebalance`, ``names``)
+PLAN_KEYS = {
+    "hole_diameter": "correction.diameter",
+    "holes": "correction.number",
+    "web_thickness": "correction.web_thickness",
+    "correction_radius": "correction.radius",
+}
 
 
 def tolerance_of(table: Tolerance | None) -> tuple[float, str]:
@@ -139,9 +150,16 @@ def _summary(parts: Parts, side: str) -> PartsSummary:
     )
 
 
-def rebalance_parts(parts: RebalanceFile, targets: list[Any] | None = None) -> RebalanceStudy:
+def rebalance_parts(
+    parts: RebalanceFile,
+    targets: list[Any] | None = None,
+    names: dict[str, str] | None = None,
+) -> RebalanceStudy:
     """Rebalance for each target balance factor (a number, or ``"factory"`` for the crank's
-    own); ``targets`` default to the file's, else ``["factory"]``."""
+    own); ``targets`` default to the file's, else ``["factory"]``. A correction plan the
+    drill cannot make is refused naming the file's keys (``correction.diameter``,
+    ``correction.web_thickness``), or what ``names`` gives for a key (the option that set
+    it: ``{"correction.diameter": "--hole-diameter"}``)."""
     from ..io.rebalance_file import rebalance_file_from_dict
 
     if targets is not None:
@@ -171,6 +189,8 @@ def rebalance_parts(parts: RebalanceFile, targets: list[Any] | None = None) -> R
         sides[side] = _summary(given, side)
     correction = correction_of(parts.correction)
     tolerance, source = tolerance_of(parts.tolerance)
+    typed = names or {}
+    plan_names = {name: typed.get(key, key) for name, key in PLAN_KEYS.items()}
     assert parts.counterweight is not None and parts.crank_radius is not None
     cases = [
         rebalance(
@@ -184,6 +204,7 @@ def rebalance_parts(parts: RebalanceFile, targets: list[Any] | None = None) -> R
             correction,
             tolerance,
             target_balance_factor=None if target == "factory" else float(target),
+            names=plan_names,
         )
         for target in targets
     ]

@@ -182,10 +182,24 @@ def _required(options: ShopOptions, *names: str) -> None:
             raise InputError(name, None, "is required to plan the holes")
 
 
-def hole_plan(options: ShopOptions, speed: float | None = None) -> HolePlan:
+#: the settings (:class:`~crankbalance.options.ShopOptions`) a drilling plan's parameters
+#: come from, to name them in its messages
+PLAN_SETTINGS = {
+    "diameter": "hole_diameter",
+    "max_depth": "max_depth",
+    "radius": "hole_radius",
+    "web_thickness": "web_thickness",
+}
+
+
+def hole_plan(
+    options: ShopOptions, speed: float | None = None, names: dict[str, str] | None = None
+) -> HolePlan:
     """The two readings of ``options`` turned into holes per correction plane, and the ISO
     check of the predicted residual (``speed`` [rad/s]: the engine's, when ``options.speed``
-    is not given)."""
+    is not given). A plan the drill cannot make is refused naming the settings
+    (``hole_diameter``, ``web_thickness``), or what ``names`` gives for them (the options:
+    ``{"hole_diameter": "--hole-diameter"}``)."""
     if not options.reading:
         raise InputError("reading", None, "is required (twice, one per measuring plane)")
     _required(options, "measuring_planes", "correction_planes", "hole_radius", "depth_to")
@@ -201,6 +215,8 @@ def hole_plan(options: ShopOptions, speed: float | None = None) -> HolePlan:
     plan = plan_correction(
         reading, options.measuring_planes, options.correction_planes, options.hole_radius
     )
+    given = names or {}
+    plan_names = {name: given.get(key, key) for name, key in PLAN_SETTINGS.items()}
     holes = tuple(
         drilling_plan(
             float(plan.amount[j]),
@@ -215,6 +231,8 @@ def hole_plan(options: ShopOptions, speed: float | None = None) -> HolePlan:
             spacing=options.spacing,
             depth_resolution=options.depth_resolution,
             slug_density=options.slug_density,
+            web_thickness=options.web_thickness,
+            names=plan_names,
         )
         for j in range(2)
     )
@@ -245,14 +263,18 @@ def hole_plan(options: ShopOptions, speed: float | None = None) -> HolePlan:
 
 
 def shop_study(
-    engine: Any, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
+    engine: Any,
+    parts: str | os.PathLike[str] | Inventory,
+    options: ShopOptions,
+    names: dict[str, str] | None = None,
 ) -> ShopStudy:
     """The whole shop sheet: :func:`parts_study`, and :func:`hole_plan` when the options
-    hold readings (the engine's speed for the ISO check unless ``options.speed``)."""
+    hold readings (the engine's speed for the ISO check unless ``options.speed``; ``names``
+    as there)."""
     study = parts_study(engine, parts, options)
     holes = None
     if options.reading:
-        holes = hole_plan(options, engine_model(engine)[1].speed)
+        holes = hole_plan(options, engine_model(engine)[1].speed, names)
     return ShopStudy(parts=study, holes=holes, settings=options.model_dump())
 
 
@@ -428,6 +450,7 @@ _SETTING_KEYS: Names = {
     "hole_diameter": "hole_diameter_m",
     "hole_radius": "hole_radius_m",
     "max_depth": "max_depth_m",
+    "web_thickness": "web_thickness_m",
     "point_angle": ("point_angle_deg", _DEG),
     "spacing": "spacing_m",
     "depth_resolution": "depth_resolution_m",
