@@ -173,6 +173,29 @@ def test_reader_going_away_is_one_line(tmp_path: Path) -> None:
     assert still(fifo, stat.S_ISFIFO)
 
 
+def test_reader_going_away_ends_the_command_in_one_line(tmp_path: Path) -> None:
+    """The reader of the FIFO closes it after the first bytes of a 4 MB figure: the
+    command ends with exit 2 and one line (click alone would exit 1 without a word)."""
+    fifo = tmp_path / WRITERS["plot-html"][0]
+    os.mkfifo(fifo)
+    reader = os.open(fifo, os.O_RDONLY | os.O_NONBLOCK)
+    child = subprocess.Popen(
+        [sys.executable, "-m", "crankbalance", *command("plot-html", fifo)],
+        stdout=subprocess.DEVNULL,
+        stderr=subprocess.PIPE,
+        text=True,
+    )
+    try:
+        select.select([reader], [], [], HANG_GUARD)  # the command has begun to write
+        assert os.read(reader, 9).lower() == b"<!doctype"
+    finally:
+        os.close(reader)
+        _, stderr = child.communicate(timeout=HANG_GUARD)
+    assert one_error_line(stderr) == f"error: cannot write {fifo}: {os.strerror(errno.EPIPE)}"
+    assert child.returncode == 2
+    assert still(fifo, stat.S_ISFIFO)
+
+
 # --------------------------------------------------------------------------- devices
 def device_node(folder: Path, name: str, kind: int, numbers: tuple[int, int]) -> Path:
     """A device node in ``folder`` (skips when this process may not make one)."""
