@@ -28,6 +28,7 @@ import pytest
 
 from crankbalance.io.files import TEMP_SUFFIX, WriteError, atomic_open, write_atomic
 
+from .conftest import EXAMPLES
 from .test_counterweight import ROW2
 
 SRC = Path(__file__).resolve().parents[1] / "src" / "crankbalance"
@@ -40,8 +41,13 @@ CW = ["counterweight", "export", *ROW2, "--thickness", "5 mm", "-o"]
 BENCH = ["bench", "--friction-coefficient", "0.5", "--speed", "1000 rpm"]
 BENCH += ["--ramp-time", "0.3 s", "--hold-time", "0.2 s", "--history"]
 NO_CAD = importlib.util.find_spec("build123d") is None
+EXPLORE = ["explore", "--cylinders", "4", "--output"]
+SHEET = ["shop", "sheet", str(EXAMPLES / "v8_parts.csv"), "--engine", "v8-crossplane"]
+SHEET += ["--time-limit", "1 s", "-o"]  # the matching's result does not matter here
+TORSIONAL = ["torsional", "--engine", "inline6", "--speed-points", "40", "--plot"]
 #: name: (file name, command line without the file, whole write() calls before the stall:
-#: the history CSV is written row by row, so it is stopped in its second row)
+#: the history CSV is written row by row, so it is stopped in its second row; the Parquet
+#: just after its magic number)
 WRITERS = {
     "bench-history-csv": ("history.csv", BENCH, 2),
     "counterweight-svg": ("cw.svg", CW, 0),
@@ -53,6 +59,9 @@ WRITERS = {
     "report-html": ("report.html", ["report", "inline3", "-o"], 0),
     "report-pdf": ("report.pdf", ["report", "inline3", "-o"], 0),
     "engine-save": ("engine.toml", ["save-engine"], 0),
+    "explore-parquet": ("rows.parquet", EXPLORE, 1),
+    "shop-sheet-html": ("sheet.html", SHEET, 0),
+    "torsional-plot-html": ("torsional.html", TORSIONAL, 0),
 }
 ALL_WRITERS = [
     pytest.param(
@@ -73,7 +82,8 @@ import errno, os, sys, threading
 
 ready, point, action, after, target = sys.argv[1:6]
 command = sys.argv[6:]
-prefix = os.path.join(os.path.dirname(target), "." + os.path.basename(target) + ".")
+real = os.path.realpath(target)  # the temporary file is beside the file a link names
+prefix = os.path.join(os.path.dirname(real), "." + os.path.basename(real) + ".")
 
 
 def ours(fd):

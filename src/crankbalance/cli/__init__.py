@@ -79,6 +79,12 @@ COMMANDS: dict[str, tuple[str, str]] = {
 }
 
 
+class _NotWritten(click.ClickException):
+    """A :class:`WriteError` on its way through click (see :meth:`LazyGroup.invoke`)."""
+
+    exit_code = 2
+
+
 class LazyGroup(click.Group):
     """A click group whose commands are imported on first use."""
 
@@ -93,6 +99,15 @@ class LazyGroup(click.Group):
         command = getattr(importlib.import_module(module_name), attribute)
         assert isinstance(command, click.Command)
         return command
+
+    def invoke(self, ctx: click.Context) -> Any:
+        # click's own main() takes every OSError of errno EPIPE for its standard output
+        # closing and exits 1 without a word; a WriteError (the reader of a FIFO went away)
+        # leaves click as a click error, which main() prints as its one line (exit 2)
+        try:
+            return super().invoke(ctx)
+        except WriteError as error:
+            raise _NotWritten(str(error)) from None
 
     def format_commands(self, ctx: click.Context, formatter: click.HelpFormatter) -> None:
         rows = [(name, COMMANDS[name][1]) for name in sorted(COMMANDS)]

@@ -6,7 +6,10 @@ row, and read back as 2-D arrays. :class:`ParquetStream` writes through
 :func:`crankbalance.io.files.atomic_open`: the rows of each :meth:`ParquetStream.write` go
 to the hidden temporary file as one row group as they come, and the file appears under its
 name only when the block ends without an error (an error or an interruption leaves no
-file, and the previous one, if any, intact). pyarrow is imported here only.
+file, and the previous one, if any, intact). A FIFO with a reader, ``/dev/stdout`` or
+``/dev/null`` given as the path gets the row groups directly as they come, and a target
+that is neither a file nor one of these is refused, by the rule of :mod:`crankbalance.io.files`.
+pyarrow is imported here only.
 """
 
 from __future__ import annotations
