@@ -479,6 +479,11 @@ def _edges(model: type[opt.StudyOptions], name: str) -> list[str]:
     """The two ends of a numeric setting's range as a user types them (an open end: just
     inside it); nothing for a text, a list or a choice."""
     kind, quantity = opt.field_kind(model, name)
+    if model.model_fields[name].annotation in (
+        opt.TorsionalStiffness,
+        opt.TorsionalStiffness | None,
+    ):  # its own unit, per radian
+        return [f"{value:g} N*m/rad" for value in opt.TORSIONAL_STIFFNESS_RANGE]
     if kind not in ("quantity", "number", "whole"):
         return []
     low, low_open, high, high_open = opt._bounds(opt._metadata(model, name))
