@@ -50,6 +50,11 @@ from .results import ResultMixin
 from .single_cylinder import BALANCE_FACTOR_RANGE
 
 GAS_CONSTANT_AIR = 287.0
+#: start of combustion the Wiebe model takes, from firing TDC [rad]: 90 deg before to
+#: 45 deg after (:class:`WiebeCombustion`; the study settings take the same range)
+IGNITION_RANGE = (-math.pi / 2, math.pi / 4)
+#: burn duration the Wiebe model takes [rad]: from 0.001 rad (0.06 deg) to 180 deg
+BURN_DURATION_RANGE = (1e-3, math.pi)
 
 Strokes = Literal[2, 4]
 
@@ -297,8 +302,8 @@ class WiebeCombustion(ResultMixin):
     def __post_init__(self) -> None:
         if not (self.compression_ratio > 1 and math.isfinite(self.compression_ratio)):
             raise InputError("compression_ratio", self.compression_ratio, "must be greater than 1")
-        check_range("ignition_angle", self.ignition_angle, -math.pi / 2, math.pi / 4)
-        check_range("burn_duration", self.burn_duration, 1e-3, math.pi)
+        check_range("ignition_angle", self.ignition_angle, *IGNITION_RANGE)
+        check_range("burn_duration", self.burn_duration, *BURN_DURATION_RANGE)
         check_positive("intake_pressure", self.intake_pressure)
         check_positive("intake_temperature", self.intake_temperature)
         check_positive("air_fuel_ratio", self.air_fuel_ratio)
@@ -835,7 +840,10 @@ def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step:
     """Speed over the cycle from 1/2 J w^2 = E0 + W with the time-mean speed prescribed."""
     # Start from E0 = 1/2 J_mean w^2 - mean(W); Newton on the time-mean speed condition.
     energy0 = 0.5 * float(np.mean(inertia)) * mean_speed**2 - float(np.mean(work))
-    floor = float(np.max(-work)) + 1e-12
+    # the least E0 that keeps the kinetic energy above zero at every sample, with a margin
+    # in proportion to the work (an absolute one vanishes in the rounding of a large work,
+    # and a zero speed would divide by zero below)
+    floor = float(np.max(-work)) + 1e-12 * max(1.0, float(np.max(np.abs(work))))
     energy0 = max(energy0, floor * 1.01 + 1e-9)
     for _ in range(50):
         kinetic = energy0 + work
@@ -854,9 +862,10 @@ def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step:
         raise InputError(
             "crank_inertia",
             float(np.mean(inertia)),
-            f"is too small for this cycle at {mean_speed * 30 / np.pi:.0f} rpm: the speed would "
-            f"swing by more than half its mean within a cycle (the crank would nearly stop); "
-            "give the inertia of crankshaft, flywheel and clutch together",
+            f"is too small for this cycle at {mean_speed * 30 / np.pi:.0f} rpm: its torque "
+            f"gives and takes {float(np.ptp(work)):.4g} J within the cycle, which would swing "
+            "the speed by more than half its mean (the crank would nearly stop); give the "
+            "inertia of crankshaft, flywheel and clutch together",
         )
     return omega
 

@@ -740,6 +740,11 @@ def condensed_stiffness(
 #: small against the loads (or after :data:`CLEARANCE_ITERATIONS`)
 CLEARANCE_TOLERANCE = 1e-8
 CLEARANCE_ITERATIONS = 200
+#: most entries of the clearance solution's Hessians, samples x (2 x bearings)^2: its time
+#: and memory grow with it (each Newton step solves one 2B x 2B system per sample and its
+#: line search evaluates the gradient 60 times); at the cap one crank model takes about
+#: 4 s of one loaded core and 100 MB (docs/main_bearings.md, "Bounds of the work")
+MAX_CONTACT_SIZE = 2_000_000
 
 
 def clearance_reactions(
@@ -785,6 +790,11 @@ def clearance_reactions(
     -------
     ndarray of complex, shape (B, S)
         Reaction of each bearing on the crank [N].
+
+    Raises
+    ------
+    InputError
+        When ``S (2B)^2`` exceeds :data:`MAX_CONTACT_SIZE`, before any work.
     """
     from .errors import ResultError
 
@@ -793,6 +803,14 @@ def clearance_reactions(
         raise InputError("clearance", clearance, "must be a finite length >= 0 m")
     yl = _vector("load_position", load_position)
     p = np.asarray(loads, dtype=complex).reshape(yl.size, -1)
+    size = p.shape[1] * (2 * np.size(bearing_positions)) ** 2
+    if size > MAX_CONTACT_SIZE:
+        raise InputError(
+            "loads",
+            f"{p.shape[1]} samples x (2 x {np.size(bearing_positions)} bearings)^2 = {size}",
+            f"must make at most {MAX_CONTACT_SIZE} entries of the contact model: fewer "
+            "samples or fewer bearings",
+        )
     condensed, transfer = condensed_stiffness(bearing_positions, yl, stiffness)
     nb = condensed.shape[0]
     force = transfer @ p  # (B, S), the loads at the bearing points
@@ -1005,6 +1023,22 @@ def bearing_friction(
     )
 
 
+#: most elements (samples x stations x loads) of one step of the bending moments: the
+#: moment at every station of every load at a block of samples at once, about 32 MB
+MOMENT_BLOCK = 2_000_000
+
+
+def _moments(x: NDArray, positions: NDArray, every: NDArray) -> NDArray:
+    """Bending moments at the stations ``x`` of the loads ``every`` (S, L) at ``positions``
+    (:func:`crankbalance.beam.bending_moment_at`), a block of samples at a time so that
+    its temporaries stay within :data:`MOMENT_BLOCK` elements; shape (n, S)."""
+    step = max(1, MOMENT_BLOCK // max(1, x.size * positions.size))
+    blocks = [
+        bending_moment_at(x, positions, every[s : s + step]) for s in range(0, len(every), step)
+    ]
+    return np.concatenate(blocks).T
+
+
 def main_bearing_loads(
     loads: CrankLoads,
     bearing_positions: ArrayLike,
@@ -1077,8 +1111,7 @@ def main_bearing_loads(
             )
     positions = np.concatenate([loads.position, xb])
     every = np.concatenate([loads.load, reactions]).T  # (S, L + B)
-    journal = bending_moment_at(xb, positions, every).T
-    pin = bending_moment_at(yt, positions, every).T
+    journal, pin = (_moments(x, positions, every) for x in (xb, yt))
     # what is below round-off of the loads' moments is exactly zero (an end journal)
     tiny = 1e-12 * float(np.abs(every).sum(axis=1).max(initial=0.0)) * float(np.ptp(positions))
     journal = np.where(np.abs(journal) <= tiny, 0.0, journal)

@@ -38,6 +38,8 @@ from pydantic import (
 )
 from pydantic.fields import FieldInfo
 
+from .engine_cycle import BURN_DURATION_RANGE, IGNITION_RANGE
+from .engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from .errors import InputError
 from .single_cylinder import BALANCE_FACTOR_RANGE
 from .units import KINDS, format_quantity, parse_factor, parse_quantity, range_si
@@ -408,8 +410,13 @@ class BenchOptions(StudyOptions):
         return self
 
 
-#: the speed fluctuation a flywheel is sized for, from 1 ppm to 50 % [-]
-FluctuationTarget = Annotated[float, BeforeValidator(_factor), Field(ge=1e-6, le=0.5)]
+#: the speed fluctuation a flywheel is sized for, from 1 ppm to 20 % [-] (the energy
+#: method's range, :data:`crankbalance.engine_cycle_all.MAX_FLUCTUATION_TARGET`)
+FluctuationTarget = Annotated[
+    float,
+    BeforeValidator(_factor),
+    Field(ge=MIN_FLUCTUATION_TARGET, le=MAX_FLUCTUATION_TARGET),
+]
 #: most pressure tables of one cycle (one per cylinder)
 MAX_PRESSURE_TABLES = 64
 
@@ -439,8 +446,19 @@ class CombustionOptions(StudyOptions):
     combustion, docs/engine_cycle.md)."""
 
     compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
-    ignition: Angle = Field(math.radians(-25.0), title="Start of combustion from firing TDC")
-    burn_duration: Angle = Field(math.radians(50.0), title="Burn duration")
+    # the Wiebe model's own ranges (engine_cycle.IGNITION_RANGE, BURN_DURATION_RANGE)
+    ignition: Angle = Field(
+        math.radians(-25.0),
+        ge=IGNITION_RANGE[0],
+        le=IGNITION_RANGE[1],
+        title="Start of combustion from firing TDC",
+    )
+    burn_duration: Angle = Field(
+        math.radians(50.0),
+        ge=BURN_DURATION_RANGE[0],
+        le=BURN_DURATION_RANGE[1],
+        title="Burn duration",
+    )
     intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
     pressure_csv: list[str] = Field(
         [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
@@ -491,6 +509,11 @@ class SensitivityOptions(CycleOptions):
 
 #: most main bearings one crank may be given (``bearings --bearing``)
 MAX_MAIN_BEARINGS = 64
+#: the crank-angle samples per revolution of ``bearings`` (the engine cycle's least, and
+#: ten per degree; the clearance contact model may allow fewer:
+#: :data:`crankbalance.main_bearings.MAX_CONTACT_SIZE`)
+MIN_SAMPLES = 36
+MAX_SAMPLES = 3600
 #: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
 #: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
 MAX_CLEARANCE_STIFFNESS = 1e10
@@ -524,7 +547,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     is :class:`CombustionOptions`': the same as ``cycle --engine`` and ``torsional``."""
 
     speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
-    samples: Whole = Field(360, ge=36, le=3600, title="Samples per revolution")
+    samples: Whole = Field(360, ge=MIN_SAMPLES, le=MAX_SAMPLES, title="Samples per revolution")
     gas: bool = Field(True, title="Gas forces", description="off: inertia forces only")
     bore: Length | None = Field(
         None, title="Bore", description="empty: square engine (bore = stroke)"

@@ -23,7 +23,9 @@ the end (the load is one more inertia on one more spring):
   section, order by order, over a speed range, and the power the damper dissipates
   (:class:`ForcedResponse`);
 * :func:`critical_speeds` -- where an engine order meets a natural frequency (the Campbell
-  diagram's crossings).
+  diagram's crossings);
+* :func:`torsional_study` -- all of it for one chain and one excitation, its work counted
+  first and bounded (:func:`response_size`, :data:`MAX_RESPONSE_SIZE`).
 
 Angles are twists about the crank axis [rad] measured from the rigid rotation at the mean
 speed ω; a harmonic of engine order n has the angular frequency Ω = n ω and is written
@@ -163,8 +165,12 @@ def natural_modes(inertia: ArrayLike, stiffness: ArrayLike) -> TorsionalModes:
     """
     m, k, _ = chain_matrices(inertia, stiffness)
     values, vectors = linalg.eigh(k, m)
-    scale = float(np.max(np.diag(k))) / float(np.min(np.diag(m)))
-    values = np.where(np.abs(values) < 1e-10 * scale, 0.0, values)
+    # A free chain turns rigidly at zero frequency, once per piece a loose section (k = 0)
+    # leaves: those are the smallest eigenvalues, and every other one is > 0. They are set
+    # by count, not by a threshold: the rounding of the rigid mode grows with the stiffest
+    # section over the lightest mass (a 1e-12 kg m^2 flywheel puts it near 1e3 rad^2/s^2),
+    # and a threshold on that scale would zero elastic modes too.
+    values[: 1 + int(np.count_nonzero(np.asarray(stiffness, dtype=float) == 0))] = 0.0
     omega = np.sqrt(np.clip(values, 0.0, None))
     shapes = vectors / np.max(np.abs(vectors), axis=0)
     for col in range(shapes.shape[1]):
@@ -732,30 +738,33 @@ def forced_response(
     m, k, c = chain_matrices(train.inertia, train.stiffness, train.damping)
     n_mass, orders = train.inertia.size, excitation.orders
     amplitude = np.zeros((omega.size, orders.size, n_mass), dtype=complex)
+    dissipated = np.zeros((omega.size, n_mass - 1))  # per section, summed over the orders
+    input_power = np.zeros(omega.size)
+    # one speed at a time: only the amplitudes of the result are kept for all speeds
     for p, w in enumerate(omega):
-        force = np.zeros((n_mass, orders.size), dtype=complex)
-        force[train.throw_index] = excitation.throw_torque(float(w))
+        force = np.zeros((orders.size, n_mass), dtype=complex)
+        force[:, train.throw_index] = excitation.throw_torque(float(w)).T
         big_omega = orders * w
         system = (
             k[None, :, :]
             - big_omega[:, None, None] ** 2 * m[None]
             + 1j * big_omega[:, None, None] * c
         )
-        amplitude[p] = np.linalg.solve(system, force.T[:, :, None])[:, :, 0]
+        x = np.linalg.solve(system, force[:, :, None])[:, :, 0]  # (n, N)
+        amplitude[p] = x
+        dissipated[p] = (
+            0.5 * big_omega[:, None] ** 2 * train.damping * np.abs(x[:, :-1] - x[:, 1:]) ** 2
+        ).sum(axis=0)
+        velocity = 1j * big_omega[:, None] * x
+        input_power[p] = 0.5 * float(np.real(np.sum(np.conj(force) * velocity)))
     twist = amplitude[..., :-1] - amplitude[..., 1:]
     big = orders[None, :] * omega[:, None]  # (P, n)
     section_torque = (train.stiffness + 1j * big[..., None] * train.damping) * twist
-    dissipated = 0.5 * big[..., None] ** 2 * train.damping * np.abs(twist) ** 2
     damper_power = (
-        dissipated[..., train.damper_section].sum(axis=1)
+        dissipated[:, train.damper_section]
         if train.damper_section is not None
         else np.zeros(omega.size)
     )
-    force_all = np.zeros((omega.size, orders.size, n_mass), dtype=complex)
-    for p, w in enumerate(omega):
-        force_all[p][:, train.throw_index] = excitation.throw_torque(float(w)).T
-    velocity = 1j * big[..., None] * amplitude
-    input_power = 0.5 * np.real(np.sum(np.conj(force_all) * velocity, axis=2)).sum(axis=1)
     return ForcedResponse(
         speed=omega,
         orders=orders,
@@ -764,7 +773,7 @@ def forced_response(
         amplitude_peak=synthesised_peak(amplitude, orders),
         torque_peak=synthesised_peak(section_torque, orders),
         damper_power=damper_power,
-        total_dissipated_power=dissipated.sum(axis=(1, 2)),
+        total_dissipated_power=dissipated.sum(axis=1),
         input_power=input_power,
     )
 
@@ -773,14 +782,19 @@ def synthesised_peak(harmonics: ArrayLike, orders: ArrayLike) -> NDArray[np.floa
     r"""Largest magnitude over one cycle of a signal given by its order harmonics.
 
     :math:`\max_\theta \big|\mathrm{Re}\sum_n X_n e^{i n \theta}\big|`, sampled at 16
-    points per period of the highest order over the period of the lowest order step.
+    points per period of the highest order over the period of the lowest order step. With
+    the orders :math:`n = k\,n_1` (whole :math:`k`) and :math:`S` samples
+    :math:`\theta_j = 2\pi j / (S n_1)`, the signal at the samples is the inverse real
+    discrete Fourier transform of the harmonics placed at the bins :math:`k`
+    (``numpy.fft.irfft``: :math:`S \log S` operations per curve instead of :math:`S` times
+    the number of orders).
 
     Parameters
     ----------
     harmonics : array_like of complex, shape (P, n, ...)
         Harmonics :math:`X_n` on axis 1 [any unit].
     orders : array_like, shape (n,)
-        Their orders [-], multiples of the first.
+        Their orders [-], whole multiples of the smallest.
 
     Returns
     -------
@@ -789,13 +803,17 @@ def synthesised_peak(harmonics: ArrayLike, orders: ArrayLike) -> NDArray[np.floa
     """
     n = np.asarray(orders, dtype=float)
     x = np.moveaxis(np.asarray(harmonics, dtype=complex), 1, -1)  # (P, ..., n)
-    period = 2.0 * math.pi / float(n.min())
-    samples = int(math.ceil(16 * n.max() / n.min()))
-    theta = np.linspace(0.0, period, samples, endpoint=False)
-    basis = np.exp(1j * np.outer(n, theta))
+    step = float(n.min())
+    bins = np.rint(n / step).astype(np.int64)
+    if not (step > 0 and np.allclose(bins * step, n, rtol=1e-9, atol=0.0)):
+        raise InputError("orders", n.tolist(), "must be whole multiples of the smallest, > 0")
+    samples = int(math.ceil(16 * n.max() / step))
     out = np.empty(x.shape[:-1])
+    spectrum = np.zeros((*x.shape[1:-1], samples // 2 + 1), dtype=complex)
     for p in range(x.shape[0]):  # one speed at a time: (..., samples) stays small
-        out[p] = np.abs(np.real(x[p] @ basis)).max(axis=-1)
+        spectrum[..., bins] = x[p]
+        # irfft gives (1/S) (X_0 + 2 Re sum_k X_k e^{2 pi i k j / S}) for 0 < k < S/2
+        out[p] = np.abs(np.fft.irfft(spectrum, n=samples, axis=-1)).max(axis=-1) * (samples / 2)
     return out
 
 
@@ -947,6 +965,42 @@ def _summaries(
     return response.amplitude_peak[:, train.front_index], synthesised_peak(twist, response.orders)
 
 
+#: most complex amplitudes one :func:`torsional_study` computes: the speeds of the sweep
+#: and of the resonances in the speed range, times the engine orders, times the masses of
+#: the chain (:func:`response_size`). Time and memory grow with it: at the cap a 64-throw
+#: chain takes about 6 s of one loaded core and 300 MB, an inline-6 about 2 s
+#: (docs/torsional.md, "Bounds").
+MAX_RESPONSE_SIZE = 4_000_000
+
+
+def response_size(train: CrankTrain, orders: ArrayLike, speed: ArrayLike) -> tuple[int, int]:
+    """The work of :func:`torsional_study`, counted before it is done.
+
+    Parameters
+    ----------
+    train : CrankTrain
+        The chain.
+    orders : array_like, shape (n,)
+        Engine orders [-].
+    speed : array_like, shape (P,)
+        Crank speeds of the sweep [rad/s].
+
+    Returns
+    -------
+    resonances : int
+        Crossings of an order with an elastic mode in the speed range (:func:`critical_speeds`):
+        each one more speed of response.
+    size : int
+        Complex amplitudes the sweep and the resonances compute,
+        ``(P + resonances) * n * N`` [-]; at most :data:`MAX_RESPONSE_SIZE`.
+    """
+    omega = np.atleast_1d(_positive("speed", speed))
+    n = np.atleast_1d(np.asarray(orders, dtype=float))
+    modes = natural_modes(train.inertia, train.stiffness)
+    crossings = critical_speeds(modes.frequency, n, float(omega.min()), float(omega.max()))
+    return len(crossings), (omega.size + len(crossings)) * n.size * train.inertia.size
+
+
 def torsional_study(
     train: CrankTrain,
     excitation: EngineExcitation,
@@ -972,6 +1026,15 @@ def torsional_study(
         Modes, sweep, resonances [rad/s, rad, N m, W].
     """
     omega = np.atleast_1d(_positive("speed", speed))
+    resonances, size = response_size(train, excitation.orders, omega)
+    if size > MAX_RESPONSE_SIZE:
+        raise InputError(
+            "speed",
+            f"{omega.size} speeds and {resonances} resonances x {excitation.orders.size} "
+            f"orders x {train.inertia.size} masses = {size} amplitudes",
+            f"must make at most {MAX_RESPONSE_SIZE} amplitudes: fewer speeds, fewer orders "
+            "or a narrower speed range",
+        )
     modes = natural_modes(train.inertia, train.stiffness)
     with_load = "load" in train.names
     modes_free = natural_modes(train.inertia[:-1], train.stiffness[:-1]) if with_load else modes

@@ -8,8 +8,9 @@ Quantities are unit strings (``"20 mm"``, ``"9000 rpm"``); the physics lives in
 
 from __future__ import annotations
 
+import contextlib
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
@@ -24,6 +25,7 @@ from ._common import (
     format_option,
     given_options,
     named_as_typed,
+    option_name,
     parse_settings,
     refuse_unused,
 )
@@ -533,6 +535,57 @@ def _inertia_from(o: CycleOptions) -> str:
     return "typed" if o.crank_inertia is not None else "thesis" if o.engine is None else "engine"
 
 
+#: the physics' names of options of ``cycle`` and ``sensitivity`` (the cylinder's fields)
+PHYSICS_NAMES = {"crank_radius": "stroke", "ignition_angle": "ignition"}
+
+
+@contextlib.contextmanager
+def _named_options(texts: dict[str, Any]) -> Iterator[None]:
+    """Within the block, an :class:`InputError` of the physics about a value the user
+    typed names its option of ``cycle`` or ``sensitivity`` with the text typed (``texts``:
+    parameter name -> text); a rod too short for a typed stroke names ``--stroke``, an
+    engine's firing order that a typed stroke count cannot fire names ``--strokes``. The
+    crank inertia is named by :func:`_inertia_error`."""
+    given = given_options()
+    try:
+        yield
+    except InputError as error:
+        name = PHYSICS_NAMES.get(error.field, error.field)
+        allowed = error.allowed
+        if name == "rod_length" and "rod_length" not in given and "stroke" in given:
+            name = "stroke"  # the typed stroke leaves no room for the rod
+            allowed = f"is too long for the rod ({error.value:g} m), which {allowed}"
+        elif name == "crank_train.firing_order" and "strokes" in given:
+            name = "strokes"  # the engine's firing order is of the other cycle
+            allowed = f"does not suit the engine's firing order {error.value}: {allowed}"
+        if name not in given or name not in texts:
+            raise
+        raise InputError(option_name(name), texts[name], allowed) from None
+
+
+def _inputs(o: CycleOptions) -> str:
+    """What a cycle was computed of, as typed: the engine and cylinder, the tables."""
+    parts = [f"--engine {o.engine}" if o.engine else "the cylinder of the options"]
+    if o.engine and o.cylinder:
+        parts.append(f"--cylinder {o.cylinder}")
+    return " ".join([*parts, *(f"--pressure-csv {path}" for path in o.pressure_csv)])
+
+
+def _inertia_error(o: CycleOptions, inertia: float, error: InputError, hint: str) -> InputError:
+    """The physics' refusal of a crank inertia too small for the cycle (``crank_inertia``),
+    naming the option that sets it: ``--flywheel-inertia`` when one was added, else
+    ``--crank-inertia``, shown as the crank + flywheel ``inertia`` taken [kg m^2] and where
+    it came from; ``hint`` says what else may be typed. Another error is returned as it is."""
+    if error.field != "crank_inertia":
+        return error
+    origin = {"typed": "", "engine": " (the engine's)", "thesis": " (the thesis' single's)"}
+    return InputError(
+        "--crank-inertia" if o.flywheel_inertia is None else "--flywheel-inertia",
+        f"{inertia:.4g} kg*m^2 of crank and flywheel{origin[_inertia_from(o)]}",
+        f"{error.allowed}; {hint}",
+    )
+
+
 def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int, float]:
     """The cylinder, its pressure source, speed, stroke count and crank + flywheel inertia
     (before ``--flywheel-inertia``) of ``cycle`` and ``sensitivity`` from their validated
@@ -603,7 +656,7 @@ def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int, float]:
         )
         speed = speed if "speed" in given else float(model.speed)
         strokes = strokes if "strokes" in given else int(model.strokes)
-    return cylinder, pressure_source(o), speed, strokes, inertia
+    return cylinder, pressure_source(o, 1, strokes), speed, strokes, inertia
 
 
 SUMMARY_KEYS = (
@@ -652,7 +705,7 @@ ENGINE_SUMMARY_KEYS = (
     "--speed-fluctuation-target",
     default=None,
     help="Size the flywheel for this speed fluctuation (max - min)/mean, e.g. '0.01' or "
-    "'1%' (from 1e-6 to 0.5).",
+    "'1%' (from 1e-6 to 0.2).",
 )
 @click.option(
     "--plot",
@@ -680,6 +733,7 @@ def cycle(
     diagram is the transverse against the in-line main-bearing load).
     """
     from ..options import CycleOptions
+    from ..studies.performance import arithmetic_checked
 
     o = parse_settings(
         CycleOptions,
@@ -697,10 +751,17 @@ def cycle(
 
         check_output(plot, (".png", ".svg", ".html"), "--plot")
         require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
-    if o.engine is not None and o.cylinder is None:
-        result, payload, curves = _whole_engine_cycle(o)
-    else:
-        result, payload, curves = _one_cylinder_cycle(o)
+    texts = {
+        **options,
+        "balance_factor": balance_factor,
+        "flywheel_inertia": flywheel_inertia,
+        "speed_fluctuation_target": speed_fluctuation_target,
+    }
+    with _named_options(texts), arithmetic_checked("cycle", _inputs(o)):
+        if o.engine is not None and o.cylinder is None:
+            result, payload, curves = _whole_engine_cycle(o)
+        else:
+            result, payload, curves = _one_cylinder_cycle(o)
     require_finite(payload)
     if plot is not None:
         _write_cycle_plot(plot, result)
@@ -721,7 +782,13 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     from ..studies.performance import combustion_summary, size_cylinder_flywheel
 
     cylinder, pressure, speed, strokes, inertia = _engine_from_options(o)
-    result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
+    try:
+        result = engine_cycle(cylinder, speed, pressure, strokes)  # type: ignore[arg-type]
+    except InputError as error:
+        hint = "" if o.speed_fluctuation_target else " (or size it: --speed-fluctuation-target)"
+        raise _inertia_error(
+            o, cylinder.crank_inertia, error, f"add a flywheel with --flywheel-inertia{hint}"
+        ) from None
     summary = {label: getattr(result, name) for name, label in SUMMARY_KEYS}
     summary["energy_check_ratio"] = (
         result.gas_work / result.indicated_work if (result.indicated_work) else 1.0
@@ -811,7 +878,7 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
         rod_length=o.rod_length if "rod_length" in given else None,
         reciprocating_mass=o.reciprocating_mass if "reciprocating_mass" in given else None,
     )
-    pressure = pressure_source(o, model.cylinders)
+    pressure = pressure_source(o, model.cylinders, model.strokes)
     crank = crank_inertia(o, model)
     inertia = crank + (o.flywheel_inertia or 0.0)
     try:
@@ -823,13 +890,9 @@ def _whole_engine_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
             speed_fluctuation_target=o.speed_fluctuation_target,
         )
     except InputError as error:
-        if error.field != "crank_inertia":
-            raise
         hint = "" if o.speed_fluctuation_target else " (or size it: --speed-fluctuation-target)"
-        raise InputError(
-            "--crank-inertia" if o.flywheel_inertia is None else "--flywheel-inertia",
-            f"{inertia:.4g} kg*m^2 of crank and flywheel",
-            f"{error.allowed}; add a flywheel with --flywheel-inertia{hint}",
+        raise _inertia_error(
+            o, inertia, error, f"add a flywheel with --flywheel-inertia{hint}"
         ) from None
     summary = {label: getattr(result, name) for name, label in ENGINE_SUMMARY_KEYS}
     summary["max_crank_acceleration_rad_s2"] = float(np.abs(result.crank_acceleration).max())
@@ -1001,7 +1064,7 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
     from ..engine_cycle import balance_sensitivity
     from ..options import SensitivityOptions
-    from ..studies.performance import combustion_summary
+    from ..studies.performance import arithmetic_checked, combustion_summary
 
     values = {
         **options,
@@ -1013,16 +1076,22 @@ def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any
     if values["cylinder"] is None:  # the schema's default: cylinder 1
         del values["cylinder"]
     o = parse_settings(SensitivityOptions, values)
-    cylinder, pressure, speed, strokes, _inertia = _engine_from_options(o)
-    result = balance_sensitivity(
-        cylinder,
-        speed,
-        pressure,
-        o.balance_factors,
-        o.mass_scales,
-        strokes,  # type: ignore[arg-type]
-        progress=_progress("sensitivity"),
-    )
+    with _named_options(options), arithmetic_checked("sensitivity", _inputs(o)):
+        cylinder, pressure, speed, strokes, _inertia = _engine_from_options(o)
+        try:
+            result = balance_sensitivity(
+                cylinder,
+                speed,
+                pressure,
+                o.balance_factors,
+                o.mass_scales,
+                strokes,  # type: ignore[arg-type]
+                progress=_progress("sensitivity"),
+            )
+        except InputError as error:
+            raise _inertia_error(
+                o, cylinder.crank_inertia, error, "give a larger --crank-inertia"
+            ) from None
     labels = [
         label for name, label in SUMMARY_KEYS if name not in ("load_torque", "indicated_work")
     ]

@@ -17,7 +17,14 @@ from typing import Any
 import click
 
 from ..errors import InputError
-from ._common import echo_table, format_option, named_as_typed, option_name, parse_settings
+from ._common import (
+    echo_table,
+    format_option,
+    given_options,
+    named_as_typed,
+    option_name,
+    parse_settings,
+)
 
 _RPM = 30.0 / math.pi  # rad/s -> rpm
 FORMATS = ("table", "json", "csv")
@@ -156,7 +163,50 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
 
 def run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
     """The study of the validated options: (TorsionalStudy, EngineModel, speeds [rad/s],
-    what was assumed of the crank: the JSON's ``crank``)."""
+    what was assumed of the crank: the JSON's ``crank``). Its work is counted and bounded
+    before any is done (:func:`check_size`), and its arithmetic checked
+    (:func:`crankbalance.studies.performance.arithmetic_checked`)."""
+    from ..studies.performance import arithmetic_checked
+
+    inputs = " ".join([f"--engine {o.engine}", *(f"--pressure-csv {p}" for p in o.pressure_csv)])
+    with arithmetic_checked("torsional", inputs):
+        return _run_study(o)
+
+
+def check_size(o: Any, train: Any, strokes: int, speeds: Any) -> None:
+    """Refuse, before any work, a study that would compute more than
+    :data:`crankbalance.torsional.MAX_RESPONSE_SIZE` amplitudes (speeds of the sweep and of
+    the resonances in the range x engine orders x masses), naming the option that drives
+    it: ``--speed-points`` or ``--highest-order``."""
+    from .. import torsional as tv
+
+    orders = tv.engine_orders(strokes, o.highest_order)
+    resonances, size = tv.response_size(train, orders, speeds)
+    if size <= tv.MAX_RESPONSE_SIZE:
+        return
+    name = "speed_points" if speeds.size >= resonances else "highest_order"
+    raise InputError(
+        option_name(name),
+        _typed(name),
+        f"the study would compute {speeds.size + resonances} speeds ({speeds.size} of the "
+        f"sweep and {resonances} resonances in the speed range) x {orders.size} engine "
+        f"orders x {train.inertia.size} masses = {size} amplitudes, more than the "
+        f"{tv.MAX_RESPONSE_SIZE} allowed: lower --speed-points or --highest-order, or "
+        "narrow --speed-min and --speed-max",
+    )
+
+
+def _typed(name: str) -> str:
+    """An option of the running command as typed, else its default as one would type it."""
+    from ..options import TorsionalOptions, default_text
+
+    if name in given_options():
+        return str(click.get_current_context().params[name])
+    return default_text(TorsionalOptions, name)
+
+
+def _run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
+    """:func:`run_study`, unchecked."""
     import numpy as np
 
     from .. import torsional as tv
@@ -215,16 +265,29 @@ def run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
         throw_names=tv.crank_stations(model)[1],
         **damper,
     )
-    pressure = pressure_source(o, model.cylinders)  # the Wiebe model or the tables of cycle
+    check_size(o, train, model.strokes, speeds)
+    # the Wiebe model or the tables of cycle
+    pressure = pressure_source(o, model.cylinders, model.strokes)
     # front end + throws + flywheel, what cycle --engine and bearings take when their crank
     # inertia is not typed (the cycle adds the pistons' inertia as it varies over the turn)
     inertia = rotating_inertia(model, o.throw_inertia, o.front_inertia, o.flywheel_inertia)
-    cycle = engine_cycle_all(
-        model,
-        pressure,
-        bore=o.bore if o.bore is not None else 2.0 * model.crank_radius,
-        crank_inertia=inertia,
-    )
+    try:
+        cycle = engine_cycle_all(
+            model,
+            pressure,
+            bore=o.bore if o.bore is not None else 2.0 * model.crank_radius,
+            crank_inertia=inertia,
+        )
+    except InputError as error:
+        if error.field != "crank_inertia":
+            raise
+        # the cycle turns the chain's front end, throws and flywheel: the flywheel is the
+        # inertia to type
+        raise InputError(
+            "--flywheel-inertia",
+            _typed("flywheel_inertia"),
+            f"makes front end + throws + flywheel {inertia:.4g} kg*m^2, which {error.allowed}",
+        ) from None
     excitation = tv.engine_excitation(cycle, model, o.highest_order)
     study = tv.torsional_study(train, excitation, speeds, o.damper_allowed_power)
     crank = {

@@ -5,11 +5,15 @@ This module owns the file format of ``crankbalance cycle --pressure-csv`` and
 table of two numeric columns, and converts it to the SI arrays that
 :func:`crankbalance.engine_cycle.tabulated_pressure` and
 :func:`crankbalance.engine_cycle.engine_cycle` take. The physics checks of the table
-(increasing angles, less than one cycle, pressure >= 0) stay with the model.
+(less than one cycle, which depends on the stroke count) stay with the model;
+:func:`crankbalance.studies.performance.pressure_source` names the file in them.
 
 Format: comma-separated, two columns (crank angle from firing TDC [deg], absolute
 pressure [bar]); blank lines and ``#`` comments are ignored; the first row may be a header
-(``angle_deg,pressure_bar``); at least 4 data rows; UTF-8 text.
+(``angle_deg,pressure_bar``); at least 4 data rows; UTF-8 text. Every value is checked
+against the physical range of its kind (:data:`crankbalance.units.RANGES`) here, naming
+its line and column: an angle from -720 to 720 deg, each greater than the one before, a
+pressure from 0 to 1000 bar (:data:`PRESSURE_RANGE_BAR`).
 """
 
 from __future__ import annotations
@@ -21,6 +25,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..units import range_si
 from .reading import read_text
 
 #: Largest pressure table read [bytes]; a cycle at 0.1 deg over 720 deg is about 150 kB.
@@ -28,8 +33,26 @@ MAX_FILE_BYTES = 5_000_000
 #: Fewest data rows of a table.
 MIN_ROWS = 4
 
+#: Pressures a table may hold [bar]: absolute, so not below 0 (a gauge reading, which goes
+#: below zero in the intake stroke, would be taken as absolute and shift every gas force
+#: by the ambient pressure), and at most the largest pressure of ``units.RANGES``
+#: (1000 bar, the largest pressure any input of crankbalance takes: 1e300 bar made the
+#: cycle's arithmetic overflow). A vacuum may be written
+#: 0, and values under the smallest pressure of the range (0.01 bar) are taken as they
+#: are: no computation divides by a pressure.
+PRESSURE_RANGE_BAR = (0.0, range_si("pressure")[1] / 1e5)
+#: Crank angles a table may hold [deg]: those of ``units.RANGES``, -720 to 720 deg (a
+#: table spans less than one cycle, 720 deg at most, from anywhere around firing TDC).
+ANGLE_RANGE_DEG = (-math.degrees(range_si("angle")[1]), math.degrees(range_si("angle")[1]))
+
 _FIELD = "pressure_csv"
 _COLUMNS = ("angle_deg", "pressure_bar")
+_RANGES = {"angle_deg": ANGLE_RANGE_DEG, "pressure_bar": PRESSURE_RANGE_BAR}
+_WORDS = {
+    "angle_deg": f"a crank angle from {ANGLE_RANGE_DEG[0]:g} to {ANGLE_RANGE_DEG[1]:g} deg",
+    "pressure_bar": f"an absolute pressure from {PRESSURE_RANGE_BAR[0]:g} to "
+    f"{PRESSURE_RANGE_BAR[1]:g} bar (a gauge reading: add the ambient pressure)",
+}
 
 
 def read_pressure_csv(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
@@ -54,8 +77,9 @@ def read_pressure_csv(path: str | os.PathLike[str]) -> tuple[NDArray, NDArray]:
     ------
     InputError
         If the file cannot be read, is larger than :data:`MAX_FILE_BYTES`, is not UTF-8
-        text, or is not at least :data:`MIN_ROWS` rows of two finite numbers; the error
-        names the file (and line and column), the value found and what is allowed.
+        text, or is not at least :data:`MIN_ROWS` rows of two finite numbers in their
+        ranges (:data:`ANGLE_RANGE_DEG`, :data:`PRESSURE_RANGE_BAR`); the error names the
+        file (and line and column), the value found and what is allowed.
     """
     source = str(path)
     text = read_text(
@@ -100,7 +124,21 @@ def _parse_rows(text: str, source: str) -> list[tuple[float, float]]:
                     cell,
                     "must be a finite number",
                 )
+            low, high = _RANGES[column]
+            if not low <= value <= high:
+                raise InputError(
+                    f"{_FIELD} {source}, line {number}, {column}",
+                    cell,
+                    f"must be {_WORDS[column]}",
+                )
             checked.append(value)
+        if rows and checked[0] <= rows[-1][0]:
+            raise InputError(
+                f"{_FIELD} {source}, line {number}, {_COLUMNS[0]}",
+                cells[0],
+                f"must be greater than the angle of the row before ({rows[-1][0]:g} deg): the "
+                "angles increase strictly",
+            )
         rows.append((checked[0], checked[1]))
     return rows
 

@@ -24,6 +24,7 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..main_bearings import (
     CRANK_MODELS,
+    MAX_CONTACT_SIZE,
     CrankSection,
     CrankStiffness,
     MainBearingLoads,
@@ -34,7 +35,7 @@ from ..main_bearings import (
     main_bearing_loads,
 )
 from ..model import EngineModel
-from ..options import BearingOptions, parse_options
+from ..options import MIN_SAMPLES, BearingOptions, parse_options
 from ..results import to_jsonable
 from ..spec import EngineSpec
 from .build import build_model
@@ -46,7 +47,12 @@ from .crank import (
     web_offset,
 )
 from .engine import BalanceStudy, balance_engine, engine_summary
-from .performance import combustion_summary, combustion_text, pressure_source
+from .performance import (
+    arithmetic_checked,
+    combustion_summary,
+    combustion_text,
+    pressure_source,
+)
 
 SCHEMA = "crankbalance.bearings/1"
 
@@ -230,12 +236,12 @@ def _counterweight_arrays(balance: Any) -> dict[str, Any]:
     }
 
 
-def _pressure(o: BearingOptions, cylinders: int) -> Any:
+def _pressure(o: BearingOptions, cylinders: int, strokes: int) -> Any:
     """The cylinder pressure source: Wiebe or tables (:func:`.performance.pressure_source`),
     or the crankcase pressure alone (no gas)."""
     if not o.gas:
         return (np.radians([-300.0, -100.0, 100.0, 300.0]), np.full(4, 1e5))
-    return pressure_source(o, cylinders)
+    return pressure_source(o, cylinders, strokes)
 
 
 def crank_section(dimensions: CrankDimensions, o: BearingOptions) -> CrankSection:
@@ -272,7 +278,6 @@ def bearing_loads(
     BearingStudy
         Both crank models with friction.
     """
-    from ..engine_cycle_all import engine_cycle_all
     from ..io.engine_file import load_engine
 
     o = (
@@ -281,6 +286,17 @@ def bearing_loads(
         else parse_options(BearingOptions, dict(options or {}))
     )
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
+    tables = f", pressure tables {', '.join(o.pressure_csv)}" if o.gas and o.pressure_csv else ""
+    with arithmetic_checked("the bearing-load study", f"engine {spec.name!r}{tables}"):
+        return _bearing_loads(spec, o, balance)
+
+
+def _bearing_loads(
+    spec: EngineSpec, o: BearingOptions, balance: BalanceStudy | None
+) -> BearingStudy:
+    """:func:`bearing_loads` of a validated spec and settings."""
+    from ..engine_cycle_all import engine_cycle_all
+
     overrides: dict[str, Any] = {}
     if o.balance_factor is not None:
         overrides["balance_factor"] = o.balance_factor
@@ -305,14 +321,30 @@ def bearing_loads(
     section = crank_section(dimensions, o)
     inertia = o.crank_inertia if o.crank_inertia is not None else rotating_inertia(model)
     bore = o.bore if o.bore is not None else 2.0 * model.crank_radius
-    cycle = engine_cycle_all(
-        model,
-        _pressure(o, model.cylinders),
-        bore=bore,
-        crank_inertia=inertia,
-        speed=o.speed,
-        samples_per_revolution=o.samples,
+    bearings = (
+        np.asarray(o.bearing, dtype=float)
+        if o.bearing is not None
+        else default_bearing_positions(model.throw_position, 2.0 * offset)
     )
+    if o.clearance is not None and o.bearing_stiffness is not None:
+        _check_contact_size(o.samples, model.strokes, bearings.size)
+    try:
+        cycle = engine_cycle_all(
+            model,
+            _pressure(o, model.cylinders, model.strokes),
+            bore=bore,
+            crank_inertia=inertia,
+            speed=o.speed,
+            samples_per_revolution=o.samples,
+        )
+    except InputError as error:
+        if error.field != "crank_inertia" or o.crank_inertia is not None:
+            raise
+        raise InputError(
+            "crank_inertia",
+            f"{inertia:.4g} kg*m^2 of crank and flywheel (the engine's)",
+            error.allowed,
+        ) from None
     loads = crank_loads(
         cycle.crank_angle,
         cycle.throw_force,
@@ -323,11 +355,6 @@ def bearing_loads(
         cycle.speed,
         cycle.crank_acceleration,
         **_counterweight_arrays(solved),
-    )
-    bearings = (
-        np.asarray(o.bearing, dtype=float)
-        if o.bearing is not None
-        else default_bearing_positions(model.throw_position, 2.0 * offset)
     )
     ends = np.concatenate([bearings, loads.position])
     stiffness = crank_stiffness(
@@ -371,6 +398,30 @@ def bearing_loads(
         stiffness=stiffness,
         bore=float(bore),
         results=results,
+    )
+
+
+def _check_contact_size(samples: int, strokes: int, bearings: int) -> None:
+    """Refuse, before any work, a clearance contact model larger than
+    :data:`crankbalance.main_bearings.MAX_CONTACT_SIZE` (the samples of one cycle times
+    (2 x bearings)^2), naming the samples per revolution it allows."""
+    per_sample = (2 * bearings) ** 2 * strokes // 2  # samples of a cycle per revolution
+    allowed = MAX_CONTACT_SIZE // per_sample
+    if samples <= allowed:
+        return
+    if allowed < MIN_SAMPLES:
+        raise InputError(
+            "clearance",
+            None,
+            f"the contact model of {bearings} bearings is too large at any number of samples "
+            f"(samples of a cycle x (2 x bearings)^2 at most {MAX_CONTACT_SIZE}): fewer "
+            "bearings, or leave out the clearance",
+        )
+    raise InputError(
+        "samples",
+        samples,
+        f"must be at most {allowed} with the clearance contact model of {bearings} bearings "
+        f"(samples of a cycle x (2 x bearings)^2 at most {MAX_CONTACT_SIZE})",
     )
 
 

@@ -5,12 +5,18 @@
   (``cycle --cylinder``, ``sensitivity``) and the web application's performance tab build
   their cylinder here; its flywheel sizing (:func:`size_cylinder_flywheel`);
 * the whole engine (:func:`cycle_model`, :func:`whole_engine_cycle`): every cylinder
-  firing (:mod:`crankbalance.engine_cycle_all`), for ``cycle --engine``.
+  firing (:mod:`crankbalance.engine_cycle_all`), for ``cycle --engine``;
+* :func:`arithmetic_checked`, the last net of every study of an engine cycle (``cycle``,
+  ``sensitivity``, ``bearings``, ``bearings-sweep``, ``torsional``): a floating-point
+  overflow, invalid operation or division by zero becomes one :class:`InputError` naming
+  the study and its inputs, never a warning and never a wrong field.
 """
 
 from __future__ import annotations
 
+import contextlib
 import dataclasses
+from collections.abc import Iterator
 from dataclasses import dataclass
 from typing import Any
 
@@ -84,6 +90,34 @@ def cycle_model(
     return dataclasses.replace(model, **changes)
 
 
+@contextlib.contextmanager
+def arithmetic_checked(study: str, inputs: str) -> Iterator[None]:
+    """Within the block, numpy's floating-point overflow, invalid operation (NaN) and
+    division by zero raise instead of warning, and are refused as one
+    :class:`~crankbalance.errors.InputError` naming ``study`` (``"the torsional
+    study"``) and its ``inputs`` as the user gave them (``"--engine inline4"``).
+
+    The inputs are checked at the edge (every option against its range, every pressure
+    table value against :data:`crankbalance.io.pressure_csv.PRESSURE_RANGE_BAR`), so this
+    is a net for a combination of extreme values that no single check sees. Underflow
+    (a result below the smallest double, rounded to zero) is not an error: it is how
+    a vanishing term of a sum is computed.
+    """
+    from ..errors import InputError
+
+    try:
+        with np.errstate(over="raise", divide="raise", invalid="raise"):
+            yield
+    except FloatingPointError as error:
+        raise InputError(
+            study,
+            inputs,
+            f"cannot be computed for these inputs ({error}): their extreme values together "
+            "take the arithmetic beyond floating point; bring the most extreme of them "
+            "closer to an engine's",
+        ) from None
+
+
 def whole_engine_cycle(
     model: EngineModel,
     pressure: PressureSource | list[PressureSource],
@@ -94,14 +128,16 @@ def whole_engine_cycle(
 ) -> EngineCycleResult:
     """All cylinders of ``model`` over one working cycle
     (:func:`~crankbalance.engine_cycle_all.engine_cycle_all`); without a bore the engine is
-    taken as square (bore = stroke), as :func:`cycle_cylinder` does."""
-    return engine_cycle_all(
-        model,
-        pressure,
-        bore=bore if bore is not None else 2.0 * model.crank_radius,
-        crank_inertia=crank_inertia,
-        speed_fluctuation_target=speed_fluctuation_target,
-    )
+    taken as square (bore = stroke), as :func:`cycle_cylinder` does; its arithmetic is
+    checked (:func:`arithmetic_checked`)."""
+    with arithmetic_checked("the engine cycle", f"engine {model.name!r}"):
+        return engine_cycle_all(
+            model,
+            pressure,
+            bore=bore if bore is not None else 2.0 * model.crank_radius,
+            crank_inertia=crank_inertia,
+            speed_fluctuation_target=speed_fluctuation_target,
+        )
 
 
 @dataclass(frozen=True)
@@ -181,11 +217,18 @@ def combustion_text(summary: dict[str, float] | None) -> str:
     )
 
 
-def pressure_source(o: Any, cylinders: int = 1) -> Any:
+#: the columns of a pressure table named by the model's checks of a table
+_TABLE_COLUMNS = {"pressure table angle": "angle_deg", "pressure table pressure": "pressure_bar"}
+
+
+def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> Any:
     """The gas pressure of ``cycle``, ``sensitivity``, ``torsional`` and ``bearings`` from
     their :class:`~crankbalance.options.CombustionOptions`: the pressure tables (one for
-    every cylinder, or one per cylinder), else the Wiebe model of the options."""
-    from ..engine_cycle import WiebeCombustion
+    every cylinder, or one per cylinder), else the Wiebe model of the options. With the
+    cycle's ``strokes`` each table is checked by the model
+    (:func:`~crankbalance.engine_cycle.tabulated_pressure`: less than one cycle) and an
+    error names its file."""
+    from ..engine_cycle import WiebeCombustion, tabulated_pressure
     from ..errors import InputError
 
     if o.pressure_csv:
@@ -198,6 +241,15 @@ def pressure_source(o: Any, cylinders: int = 1) -> Any:
                 f"give one table for every cylinder, or one per cylinder ({cylinders})",
             )
         tables = [read_pressure_csv(path) for path in o.pressure_csv]
+        for path, (angle, pressure) in zip(o.pressure_csv, tables, strict=True):
+            if strokes is None:
+                break
+            try:
+                tabulated_pressure(angle[:1], angle, pressure, strokes)  # type: ignore[arg-type]
+            except InputError as error:
+                column = _TABLE_COLUMNS.get(error.field)
+                where = f"pressure_csv {path}" + (f", {column}" if column else "")
+                raise InputError(where, error.value, error.allowed) from None
         return tables[0] if len(tables) == 1 else tables
     return WiebeCombustion(
         compression_ratio=o.compression_ratio,
