@@ -1,20 +1,24 @@
 """Chunked explorer runs: in this process, on a dask LocalCluster or on an existing cluster.
 
-A run splits the index range of a problem's enumeration, ``[0, count)``, into chunks of
-consecutive indices (or, for a space too large to enumerate, into groups of sampled
-indices, see :class:`Sample`). Each chunk is one task: candidates (the enumeration's
-``chunk``), figures of merit (``evaluate``), the filter (``select``), and the chunk's own
-Pareto set and top-N. The driver takes the tasks' results in task order, whoever computed
-them, writes each chunk's rows to the Parquet file as one row group (through
-:func:`crankbalance.io.parquet.parquet_stream`: the file appears at the end, atomically),
-and merges the Pareto sets and top-N lists; nothing else stays in memory. Because the
-tasks and the merge order are the same wherever the tasks run, a run on dask gives exactly
-the rows, Pareto set and top-N of the run in this process.
+Before anything runs, :func:`crankbalance.explore.work.plan` works out the run's work
+(candidates, tasks, memory per task), refuses a run beyond its limits and chooses the
+chunk. A run splits the index range of a problem's enumeration, ``[0, count)``, into
+chunks of consecutive indices (or, for a space too large to enumerate, into groups of
+sampled indices, see :class:`Sample`), made one at a time (:class:`Tasks`). Each chunk is
+one task: candidates (the enumeration's ``chunk``), figures of merit (``evaluate``), the
+filter (``select``), and the chunk's own Pareto set and top-N. The driver takes the
+tasks' results in task order, whoever computed them, writes each chunk's rows to the
+Parquet file as one row group (through :func:`crankbalance.io.parquet.parquet_stream`:
+the file appears at the end, atomically), and merges the Pareto sets and top-N lists;
+nothing else stays in memory. Because the tasks and the merge order are the same wherever
+the tasks run, a run on dask gives exactly the rows, Pareto set and top-N of the run in
+this process.
 
 Where the tasks run: in this process by default; ``workers=N`` starts a
 ``dask.distributed.LocalCluster`` of N worker processes (one thread each) for the run;
 ``scheduler="tcp://HOST:PORT"`` uses an existing cluster, whose workers need crankbalance
-installed. dask and pyarrow are imported only when they are used.
+installed, and which must answer within ``connect_timeout`` seconds. dask and pyarrow are
+imported only when they are used.
 
 Beyond enumeration (a W16's 1.3e12 firing orders), :class:`Sample` draws indices uniformly
 at random (with a seed, so the run is repeatable); docs/explorer.md says what that
