@@ -43,11 +43,20 @@ def _canonical(order: np.ndarray) -> bool:
 
 
 class SixOrders:
-    """count/chunk of the in-line six's firing orders (the interface of explore.orders)."""
+    """count/chunk/size/template of the in-line six's firing orders (the interface of
+    explore.orders)."""
 
     @staticmethod
     def count(problem: Any) -> int:
         return len(ORDERS)
+
+    @staticmethod
+    def size(problem: Any, start: int, stop: int) -> orders.Size:
+        return orders.Size(stop - start, stop - start, stop - start, True)
+
+    @staticmethod
+    def template(problem: Any) -> Candidates:
+        return SixOrders.chunk(problem, 0, 1)
 
     @staticmethod
     def chunk(problem: Any, start: int, stop: int) -> Candidates:

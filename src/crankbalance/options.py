@@ -41,6 +41,7 @@ from pydantic.fields import FieldInfo
 from .engine_cycle import BURN_DURATION_RANGE, IGNITION_RANGE
 from .engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from .errors import InputError
+from .explore.work import LARGEST_CHUNK, MAX_DRAWS
 from .single_cylinder import BALANCE_FACTOR_RANGE
 from .units import KINDS, format_quantity, parse_factor, parse_quantity, range_si
 from .units import RANGES as units_ranges
@@ -900,10 +901,16 @@ class ExploreOptions(StudyOptions):
     filter: str | None = Field(None, title="Filter")
     top: Whole = Field(20, ge=1, le=100_000, title="Rows of the top-N table")
     top_key: str | None = Field(None, title="Column of the top-N table")
-    chunk: Whole = Field(8192, ge=1, le=1_000_000, title="Candidates per task")
+    chunk: Whole | None = Field(
+        None,
+        ge=1,
+        le=LARGEST_CHUNK,
+        title="Indices per task (default: chosen from the problem; bounded by memory)",
+    )
     workers: Whole | None = Field(None, ge=1, le=1024, title="Workers of a LocalCluster")
     scheduler: str | None = Field(None, title="Address of a dask scheduler")
-    sample: Whole | None = Field(None, ge=1, le=10**12, title="Random draws (search)")
+    connect_timeout: Time = Field(5.0, ge=0.1, le=120.0, title="Time a scheduler has to answer")
+    sample: Whole | None = Field(None, ge=1, le=MAX_DRAWS, title="Random draws (search)")
     seed: Whole = Field(0, ge=0, le=2**32 - 1, title="Random seed")
 
 

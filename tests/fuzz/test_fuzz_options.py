@@ -689,6 +689,7 @@ COMMAND_TABLE: dict[str, Command] = {
             # (tests/test_explore_run.py runs them)
             "--workers": ["0", "-1", "abc", ""],
             "--scheduler": ["", "not-an-address", "tcp://"],
+            "--connect-timeout": quantity("time", "2 s"),
             "--sample": ["10", *NUMBERS],
             "--seed": number("1"),
             "--output": ["OUT/x.parquet", "/no/such/folder/x.parquet", "OUT", ""],

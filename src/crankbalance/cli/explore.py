@@ -20,18 +20,23 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..errors import InputError
+from ..explore.work import CONNECT_TIMEOUT, MAX_DRAWS, TASK_CANDIDATES, TASK_MEMORY
 from ..format import json_text, number
-from ._common import echo_table, format_option, named_as_typed, parse_settings, require_extra
+from ._common import (
+    echo_table,
+    format_option,
+    named_as_typed,
+    parse_settings,
+    refuse_unused,
+    require_extra,
+)
 
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-    from ..explore.candidates import Candidates
     from ..options import ExploreOptions
 
 FORMATS = ("table", "json", "csv")
-#: chunks looked at for a candidate before the run (:func:`_probe`)
-PROBES = 16
 #: a dask scheduler's address, ``tcp://10.0.0.5:8786``
 SCHEDULER = re.compile(r"^[a-z]+://[^\s/:]+(:\d+)?$")
 #: the module of the dist extra each option needs
@@ -82,34 +87,6 @@ def _mode_shape(text: str) -> str | list[float]:
             "--mode-shape", text, f"{' or '.join(MODE_SHAPES)}, or one number per cylinder"
         )
     return weights
-
-
-def _probe(problem: Any, chunk: int) -> Candidates:
-    """Candidates of the problem, to learn the columns before the run: those of the first
-    chunk that has any among the first :data:`PROBES`; else the topology's own crank and
-    firing order (the columns do not depend on the values)."""
-    import numpy as np
-
-    from ..explore import orders
-    from ..explore.candidates import Candidates
-
-    total = orders.count(problem)
-    starts = range(0, total, chunk)
-    for start in starts[:PROBES]:
-        found = orders.chunk(problem, start, min(start + chunk, total))
-        if found.size:
-            return found
-    if len(starts) <= PROBES:
-        raise InputError("--cylinders", problem.topology.cylinders, "a layout with a firing order")
-    t = problem.topology
-    return Candidates(
-        topology=t,
-        throw_angle=t.throw_angle[None, :],
-        firing_order=np.array([t.firing_order], dtype=np.int64),
-        fire_angle=np.zeros((1, t.cylinders)),
-        equivalents=np.ones(1, dtype=np.int64),
-        index=np.zeros(1, dtype=np.int64),
-    )
 
 
 def _order_text(order: NDArray[Any]) -> str:
@@ -184,10 +161,23 @@ def _write_plot(plot: str, result: Any, objectives: tuple[str, ...]) -> None:
     help="Column of the top-N table [default: residual_M, the largest moment left after "
     "balancing; with --target none the first objective].",
 )
-@click.option("--chunk", default="8192", show_default=True, help="Candidates per task.")
+@click.option(
+    "--chunk",
+    help=f"Indices per task [default: chosen from the problem, about {TASK_CANDIDATES} "
+    f"candidates per task; at most what a task's {TASK_MEMORY // 2**20} MiB hold].",
+)
 @click.option("--workers", help="Run on a dask LocalCluster of N worker processes.")
 @click.option("--scheduler", help="Run on an existing dask cluster, tcp://HOST:PORT.")
-@click.option("--sample", help="Random search: draw N indices instead of enumerating all.")
+@click.option(
+    "--connect-timeout",
+    default=f"{CONNECT_TIMEOUT:g} s",
+    show_default=True,
+    help="Time the --scheduler has to answer (0.1 s to 120 s).",
+)
+@click.option(
+    "--sample",
+    help=f"Random search: draw N indices instead of enumerating all (at most {MAX_DRAWS:,}).",
+)
 @click.option("--seed", default="0", show_default=True, help="Seed of --sample.")
 @click.option(
     "--output",
@@ -219,6 +209,7 @@ def explore(
 
     from ..explore import merit, orders, rank
     from ..explore.run import Keep, Sample, progress_line, run
+    from ..explore.work import plan
     from ..options import ExploreOptions
     from ..results import require_finite
 
@@ -227,6 +218,7 @@ def explore(
     o = parse_settings(ExploreOptions, {**options, "filter": filter_text})
     if o.scheduler is not None and o.workers is not None:
         raise InputError("--workers", options["workers"], "not with --scheduler")
+    refuse_unused({"connect_timeout": o.scheduler is not None}, "only acts with --scheduler")
     given = {"output": output, "workers": o.workers, "scheduler": o.scheduler}
     for name, module in DIST.items():
         if given[name] is not None:
@@ -253,7 +245,7 @@ def explore(
         orders=o.orders,
     )
     with named_as_typed({"mode_shape": o.mode_shape, "orders": options["orders"]}):
-        columns = list(evaluate(_probe(problem, o.chunk)))
+        columns = list(evaluate(orders.template(problem)))
     objectives = tuple(
         rank.column_name(name.strip(), columns, "--objectives")
         for name in o.objectives.split(",")
@@ -271,20 +263,33 @@ def explore(
         keep = Keep(objectives=objectives, key=key, n=max(o.top, EXPLORE_POINTS))
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "--filter")
     sample = None if o.sample is None else Sample(draws=o.sample, seed=o.seed)
-    tasks = math.ceil((o.sample or orders.count(problem)) / o.chunk)
-    show = progress if progress is not None else tasks > 8
-    result = run(
-        problem,
-        evaluate,
-        chunk=o.chunk,
-        select=select,
-        keep=keep,
-        output=output,
-        scheduler=o.scheduler,
-        workers=o.workers,
-        sample=sample,
-        progress=progress_line() if show else None,
-    )
+    # the work of the run, before any enumeration, draw or task list (explore.work)
+    sizes = {"cylinders": options["cylinders"], "sample": options["sample"]}
+    with named_as_typed(sizes | {"chunk": options["chunk"]}):
+        work = plan(problem, evaluate, chunk=o.chunk, sample=sample)
+    if sample is None and work.exact and work.candidates == 0:
+        raise InputError(
+            "--cylinders",
+            options["cylinders"],
+            f"a layout with a firing order: none of its {work.indices:,} firing orders puts "
+            "the cylinders sharing a crankpin at one angle (try another --bank-angle, or "
+            "--crank split)",
+        )
+    show = progress if progress is not None else work.tasks > 8
+    with named_as_typed({"scheduler": o.scheduler}):
+        result = run(
+            problem,
+            evaluate,
+            chunk=work.chunk,
+            select=select,
+            keep=keep,
+            output=output,
+            scheduler=o.scheduler,
+            workers=o.workers,
+            sample=sample,
+            progress=progress_line() if show else None,
+            connect_timeout=o.connect_timeout,
+        )
     if plot is not None:
         _write_plot(plot, result, objectives)
         result = dataclasses.replace(result, top={k: v[: o.top] for k, v in result.top.items()})
@@ -303,7 +308,10 @@ def explore(
     if fmt == "json":
         payload = {
             "schema": "crankbalance.explore/1",
-            "problem": {k: v for k, v in o.model_dump().items() if k != "scheduler"},
+            "problem": {
+                k: v for k, v in o.model_dump().items() if k not in ("scheduler", "connect_timeout")
+            }
+            | {"chunk": work.chunk},
             "counts": counts,
             "objectives": list(objectives),
             "top_key": keep.key,

@@ -50,3 +50,25 @@ class Candidates:
     def size(self) -> int:
         """Number of candidates B."""
         return int(self.index.size)
+
+    def part(self, start: int, stop: int) -> Candidates:
+        """The candidates from position ``start`` to before ``stop`` (views, no copy).
+
+        Parameters
+        ----------
+        start, stop : int
+            Positions in the batch [-].
+
+        Returns
+        -------
+        Candidates
+            The slice of the batch.
+        """
+        return Candidates(
+            topology=self.topology,
+            throw_angle=self.throw_angle[start:stop],
+            firing_order=self.firing_order[start:stop],
+            fire_angle=self.fire_angle[start:stop],
+            equivalents=self.equivalents[start:stop],
+            index=self.index[start:stop],
+        )

@@ -21,8 +21,9 @@ symmetries of a topology is found from its geometry and masses, not assumed.
 
 from __future__ import annotations
 
+import functools
 import math
-from collections.abc import Sequence
+from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
 from functools import cached_property
 
@@ -399,46 +400,102 @@ def _unrank(plan: _Plan, index: NDArray[np.int64]) -> tuple[NDArray[np.int64], N
     return slots, rot
 
 
+_Prefixes = tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.float64], NDArray[np.int64]]
+
+
+def _root(problem: Problem, r: int) -> _Prefixes:
+    """The one prefix of rotation ``r`` before any choice: cylinder 1 in slot 0."""
+    throw_of = problem.topology.cylinder_throw
+    m = problem._plan.cylinders - 1
+    pin = np.full((1, problem.topology.throws), np.nan)
+    pin[0, throw_of[0]] = np.remainder(
+        problem.topology.cylinder_bank[0] - problem._plan.times[r, 0], 2 * np.pi
+    )
+    rest = np.arange(1, m + 1, dtype=np.int64)[None, :]
+    return np.zeros(1, dtype=np.int64), np.zeros((1, m + 1), dtype=np.int64), pin, rest
+
+
+def _children(
+    problem: Problem, r: int, k: int, prefixes: _Prefixes, lo_end: int, hi_end: int
+) -> tuple[_Prefixes, NDArray[np.int64]]:
+    """The consistent prefixes one Lehmer digit (``k``) deeper whose blocks meet
+    ``[lo_end, hi_end)``, and the position of each one's parent, by increasing index.
+
+    A prefix is ``(lo, slots, pin, rest)``: the first index of its block (B,), the slots
+    chosen so far (B, C), each throw's pin angle so far (B, T) [rad] (NaN: no cylinder of
+    the throw placed yet) and the cylinders not yet placed (B, C-1-k). A child whose
+    cylinder disagrees with a cylinder already on its pin is dropped with its whole block.
+    """
+    plan = problem._plan
+    m = plan.cylinders - 1
+    bank, throw_of = problem.topology.cylinder_bank, problem.topology.cylinder_throw
+    lo, slots, pin, rest = prefixes
+    width = int(plan.factorial[k])
+    digit = np.tile(np.arange(m - k), lo.size)
+    parent = np.repeat(np.arange(lo.size), m - k)
+    child_lo = lo[parent] + digit * width
+    cylinder = rest[parent, digit]
+    angle = np.remainder(bank[cylinder] - plan.times[r, k + 1], 2 * np.pi)
+    known = pin[parent, throw_of[cylinder]]
+    ok = (child_lo < hi_end) & (child_lo + width > lo_end)
+    ok &= np.isnan(known) | (_gap(angle - known) < _TOL)
+    parent, digit, cylinder, angle = parent[ok], digit[ok], cylinder[ok], angle[ok]
+    lo = child_lo[ok]
+    slots = slots[parent]
+    slots[np.arange(lo.size), cylinder] = k + 1
+    pin = pin[parent]
+    pin[np.arange(lo.size), throw_of[cylinder]] = angle
+    keep = np.arange(m - 1 - k)[None, :]
+    rest = np.take_along_axis(rest[parent], keep + (keep >= digit[:, None]), axis=1)
+    return (lo, slots, pin, rest), parent
+
+
+def _rotations(plan: _Plan, start: int, stop: int) -> Iterator[tuple[int, int, int]]:
+    """Each rotation r of the interval pattern that ``[start, stop)`` meets, with the range
+    in that rotation's own indices."""
+    for r in range(start // plan.span, (stop - 1) // plan.span + 1 if stop > start else 0):
+        yield r, start - r * plan.span, stop - r * plan.span
+
+
+#: most children of one level of the enumeration of a range, times the cylinders (8 bytes
+#: each: 16 MB per array): a wider level is enumerated half after half (:func:`_consistent`)
+LEVEL_ELEMENTS = 2_000_000
+#: the most memory the prefixes of the enumeration of a range take at once [bytes]: a level
+#: of LEVEL_ELEMENTS and its children's arrays, with the halves waiting their turn
+TREE_BYTES = 48 * LEVEL_ELEMENTS
+
+
 def _consistent(
     problem: Problem, start: int, stop: int
 ) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
     """Indices, slots and rotations of the orders in ``[start, stop)`` whose cylinders
     sharing a crankpin agree on its angle, by increasing index.
 
-    The Lehmer digits are chosen slot after slot; a prefix whose cylinders already
-    disagree on a pin is dropped with the whole block of indices it starts, so a
-    shared-pin layout never visits most of its inconsistent orders.
+    The Lehmer digits are chosen slot after slot (:func:`_children`); a prefix whose
+    cylinders already disagree on a pin is dropped with the whole block of indices it
+    starts, so a shared-pin layout never visits most of its inconsistent orders. A level
+    whose children would exceed :data:`LEVEL_ELEMENTS` is split in two halves, the second
+    waiting until the first is done (the prefixes are in index order, so the orders come
+    out in index order): the memory stays bounded however the consistent orders cluster.
     """
     plan = problem._plan
     m = plan.cylinders - 1
-    bank, throw_of = problem.topology.cylinder_bank, problem.topology.cylinder_throw
     out: list[tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]] = []
-    for r in range(start // plan.span, (stop - 1) // plan.span + 1 if stop > start else 0):
-        lo_end, hi_end = start - r * plan.span, stop - r * plan.span
-        lo = np.zeros(1, dtype=np.int64)  # first index of each prefix's block
-        rest = np.arange(1, m + 1, dtype=np.int64)[None, :]
-        slots = np.zeros((1, m + 1), dtype=np.int64)
-        pin = np.full((1, problem.topology.throws), np.nan)
-        pin[0, throw_of[0]] = np.remainder(bank[0] - plan.times[r, 0], 2 * np.pi)
-        for k in range(m):
-            width = int(plan.factorial[k])
-            digit = np.tile(np.arange(m - k), lo.size)
-            parent = np.repeat(np.arange(lo.size), m - k)
-            child_lo = lo[parent] + digit * width
-            cylinder = rest[parent, digit]
-            angle = np.remainder(bank[cylinder] - plan.times[r, k + 1], 2 * np.pi)
-            known = pin[parent, throw_of[cylinder]]
-            ok = (child_lo < hi_end) & (child_lo + width > lo_end)
-            ok &= np.isnan(known) | (_gap(angle - known) < _TOL)
-            parent, digit, cylinder, angle = parent[ok], digit[ok], cylinder[ok], angle[ok]
-            lo = child_lo[ok]
-            slots = slots[parent]
-            slots[np.arange(lo.size), cylinder] = k + 1
-            pin = pin[parent]
-            pin[np.arange(lo.size), throw_of[cylinder]] = angle
-            keep = np.arange(m - 1 - k)[None, :]
-            rest = np.take_along_axis(rest[parent], keep + (keep >= digit[:, None]), axis=1)
-        out.append((lo + r * plan.span, slots, np.full(lo.size, r, dtype=np.int64)))
+    for r, lo_end, hi_end in _rotations(plan, start, stop):
+        waiting: list[tuple[int, _Prefixes]] = [(0, _root(problem, r))]
+        while waiting:
+            k, level = waiting.pop()
+            while k < m:
+                wide = level[0].size * (m - k) * plan.cylinders > LEVEL_ELEMENTS
+                if wide and level[0].size > 1:
+                    half = level[0].size // 2
+                    waiting.append((k, tuple(a[half:] for a in level)))  # type: ignore[arg-type]
+                    level = tuple(a[:half] for a in level)  # type: ignore[assignment]
+                    continue
+                level = _children(problem, r, k, level, lo_end, hi_end)[0]
+                k += 1
+            lo, slots = level[0], level[1]
+            out.append((lo + r * plan.span, slots, np.full(lo.size, r, dtype=np.int64)))
     if not out:
         empty = np.zeros(0, dtype=np.int64)
         return empty, np.zeros((0, m + 1), dtype=np.int64), empty
@@ -446,6 +503,167 @@ def _consistent(
         np.concatenate([o[0] for o in out]),
         np.concatenate([o[1] for o in out]),
         np.concatenate([o[2] for o in out]),
+    )
+
+
+@dataclass(frozen=True)
+class Size:
+    """How large the enumeration of a range of indices is, known before it is listed.
+
+    Parameters
+    ----------
+    orders : int
+        Consistent firing orders in the range [-] (every candidate is one of them).
+    prefixes : int
+        Prefixes the enumeration builds over the range, all levels together [-] (its
+        cost: a shared-pin layout builds many more prefixes than it finds orders).
+    widest : int
+        Most prefixes of one level [-] (what the enumeration of the whole range holds at
+        once).
+    exact : bool
+        Whether the three are counted; else they are estimated (:func:`size`).
+    """
+
+    orders: int
+    prefixes: int
+    widest: int
+    exact: bool
+
+
+#: most children the exact count of :func:`size` builds at one level, times the cylinders
+#: (about 32 MB per array of int64): beyond, the rest is estimated
+SIZE_ELEMENTS = 4_000_000
+#: random paths of the estimate of :func:`size` (Knuth's estimator)
+SIZE_PATHS = 8192
+
+
+@functools.lru_cache(maxsize=16)
+def size(problem: Problem, start: int, stop: int) -> Size:
+    """How many consistent firing orders ``[start, stop)`` holds, and how many prefixes
+    their enumeration builds: counted, or estimated when counting would cost too much.
+
+    On layouts where no two cylinders share a crankpin every order is consistent and every
+    prefix is built: the sizes follow from the range. Otherwise the prefixes are
+    enumerated level by level as :func:`chunk` does, while a level stays under
+    :data:`SIZE_ELEMENTS`; when the enumeration ends, the sizes are exact (the W12's 480
+    orders among 39.9 million indices). Else the levels below the last one counted are
+    estimated by Knuth's estimator (D. E. Knuth, Estimating the efficiency of backtrack
+    programs, Math. Comp. 29 (1975) 121-136): :data:`SIZE_PATHS` random paths down from
+    prefixes of that level, each choosing one consistent child at random and weighted by
+    the product of the numbers of children met; the mean weight at a level times the
+    prefixes counted is an unbiased estimate of that level's prefixes.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    start, stop : int
+        Index range, ``0 <= start <= stop <= count(problem)``.
+
+    Returns
+    -------
+    Size
+        The orders, prefixes and widest level of the range, and whether they are exact.
+    """
+    total = count(problem)
+    if not 0 <= start <= stop <= total:
+        raise InputError("span", (start, stop), f"0 <= start <= stop <= {total}")
+    plan = problem._plan
+    m = plan.cylinders - 1
+    if np.unique(problem.topology.cylinder_throw).size == plan.cylinders:
+        built = sum(_blocks(plan, start, stop, k) for k in range(m + 1))
+        return Size(stop - start, built, stop - start, True)
+    rng = np.random.default_rng(0)
+    orders = prefixes = widest = 0
+    exact = True
+    for r, lo_end, hi_end in _rotations(plan, start, stop):
+        level = _root(problem, r)
+        for k in range(m):
+            prefixes += level[0].size
+            widest = max(widest, level[0].size)
+            if level[0].size * (m - k) * plan.cylinders > SIZE_ELEMENTS:
+                exact = False
+                found, built, most = _estimate(problem, r, k, level, lo_end, hi_end, rng)
+                orders, prefixes, widest = orders + found, prefixes + built, max(widest, most)
+                break
+            level = _children(problem, r, k, level, lo_end, hi_end)[0]
+        else:
+            prefixes += level[0].size
+            widest = max(widest, level[0].size)
+            orders += level[0].size
+    return Size(orders, prefixes, widest, exact)
+
+
+def _blocks(plan: _Plan, start: int, stop: int, k: int) -> int:
+    """Blocks of prefixes of level ``k`` (each (C-1-k)! indices) that ``[start, stop)``
+    meets, summed over the rotations: the prefixes an unshared-pin layout builds."""
+    width = math.factorial(plan.cylinders - 1 - k)
+    return sum(
+        (min(hi, plan.span) - 1) // width - max(lo, 0) // width + 1
+        for _, lo, hi in _rotations(plan, start, stop)
+    )
+
+
+def _estimate(
+    problem: Problem,
+    r: int,
+    k: int,
+    level: _Prefixes,
+    lo_end: int,
+    hi_end: int,
+    rng: np.random.Generator,
+) -> tuple[int, int, int]:
+    """The orders, the prefixes (levels below ``k``) and the widest level below the
+    prefixes ``level`` of level ``k``, estimated (:func:`size`)."""
+    m = problem._plan.cylinders - 1
+    paths, weight = _thin(level, np.ones(level[0].size), rng)
+    built = widest = 0.0
+    for j in range(k, m):
+        children, parent = _children(problem, r, j, paths, lo_end, hi_end)
+        weight = weight[parent]
+        built += float(weight.sum())
+        widest = max(widest, float(weight.sum()))
+        paths, weight = _thin(children, weight, rng)
+    return math.ceil(weight.sum()), math.ceil(built), math.ceil(widest)
+
+
+def _thin(
+    prefixes: _Prefixes, weight: NDArray[np.float64], rng: np.random.Generator
+) -> tuple[_Prefixes, NDArray[np.float64]]:
+    """At most :data:`SIZE_PATHS` of the prefixes, drawn uniformly without replacement,
+    each standing for ``n / SIZE_PATHS`` times its weight: the weighted sum of the kept
+    prefixes' descendants is an unbiased estimate of that of all."""
+    n = prefixes[0].size
+    if n <= SIZE_PATHS:
+        return prefixes, weight
+    pick = np.sort(rng.choice(n, size=SIZE_PATHS, replace=False))
+    kept: _Prefixes = tuple(a[pick] for a in prefixes)  # type: ignore[assignment]
+    return kept, weight[pick] * (n / SIZE_PATHS)
+
+
+def template(problem: Problem) -> Candidates:
+    """One candidate of the problem's topology (its own crank and firing order, which need
+    not be consistent): what the figures of merit of a batch look like (their columns do
+    not depend on the values), before any enumeration.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+
+    Returns
+    -------
+    Candidates
+        A batch of one candidate, index 0.
+    """
+    t = problem.topology
+    return Candidates(
+        topology=t,
+        throw_angle=t.throw_angle[None, :],
+        firing_order=np.array([t.firing_order], dtype=np.int64),
+        fire_angle=np.zeros((1, t.cylinders)),
+        equivalents=np.ones(1, dtype=np.int64),
+        index=np.zeros(1, dtype=np.int64),
     )
 
 

@@ -10,12 +10,22 @@ A filter is a small expression language, parsed with Python's :mod:`ast` and eva
 by walking the tree (never ``eval``): column names, numbers, ``+ - * /``, unary minus,
 ``abs(...)``, comparisons ``< <= > >= == !=`` (chained as in ``0 <= F1 < 5``), ``and``,
 ``or``, ``not`` and parentheses, e.g. ``"F1 == 0 and M1 == 0 and F2 <= 1e-6"``.
+
+A filter is bounded before it is parsed: at most :data:`FILTER_CHARS` characters,
+:data:`FILTER_OPERATORS` operators and :data:`FILTER_DEPTH` levels of brackets, counted in
+the text (:func:`_count_operators`), so that neither :func:`ast.parse` nor the evaluation
+(recursive, one level per operator or bracket: at most ``FILTER_OPERATORS +
+FILTER_DEPTH + 1`` levels) can recurse deeply; its numbers are finite and at most
+:data:`FILTER_NUMBER` in size.
 """
 
 from __future__ import annotations
 
 import ast
+import difflib
+import math
 import operator
+import re
 from collections.abc import Callable, Iterable, Mapping
 from dataclasses import dataclass
 from typing import Any
@@ -58,6 +68,29 @@ _NODES: tuple[type, ...] = (
 _ALLOWED = (
     "column names, numbers, + - * /, abs(), comparisons < <= > >= == !=, and, or, not, parentheses"
 )
+#: longest filter [characters]
+FILTER_CHARS = 1000
+#: most operators in a filter: arithmetic, comparisons, ``and``, ``or``, ``not``, and any
+#: other punctuation (the language has none, but it is counted before the parse refuses it)
+FILTER_OPERATORS = 100
+#: deepest nesting of brackets in a filter (``abs(...)`` counts as one)
+FILTER_DEPTH = 20
+#: largest size of a number in a filter [the unit of its column]: far beyond any figure of
+#: merit (the free forces of a ship's engine are ~1e7 N), far below a float's 1.8e308
+FILTER_NUMBER = 1e15
+#: the tokens of a filter's text: a number (with its exponent's sign), a word, a two-character
+#: operator, one other non-blank character
+_TOKEN = re.compile(
+    r"(?P<number>(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?)"
+    r"|(?P<word>[^\W\d]\w*)"
+    r"|(?P<operator><=|>=|==|!=|\*\*|//|\S)"
+)
+#: words that are operators
+_WORD_OPERATORS = frozenset({"and", "or", "not", "if", "else", "lambda", "for", "in", "is"})
+#: words that stand for a number a filter does not take
+_NOT_FINITE = frozenset({"inf", "infinity", "nan"})
+#: the closest column names shown for an unknown one
+CLOSEST = 3
 
 
 def column_name(name: str, columns: Iterable[str], field: str = "column") -> str:
@@ -88,7 +121,18 @@ def column_name(name: str, columns: Iterable[str], field: str = "column") -> str
     for unit in UNITS:
         if f"{name}_{unit}" in names:
             return f"{name}_{unit}"
-    raise InputError(field, name, f"the columns: {', '.join(_short(names))}")
+    raise InputError(field, name, _unknown(name, names))
+
+
+def _unknown(name: str, columns: list[str]) -> str:
+    """What to say of an unknown column: the closest names (never the whole list, which has
+    hundreds of names at ``--orders 64``) and where the columns are listed."""
+    short = list(dict.fromkeys(_short(columns)))
+    same = [c for c in short if c.lower() == name.lower()]  # "f1": F1 first
+    close = same + difflib.get_close_matches(name, short, n=CLOSEST, cutoff=0.5)
+    close = list(dict.fromkeys(close))[:CLOSEST]
+    hint = f"closest: {', '.join(close)}" if close else "no column has a similar name"
+    return f"a column of the explorer ({hint}; all in docs/explorer.md, 'Figures of merit')"
 
 
 def _short(columns: list[str]) -> list[str]:
@@ -164,7 +208,9 @@ class Filter:
             return out
         if isinstance(node, ast.BinOp):
             left, right = self._number(node.left, values), self._number(node.right, values)
-            with np.errstate(divide="ignore", invalid="ignore"):
+            # x / 0 is ±inf, 0 / 0 and inf - inf NaN (a comparison with NaN is false), an
+            # overflow ±inf: no warning (docs/explorer.md, "Ranking")
+            with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
                 return _ARITHMETIC[type(node.op)](left, right)
         if isinstance(node, ast.Call):
             return np.abs(self._number(node.args[0], values))
@@ -211,13 +257,20 @@ def parse_filter(text: str, columns: Iterable[str], field: str = "filter") -> Fi
         language, an unknown column, or numbers where conditions belong.
     """
     names = list(columns)
+    if not isinstance(text, str):
+        raise InputError(field, text, f"a text; {_ALLOWED}")
+    _check_size(text, field)
     try:
         tree = ast.parse(text.strip(), mode="eval")
     except SyntaxError as error:
         raise InputError(field, text, f"not an expression ({error.msg}); {_ALLOWED}") from None
+    except ValueError as error:  # a NUL character (Python 3.11)
+        raise InputError(field, text, f"not an expression ({error}); {_ALLOWED}") from None
     functions = {id(node.func) for node in ast.walk(tree) if isinstance(node, ast.Call)}
     for node in ast.walk(tree):
         if isinstance(node, ast.Name) and id(node) not in functions:
+            if node.id.lower() in _NOT_FINITE:
+                raise InputError(field, text, f"{node.id!r}: {_NUMBERS}")
             try:
                 column_name(node.id, names, field)
             except InputError as error:
@@ -227,6 +280,8 @@ def parse_filter(text: str, columns: Iterable[str], field: str = "filter") -> Fi
         if isinstance(node, ast.Constant):
             if not isinstance(node.value, int | float) or isinstance(node.value, bool):
                 raise InputError(field, text, f"{node.value!r} is not a number; {_ALLOWED}")
+            if not _bounded(node.value):
+                raise InputError(field, text, f"{_literal(text, node)}: {_NUMBERS}")
             continue
         if isinstance(node, ast.Call):
             plain = isinstance(node.func, ast.Name) and node.func.id == "abs"
@@ -241,6 +296,66 @@ def parse_filter(text: str, columns: Iterable[str], field: str = "filter") -> Fi
     probe = {name: np.zeros(1) for name in names}
     parsed(probe)  # types: conditions where conditions belong
     return parsed
+
+
+_NUMBERS = "numbers in a filter are finite and at most {} in size".format(
+    f"{FILTER_NUMBER:g}".replace("e+", "e")
+)
+
+
+def _bounded(value: int | float) -> bool:
+    """Whether a literal is finite and at most :data:`FILTER_NUMBER` in size (an integer is
+    compared as an integer: ``10**400`` is never converted to a float)."""
+    if isinstance(value, int):
+        return abs(value) <= int(FILTER_NUMBER)
+    return math.isfinite(value) and abs(value) <= FILTER_NUMBER
+
+
+def _literal(text: str, node: ast.Constant) -> str:
+    """The number as written (shortened), for the message."""
+    written = ast.get_source_segment(text.strip(), node) or repr(node.value)
+    return repr(written if len(written) <= 24 else written[:21] + "...")
+
+
+def _count_operators(text: str) -> tuple[int, int]:
+    """Operators and the deepest nesting of brackets in a filter's text, counted from its
+    tokens (:data:`_TOKEN`) without parsing it: every non-word, non-number character other
+    than a closing bracket is an operator (``(`` too), and so are the words ``and``, ``or``,
+    ``not`` and the other Python words that build expressions."""
+    operators = depth = deepest = 0
+    for match in _TOKEN.finditer(text):
+        kind, token = match.lastgroup, match.group()
+        if kind == "word":
+            operators += token in _WORD_OPERATORS
+        elif kind == "operator":
+            if token in ")]}":
+                depth -= 1
+                continue
+            operators += 1
+            if token in "([{":
+                depth += 1
+                deepest = max(deepest, depth)
+    return operators, deepest
+
+
+def _check_size(text: str, field: str) -> None:
+    """Refuse a filter longer, with more operators or deeper than the limits, before any
+    parse (so that the parser's and the evaluation's recursion stay bounded)."""
+    if len(text) > FILTER_CHARS:
+        raise InputError(
+            field, text, f"at most {FILTER_CHARS} characters (this one has {len(text):,})"
+        )
+    operators, depth = _count_operators(text)
+    if operators > FILTER_OPERATORS:
+        raise InputError(
+            field,
+            text,
+            f"at most {FILTER_OPERATORS} operators and brackets (this one has {operators})",
+        )
+    if depth > FILTER_DEPTH:
+        raise InputError(
+            field, text, f"brackets nested at most {FILTER_DEPTH} deep (this one: {depth})"
+        )
 
 
 def pareto(values: ArrayLike) -> NDArray[np.bool_]:

@@ -1,20 +1,24 @@
 """Chunked explorer runs: in this process, on a dask LocalCluster or on an existing cluster.
 
-A run splits the index range of a problem's enumeration, ``[0, count)``, into chunks of
-consecutive indices (or, for a space too large to enumerate, into groups of sampled
-indices, see :class:`Sample`). Each chunk is one task: candidates (the enumeration's
-``chunk``), figures of merit (``evaluate``), the filter (``select``), and the chunk's own
-Pareto set and top-N. The driver takes the tasks' results in task order, whoever computed
-them, writes each chunk's rows to the Parquet file as one row group (through
-:func:`crankbalance.io.parquet.parquet_stream`: the file appears at the end, atomically),
-and merges the Pareto sets and top-N lists; nothing else stays in memory. Because the
-tasks and the merge order are the same wherever the tasks run, a run on dask gives exactly
-the rows, Pareto set and top-N of the run in this process.
+Before anything runs, :func:`crankbalance.explore.work.plan` works out the run's work
+(candidates, tasks, memory per task), refuses a run beyond its limits and chooses the
+chunk. A run splits the index range of a problem's enumeration, ``[0, count)``, into
+chunks of consecutive indices (or, for a space too large to enumerate, into groups of
+sampled indices, see :class:`Sample`), made one at a time (:class:`Tasks`). Each chunk is
+one task: candidates (the enumeration's ``chunk``), figures of merit (``evaluate``), the
+filter (``select``), and the chunk's own Pareto set and top-N. The driver takes the
+tasks' results in task order, whoever computed them, writes each chunk's rows to the
+Parquet file as one row group (through :func:`crankbalance.io.parquet.parquet_stream`:
+the file appears at the end, atomically), and merges the Pareto sets and top-N lists;
+nothing else stays in memory. Because the tasks and the merge order are the same wherever
+the tasks run, a run on dask gives exactly the rows, Pareto set and top-N of the run in
+this process.
 
 Where the tasks run: in this process by default; ``workers=N`` starts a
 ``dask.distributed.LocalCluster`` of N worker processes (one thread each) for the run;
 ``scheduler="tcp://HOST:PORT"`` uses an existing cluster, whose workers need crankbalance
-installed. dask and pyarrow are imported only when they are used.
+installed, and which must answer within ``connect_timeout`` seconds. dask and pyarrow are
+imported only when they are used.
 
 Beyond enumeration (a W16's 1.3e12 firing orders), :class:`Sample` draws indices uniformly
 at random (with a seed, so the run is repeatable); docs/explorer.md says what that
@@ -28,16 +32,17 @@ import math
 import sys
 import time
 from collections import deque
-from collections.abc import Callable, Generator, Iterable, Mapping
+from collections.abc import Callable, Generator, Iterable, Mapping, Sequence
 from contextlib import ExitStack
 from dataclasses import dataclass
-from typing import IO, Any
+from typing import IO, Any, overload
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
 from .candidates import Candidates
+from .work import CONNECT_TIMEOUT, FIGURES_SLICE, TASK_CANDIDATES, plan
 
 Columns = dict[str, NDArray[Any]]
 #: figures of merit of a batch of candidates: one column (B,) per figure
@@ -47,9 +52,8 @@ Select = Callable[[Mapping[str, NDArray[Any]]], NDArray[np.bool_]]
 #: a task: a range (start, stop) of indices, or an array of sampled indices
 Task = tuple[int, int] | NDArray[np.int64]
 
-#: consecutive indices per task (the enumeration's chunk): large enough that numpy's
-#: per-call cost is small, small enough that a task's temporaries stay a few MB
-CHUNK = 8192
+#: a dask scheduler's port when its address has none
+SCHEDULER_PORT = 8786
 #: the columns every row has besides the figures of merit
 ROW_COLUMNS = ("index", "equivalents", "firing_order", "throw_angle_rad")
 
@@ -252,27 +256,76 @@ def evaluate_task(
     source: Any,
     task: Task,
 ) -> _Part:
-    """One task, where it runs: candidates, figures, filter, Pareto set and top-N."""
+    """One task, where it runs: candidates, figures, filter, Pareto set and top-N.
+
+    The figures are computed :data:`~crankbalance.explore.work.FIGURES_SLICE` candidates at
+    a time (faster, and their temporaries stay small however many candidates a task of a
+    shared-pin layout holds); the slices' Pareto sets and top-N lists merge into the
+    task's."""
     candidates, covered = _candidates(problem, task, _enumeration(source))
-    rows = _rows(candidates, evaluate(candidates))
-    if select is not None:
-        rows = _take(rows, np.flatnonzero(np.asarray(select(rows), dtype=bool)))
+    kept: list[Columns] = []
+    pareto: Columns = {}
+    top: Columns = {}
+    passed = 0
+    for start in range(0, max(candidates.size, 1), FIGURES_SLICE):
+        piece = candidates.part(start, start + FIGURES_SLICE)
+        rows = _rows(piece, evaluate(piece))
+        if select is not None:
+            rows = _take(rows, np.flatnonzero(np.asarray(select(rows), dtype=bool)))
+        passed += int(rows["index"].size)
+        if rows_wanted:
+            kept.append(rows)
+        pareto = _merge(keep, pareto, _pareto(keep, rows), "pareto")
+        top = _merge(keep, top, _top(keep, rows), "top")
     return _Part(
         candidates=candidates.size,
         covered=covered,
-        rows=rows if rows_wanted else None,
-        passed=int(rows["index"].size),
-        pareto=_pareto(keep, rows),
-        top=_top(keep, rows),
+        rows=_concat(kept) if rows_wanted else None,
+        passed=passed,
+        pareto=pareto,
+        top=top,
     )
+
+
+class Tasks(Sequence[Task]):
+    """The tasks of a run, made one at a time as they are asked for (:func:`tasks`): a run
+    of many tasks holds no list of them."""
+
+    def __init__(self, low: int, high: int, chunk: int, drawn: NDArray[np.int64] | None) -> None:
+        self._low, self._high, self._chunk, self._drawn = low, high, chunk, drawn
+        size = high - low if drawn is None else drawn.size
+        self._count = -(-size // chunk)
+        #: indices the tasks cover
+        self.covered = size
+
+    def __len__(self) -> int:
+        return self._count
+
+    @overload
+    def __getitem__(self, k: int) -> Task: ...
+
+    @overload
+    def __getitem__(self, k: slice) -> list[Task]: ...
+
+    def __getitem__(self, k: int | slice) -> Task | list[Task]:
+        if isinstance(k, slice):
+            return [self[j] for j in range(*k.indices(self._count))]
+        if k < 0:
+            k += self._count
+        if not 0 <= k < self._count:
+            raise IndexError(k)
+        start = k * self._chunk
+        if self._drawn is not None:
+            return self._drawn[start : start + self._chunk]
+        return (self._low + start, min(self._low + start + self._chunk, self._high))
 
 
 def tasks(
     total: int,
-    chunk: int = CHUNK,
+    chunk: int = TASK_CANDIDATES,
     sample: Sample | None = None,
     span: tuple[int, int] | None = None,
-) -> list[Task]:
+) -> Tasks:
     """The tasks of a run: ranges of ``chunk`` consecutive indices of ``[0, total)`` (or of
     ``span``), or the sorted distinct indices of ``sample`` in groups of ``chunk``.
 
@@ -290,8 +343,9 @@ def tasks(
 
     Returns
     -------
-    list
-        ``(start, stop)`` tuples, or int64 arrays of indices.
+    Tasks
+        A sequence of ``(start, stop)`` tuples, or of int64 arrays of indices, each made
+        when it is asked for (the sampled indices are drawn at once).
     """
     if chunk < 1:
         raise InputError("chunk", chunk, "1 or more")
@@ -299,13 +353,13 @@ def tasks(
     if not 0 <= low <= high <= total:
         raise InputError("span", list(span or ()), f"0 <= start <= stop <= {total}")
     if sample is None:
-        return [(s, min(s + chunk, high)) for s in range(low, high, chunk)]
+        return Tasks(low, high, chunk, None)
     if sample.draws < 1:
         raise InputError("draws", sample.draws, "1 or more")
     rng = np.random.default_rng(sample.seed)
     # integers below 2**63: a V16's 1.3e12 and more fit
     drawn = np.unique(rng.integers(low, high, size=sample.draws, dtype=np.int64))
-    return [drawn[s : s + chunk] for s in range(0, drawn.size, chunk)]
+    return Tasks(low, high, chunk, drawn)
 
 
 def _describe(task: Task) -> str:
@@ -315,13 +369,15 @@ def _describe(task: Task) -> str:
 
 
 # ------------------------------------------------------------------------------ where
-def _in_process(work: Callable[[Task], _Part], todo: list[Task]) -> Generator[_Part, None, None]:
+def _in_process(
+    work: Callable[[Task], _Part], todo: Sequence[Task]
+) -> Generator[_Part, None, None]:
     for task in todo:
         yield work(task)
 
 
 def _on_dask(
-    client: Any, work: Callable[[Task], _Part], todo: list[Task]
+    client: Any, work: Callable[[Task], _Part], todo: Sequence[Task]
 ) -> Generator[_Part, None, None]:
     """The results in task order, keeping a bounded number of tasks in flight."""
     window = 2 * max(1, len(client.scheduler_info().get("workers", {}))) + 2
@@ -343,13 +399,15 @@ def _on_dask(
             future.cancel()
 
 
-def _client(stack: ExitStack, scheduler: str | None, workers: int | None) -> Any:
-    """A dask client: to ``scheduler``, or to a new LocalCluster of ``workers`` processes."""
+def _client(stack: ExitStack, scheduler: str | None, workers: int | None, timeout: float) -> Any:
+    """A dask client: to ``scheduler`` (which must answer within ``timeout`` seconds), or
+    to a new LocalCluster of ``workers`` processes."""
     from dask.distributed import Client, LocalCluster
 
     if scheduler is not None:
+        _reach(scheduler, timeout)
         try:
-            return stack.enter_context(Client(scheduler, timeout="30s"))
+            return stack.enter_context(Client(scheduler, timeout=timeout))
         except (OSError, TimeoutError, ValueError) as error:
             raise InputError(
                 "scheduler", scheduler, f"the address of a running dask scheduler ({error})"
@@ -364,6 +422,43 @@ def _client(stack: ExitStack, scheduler: str | None, workers: int | None) -> Any
         )
     )
     return stack.enter_context(Client(cluster))
+
+
+def _reach(scheduler: str, timeout: float) -> None:
+    """Refuse, within about ``timeout`` seconds, a scheduler that cannot be reached or does
+    not answer. A TCP address is tried with a plain socket first (a closed port answers at
+    once). dask's own connection then waits for the scheduler's handshake without a time
+    limit (a port that accepts and never speaks hangs ``Client`` for ever), so the handshake
+    is made here, in an event loop of its own, under ``asyncio.wait_for``."""
+    import asyncio
+    import socket
+
+    from distributed.comm import connect
+    from distributed.comm.addressing import parse_address, parse_host_port
+
+    deadline = time.monotonic() + timeout
+
+    async def handshake() -> None:
+        left = max(deadline - time.monotonic(), 0.1)
+        comm = await asyncio.wait_for(connect(scheduler, timeout=left), left)
+        await comm.close()
+
+    try:
+        scheme, location = parse_address(scheduler)
+        if scheme in ("tcp", "tls"):
+            socket.create_connection(parse_host_port(location, SCHEDULER_PORT), timeout).close()
+        asyncio.run(handshake())
+    except ConnectionRefusedError:
+        reason = "nothing listens there (connection refused)"
+    except TimeoutError:
+        reason = "it did not answer"
+    except (OSError, ValueError) as error:  # a name that does not resolve, a bad address
+        reason = " ".join(str(error.__cause__ or error).split())
+    else:
+        return
+    raise InputError(
+        "scheduler", scheduler, f"a dask scheduler answering within {timeout:g} s: {reason}"
+    )
 
 
 # ------------------------------------------------------------------------------ progress
@@ -406,7 +501,7 @@ def run(
     problem: Any,
     evaluate: Evaluate,
     *,
-    chunk: int = CHUNK,
+    chunk: int | None = None,
     select: Select | None = None,
     keep: Keep = Keep(),
     output: str | None = None,
@@ -416,6 +511,7 @@ def run(
     span: tuple[int, int] | None = None,
     progress: Callable[[int, int, float], None] | None = None,
     source: Any = None,
+    connect_timeout: float = CONNECT_TIMEOUT,
 ) -> RunResult:
     """Evaluate every candidate of ``problem`` (or a sample), keeping the Pareto set and
     the top-N, and streaming the rows to a Parquet file.
@@ -428,8 +524,10 @@ def run(
         ``evaluate(candidates) -> {name: (B,) array}``, the figures of merit; it runs
         where the task runs, so on dask it must pickle (a module-level function or a
         ``functools.partial`` of one).
-    chunk : int
-        Indices per task [-].
+    chunk : int or None
+        Indices per task [-]; default chosen from the problem
+        (:func:`crankbalance.explore.work.plan`: about
+        :data:`~crankbalance.explore.work.TASK_CANDIDATES` candidates per task).
     select : callable or None
         ``select(rows) -> bool (B,)``: the rows kept (filter); None keeps all.
     keep : Keep
@@ -449,8 +547,11 @@ def run(
         ``progress(indices done, indices in all, seconds)``, after each task
         (:func:`progress_line` prints one).
     source : module or None
-        The enumeration, ``count(problem)`` and ``chunk(problem, start, stop)``; default
+        The enumeration: ``count(problem)``, ``chunk(problem, start, stop)``,
+        ``size(problem, start, stop)`` and ``template(problem)``; default
         :mod:`crankbalance.explore.orders`.
+    connect_timeout : float
+        Seconds a scheduler has to answer [s].
 
     Returns
     -------
@@ -460,7 +561,9 @@ def run(
     Raises
     ------
     InputError
-        For a bad setting, or an input error of a task (naming its candidates).
+        For a bad setting, a run beyond the limits of
+        :func:`crankbalance.explore.work.plan` (before anything runs), a scheduler that
+        does not answer, or an input error of a task (naming its candidates).
     ChunkError
         When a task fails otherwise; no file is left behind.
     """
@@ -471,11 +574,15 @@ def run(
         raise InputError("workers", workers, "1 or more")
     if keep.n < 1:
         raise InputError("top", keep.n, "1 or more")
-    total = int(_enumeration(source).count(problem))
-    todo = tasks(total, chunk, sample, span)
-    if output is not None and not todo:
+    if not connect_timeout > 0:
+        raise InputError("connect_timeout", connect_timeout, "a positive number of seconds")
+    enumeration = _enumeration(source)
+    total = int(enumeration.count(problem))
+    work_of = plan(problem, evaluate, chunk=chunk, sample=sample, span=span, source=enumeration)
+    todo = tasks(total, work_of.chunk, sample, span)
+    if output is not None and not len(todo):
         raise InputError("output", output, "a run with at least one candidate to write")
-    covered_all = sum(t[1] - t[0] if isinstance(t, tuple) else t.size for t in todo)
+    covered_all = todo.covered
     work = functools.partial(
         evaluate_task, problem, evaluate, select, keep, output is not None, source
     )
@@ -490,7 +597,8 @@ def run(
         if scheduler is None and workers is None:
             parts = _in_process(work, todo)
         else:
-            parts = _on_dask(_client(stack, scheduler, workers), work, todo)
+            client = _client(stack, scheduler, workers, connect_timeout)
+            parts = _on_dask(client, work, todo)
         stack.callback(parts.close)
         for task in todo:
             try:
