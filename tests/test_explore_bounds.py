@@ -418,3 +418,10 @@ def test_a_port_that_never_answers_is_one_line() -> None:
         done = _explore_on(f"tcp://127.0.0.1:{silent.getsockname()[1]}")
     _one_line(done.returncode, done.stdout, done.stderr, "--scheduler")
     assert "answering within 2 s: it did not answer" in done.stderr
+
+
+def test_seed_without_sample_is_refused(capsys: pytest.CaptureFixture[str]) -> None:
+    """--seed only acts on a random search: without --sample it is refused, not ignored."""
+    code, _, err = run_cli(["explore", "--cylinders", "4", "--seed", "3"], capsys)
+    assert code == 2
+    assert err.strip() == "error: --seed = '3': only acts with --sample"

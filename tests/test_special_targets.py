@@ -379,6 +379,20 @@ def test_symlink_loop_is_one_line(tmp_path: Path) -> None:
     assert loop.is_symlink()
 
 
+@pytest.mark.parametrize("name", list(SPECIAL))
+def test_symlink_loop_given_to_a_command_is_one_line(
+    tmp_path: Path, name: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """A link that points to itself as a command's target: one line and exit 2 (explore
+    --output and bench --history resolved it with Path.resolve, a RuntimeError traceback)."""
+    loop = tmp_path / WRITERS[name][0]
+    loop.symlink_to(loop.name)
+    code, _, err = run_cli(command(name, loop), capsys)
+    assert code == 2, err
+    assert os.strerror(errno.ELOOP) in one_error_line(err)
+    assert loop.is_symlink()
+
+
 def test_target_that_becomes_a_fifo_is_not_replaced(tmp_path: Path) -> None:
     """A FIFO made at the target while the data is written: the rename is not done."""
     target = tmp_path / "rows.csv"

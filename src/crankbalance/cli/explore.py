@@ -12,6 +12,7 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+import os
 import re
 from collections.abc import Mapping
 from pathlib import Path
@@ -219,12 +220,15 @@ def explore(
     if o.scheduler is not None and o.workers is not None:
         raise InputError("--workers", options["workers"], "not with --scheduler")
     refuse_unused({"connect_timeout": o.scheduler is not None}, "only acts with --scheduler")
+    refuse_unused({"seed": o.sample is not None}, "only acts with --sample")
     given = {"output": output, "workers": o.workers, "scheduler": o.scheduler}
     for name, module in DIST.items():
         if given[name] is not None:
             require_extra("dist", module)
     if output is not None and (
-        not output.strip() or Path(output).is_dir() or not Path(output).resolve().parent.is_dir()
+        not output.strip()
+        or Path(output).is_dir()
+        or not Path(os.path.realpath(output)).parent.is_dir()
     ):
         raise InputError("--output", output, "a file in an existing directory")
     if o.scheduler is not None and not SCHEDULER.match(o.scheduler):

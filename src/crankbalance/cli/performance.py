@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import contextlib
 import math
+import os
 from collections.abc import Iterator, Sequence
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
@@ -392,7 +393,7 @@ def bench(
         )
         for speed in o.speed
     ]
-    if history and not Path(history).resolve().parent.is_dir():
+    if history and not Path(os.path.realpath(history)).parent.is_dir():
         raise InputError("history", history, "must be a file in an existing directory")
     results = []
     report = _progress("bench")
