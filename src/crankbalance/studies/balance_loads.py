@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..options import BearingOptions, BearingSweepOptions, parse_options
+from ..options import MAX_SWEEP_WORK, BearingOptions, BearingSweepOptions, parse_options
 from ..results import to_jsonable
 from ..spec import EngineSpec
 from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
@@ -239,6 +239,16 @@ def bearing_sweep(
             plan.append((pattern, None))
         else:
             plan.extend((pattern, float(f)) for f in s.balance_factors)
+    cylinders = spec.crank_train.cylinder_count
+    work = len(plan) * o.samples * cylinders
+    if work > MAX_SWEEP_WORK:
+        raise InputError(
+            "samples",
+            o.samples,
+            f"must keep cases x samples per revolution x cylinders at most {MAX_SWEEP_WORK:,}, "
+            f"the sweep's work budget (here {len(plan)} x {o.samples} x {cylinders} = "
+            f"{work:,}): fewer samples, patterns or balance factors",
+        )
     cases: list[SweepCase] = []
     for pattern, factor in plan:
         if factor is None:
