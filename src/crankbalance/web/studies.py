@@ -18,6 +18,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import (
+    COUNTERWEIGHT_CHILDREN,
     VERBS,
     AnalysisOptions,
     CounterweightOptions,
@@ -137,12 +138,20 @@ def counterweight_requirement(computed: Computed) -> tuple[float, float, float]:
     return moment, moment / radius, radius
 
 
-def run_counterweight(computed: Computed, settings: dict[str, Any], callback: Any = None) -> Any:
-    """The counterweight optimiser (2021 paper, Sec. 4-5) for the engine's counterweight."""
+def counterweight_inputs(computed: Computed, settings: dict[str, Any]) -> tuple[float, Any]:
+    """The required first moment [kg m] and the validated :class:`CounterweightOptions` of
+    an optimisation (its work budget checked), before it starts."""
+    required, _mass, _radius = counterweight_requirement(computed)
+    return required, options(settings, CounterweightOptions)
+
+
+def optimise(required: float, o: CounterweightOptions) -> Any:
+    """The counterweight optimiser (2021 paper, Sec. 4-5) for a required first moment
+    [kg m], with the command line's number of designs per round
+    (:data:`~crankbalance.options.COUNTERWEIGHT_CHILDREN`): the same settings search the
+    same designs in both."""
     from ..counterweight_optimize import optimize_counterweight
 
-    required, _mass, _radius = counterweight_requirement(computed)
-    o = options(settings, CounterweightOptions)
     return optimize_counterweight(
         required,
         density=o.density,
@@ -151,9 +160,8 @@ def run_counterweight(computed: Computed, settings: dict[str, Any], callback: An
         min_balance=o.min_balance,
         iterations=o.iterations,
         population=o.population,
-        children=o.population,
+        children=COUNTERWEIGHT_CHILDREN,
         rng=o.seed,
-        callback=callback,
     )
 
 
@@ -218,6 +226,22 @@ def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
         if error.field == "grade":
             raise InputError("sc_grade", error.value, error.allowed) from None
         raise
+
+
+def single_cylinder(computed: Computed, settings: dict[str, Any]) -> tuple[Any, Any, Any]:
+    """The Single cylinder tab's three results: the balance-factor study, the ISO check and
+    the rebalancing (:func:`single_study`, :func:`iso_check`, :func:`rebalance_study`)."""
+    return (
+        single_study(computed, settings),
+        iso_check(computed, settings),
+        rebalance_study(computed, settings),
+    )
+
+
+def check_single_cylinder(computed: Computed, settings: dict[str, Any]) -> None:
+    """Refuse bad settings of the Single cylinder tab before its study starts."""
+    _single(computed, settings)
+    options(settings, RebalanceOptions)
 
 
 # --------------------------------------------------------------------------- balance shaft
@@ -301,3 +325,15 @@ def _strokes(value: Any) -> Literal[2, 4]:
     if strokes == 4:
         return 4
     raise InputError("strokes", value, "2 or 4 strokes per cycle")
+
+
+# --------------------------------------------------------------------------- explorer
+def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
+    """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
+    the two objectives, the rows by increasing column ``key``."""
+    from ..explore import merit
+    from ..explore.run import Keep
+    from ..explore.run import run as run_explore
+
+    keep = Keep(objectives=objectives, key=key, n=most)
+    return run_explore(problem, merit.merit, select=select, keep=keep)
