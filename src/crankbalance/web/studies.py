@@ -102,19 +102,28 @@ def check_settings(settings: dict[str, Any]) -> dict[str, str]:
 
 def setting_errors(settings: dict[str, Any]) -> dict[str, InputError]:
     """The errors of the settings that do not validate, by key, each naming its key and the
-    text as given (a saved project's settings line is refused with it)."""
+    text as given (a saved project's settings line is refused with it). A study's settings
+    are validated together, so that a check across them (a work budget) is made with the
+    values as typed; a setting refused is left out and the rest validated again."""
     errors: dict[str, InputError] = {}
     for prefix, model in PREFIXES.items():
+        texts: dict[str, str] = {}
+        given: dict[str, Any] = {}
         for name in model.model_fields:
-            key = prefix + name
-            text = str(settings.get(key, "")).strip()
-            if not text:
-                continue
-            value = _split(text) if field_kind(model, name)[0] == "list" else text
+            text = str(settings.get(prefix + name, "")).strip()
+            if text:
+                texts[name] = text
+                given[name] = _split(text) if field_kind(model, name)[0] == "list" else text
+        while True:
             try:
-                parse_options(model, {name: value}, _namer(prefix))
+                parse_options(model, given, _namer(prefix))
+                break
             except InputError as error:
-                errors[key] = InputError(key, text, error.allowed)
+                name = error.field[len(prefix) :]
+                errors[error.field] = InputError(error.field, texts.get(name), error.allowed)
+                if name not in given:  # a check across settings that names an empty one
+                    break
+                del given[name]
     return errors
 
 
