@@ -92,7 +92,8 @@ COUNTERWEIGHT_CHILDREN = 4096
 #: most designs one counterweight optimisation evaluates, population + iterations x
 #: :data:`COUNTERWEIGHT_CHILDREN`: the optimiser's work and memory grow with it (every
 #: feasible design is kept). At this many, mass and radial space as objectives, one core of
-#: the 2-core reference machine takes about 5 s and 650 MB (docs/counterweight.md)
+#: the 2-core reference machine takes about 5 s and 650 MB (docs/web.md, "Studies: budget,
+#: workers, cancel")
 MAX_COUNTERWEIGHT_DESIGNS = 1_000_000
 
 

@@ -44,7 +44,7 @@ WORKERS = 2
 #: studies waiting for a worker at once, all pages together; one more is refused
 MAX_WAITING = 8
 #: niceness of a worker process: the server's pages and API come first
-NICE = 10
+NICE = 5
 #: address space of one worker [bytes]: the work budgets keep the largest study near 1.5 GB
 #: (docs/web.md, "Studies: budget, workers, cancel"); a run past this ends as out of memory
 MEMORY_LIMIT = 6 * 2**30
