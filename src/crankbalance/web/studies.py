@@ -7,6 +7,12 @@ A setting's key is its study's prefix and the schema's field name (``cw_populati
 ``population`` of :class:`~crankbalance.options.CounterweightOptions`); a bad setting
 raises :class:`~crankbalance.errors.InputError` whose ``field`` is that key, so that the
 page shows the message beside the input.
+
+The tabs run these functions (and the study layer's ``bearing_sweep``, ``shop_study``) in
+a worker process (:mod:`.pool`): they are module-level, take and return picklable data,
+and their settings (with the work budgets of the schema) are checked in the server before
+the run starts (:func:`counterweight_inputs`, :func:`check_single_cylinder`,
+:func:`options`). The fork server preloads this module.
 """
 
 from __future__ import annotations
