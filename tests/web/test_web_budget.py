@@ -132,10 +132,7 @@ def test_bearing_sweep_over_budget_refused_before_the_first_case() -> None:
     samples, before any case is computed (the Crank loads tab shows it beside the field)."""
     from crankbalance.studies.balance_loads import bearing_sweep
 
-    data = load_engine("inline4").to_file_dict()
-    data["crank_train"] = {**data["crank_train"], "cylinders": 64}
-    data["crank_train"].pop("firing_order", None)
-    spec = spec_from_dict(data)
+    spec = _engine_64()
     calls: list[Any] = []
     sweep = {"patterns": ["all", "none"], "balance_factors": [0.05 * k for k in range(21)]}
     with pytest.raises(InputError) as raised:
@@ -144,6 +141,43 @@ def test_bearing_sweep_over_budget_refused_before_the_first_case() -> None:
     assert f"at most {MAX_SWEEP_WORK:,}" in raised.value.allowed
     assert "(here 22 x 3600 x 64 = 5,068,800)" in raised.value.allowed
     assert calls == []
+
+
+def _engine_64() -> Any:
+    """The inline-4 preset with 64 cylinders (the engine file's most)."""
+    data = load_engine("inline4").to_file_dict()
+    data["crank_train"] = {**data["crank_train"], "cylinders": 64}
+    data["crank_train"].pop("firing_order", None)
+    return spec_from_dict(data)
+
+
+async def test_crank_loads_over_budget_refused_beside_samples(
+    user: User, form: Form, jobs: list[pool.Job]
+) -> None:
+    """The Crank loads tab checks the sweep's budget with the page's engine before its
+    worker starts: 64 cylinders x 22 cases x 3600 samples, refused beside the samples."""
+    from nicegui.elements.upload_files import SmallFileUpload
+
+    from crankbalance.io.engine_file import engine_to_toml
+
+    await user.open("/")
+    await form.see("Results of:")
+    text = engine_to_toml(_engine_64()).encode()
+    with user:
+        await form.element("upload").handle_uploads(
+            [SmallFileUpload("inline64.toml", "text/plain", text)]
+        )
+    await form.until(lambda: form.element("field-cylinders").value == "64", "the upload")
+    form.open("loads")
+    form.set("loads-patterns", "all; none")
+    form.set("loads-balance_factors", ", ".join(f"{0.05 * k:.2f}" for k in range(21)))
+    form.set("loads-samples", "3600")
+    user.find(marker="loads-run").click()
+    await form.until(lambda: form.element("loads-samples").error, "the refusal")
+    message = form.element("loads-samples").error
+    assert message.startswith("Samples per revolution = 3600: must keep cases x samples")
+    assert "(here 22 x 3600 x 64 = 5,068,800)" in message
+    assert jobs == [], "a sweep over the budget must not start"
 
 
 # --------------------------------------------------------------------------- the pool

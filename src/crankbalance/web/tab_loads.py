@@ -116,6 +116,11 @@ class LoadsTab(TabSettingsMixin, StudyTab):
 
         return bearing_sweep
 
+    def work_check(self) -> Any:
+        from ..studies.balance_loads import check_sweep_work
+
+        return check_sweep_work
+
     def show_study(self) -> None:
         from ..format import number
         from ..studies.balance_loads import COLUMNS, case_rows

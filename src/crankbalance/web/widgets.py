@@ -533,6 +533,10 @@ class TabSettingsMixin:
     #: the tab's study, ``function(engine spec, *parsed settings)``, for :meth:`run` (the
     #: explorer, which needs no engine, has a run of its own)
     study_function: Callable[[], Callable[..., Any]]
+    #: the study's work budget, ``check(engine spec, *parsed settings)``, raising an
+    #: InputError before the run when the work is over it; None: the settings' own limits
+    #: are its budget
+    work_check: Callable[[], Callable[..., None]] | None = None
     #: the tab's own (:class:`StudyTab`): whether the result of a run that started at
     #: ``started`` may be shown
     owns: Callable[[Any], bool]
@@ -662,6 +666,8 @@ class TabSettingsMixin:
         self.spinner.set_visibility(True)
         self.summary.set_content(running)
         try:
+            if self.work_check is not None and c is not None:  # before the run starts
+                self.work_check()(c.spec, *parsed)
             result = await self.in_worker(self.what, function, *arguments(parsed, c))
         except InputError as error:
             self.summary.set_content(str(error))
