@@ -300,7 +300,7 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     from ..engine_cycle import balance_sensitivity
     from ..options import CombustionOptions
     from ..studies.crank import rotating_inertia
-    from ..studies.performance import cycle_cylinder, pressure_source
+    from ..studies.performance import arithmetic_checked, cycle_cylinder, pressure_source
 
     model = computed.analysis.model
     o = options(settings, PerformanceOptions)
@@ -320,14 +320,15 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
             friction_coefficient=o.friction_coefficient,
         )
         pressure = pressure_source(CombustionOptions.model_validate({}))  # the studies' one default
-        return balance_sensitivity(
-            cylinder,
-            float(model.speed),
-            pressure,
-            o.balance_factors,
-            strokes=_strokes(model.strokes),
-            samples_per_revolution=180,
-        )
+        with arithmetic_checked("the performance study", "the engine and the tab's settings"):
+            return balance_sensitivity(
+                cylinder,
+                float(model.speed),
+                pressure,
+                o.balance_factors,
+                strokes=_strokes(model.strokes),
+                samples_per_revolution=180,
+            )
     except InputError as error:
         raise InputError(fields.get(error.field, error.field), error.value, error.allowed) from None
 

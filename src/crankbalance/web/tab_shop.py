@@ -172,9 +172,8 @@ class ShopTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         p = self.study.parts
         m, b = p.matching, p.bob_weights
-        proven = "proven optimal" if m.optimal else "best found within the time limit"
         self.summary.set_content(
-            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({proven}); spread "
+            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({m.status}); spread "
             f"{text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
             f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
             f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
