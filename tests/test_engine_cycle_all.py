@@ -25,9 +25,9 @@ from crankbalance.physics.engine_cycle import (
 from crankbalance.physics.engine_cycle_all import (
     energy_excursion,
     engine_cycle_all,
-    firing_angles,
     flywheel_inertia,
 )
+from crankbalance.physics.firing import firing_angles
 from crankbalance.physics.shaking import exact_time_domain
 from crankbalance.studies.engine import as_model
 from crankbalance.studies.performance import cycle_cylinder

@@ -369,8 +369,7 @@ def test_engine_cycle_fires_what_the_check_accepts(
     and have the check's intervals."""
     import itertools
 
-    from crankbalance.physics.engine_cycle_all import firing_angles
-    from crankbalance.physics.firing import check_firing_order
+    from crankbalance.physics.firing import check_firing_order, firing_angles
 
     phi, beta = np.radians(throws_deg), np.radians(banks_deg)
     theta = np.mod(beta - phi, 2 * math.pi)

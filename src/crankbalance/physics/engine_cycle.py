@@ -47,6 +47,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InputError, check_finite, check_nonnegative, check_positive, check_range
 from ..results import ResultMixin
 from . import kinematics
+from .firing import check_strokes
 from .single_cylinder import BALANCE_FACTOR_RANGE
 
 GAS_CONSTANT_AIR = 287.0
@@ -361,7 +362,7 @@ def wiebe_pressure(
     single-zone heat release); Hoem and Røsholm (2016), Sec. 2.3 (the gas torque in the engine
     torque).
     """
-    _check_strokes(strokes)
+    check_strokes(strokes)
     theta = np.asarray(angle, dtype=float)
     cycle = np.pi * strokes / 2  # half cycle: pi (2-stroke) or 2 pi (4-stroke)
     wrapped = (theta + cycle) % (2 * cycle) - cycle
@@ -411,11 +412,6 @@ def _heat_release(combustion: WiebeCombustion, bdc_volume: float) -> float:
     return c.combustion_efficiency * c.heating_value * air / c.air_fuel_ratio
 
 
-def _check_strokes(strokes: int) -> None:
-    if strokes not in (2, 4):
-        raise InputError("strokes", strokes, "must be 2 or 4")
-
-
 def _check_samples(samples_per_revolution: int) -> None:
     """Raise :class:`~crankbalance.errors.InputError` unless the angle resolution of a
     cycle is a whole number (not a bool) of at least 36 samples per revolution.
@@ -458,7 +454,7 @@ def tabulated_pressure(
         Absolute cylinder pressure at each angle [Pa], linear between the table rows and
         periodic over the cycle.
     """
-    _check_strokes(strokes)
+    check_strokes(strokes)
     a = np.asarray(table_angle, dtype=float)
     p = np.asarray(table_pressure, dtype=float)
     if a.ndim != 1 or a.shape != p.shape or a.size < 4:
@@ -634,7 +630,7 @@ def engine_cycle(
     torque from the bearing
     load); Den Hartog, Mechanical Vibrations, Sec. 5.3 (inertia torque).
     """
-    _check_strokes(strokes)
+    check_strokes(strokes)
     specs = [cylinders] if isinstance(cylinders, CylinderSpec) else list(cylinders)
     if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
         raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")

@@ -5,10 +5,9 @@ sits on, shared crankpins included) runs the single-cylinder model of
 :mod:`crankbalance.physics.engine_cycle`
 (:func:`~crankbalance.physics.engine_cycle.cylinder_forces`: exact
 slider-crank, gas force from the Wiebe model or a pressure table per cylinder) at its own
-firing phase. The module gives:
+firing phase (the crank angle at which each cylinder fires,
+:func:`crankbalance.physics.firing.firing_angles`). The module gives:
 
-* :func:`firing_angles` -- the crank angle at which each cylinder fires, from the firing
-  order and the crank's throw angles;
 * :func:`engine_cycle_all` -- the crank torque (gas, inertia, total, per cylinder), the
   speed fluctuation at a given rotating inertia, the flywheel that meets a target speed
   fluctuation (and its check by re-integration), and the force the rods put on each
@@ -37,7 +36,6 @@ energy method); Heywood (1988), Sec. 9.2 (the Wiebe model).
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
 from dataclasses import dataclass, field
 
 import numpy as np
@@ -49,17 +47,14 @@ from .engine_cycle import (
     CylinderSpec,
     PressureSource,
     _check_samples,
-    _check_strokes,
     _cycle_samples,
     _pressure,
     _speed_from_energy,
     cylinder_forces,
 )
-from .firing import firing_tdc_angles, order_intervals
+from .firing import TDC_TOLERANCE, check_strokes, firing_angles
 from .model import EngineModel, tdc_angle
 
-#: a cylinder's firing angle may differ from one of its top dead centres by this much [rad]
-TDC_TOLERANCE = 1e-6
 #: the largest target speed fluctuation a flywheel is sized for [-]. The energy method
 #: assumes a small fluctuation (omega_max + omega_min = 2 omega_mean); at 0.2 its check
 #: re-integration of every preset lands within 10 % of the target, while from about 0.4
@@ -68,146 +63,6 @@ TDC_TOLERANCE = 1e-6
 MAX_FLUCTUATION_TARGET = 0.2
 #: the smallest one [-] (below, the inertia found is beyond any machine)
 MIN_FLUCTUATION_TARGET = 1e-6
-#: most cylinders whose firing angles are chosen without a firing order (every one of the
-#: 2^(C-1) choices of a four-stroke is tried)
-MAX_FREE_CYLINDERS = 16
-
-
-def firing_angles(
-    cylinder_angle: ArrayLike,
-    cylinder_bank: ArrayLike,
-    firing_order: Sequence[int] | None,
-    strokes: int,
-    tdc_shift: ArrayLike | None = None,
-) -> NDArray[np.float64]:
-    r"""Crank angle of the first throw at which each cylinder fires, in [0, cycle).
-
-    Cylinder c is at a top dead centre at :math:`\theta_c = \beta_c + \psi_c - \varphi_c`
-    (mod :math:`2\pi`, :func:`crankbalance.physics.firing.firing_tdc_angles`; :math:`\psi_c`
-    the top dead centre of an offset slider-crank past its axis, 0 without offset). A
-    two-stroke fires at every top dead centre. A four-stroke fires at one of its two per
-    cycle: the first cylinder of the firing order fires at
-    :math:`\theta_c \in [0, 2\pi)`, and each next one at its next top dead centre, a
-    full turn later when it is at top dead centre with the one before (the shortest
-    intervals of :func:`crankbalance.physics.firing.order_intervals`, the same check
-    :mod:`crankbalance.studies.build` makes of a firing order given with its crank); they
-    must add up to at most one cycle. When they add up to one revolution (every cylinder
-    fires in one), the empty revolution goes into the interval that leaves the firing most
-    even (a 90° V-twin on one pin: 450°/270°, a 270° inline twin: 270°/450°). When the
-    crank allows even firing (as :mod:`crankbalance.studies.build` derives the throw angles
-    from the firing order), this gives exactly the even intervals.
-
-    Without a firing order (``None``): the order 1, 2, ..., C when it fires evenly on this
-    crank (what :mod:`crankbalance.studies.build` assumes), otherwise the choice of one
-    top dead centre per cylinder that fires most evenly (the smallest largest deviation of
-    an interval from :math:`4\pi/C`, then the smallest sum of squared deviations; every
-    choice is tried, so at most :data:`MAX_FREE_CYLINDERS` cylinders).
-
-    Parameters
-    ----------
-    cylinder_angle : array_like, shape (C,)
-        Throw angle of each cylinder's crankpin :math:`\varphi_c` [rad].
-    cylinder_bank : array_like, shape (C,)
-        Bank angle of each cylinder :math:`\beta_c` [rad].
-    firing_order : sequence of int or None
-        Cylinder numbers (1-based) in firing order, each once; None when not known.
-    strokes : {2, 4}
-        Cycle type.
-    tdc_shift : array_like, shape (C,), optional
-        :math:`\psi_c` of each cylinder, :func:`crankbalance.physics.model.tdc_angle` of its offset
-        [rad]; zeros when not given.
-
-    Returns
-    -------
-    ndarray, shape (C,)
-        Firing angle :math:`t_c` of each cylinder (by cylinder number) [rad], in
-        [0, :math:`\pi\cdot` strokes).
-
-    Raises
-    ------
-    InputError
-        If the firing order is not a permutation of the cylinders, or if its cylinders
-        cannot fire in that sequence within one cycle (``crank_train.firing_order``).
-
-    References
-    ----------
-    The firing-interval convention of :mod:`crankbalance.studies.build`
-    (``docs/engine_file.md``).
-    """
-    _check_strokes(strokes)
-    phi = np.asarray(cylinder_angle, dtype=float).reshape(-1)
-    beta = np.asarray(cylinder_bank, dtype=float).reshape(-1)
-    n = phi.size
-    shift = np.zeros(n) if tdc_shift is None else np.asarray(tdc_shift, dtype=float).reshape(-1)
-    if firing_order is None:
-        return _free_firing(phi, beta, strokes, shift)
-    order = list(firing_order)
-    if beta.size != n or sorted(order) != list(range(1, n + 1)):
-        raise InputError(
-            "crank_train.firing_order",
-            order,
-            f"must name each of the {n} cylinders once (numbers 1 to {n})",
-        )
-    cycle = math.pi * strokes
-    tdc = firing_tdc_angles(phi, beta, shift)
-    index = np.array(order) - 1
-    steps = order_intervals(tdc, order, strokes)  # the shortest, the last back to the first
-    if steps.sum() > cycle + TDC_TOLERANCE:
-        raise InputError(
-            "crank_train.firing_order",
-            order,
-            "its cylinders do not reach their firing top dead centres in this sequence "
-            f"within one cycle ({math.degrees(cycle):g} deg) of this crank; give the order "
-            "in which the cylinders reach top dead centre, or give the firing angles",
-        )
-    if steps.sum() < cycle - TDC_TOLERANCE:  # a four-stroke firing all in one revolution:
-        # the empty revolution goes into the interval that leaves the firing most even
-        choices = steps[None, :] + 2 * np.pi * np.eye(n)
-        deviation = np.abs(choices - cycle / n)
-        worst = deviation.max(axis=1)
-        best = np.flatnonzero(worst <= worst.min() + TDC_TOLERANCE)
-        steps = choices[best[np.argmin((deviation[best] ** 2).sum(axis=1))]]
-    times = np.empty(n)
-    times[index] = float(tdc[index[0]]) + np.concatenate([[0.0], np.cumsum(steps[:-1])])
-    return np.mod(times, cycle)
-
-
-def _free_firing(phi: NDArray, beta: NDArray, strokes: int, shift: NDArray) -> NDArray[np.float64]:
-    """Firing angles without a firing order (see :func:`firing_angles`)."""
-    n = phi.size
-    cycle = math.pi * strokes
-    tdc = firing_tdc_angles(phi, beta, shift)
-    try:
-        even: NDArray[np.float64] | None = firing_angles(
-            phi, beta, list(range(1, n + 1)), strokes, shift
-        )
-    except InputError:  # the cylinders do not reach top dead centre in the order 1..C
-        even = None
-    if even is not None:
-        steps = np.diff(np.append(even, even[0] + cycle))
-        if strokes == 2 or np.all(np.abs(steps - cycle / n) < TDC_TOLERANCE):
-            return even
-    if strokes == 2:  # every top dead centre fires: no choice
-        return np.mod(tdc, cycle)
-    if n > MAX_FREE_CYLINDERS:
-        raise InputError(
-            "crank_train.firing_order",
-            None,
-            f"is needed for this crank: its {n} cylinders cannot fire at even intervals "
-            f"and more than {MAX_FREE_CYLINDERS} are too many to try every choice",
-        )
-    base = tdc[0] + np.mod(tdc - tdc[0], 2 * np.pi)  # one revolution from cylinder 1
-    bits = (np.arange(2 ** (n - 1))[:, None] >> np.arange(n - 1)) & 1
-    times = np.concatenate(
-        [np.full((bits.shape[0], 1), base[0]), base[1:] + 2 * np.pi * bits], axis=1
-    )
-    ordered = np.sort(times, axis=1)
-    gaps = np.diff(np.concatenate([ordered, ordered[:, :1] + cycle], axis=1), axis=1)
-    deviation = np.abs(gaps - cycle / n)
-    worst = deviation.max(axis=1)
-    best = np.flatnonzero(worst <= worst.min() + TDC_TOLERANCE)
-    pick = best[np.argmin((deviation[best] ** 2).sum(axis=1))]
-    return np.mod(times[pick], cycle)
 
 
 def flywheel_inertia(
@@ -459,7 +314,7 @@ def engine_cycle_all(
     Vol. 2, ch. 8.
     """
     strokes = int(model.strokes)
-    _check_strokes(strokes)
+    check_strokes(strokes)
     w = float(model.speed if speed is None else speed)
     check_positive("speed", w)
     check_positive("bore", bore)
