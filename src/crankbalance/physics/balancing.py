@@ -48,6 +48,10 @@ Arrangement = Literal["pair", "counter-rotating"]
 
 #: relative size below which a force or couple counts as zero (round-off of the sums)
 ZERO = 1e-10
+#: singular values of the counterweight equations below this share of the largest are
+#: round-off, not rank: the equations' entries are sums of unit phasors of order 1, whose
+#: round-off is about 1e-15 (numpy's own cut-off, 4 x 2.2e-16, took that noise for rank)
+RANK_CUTOFF = 1e-12
 
 
 # --------------------------------------------------------------------------- options
@@ -546,7 +550,7 @@ def solve_counterweights(
         if planes.size == 1 and abs(moment_about_plane) > ZERO * size * length:
             raise _one_plane(options, planes[0])
     if options.method == "individual":
-        v, *_ = np.linalg.lstsq(a, b, rcond=None)  # least sum |v|^2 among exact solutions
+        v, *_ = np.linalg.lstsq(a, b, rcond=RANK_CUTOFF)  # least sum |v|^2 among exact solutions
         mass = np.abs(v) / options.cg_radius
         direction = np.angle(v)
         return Counterweights(
@@ -679,7 +683,7 @@ def _optimal_pattern(
             [np.column_stack([cx.real, cy.real]), np.column_stack([cx.imag, cy.imag])]
         )
         rhs = np.concatenate([b.real, b.imag])
-        (x, yv), *_ = np.linalg.lstsq(matrix, rhs, rcond=None)
+        (x, yv), *_ = np.linalg.lstsq(matrix, rhs, rcond=RANK_CUTOFF)
         return float(np.arctan2(yv, x)), float(np.hypot(x, yv))
     from scipy.optimize import minimize_scalar
 
@@ -2043,8 +2047,8 @@ def _counterweights_batch(
             _check_planes(webs, options, sub, live, targets, size[sub], length[sub])
             engines, b = sub[live], b[live]
             if options.method == "individual":
-                # least sum |v|^2 among exact solutions, the cut-off of np.linalg.lstsq
-                pinv = np.linalg.pinv(a, rcond=np.finfo(float).eps * max(a.shape))
+                # least sum |v|^2 among exact solutions, the one-engine solver's cut-off
+                pinv = np.linalg.pinv(a, rcond=RANK_CUTOFF)
                 v = b @ pinv.T
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
@@ -2153,7 +2157,7 @@ def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     x2 = np.sum(u * rhs, axis=-1) / np.where(ok, r22**2, 1.0)
     x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / np.where(ok, r11, 1.0)
     for i in np.flatnonzero(~ok):
-        (x1[i], x2[i]), *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=None)
+        (x1[i], x2[i]), *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=RANK_CUTOFF)
     return x1, x2
 
 
