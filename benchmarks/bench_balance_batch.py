@@ -27,15 +27,10 @@ import tracemalloc
 import numpy as np
 
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balancing import (
-    CounterweightOptions,
-    EngineBatch,
-    ShaftOptions,
-    balance,
-    balance_batch,
-    engine_batch,
-)
+from crankbalance.physics.balance_batch import balance_batch
+from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
 from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.physics.model import EngineBatch, engine_batch
 from crankbalance.studies.build import build_model
 
 TARGET = 50_000.0  # engines/s

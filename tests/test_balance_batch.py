@@ -11,24 +11,17 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balancing import (
-    BalanceResult,
+from crankbalance.physics.balance_batch import balance_batch, check_batch
+from crankbalance.physics.balance_solver import (
     BatchBalance,
     BatchCounterweights,
     BatchShafts,
     CounterweightOptions,
-    Counterweights,
-    EngineBatch,
     ShaftOptions,
-    ShaftSet,
     _lstsq2,
-    balance,
-    balance_batch,
-    check_batch,
-    engine_batch,
-    stack_models,
 )
-from crankbalance.physics.model import EngineModel
+from crankbalance.physics.balancing import BalanceResult, Counterweights, ShaftSet, balance
+from crankbalance.physics.model import EngineBatch, EngineModel, engine_batch, stack_models, take
 from crankbalance.studies.build import build_model
 
 #: agreement asked of the batch with the one-engine solver
@@ -527,9 +520,8 @@ def test_a_result_does_not_depend_on_its_batch(
 
 
 def _take_one(result: BatchBalance, i: int) -> BatchBalance:
-    from crankbalance.physics.balancing import _take
-
-    return _take(result, slice(i, i + 1))
+    one: BatchBalance = take(result, slice(i, i + 1))
+    return one
 
 
 def test_the_w12_crank_that_turning_the_pattern_does_not_change() -> None:

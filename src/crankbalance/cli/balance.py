@@ -37,6 +37,13 @@ from ._common import echo_table, format_option, given_options, parse_settings
     default=None,
     help="Balance the whole crank or each half on its own.",
 )
+@click.option(
+    "--verify",
+    is_flag=True,
+    default=False,
+    help="Also check the residuals in the time domain (every mass over a revolution, "
+    "then a Fourier transform) and print how well the two agree.",
+)
 def balance(
     engine: str,
     fmt: str,
@@ -44,6 +51,7 @@ def balance(
     balance_factor: str | None,
     method: str | None,
     scope: str | None,
+    verify: bool,
 ) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
@@ -65,7 +73,8 @@ def balance(
         )
         if value is not None
     }
-    data = balance_engine(engine, **overrides).to_dict()  # checked finite by to_jsonable
+    # checked finite by to_jsonable
+    data = balance_engine(engine, verify=verify, **overrides).to_dict()
     if "angle" in given_options() and data["counterweight"]["method"] == "individual":
         raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
     if fmt == "json":
@@ -139,7 +148,7 @@ def print_table(data: dict[str, Any]) -> None:
                     ]
                 )
         echo_table(["shaft", "y mm", "mass kg", "phase °"], rows)
-    click.echo("\nTime-domain check (amplitudes before -> after):")
+    click.echo("\nResiduals (amplitudes before -> after):")
     echo_table(
         ["component", "targeted", "force N", "after", "moment N·m", "after"],
         [
@@ -157,3 +166,14 @@ def print_table(data: dict[str, Any]) -> None:
     )
     for note in data["notes"]:
         click.echo(f"note: {note}")
+    check = data.get("verification")
+    if check is not None:
+        verdict = "agree" if check["agrees"] else "DO NOT agree"
+        click.echo(
+            f"\nTime-domain verification ({check['samples']} crank angles, Fourier transform): "
+            f"the residuals {verdict} to round-off; largest differences "
+            f"{text(check['force_difference_N'], 'force')} "
+            f"(round-off {text(check['force_round_off_N'], 'force')}) and "
+            f"{text(check['moment_difference_Nm'], 'moment')} "
+            f"(round-off {text(check['moment_round_off_Nm'], 'moment')})"
+        )
