@@ -89,6 +89,54 @@ def test_physics_modules_do_not_import_edges(name: str) -> None:
     assert not bad, f"{name} imports {bad} (physics stays pure: docs/architecture.md)"
 
 
+def private_imports(path: Path, text: str | None = None) -> list[str]:
+    """The private names (one leading underscore) the module at ``path`` (its source, or
+    ``text`` in its place) imports from a physics module other than itself, as
+    ``module.name``."""
+    tree = ast.parse(path.read_text() if text is None else text)
+    module = ".".join(path.relative_to(SRC).with_suffix("").parts)
+    package = module.rpartition(".")[0] if path.name != "__init__.py" else module
+    found = []
+    for node in ast.walk(tree):
+        if not isinstance(node, ast.ImportFrom) or not node.module:
+            continue
+        if node.level:
+            parts = package.split(".") if package else []
+            target = ".".join(parts[: len(parts) - (node.level - 1)] + [node.module])
+        else:
+            target = _own(node.module) or ""
+        if not target.startswith("physics") or target == module:
+            continue
+        found += [
+            f"{target}.{a.name}"
+            for a in node.names
+            if a.name.startswith("_") and not a.name.startswith("__")
+        ]
+    return found
+
+
+def test_no_private_name_of_a_physics_module_is_imported() -> None:
+    """Issue 26: a name a physics module shares is public, with its docstring
+    (tests/test_docstrings.py); no module imports another's private one."""
+    bad = {
+        str(path.relative_to(SRC)): names
+        for path in sorted(SRC.rglob("*.py"))
+        if (names := private_imports(path))
+    }
+    assert not bad, f"private names imported from physics modules: {bad}"
+
+
+def test_the_private_import_walk_finds_them() -> None:
+    text = (
+        "from .engine_cycle import _pressure, cylinder_forces\n"
+        "from ..errors import _show\n"
+        "from crankbalance.physics.model import _vr_layout\n"
+        "from .engine_cycle_all import _own\n"
+    )
+    found = private_imports(SRC / "physics" / "engine_cycle_all.py", text)
+    assert found == ["physics.engine_cycle._pressure", "physics.model._vr_layout"]
+
+
 def _module_graph() -> dict[str, set[str]]:
     """crankbalance's modules and the crankbalance modules each imports (a package stands
     for its ``__init__``; an import of a name from a package counts as its module)."""

@@ -94,7 +94,21 @@ def check_balance_factor(value: float, field_name: str = "balance_factor") -> fl
     return check_range(field_name, value, low, high)
 
 
-def _check_mass(field_name: str, value: float) -> float:
+def check_mass(field_name: str, value: float) -> float:
+    """A mass as given, or :class:`~crankbalance.errors.InputError` naming the field.
+
+    Parameters
+    ----------
+    field_name : str
+        The field to name in the error.
+    value : float
+        The mass [kg].
+
+    Returns
+    -------
+    float
+        ``value``, finite and not negative [kg].
+    """
     if not (value >= 0 and math.isfinite(value)):
         raise InputError(field_name, value, "must be a finite mass >= 0 [kg]")
     return float(value)
@@ -270,8 +284,8 @@ def counterweight_moment(
     Hoem and Røsholm (2016) Eq. 6.1, corrected: the print reads :math:`(m_{rec} + f_b m_{rec})`;
     the rotating mass belongs in the first term (cf. Eq. 4.6 and 6.2).
     """
-    _check_mass("rotating_mass", rotating_mass)
-    _check_mass("reciprocating_mass", reciprocating_mass)
+    check_mass("rotating_mass", rotating_mass)
+    check_mass("reciprocating_mass", reciprocating_mass)
     check_balance_factor(balance_factor)
     check_positive("crank_radius", crank_radius)
     return (rotating_mass + balance_factor * reciprocating_mass) * crank_radius
@@ -312,10 +326,10 @@ def balance_factor_from_mass_properties(
     ----------
     Hoem and Røsholm (2016) Eq. 6.2; Sec. 6.3.3: 2020.40 g, 6.16 mm, 26.9 mm -> 0.6375.
     """
-    _check_mass("counterweight_mass", counterweight_mass)
+    check_mass("counterweight_mass", counterweight_mass)
     check_positive("counterweight_radius", counterweight_radius)
     check_positive("crank_radius", crank_radius)
-    _check_mass("rotating_mass", rotating_mass)
+    check_mass("rotating_mass", rotating_mass)
     check_positive("reciprocating_mass", reciprocating_mass)
     return (
         counterweight_mass * counterweight_radius / crank_radius - rotating_mass
@@ -350,8 +364,8 @@ def bob_weight(rotating_mass: float, reciprocating_mass: float, balance_factor: 
     ----------
     Hoem and Røsholm (2016) Sec. 3.2 and 6.3.2 (force balance before Eq. 6.1).
     """
-    _check_mass("rotating_mass", rotating_mass)
-    _check_mass("reciprocating_mass", reciprocating_mass)
+    check_mass("rotating_mass", rotating_mass)
+    check_mass("reciprocating_mass", reciprocating_mass)
     check_balance_factor(balance_factor)
     return rotating_mass + balance_factor * reciprocating_mass
 
@@ -378,7 +392,7 @@ def sum_parts(parts: dict[str, float], field_name: str = "parts") -> float:
     """
     total = 0.0
     for name, mass in parts.items():
-        total += _check_mass(f"{field_name}.{name}", mass)
+        total += check_mass(f"{field_name}.{name}", mass)
     return total
 
 
@@ -1060,7 +1074,7 @@ def rebalance(
         ("old_rotating_mass", old_rotating_mass),
         ("new_rotating_mass", new_rotating_mass),
     ):
-        _check_mass(name, value)
+        check_mass(name, value)
     check_positive("old_reciprocating_mass", old_reciprocating_mass)
     check_positive("new_reciprocating_mass", new_reciprocating_mass)
     check_positive("tolerance", tolerance)
