@@ -89,6 +89,25 @@ def test_physics_modules_do_not_import_edges(name: str) -> None:
     assert not bad, f"{name} imports {bad} (physics stays pure: docs/architecture.md)"
 
 
+#: lines above which a physics module's docstring says why it is one module
+LONG_MODULE = 800
+
+
+@pytest.mark.parametrize("name", PHYSICS)
+def test_a_long_physics_module_says_why(name: str) -> None:
+    """Issue 26: no physics module over 800 lines unless its docstring says why (in the
+    words "over 800 lines")."""
+    path = SRC / f"{name.replace('.', '/')}.py"
+    text = path.read_text()
+    if text.count("\n") <= LONG_MODULE:
+        return
+    docstring = ast.get_docstring(ast.parse(text)) or ""
+    assert "over 800 lines" in " ".join(docstring.split()), (
+        f"{name} has {text.count(chr(10))} lines: split it by subject or say why it is one "
+        "(docs/architecture.md)"
+    )
+
+
 def private_imports(path: Path, text: str | None = None) -> list[str]:
     """The private names (one leading underscore) the module at ``path`` (its source, or
     ``text`` in its place) imports from a physics module other than itself, as

@@ -12,13 +12,13 @@ import pytest
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
 from crankbalance.physics.balance_batch import balance_batch, check_batch
-from crankbalance.physics.balance_solver import (
+from crankbalance.physics.balance_counterweights import _lstsq2
+from crankbalance.physics.balance_types import (
     BatchBalance,
     BatchCounterweights,
     BatchShafts,
     CounterweightOptions,
     ShaftOptions,
-    _lstsq2,
 )
 from crankbalance.physics.balancing import BalanceResult, Counterweights, ShaftSet, balance
 from crankbalance.physics.model import EngineBatch, EngineModel, engine_batch, stack_models, take

@@ -3,7 +3,7 @@
 An :class:`~crankbalance.physics.model.EngineBatch` of arrays with a leading engine axis
 in (:func:`~crankbalance.physics.model.engine_batch`,
 :func:`~crankbalance.physics.model.stack_models`), a
-:class:`~crankbalance.physics.balance_solver.BatchBalance` of arrays out. The engines go
+:class:`~crankbalance.physics.balance_types.BatchBalance` of arrays out. The engines go
 through the one implementation of the equations
 (:func:`crankbalance.physics.balance_solver.solve`, which the one-engine
 :func:`crankbalance.physics.balancing.balance` calls on a batch of one) in chunks of
@@ -19,15 +19,13 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from .balance_solver import (
+from .balance_solver import balance_residuals, solve, solver_input
+from .balance_types import (
     BatchBalance,
     BatchResiduals,
     CounterweightOptions,
     EngineFailed,
     ShaftOptions,
-    balance_residuals,
-    solve,
-    solver_input,
 )
 from .model import EngineBatch, per_engine, take
 from .shaking import batch_free_forces

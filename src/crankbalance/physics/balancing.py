@@ -4,8 +4,9 @@ generalised): the one-engine face of the solver.
 :func:`balance` takes an :class:`~crankbalance.physics.model.EngineModel` and returns a
 :class:`BalanceResult` (counterweights, shafts, the residual of every component, the
 solver's notes). It is the solver of many engines on a batch of one: the equations, their
-sources and tolerances are in :mod:`crankbalance.physics.balance_solver` (the one
-implementation), many engines at once go to
+sources and tolerances are in :mod:`crankbalance.physics.balance_solver` and
+:mod:`crankbalance.physics.balance_counterweights` (the one implementation; options and
+results in :mod:`crankbalance.physics.balance_types`), many engines at once go to
 :func:`crankbalance.physics.balance_batch.balance_batch`, and the time-domain check of a
 result is :func:`crankbalance.physics.balance_check.verify` (optional: the residuals come
 from the phasor solution).
@@ -29,20 +30,15 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..results import ResultMixin, engine_scales
-from .balance_solver import (
+from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
+from .balance_solver import solve, solver_input, throw_unbalance
+from .balance_types import (
     BatchBalance,
     BatchCounterweights,
     BatchShafts,
     CounterweightOptions,
     EngineFailed,
     ShaftOptions,
-    crank_middle,
-    pattern_masses,
-    solve,
-    solver_input,
-    throw_pitch,
-    throw_unbalance,
-    web_sides,
 )
 from .model import EngineModel
 from .shaking import BatchFreeForces, FreeForces, free_forces

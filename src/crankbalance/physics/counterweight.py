@@ -10,7 +10,7 @@ arcs, polygonised by :meth:`CounterweightDesign.outline`). The optimiser lives i
 :mod:`crankbalance.physics.counterweight_optimize`, the CAD files (SVG, DXF, STL, STEP, mesh
 read-back) in :mod:`crankbalance.io.cad`.
 
-About 900 lines, over the layout's ~800: the closed forms, the validity rules, the design
+Why one module over 800 lines: the closed forms, the validity rules, the design
 and the exact boundary all rest on the same intersection geometry (``l_c``, ``gamma``,
 ``lambda``, the hub crossing ``y*``), and every public function carries full numpydoc;
 splitting them would scatter one derivation over modules.

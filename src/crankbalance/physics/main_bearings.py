@@ -32,6 +32,10 @@ convention of :func:`crankbalance.physics.beam.bending_moment_at`), a complex nu
 part is the moment of the z-components (bending in the y-z plane) and imaginary part that
 of the x-components; its magnitude is the resultant bending moment.
 
+Why one module over 800 lines: the loads, the stiffness and the three ways to carry them
+(lever rule, continuous beam, clearance contact) are one model, the crank as a beam on its
+bearings; each crank model takes the same loads and stiffness and gives the same result.
+
 References
 ----------
 J. M. Gere, S. P. Timoshenko, *Mechanics of Materials* (lever rule, force method,

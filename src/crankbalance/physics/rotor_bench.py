@@ -37,11 +37,8 @@ from numpy.typing import NDArray
 
 from ..errors import InputError, check_finite, check_nonnegative, check_positive, check_range
 from ..results import ResultMixin
-from .single_cylinder import (
-    STEEL_DENSITY,
-    balance_factor_from_mass_properties,
-    check_mass,
-)
+from .shop.holes import STEEL_DENSITY
+from .single_cylinder import balance_factor_from_mass_properties, check_mass
 
 STANDARD_GRAVITY = 9.80665
 #: Most evaluations of the equations of motion one :func:`run_bench` may take; a run that

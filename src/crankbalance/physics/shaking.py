@@ -202,11 +202,10 @@ def coefficient_rows(
 ) -> NDArray[np.complex128]:
     r"""Harmonic coefficients :math:`c_{n,c}` of the cylinders of one engine or of a batch.
 
-    The one place the kinematics enters the free forces of an engine model
-    (:func:`cylinder_coefficients`) and of a batch (:func:`batch_free_forces`). Engines
-    that share their rod ratio and offsets share one set of rows, computed once (each
-    distinct offset once, the exact coefficients from their cache); an engine whose
-    cylinders share one offset has one row for all of them (a cylinder axis of 1).
+    The kinematics of the free forces of a model (:func:`cylinder_coefficients`) and of a
+    batch (:func:`batch_free_forces`). Engines sharing their rod ratio and offsets share
+    one set of rows (each distinct offset once, exact ones from their cache); an engine
+    whose cylinders share one offset has one row for all (a cylinder axis of 1).
 
     Parameters
     ----------

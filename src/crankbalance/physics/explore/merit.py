@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from ...errors import InputError
 from ...results import below_round_off, round_off
 from ..balance_batch import balance_batch
-from ..balance_solver import BatchBalance, CounterweightOptions, ShaftOptions
+from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
 from ..model import EngineModel, engine_batch
 from ..shaking import batch_free_forces
 from .candidates import Candidates
