@@ -30,7 +30,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
-from ...results import below_round_off, round_off
+from ...results import ROUND_OFF, below_round_off, round_off
 from ..balance_batch import balance_batch
 from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
 from ..model import EngineModel, engine_batch
@@ -380,7 +380,7 @@ def torsional_excitation(
         angle = order * alpha
         value[:, j] = np.hypot(np.cos(angle) @ w, np.sin(angle) @ w)
     value /= np.abs(w).sum()
-    return np.where(value < 1e-12, 0.0, value)
+    return below_round_off(value, ROUND_OFF)  # a share of 1: the one rule on its own scale
 
 
 def balance_columns(
