@@ -101,7 +101,7 @@ def below_round_off(value: ArrayLike, level: ArrayLike) -> NDArray[Any]:
         ``value`` with its round-off set to zero (same dtype).
     """
     v = np.asarray(value)
-    return np.where(np.abs(v) <= level, np.zeros_like(v), v)
+    return np.where(np.abs(v) <= level, 0.0, v)  # a Python zero keeps v's dtype
 
 
 def clean_number(value: float, digits: int = JSON_DIGITS) -> float:

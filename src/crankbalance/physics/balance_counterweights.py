@@ -280,7 +280,7 @@ def solve_counterweights(
             if options.method == "individual":
                 # least sum |v|^2 among the exact solutions
                 pinv = np.linalg.pinv(a, rcond=ROUND_OFF)  # (W, Q)
-                v = (b[:, None, :] * pinv[None, :, :]).sum(axis=-1)  # each engine's row
+                v = np.einsum("eq,wq->ew", b, pinv.astype(b.dtype))  # each engine's row
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
@@ -327,7 +327,7 @@ def _check_planes(
     couple_first = inputs.moment_round_off[sub] / inputs.speed[sub] ** 2  # [kg·m²]
     length = inputs.length[sub[0]]
     for web_mask, force, couple in sums:
-        planes = np.unique(np.round(webs.position[sub[0]][web_mask] / length, 12))
+        planes = np.round(webs.position[sub[0]][web_mask] / length, 12)
         if planes.size == 0:
             raise EngineFailed(
                 InputError(
@@ -337,7 +337,7 @@ def _check_planes(
                 ),
                 int(sub[live][0]),
             )
-        if planes.size == 1:
+        if planes.min() == planes.max():  # one plane
             plane = webs.position[sub, np.flatnonzero(web_mask)[0]]
             bad = live & (np.abs(couple - plane * force) > couple_first)
             if bad.any():
@@ -356,8 +356,9 @@ def _check_planes(
 
 def _coefficients(unit: NDArray, a: NDArray) -> NDArray:
     """Each equation's coefficient of the pattern's unknown, engine by engine:
-    ``unit`` (E, W) over the webs, ``a`` (Q, W) the equations; (E, Q)."""
-    return (unit[:, None, :] * a[None, :, :]).sum(axis=-1)
+    ``unit`` (E, W) over the webs, ``a`` (Q, W) the equations; (E, Q) (einsum's own loops,
+    no matrix product across the engines)."""
+    return np.einsum("ew,qw->eq", unit, a.astype(unit.dtype))
 
 
 def _pattern_moments(

@@ -142,11 +142,15 @@ def throw_unbalance(
     rotating_mass = np.reshape(engine.throw_rotating_mass, (-1, throws))
     reciprocating_mass = np.reshape(engine.reciprocating_mass, (-1, cylinders))
     turn = np.reshape(engine.crank_radius, (-1, 1)) * np.exp(1j * throw_angle)  # r e^{i phi}
-    # each cylinder's reciprocating mass on its pin (summed engine by engine)
-    pins = np.arange(throws)[None, :] == topology.cylinder_throw[:, None]  # (C, T)
-    on_pin = reciprocating_mass[:, :, None] * pins  # (E, C, T)
-    pin_mass = on_pin.sum(axis=1)
-    pin_axial = (on_pin * topology.cylinder_axial[:, None]).sum(axis=1)
+    # each cylinder's reciprocating mass on its pin, summed engine by engine (einsum's own
+    # loops, no matrix product across the engines)
+    pins = (np.arange(throws)[None, :] == topology.cylinder_throw[:, None]).astype(float)
+    pin_mass = np.einsum("ec,ct->et", reciprocating_mass, pins)
+    pin_axial = (
+        np.einsum("ec,ct->et", reciprocating_mass * topology.cylinder_axial, pins)
+        if np.any(topology.cylinder_axial)
+        else 0.0  # every rod in its throw's plane
+    )
     return (
         rotating_mass * turn,
         (rotating_mass * y + topology.throw_axial_moment) * turn,
@@ -214,7 +218,7 @@ def solve(
         webs = web_geometry(inputs, counterweights)
         halves = _halves(inputs, counterweights.scope, target, target_couple)
         cw = solve_counterweights(inputs, webs, counterweights, halves, target, target_couple)
-        share = cw.moments
+        moments = share = cw.moments
         if fb != 0.0:
             # the share that carries the rotating masses alone, at the same angle (the
             # equations are linear in the targets)
@@ -228,7 +232,7 @@ def solve(
                 angle=cw.alpha,
             ).moments
             # what the counterweights do beyond the rotating masses counts to order 1
-            beyond = (cw.moments - share) * w2[:, None]
+            beyond = (moments - share) * w2[:, None]
             fwd1 = fwd1 + beyond.sum(axis=-1)
             cfwd1 = cfwd1 + (beyond * cw.position).sum(axis=-1)
 
@@ -399,7 +403,7 @@ def balance_residuals(
     after_rot_f, after_rot_c = rot_f, rot_c
     fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
     cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
-    first_order: list[tuple[NDArray, NDArray]] = []
+    first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
     if cw is not None and share is not None:
         after_rot_f = rot_f + w2 * share.sum(axis=-1)
         after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)

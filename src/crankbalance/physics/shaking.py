@@ -25,6 +25,10 @@ The rotating masses give a forward first-order phasor only:
 :math:`F_{rot} = \sum_t m_t r\omega^2 e^{i\varphi_t}`.
 
 These are the forces the crank train exerts on the engine block (inertia forces).
+
+Why one module over 800 lines: the phasors of one engine and of a batch, their amplitudes
+and their curves are one computation, the sums over the cylinders (:func:`_cylinder_sums`),
+which the articulated rods enter through the same coefficients.
 """
 
 from __future__ import annotations
@@ -185,9 +189,10 @@ def cylinder_coefficients(
 
     Returns
     -------
-    ndarray of complex, shape (C, K)
+    ndarray of complex, shape (C, K) or (1, K)
         :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
-        (:func:`crankbalance.physics.kinematics.harmonic_coefficients`) [-].
+        (:func:`crankbalance.physics.kinematics.harmonic_coefficients`), one row for all
+        when the cylinders share one offset (read-only then) [-].
     """
     mode = kinematics or model.kinematics
     if model.articulation is not None:
@@ -220,22 +225,27 @@ def coefficient_rows(
 
     Returns
     -------
-    ndarray of complex, shape (C, K), (E, 1, K) or (E, C, K)
+    ndarray of complex, shape (C, K), (1, K), (E, 1, K) or (E, C, K)
         :math:`c_n = a_n - i b_n` of orders 1..K, broadcasting over the cylinders (and the
-        engines) of the arguments [-].
+        engines) of the arguments; a cylinder axis of 1 when the cylinders share one row
+        (read-only then, from the cache) [-].
     """
     lam = np.asarray(rod_ratio, dtype=float)
     ratio = np.asarray(offset_ratio, dtype=float)
     first = ratio.reshape(-1, ratio.shape[-1])[0]
     if np.all(lam == lam.flat[0]) and np.all(ratio == first):  # one set of rows for all
+        lam0 = float(lam.flat[0])
+
+        def row(e: float) -> NDArray[np.complex128]:
+            if kinematics == "exact":
+                return cached_exact_coefficients(lam0, e, orders)
+            return harmonic_coefficients(lam0, orders, e, kinematics)  # type: ignore[arg-type]
+
+        if np.all(first == first[0]):  # one offset: one row for every cylinder (read-only)
+            return row(float(first[0]))[None, :]
         shared, index = np.unique(first, return_inverse=True)
-        rows = [
-            cached_exact_coefficients(float(lam.flat[0]), float(e), orders)
-            if kinematics == "exact"
-            else harmonic_coefficients(float(lam.flat[0]), orders, float(e), kinematics)  # type: ignore[arg-type]
-            for e in shared
-        ]
-        return np.asarray(rows, dtype=complex).reshape(shared.size, orders)[index.reshape(-1)]
+        rows = np.asarray([row(float(e)) for e in shared], dtype=complex)
+        return rows.reshape(shared.size, orders)[index.reshape(-1)]
     if np.all(ratio == ratio[..., :1]):  # one offset per engine: one row per engine
         return harmonic_coefficients(lam, orders, ratio[..., 0], kinematics)[..., None, :]  # type: ignore[arg-type]
     return harmonic_coefficients(lam[..., None], orders, ratio, kinematics)  # type: ignore[arg-type]
@@ -461,7 +471,7 @@ def _cylinder_sums(
     the last bit, as an engine whose cylinders share one offset).
     """
     if coefficients is not None and per_cylinder:
-        if np.all(coefficients == coefficients[..., :1, :]):
+        if coefficients.shape[-2] == 1 or np.all(coefficients == coefficients[..., :1, :]):
             coefficients, per_cylinder = coefficients[..., 0, :], False
         else:
             return _weighted_sums(p, theta, beta, position, orders, coefficients)
