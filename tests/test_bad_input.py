@@ -247,3 +247,15 @@ def test_quantity_must_be_one_number_and_a_unit(text: str) -> None:
 
     with pytest.raises(InputError, match="crank_radius"):
         parse_quantity(text, "length", "crank_radius")
+
+
+def test_a_long_value_keeps_its_start_and_its_end() -> None:
+    """A value longer than a message can show keeps its start and end: a long path keeps
+    its file name (it was cut at 77 characters, losing the name in a deep folder)."""
+    from crankbalance.errors import InputError
+
+    path = "/tmp/" + "deep/" * 30 + "parts.csv"
+    message = str(InputError("parts", path, "must be UTF-8 text"))
+    shown = message.split(" = ", 1)[1].split(": must", 1)[0]
+    assert len(shown) == 80 and shown.startswith("'/tmp/deep/") and shown.endswith("parts.csv'")
+    assert str(InputError("x", "short", "bad")) == "x = 'short': bad"

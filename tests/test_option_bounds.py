@@ -503,3 +503,21 @@ def test_extremes_inside_the_ranges_compute(capsys: pytest.CaptureFixture[str]) 
         code, out, err = run_cli(args, capsys)
         assert code == 0, (args, err)
         assert "nan" not in out.lower() and "inf" not in out.lower().replace("info", "")
+
+
+def test_the_inertia_objective_has_its_own_budget(capsys: pytest.CaptureFixture[str]) -> None:
+    """With the inertia as a third objective the optimiser's work grows faster than its
+    designs (the three-objective front is far larger): its budget is smaller, and the
+    message says which budget was exceeded."""
+    from crankbalance.options import MAX_THREE_OBJECTIVE_DESIGNS, CounterweightOptions
+
+    args = ["counterweight", "optimize", "--engine", "paper-inline3", "--quiet"]
+    code, _, err = run_cli([*args, "--iterations", "60", "--inertia"], capsys)
+    assert code == 2
+    assert err.strip() == (
+        "error: --iterations = '60': must keep population + iterations x 4096 at most "
+        f"{MAX_THREE_OBJECTIVE_DESIGNS:,} designs, the optimiser's work budget with 3 "
+        "objectives (here 4,096 + 60 x 4096 = 249,856): lower the iterations or the population"
+    )
+    settings = CounterweightOptions.model_validate({"iterations": 60})  # two objectives: fine
+    assert settings.iterations == 60

@@ -17,6 +17,7 @@ from __future__ import annotations
 
 import json
 import math
+import re
 from pathlib import Path
 from typing import Any
 
@@ -259,7 +260,7 @@ def test_every_csv_error_is_one_line_naming_line_and_column(
     path = tmp_path / "parts.csv"
     path.write_text(text)
     code, out, err = run_cli(["shop", "match", str(path), "--engine", "single"], capsys)
-    one_line_error(code, out, err, str(path), *needles)
+    one_line_error(code, out, err, path.name, *needles)
 
 
 def test_a_nul_byte_in_csv_text_names_line_and_column() -> None:
@@ -389,6 +390,26 @@ def test_the_planner_splits_holes_a_drill_cannot_reach(capsys: pytest.CaptureFix
         ["shop", "plan", *PLAN, "--hole-diameter", "4 mm"] + ["--max-depth", "60 mm"], capsys
     )
     assert code == 0 and "plane 1: split into" in out
+
+
+def test_the_sheet_says_the_split_and_the_matching_status(
+    tmp_path: Path, capsys: pytest.CaptureFixture[str]
+) -> None:
+    """The printed sheet carries what the plan and the matching say: each plane's split
+    note, and the matching's status in words (it said "best found within the time limit"
+    for every matching not proven optimal, a local search included)."""
+    sheet = tmp_path / "sheet.html"
+    args = ["shop", "sheet", str(EXAMPLES / "v8_parts.csv"), "--engine", ENGINE, *PLAN[8:]]
+    code, _, err = run_cli(
+        [*args, *PLAN[:8], "--hole-diameter", "4 mm", "--max-depth", "60 mm", "-o", str(sheet)],
+        capsys,
+    )
+    assert code == 0, err
+    html = sheet.read_text()
+    assert html.count("<p>Plane ") == 2 and "<p>Plane 1: split into" in html
+    assert "best found within the time limit" not in html
+    found = re.search(r"Matching: (\w+) \((proven optimal|not proven optimal: [^<]+)\)", html)
+    assert found is not None, html[:2000]
 
 
 def test_the_planner_keeps_axial_holes_inside_the_web(capsys: pytest.CaptureFixture[str]) -> None:

@@ -30,8 +30,10 @@ class InputError(ValueError):
 
 
 def _show(value: Any) -> str:
+    """The value as shown in a message, at most 80 characters: a longer one keeps its start
+    and its end (a long path keeps its file name)."""
     text = repr(value)
-    return text if len(text) <= 80 else text[:77] + "..."
+    return text if len(text) <= 80 else text[:37] + "..." + text[-40:]
 
 
 def check_positive(field: str, value: float) -> float:

@@ -88,6 +88,21 @@ MAX_SHAFT_ITEMS = 64
 MAX_HOLES = 12
 #: the largest harmonic order any study computes
 MAX_ORDER = 64
+#: designs the counterweight optimiser breeds in each round after its first sample (the
+#: ``children`` of :func:`crankbalance.counterweight_optimize.optimize_counterweight`, its
+#: default, which the command line and the web app both use)
+COUNTERWEIGHT_CHILDREN = 4096
+#: most designs one counterweight optimisation evaluates, population + iterations x
+#: :data:`COUNTERWEIGHT_CHILDREN`: the optimiser's work and memory grow with it (every
+#: feasible design is kept). At this many, mass and radial space as objectives, one core of
+#: the 2-core reference machine takes about 5 s and 650 MB (docs/web.md, "Studies: budget,
+#: workers, cancel")
+MAX_COUNTERWEIGHT_DESIGNS = 1_000_000
+#: the same with the inertia as a third objective: the Pareto front of three objectives is
+#: far larger and keeping it grows faster than the designs (measured on the 2-core reference
+#: machine, paper-inline3: 168 000 designs 12.6 s against 9.2 s with two objectives, 496 000
+#: designs 79 s against 9.8 s), so about 200 000 take as long as the two objectives' budget
+MAX_THREE_OBJECTIVE_DESIGNS = 200_000
 
 
 def _quantity(kind: str) -> Any:
@@ -225,6 +240,32 @@ class CounterweightOptions(StudyOptions):
     iterations: Whole = Field(40, ge=0, le=1000, title="Iterations")
     population: Whole = Field(4096, ge=16, le=100_000, title="Population")
     seed: Whole | None = Field(None, ge=0, le=2**32 - 1, title="Random seed")
+
+    @model_validator(mode="after")
+    def _budget(self) -> CounterweightOptions:
+        self.check_budget(2)
+        return self
+
+    def check_budget(self, objectives: int) -> None:
+        """Refuse more designs than the budget of ``objectives`` objectives (2: mass and
+        radial space, 3: with the inertia), naming ``iterations``."""
+        designs = counterweight_designs(self.population, self.iterations)
+        budget = MAX_COUNTERWEIGHT_DESIGNS if objectives < 3 else MAX_THREE_OBJECTIVE_DESIGNS
+        if designs > budget:
+            raise InputError(
+                "iterations",
+                self.iterations,
+                f"must keep population + iterations x {COUNTERWEIGHT_CHILDREN} at most "
+                f"{budget:,} designs, the optimiser's work budget with {objectives} objectives "
+                f"(here {self.population:,} + {self.iterations:,} x {COUNTERWEIGHT_CHILDREN} = "
+                f"{designs:,}): lower the iterations or the population",
+            )
+
+
+def counterweight_designs(population: int, iterations: int) -> int:
+    """The designs a counterweight optimisation evaluates: its first sample and
+    :data:`COUNTERWEIGHT_CHILDREN` per round."""
+    return population + iterations * COUNTERWEIGHT_CHILDREN
 
 
 class SingleCylinderOptions(StudyOptions):
@@ -623,6 +664,11 @@ MAX_PATTERNS = 8
 #: most cases (patterns times balance factors; ``none`` counts once) of one bearing sweep:
 #: each case is a balance solve and both crank models over the cycle
 MAX_SWEEP_CASES = 64
+#: most cases x samples per revolution x cylinders of one bearing sweep, checked with the
+#: engine before the first case (:func:`crankbalance.studies.balance_loads.bearing_sweep`):
+#: its time and memory grow with it. The W16 preset's 61 cases at 3600 samples (3.5
+#: million) took 12 s of one core of the 2-core reference machine and 1.4 GB
+MAX_SWEEP_WORK = 4_000_000
 
 
 def _web_pattern(value: Any) -> str:

@@ -43,8 +43,7 @@ def sheet_html(study: Any, static: bool = False) -> str:
         f"{_dt.datetime.now().isoformat(timespec='minutes')}</p>"
     )
     out.append("<h2>Parts per cylinder (matched sets)</h2>")
-    proven = "proven optimal" if m.optimal else "best found within the time limit"
-    out.append(f"<p>Matching: {esc(m.method)} ({proven}).</p>")
+    out.append(f"<p>Matching: {esc(m.method)} ({esc(m.status)}).</p>")
     rows = [
         [str(c + 1), *m.ids[c], _g(m.reciprocating[c]), _g(m.rotating[c])]
         + [_g(m.remove_reciprocating[c]), _g(m.remove_rotating[c])]
@@ -98,7 +97,7 @@ def sheet_html(study: Any, static: bool = False) -> str:
             f"{text(first.point_angle, 'angle')}, {esc(first.direction)}, at "
             f"{text(first.radius, 'length')}; depths read to the {esc(first.depth_to)}.</p>"
         )
-        rows = []
+        rows, notes = [], []
         for j, holes in enumerate(h.holes):
             rows.append(
                 [
@@ -113,8 +112,11 @@ def sheet_html(study: Any, static: bool = False) -> str:
                     text(abs(h.residual[j]), "unbalance", 3),
                 ]
             )
+            if holes.note:
+                notes.append(f"Plane {j + 1}: {holes.note}.")
         header = ["plane", "unbalance", "heavy spot", "holes", "angles", "depth to shoulder"]
         out.append(_table([*header, "depth to tip", "mass per hole", "predicted residual"], rows))
+        out += [f"<p>{esc(note)}</p>" for note in notes]
         out.append(_figure_html("holes", "Hole plan to scale", hole_plan(h), static, True))
         c = h.check
         out.append("<h2>ISO 21940-11 sign-off</h2>")

@@ -90,6 +90,17 @@ def server() -> Iterator[str]:
 
 
 @pytest.fixture(scope="module")
+def logged_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[str, Path]]:
+    """``crankbalance web`` in a subprocess with its log (stdout and stderr) in a file;
+    yields its URL and the log's path."""
+    from crankbalance.web.server import running_server
+
+    path = tmp_path_factory.mktemp("server") / "server.log"
+    with open(path, "w") as log, running_server(log, timeout=HANG_GUARD) as url:
+        yield url, path
+
+
+@pytest.fixture(scope="module")
 def browser() -> Iterator[Any]:
     """Debian's chromium driven by Playwright (never a downloaded browser); every wait of
     Playwright (``expect``, ``wait_for``, downloads) has the hang guard as its timeout."""

@@ -291,6 +291,11 @@ def optimize(
         },
         option_name,
     )
+    if with_inertia:
+        try:
+            settings.check_budget(3)
+        except InputError as error:
+            raise InputError(option_name(error.field), iterations, error.allowed) from None
     res = optimize_counterweight(
         required,
         bounds,

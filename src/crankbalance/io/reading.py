@@ -2,7 +2,9 @@
 
 Every reader of a user file in ``io/`` goes through :func:`read_text`: it refuses what is
 not a regular file (a folder, a device such as ``/dev/zero``, a pipe, a socket) before
-reading, reads at most a given number of bytes, and refuses binary data. TOML and JSON
+reading, reads at most a given number of bytes, and refuses binary data; bytes a user
+gives otherwise (an upload, an API body) are decoded by the same rule, :func:`decode_text`
+(a UTF-8 byte-order mark dropped, binary data refused). TOML and JSON
 text goes through :func:`parse_toml` and :func:`parse_json`, which refuse nesting deeper
 than :data:`MAX_DEPTH` and numbers longer than :data:`MAX_NUMBER_CHARS` before the parser
 sees them (a parser would otherwise recurse without bound or convert a 5000-digit integer),
@@ -80,16 +82,46 @@ def read_text(path: str | os.PathLike[str], field: str, what: str, limit: int) -
         raise InputError(field, source, f"cannot be read: {error.strerror}") from None
     if len(raw) > limit:
         raise InputError(field, source, f"is larger than {limit} bytes; give {what}")
+    return decode_text(raw, field, source, what)
+
+
+def decode_text(raw: bytes, field: str, value: Any, what: str) -> str:
+    """The UTF-8 text of bytes a user gave (a file's content, an upload, an API body).
+
+    The one rule of every reader: a UTF-8 byte-order mark is dropped, anything that is not
+    UTF-8 text (or holds NUL bytes) is refused.
+
+    Parameters
+    ----------
+    raw : bytes
+        What was read.
+    field : str
+        How the user named the input; the error names it.
+    value : Any
+        The value the error shows (the path of a file).
+    what : str
+        What the input should be, for messages: ``"an engine file (.toml or .json)"``.
+
+    Returns
+    -------
+    str
+        The text, without a byte-order mark.
+
+    Raises
+    ------
+    InputError
+        If the bytes are not UTF-8 text or contain NUL bytes.
+    """
     try:
         text = raw.decode("utf-8-sig")
     except UnicodeDecodeError as error:
-        _binary(raw, error.start, field, source, what)
+        _binary(raw, error.start, field, value, what)
     if "\x00" in text:
-        _binary(raw, raw.index(b"\x00"), field, source, what)
+        _binary(raw, raw.index(b"\x00"), field, value, what)
     return text
 
 
-def _binary(raw: bytes, at: int, field: str, source: str, what: str) -> NoReturn:
+def _binary(raw: bytes, at: int, field: str, source: Any, what: str) -> NoReturn:
     """Refuse binary data, naming the line and byte of the first NUL or non-UTF-8 byte."""
     line = raw.count(b"\n", 0, at) + 1
     column = at - (raw.rfind(b"\n", 0, at) + 1) + 1

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..options import BearingOptions, BearingSweepOptions, parse_options
+from ..options import MAX_SWEEP_WORK, BearingOptions, BearingSweepOptions, parse_options
 from ..results import to_jsonable
 from ..spec import EngineSpec
 from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
@@ -192,6 +192,37 @@ def _no_counterweights(spec: EngineSpec) -> BalanceStudy:
     return BalanceStudy(model, balance(model, None, primary, secondary))
 
 
+def check_sweep_work(spec: EngineSpec, sweep: BearingSweepOptions, options: BearingOptions) -> None:
+    """Refuse a sweep over its work budget before any case: cases x samples per revolution
+    x cylinders at most :data:`~crankbalance.options.MAX_SWEEP_WORK`.
+
+    Parameters
+    ----------
+    spec : EngineSpec
+        The engine.
+    sweep : BearingSweepOptions
+        Patterns and balance factors (``none`` is one case).
+    options : BearingOptions
+        The loads' settings (their samples per revolution).
+
+    Raises
+    ------
+    InputError
+        Naming ``samples``, with the product and the budget.
+    """
+    cases = sum(1 if p == "none" else len(sweep.balance_factors) for p in sweep.patterns)
+    cylinders = spec.crank_train.cylinder_count
+    work = cases * options.samples * cylinders
+    if work > MAX_SWEEP_WORK:
+        raise InputError(
+            "samples",
+            options.samples,
+            f"must keep cases x samples per revolution x cylinders at most {MAX_SWEEP_WORK:,}, "
+            f"the sweep's work budget (here {cases} x {options.samples} x {cylinders} = "
+            f"{work:,}): fewer samples, patterns or balance factors",
+        )
+
+
 def bearing_sweep(
     engine: str | os.PathLike[str] | EngineSpec,
     sweep: BearingSweepOptions | Mapping[str, Any] | None = None,
@@ -239,6 +270,7 @@ def bearing_sweep(
             plan.append((pattern, None))
         else:
             plan.extend((pattern, float(f)) for f in s.balance_factors)
+    check_sweep_work(spec, s, o)
     cases: list[SweepCase] = []
     for pattern, factor in plan:
         if factor is None:

@@ -20,6 +20,9 @@ What a request must be (``docs/web.md``, "JSON API"), checked in this order:
   :data:`MAX_WORK` before computing starts; a computation still running after
   :data:`WALL_CLOCK` seconds is answered 503 (the last resort: its thread finishes the work).
 
+A client that closes the connection before its whole body arrived leaves one warning line in
+the server's log (no traceback) and nothing is computed.
+
 Bad input answers 422 with ``{"error": message, "field": field}``, the message the command
 line prints; a refused request answers its 4xx status with the same two keys. 500 is left
 for a bug of crankbalance (logged with its traceback). Every request is computed on its own
@@ -180,14 +183,31 @@ def compute(kind: str, body: bytes, content_type: str | None) -> tuple[int, dict
         return 422, error_body(InputError("engine file", None, problem))
 
 
+class Disconnected(Refused):
+    """The client closed the connection before its whole body arrived (no one reads the
+    answer; the server logs one line, :func:`register`)."""
+
+
 async def read_body(request: Any) -> bytes:
-    """The request's body, refused (413) as soon as it grows over :data:`MAX_BODY`."""
+    """The request's body, refused (413) as soon as it grows over :data:`MAX_BODY`;
+    :class:`Disconnected` when the client closes the connection before sending it all."""
+    from starlette.requests import ClientDisconnect
+
     chunks: list[bytes] = []
     size = 0
-    async for chunk in request.stream():
-        size += len(chunk)
-        _check_size(size)
-        chunks.append(chunk)
+    try:
+        async for chunk in request.stream():
+            size += len(chunk)
+            _check_size(size)
+            chunks.append(chunk)
+    except ClientDisconnect:
+        length = request.headers.get("content-length")
+        raise Disconnected(
+            400,
+            "request body",
+            f"{size} of {length} bytes received" if length else f"{size} bytes received",
+            "the client closed the connection before the whole body arrived; nothing computed",
+        ) from None
     return b"".join(chunks)
 
 
@@ -203,6 +223,8 @@ def register(app: Any) -> None:
             check_request(request.headers)
             body = await read_body(request)
         except Refused as refused:
+            if isinstance(refused, Disconnected):  # one line in the log, no traceback
+                log.warning("POST /api/%s: %s", kind, refused)
             return JSONResponse(error_body(refused), status_code=refused.status)
         work = run_in_threadpool(compute, kind, body, request.headers.get("content-type"))
         try:

@@ -24,7 +24,7 @@ from nicegui import run, ui
 
 from ..errors import InputError
 from ..io.engine_file import list_presets
-from . import studies
+from . import pool, studies
 from .exports import table_csv
 from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, label_of, read_text
 from .tab_counterweight import CounterweightTab
@@ -157,6 +157,8 @@ class Page:
         self.computed_for: tuple[Any, int] | None = None
         self.stale_notes: dict[str, Any] = {}
         self.bodies: dict[str, Any] = {}
+        #: the study of this page running in a worker process (one at a time), if any
+        self.job: pool.Job | None = None
         message = ""
         name = preset or DEFAULT_PRESET
         try:
@@ -171,6 +173,7 @@ class Page:
     # ================================================================== layout
     def build(self) -> None:
         ui.page_title("crankbalance")
+        ui.context.client.on_delete(self.cancel_job)  # the page went away: its study stops
         ui.add_css(CSS)
         ui.add_body_html(BUSY_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
@@ -246,6 +249,11 @@ class Page:
         self.update_all()
         if self.startup_message:
             self.general.set_text(self.startup_message)
+
+    def cancel_job(self) -> None:
+        """End the page's running study (its worker process), if any."""
+        if self.job is not None:
+            self.job.cancel()
 
     def _nav(self, index: int) -> None:
         with ui.row().classes("w-full justify-end gap-2 q-mt-md"):

@@ -813,19 +813,18 @@ class Project:
 
 # --------------------------------------------------------------------------- reading
 def read_text(raw: bytes, source: str) -> str:
-    """The text of an uploaded engine file or API body: at most :data:`MAX_BYTES`, UTF-8."""
+    """The text of an uploaded engine file or API body: at most :data:`MAX_BYTES`, decoded
+    as the command line decodes an engine file (:func:`~crankbalance.io.reading.decode_text`:
+    UTF-8, a byte-order mark dropped)."""
+    from ..io.reading import decode_text
+
     if len(raw) > MAX_BYTES:
         raise InputError(
             source,
             f"{len(raw)} bytes",
             f"is larger than {MAX_BYTES} bytes; an engine file is a few kB of TOML or JSON",
         )
-    try:
-        return raw.decode("utf-8")
-    except UnicodeDecodeError:
-        raise InputError(
-            source, "binary data", "must be a UTF-8 text file (TOML or JSON)"
-        ) from None
+    return decode_text(raw, source, "binary data", "a TOML or JSON engine file")
 
 
 def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:

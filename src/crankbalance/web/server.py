@@ -37,11 +37,12 @@ def serve(
     """
     from nicegui import app, ui
 
-    from . import api
+    from . import api, pool
 
     webapp.DEFAULT_PRESET = preset  # the server's default, set once before serving
     api.register(app)
     app.on_startup(lambda: threading.Thread(target=webapp.warm_up, daemon=True).start())
+    app.on_startup(lambda: threading.Thread(target=pool.warm_up, daemon=True).start())
     tailwind = bool(options.pop("tailwind", False))
     if not tailwind:
         app.add_static_file(local_file=TAILWIND_CSS, url_path=TAILWIND_URL)

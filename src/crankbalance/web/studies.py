@@ -7,6 +7,12 @@ A setting's key is its study's prefix and the schema's field name (``cw_populati
 ``population`` of :class:`~crankbalance.options.CounterweightOptions`); a bad setting
 raises :class:`~crankbalance.errors.InputError` whose ``field`` is that key, so that the
 page shows the message beside the input.
+
+The tabs run these functions (and the study layer's ``bearing_sweep``, ``shop_study``) in
+a worker process (:mod:`.pool`): they are module-level, take and return picklable data,
+and their settings (with the work budgets of the schema) are checked in the server before
+the run starts (:func:`counterweight_inputs`, :func:`check_single_cylinder`,
+:func:`options`). The fork server preloads this module.
 """
 
 from __future__ import annotations
@@ -18,6 +24,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..options import (
+    COUNTERWEIGHT_CHILDREN,
     VERBS,
     AnalysisOptions,
     CounterweightOptions,
@@ -101,19 +108,28 @@ def check_settings(settings: dict[str, Any]) -> dict[str, str]:
 
 def setting_errors(settings: dict[str, Any]) -> dict[str, InputError]:
     """The errors of the settings that do not validate, by key, each naming its key and the
-    text as given (a saved project's settings line is refused with it)."""
+    text as given (a saved project's settings line is refused with it). A study's settings
+    are validated together, so that a check across them (a work budget) is made with the
+    values as typed; a setting refused is left out and the rest validated again."""
     errors: dict[str, InputError] = {}
     for prefix, model in PREFIXES.items():
+        texts: dict[str, str] = {}
+        given: dict[str, Any] = {}
         for name in model.model_fields:
-            key = prefix + name
-            text = str(settings.get(key, "")).strip()
-            if not text:
-                continue
-            value = _split(text) if field_kind(model, name)[0] == "list" else text
+            text = str(settings.get(prefix + name, "")).strip()
+            if text:
+                texts[name] = text
+                given[name] = _split(text) if field_kind(model, name)[0] == "list" else text
+        while True:
             try:
-                parse_options(model, {name: value}, _namer(prefix))
+                parse_options(model, given, _namer(prefix))
+                break
             except InputError as error:
-                errors[key] = InputError(key, text, error.allowed)
+                name = error.field[len(prefix) :]
+                errors[error.field] = InputError(error.field, texts.get(name), error.allowed)
+                if name not in given:  # a check across settings that names an empty one
+                    break
+                del given[name]
     return errors
 
 
@@ -137,12 +153,20 @@ def counterweight_requirement(computed: Computed) -> tuple[float, float, float]:
     return moment, moment / radius, radius
 
 
-def run_counterweight(computed: Computed, settings: dict[str, Any], callback: Any = None) -> Any:
-    """The counterweight optimiser (2021 paper, Sec. 4-5) for the engine's counterweight."""
+def counterweight_inputs(computed: Computed, settings: dict[str, Any]) -> tuple[float, Any]:
+    """The required first moment [kg m] and the validated :class:`CounterweightOptions` of
+    an optimisation (its work budget checked), before it starts."""
+    required, _mass, _radius = counterweight_requirement(computed)
+    return required, options(settings, CounterweightOptions)
+
+
+def optimise(required: float, o: CounterweightOptions) -> Any:
+    """The counterweight optimiser (2021 paper, Sec. 4-5) for a required first moment
+    [kg m], with the command line's number of designs per round
+    (:data:`~crankbalance.options.COUNTERWEIGHT_CHILDREN`): the same settings search the
+    same designs in both."""
     from ..counterweight_optimize import optimize_counterweight
 
-    required, _mass, _radius = counterweight_requirement(computed)
-    o = options(settings, CounterweightOptions)
     return optimize_counterweight(
         required,
         density=o.density,
@@ -151,9 +175,8 @@ def run_counterweight(computed: Computed, settings: dict[str, Any], callback: An
         min_balance=o.min_balance,
         iterations=o.iterations,
         population=o.population,
-        children=o.population,
+        children=COUNTERWEIGHT_CHILDREN,
         rng=o.seed,
-        callback=callback,
     )
 
 
@@ -220,6 +243,22 @@ def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
         raise
 
 
+def single_cylinder(computed: Computed, settings: dict[str, Any]) -> tuple[Any, Any, Any]:
+    """The Single cylinder tab's three results: the balance-factor study, the ISO check and
+    the rebalancing (:func:`single_study`, :func:`iso_check`, :func:`rebalance_study`)."""
+    return (
+        single_study(computed, settings),
+        iso_check(computed, settings),
+        rebalance_study(computed, settings),
+    )
+
+
+def check_single_cylinder(computed: Computed, settings: dict[str, Any]) -> None:
+    """Refuse bad settings of the Single cylinder tab before its study starts."""
+    _single(computed, settings)
+    options(settings, RebalanceOptions)
+
+
 # --------------------------------------------------------------------------- balance shaft
 def shaft_requirement(computed: Computed, settings: dict[str, Any]) -> tuple[float, float, str]:
     """(first moment of one shaft's mass [kg m], shaft speed [rad/s], which) for the
@@ -261,7 +300,7 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     from ..engine_cycle import balance_sensitivity
     from ..options import CombustionOptions
     from ..studies.crank import rotating_inertia
-    from ..studies.performance import cycle_cylinder, pressure_source
+    from ..studies.performance import arithmetic_checked, cycle_cylinder, pressure_source
 
     model = computed.analysis.model
     o = options(settings, PerformanceOptions)
@@ -281,14 +320,15 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
             friction_coefficient=o.friction_coefficient,
         )
         pressure = pressure_source(CombustionOptions.model_validate({}))  # the studies' one default
-        return balance_sensitivity(
-            cylinder,
-            float(model.speed),
-            pressure,
-            o.balance_factors,
-            strokes=_strokes(model.strokes),
-            samples_per_revolution=180,
-        )
+        with arithmetic_checked("the performance study", "the engine and the tab's settings"):
+            return balance_sensitivity(
+                cylinder,
+                float(model.speed),
+                pressure,
+                o.balance_factors,
+                strokes=_strokes(model.strokes),
+                samples_per_revolution=180,
+            )
     except InputError as error:
         raise InputError(fields.get(error.field, error.field), error.value, error.allowed) from None
 
@@ -301,3 +341,15 @@ def _strokes(value: Any) -> Literal[2, 4]:
     if strokes == 4:
         return 4
     raise InputError("strokes", value, "2 or 4 strokes per cycle")
+
+
+# --------------------------------------------------------------------------- explorer
+def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
+    """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
+    the two objectives, the rows by increasing column ``key``."""
+    from ..explore import merit
+    from ..explore.run import Keep
+    from ..explore.run import run as run_explore
+
+    keep = Keep(objectives=objectives, key=key, n=most)
+    return run_explore(problem, merit.merit, select=select, keep=keep)

@@ -16,7 +16,7 @@ from nicegui import run, ui
 from ..errors import InputError
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, button_row, plot_or_none, send_download
+from .widgets import CANCELLED, StudyTab, button_row, plot_or_none, send_download
 
 
 def radial_space(model: Any) -> float:
@@ -51,6 +51,7 @@ ALIASES = {
 
 class CounterweightTab(StudyTab):
     name = "counterweight"
+    what = "the counterweight optimiser"
     prefixes = ("cw_",)
     optimum: Any = None
 
@@ -69,9 +70,11 @@ class CounterweightTab(StudyTab):
                     "cw_seed",
                 )
                 self.cw_space = ui.markdown("").classes("text-grey-8 max-w-xs").mark("cw-space")
-                ui.button("Optimise", on_click=self.optimise).props("color=primary").mark(
-                    "optimise"
-                )
+                with button_row():
+                    ui.button("Optimise", on_click=self.optimise).props("color=primary").mark(
+                        "optimise"
+                    )
+                    self.cancel_button()
             with ui.card().classes("grow"):
                 ui.label("Results").classes("text-subtitle1")
                 self.rerun_note()
@@ -134,10 +137,11 @@ class CounterweightTab(StudyTab):
         limit = radial_space(c.analysis.model)
         if not str(settings.get("cw_max_radius", "")).strip():
             settings["cw_max_radius"] = f"{limit * 1e3:.6g} mm"  # the engine's space
-        self.cw_summary.set_content("optimising …")
         started = self.stamp()
         try:
-            optimum = await run.io_bound(studies.run_counterweight, c, settings)
+            required, o = studies.counterweight_inputs(c, settings)  # and the work budget
+            self.cw_summary.set_content("optimising …")
+            optimum = await self.in_worker(self.what, studies.optimise, required, o)
         except InputError as error:
             message = show_error(self.page, error, ALIASES)
             if error.field == "constraints" and settings["cw_max_radius"] != (
@@ -147,7 +151,7 @@ class CounterweightTab(StudyTab):
             self.cw_summary.set_content(message)
             return
         if optimum is None:
-            self.cw_summary.set_content("optimisation cancelled (server stopping): no result")
+            self.cw_summary.set_content(CANCELLED)
             return
         if not self.owns(started):  # the engine or a setting was edited meanwhile
             return

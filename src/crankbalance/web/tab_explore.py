@@ -5,7 +5,7 @@ the scatter and Pareto set, a filter and the rows of the table are this tab's ow
 they are not part of the engine, and the result belongs to them (the never-stale rule of
 :class:`~.widgets.StudyTab`, with the settings in place of the engine): once a setting is
 changed the result is cleared and the tab says to re-run. The run is
-:func:`crankbalance.explore.run.run` in this process, in a worker thread, on the plain engine
+:func:`crankbalance.explore.run.run` in a worker process (:mod:`.pool`), on the plain engine
 of the enumeration (``orders.PLAIN``), for problems of at most :data:`MAX_INDICES` firing
 orders; larger ones are for ``crankbalance explore --workers N``.
 
@@ -26,6 +26,7 @@ from nicegui import ui
 
 from .. import figures
 from ..errors import InputError
+from . import studies
 from .widgets import StudyTab, TabSettingsMixin, fmt_g
 
 #: most firing orders (indices of the enumeration) the page explores in its own process
@@ -91,17 +92,6 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float 
     return problem, (x, y), chosen, o.top, o.bank_angle
 
 
-def explore(problem: Any, objectives: tuple[str, str], select: Any) -> Any:
-    """The run of the tab: every candidate kept (at most :data:`MAX_INDICES`), the Pareto
-    set over the two objectives, the rows by increasing :data:`KEY`."""
-    from ..explore import merit
-    from ..explore.run import Keep
-    from ..explore.run import run as run_explore
-
-    keep = Keep(objectives=objectives, key=KEY, n=MAX_INDICES)
-    return run_explore(problem, merit.merit, select=select, keep=keep)
-
-
 def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
     """The candidate's order (crankbalance's numbering) in the engine's maker's numbering
     when the engine file has one (``numbering`` or ``maker_numbers``), else unchanged."""
@@ -156,6 +146,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     fallback = "layout"
     choices = CHOICES
     name = "explore"
+    what = "the exploration"
     result: Any = None
     problem: Any = None
     objectives: tuple[str, str] = ("F2_N", "M2_Nm")
@@ -224,10 +215,12 @@ class ExploreTab(TabSettingsMixin, StudyTab):
 
     # ------------------------------------------------------------------ run
     async def run(self) -> None:
-        def work(parsed: tuple[Any, ...], _: Any) -> Any:
-            return explore(*parsed[:3])
-
-        done = await self.run_study(work, "exploring …", engine=False)
+        done = await self.run_study(
+            studies.explore,
+            lambda parsed, _: (*parsed[:3], KEY, MAX_INDICES),
+            "exploring …",
+            engine=False,
+        )
         if done is None:
             return
         (problem, objectives, _select, top, bank_angle), result = done

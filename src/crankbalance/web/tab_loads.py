@@ -5,11 +5,12 @@ docs/main_bearings.md, "Sweep of patterns and balance factors").
 The settings are those of ``crankbalance bearings-sweep`` (:class:`crankbalance.options.
 BearingSweepOptions` and a few of :class:`~crankbalance.options.BearingOptions`, the rest
 at their defaults), as typed. The run is :func:`crankbalance.studies.balance_loads.
-bearing_sweep` in a worker thread. The result belongs to the engine and the settings it was
-run for (the never-stale rule of :class:`~.widgets.StudyTab`): once either changes it is
-cleared and the tab says to re-run. Shown: a table (one row per case, the CLI's columns),
-the polar load diagrams of every pattern at the middle balance factor overlaid, and the
-sweep figure (metrics against the balance factor, peak load per bearing per case).
+bearing_sweep` in a worker process (:mod:`.pool`). The result belongs to the engine and
+the settings it was run for (the never-stale rule of :class:`~.widgets.StudyTab`): once
+either changes it is cleared and the tab says to re-run. Shown: a table (one row per
+case, the CLI's columns), the polar load diagrams of every pattern at the middle balance
+factor overlaid, and the sweep figure (metrics against the balance factor, peak load per
+bearing per case).
 """
 
 from __future__ import annotations
@@ -80,6 +81,7 @@ class LoadsTab(TabSettingsMixin, StudyTab):
     fallback = "patterns"
     choices = CHOICES
     name = "loads"
+    what = "the crank loads sweep"
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
@@ -113,6 +115,11 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         from ..studies.balance_loads import bearing_sweep
 
         return bearing_sweep
+
+    def work_check(self) -> Any:
+        from ..studies.balance_loads import check_sweep_work
+
+        return check_sweep_work
 
     def show_study(self) -> None:
         from ..format import number

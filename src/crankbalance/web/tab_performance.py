@@ -5,16 +5,18 @@ from __future__ import annotations
 
 from typing import Any
 
-from nicegui import run, ui
+from nicegui import ui
 
 from ..errors import InputError
+from ..options import PerformanceOptions
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, fmt_g, plot_or_none
+from .widgets import CANCELLED, StudyTab, button_row, fmt_g, plot_or_none
 
 
 class PerformanceTab(StudyTab):
     name = "performance"
+    what = "the performance sweep"
     prefixes = ("pf_",)
     result: Any = None
 
@@ -29,9 +31,11 @@ class PerformanceTab(StudyTab):
                     "pf_friction_coefficient",
                     "pf_journal_diameter",
                 )
-                ui.button("Run the sweep", on_click=self.run_study).props("color=primary").mark(
-                    "run-performance"
-                )
+                with button_row():
+                    ui.button("Run the sweep", on_click=self.run_study).props("color=primary").mark(
+                        "run-performance"
+                    )
+                    self.cancel_button()
             with ui.card().classes("grow"):
                 self.rerun_note()
                 self.performance_table = (
@@ -73,12 +77,13 @@ class PerformanceTab(StudyTab):
         settings = dict(self.page.project.settings)
         started = self.stamp()
         try:
-            result = await run.io_bound(studies.performance_study, c, settings)
+            studies.options(settings, PerformanceOptions)  # its limits, before it starts
+            result = await self.in_worker(self.what, studies.performance_study, c, settings)
         except InputError as error:
             show_error(self.page, error)
             return
         if result is None:
-            ui.notify("sweep cancelled (server stopping): no result", type="warning")
+            ui.notify(CANCELLED, type="warning")
             return
         if not self.owns(started):  # the engine or a setting was edited meanwhile
             return

@@ -14,9 +14,10 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
+from ..options import ShaftPlacementOptions
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, plot_or_none
+from .widgets import CANCELLED, StudyTab, button_row, plot_or_none
 
 #: argument names of the library -> the settings of this tab
 ALIASES = {"length": "bs_length", "diameter": "bs_diameter", "weight": "bs_weight"}
@@ -53,6 +54,7 @@ def applicability(analysis: Any) -> tuple[bool, str]:
 
 class ShaftTab(StudyTab):
     name = "shaft"
+    what = "the balance-shaft placement"
     prefixes = ("bs_",)
     result: Any = None
 
@@ -61,9 +63,11 @@ class ShaftTab(StudyTab):
             with ui.card().classes("max-w-full"):
                 ui.label("Shaft and objective").classes("text-subtitle1")
                 self.settings("bs_length", "bs_diameter", "bs_weight")
-                ui.button("Find the optimum", on_click=self.run_study).props("color=primary").mark(
-                    "run-shaft"
-                )
+                with button_row():
+                    ui.button("Find the optimum", on_click=self.run_study).props(
+                        "color=primary"
+                    ).mark("run-shaft")
+                    self.cancel_button()
             with ui.card().classes("grow max-w-full"):
                 self.rerun_note()
                 self.applies = ui.markdown("").mark("shaft-applies")
@@ -102,8 +106,10 @@ class ShaftTab(StudyTab):
             ui.notify("The placement study does not apply to this engine", type="warning")
             return
         started = self.stamp()
+        settings = dict(self.page.project.settings)
         try:
-            study, which = studies.shaft_placement(c, self.page.project.settings)
+            studies.options(settings, ShaftPlacementOptions)  # its limits, before it starts
+            done = await self.in_worker(self.what, studies.shaft_placement, c, settings)
         except InputError as error:
             if error.field == "engine":  # the balancing leaves no unbalance for a shaft
                 self._clear(
@@ -113,8 +119,12 @@ class ShaftTab(StudyTab):
                 return
             self._clear(show_error(self.page, error, ALIASES))
             return
+        if done is None:
+            self._clear(CANCELLED)
+            return
         if not self.owns(started):
             return
+        study, which = done
         self.result = study
         self.shaft_summary.set_content(
             f"Unbalance of the {which}: optimum mass position **"

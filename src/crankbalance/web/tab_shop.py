@@ -4,10 +4,11 @@ ISO 21940-11 sign-off (issue 16; docs/balance_shop.md, "Commands and the shop sh
 The parts file is pasted (or loaded from ``examples/v8_parts.csv``); the engine is the
 page's current engine; the settings are those of :class:`crankbalance.options.ShopOptions`
 as a shop person types them (units in the text). The run is
-:func:`crankbalance.studies.shop.shop_study` in a worker thread; without readings only the
-parts study is shown. The result belongs to the engine and the settings it was run for (the
-never-stale rule of :class:`~.widgets.StudyTab`): once either changes it is cleared and the
-tab says to re-run. "Shop sheet HTML" downloads :func:`crankbalance.shop_sheet.sheet_html`.
+:func:`crankbalance.studies.shop.shop_study` in a worker process (:mod:`.pool`); without
+readings only the parts study is shown. The result belongs to the engine and the settings
+it was run for (the never-stale rule of :class:`~.widgets.StudyTab`): once either changes
+it is cleared and the tab says to re-run. "Shop sheet HTML" downloads
+:func:`crankbalance.shop_sheet.sheet_html`.
 """
 
 from __future__ import annotations
@@ -92,6 +93,7 @@ class ShopTab(TabSettingsMixin, StudyTab):
     choices = CHOICES
     multiline = ("parts",)
     name = "shop"
+    what = "the balance shop"
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
@@ -170,9 +172,8 @@ class ShopTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         p = self.study.parts
         m, b = p.matching, p.bob_weights
-        proven = "proven optimal" if m.optimal else "best found within the time limit"
         self.summary.set_content(
-            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({proven}); spread "
+            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({m.status}); spread "
             f"{text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
             f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
             f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "

@@ -20,7 +20,7 @@ from ..format import depth_read_to
 from ..options import DEPTH_TO
 from . import studies
 from .messages import show_error
-from .widgets import StudyTab, plot_or_none
+from .widgets import CANCELLED, StudyTab, button_row, plot_or_none
 
 #: argument names of the library -> the settings of this tab (messages beside the input)
 ALIASES = {
@@ -130,6 +130,7 @@ def rotor_mass_note(iso: dict[str, Any], given: str) -> str:
 
 class SingleTab(StudyTab):
     name = "single"
+    what = "the single-cylinder study"
     prefixes = ("sc_", "rb_")
     result: Any = None
     rebalanced: Any = None
@@ -140,9 +141,11 @@ class SingleTab(StudyTab):
             with ui.card():
                 ui.label("Balance factor study").classes("text-subtitle1")
                 self.settings("sc_cylinder", "sc_balance_factor")
-                ui.button("Compute study", on_click=self.run_study).props("color=primary").mark(
-                    "run-single"
-                )
+                with button_row():
+                    ui.button("Compute study", on_click=self.run_study).props("color=primary").mark(
+                        "run-single"
+                    )
+                    self.cancel_button()
                 self.single_summary = ui.markdown("").mark("single-summary")
             with ui.card():
                 ui.label("ISO 21940-11 check").classes("text-subtitle1")
@@ -245,9 +248,8 @@ class SingleTab(StudyTab):
         s = self.page.project.settings
         started = self.stamp()
         try:
-            study = studies.single_study(c, s)
-            iso = studies.iso_check(c, s)
-            reb = studies.rebalance_study(c, s)
+            studies.check_single_cylinder(c, s)  # its settings, before it starts
+            done = await self.in_worker(self.what, studies.single_cylinder, c, dict(s))
         except InputError as error:
             self.result = self.rebalanced = None
             self.plan.set_content(f"No drilling plan: {show_error(self.page, error, ALIASES)}")
@@ -255,8 +257,12 @@ class SingleTab(StudyTab):
             for card in self.cards:
                 card.refresh()
             return
+        if done is None:
+            self.plan.set_content(CANCELLED)
+            return
         if not self.owns(started):
             return
+        study, iso, reb = done
         self.result, self.rebalanced = study, reb
         self.single_summary.set_content(
             f"Primary force **{study.primary_force:.1f} N**; with f_b = "

@@ -10,7 +10,7 @@ from __future__ import annotations
 import json
 import logging
 from abc import ABC, abstractmethod
-from collections.abc import Callable, Mapping, Sequence
+from collections.abc import Callable, Coroutine, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal
 
 from nicegui import run, ui
@@ -153,6 +153,9 @@ def browser_image_js(
     }
 
 
+#: what a study tab says of a run that was cancelled (its Cancel button, or the server
+#: stopping): the worker was ended, there is no result
+CANCELLED = "Run cancelled: no result."
 #: the note of a figure card whose 3-D view comes after the page's first paint
 DRAWING = "Drawing the 3-D view …"
 #: plotly trace types drawn with WebGL (a 3-D scene)
@@ -371,6 +374,8 @@ class StudyTab(Tab):
     result_for: tuple[Any, ...] | None = None
     #: the setting keys of this study start with one of these (``("cw_",)``)
     prefixes: tuple[str, ...] = ()
+    #: the study in words, for messages ("the counterweight optimiser")
+    what = "the study"
 
     def stamp(self) -> tuple[Any, ...]:
         """What a run started now belongs to: the engine and the study's settings."""
@@ -409,6 +414,47 @@ class StudyTab(Tab):
     def settings_changed(self) -> None:
         if self.result_for is not None and self.result_for != self.stamp():
             self.drop("these settings")
+
+    def cancel_button(self) -> None:
+        """The study's *Cancel* button (in the current layout element), shown while its run
+        waits for or holds a worker (:meth:`in_worker`)."""
+        self.cancel = (
+            ui.button("Cancel", on_click=self.cancel_run)
+            .props(f"outline color=negative data-testid={self.name}-cancel")
+            .mark(f"{self.name}-cancel")
+        )
+        self.cancel.set_visibility(False)
+
+    def cancel_run(self) -> None:
+        """Stop this tab's running study: its worker process is ended."""
+        job = self.page.job
+        if job is not None and job.owner == self.name:
+            job.cancel()
+
+    async def in_worker(self, what: str, function: Callable[..., Any], *args: Any) -> Any | None:
+        """``function(*args)`` in a worker process (:func:`.pool.run`: bounded, second to
+        the server, ended by :meth:`cancel_run` or when the page goes away); its result,
+        None when cancelled. A page runs one study at a time; the study's own
+        :class:`InputError` is raised (a second study of the page is refused with one)."""
+        from . import pool
+
+        page = self.page
+        if page.job is not None:
+            raise InputError(
+                "study",
+                page.job.what,
+                "is still running on this page: wait for it or cancel it on its tab",
+            )
+        job = pool.Job(what, owner=self.name)
+        page.job = job
+        self.cancel.set_visibility(True)
+        try:
+            return await pool.run(job, function, *args)
+        except pool.Cancelled:
+            return None
+        finally:
+            page.job = None
+            self.cancel.set_visibility(False)
 
     def reset(self) -> None:
         self.result_for = None
@@ -487,6 +533,10 @@ class TabSettingsMixin:
     #: the tab's study, ``function(engine spec, *parsed settings)``, for :meth:`run` (the
     #: explorer, which needs no engine, has a run of its own)
     study_function: Callable[[], Callable[..., Any]]
+    #: the study's work budget, ``check(engine spec, *parsed settings)``, raising an
+    #: InputError before the run when the work is over it; None: the settings' own limits
+    #: are its budget
+    work_check: Callable[[], Callable[..., None]] | None = None
     #: the tab's own (:class:`StudyTab`): whether the result of a run that started at
     #: ``started`` may be shown
     owns: Callable[[Any], bool]
@@ -495,6 +545,11 @@ class TabSettingsMixin:
     #: the tab's summary (markdown) and busy spinner
     summary: Any
     spinner: Any
+    #: the tab's own (:class:`StudyTab`): the study in words, a study in a worker process,
+    #: its Cancel button
+    what: str
+    in_worker: Callable[..., Coroutine[Any, Any, Any | None]]
+    cancel_button: Callable[[], None]
     #: the result of the last run (:meth:`run`) and the tab's own way of showing it
     study: Any = None
     show_study: Callable[[], None]
@@ -523,6 +578,7 @@ class TabSettingsMixin:
                 )
                 self.spinner = ui.spinner(size="md").props(f"data-testid={self.name}-busy")
                 self.spinner.set_visibility(False)
+                self.cancel_button()
 
     def field(self, key: str, label: str, default: str, hint: str) -> None:
         """One input of the tab's settings, in the current layout element."""
@@ -578,21 +634,27 @@ class TabSettingsMixin:
 
     async def run(self) -> None:
         """Run the tab's study (:meth:`study_function`) on the form's engine and show it."""
-        function = self.study_function()
-        done = await self.run_study(lambda parsed, c: function(c.spec, *parsed), "running …")
+        done = await self.run_study(
+            self.study_function(), lambda parsed, c: (c.spec, *parsed), "running …"
+        )
         if done is not None:
             self.study = done[1]
             self.show_study()
 
     async def run_study(
-        self, work: Callable[[Any, Any], Any], running: str, engine: bool = True
+        self,
+        function: Callable[..., Any],
+        arguments: Callable[[Any, Any], tuple[Any, ...]],
+        running: str,
+        engine: bool = True,
     ) -> tuple[Any, Any] | None:
-        """Run ``work(settings, computed engine)`` in a worker thread: the settings parsed by
-        :meth:`check` (with ``engine``, only while the form's engine is computed: else
-        None), the spinner shown and the summary saying ``running`` meanwhile. The settings
-        and the result, or None when it cannot run, fails (the summary says why; an error
-        of one of the tab's settings shows beside it too), is cancelled, or the engine or
-        settings were changed meanwhile (:meth:`owns`)."""
+        """Run ``function(*arguments(settings, computed engine))`` in a worker process
+        (:meth:`StudyTab.in_worker`): the settings parsed by :meth:`check` (with ``engine``,
+        only while the form's engine is computed: else None), the spinner and the Cancel
+        button shown and the summary saying ``running`` meanwhile. The settings and the
+        result, or None when it cannot run, fails (the summary says why; an error of one of
+        the tab's settings shows beside it too), is cancelled, or the engine or settings
+        were changed meanwhile (:meth:`owns`)."""
         parsed = self.check()
         if parsed is None:
             self.summary.set_content("Not run: see the message beside the field.")
@@ -604,7 +666,9 @@ class TabSettingsMixin:
         self.spinner.set_visibility(True)
         self.summary.set_content(running)
         try:
-            result = await run.io_bound(work, parsed, c)
+            if self.work_check is not None and c is not None:  # before the run starts
+                self.work_check()(c.spec, *parsed)
+            result = await self.in_worker(self.what, function, *arguments(parsed, c))
         except InputError as error:
             self.summary.set_content(str(error))
             if error.field in self.fields:
@@ -613,6 +677,6 @@ class TabSettingsMixin:
         finally:
             self.spinner.set_visibility(False)
         if result is None:
-            self.summary.set_content("run cancelled (server stopping): no result")
+            self.summary.set_content(CANCELLED)
             return None
         return (parsed, result) if self.owns(started) else None
