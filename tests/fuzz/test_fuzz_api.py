@@ -34,6 +34,8 @@ from hypothesis import strategies as st
 from crankbalance.io.engine_file import list_presets, preset_text
 from crankbalance.web import api
 
+from .test_fuzz_options import EXAMPLES
+
 HANG_GUARD = 180.0  # seconds
 PRESETS = list_presets()
 
@@ -504,7 +506,7 @@ def _response(connection: socket.socket) -> tuple[int, bytes, str] | None:
 
 
 @pytest.mark.parametrize("how", ANSWERED + FRAMING)
-@fuzz(10)
+@fuzz(EXAMPLES)  # per way of sending (CRANKBALANCE_FUZZ_EXAMPLES, default 10)
 @given(
     case=mutated_body(),
     mark=st.sampled_from(MARKS),
