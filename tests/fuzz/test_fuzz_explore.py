@@ -290,3 +290,20 @@ def test_empty_names_are_refused(option: str, value: str) -> None:
     code, _, err = run(["explore", "--cylinders", "4", option, value])
     assert code == 2 and err.startswith(f"error: {option} = {value!r}: "), err
     assert_clean([option, value], code, "", err)
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        ["--layout", "vee", "--bank-angle", "1e-12 deg", "--cylinders", "8"],
+        ["--layout", "vee", "--bank-angle", "1e-9 deg", "--cylinders", "4"],
+        ["--layout", "w", "--bank-angle", "1e-12 deg", "--cylinders", "6", "--crank", "split"],
+    ],
+)
+def test_banks_too_close_to_tell_apart_are_refused(args: list[str]) -> None:
+    """Found by this fuzzing: a vee of 1e-12 deg (banks closer than the enumeration's
+    tolerance of equal angles) had no symmetry at all, not even the identity, and ended in
+    a ChunkError traceback (numpy: zero-size array to reduction operation minimum)."""
+    code, _, err = run(["explore", *args])
+    assert code == 2 and err.startswith(f"error: --bank-angle = {args[3]!r}: required"), err
+    assert_clean(args, code, "", err)
