@@ -250,12 +250,14 @@ def explore(
     )
     with named_as_typed({"mode_shape": o.mode_shape, "orders": options["orders"]}):
         columns = list(evaluate(orders.template(problem)))
-    objectives = tuple(
-        rank.column_name(name.strip(), columns, "--objectives")
-        for name in o.objectives.split(",")
-        if name.strip()
-    )
-    key = rank.column_name(o.top_key, columns, "--top-key") if o.top_key else None
+    names = [name.strip() for name in o.objectives.split(",")]
+    if not all(names):  # an empty name was dropped without a word ("" left no front at all)
+        raise InputError(
+            "--objectives", o.objectives, "column names separated by commas, none empty"
+        )
+    objectives = tuple(rank.column_name(name, columns, "--objectives") for name in names)
+    # an empty --top-key is refused as an unknown column, not replaced by the default
+    key = None if o.top_key is None else rank.column_name(o.top_key, columns, "--top-key")
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
     if plot is not None and (len(objectives) < 2 or key is None):
