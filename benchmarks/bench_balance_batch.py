@@ -26,7 +26,8 @@ import tracemalloc
 
 import numpy as np
 
-from crankbalance.balancing import (
+from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.balancing import (
     CounterweightOptions,
     EngineBatch,
     ShaftOptions,
@@ -34,8 +35,7 @@ from crankbalance.balancing import (
     balance_batch,
     engine_batch,
 )
-from crankbalance.io.engine_file import load_engine
-from crankbalance.kinematics import harmonic_coefficients
+from crankbalance.physics.kinematics import harmonic_coefficients
 from crankbalance.studies.build import build_model
 
 TARGET = 50_000.0  # engines/s

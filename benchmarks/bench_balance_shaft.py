@@ -1,4 +1,4 @@
-"""Timings of the balance-shaft model (crankbalance.balance_shaft); prints a table.
+"""Timings of the balance-shaft model (crankbalance.physics.balance_shaft); prints a table.
 
 Run: ``python benchmarks/bench_balance_shaft.py``. Target (issue 6): the full optimum
 sweep, 200 design positions x 20 weights with all state variables (FE frequency
@@ -12,14 +12,14 @@ from collections.abc import Callable
 
 import numpy as np
 
-from crankbalance.balance_shaft import (
+from crankbalance.physics.balance_shaft import (
     BalanceShaft,
     compare_inline3_types,
     inline4_secondary_unbalance,
     inline4_study,
     shaft_response,
 )
-from crankbalance.beam import ShaftSection, beam_statics, natural_frequencies
+from crankbalance.physics.beam import ShaftSection, beam_statics, natural_frequencies
 
 SECTION = ShaftSection(outer_diameter=0.025)
 UNBALANCE = inline4_secondary_unbalance(0.5, 0.043, 0.140)

@@ -10,8 +10,8 @@ from pathlib import Path
 
 import numpy as np
 
-from crankbalance.balancing import CounterweightOptions, balance, counterweight_angle_sweep
 from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.balancing import CounterweightOptions, balance, counterweight_angle_sweep
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import balance_options
 

@@ -33,8 +33,8 @@ import tracemalloc
 
 import numpy as np
 
-from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.shaking import batch_amplitudes
+from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.physics.shaking import batch_amplitudes
 
 CYLINDERS, ORDERS = 8, 8
 THROUGHPUT_ENGINES, MEMORY_ENGINES = 100_000, 1_000_000

@@ -17,7 +17,7 @@ import time
 
 import numpy as np
 
-from crankbalance.counterweight_optimize import (
+from crankbalance.physics.counterweight_optimize import (
     _Problem,
     hypervolume_2d,
     optimize_counterweight,

@@ -21,8 +21,8 @@ import time
 from collections.abc import Callable
 from typing import Any
 
-from crankbalance import figures
 from crankbalance.io.engine_file import parse_engine_text, preset_text
+from crankbalance.output import figures
 from crankbalance.studies.engine import BalanceStudy, balance_engine
 
 TARGET = 0.050  # s per build

@@ -27,10 +27,10 @@ from dataclasses import replace
 
 import numpy as np
 
-from crankbalance.balancing import CounterweightOptions, balance
-from crankbalance.explore import merit, orders
-from crankbalance.explore.run import Keep, Sample, run
-from crankbalance.shaking import free_forces
+from crankbalance.physics.balancing import CounterweightOptions, balance
+from crankbalance.physics.explore import merit, orders
+from crankbalance.physics.shaking import free_forces
+from crankbalance.studies.explore import Keep, Sample, run
 
 TARGET = 0.3  # s, the inline-8 end to end, balancing included
 OBJECTIVES = ("F1_N", "M1_Nm", "F2_N", "M2_Nm")

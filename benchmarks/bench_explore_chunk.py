@@ -18,9 +18,9 @@ import functools
 import math
 import time
 
-from crankbalance.explore import merit, orders
-from crankbalance.explore.run import Keep, run
-from crankbalance.explore.work import MAX_TASKS, plan
+from crankbalance.physics.explore import merit, orders
+from crankbalance.physics.explore.work import MAX_TASKS, plan
+from crankbalance.studies.explore import Keep, run
 
 #: the chosen chunk's run may take at most this many times the best chunk's
 TARGET = 1.5

@@ -22,7 +22,7 @@ import statistics
 import time
 from pathlib import Path
 
-from crankbalance import figures, render
+from crankbalance.output import figures, render
 from crankbalance.studies.engine import analyze
 
 TARGET = 1.0  # s per export after the first

@@ -21,8 +21,8 @@ import time
 import numpy as np
 
 from crankbalance.io.engine_file import load_engine
-from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.shaking import free_forces
+from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.physics.shaking import free_forces
 from crankbalance.studies.build import build_model
 
 TARGET = 0.05e-3  # s per analysis

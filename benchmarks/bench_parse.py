@@ -17,8 +17,8 @@ import tomllib
 from collections.abc import Callable
 
 from crankbalance.io.engine_file import load_engine, preset_text
-from crankbalance.shaking import free_forces
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.shaking import free_forces
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import analyze
 from crankbalance.units import parse_quantity

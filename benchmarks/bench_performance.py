@@ -13,13 +13,13 @@ import time
 
 import numpy as np
 
-from crankbalance.engine_cycle import (
+from crankbalance.physics.engine_cycle import (
     CylinderSpec,
     WiebeCombustion,
     balance_sensitivity,
     engine_cycle,
 )
-from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
+from crankbalance.physics.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 
 def best_of(function, repeat: int = 3) -> float:

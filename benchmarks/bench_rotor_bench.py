@@ -20,7 +20,13 @@ from collections.abc import Callable
 
 import numpy as np
 
-from crankbalance.rotor_bench import BenchRotor, BenchSettings, _bench_model, disc_rotor, run_bench
+from crankbalance.physics.rotor_bench import (
+    BenchRotor,
+    BenchSettings,
+    _bench_model,
+    disc_rotor,
+    run_bench,
+)
 
 TARGET = 0.2  # s of CPU per run
 

@@ -30,7 +30,7 @@ from collections.abc import Callable  # noqa: E402
 import numpy as np  # noqa: E402
 
 from crankbalance.io.engine_file import load_engine  # noqa: E402
-from crankbalance.shop.scatter import CHUNK, PartScatter, scatter_study  # noqa: E402
+from crankbalance.physics.shop.scatter import CHUNK, PartScatter, scatter_study  # noqa: E402
 from crankbalance.studies.build import build_model  # noqa: E402
 
 TARGET = 1e6  # samples per second

@@ -45,7 +45,7 @@ import statistics
 import time
 from typing import Any
 
-from crankbalance.render import CHROMIUM_FLAGS
+from crankbalance.output.render import CHROMIUM_FLAGS
 
 CHROMIUM = "/usr/bin/chromium"
 ENGINE = "v12-60"
@@ -229,7 +229,7 @@ async def run(
 def reference(count: int) -> list[float]:
     """The server's work for one edit of the V12, in this process: the form validated,
     analysis and balancing, the 3-D crank figure and its JSON [s]."""
-    from crankbalance import figures
+    from crankbalance.output import figures
     from crankbalance.web.project import Project
 
     project = Project.from_preset(ENGINE)
@@ -247,7 +247,7 @@ def reference(count: int) -> list[float]:
 def png_reference(count: int) -> dict[str, list[float]]:
     """``render.to_image`` of the figures of :data:`PNG_FIGURES` for the V12 in this process,
     after a first export: ``count`` each [s]."""
-    from crankbalance import figures, render
+    from crankbalance.output import figures, render
     from crankbalance.web.project import Project
 
     c = Project.from_preset(ENGINE).compute()

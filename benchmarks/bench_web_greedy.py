@@ -24,7 +24,7 @@ from typing import Any
 
 import numpy as np
 
-from crankbalance.render import CHROMIUM_FLAGS
+from crankbalance.output.render import CHROMIUM_FLAGS
 from crankbalance.web.server import running_server
 
 #: the largest optimisation of the form with its largest population

@@ -9,13 +9,18 @@ The browser-level timing (input to updated page) is in benchmarks/bench_web.py.
 from __future__ import annotations
 
 import argparse
+import sys
 import time
 from concurrent.futures import ThreadPoolExecutor
+from pathlib import Path
 
 import numpy as np
 
-from crankbalance.web.loadgen import run_session
 from crankbalance.web.server import running_server
+
+# the load generator is test scaffolding (tests/web/loadgen.py), not part of the package
+sys.path.insert(0, str(Path(__file__).resolve().parents[1] / "tests" / "web"))
+from loadgen import run_session  # noqa: E402
 
 
 def main() -> None:

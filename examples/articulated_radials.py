@@ -5,7 +5,7 @@ For each radial preset with ``[crank_train.articulated]`` this prints
 1. the free force amplitudes of orders 1-4 [N]: the simple model (every rod on the
    crankpin, the same masses), the articulated model of the preset (link pin angles equal
    to the angles between the cylinders) and the articulated model with the link pin angles
-   that even out the strokes (:func:`crankbalance.articulated.even_stroke_angles`);
+   that even out the strokes (:func:`crankbalance.physics.articulated.even_stroke_angles`);
 2. every cylinder's stroke [mm], top dead centre position [mm from the crank axis] and
    lag of its top dead centre behind the plain slider-crank's [deg], for both angle sets.
 
@@ -20,8 +20,8 @@ from dataclasses import replace
 
 import numpy as np
 
-from crankbalance.articulated import dead_centres, even_stroke_angles
-from crankbalance.shaking import free_forces
+from crankbalance.physics.articulated import dead_centres, even_stroke_angles
+from crankbalance.physics.shaking import free_forces
 from crankbalance.studies.engine import as_model
 
 PRESETS = ("radial5-kinner", "radial7-scarab", "radial9-r985")

@@ -9,15 +9,15 @@ Run: python examples/balance_shaft_inline4.py
 
 import numpy as np
 
-from crankbalance.balance_shaft import (
+from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.balance_shaft import (
     BalanceShaft,
     design_checks,
     inline4_secondary_unbalance,
     inline4_study,
     shaft_response,
 )
-from crankbalance.beam import ShaftSection
-from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.beam import ShaftSection
 from crankbalance.studies.build import build_model
 
 engine = build_model(load_engine("inline4"))

@@ -16,9 +16,9 @@ from __future__ import annotations
 import tempfile
 from pathlib import Path
 
-from crankbalance.counterweight import required_first_moment
-from crankbalance.counterweight_optimize import optimize_counterweight
 from crankbalance.io.cad import export_counterweight, mesh_mass_properties
+from crankbalance.physics.counterweight import required_first_moment
+from crankbalance.physics.counterweight_optimize import optimize_counterweight
 from crankbalance.studies.engine import balance_engine
 
 ENGINE = Path(__file__).resolve().parent / "paper_inline3.toml"

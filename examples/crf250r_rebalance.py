@@ -15,15 +15,15 @@ from __future__ import annotations
 
 import math
 
-from crankbalance.rotor_bench import equal_inertia_test_rotor
-from crankbalance.single_cylinder import (
+from crankbalance.physics.rotor_bench import equal_inertia_test_rotor
+from crankbalance.physics.single_cylinder import (
     FaceRemoval,
     balance_factor_from_mass_properties,
     balance_factor_study,
     rebalance,
     sum_parts,
 )
-from crankbalance.tolerance import permissible_unbalance
+from crankbalance.physics.tolerance import permissible_unbalance
 
 G = 1e-3  # kg per gram
 MM = 1e-3  # m per millimetre

@@ -70,8 +70,8 @@ def main(output: str) -> None:
         "The determinate crank gives the same loads for both patterns: by the lever rule the "
         "centrifugal forces of each pattern put nothing on the bearings (docs/main_bearings.md)."
     )
-    from crankbalance import figures, render
     from crankbalance.io.files import write_atomic
+    from crankbalance.output import figures, render
 
     fig = figures.bearing_loads_figure(list(studies.values()), labels=tuple(studies))
     suffix = Path(output).suffix.lower()

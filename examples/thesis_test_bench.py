@@ -15,8 +15,8 @@ from __future__ import annotations
 
 import math
 
-from crankbalance.friction import friction_coefficient_from_torque, mean_equivalent_load
-from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
+from crankbalance.physics.friction import friction_coefficient_from_torque, mean_equivalent_load
+from crankbalance.physics.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 SPEEDS = (3000, 6000, 9000)
 HOLE = {1: 0.0, 2: 0.0146, 3: 0.0584}

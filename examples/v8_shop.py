@@ -17,8 +17,8 @@ from __future__ import annotations
 import math
 from pathlib import Path
 
-from crankbalance.options import ShopOptions, parse_options
-from crankbalance.shop_sheet import write_sheet
+from crankbalance.output.shop_sheet import write_sheet
+from crankbalance.schema.settings import ShopOptions, parse_options
 from crankbalance.studies.shop import shop_study
 
 PARTS = Path(__file__).resolve().parent / "v8_parts.csv"

@@ -1,7 +1,7 @@
 """Articulated (master-and-link) rods of radial engines: the physics module against
 independent references.
 
-- The master piston is an ordinary slider-crank (:mod:`crankbalance.kinematics`).
+- The master piston is an ordinary slider-crank (:mod:`crankbalance.physics.kinematics`).
 - With a zero link pin radius every link piston is an ordinary slider-crank on the pin,
   and its harmonics equal the exact slider-crank coefficients of the simple model.
 - The analytic rates against central differences of the positions.
@@ -23,8 +23,9 @@ import numpy as np
 import pytest
 from scipy.optimize import brentq
 
-from crankbalance import kinematics
-from crankbalance.articulated import (
+from crankbalance.errors import InputError
+from crankbalance.physics import kinematics
+from crankbalance.physics.articulated import (
     ArticulatedRods,
     cylinder_coefficients,
     dead_centres,
@@ -35,8 +36,7 @@ from crankbalance.articulated import (
     motion,
     piston_position,
 )
-from crankbalance.errors import InputError
-from crankbalance.model import EngineModel
+from crankbalance.physics.model import EngineModel
 
 
 def _radial(
@@ -142,7 +142,8 @@ def test_zero_link_pin_radius_gives_plain_slider_cranks_on_the_pin() -> None:
 
 def test_zero_link_pin_radius_harmonics_equal_the_simple_models() -> None:
     """Per kilogram at 1 rad/s the simple model has F_n^+ = (r/2) c_n e^{i(1-n) beta} and
-    F_n^- = (r/2) conj(c_n) e^{i(1+n) beta} (crankbalance.shaking docstring, throw angle 0)."""
+    F_n^- = (r/2) conj(c_n) e^{i(1+n) beta} (crankbalance.physics.shaking docstring, throw angle
+    0)."""
     rods = _radial(n=5, rho=0.0)
     h = harmonics(rods, orders=8)
     r, l = rods.crank_radius, rods.rod_length[0]
@@ -352,7 +353,7 @@ def _preset_dict(name: str) -> dict:
 
 
 def _model(data: dict) -> EngineModel:
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.schema.engine import spec_from_dict
     from crankbalance.studies.build import build_model
 
     return build_model(spec_from_dict(data))
@@ -362,7 +363,7 @@ def _model(data: dict) -> EngineModel:
 def test_zero_link_pin_radius_engine_equals_the_simple_radial(name: str) -> None:
     """An articulated engine file with link pin radius 0 and link rods as long as the master
     rod is the simple radial (every rod on the pin): the same FreeForces to 1e-9."""
-    from crankbalance.shaking import exact_time_domain, free_forces
+    from crankbalance.physics.shaking import exact_time_domain, free_forces
 
     data = _preset_dict(name)
     art = data["crank_train"]["articulated"]
@@ -471,7 +472,7 @@ def test_link_rod_split_uses_the_link_rod_length() -> None:
 def test_bad_articulated_tables_name_the_field(
     change: Callable[[dict], object], field: str, words: str
 ) -> None:
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.schema.engine import spec_from_dict
 
     data = _preset_dict("radial5-kinner")
     change(data)
@@ -482,7 +483,7 @@ def test_bad_articulated_tables_name_the_field(
 
 
 def test_articulated_table_needs_a_radial() -> None:
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.schema.engine import spec_from_dict
 
     data = _preset_dict("radial5-kinner")
     data["crank_train"].update(layout="inline", crank_pitch="120 mm")
@@ -502,7 +503,7 @@ def test_analyze_and_balance_see_the_articulated_forces(
     same amplitudes before balancing."""
     import json
 
-    from crankbalance.articulated import harmonics as articulated_harmonics
+    from crankbalance.physics.articulated import harmonics as articulated_harmonics
 
     from .conftest import run_cli
 
@@ -536,7 +537,7 @@ def test_analyze_and_balance_see_the_articulated_forces(
 def test_engine_phasors_equal_the_exact_time_domain(name: str) -> None:
     """The free forces of an articulated preset (cylinder_coefficients rows plus the link
     pins' phasors) rebuild the exact time-domain force of every cylinder's masses."""
-    from crankbalance.shaking import exact_time_domain, free_forces, phasor_curve
+    from crankbalance.physics.shaking import exact_time_domain, free_forces, phasor_curve
 
     model = _model(_preset_dict(name))
     f = free_forces(model, 24)
@@ -572,7 +573,7 @@ def test_free_forces_are_linear_in_the_masses_as_the_balance_shop_assumes() -> N
     big end with its pin). For an articulated radial the sum of those unit engines, weighted
     by the real masses, must give the engine's free forces: the link pins' phasors follow
     each cylinder's big-end mass, not a fixed table."""
-    from crankbalance.shaking import free_forces
+    from crankbalance.physics.shaking import free_forces
 
     model = _model(_preset_dict("radial7-scarab"))
     c, t = model.cylinders, model.throws
@@ -626,7 +627,7 @@ def test_offsets_per_cylinder_enter_the_articulated_motion() -> None:
     """cylinder_offsets of an articulated radial reach the articulated geometry; its free
     forces still rebuild the exact time-domain force, and the master piston stays the
     offset slider-crank of the kinematics module."""
-    from crankbalance.shaking import exact_time_domain, free_forces, phasor_curve
+    from crankbalance.physics.shaking import exact_time_domain, free_forces, phasor_curve
 
     data = _preset_dict("radial5-kinner")
     offsets = ["2 mm", "-1 mm", "0 mm", "3 mm", "1.5 mm"]
@@ -652,7 +653,7 @@ def test_offsets_per_cylinder_enter_the_articulated_motion() -> None:
 
 
 def test_analysis_json_states_the_rods_and_strokes() -> None:
-    from crankbalance.articulated import dead_centres
+    from crankbalance.physics.articulated import dead_centres
     from crankbalance.studies.engine import analyze
 
     data = analyze("radial7-scarab").to_dict()["engine"]["articulated"]
@@ -672,8 +673,8 @@ def test_balancing_cancels_the_articulated_orders_in_the_time_domain() -> None:
     only the backward first order (from the heavier master cylinder and the link pins), and
     a secondary shaft pair cancels the articulated second order, as the time-domain check
     (built from the exact articulated motion) confirms."""
-    from crankbalance.shaking import free_forces
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.physics.shaking import free_forces
+    from crankbalance.schema.engine import spec_from_dict
     from crankbalance.studies.engine import balance_engine
 
     data = _preset_dict("radial7-scarab")

@@ -400,7 +400,7 @@ SWITCHES = ("--print-to-pdf", "--screenshot")
 #: (tempfile.TemporaryDirectory) whose bytes are then written with write_atomic, so that an
 #: error of the real write (a full disk) is reported as it is: (module, what) -> why
 ALLOWED = {
-    ("render.py", "--print-to-pdf"): "html_to_pdf: Chromium prints into a scratch folder; "
+    ("output/render.py", "--print-to-pdf"): "html_to_pdf: Chromium prints into a scratch folder; "
     "the checked PDF bytes are written by report.write_report with write_atomic",
     ("io/cad.py", "export_step"): "write_step: build123d writes into a scratch folder; "
     "the bytes are written with write_atomic",

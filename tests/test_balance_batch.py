@@ -9,7 +9,9 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.balancing import (
+from crankbalance.errors import InputError
+from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.balancing import (
     BalanceResult,
     BatchBalance,
     BatchCounterweights,
@@ -26,9 +28,7 @@ from crankbalance.balancing import (
     engine_batch,
     stack_models,
 )
-from crankbalance.errors import InputError
-from crankbalance.io.engine_file import load_engine
-from crankbalance.model import EngineModel
+from crankbalance.physics.model import EngineModel
 from crankbalance.studies.build import build_model
 
 #: agreement asked of the batch with the one-engine solver

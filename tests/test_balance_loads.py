@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance import friction
 from crankbalance.errors import InputError
+from crankbalance.physics import friction
 from crankbalance.studies.balance_loads import bearing_sweep
 
 from .conftest import run_cli

@@ -1,4 +1,5 @@
-"""Unit tests of crankbalance.balance_shaft against textbook closed forms and second methods."""
+"""Unit tests of crankbalance.physics.balance_shaft against textbook closed forms and second
+methods."""
 
 from __future__ import annotations
 
@@ -9,7 +10,8 @@ import numpy as np
 import pytest
 import scipy.linalg
 
-from crankbalance.balance_shaft import (
+from crankbalance.errors import InputError
+from crankbalance.physics.balance_shaft import (
     BalanceShaft,
     compare_inline3_types,
     design_checks,
@@ -22,14 +24,13 @@ from crankbalance.balance_shaft import (
     minimise_on_grid,
     shaft_response,
 )
-from crankbalance.beam import (
+from crankbalance.physics.beam import (
     ShaftSection,
     assemble,
     beam_statics,
     natural_frequencies,
     shape_vectors,
 )
-from crankbalance.errors import InputError
 
 from .conftest import run_cli
 

@@ -8,16 +8,16 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.balancing import (
+from crankbalance.errors import InputError
+from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.balancing import (
     CounterweightOptions,
     ShaftOptions,
     balance,
     counterweight_angle_sweep,
 )
-from crankbalance.errors import InputError
-from crankbalance.io.engine_file import load_engine
-from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import balance_engine
 
@@ -195,7 +195,7 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
     """The balance-shaft designer takes its unbalance from the balancing solver: inline-4
     Lanchester shafts A2 m r / 2 at 2w; the paper inline-3's single counter-rotating shaft
     sqrt(3) m r a / (2 l) at w (Kim (2018), Eq. 12)."""
-    from crankbalance.balance_shaft import inline3_couple_unbalance
+    from crankbalance.physics.balance_shaft import inline3_couple_unbalance
     from crankbalance.studies.requirements import shaft_requirement
 
     m = model_of("inline4")

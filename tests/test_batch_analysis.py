@@ -6,16 +6,16 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from crankbalance import kinematics
-from crankbalance.kinematics import (
+from crankbalance.physics import kinematics
+from crankbalance.physics.kinematics import (
     CACHE_SIZE,
     cached_exact_coefficients,
     exact_coefficients,
     harmonic_coefficients,
     piston_acceleration,
 )
-from crankbalance.model import EngineModel
-from crankbalance.shaking import batch_amplitudes, free_forces, reciprocating_phasors
+from crankbalance.physics.model import EngineModel
+from crankbalance.physics.shaking import batch_amplitudes, free_forces, reciprocating_phasors
 
 CYLINDERS = 8
 

@@ -9,7 +9,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance import friction
+from crankbalance.physics import friction
 
 from .conftest import run_cli
 
@@ -148,8 +148,8 @@ def test_figure_overlays_studies() -> None:
     """One trace per bearing and study in the polar row, one per journal and study below;
     the labels name the studies."""
     pytest.importorskip("plotly")
-    from crankbalance import figures
     from crankbalance.errors import InputError
+    from crankbalance.output import figures
     from crankbalance.studies.loads import bearing_loads
 
     eight = bearing_loads("inline4", {"samples": 36, "gas": False})
@@ -219,7 +219,7 @@ def test_w_engines_with_throws_sharing_a_plane(
     plane (default or given bearings), and the bearing loads carry the crank (their mean
     over the cycle of the sum is the loads', checked in the physics tests; here each
     model's loads are finite and every bearing between two planes is loaded)."""
-    from crankbalance.main_bearings import crank_planes
+    from crankbalance.physics.main_bearings import crank_planes
     from crankbalance.studies.engine import as_model
 
     planes = crank_planes(as_model(engine).throw_position)[0]

@@ -12,8 +12,8 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance.explore import orders
 from crankbalance.io.parquet import read_parquet
+from crankbalance.physics.explore import orders
 
 from .conftest import run_cli
 

@@ -10,7 +10,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance import torsional as tv
+from crankbalance.physics import torsional as tv
 from crankbalance.studies.engine import as_model
 
 from .conftest import run_cli
@@ -205,7 +205,7 @@ def test_pressure_table_gives_the_gas_torque_of_the_table(capsys, tmp_path: Path
     """--pressure-csv (the tables of ``cycle``): a table of the default Wiebe model sampled
     every degree gives the same resonances as the model (to the table's interpolation);
     the Wiebe options are refused with a table."""
-    from crankbalance.engine_cycle import CylinderSpec, WiebeCombustion, wiebe_pressure
+    from crankbalance.physics.engine_cycle import CylinderSpec, WiebeCombustion, wiebe_pressure
 
     model = as_model("inline6")
     wiebe = WiebeCombustion(13.5, math.radians(-25.0), math.radians(50.0))

@@ -1,4 +1,4 @@
-"""Tests of crankbalance.counterweight, counterweight_optimize and io.cad: closed forms
+"""Tests of crankbalance.physics.counterweight, counterweight_optimize and io.cad: closed forms
 against shapely polygons, inertia against polygon integration, exports read back,
 optimiser against exhaustive search."""
 
@@ -9,7 +9,14 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.counterweight import (
+from crankbalance.errors import InputError
+from crankbalance.io.cad import (
+    export_counterweight,
+    mesh_mass_properties,
+    profile_dxf,
+    profile_svg,
+)
+from crankbalance.physics.counterweight import (
     PARAMETERS,
     CounterweightDesign,
     counterweight_properties,
@@ -17,18 +24,11 @@ from crankbalance.counterweight import (
     profile_validity,
     thickness_for_first_moment,
 )
-from crankbalance.counterweight_optimize import (
+from crankbalance.physics.counterweight_optimize import (
     hypervolume_2d,
     optimize_counterweight,
     pareto_indices,
     parse_bounds,
-)
-from crankbalance.errors import InputError
-from crankbalance.io.cad import (
-    export_counterweight,
-    mesh_mass_properties,
-    profile_dxf,
-    profile_svg,
 )
 
 shapely = pytest.importorskip("shapely")
@@ -327,7 +327,7 @@ def _exhaustive(bounds, required, max_radius, n=56, zoom=41):
     grid, then for each objective a zoom^d grid over +-2 cells around its best grid point
     (cells 20x finer near the optimum than the coarse grid). Returns (least mass, least
     radius) of the feasible grid points."""
-    from crankbalance.counterweight_optimize import _Problem
+    from crankbalance.physics.counterweight_optimize import _Problem
 
     full = parse_bounds(bounds)
     prob = _Problem(required, full, 8000.0, math.inf, max_radius, 100.0, "true", ("mass", "radius"))
@@ -598,7 +598,7 @@ def test_requirement_from_the_balancing_solver(capsys):
     """2021 paper Table 2: m_c = 1.2413 kg at r_c = 30 mm for the inline-3 of Table 1."""
     from pathlib import Path
 
-    from crankbalance.counterweight import required_first_moment
+    from crankbalance.physics.counterweight import required_first_moment
     from crankbalance.studies.engine import balance_engine
 
     engine = Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml"

@@ -12,8 +12,8 @@ import pytest
 
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
-from crankbalance import figures  # noqa: E402
 from crankbalance.io.engine_file import list_presets  # noqa: E402
+from crankbalance.output import figures  # noqa: E402
 from crankbalance.studies.engine import balance_engine  # noqa: E402
 
 AXES = ("x", "y", "z")

@@ -12,9 +12,9 @@ import numpy as np
 import pytest
 from scipy import integrate
 
-from crankbalance import torsional as tv
 from crankbalance.errors import InputError
-from crankbalance.options import (
+from crankbalance.physics import torsional as tv
+from crankbalance.schema.settings import (
     BearingOptions,
     CombustionOptions,
     CycleOptions,

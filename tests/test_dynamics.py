@@ -1,4 +1,5 @@
-"""Unit tests of crankbalance.rotor_bench (bench ODE) and crankbalance.engine_cycle (engine
+"""Unit tests of crankbalance.physics.rotor_bench (bench ODE) and crankbalance.physics.engine_cycle
+(engine
 cycle, sensitivity sweep)."""
 
 from __future__ import annotations
@@ -10,8 +11,9 @@ import pytest
 from scipy.linalg import expm
 from scipy.optimize import brentq
 
-from crankbalance import kinematics
-from crankbalance.engine_cycle import (
+from crankbalance.errors import InputError
+from crankbalance.physics import kinematics
+from crankbalance.physics.engine_cycle import (
     CylinderSpec,
     WiebeCombustion,
     balance_sensitivity,
@@ -19,8 +21,7 @@ from crankbalance.engine_cycle import (
     engine_cycle,
     wiebe_pressure,
 )
-from crankbalance.errors import InputError
-from crankbalance.rotor_bench import BenchRotor, BenchSettings, disc_rotor, run_bench
+from crankbalance.physics.rotor_bench import BenchRotor, BenchSettings, disc_rotor, run_bench
 
 # ----------------------------------------------------------------------------------------
 # Bench: constant Coulomb friction, no unbalance -> closed form
@@ -84,7 +85,7 @@ def test_bench_against_closed_form_constant_friction():
 
 def test_bench_unbalance_friction_is_coulomb_on_mean_reaction():
     """With unbalance the mean friction torque is mu d/2 times the mean reaction magnitude."""
-    from crankbalance.friction import mean_equivalent_load
+    from crankbalance.physics.friction import mean_equivalent_load
 
     rotor = BenchRotor(
         mass=2.5, inertia=2.6e-3, journal_diameter=0.02, friction_coefficient=0.1, unbalance=1e-3

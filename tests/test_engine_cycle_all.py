@@ -1,6 +1,6 @@
-"""The whole engine over one working cycle (crankbalance.engine_cycle_all, issue 18 item 2):
+"""The whole engine over one working cycle (crankbalance.physics.engine_cycle_all, issue 18 item 2):
 against the single-cylinder engine cycle, closed forms of the inertia torque, the free
-forces of crankbalance.shaking, the energy balance and a re-integration of the speed."""
+forces of crankbalance.physics.shaking, the energy balance and a re-integration of the speed."""
 
 from __future__ import annotations
 
@@ -14,21 +14,21 @@ import pytest
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankbalance.engine_cycle import (
+from crankbalance.errors import InputError
+from crankbalance.physics.engine_cycle import (
     CylinderSpec,
     WiebeCombustion,
     cylinder_volume,
     engine_cycle,
     wiebe_pressure,
 )
-from crankbalance.engine_cycle_all import (
+from crankbalance.physics.engine_cycle_all import (
     energy_excursion,
     engine_cycle_all,
-    firing_angles,
     flywheel_inertia,
 )
-from crankbalance.errors import InputError
-from crankbalance.shaking import exact_time_domain
+from crankbalance.physics.firing import firing_angles
+from crankbalance.physics.shaking import exact_time_domain
 from crankbalance.studies.engine import as_model
 from crankbalance.studies.performance import cycle_cylinder
 
@@ -134,7 +134,7 @@ def test_vee_twin_90_torque_is_the_sum_of_two_phased_single_cylinders():
 @pytest.mark.parametrize("preset", ["inline4", "v8-crossplane", "w12", "radial5", "v2-90"])
 def test_pin_and_side_forces_of_inertia_sum_to_the_free_force(preset):
     """Sum over throws of the rods' inertia force on the pins, plus the pistons' inertia
-    side forces on the walls, is the free force of crankbalance.shaking (exact time
+    side forces on the walls, is the free force of crankbalance.physics.shaking (exact time
     domain): the same physics by two codes. The side forces carry the rods' obliquity, so
     the pin forces alone do not make the free force (checked too)."""
     base = as_model(preset)
@@ -522,7 +522,7 @@ def test_offset_cylinders_fire_at_their_real_top_dead_centre(preset):
     the slider-crank of kinematics, a second code), so the VW W12's even crank fires every
     60 deg (its crank is built for even firing with the offsets; the reviewer found
     53.1/66.9 deg when the offsets were left out of the firing angles)."""
-    from crankbalance.kinematics import piston_position, piston_velocity
+    from crankbalance.physics.kinematics import piston_position, piston_velocity
 
     model = as_model(preset)
     result = engine_cycle_all(

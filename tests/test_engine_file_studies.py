@@ -7,8 +7,8 @@ import math
 
 import pytest
 
-from crankbalance.engine_cycle import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.errors import InputError
+from crankbalance.physics.engine_cycle import CylinderSpec, WiebeCombustion, engine_cycle
 from crankbalance.studies.engine import as_model
 
 from .conftest import run_cli

@@ -24,16 +24,16 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
-from crankbalance.explore import merit, orders, rank, work
-from crankbalance.explore.candidates import Candidates
-from crankbalance.explore.rank import (
+from crankbalance.physics.explore import merit, orders, rank, work
+from crankbalance.physics.explore.candidates import Candidates
+from crankbalance.physics.explore.rank import (
     FILTER_CHARS,
     FILTER_DEPTH,
     FILTER_NUMBER,
     FILTER_OPERATORS,
     parse_filter,
 )
-from crankbalance.explore.run import Keep, evaluate_task, run, tasks
+from crankbalance.studies.explore import Keep, evaluate_task, run, tasks
 
 from .conftest import run_cli
 

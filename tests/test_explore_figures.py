@@ -10,10 +10,10 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance import figures
-from crankbalance.explore import merit, orders, rank
-from crankbalance.explore.run import Keep, run
 from crankbalance.io.parquet import read_parquet
+from crankbalance.output import figures
+from crankbalance.physics.explore import merit, orders, rank
+from crankbalance.studies.explore import Keep, run
 
 from .conftest import run_cli
 

@@ -14,18 +14,18 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from crankbalance.balancing import CounterweightOptions, ShaftOptions, balance
 from crankbalance.errors import InputError
-from crankbalance.explore.candidates import Candidates
-from crankbalance.explore.merit import (
+from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
+from crankbalance.physics.explore.candidates import Candidates
+from crankbalance.physics.explore.merit import (
     TORSION_ASSUMPTION,
     merit,
     mode_weights,
     torsion_orders,
 )
-from crankbalance.explore.rank import parse_filter
-from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.model import EngineModel
+from crankbalance.physics.explore.rank import parse_filter
+from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.physics.model import EngineModel
 from crankbalance.studies.engine import analyze, as_model
 
 PI = math.pi

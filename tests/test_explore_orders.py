@@ -3,7 +3,7 @@
 Known results (inline-4 flat crank, the makers' V8 orders, the 270/450 twins), counts
 against a brute force written here independently of the module (every permutation,
 the crank from ``studies.build``, the mirror maps by hand), chunking, and the partition of
-all orders into classes. The makers' maps come from crankbalance.numbering
+all orders into classes. The makers' maps come from crankbalance.physics.firing
 (docs/engine_file.md, "Makers' numbering").
 """
 
@@ -18,14 +18,14 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
-from crankbalance.explore import orders
 from crankbalance.io.engine_file import parse_engine_text, preset_text
-from crankbalance.model import EngineModel
-from crankbalance.numbering import SCHEMES
+from crankbalance.physics.explore import orders
+from crankbalance.physics.firing import SCHEMES
+from crankbalance.physics.model import EngineModel
 from crankbalance.studies.build import build_model
 
 V90 = math.pi / 2
-#: the makers' V8 numberings, from their one place (crankbalance.numbering, where the rules
+#: the makers' V8 numberings, from their one place (crankbalance.physics.firing, where the rules
 #: and sources are): GM numbers along the crank, odd cylinders on the left bank, even on the
 #: right (crankbalance's bank A); Ford bank after bank, the right bank first: its numbers
 #: are crankbalance's. maker's number -> crankbalance's.

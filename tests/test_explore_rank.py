@@ -10,7 +10,7 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from crankbalance.errors import InputError
-from crankbalance.explore.rank import BLOCK, column_name, pareto, parse_filter, top
+from crankbalance.physics.explore.rank import BLOCK, column_name, pareto, parse_filter, top
 
 COLUMNS = {
     "F1_N": np.array([0.0, 1.0, 2.0, 0.0]),

@@ -2,8 +2,8 @@
 
 The enumeration here is a small one of this file's own (the firing orders of an even-firing
 four-stroke in-line six, one per time-reversal pair), so that the runner is tested apart
-from :mod:`crankbalance.explore.orders`; the figures of merit are real ones
-(:func:`crankbalance.shaking.batch_amplitudes`).
+from :mod:`crankbalance.physics.explore.orders`; the figures of merit are real ones
+(:func:`crankbalance.physics.shaking.batch_amplitudes`).
 """
 
 from __future__ import annotations
@@ -20,13 +20,13 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
-from crankbalance.explore import merit, orders
-from crankbalance.explore.candidates import Candidates
-from crankbalance.explore.run import ChunkError, Keep, Sample, progress_line, run, tasks
 from crankbalance.io.engine_file import load_engine
 from crankbalance.io.parquet import read_parquet
-from crankbalance.shaking import batch_amplitudes
+from crankbalance.physics.explore import merit, orders
+from crankbalance.physics.explore.candidates import Candidates
+from crankbalance.physics.shaking import batch_amplitudes
 from crankbalance.studies.build import build_model
+from crankbalance.studies.explore import ChunkError, Keep, Sample, progress_line, run, tasks
 
 from .conftest import hang_guard
 

@@ -7,8 +7,8 @@ import pytest
 
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
-from crankbalance import figures  # noqa: E402
 from crankbalance.errors import InputError  # noqa: E402
+from crankbalance.output import figures  # noqa: E402
 from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 
 
@@ -362,7 +362,7 @@ def test_residuals_bar_equals_solver(inline4: tuple) -> None:
 
 # --------------------------------------------------------------------------- other studies
 def test_single_cylinder_figures_match_study() -> None:
-    from crankbalance.single_cylinder import balance_factor_study
+    from crankbalance.physics.single_cylinder import balance_factor_study
 
     s = balance_factor_study(0.3, 0.03, 900.0, 0.5, rod_length=0.12)
     fig = figures.single_cylinder_forces(s)
@@ -382,7 +382,7 @@ def test_counterweight_figures_match_optimum() -> None:
     pytest.importorskip("shapely")
     from shapely.geometry import Polygon
 
-    from crankbalance.counterweight_optimize import optimize_counterweight
+    from crankbalance.physics.counterweight_optimize import optimize_counterweight
 
     o = optimize_counterweight(0.036, rng=1, population=256, iterations=4, children=256)
     fig = figures.pareto_front(o)
@@ -403,8 +403,8 @@ def test_counterweight_figures_match_optimum() -> None:
 
 
 def test_shaft_figures_match_study() -> None:
-    from crankbalance.balance_shaft import BalanceShaft, inline4_study, shaft_response
-    from crankbalance.beam import ShaftSection
+    from crankbalance.physics.balance_shaft import BalanceShaft, inline4_study, shaft_response
+    from crankbalance.physics.beam import ShaftSection
 
     section = ShaftSection(outer_diameter=0.028)
     st = inline4_study(2e-4, 1300.0, 0.3, section)
@@ -423,8 +423,8 @@ def test_shaft_figures_match_study() -> None:
 
 
 def test_performance_figures_match_results() -> None:
-    from crankbalance.engine_cycle import CylinderSpec, balance_sensitivity, engine_cycle
-    from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
+    from crankbalance.physics.engine_cycle import CylinderSpec, balance_sensitivity, engine_cycle
+    from crankbalance.physics.rotor_bench import BenchSettings, disc_rotor, run_bench
 
     cyl = CylinderSpec(
         bore=0.0768,

@@ -1,4 +1,4 @@
-"""Unit tests of crankbalance.friction: each formula against a second method."""
+"""Unit tests of crankbalance.physics.friction: each formula against a second method."""
 
 from __future__ import annotations
 
@@ -6,8 +6,8 @@ import numpy as np
 import pytest
 from scipy.integrate import quad
 
-from crankbalance import friction
 from crankbalance.errors import InputError
+from crankbalance.physics import friction
 
 
 def _mean_magnitude(w: float, u: float, power: float) -> float:

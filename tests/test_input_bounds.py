@@ -19,12 +19,12 @@ from typing import Any
 
 import pytest
 
-from crankbalance import spec as spec_module
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine, parse_engine_text, preset_text
 from crankbalance.io.pressure_csv import read_pressure_csv
 from crankbalance.io.reading import MAX_DEPTH, parse_json, parse_toml, read_text
-from crankbalance.spec import MAX_CYLINDERS, MAX_THROWS, parse_in_range
+from crankbalance.schema import engine as spec_module
+from crankbalance.schema.engine import MAX_CYLINDERS, MAX_THROWS, parse_in_range
 from crankbalance.units import RANGES
 
 from .conftest import hang_guard, run_cli

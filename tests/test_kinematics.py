@@ -5,7 +5,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from crankbalance.kinematics import (
+from crankbalance.physics.kinematics import (
     harmonic_coefficients,
     piston_acceleration,
     piston_position,

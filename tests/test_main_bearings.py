@@ -1,7 +1,7 @@
-"""Main-bearing loads and crank bending (crankbalance.main_bearings) against closed forms
+"""Main-bearing loads and crank bending (crankbalance.physics.main_bearings) against closed forms
 (lever rule, the three-moment equation of a two-span beam, a rigid beam on equal springs,
-the friction means of crankbalance.friction) and a second method (beam finite elements of
-the same stepped crank, crankbalance.beam.element_matrices)."""
+the friction means of crankbalance.physics.friction) and a second method (beam finite elements of
+the same stepped crank, crankbalance.physics.beam.element_matrices)."""
 
 from __future__ import annotations
 
@@ -10,10 +10,10 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance import friction
-from crankbalance.beam import ShaftSection, beam_statics, element_matrices
 from crankbalance.errors import InputError
-from crankbalance.main_bearings import (
+from crankbalance.physics import friction
+from crankbalance.physics.beam import ShaftSection, beam_statics, element_matrices
+from crankbalance.physics.main_bearings import (
     CrankLoads,
     CrankSection,
     CrankStiffness,
@@ -418,9 +418,9 @@ def test_bearing_and_liner_forces_add_up_to_the_shaking_force(engine: str, model
     counterweights (balancing.point_mass_history), and the same for the couple: the
     rod-force route (engine_cycle_all, crank loads, beam reactions) against the direct sum
     of the masses' accelerations."""
-    from crankbalance.balancing import point_mass_history
-    from crankbalance.engine_cycle_all import engine_cycle_all
-    from crankbalance.shaking import exact_time_domain
+    from crankbalance.physics.balancing import point_mass_history
+    from crankbalance.physics.engine_cycle_all import engine_cycle_all
+    from crankbalance.physics.shaking import exact_time_domain
     from crankbalance.studies.engine import balance_engine
     from crankbalance.studies.loads import _counterweight_arrays
 
@@ -466,7 +466,7 @@ def test_bearing_and_liner_forces_add_up_to_the_shaking_force(engine: str, model
 def test_clearance_zero_is_the_elastic_model() -> None:
     """No clearance: the ring contact is the linear elastic bearing, so the Newton
     solution on the condensed FE beam equals the force method's reactions."""
-    from crankbalance.main_bearings import clearance_reactions
+    from crankbalance.physics.main_bearings import clearance_reactions
 
     loads, bearings, y, stiffness = _inline4_loads()
     elastic = continuous_beam_reactions(bearings, loads.position, loads.load, stiffness, 3e8)
@@ -483,7 +483,7 @@ def test_clearance_two_span_beam_closed_form(lift_ratio: float) -> None:
     force falls linearly with the lift, R_C = R_C0 (1 - 2c/delta_C), and C lets go for
     2c >= delta_C, leaving the lever rule on A and B (superposition of a support
     settlement, Gere and Timoshenko)."""
-    from crankbalance.main_bearings import clearance_reactions
+    from crankbalance.physics.main_bearings import clearance_reactions
 
     length, ei, p = 0.1, 3e4, -1000.0
     delta_c = abs(p) * length**3 / (16 * ei)
@@ -502,7 +502,7 @@ def test_clearance_two_span_beam_closed_form(lift_ratio: float) -> None:
 
 
 def test_clearance_equilibrium_and_unloaded_rings() -> None:
-    from crankbalance.main_bearings import clearance_reactions
+    from crankbalance.physics.main_bearings import clearance_reactions
 
     loads, bearings, y, stiffness = _inline4_loads()
     ring = clearance_reactions(bearings, loads.position, loads.load, stiffness, 5e8, 30e-6)

@@ -5,7 +5,7 @@ descriptions (Porsche 911 flat-6, 1964, bank after bank as DIN 73021, firing
 1-6-2-4-3-5; Chevrolet small-block V8, 1955, odd cylinders left, even right, firing
 1-8-4-3-6-5-7-2; Ford 289/302, 1963/1968, right bank 1-4, left 5-8, firing 1-5-4-2-6-3-7-8;
 Ford 351W, 1969, firing 1-3-7-2-6-5-4-8), independently of the rule functions of
-``crankbalance.numbering``; the firing intervals against the crank's top dead centres
+``crankbalance.physics.firing``; the firing intervals against the crank's top dead centres
 computed here from the throw angles (theta_c = beta_c - phi_c) and against
 ``studies.build``'s even-firing crank.
 """
@@ -26,8 +26,8 @@ from hypothesis import strategies as st
 from crankbalance.cli.analyze import analyze as cli_analyze
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import list_presets, preset_text
-from crankbalance.numbering import SCHEMES, crank_order, order_intervals
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.firing import SCHEMES, crank_order, order_intervals
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import analyze
 
@@ -121,7 +121,7 @@ def test_porsche_order_is_the_crankbalance_order() -> None:
     assert engine["firing_order"] == [1, 6, 3, 2, 5, 4]
     assert engine["firing_order_maker"] == [1, 6, 2, 4, 3, 5]
     assert engine["maker_number"] == [1, 4, 2, 5, 3, 6]
-    from crankbalance.report import _maker_order
+    from crankbalance.output.report import _maker_order
 
     assert _maker_order(a) == " (maker's numbering: 1-6-2-4-3-5)" and _maker_order(b) == ""
     table = CliRunner().invoke(cli_analyze, ["boxer6"])
@@ -369,8 +369,7 @@ def test_engine_cycle_fires_what_the_check_accepts(
     and have the check's intervals."""
     import itertools
 
-    from crankbalance.engine_cycle_all import firing_angles
-    from crankbalance.numbering import check_firing_order
+    from crankbalance.physics.firing import check_firing_order, firing_angles
 
     phi, beta = np.radians(throws_deg), np.radians(banks_deg)
     theta = np.mod(beta - phi, 2 * math.pi)

@@ -27,10 +27,10 @@ from typing import Any
 import numpy as np
 import pytest
 
-from crankbalance import main_bearings, torsional
-from crankbalance import options as opt
 from crankbalance.errors import InputError
 from crankbalance.io.pressure_csv import read_pressure_csv
+from crankbalance.physics import main_bearings, torsional
+from crankbalance.schema import settings as opt
 from crankbalance.studies.performance import arithmetic_checked
 from crankbalance.units import format_quantity
 
@@ -226,7 +226,7 @@ def test_a_huge_sweep_is_refused_before_any_work(
     def no_cycle(*args: Any, **kwargs: Any) -> None:
         raise AssertionError("the cycle ran before the size was checked")
 
-    monkeypatch.setattr("crankbalance.engine_cycle_all.engine_cycle_all", no_cycle)
+    monkeypatch.setattr("crankbalance.physics.engine_cycle_all.engine_cycle_all", no_cycle)
     with hang_guard(300):
         line = refused(
             ["torsional", "--engine", engine, "--highest-order", "64"], "--highest-order", capsys
@@ -245,7 +245,7 @@ def test_the_cap_counts_what_the_study_computes(monkeypatch: pytest.MonkeyPatch)
     """response_size is the size of the arrays the study fills: at the cap it computes, one
     amplitude over it the physics refuses before the forced response."""
     from crankbalance.cli.torsional import run_study
-    from crankbalance.options import TorsionalOptions
+    from crankbalance.schema.settings import TorsionalOptions
 
     o = TorsionalOptions.model_validate({"engine": "inline6", "speed_points": 30})
     study, _model, speeds, _crank = run_study(o)
@@ -324,7 +324,7 @@ def test_the_contact_cap_at_its_edge(
 
 
 def test_bending_moments_in_blocks_are_the_moments(monkeypatch: pytest.MonkeyPatch) -> None:
-    from crankbalance.beam import bending_moment_at
+    from crankbalance.physics.beam import bending_moment_at
 
     rng = np.random.default_rng(2)
     x, positions = np.sort(rng.random(7)), rng.random(11)
@@ -400,21 +400,21 @@ def _overflow(*args: Any, **kwargs: Any) -> None:
             "the bearing-load study = \"engine 'Inline-4, flat crank'\"",
         ),
         (
-            "crankbalance.torsional.engine_excitation",
+            "crankbalance.physics.torsional.engine_excitation",
             ["torsional", "--engine", "inline4", "--speed-points", "10"],
             "torsional = '--engine inline4'",
         ),
         (
-            "crankbalance.engine_cycle_all.energy_excursion",
+            "crankbalance.physics.engine_cycle_all.energy_excursion",
             ["cycle", "--engine", "inline4"],
             "the engine cycle",
         ),
         (
-            "crankbalance.engine_cycle.cylinder_forces",
+            "crankbalance.physics.engine_cycle.cylinder_forces",
             ["cycle"],
             "cycle = 'the cylinder of the options'",
         ),
-        ("crankbalance.engine_cycle.cylinder_forces", ["sensitivity"], "sensitivity = "),
+        ("crankbalance.physics.engine_cycle.cylinder_forces", ["sensitivity"], "sensitivity = "),
     ],
 )
 def test_every_study_runs_inside_the_net(

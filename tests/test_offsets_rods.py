@@ -1,6 +1,6 @@
 """Per-cylinder offsets and rods side by side on a shared crankpin (issue 17).
 
-References: the exact time domain (:func:`crankbalance.shaking.exact_time_domain`) and a
+References: the exact time domain (:func:`crankbalance.physics.shaking.exact_time_domain`) and a
 numerical second derivative of the piston positions; a hand sum of each cylinder's closed
 form; hand calculations of the rocking couple of a 90-degree L-twin with side-by-side rods;
 the same engine with its pin split into two throws by hand (the issue's workaround).
@@ -17,12 +17,12 @@ import numpy as np
 import pytest
 from scipy.optimize import minimize_scalar
 
-from crankbalance.balancing import CounterweightOptions, balance, engine_batch
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.kinematics import harmonic_coefficients, piston_position
-from crankbalance.model import EngineModel
-from crankbalance.shaking import (
+from crankbalance.physics.balancing import CounterweightOptions, balance, engine_batch
+from crankbalance.physics.kinematics import harmonic_coefficients, piston_position
+from crankbalance.physics.model import EngineModel
+from crankbalance.physics.shaking import (
     curves,
     cylinder_coefficients,
     exact_time_domain,
@@ -30,7 +30,7 @@ from crankbalance.shaking import (
     phasor_curve,
     reciprocating_phasors,
 )
-from crankbalance.spec import EngineSpec, spec_from_dict
+from crankbalance.schema.engine import EngineSpec, spec_from_dict
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import analyze
 
@@ -292,7 +292,7 @@ def test_batch_solvers_refuse_side_by_side_rods() -> None:
 
 def test_batch_takes_per_cylinder_offsets() -> None:
     """EngineBatch carries each cylinder's offset: engine k of a batch is the model."""
-    from crankbalance.balancing import balance_batch
+    from crankbalance.physics.balancing import balance_batch
 
     m = odd_v6(DIFFERENT)
     batch = engine_batch(m, 3, speed=[500.0, 700.0, 900.0])
@@ -481,8 +481,8 @@ def test_ducati_and_harley_presets_by_hand() -> None:
 def test_explorer_merits_take_per_cylinder_offsets_and_a_moved_reference() -> None:
     """The explorer's batch columns equal the one-engine analysis and solver for a W12 whose
     cylinders have their own offsets and whose moments are taken 30 mm off its middle."""
-    from crankbalance.balancing import ShaftOptions
-    from crankbalance.explore.merit import merit
+    from crankbalance.physics.balancing import ShaftOptions
+    from crankbalance.physics.explore.merit import merit
 
     from .test_explore_merit import random_candidates
 

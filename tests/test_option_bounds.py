@@ -16,14 +16,14 @@ from pathlib import Path
 import pytest
 
 from crankbalance.errors import InputError, ResultError, check_range
-from crankbalance.options import (
+from crankbalance.results import require_finite, to_jsonable
+from crankbalance.schema.settings import (
     RANGES,
     BenchOptions,
     CycleOptions,
     allowed,
     parse_options,
 )
-from crankbalance.results import require_finite, to_jsonable
 
 from .conftest import EXAMPLES, run_cli
 
@@ -218,7 +218,7 @@ def test_bench_controller_and_solver_work_are_bounded(
     still needs is stopped by the evaluation budget of the solver."""
     refused(["bench", "--friction-coefficient", "0.1", "--kp", "1e4"], "--kp", capsys)
     refused(["bench", "--friction-coefficient", "0.1", "--ki", "1e6"], "--ki", capsys)
-    from crankbalance import rotor_bench
+    from crankbalance.physics import rotor_bench
 
     monkeypatch.setattr(rotor_bench, "MAX_BENCH_EVALUATIONS", 200)
     refused(["bench", "--friction-coefficient", "0.1"], "evaluations", capsys)
@@ -324,7 +324,7 @@ def test_a_non_finite_result_is_one_line_not_output(
 ) -> None:
     """A physics result that is not finite (simulated here) gives one honest line naming the
     quantity, exit 2, and no output in any format."""
-    from crankbalance import friction
+    from crankbalance.physics import friction
 
     monkeypatch.setattr(friction, "friction_torque", lambda *args: math.nan)
     line = refused([*FRICTION, "--friction-coefficient", "0.1", "--format", fmt], "torque", capsys)
@@ -509,7 +509,7 @@ def test_the_inertia_objective_has_its_own_budget(capsys: pytest.CaptureFixture[
     """With the inertia as a third objective the optimiser's work grows faster than its
     designs (the three-objective front is far larger): its budget is smaller, and the
     message says which budget was exceeded."""
-    from crankbalance.options import MAX_THREE_OBJECTIVE_DESIGNS, CounterweightOptions
+    from crankbalance.schema.settings import MAX_THREE_OBJECTIVE_DESIGNS, CounterweightOptions
 
     args = ["counterweight", "optimize", "--engine", "paper-inline3", "--quiet"]
     code, _, err = run_cli([*args, "--iterations", "60", "--inertia"], capsys)

@@ -16,8 +16,8 @@ import pytest
 
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
-from crankbalance import figures, render  # noqa: E402
 from crankbalance.errors import InputError  # noqa: E402
+from crankbalance.output import figures, render  # noqa: E402
 from crankbalance.studies.engine import analyze  # noqa: E402
 
 
@@ -133,7 +133,7 @@ def test_exporter_reports_a_browser_that_does_not_start(fig: Any) -> None:
 @linux
 def test_exporter_closes_the_browser_at_exit(tmp_path: Path) -> None:
     script = (
-        "from crankbalance import figures, render\n"
+        "from crankbalance.output import figures, render\n"
         "from crankbalance.studies.engine import analyze\n"
         "fig = figures.orders_bar(analyze('inline4'))\n"
         "assert render.to_image(fig, 'png', width=400, height=300)[:4] == b'\\x89PNG'\n"

@@ -13,7 +13,7 @@ import pytest
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
 from crankbalance.errors import InputError  # noqa: E402
-from crankbalance.report import build_report, report_html, write_report  # noqa: E402
+from crankbalance.output.report import build_report, report_html, write_report  # noqa: E402
 from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 
 HAS_CHROMIUM = bool(shutil.which("chromium") or Path("/usr/bin/chromium").exists())

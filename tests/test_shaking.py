@@ -6,7 +6,7 @@ import numpy as np
 import pytest
 
 from crankbalance.io.engine_file import list_presets
-from crankbalance.shaking import batch_amplitudes, exact_time_domain, phasor_curve
+from crankbalance.physics.shaking import batch_amplitudes, exact_time_domain, phasor_curve
 from crankbalance.studies.engine import analyze
 
 
@@ -123,7 +123,7 @@ def test_conrod_two_mass_split() -> None:
     """The two point masses keep the conrod's mass and centre of gravity; their inertia
     about the CG is m d (l - d) (textbook), and the error against a given inertia is
     reported (issue 2, mass model)."""
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.schema.engine import spec_from_dict
 
     data = {
         "speed": "3000 rpm",

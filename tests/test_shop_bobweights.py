@@ -1,5 +1,5 @@
 """Bob-weights per crankpin and the free forces a bob-weight fraction leaves
-(crankbalance.shop.bobweights), against hand calculations written here."""
+(crankbalance.physics.shop.bobweights), against hand calculations written here."""
 
 from __future__ import annotations
 
@@ -10,7 +10,7 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.shop.bobweights import best_fraction, bob_weights, remaining_forces
+from crankbalance.physics.shop.bobweights import best_fraction, bob_weights, remaining_forces
 from crankbalance.studies.build import build_model
 
 #: relative agreement of a computed force with its hand value (float round-off only)

@@ -26,9 +26,9 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.parts_file import MAX_CELL_CHARS, load_parts_file, parts_from_csv
-from crankbalance.shop import matching
-from crankbalance.shop.holes import MAX_DEPTH_RATIO, MIN_DRILL_DIAMETER, drilling_plan
-from crankbalance.shop.matching import (
+from crankbalance.physics.shop import matching
+from crankbalance.physics.shop.holes import MAX_DEPTH_RATIO, MIN_DRILL_DIAMETER, drilling_plan
+from crankbalance.physics.shop.matching import (
     EXHAUSTIVE_LIMIT,
     MAX_MILP_NONZEROS,
     MAX_PART_SLOTS,
@@ -220,7 +220,7 @@ def test_the_monte_carlo_is_capped_before_it_draws(capsys: pytest.CaptureFixture
 
 def test_the_scatter_bounds_its_chunk_and_part_counts() -> None:
     from crankbalance.io.engine_file import load_engine
-    from crankbalance.shop.scatter import MAX_COUNT, PartScatter, scatter_study
+    from crankbalance.physics.shop.scatter import MAX_COUNT, PartScatter, scatter_study
     from crankbalance.studies.build import build_model
 
     model = build_model(load_engine(ENGINE))

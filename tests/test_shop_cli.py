@@ -12,7 +12,7 @@ from pathlib import Path
 import numpy as np
 import pytest
 
-from crankbalance.options import ShopOptions, parse_options
+from crankbalance.schema.settings import ShopOptions, parse_options
 from crankbalance.studies.shop import hole_plan, parts_study
 
 from .conftest import EXAMPLES, run_cli
@@ -176,7 +176,7 @@ def test_scatter_is_the_studys(capsys: pytest.CaptureFixture[str]) -> None:
 
 def _key_numbers(study, holes) -> list[str]:  # type: ignore[no-untyped-def]
     """Numbers the sheet must show, formatted as the sheet formats them."""
-    from crankbalance.format import text
+    from crankbalance.output.format import text
 
     b = study.bob_weights.bob_weight
     out = [text(w, "mass", 5) for w in b]
@@ -305,7 +305,7 @@ def test_plan_json_angles_are_degrees(holes, capsys: pytest.CaptureFixture[str])
 def test_sheet_embeds_the_keyed_study(study, holes) -> None:  # type: ignore[no-untyped-def]
     import re
 
-    from crankbalance.shop_sheet import sheet_html
+    from crankbalance.output.shop_sheet import sheet_html
     from crankbalance.studies.shop import ShopStudy
 
     pytest.importorskip("plotly")

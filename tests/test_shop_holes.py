@@ -1,4 +1,4 @@
-"""Drilled holes with their drill point, and drilling plans (crankbalance.shop.holes).
+"""Drilled holes with their drill point, and drilling plans (crankbalance.physics.shop.holes).
 
 The closed forms are checked against mesh booleans (trimesh with the manifold3d engine): a
 steel block minus the solid a drill cuts, from which the removed volume, its centroid and
@@ -18,7 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from crankbalance.errors import InputError
-from crankbalance.shop.holes import (
+from crankbalance.physics.shop.holes import (
     DEFAULT_POINT_ANGLE,
     FLAT_BOTTOM,
     STEEL_DENSITY,
@@ -28,7 +28,7 @@ from crankbalance.shop.holes import (
     hole_geometry,
     hole_mass_properties,
 )
-from crankbalance.single_cylinder import DrilledHoles, rebalance
+from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")

@@ -1,4 +1,4 @@
-"""Matching parts to cylinders (crankbalance.shop.matching): the exact methods against
+"""Matching parts to cylinders (crankbalance.physics.shop.matching): the exact methods against
 exhaustive search on small sets, and hand calculations."""
 
 from __future__ import annotations
@@ -8,7 +8,7 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.parts_file import load_parts_file
-from crankbalance.shop.matching import (
+from crankbalance.physics.shop.matching import (
     Inventory,
     PartKind,
     machine_to_lightest,
@@ -199,7 +199,7 @@ def test_free_forces_of_a_matching_against_shaking() -> None:
     path through the library."""
     import dataclasses
 
-    from crankbalance.shaking import free_forces
+    from crankbalance.physics.shaking import free_forces
 
     model = engine("inline3")
     inventory = random_inventory(23, (3, 4, 3), 3)
@@ -234,7 +234,7 @@ def test_results_are_json_ready() -> None:
     """Every result converts through results.to_jsonable (the CLI's JSON output)."""
     import json
 
-    from crankbalance.shop.bobweights import bob_weights, remaining_forces
+    from crankbalance.physics.shop.bobweights import bob_weights, remaining_forces
 
     inventory = load_parts_file(EXAMPLES / "v8_parts.csv")
     model = engine("v8-crossplane")

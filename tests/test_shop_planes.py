@@ -1,4 +1,5 @@
-"""Two-plane balancing-machine readings (crankbalance.shop.planes) against hand calculations.
+"""Two-plane balancing-machine readings (crankbalance.physics.shop.planes) against hand
+calculations.
 
 Units in the hand calculations: g, mm, g mm; the module works in kg, m, kg m
 (1 g mm = 1e-6 kg m).
@@ -15,7 +16,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from crankbalance.errors import InputError
-from crankbalance.shop import planes as sp
+from crankbalance.physics.shop import planes as sp
 
 G_MM = 1e-6  # kg m per g mm
 MEASURING = (0.0, 0.400)  # machine supports, m

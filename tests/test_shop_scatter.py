@@ -1,4 +1,4 @@
-"""Tolerance statistics (crankbalance.shop.scatter): the Monte Carlo against the analytic
+"""Tolerance statistics (crankbalance.physics.shop.scatter): the Monte Carlo against the analytic
 variance of the phasor sum, written out in the tests.
 
 Statistical checks use a fixed seed and a bound of 5 standard errors of the estimate, so
@@ -15,9 +15,9 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.model import EngineModel
-from crankbalance.shaking import free_forces
-from crankbalance.shop import scatter as sc
+from crankbalance.physics.model import EngineModel
+from crankbalance.physics.shaking import free_forces
+from crankbalance.physics.shop import scatter as sc
 from crankbalance.studies.build import build_model
 
 N = 200_000

@@ -1,4 +1,5 @@
-"""Unit tests of crankbalance.single_cylinder and the rotor helpers of crankbalance.rotor_bench."""
+"""Unit tests of crankbalance.physics.single_cylinder and the rotor helpers of
+crankbalance.physics.rotor_bench."""
 
 from __future__ import annotations
 
@@ -7,9 +8,9 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance import single_cylinder as sc
 from crankbalance.errors import InputError
-from crankbalance.rotor_bench import (
+from crankbalance.physics import single_cylinder as sc
+from crankbalance.physics.rotor_bench import (
     crankpin_overlap,
     cylinder_inertia,
     disc_inertia,

@@ -1,4 +1,4 @@
-"""Unit tests of crankbalance.tolerance (ISO 21940-11 grades and plane allocation)."""
+"""Unit tests of crankbalance.physics.tolerance (ISO 21940-11 grades and plane allocation)."""
 
 from __future__ import annotations
 
@@ -7,8 +7,8 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance import tolerance as tl
 from crankbalance.errors import InputError
+from crankbalance.physics import tolerance as tl
 
 
 def test_grade_series() -> None:

@@ -1,4 +1,4 @@
-"""Torsional vibration of the crank train (crankbalance.torsional) against closed forms.
+"""Torsional vibration of the crank train (crankbalance.physics.torsional) against closed forms.
 
 References: the two- and three-inertia closed forms (Den Hartog 1956, Secs. 5.1-5.2;
 Thomson 1993, ch. 6), the two-inertia frequency response solved by hand (Cramer's rule),
@@ -14,10 +14,10 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance import torsional as tv
-from crankbalance.engine_cycle import WiebeCombustion
-from crankbalance.engine_cycle_all import engine_cycle_all
 from crankbalance.errors import InputError
+from crankbalance.physics import torsional as tv
+from crankbalance.physics.engine_cycle import WiebeCombustion
+from crankbalance.physics.engine_cycle_all import engine_cycle_all
 from crankbalance.studies.engine import as_model
 
 WIEBE = WiebeCombustion(13.5, math.radians(-25.0), math.radians(50.0))

@@ -22,11 +22,11 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
-from crankbalance.explore.orders import problem
 from crankbalance.io.engine_file import list_presets, load_engine
-from crankbalance.model import EngineModel, standard_layout, vr_rows
-from crankbalance.shaking import exact_time_domain, free_forces
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.explore.orders import problem
+from crankbalance.physics.model import EngineModel, standard_layout, vr_rows
+from crankbalance.physics.shaking import exact_time_domain, free_forces
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.build import build_model
 
 DEG = math.pi / 180
@@ -61,7 +61,7 @@ def spec(data: dict[str, Any], **train: Any) -> Any:
 # --------------------------------------------------------------------------- hand reference
 def position_harmonics(r: float, l: float, e: float) -> np.ndarray:
     """S_n, n = -ORDERS..ORDERS, of s(psi) = sum S_n exp(i n psi), by the FFT of samples of
-    the closed form (written here, not taken from crankbalance.kinematics)."""
+    the closed form (written here, not taken from crankbalance.physics.kinematics)."""
     psi = 2 * np.pi * np.arange(SAMPLES) / SAMPLES
     s = r * np.cos(psi) + np.sqrt(l**2 - (e - r * np.sin(psi)) ** 2)
     c = np.fft.fft(s) / SAMPLES
@@ -154,7 +154,7 @@ def test_bore_offset_sign_from_the_geometry() -> None:
     point D below the crank axis (away from the heads), D = bore_offset / sin(v/2). The
     wrist pin, found on that line at the rod length from the crankpin, is where
     kinematics.piston_position puts it with the model's cylinder_offset."""
-    from crankbalance.kinematics import piston_position
+    from crankbalance.physics.kinematics import piston_position
 
     model = build_model(load_engine("vr6"))
     r, l = model.crank_radius, model.rod_length

@@ -1,6 +1,6 @@
 r"""Cross-check of crankbalance's free forces and moments with an EXUDYN multibody model.
 
-From an :class:`~crankbalance.model.EngineModel` this builds a 3-D multibody model of the
+From an :class:`~crankbalance.physics.model.EngineModel` this builds a 3-D multibody model of the
 same crank train in EXUDYN (Gerstmayr's open-source multibody code, PyPI ``exudyn``):
 
 - the crank, one rigid body: a shaft on the crank axis (y) plus, at each throw, a point
@@ -26,8 +26,8 @@ the crankshaft mid-point (y = 0) plus the joints' reaction torques, summed, are 
 shaking force and moment the crank train puts on the block. Over the last revolution
 (uniform steps of the constant-speed part), their Fourier series gives, by order, the
 forward and backward phasors of :math:`F_z + iF_x` and of the couple
-:math:`C = -i\,(M_z + iM_x)`, the convention of :mod:`crankbalance.shaking`; they are
-compared with :func:`crankbalance.shaking.free_forces` (its order-1 forward phasors with
+:math:`C = -i\,(M_z + iM_x)`, the convention of :mod:`crankbalance.physics.shaking`; they are
+compared with :func:`crankbalance.physics.shaking.free_forces` (its order-1 forward phasors with
 the rotating masses' force and couple added, since the multibody model has both).
 
 Acceptance (issue 17): each order's force and moment amplitude :math:`|X^+| + |X^-|`
@@ -59,8 +59,8 @@ import numpy as np
 from numpy.typing import NDArray
 
 from crankbalance.io.engine_file import parse_engine_text, preset_text
-from crankbalance.model import EngineModel
-from crankbalance.shaking import FreeForces, free_forces
+from crankbalance.physics.model import EngineModel
+from crankbalance.physics.shaking import FreeForces, free_forces
 from crankbalance.studies.build import build_model
 
 #: the default steps per revolution: the error of generalized-alpha falls as the square of
@@ -148,7 +148,8 @@ TEST_ENGINES: tuple[str, ...] = (
 
 
 # --------------------------------------------------------------------------- the model
-#: Phasors by order are crankbalance's own :class:`~crankbalance.shaking.FreeForces`, with the
+#: Phasors by order are crankbalance's own :class:`~crankbalance.physics.shaking.FreeForces`, with
+#: the
 #: rotating masses inside order 1 (``rotating_force`` and ``rotating_couple`` zero): the
 #: multibody model carries them and cannot tell them apart.
 Phasors = FreeForces

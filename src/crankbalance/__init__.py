@@ -1,6 +1,6 @@
 """crankbalance: balancing design of reciprocating-engine crank trains.
 
-The public entry points are loaded on first use, so that ``import crankbalance.shaking``
+The public entry points are loaded on first use, so that ``import crankbalance.physics.shaking``
 (or any physics module) stays free of pydantic and the unit parser::
 
     import crankbalance

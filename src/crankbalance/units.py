@@ -47,7 +47,7 @@ KINDS: dict[str, tuple[str, str, str]] = {
 #: size), as written in messages. Wide enough for any engine from a model engine to a
 #: ship's diesel, narrow enough that no computation overflows. The engine file checks the
 #: size of a value (each key has its own rule on sign and zero); the study settings take
-#: their signed ranges from it (``crankbalance.options.RANGES``), and a setting may narrow
+#: their signed ranges from it (``crankbalance.schema.settings.RANGES``), and a setting may narrow
 #: its kind's range. docs/reliability.md lists them.
 RANGES: dict[str, tuple[str, str]] = {
     "length": ("1 um", "100 m"),
@@ -286,7 +286,7 @@ def format_quantity(value: float, kind: str, digits: int = 12) -> str:
 
 def parse_factor(value: Any, field: str) -> float:
     """A balance factor as written: ``0.28``, ``"0.28"`` or ``"28%"`` -> 0.28 (the range is
-    checked by :func:`crankbalance.single_cylinder.check_balance_factor`)."""
+    checked by :func:`crankbalance.physics.single_cylinder.check_balance_factor`)."""
     hint = "must be a number such as 0.28 or a percentage '28%'"
     if isinstance(value, bool):
         raise InputError(field, value, hint)

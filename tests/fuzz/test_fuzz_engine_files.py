@@ -39,7 +39,7 @@ from hypothesis import strategies as st
 
 from crankbalance.cli import main
 from crankbalance.io.engine_file import dumps_toml, list_presets, load_engine, preset_text
-from crankbalance.spec import LAYOUTS
+from crankbalance.schema.engine import LAYOUTS
 
 from ..conftest import hang_guard
 

@@ -6,7 +6,7 @@ units, empty texts, ranges where one value is expected), run in-process through
 Each run must end in exit status 2 with exactly one line on stderr, or in exit status 0 with
 no NaN or infinity in the output. Deterministic (``derandomize=True``, no database); each
 example has a generous hang guard (``signal.alarm``, 120 s), not a timing assertion: the work
-of every command is bounded by the documented caps of :mod:`crankbalance.options`. Valid
+of every command is bounded by the documented caps of :mod:`crankbalance.schema.settings`. Valid
 values are kept cheap (small presets, one or two optimiser rounds, short bench runs).
 
 The commands that read a cylinder-pressure table (``bearings``, ``bearings-sweep``,
@@ -36,7 +36,7 @@ from hypothesis import strategies as st
 
 from crankbalance.cli import COMMANDS, cli, main
 from crankbalance.io.pressure_csv import MAX_FILE_BYTES as MAX_TABLE_BYTES
-from crankbalance.options import RANGES
+from crankbalance.schema.settings import RANGES
 from crankbalance.units import KINDS, format_quantity
 
 from ..conftest import hang_guard
@@ -847,8 +847,8 @@ def assert_clean(
 @pytest.fixture(scope="module")
 def workspace() -> Iterator[Path]:
     """A folder with the files some options name: a pressure table and an STL part."""
-    from crankbalance.counterweight import CounterweightDesign
     from crankbalance.io.cad import write_stl
+    from crankbalance.physics.counterweight import CounterweightDesign
 
     with tempfile.TemporaryDirectory() as folder:
         root = Path(folder)

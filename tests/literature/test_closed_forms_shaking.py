@@ -11,8 +11,8 @@ import math
 
 import pytest
 
-from crankbalance.kinematics import harmonic_coefficients
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.engine import analyze
 
 R, L, PITCH, RPM = 0.043, 0.145, 0.092, 6000.0

@@ -12,13 +12,13 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from crankbalance.balance_shaft import (
+from crankbalance.physics.balance_shaft import (
     compare_inline3_types,
     inline3_study,
     inline4_secondary_unbalance,
     inline4_study,
 )
-from crankbalance.beam import ShaftSection
+from crankbalance.physics.beam import ShaftSection
 
 SECTION = ShaftSection(outer_diameter=0.025)
 # an inline-4 of about 2 litres: m_p = 0.5 kg, r = 43 mm, l = 140 mm, 6000 rpm crank

@@ -19,7 +19,7 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.counterweight import counterweight_properties, profile_section
+from crankbalance.physics.counterweight import counterweight_properties, profile_section
 
 ROWS = {
     # printed values of Table 3 [g, mm, %, mm, mm, mm, rad, rad, mm, rad, rad, mm]

@@ -14,12 +14,12 @@ import math
 import numpy as np
 import pytest
 
-from crankbalance.friction import (
+from crankbalance.physics.friction import (
     friction_coefficient_from_torque,
     mean_equivalent_load,
     torque_from_transducer_voltage,
 )
-from crankbalance.rotor_bench import BenchSettings, disc_rotor, run_bench
+from crankbalance.physics.rotor_bench import BenchSettings, disc_rotor, run_bench
 
 SPEEDS_RPM = (3000, 6000, 9000)
 HOLE_MASS = {1: 0.0, 2: 0.0146, 3: 0.0584}

@@ -11,12 +11,12 @@ from pathlib import Path
 
 import pytest
 
-from crankbalance import single_cylinder as sc
 from crankbalance.cli import main
 from crankbalance.io.rebalance_file import load_rebalance_file
-from crankbalance.rotor_bench import equal_inertia_test_rotor
+from crankbalance.physics import single_cylinder as sc
+from crankbalance.physics.rotor_bench import equal_inertia_test_rotor
+from crankbalance.physics.tolerance import permissible_unbalance
 from crankbalance.studies.rebalance import rebalance_parts
-from crankbalance.tolerance import permissible_unbalance
 
 EXAMPLE = Path(__file__).resolve().parents[2] / "examples" / "crf250r_rebalance.toml"
 

@@ -8,8 +8,8 @@ from typing import Any
 from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
-from crankbalance.balancing import CounterweightOptions, ShaftOptions, balance
-from crankbalance.spec import spec_from_dict
+from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.build import build_model
 
 

@@ -9,7 +9,7 @@ import numpy as np
 from hypothesis import given, settings
 from hypothesis import strategies as st
 
-from crankbalance.spec import spec_from_dict
+from crankbalance.schema.engine import spec_from_dict
 from crankbalance.studies.engine import analyze
 
 

@@ -4,7 +4,7 @@
 two-mass-equivalent inertia, pistons on prismatic joints with their offsets and axial
 positions), drives the crank, sums the ground reactions and takes their Fourier series;
 every order's force and moment phasor must agree with
-:func:`crankbalance.shaking.free_forces` within 0.5 % of the order's amplitude or 1e-4 of
+:func:`crankbalance.physics.shaking.free_forces` within 0.5 % of the order's amplitude or 1e-4 of
 the largest first-order amplitude (``docs/validation.md``).
 
 EXUDYN is in the ``validation`` extra, which ``.ci/run`` installs: where it is missing the

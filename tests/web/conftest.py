@@ -104,7 +104,7 @@ def logged_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[st
 def browser() -> Iterator[Any]:
     """Debian's chromium driven by Playwright (never a downloaded browser); every wait of
     Playwright (``expect``, ``wait_for``, downloads) has the hang guard as its timeout."""
-    from crankbalance.render import CHROMIUM_FLAGS
+    from crankbalance.output.render import CHROMIUM_FLAGS
 
     sync_api = pytest.importorskip("playwright.sync_api")
     if not os.path.exists(CHROMIUM):

@@ -294,7 +294,7 @@ def missing(captured: str, css: str) -> list[str]:
 def _capture_now() -> str:
     from playwright.sync_api import sync_playwright
 
-    from crankbalance.render import CHROMIUM_FLAGS
+    from crankbalance.output.render import CHROMIUM_FLAGS
     from crankbalance.web.server import running_server
 
     with running_server(tailwind=True) as url, sync_playwright() as p:

@@ -23,13 +23,13 @@ from nicegui.testing.user import User
 from crankbalance.cli import main as cli
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.options import (
+from crankbalance.schema.engine import spec_from_dict
+from crankbalance.schema.settings import (
     COUNTERWEIGHT_CHILDREN,
     MAX_COUNTERWEIGHT_DESIGNS,
     MAX_SWEEP_WORK,
     CounterweightOptions,
 )
-from crankbalance.spec import spec_from_dict
 from crankbalance.web import pool, studies
 from crankbalance.web.widgets import CANCELLED
 
@@ -72,7 +72,7 @@ def test_the_optimiser_default_breeds_the_budget_s_designs_per_round() -> None:
     which the command line uses and the web passes)."""
     import inspect
 
-    from crankbalance.counterweight_optimize import optimize_counterweight
+    from crankbalance.physics.counterweight_optimize import optimize_counterweight
 
     default = inspect.signature(optimize_counterweight).parameters["children"].default
     assert default == COUNTERWEIGHT_CHILDREN

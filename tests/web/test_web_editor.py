@@ -173,7 +173,7 @@ def test_custom_throws_and_overrides_round_trip() -> None:
         {"cylinders": [2], "piston": "450 g", "conrod": "620 g"},
         {"throws": [1], "crankpin": "350 g"},
     ]
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.schema.engine import spec_from_dict
 
     spec = spec_from_dict(data)
     project = Project.from_spec(spec)

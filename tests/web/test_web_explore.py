@@ -13,7 +13,7 @@ from pathlib import Path
 
 import pytest
 
-from crankbalance.explore import orders
+from crankbalance.physics.explore import orders
 
 pytest.importorskip("nicegui")
 playwright_api = pytest.importorskip("playwright.sync_api")

@@ -1,7 +1,7 @@
 """PNG and SVG downloads of the page's figures, made by plotly.js in the user's browser
 (Playwright driving Debian's chromium) from the figure already drawn.
 
-The reference is the server's image of the same figure, :func:`crankbalance.render.to_image`
+The reference is the server's image of the same figure, :func:`crankbalance.output.render.to_image`
 (kaleido's own headless Chromium): the browser's image has its pixel size, and for a 2-D
 figure (the orders bar) its pixels, within a small share of anti-aliased edge pixels.
 
@@ -93,7 +93,7 @@ def download(page, name: str, fmt: str, tmp_path: Path):
 
 def server_images(names: tuple[str, ...]) -> dict[str, bytes]:
     """kaleido's PNG of the page's figures of the V12 (the reference)."""
-    from crankbalance import figures, render
+    from crankbalance.output import figures, render
     from crankbalance.web.project import Project
 
     c = Project.from_preset(ENGINE).compute()

@@ -15,7 +15,7 @@ from typing import Any
 
 import pytest
 
-from crankbalance.options import MAX_COUNTERWEIGHT_DESIGNS, counterweight_designs
+from crankbalance.schema.settings import MAX_COUNTERWEIGHT_DESIGNS, counterweight_designs
 from crankbalance.web.widgets import CANCELLED
 
 from .conftest import HANG_GUARD

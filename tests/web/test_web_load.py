@@ -16,7 +16,8 @@ import pytest
 
 from crankbalance.io.engine_file import parse_engine_text
 from crankbalance.studies.engine import balance_engine
-from crankbalance.web.loadgen import engine_text, run_session
+
+from .loadgen import engine_text, run_session
 
 pytest.importorskip("nicegui")
 

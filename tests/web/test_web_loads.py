@@ -14,7 +14,7 @@ from pathlib import Path
 
 import pytest
 
-from crankbalance.format import number
+from crankbalance.output.format import number
 from crankbalance.studies.balance_loads import bearing_sweep, case_rows
 
 pytest.importorskip("nicegui")

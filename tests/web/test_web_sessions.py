@@ -58,9 +58,9 @@ def edits(k: int) -> list[tuple[str, str, tuple[str, ...]]]:
 def expected_rows(preset: str, k: int) -> tuple[str, list[list[str]]]:
     """The engine name and the orders table of session ``k``'s edited engine, from the
     library: the preset's engine file with the same edits, validated and analysed."""
-    from crankbalance.format import number
     from crankbalance.io.engine_file import preset_text
-    from crankbalance.spec import spec_from_dict
+    from crankbalance.output.format import number
+    from crankbalance.schema.engine import spec_from_dict
     from crankbalance.studies.engine import analyze
 
     data = tomllib.loads(preset_text(preset))

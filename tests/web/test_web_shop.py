@@ -14,8 +14,8 @@ from pathlib import Path
 
 import pytest
 
-from crankbalance.format import text
-from crankbalance.options import ShopOptions, parse_options
+from crankbalance.output.format import text
+from crankbalance.schema.settings import ShopOptions, parse_options
 from crankbalance.studies.shop import shop_study
 
 pytest.importorskip("nicegui")

@@ -3,7 +3,7 @@ angle*, *Depth read to the*) through NiceGUI's simulated User.
 
 The plan on the page is checked against the library's rebalancing for the same inputs
 (:func:`crankbalance.studies.cylinder.rebalance_cylinder`, holes built as
-:class:`~crankbalance.single_cylinder.DrilledHoles` with the point) and against the closed
+:class:`~crankbalance.physics.single_cylinder.DrilledHoles` with the point) and against the closed
 form of a hole with a conical point (cylinder plus cone, V = A (s + h/3), h = (d/2) /
 tan(alpha/2)): the mass shown per web, and the point's height between the depth to the
 tip and the depth to the shoulder of the same correction."""
@@ -21,13 +21,13 @@ from nicegui.testing.user import User
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.options import (
+from crankbalance.physics.single_cylinder import DrilledHoles, counterweight_moment, rebalance
+from crankbalance.schema.settings import (
     RebalanceOptions,
     ShopOptions,
     SingleCylinderOptions,
     parse_options,
 )
-from crankbalance.single_cylinder import DrilledHoles, counterweight_moment, rebalance
 from crankbalance.studies.build import build_model
 from crankbalance.studies.cylinder import cylinder_of, iso_check, rebalance_cylinder
 
@@ -227,7 +227,7 @@ def test_radial_hole_drawing_shows_the_point() -> None:
     """figures.drilling_plan, radial holes: the outline reaches the tip (rim - depth to the
     tip) and is full width down to the shoulder, the point's height (cone of half-angle
     59 deg) above the tip; a flat bottom is full width to its one depth."""
-    from crankbalance import figures
+    from crankbalance.output import figures
 
     model = build_model(load_engine("single"))
     single = SingleCylinderOptions()

@@ -6,9 +6,9 @@ from __future__ import annotations
 import pytest
 from nicegui.testing.user import User
 
+from crankbalance.physics.tolerance import permissible_unbalance
 from crankbalance.studies.cylinder import cylinder_study
 from crankbalance.studies.engine import balance_engine
-from crankbalance.tolerance import permissible_unbalance
 
 pytestmark = pytest.mark.anyio
 

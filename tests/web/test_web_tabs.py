@@ -64,7 +64,7 @@ def _shoot(page: Any, name: str) -> None:
 def _single_reference(new_reciprocating: str) -> tuple[Any, Any]:
     """The library's rebalancing and ISO check of the single preset's cylinder 1."""
     from crankbalance.io.engine_file import load_engine
-    from crankbalance.options import RebalanceOptions, SingleCylinderOptions
+    from crankbalance.schema.settings import RebalanceOptions, SingleCylinderOptions
     from crankbalance.studies.build import build_model
     from crankbalance.studies.cylinder import iso_check, rebalance_cylinder
 
@@ -137,8 +137,8 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
     plan's depth; a rebalancing without holes draws none."""
     from dataclasses import replace
 
-    from crankbalance import figures
-    from crankbalance.single_cylinder import DrilledHoles, rebalance
+    from crankbalance.output import figures
+    from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
 
     holes = DrilledHoles(diameter=0.006, radius=0.05, number=2, direction="radial")
     reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, holes, 1e-9)
@@ -335,7 +335,7 @@ def test_holes_per_web_in_the_drilling_plan(server: str, page: Any) -> None:
     """*Holes per web*: three holes per web drill a third as deep as one (axial holes at the
     same radius); the plan, its table and its drawing equal the library's rebalancing."""
     from crankbalance.io.engine_file import load_engine
-    from crankbalance.options import RebalanceOptions, SingleCylinderOptions
+    from crankbalance.schema.settings import RebalanceOptions, SingleCylinderOptions
     from crankbalance.studies.build import build_model
     from crankbalance.studies.cylinder import rebalance_cylinder
 

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 import click
 
 if TYPE_CHECKING:
-    from ..options import Options
+    from ..schema.settings import Options
 
 _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 
@@ -23,9 +23,9 @@ def option_name(field: str) -> str:
 
 
 def parse_settings(model: type[Options], values: Mapping[str, Any]) -> Options:
-    """A command's options validated by their schema in :mod:`crankbalance.options` (limits
+    """A command's options validated by their schema in :mod:`crankbalance.schema.settings` (limits
     after unit conversion, finite numbers); an error names the option as typed."""
-    from ..options import parse_options
+    from ..schema.settings import parse_options
 
     return parse_options(model, values, option_name)
 

@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import click
 
-from ..format import json_text, moment_point, number, plural, text
+from ..output.format import json_text, moment_point, number, plural, text
 from ._common import echo_table, format_option, option_name
 
 
@@ -14,7 +14,7 @@ from ._common import echo_table, format_option, option_name
 @click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
 def analyze(engine: str, fmt: str, orders: str) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
-    from ..options import AnalysisOptions, parse_options
+    from ..schema.settings import AnalysisOptions, parse_options
     from ..studies.engine import analyze as run
 
     result = run(engine, parse_options(AnalysisOptions, {"orders": orders}, option_name).orders)

@@ -6,7 +6,7 @@ from typing import Any
 
 import click
 
-from ..format import json_text, number, plural, text
+from ..output.format import json_text, number, plural, text
 from ._common import echo_table, format_option, given_options, parse_settings
 
 
@@ -51,7 +51,7 @@ def balance(
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
     from ..errors import InputError
-    from ..options import BalanceOptions
+    from ..schema.settings import BalanceOptions
     from ..studies.engine import balance_engine
 
     settings = parse_settings(BalanceOptions, {"angle": angle, "balance_factor": balance_factor})

@@ -8,7 +8,7 @@ from typing import Any
 
 import click
 
-from ..format import json_text, number
+from ..output.format import json_text, number
 from ._common import (
     echo_table,
     format_option,
@@ -27,8 +27,8 @@ PETROFF_OPTIONS = ("viscosity", "bearing_length", "clearance")
 
 def _combustion(name: str) -> str:
     """The default of a combustion setting as typed: the one of every study
-    (:class:`~crankbalance.options.CombustionOptions`)."""
-    from ..options import CombustionOptions, default_text
+    (:class:`~crankbalance.schema.settings.CombustionOptions`)."""
+    from ..schema.settings import CombustionOptions, default_text
 
     return default_text(CombustionOptions, name)
 
@@ -148,7 +148,7 @@ def bearings(
     approximation, docs/main_bearings.md).
     """
     from ..errors import InputError
-    from ..options import BearingOptions
+    from ..schema.settings import BearingOptions
     from ..studies.loads import bearing_loads
     from ..studies.performance import WIEBE_OPTIONS
 
@@ -200,8 +200,8 @@ def bearings(
 def _write_plot(plot: str, study: Any) -> None:
     from pathlib import Path
 
-    from .. import figures, render
     from ..io.files import write_atomic
+    from ..output import figures, render
 
     fig = figures.bearing_loads_figure(study)
     fmt = Path(plot).suffix.lower().lstrip(".")

@@ -13,7 +13,7 @@ from typing import Any
 
 import click
 
-from ..format import json_text, number
+from ..output.format import json_text, number
 from ..studies.balance_loads import COLUMNS, case_rows
 from ..studies.loads import assumed_text
 from ..studies.performance import WIEBE_OPTIONS
@@ -84,7 +84,7 @@ def bearings_sweep(
     one case. At most 64 cases.
     """
     from ..errors import InputError
-    from ..options import BearingOptions, BearingSweepOptions, parse_options
+    from ..schema.settings import BearingOptions, BearingSweepOptions, parse_options
     from ..studies.balance_loads import bearing_sweep
 
     given = given_options()
@@ -152,8 +152,8 @@ def bearings_sweep(
 def _write_plot(plot: str, study: Any) -> None:
     from pathlib import Path
 
-    from .. import figures, render
     from ..io.files import write_atomic
+    from ..output import figures, render
 
     fig = figures.bearing_sweep_figure(study)
     fmt = Path(plot).suffix.lower().lstrip(".")

@@ -14,12 +14,17 @@ from typing import Any
 
 import click
 
-from ..counterweight import SYMBOLS as _SYMBOL
 from ..errors import InputError
-from ..format import json_text, keyed, number
-from ..format import text as unit_text
-from ..options import CounterweightDesignOptions, CounterweightOptions, allowed, parse_options
+from ..output.format import json_text, keyed, number
+from ..output.format import text as unit_text
+from ..physics.counterweight import SYMBOLS as _SYMBOL
 from ..results import require_finite
+from ..schema.settings import (
+    CounterweightDesignOptions,
+    CounterweightOptions,
+    allowed,
+    parse_options,
+)
 from ._common import (
     echo_table,
     format_option,
@@ -63,7 +68,7 @@ _PART_KEYS: dict[str, str | tuple[str, float]] = {
 
 def _value(field: str, text: str) -> float:
     """One value of a counterweight option (``field`` as in
-    :class:`~crankbalance.options.CounterweightDesignOptions`), in SI and in its physical
+    :class:`~crankbalance.schema.settings.CounterweightDesignOptions`), in SI and in its physical
     range; 'LOW..HIGH' is refused here. Ranges go through :func:`_value_or_range`."""
     value = getattr(parse_settings(CounterweightDesignOptions, {field: text}), field)
     assert isinstance(value, float)
@@ -259,7 +264,7 @@ def optimize(
     **params: Any,
 ) -> None:
     """Feasible counterweights, Pareto front, least-mass and least-radius designs."""
-    from ..counterweight_optimize import DEFAULT_BOUNDS, optimize_counterweight
+    from ..physics.counterweight_optimize import DEFAULT_BOUNDS, optimize_counterweight
 
     required = _first_moment(first_moment, cw_mass, cg_radius, engine)
     bounds: dict[str, Any] = {}
@@ -368,7 +373,7 @@ def _spread(n: int, k: int) -> list[float]:
 
 
 def _design_from(params: dict[str, Any], density: str, required: float | None):
-    from ..counterweight import CounterweightDesign
+    from ..physics.counterweight import CounterweightDesign
 
     values: dict[str, float] = {}
     for name, text in params.items():

@@ -1,9 +1,9 @@
 """``crankbalance explore``: every firing order and crank of a layout, ranked.
 
-The enumeration is :mod:`crankbalance.explore.orders`, the figures of merit
-:mod:`crankbalance.explore.merit`, the filter, Pareto front and top-N
-:mod:`crankbalance.explore.rank`, the chunked run (in this process, on a dask
-LocalCluster or on an existing cluster, streaming to Parquet) :mod:`crankbalance.explore.run`;
+The enumeration is :mod:`crankbalance.physics.explore.orders`, the figures of merit
+:mod:`crankbalance.physics.explore.merit`, the filter, Pareto front and top-N
+:mod:`crankbalance.physics.explore.rank`, the chunked run (in this process, on a dask
+LocalCluster or on an existing cluster, streaming to Parquet) :mod:`crankbalance.studies.explore`;
 all imported when the command runs, dask and pyarrow only when asked for.
 """
 
@@ -21,8 +21,8 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..errors import InputError
-from ..explore.work import CONNECT_TIMEOUT, MAX_DRAWS, TASK_CANDIDATES, TASK_MEMORY
-from ..format import json_text, number
+from ..output.format import json_text, number
+from ..physics.explore.work import CONNECT_TIMEOUT, MAX_DRAWS, TASK_CANDIDATES, TASK_MEMORY
 from ._common import (
     echo_table,
     format_option,
@@ -35,7 +35,7 @@ from ._common import (
 if TYPE_CHECKING:
     from numpy.typing import NDArray
 
-    from ..options import ExploreOptions
+    from ..schema.settings import ExploreOptions
 
 FORMATS = ("table", "json", "csv")
 #: a dask scheduler's address, ``tcp://10.0.0.5:8786``
@@ -46,7 +46,7 @@ DIST = {"workers": "distributed", "scheduler": "distributed", "output": "pyarrow
 
 def _problem(o: ExploreOptions, typed: Mapping[str, Any]) -> Any:
     """The problem of the options; an error names the option as typed."""
-    from ..explore import orders
+    from ..physics.explore import orders
 
     base = None
     if o.engine is not None:
@@ -75,7 +75,7 @@ def _problem(o: ExploreOptions, typed: Mapping[str, Any]) -> Any:
 
 def _mode_shape(text: str) -> str | list[float]:
     """``uniform``, ``linear`` or one weight per cylinder, comma separated."""
-    from ..explore.merit import MODE_SHAPES
+    from ..physics.explore.merit import MODE_SHAPES
 
     if text.strip() in MODE_SHAPES:
         return text.strip()
@@ -112,8 +112,8 @@ def _records(rows: Mapping[str, NDArray[Any]], names: list[str]) -> list[dict[st
 def _write_plot(plot: str, result: Any, objectives: tuple[str, ...]) -> None:
     """The scatter of the run's candidates (its top-N list and Pareto set) over the first
     two objectives, written atomically (png, svg or html by the suffix)."""
-    from .. import figures, render
     from ..io.files import write_atomic
+    from ..output import figures, render
 
     points = figures.explore_points(result.top, result.pareto)
     fig = figures.explore_scatter(
@@ -208,11 +208,11 @@ def explore(
     """Every firing order and crank of a layout: figures of merit, Pareto front, top-N."""
     import numpy as np
 
-    from ..explore import merit, orders, rank
-    from ..explore.run import Keep, Sample, progress_line, run
-    from ..explore.work import plan
-    from ..options import ExploreOptions
+    from ..physics.explore import merit, orders, rank
+    from ..physics.explore.work import plan
     from ..results import require_finite
+    from ..schema.settings import ExploreOptions
+    from ..studies.explore import Keep, Sample, progress_line, run
 
     if options.get("layout") == "vr":
         raise InputError("--layout", "vr", orders.VR_REFUSED)
@@ -264,7 +264,7 @@ def explore(
         raise InputError("--plot", plot, "two --objectives (its axes) and a top-N key")
     keep = Keep(objectives=objectives, key=key, n=o.top)
     if plot is not None:  # the figure's candidates: the best by the key, up to its limit
-        from ..figures import EXPLORE_POINTS
+        from ..output.figures import EXPLORE_POINTS
 
         keep = Keep(objectives=objectives, key=key, n=max(o.top, EXPLORE_POINTS))
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "--filter")

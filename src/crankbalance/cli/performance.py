@@ -1,8 +1,8 @@
 """``crankbalance friction | bench | cycle | sensitivity``: bearing friction and performance.
 
 Quantities are unit strings (``"20 mm"``, ``"9000 rpm"``); the physics lives in
-:mod:`crankbalance.friction`, :mod:`crankbalance.rotor_bench` and
-:mod:`crankbalance.engine_cycle`, imported when a command runs; pressure tables are read by
+:mod:`crankbalance.physics.friction`, :mod:`crankbalance.physics.rotor_bench` and
+:mod:`crankbalance.physics.engine_cycle`, imported when a command runs; pressure tables are read by
 :mod:`crankbalance.io.pressure_csv`.
 """
 
@@ -18,9 +18,9 @@ from typing import TYPE_CHECKING, Any
 import click
 
 from ..errors import InputError
-from ..format import json_text, keyed, number, text
-from ..options import MAX_BENCH_REVOLUTIONS, MAX_BENCH_RUNS, MAX_SWEEP
+from ..output.format import json_text, keyed, number, text
 from ..results import require_finite
+from ..schema.settings import MAX_BENCH_REVOLUTIONS, MAX_BENCH_RUNS, MAX_SWEEP
 from ._common import (
     echo_table,
     format_option,
@@ -32,7 +32,7 @@ from ._common import (
 )
 
 if TYPE_CHECKING:
-    from ..options import CycleOptions
+    from ..schema.settings import CycleOptions
 
 FORMATS = ("table", "json", "csv")
 
@@ -168,8 +168,8 @@ def friction(
 
     Hoem and Røsholm (2016), Sec. 4.2.1.
     """
-    from .. import friction as fr
-    from ..options import FrictionOptions
+    from ..physics import friction as fr
+    from ..schema.settings import FrictionOptions
 
     o = parse_settings(
         FrictionOptions,
@@ -355,8 +355,8 @@ def bench(
 
     Defaults are the thesis' test rotor (Appendix E, balanced case 1).
     """
-    from ..options import BenchOptions
-    from ..rotor_bench import BenchRotor, BenchSettings, run_bench
+    from ..physics.rotor_bench import BenchRotor, BenchSettings, run_bench
+    from ..schema.settings import BenchOptions
 
     o = parse_settings(
         BenchOptions,
@@ -522,7 +522,7 @@ def crank_inertia(o: CycleOptions, model: Any = None) -> float:
     if o.crank_inertia is not None:
         return float(o.crank_inertia)
     if model is None:
-        from ..options import THESIS_CRANK_INERTIA
+        from ..schema.settings import THESIS_CRANK_INERTIA
 
         return THESIS_CRANK_INERTIA
     from ..studies.crank import rotating_inertia
@@ -590,9 +590,9 @@ def _inertia_error(o: CycleOptions, inertia: float, error: InputError, hint: str
 def _engine_from_options(o: CycleOptions) -> tuple[Any, Any, float, int, float]:
     """The cylinder, its pressure source, speed, stroke count and crank + flywheel inertia
     (before ``--flywheel-inertia``) of ``cycle`` and ``sensitivity`` from their validated
-    options (:class:`~crankbalance.options.CycleOptions`); an option that would be ignored
+    options (:class:`~crankbalance.schema.settings.CycleOptions`); an option that would be ignored
     is refused."""
-    from ..engine_cycle import CylinderSpec
+    from ..physics.engine_cycle import CylinderSpec
     from ..studies.performance import WIEBE_OPTIONS, pressure_source
 
     given = given_options()
@@ -733,7 +733,7 @@ def cycle(
     CSV output gives the curves over the crank angle (for one cylinder, the polar load
     diagram is the transverse against the in-line main-bearing load).
     """
-    from ..options import CycleOptions
+    from ..schema.settings import CycleOptions
     from ..studies.performance import arithmetic_checked
 
     o = parse_settings(
@@ -779,7 +779,7 @@ def _one_cylinder_cycle(o: CycleOptions) -> tuple[Any, dict[str, Any], dict[str,
     """``cycle`` of one cylinder: the result, the JSON payload and the CSV curves."""
     import numpy as np
 
-    from ..engine_cycle import engine_cycle
+    from ..physics.engine_cycle import engine_cycle
     from ..studies.performance import combustion_summary, size_cylinder_flywheel
 
     cylinder, pressure, speed, strokes, inertia = _engine_from_options(o)
@@ -1037,8 +1037,8 @@ def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str
 
 def _write_cycle_plot(plot: str, result: Any) -> None:
     """The torque figure of ``cycle``, written atomically (png, svg or html by suffix)."""
-    from .. import figures, render
     from ..io.files import write_atomic
+    from ..output import figures, render
 
     fig = figures.engine_torque_figure(result)
     fmt = Path(plot).suffix.lower().lstrip(".")
@@ -1063,8 +1063,8 @@ def _write_cycle_plot(plot: str, result: Any) -> None:
 @format_option(FORMATS)
 def sensitivity(fmt: str, balance_factors: str, mass_scales: str, **options: Any) -> None:
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""
-    from ..engine_cycle import balance_sensitivity
-    from ..options import SensitivityOptions
+    from ..physics.engine_cycle import balance_sensitivity
+    from ..schema.settings import SensitivityOptions
     from ..studies.performance import arithmetic_checked, combustion_summary
 
     values = {

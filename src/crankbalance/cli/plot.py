@@ -52,8 +52,8 @@ def build_figure(
     balance_factor: float = 0.5,
 ) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
-    from .. import figures
     from ..errors import InputError
+    from ..output import figures
     from ..studies.engine import analyze, balance_engine
 
     if kind not in KINDS:
@@ -160,7 +160,7 @@ def plot(
     from click.core import ParameterSource
 
     from ..errors import InputError
-    from ..options import PlotOptions
+    from ..schema.settings import PlotOptions
     from ._common import parse_settings, require_extra
 
     if kind not in KINDS:
@@ -199,8 +199,8 @@ def plot(
         PlotOptions, {"order": order, "cylinder": cylinder, "balance_factor": balance_factor}
     )
     fig = build_figure(kind, engine, str(o.order), quantity, balance, o.cylinder, o.balance_factor)
-    from .. import render
     from ..io.files import write_atomic
+    from ..output import render
 
     if fmt == "html":
         write_atomic(output, render.to_html(fig))

@@ -43,8 +43,8 @@ def report(
     """Balancing report of ENGINE (an engine file or a preset name): engine data, mass split,
     free forces and moments, balancing masses, residuals, figures and the settings used."""
     from ..errors import InputError
-    from ..options import AnalysisOptions, BalanceOptions
-    from ..report import write_report
+    from ..output.report import write_report
+    from ..schema.settings import AnalysisOptions, BalanceOptions
     from ._common import parse_settings, require_extra
     from .plot import check_output
 

@@ -16,15 +16,15 @@ import click
 import numpy as np
 
 from ..errors import InputError
-from ..format import json_text, keyed, text
-from ..options import MAX_SHAFT_POINTS
+from ..output.format import json_text, keyed, text
 from ..results import require_finite
+from ..schema.settings import MAX_SHAFT_POINTS
 from ._common import echo_table, format_option, parse_settings
 
 if TYPE_CHECKING:
-    from ..balance_shaft import HoldMode, RotorType, SecondaryMeasure
-    from ..beam import BeamTheory
-    from ..options import ShaftSectionOptions, ShaftStudyOptions
+    from ..physics.balance_shaft import HoldMode, RotorType, SecondaryMeasure
+    from ..physics.beam import BeamTheory
+    from ..schema.settings import ShaftSectionOptions, ShaftStudyOptions
 
 SCHEMA = "crankbalance.shaft/2"
 
@@ -148,7 +148,7 @@ def _study_options(function: Any) -> Any:
 
 def _section(o: ShaftSectionOptions) -> Any:
     """The shaft section of the validated options."""
-    from ..beam import ShaftSection
+    from ..physics.beam import ShaftSection
 
     return ShaftSection(
         outer_diameter=o.diameter,
@@ -168,7 +168,7 @@ def _study_setup(
     --unbalance/--speed, in SI) and the keyword arguments common to
     :func:`inline4_study` and :func:`inline3_study` (length and section included).
     """
-    from ..options import ShaftStudyOptions
+    from ..schema.settings import ShaftStudyOptions
 
     values = {k: v for k, v in options.items() if k in ShaftStudyOptions.model_fields}
     if options["weights"] is not None:
@@ -302,7 +302,7 @@ def shaft() -> None:
 @format_option(("table", "json"))
 def inline4(fmt: str, **options: Any) -> None:
     """Optimum unbalance-mass position of an inline-4 second-order shaft on end bearings."""
-    from ..balance_shaft import inline4_study
+    from ..physics.balance_shaft import inline4_study
 
     o, c, kwargs = _study_setup(2, options)
     study = inline4_study(positions=np.linspace(0.0, 1.0, o.points), **kwargs)
@@ -363,7 +363,7 @@ def inline3(
     --unbalance is the first moment of each mass when the two masses are the shaft
     length apart (Kim (2018), Eq. 12).
     """
-    from ..balance_shaft import ROTOR_TYPES, inline3_study
+    from ..physics.balance_shaft import ROTOR_TYPES, inline3_study
 
     o, c, kwargs = _study_setup(1, {**options, "bearing_offset": bearing_offset, "z_min": z_min})
     types = ROTOR_TYPES if rotor_type == "all" else (rotor_type,)
@@ -477,8 +477,8 @@ def check(
     fmt: str,
 ) -> None:
     """State variables and design checks of one shaft layout."""
-    from ..balance_shaft import BalanceShaft, design_checks, shaft_response
-    from ..options import ShaftCheckOptions
+    from ..physics.balance_shaft import BalanceShaft, design_checks, shaft_response
+    from ..schema.settings import ShaftCheckOptions
 
     o = parse_settings(
         ShaftCheckOptions,

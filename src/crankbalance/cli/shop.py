@@ -4,7 +4,7 @@
 of a balancing machine into holes per correction plane and checks the predicted residual
 against ISO 21940-11; ``scatter`` runs the Monte Carlo of the parts file's scatter; ``sheet``
 writes the printable shop sheet (HTML or PDF). Every command validates its settings through
-:class:`crankbalance.options.ShopOptions`; an error names the option as typed, exit 2.
+:class:`crankbalance.schema.settings.ShopOptions`; an error names the option as typed, exit 2.
 """
 
 from __future__ import annotations
@@ -16,7 +16,7 @@ from typing import Any
 
 import click
 
-from ..format import text
+from ..output.format import text
 from ._common import echo_table, option_name, parse_settings
 
 FORMATS = click.Choice(["table", "json"])
@@ -107,8 +107,8 @@ def _with(options: tuple[Callable[[Any], Any], ...]) -> Callable[[Any], Any]:
 
 
 def _settings(values: dict[str, Any]) -> Any:
-    """The typed options through :class:`~crankbalance.options.ShopOptions`."""
-    from ..options import ShopOptions
+    """The typed options through :class:`~crankbalance.schema.settings.ShopOptions`."""
+    from ..schema.settings import ShopOptions
 
     given = {k: v for k, v in values.items() if v not in (None, ())}
     if "reading" in given:
@@ -121,7 +121,7 @@ def _named(*others: str) -> Iterator[None]:
     """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``;
     also the ``others``, the command's own options)."""
     from ..errors import InputError
-    from ..options import ShopOptions
+    from ..schema.settings import ShopOptions
 
     try:
         yield
@@ -139,7 +139,7 @@ _OPTION_NAMES = {
 
 def _echo_json(schema: str, result: Any) -> None:
     """The JSON of a shop result, every key with its unit (:func:`studies.shop.shop_json`)."""
-    from ..format import json_text
+    from ..output.format import json_text
     from ..studies.shop import shop_json
 
     click.echo(json_text({"schema": schema, "result": shop_json(result)}))
@@ -350,7 +350,7 @@ def _whole(option: str, value: str, low: int, high: int) -> int:
 @_with(_PARTS_OPTIONS + _PLAN_OPTIONS)
 def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: Any) -> None:
     """The printable shop sheet of PARTS (and of the readings, when given): HTML or PDF."""
-    from ..shop_sheet import write_sheet
+    from ..output.shop_sheet import write_sheet
     from ..studies.shop import shop_study
     from ._common import require_extra
     from .plot import check_output

@@ -103,8 +103,8 @@ def balance_factor(
     The balance factor is the share of the reciprocating mass per cylinder balanced by the
     crank counterweight, on top of 100 % of the rotating mass.
     """
-    from .. import single_cylinder as sc
-    from ..options import BalanceFactorOptions
+    from ..physics import single_cylinder as sc
+    from ..schema.settings import BalanceFactorOptions
 
     o = parse_settings(
         BalanceFactorOptions,
@@ -358,7 +358,7 @@ def rebalance_command(
     Options override the values of the --parts file.
     """
     from ..io.rebalance_file import METHOD_KEYS, read_rebalance_data, rebalance_file_from_dict
-    from ..options import RebalancePartsOptions
+    from ..schema.settings import RebalancePartsOptions
     from ..studies.rebalance import rebalance_parts
 
     # the typed values in their physical ranges; the file's schema then checks how they
@@ -691,8 +691,8 @@ def tolerance_command(
     fmt: str,
 ) -> None:
     """ISO 21940-11 permissible residual unbalance U_per = 1000 G m / Omega [g*mm]."""
-    from .. import tolerance as tl
-    from ..options import ToleranceOptions
+    from ..physics import tolerance as tl
+    from ..schema.settings import ToleranceOptions
 
     o = parse_settings(
         ToleranceOptions,

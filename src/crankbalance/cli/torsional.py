@@ -1,9 +1,9 @@
 """``crankbalance torsional``: torsional vibration of an engine's crank train.
 
 The lumped chain (damper ring, front end, one inertia per throw, flywheel, load) of
-:mod:`crankbalance.torsional`, excited by the gas and inertia torque harmonics of every
+:mod:`crankbalance.physics.torsional`, excited by the gas and inertia torque harmonics of every
 cylinder from one run of the whole-engine cycle
-(:func:`~crankbalance.engine_cycle_all.engine_cycle_all`): natural frequencies and mode
+(:func:`~crankbalance.physics.engine_cycle_all.engine_cycle_all`): natural frequencies and mode
 shapes, the resonances in the speed range with the response there, the damper check, and
 the sweep. ``docs/torsional.md``.
 """
@@ -76,7 +76,7 @@ CARTER_OPTIONS = (
 
 
 def _options(function: Any) -> Any:
-    from ..options import TorsionalOptions, default_text
+    from ..schema.settings import TorsionalOptions, default_text
 
     for name in reversed(_FIELDS):
         info = TorsionalOptions.model_fields[name]
@@ -120,8 +120,8 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
     resonance of an engine order with a mode in the speed range with the response there,
     and the damper check. CSV: the sweep over the speed range.
     """
-    from ..options import TorsionalOptions
     from ..results import require_finite
+    from ..schema.settings import TorsionalOptions
     from ..studies.performance import WIEBE_OPTIONS
     from ._common import refuse_unused
 
@@ -148,7 +148,7 @@ def torsional(fmt: str, plot: str | None, **options: Any) -> None:
     if plot is not None:
         _write_plot(plot, study)
     if fmt == "json":
-        from ..format import json_text
+        from ..output.format import json_text
 
         click.echo(json_text({"schema": "crankbalance.torsional/1", **payload}))
     elif fmt == "csv":
@@ -175,10 +175,10 @@ def run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
 
 def check_size(o: Any, train: Any, strokes: int, speeds: Any) -> None:
     """Refuse, before any work, a study that would compute more than
-    :data:`crankbalance.torsional.MAX_RESPONSE_SIZE` amplitudes (speeds of the sweep and of
+    :data:`crankbalance.physics.torsional.MAX_RESPONSE_SIZE` amplitudes (speeds of the sweep and of
     the resonances in the range x engine orders x masses), naming the option that drives
     it: ``--speed-points`` or ``--highest-order``."""
-    from .. import torsional as tv
+    from ..physics import torsional as tv
 
     orders = tv.engine_orders(strokes, o.highest_order)
     resonances, size = tv.response_size(train, orders, speeds)
@@ -198,7 +198,7 @@ def check_size(o: Any, train: Any, strokes: int, speeds: Any) -> None:
 
 def _typed(name: str) -> str:
     """An option of the running command as typed, else its default as one would type it."""
-    from ..options import TorsionalOptions, default_text
+    from ..schema.settings import TorsionalOptions, default_text
 
     if name in given_options():
         return str(click.get_current_context().params[name])
@@ -209,9 +209,9 @@ def _run_study(o: Any) -> tuple[Any, Any, Any, dict[str, Any]]:
     """:func:`run_study`, unchecked."""
     import numpy as np
 
-    from .. import torsional as tv
-    from ..engine_cycle_all import engine_cycle_all
     from ..io.engine_file import load_engine
+    from ..physics import torsional as tv
+    from ..physics.engine_cycle_all import engine_cycle_all
     from ..studies.build import build_model
     from ..studies.crank import DIMENSIONS, crank_dimensions, rotating_inertia, web_offset
     from ..studies.performance import combustion_summary, pressure_source
@@ -494,8 +494,8 @@ def _echo_assumed(crank: dict[str, Any]) -> None:
 
 
 def _write_plot(plot: str, study: Any) -> None:
-    from .. import figures, render
     from ..io.files import write_atomic
+    from ..output import figures, render
 
     fig = figures.torsional_figure(study)
     fmt = Path(plot).suffix.lower().lstrip(".")

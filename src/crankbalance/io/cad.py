@@ -2,13 +2,13 @@
 
 This module owns every file a counterweight is written to or read back from:
 :func:`profile_svg` and :func:`profile_dxf` (exact lines and arcs of
-:func:`crankbalance.counterweight.profile_boundary`), :func:`profile_mesh`, :func:`stl_bytes`
-and :func:`write_stl` (a closed triangle mesh of the prism), :func:`write_step` (build123d,
-``cad`` extra), the dispatcher :func:`export_counterweight`, and
-:func:`mesh_mass_properties` (:class:`MeshMassProperties` of an STL or STEP part, read
-with trimesh). Files are written atomically (:func:`crankbalance.io.files.write_atomic`;
-an error while writing is a :class:`crankbalance.io.files.WriteError` and leaves the
-previous file intact). trimesh and build123d are imported lazily.
+:func:`crankbalance.physics.counterweight.profile_boundary`), :func:`profile_mesh`,
+:func:`stl_bytes` and :func:`write_stl` (a closed triangle mesh of the prism),
+:func:`write_step` (build123d, ``cad`` extra), the dispatcher :func:`export_counterweight`, and
+:func:`mesh_mass_properties` (:class:`MeshMassProperties` of an STL or STEP part, read with
+trimesh). Files are written atomically (:func:`crankbalance.io.files.write_atomic`; an error
+while writing is a :class:`crankbalance.io.files.WriteError` and leaves the previous file
+intact). trimesh and build123d are imported lazily.
 """
 
 from __future__ import annotations
@@ -22,7 +22,8 @@ from typing import Literal
 
 import numpy as np
 
-from ..counterweight import (
+from ..errors import InputError
+from ..physics.counterweight import (
     DEFAULT_DENSITY,
     BoundaryLine,
     CounterweightDesign,
@@ -30,7 +31,6 @@ from ..counterweight import (
     profile_boundary,
     profile_section,
 )
-from ..errors import InputError
 from ..results import ResultMixin
 from .files import write_atomic
 

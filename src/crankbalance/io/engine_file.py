@@ -9,7 +9,7 @@ from importlib import resources
 from typing import Any
 
 from ..errors import InputError
-from ..spec import EngineSpec, spec_from_dict
+from ..schema.engine import EngineSpec, spec_from_dict
 from .files import write_atomic
 from .reading import file_format, parse_json, parse_toml, read_text
 

@@ -49,8 +49,8 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..shop.matching import Inventory, PartKind
-from ..spec import MAX_QUANTITY_CHARS, parse_in_range
+from ..physics.shop.matching import Inventory, PartKind
+from ..schema.engine import MAX_QUANTITY_CHARS, parse_in_range
 from .reading import parse_toml, read_text
 
 #: largest parts file read [bytes]

@@ -3,8 +3,8 @@
 This module owns the file format of ``crankbalance cycle --pressure-csv`` and
 ``crankbalance sensitivity --pressure-csv``: it reads the table, refuses what is not a
 table of two numeric columns, and converts it to the SI arrays that
-:func:`crankbalance.engine_cycle.tabulated_pressure` and
-:func:`crankbalance.engine_cycle.engine_cycle` take. The physics checks of the table
+:func:`crankbalance.physics.engine_cycle.tabulated_pressure` and
+:func:`crankbalance.physics.engine_cycle.engine_cycle` take. The physics checks of the table
 (less than one cycle, which depends on the stroke count) stay with the model;
 :func:`crankbalance.studies.performance.pressure_source` names the file in them.
 

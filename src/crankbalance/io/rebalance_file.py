@@ -20,7 +20,7 @@ from typing import Annotated, Any, Literal
 from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
 
 from ..errors import InputError
-from ..spec import FieldProblem, input_error, parse_in_range
+from ..schema.engine import FieldProblem, input_error, parse_in_range
 from ..units import parse_factor
 from .reading import parse_toml, read_text
 
@@ -50,7 +50,7 @@ def _target(value: Any) -> Any:
     """A target balance factor: a number, a percentage or ``"factory"`` (the crank's own)."""
     if isinstance(value, str) and value.strip().lower() == "factory":
         return "factory"
-    from ..single_cylinder import check_balance_factor
+    from ..physics.single_cylinder import check_balance_factor
 
     try:
         number = parse_factor(value, "")

@@ -4,7 +4,7 @@ input of a physics study, and the orchestration of a whole study.
 The command line, the web application and the report call this layer and nothing below
 it for engine-derived quantities, so that one question has one answer everywhere:
 
-* :mod:`.build`: engine spec -> :class:`~crankbalance.model.EngineModel` (SI arrays).
+* :mod:`.build`: engine spec -> :class:`~crankbalance.physics.model.EngineModel` (SI arrays).
 * :mod:`.engine`: free forces and moments (:func:`.engine.analyze`) and the
   counterweights and balance shafts (:func:`.engine.balance_engine`).
 * :mod:`.cylinder`: one cylinder of an engine (the shared-crankpin rule), its

@@ -22,9 +22,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..options import MAX_SWEEP_WORK, BearingOptions, BearingSweepOptions, parse_options
 from ..results import to_jsonable
-from ..spec import EngineSpec
+from ..schema.engine import EngineSpec
+from ..schema.settings import MAX_SWEEP_WORK, BearingOptions, BearingSweepOptions, parse_options
 from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
 from .loads import BearingStudy, bearing_loads
 
@@ -184,7 +184,7 @@ class SweepStudy:
 
 def _no_counterweights(spec: EngineSpec) -> BalanceStudy:
     """The engine's balancing without crank counterweights (its balance shafts kept)."""
-    from ..balancing import balance
+    from ..physics.balancing import balance
     from .build import build_model
 
     model = build_model(spec)
@@ -194,7 +194,7 @@ def _no_counterweights(spec: EngineSpec) -> BalanceStudy:
 
 def check_sweep_work(spec: EngineSpec, sweep: BearingSweepOptions, options: BearingOptions) -> None:
     """Refuse a sweep over its work budget before any case: cases x samples per revolution
-    x cylinders at most :data:`~crankbalance.options.MAX_SWEEP_WORK`.
+    x cylinders at most :data:`~crankbalance.schema.settings.MAX_SWEEP_WORK`.
 
     Parameters
     ----------
@@ -237,7 +237,7 @@ def bearing_sweep(
     engine : str, path or EngineSpec
         Preset name, engine file or validated spec.
     sweep : BearingSweepOptions or mapping, optional
-        Patterns, balance factors (:class:`crankbalance.options.BearingSweepOptions`).
+        Patterns, balance factors (:class:`crankbalance.schema.settings.BearingSweepOptions`).
     options : BearingOptions or mapping, optional
         The loads' settings; their ``webs`` and ``balance_factor`` must be empty (swept).
     progress : callable, optional

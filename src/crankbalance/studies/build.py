@@ -1,4 +1,5 @@
-"""From a validated engine spec to the SI arrays of :class:`~crankbalance.model.EngineModel`.
+"""From a validated engine spec to the SI arrays of
+:class:`~crankbalance.physics.model.EngineModel`.
 
 This is the one place where the engine file's words (layout, firing order, parts or
 totals, overrides) become throws, cylinders and masses; the physics modules only ever see
@@ -12,15 +13,16 @@ import math
 import numpy as np
 from numpy.typing import NDArray
 
-from ..articulated import Articulation, default_link_pin_angles
 from ..errors import InputError
-from ..model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
-from ..numbering import check_firing_order, firing_tdc_angles, to_crankbalance_order
-from ..spec import EngineSpec, MassOverride
+from ..physics.articulated import Articulation, default_link_pin_angles
+from ..physics.firing import check_firing_order, firing_tdc_angles, to_crankbalance_order
+from ..physics.model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
+from ..schema.engine import EngineSpec, MassOverride
 
 
 def build_model(spec: EngineSpec) -> EngineModel:
-    """Turn a validated :class:`~crankbalance.spec.EngineSpec` into an :class:`EngineModel`."""
+    """Turn a validated :class:`~crankbalance.schema.engine.EngineSpec` into an
+    :class:`EngineModel`."""
     ct = spec.crank_train
     positions, cylinder_throw, banks = _layout(spec)
     n = cylinder_throw.size
@@ -74,7 +76,7 @@ def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
     """Each cylinder's total offset [m]: ``pin_offset + crank_offset`` plus its bank's
     entry of ``bank_offsets`` or its own entry of ``cylinder_offsets``, and in VR rows
     (layout vr, or w with w_type vr) the rows' ``bore_offset``, negative in row A and
-    positive in row B (the sign of :mod:`crankbalance.kinematics`: the rows' bore axes meet
+    positive in row B (the sign of :mod:`crankbalance.physics.kinematics`: the rows' bore axes meet
     beyond the crank axis when ``bore_offset`` is positive).
 
     Banks (docs/engine_file.md): vee A (cylinders 1..T) and B (T+1..2T); W the banks at

@@ -3,7 +3,7 @@
 
 * :func:`web_offset` -- the axial distance of a web from its throw's mid-plane: the engine
   file's ``[counterweights] web_offset``, else a quarter of the throw pitch
-  (:func:`crankbalance.balancing.default_web_offset`);
+  (:func:`crankbalance.physics.balancing.default_web_offset`);
 * :func:`crank_dimensions` -- main journal, crankpin and web dimensions: those typed, the
   rest in :data:`DEFAULT_PROPORTIONS` of the crank radius and the web offset (an
   automotive crank's proportions, docs/main_bearings.md), the crankpin and journal lengths
@@ -27,9 +27,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..model import EngineModel
-from ..options import DEFAULT_FLYWHEEL_INERTIA, DEFAULT_FRONT_INERTIA
-from ..spec import EngineSpec
+from ..physics.model import EngineModel
+from ..schema.engine import EngineSpec
+from ..schema.settings import DEFAULT_FLYWHEEL_INERTIA, DEFAULT_FRONT_INERTIA
 from .build import build_model
 
 #: default crank proportions when a dimension is not given (docs/main_bearings.md): main
@@ -48,8 +48,8 @@ DIMENSIONS = (*DEFAULT_PROPORTIONS, "journal_length", "pin_length")
 def web_offset(spec: EngineSpec, model: EngineModel | None = None) -> float:
     """Axial distance of a web from its throw's mid-plane [m]: the engine file's
     ``[counterweights] web_offset``, else a quarter of the throw pitch (half the crank
-    radius for one throw; :func:`crankbalance.balancing.default_web_offset`)."""
-    from ..balancing import default_web_offset
+    radius for one throw; :func:`crankbalance.physics.balancing.default_web_offset`)."""
+    from ..physics.balancing import default_web_offset
 
     given = spec.counterweights.web_offset if spec.counterweights is not None else None
     if given is not None:
@@ -95,7 +95,7 @@ class CrankDimensions:
 
 def _pitch(model: EngineModel) -> float | None:
     """Smallest axial distance between two crank planes [m] (None for one plane)."""
-    from ..main_bearings import crank_planes
+    from ..physics.main_bearings import crank_planes
 
     planes = crank_planes(model.throw_position)[0]
     steps = np.diff(np.sort(planes))
@@ -110,7 +110,7 @@ def crank_dimensions(
 
     Diameters and web width are :data:`DEFAULT_PROPORTIONS` of r (journal 1.3 r,
     crankpin 1.1 r, web width 2.2 r), the web thickness h = 0.75 o. The lengths are the
-    stretches of the bearings' stepped beam (:func:`crankbalance.main_bearings.
+    stretches of the bearings' stepped beam (:func:`crankbalance.physics.main_bearings.
     crank_stiffness`): the crankpin between the two webs of a throw, :math:`l_p = 2o - h`,
     the journal between the webs of neighbouring throws, :math:`l_j = a - 2o - h` with the
     smallest throw pitch a (4 o for one throw: the pitch the default web offset a/4
@@ -180,15 +180,15 @@ def rotating_inertia(
     r"""Inertia of everything that turns with the crank [kg m^2]: front end, throws and
     flywheel, without the pistons (the cycles add the reciprocating parts' inertia
     :math:`m\,s'^2(\alpha)` as it varies over the turn; the torsional model's chain holds
-    its mean share on top, :func:`crankbalance.torsional.throw_inertias`).
+    its mean share on top, :func:`crankbalance.physics.torsional.throw_inertias`).
 
     .. math:: J = J_{front} + \sum_t J_{throw,t} + J_{flywheel}
 
-    with :math:`J_{throw,t}` of :func:`crankbalance.torsional.rotating_throw_inertia` (the
+    with :math:`J_{throw,t}` of :func:`crankbalance.physics.torsional.rotating_throw_inertia` (the
     throw's rotating masses at the crank radius, or ``throw_inertia``) and the torsional
-    study's defaults for the front end (:data:`~crankbalance.options.
+    study's defaults for the front end (:data:`~crankbalance.schema.settings.
     DEFAULT_FRONT_INERTIA`, pulley, timing gear and damper hub) and the flywheel
-    (:data:`~crankbalance.options.DEFAULT_FLYWHEEL_INERTIA`, flywheel and clutch) when
+    (:data:`~crankbalance.schema.settings.DEFAULT_FLYWHEEL_INERTIA`, flywheel and clutch) when
     not given.
 
     Parameters
@@ -206,7 +206,7 @@ def rotating_inertia(
     float
         The total [kg m^2].
     """
-    from ..torsional import rotating_throw_inertia
+    from ..physics.torsional import rotating_throw_inertia
 
     front = DEFAULT_FRONT_INERTIA if front_inertia is None else float(front_inertia)
     flywheel = DEFAULT_FLYWHEEL_INERTIA if flywheel_inertia is None else float(flywheel_inertia)

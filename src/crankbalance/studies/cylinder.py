@@ -19,11 +19,9 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..kinematics import KinematicsModel
-from ..model import EngineModel
-from ..options import RebalanceOptions, SingleCylinderOptions
-from ..results import ResultMixin
-from ..single_cylinder import (
+from ..physics.kinematics import KinematicsModel
+from ..physics.model import EngineModel
+from ..physics.single_cylinder import (
     BalanceFactorStudy,
     DrilledHoles,
     RebalanceResult,
@@ -31,7 +29,9 @@ from ..single_cylinder import (
     counterweight_moment,
     rebalance,
 )
-from ..tolerance import BalanceGrade, ToleranceVerdict
+from ..physics.tolerance import BalanceGrade, ToleranceVerdict
+from ..results import ResultMixin
+from ..schema.settings import RebalanceOptions, SingleCylinderOptions
 
 
 @dataclass(frozen=True)
@@ -118,7 +118,7 @@ def cylinder_study(
     is the per-cylinder view of Hoem and Røsholm (2016), Sec. 4.1.2, not the engine's free
     force (:func:`crankbalance.studies.engine.analyze` gives that).
 
-    ``options`` go to :func:`crankbalance.single_cylinder.balance_factor_study`
+    ``options`` go to :func:`crankbalance.physics.single_cylinder.balance_factor_study`
     (``samples``, ``sweep``).
     """
     cylinder = cylinder_of(model, number)
@@ -149,7 +149,7 @@ def iso_check(model: EngineModel, options: SingleCylinderOptions) -> IsoCheck:
     """Permissible residual unbalance [kg m] at the engine speed, and the verdict on a
     measured residual when one is given. The rotor mass defaults to the crank's rotating
     masses (every throw)."""
-    from ..tolerance import balance_grade, check_residual, permissible_unbalance
+    from ..physics.tolerance import balance_grade, check_residual, permissible_unbalance
 
     grade = balance_grade(options.grade.replace(" ", ""), field="grade")
     mass = options.rotor_mass

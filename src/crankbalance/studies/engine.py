@@ -10,13 +10,13 @@ from typing import Any
 
 import numpy as np
 
-from ..format import keyed, moment_point, text
 from ..io.engine_file import load_engine
-from ..model import EngineModel
-from ..options import AnalysisOptions, parse_options
+from ..output.format import keyed, moment_point, text
+from ..physics.model import EngineModel
+from ..physics.shaking import Curves, FreeForces, curves, free_forces
 from ..results import to_jsonable
-from ..shaking import Curves, FreeForces, curves, free_forces
-from ..spec import EngineSpec
+from ..schema.engine import EngineSpec
+from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
 SCHEMA = "crankbalance.analysis/3"
@@ -152,7 +152,7 @@ def articulated_summary(m: EngineModel) -> dict[str, Any]:
     rods = m.articulated_rods
     if rods is None:
         return {}
-    from ..articulated import dead_centres
+    from ..physics.articulated import dead_centres
 
     centres = dead_centres(rods)
     return {
@@ -214,7 +214,7 @@ def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
     Without a [counterweights] table the crank gets counterweights on every web at the
     crank radius, at the optimal angle (least mass), with no balance factor.
     """
-    from ..balancing import CounterweightOptions, ShaftOptions
+    from ..physics.balancing import CounterweightOptions, ShaftOptions
 
     c = spec.counterweights
     if c is None:
@@ -354,11 +354,11 @@ def balance_engine(
 
     ``overrides`` replace fields of the counterweight options (``angle``,
     ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``) or give
-    ``primary``/``secondary`` as :class:`~crankbalance.balancing.ShaftOptions` (or None).
+    ``primary``/``secondary`` as :class:`~crankbalance.physics.balancing.ShaftOptions` (or None).
     """
     import dataclasses
 
-    from ..balancing import balance
+    from ..physics.balancing import balance
 
     orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)

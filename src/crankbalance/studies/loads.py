@@ -4,8 +4,8 @@ loads of every main bearing and the bending of the crank (docs/main_bearings.md)
 The chain: the engine file's counterweights (with the study's overrides of the pattern and
 the balance factor) from :func:`crankbalance.studies.engine.balance_engine`; the whole
 engine over one working cycle (gas and reciprocating inertia through the rods, every
-cylinder at its firing phase) from :func:`crankbalance.engine_cycle_all.engine_cycle_all`;
-then the loads on the crank and both crank models of :mod:`crankbalance.main_bearings`.
+cylinder at its firing phase) from :func:`crankbalance.physics.engine_cycle_all.engine_cycle_all`;
+then the loads on the crank and both crank models of :mod:`crankbalance.physics.main_bearings`.
 The CLI (``crankbalance bearings``) and the example ``examples/inline4_counterweights.py``
 call :func:`bearing_loads`.
 """
@@ -22,7 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..main_bearings import (
+from ..physics.main_bearings import (
     CRANK_MODELS,
     MAX_CONTACT_SIZE,
     CrankSection,
@@ -34,10 +34,10 @@ from ..main_bearings import (
     default_bearing_positions,
     main_bearing_loads,
 )
-from ..model import EngineModel
-from ..options import MIN_SAMPLES, BearingOptions, parse_options
+from ..physics.model import EngineModel
 from ..results import to_jsonable
-from ..spec import EngineSpec
+from ..schema.engine import EngineSpec
+from ..schema.settings import MIN_SAMPLES, BearingOptions, parse_options
 from .build import build_model
 from .crank import (
     DEFAULT_PROPORTIONS,
@@ -221,7 +221,7 @@ class BearingStudy:
 
 def _counterweight_arrays(balance: Any) -> dict[str, Any]:
     """The counterweights (and the extra crank masses of a single counter-rotating primary
-    shaft) as the arrays of :func:`crankbalance.main_bearings.crank_loads`: first moments
+    shaft) as the arrays of :func:`crankbalance.physics.main_bearings.crank_loads`: first moments
     at one common radius."""
     parts = [c for c in (balance.counterweights, balance.extra_counterweights) if c is not None]
     if not parts:
@@ -267,7 +267,7 @@ def bearing_loads(
         Preset name, engine file or validated spec (its [counterweights] table sets the
         pattern, overridden by ``options.webs`` and ``options.balance_factor``).
     options : BearingOptions or mapping, optional
-        The study's settings (:class:`crankbalance.options.BearingOptions`).
+        The study's settings (:class:`crankbalance.schema.settings.BearingOptions`).
     balance : BalanceStudy, optional
         Counterweights already solved for this engine
         (:func:`crankbalance.studies.engine.balance_engine`); then ``options.webs`` and
@@ -295,7 +295,7 @@ def _bearing_loads(
     spec: EngineSpec, o: BearingOptions, balance: BalanceStudy | None
 ) -> BearingStudy:
     """:func:`bearing_loads` of a validated spec and settings."""
-    from ..engine_cycle_all import engine_cycle_all
+    from ..physics.engine_cycle_all import engine_cycle_all
 
     overrides: dict[str, Any] = {}
     if o.balance_factor is not None:
@@ -403,7 +403,7 @@ def _bearing_loads(
 
 def _check_contact_size(samples: int, strokes: int, bearings: int) -> None:
     """Refuse, before any work, a clearance contact model larger than
-    :data:`crankbalance.main_bearings.MAX_CONTACT_SIZE` (the samples of one cycle times
+    :data:`crankbalance.physics.main_bearings.MAX_CONTACT_SIZE` (the samples of one cycle times
     (2 x bearings)^2), naming the samples per revolution it allows."""
     per_sample = (2 * bearings) ** 2 * strokes // 2  # samples of a cycle per revolution
     allowed = MAX_CONTACT_SIZE // per_sample

@@ -5,7 +5,7 @@
   (``cycle --cylinder``, ``sensitivity``) and the web application's performance tab build
   their cylinder here; its flywheel sizing (:func:`size_cylinder_flywheel`);
 * the whole engine (:func:`cycle_model`, :func:`whole_engine_cycle`): every cylinder
-  firing (:mod:`crankbalance.engine_cycle_all`), for ``cycle --engine``;
+  firing (:mod:`crankbalance.physics.engine_cycle_all`), for ``cycle --engine``;
 * :func:`arithmetic_checked`, the last net of every study of an engine cycle (``cycle``,
   ``sensitivity``, ``bearings``, ``bearings-sweep``, ``torsional``): a floating-point
   overflow, invalid operation or division by zero becomes one :class:`InputError` naming
@@ -22,10 +22,10 @@ from typing import Any
 
 import numpy as np
 
-from .. import kinematics
-from ..engine_cycle import CycleResult, CylinderSpec, PressureSource, engine_cycle
-from ..engine_cycle_all import EngineCycleResult, engine_cycle_all, flywheel_inertia
-from ..model import EngineModel
+from ..physics import kinematics
+from ..physics.engine_cycle import CycleResult, CylinderSpec, PressureSource, engine_cycle
+from ..physics.engine_cycle_all import EngineCycleResult, engine_cycle_all, flywheel_inertia
+from ..physics.model import EngineModel
 from .cylinder import cylinder_of
 
 
@@ -40,7 +40,8 @@ def cycle_cylinder(
     balance_factor: float = 0.0,
     **geometry: Any,
 ) -> CylinderSpec:
-    """The :class:`~crankbalance.engine_cycle.CylinderSpec` of cylinder ``number`` (1-based).
+    """The :class:`~crankbalance.physics.engine_cycle.CylinderSpec` of cylinder ``number``
+    (1-based).
 
     Crank radius, rod length, offset and the cylinder's reciprocating mass come from the
     engine unless ``geometry`` gives them (``crank_radius``, ``rod_length``,
@@ -127,7 +128,7 @@ def whole_engine_cycle(
     speed_fluctuation_target: float | None = None,
 ) -> EngineCycleResult:
     """All cylinders of ``model`` over one working cycle
-    (:func:`~crankbalance.engine_cycle_all.engine_cycle_all`); without a bore the engine is
+    (:func:`~crankbalance.physics.engine_cycle_all.engine_cycle_all`); without a bore the engine is
     taken as square (bore = stroke), as :func:`cycle_cylinder` does; its arithmetic is
     checked (:func:`arithmetic_checked`)."""
     with arithmetic_checked("the engine cycle", f"engine {model.name!r}"):
@@ -145,7 +146,7 @@ class FlywheelSizing:
     """The rotating inertia one cylinder's cycle needs for a target speed fluctuation.
 
     ``required_inertia`` [kg m^2] is the purely rotating inertia (crank and flywheel) from
-    :func:`~crankbalance.engine_cycle_all.flywheel_inertia` on the cylinder's net torque
+    :func:`~crankbalance.physics.engine_cycle_all.flywheel_inertia` on the cylinder's net torque
     (gas, inertia, friction), less the mean inertia of its reciprocating parts;
     ``achieved_fluctuation`` [-] is the fluctuation of the cycle re-run with it (the
     check); ``energy_excursion`` [J].
@@ -164,7 +165,7 @@ def size_cylinder_flywheel(
     target: float,
 ) -> FlywheelSizing:
     """Flywheel sizing of the single-cylinder cycle ``result`` of ``cylinder`` (run by
-    :func:`~crankbalance.engine_cycle.engine_cycle`), checked by re-running that cycle with
+    :func:`~crankbalance.physics.engine_cycle.engine_cycle`), checked by re-running that cycle with
     the inertia found."""
     total, excursion = flywheel_inertia(result.angle, result.net_torque, result.speed_mean, target)
     slope = kinematics.piston_velocity(
@@ -191,7 +192,7 @@ WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_press
 
 
 def combustion_summary(o: Any) -> dict[str, float] | None:
-    """The Wiebe combustion of :class:`~crankbalance.options.CombustionOptions` as the JSON
+    """The Wiebe combustion of :class:`~crankbalance.schema.settings.CombustionOptions` as the JSON
     of ``cycle``, ``torsional`` and ``bearings`` shows it (SI units in the keys), the same
     defaults for all; None with pressure tables."""
     if o.pressure_csv:
@@ -223,13 +224,13 @@ _TABLE_COLUMNS = {"pressure table angle": "angle_deg", "pressure table pressure"
 
 def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> Any:
     """The gas pressure of ``cycle``, ``sensitivity``, ``torsional`` and ``bearings`` from
-    their :class:`~crankbalance.options.CombustionOptions`: the pressure tables (one for
+    their :class:`~crankbalance.schema.settings.CombustionOptions`: the pressure tables (one for
     every cylinder, or one per cylinder), else the Wiebe model of the options. With the
     cycle's ``strokes`` each table is checked by the model
-    (:func:`~crankbalance.engine_cycle.tabulated_pressure`: less than one cycle) and an
+    (:func:`~crankbalance.physics.engine_cycle.tabulated_pressure`: less than one cycle) and an
     error names its file."""
-    from ..engine_cycle import WiebeCombustion, tabulated_pressure
     from ..errors import InputError
+    from ..physics.engine_cycle import WiebeCombustion, tabulated_pressure
 
     if o.pressure_csv:
         from ..io.pressure_csv import read_pressure_csv

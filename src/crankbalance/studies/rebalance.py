@@ -2,7 +2,7 @@
 (Hoem and Røsholm (2016), Sec. 6.4, eight steps).
 
 The derivations from the file's content to the input of
-:func:`crankbalance.single_cylinder.rebalance` live here: the correction object, the
+:func:`crankbalance.physics.single_cylinder.rebalance` live here: the correction object, the
 permissible residual (given, or from an ISO 21940-11 grade), and one run per target
 balance factor. The ``rebalance`` command merges its options over the file and calls
 :func:`rebalance_parts`; nothing else derives these quantities.
@@ -16,15 +16,15 @@ from typing import Any
 
 from ..errors import InputError
 from ..io.rebalance_file import Correction, Parts, RebalanceFile, Tolerance
-from ..results import ResultMixin
-from ..shop.holes import FLAT_BOTTOM
-from ..single_cylinder import (
+from ..physics.shop.holes import FLAT_BOTTOM
+from ..physics.single_cylinder import (
     STEEL_DENSITY,
     DrilledHoles,
     FaceRemoval,
     RebalanceResult,
     rebalance,
 )
+from ..results import ResultMixin
 
 
 @dataclass(frozen=True)
@@ -110,7 +110,7 @@ def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
 
 
 #: the keys of ``[correction]`` that name the quantities of a correction plan's messages
-#: (:func:`crankbalance.single_cylinder.rebalance`, ``names``)
+#: (:func:`crankbalance.physics.single_cylinder.rebalance`, ``names``)
 PLAN_KEYS = {
     "hole_diameter": "correction.diameter",
     "holes": "correction.number",
@@ -122,7 +122,7 @@ PLAN_KEYS = {
 def tolerance_of(table: Tolerance | None) -> tuple[float, str]:
     """Permissible residual unbalance [kg m] from ``[tolerance]`` and where it comes from:
     ``unbalance`` as given, or ISO 21940-11 ``grade`` at ``rotor_mass`` and ``speed``."""
-    from ..tolerance import balance_grade, permissible_unbalance
+    from ..physics.tolerance import balance_grade, permissible_unbalance
 
     table = table or Tolerance()
     if table.unbalance is not None:

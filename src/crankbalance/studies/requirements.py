@@ -12,11 +12,11 @@ from typing import Literal
 
 import numpy as np
 
-from ..balancing import ShaftOptions
-from ..counterweight import required_first_moment
 from ..errors import InputError
+from ..physics.balancing import ShaftOptions
+from ..physics.counterweight import required_first_moment
 from ..results import ResultMixin
-from ..spec import EngineSpec
+from ..schema.engine import EngineSpec
 from .engine import Analysis, BalanceStudy, EngineLike, balance_engine
 
 

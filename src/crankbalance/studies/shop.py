@@ -1,10 +1,10 @@
 """The balance shop as one study (issue 16): from an engine and its weighed parts to matched
 sets, bob-weights, the hole plan of a two-plane reading and the ISO 21940-11 sign-off.
 
-The physics is in :mod:`crankbalance.shop` (matching, bob-weights, holes, planes, scatter);
+The physics is in :mod:`crankbalance.physics.shop` (matching, bob-weights, holes, planes, scatter);
 this module only derives their inputs from an engine, a parts file and the settings of
-:class:`crankbalance.options.ShopOptions`, and gathers the results. The ``shop`` commands, the
-shop sheet and the example call these functions; nothing else derives these quantities.
+:class:`crankbalance.schema.settings.ShopOptions`, and gathers the results. The ``shop`` commands,
+the shop sheet and the example call these functions; nothing else derives these quantities.
 """
 
 from __future__ import annotations
@@ -18,14 +18,18 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..format import keyed
-from ..model import EngineModel
-from ..options import ShopOptions
-from ..results import ResultMixin, to_jsonable
-from ..shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
-from ..shop.holes import DrillingPlan, drilling_plan
-from ..shop.matching import Inventory, MachineToLightest, Matching, machine_to_lightest, match_parts
-from ..shop.planes import (
+from ..output.format import keyed
+from ..physics.model import EngineModel
+from ..physics.shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
+from ..physics.shop.holes import DrillingPlan, drilling_plan
+from ..physics.shop.matching import (
+    Inventory,
+    MachineToLightest,
+    Matching,
+    machine_to_lightest,
+    match_parts,
+)
+from ..physics.shop.planes import (
     PlaneCheck,
     TwoPlanePlan,
     iso_check,
@@ -33,7 +37,9 @@ from ..shop.planes import (
     predicted_residual,
     reading_unbalance,
 )
-from ..shop.scatter import PartScatter, ScatterStudy, scatter_study
+from ..physics.shop.scatter import PartScatter, ScatterStudy, scatter_study
+from ..results import ResultMixin, to_jsonable
+from ..schema.settings import ShopOptions
 
 
 @dataclass(frozen=True)
@@ -124,7 +130,7 @@ class ShopStudy(ResultMixin):
     holes : HolePlan or None
         The hole plan and the ISO sign-off (None without readings).
     settings : dict
-        The settings used (:class:`~crankbalance.options.ShopOptions`, SI).
+        The settings used (:class:`~crankbalance.schema.settings.ShopOptions`, SI).
     """
 
     parts: PartsStudy
@@ -135,7 +141,7 @@ class ShopStudy(ResultMixin):
 def engine_model(engine: Any) -> tuple[str, EngineModel]:
     """The name and model of ``engine``: a preset name, an engine file or an EngineSpec."""
     from ..io.engine_file import load_engine
-    from ..spec import EngineSpec
+    from ..schema.engine import EngineSpec
     from .build import build_model
 
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
@@ -182,7 +188,7 @@ def _required(options: ShopOptions, *names: str) -> None:
             raise InputError(name, None, "is required to plan the holes")
 
 
-#: the settings (:class:`~crankbalance.options.ShopOptions`) a drilling plan's parameters
+#: the settings (:class:`~crankbalance.schema.settings.ShopOptions`) a drilling plan's parameters
 #: come from, to name them in its messages
 PLAN_SETTINGS = {
     "diameter": "hole_diameter",
@@ -306,7 +312,7 @@ def scatter_of_parts(
     with ``options.fraction``; with ``rotor_mass`` and correction planes given, the
     probability of meeting ``options.grade`` (planes from the crankshaft mid-point)."""
     from ..io.parts_file import load_parts_file
-    from ..shop.planes import plane_tolerances
+    from ..physics.shop.planes import plane_tolerances
 
     _name, model = engine_model(engine)
     inventory = parts if isinstance(parts, Inventory) else load_parts_file(parts)
@@ -442,7 +448,7 @@ _KEYS: dict[str, Names] = {
 #: the unit of a matching's objective (and its bound), by objective
 _OBJECTIVE_SUFFIX = {"spread": "_kg", "variance": "_kg2", "free": "_N"}
 
-#: the JSON keys of the settings (:class:`~crankbalance.options.ShopOptions`, SI)
+#: the JSON keys of the settings (:class:`~crankbalance.schema.settings.ShopOptions`, SI)
 _SETTING_KEYS: Names = {
     "time_limit": "time_limit_s",
     "measuring_planes": "measuring_planes_m",
@@ -462,7 +468,7 @@ _SETTING_KEYS: Names = {
     "center_of_mass": "center_of_mass_m",
 }
 
-#: the scatter's six magnitudes (:data:`crankbalance.shop.scatter.OUTPUTS`) and ten phasors
+#: the scatter's six magnitudes (:data:`crankbalance.physics.shop.scatter.OUTPUTS`) and ten phasors
 #: (``PHASORS``) in three groups of one unit each: (group, slice of outputs, slice of
 #: phasors, suffix of a magnitude, suffix of a second moment)
 _SCATTER_GROUPS = (

@@ -38,7 +38,7 @@ from urllib.parse import urlsplit
 
 from ..errors import InputError
 from ..io.engine_file import list_presets, load_engine
-from ..spec import EngineSpec, throw_count
+from ..schema.engine import EngineSpec, throw_count
 from ..studies.engine import analyze, balance_engine
 from .project import MAX_BYTES, parse_untrusted, read_text
 

@@ -11,7 +11,7 @@ This module is the shell: header (preset, save), project upload, tab bar and Nex
 navigation, the form fields and study settings, the recompute/update loop and the data
 downloads. Each tab is one module (``tab_engine.py`` ... ``tab_performance.py``, a
 :class:`~.widgets.Tab` each) that builds its panel and shows its numbers and figures;
-every figure comes from :mod:`crankbalance.figures`, the tabs only lay them out.
+every figure comes from :mod:`crankbalance.output.figures`, the tabs only lay them out.
 """
 
 from __future__ import annotations
@@ -118,7 +118,7 @@ def warm_up() -> None:
     background as it starts): the first page of a fresh server would otherwise wait for the
     imports of the physics and of plotly's figure classes (about 0.6 s of a first load on
     an idle machine, seconds on a busy one)."""
-    from .. import figures
+    from ..output import figures
 
     c = Project.from_preset(DEFAULT_PRESET).compute()
     if c is not None:
@@ -432,7 +432,7 @@ class Page:
         )
 
     def download_data(self, what: str) -> None:
-        from ..format import json_text
+        from ..output.format import json_text
 
         c = self.fresh()
         if c is None:
@@ -450,7 +450,7 @@ class Page:
             send_download(table_csv(order_rows(c)), "orders.csv", "text/csv")
 
     async def download_report(self) -> None:
-        from .. import report
+        from ..output import report
 
         c = self.fresh()
         if c is None or self.project.spec is None:
@@ -585,6 +585,6 @@ class Page:
 
 
 def _report_html(report: Any, spec: Any, orders: int) -> str:
-    """The self-contained HTML report of :mod:`crankbalance.report` for the current engine,
+    """The self-contained HTML report of :mod:`crankbalance.output.report` for the current engine,
     with the orders of the Results tab."""
     return str(report.report_html(report.build_report(spec, orders)))

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 from nicegui import ui
 
-from ..spec import throw_count
+from ..schema.engine import throw_count
 from .project import MASS_FIELDS
 
 if TYPE_CHECKING:

@@ -1,6 +1,6 @@
 """Data of a figure as CSV or JSON (the numbers behind every plot of the web app).
 
-The figures themselves come from :mod:`crankbalance.figures`; this only writes out the
+The figures themselves come from :mod:`crankbalance.output.figures`; this only writes out the
 traces a figure holds (name, x, y and z where present), so what is downloaded is exactly
 what is drawn.
 """

@@ -5,7 +5,7 @@ form fields, the settings of the study tabs and the last results) and is tested 
 own. The web page keeps one Project per browser tab (client); there is no module state.
 
 Every form field is bound to one key path of the engine file (``docs/engine_file.md``),
-so the one validated model of :mod:`crankbalance.spec` checks the form exactly as it
+so the one validated model of :mod:`crankbalance.schema.engine` checks the form exactly as it
 checks a file; its :class:`~crankbalance.errors.InputError` names the field, which is
 how a message finds its way beside the field it concerns.
 """
@@ -23,8 +23,8 @@ from dataclasses import dataclass, field
 from typing import Any, Literal
 
 from ..errors import InputError
-from ..numbering import SCHEMES
-from ..spec import (
+from ..physics.firing import SCHEMES
+from ..schema.engine import (
     LAYOUTS,
     W_TYPES,
     Counterweights,

@@ -2,9 +2,10 @@
 
 Each takes the current computation (:class:`~.project.Computed`) and the project's
 settings (texts as typed), validates the settings of its study through the one options
-schema (:mod:`crankbalance.options`) and calls the study layer (:mod:`crankbalance.studies`).
+schema (:mod:`crankbalance.schema.settings`) and calls the study layer
+(:mod:`crankbalance.studies`).
 A setting's key is its study's prefix and the schema's field name (``cw_population`` is
-``population`` of :class:`~crankbalance.options.CounterweightOptions`); a bad setting
+``population`` of :class:`~crankbalance.schema.settings.CounterweightOptions`); a bad setting
 raises :class:`~crankbalance.errors.InputError` whose ``field`` is that key, so that the
 page shows the message beside the input.
 
@@ -23,7 +24,7 @@ from typing import Any, Literal
 import numpy as np
 
 from ..errors import InputError
-from ..options import (
+from ..schema.settings import (
     COUNTERWEIGHT_CHILDREN,
     VERBS,
     AnalysisOptions,
@@ -163,9 +164,9 @@ def counterweight_inputs(computed: Computed, settings: dict[str, Any]) -> tuple[
 def optimise(required: float, o: CounterweightOptions) -> Any:
     """The counterweight optimiser (2021 paper, Sec. 4-5) for a required first moment
     [kg m], with the command line's number of designs per round
-    (:data:`~crankbalance.options.COUNTERWEIGHT_CHILDREN`): the same settings search the
+    (:data:`~crankbalance.schema.settings.COUNTERWEIGHT_CHILDREN`): the same settings search the
     same designs in both."""
-    from ..counterweight_optimize import optimize_counterweight
+    from ..physics.counterweight_optimize import optimize_counterweight
 
     return optimize_counterweight(
         required,
@@ -276,8 +277,8 @@ def shaft_requirement(computed: Computed, settings: dict[str, Any]) -> tuple[flo
 
 def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, str]:
     """Unbalance-mass placement on a shaft with end bearings (Kim 2018, Sec. 3.1)."""
-    from ..balance_shaft import inline4_study
-    from ..beam import ShaftSection
+    from ..physics.balance_shaft import inline4_study
+    from ..physics.beam import ShaftSection
 
     moment, speed, which = shaft_requirement(computed, settings)
     o = options(settings, ShaftPlacementOptions)
@@ -297,8 +298,8 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5) for one cylinder of the engine (its reciprocating mass, crank radius,
     rod length, speed)."""
-    from ..engine_cycle import balance_sensitivity
-    from ..options import CombustionOptions
+    from ..physics.engine_cycle import balance_sensitivity
+    from ..schema.settings import CombustionOptions
     from ..studies.crank import rotating_inertia
     from ..studies.performance import arithmetic_checked, cycle_cylinder, pressure_source
 
@@ -347,9 +348,9 @@ def _strokes(value: Any) -> Literal[2, 4]:
 def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
     """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
     the two objectives, the rows by increasing column ``key``."""
-    from ..explore import merit
-    from ..explore.run import Keep
-    from ..explore.run import run as run_explore
+    from ..physics.explore import merit
+    from ..studies.explore import Keep
+    from ..studies.explore import run as run_explore
 
     keep = Keep(objectives=objectives, key=key, n=most)
     return run_explore(problem, merit.merit, select=select, keep=keep)

@@ -6,7 +6,7 @@ from typing import Any
 
 from nicegui import ui
 
-from .. import figures
+from ..output import figures
 from .crank_editor import CrankEditor
 from .project import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import FIGURE_CSS, Tab

@@ -5,7 +5,7 @@ the scatter and Pareto set, a filter and the rows of the table are this tab's ow
 they are not part of the engine, and the result belongs to them (the never-stale rule of
 :class:`~.widgets.StudyTab`, with the settings in place of the engine): once a setting is
 changed the result is cleared and the tab says to re-run. The run is
-:func:`crankbalance.explore.run.run` in a worker process (:mod:`.pool`), on the plain engine
+:func:`crankbalance.studies.explore.run` in a worker process (:mod:`.pool`), on the plain engine
 of the enumeration (``orders.PLAIN``), for problems of at most :data:`MAX_INDICES` firing
 orders; larger ones are for ``crankbalance explore --workers N``.
 
@@ -24,8 +24,8 @@ from typing import Any
 import numpy as np
 from nicegui import ui
 
-from .. import figures
 from ..errors import InputError
+from ..output import figures
 from . import studies
 from .widgets import StudyTab, TabSettingsMixin, fmt_g
 
@@ -55,8 +55,8 @@ KEY = "residual_M_Nm"
 @functools.lru_cache(maxsize=8)
 def _columns(orders: int = 8) -> tuple[str, ...]:
     """The explorer's columns (those of the inline-4, the same for every problem)."""
-    from ..explore import merit
-    from ..explore import orders as enumeration
+    from ..physics.explore import merit
+    from ..physics.explore import orders as enumeration
 
     problem = enumeration.problem("inline", 4, 4)
     return tuple(merit.merit(enumeration.chunk(problem, 0, 1), orders=orders))
@@ -65,8 +65,8 @@ def _columns(orders: int = 8) -> tuple[str, ...]:
 def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float | None]:
     """The problem, the two objectives, the filter, the table's rows and the bank angle
     [rad] from the tab's texts; an :class:`InputError` names the setting's key."""
-    from ..explore import orders, rank
-    from ..options import ExploreOptions, parse_options
+    from ..physics.explore import orders, rank
+    from ..schema.settings import ExploreOptions, parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
     o = parse_options(
@@ -95,7 +95,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float 
 def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
     """The candidate's order (crankbalance's numbering) in the engine's maker's numbering
     when the engine file has one (``numbering`` or ``maker_numbers``), else unchanged."""
-    from ..numbering import SCHEMES, to_maker_order
+    from ..physics.firing import SCHEMES, to_maker_order
 
     if train.get("maker_numbers") is not None:
         return to_maker_order(order, [int(c) for c in train["maker_numbers"]])
@@ -301,7 +301,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
 
     def load(self, index: int) -> None:
         """Load the candidate of enumeration index ``index`` as the current engine."""
-        from ..spec import spec_from_dict
+        from ..schema.engine import spec_from_dict
         from .app import DEFAULT_PRESET
         from .project import Project
 

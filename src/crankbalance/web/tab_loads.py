@@ -2,8 +2,8 @@
 against the counterweight pattern and the balance factor (issue 18 item 4;
 docs/main_bearings.md, "Sweep of patterns and balance factors").
 
-The settings are those of ``crankbalance bearings-sweep`` (:class:`crankbalance.options.
-BearingSweepOptions` and a few of :class:`~crankbalance.options.BearingOptions`, the rest
+The settings are those of ``crankbalance bearings-sweep`` (:class:`crankbalance.schema.settings.
+BearingSweepOptions` and a few of :class:`~crankbalance.schema.settings.BearingOptions`, the rest
 at their defaults), as typed. The run is :func:`crankbalance.studies.balance_loads.
 bearing_sweep` in a worker process (:mod:`.pool`). The result belongs to the engine and
 the settings it was run for (the never-stale rule of :class:`~.widgets.StudyTab`): once
@@ -19,8 +19,8 @@ from typing import Any
 
 from nicegui import ui
 
-from .. import figures
 from ..errors import InputError
+from ..output import figures
 from .widgets import StudyTab, TabSettingsMixin
 
 #: the tab's settings: key -> (label, default, hint)
@@ -49,10 +49,10 @@ def _items(text: str, separator: str) -> list[str] | None:
 
 
 def parse(texts: dict[str, str]) -> tuple[Any, Any]:
-    """The :class:`~crankbalance.options.BearingSweepOptions` and
-    :class:`~crankbalance.options.BearingOptions` of the tab's texts; an
+    """The :class:`~crankbalance.schema.settings.BearingSweepOptions` and
+    :class:`~crankbalance.schema.settings.BearingOptions` of the tab's texts; an
     :class:`InputError` names the setting's key."""
-    from ..options import BearingOptions, BearingSweepOptions, parse_options
+    from ..schema.settings import BearingOptions, BearingSweepOptions, parse_options
 
     values = {k: texts.get(k, "").strip() for k in SETTINGS}
     sweep = parse_options(
@@ -122,7 +122,7 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         return check_sweep_work
 
     def show_study(self) -> None:
-        from ..format import number
+        from ..output.format import number
         from ..studies.balance_loads import COLUMNS, case_rows
         from ..studies.loads import assumed_text
 

@@ -8,7 +8,7 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
-from ..options import PerformanceOptions
+from ..schema.settings import PerformanceOptions
 from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, fmt_g, plot_or_none

@@ -8,9 +8,9 @@ from typing import Any
 import numpy as np
 from nicegui import ui
 
-from .. import figures
 from ..errors import InputError
-from ..format import text
+from ..output import figures
+from ..output.format import text
 from .widgets import FigureCard, Tab, button_row, fmt_g
 
 

@@ -14,7 +14,7 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
-from ..options import ShaftPlacementOptions
+from ..schema.settings import ShaftPlacementOptions
 from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, plot_or_none

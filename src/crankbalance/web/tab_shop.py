@@ -2,13 +2,13 @@
 ISO 21940-11 sign-off (issue 16; docs/balance_shop.md, "Commands and the shop sheet").
 
 The parts file is pasted (or loaded from ``examples/v8_parts.csv``); the engine is the
-page's current engine; the settings are those of :class:`crankbalance.options.ShopOptions`
+page's current engine; the settings are those of :class:`crankbalance.schema.settings.ShopOptions`
 as a shop person types them (units in the text). The run is
 :func:`crankbalance.studies.shop.shop_study` in a worker process (:mod:`.pool`); without
 readings only the parts study is shown. The result belongs to the engine and the settings
 it was run for (the never-stale rule of :class:`~.widgets.StudyTab`): once either changes
 it is cleared and the tab says to re-run. "Shop sheet HTML" downloads
-:func:`crankbalance.shop_sheet.sheet_html`.
+:func:`crankbalance.output.shop_sheet.sheet_html`.
 """
 
 from __future__ import annotations
@@ -18,10 +18,10 @@ from typing import Any
 
 from nicegui import run, ui
 
-from .. import figures
 from ..errors import InputError
-from ..format import text
-from ..options import DEPTH_TO
+from ..output import figures
+from ..output.format import text
+from ..schema.settings import DEPTH_TO
 from .widgets import StudyTab, TabSettingsMixin, button_row, send_download
 
 #: the worked example's parts file (docs/balance_shop.md)
@@ -49,10 +49,10 @@ PLAN = ("measuring_planes", "correction_planes", "hole_radius", "rotor_mass", "b
 
 
 def parse(texts: dict[str, str]) -> tuple[Any, Any]:
-    """The inventory and the :class:`~crankbalance.options.ShopOptions` of the tab's
+    """The inventory and the :class:`~crankbalance.schema.settings.ShopOptions` of the tab's
     texts; an :class:`InputError` names the setting's key (``parts`` for the parts file)."""
     from ..io.parts_file import parts_from_csv
-    from ..options import ShopOptions, parse_options
+    from ..schema.settings import ShopOptions, parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
     if values["parts"] is None:
@@ -235,7 +235,7 @@ class ShopTab(TabSettingsMixin, StudyTab):
         return None if holes is None else figures.hole_plan(holes)
 
     async def download(self) -> None:
-        from ..shop_sheet import sheet_html
+        from ..output.shop_sheet import sheet_html
 
         if self.study is None:
             ui.notify("Run the balance shop first", type="warning")

@@ -3,7 +3,7 @@ check and the rebalancing after new parts, carried to its drilling plan (holes: 
 diameter, drill point, depth, radius, angle, mass removed per web, passes) with a drawing.
 
 The drill point (*Drill point angle*, *Depth read to the*) is that of
-:class:`~crankbalance.options.RebalanceOptions` (the one schema of the command line's
+:class:`~crankbalance.schema.settings.RebalanceOptions` (the one schema of the command line's
 ``rebalance --point-angle/--depth-to`` and the Balance shop tab's settings): 180 deg, the
 default, drills flat-bottomed holes; a pointed drill's depths are read to its tip or to its
 shoulder, and the plan, the table and the drawing say which."""
@@ -16,8 +16,8 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
-from ..format import depth_read_to
-from ..options import DEPTH_TO
+from ..output.format import depth_read_to
+from ..schema.settings import DEPTH_TO
 from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, plot_or_none
@@ -66,7 +66,7 @@ def pass_columns(holes: Any) -> list[dict[str, Any]]:
 
 def drilling_plan(result: Any) -> list[tuple[str, str]]:
     """The drilling plan of a rebalancing as (what, value) lines, from the library's
-    :class:`~crankbalance.single_cylinder.RebalanceResult` (its holes and last pass)."""
+    :class:`~crankbalance.physics.single_cylinder.RebalanceResult` (its holes and last pass)."""
     holes = result.correction
     passes = len(result.iterations)
     verdict = (

@@ -15,9 +15,9 @@ from typing import TYPE_CHECKING, Any, Literal
 
 from nicegui import run, ui
 
-from .. import figures, render
 from ..errors import InputError
-from ..format import number
+from ..output import figures, render
+from ..output.format import number
 from .exports import figure_csv, figure_json
 
 if TYPE_CHECKING:
@@ -123,7 +123,7 @@ IMAGE_JS = """(async () => {
 
 
 def image_size(figure: Any) -> tuple[int, int]:
-    """Width and height of a figure's image [px]: :func:`crankbalance.render.to_image`'s (the
+    """Width and height of a figure's image [px]: :func:`crankbalance.output.render.to_image`'s (the
     figure's own, else 1000 x 600)."""
     layout = figure.layout
     return int(layout.width or 1000), int(layout.height or 600)
@@ -168,7 +168,7 @@ def webgl(figure: dict[str, Any]) -> bool:
 
 
 class FigureCard:
-    """A plotly figure from :mod:`crankbalance.figures` with PNG/SVG/CSV/JSON downloads."""
+    """A plotly figure from :mod:`crankbalance.output.figures` with PNG/SVG/CSV/JSON downloads."""
 
     def __init__(
         self, page: Page, name: str, title: str, builder: Callable[[], Any | None]
@@ -274,9 +274,9 @@ class FigureCard:
     async def image(self, fmt: Literal["png", "svg"]) -> None:
         """A PNG or SVG of the figure, made by plotly.js in the user's browser from the traces
         already drawn (no server round trip through kaleido), with the figure's own layout
-        and size (that of :func:`crankbalance.render.to_image`, not the page's: its width and
+        and size (that of :func:`crankbalance.output.render.to_image`, not the page's: its width and
         height, else 1000 x 600 px). Where the browser cannot (the figure is not drawn yet,
-        or plotly.js fails there), the server's :func:`~crankbalance.render.to_image`."""
+        or plotly.js fails there), the server's :func:`~crankbalance.output.render.to_image`."""
         figure = self.figure
         assert figure is not None
         try:

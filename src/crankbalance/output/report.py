@@ -1,0 +1,573 @@
+"""Engine balancing reports: one self-contained HTML file (interactive figures, plotly.js
+inlined, no network) or a PDF (the same page with static SVG figures, printed by a headless
+Chromium).
+
+This module owns the report's content: what it shows, in which order, and the page's
+HTML. The figures come from :mod:`crankbalance.output.figures`; turning them into SVG or HTML and
+printing the page to PDF is done by :mod:`crankbalance.output.render`.
+
+Contents: engine data, mass split, free forces and moments by order, rotating masses,
+balancing masses (counterweights, balance shafts), residuals before/after balancing, the
+figures of :mod:`crankbalance.output.figures`, and the settings used (solver options and the engine
+file itself). Every number comes from :func:`crankbalance.studies.engine.analyze` and
+:func:`crankbalance.studies.engine.balance_engine`; both results are also embedded as JSON
+(``<script type="application/json" id="crankbalance-data">``) so a reader or a test can
+check the page against the API.
+
+Public functions
+----------------
+- ``build_report(engine, orders=8, **overrides) -> Report``
+- ``report_html(report, static=False) -> str``
+- ``write_report(engine, path, orders=8, chromium=None, **overrides) -> Path``
+  (``.html`` or ``.pdf`` by suffix, written atomically)
+"""
+
+from __future__ import annotations
+
+import base64
+import datetime as _dt
+import html as _html
+import json
+import os
+from dataclasses import dataclass
+from pathlib import Path
+from typing import TYPE_CHECKING, Any
+
+from ..errors import InputError
+from ..results import to_jsonable
+from .format import angle, convert, moment_point, number
+
+if TYPE_CHECKING:  # pragma: no cover
+    from .figures import Quantity
+
+REPORT_SCHEMA = "crankbalance.report/3"
+
+
+@dataclass(frozen=True)
+class Report:
+    """What a report shows: the analysis and balancing results and the settings."""
+
+    analysis: Any  # analysis.Analysis
+    study: Any  # analysis.BalanceStudy
+    engine_file: str  # TOML text of the engine, as used
+    settings: dict[str, Any]
+    created: str
+
+    def data(self) -> dict[str, Any]:
+        """The numbers of the report (the API's JSON contracts) and its settings."""
+        return {
+            "schema": REPORT_SCHEMA,
+            "created": self.created,
+            "analysis": self.analysis.to_dict(),
+            "balance": self.study.to_dict(),
+            "settings": self.settings,
+        }
+
+
+def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
+    """Analyse and balance ``engine`` (preset name, engine file or EngineSpec).
+
+    ``overrides`` go to :func:`~crankbalance.studies.engine.balance_engine` (``angle``,
+    ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``, ``primary``,
+    ``secondary``).
+    """
+    import dataclasses
+
+    from .. import __version__
+    from ..io.engine_file import engine_to_toml, load_engine
+    from ..schema.engine import EngineSpec
+    from ..studies.engine import analyze, balance_engine, balance_options
+
+    spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
+    # the balancing contract always reports orders 1 and 2 (balance_engine needs both)
+    study = balance_engine(spec, max(orders, 2), **overrides)
+    analysis = analyze(study.model, orders)
+    cw, primary, secondary = balance_options(spec)
+    extra = dict(overrides)
+    primary = extra.pop("primary", primary)
+    secondary = extra.pop("secondary", secondary)
+    if extra:
+        cw = dataclasses.replace(cw, **extra)
+
+    def options(value: Any) -> Any:
+        if value is None:
+            return None
+        out = {}
+        for key, item in dataclasses.asdict(value).items():
+            out[key] = list(item) if isinstance(item, tuple) else item
+        return out
+
+    settings = {
+        "crankbalance_version": __version__,
+        "orders": orders,
+        "kinematics": study.model.kinematics,
+        "counterweights": options(cw),
+        "primary_shafts": options(primary),
+        "secondary_shafts": options(secondary),
+        "overrides": {
+            k: (options(v) if dataclasses.is_dataclass(v) else v) for k, v in overrides.items()
+        },
+        "units": "SI (m, kg, rad) in the options; angles in the tables in degrees",
+    }
+    created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
+    return Report(analysis, study, engine_to_toml(spec), settings, created)
+
+
+# --------------------------------------------------------------------------- formatting
+def fmt(value: Any, digits: int = 5) -> str:
+    """A number as the report prints it (``digits`` significant figures)."""
+    if value is None:
+        return "–"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int):
+        return str(value)
+    if isinstance(value, float):
+        return number(value, digits)
+    return _html.escape(str(value))
+
+
+def _angle(value: float | None) -> float | None:
+    """An angle in degrees in the one range of the output vocabulary, [0, 360)."""
+    if value is None:
+        return None
+    return angle(0.0 if abs(value) < 1e-9 else float(value))
+
+
+def _table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
+    head = "".join(f"<th>{_html.escape(h)}</th>" for h in header)
+    body = "".join("<tr>" + "".join(f"<td>{fmt(c)}</td>" for c in row) + "</tr>" for row in rows)
+    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
+
+
+def _maker_order(model: Any) -> str:
+    """`` (maker's numbering: 1-6-2-4-3-5)`` when the engine file used a maker's numbering."""
+    if model.maker_number is None or not model.firing_order_given:
+        return ""
+    return (
+        " (maker's numbering: "
+        + "-".join(str(model.maker_number[c - 1]) for c in model.firing_order)
+        + ")"
+    )
+
+
+def _distinct(values: list[float], scale: float = 1.0, digits: int = 5) -> str:
+    shown = [fmt(v * scale, digits) for v in values]
+    return shown[0] if len(set(shown)) == 1 else ", ".join(shown)
+
+
+CSS = """
+body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 2em auto; max-width: 1100px;
+       color: #222; line-height: 1.35; }
+h1 { font-size: 1.6em; margin-bottom: 0.1em; } h2 { border-bottom: 2px solid #1f3b73;
+  padding-bottom: 0.15em; margin-top: 1.6em; font-size: 1.25em; }
+h3 { font-size: 1.05em; margin-bottom: 0.3em; }
+table { border-collapse: collapse; margin: 0.4em 0 1em 0; font-size: 0.9em; }
+th, td { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: right; }
+th { background: #eef1f7; } td:first-child, th:first-child { text-align: left; }
+.meta { color: #666; font-size: 0.9em; } .note { color: #7a4b00; }
+figure { margin: 0.6em 0 1.2em 0; page-break-inside: avoid; break-inside: avoid; }
+figure img { width: 100%; max-width: 1000px; } figcaption { font-size: 0.85em; color: #555; }
+pre { background: #f6f6f6; padding: 0.6em; font-size: 0.8em; white-space: pre-wrap; }
+@media print { body { margin: 0; max-width: none; } h2 { page-break-after: avoid; }
+  table { page-break-inside: avoid; } }
+"""
+
+
+# --------------------------------------------------------------------------- figures
+def report_figures(report: Report) -> list[tuple[str, str, Any]]:
+    """(id, caption, figure) of every figure in the report."""
+    from . import figures
+
+    a, s = report.analysis, report.study
+    figs: list[tuple[str, str, Any]] = [
+        (
+            "orders",
+            "Free force and moment amplitudes by order (forward and backward phasors "
+            "stacked; 'rot' is the bare crank's rotating masses).",
+            figures.orders_bar(a),
+        ),
+        (
+            "curves-force",
+            "Free forces versus crank angle: reciprocating total, orders, and the "
+            "whole engine before and after balancing.",
+            figures.curves_figure(a, s, "force"),
+        ),
+        (
+            "curves-moment",
+            f"Free moments about {moment_point(a.model.moment_reference)} versus crank angle.",
+            figures.curves_figure(a, s, "moment"),
+        ),
+    ]
+    amp = a.forces.force_amplitude + a.forces.moment_amplitude
+    for n in (int(n) for n in a.forces.orders if n <= 2):
+        k = a.forces.order(n)
+        if amp[k] > 0:
+            quantity: Quantity = (
+                "force"
+                if a.forces.force_amplitude[k] >= a.forces.moment_amplitude[k] * 1e-12
+                and a.forces.force_amplitude[k] > 0
+                else "moment"
+            )
+            figs.append(
+                (
+                    f"polar-{n}-{quantity}",
+                    f"Rotating-vector diagram of order {n} ({quantity}).",
+                    figures.polar_figure(a, n, quantity),
+                )
+            )
+    figs += [
+        (
+            "crank",
+            "The crankshaft at crank angle 0 with its counterweights and balance shafts "
+            "(shafts beside the crank at a schematic distance).",
+            figures.crank_3d(s.model, s),
+        ),
+        (
+            "residuals",
+            "Amplitude of every component before and after balancing (time-domain "
+            "check of the solver).",
+            figures.residuals_bar(s),
+        ),
+    ]
+    return figs
+
+
+def _figure_html(fig_id: str, caption: str, fig: Any, static: bool, first: bool) -> str:
+    from . import render
+
+    if static:
+        svg = render.to_image(fig, "svg", width=1000, height=fig.layout.height or 560)
+        data = base64.b64encode(svg).decode()
+        body = f'<img alt="{_html.escape(caption)}" src="data:image/svg+xml;base64,{data}"/>'
+    else:
+        body = render.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
+    return (
+        f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
+        "</figcaption></figure>"
+    )
+
+
+# --------------------------------------------------------------------------- HTML
+def report_html(report: Report, static: bool = False, figures: bool = True) -> str:
+    """The report as one HTML document.
+
+    ``static=True`` draws the figures as inline SVG images (for printing to PDF); otherwise
+    they are interactive plotly figures with plotly.js inlined once (no network needed).
+    """
+    a = report.analysis.to_dict()
+    b = report.study.to_dict()
+    e = a["engine"]
+    esc = _html.escape
+    parts: list[str] = []
+    parts.append(f"<h1>{esc(e['name'])}</h1>")
+    parts.append(
+        f'<p class="meta">crankbalance {esc(report.settings["crankbalance_version"])}'
+        f" balancing report, {esc(report.created)}</p>"
+    )
+
+    # engine data
+    parts.append("<h2>Engine</h2>")
+    rows = [
+        ["cylinders", e["cylinders"]],
+        ["throws", e["throws"]],
+        ["speed [rpm]", convert(e["speed_rad_s"], "speed")],
+        ["crank radius [mm]", e["crank_radius_m"] * 1e3],
+        ["rod length [mm]", e["rod_length_m"] * 1e3],
+        ["rod ratio r/l", e["rod_ratio"]],
+        ["offset per cylinder [mm]", _distinct(list(e["cylinder_offset_m"]), 1e3)],
+        ["rod position on its pin [mm]", _distinct(list(e["cylinder_axial_m"]), 1e3)],
+        ["kinematics", e["kinematics"]],
+        [
+            "firing order",
+            "-".join(str(c) for c in report.study.model.firing_order)
+            + ("" if report.study.model.firing_order_given else " (not given: cylinder order)")
+            + _maker_order(report.study.model),
+        ],
+    ]
+    parts.append(_table(["quantity", "value"], rows))
+    throw_rows = [
+        [
+            t + 1,
+            _angle(e["throw_angle_deg"][t]),
+            e["throw_position_m"][t] * 1e3,
+            a["masses"]["rotating_kg"][t],
+        ]
+        for t in range(e["throws"])
+    ]
+    parts.append("<h3>Throws</h3>")
+    parts.append(
+        _table(["throw", "angle [°]", "position y [mm]", "rotating mass [kg]"], throw_rows)
+    )
+    cyl_rows = [
+        [
+            c + 1,
+            e["cylinder_throw"][c],
+            _angle(e["cylinder_bank_deg"][c]),
+            a["masses"]["reciprocating_kg"][c],
+        ]
+        for c in range(e["cylinders"])
+    ]
+    parts.append("<h3>Cylinders</h3>")
+    parts.append(
+        _table(["cylinder", "throw", "bank angle [°]", "reciprocating mass [kg]"], cyl_rows)
+    )
+
+    # mass split
+    parts.append("<h2>Mass split</h2>")
+    m = a["masses"]
+    parts.append(
+        f"<p>Reciprocating mass per cylinder: {_distinct(m['reciprocating_kg'])} kg; "
+        f"rotating mass per throw (at the crank radius, big ends included): "
+        f"{_distinct(m['rotating_kg'])} kg.</p>"
+    )
+    if m["conrods"]:
+        rods = m["conrods"]
+        parts.append(
+            _table(
+                [
+                    "conrod",
+                    "mass [kg]",
+                    "rotating [kg]",
+                    "reciprocating [kg]",
+                    "CG from big end [mm]",
+                    "two-mass inertia [kg·m²]",
+                    "inertia error [kg·m²]",
+                ],
+                [
+                    [
+                        r["cylinder"],
+                        r["mass_kg"],
+                        r["rotating_kg"],
+                        r["reciprocating_kg"],
+                        r["cg_from_big_end_m"] * 1e3,
+                        r["inertia_two_mass_kg_m2"],
+                        r["inertia_error_kg_m2"],
+                    ]
+                    for r in rods
+                ],
+            )
+        )
+
+    # free forces and moments
+    parts.append("<h2>Free forces and moments</h2>")
+    parts.append(
+        "<p>Reciprocating masses, by order; amplitude = largest magnitude over a "
+        "revolution = |forward| + |backward|; moments about "
+        f"{moment_point(report.study.model.moment_reference)}; "
+        "phases at crank angle 0 from +z toward +x.</p>"
+    )
+    rows = [
+        [
+            f["order"],
+            f["amplitude_N"],
+            f["forward_N"],
+            f["backward_N"],
+            mo["amplitude_Nm"],
+            mo["forward_Nm"],
+            mo["backward_Nm"],
+        ]
+        for f, mo in zip(a["free_forces"], a["free_moments"], strict=True)
+    ]
+    parts.append(
+        _table(
+            [
+                "order",
+                "force [N]",
+                "forward [N]",
+                "backward [N]",
+                "moment [N·m]",
+                "forward [N·m]",
+                "backward [N·m]",
+            ],
+            rows,
+            "free",
+        )
+    )
+    rot = a["rotating"]
+    parts.append(
+        f"<p>Rotating masses of the bare crank (no counterweights): force "
+        f"{fmt(rot['force_N'])} N, moment {fmt(rot['moment_Nm'])} N·m.</p>"
+    )
+
+    # balancing masses
+    parts.append("<h2>Balancing masses</h2>")
+    for key, title in (
+        ("counterweight", "Crank counterweights"),
+        ("extra_counterweights", "Extra counterweights (Eq. 17)"),
+    ):
+        cw = b[key]
+        if cw is None:
+            continue
+        parts.append(f"<h3>{title}</h3>")
+        parts.append(
+            f"<p>{cw['count']} counterweights, method {esc(cw['method'])}, scope "
+            f"{esc(cw['scope'])}, CG radius {fmt(cw['cg_radius_m'] * 1e3)} mm"
+            + ("" if cw["angle_deg"] is None else f", angle {fmt(_angle(cw['angle_deg']))}°")
+            + f"; largest mass {fmt(cw['mass_kg'])} kg, total "
+            f"{fmt(cw['total_mass_kg'])} kg.</p>"
+        )
+        parts.append(
+            _table(
+                ["web", "throw", "position y [mm]", "mass [kg]", "direction [°]"],
+                [
+                    [
+                        w["web"],
+                        w["throw"],
+                        w["position_m"] * 1e3,
+                        w["mass_kg"],
+                        _angle(w["direction_deg"]),
+                    ]
+                    for w in cw["webs"]
+                ],
+            )
+        )
+        if cw["note"]:
+            parts.append(f'<p class="note">{esc(cw["note"])}</p>')
+    for key, title in (
+        ("primary_shafts", "Primary balance shafts (crank speed)"),
+        ("secondary_shafts", "Secondary balance shafts (twice crank speed)"),
+    ):
+        group = b[key]
+        if group is None:
+            parts.append(f"<h3>{title}</h3><p>none</p>")
+            continue
+        parts.append(f"<h3>{title}</h3>")
+        parts.append(
+            f"<p>Arrangement {esc(group['arrangement'])}, distance between the outer "
+            f"masses {fmt(group['length_m'] * 1e3)} mm; largest mass "
+            f"{fmt(group['mass_kg'])} kg.</p>"
+        )
+        rows = [
+            [
+                s["rotation"],
+                s["speed_ratio"],
+                s["cg_radius_m"] * 1e3,
+                x["position_m"] * 1e3,
+                x["mass_kg"],
+                _angle(x["phase_deg"]),
+            ]
+            for s in group["shafts"]
+            for x in s["masses"]
+        ]
+        if rows:
+            parts.append(
+                _table(
+                    [
+                        "shaft",
+                        "speed ratio",
+                        "CG radius [mm]",
+                        "position y [mm]",
+                        "mass [kg]",
+                        "phase [°]",
+                    ],
+                    rows,
+                )
+            )
+        for s in group["shafts"]:
+            if s["note"]:
+                parts.append(f'<p class="note">{esc(s["rotation"])}: {esc(s["note"])}</p>')
+
+    # residuals
+    parts.append("<h2>Residuals</h2>")
+    parts.append(
+        "<p>Amplitude of every component before and after balancing, from a "
+        "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>"
+    )
+    from .figures import roundoff_levels
+
+    tiny_f, tiny_m = roundoff_levels(report.study.model)
+
+    def clean(value: float, tiny: float) -> float:
+        return 0.0 if abs(value) < tiny else value
+
+    parts.append(
+        _table(
+            [
+                "component",
+                "targeted",
+                "force before [N]",
+                "force after [N]",
+                "moment before [N·m]",
+                "moment after [N·m]",
+            ],
+            [
+                [
+                    c["component"],
+                    c["targeted"],
+                    clean(c["force_before_N"], tiny_f),
+                    clean(c["force_after_N"], tiny_f),
+                    clean(c["moment_before_Nm"], tiny_m),
+                    clean(c["moment_after_Nm"], tiny_m),
+                ]
+                for c in b["components"]
+            ],
+            "residuals",
+        )
+    )
+    parts.append(
+        f"<p>Values below round-off ({fmt(tiny_f)} N, {fmt(tiny_m)} N·m) are shown as 0.</p>"
+    )
+    if b["unbalanced"]:
+        parts.append("<p>Left unbalanced: " + "; ".join(esc(u) for u in b["unbalanced"]) + ".</p>")
+    for note in b["notes"]:
+        parts.append(f'<p class="note">{esc(note)}</p>')
+
+    # figures
+    if figures:
+        parts.append("<h2>Figures</h2>")
+        for k, (fig_id, caption, fig) in enumerate(report_figures(report)):
+            parts.append(_figure_html(fig_id, caption, fig, static, k == 0))
+
+    # settings
+    parts.append("<h2>Settings used</h2>")
+    parts.append(
+        "<pre>"
+        + esc(json.dumps(to_jsonable(report.settings), indent=2, default=_json_default))
+        + "</pre>"
+    )
+    parts.append("<h3>Engine file</h3>")
+    parts.append("<pre>" + esc(report.engine_file) + "</pre>")
+
+    data = json.dumps(to_jsonable(report.data()), default=_json_default).replace("</", "<\\/")
+    return (
+        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
+        f"<title>{esc(e['name'])}: balancing report</title>\n<style>{CSS}</style>\n"
+        "</head>\n<body>\n"
+        + "\n".join(parts)
+        + f'\n<script type="application/json" id="crankbalance-data">{data}</script>\n'
+        "</body>\n</html>\n"
+    )
+
+
+def _json_default(value: Any) -> Any:
+    """Settings values JSON does not know (paths, enums) as their text."""
+    return str(value)
+
+
+# --------------------------------------------------------------------------- files
+def write_report(
+    engine: Any,
+    path: str | os.PathLike[str],
+    orders: int = 8,
+    chromium: str | None = None,
+    **overrides: Any,
+) -> Path:
+    """Write the report of ``engine`` to ``path`` (``.html``/``.htm`` or ``.pdf``),
+    atomically (:class:`crankbalance.io.files.WriteError` when it cannot be written)."""
+    from ..io.files import write_atomic
+
+    target = Path(path)
+    suffix = target.suffix.lower()
+    if suffix not in (".html", ".htm", ".pdf"):
+        raise InputError("output", str(path), "a file name ending in .html or .pdf")
+    report = build_report(engine, orders, **overrides)
+    if suffix == ".pdf":
+        from .render import find_chromium, html_to_pdf
+
+        exe = find_chromium(chromium)  # fail before the figures are drawn
+        data: str | bytes = html_to_pdf(report_html(report, static=True), exe)
+    else:
+        data = report_html(report)
+    write_atomic(target, data)
+    return target

@@ -1,0 +1,479 @@
+r"""Figures of merit of a batch of candidate engines, one column per figure.
+
+:func:`merit` takes a :class:`~crankbalance.physics.explore.candidates.Candidates` batch and
+returns a dictionary of columns of length B, every column named with its SI unit as a
+suffix (``F2_N``, ``M1_Nm``, ``cw_mass_kg``, ``mirror_rad``; no suffix for pure numbers
+and counts). The figures and their formulas are in ``docs/explorer.md`` ("Figures of
+merit"):
+
+- free forces and moments of the reciprocating masses, orders 1..K, forward and backward
+  phasor magnitudes and the largest magnitude over a revolution
+  (:mod:`crankbalance.physics.shaking`);
+- the rotating masses' force and couple, the crank without counterweights;
+- counterweight mass, balance shafts needed and what is left, for a balancing target with
+  a balance factor (:func:`crankbalance.physics.balancing.balance_batch`);
+- crank symmetry: how far the crank is from its mirror image about its mid-plane;
+- firing intervals: the largest deviation from even firing, of the engine and of each bank;
+- torsional excitation: the relative vector sum of each engine order's gas-torque
+  harmonic over the cylinders, weighted by a mode shape (:data:`TORSION_ASSUMPTION`).
+
+Values below round-off (1e-12 of the engine's force scale, the rule of the analysis JSON)
+are exactly zero, so a filter can ask for ``F2 == 0``.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ...errors import InputError
+from ..balancing import (
+    BatchBalance,
+    CounterweightOptions,
+    ShaftOptions,
+    balance_batch,
+    engine_batch,
+)
+from ..model import EngineModel
+from ..shaking import cylinder_coefficients, reciprocating_phasors
+from .candidates import Candidates
+
+Target = Literal["none", "counterweights", "primary", "secondary"]
+#: balancing targets, from the least to the most: no balancing, crank counterweights
+#: only, counterweights and a primary shaft pair, and a secondary shaft pair as well
+TARGETS: tuple[str, ...] = ("none", "counterweights", "primary", "secondary")
+#: the named mode shapes (or one weight per cylinder)
+MODE_SHAPES: tuple[str, ...] = ("uniform", "linear")
+#: share of the engine's force scale below which a force or moment is exactly zero
+ROUND_OFF = 1e-12
+#: the assumption behind the torsional-excitation columns, to print beside them
+TORSION_ASSUMPTION = (
+    "torsional excitation X<k> = |sum_c w_c exp(i k a_c)| / sum_c |w_c| for engine order "
+    "k, a_c the crank angle at which cylinder c fires: every cylinder's gas-torque "
+    "harmonic of order k has the same amplitude and the same phase relative to its own "
+    "firing (equal cylinders), and w_c is the relative amplitude of the torsional mode at "
+    "cylinder c (1 = every cylinder's harmonic in phase at the mode's antinode)"
+)
+
+
+def merit(
+    candidates: Candidates,
+    target: Target = "counterweights",
+    balance_factor: float = 0.0,
+    mode_shape: str | ArrayLike = "uniform",
+    orders: int = 8,
+    counterweights: CounterweightOptions | None = None,
+    shafts: ShaftOptions | None = None,
+) -> dict[str, NDArray]:
+    """Figures of merit of every candidate, as columns.
+
+    Parameters
+    ----------
+    candidates : Candidates
+        The batch (B candidates of one topology).
+    target : {"none", "counterweights", "primary", "secondary"}
+        Balancing target: none (no balancing columns), crank counterweights only, with a
+        primary balance shaft pair, or with primary and secondary shaft pairs.
+    balance_factor : float
+        Share of the reciprocating masses the counterweights carry [-] (ignored when
+        ``counterweights`` is given: its own factor counts).
+    mode_shape : {"uniform", "linear"} or array_like, shape (C,)
+        Weights of the torsional mode at the cylinders [-]: all 1, linear along the crank
+        (:func:`mode_weights`), or one per cylinder (crankbalance's numbering).
+    orders : int
+        Highest order K of the free forces and moments and of the torsional excitation.
+    counterweights : CounterweightOptions, optional
+        Default: a counterweight on every web at the crank radius, at the least-mass angle
+        (as ``balance_engine`` without a [counterweights] table), with ``balance_factor``.
+    shafts : ShaftOptions, optional
+        The balance shafts of both orders; default a co- and counter-rotating pair at the
+        crank radius, its outer masses as far apart as the outer throws (twice the crank
+        radius at least).
+
+    Returns
+    -------
+    dict of str to ndarray, each shape (B,)
+        ``F<n>_N``, ``F<n>f_N``, ``F<n>b_N`` largest, forward and backward force of order
+        n [N]; ``M<n>_Nm``, ``M<n>f_Nm``, ``M<n>b_Nm`` the same for the moment about the
+        crank mid-point [N·m]; ``Frot_N``, ``Mrot_Nm`` force and couple of the rotating
+        masses [N], [N·m]; ``mirror_rad`` [rad]; ``interval_dev_rad`` and
+        ``bank_interval_dev_rad`` [rad]; ``X<k>`` torsional excitation of engine order k
+        [-] (``X1p5`` is order 1.5); unless ``target`` is "none": ``cw_mass_kg`` total
+        counterweight mass [kg], ``shafts`` shafts needed [-], ``shaft_mass_kg`` total
+        shaft mass [kg], ``residual_F_N`` and ``residual_M_Nm`` the largest force [N] and
+        moment [N·m] of any order left after balancing.
+
+    Raises
+    ------
+    InputError
+        For an unknown target or mode shape, a mode shape of the wrong length, or orders
+        outside 1..64.
+
+    References
+    ----------
+    Free forces and the vector sum of the cylinders' torque harmonics (phase diagrams,
+    major and minor orders): Den Hartog (1956) ch. 5 (textbook).
+    """
+    topo = candidates.topology
+    if target not in TARGETS:
+        raise InputError("target", target, f"one of {', '.join(TARGETS)}")
+    if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
+        raise InputError("orders", orders, "an integer from 1 to 64")
+    weights = mode_weights(topo, mode_shape)
+    out = free_columns(candidates, int(orders))
+    out["mirror_rad"] = mirror_asymmetry(candidates.throw_angle)
+    cycle = 2 * np.pi * topo.strokes / 2
+    out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
+    out["bank_interval_dev_rad"] = bank_interval_deviation(
+        candidates.fire_angle, topo.cylinder_bank, cycle
+    )
+    steps = torsion_orders(topo.strokes, int(orders))
+    excitation = torsional_excitation(candidates.fire_angle, weights, steps)
+    for k, order in enumerate(steps):
+        out[order_name(order)] = excitation[:, k]
+    if target != "none":
+        out.update(
+            balance_columns(candidates, target, balance_factor, counterweights, shafts, int(orders))
+        )
+    return out
+
+
+def order_name(order: float) -> str:
+    """Column name of the torsional excitation of an engine order: ``X1``, ``X1p5``.
+
+    Parameters
+    ----------
+    order : float
+        Engine order, a whole or half number [-].
+
+    Returns
+    -------
+    str
+        ``X`` and the order, ``p5`` for a half.
+    """
+    whole = math.floor(order)
+    return f"X{whole}" if order == whole else f"X{whole}p5"
+
+
+def torsion_orders(strokes: int, orders: int) -> NDArray[np.float64]:
+    """Engine orders of the gas-torque harmonics: steps of 1/2 for 4-stroke, 1 for 2-stroke.
+
+    Parameters
+    ----------
+    strokes : int
+        Strokes per working cycle (2 or 4).
+    orders : int
+        Highest order.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        Orders 0.5, 1, ..., ``orders`` (4-stroke) or 1, 2, ..., ``orders`` [-].
+    """
+    step = 2.0 / strokes
+    return np.arange(1, round(orders / step) + 1, dtype=float) * step
+
+
+def mode_weights(topology: EngineModel, mode_shape: str | ArrayLike) -> NDArray[np.float64]:
+    """Relative amplitude of the torsional mode at each cylinder.
+
+    ``"uniform"``: 1 at every cylinder. ``"linear"``: the first mode of a crank with a
+    heavy flywheel at the y > 0 end (after the last throw) as a straight line, with its
+    node one throw pitch beyond the last throw: :math:`w = (T - t)/T` for throw
+    :math:`t = 0..T-1`, 1 at the free end (throw 1) down to :math:`1/T`; cylinders on one
+    throw share its weight.
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The layout (throws of the cylinders).
+    mode_shape : {"uniform", "linear"} or array_like, shape (C,)
+        A named shape or one weight per cylinder [-] (finite, not all zero).
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        Weights [-].
+
+    Raises
+    ------
+    InputError
+        For an unknown name, a wrong length, a non-finite or an all-zero weight.
+    """
+    if isinstance(mode_shape, str):
+        if mode_shape == "uniform":
+            return np.ones(topology.cylinders)
+        if mode_shape == "linear":
+            t = topology.throws
+            return (t - topology.cylinder_throw) / t
+        raise InputError(
+            "mode_shape", mode_shape, f"one of {', '.join(MODE_SHAPES)} or a weight per cylinder"
+        )
+    weights = np.asarray(mode_shape, dtype=float)
+    if weights.shape != (topology.cylinders,) or not np.all(np.isfinite(weights)):
+        raise InputError(
+            "mode_shape",
+            weights.tolist(),
+            f"{topology.cylinders} finite weights, one per cylinder",
+        )
+    if not np.any(weights):
+        raise InputError("mode_shape", weights.tolist(), "weights not all zero")
+    return weights
+
+
+def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
+    """Free forces and moments of every candidate by order, and of the rotating masses.
+
+    Parameters
+    ----------
+    candidates : Candidates
+        The batch.
+    orders : int
+        Highest order K.
+
+    Returns
+    -------
+    dict of str to ndarray, each shape (B,)
+        ``F<n>_N``, ``F<n>f_N``, ``F<n>b_N`` [N], ``M<n>_Nm``, ``M<n>f_Nm``, ``M<n>b_Nm``
+        [N·m] for n = 1..K, and ``Frot_N`` [N], ``Mrot_Nm`` [N·m]: magnitudes of the
+        phasors of :func:`crankbalance.physics.shaking.free_forces` (the moment's magnitude is
+        the couple's), each zero below :data:`ROUND_OFF` of the force scale.
+    """
+    topo = candidates.topology
+    r, w = topo.crank_radius, topo.speed
+    coeff = cylinder_coefficients(topo, orders)  # (C, K), shared by the candidates
+    phi = candidates.throw_angle
+    fwd, bwd, cfwd, cbwd = reciprocating_phasors(
+        coeff,
+        topo.reciprocating_mass,
+        phi[:, topo.cylinder_throw],
+        topo.cylinder_bank,
+        topo.cylinder_position,
+        r,
+        w,
+        per_cylinder=True,
+    )
+    rotating = topo.throw_rotating_mass * r * w**2 * np.exp(1j * phi)  # (B, T)
+    # the analysis JSON's round-off rule (studies.engine.Analysis.to_dict)
+    scale = (
+        float(topo.reciprocating_mass.sum() + topo.throw_rotating_mass.sum())
+        * r
+        * w**2
+        * max(1.0, float(np.ptp(topo.throw_position)))
+    )
+    tiny = ROUND_OFF * scale
+
+    def size(phasor: NDArray) -> NDArray:
+        value = np.abs(phasor)
+        return np.where(value < tiny, 0.0, value)
+
+    out: dict[str, NDArray] = {}
+    for n in range(orders):
+        for name, unit, f, b in (("F", "N", fwd, bwd), ("M", "Nm", cfwd, cbwd)):
+            forward, backward = size(f[:, n]), size(b[:, n])
+            out[f"{name}{n + 1}_{unit}"] = forward + backward
+            out[f"{name}{n + 1}f_{unit}"] = forward
+            out[f"{name}{n + 1}b_{unit}"] = backward
+    out["Frot_N"] = size(rotating.sum(axis=-1))
+    # the big ends of side-by-side rods at their own places (exact zeros otherwise)
+    couple = rotating * topo.throw_position + topo.throw_axial_moment * r * w**2 * np.exp(1j * phi)
+    out["Mrot_Nm"] = size(couple.sum(axis=-1))
+    return out
+
+
+def mirror_asymmetry(throw_angle: ArrayLike) -> NDArray[np.float64]:
+    r"""How far each crank is from its mirror image about the crank's mid-plane.
+
+    The largest angle between throw t and throw T + 1 - t,
+    :math:`\max_t |\varphi_t - \varphi_{T+1-t}|` (wrapped to [0, π]). Zero for a
+    mirror-symmetric crank (the flat inline-4, the inline-6, the crossplane V8 is not):
+    with equal masses at symmetric positions such a crank has no free couple of any order.
+
+    Parameters
+    ----------
+    throw_angle : array_like, shape (B, T)
+        Throw angles [rad].
+
+    Returns
+    -------
+    ndarray, shape (B,)
+        The asymmetry [rad], 0 to π.
+    """
+    phi = np.asarray(throw_angle, dtype=float)
+    gap = np.abs(np.remainder(phi - phi[:, ::-1] + np.pi, 2 * np.pi) - np.pi)
+    return np.where(gap < 1e-9, 0.0, gap).max(axis=-1, initial=0.0)
+
+
+def interval_deviation(fire_angle: ArrayLike, cycle: float) -> NDArray[np.float64]:
+    """Largest deviation of the firing intervals from even, per candidate.
+
+    The fire angles sorted around the cycle give C intervals (the last closes the cycle);
+    even firing has every interval ``cycle / C``.
+
+    Parameters
+    ----------
+    fire_angle : array_like, shape (B, C)
+        Crank angle at which each cylinder fires [rad].
+    cycle : float
+        Crank angle of one working cycle, 4π (4-stroke) or 2π (2-stroke) [rad].
+
+    Returns
+    -------
+    ndarray, shape (B,)
+        :math:`\\max |\\Delta - \\text{cycle}/C|` over the intervals Δ [rad]; 0 for one
+        cylinder.
+    """
+    alpha = np.sort(np.mod(np.asarray(fire_angle, dtype=float), cycle), axis=-1)
+    gaps = np.diff(alpha, axis=-1, append=alpha[:, :1] + cycle)
+    dev = np.abs(gaps - cycle / alpha.shape[-1]).max(axis=-1, initial=0.0)
+    return np.where(dev < 1e-9, 0.0, dev)
+
+
+def bank_interval_deviation(
+    fire_angle: ArrayLike, bank: ArrayLike, cycle: float
+) -> NDArray[np.float64]:
+    """Largest deviation from even firing of the cylinders of each bank, over the banks.
+
+    A bank is the cylinders of one bank angle (a vee's two banks, a boxer's two sides, a
+    W's three banks; an in-line engine is one bank): how even the pulses into that bank's
+    exhaust manifold are (the crossplane V8: 90° off, the flat-plane V8: even).
+
+    Parameters
+    ----------
+    fire_angle : array_like, shape (B, C)
+        Crank angle at which each cylinder fires [rad].
+    bank : array_like, shape (C,)
+        Bank angle of each cylinder [rad].
+    cycle : float
+        Crank angle of one working cycle [rad].
+
+    Returns
+    -------
+    ndarray, shape (B,)
+        The largest :func:`interval_deviation` of any bank [rad].
+    """
+    alpha = np.asarray(fire_angle, dtype=float)
+    key = np.round(np.mod(np.asarray(bank, dtype=float), 2 * np.pi), 9)
+    dev = np.zeros(alpha.shape[0])
+    for value in np.unique(key):
+        dev = np.maximum(dev, interval_deviation(alpha[:, key == value], cycle))
+    return dev
+
+
+def torsional_excitation(
+    fire_angle: ArrayLike, weights: ArrayLike, orders: ArrayLike
+) -> NDArray[np.float64]:
+    r"""Relative vector sum of the gas-torque harmonics over the cylinders, per order.
+
+    .. math:: X_k = \frac{|\sum_c w_c\,e^{i k \alpha_c}|}{\sum_c |w_c|}
+
+    with :math:`\alpha_c` the crank angle at which cylinder c fires: 1 where every
+    cylinder's harmonic adds in phase (the major orders of an even-firing engine with a
+    uniform mode), 0 where they cancel (:data:`TORSION_ASSUMPTION`).
+
+    Parameters
+    ----------
+    fire_angle : array_like, shape (B, C)
+        Crank angle at which each cylinder fires [rad].
+    weights : array_like, shape (C,)
+        Mode shape at the cylinders [-].
+    orders : array_like, shape (N,)
+        Engine orders k [-].
+
+    Returns
+    -------
+    ndarray, shape (B, N)
+        :math:`X_k` [-], 0 to 1.
+
+    References
+    ----------
+    Den Hartog (1956) ch. 5 (the phase diagrams of the harmonics of the cylinders).
+    """
+    w = np.asarray(weights, dtype=float)
+    alpha = np.asarray(fire_angle, dtype=float)
+    k = np.asarray(orders, dtype=float)
+    value = np.empty((alpha.shape[0], k.size))
+    for j, order in enumerate(k):  # one order at a time: temporaries of (B, C)
+        angle = order * alpha
+        value[:, j] = np.hypot(np.cos(angle) @ w, np.sin(angle) @ w)
+    value /= np.abs(w).sum()
+    return np.where(value < 1e-12, 0.0, value)
+
+
+def balance_columns(
+    candidates: Candidates,
+    target: Target,
+    balance_factor: float,
+    counterweights: CounterweightOptions | None,
+    shafts: ShaftOptions | None,
+    orders: int,
+) -> dict[str, NDArray]:
+    """Counterweights and balance shafts every candidate needs for a balancing target.
+
+    Parameters
+    ----------
+    candidates : Candidates
+        The batch.
+    target : {"counterweights", "primary", "secondary"}
+        See :func:`merit`.
+    balance_factor : float
+        Share of the reciprocating masses the default counterweights carry [-].
+    counterweights : CounterweightOptions, optional
+        See :func:`merit`.
+    shafts : ShaftOptions, optional
+        See :func:`merit`.
+    orders : int
+        Highest order of the residuals.
+
+    Returns
+    -------
+    dict of str to ndarray, each shape (B,)
+        ``cw_mass_kg`` [kg], ``shafts`` [-], ``shaft_mass_kg`` [kg], ``residual_F_N``
+        [N], ``residual_M_Nm`` [N·m] (see :func:`merit`).
+    """
+    topo = candidates.topology
+    names = ("cw_mass_kg", "shafts", "shaft_mass_kg", "residual_F_N", "residual_M_Nm")
+    if candidates.size == 0:
+        return {name: np.zeros(0) for name in names}
+    cw = counterweights or CounterweightOptions(
+        cg_radius=topo.crank_radius, angle="optimal", balance_factor=balance_factor
+    )
+    shaft = shafts or ShaftOptions(
+        cg_radius=topo.crank_radius,
+        length=max(float(np.ptp(topo.throw_position)), 2 * topo.crank_radius),
+    )
+    level = TARGETS.index(target)
+    result: BatchBalance = balance_batch(
+        engine_batch(topo, candidates.size, throw_angle=candidates.throw_angle),
+        cw,
+        shaft if level >= 2 else None,
+        shaft if level >= 3 else None,
+        orders,
+    )
+    count = np.zeros(candidates.size, dtype=np.int64)
+    shaft_mass = np.zeros(candidates.size)
+    for group in (result.primary, result.secondary):
+        if group is not None:
+            count += (group.layout > 0).sum(axis=-1)
+            shaft_mass += group.mass.sum(axis=(1, 2))
+    res = result.residuals
+    assert result.counterweights is not None  # counterweights are always asked for
+    cw_mass = result.counterweights.mass.sum(axis=-1)
+    if result.extra_counterweights is not None:  # a single counter-rotating primary shaft
+        cw_mass = cw_mass + result.extra_counterweights.mass.sum(axis=-1)
+    return dict(
+        zip(
+            names,
+            (
+                cw_mass,
+                count,
+                shaft_mass,
+                res.force_after.max(axis=-1),
+                res.moment_after.max(axis=-1),
+            ),
+            strict=True,
+        )
+    )

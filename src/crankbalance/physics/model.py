@@ -1,0 +1,355 @@
+r"""The engine model: throws, cylinders and the mass split as SI arrays, the input of every
+physics function (built from an engine spec by :mod:`crankbalance.studies.build`).
+
+Geometry conventions (``docs/theory.md``): y along the crank axis from the crankshaft
+mid-point, z along the cylinder axis of an in-line engine, x across. A throw at angle
+:math:`\varphi` has its crankpin at :math:`r(\sin(\theta+\varphi), \cos(\theta+\varphi))`
+in (x, z) when the first throw is at crank angle :math:`\theta`. A cylinder's bank angle
+:math:`\beta` is the angle of its axis from z about the crank axis, in the same sense.
+A cylinder without offset is at top dead centre when :math:`\theta + \varphi - \beta = 0`;
+with the offset e (``cylinder_offset``) at :math:`\theta + \varphi - \beta =
+\arcsin(e/(l+r))` (:func:`tdc_angle`).
+
+Each cylinder has its own offset (crank offset, wrist-pin offset and the bore offset of its
+bank) and its own axial position: its throw's position plus ``cylinder_axial``, the place
+of its rod on a pin it shares side by side with other rods. Axial positions are measured
+from the moment reference point (the crank's mid-point unless the engine file moves it,
+docs/engine_file.md): every lever arm of a moment is a position of the model.
+
+Numbering of cylinders (docs/engine_file.md): in-line and boxer: one per throw from the
+y < 0 end; vee: bank A (bank angle :math:`-V/2`) is 1..T, bank B (:math:`+V/2`) is T+1..2T,
+cylinders k and k+T share throw k; W: banks :math:`-V, 0, +V` numbered bank after bank;
+radial: cylinder k at bank angle :math:`(k-1)\,360°/n`; custom: throw after throw;
+VR (narrow-angle vee with one crankpin per cylinder): cylinder k on throw k, odd cylinders in
+row A (:math:`-V/2`), even in row B (:math:`+V/2`); W from VR banks (``w_type = "vr"``): VR
+bank 1 (centre :math:`-V/2`) holds cylinders 1..n/2, VR bank 2 (:math:`+V/2`) n/2+1..n, each
+a VR engine of narrow angle :math:`v` (its rows at :math:`\mp v/2` about the bank centre, odd
+cylinders of the bank in row A); cylinder k on throw k, and cylinders k and k + n/2 on two
+throws at the same axial place (one pin, or a pin split in two).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+from numpy.typing import ArrayLike, NDArray
+
+from ..results import ResultMixin
+from .articulated import ArticulatedRods, Articulation
+
+
+@dataclass(frozen=True)
+class ConrodSplit(ResultMixin):
+    r"""Two-mass equivalent of one conrod (mass and centre of gravity kept).
+
+    ``inertia_two_mass`` is the inertia about the CG the two point masses have,
+    :math:`m\,d\,(l-d)`; ``inertia_error`` is that minus the real inertia, when the real
+    one is given (None otherwise).
+
+    Parameters
+    ----------
+    cylinder : int
+        Number of the cylinder the conrod belongs to (1-based, docs/engine_file.md).
+    mass : float
+        Conrod mass [kg].
+    rotating : float
+        Mass at the big end, :math:`m\,(l-d)/l` [kg].
+    reciprocating : float
+        Mass at the small end, :math:`m\,d/l` [kg].
+    cg_from_big_end : float
+        :math:`d`, distance of the conrod's centre of gravity from the big-end centre [m].
+    inertia_two_mass : float
+        Moment of inertia of the two point masses about the centre of gravity,
+        :math:`m\,d\,(l-d)` [kg m^2].
+    inertia_given : float or None
+        Real moment of inertia of the conrod about its centre of gravity [kg m^2], None
+        when not given.
+    inertia_error : float or None
+        ``inertia_two_mass - inertia_given`` [kg m^2], None when the real inertia is not
+        given.
+
+    References
+    ----------
+    The two-mass equivalent conrod of machine-dynamics texts, e.g. Den Hartog (1956) ch. 5.
+    """
+
+    cylinder: int
+    mass: float
+    rotating: float
+    reciprocating: float
+    cg_from_big_end: float
+    inertia_two_mass: float
+    inertia_given: float | None
+    inertia_error: float | None
+
+
+@dataclass(frozen=True)
+class EngineModel:
+    """An engine as SI arrays: the input of every physics function.
+
+    Attributes
+    ----------
+    name : str
+        Engine name, for reports.
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model, see :func:`crankbalance.physics.kinematics.harmonic_coefficients`.
+    strokes : int
+        Strokes per working cycle (2 or 4).
+    crank_radius, rod_length : float
+        [m].
+    speed : float
+        Crank speed [rad/s].
+    throw_angle, throw_position, throw_rotating_mass : ndarray, shape (T,)
+        [rad], [m along the crank axis from the moment reference point (the crank's
+        mid-point by default)], [kg at the crank radius, crankpin, webs reduced to the
+        crank radius and all big ends on the pin].
+    cylinder_throw : ndarray of int, shape (C,)
+        Index of the throw each cylinder sits on.
+    cylinder_bank, reciprocating_mass : ndarray, shape (C,)
+        [rad], [kg].
+    cylinder_offset : ndarray, shape (C,)
+        Each cylinder's total offset [m]: crank offset plus wrist-pin offset plus the bore
+        offset of its bank, the lateral distance of its wrist-pin path from the crank axis
+        (sign as in :mod:`crankbalance.physics.kinematics`).
+    cylinder_axial : ndarray, shape (C,)
+        Axial position of each cylinder's rod on its crankpin, from the throw's centre
+        along the crank axis [m] (0: in the throw's mid-plane).
+    cylinder_rotating_mass : ndarray, shape (C,)
+        The rotating part of each rod's big end [kg] that ``throw_rotating_mass`` includes
+        and that sits at the rod's own axial position (0 where the big end is not known
+        apart from the throw's total); it moves no mass, only where the throw's rotating
+        mass acts along the crank axis (:attr:`throw_rotating_moment`).
+    firing_order : tuple of int
+        Cylinder numbers (1-based) in firing order.
+    conrods : tuple of ConrodSplit
+        The two-mass split of each conrod given by its mass, empty when none is.
+    firing_order_given : bool
+        False when the spec gave no firing order and ``firing_order`` is the cylinder order.
+    articulation : Articulation or None
+        Master-and-link rods of a radial (:mod:`crankbalance.physics.articulated`): the master
+        cylinder, link rod lengths, link pin radii and angles; None when every rod's big
+        end is on its crankpin. When given, the pistons follow the exact articulated
+        motion (:func:`crankbalance.physics.shaking.cylinder_coefficients`), and the link rods'
+        big ends (``cylinder_rotating_mass``, counted in ``throw_rotating_mass`` like
+        every big end) add their motion relative to the crankpin.
+    maker_number : tuple of int or None
+        The maker's number of each cylinder (by crankbalance's number) when the engine
+        file gives its firing order in a maker's numbering (``crank_train.numbering`` or
+        ``maker_numbers``); only shown in outputs, no computation uses it. None otherwise.
+    """
+
+    name: str
+    speed: float
+    kinematics: str
+    crank_radius: float
+    rod_length: float
+    strokes: int
+    throw_angle: NDArray[np.float64]
+    throw_position: NDArray[np.float64]
+    throw_rotating_mass: NDArray[np.float64]
+    cylinder_throw: NDArray[np.int64]
+    cylinder_bank: NDArray[np.float64]
+    reciprocating_mass: NDArray[np.float64]
+    cylinder_offset: NDArray[np.float64]
+    cylinder_axial: NDArray[np.float64]
+    cylinder_rotating_mass: NDArray[np.float64]
+    firing_order: tuple[int, ...]
+    conrods: tuple[ConrodSplit, ...] = field(default=())
+    firing_order_given: bool = True
+    articulation: Articulation | None = None
+    maker_number: tuple[int, ...] | None = None
+
+    @property
+    def rod_ratio(self) -> float:
+        return self.crank_radius / self.rod_length
+
+    @property
+    def cylinders(self) -> int:
+        return int(self.cylinder_bank.size)
+
+    @property
+    def throws(self) -> int:
+        return int(self.throw_angle.size)
+
+    @property
+    def cylinder_angle(self) -> NDArray[np.float64]:
+        """Throw angle of each cylinder's crankpin [rad]."""
+        return self.throw_angle[self.cylinder_throw]
+
+    @property
+    def cylinder_position(self) -> NDArray[np.float64]:
+        """Axial position of each cylinder's rod [m]: its throw's plus ``cylinder_axial``."""
+        return self.throw_position[self.cylinder_throw] + self.cylinder_axial
+
+    @property
+    def moment_reference(self) -> float:
+        """Position of the moment reference point from the crank's mid-point (the middle of
+        the throws' extent) along the crank axis [m]; 0 unless the engine file moves it."""
+        return -0.5 * float(self.throw_position.min() + self.throw_position.max())
+
+    @property
+    def throw_axial_moment(self) -> NDArray[np.float64]:
+        r"""First moment of each throw's big ends about the throw's centre,
+        :math:`\sum_c m_{b,c}\,a_c` over the rods on the throw [kg m], shape (T,)."""
+        return np.bincount(
+            self.cylinder_throw,
+            self.cylinder_rotating_mass * self.cylinder_axial,
+            minlength=self.throws,
+        ).astype(float)
+
+    @property
+    def throw_rotating_moment(self) -> NDArray[np.float64]:
+        r"""First moment of each throw's rotating mass about the moment reference point,
+        :math:`m_t y_t + \sum_c m_{b,c} a_c` [kg m], shape (T,): the lever arm of the
+        rotating couple, with the big ends of side-by-side rods at their own positions."""
+        return self.throw_rotating_mass * self.throw_position + self.throw_axial_moment
+
+    @property
+    def articulated_rods(self) -> ArticulatedRods | None:
+        """The full geometry of the master-and-link rods (None without ``articulation``)."""
+        if self.articulation is None:
+            return None
+        return self.articulation.rods(
+            self.crank_radius, self.rod_length, self.cylinder_bank, self.cylinder_offset
+        )
+
+    def __post_init__(self) -> None:
+        c = self.cylinder_bank.shape
+        for name in ("cylinder_offset", "cylinder_axial", "cylinder_rotating_mass"):
+            if np.shape(getattr(self, name)) != c:
+                raise ValueError(f"EngineModel.{name}: shape {c} (one per cylinder) expected")
+
+
+def tdc_angle(
+    offset: ArrayLike, crank_radius: ArrayLike, rod_length: ArrayLike
+) -> NDArray[np.float64]:
+    r"""Crank angle from the cylinder axis at which an offset piston is at top dead centre.
+
+    Parameters
+    ----------
+    offset : array_like
+        Lateral distance of the wrist-pin path from the crank axis [m], signed as in
+        :mod:`crankbalance.physics.kinematics`.
+    crank_radius : array_like
+        Crank radius [m].
+    rod_length : array_like
+        Conrod length [m].
+
+    Returns
+    -------
+    ndarray
+        :math:`\psi_{TDC} = \arcsin(e/(l+r))` [rad]: crankpin, big end and wrist pin in
+        one line, the piston farthest from the crank axis.
+
+    References
+    ----------
+    The desaxé slider-crank of machine-dynamics texts, e.g. Taylor (1985) ch. 8.
+    """
+    e = np.asarray(offset, dtype=float)
+    return np.arcsin(e / (np.asarray(rod_length, dtype=float) + np.asarray(crank_radius)))
+
+
+def standard_layout(
+    layout: str,
+    cylinders: int,
+    bank_angle: float = 0.0,
+    pitch: float = 0.0,
+    vr_angle: float | None = None,
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
+    """Throws and cylinders of a standard layout, numbered as in the module docstring.
+
+    Parameters
+    ----------
+    layout : {"inline", "boxer", "vee", "w", "radial", "vr"}
+        Layout name, as in the engine file.
+    cylinders : int
+        Number of cylinders (even for vee, boxer and a W from VR banks, a multiple of 3 for
+        a broad-arrow W).
+    bank_angle : float
+        Vee angle V, the angle between neighbouring banks of a broad-arrow W, the angle
+        between the two VR banks of a W from VR banks, or the narrow angle between the two
+        rows of a VR engine [rad]; not used for the other layouts.
+    pitch : float
+        Distance between neighbouring throws along the crank axis [m]; for a W from VR banks
+        the distance between neighbouring pairs of throws.
+    vr_angle : float, optional
+        Layout "w" only: when given, the W is built from two VR banks and this is the narrow
+        angle v between the two rows of each VR bank [rad]; None for a broad-arrow W.
+
+    Returns
+    -------
+    throw_position : ndarray, shape (T,)
+        Axial position of each throw [m from the crank's mid-point].
+    cylinder_throw : ndarray of int, shape (C,)
+        Index of the throw each cylinder sits on.
+    cylinder_bank : ndarray, shape (C,)
+        Bank angle of each cylinder [rad].
+    """
+    if layout == "vr" or (layout == "w" and vr_angle is not None):
+        return _vr_layout(cylinders, bank_angle, pitch, vr_angle)
+    n = cylinders
+    t = {"vee": n // 2, "w": n // 3, "radial": 1}.get(layout, n)
+    positions = ((np.arange(t) - (t - 1) / 2.0) * pitch).astype(float)
+    v = bank_angle
+    throw_of: NDArray
+    banks: NDArray
+    if layout == "inline":
+        throw_of, banks = np.arange(n), np.zeros(n)
+    elif layout == "boxer":
+        throw_of = np.arange(n)
+        banks = np.where(np.arange(n) % 2 == 0, -np.pi / 2, np.pi / 2)
+    elif layout == "vee":
+        throw_of = np.tile(np.arange(t), 2)
+        banks = np.repeat([-v / 2, v / 2], t)
+    elif layout == "w":
+        throw_of = np.tile(np.arange(t), 3)
+        banks = np.repeat([-v, 0.0, v], t)
+    else:  # radial
+        throw_of = np.zeros(n, dtype=np.int64)
+        banks = 2 * np.pi * np.arange(n) / n
+    return positions, throw_of.astype(np.int64), banks.astype(np.float64)
+
+
+def vr_rows(cylinders: int, vr_banks: int = 1) -> NDArray[np.int64]:
+    """Row of each cylinder of a VR engine or of a W from VR banks: -1 for row A, +1 for row B.
+
+    Parameters
+    ----------
+    cylinders : int
+        Number of cylinders (even when ``vr_banks`` is 2).
+    vr_banks : {1, 2}
+        1 for layout "vr", 2 for a W from VR banks.
+
+    Returns
+    -------
+    ndarray of int, shape (C,)
+        -1 for the row at minus half the narrow angle about its VR bank's centre line, +1
+        for the row at plus half: odd cylinders of each VR bank (counted from its first
+        cylinder) in row A, even in row B.
+    """
+    per_bank = cylinders // vr_banks
+    k = np.tile(np.arange(per_bank), vr_banks)
+    return np.where(k % 2 == 0, -1, 1).astype(np.int64)
+
+
+def _vr_layout(
+    cylinders: int, bank_angle: float, pitch: float, vr_angle: float | None
+) -> tuple[NDArray[np.float64], NDArray[np.int64], NDArray[np.float64]]:
+    """:func:`standard_layout` of a VR engine (``vr_angle`` None, ``bank_angle`` its narrow
+    angle) or of a W from two VR banks (``bank_angle`` between the banks, ``vr_angle``)."""
+    n = cylinders
+    if vr_angle is None:  # VR: one row of throws, rows alternating along the crank
+        rows = vr_rows(n, 1)
+        positions = (np.arange(n) - (n - 1) / 2.0) * pitch
+        banks = rows * bank_angle / 2
+    else:  # W: VR bank 1 on throws 1..n/2, VR bank 2 on n/2+1..n, pairs at one place
+        half = n // 2
+        rows = vr_rows(n, 2)
+        positions = np.tile((np.arange(half) - (half - 1) / 2.0) * pitch, 2)
+        banks = np.repeat([-bank_angle / 2, bank_angle / 2], half) + rows * vr_angle / 2
+    return (
+        positions.astype(np.float64),
+        np.arange(n, dtype=np.int64),
+        banks.astype(np.float64),
+    )
