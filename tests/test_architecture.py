@@ -108,54 +108,6 @@ def test_a_long_physics_module_says_why(name: str) -> None:
     )
 
 
-def private_imports(path: Path, text: str | None = None) -> list[str]:
-    """The private names (one leading underscore) the module at ``path`` (its source, or
-    ``text`` in its place) imports from a physics module other than itself, as
-    ``module.name``."""
-    tree = ast.parse(path.read_text() if text is None else text)
-    module = ".".join(path.relative_to(SRC).with_suffix("").parts)
-    package = module.rpartition(".")[0] if path.name != "__init__.py" else module
-    found = []
-    for node in ast.walk(tree):
-        if not isinstance(node, ast.ImportFrom) or not node.module:
-            continue
-        if node.level:
-            parts = package.split(".") if package else []
-            target = ".".join(parts[: len(parts) - (node.level - 1)] + [node.module])
-        else:
-            target = _own(node.module) or ""
-        if not target.startswith("physics") or target == module:
-            continue
-        found += [
-            f"{target}.{a.name}"
-            for a in node.names
-            if a.name.startswith("_") and not a.name.startswith("__")
-        ]
-    return found
-
-
-def test_no_private_name_of_a_physics_module_is_imported() -> None:
-    """Issue 26: a name a physics module shares is public, with its docstring
-    (tests/test_docstrings.py); no module imports another's private one."""
-    bad = {
-        str(path.relative_to(SRC)): names
-        for path in sorted(SRC.rglob("*.py"))
-        if (names := private_imports(path))
-    }
-    assert not bad, f"private names imported from physics modules: {bad}"
-
-
-def test_the_private_import_walk_finds_them() -> None:
-    text = (
-        "from .engine_cycle import _pressure, cylinder_forces\n"
-        "from ..errors import _show\n"
-        "from crankbalance.physics.model import _vr_layout\n"
-        "from .engine_cycle_all import _own\n"
-    )
-    found = private_imports(SRC / "physics" / "engine_cycle_all.py", text)
-    assert found == ["physics.engine_cycle._pressure", "physics.model._vr_layout"]
-
-
 def _module_graph() -> dict[str, set[str]]:
     """crankbalance's modules and the crankbalance modules each imports (a package stands
     for its ``__init__``; an import of a name from a package counts as its module)."""
@@ -226,6 +178,64 @@ def test_no_import_cycles() -> None:
 def test_the_cycle_walk_finds_cycles() -> None:
     assert find_cycles({"a": {"b"}, "b": {"c"}, "c": {"a"}, "d": {"a"}}) == [["a", "b", "c", "a"]]
     assert find_cycles({"a": {"b"}, "b": set(), "c": {"a", "b"}}) == []
+
+
+def private_imports(path: Path, root: Path = SRC) -> set[str]:
+    """The private names (``_name``, not ``__dunder__``) that the module at ``path`` (in the
+    package at ``root``) imports from another crankbalance module, each as
+    ``module: source._name``."""
+    module = ".".join(path.relative_to(root).with_suffix("").parts).removesuffix(".__init__")
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:
+            parts = package.split(".") if package else []
+            source = ".".join(parts[: len(parts) - (node.level - 1)] + [node.module or ""])
+        elif _own(node.module or "") is not None:
+            source = _own(node.module or "") or ""
+        else:
+            continue
+        found |= {
+            f"{module}: {source.strip('.')}.{a.name}"
+            for a in node.names
+            if a.name.startswith("_") and not a.name.startswith("__")
+        }
+    return found
+
+
+#: private names still imported across modules (issue 26 takes them off one by one); the
+#: list only shrinks: a private import not listed fails, and so does a listed one that is gone
+PRIVATE_IMPORTS_LEFT = {
+    "cli.bearings_sweep: cli.performance._number_list",
+}
+
+
+def test_no_private_names_across_modules() -> None:
+    """No module imports another module's private name: what two modules share is public,
+    with a docstring, in the module that owns it."""
+    found = set().union(*(private_imports(path) for path in SRC.rglob("*.py")))
+    assert found <= PRIVATE_IMPORTS_LEFT, "private names imported across modules:\n" + "\n".join(
+        sorted(found - PRIVATE_IMPORTS_LEFT)
+    )
+    assert found == PRIVATE_IMPORTS_LEFT, f"gone, take off the list: {PRIVATE_IMPORTS_LEFT - found}"
+
+
+def test_the_private_import_scan_finds_them(tmp_path: Path) -> None:
+    sheet = tmp_path / "output" / "sheet.py"
+    sheet.parent.mkdir()
+    sheet.write_text(
+        "from .report import CSS, _table\n"
+        "from . import _html, __version__\n"
+        "from crankbalance.physics.model import _throws\n"
+        "from numpy import _core\n"
+    )
+    assert private_imports(sheet, tmp_path) == {
+        "output.sheet: output.report._table",
+        "output.sheet: output._html",
+        "output.sheet: physics.model._throws",
+    }
 
 
 #: third-party packages the command line may load, by command (``None``: the start alone,

@@ -1166,11 +1166,14 @@ def allowed(model: type[StudyOptions], name: str) -> str:
     kind, quantity = field_kind(model, name)
     base, _ = _unwrap(info.annotation)
     if kind == "list":
-        _element, inner = _unwrap(get_args(base)[0])
+        element, inner = _unwrap(get_args(base)[0])
         metadata = _metadata(model, name)
         shortest = next((m.min_length for m in metadata if hasattr(m, "min_length")), 0)
         longest = next((m.max_length for m in metadata if hasattr(m, "max_length")), None)
         count = f"{shortest} to {longest}" if longest else f"at least {shortest}"
+        if element is str:  # file names (--pressure-csv), the option given once for each
+            files = f"at most {longest}" if longest and not shortest else count
+            return f"{files} file{'' if longest == 1 else 's'}, the option given once for each"
         quantity = _quantity_kind(inner)
         if quantity is None:
             rest = _range_words(None, _bounds(inner)).removeprefix("a number")
