@@ -6,7 +6,7 @@ from __future__ import annotations
 import math
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -18,6 +18,9 @@ from ..results import below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
+
+if TYPE_CHECKING:  # the verification is imported when asked for
+    from ..physics.balance_check import Verification
 
 SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
@@ -241,7 +244,7 @@ class BalanceStudy:
 
     model: EngineModel
     result: Any  # balancing.BalanceResult
-    verification: Any = None  # balance_check.Verification, when asked for
+    verification: Verification | None = None  # when asked for
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.balance/2`` (docs/json.md)."""
@@ -343,7 +346,7 @@ class BalanceStudy:
         return result
 
 
-def verification_dict(verification: Any) -> dict[str, Any]:
+def verification_dict(verification: Verification) -> dict[str, Any]:
     """The ``verification`` block of ``crankbalance.balance/2`` (docs/json.md): the
     time-domain amplitudes and their largest differences from the solver's."""
     return {
