@@ -1,0 +1,119 @@
+"""The schema machinery (crankbalance.schema.core): parsing from files and from text,
+messages that name the field as written, bounds, unknown keys, checks across fields,
+writing back, and the JSON Schema."""
+
+from __future__ import annotations
+
+import math
+
+import pytest
+
+from crankbalance.errors import InputError
+from crankbalance.schema.core import FieldProblem, Schema, allowed, entry, field, json_schema
+
+
+class Part(Schema):
+    """A part of an example."""
+
+    mass: float = field("mass", title="Mass")
+    count: int = field("whole", default=1, ge=1, le=8)
+
+
+class Example(Schema):
+    """An example input."""
+
+    DOC = "docs/example.md"
+    radius: float = field("length", title="Radius", description="of the crank")
+    offset: float = field("length", default=0.0, zero=True)
+    factor: float = field("factor", default=0.5, ge=0, le=2)
+    kind: str = field("choice", default="pattern", choices=("pattern", "individual"))
+    speeds: list[float] = field("list", default=[], item=entry("speed"), max_items=3)
+    part: Part | None = field("table", default=None, table=Part)
+    parts: list[Part] = field("list", default=[], item=entry("table", table=Part), max_items=4)
+
+    def check(self) -> None:
+        if self.offset > self.radius:
+            raise FieldProblem("offset", "must not exceed the radius")
+
+
+def error(data: object, **kwargs: object) -> str:
+    with pytest.raises(InputError) as caught:
+        Example.parse(data, **kwargs)  # type: ignore[arg-type]
+    return str(caught.value)
+
+
+def test_values_parse_to_si_with_defaults() -> None:
+    e = Example.parse({"radius": "40 mm", "speeds": ["1000 rpm"], "part": {"mass": "500 g"}})
+    assert e.radius == pytest.approx(0.04)
+    assert e.offset == 0.0 and e.factor == 0.5 and e.kind == "pattern"
+    assert e.speeds == [pytest.approx(1000 * math.pi / 30)]
+    assert e.part is not None and e.part.mass == pytest.approx(0.5) and e.part.count == 1
+
+
+def test_text_source_reads_numbers_and_lists() -> None:
+    e = Example.parse(
+        {"radius": "40 mm", "factor": "28%", "speeds": "1000 rpm, 2000 rpm", "kind": "Individual"},
+        source="text",
+    )
+    assert e.factor == pytest.approx(0.28)
+    assert len(e.speeds) == 2 and e.kind == "individual"
+
+
+def test_file_source_keeps_types_strict() -> None:
+    assert "whole number" in error({"radius": "40 mm", "part": {"mass": "1 g", "count": "2"}})
+    assert "whole number" in error({"radius": "40 mm", "part": {"mass": "1 g", "count": True}})
+
+
+def test_unknown_key_named_with_the_closest() -> None:
+    message = error({"radius": "40 mm", "ofset": "1 mm"})
+    assert message == "ofset: unknown key; did you mean 'offset'?"
+    message = error({"radius": "40 mm", "part": {"mas": "1 g"}})
+    assert message.startswith("part.mas: unknown key; did you mean 'mass'?")
+
+
+def test_a_typo_of_a_required_key_is_named_before_it_is_missing() -> None:
+    assert error({"raduis": "40 mm"}) == "raduis: unknown key; did you mean 'radius'?"
+    assert error({}) == "radius: is missing; it is required (see docs/example.md)"
+
+
+def test_bounds_and_ranges() -> None:
+    assert "from 0 to 2" in error({"radius": "40 mm", "factor": 3})
+    assert "of size" in error({"radius": "1e308 km"})
+    assert "0, or" in allowed(Example.FIELDS["offset"])
+    Example.parse({"radius": "40 mm", "offset": "0 mm"})
+    assert error({"radius": "40 mm", "speeds": ["1 rpm"] * 4}).startswith(
+        "speeds = '4 entries': takes at most 3 entries"
+    )
+
+
+def test_choice_suggests_the_closest() -> None:
+    assert "did you mean 'pattern'" in error({"radius": "40 mm", "kind": "patern"})
+
+
+def test_check_across_fields_names_the_field_with_the_value_as_written() -> None:
+    assert error({"radius": "40 mm", "offset": "50 mm"}) == (
+        "offset = '50 mm': must not exceed the radius"
+    )
+
+
+def test_nested_list_paths_and_a_namer() -> None:
+    message = error({"radius": "40 mm", "parts": [{"mass": "1 g"}, {"mass": "1 g", "count": 9}]})
+    assert message.startswith("parts[1].count = 9: must be a whole number from 1 to 8")
+    message = error({"radius": "x"}, source="text", name=lambda p: "--" + str(p[0]))
+    assert message.startswith("--radius = 'x':")
+
+
+def test_replace_checks_again_and_to_data_writes_units() -> None:
+    e = Example.parse({"radius": "40 mm", "part": {"mass": "500 g"}})
+    with pytest.raises(InputError, match="offset"):
+        e.replace(offset=0.05)
+    assert e.to_data() == {"radius": "40 mm", "part": {"mass": "500 g"}}
+    assert Example.parse(e.to_data()) == e
+
+
+def test_json_schema() -> None:
+    schema = json_schema(Example, title="Example")
+    assert schema["required"] == ["radius"]
+    assert schema["additionalProperties"] is False
+    assert schema["properties"]["part"]["properties"]["count"]["maximum"] == 8
+    assert schema["properties"]["kind"]["enum"] == ["pattern", "individual"]
