@@ -166,8 +166,7 @@ def test_the_cycle_walk_finds_cycles() -> None:
 #: shapely, trimesh, pymoo, matplotlib, ...) must stay unloaded
 CLI_PACKAGES: dict[str | None, set[str]] = {
     None: {"click"},
-    "analyze": {"click", "numpy", "pydantic", "pydantic_core", "annotated_types"}
-    | {"typing_extensions", "typing_inspection"},
+    "analyze": {"click", "numpy"},
 }
 CLI_PACKAGES["balance"] = CLI_PACKAGES["analyze"]
 _CLI_PROBE = """

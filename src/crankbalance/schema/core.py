@@ -1,23 +1,33 @@
 """Declarative schemas: every input of crankbalance described once.
 
-A schema is a frozen dataclass (a subclass of :class:`Schema`) whose fields are declared
+A schema is a frozen record (a subclass of :class:`Schema`) whose fields are declared
 with :func:`field`: the kind of value (a quantity kind of :data:`crankbalance.units.KINDS`
 such as ``"length"``, or ``"number"``, ``"whole"``, ``"factor"``, ``"choice"``,
-``"text"``, ``"list"``, ``"table"``), its default, its range, its title and description.
-From that one description come
+``"text"``, ``"list"``, ``"table"``), its default, its range, its title, description and
+form hint. From that one description come
 
 * the validation of an engine file or of a study's settings (:meth:`Schema.parse`): every
   error is one :class:`~crankbalance.errors.InputError` naming the field as the user wrote
   it (``crank_train.rod_length``, ``--max-mass``, a web setting's key), the value, and what
-  is allowed; an unknown key is named with the closest allowed one;
+  is allowed; an unknown key anywhere in the input is reported first, with the closest
+  allowed key (``did you mean 'rod_length'?``) or the table it belongs in; a decimal comma
+  is named as such;
 * the words of what a field allows (:func:`allowed`), for help texts and messages;
-* the command-line options, the web form, the tables of ``docs/`` and a published JSON
-  Schema (:func:`json_schema`), which the edges derive from :meth:`Schema.fields`.
+* the reference tables of ``docs/`` and a published JSON Schema (:func:`json_schema`,
+  :mod:`crankbalance.schema.document`), the command-line options and the web form, which
+  the edges derive from :attr:`Schema.FIELDS`.
 
 Values come from two kinds of source. A *file* (TOML, JSON, the API's body, Python) has
 types: a count must be an integer, a fraction a number, a quantity a string with a unit.
 *Text* (the command line, the web form) has only strings: a number is read from its text
 and a list from comma-separated values. :meth:`Schema.parse` takes the source.
+
+Quantities are checked after unit conversion. A quantity field with both bounds keeps
+them as written (the settings: ``ge``/``le`` from their signed ranges). A quantity field
+without bounds, or with only a sign rule (``gt=0``: "must be greater than zero",
+``ge=0``: "must not be negative"), is checked in size against the physical range of its
+kind (:data:`crankbalance.units.RANGES`, :func:`parse_in_range`: "must lie between 1 um
+and 100 m"), zero refused unless ``zero`` or ``ge=0`` (the engine file).
 
 Checks across fields are a schema's :meth:`Schema.check`, which raises
 :class:`FieldProblem` naming the field (relative to the schema, or dotted from the root);
@@ -36,13 +46,15 @@ from collections.abc import Callable, Iterator, Mapping, Sequence
 from typing import Any, ClassVar, Literal, Self, dataclass_transform
 
 from ..errors import InputError
-from ..units import KINDS, format_quantity, parse_factor, parse_quantity, range_si
+from ..units import KINDS, RANGES, format_quantity, parse_factor, parse_quantity, range_si
 
 Source = Literal["file", "text"]
 #: the non-quantity kinds of value a field may take
 PLAIN_KINDS = ("number", "whole", "factor", "choice", "text", "flag", "list", "table", "any")
 #: longest text of a quantity, a number or a word, in characters (longer is refused unread)
 MAX_VALUE_CHARS = 100
+#: a number written with a decimal comma, alone or before a unit: "1,5" or "1,5 kg"
+_DECIMAL_COMMA = re.compile(r"\s*([-+]?\d+),(\d+)(\s*[^\d\s,].*)?\s*")
 
 
 class _Required:
@@ -63,6 +75,7 @@ class Field:
     default: Any = None
     title: str = ""
     description: str = ""
+    hint: str = ""
     low: float | None = None
     high: float | None = None
     low_open: bool = False
@@ -77,7 +90,6 @@ class Field:
     words: str = ""
     parse: Callable[[Any, str], Any] | None = None
     example: str = ""
-    unit: str = ""
 
     @property
     def required(self) -> bool:
@@ -88,6 +100,12 @@ class Field:
         """The quantity kind (``"length"``...) or None for a plain kind."""
         return self.kind if self.kind in KINDS else None
 
+    @property
+    def in_size(self) -> bool:
+        """A quantity checked in size against the physical range of its kind: no bounds,
+        or only a sign rule (``gt=0`` or ``ge=0``)."""
+        return self.quantity is not None and self.high is None and self.low in (None, 0)
+
 
 def field(
     kind: str,
@@ -95,6 +113,7 @@ def field(
     default: Any = REQUIRED,
     title: str = "",
     description: str = "",
+    hint: str = "",
     ge: float | None = None,
     gt: float | None = None,
     le: float | None = None,
@@ -109,7 +128,6 @@ def field(
     words: str = "",
     parse: Callable[[Any, str], Any] | None = None,
     example: str = "",
-    unit: str = "",
 ) -> Any:
     """Declare a field of a :class:`Schema`.
 
@@ -125,11 +143,15 @@ def field(
         The value when the field is not given; :data:`REQUIRED` (the default) when it must
         be given; a list default is copied for every instance.
     title, description : str
-        A label for forms and help, and a sentence of what the field means.
+        A label for forms and help, and a sentence of what the field means (the reference
+        tables of ``docs/`` and the JSON Schema show both).
+    hint : str
+        A short text beside a form's input: an example, or what leaving it empty means.
     ge, gt, le, lt : float, optional
-        Bounds of a number or a quantity (in SI). A quantity without bounds takes the
-        physical range of its kind (:data:`crankbalance.units.RANGES`) in size, zero
-        refused unless ``zero``; a quantity with bounds keeps them as written.
+        Bounds of a number or a quantity (in SI). A quantity with both bounds keeps them
+        as written; a quantity without bounds, or with only ``gt=0`` or ``ge=0`` (a sign
+        rule), is checked in size against the physical range of its kind
+        (:func:`parse_in_range`), zero refused unless ``zero`` or ``ge=0``.
     zero : bool
         Zero is allowed besides the range (an offset, a bore that may be solid).
     choices : sequence
@@ -139,17 +161,17 @@ def field(
     table : type
         The schema of a ``table``.
     min_items, max_items : int
-        Bounds on the entries of a list.
+        Bounds on the entries of a list (checked before any entry is read).
     max_chars : int
         Longest text.
     words : str
         What the field allows, in words, where the generated words would not say it.
     parse : callable, optional
         ``parse(value, field_name) -> value``: a parser of its own (a value such as
-        ``"optimal"`` or an angle); it raises :class:`InputError` for a bad value. Bounds
-        still apply to a number it returns.
-    example, unit : str
-        An example as typed, and the display unit of a quantity (default the kind's).
+        ``"optimal"`` or a reading); it raises :class:`InputError` for a bad value.
+        Explicit bounds still apply to a number it returns.
+    example : str
+        An example of a quantity as typed (default the kind's, ``'40 mm'``).
 
     Returns
     -------
@@ -165,6 +187,7 @@ def field(
         default=default,
         title=title,
         description=description,
+        hint=hint,
         low=low,
         high=high,
         low_open=low_open,
@@ -179,7 +202,6 @@ def field(
         words=words,
         parse=parse,
         example=example,
-        unit=unit,
     )
 
 
@@ -230,10 +252,10 @@ class Schema:
 
     Subclasses declare fields with :func:`field` and may define :meth:`check` (across
     fields). Create one with :meth:`parse` (from a file's table or a form's texts), copy
-    one with :meth:`replace`, write one back with :meth:`to_data`. The class is no
-    dataclass: generating a dataclass's code costs about a millisecond a class, and
-    crankbalance has forty schemas; the same behaviour (keyword-only construction,
-    frozen, equality by value) is written here once.
+    one with :meth:`replace`, write one back with :meth:`to_data` (units) or
+    :meth:`values` (SI). The class is no dataclass: generating a dataclass's code costs
+    about a millisecond a class, and crankbalance has forty schemas; the same behaviour
+    (keyword-only construction, frozen, equality by value) is written here once.
     """
 
     #: the fields of the schema, name -> :class:`Field`, in declaration order (inherited
@@ -241,12 +263,15 @@ class Schema:
     FIELDS: ClassVar[dict[str, Field]] = {}
     #: where the format is described (named in "is missing" messages)
     DOC: ClassVar[str] = ""
+    #: how an unknown key is called, and how the list of the known ones is introduced
+    UNKNOWN: ClassVar[tuple[str, str]] = ("unknown key", "allowed keys here")
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
-        fields = dict(cls.FIELDS)
-        for key in cls.__dict__.get("__annotations__", {}):
-            spec = cls.__dict__.get(key)
+        fields: dict[str, Field] = {}
+        for base in reversed(cls.__mro__[1:]):  # inherited fields first, as pydantic
+            fields.update(base.__dict__.get("FIELDS", {}))
+        for key, spec in list(cls.__dict__.items()):
             if isinstance(spec, Field):
                 fields[key] = spec
                 delattr(cls, key)
@@ -269,6 +294,9 @@ class Schema:
 
     def __delattr__(self, key: str) -> None:
         raise AttributeError(f"{type(self).__name__} is frozen")
+
+    def __reduce__(self) -> tuple[Any, ...]:
+        return (_rebuild, (type(self), {key: getattr(self, key) for key in self.FIELDS}))
 
     def _values(self) -> tuple[Any, ...]:
         return tuple(getattr(self, key) for key in self.FIELDS)
@@ -301,7 +329,8 @@ class Schema:
     ) -> Self:
         """Validate ``data`` (a mapping of field names to values as written) and return the
         instance; raise :class:`InputError` on the first problem, naming the field with
-        ``name(path)``.
+        ``name(path)``. An unknown key anywhere in ``data`` (nested tables included) is
+        the first problem reported.
 
         Parameters
         ----------
@@ -318,16 +347,17 @@ class Schema:
         if not isinstance(data, Mapping):
             where = name(path) if path else "input"
             raise InputError(where, type(data).__name__, "must be a table of keys and values")
+        if not path:
+            stray = _stray_key(cls, data, ())
+            if stray is not None:
+                raise _unknown_key(cls, *stray, name)
         fields = cls.FIELDS
-        unknown = [key for key in data if key not in fields]
-        if unknown:
-            raise _unknown_key(cls, unknown[0], data[unknown[0]], name, path)
         values: dict[str, Any] = {}
         for key, spec in fields.items():
             raw = data.get(key)
             if raw is None:
                 if spec.required:
-                    raise InputError(name((*path, key)), None, _missing(cls, spec))
+                    raise InputError(name((*path, key)), None, _missing(cls))
                 continue
             values[key] = _value(spec, raw, source, name, (*path, key))
         instance = cls(**values)
@@ -376,10 +406,28 @@ class Schema:
             out[key] = _written(spec, value, defaults)
         return out
 
+    def values(self) -> dict[str, Any]:
+        """Every field as the instance holds it (SI values), nested schemas as dictionaries:
+        the settings as Python sees them (None and defaults included)."""
+        return {key: _held(getattr(self, key)) for key in self.FIELDS}
+
     @classmethod
     def fields(cls) -> Iterator[tuple[str, Field]]:
         """The fields, name and description, in declaration order."""
         return iter(cls.FIELDS.items())
+
+
+def _rebuild(cls: type[Schema], values: dict[str, Any]) -> Schema:
+    """An instance from its values, as pickled (checked when it was made)."""
+    return cls(**values)
+
+
+def _held(value: Any) -> Any:
+    if isinstance(value, Schema):
+        return value.values()
+    if isinstance(value, list):
+        return [_held(v) for v in value]
+    return value
 
 
 # --------------------------------------------------------------------------- values
@@ -391,28 +439,31 @@ def _value(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str |
         return spec.table.parse(raw, source=source, name=name, path=path)
     if spec.kind == "list":
         return _list(spec, raw, source, name, path)
-    if isinstance(raw, str) and len(raw) > (spec.max_chars or MAX_VALUE_CHARS):
-        limit = spec.max_chars or MAX_VALUE_CHARS
-        raise InputError(where, f"{len(raw)} characters", f"takes at most {limit} characters")
+    limit = spec.max_chars or MAX_VALUE_CHARS
+    if isinstance(raw, str) and len(raw) > limit:
+        if spec.quantity is not None and spec.parse is None:
+            raise InputError(where, raw, _TOO_LONG)
+        raise InputError(where, f"{len(raw)} characters", f"must be at most {limit} characters")
     if spec.parse is not None:
         value = spec.parse(raw, where)
-        if isinstance(value, float):
+        if isinstance(value, float) and not spec.in_size:
             _check_bounds(spec, value, raw, where)
         return value
     if spec.quantity is not None:
-        value = parse_quantity(raw, spec.kind, where)
+        value = _quantity(raw, spec.kind, where)
         _check_bounds(spec, value, raw, where)
         return value
     if spec.kind == "number":
-        value = _number(raw, source, where)
+        value = _number(spec, raw, source, where)
         _check_bounds(spec, value, raw, where)
         return value
     if spec.kind == "factor":
+        _decimal_comma(raw, where)
         value = parse_factor(raw, where)
         _check_bounds(spec, value, raw, where)
         return value
     if spec.kind == "whole":
-        value = _whole(raw, source, where)
+        value = _whole(spec, raw, source, where)
         _check_bounds(spec, value, raw, where)
         return value
     if spec.kind == "choice":
@@ -431,36 +482,88 @@ def _value(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str |
 
 
 _FLAGS = {"true": True, "yes": True, "1": True, "false": False, "no": False, "0": False}
+_TOO_LONG = f"must be one number and a unit, at most {MAX_VALUE_CHARS} characters"
 
 
-def _number(raw: Any, source: Source, where: str) -> float:
+def _decimal_comma(raw: Any, where: str) -> None:
+    """Refuse a number written with a decimal comma, "1,5 kg", saying how to write it."""
+    if isinstance(raw, str):
+        found = _DECIMAL_COMMA.fullmatch(raw)
+        if found is not None:
+            fixed = f"{found.group(1)}.{found.group(2)}{found.group(3) or ''}".strip()
+            raise InputError(where, raw, f"has a decimal comma; write {fixed!r}")
+
+
+def _quantity(raw: Any, kind: str, where: str) -> float:
+    """A quantity string as an SI float (:func:`crankbalance.units.parse_quantity`)."""
+    _decimal_comma(raw, where)
+    return parse_quantity(raw, kind, where)
+
+
+def parse_in_range(value: Any, kind: str, field: str = "") -> float:
+    """A quantity string as an SI float, refused unless its size lies in the physical range
+    of its kind (:data:`crankbalance.units.RANGES`) or it is zero; strings longer than
+    :data:`MAX_VALUE_CHARS` are refused before parsing."""
+    if isinstance(value, str) and len(value) > MAX_VALUE_CHARS:
+        raise InputError(field, value, _TOO_LONG)
+    number = _quantity(value, kind, field)
+    _in_range(number, kind, value, field)
+    return number
+
+
+def _in_range(number: float, kind: str, raw: Any, where: str) -> None:
+    if kind in RANGES:
+        low, high = range_si(kind)
+        if abs(number) > high or 0 < abs(number) < low:
+            words = RANGES[kind]
+            size = " in size" if number < 0 else ""
+            raise InputError(where, raw, f"must lie between {words[0]} and {words[1]}{size}")
+
+
+def _number(spec: Field, raw: Any, source: Source, where: str) -> float:
     if isinstance(raw, bool):
-        raise InputError(where, raw, "must be a number (not true/false)")
-    if isinstance(raw, str) and source == "text":
+        raise InputError(where, raw, f"must be {allowed(spec)} (not true/false)")
+    if isinstance(raw, str):
+        _decimal_comma(raw, where)
+        if source == "file":
+            raise InputError(where, raw, f"must be {allowed(spec)}, written without quotes")
         try:
             raw = float(raw.strip())
         except ValueError:
-            raise InputError(where, raw, _decimal_hint(raw, "must be a plain number")) from None
+            raise InputError(where, raw, f"must be {allowed(spec)}") from None
     if not isinstance(raw, (int, float)):
-        raise InputError(where, raw, "must be a number (not text, not true/false)")
+        raise InputError(where, raw, f"must be {allowed(spec)}")
     if not math.isfinite(raw):
-        raise InputError(where, raw, "must be a finite number")
+        raise InputError(where, raw, f"must be {_finite(allowed(spec))}")
     return raw
 
 
-def _decimal_hint(raw: str, text: str) -> str:
-    """A message for a number that did not read, pointing at a decimal comma."""
-    if re.fullmatch(r"\s*[-+]?\d+,\d+\s*", raw):
-        return f"{text}; write the decimal point as '.' ({raw.strip().replace(',', '.')})"
-    return text
-
-
-def _whole(raw: Any, source: Source, where: str) -> int:
-    if isinstance(raw, str) and source == "text" and re.fullmatch(r"\s*[-+]?\d{1,30}\s*", raw):
-        return int(raw)
-    if isinstance(raw, bool) or not isinstance(raw, int):
-        raise InputError(where, raw, "must be a whole number (not text, not true/false)")
-    return raw
+def _whole(spec: Field, raw: Any, source: Source, where: str) -> int:
+    """A whole number: from a file an integer as written (no true/false, no "4", no 4.0);
+    from text also a number with no fraction ("1e3", and 8.0 from a JSON form)."""
+    if isinstance(raw, bool):
+        raise InputError(where, raw, f"must be {allowed(spec)} (not true/false)")
+    if isinstance(raw, int):
+        return raw
+    if source == "file":
+        how = "written without quotes" if isinstance(raw, str) else "without a fraction"
+        raise InputError(where, raw, f"must be {allowed(spec)}, {how}")
+    if isinstance(raw, str):
+        if re.fullmatch(r"\s*[-+]?\d{1,30}\s*", raw):
+            return int(raw)
+        try:
+            number = float(raw.strip())
+        except ValueError:
+            raise InputError(where, raw, f"must be {allowed(spec)}") from None
+    elif isinstance(raw, float):
+        number = raw
+    else:
+        raise InputError(where, raw, f"must be {allowed(spec)}")
+    if not math.isfinite(number):
+        raise InputError(where, raw, f"must be {_finite(allowed(spec))}")
+    if number != int(number) or abs(number) > 2**53:
+        raise InputError(where, raw, f"must be {allowed(spec)}")
+    return int(number)
 
 
 def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
@@ -471,7 +574,7 @@ def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
     if raw in spec.choices and type(raw) in {type(c) for c in spec.choices}:
         return raw
     shown = ", ".join(str(c) for c in spec.choices)
-    close = _closest(str(raw), [str(c) for c in spec.choices])
+    close = _closest(str(raw), [str(c) for c in spec.choices]) if isinstance(raw, str) else None
     hint = f"; did you mean '{close}'?" if close else ""
     raise InputError(where, raw, f"must be one of {shown}{hint}")
 
@@ -500,14 +603,20 @@ def _item_namer(name: Namer, path: tuple[str | int, ...]) -> Namer:
 
 
 def _check_bounds(spec: Field, value: float, raw: Any, where: str) -> None:
+    if spec.in_size:
+        _in_range(value, spec.kind, raw, where)  # an infinity too: "must lie between"
     if not math.isfinite(value):
         raise InputError(where, raw, f"must be {_finite(allowed(spec))}")
     if spec.zero and value == 0:
         return
-    if spec.low is None and spec.high is None and spec.quantity is not None:
-        low, high = range_si(spec.kind)
-        if not low <= abs(value) <= high:
-            raise InputError(where, raw, f"must be {allowed(spec)}")
+    if spec.in_size:
+        if spec.low is None:
+            if value == 0 and spec.kind in RANGES and range_si(spec.kind)[0] > 0:
+                raise InputError(where, raw, f"must be {allowed(spec)}")
+        elif spec.low_open and value <= 0:
+            raise InputError(where, raw, "must be greater than zero")
+        elif value < 0:
+            raise InputError(where, raw, "must not be negative")
         return
     if spec.low is not None and (value < spec.low or (spec.low_open and value == spec.low)):
         raise InputError(where, raw, f"must be {allowed(spec)}")
@@ -534,7 +643,8 @@ def allowed(spec: Field) -> str:
             if spec.max_items is not None
             else f"at least {spec.min_items}"
         )
-        return f"{count} entries, each {allowed(spec.item)}"
+        what = "entries" if spec.item.kind == "table" else "values"
+        return f"{count} {what}, each {allowed(spec.item)}"
     if spec.kind == "table":
         return "a table (see the documentation)"
     if spec.kind == "choice":
@@ -547,16 +657,25 @@ def allowed(spec: Field) -> str:
         example = spec.example or KINDS[spec.kind][2]
         article = "an" if spec.kind[0] in "aeiou" else "a"
         what = f"{article} {spec.kind} with a unit, e.g. '{example}',"
-        if spec.low is None and spec.high is None:
-            low, high = range_si(spec.kind)
-            size = f"{what} of size {_show(spec, low)} to {_show(spec, high)}"
-            return ("0, or " if spec.zero else "") + size
+        if spec.in_size:
+            return _in_size_words(spec, what)
     else:
         what = {"whole": "a whole number", "factor": "a number or a percentage"}.get(
             spec.kind, "a number"
         )
     words = _between(spec, what)
     return ("0, or " if spec.zero else "") + words
+
+
+def _in_size_words(spec: Field, what: str) -> str:
+    """The words of a quantity checked in size against its physical range."""
+    if spec.kind not in RANGES:
+        return what.rstrip(",")
+    low, high = RANGES[spec.kind]
+    span = f"at most {high}" if range_si(spec.kind)[0] == 0 else f"from {low} to {high}"
+    if spec.low is not None:  # a sign rule
+        return ("0, or " if not spec.low_open or spec.zero else "") + f"{what} {span}"
+    return ("0, or " if spec.zero else "") + f"{what} of either sign, {span} in size"
 
 
 def _between(spec: Field, what: str) -> str:
@@ -572,7 +691,7 @@ def _between(spec: Field, what: str) -> str:
 
 
 def _finite(text: str) -> str:
-    found = re.match(r"an? (.*)", text)
+    found = re.match(r"(?:0, or )?an? (.*)", text)
     return f"a finite {found.group(1)}" if found else f"{text} (a finite number)"
 
 
@@ -609,26 +728,78 @@ def _written(spec: Field, value: Any, defaults: bool) -> Any:
 
 
 # --------------------------------------------------------------------------- messages
-def _closest(word: str, candidates: Sequence[str]) -> str | None:
+def closest(word: str, candidates: Sequence[str]) -> str | None:
+    """The candidate closest to a misspelt ``word`` (None when none is close)."""
     import difflib
 
     found = difflib.get_close_matches(word[:MAX_VALUE_CHARS], candidates, n=1, cutoff=0.6)
     return found[0] if found else None
 
 
+_closest = closest
+
+
+def _stray_key(
+    cls: type[Schema], data: Mapping[Any, Any], path: tuple[str | int, ...]
+) -> tuple[type[Schema], tuple[str | int, ...], Any, Any] | None:
+    """The first unknown key of ``data`` and of its nested tables (lists of tables up to
+    their cap), as (schema, path of its table, key, value), or None."""
+    for key in data:
+        if key not in cls.FIELDS:
+            return cls, path, key, data[key]
+    for key, spec in cls.FIELDS.items():
+        value = data.get(key)
+        found = None
+        if spec.kind == "table" and isinstance(value, Mapping):
+            assert spec.table is not None
+            found = _stray_key(spec.table, value, (*path, key))
+        elif spec.kind == "list" and isinstance(value, list) and spec.item is not None:
+            table = spec.item.table
+            for k, item in enumerate(value[: spec.max_items]):
+                if table is not None and isinstance(item, Mapping):
+                    found = found or _stray_key(table, item, (*path, key, k))
+        if found is not None:
+            return found
+    return None
+
+
+def _tables(cls: type[Schema], path: tuple[str, ...] = ()) -> Iterator[tuple[str, type[Schema]]]:
+    """Every table of a schema, as its TOML header (``[crank_train]``,
+    ``[[masses.override]]``; the top level as "")."""
+    for key, spec in cls.FIELDS.items():
+        if spec.table is not None:
+            yield f"[{'.'.join((*path, key))}]", spec.table
+            yield from _tables(spec.table, (*path, key))
+        elif spec.item is not None and spec.item.table is not None:
+            yield f"[[{'.'.join((*path, key))}]]", spec.item.table
+            yield from _tables(spec.item.table, (*path, key))
+
+
 def _unknown_key(
-    cls: type[Schema], key: Any, value: Any, name: Namer, path: tuple[str | int, ...]
+    root: type[Schema],
+    cls: type[Schema],
+    path: tuple[str | int, ...],
+    key: Any,
+    value: Any,
+    name: Namer,
 ) -> InputError:
+    """An unknown key named with the closest allowed key of its table or, when it is a key
+    of another table, with that table."""
     where = name((*path, str(key)))
-    close = _closest(str(key), list(cls.FIELDS))
+    value = None if isinstance(value, Mapping) else value  # a table: its name alone
+    unknown, listed = cls.UNKNOWN
+    close = closest(str(key), list(cls.FIELDS))
     if close is not None:
-        return InputError(where, None, f"unknown key; did you mean '{close}'?")
-    known = list(cls.FIELDS)
-    shown = ", ".join(known[:12]) + (", ..." if len(known) > 12 else "")
-    return InputError(where, None, f"unknown key; allowed here: {shown}")
+        return InputError(where, value, f"{unknown}; did you mean '{close}'?")
+    homes = [header for header, table in (("", root), *_tables(root)) if key in table.FIELDS]
+    if homes:
+        home = f"in {homes[0]}" if homes[0] else "at the top level, before any [table]"
+        return InputError(where, value, f"{unknown} here; {key} belongs {home}")
+    known = ", ".join(cls.FIELDS)
+    return InputError(where, value, f"{unknown}; {listed}: {known}")
 
 
-def _missing(cls: type[Schema], spec: Field) -> str:
+def _missing(cls: type[Schema]) -> str:
     doc = f" (see {cls.DOC})" if cls.DOC else ""
     return f"is missing; it is required{doc}"
 
@@ -695,6 +866,8 @@ def _json_field(spec: Field) -> dict[str, Any]:
         out = {"enum": list(spec.choices)}
     elif spec.quantity is not None:
         out = {"type": "string", "examples": [spec.example or KINDS[spec.kind][2]]}
+        if spec.max_chars is None:
+            out["maxLength"] = MAX_VALUE_CHARS
     elif spec.kind in ("number", "whole"):
         out = {"type": "integer" if spec.kind == "whole" else "number"}
         for key, bound, is_open in (
@@ -713,9 +886,10 @@ def _json_field(spec: Field) -> dict[str, Any]:
         out = {"type": "boolean"}
     else:
         out = {}
-    text = " ".join(t for t in (spec.title, spec.description) if t)
+    if spec.title:
+        out["title"] = spec.title
     words = allowed(spec) if spec.kind not in ("table",) else ""
-    description = "; ".join(t for t in (text, words) if t)
+    description = "; ".join(t for t in (spec.description, words) if t)
     if description:
         out["description"] = description
     if spec.default is not REQUIRED and spec.default is not None and spec.kind != "table":
