@@ -546,7 +546,7 @@ def _whole(spec: Field, raw: Any, source: Source, where: str) -> int:
     if isinstance(raw, int):
         return raw
     if source == "file":
-        how = "written without quotes" if isinstance(raw, str) else "without a fraction"
+        how = "written without quotes" if isinstance(raw, str) else "without a decimal point"
         raise InputError(where, raw, f"must be {allowed(spec)}, {how}")
     if isinstance(raw, str):
         if re.fullmatch(r"\s*[-+]?\d{1,30}\s*", raw):
@@ -672,10 +672,12 @@ def _in_size_words(spec: Field, what: str) -> str:
     if spec.kind not in RANGES:
         return what.rstrip(",")
     low, high = RANGES[spec.kind]
-    span = f"at most {high}" if range_si(spec.kind)[0] == 0 else f"from {low} to {high}"
+    from_zero = range_si(spec.kind)[0] == 0  # zero is inside the range: no "0, or"
+    span = f"at most {high}" if from_zero else f"from {low} to {high}"
+    zero = "0, or " if not from_zero else ""
     if spec.low is not None:  # a sign rule
-        return ("0, or " if not spec.low_open or spec.zero else "") + f"{what} {span}"
-    return ("0, or " if spec.zero else "") + f"{what} of either sign, {span} in size"
+        return (zero if not spec.low_open or spec.zero else "") + f"{what} {span}"
+    return (zero if spec.zero else "") + f"{what} of either sign, {span} in size"
 
 
 def _between(spec: Field, what: str) -> str:
@@ -889,7 +891,9 @@ def _json_field(spec: Field) -> dict[str, Any]:
     if spec.title:
         out["title"] = spec.title
     words = allowed(spec) if spec.kind not in ("table",) else ""
-    description = "; ".join(t for t in (spec.description, words) if t)
+    description = " ".join(
+        t for t in (spec.description, f"Allowed: {words}." if words else "") if t
+    )
     if description:
         out["description"] = description
     if spec.default is not REQUIRED and spec.default is not None and spec.kind != "table":

@@ -122,8 +122,8 @@ class Throw(_EngineTable):
         "length",
         zero=True,
         title="Throw position",
-        description="Axial position of the throw's mid-plane along the crank axis, from any "
-        "origin: the positions are taken from the middle of the throws' extent.",
+        description="Axial position of the throw's mid-plane, from any origin: the positions are "
+        "re-centred on the middle of the throws' extent.",
     )
     angle: float = field(
         "angle",
@@ -137,7 +137,8 @@ class Throw(_EngineTable):
         min_items=1,
         max_items=MAX_CYLINDERS,
         title="Bank angles",
-        description="The bank angle of each cylinder on this pin, numbered in this order.",
+        description="One bank angle per cylinder on the pin; the cylinders are numbered throw after"
+        " throw, in this order.",
     )
 
 
@@ -154,20 +155,22 @@ class Articulated(_EngineTable):
         default=1,
         ge=1,
         title="Master cylinder",
-        description="The cylinder whose conrod is the master rod.",
+        description="Number of the cylinder the master rod drives; its rod is "
+        "crank_train.rod_length.",
     )
     link_pin_radius: float = field(
         "length",
         ge=0,
         title="Link-pin radius",
-        description="Distance of each link pin from the centre of the master rod's big end.",
+        description="Distance of every link (knuckle) pin from the centre of the master rod's big "
+        "end (0 gives the simple model).",
     )
     link_rod_length: float = field(
         "length",
         gt=0,
         title="Link-rod length",
-        description="Centre distance of each link rod; it must exceed crank_radius plus "
-        "link_pin_radius plus the largest total offset.",
+        description="Centre distance of every link rod, link pin to wrist pin; longer than crank "
+        "radius plus link pin radius plus offset.",
     )
     link_pin_angles: list[float] | None = field(
         "list",
@@ -175,9 +178,9 @@ class Articulated(_EngineTable):
         item=entry("angle", zero=True),
         max_items=MAX_CYLINDERS,
         title="Link-pin angles",
-        description="The angle of each cylinder's link pin from the master rod's axis, one "
-        "per cylinder, 0 for the master's; default: the angle between the cylinder and the "
-        "master cylinder.",
+        description="One angle per cylinder (the master's 0 deg): the angle of that cylinder's link"
+        " pin from the master rod's axis, in the sense of rotation; default the angle "
+        "between the cylinder and the master cylinder, (k − m)·360°/n.",
     )
 
 
@@ -208,8 +211,8 @@ class CrankTrain(_EngineTable):
         item=entry("whole"),
         max_items=MAX_CYLINDERS,
         title="Firing order",
-        description="A permutation of 1..n, in crankbalance's numbering or, with numbering "
-        "or maker_numbers, in the maker's; default 1, 2, ..., n.",
+        description="A permutation of 1..n, in crankbalance's numbering or, with numbering or "
+        "maker_numbers, in the maker's; default 1, 2, ..., n.",
         hint="e.g. 1, 3, 2 (empty: cylinder order)",
     )
     strokes: int = field(
@@ -217,7 +220,7 @@ class CrankTrain(_EngineTable):
         default=4,
         choices=(2, 4),
         title="Strokes per cycle",
-        description="2 or 4: sets the even firing interval 360 deg x (strokes / 2) / n.",
+        description="2 or 4: sets the even firing interval 360°·(strokes/2)/n.",
     )
     crank_radius: float = field(
         "length",
@@ -230,8 +233,8 @@ class CrankTrain(_EngineTable):
         "length",
         gt=0,
         title="Rod length",
-        description="Centre distance of the conrod; it must exceed the crank radius plus "
-        "every cylinder's total offset.",
+        description="Conrod length, centre to centre; the rod must be longer than the crank radius "
+        "plus every cylinder's total offset.",
         hint="e.g. 135 mm",
     )
     crank_pitch: float | None = field(
@@ -239,8 +242,8 @@ class CrankTrain(_EngineTable):
         default=None,
         gt=0,
         title="Crank pitch",
-        description="Distance between the mid-planes of consecutive throws (required with "
-        "more than one throw).",
+        description="Distance between consecutive throw mid-planes (required with more than one "
+        "throw).",
         hint="e.g. 90 mm",
     )
     bank_angle: float | None = field(
@@ -248,9 +251,9 @@ class CrankTrain(_EngineTable):
         default=None,
         zero=True,
         title="Bank angle",
-        description="vee: the angle between the two banks, (0, 180 deg]; broad-arrow W: "
-        "between adjacent banks, (0, 90 deg]; W from VR banks: between the two VR banks' "
-        "centre lines, (0, 180 deg]; VR: the narrow angle between its two rows, (0, 180 deg].",
+        description="vee: angle between the two banks, (0, 180°]; broad-arrow W: angle between "
+        "adjacent banks, (0, 90°]; W from VR banks: angle between the two VR banks' "
+        "centre lines, (0, 180°]; VR: the narrow angle between its two rows, (0, 180°].",
         hint="vee / W / VR only, e.g. 90 deg",
     )
     pin_offset: float = field(
@@ -258,8 +261,7 @@ class CrankTrain(_EngineTable):
         default=0.0,
         zero=True,
         title="Wrist-pin offset",
-        description="Wrist-pin offset (desaxe) of every cylinder, positive on the side the "
-        "crankpin moves toward just after top dead centre.",
+        description="Wrist-pin offset (desaxé), the same for every cylinder.",
         hint="e.g. 0 mm",
     )
     crank_offset: float = field(
@@ -267,8 +269,7 @@ class CrankTrain(_EngineTable):
         default=0.0,
         zero=True,
         title="Crank offset",
-        description="Offset of the crank axis from the cylinder axes (desaxe), the same "
-        "for every cylinder, added to pin_offset.",
+        description="Crank offset (desaxé), the same for every cylinder, added to pin_offset.",
     )
     throw_angles: list[float] | None = field(
         "list",
@@ -276,8 +277,8 @@ class CrankTrain(_EngineTable):
         item=entry("angle", zero=True),
         max_items=MAX_THROWS,
         title="Throw angles",
-        description="One angle per throw: the crank given directly (needed for "
-        "uneven-firing engines); default: from the firing order with even intervals.",
+        description="One angle per throw: the crank given directly (needed for uneven-firing "
+        "engines); default: from the firing order with even intervals.",
     )
     throw: list[Throw] | None = field(
         "list",
@@ -285,47 +286,48 @@ class CrankTrain(_EngineTable):
         item=entry("table", table=Throw),
         max_items=MAX_THROWS,
         title="Custom throws",
-        description="Layout custom only: the throws, each with its position, angle and the "
-        "bank angles of its cylinders ([[crank_train.throw]] tables).",
+        description="Custom layout only: the throws, in order (a [[crank_train.throw]] "
+        "table each).",
     )
     articulated: Articulated | None = field(
         "table",
         default=None,
         table=Articulated,
         title="Master-and-link rods",
-        description="Layout radial only: master-and-link rods ([crank_train.articulated]).",
+        description="Radial only: master-and-link rods (see Articulated rods).",
     )
     w_type: str | None = field(
         "choice",
         default=None,
         choices=W_TYPES,
         title="Kind of W",
-        description="Layout w only: broad-arrow (three banks, the default) or vr (two VR "
-        "banks, VW's W8, W12 and W16).",
+        description="Layout w only: broad-arrow (three banks, the default) or vr (two VR banks, "
+        "VW's W8/W12/W16).",
     )
     vr_angle: float | None = field(
         "angle",
         default=None,
         zero=True,
         title="VR angle",
-        description="W from VR banks only (required there): the narrow angle between the "
-        "two rows of each VR bank, (0, 90 deg].",
+        description="W from VR banks only (required there): the narrow angle between the two rows "
+        "of each VR bank, (0, 90°].",
     )
     bore_offset: float = field(
         "length",
         default=0.0,
         zero=True,
         title="Rows' bore offset",
-        description="VR rows only: distance of each row's bore axes from the crank axis, "
-        "positive when the rows' axes meet beyond the crank axis (away from the head).",
+        description="VR and W from VR banks only: distance of each row's bore axes from the crank "
+        "axis, positive when the two rows' axes meet beyond the crank axis (away from "
+        "the head), as in every VR.",
     )
     pin_split: float | None = field(
         "angle",
         default=None,
         zero=True,
         title="Pin split",
-        description="VR rows only: the angle between the crankpins of the two rows as the "
-        "maker gives it, [0, 180 deg); default: the split even firing needs.",
+        description="VR and W from VR banks only: angle between the two rows' crankpins as the "
+        "maker gives it, [0, 180°); default: the split even firing needs.",
     )
     bank_offsets: list[float] | None = field(
         "list",
@@ -333,8 +335,9 @@ class CrankTrain(_EngineTable):
         item=entry("length", zero=True),
         max_items=3,
         title="Bank offsets",
-        description="The bore offset of each bank (vee, boxer: 2 banks; broad-arrow W: 3), "
-        "added to pin_offset + crank_offset for the cylinders of that bank.",
+        description="vee, boxer (2 banks) and W (3 banks) only: the bore offset of each bank, one "
+        "length per bank, added to pin_offset + crank_offset for the cylinders of that "
+        "bank (banks as numbered below; not with VR rows, which take bore_offset).",
     )
     cylinder_offsets: list[float] | None = field(
         "list",
@@ -342,8 +345,8 @@ class CrankTrain(_EngineTable):
         item=entry("length", zero=True),
         max_items=MAX_CYLINDERS,
         title="Cylinder offsets",
-        description="The bore offset of each cylinder, added to pin_offset + crank_offset "
-        "(not together with bank_offsets).",
+        description="Any layout: the bore offset of each cylinder, one length per cylinder, added "
+        "to pin_offset + crank_offset (not together with bank_offsets).",
     )
     rod_positions: list[float] | None = field(
         "list",
@@ -351,8 +354,10 @@ class CrankTrain(_EngineTable):
         item=entry("length", zero=True),
         max_items=MAX_CYLINDERS,
         title="Rod positions on the pin",
-        description="The axial place of each cylinder's rod on its crankpin, from the "
-        "throw's mid-plane along +y (side-by-side rods); default all 0.",
+        description="Any layout: the axial place of each cylinder's rod on its crankpin, from the "
+        "throw's mid-plane along +y, one length per cylinder (side-by-side rods on a "
+        "shared pin; a single rod off its throw's centre); default all 0 "
+        "(knife-and-fork or master rods: all in the mid-plane).",
         hint="one per cylinder, e.g. -10 mm, 10 mm",
     )
     numbering: str | None = field(
@@ -360,8 +365,8 @@ class CrankTrain(_EngineTable):
         default=None,
         max_chars=MAX_NUMBERING_CHARS,
         title="Maker's numbering",
-        description="The maker's cylinder numbering the firing order is written in, a named "
-        "scheme (docs/engine_file.md, Makers' numbering).",
+        description="The maker's numbering firing_order is written in: porsche-boxer, gm-vee or "
+        "ford-vee (see Makers' numbering).",
         words="the name of a numbering scheme: porsche-boxer, gm-vee or ford-vee",
     )
     maker_numbers: list[int] | None = field(
@@ -370,17 +375,16 @@ class CrankTrain(_EngineTable):
         item=entry("whole"),
         max_items=MAX_CYLINDERS,
         title="Maker's cylinder numbers",
-        description="Instead of numbering: crankbalance's number of each of the maker's "
-        "cylinders 1, 2, ..., n (a permutation; the firing order is then in the maker's "
-        "numbers).",
+        description="Any layout, instead of numbering: crankbalance's number of each of the maker's"
+        " cylinders 1, 2, ..., n (a permutation of 1..n).",
     )
     moment_reference: float = field(
         "length",
         default=0.0,
         zero=True,
         title="Moment reference",
-        description="The point moments are taken about, along +y from the crank's mid-point "
-        "(the middle of the throws' extent).",
+        description="The point moments are taken about, along +y from the crank's mid-point (e.g. "
+        "the engine's centre of mass or mount centre).",
     )
 
     def check(self) -> None:
@@ -665,22 +669,22 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Piston",
-        description="Piston with rings and clips (per cylinder).",
+        description="Piston with rings and clips.",
     )
     wrist_pin: float | None = field(
         "mass",
         default=None,
         ge=0,
         title="Wrist pin",
-        description="Wrist pin (per cylinder).",
+        description="Wrist pin.",
     )
     conrod: float | None = field(
         "mass",
         default=None,
         gt=0,
         title="Conrod",
-        description="Conrod mass (per cylinder), split between big end and small end by "
-        "conrod_rotating_fraction or conrod_cg_from_big_end.",
+        description="Conrod mass, with either conrod_rotating_fraction or conrod_cg_from_big_end "
+        "(its split); optional conrod_inertia.",
     )
     conrod_rotating_fraction: float | None = field(
         "number",
@@ -688,23 +692,23 @@ class _MassFields(_EngineTable):
         ge=0.0,
         le=1.0,
         title="Conrod rotating share",
-        description="Share of the conrod's mass at the big end (the rest at the small end).",
+        description="Share of the conrod's mass at the big end, 0..1.",
     )
     conrod_cg_from_big_end: float | None = field(
         "length",
         default=None,
         ge=0,
         title="Conrod CG from the big end",
-        description="Distance of the conrod's centre of gravity from the big-end centre "
-        "(instead of conrod_rotating_fraction).",
+        description="Distance of the conrod's centre of gravity from the big-end centre (instead of"
+        " conrod_rotating_fraction).",
     )
     conrod_inertia: float | None = field(
         "inertia",
         default=None,
         ge=0,
         title="Conrod inertia",
-        description="The conrod's moment of inertia about its centre of gravity: the "
-        "analysis reports the error of the two-mass split against it.",
+        description="The conrod's moment of inertia about its CG: the analysis reports the error of"
+        " the two-mass split against it.",
     )
     crankpin: float | None = field(
         "mass",
@@ -719,7 +723,7 @@ class _MassFields(_EngineTable):
         ge=0,
         title="Crank web",
         description="Each of the two webs of a throw, reduced to the crank radius with "
-        "crank_web_cg_radius.",
+        "crank_web_cg_radius: 2·m_web·r_web/r.",
     )
     crank_web_cg_radius: float | None = field(
         "length",
@@ -733,16 +737,15 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Reciprocating mass",
-        description="Total reciprocating mass per cylinder (instead of piston, wrist pin "
-        "and the conrod's share).",
+        description="Total per cylinder (instead of piston, wrist pin and conrod share).",
     )
     rotating: float | None = field(
         "mass",
         default=None,
         ge=0,
         title="Rotating mass",
-        description="Total rotating mass per throw at the crank radius, all big ends on the "
-        "pin included (instead of crankpin and webs).",
+        description="Total per throw, all big ends on the pin included (instead of crankpin and "
+        "webs).",
     )
 
     def check(self) -> None:
@@ -866,15 +869,15 @@ class Counterweights(_EngineTable):
         item=entry("choice", choices=(0, 1)),
         max_items=2 * MAX_THROWS,
         title="Webs with a counterweight",
-        description="0/1 per web, two webs per throw: 1 carries a counterweight; default "
-        "every web.",
+        description="0/1 per web, two webs per throw (1: the web carries a counterweight); default "
+        "all webs.",
         hint="0/1, two per throw, e.g. 1, 1, 0, 0, 1, 1 (empty: all)",
     )
     cg_radius: float = field(
         "length",
         gt=0,
         title="Counterweight CG radius",
-        description="Radius of the counterweights' centre of gravity.",
+        description="Radius of the counterweights' CG.",
         hint="e.g. 30 mm (empty: no counterweight table, defaults)",
     )
     angle: float | Literal["optimal"] = field(
@@ -883,8 +886,8 @@ class Counterweights(_EngineTable):
         parse=_angle_or_optimal,
         words=f"'optimal' or {ANGLE_WORDS}",
         title="Counterweight angle",
-        description="Angle of each counterweight from the position opposite its crankpin, "
-        "or optimal (the angle of least counterweight mass).",
+        description="Angle of each counterweight from the position opposite its crankpin, or "
+        "optimal.",
         hint="e.g. 30 deg, or optimal",
     )
     balance_factor: float = field(
@@ -893,9 +896,9 @@ class Counterweights(_EngineTable):
         ge=0.0,
         le=2.0,
         title="Balance factor",
-        description="Share of the reciprocating mass of all cylinders on a pin put at that "
-        "crankpin on the counterweights (0.5 cancels the forward half of a single "
-        "cylinder's primary and the whole primary of a 90 deg V pair).",
+        description="Share of the reciprocating mass of all cylinders on a pin put at that crankpin"
+        " on the counterweights (0.5 cancels the forward half of a single cylinder's "
+        "primary and the whole primary of a 90° V pair).",
         hint="0..2, share of the primary reciprocating force",
     )
     scope: Literal["auto", "whole", "halves"] = field(
@@ -903,24 +906,23 @@ class Counterweights(_EngineTable):
         default="auto",
         choices=("auto", "whole", "halves"),
         title="Counterweight scope",
-        description="auto (each half of the crank on its own when the whole crank is "
-        "balanced), whole or halves.",
+        description="auto (halves when the whole crank is balanced), whole or halves.",
     )
     method: Literal["pattern", "individual"] = field(
         "choice",
         default="pattern",
         choices=("pattern", "individual"),
         title="Counterweight method",
-        description="pattern: equal counterweights turned by +/- alpha (the 2021 paper); "
-        "individual: each its own mass and angle (least sum of squared masses).",
+        description="pattern: equal counterweights turned by ±α (the paper); individual: each its "
+        "own mass and angle (least Σm²).",
     )
     web_offset: float | None = field(
         "length",
         default=None,
         ge=0,
         title="Counterweight web offset",
-        description="Axial distance of each web from its throw's mid-plane; default a "
-        "quarter of the crank pitch (2021 paper, Eq. 7), half the crank radius for one throw.",
+        description="Axial distance of each web from its throw mid-plane; default a quarter of the "
+        "crank pitch (paper Eq. 7), half the crank radius for one throw.",
     )
 
     def check(self) -> None:
@@ -937,21 +939,20 @@ class ShaftSet(_EngineTable):
         default="pair",
         choices=("pair", "counter-rotating"),
         title="Shaft arrangement",
-        description="pair (a co- and a counter-rotating shaft) or counter-rotating (one "
-        "shaft against the crank's turn).",
+        description="pair (co- and counter-rotating) or counter-rotating.",
     )
     cg_radius: float = field(
         "length",
         gt=0,
         title="Shaft CG radius",
-        description="Radius of the centre of gravity of the shaft masses.",
+        description="CG radius of the shaft masses.",
         hint="e.g. 30 mm",
     )
     length: float = field(
         "length",
         gt=0,
         title="Shaft length",
-        description="Distance between the outer masses of a shaft.",
+        description="Distance between the outer masses.",
         hint="e.g. 200 mm",
     )
 
@@ -983,20 +984,20 @@ class EngineSpec(_EngineTable):
         default="engine",
         max_chars=MAX_NAME_CHARS,
         title="Engine name",
-        description="A name for the engine, shown in every output.",
+        description="Free text: the engine's name, shown in every output.",
     )
     description: str = field(
         "text",
         default="",
         max_chars=MAX_DESCRIPTION_CHARS,
         title="Description",
-        description="Free text: the engine, where its numbers come from, what is assumed.",
+        description="Free text.",
     )
     speed: float = field(
         "speed",
         gt=0,
         title="Speed",
-        description="Crank speed (rpm, rad/s, or Hz = revolutions per second).",
+        description="Crank speed (rpm, rad/s, Hz = rev/s).",
         hint="e.g. 2000 rpm",
     )
     kinematics: Literal["exact", "series", "first-order"] = field(
@@ -1004,9 +1005,9 @@ class EngineSpec(_EngineTable):
         default="exact",
         choices=KINEMATICS,
         title="Kinematics",
-        description="exact: Fourier analysis of the exact slider-crank motion (offsets "
-        "included); series: the classical series to the fifth power of r/l (A2, A4, A6); "
-        "first-order: A1 = 1, A2 = r/l, as the 2021 paper.",
+        description="exact: Fourier analysis of the exact slider-crank motion (offsets included); "
+        "series: classical series to λ⁵ (A2, A4, A6); first-order: A1 = 1, A2 = λ, as "
+        "the 2021 paper.",
     )
     crank_train: CrankTrain = field(
         "table",
@@ -1025,15 +1026,15 @@ class EngineSpec(_EngineTable):
         default=None,
         table=Counterweights,
         title="Counterweights",
-        description="The crank counterweights the balancing solver sizes; default: on every "
-        "web at the crank radius, at the optimal angle.",
+        description="Options of the balancing solver (crankbalance balance); without it, "
+        "counterweights on every web at the crank radius at the optimal angle.",
     )
     balance_shafts: BalanceShafts | None = field(
         "table",
         default=None,
         table=BalanceShafts,
         title="Balance shafts",
-        description="Balance shafts the balancing solver sizes; default: none.",
+        description="Balance shafts the balancing solver sizes; without it, none.",
     )
 
     def check(self) -> None:
