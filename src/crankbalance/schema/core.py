@@ -39,7 +39,6 @@ importing the schemas a few milliseconds (docs/performance.md).
 
 from __future__ import annotations
 
-import dataclasses
 import math
 import re
 from collections.abc import Callable, Iterator, Mapping, Sequence
@@ -67,44 +66,85 @@ class _Required:
 REQUIRED: Any = _Required()
 
 
-@dataclasses.dataclass(frozen=True)
-class Field:
-    """The description of one input field (see :func:`field`)."""
+#: the options of a :class:`Field` with their defaults (see :func:`field`)
+_OPTIONS: dict[str, Any] = {
+    "default": None,
+    "title": "",
+    "description": "",
+    "hint": "",
+    "low": None,
+    "high": None,
+    "low_open": False,
+    "high_open": False,
+    "zero": False,
+    "choices": (),
+    "item": None,
+    "table": None,
+    "min_items": 0,
+    "max_items": None,
+    "max_chars": None,
+    "words": "",
+    "parse": None,
+    "example": "",
+}
 
+
+class Field:
+    """The description of one input field (see :func:`field`): a frozen record (a plain
+    class: a dataclass would import :mod:`inspect` for every command)."""
+
+    __slots__ = ("kind", *_OPTIONS, "quantity", "in_size")
     kind: str
-    default: Any = None
-    title: str = ""
-    description: str = ""
-    hint: str = ""
-    low: float | None = None
-    high: float | None = None
-    low_open: bool = False
-    high_open: bool = False
-    zero: bool = False
-    choices: tuple[Any, ...] = ()
-    item: Field | None = None
-    table: type[Schema] | None = None
-    min_items: int = 0
-    max_items: int | None = None
-    max_chars: int | None = None
-    words: str = ""
-    parse: Callable[[Any, str], Any] | None = None
-    example: str = ""
+    default: Any
+    title: str
+    description: str
+    hint: str
+    low: float | None
+    high: float | None
+    low_open: bool
+    high_open: bool
+    zero: bool
+    choices: tuple[Any, ...]
+    item: Field | None
+    table: type[Schema] | None
+    min_items: int
+    max_items: int | None
+    max_chars: int | None
+    words: str
+    parse: Callable[[Any, str], Any] | None
+    example: str
+    #: the quantity kind (``"length"``...), or None for a plain kind
+    quantity: str | None
+    #: a quantity checked in size against the physical range of its kind: no bounds, or
+    #: only a sign rule (``gt=0`` or ``ge=0``)
+    in_size: bool
+
+    def __init__(self, kind: str, **options: Any) -> None:
+        unknown = options.keys() - _OPTIONS.keys()
+        if unknown:
+            raise TypeError(f"Field has no option {sorted(unknown)[0]}")
+        put = object.__setattr__
+        put(self, "kind", kind)
+        for key, default in _OPTIONS.items():
+            put(self, key, options.get(key, default))
+        quantity = kind if kind in KINDS else None  # read on every value: computed once
+        put(self, "quantity", quantity)
+        put(self, "in_size", quantity is not None and self.high is None and self.low in (None, 0))
+
+    def __setattr__(self, key: str, value: Any) -> None:
+        raise AttributeError("Field is frozen: use replace()")
+
+    def replace(self, **changes: Any) -> Field:
+        """A copy with ``changes``."""
+        return Field(self.kind, **{**{k: getattr(self, k) for k in _OPTIONS}, **changes})
+
+    def __repr__(self) -> str:
+        given = [f"{k}={getattr(self, k)!r}" for k, v in _OPTIONS.items() if getattr(self, k) != v]
+        return f"Field({', '.join([repr(self.kind), *given])})"
 
     @property
     def required(self) -> bool:
         return self.default is REQUIRED
-
-    @property
-    def quantity(self) -> str | None:
-        """The quantity kind (``"length"``...) or None for a plain kind."""
-        return self.kind if self.kind in KINDS else None
-
-    @property
-    def in_size(self) -> bool:
-        """A quantity checked in size against the physical range of its kind: no bounds,
-        or only a sign rule (``gt=0`` or ``ge=0``)."""
-        return self.quantity is not None and self.high is None and self.low in (None, 0)
 
 
 def field(
@@ -183,7 +223,7 @@ def field(
     if kind not in KINDS and kind not in PLAIN_KINDS:
         raise ValueError(f"unknown field kind {kind!r}")
     return Field(
-        kind=kind,
+        kind,
         default=default,
         title=title,
         description=description,
@@ -265,6 +305,8 @@ class Schema:
     DOC: ClassVar[str] = ""
     #: how an unknown key is called, and how the list of the known ones is introduced
     UNKNOWN: ClassVar[tuple[str, str]] = ("unknown key", "allowed keys here")
+    #: the fields holding a table or a list of tables (checked by :meth:`validate`)
+    _NESTED: ClassVar[tuple[str, ...]] = ()
 
     def __init_subclass__(cls, **kwargs: Any) -> None:
         super().__init_subclass__(**kwargs)
@@ -276,16 +318,22 @@ class Schema:
                 fields[key] = spec
                 delattr(cls, key)
         cls.FIELDS = fields
+        cls._NESTED = tuple(
+            key
+            for key, spec in fields.items()
+            if spec.table is not None or (spec.item is not None and spec.item.table is not None)
+        )
 
     def __init__(self, **values: Any) -> None:
+        held = self.__dict__  # frozen: __setattr__ refuses, the fields are set here
         for key, spec in self.FIELDS.items():
             if key in values:
-                value = values.pop(key)
+                held[key] = values.pop(key)
             elif spec.required:
                 raise TypeError(f"{type(self).__name__} needs {key}")
             else:
-                value = list(spec.default) if isinstance(spec.default, list) else spec.default
-            object.__setattr__(self, key, value)
+                default = spec.default
+                held[key] = list(default) if isinstance(default, list) else default
         if values:
             raise TypeError(f"{type(self).__name__} has no field {next(iter(values))}")
 
@@ -373,14 +421,14 @@ class Schema:
     ) -> None:
         """Run :meth:`check` (and the checks of nested tables first); a problem is an
         :class:`InputError` naming the field, with its value as written in ``data``."""
-        for key, spec in self.FIELDS.items():
+        for key in self._NESTED:
             value = getattr(self, key)
-            if spec.kind == "table" and isinstance(value, Schema):
+            if isinstance(value, Schema):
                 sub = data.get(key) if isinstance(data, Mapping) else None
                 value.validate(sub, name=name, path=(*path, key))
-            elif spec.kind == "list" and spec.item is not None and spec.item.kind == "table":
+            elif isinstance(value, list):
                 raws = data.get(key) if isinstance(data, Mapping) else None
-                for k, item in enumerate(value or ()):
+                for k, item in enumerate(value):
                     sub = raws[k] if isinstance(raws, list) and k < len(raws) else None
                     item.validate(sub, name=name, path=(*path, key, k))
         try:
@@ -433,12 +481,27 @@ def _held(value: Any) -> Any:
 # --------------------------------------------------------------------------- values
 def _value(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str | int, ...]) -> Any:
     """One value as written -> the value the field holds; InputError naming ``path``."""
-    where = name(path)
     if spec.kind == "table":
         assert spec.table is not None
         return spec.table.parse(raw, source=source, name=name, path=path)
     if spec.kind == "list":
         return _list(spec, raw, source, name, path)
+    if spec.parse is not None:  # a parser of its own names what it parses: named now
+        return _scalar(spec, raw, source, name(path))
+    try:  # the field is named when a value is refused (naming costs more than reading)
+        return _scalar(spec, raw, source, _HERE)
+    except InputError as error:
+        if error.field != _HERE:
+            raise
+        raise InputError(name(path), error.value, error.allowed) from None
+
+
+#: the field of a refusal before it is named (:func:`_value` names it)
+_HERE = "\x00field"
+
+
+def _scalar(spec: Field, raw: Any, source: Source, where: str) -> Any:
+    """A value that is neither a table nor a list; a refusal names ``where``."""
     limit = spec.max_chars or MAX_VALUE_CHARS
     if isinstance(raw, str) and len(raw) > limit:
         if spec.quantity is not None and spec.parse is None:
@@ -496,8 +559,11 @@ def _decimal_comma(raw: Any, where: str) -> None:
 
 def _quantity(raw: Any, kind: str, where: str) -> float:
     """A quantity string as an SI float (:func:`crankbalance.units.parse_quantity`)."""
-    _decimal_comma(raw, where)
-    return parse_quantity(raw, kind, where)
+    try:
+        return parse_quantity(raw, kind, where)
+    except InputError:
+        _decimal_comma(raw, where)  # "1,5 kg": said so (looked for only when refused)
+        raise
 
 
 def parse_in_range(value: Any, kind: str, field: str = "") -> float:
@@ -580,15 +646,16 @@ def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
 
 
 def _list(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str | int, ...]) -> Any:
-    where = name(path)
     if isinstance(raw, str) and source == "text":
         raw = [part.strip() for part in raw.split(",")] if raw.strip() else []
     if not isinstance(raw, (list, tuple)):
-        raise InputError(where, raw, f"must be a list ({allowed(spec)})")
+        raise InputError(name(path), raw, f"must be a list ({allowed(spec)})")
     if spec.max_items is not None and len(raw) > spec.max_items:
-        raise InputError(where, f"{len(raw)} entries", f"takes at most {spec.max_items} entries")
+        raise InputError(
+            name(path), f"{len(raw)} entries", f"takes at most {spec.max_items} entries"
+        )
     if len(raw) < spec.min_items:
-        raise InputError(where, raw, f"needs at least {spec.min_items} entries")
+        raise InputError(name(path), raw, f"needs at least {spec.min_items} entries")
     assert spec.item is not None
     item_name = name if spec.item.kind == "table" else _item_namer(name, path)
     return [_value(spec.item, v, source, item_name, (*path, k)) for k, v in enumerate(raw)]
@@ -706,7 +773,7 @@ def default_text(spec: Field) -> str:
         return format_quantity(float(value), spec.kind, digits=6)
     if isinstance(value, list):
         item = spec.item or spec
-        return ", ".join(default_text(dataclasses.replace(item, default=v)) for v in value)
+        return ", ".join(default_text(item.replace(default=v)) for v in value)
     if isinstance(value, bool):
         return "true" if value else "false"
     if isinstance(value, float):
@@ -746,20 +813,20 @@ def _stray_key(
 ) -> tuple[type[Schema], tuple[str | int, ...], Any, Any] | None:
     """The first unknown key of ``data`` and of its nested tables (lists of tables up to
     their cap), as (schema, path of its table, key, value), or None."""
+    fields = cls.FIELDS
     for key in data:
-        if key not in cls.FIELDS:
+        if key not in fields:
             return cls, path, key, data[key]
-    for key, spec in cls.FIELDS.items():
+    for key in cls._NESTED:
         value = data.get(key)
+        spec = fields[key]
         found = None
-        if spec.kind == "table" and isinstance(value, Mapping):
-            assert spec.table is not None
+        if spec.table is not None and isinstance(value, Mapping):
             found = _stray_key(spec.table, value, (*path, key))
-        elif spec.kind == "list" and isinstance(value, list) and spec.item is not None:
-            table = spec.item.table
+        elif spec.item is not None and spec.item.table is not None and isinstance(value, list):
             for k, item in enumerate(value[: spec.max_items]):
-                if table is not None and isinstance(item, Mapping):
-                    found = found or _stray_key(table, item, (*path, key, k))
+                if found is None and isinstance(item, Mapping):
+                    found = _stray_key(spec.item.table, item, (*path, key, k))
         if found is not None:
             return found
     return None
