@@ -114,7 +114,7 @@ async def test_mass_override_rows(user: User, form) -> None:
     assert rows[0]["reciprocating"] == "1.0400" and rows[1]["reciprocating"] == "0.9400"
     form.set("override-0-numbers", "1, 9")
     assert form.error("override-0-numbers") == (
-        "Mass override 1: cylinders: cylinder 9 does not exist (1..3)"
+        "Mass override 1: cylinders = 1, 9: cylinder 9 does not exist (1..3)"
     )
     form.set("override-0-numbers", "x")
     assert "whole numbers" in form.error("override-0-numbers")

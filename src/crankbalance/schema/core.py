@@ -640,7 +640,7 @@ def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
     if raw in spec.choices and type(raw) in {type(c) for c in spec.choices}:
         return raw
     shown = ", ".join(str(c) for c in spec.choices)
-    close = _closest(str(raw), [str(c) for c in spec.choices]) if isinstance(raw, str) else None
+    close = closest(str(raw), [str(c) for c in spec.choices]) if isinstance(raw, str) else None
     hint = f"; did you mean '{close}'?" if close else ""
     raise InputError(where, raw, f"must be one of {shown}{hint}")
 
@@ -651,9 +651,10 @@ def _list(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str | 
     if not isinstance(raw, (list, tuple)):
         raise InputError(name(path), raw, f"must be a list ({allowed(spec)})")
     if spec.max_items is not None and len(raw) > spec.max_items:
-        raise InputError(
-            name(path), f"{len(raw)} entries", f"takes at most {spec.max_items} entries"
-        )
+        words = f"takes at most {spec.max_items} entries"
+        if spec.words:  # a list described in words of its own ("at most 64 files, ...")
+            words = f"must be {spec.words}"
+        raise InputError(name(path), f"{len(raw)} entries", words)
     if len(raw) < spec.min_items:
         raise InputError(name(path), raw, f"needs at least {spec.min_items} entries")
     assert spec.item is not None
@@ -803,9 +804,6 @@ def closest(word: str, candidates: Sequence[str]) -> str | None:
 
     found = difflib.get_close_matches(word[:MAX_VALUE_CHARS], candidates, n=1, cutoff=0.6)
     return found[0] if found else None
-
-
-_closest = closest
 
 
 def _stray_key(

@@ -941,6 +941,7 @@ class CombustionOptions(StudyOptions):
         default=[],
         item=entry("text", max_chars=MAX_SETTING_CHARS),
         max_items=MAX_PRESSURE_TABLES,
+        words=f"at most {MAX_PRESSURE_TABLES} files, the option given once for each",
         title="Cylinder pressure tables",
         description="Cylinder pressure tables instead of the Wiebe model (crank angle [deg "
         "from firing TDC], absolute pressure [bar]): one for every cylinder, or one per "
@@ -1024,6 +1025,7 @@ class SensitivityOptions(CycleOptions):
         default=[],
         item=entry("text", max_chars=MAX_SETTING_CHARS),
         max_items=1,
+        words="at most 1 file, the option given once for each",
         title="Cylinder pressure table",
         description="A cylinder pressure table instead of the Wiebe model (crank angle [deg "
         "from firing TDC], absolute pressure [bar]).",
