@@ -35,6 +35,11 @@ the parser turns it into an ``InputError`` naming the field as written, with the
 user gave. Nothing here imports more than the standard library and
 :mod:`crankbalance.units`, so that validating an engine file costs microseconds and
 importing the schemas a few milliseconds (docs/performance.md).
+
+The module is over 800 lines because it is the whole machinery (declaring a field,
+reading a value, the words of what is allowed, the messages, writing back, the JSON
+Schema), whose parts all read the one :class:`Field`; split, the rules of one kind of
+value would sit in several files.
 """
 
 from __future__ import annotations
