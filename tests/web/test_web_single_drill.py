@@ -227,7 +227,7 @@ def test_radial_hole_drawing_shows_the_point() -> None:
     """figures.drilling_plan, radial holes: the outline reaches the tip (rim - depth to the
     tip) and is full width down to the shoulder, the point's height (cone of half-angle
     59 deg) above the tip; a flat bottom is full width to its one depth."""
-    from crankbalance.output import figures
+    from crankbalance.output.figures.single import drilling_plan
 
     model = build_model(load_engine("single"))
     single = SingleCylinderOptions()
@@ -250,9 +250,7 @@ def test_radial_hole_drawing_shows_the_point() -> None:
         result = rebalance(rot, rec, rot, rec - 0.01, cw_mass, r, r, holes, 1e-7)
         depth = result.iterations[-1].depth
         assert depth > h
-        trace = next(
-            t for t in figures.drilling_plan(result, 0.03).data if t.legendgroup == "holes"
-        )
+        trace = next(t for t in drilling_plan(result, 0.03).data if t.legendgroup == "holes")
         y, x = list(trace.y), list(trace.x)
         assert trace.name.endswith(named), trace.name
         tip = depth + to_tip  # depth to the tip [m]

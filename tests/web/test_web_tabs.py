@@ -138,14 +138,14 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
     plan's depth; a rebalancing without holes draws none."""
     from dataclasses import replace
 
-    from crankbalance.output import figures
+    from crankbalance.output.figures.single import drilling_plan
     from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
 
     holes = DrilledHoles(diameter=0.006, radius=0.05, number=2, direction="radial")
     reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, holes, 1e-9)
     depth = reb.iterations[-1].depth * 1e3
     assert depth > 0
-    fig = figures.drilling_plan(reb, 0.031)
+    fig = drilling_plan(reb, 0.031)
     drawn = [t for t in fig.data if (t.name or "").startswith("hole") or t.legendgroup == "holes"]
     assert len(drawn) == holes.number
     for trace in drawn:
@@ -153,7 +153,7 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
         # corners of the slot: half the diameter (3 mm) beside the hole's axis
         assert min(reach) == pytest.approx(math.hypot(50 - depth, 3), rel=1e-9)
         assert max(reach) == pytest.approx(math.hypot(50, 3), rel=1e-9)
-    none = figures.drilling_plan(replace(reb, iterations=[]), 0.031)
+    none = drilling_plan(replace(reb, iterations=[]), 0.031)
     assert not [t for t in none.data if t.legendgroup == "holes"]
     assert "no hole needed" in none.layout.title.text
 

@@ -153,9 +153,10 @@ def _write_plot(plot: str, study: Any) -> None:
     from pathlib import Path
 
     from ..io.files import write_atomic
-    from ..output import figures, render
+    from ..output import render
+    from ..output.figures.loads import bearing_sweep_figure
 
-    fig = figures.bearing_sweep_figure(study)
+    fig = bearing_sweep_figure(study)
     fmt = Path(plot).suffix.lower().lstrip(".")
     write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
     click.echo(f"wrote {plot}", err=True)

@@ -113,12 +113,11 @@ def _write_plot(plot: str, result: Any, objectives: tuple[str, ...]) -> None:
     """The scatter of the run's candidates (its top-N list and Pareto set) over the first
     two objectives, written atomically (png, svg or html by the suffix)."""
     from ..io.files import write_atomic
-    from ..output import figures, render
+    from ..output import render
+    from ..output.figures.explore import explore_points, explore_scatter
 
-    points = figures.explore_points(result.top, result.pareto)
-    fig = figures.explore_scatter(
-        points, result.pareto, objectives[0], objectives[1], total=result.rows
-    )
+    points = explore_points(result.top, result.pareto)
+    fig = explore_scatter(points, result.pareto, objectives[0], objectives[1], total=result.rows)
     fmt = Path(plot).suffix.lower().lstrip(".")
     write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
     click.echo(f"wrote {plot}", err=True)
@@ -250,19 +249,21 @@ def explore(
     )
     with named_as_typed({"mode_shape": o.mode_shape, "orders": options["orders"]}):
         columns = list(evaluate(orders.template(problem)))
-    objectives = tuple(
-        rank.column_name(name.strip(), columns, "--objectives")
-        for name in o.objectives.split(",")
-        if name.strip()
-    )
-    key = rank.column_name(o.top_key, columns, "--top-key") if o.top_key else None
+    names = [name.strip() for name in o.objectives.split(",")]
+    if not all(names):  # an empty name was dropped without a word ("" left no front at all)
+        raise InputError(
+            "--objectives", o.objectives, "column names separated by commas, none empty"
+        )
+    objectives = tuple(rank.column_name(name, columns, "--objectives") for name in names)
+    # an empty --top-key is refused as an unknown column, not replaced by the default
+    key = None if o.top_key is None else rank.column_name(o.top_key, columns, "--top-key")
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
     if plot is not None and (len(objectives) < 2 or key is None):
         raise InputError("--plot", plot, "two --objectives (its axes) and a top-N key")
     keep = Keep(objectives=objectives, key=key, n=o.top)
     if plot is not None:  # the figure's candidates: the best by the key, up to its limit
-        from ..output.figures import EXPLORE_POINTS
+        from ..output.figures.explore import EXPLORE_POINTS
 
         keep = Keep(objectives=objectives, key=key, n=max(o.top, EXPLORE_POINTS))
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "--filter")

@@ -1038,9 +1038,10 @@ def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str
 def _write_cycle_plot(plot: str, result: Any) -> None:
     """The torque figure of ``cycle``, written atomically (png, svg or html by suffix)."""
     from ..io.files import write_atomic
-    from ..output import figures, render
+    from ..output import render
+    from ..output.figures.performance import engine_torque_figure
 
-    fig = figures.engine_torque_figure(result)
+    fig = engine_torque_figure(result)
     fmt = Path(plot).suffix.lower().lstrip(".")
     write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
     click.echo(f"wrote {plot}", err=True)

@@ -495,9 +495,10 @@ def _echo_assumed(crank: dict[str, Any]) -> None:
 
 def _write_plot(plot: str, study: Any) -> None:
     from ..io.files import write_atomic
-    from ..output import figures, render
+    from ..output import render
+    from ..output.figures.torsional import torsional_figure
 
-    fig = figures.torsional_figure(study)
+    fig = torsional_figure(study)
     fmt = Path(plot).suffix.lower().lstrip(".")
     write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
     click.echo(f"wrote {plot}", err=True)
