@@ -55,7 +55,8 @@ from ..units import KINDS, RANGES, format_quantity, parse_factor, parse_quantity
 Source = Literal["file", "text"]
 #: the non-quantity kinds of value a field may take
 PLAIN_KINDS = ("number", "whole", "factor", "choice", "text", "flag", "list", "table", "any")
-#: longest text of a quantity, a number or a word, in characters (longer is refused unread)
+#: longest text of a quantity, a number or a word in a file, in characters (longer is
+#: refused unread); typed texts (the command line, a form) are bounded by their edge
 MAX_VALUE_CHARS = 100
 #: a number written with a decimal comma, alone or before a unit: "1,5" or "1,5 kg"
 _DECIMAL_COMMA = re.compile(r"\s*([-+]?\d+),(\d+)(\s*[^\d\s,].*)?\s*")
@@ -507,8 +508,8 @@ _HERE = "\x00field"
 
 def _scalar(spec: Field, raw: Any, source: Source, where: str) -> Any:
     """A value that is neither a table nor a list; a refusal names ``where``."""
-    limit = spec.max_chars or MAX_VALUE_CHARS
-    if isinstance(raw, str) and len(raw) > limit:
+    limit = spec.max_chars or (MAX_VALUE_CHARS if source == "file" else None)
+    if isinstance(raw, str) and limit is not None and len(raw) > limit:
         if spec.quantity is not None and spec.parse is None:
             raise InputError(where, raw, _TOO_LONG)
         raise InputError(where, f"{len(raw)} characters", f"must be at most {limit} characters")
