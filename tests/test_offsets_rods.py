@@ -336,7 +336,7 @@ def test_batch_takes_per_cylinder_offsets() -> None:
 
 # --------------------------------------------------------------------------- engine file
 def spec_of(name: str, **crank_train: object) -> EngineSpec:
-    data = load_engine(name).to_file_dict()
+    data = load_engine(name).to_data()
     data["crank_train"].update(crank_train)
     return spec_from_dict(data)
 
@@ -383,7 +383,7 @@ def test_bad_offsets_and_rod_positions_are_refused(
 
 
 def test_rod_positions_need_the_conrod_to_place_the_big_end() -> None:
-    data = load_engine("v2-90").to_file_dict()
+    data = load_engine("v2-90").to_data()
     data["crank_train"]["rod_positions"] = ["-10 mm", "10 mm"]
     data["masses"] = {"reciprocating": "400 g", "rotating": "1.5 kg"}
     with pytest.raises(InputError) as error:
@@ -474,7 +474,7 @@ def test_moment_reference_moves_every_couple_by_the_force() -> None:
 def test_custom_positions_are_taken_from_the_crank_mid_point() -> None:
     """A custom crank measured from its nose (all positions shifted) has the moments of the
     same crank measured from its middle; moment_reference then moves the point."""
-    data = load_engine("v6-60").to_file_dict()
+    data = load_engine("v6-60").to_data()
     for throw in data["crank_train"]["throw"]:
         throw["position"] = f"{float(throw['position'].split()[0]) + 300.0} mm"
     nose = build_model(spec_from_dict(data))
@@ -573,7 +573,7 @@ def test_cli_names_rod_positions_offsets_and_the_reference(
     assert code == 0
     assert "Rod position on its pin per cylinder: -10 mm, 10 mm" in out
     assert "moments about the crankshaft mid-point" in out
-    data = load_engine("inline3").to_file_dict()
+    data = load_engine("inline3").to_data()
     data["crank_train"].update(cylinder_offsets=["1 mm", "0 mm", "-2 mm"], moment_reference="40 mm")
     path = tmp_path / "engine.json"
     path.write_text(json.dumps(data))

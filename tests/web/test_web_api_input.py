@@ -22,7 +22,7 @@ BOM = b"\xef\xbb\xbf"
 
 
 def test_bom_json_body_of_analyze_as_the_cli_reads_it(server: str, tmp_path: Path, capsys) -> None:
-    body = json.dumps(load_engine("v8-crossplane").to_file_dict()).encode()
+    body = json.dumps(load_engine("v8-crossplane").to_data()).encode()
     headers = {"Content-Type": "application/json"}
     status, with_bom = post(server, BOM + body, headers, "/api/analyze")
     assert status == 200, with_bom

@@ -57,7 +57,7 @@ def _reference(point_angle_deg: float, depth_to: str) -> Any:
         rot,
         rec,
         rot,
-        RebalanceOptions(new_reciprocating=NEW_RECIPROCATING).new_reciprocating,
+        RebalanceOptions.parse({"new_reciprocating": NEW_RECIPROCATING}).new_reciprocating,
         counterweight_moment(rot, rec, single.balance_factor, r) / r,
         r,
         r,
@@ -146,7 +146,7 @@ async def test_flat_point_gives_the_flat_plan_unchanged(user: User, form) -> Non
     flat = rebalance_cylinder(
         build_model(load_engine("single")),
         SingleCylinderOptions(),
-        RebalanceOptions(new_reciprocating=NEW_RECIPROCATING),
+        RebalanceOptions.parse({"new_reciprocating": NEW_RECIPROCATING}),
     )
     assert flat.correction.point_angle == math.pi, "the options' default is a flat bottom"
     depth = flat.iterations[-1].depth

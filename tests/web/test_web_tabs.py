@@ -70,7 +70,8 @@ def _single_reference(new_reciprocating: str) -> tuple[Any, Any]:
 
     model = build_model(load_engine("single"))
     single = SingleCylinderOptions()
-    reb = rebalance_cylinder(model, single, RebalanceOptions(new_reciprocating=new_reciprocating))
+    new = RebalanceOptions.parse({"new_reciprocating": new_reciprocating})
+    reb = rebalance_cylinder(model, single, new)
     return reb, iso_check(model, single)
 
 
@@ -342,7 +343,9 @@ def test_holes_per_web_in_the_drilling_plan(server: str, page: Any) -> None:
     model = build_model(load_engine("single"))
     one, three = (
         rebalance_cylinder(
-            model, SingleCylinderOptions(), RebalanceOptions(new_reciprocating="359 g", holes=n)
+            model,
+            SingleCylinderOptions(),
+            RebalanceOptions.parse({"new_reciprocating": "359 g", "holes": n}),
         )
         for n in (1, 3)
     )

@@ -14,10 +14,13 @@ from ._common import echo_table, format_option, option_name
 @click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
 def analyze(engine: str, fmt: str, orders: str) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
+    from ..io.engine_file import load_engine
     from ..schema.settings import AnalysisOptions, parse_options
     from ..studies.engine import analyze as run
 
-    result = run(engine, parse_options(AnalysisOptions, {"orders": orders}, option_name).orders)
+    highest = parse_options(AnalysisOptions, {"orders": orders}, option_name).orders
+    spec = load_engine(engine)
+    result = run(spec, highest)
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
         return
@@ -98,6 +101,8 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         "Rotating masses (bare crank, no counterweights): "
         f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
     )
+    for note in spec.plausibility():  # unusual numbers of a valid engine (not in the JSON)
+        click.echo(f"note: {note.text}")
 
 
 def _distinct(values: list[float]) -> str:

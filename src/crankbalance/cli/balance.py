@@ -59,6 +59,7 @@ def balance(
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
     from ..errors import InputError
+    from ..io.engine_file import load_engine
     from ..schema.settings import BalanceOptions
     from ..studies.engine import balance_engine
 
@@ -73,14 +74,18 @@ def balance(
         )
         if value is not None
     }
-    # checked finite by to_jsonable
-    data = balance_engine(engine, verify=verify, **overrides).to_dict()
+    spec = load_engine(engine)
+    data = balance_engine(
+        spec, verify=verify, **overrides
+    ).to_dict()  # checked finite by to_jsonable
     if "angle" in given_options() and data["counterweight"]["method"] == "individual":
         raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
     if fmt == "json":
         click.echo(json_text(data))
         return
     print_table(data)
+    for note in spec.plausibility():  # unusual numbers of a valid engine (not in the JSON)
+        click.echo(f"note: {note.text}")
 
 
 def print_table(data: dict[str, Any]) -> None:

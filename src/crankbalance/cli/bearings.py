@@ -180,7 +180,7 @@ def bearings(
     except InputError as error:
         # an error of the physics about a setting names its option, with what was typed
         name = PHYSICS_FIELDS.get(error.field, error.field)
-        if name not in BearingOptions.model_fields or (
+        if name not in BearingOptions.FIELDS or (
             name == "webs" and o.webs is None  # the engine file's pattern
         ):
             raise

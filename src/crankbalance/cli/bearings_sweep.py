@@ -125,7 +125,7 @@ def bearings_sweep(
         name = PHYSICS_FIELDS.get(error.field, error.field)
         if name == "patterns":
             raise InputError("--pattern", error.value, error.allowed) from None
-        if name not in BearingOptions.model_fields or name == "webs":
+        if name not in BearingOptions.FIELDS or name == "webs":
             raise
         shown = typed.get(name) if name in given or name == "bearing" else None
         raise InputError(

@@ -314,7 +314,7 @@ def explore(
         payload = {
             "schema": "crankbalance.explore/1",
             "problem": {
-                k: v for k, v in o.model_dump().items() if k not in ("scheduler", "connect_timeout")
+                k: v for k, v in o.values().items() if k not in ("scheduler", "connect_timeout")
             }
             | {"chunk": work.chunk},
             "counts": counts,

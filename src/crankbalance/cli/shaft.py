@@ -170,7 +170,7 @@ def _study_setup(
     """
     from ..schema.settings import ShaftStudyOptions
 
-    values = {k: v for k, v in options.items() if k in ShaftStudyOptions.model_fields}
+    values = {k: v for k, v in options.items() if k in ShaftStudyOptions.FIELDS}
     if options["weights"] is not None:
         values["weights"] = options["weights"].split(",")
     o = parse_settings(ShaftStudyOptions, values)

@@ -126,7 +126,7 @@ def _named(*others: str) -> Iterator[None]:
     try:
         yield
     except InputError as error:
-        if error.field not in ShopOptions.model_fields and error.field not in others:
+        if error.field not in ShopOptions.FIELDS and error.field not in others:
             raise
         raise InputError(option_name(error.field), error.value, error.allowed) from None
 

@@ -710,7 +710,7 @@ def tolerance_command(
     )
     if list_grades:
         refuse_unused(
-            {name: False for name in ToleranceOptions.model_fields},
+            {name: False for name in ToleranceOptions.FIELDS},
             "does not act with --list (which lists the grades only)",
         )
         if fmt == "json":

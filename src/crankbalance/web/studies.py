@@ -55,10 +55,10 @@ PREFIXES: dict[str, type[StudyOptions]] = {
 def _fields() -> dict[str, tuple[str, str, str]]:
     out = {}
     for prefix, model in PREFIXES.items():
-        for name, info in model.model_fields.items():
+        for name, spec in model.FIELDS.items():
             kind, quantity = field_kind(model, name)
-            label = info.title or name
-            out[prefix + name] = (label, quantity or kind, info.description or allowed(model, name))
+            label = spec.title or name
+            out[prefix + name] = (label, quantity or kind, spec.hint or allowed(model, name))
     return out
 
 
@@ -71,11 +71,11 @@ def options(settings: dict[str, Any], model: type[Options]) -> Options:
     that default is "derived from the engine" (None), and is an error otherwise."""
     prefix = next(p for p, m in PREFIXES.items() if m is model)
     values: dict[str, Any] = {}
-    for name, info in model.model_fields.items():
+    for name, spec in model.FIELDS.items():
         key = prefix + name
         text = str(settings.get(key, "")).strip()
         if not text:
-            if info.default is not None:
+            if spec.default is not None:
                 raise InputError(key, None, f"must be given: {allowed(model, name)}")
             continue
         kind, _ = field_kind(model, name)
@@ -116,7 +116,7 @@ def setting_errors(settings: dict[str, Any]) -> dict[str, InputError]:
     for prefix, model in PREFIXES.items():
         texts: dict[str, str] = {}
         given: dict[str, Any] = {}
-        for name in model.model_fields:
+        for name in model.FIELDS:
             text = str(settings.get(prefix + name, "")).strip()
             if text:
                 texts[name] = text
@@ -320,7 +320,7 @@ def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
             journal_diameter=o.journal_diameter,
             friction_coefficient=o.friction_coefficient,
         )
-        pressure = pressure_source(CombustionOptions.model_validate({}))  # the studies' one default
+        pressure = pressure_source(CombustionOptions.parse({}))  # the studies' one default
         with arithmetic_checked("the performance study", "the engine and the tab's settings"):
             return balance_sensitivity(
                 cylinder,

@@ -312,7 +312,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         spec = project.spec or Project.from_preset(DEFAULT_PRESET).spec
         assert spec is not None
         try:
-            data = candidate_file(spec.to_file_dict(), self.problem, self.bank_angle, row)
+            data = candidate_file(spec.to_data(), self.problem, self.bank_angle, row)
             new = spec_from_dict(data)
         except InputError as error:
             ui.notify(f"Cannot load this candidate: {error}", type="negative", multi_line=True)
