@@ -25,8 +25,10 @@ from nicegui import run, ui
 from ..errors import InputError
 from ..io.engine_file import list_presets
 from . import pool, studies
+from .computation import Computed
 from .exports import table_csv
-from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, label_of, read_text
+from .form import FIELD_BY_KEY, FormField, key_label
+from .project import MAX_BYTES, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
@@ -497,9 +499,7 @@ class Page:
     def problem(self) -> str:
         """Why the form cannot be computed: the messages of the fields (by their label) and
         the general one."""
-        lines = [
-            f"{FIELD_BY_KEY[key].label}: {message}" for key, message in self.project.errors.items()
-        ]
+        lines = [f"{key_label(key)}: {message}" for key, message in self.project.errors.items()]
         if self.project.general_error:
             lines.append(self.project.general_error)
         return "; ".join(lines) or "the engine could not be computed"
@@ -512,10 +512,8 @@ class Page:
             self.status.set_text(f"Results of: {c.spec.name}")
             state = "current"
         else:
-            fields = ", ".join(
-                FIELD_BY_KEY[key].label if key in FIELD_BY_KEY else label_of(key)
-                for key in self.project.errors
-            )  # a crank-editor cell (throw.0.position, override.0.value) by its words
+            # a form field by its label, a crank-editor cell (override.0.value) by its words
+            fields = ", ".join(key_label(key) for key in self.project.errors)
             self.status.set_text(
                 f"Not computed: see {fields}" if fields else "Not computed: see the message above"
             )

@@ -17,7 +17,7 @@ from typing import TYPE_CHECKING, Any
 from nicegui import ui
 
 from ..schema.engine import throw_count
-from .project import MASS_FIELDS
+from .form import MASS_FIELDS
 
 if TYPE_CHECKING:
     from .app import Page

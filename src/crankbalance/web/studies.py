@@ -1,6 +1,6 @@
 """The study tabs of the web application as plain functions (no NiceGUI).
 
-Each takes the current computation (:class:`~.project.Computed`) and the project's
+Each takes the current computation (:class:`~.computation.Computed`) and the project's
 settings (texts as typed), validates the settings of its study through the one options
 schema (:mod:`crankbalance.schema.settings`) and calls the study layer
 (:mod:`crankbalance.studies`).
@@ -39,7 +39,7 @@ from ..schema.settings import (
     field_kind,
     parse_options,
 )
-from .project import Computed
+from .computation import Computed
 
 #: setting-key prefix -> the options model of that study ("" for the analysis)
 PREFIXES: dict[str, type[StudyOptions]] = {
