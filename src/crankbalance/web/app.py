@@ -42,6 +42,8 @@ from .tab_single import SingleTab
 from .widgets import Tab, send_download
 
 log = logging.getLogger("crankbalance.web")
+#: the preset a page opens on unless the server is given another (``crankbalance web
+#: --preset``, :func:`page_root`) or the address names one (``/?preset=v8-crossplane``)
 DEFAULT_PRESET = "paper-inline3"
 TABS = (
     ("engine", "Engine"),
@@ -115,27 +117,39 @@ BUSY_JS = """
 """
 
 
-def warm_up() -> None:
-    """Compute the default engine and build its 3-D crank once (the server runs this in the
-    background as it starts): the first page of a fresh server would otherwise wait for the
-    imports of the physics and of plotly's figure classes (about 0.6 s of a first load on
-    an idle machine, seconds on a busy one)."""
+def warm_up(preset: str = DEFAULT_PRESET) -> None:
+    """Compute the server's default engine ``preset`` and build its 3-D crank once (the
+    server runs this in the background as it starts): the first page of a fresh server
+    would otherwise wait for the imports of the physics and of plotly's figure classes
+    (about 0.6 s of a first load on an idle machine, seconds on a busy one)."""
     from ..output.figures.crank3d import crank_3d
 
-    c = Project.from_preset(DEFAULT_PRESET).compute()
+    c = Project.from_preset(preset).compute()
     if c is not None:
         crank_3d(c.analysis.model, c.study).to_plotly_json()
 
 
 def root(preset: str | None = None) -> None:
-    """The page: ``/`` or ``/?preset=v8-crossplane``."""
+    """The page: ``/`` or ``/?preset=v8-crossplane`` (on :data:`DEFAULT_PRESET`)."""
     Page(preset).build()
 
 
-class Page:
-    """One client's page and project."""
+def page_root(default_preset: str) -> Callable[[str | None], None]:
+    """The page of a server whose pages open on ``default_preset``: :func:`root` with
+    that default, passed to each page (and its tabs' context), no module state."""
 
-    def __init__(self, preset: str | None) -> None:
+    def root(preset: str | None = None) -> None:
+        Page(preset, default_preset).build()
+
+    return root
+
+
+class Page:
+    """One client's page and project; to its tabs, their context (it implements
+    :class:`~.context.TabContext`: the tabs are given the page and see that much of it)."""
+
+    def __init__(self, preset: str | None, default_preset: str = DEFAULT_PRESET) -> None:
+        self.default_preset = default_preset
         self.project = Project()
         self.inputs: dict[str, Any] = {}
         self.setting_inputs: dict[str, Any] = {}
@@ -162,13 +176,13 @@ class Page:
         #: the study of this page running in a worker process (one at a time), if any
         self.job: pool.Job | None = None
         message = ""
-        name = preset or DEFAULT_PRESET
+        name = preset or default_preset
         try:
             self.project = Project.from_preset(name)
         except InputError as error:
-            message = f"{error}; loaded {DEFAULT_PRESET} instead"
-            self.project = Project.from_preset(DEFAULT_PRESET)
-            name = DEFAULT_PRESET
+            message = f"{error}; loaded {default_preset} instead"
+            self.project = Project.from_preset(default_preset)
+            name = default_preset
         self.preset_name: str | None = name
         self.startup_message = message
 

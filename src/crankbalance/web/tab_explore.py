@@ -302,14 +302,13 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     def load(self, index: int) -> None:
         """Load the candidate of enumeration index ``index`` as the current engine."""
         from ..schema.engine import spec_from_dict
-        from .app import DEFAULT_PRESET
         from .project import Project
 
         row = self._row(index)
         if row is None:
             return
         project = self.page.project
-        spec = project.spec or Project.from_preset(DEFAULT_PRESET).spec
+        spec = project.spec or Project.from_preset(self.page.default_preset).spec
         assert spec is not None
         try:
             data = candidate_file(spec.to_data(), self.problem, self.bank_angle, row)

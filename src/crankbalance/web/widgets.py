@@ -1,8 +1,9 @@
 """Pieces shared by the page shell (:mod:`.app`) and its tabs (``tab_*.py``).
 
 :class:`FigureCard` is a figure with its downloads, :class:`Tab` the base of one tab of the
-page, and the small helpers format numbers and send files to the browser. Nothing here
-imports the shell or a tab at run time (only for type checking), so there is no cycle.
+page, and the small helpers format numbers and send files to the browser. A tab sees the
+page through its context (:class:`~.context.TabContext`, held as ``self.page``); nothing
+here imports the shell or a tab, so there is no cycle.
 """
 
 from __future__ import annotations
@@ -21,7 +22,7 @@ from ..output.format import number
 from .exports import figure_csv, figure_json
 
 if TYPE_CHECKING:
-    from .app import Page
+    from .context import TabContext
 
 log = logging.getLogger("crankbalance.web")
 #: download formats of a figure card
@@ -171,7 +172,7 @@ class FigureCard:
     """A plotly figure from :mod:`crankbalance.output.figures` with PNG/SVG/CSV/JSON downloads."""
 
     def __init__(
-        self, page: Page, name: str, title: str, builder: Callable[[], Any | None]
+        self, page: TabContext, name: str, title: str, builder: Callable[[], Any | None]
     ) -> None:
         self.page, self.name, self.title, self.builder = page, name, title, builder
         self.figure: Any | None = None
@@ -309,7 +310,8 @@ class FigureCard:
 
 
 class Tab(ABC):
-    """One tab of the page. The shell (:class:`~.app.Page`) calls :meth:`build` inside the
+    """One tab of the page, given the page's context (:class:`~.context.TabContext`, kept
+    as :attr:`page`). The shell (:class:`~.app.Page`) calls :meth:`build` inside the
     tab's panel (with the page, or when the tab is first opened: :attr:`built`),
     :meth:`show` after each recompute of a valid engine and :meth:`reset` when another
     project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed by the
@@ -322,7 +324,7 @@ class Tab(ABC):
     #: :meth:`reset` and :meth:`show_errors` only on built tabs
     built = False
 
-    def __init__(self, page: Page) -> None:
+    def __init__(self, page: TabContext) -> None:
         self.page = page
         self.cards: list[FigureCard] = []
 
@@ -517,7 +519,7 @@ class TabSettingsMixin:
     ``<tab name>-<key>`` for tests. An edit stores the text and calls ``self.check()``."""
 
     name: str
-    page: Page
+    page: TabContext
     texts: dict[str, str]
     fields: dict[str, Any]
     #: key -> (label, default text, hint) of each setting, in the order of the form
