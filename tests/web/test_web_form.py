@@ -6,7 +6,7 @@ from __future__ import annotations
 import pytest
 
 from crankbalance.errors import InputError
-from crankbalance.schema.core import parse_value
+from crankbalance.schema.core import default_text, parse_value
 from crankbalance.schema.engine import CrankTrain, EngineSpec, ShaftSet
 from crankbalance.web.form import FIELDS, NO_SHAFTS, form_message, schema_field
 
@@ -70,3 +70,21 @@ def test_a_good_text_gives_the_schema_s_value() -> None:
     assert by_key["firing_order"].check("1, 3, 2") == [1, 3, 2]
     assert by_key["strokes"].check("4") == 4
     assert by_key["cw_angle"].check("optimal") == "optimal"
+
+
+def test_the_study_settings_start_at_the_schema_s_defaults() -> None:
+    """Every study setting of the page starts at its schema's default, but for the web's
+    own smaller optimiser run (WEB_DEFAULTS)."""
+    from crankbalance.schema.settings import CounterweightOptions, PerformanceOptions
+    from crankbalance.web.project import DEFAULT_SETTINGS, STUDY_SETTINGS, WEB_DEFAULTS
+
+    assert set(STUDY_SETTINGS) <= set(DEFAULT_SETTINGS)
+    assert DEFAULT_SETTINGS["cw_density"] == default_text(CounterweightOptions.FIELDS["density"])
+    assert DEFAULT_SETTINGS["pf_balance_factors"] == default_text(
+        PerformanceOptions.FIELDS["balance_factors"]
+    )
+    assert (
+        DEFAULT_SETTINGS["cw_population"]
+        == WEB_DEFAULTS["cw_population"]
+        != default_text(CounterweightOptions.FIELDS["population"])
+    )

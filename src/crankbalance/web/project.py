@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 from typing import Any
 
 from ..errors import InputError
-from ..schema.core import Field, parse_value
+from ..schema.core import Field, default_text, parse_value
 from ..schema.engine import EngineSpec
 from .computation import Computed
 from .form import (
@@ -38,6 +38,7 @@ from .form import (
     form_message,
     format_value,
 )
+from .studies import PREFIXES, setting_errors
 
 SETTINGS_TAG = "# crankbalance-web settings: "
 SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag names it
@@ -46,47 +47,44 @@ SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag na
 MAX_BYTES = 65_536
 log = logging.getLogger("crankbalance.web")
 
-#: settings of the study tabs (saved with the project as a comment line of the engine file)
+#: the study settings the tabs show, each its study's prefix and the schema field's name
+#: (:data:`.studies.PREFIXES`: ``cw_density`` is ``density`` of ``CounterweightOptions``)
+STUDY_SETTINGS = (
+    "orders",
+    # counterweight design
+    *("cw_density", "cw_max_mass", "cw_max_radius", "cw_min_balance"),
+    *("cw_iterations", "cw_population", "cw_seed"),
+    # single cylinder and its rebalancing
+    *("sc_cylinder", "sc_balance_factor", "sc_grade", "sc_rotor_mass", "sc_residual"),
+    *("rb_new_reciprocating", "rb_new_rotating", "rb_cw_mass", "rb_cw_radius"),
+    *("rb_hole_diameter", "rb_point_angle", "rb_depth_to", "rb_holes", "rb_hole_radius"),
+    # balance shaft
+    *("bs_length", "bs_diameter", "bs_weight", "bs_points"),
+    # performance
+    *("pf_bore", "pf_balance_factors", "pf_crank_inertia", "pf_friction_coefficient"),
+    "pf_journal_diameter",
+)
+#: the web's own starting values where they differ from the schema's default: the
+#: counterweight optimiser starts with a smaller, seeded run than the command line's (a
+#: page answers in seconds, and the same run gives the same design)
+WEB_DEFAULTS = {"cw_iterations": "12", "cw_population": "1024", "cw_seed": "1"}
+
+
+def _schema_default(key: str) -> str:
+    """The schema's default of a study setting, as typed ("" for none)."""
+    prefix = max((p for p in PREFIXES if key.startswith(p)), key=len)
+    return default_text(PREFIXES[prefix].FIELDS[key[len(prefix) :]])
+
+
+#: settings of the page and the study tabs (saved with the project as a comment line of
+#: the engine file): the page's own modes, then every study setting with its schema's
+#: default (or the web's, :data:`WEB_DEFAULTS`)
 DEFAULT_SETTINGS: dict[str, Any] = {
     "mass_mode": "parts",  # parts | totals
     "conrod_split": "cg",  # fraction | cg
-    "orders": 8,
     "curve_quantity": "force",
     "polar_order": 1,
-    # counterweight design
-    "cw_density": "8000 kg/m^3",
-    "cw_max_mass": "",
-    "cw_max_radius": "",
-    "cw_min_balance": "100",
-    "cw_iterations": "12",
-    "cw_population": "1024",
-    "cw_seed": "1",
-    # single cylinder
-    "sc_cylinder": "1",
-    "sc_balance_factor": "0.5",
-    "sc_grade": "G6.3",
-    "sc_rotor_mass": "",
-    "sc_residual": "",
-    "rb_new_reciprocating": "",
-    "rb_new_rotating": "",
-    "rb_cw_mass": "",
-    "rb_cw_radius": "",
-    "rb_hole_diameter": "8 mm",
-    "rb_point_angle": "180 deg",
-    "rb_depth_to": "tip",
-    "rb_holes": "1",
-    "rb_hole_radius": "",
-    # balance shaft
-    "bs_length": "300 mm",
-    "bs_diameter": "25 mm",
-    "bs_weight": "2",
-    "bs_points": "41",
-    # performance
-    "pf_bore": "",
-    "pf_balance_factors": "0, 0.25, 0.5, 0.75, 1",
-    "pf_crank_inertia": "",
-    "pf_friction_coefficient": "0.005",
-    "pf_journal_diameter": "30 mm",
+    **{key: WEB_DEFAULTS.get(key, _schema_default(key)) for key in STUDY_SETTINGS},
 }
 
 
@@ -466,8 +464,6 @@ def _settings_from_text(text: str) -> dict[str, Any]:
 def _settings_problem(settings: dict[str, Any]) -> str | None:
     """The message of the first setting of a saved project that is unknown, not a text or
     a number, or not a valid value (None when all are good)."""
-    from .studies import setting_errors  # studies imports this module
-
     for key, value in settings.items():
         if key not in DEFAULT_SETTINGS:
             allowed = "unknown setting; known: " + ", ".join(DEFAULT_SETTINGS)
