@@ -88,3 +88,29 @@ def test_the_study_settings_start_at_the_schema_s_defaults() -> None:
         == WEB_DEFAULTS["cw_population"]
         != default_text(CounterweightOptions.FIELDS["population"])
     )
+
+
+def test_the_study_tabs_own_settings_are_the_schema_s() -> None:
+    """The Crank loads, Balance shop and Explorer tabs label their settings with the
+    schema's titles and offer its choices; a default of their own is the page's choice."""
+    from crankbalance.schema.settings import (
+        BearingOptions,
+        BearingSweepOptions,
+        ExploreOptions,
+        ShopOptions,
+    )
+    from crankbalance.web import tab_explore, tab_loads, tab_shop
+
+    for tab, model in (
+        (tab_loads, BearingOptions),
+        (tab_shop, ShopOptions),
+        (tab_explore, ExploreOptions),
+    ):
+        for key, (label, _default, hint) in tab.SETTINGS.items():
+            if key in model.FIELDS:
+                assert label == model.FIELDS[key].title, key
+                assert hint
+    assert tab_loads.SETTINGS["crank_model"][0] == BearingSweepOptions.FIELDS["crank_model"].title
+    assert tab_shop.CHOICES["convention"] == tuple(ShopOptions.FIELDS["convention"].choices)
+    assert tab_explore.SETTINGS["top"][1] == default_text(ExploreOptions.FIELDS["top"])
+    assert tab_loads.SETTINGS["samples"][2] == "a whole number from 36 to 3600"  # the schema's

@@ -19,6 +19,7 @@ from nicegui import run, ui
 from ..errors import InputError
 from ..output import figures, render
 from ..output.format import number
+from ..schema.core import Schema, allowed, default_text
 from .exports import figure_csv, figure_json
 
 if TYPE_CHECKING:
@@ -511,6 +512,24 @@ def send_download(content: str | bytes, filename: str, media_type: str) -> None:
     download implementations, e.g. NiceGUI's simulated user)."""
     data = content.encode("utf-8") if isinstance(content, str) else content
     ui.download.content(data, filename, media_type)
+
+
+def from_schema(
+    model: type[Schema], name: str, *, default: str | None = None, hint: str = ""
+) -> tuple[str, str, str]:
+    """A row of a tab's own settings table (:attr:`TabSettingsMixin.settings_table`) that is
+    the field ``name`` of the settings schema ``model``: (label, default text, hint), the
+    schema's title and default, and its hint or else what it allows. A tab gives its own
+    ``default`` (a lighter run than the command line's) or ``hint`` (an example, or where
+    the page writes the value its own way) only where the schema has none or another."""
+    spec = model.FIELDS[name]
+    text = default_text(spec) if default is None else default
+    return spec.title, text, hint or spec.hint or allowed(spec)
+
+
+def schema_choices(model: type[Schema], name: str) -> tuple[str, ...]:
+    """The choices of a setting's select: the schema's."""
+    return tuple(str(choice) for choice in model.FIELDS[name].choices)
 
 
 class TabSettingsMixin:
