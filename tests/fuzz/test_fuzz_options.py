@@ -358,7 +358,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--points",
             "21",
         ],
-        {**SECTION, **STUDY, "--format": FORMATS},
+        {**SECTION, **STUDY, "--order": number("1", "2"), "--format": FORMATS},
     ),
     "shaft inline3": Command(
         ["shaft", "inline3"],
@@ -486,6 +486,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--center-of-mass": quantity("length", "60 mm"),
             "--plane-1": quantity("length", "10 mm"),
             "--plane-2": quantity("length", "110 mm"),
+            "--engine": ["single", "inline4", "nope", ""],
             "--list": [FLAG],
             "--format": FORMATS,
         },

@@ -30,6 +30,48 @@ def parse_settings(model: type[Options], values: Mapping[str, Any]) -> Options:
     return parse_options(model, values, option_name)
 
 
+def typed(values: Mapping[str, Any]) -> dict[str, Any]:
+    """The options the user typed, by parameter name: an option not given (None, or an
+    empty tuple for a repeatable one) is left out, so that the study's default applies; a
+    repeated option's values as a list."""
+    return {
+        name: list(value) if isinstance(value, tuple) else value
+        for name, value in values.items()
+        if value is not None and value != ()
+    }
+
+
+def run_study(
+    name: str, engine: Any, values: Mapping[str, Any], *, engine_option: bool = True, **edge: Any
+) -> Any:
+    """Study ``name`` of :mod:`crankbalance.studies.registry` on ``engine`` with the options
+    typed (``values``: parameter name, the setting's field, -> value as typed) and the
+    command's own arguments (``edge``: progress, an output file); an error names the option
+    as typed (``--balance-factor``, and ``--engine`` or ``engine`` for the engine as an
+    option or an argument)."""
+    from ..studies.registry import run, study
+
+    entry = study(name)
+
+    def naming(field: str) -> str:
+        if field == "engine":
+            return "--engine" if engine_option else "engine"
+        return "--" + entry.option(field)
+
+    return run(name, engine, typed(values), naming=naming, **edge)
+
+
+def default_help(model: type[Options], name: str, text: str = "") -> str:
+    """A help text with the setting's default as one would type it, from the settings
+    schema (the one place defaults are decided): ``"Bore. [default: 76.8 mm]"``."""
+    from ..schema.settings import default_text
+
+    default = default_text(model, name)
+    info = model.model_fields[name]
+    words = text or f"{info.title or name}."
+    return f"{words} [default: {default}]" if default else words
+
+
 #: the optional extras of crankbalance (pyproject.toml) and the modules each provides
 EXTRAS: dict[str, tuple[str, ...]] = {
     "web": ("nicegui", "plotly", "kaleido"),

@@ -5,19 +5,16 @@ from __future__ import annotations
 import click
 
 from ..output.format import json_text, moment_point, number, plural, text
-from ._common import echo_table, format_option, option_name
+from ._common import echo_table, format_option, run_study
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
-def analyze(engine: str, fmt: str, orders: str) -> None:
+@click.option("--orders", default=None, help="Highest harmonic order (1-64). [default: 8]")
+def analyze(engine: str, fmt: str, orders: str | None) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
-    from ..schema.settings import AnalysisOptions, parse_options
-    from ..studies.engine import analyze as run
-
-    result = run(engine, parse_options(AnalysisOptions, {"orders": orders}, option_name).orders)
+    result = run_study("analyze", engine, {"orders": orders}, engine_option=False)
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
         return

@@ -7,7 +7,7 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number, plural, text
-from ._common import echo_table, format_option, given_options, parse_settings
+from ._common import echo_table, format_option, run_study
 
 
 @click.command()
@@ -50,24 +50,8 @@ def balance(
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    from ..errors import InputError
-    from ..schema.settings import BalanceOptions
-    from ..studies.engine import balance_engine
-
-    settings = parse_settings(BalanceOptions, {"angle": angle, "balance_factor": balance_factor})
-    overrides: dict[str, Any] = {
-        key: value
-        for key, value in (
-            ("angle", settings.angle),
-            ("balance_factor", settings.balance_factor),
-            ("method", method),
-            ("scope", scope),
-        )
-        if value is not None
-    }
-    data = balance_engine(engine, **overrides).to_dict()  # checked finite by to_jsonable
-    if "angle" in given_options() and data["counterweight"]["method"] == "individual":
-        raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
+    values = {"angle": angle, "balance_factor": balance_factor, "method": method, "scope": scope}
+    data = run_study("balance", engine, values, engine_option=False).to_dict()
     if fmt == "json":
         click.echo(json_text(data))
         return

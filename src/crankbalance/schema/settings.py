@@ -209,8 +209,54 @@ def _zero_or_length(value: float) -> float:
 LengthOrZero = Annotated[Position, Field(ge=0), AfterValidator(_zero_or_length)]
 #: the weight w of the balance-shaft placement objective [-]
 ShaftWeight = Annotated[float, BeforeValidator(_number), Field(ge=0, le=1000)]
-#: the balance factors of a sweep
-BalanceFactors = Annotated[list[Factor], Field(min_length=1, max_length=MAX_SWEEP)]
+
+
+def _number_sweep(value: Any) -> Any:
+    """A list of numbers as typed: ``"0,0.28,0.5"`` or ``"start:stop:step"`` (stop included,
+    at most :data:`MAX_SWEEP` values); a list is taken as it is. Its count and range are
+    checked by the field."""
+    if not isinstance(value, str):
+        return value
+    words = "must be numbers separated by commas, or start:stop:step with step > 0"
+    try:
+        if ":" in value:
+            start, stop, step = (float(x) for x in value.split(":"))
+            span = (stop - start) / step
+            if not (step > 0 and 0 <= span < math.inf):
+                raise ValueError
+            if span > MAX_SWEEP:
+                raise InputError("", value, f"must give at most {MAX_SWEEP} values")
+            return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
+        numbers = [float(x) for x in value.split(",") if x.strip()]
+    except ValueError:
+        raise InputError("", value, words) from None
+    if not numbers or not all(math.isfinite(v) for v in numbers):
+        raise InputError("", value, "must hold at least one finite number")
+    return numbers
+
+
+def _comma_list(value: Any) -> Any:
+    """A list typed as one text, its items separated by commas (``"1,0,0,1"``); a list is
+    taken as it is."""
+    if not isinstance(value, str):
+        return value
+    return [item.strip() for item in value.split(",") if item.strip()] or [value]
+
+
+def _one_or_many(value: Any) -> Any:
+    """The values of a setting that may be given several times (an option repeated on the
+    command line, a JSON list): one value alone is a list of one."""
+    if isinstance(value, (list, tuple)):
+        return list(value)
+    return [value]
+
+
+#: the balance factors of a sweep: a list, or a text "0,0.25,0.5" or "start:stop:step"
+BalanceFactors = Annotated[
+    list[Factor], BeforeValidator(_number_sweep), Field(min_length=1, max_length=MAX_SWEEP)
+]
+#: a setting that may be given several times
+Many = BeforeValidator(_one_or_many)
 
 
 class StudyOptions(BaseModel):
@@ -266,6 +312,55 @@ def counterweight_designs(population: int, iterations: int) -> int:
     """The designs a counterweight optimisation evaluates: its first sample and
     :data:`COUNTERWEIGHT_CHILDREN` per round."""
     return population + iterations * COUNTERWEIGHT_CHILDREN
+
+
+#: the profile parameters of a counterweight (the 2021 paper, Sec. 4), in the order of
+#: :class:`crankbalance.physics.counterweight.CounterweightDesign`
+PROFILE_PARAMETERS = (
+    "web_radius",
+    "rectangle_height",
+    "trapezoid_angle",
+    "segment_radius",
+    "segment_angle",
+    "thickness",
+)
+
+
+class CounterweightRequirementOptions(StudyOptions):
+    """The first moment a counterweight must carry, m_c r_c: given, or from a mass and its
+    CG radius (or from the engine's balancing, the study's engine)."""
+
+    first_moment: Requirement | None = Field(None, title="Required first moment m_c r_c")
+    cw_mass: Mass | None = Field(None, title="Counterweight mass m_c")
+    cg_radius: Length | None = Field(None, title="Counterweight CG radius r_c")
+
+
+class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequirementOptions):
+    """``counterweight optimize``: the requirement, the profile parameters (a value fixes
+    one, ``"LOW..HIGH"`` leaves it free in that range, empty: the optimiser's range), the
+    radial measure, the objectives and how many Pareto designs are listed."""
+
+    web_radius: str | None = Field(None, title="Web circle radius r_cw (value or LOW..HIGH)")
+    rectangle_height: str | None = Field(None, title="Rectangle height h_R (value or LOW..HIGH)")
+    trapezoid_angle: str | None = Field(None, title="delta (value or LOW..HIGH)")
+    segment_radius: str | None = Field(None, title="Segment radius R_cw (value or LOW..HIGH)")
+    segment_angle: str | None = Field(None, title="alpha (value or LOW..HIGH)")
+    thickness: str | None = Field(None, title="Thickness t_cw (value or LOW..HIGH)")
+    radius_measure: Literal["true", "paper"] = Field(
+        "true",
+        title="Radial space",
+        description="true: the outer radius; paper: the 2021 paper's R_min bound",
+    )
+    inertia: bool = Field(False, title="Inertia as a third objective")
+    pareto: Whole = Field(
+        10, ge=0, le=10**6, title="Pareto designs listed (evenly spread along the front)"
+    )
+
+    @model_validator(mode="after")
+    def _three_objectives(self) -> CounterweightOptimizeOptions:
+        if self.inertia:
+            self.check_budget(3)
+        return self
 
 
 class SingleCylinderOptions(StudyOptions):
@@ -374,6 +469,17 @@ class BalanceOptions(StudyOptions):
         None, title="Counterweight angle", description="'optimal' or e.g. 30 deg"
     )
     balance_factor: Factor | None = Field(None, title="Balance factor")
+    method: Literal["pattern", "individual"] | None = Field(
+        None,
+        title="Counterweight method",
+        description="pattern: equal counterweights; individual: each its own mass and angle "
+        "(empty: the engine file's)",
+    )
+    scope: Literal["auto", "whole", "halves"] | None = Field(
+        None,
+        title="Balance the whole crank or each half",
+        description="empty: the engine file's",
+    )
 
 
 class CounterweightDesignOptions(StudyOptions):
@@ -418,7 +524,7 @@ class BenchOptions(StudyOptions):
     unbalance: Unbalance = Field(0.0, title="Rotor unbalance")
     journal_diameter: Length = Field(0.02, title="Journal diameter")
     friction_coefficient: FrictionCoefficient | None = Field(None, title="Friction coefficient")
-    speed: list[Speed] = Field(
+    speed: Annotated[list[Speed], Many] = Field(
         [3000 * _RPM], min_length=1, max_length=MAX_BENCH_RUNS, title="Set speeds"
     )
     ramp_time: Time = Field(2.0, title="Ramp time")
@@ -502,17 +608,19 @@ class CombustionOptions(StudyOptions):
         title="Burn duration",
     )
     intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: list[str] = Field(
+    pressure_csv: Annotated[list[str], Many] = Field(
         [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
     )
 
 
 class CycleOptions(CombustionOptions):
     """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
-    engine (``engine`` without ``cylinder``: every cylinder firing), its gas pressure (the
-    Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel."""
+    engine (an engine without ``cylinder``: every cylinder firing), its gas pressure (the
+    Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel.
+    With an engine, stroke, conrod length, reciprocating mass, speed and strokes are the
+    engine's unless given (:func:`given`); the bore of one cylinder is the thesis' 76.8 mm
+    unless given, that of the whole engine the stroke (a square engine)."""
 
-    engine: str | None = Field(None, title="Engine file or preset")
     cylinder: Whole | None = Field(
         None, ge=1, le=10_000, title="Cylinder of the engine (none: all cylinders)"
     )
@@ -541,12 +649,14 @@ class SensitivityOptions(CycleOptions):
     """``sensitivity``: the cycle swept over balance factors and reciprocating-mass scales."""
 
     cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
-    pressure_csv: list[str] = Field([], max_length=1, title="Cylinder pressure table")
+    pressure_csv: Annotated[list[str], Many] = Field(
+        [], max_length=1, title="Cylinder pressure table"
+    )
 
     balance_factors: BalanceFactors = Field([0.1 * k for k in range(11)], title="Balance factors")
-    mass_scales: list[Annotated[Number, Field(gt=0, le=10)]] = Field(
-        [1.0], min_length=1, max_length=MAX_SWEEP, title="Reciprocating-mass scales"
-    )
+    mass_scales: Annotated[
+        list[Annotated[Number, Field(gt=0, le=10)]], BeforeValidator(_number_sweep)
+    ] = Field([1.0], min_length=1, max_length=MAX_SWEEP, title="Reciprocating-mass scales")
 
 
 #: most main bearings one crank may be given (``bearings --bearing``)
@@ -600,7 +710,13 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     balance_factor: Factor | None = Field(
         None, title="Balance factor", description="empty: the engine file's"
     )
-    webs: list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]] | None = Field(
+    webs: (
+        Annotated[
+            list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]],
+            BeforeValidator(_comma_list),
+        ]
+        | None
+    ) = Field(
         None,
         min_length=2,
         max_length=2 * MAX_MAIN_BEARINGS,
@@ -609,7 +725,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     )
     modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
     poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
-    bearing: list[Position] | None = Field(
+    bearing: Annotated[list[Position], Many] | None = Field(
         None, min_length=2, max_length=MAX_MAIN_BEARINGS, title="Main-bearing positions"
     )
     bearing_stiffness: Stiffness | None = Field(
@@ -621,6 +737,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     clearance: Length | None = Field(
         None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
     )
+    curves: bool = Field(False, title="The load and moment curves over the cycle in the JSON")
 
     @model_validator(mode="after")
     def _petroff(self) -> BearingOptions:
@@ -698,7 +815,7 @@ class BearingSweepOptions(StudyOptions):
     factors (docs/main_bearings.md); the loads' own settings are :class:`BearingOptions`.
     ``none`` is one case whatever the balance factors."""
 
-    patterns: list[Annotated[str, BeforeValidator(_web_pattern)]] = Field(
+    patterns: Annotated[list[Annotated[str, BeforeValidator(_web_pattern)]], Many] = Field(
         ["all"],
         min_length=1,
         max_length=MAX_PATTERNS,
@@ -738,6 +855,42 @@ class BearingSweepOptions(StudyOptions):
         return self
 
 
+#: the settings of ``bearings`` that ``bearings-sweep`` does not take: it sweeps the
+#: balance factor and the counterweight pattern, and has no curves
+NOT_SWEPT = ("balance_factor", "webs", "curves")
+
+
+class BearingSweepStudyOptions(BearingSweepOptions, BearingOptions):
+    """``bearings-sweep`` as one study: the sweep (:class:`BearingSweepOptions`) and the
+    loads' settings of every case (:class:`BearingOptions`, but for :data:`NOT_SWEPT`)."""
+
+    @model_validator(mode="after")
+    def _not_swept(self) -> BearingSweepStudyOptions:
+        for name in NOT_SWEPT:
+            if name in self.model_fields_set:
+                raise InputError(
+                    name,
+                    getattr(self, name),
+                    "is not a setting of the sweep: it sweeps the balance factors and the "
+                    "counterweight patterns (balance_factors, patterns) and has no curves",
+                )
+        return self
+
+    def loads(self) -> BearingOptions:
+        """The settings of the loads of every case."""
+        values = {name: getattr(self, name) for name in BearingOptions.model_fields}
+        given_ = {name for name in BearingOptions.model_fields if name in self.model_fields_set}
+        return BearingOptions.model_construct(given_, **values)
+
+    def sweep(self) -> BearingSweepOptions:
+        """The sweep's own settings."""
+        values = {name: getattr(self, name) for name in BearingSweepOptions.model_fields}
+        given_ = {
+            name for name in BearingSweepOptions.model_fields if name in self.model_fields_set
+        }
+        return BearingSweepOptions.model_construct(given_, **values)
+
+
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 
@@ -749,6 +902,7 @@ class ShaftSectionOptions(StudyOptions):
     poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
     unbalance_radius: Length = Field(0.02, title="CG radius of the unbalance masses")
     bearing_stiffness: Stiffness | None = Field(None, title="Radial bearing stiffness")
+    theory: Literal["euler-bernoulli", "timoshenko"] = Field("euler-bernoulli", title="Beam theory")
 
     @model_validator(mode="after")
     def _beam(self) -> ShaftSectionOptions:
@@ -757,16 +911,33 @@ class ShaftSectionOptions(StudyOptions):
 
 
 class ShaftStudyOptions(ShaftSectionOptions):
-    """``shaft inline4|inline3``: the required unbalance and the placement sweep."""
+    """``shaft inline4|inline3``: the required unbalance (given, or from the study's
+    engine) and the placement sweep; ``order`` is inline4's, ``type``, ``hold``,
+    ``bearing_offset`` and ``z_min`` inline3's."""
 
-    engine: str | None = Field(None, title="Engine file or preset")
     unbalance: Requirement | None = Field(None, title="Required first moment")
     speed: Speed | None = Field(None, title="Shaft speed")
     weight: ShaftWeight = Field(2.0, title="Objective weight w")
-    weights: list[ShaftWeight] | None = Field(
+    weights: Annotated[list[ShaftWeight], BeforeValidator(_comma_list)] | None = Field(
         None, min_length=1, max_length=MAX_SWEEP, title="Weights of the sweep"
     )
     points: Whole = Field(200, ge=3, le=MAX_SHAFT_POINTS, title="Design points")
+    secondary: Literal["reaction-difference", "inverse-frequency"] | None = Field(
+        None,
+        title="B of the objective",
+        description="empty: reaction-difference for inline4, inverse-frequency for inline3",
+    )
+    order: Whole | None = Field(
+        None,
+        ge=1,
+        le=2,
+        title="Order of the shaft the engine needs (1 or 2)",
+        description="empty: 2 when the engine has a free second-order force or moment, else 1",
+    )
+    type: Literal["I", "II", "III", "all"] = Field("all", title="Rotor type")
+    hold: Literal["couple", "unbalance"] = Field(
+        "couple", title="Keep the couple (physical) or each mass's unbalance (paper)"
+    )
     bearing_offset: Length | None = Field(None, title="Bearing-to-mass distance")
     z_min: Number = Field(0.3, ge=0, lt=1, title="Smallest second-mass position z/L")
 
@@ -774,10 +945,12 @@ class ShaftStudyOptions(ShaftSectionOptions):
 class ShaftCheckOptions(ShaftSectionOptions):
     """``shaft check``: one layout (bearings, masses, unbalances, phases) and its limits."""
 
-    bearing: list[Position] = Field([], min_length=2, max_length=MAX_SHAFT_ITEMS)
-    mass: list[Position] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
-    unbalance: list[Unbalance] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
-    phase: list[Angle] = Field([], max_length=MAX_SHAFT_ITEMS)
+    bearing: Annotated[list[Position], Many] = Field([], min_length=2, max_length=MAX_SHAFT_ITEMS)
+    mass: Annotated[list[Position], Many] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
+    unbalance: Annotated[list[Unbalance], Many] = Field(
+        [], min_length=1, max_length=MAX_SHAFT_ITEMS
+    )
+    phase: Annotated[list[Angle], Many] = Field([], max_length=MAX_SHAFT_ITEMS)
     speed: Speed | None = Field(None, title="Shaft speed")
     max_speed: Speed | None = Field(None, title="Maximum shaft speed")
     margin: Number = Field(0.25, ge=0, le=10, title="Critical-speed separation")
@@ -798,14 +971,20 @@ class BalanceFactorOptions(StudyOptions):
     speed: Speed | None = Field(None, title="Crank speed")
     rod_length: Length | None = Field(None, title="Conrod length")
     offset: Position | None = Field(None, title="Wrist-pin offset")
-    engine: str | None = Field(None, title="Engine file or preset")
+    kinematics: Literal["exact", "series", "first-order"] | None = Field(
+        None,
+        title="Piston kinematics",
+        description="empty: the engine's; without an engine exact with a conrod length, "
+        "else first-order",
+    )
     cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
 
 
 class RebalancePartsOptions(StudyOptions):
-    """``rebalance``: the options that override the values of a parts file (the file's
+    """``rebalance``: a parts file and the settings that override its values (the file's
     own schema, :mod:`crankbalance.io.rebalance_file`, then checks how they combine)."""
 
+    parts: str | None = Field(None, title="Parts file (TOML)")
     crank_radius: Length | None = Field(None, title="Crank radius")
     cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
     cw_radius: Length | None = Field(None, title="Counterweight CG radius")
@@ -813,13 +992,18 @@ class RebalancePartsOptions(StudyOptions):
     old_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, old parts")
     new_rotating_mass: Mass | None = Field(None, title="Rotating mass, new parts")
     new_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, new parts")
-    target: list[Annotated[float | str, BeforeValidator(_target)]] = Field(
+    target: Annotated[list[Annotated[float | str, BeforeValidator(_target)]], Many] = Field(
         [], max_length=50, title="Target balance factors"
     )
+    method: Literal["face", "holes"] | None = Field(None, title="Correction method")
     correction_radius: Length | None = Field(None, title="Radius of the correction")
     face_area: Area | None = Field(None, title="Face area ground per web")
+    face_orientation: Literal["radial", "axial"] | None = Field(
+        None, title="Face ground radially or axially"
+    )
     hole_diameter: Length | None = Field(None, title="Drill diameter")
     holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
+    hole_direction: Literal["axial", "radial"] | None = Field(None, title="Hole direction")
     point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
     depth_to: DepthTo | None = Field(None, title="Depth read to")
     web_thickness: Length | None = Field(None, title="Web thickness at the holes")
@@ -862,13 +1046,41 @@ Reading = Annotated[tuple[float, float, float], BeforeValidator(_reading)]
 Positions = Annotated[list[Position], BeforeValidator(_pair), Field(min_length=2, max_length=2)]
 
 
-class ShopOptions(StudyOptions):
-    """The balance shop (issue 16): matching, bob-weights, readings to a hole plan, ISO check."""
+#: most engines one ``shop scatter`` draws
+MAX_SCATTER_SAMPLES = 10_000_000
+#: the coarsest resolution of the scale of ``shop scatter`` [kg]
+MAX_SCALE_STEP = 0.01
 
+
+def _scale_step(value: Any) -> float:
+    """The resolution of a scale: 0 (exact), or a mass up to :data:`MAX_SCALE_STEP`."""
+    if (
+        isinstance(value, str)
+        and value.strip() == "0"
+        or (isinstance(value, int | float) and not isinstance(value, bool) and value == 0)
+    ):
+        return 0.0
+    step = parse_quantity(value, "mass", "")
+    if not 0 <= step <= MAX_SCALE_STEP:
+        raise InputError("", value, "must be a mass from 0 to 10 g")
+    return step
+
+
+#: the resolution of a scale [kg]
+ScaleStep = Annotated[float, BeforeValidator(_scale_step)]
+
+
+class ShopOptions(StudyOptions):
+    """The balance shop (issue 16): the parts file, matching, bob-weights, readings to a hole
+    plan, the ISO check, and the Monte Carlo of the weight scatter."""
+
+    parts: str | None = Field(None, title="Parts file (CSV or TOML)")
     fraction: Factor = Field(0.5, title="Reciprocating fraction in the bob-weights")
     method: Literal["milp", "pairing", "exhaustive", "as-listed"] = "milp"
     time_limit: Time = Field(60.0, le=3600.0, title="Matching time limit")
-    reading: list[Reading] = Field([], max_length=2, title="Readings, one per measuring plane")
+    reading: Annotated[list[Reading], Many] = Field(
+        [], max_length=2, title="Readings, one per measuring plane"
+    )
     convention: Literal["heavy", "light"] = "heavy"
     measuring_planes: Positions | None = Field(None, title="Measuring planes")
     correction_planes: Positions | None = Field(None, title="Correction planes")
@@ -888,6 +1100,9 @@ class ShopOptions(StudyOptions):
     speed: Speed | None = Field(None, title="Largest service speed")
     bearings: Positions | None = Field(None, title="Main bearings")
     center_of_mass: Position | None = Field(None, title="Centre of mass")
+    samples: Whole = Field(100_000, ge=1, le=MAX_SCATTER_SAMPLES, title="Engines drawn")
+    seed: Whole = Field(0, ge=0, le=2**63 - 1, title="Seed of the random numbers")
+    scale_step: ScaleStep = Field(1e-4, title="Resolution of the scale")
 
     @model_validator(mode="after")
     def _two_readings(self) -> ShopOptions:
@@ -897,7 +1112,9 @@ class ShopOptions(StudyOptions):
 
 
 class ToleranceOptions(StudyOptions):
-    """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes."""
+    """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes (with an
+    engine the rotor mass and the speed default to its crank's rotating masses and its
+    speed); ``list_grades`` lists the grades instead."""
 
     grade: str | None = Field(None, title="Balance quality grade")
     rotor_mass: Mass | None = Field(None, title="Rotor mass")
@@ -908,6 +1125,7 @@ class ToleranceOptions(StudyOptions):
     center_of_mass: Position | None = Field(None, title="Centre of mass")
     plane_1: Position | None = Field(None, title="Correction plane I")
     plane_2: Position | None = Field(None, title="Correction plane II")
+    list_grades: bool = Field(False, title="List the grades")
 
 
 class PlotOptions(StudyOptions):
@@ -928,15 +1146,25 @@ class PlotOptions(StudyOptions):
         return self
 
 
+def _no_vr_layout(value: Any) -> Any:
+    """The explorer's layouts: a VR is refused with the reason (it enumerates no VR)."""
+    from ..physics.explore.orders import VR_REFUSED
+
+    if isinstance(value, str) and value.strip() == "vr":
+        raise InputError("", value, VR_REFUSED)
+    return value
+
+
 class ExploreOptions(StudyOptions):
     """``explore``: the design-space explorer (docs/explorer.md)."""
 
-    layout: Literal["inline", "vee", "boxer", "w"] = Field("inline", title="Layout")
+    layout: Annotated[Literal["inline", "vee", "boxer", "w"], BeforeValidator(_no_vr_layout)] = (
+        Field("inline", title="Layout")
+    )
     cylinders: Whole = Field(4, ge=1, le=20, title="Cylinders")
     strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle (2 or 4)")
     bank_angle: Angle | None = Field(None, title="Vee or W bank angle")
     crank: Literal["any", "flat", "cross", "split"] = Field("any", title="Crank family")
-    engine: str | None = Field(None, title="Engine file or preset giving masses and geometry")
     target: Literal["none", "counterweights", "primary", "secondary"] = Field(
         "counterweights", title="Balancing target"
     )
@@ -996,7 +1224,6 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     Crank dimensions left empty are those ``bearings`` uses
     (:func:`crankbalance.studies.crank.crank_dimensions`)."""
 
-    engine: str | None = Field(None, title="Engine file or preset")
     speed_min: Speed = Field(600 * _RPM, title="Lowest speed")
     speed_max: Speed | None = Field(None, title="Highest speed (default: the engine's)")
     speed_points: Whole = Field(400, ge=10, le=2001, title="Speeds of the sweep")
@@ -1033,8 +1260,6 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
 
     @model_validator(mode="after")
     def _consistent(self) -> TorsionalOptions:
-        if self.engine is None:
-            raise InputError("engine", None, "the engine file or preset is needed")
         if self.speed_max is not None and self.speed_max <= self.speed_min:
             raise InputError("speed_max", self.speed_max, "must be above the lowest speed")
         if (self.damper_inertia is None) != (self.damper_frequency is None):
@@ -1059,6 +1284,16 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
 
 
 Options = TypeVar("Options", bound=StudyOptions)
+
+
+def given(settings: StudyOptions) -> frozenset[str]:
+    """The fields of ``settings`` that were given (typed on the command line, sent to the
+    API, passed to the model), as opposed to left at their defaults: a study takes an
+    engine's value where a setting was not given, and refuses a given one that would not
+    act."""
+    return frozenset(settings.model_fields_set)
+
+
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 
 

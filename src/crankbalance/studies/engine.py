@@ -42,6 +42,14 @@ def as_model(engine: EngineLike) -> EngineModel:
     return build_model(engine)
 
 
+def engine_label(engine: EngineLike) -> str:
+    """An engine as a message or an output names it: the preset name or the path as given,
+    else the name of the spec or model."""
+    if isinstance(engine, EngineSpec | EngineModel):
+        return str(engine.name)
+    return str(engine)
+
+
 @dataclass(frozen=True)
 class Analysis:
     """Free forces and moments of one engine (see :func:`analyze`)."""
@@ -369,3 +377,34 @@ def balance_engine(
     if overrides:
         cw = dataclasses.replace(cw, **overrides)
     return BalanceStudy(model, balance(model, cw, primary, secondary, orders))
+
+
+# --------------------------------------------------------------------------- the two studies
+def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
+    """The analysis study of the registry (``analyze``): :func:`analyze` of ``engine`` with
+    its settings (the highest order)."""
+    return analyze(engine, settings.orders)
+
+
+def balancing(engine: str | os.PathLike[str] | EngineSpec, settings: Any) -> BalanceStudy:
+    """The balancing study of the registry (``balance``): :func:`balance_engine` of
+    ``engine`` with the counterweight settings given in ``settings``
+    (:class:`~crankbalance.schema.settings.BalanceOptions`: angle, balance factor, method,
+    scope) in place of the engine file's. An angle given for individual counterweights, which
+    take no common angle, is refused."""
+    from ..errors import InputError
+    from ..schema.settings import given
+
+    overrides = {
+        name: getattr(settings, name)
+        for name in ("angle", "balance_factor", "method", "scope")
+        if getattr(settings, name) is not None
+    }
+    study = balance_engine(engine, **overrides)
+    counterweights = study.result.counterweights
+    if "angle" in given(settings) and counterweights is not None:
+        if counterweights.method == "individual":
+            raise InputError(
+                "angle", settings.angle, "only acts on equal counterweights (--method pattern)"
+            )
+    return study
