@@ -439,7 +439,9 @@ class PerformanceOptions(StudyOptions):
     2016, Sec. 5)."""
 
     bore: Length | None = Field(
-        None, title="Bore", description="empty: square engine (bore = stroke)"
+        None,
+        title="Bore",
+        description="empty: 76.8 mm, the one-cylinder studies' (cycle, sensitivity)",
     )
     balance_factors: BalanceFactors = Field(
         [0.0, 0.25, 0.5, 0.75, 1.0],

@@ -468,14 +468,32 @@ def run(
     parse the settings, call the study function, name an error's setting as the edge does
     (``naming``, default: the option without dashes)."""
     entry = study(name)
+    settings = parse(entry, values, naming or entry.option)
+    return execute(name, engine, settings, values=values, naming=naming, **edge)
+
+
+def execute(
+    name: str,
+    engine: Any,
+    settings: StudyOptions,
+    *,
+    values: Mapping[str, Any] | None = None,
+    naming: Callable[[str], str] | None = None,
+    **edge: Any,
+) -> Any:
+    """Call the function of study ``name`` with its settings already parsed (an instance of
+    its model); an error about a setting is named as :func:`run` names it (``values``: the
+    settings as typed, shown in its messages)."""
+    entry = study(name)
     namer = naming or entry.option
-    settings = parse(entry, values, namer)
+    if not isinstance(settings, entry.model()):
+        raise TypeError(f"{name} takes {entry.settings}, not {type(settings).__name__}")
     if entry.engine == "required" and engine is None:
         raise InputError(namer("engine"), None, "the engine file or preset is needed")
     if entry.engine == "none" and engine is not None:
         raise InputError(namer("engine"), engine, f"{entry.name} takes no engine")
     function = entry.load()
-    with named(entry, values, settings, namer):
+    with named(entry, values or {}, settings, namer):
         if entry.engine == "none":
             return function(settings, **edge)
         return function(engine, settings, **edge)

@@ -573,7 +573,9 @@ class ShopResult:
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract of the schema: ``{"schema", "result"}``, every key with its
         unit (:func:`shop_json`)."""
-        return {"schema": self.schema, "result": shop_json(self.result)}
+        out = to_jsonable({"schema": self.schema, "result": shop_json(self.result)})
+        assert isinstance(out, dict)
+        return out
 
 
 def _parts_file(options: ShopOptions) -> str:
