@@ -403,3 +403,13 @@ def test_every_command_is_a_study_or_says_why_not() -> None:
             words,
             options ^ (settings | set(entry.edge)),
         )
+
+
+def test_the_engine_library_is_one_answer() -> None:
+    """``presets --format json`` is the listing ``GET /api/presets`` answers."""
+    from crankbalance.studies.engine import presets_listing
+
+    assert run_cli(["presets", "--format", "json"]) == presets_listing()
+    assert {"name": "v8-crossplane", "title": "V8 90 deg, crossplane crank"} in (
+        presets_listing()["presets"]
+    )

@@ -148,17 +148,9 @@ def curves_csv(result: object) -> str:
 @format_option(("table", "json"))
 def presets(fmt: str) -> None:
     """List the built-in engines (use a name wherever an engine file is expected)."""
-    from ..io.engine_file import list_presets, load_engine
+    from ..studies.engine import preset_titles, presets_listing
 
-    names = list_presets()
     if fmt == "json":
-        click.echo(
-            json_text(
-                {
-                    "schema": "crankbalance.presets/1",
-                    "presets": [{"name": n, "title": load_engine(n).name} for n in names],
-                }
-            )
-        )
+        click.echo(json_text(presets_listing()))
         return
-    echo_table(["preset", "engine"], [[n, load_engine(n).name] for n in names])
+    echo_table(["preset", "engine"], [[name, title] for name, title in preset_titles()])

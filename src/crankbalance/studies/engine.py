@@ -3,6 +3,7 @@ moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass
@@ -408,3 +409,24 @@ def balancing(engine: str | os.PathLike[str] | EngineSpec, settings: Any) -> Bal
                 "angle", settings.angle, "only acts on equal counterweights (--method pattern)"
             )
     return study
+
+
+# --------------------------------------------------------------------------- the library
+PRESETS_SCHEMA = "crankbalance.presets/1"
+
+
+@functools.cache
+def preset_titles() -> tuple[tuple[str, str], ...]:
+    """(name, title) of every built-in engine, read once per process."""
+    from ..io.engine_file import list_presets
+
+    return tuple((name, load_engine(name).name) for name in list_presets())
+
+
+def presets_listing() -> dict[str, Any]:
+    """The JSON contract ``crankbalance.presets/1``: every built-in engine's name and title
+    (``crankbalance presets --format json`` and ``GET /api/presets``)."""
+    return {
+        "schema": PRESETS_SCHEMA,
+        "presets": [{"name": name, "title": title} for name, title in preset_titles()],
+    }

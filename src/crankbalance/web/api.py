@@ -404,7 +404,9 @@ def register(app: Any) -> None:
 
     @app.get("/api/presets")
     def presets() -> JSONResponse:
-        return JSONResponse({"schema": "crankbalance.presets/1", "presets": list_presets()})
+        from ..studies.engine import presets_listing
+
+        return JSONResponse(presets_listing())
 
     def route(kind: str) -> Any:
         async def handler(request: Request) -> JSONResponse:
