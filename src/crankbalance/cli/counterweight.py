@@ -12,10 +12,9 @@ from typing import Any
 
 import click
 
-from ..output.format import json_text, keyed, number
+from ..output.format import json_text, number
 from ..output.format import text as unit_text
 from ..physics.counterweight import SYMBOLS as SYMBOL
-from ..results import require_finite
 from ..schema.settings import CounterweightOptimizeOptions, allowed
 from ..studies.counterweight import PARAMETERS
 from ._common import (
@@ -29,17 +28,6 @@ from ._common import (
     run_study,
     typed,
 )
-
-#: JSON keys of a part's mass properties (``counterweight check``)
-_PART_KEYS: dict[str, str | tuple[str, float]] = {
-    "volume": "volume_m3",
-    "mass": "mass_kg",
-    "centre_of_gravity": "centre_of_gravity_m",
-    "cg_radius": "cg_radius_m",
-    "first_moment": "first_moment_kg_m",
-    "inertia": "inertia_kg_m2",
-    "balance": "balance_percent",
-}
 
 
 def _limits(field: str) -> str:
@@ -259,39 +247,31 @@ def export(engine: str | None, output: str, **values: Any) -> None:
 @click.argument("part")
 @_requirement_options
 @_density_option
-@click.option("--unit", default="mm", show_default=True, help="Length unit of the file.")
+@click.option("--unit", default=None, help="Length unit of the file. [default: mm]")
 @format_option(("table", "json"))
-def check(part: str, engine: str | None, unit: str, fmt: str, **values: Any) -> None:
+def check(part: str, engine: str | None, unit: str | None, fmt: str, **values: Any) -> None:
     """Mass properties of an STL/STEP PART about the crank axis (the file's z axis), against
     the requirement of ``counterweight show`` with the same options."""
-    from ..io.cad import mesh_mass_properties
     from ..schema.settings import CounterweightDesignOptions
-    from ..studies.counterweight import requirement
+    from ..studies.counterweight import part as part_study
     from ..studies.registry import named, study
 
     require_extra("geometry", "trimesh")
     if str(part).lower().endswith((".step", ".stp")):
         require_extra("cad")
     given = typed(values)
-    settings = parse_settings(CounterweightDesignOptions, {**given, "unit": f"1 {unit}"})
+    if unit is not None:
+        given["unit"] = f"1 {unit}"
+    settings = parse_settings(CounterweightDesignOptions, given)
     naming = {"engine": "--engine"}
     with named(
         study("counterweight-show"), given, settings, lambda f: naming.get(f, option_name(f))
     ):
-        required = requirement(engine, settings)
-    m = mesh_mass_properties(
-        part, settings.density, length_unit=settings.unit, required_first_moment=required
-    )
-    out = {
-        "schema": "crankbalance.counterweight/2",
-        "mode": "part",
-        "path": str(part),
-        **keyed(m.to_dict(), _PART_KEYS),
-    }
-    require_finite(out)
+        result = part_study(engine, settings, part)
     if fmt == "json":
-        click.echo(json_text(out))
+        click.echo(json_text(result.to_dict()))
         return
+    m = result.properties
     echo_table(
         ["quantity", "value"],
         [

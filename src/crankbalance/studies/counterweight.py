@@ -338,3 +338,62 @@ def show(engine: EngineLike | None, settings: CounterweightDesignOptions) -> Des
     result = design(engine, settings)
     require_finite(result.to_dict())
     return result
+
+
+# --------------------------------------------------------------------------- a CAD part
+#: JSON keys of a part's mass properties (``counterweight check``)
+PART_KEYS: dict[str, str | tuple[str, float]] = {
+    "volume": "volume_m3",
+    "mass": "mass_kg",
+    "centre_of_gravity": "centre_of_gravity_m",
+    "cg_radius": "cg_radius_m",
+    "first_moment": "first_moment_kg_m",
+    "inertia": "inertia_kg_m2",
+    "balance": "balance_percent",
+}
+
+
+@dataclass(frozen=True)
+class PartResult:
+    """The mass properties of a CAD part about the crank axis, against a requirement.
+
+    Attributes
+    ----------
+    path : str
+        The part's file.
+    properties : MeshMassProperties
+        Volume, mass, centre of gravity, first moment, inertia, balance [SI].
+    """
+
+    path: str
+    properties: Any
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.counterweight/2`` (mode ``part``)."""
+        from ..output.format import keyed
+
+        out = to_jsonable(
+            {
+                "schema": SCHEMA,
+                "mode": "part",
+                "path": self.path,
+                **keyed(self.properties.to_dict(), PART_KEYS),
+            }
+        )
+        assert isinstance(out, dict)
+        return out
+
+
+def part(engine: EngineLike | None, settings: CounterweightDesignOptions, path: str) -> PartResult:
+    """The mass properties of an STL or STEP part (``path``, its length unit ``unit``)
+    about the crank axis (the file's z axis), of the settings' density, against the
+    requirement of :func:`requirement` (its balance [%])."""
+    from ..io.cad import mesh_mass_properties
+
+    required = requirement(engine, settings)
+    props = mesh_mass_properties(
+        path, settings.density, length_unit=settings.unit, required_first_moment=required
+    )
+    result = PartResult(str(path), props)
+    result.to_dict()  # checked finite
+    return result
