@@ -3,10 +3,9 @@ options a user typed, and the check for an optional extra."""
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import re
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -124,21 +123,6 @@ def refuse_unused(used: dict[str, bool], reason: str, given: set[str] | None = N
         if name in typed and not acts:
             context = click.get_current_context()
             raise InputError(option_name(name), context.params.get(name), reason)
-
-
-@contextlib.contextmanager
-def named_as_typed(typed: Mapping[str, Any]) -> Iterator[None]:
-    """Within the block, an :class:`~crankbalance.errors.InputError` of the physics about
-    a value the user typed (``typed``: field name -> the text typed) names its option
-    (``torque`` -> ``--torque``) and shows the text."""
-    from ..errors import InputError
-
-    try:
-        yield
-    except InputError as error:
-        if error.field not in typed:
-            raise
-        raise InputError(option_name(error.field), typed[error.field], error.allowed) from None
 
 
 def format_option(choices: Sequence[str]) -> Callable[[Any], Any]:

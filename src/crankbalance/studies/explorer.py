@@ -24,7 +24,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..results import require_finite, to_jsonable
-from ..schema.settings import ExploreOptions
+from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
 from .explore import Keep, RunResult, Sample, progress_line, run
 
@@ -210,7 +210,7 @@ def explore(
     if o.scheduler is not None and o.workers is not None:
         raise InputError("workers", o.workers, "not with --scheduler")
     for name, needs in (("connect_timeout", "scheduler"), ("seed", "sample")):
-        if name in o.model_fields_set and getattr(o, needs) is None:
+        if name in given(o) and getattr(o, needs) is None:
             raise InputError(name, getattr(o, name), f"only acts with --{needs}")
     if o.scheduler is not None and not SCHEDULER.match(o.scheduler):
         raise InputError("scheduler", o.scheduler, "an address PROTOCOL://HOST:PORT")

@@ -133,11 +133,16 @@ def _requirement(engine: EngineLike | None, o: ShaftStudyOptions, order: int | N
         )
     from .requirements import default_shaft_order, shaft_requirement
 
-    if order is None:
-        from .engine import analyze
+    try:
+        if order is None:
+            from .engine import analyze
 
-        order = default_shaft_order(analyze(engine))
-    need = shaft_requirement(engine, order, o.length, o.unbalance_radius)
+            order = default_shaft_order(analyze(engine))
+        need = shaft_requirement(engine, order, o.length, o.unbalance_radius)
+    except InputError as error:
+        if error.field != "engine":
+            raise
+        raise InputError("engine", engine_label(engine), error.allowed) from None
     return Requirement(need.unbalance, need.speed, order, engine_label(engine))
 
 
