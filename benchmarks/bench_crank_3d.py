@@ -1,4 +1,4 @@
-"""The 3-D crank figure (issue 13: web edit -> updated figures): ``figures.crank_3d``.
+"""The 3-D crank figure (issue 13: web edit -> updated figures): ``crank_3d``.
 
 Measured in one process, wall-clock per build of the balanced crank's figure and its
 ``to_plotly_json()`` (what the web page does after every edit), median and slowest of
@@ -22,7 +22,8 @@ from collections.abc import Callable
 from typing import Any
 
 from crankbalance.io.engine_file import parse_engine_text, preset_text
-from crankbalance.output import figures
+from crankbalance.output.figures.common import TEMPLATE
+from crankbalance.output.figures.crank3d import crank_3d
 from crankbalance.studies.engine import BalanceStudy, balance_engine
 
 TARGET = 0.050  # s per build
@@ -64,7 +65,7 @@ def bare(points: int) -> Any:
     xs = [float(k) for k in range(points)]
     return go.Figure(
         data=[go.Scatter3d(x=xs, y=xs, z=xs, mode="lines")],
-        layout={"template": figures.TEMPLATE},
+        layout={"template": TEMPLATE},
     )
 
 
@@ -75,9 +76,9 @@ def main() -> None:
 
     print(f"crank_3d build + to_plotly_json, {count} builds each; target {TARGET * 1e3:.0f} ms")
     for label, study in (("v12-60", balance_engine("v12-60")), ("V16", v16())):
-        fig = figures.crank_3d(study)
+        fig = crank_3d(study)
         points = sum(x is not None for t in fig.data for x in t.x)
-        measured = timed(lambda s=study: figures.crank_3d(s), count)
+        measured = timed(lambda s=study: crank_3d(s), count)
         reference = timed(lambda n=points: bare(n), count)
         median, ref = statistics.median(measured), statistics.median(reference)
         print(

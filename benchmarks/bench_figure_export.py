@@ -22,7 +22,8 @@ import statistics
 import time
 from pathlib import Path
 
-from crankbalance.output import figures, render
+from crankbalance.output import render
+from crankbalance.output.figures.engine import curves_figure, orders_bar, polar_figure
 from crankbalance.studies.engine import analyze
 
 TARGET = 1.0  # s per export after the first
@@ -35,10 +36,10 @@ def main() -> None:
 
     result = analyze("v12-60")
     kinds = [
-        figures.orders_bar(result),
-        figures.curves_figure(result),
-        figures.polar_figure(result, 1),
-        figures.orders_bar(analyze("inline4")),
+        orders_bar(result),
+        curves_figure(result),
+        polar_figure(result, 1),
+        orders_bar(analyze("inline4")),
     ]
 
     start = time.perf_counter()
@@ -61,7 +62,7 @@ def main() -> None:
     )
     one_shot = time.perf_counter() - start
 
-    launcher = render._EXPORTER.pid()
+    launcher = render.EXPORTER.pid()
     children = Path(f"/proc/{launcher}/task/{launcher}/children")
     if launcher is not None and children.exists():
         browser = children.read_text().split()[0]

@@ -229,7 +229,7 @@ async def run(
 def reference(count: int) -> list[float]:
     """The server's work for one edit of the V12, in this process: the form validated,
     analysis and balancing, the 3-D crank figure and its JSON [s]."""
-    from crankbalance.output import figures
+    from crankbalance.output.figures.crank3d import crank_3d
     from crankbalance.web.project import Project
 
     project = Project.from_preset(ENGINE)
@@ -239,7 +239,7 @@ def reference(count: int) -> list[float]:
         project.set("crank_radius", f"{40 + k % 9} mm")
         c = project.compute()
         assert c is not None
-        figures.crank_3d(c.study).to_plotly_json()
+        crank_3d(c.study).to_plotly_json()
         times.append(time.perf_counter() - t0)
     return times
 
@@ -247,14 +247,16 @@ def reference(count: int) -> list[float]:
 def png_reference(count: int) -> dict[str, list[float]]:
     """``render.to_image`` of the figures of :data:`PNG_FIGURES` for the V12 in this process,
     after a first export: ``count`` each [s]."""
-    from crankbalance.output import figures, render
+    from crankbalance.output import render
+    from crankbalance.output.figures.crank3d import crank_3d
+    from crankbalance.output.figures.engine import orders_bar
     from crankbalance.web.project import Project
 
     c = Project.from_preset(ENGINE).compute()
     assert c is not None
     built = {
-        "crank3d": figures.crank_3d(c.analysis.model, c.study),
-        "orders": figures.orders_bar(c.analysis),
+        "crank3d": crank_3d(c.analysis.model, c.study),
+        "orders": orders_bar(c.analysis),
     }
     render.to_image(built["orders"], "png")
     times: dict[str, list[float]] = {name: [] for name, _ in PNG_FIGURES}

@@ -71,9 +71,10 @@ def main(output: str) -> None:
         "centrifugal forces of each pattern put nothing on the bearings (docs/main_bearings.md)."
     )
     from crankbalance.io.files import write_atomic
-    from crankbalance.output import figures, render
+    from crankbalance.output import render
+    from crankbalance.output.figures.loads import bearing_loads_figure
 
-    fig = figures.bearing_loads_figure(list(studies.values()), labels=tuple(studies))
+    fig = bearing_loads_figure(list(studies.values()), labels=tuple(studies))
     suffix = Path(output).suffix.lower()
     data = render.to_html(fig) if suffix == ".html" else render.to_image(fig, suffix[1:])  # type: ignore[arg-type]
     write_atomic(output, data)

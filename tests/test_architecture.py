@@ -89,6 +89,25 @@ def test_physics_modules_do_not_import_edges(name: str) -> None:
     assert not bad, f"{name} imports {bad} (physics stays pure: docs/architecture.md)"
 
 
+#: lines above which a physics module's docstring says why it is one module
+LONG_MODULE = 800
+
+
+@pytest.mark.parametrize("name", PHYSICS)
+def test_a_long_physics_module_says_why(name: str) -> None:
+    """Issue 26: no physics module over 800 lines unless its docstring says why (in the
+    words "over 800 lines")."""
+    path = SRC / f"{name.replace('.', '/')}.py"
+    text = path.read_text()
+    if text.count("\n") <= LONG_MODULE:
+        return
+    docstring = ast.get_docstring(ast.parse(text)) or ""
+    assert "over 800 lines" in " ".join(docstring.split()), (
+        f"{name} has {text.count(chr(10))} lines: split it by subject or say why it is one "
+        "(docs/architecture.md)"
+    )
+
+
 def _module_graph() -> dict[str, set[str]]:
     """crankbalance's modules and the crankbalance modules each imports (a package stands
     for its ``__init__``; an import of a name from a package counts as its module)."""
@@ -160,13 +179,60 @@ def test_the_cycle_walk_finds_cycles() -> None:
     assert find_cycles({"a": {"b"}, "b": set(), "c": {"a", "b"}}) == []
 
 
+def private_imports(path: Path, root: Path = SRC) -> set[str]:
+    """The private names (``_name``, not ``__dunder__``) that the module at ``path`` (in the
+    package at ``root``) imports from another crankbalance module, each as
+    ``module: source._name``."""
+    module = ".".join(path.relative_to(root).with_suffix("").parts).removesuffix(".__init__")
+    package = module if path.name == "__init__.py" else module.rpartition(".")[0]
+    found = set()
+    for node in ast.walk(ast.parse(path.read_text())):
+        if not isinstance(node, ast.ImportFrom):
+            continue
+        if node.level:
+            parts = package.split(".") if package else []
+            source = ".".join(parts[: len(parts) - (node.level - 1)] + [node.module or ""])
+        elif _own(node.module or "") is not None:
+            source = _own(node.module or "") or ""
+        else:
+            continue
+        found |= {
+            f"{module}: {source.strip('.')}.{a.name}"
+            for a in node.names
+            if a.name.startswith("_") and not a.name.startswith("__")
+        }
+    return found
+
+
+def test_no_private_names_across_modules() -> None:
+    """No module imports another module's private name: what two modules share is public,
+    with a docstring, in the module that owns it."""
+    found = set().union(*(private_imports(path) for path in SRC.rglob("*.py")))
+    assert not found, "private names imported across modules:\n" + "\n".join(sorted(found))
+
+
+def test_the_private_import_scan_finds_them(tmp_path: Path) -> None:
+    sheet = tmp_path / "output" / "sheet.py"
+    sheet.parent.mkdir()
+    sheet.write_text(
+        "from .report import CSS, _table\n"
+        "from . import _html, __version__\n"
+        "from crankbalance.physics.model import _throws\n"
+        "from numpy import _core\n"
+    )
+    assert private_imports(sheet, tmp_path) == {
+        "output.sheet: output.report._table",
+        "output.sheet: output._html",
+        "output.sheet: physics.model._throws",
+    }
+
+
 #: third-party packages the command line may load, by command (``None``: the start alone,
 #: ``crankbalance --help``); everything else (pint, scipy, plotly, nicegui, kaleido,
 #: shapely, trimesh, pymoo, matplotlib, ...) must stay unloaded
 CLI_PACKAGES: dict[str | None, set[str]] = {
     None: {"click"},
-    "analyze": {"click", "numpy", "pydantic", "pydantic_core", "annotated_types"}
-    | {"typing_extensions", "typing_inspection"},
+    "analyze": {"click", "numpy"},
 }
 CLI_PACKAGES["balance"] = CLI_PACKAGES["analyze"]
 _CLI_PROBE = """

@@ -185,7 +185,7 @@ def test_spec_counterweight_options() -> None:
                         "balance_factor": 0.5,
                     },
                 }
-            ).to_file_dict()
+            ).to_data()
         )
     )
     assert data["counterweights"]["web_offset"] == "15 mm"

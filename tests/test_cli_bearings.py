@@ -149,12 +149,12 @@ def test_figure_overlays_studies() -> None:
     the labels name the studies."""
     pytest.importorskip("plotly")
     from crankbalance.errors import InputError
-    from crankbalance.output import figures
+    from crankbalance.output.figures.loads import bearing_loads_figure
     from crankbalance.studies.loads import bearing_loads
 
     eight = bearing_loads("inline4", {"samples": 36, "gas": False})
     four = bearing_loads("inline4", {"samples": 36, "gas": False, "webs": [1, 0, 0, 1] * 2})
-    fig = figures.bearing_loads_figure([eight, four], "determinate", ("8 CW", "4 CW"))
+    fig = bearing_loads_figure([eight, four], "determinate", ("8 CW", "4 CW"))
     assert len(fig.data) == 2 * (5 + 5)
     assert {t.name for t in fig.data if t.showlegend} >= {"8 CW", "4 CW", "journal 3"}
     polar = [t for t in fig.data if t.name == "4 CW"]
@@ -162,9 +162,9 @@ def test_figure_overlays_studies() -> None:
     np.testing.assert_allclose(polar[2].y, load[2].real)  # z vertically
     np.testing.assert_allclose(polar[2].x, load[2].imag)  # x across
     with pytest.raises(InputError, match="labels"):
-        figures.bearing_loads_figure([eight, four], labels=("one",))
+        bearing_loads_figure([eight, four], labels=("one",))
     with pytest.raises(InputError, match="model"):
-        figures.bearing_loads_figure(eight, "rigid")
+        bearing_loads_figure(eight, "rigid")
 
 
 def test_study_takes_a_balancing_result() -> None:

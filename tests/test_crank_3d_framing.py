@@ -13,7 +13,16 @@ import pytest
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
 from crankbalance.io.engine_file import list_presets  # noqa: E402
-from crankbalance.output import figures  # noqa: E402
+from crankbalance.output.figures.crank3d import (  # noqa: E402
+    SCENE_FILL,
+    SCENE_FOV,
+    SCENE_MARGIN,
+    SCENE_MIN_ASPECT,
+    SCENE_TICK_EDGE,
+    SCENE_TICKS,
+    crank_3d,
+    scene_box_fits,
+)
 from crankbalance.studies.engine import balance_engine  # noqa: E402
 
 AXES = ("x", "y", "z")
@@ -31,11 +40,11 @@ def _points(fig) -> dict[str, np.ndarray]:  # type: ignore[no-untyped-def]
 @pytest.mark.parametrize("preset", list_presets())
 def test_every_part_inside_the_frame(preset: str) -> None:
     study = balance_engine(preset)
-    fig = figures.crank_3d(study.model, study)
+    fig = crank_3d(study.model, study)
     scene = fig.layout.scene
     points = _points(fig)
     largest = max(float(np.ptp(points[k])) for k in AXES)
-    room = figures.SCENE_MARGIN * largest
+    room = SCENE_MARGIN * largest
     lengths = []
     for key in AXES:
         axis = scene[f"{key}axis"]
@@ -46,18 +55,18 @@ def test_every_part_inside_the_frame(preset: str) -> None:
         assert high >= points[key].max() + room * (1 - 1e-9), (preset, key)
         # the tick labels: inside, away from the corners, evenly spaced, few
         ticks = np.asarray(axis.tickvals, dtype=float)
-        edge = figures.SCENE_TICK_EDGE * (high - low)
-        assert 1 <= len(ticks) <= figures.SCENE_TICKS + 1, (preset, key, ticks)
+        edge = SCENE_TICK_EDGE * (high - low)
+        assert 1 <= len(ticks) <= SCENE_TICKS + 1, (preset, key, ticks)
         assert np.all(ticks >= low + edge * (1 - 1e-9)) and np.all(ticks <= high - edge), ticks
         if len(ticks) > 1:
             np.testing.assert_allclose(np.diff(ticks), np.diff(ticks)[0], rtol=1e-9)
     # to scale: the box's sides are the ranges' lengths; the shortest not too thin
     ratios = [scene.aspectratio[k] for k in AXES]
     np.testing.assert_allclose(ratios, np.array(lengths) / max(lengths), rtol=1e-12)
-    assert scene.aspectmode == "manual" and min(ratios) >= figures.SCENE_MIN_ASPECT - 1e-12
+    assert scene.aspectmode == "manual" and min(ratios) >= SCENE_MIN_ASPECT - 1e-12
     # the camera sees every corner of the box, with room
     eye = [scene.camera.eye[k] for k in AXES]
-    assert figures.scene_box_fits(ratios, eye), (preset, eye)
+    assert scene_box_fits(ratios, eye), (preset, eye)
     assert math.dist(eye, (0, 0, 0)) > math.hypot(*ratios) / 2
 
 
@@ -65,19 +74,19 @@ def test_box_fit_against_the_closed_form() -> None:
     """A unit cube seen along x from distance D: its nearest face's corners sit 1/2 aside
     and 1/2 up at depth D - 1/2, so it fits the view (fill f, half-angle a) exactly when
     (1/2) / (D - 1/2) <= f tan(a) (the height binds: the view is wider than high)."""
-    t = figures.SCENE_FILL * math.tan(figures.SCENE_FOV / 2)
+    t = SCENE_FILL * math.tan(SCENE_FOV / 2)
     least = 0.5 + 0.5 / t
-    assert figures.scene_box_fits((1, 1, 1), (least * (1 + 1e-9), 0, 0))
-    assert not figures.scene_box_fits((1, 1, 1), (least * (1 - 1e-6), 0, 0))
-    assert not figures.scene_box_fits((1, 1, 1), (0.3, 0, 0))  # inside the box
+    assert scene_box_fits((1, 1, 1), (least * (1 + 1e-9), 0, 0))
+    assert not scene_box_fits((1, 1, 1), (least * (1 - 1e-6), 0, 0))
+    assert not scene_box_fits((1, 1, 1), (0.3, 0, 0))  # inside the box
 
 
 def test_camera_is_fitted_not_fixed() -> None:
     """A long crank (V12) and a tall one (radial 9) get the nearest camera that fits."""
     for preset in ("v12-60", "radial9"):
         study = balance_engine(preset)
-        scene = figures.crank_3d(study.model, study).layout.scene
+        scene = crank_3d(study.model, study).layout.scene
         ratios = [scene.aspectratio[k] for k in AXES]
         eye = np.array([scene.camera.eye[k] for k in AXES])
-        assert figures.scene_box_fits(ratios, eye)
-        assert not figures.scene_box_fits(ratios, eye * 0.97)
+        assert scene_box_fits(ratios, eye)
+        assert not scene_box_fits(ratios, eye * 0.97)

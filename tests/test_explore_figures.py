@@ -1,4 +1,4 @@
-"""The explorer's figures (figures.explore_scatter, explore_candidate) and
+"""The explorer's figures (explore_scatter, explore_candidate) and
 ``crankbalance explore --plot``: the points drawn are the run's rows."""
 
 from __future__ import annotations
@@ -11,7 +11,12 @@ import numpy as np
 import pytest
 
 from crankbalance.io.parquet import read_parquet
-from crankbalance.output import figures
+from crankbalance.output.figures.explore import (
+    EXPLORE_POINTS,
+    explore_candidate,
+    explore_points,
+    explore_scatter,
+)
 from crankbalance.physics.explore import merit, orders, rank
 from crankbalance.studies.explore import Keep, run
 
@@ -45,10 +50,10 @@ def _trace(fig: object, name: str) -> object:
 
 
 def test_the_scatters_points_are_the_runs_rows(tmp_path: Path) -> None:
-    result, rows = _inline6(tmp_path, figures.EXPLORE_POINTS)
+    result, rows = _inline6(tmp_path, EXPLORE_POINTS)
     assert 0 < rows["index"].size < 64  # the filter dropped some of the 64 engines
-    points = figures.explore_points(result.top, result.pareto)
-    fig = figures.explore_scatter(points, result.pareto, "F2_N", "M2_Nm", total=result.rows)
+    points = explore_points(result.top, result.pareto)
+    fig = explore_scatter(points, result.pareto, "F2_N", "M2_Nm", total=result.rows)
     drawn = _trace(fig, "candidates")
     order = np.argsort(rows["index"])
     assert list(drawn.customdata) == list(rows["index"][order])
@@ -77,11 +82,11 @@ def test_the_scatters_points_are_the_runs_rows(tmp_path: Path) -> None:
 
 def test_a_short_top_list_draws_the_top_and_the_pareto_set(tmp_path: Path) -> None:
     result, rows = _inline6(tmp_path, 3, None)
-    points = figures.explore_points(result.top, result.pareto)
+    points = explore_points(result.top, result.pareto)
     expected = set(result.top["index"]) | set(result.pareto["index"])
     assert set(points["index"]) == expected
     assert len(points["index"]) == len(expected) < rows["index"].size
-    fig = figures.explore_scatter(points, result.pareto, "F2_N", "M2_Nm", total=result.rows)
+    fig = explore_scatter(points, result.pareto, "F2_N", "M2_Nm", total=result.rows)
     assert f"of {rows['index'].size})" in _trace(fig, "candidates").name
 
 
@@ -96,7 +101,7 @@ def test_candidate_bars_are_its_forces_and_moments() -> None:
     )
     row = {name: v[i] for name, v in values.items()}
     row["firing_order"] = candidates.firing_order[i]
-    fig = figures.explore_candidate(row)
+    fig = explore_candidate(row)
     bars = {(t.name, t.xaxis): list(t.y) for t in fig.data}
     assert bars[("forward", "x")] == [values[f"F{n}f_N"][i] for n in range(1, 5)]
     assert bars[("backward", "x2")] == [values[f"M{n}b_Nm"][i] for n in range(1, 5)]

@@ -8,7 +8,23 @@ import pytest
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
 from crankbalance.errors import InputError  # noqa: E402
-from crankbalance.output import figures  # noqa: E402
+from crankbalance.output.figures.balancing import balanced_curves, residuals_bar  # noqa: E402
+from crankbalance.output.figures.common import TITLE_NAME_CHARS, figure_title, roundoff_levels  # noqa: E402
+from crankbalance.output.figures.counterweight import counterweight_profile, pareto_front  # noqa: E402
+from crankbalance.output.figures.crank3d import crank_3d  # noqa: E402
+from crankbalance.output.figures.engine import (  # noqa: E402
+    curves_figure,
+    leading_quantity,
+    orders_bar,
+    polar_figure,
+)
+from crankbalance.output.figures.performance import bench_figure, cycle_figure, sensitivity_figure  # noqa: E402
+from crankbalance.output.figures.shaft import shaft_response_figure, shaft_study  # noqa: E402
+from crankbalance.output.figures.single import (  # noqa: E402
+    balance_factor_sweep,
+    single_cylinder_forces,
+    single_cylinder_polar,
+)
 from crankbalance.studies.engine import analyze, balance_engine  # noqa: E402
 
 
@@ -29,7 +45,7 @@ def traces(fig, name: str) -> list:
 # --------------------------------------------------------------------------- orders
 def test_orders_bar_heights_equal_api(inline4: tuple) -> None:
     a, _ = inline4
-    fig = figures.orders_bar(a)
+    fig = orders_bar(a)
     data = a.to_dict()
     fwd_f, fwd_m = traces(fig, "forward (co-rotating)")
     bwd_f, bwd_m = traces(fig, "backward (counter-rotating)")
@@ -48,7 +64,7 @@ def test_orders_bar_heights_equal_api(inline4: tuple) -> None:
 def test_orders_bar_drops_roundoff(paper: tuple) -> None:
     """Inline-3: the free forces cancel; round-off (~1e-12 N) is drawn as exactly zero."""
     a, _ = paper
-    fig = figures.orders_bar(a)
+    fig = orders_bar(a)
     fwd_f = traces(fig, "forward (co-rotating)")[0]
     assert np.all(np.asarray(fwd_f.y)[:-1] == 0.0)
 
@@ -56,7 +72,7 @@ def test_orders_bar_drops_roundoff(paper: tuple) -> None:
 # --------------------------------------------------------------------------- curves
 def test_curves_match_api_and_phasors(inline4: tuple) -> None:
     a, _ = inline4
-    fig = figures.curves_figure(a, quantity="force")
+    fig = curves_figure(a, quantity="force")
     c = a.curves()
     total = traces(fig, "reciprocating total")
     assert len(total) == 2
@@ -74,14 +90,14 @@ def test_curves_after_balancing_vanish_for_full_balance(paper: tuple) -> None:
     shafts: the whole engine is balanced, so the rebuilt after-curves are zero everywhere
     (a time-domain check independent of the solver's own residual report)."""
     a, b = paper
-    after = figures.balanced_curves(a, b)
+    after = balanced_curves(a, b)
     m_scale = np.abs(after.before_mx).max()
     assert m_scale > 100.0
     for name in ("after_fx", "after_fz"):
         assert np.abs(getattr(after, name)).max() < 1e-8
     for name in ("after_mx", "after_mz"):
         assert np.abs(getattr(after, name)).max() < 1e-10 * m_scale
-    fig = figures.curves_figure(a, b, quantity="moment")
+    fig = curves_figure(a, b, quantity="moment")
     assert np.all(np.asarray(traces(fig, "engine after balancing")[0].y) == 0.0)
     before = np.asarray(traces(fig, "engine before balancing")[0].y)
     assert before == pytest.approx(after.before_mx)
@@ -91,7 +107,7 @@ def test_curves_after_partial_balance_match_residuals(inline4: tuple) -> None:
     """Inline-4 with counterweights only: what is left after balancing is the second-order
     force; the curve's peak equals the solver's residual of order 2 plus higher orders."""
     a, b = inline4
-    after = figures.balanced_curves(a, b)
+    after = balanced_curves(a, b)
     f = after.after_fx + 1j * after.after_fz
     spectrum = np.fft.fft(f) / f.size
     amp2 = abs(spectrum[2]) + abs(spectrum[-2])
@@ -102,15 +118,15 @@ def test_curves_after_partial_balance_match_residuals(inline4: tuple) -> None:
 
 def test_curves_reject_other_engine(paper: tuple, inline4: tuple) -> None:
     with pytest.raises(InputError, match="balance_study"):
-        figures.curves_figure(paper[0], inline4[1])
+        curves_figure(paper[0], inline4[1])
     with pytest.raises(InputError, match="quantity"):
-        figures.curves_figure(paper[0], quantity="torque")  # type: ignore[arg-type]
+        curves_figure(paper[0], quantity="torque")  # type: ignore[arg-type]
 
 
 # --------------------------------------------------------------------------- polar
 def test_polar_phasors_and_locus(paper: tuple) -> None:
     a, _ = paper
-    fig = figures.polar_figure(a, 1, "moment")
+    fig = polar_figure(a, 1, "moment")
     k = a.forces.order(1)
     fwd = 1j * a.forces.couple_forward[k]
     bwd = 1j * a.forces.couple_backward[k]
@@ -131,13 +147,13 @@ def test_polar_phasors_and_locus(paper: tuple) -> None:
 
 def test_polar_rotating_and_bad_order(inline4: tuple) -> None:
     a, _ = inline4
-    fig = figures.polar_figure(a, "rotating", "force")
+    fig = polar_figure(a, "rotating", "force")
     assert np.hypot(fig.data[0].x, fig.data[0].y).max() == pytest.approx(
         abs(a.forces.rotating_force), rel=1e-6, abs=1e-9
     )
     for bad in (0.5, 99, "two"):
         with pytest.raises(InputError, match="order"):
-            figures.polar_figure(a, bad)  # type: ignore[arg-type]
+            polar_figure(a, bad)  # type: ignore[arg-type]
 
 
 def test_polar_of_a_balanced_order_is_exactly_zero(paper: tuple, inline4: tuple) -> None:
@@ -145,7 +161,7 @@ def test_polar_of_a_balanced_order_is_exactly_zero(paper: tuple, inline4: tuple)
     the diagram draws exact zeros on axes in the engine's own scale, not pico-newtons of
     round-off, and says so in the title."""
     a, _ = paper
-    fig = figures.polar_figure(a, 1, "force")
+    fig = polar_figure(a, 1, "force")
     for trace in fig.data:
         assert np.all(np.asarray(trace.x) == 0.0) and np.all(np.asarray(trace.y) == 0.0)
     assert "0 N (balanced)" in fig.layout.title.text
@@ -154,8 +170,8 @@ def test_polar_of_a_balanced_order_is_exactly_zero(paper: tuple, inline4: tuple)
     # a balanced order among unbalanced ones reads against the largest amplitude
     b, _ = inline4
     k = b.forces.order(1)
-    assert b.forces.force_amplitude[k] < figures.roundoff_levels(b.model, 1e-12)[0]
-    fig = figures.polar_figure(b, 1, "force")
+    assert b.forces.force_amplitude[k] < roundoff_levels(b.model, 1e-12)[0]
+    fig = polar_figure(b, 1, "force")
     largest = max(b.forces.force_amplitude.max(), abs(b.forces.rotating_force))
     assert fig.layout.yaxis.range[1] == pytest.approx(1.15 * largest)
     assert "0 N (balanced)" in fig.layout.title.text
@@ -164,32 +180,32 @@ def test_polar_of_a_balanced_order_is_exactly_zero(paper: tuple, inline4: tuple)
 def test_leading_quantity(paper: tuple, inline4: tuple) -> None:
     """Inline-3: forces cancel, moments do not (2021 paper, Table 2); inline-4 has a free
     second-order force."""
-    assert figures.leading_quantity(paper[0]) == "moment"
-    assert figures.leading_quantity(inline4[0]) == "force"
+    assert leading_quantity(paper[0]) == "moment"
+    assert leading_quantity(inline4[0]) == "force"
 
 
 def test_titles_fit_a_panel(paper: tuple) -> None:
     """The engine name goes to a second, smaller line, shortened when very long."""
     a, s = paper
     for fig in (
-        figures.orders_bar(a),
-        figures.curves_figure(a, s),
-        figures.polar_figure(a, 1),
-        figures.residuals_bar(s),
-        figures.crank_3d(a.model),
+        orders_bar(a),
+        curves_figure(a, s),
+        polar_figure(a, 1),
+        residuals_bar(s),
+        crank_3d(a.model),
     ):
         first, second = fig.layout.title.text.split("<br>")
         assert len(first) <= 60, first
         assert second.startswith("<sup>Inline-3, Table 1") and second.endswith("</sup>")
-    title = figures.figure_title("Free forces", "x" * 200, "note")
-    assert f"{'x' * (figures.TITLE_NAME_CHARS - 1)}… · note</sup>" in title, title
+    title = figure_title("Free forces", "x" * 200, "note")
+    assert f"{'x' * (TITLE_NAME_CHARS - 1)}… · note</sup>" in title, title
 
 
 def test_zero_bars_say_balanced(paper: tuple, inline4: tuple) -> None:
-    texts = [n.text for n in figures.orders_bar(paper[0]).layout.annotations]
+    texts = [n.text for n in orders_bar(paper[0]).layout.annotations]
     assert any("0 N everywhere" in t for t in texts), texts
     # inline-4 (flat crank): free 2nd-order force, no free moment (mirror-symmetric crank)
-    texts = [n.text for n in figures.orders_bar(inline4[0]).layout.annotations]
+    texts = [n.text for n in orders_bar(inline4[0]).layout.annotations]
     assert not any("0 N everywhere" in t for t in texts), texts
     assert any("0 N·m everywhere" in t for t in texts), texts
 
@@ -226,7 +242,7 @@ def drawn_3d(fig) -> tuple[list, list, list]:
 
 def test_crank_3d_has_every_mass(paper: tuple) -> None:
     a, b = paper
-    segments, markers, legend = drawn_3d(figures.crank_3d(b.model, b))
+    segments, markers, legend = drawn_3d(crank_3d(b.model, b))
     cw = b.result.counterweights
     cws = [m for m in markers if m[1] == "counterweights"]
     assert len(cws) == cw.count
@@ -249,7 +265,7 @@ def test_crank_3d_has_every_mass(paper: tuple) -> None:
         assert s[5].startswith(f"throw {pins.index(s) + 1}: angle")
     assert legend.count("counterweights") == 1 and legend.count("webs") == 1
     # bare crank from a model alone
-    assert not [m for m in drawn_3d(figures.crank_3d(a.model))[1] if m[1] == "counterweights"]
+    assert not [m for m in drawn_3d(crank_3d(a.model))[1] if m[1] == "counterweights"]
 
 
 # Drawn by crank_3d before its segments were merged into one trace per legend entry
@@ -328,7 +344,7 @@ def test_crank_3d_draws_the_same_geometry_in_few_traces(engine: str, balanced: b
     """Same points, sizes and legend as the one-trace-per-segment figure, in at most one
     lines trace per line style and one markers trace per legend entry."""
     b = balance_engine(engine)
-    fig = figures.crank_3d(b.model, b if balanced else None)
+    fig = crank_3d(b.model, b if balanced else None)
     segments, markers, legend = drawn_3d(fig)
     points = np.array([p for s in segments for p in s[3:5]] + [m[4] for m in markers])
     n_seg, n_mark, lo, hi, coords, squares, sizes, names = BEFORE_MERGE[engine, balanced]
@@ -346,9 +362,9 @@ def test_crank_3d_draws_the_same_geometry_in_few_traces(engine: str, balanced: b
 # --------------------------------------------------------------------------- residuals
 def test_residuals_bar_equals_solver(inline4: tuple) -> None:
     _, b = inline4
-    fig = figures.residuals_bar(b)
+    fig = residuals_bar(b)
     comps = b.to_dict()["components"]
-    tiny_f, tiny_m = figures.roundoff_levels(b.model)
+    tiny_f, tiny_m = roundoff_levels(b.model)
     before_f, before_m = traces(fig, "before balancing")
     after_f, after_m = traces(fig, "after balancing")
     assert list(before_f.y) == pytest.approx([c["force_before_N"] for c in comps], abs=tiny_f)
@@ -365,14 +381,14 @@ def test_single_cylinder_figures_match_study() -> None:
     from crankbalance.physics.single_cylinder import balance_factor_study
 
     s = balance_factor_study(0.3, 0.03, 900.0, 0.5, rod_length=0.12)
-    fig = figures.single_cylinder_forces(s)
+    fig = single_cylinder_forces(s)
     assert np.asarray(traces(fig, "in-line (cylinder axis)")[0].y) == pytest.approx(s.in_line)
     assert np.asarray(traces(fig, "transverse")[0].y) == pytest.approx(s.transverse)
-    polar = figures.single_cylinder_polar(s)
+    polar = single_cylinder_polar(s)
     locus = traces(polar, "residual force")[0]
     # the locus is the force vector: its largest length is the study's peak resultant
     assert np.hypot(locus.x, locus.y).max() == pytest.approx(s.peak_resultant, rel=1e-3)
-    sweep = figures.balance_factor_sweep(s)
+    sweep = balance_factor_sweep(s)
     assert np.asarray(sweep.data[0].y) == pytest.approx(s.sweep_peak_resultant)
     best = [t for t in sweep.data if t.name.startswith("optimum")][0]
     assert best.y[0] == pytest.approx(np.min(s.sweep_peak_resultant), rel=1e-2)
@@ -385,7 +401,7 @@ def test_counterweight_figures_match_optimum() -> None:
     from crankbalance.physics.counterweight_optimize import optimize_counterweight
 
     o = optimize_counterweight(0.036, rng=1, population=256, iterations=4, children=256)
-    fig = figures.pareto_front(o)
+    fig = pareto_front(o)
     front = [t for t in fig.data if t.name.startswith("Pareto")][0]
     assert np.asarray(front.y) == pytest.approx(o.mass[o.pareto] * 1e3)
     least = [t for t in fig.data if t.name.startswith("least mass")][0]
@@ -393,7 +409,7 @@ def test_counterweight_figures_match_optimum() -> None:
     least_r = [t for t in fig.data if t.name.startswith("least radius")][0]
     assert least_r.x[0] == pytest.approx(o.radius.min() * 1e3)
     design = o.least_mass_design
-    prof = figures.counterweight_profile(design)
+    prof = counterweight_profile(design)
     outline = [t for t in prof.data if t.name == "profile"]
     area = sum(Polygon(np.column_stack([t.x, t.y])).area for t in outline)  # mm^2
     props = design.properties()
@@ -408,7 +424,7 @@ def test_shaft_figures_match_study() -> None:
 
     section = ShaftSection(outer_diameter=0.028)
     st = inline4_study(2e-4, 1300.0, 0.3, section)
-    fig = figures.shaft_study(st)
+    fig = shaft_study(st)
     # legend at the bottom of the figure, below every axis title; x titles on the lower row
     assert fig.layout.legend.yref == "container" and fig.layout.legend.yanchor == "bottom"
     assert fig.layout.xaxis.title.text is None and fig.layout.xaxis3.title.text
@@ -418,7 +434,7 @@ def test_shaft_figures_match_study() -> None:
     assert opt.x[0] == pytest.approx(100 * st.optimum_position)
     shaft = BalanceShaft(0.3, section, (0.0, 0.3), (0.2,), (2e-4,), 1300.0)
     resp = shaft_response(shaft)
-    f2 = figures.shaft_response_figure(resp, shaft)
+    f2 = shaft_response_figure(resp, shaft)
     assert np.max(f2.data[0].y) == pytest.approx(resp.max_deflection * 1e6, rel=1e-6)
 
 
@@ -439,18 +455,18 @@ def test_performance_figures_match_results() -> None:
     sens = balance_sensitivity(
         cyl, 900.0, pressure, [0.0, 0.5, 1.0], mass_scales=[1.0, 0.8], samples_per_revolution=72
     )
-    fig = figures.sensitivity_figure(sens, ("peak_bearing_load", "friction_power"))
+    fig = sensitivity_figure(sens, ("peak_bearing_load", "friction_power"))
     lines = [t for t in fig.data if t.xaxis == "x"]
     assert len(lines) == 2
     assert np.asarray(lines[1].y) == pytest.approx(sens.peak_bearing_load[1])
     with pytest.raises(InputError, match="indicators"):
-        figures.sensitivity_figure(sens, ("colour",))
+        sensitivity_figure(sens, ("colour",))
     cyc = engine_cycle(cyl, 900.0, pressure, samples_per_revolution=72)
-    cf = figures.cycle_figure(cyc)
+    cf = cycle_figure(cyc)
     assert np.asarray(traces(cf, "net torque")[0].y) == pytest.approx(cyc.net_torque)
     bench = run_bench(
         disc_rotor(0.098, 0.036704, 0.020, 0.188, 0.4, hole_mass=0.0146, hole_radius=0.0293),
         BenchSettings(speed=300.0, ramp_time=0.2, hold_time=0.2, samples=100),
     )
-    bf = figures.bench_figure(bench)
+    bf = bench_figure(bench)
     assert np.asarray(traces(bf, "bearing A")[0].y) == pytest.approx(bench.bearing_load_a)

@@ -23,7 +23,7 @@ from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine, parse_engine_text, preset_text
 from crankbalance.io.pressure_csv import read_pressure_csv
 from crankbalance.io.reading import MAX_DEPTH, parse_json, parse_toml, read_text
-from crankbalance.schema import engine as spec_module
+from crankbalance.schema import core as schema_core
 from crankbalance.schema.engine import MAX_CYLINDERS, MAX_THROWS, parse_in_range
 from crankbalance.units import RANGES
 
@@ -273,13 +273,13 @@ def custom(throws: int, banks: int) -> dict[str, Any]:
 def parse_count(monkeypatch: pytest.MonkeyPatch) -> list[int]:
     """How many quantity strings the engine file's validation parsed."""
     calls = [0]
-    parse = spec_module.parse_quantity
+    parse = schema_core.parse_quantity
 
     def counting(*args: Any, **kwargs: Any) -> float:
         calls[0] += 1
         return parse(*args, **kwargs)
 
-    monkeypatch.setattr(spec_module, "parse_quantity", counting)
+    monkeypatch.setattr(schema_core, "parse_quantity", counting)
     return calls
 
 

@@ -121,9 +121,9 @@ def test_porsche_order_is_the_crankbalance_order() -> None:
     assert engine["firing_order"] == [1, 6, 3, 2, 5, 4]
     assert engine["firing_order_maker"] == [1, 6, 2, 4, 3, 5]
     assert engine["maker_number"] == [1, 4, 2, 5, 3, 6]
-    from crankbalance.output.report import _maker_order
+    from crankbalance.output.report import maker_order
 
-    assert _maker_order(a) == " (maker's numbering: 1-6-2-4-3-5)" and _maker_order(b) == ""
+    assert maker_order(a) == " (maker's numbering: 1-6-2-4-3-5)" and maker_order(b) == ""
     table = CliRunner().invoke(cli_analyze, ["boxer6"])
     assert table.exit_code == 0, table.output
     assert (

@@ -247,7 +247,7 @@ def test_the_cap_counts_what_the_study_computes(monkeypatch: pytest.MonkeyPatch)
     from crankbalance.schema.settings import TorsionalOptions
     from crankbalance.studies.torsional import torsional as run_study
 
-    result = run_study("inline6", TorsionalOptions.model_validate({"speed_points": 30}))
+    result = run_study("inline6", TorsionalOptions.parse({"speed_points": 30}))
     study, speeds = result.study, result.speeds
     crossings = len(study.resonances)
     amplitudes = study.response.amplitude.size + crossings * study.response.amplitude[0].size
@@ -479,14 +479,12 @@ def _edges(model: type[opt.StudyOptions], name: str) -> list[str]:
     """The two ends of a numeric setting's range as a user types them (an open end: just
     inside it); nothing for a text, a list or a choice."""
     kind, quantity = opt.field_kind(model, name)
-    if model.model_fields[name].annotation in (
-        opt.TorsionalStiffness,
-        opt.TorsionalStiffness | None,
-    ):  # its own unit, per radian
+    spec = model.FIELDS[name]
+    if spec.parse is opt.parse_torsional_stiffness:  # its own unit, per radian
         return [f"{value:g} N*m/rad" for value in opt.TORSIONAL_STIFFNESS_RANGE]
     if kind not in ("quantity", "number", "whole"):
         return []
-    low, low_open, high, high_open = opt._bounds(opt._metadata(model, name))
+    low, low_open, high, high_open = spec.low, spec.low_open, spec.high, spec.high_open
     if quantity is not None:
         low = opt.RANGES[quantity][0] if low is None else low
         high = opt.RANGES[quantity][1] if high is None else high
@@ -511,7 +509,7 @@ def _edge_cases() -> list[Any]:
         command = cli.get_command(None, words[0])  # type: ignore[arg-type]
         assert command is not None
         params = {p.name for p in command.params}
-        for name in model.model_fields:
+        for name in model.FIELDS:
             if name in skip or name not in params:
                 continue
             for value in _edges(model, name):

@@ -519,5 +519,5 @@ def test_the_inertia_objective_has_its_own_budget(capsys: pytest.CaptureFixture[
         f"{MAX_THREE_OBJECTIVE_DESIGNS:,} designs, the optimiser's work budget with 3 "
         "objectives (here 4,096 + 60 x 4096 = 249,856): lower the iterations or the population"
     )
-    settings = CounterweightOptions.model_validate({"iterations": 60})  # two objectives: fine
+    settings = CounterweightOptions.parse({"iterations": 60})  # two objectives: fine
     assert settings.iterations == 60

@@ -17,13 +17,14 @@ import pytest
 pytest.importorskip("plotly", reason="plotly is in the web/test extras")
 
 from crankbalance.errors import InputError  # noqa: E402
-from crankbalance.output import figures, render  # noqa: E402
+from crankbalance.output import render  # noqa: E402
+from crankbalance.output.figures.engine import orders_bar  # noqa: E402
 from crankbalance.studies.engine import analyze  # noqa: E402
 
 
 @pytest.fixture(scope="module")
 def fig() -> Any:
-    return figures.orders_bar(analyze("inline4"))
+    return orders_bar(analyze("inline4"))
 
 
 chromium = pytest.mark.skipif(
@@ -91,10 +92,10 @@ def _is_png(data: bytes) -> bool:
 @linux
 def test_exporter_keeps_one_debian_chromium_with_the_flags(fig: Any) -> None:
     assert _is_png(render.to_image(fig, "png", width=400, height=300))
-    launcher = render._EXPORTER.pid()
+    launcher = render.EXPORTER.pid()
     assert launcher is not None
     assert _is_png(render.to_image(fig, "png", width=400, height=300))
-    assert render._EXPORTER.pid() == launcher, "the second image reuses the browser"
+    assert render.EXPORTER.pid() == launcher, "the second image reuses the browser"
     assert render.find_chromium() in _command_line(launcher)
     (browser,) = _children(launcher)
     arguments = _command_line(browser)
@@ -109,19 +110,19 @@ def test_exporter_keeps_one_debian_chromium_with_the_flags(fig: Any) -> None:
 @pytest.mark.parametrize("wait", [True, False], ids=["dead-before", "dying"])
 def test_exporter_starts_a_dead_browser_again(fig: Any, wait: bool) -> None:
     assert _is_png(render.to_image(fig, "png", width=400, height=300))
-    launcher = render._EXPORTER.pid()
+    launcher = render.EXPORTER.pid()
     assert launcher is not None
     (browser,) = _children(launcher)
     os.kill(browser, signal.SIGKILL)  # a browser crash
     if wait:
-        _wait_until(lambda: render._EXPORTER.pid() is None, "the launcher to notice")
+        _wait_until(lambda: render.EXPORTER.pid() is None, "the launcher to notice")
     assert _is_png(render.to_image(fig, "png", width=400, height=300))
-    assert render._EXPORTER.pid() not in (None, launcher)
+    assert render.EXPORTER.pid() not in (None, launcher)
 
 
 @chromium
 def test_exporter_reports_a_browser_that_does_not_start(fig: Any) -> None:
-    exporter = render._Exporter("/bin/false")
+    exporter = render.Exporter("/bin/false")
     try:
         with pytest.raises(InputError, match="chromium.*starts headless"):
             exporter.image(fig.to_dict(), {"format": "png", "width": 400, "height": 300})
@@ -133,11 +134,12 @@ def test_exporter_reports_a_browser_that_does_not_start(fig: Any) -> None:
 @linux
 def test_exporter_closes_the_browser_at_exit(tmp_path: Path) -> None:
     script = (
-        "from crankbalance.output import figures, render\n"
+        "from crankbalance.output import render\n"
+        "from crankbalance.output.figures.engine import orders_bar\n"
         "from crankbalance.studies.engine import analyze\n"
-        "fig = figures.orders_bar(analyze('inline4'))\n"
+        "fig = orders_bar(analyze('inline4'))\n"
         "assert render.to_image(fig, 'png', width=400, height=300)[:4] == b'\\x89PNG'\n"
-        "launcher = render._EXPORTER.pid()\n"
+        "launcher = render.EXPORTER.pid()\n"
         "children = open(f'/proc/{launcher}/task/{launcher}/children').read().split()\n"
         "print(launcher, *children)\n"
     )

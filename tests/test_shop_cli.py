@@ -49,7 +49,7 @@ def plan_args() -> list[str]:
 
 @pytest.fixture(scope="module")
 def study():  # type: ignore[no-untyped-def]
-    return parts_study(ENGINE, PARTS, ShopOptions(time_limit=f"{PROVEN_LIMIT:g} s"))
+    return parts_study(ENGINE, PARTS, ShopOptions.parse({"time_limit": f"{PROVEN_LIMIT:g} s"}))
 
 
 @pytest.fixture(scope="module")
@@ -309,7 +309,7 @@ def test_sheet_embeds_the_keyed_study(study, holes) -> None:  # type: ignore[no-
     from crankbalance.studies.shop import ShopStudy
 
     pytest.importorskip("plotly")
-    settings = parse_options(ShopOptions, PLAN).model_dump()
+    settings = parse_options(ShopOptions, PLAN).values()
     page = sheet_html(ShopStudy(parts=study, holes=holes, settings=settings))
     found = re.search(r'id="crankbalance-data">(.*?)</script>', page)
     assert found is not None

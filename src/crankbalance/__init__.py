@@ -1,7 +1,7 @@
 """crankbalance: balancing design of reciprocating-engine crank trains.
 
 The public entry points are loaded on first use, so that ``import crankbalance.physics.shaking``
-(or any physics module) stays free of pydantic and the unit parser::
+(or any physics module) stays free of the schemas and the unit parser::
 
     import crankbalance
     result = crankbalance.analyze("inline4")            # free forces and moments

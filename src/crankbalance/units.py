@@ -225,6 +225,9 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         raise InputError(
             field, value, f"must be one number and a unit, e.g. {example!r} (not a range)"
         )
+    if not math.isfinite(float(match.group("number"))):  # "1e999 oz", 400 digits: before
+        # pint, which keeps an integer as it is and overflows converting it to a float
+        raise InputError(field, value, f"must be a finite {kind}, e.g. {example!r}")
     magnitude: Any
     found = _table_unit(unit.replace("°", " deg"))
     if found is not None:  # units of the table only: no pint

@@ -14,12 +14,16 @@ The examples of the issue are named cases: each must be refused (4xx).
 from __future__ import annotations
 
 import collections
+import contextlib
 import http.client
 import json
 import math
+import select
+import socket
 import threading
 import tomllib
 from collections.abc import Iterator
+from pathlib import Path
 from typing import Any
 from urllib.parse import urlsplit
 
@@ -29,6 +33,8 @@ from hypothesis import strategies as st
 
 from crankbalance.io.engine_file import list_presets, preset_text
 from crankbalance.web import api
+
+from .test_fuzz_options import EXAMPLES
 
 HANG_GUARD = 180.0  # seconds
 PRESETS = list_presets()
@@ -406,12 +412,21 @@ def test_hostile_headers_are_refused_with_a_4xx(headers: dict[str, str]) -> None
 
 # --------------------------------------------------------------------------- over HTTP
 @pytest.fixture(scope="module")
-def server() -> Iterator[str]:
+def logged_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[str, Path]]:
+    """``crankbalance web`` in a subprocess with its log in a file (as tests/web/conftest.py's
+    fixture of that name); its URL and the log's path. The log must never hold a traceback."""
     pytest.importorskip("nicegui")
     from crankbalance.web.server import running_server
 
-    with running_server(timeout=HANG_GUARD) as url:
-        yield url
+    path = tmp_path_factory.mktemp("server") / "server.log"
+    with open(path, "w") as log, running_server(log, timeout=HANG_GUARD) as url:
+        yield url, path
+    assert "Traceback" not in path.read_text(), path.read_text()[-3000:]
+
+
+@pytest.fixture(scope="module")
+def server(logged_server: tuple[str, Path]) -> str:
+    return logged_server[0]
 
 
 @fuzz(30)
@@ -443,3 +458,163 @@ def test_over_http_never_a_5xx(
         connection.close()
     TALLY["over HTTP"][status] += 1
     check_answer(status, data, f"{headers} {body[:40]!r}")
+
+
+# --------------------------------------------------------------------------- raw HTTP
+#: how a body is sent over a raw socket: those after which the server must answer, and
+#: those of a broken framing or a client that goes away (an answer, a close, or nothing)
+ANSWERED = ["whole", "byte-order mark", "chunked", "chunked without end"]
+FRAMING = [
+    "cut short, closed",
+    "cut short, half-closed",
+    "longer than its length",
+    "length written oddly",
+    "two lengths",
+    "length and chunked",
+    "chunk size malformed",
+]
+BOM = b"\xef\xbb\xbf"
+#: what a byte-order mark may be put as: UTF-8's (read as the command line reads it), twice,
+#: UTF-16's, in the middle of the body
+MARKS = [BOM, BOM, BOM + BOM, b"\xff\xfe", b"\xfe\xff"]
+
+
+def _head(port: int, path: str, content_type: str, framing: list[str]) -> bytes:
+    lines = [f"POST {path} HTTP/1.1", f"Host: 127.0.0.1:{port}", f"Content-Type: {content_type}"]
+    return ("\r\n".join([*lines, *framing]) + "\r\n\r\n").encode()
+
+
+def _chunks(body: bytes, sizes: list[int]) -> bytes:
+    """``body`` in chunks of the ``sizes`` (cycled), then the last chunk."""
+    out, at, k = b"", 0, 0
+    while at < len(body):
+        piece = body[at : at + sizes[k % len(sizes)]]
+        out += b"%x\r\n%s\r\n" % (len(piece), piece)
+        at, k = at + len(piece), k + 1
+    return out + b"0\r\n\r\n"
+
+
+def _response(connection: socket.socket) -> tuple[int, bytes, str] | None:
+    """The server's answer (status, body, content type), or None when it closed the
+    connection without one."""
+    response = http.client.HTTPResponse(connection)
+    try:
+        response.begin()
+    except (http.client.RemoteDisconnected, ConnectionResetError):
+        return None
+    return response.status, response.read(), response.getheader("content-type") or ""
+
+
+@pytest.mark.parametrize("how", ANSWERED + FRAMING)
+@fuzz(EXAMPLES)  # per way of sending (CRANKBALANCE_FUZZ_EXAMPLES, default 10)
+@given(
+    case=mutated_body(),
+    mark=st.sampled_from(MARKS),
+    sizes=st.lists(st.integers(1, 5000), min_size=1, max_size=4),
+    cut=st.integers(1, 1000),
+)
+def test_raw_http_bodies(
+    logged_server: tuple[str, Path],
+    how: str,
+    case: tuple[str, bytes, str, str],
+    mark: bytes,
+    sizes: list[int],
+    cut: int,
+) -> None:
+    """A mutated preset sent over a raw socket whole, with a byte-order mark, chunked, as a
+    chunked body that never ends, cut short of its length (then closed or half-closed),
+    longer than its length, with odd or conflicting lengths, with malformed chunks. The
+    server answers a 4xx with a JSON error or a 200 with finite numbers, never a 5xx; where
+    the framing itself is broken, the server's HTTP layer may answer a 4xx of its own (text)
+    or close the connection; a client that goes away gets nothing. No traceback in the
+    server's log (checked when the module ends)."""
+    url, _log = logged_server
+    mutation, body, content_type, kind = case
+    port = urlsplit(url).port or 0
+    path = f"/api/{kind}"
+    if how == "byte-order mark":
+        body = mark + body if mark != BOM + BOM or not body else body[:cut] + BOM + body[cut:]
+    framing = [f"Content-Length: {len(body)}"]
+    payload = body
+    if how in ("chunked", "chunked without end", "chunk size malformed"):
+        framing = ["Transfer-Encoding: chunked"]
+        payload = _chunks(body, sizes)
+        if how == "chunk size malformed":
+            payload = payload.replace(b"\r\n", b"zz\r\n", 1)
+    elif how.startswith("cut short"):
+        framing = [f"Content-Length: {len(body) + cut}"]
+    elif how == "longer than its length":
+        framing = [f"Content-Length: {max(len(body) - cut, 0)}"]
+    elif how == "length written oddly":
+        written = [f"+{len(body)}", f" {len(body)} ", f"{len(body)}, {len(body)}", "0x10", "-1"]
+        framing = [f"Content-Length: {written[cut % len(written)]}"]
+    elif how == "two lengths":
+        framing = [f"Content-Length: {len(body)}", f"Content-Length: {len(body) + cut}"]
+    elif how == "length and chunked":
+        framing = [f"Content-Length: {len(body)}", "Transfer-Encoding: chunked"]
+    with socket.create_connection(("127.0.0.1", port), timeout=HANG_GUARD) as connection:
+        connection.sendall(_head(port, path, content_type, framing))
+        if how == "chunked without end":  # chunks until the server answers (413)
+            chunk = b"400\r\n" + b"#" * 1024 + b"\r\n"
+            for _ in range(64 * api.MAX_BODY // 1024):
+                if select.select([connection], [], [], 0)[0]:
+                    break
+                try:
+                    connection.sendall(chunk)
+                except (BrokenPipeError, ConnectionResetError):
+                    break
+            else:
+                raise AssertionError(f"no answer after {64 * api.MAX_BODY} bytes of chunks")
+        else:
+            with contextlib.suppress(BrokenPipeError, ConnectionResetError):
+                connection.sendall(payload)
+        if how == "cut short, closed":
+            TALLY[f"raw HTTP {how}"][0] += 1
+            return  # nothing to read: the client went away (one line in the log)
+        if how == "cut short, half-closed":
+            connection.shutdown(socket.SHUT_WR)
+        answer = _response(connection)
+    what = f"{how}, {mutation}: {framing} {payload[:200]!r}"
+    if answer is None:
+        assert how in FRAMING, f"closed without an answer: {what}"
+        TALLY[f"raw HTTP {how}"][0] += 1
+        return
+    status, data, media = answer
+    TALLY[f"raw HTTP {how}"][status] += 1
+    assert status < 500, (status, data[:300], what)
+    if how in FRAMING and "json" not in media:
+        assert 400 <= status < 500, (status, data[:300], what)  # the HTTP layer's own answer
+        return
+    check_answer(status, json.loads(data), what)
+    if how == "chunked without end":
+        assert status == 413, (status, data[:300])
+
+
+def test_a_body_that_stops_is_answered_408(logged_server: tuple[str, Path]) -> None:
+    """Found by this fuzzing: a client that sent part of its body and then nothing more
+    (its connection open) was never answered, the connection held without end; the server
+    now answers 408 once :data:`crankbalance.web.api.BODY_TIMEOUT` has passed (a wait for
+    the answer, under the hang guard) and closes the connection. A body with a length and
+    a chunked one, sent side by side."""
+    url, _log = logged_server
+    port = urlsplit(url).port or 0
+    partial = {
+        "Content-Length: 5000": b"x" * 100,
+        "Transfer-Encoding: chunked": b"5\r\nhello\r\n",
+    }
+    with contextlib.ExitStack() as stack:
+        connections = []
+        for framing, part in partial.items():
+            connection = socket.create_connection(("127.0.0.1", port), timeout=HANG_GUARD)
+            stack.enter_context(connection)
+            connection.sendall(_head(port, "/api/analyze", "application/toml", [framing]) + part)
+            connections.append(connection)
+        for connection in connections:
+            answer = _response(connection)
+            assert answer is not None
+            status, data, _media = answer
+            assert status == 408, data
+            error = json.loads(data)
+            assert error["field"] == "request body"
+            assert f"within {api.BODY_TIMEOUT:g} s" in error["error"], error
+            assert connection.recv(1) == b""  # then closed by the server

@@ -1,5 +1,11 @@
-"""Fuzzing the engine-file input (issue 12): presets mutated in 13 categories, each file
-run through ``crankbalance analyze FILE`` and ``crankbalance balance FILE`` in-process.
+"""Fuzzing the engine-file input (issues 12 and 25): presets mutated in 18 categories,
+each file run through ``crankbalance analyze FILE`` and ``crankbalance balance FILE``
+in-process. Five categories (issue 25) mutate the keys of VR and W engines (``vr_angle``,
+``bore_offset``, ``pin_split``, ``w_type``), offsets and rod positions (``bank_offsets``,
+``cylinder_offsets``, ``rod_positions``, ``moment_reference``), makers' numbering
+(``numbering``, ``maker_numbers``), articulated rods (``[crank_train.articulated]``) and
+overlapping ``[[masses.override]]`` tables, on the presets that have such keys
+(:data:`NEW_KEY_PRESETS`).
 
 Each run must end either in exit status 2 with exactly one line on stderr (``error: ...``)
 and nothing on stdout, or in exit status 0 with a result that holds no NaN or infinity and
@@ -9,8 +15,8 @@ the physics counts as a failure. A run that lasts longer than :data:`HANG_GUARD`
 stopped and counted as a hang (a guard against running without end, not a timing test).
 
 The draws are deterministic (``derandomize=True``, no example database): each category
-mutates :data:`FILES` presets drawn from the library (together the categories draw all 27
-presets; ``CRANKBALANCE_FUZZ_FILES=400`` runs more). Each test prints a line
+mutates :data:`FILES` presets drawn from the library (together the categories draw every
+preset; ``CRANKBALANCE_FUZZ_FILES=400`` runs more). Each test prints a line
 ``fuzz engine-file <category>: tried N, clean M, ...``; see them with
 ``python3 -m pytest -p no:cacheprovider tests/fuzz -rP | grep 'fuzz engine-file'``."""
 
@@ -327,6 +333,179 @@ def unknown_keys(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
     return toml_or_json(data, draw)
 
 
+# --------------------------------------------------------------------------- new keys
+#: the presets with the keys of VR and W engines, side-by-side rods, makers' numbering,
+#: articulated rods and mass overrides (the categories below draw from these only)
+NEW_KEY_PRESETS = [
+    *("vr6", "w8", "w12-vw", "w16", "ducati-916", "harley-45", "radial5-kinner"),
+    *("radial7-scarab", "radial9-r985", "boxer6"),
+]
+ANGLES = [
+    *("15 deg", "22 deg", "72 deg", "0 deg", "-15 deg", "90 deg", "180 deg", "359 deg"),
+    *("1e-12 deg", "720 deg", "721 deg", "nan deg", "1e308 deg", "15 mm", "15", "", 15, True),
+]
+LENGTHS = [
+    *("12.5 mm", "0 mm", "-12.5 mm", "5 mm", "-10 mm", "100 mm", "164 mm", "209 mm", "1 m"),
+    *("100 m", "100.1 m", "1 um", "0.5 um", "1e308 km", "nan mm", "inf mm", "12.5 deg"),
+    *("12.5", "", 12.5, True, [], {}),
+]
+
+
+def _set_or_delete(table: dict[str, Any], key: str, values: list[Any], draw: Draw) -> None:
+    """Set ``key`` to a drawn value, or (one time in five) delete it."""
+    if draw(st.integers(0, 4)) == 4:
+        table.pop(key, None)
+    else:
+        table[key] = draw(st.sampled_from(values))
+
+
+def _cylinders(train: dict[str, Any]) -> int:
+    count = train.get("cylinders")
+    return count if isinstance(count, int) and 0 < count <= 64 else 4
+
+
+def vr_w_keys(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
+    """The keys of VR engines and Ws from VR banks (vr_angle, bore_offset, pin_split,
+    w_type), on their own presets and on others, with the layout and bank angle."""
+    train = data["crank_train"]
+    keys = {
+        "vr_angle": ANGLES,
+        "bore_offset": LENGTHS,
+        "pin_split": ANGLES,
+        "w_type": ["vr", "broad-arrow", "", "VR", "v", "w", 1, True],
+        "layout": ["vr", "w", "vee", "inline", "boxer", "radial"],
+        "bank_angle": ANGLES,
+    }
+    for key in draw(st.lists(st.sampled_from(sorted(keys)), min_size=1, max_size=3)):
+        _set_or_delete(train, key, keys[key], draw)
+    return toml_or_json(data, draw)
+
+
+def _length_list(count: int, draw: Draw) -> list[Any]:
+    """A list of lengths: mostly of ``count`` entries, often of another count."""
+    size = draw(st.sampled_from([count, count, count - 1, count + 1, 0, 1, 2, 3, 4, 65, 1000]))
+    entries = st.one_of(st.sampled_from(LENGTHS[:8]), st.sampled_from(LENGTHS))
+    return [draw(entries) for _ in range(min(max(size, 0), 8))] * max(1, size // 8)
+
+
+def offsets(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
+    """bank_offsets, cylinder_offsets, rod_positions and moment_reference: added, changed
+    or deleted, lists of the right and wrong lengths, both offsets at once."""
+    train = data["crank_train"]
+    n = _cylinders(train)
+    for key in draw(
+        st.lists(
+            st.sampled_from(
+                ["bank_offsets", "cylinder_offsets", "rod_positions", "moment_reference"]
+            ),
+            min_size=1,
+            max_size=3,
+        )
+    ):
+        if key == "moment_reference":
+            _set_or_delete(train, key, [*LENGTHS, ["5 mm"]], draw)
+        elif draw(st.integers(0, 4)) == 4:
+            train.pop(key, None)
+        else:
+            count = draw(st.sampled_from([2, 3, 4])) if key == "bank_offsets" else n
+            train[key] = _length_list(count, draw)
+    return toml_or_json(data, draw)
+
+
+def numbering(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
+    """The maker's numbering: a named scheme (of this layout or another, or none such) or
+    maker_numbers (a permutation, or not one), both at once, with the firing order
+    reversed or shuffled."""
+    train = data["crank_train"]
+    n = _cylinders(train)
+    if draw(st.booleans()):
+        _set_or_delete(
+            train,
+            "numbering",
+            ["porsche-boxer", "gm-vee", "ford-vee", "", "porsche", "GM-vee", 1, True],
+            draw,
+        )
+    if draw(st.booleans()):
+        order = draw(st.permutations(list(range(1, n + 1))))
+        how = draw(st.sampled_from(["permutation", "duplicate", "short", "long", "out"]))
+        if how == "duplicate":
+            order[0] = order[-1]
+        elif how == "short":
+            order = order[:-1]
+        elif how == "long":
+            order = [*order, n + 1]
+        elif how == "out":
+            order[draw(st.integers(0, n - 1))] = draw(
+                st.sampled_from([0, -1, n + 1, 65, 10**30, True, 1.0, "1", None])
+            )
+        train["maker_numbers"] = [x for x in order if x is not None]
+    if draw(st.integers(0, 3)) == 3 and isinstance(train.get("firing_order"), list):
+        train["firing_order"] = draw(st.permutations(train["firing_order"]))
+    return toml_or_json(data, draw)
+
+
+def articulated(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
+    """[crank_train.articulated]: its keys changed, deleted or unknown, the table put on
+    engines that are no radials, or made no table."""
+    train = data["crank_train"]
+    n = _cylinders(train)
+    table = train.setdefault(
+        "articulated",
+        {"master_cylinder": 1, "link_pin_radius": "30 mm", "link_rod_length": "120 mm"},
+    )
+    if draw(st.integers(0, 9)) == 9:
+        train["articulated"] = draw(st.sampled_from([[], 1, "master", [table]]))
+        return toml_or_json(data, draw)
+    keys = {
+        "master_cylinder": [1, 2, n, 0, n + 1, -1, 10**30, True, 1.0, "1"],
+        "link_pin_radius": ["30 mm", "56 mm", "66.675 mm", "100 mm", *LENGTHS],
+        "link_rod_length": ["120 mm", "197.3 mm", "254 mm", "300 mm", "40 mm", *LENGTHS],
+        "master_rod": [1, "x"],
+    }
+    for key in draw(st.lists(st.sampled_from(sorted(keys)), min_size=1, max_size=3)):
+        _set_or_delete(table, key, keys[key], draw)
+    return toml_or_json(data, draw)
+
+
+OVERRIDE_MASSES = {
+    "piston": ["480 g", "1 kg", "0 g", "-1 g", "1e308 kg", "nan g", "480 mm", 480],
+    "wrist_pin": ["130 g", "0 g", "1e7 kg"],
+    "conrod": ["600 g", "2200 g", "0 g", "1e308 g"],
+    "conrod_rotating_fraction": [0.75, 0.0, 1.0, 1.5, -0.1, True, "0.7"],
+    "conrod_cg_from_big_end": ["40 mm", "0 mm", "1 m", "-1 mm"],
+    "crankpin": ["220 g", "0 g"],
+    "reciprocating": ["700 g", "0 g"],
+    "rotating": ["900 g", "0 g"],
+}
+
+
+def overrides(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
+    """[[masses.override]] tables added: overlapping cylinders and throws, one number listed
+    twice, both or neither of cylinders and throws, numbers out of range, many tables."""
+    masses = data.setdefault("masses", {})
+    if not isinstance(masses, dict):
+        return toml_or_json(data, draw)
+    n = _cylinders(data["crank_train"])
+    tables = masses.setdefault("override", [])
+    if not isinstance(tables, list):
+        return toml_or_json(data, draw)
+    within = st.integers(1, n)
+    numbers = st.one_of(
+        within, within, within, st.sampled_from([0, -1, n + 1, 65, 10**30, True, 1.5, "1"])
+    )
+    count = draw(st.sampled_from([1, 1, 1, 2, 2, 3, 127, 128, 129]))
+    made = []
+    for _ in range(min(count, 4)):
+        table: dict[str, Any] = {}
+        for key in draw(st.lists(st.sampled_from(["cylinders", "throws"]), min_size=1, max_size=2)):
+            table[key] = draw(st.lists(numbers, min_size=1, max_size=4))
+        for key in draw(st.lists(st.sampled_from(sorted(OVERRIDE_MASSES)), min_size=1, max_size=3)):
+            table[key] = draw(st.sampled_from(OVERRIDE_MASSES[key]))
+        made.append(table)
+    tables += made * max(1, count // len(made))
+    return toml_or_json(data, draw)
+
+
 #: Categories whose every file is invalid by construction: each must end in exit 2.
 INVALID = {"NaN and infinity", "duplicate JSON keys"}
 
@@ -344,6 +523,22 @@ CATEGORIES: dict[str, Callable[[dict[str, Any], Draw], tuple[str | bytes, str]]]
     "garbage bytes": garbage_bytes,
     "layouts and counts": layouts_and_counts,
     "unknown and moved keys": unknown_keys,
+    "VR and W keys": vr_w_keys,
+    "offsets, rod positions, moment reference": offsets,
+    "makers' numbering": numbering,
+    "articulated rods": articulated,
+    "overlapping overrides": overrides,
+}
+#: the presets each category mutates (all of them, but for the categories of new keys)
+PRESETS_OF = {
+    category: NEW_KEY_PRESETS
+    for category in (
+        "VR and W keys",
+        "offsets, rod positions, moment reference",
+        "makers' numbering",
+        "articulated rods",
+        "overlapping overrides",
+    )
 }
 
 
@@ -400,7 +595,7 @@ def test_mutated_presets_end_cleanly(category: str, tmp_path: Path) -> None:
     )
     @given(data=st.data())
     def one_file(data: st.DataObject) -> None:
-        preset = data.draw(st.sampled_from(PRESETS))
+        preset = data.draw(st.sampled_from(PRESETS_OF.get(category, PRESETS)))
         presets.add(preset)
         content, suffix = mutate(preset_data(preset), data.draw)
         path = tmp_path / f"engine{suffix}"

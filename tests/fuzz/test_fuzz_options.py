@@ -9,6 +9,11 @@ example has a generous hang guard (``signal.alarm``, 120 s), not a timing assert
 of every command is bounded by the documented caps of :mod:`crankbalance.schema.settings`. Valid
 values are kept cheap (small presets, one or two optimiser rounds, short bench runs).
 
+The commands that read a cylinder-pressure table (``bearings``, ``bearings-sweep``,
+``torsional``, ``cycle --engine``, ``sensitivity``) also get mutated tables (values out of
+range or not finite, unsorted or repeated angles, too few rows, more than one cycle, extra
+or missing columns, damaged bytes, beyond the size limit): :func:`test_fuzz_pressure_tables`.
+
 ``pytest -s`` prints the examples tried and clean per command (docs/reliability.md).
 """
 
@@ -19,7 +24,7 @@ import io
 import os
 import re
 import tempfile
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass, field
 from pathlib import Path
 from typing import Any
@@ -30,6 +35,7 @@ from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
 from crankbalance.cli import COMMANDS, cli, main
+from crankbalance.io.pressure_csv import MAX_FILE_BYTES as MAX_TABLE_BYTES
 from crankbalance.schema.settings import RANGES
 from crankbalance.units import KINDS, format_quantity
 
@@ -131,6 +137,36 @@ STUDY = {
     "--points": number("3", "21"),
     "--secondary": ["reaction-difference", "inverse-frequency", *CHOICE],
 }
+#: a pressure table (crank angle [deg], absolute pressure [bar]): a crude firing peak in
+#: 10 deg steps over one cycle
+PRESSURE_ROWS = [(float(a), 1.0 + 40.0 * (abs(a) < 20)) for a in range(-360, 360, 10)]
+#: hostile pressure tables the workspace holds, by name: what a test bench's export may
+#: hold by mistake (a gauge reading, a unit slip, a table sorted the wrong way)
+HOSTILE_TABLES: dict[str, list[tuple[float, float]]] = {
+    "huge": [(a, p * 1e300) for a, p in PRESSURE_ROWS],
+    "negative": [(a, p - 2.0) for a, p in PRESSURE_ROWS],
+    "nan": [*PRESSURE_ROWS[:5], (PRESSURE_ROWS[5][0], float("nan")), *PRESSURE_ROWS[6:]],
+    "unsorted": PRESSURE_ROWS[::-1],
+    "short": PRESSURE_ROWS[:3],
+    "two cycles": [(a + k * 360.0, p) for k in (0, 1) for a, p in PRESSURE_ROWS],
+}
+#: the --pressure-csv values: the valid table, the hostile ones (in the workspace, the
+#: example's folder's parent), one over the size limit, a missing file, a folder, nothing
+PRESSURE_CSV = [
+    "OUT/p.csv",
+    *(f"OUT/../p-{name.replace(' ', '-')}.csv" for name in HOSTILE_TABLES),
+    "OUT/../p-overlong.csv",
+    "OUT/missing.csv",
+    "OUT",
+    "",
+]
+
+
+def table_text(rows: list[tuple[float, float]]) -> str:
+    """A pressure table's text with its header."""
+    return "angle_deg,pressure_bar\n" + "".join(f"{a!r},{p!r}\n" for a, p in rows)
+
+
 ENGINE_CYCLE = {
     "--engine": ["single", "inline4", "no-such-engine", ""],
     "--cylinder": number("1", "2"),
@@ -147,7 +183,7 @@ ENGINE_CYCLE = {
     "--ignition": quantity("angle", "-25 deg"),
     "--burn-duration": quantity("angle", "50 deg"),
     "--intake-pressure": quantity("pressure", "1 bar"),
-    "--pressure-csv": ["OUT/p.csv", "OUT/missing.csv", "OUT", ""],
+    "--pressure-csv": PRESSURE_CSV,
 }
 #: a torsional stiffness (options.TorsionalStiffness): valid, the ends, hostile
 TORSIONAL_STIFFNESS = [
@@ -187,7 +223,7 @@ SHOP_PLAN = {
     "--hole-diameter": quantity("length", "8 mm"),
     "--hole-radius": quantity("length", "45 mm"),
     "--max-depth": quantity("length", "15 mm"),
-    "--web-thickness": quantity("length", "20 mm"),
+    "--web-thickness": quantity("length", "20 mm", "2 mm"),
     "--depth-to": ["tip", "shoulder", *CHOICE],
     "--point-angle": quantity("angle", "118 deg", "180 deg"),
     "--direction": ["axial", "radial", *CHOICE],
@@ -216,6 +252,8 @@ SHOP_PLAN_BASE = [
     "tip",
     "--rotor-mass",
     "25 kg",
+    "--speed",  # the ISO check's (shop plan has no engine to take it from)
+    "5500 rpm",
 ]
 SHOP = {
     "match": {**SHOP_ENGINE, **SHOP_PARTS},
@@ -253,7 +291,7 @@ BEARING_LOADS = {
     "--ignition": quantity("angle", "-20 deg"),
     "--burn-duration": quantity("angle", "50 deg"),
     "--intake-pressure": quantity("pressure", "1 bar"),
-    "--pressure-csv": ["OUT/p.csv", "OUT/missing.csv", "OUT", ""],
+    "--pressure-csv": PRESSURE_CSV,
     "--crank-inertia": quantity("inertia", "0.15 kg*m^2"),
 }
 #: ... and the crank's and the bearings'
@@ -290,6 +328,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--balance-factor": number("0.5", "50%", "2"),
             "--method": ["pattern", "individual", *CHOICE],
             "--scope": ["auto", "whole", "halves", *CHOICE],
+            "--verify": [FLAG],
             "--format": FORMATS,
         },
     ),
@@ -706,7 +745,8 @@ COMMAND_TABLE: dict[str, Command] = {
         f"shop {name}": Command(
             ["shop", name],
             [[V8_PARTS, "OUT/missing.csv", "OUT", ""]] if name != "plan" else [],
-            (["--engine", "v8-crossplane", "--method", "as-listed"] if name != "plan" else [])
+            (["--engine", "v8-crossplane"] if name != "plan" else [])
+            + (["--method", "as-listed"] if name in ("match", "bobweights", "sheet") else [])
             + (SHOP_PLAN_BASE if name in ("plan", "sheet") else [])
             + (["--correction-planes", "-200 mm, 200 mm"] if name == "scatter" else [])
             + (["--output", "OUT/s.html"] if name == "sheet" else []),
@@ -789,6 +829,23 @@ def run(args: list[str]) -> tuple[int, str, str]:
     return code, out.getvalue(), err.getvalue()
 
 
+def assert_clean(
+    call: list[str], code: int, out: str, err: str, echoed: Iterable[str] = ()
+) -> None:
+    """A run ended cleanly: exit 2 with one line ``error: ...`` on stderr, or exit 0 with
+    no NaN or infinity in the output (``echoed``: texts of the input the output may repeat,
+    such as a part's id ``nan``, left out of that search)."""
+    lines = err.strip().splitlines()
+    if code == 2:
+        assert len(lines) == 1 and lines[0].startswith("error: "), (call, err)
+        assert "Traceback" not in err
+    else:
+        assert code == 0, (call, code, err)
+        for text in sorted(echoed, key=len, reverse=True):
+            out = out.replace(text, "")
+        assert not NON_FINITE.search(out), (call, out[:2000])
+
+
 @pytest.fixture(scope="module")
 def workspace() -> Iterator[Path]:
     """A folder with the files some options name: a pressure table and an STL part."""
@@ -797,10 +854,11 @@ def workspace() -> Iterator[Path]:
 
     with tempfile.TemporaryDirectory() as folder:
         root = Path(folder)
-        (root / "p.csv").write_text(
-            "angle_deg,pressure_bar\n"
-            + "\n".join(f"{a},{1 + 40 * (abs(a) < 20)}" for a in range(-360, 360, 10))
-        )
+        (root / "p.csv").write_text(table_text(PRESSURE_ROWS))
+        for name, rows in HOSTILE_TABLES.items():
+            (root / f"p-{name.replace(' ', '-')}.csv").write_text(table_text(rows))
+        overlong = "# " + "x" * (MAX_TABLE_BYTES // 2) + "\n"
+        (root / "p-overlong.csv").write_text(2 * overlong + table_text(PRESSURE_ROWS))
         design = CounterweightDesign(0.02, 0.02, 0.35, 0.05, 2.1, 0.008, 8000.0)
         write_stl(design, root / "part.stl")
         yield root
@@ -833,13 +891,7 @@ def test_fuzz_options(name: str, workspace: Path, monkeypatch: pytest.MonkeyPatc
             tally["tried"] += 1
             with hang_guard(HANG_GUARD):
                 code, out, err = run(call)
-            lines = err.strip().splitlines()
-            if code == 2:
-                assert len(lines) == 1 and lines[0].startswith("error: "), (call, err)
-                assert "Traceback" not in err
-            else:
-                assert code == 0, (call, code, err)
-                assert not NON_FINITE.search(out), (call, out[:2000])
+            assert_clean(call, code, out, err)
             tally["clean"] += 1
             tally[f"exit {code}"] += 1
 
@@ -848,3 +900,221 @@ def test_fuzz_options(name: str, workspace: Path, monkeypatch: pytest.MonkeyPatc
         f"\nfuzz options {name}: tried {tally['tried']}, clean {tally['clean']} "
         f"(exit 0: {tally['exit 0']}, exit 2: {tally['exit 2']})"
     )
+
+
+# --------------------------------------------------------------------------- pressure tables
+#: the commands that read a pressure table, with the options of a cheap valid call
+TABLE_COMMANDS = {
+    "bearings": ["bearings", "inline4", "--samples", "36"],
+    "bearings-sweep": ["bearings-sweep", "inline4", "--samples", "36", "--balance-factors", "0.5"],
+    "torsional": ["torsional", "--engine", "inline6", "--speed-points", "20"],
+    "cycle --engine": ["cycle", "--engine", "single"],
+    "sensitivity": ["sensitivity", "--engine", "single", "--balance-factors", "0,1"],
+}
+#: what a table's cell may be made: numbers out of range, not finite, not numbers at all
+CELLS = [
+    *("nan", "inf", "-inf", "1e300", "-1e300", "1e999", "-1", "0", "-0", "1e-320", "1000"),
+    *("1000.0001", "-720", "720", "720.5", "9" * 400, "", " ", "abc", "1,5", "0x10", "1_000"),
+    *(" 5 ", "+5", "\uff15", "1e", "--1", '"1"', "1\x00", "\x1b[31m1"),
+]
+#: a table as text: every row's cells joined by commas, rows by newlines
+Table = list[list[str]]
+
+
+def shifted(cell: str, by: float = 0.0, times: float = 1.0) -> str:
+    """A cell's number times ``times`` plus ``by``; a cell that is no number is kept."""
+    try:
+        return repr(float(cell) * times + by)
+    except ValueError:
+        return cell
+
+
+def mutate_cells(rows: Table, draw: Any) -> Table:
+    for _ in range(draw(st.integers(1, 3))):
+        row = draw(st.integers(1, len(rows) - 1))
+        rows[row][draw(st.integers(0, 1))] = draw(st.sampled_from(CELLS))
+    return rows
+
+
+def mutate_scale(rows: Table, draw: Any) -> Table:
+    factor = draw(st.sampled_from([1e300, 1e6, 1e3, 30.0, 10.0, 0.5, -1.0, 0.0, 1e-300, 1e-6]))
+    column = draw(st.integers(0, 1))  # the pressures, or the angles
+    return [rows[0]] + [
+        [shifted(c, times=factor) if k == column else c for k, c in enumerate(r)] for r in rows[1:]
+    ]
+
+
+def mutate_order(rows: Table, draw: Any) -> Table:
+    body = rows[1:]
+    how = draw(st.sampled_from(["reverse", "swap", "duplicate", "shift", "sort by pressure"]))
+    if how == "reverse":
+        body.reverse()
+    elif how == "swap":
+        i, j = draw(st.integers(0, len(body) - 1)), draw(st.integers(0, len(body) - 1))
+        body[i], body[j] = body[j], body[i]
+    elif how == "duplicate":
+        i = draw(st.integers(0, len(body) - 1))
+        body.insert(i, list(body[i]))
+    elif how == "shift":
+        shift = draw(st.sampled_from([360.0, 720.0, -720.0, 1e-9, 400.0]))
+        body = [[shifted(r[0], shift), *r[1:]] for r in body]
+    else:
+        body.sort(key=lambda r: r[-1])
+    return [rows[0], *body]
+
+
+def mutate_rows(rows: Table, draw: Any) -> Table:
+    how = draw(st.sampled_from(["few", "two cycles", "fine", "header only", "no header"]))
+    if how == "few":
+        return rows[: draw(st.integers(0, 5))]
+    if how == "two cycles":
+        return rows + [[shifted(r[0], 720.0), *r[1:]] for r in rows[1:]]
+    if how == "fine":  # a valid table of many rows (under the size limit)
+        count = draw(st.sampled_from([721, 7201, 100_000, 250_000]))
+        step = 720.0 / count
+        return [rows[0]] + [
+            [f"{-360 + k * step:.6f}", "41.0" if abs(-360 + k * step) < 20 else "1.0"]
+            for k in range(count)
+        ]
+    return rows[:1] if how == "header only" else rows[1:]
+
+
+def mutate_columns(rows: Table, draw: Any) -> Table:
+    row = draw(st.integers(0, len(rows) - 1))
+    how = draw(st.sampled_from(["extra", "missing", "empty row", "header"]))
+    if how == "extra":
+        rows[row] = [*rows[row], draw(st.sampled_from(["1", "", "x"]))]
+    elif how == "missing":
+        rows[row] = rows[row][:1]
+    elif how == "empty row":
+        rows.insert(row, [""])
+    else:
+        rows[0] = draw(
+            st.sampled_from(
+                [["pressure_bar", "angle_deg"], ["angle", "p"], ["1", "2"], ["", ""], ["a"] * 3]
+            )
+        )
+    return rows
+
+
+MUTATIONS = {
+    "cells": mutate_cells,
+    "scale": mutate_scale,
+    "order": mutate_order,
+    "rows": mutate_rows,
+    "columns": mutate_columns,
+}
+#: the bytes a table's text may be damaged with, and where
+BYTES = [b"\x00", b"\xff", b"\xef\xbb\xbf", b"\r\n", b"\r", b'"', b"\t", b"#", b",,", b"\n\n"]
+
+
+@st.composite
+def pressure_tables(draw: Any) -> tuple[list[str], bytes]:
+    """(mutations, table bytes): the workspace's valid table with one to three mutations of
+    its rows, then perhaps a few bytes inserted, or padded beyond the size limit."""
+    rows: Table = [["angle_deg", "pressure_bar"]] + [[repr(a), repr(p)] for a, p in PRESSURE_ROWS]
+    names = draw(st.lists(st.sampled_from(sorted(MUTATIONS)), min_size=1, max_size=2))
+    for name in names:
+        if len(rows) > 1:
+            rows = MUTATIONS[name](rows, draw)
+    raw = "".join(",".join(r) + "\n" for r in rows).encode("utf-8", "surrogatepass")
+    how = draw(st.sampled_from(["none", "none", "insert", "overlong"]))
+    if how == "insert":
+        names.append("bytes")
+        for _ in range(draw(st.integers(1, 3))):
+            at = draw(st.integers(0, len(raw)))
+            raw = raw[:at] + draw(st.sampled_from(BYTES)) + raw[at:]
+    elif how == "overlong":
+        names.append("overlong")
+        raw = b"#" * MAX_TABLE_BYTES + b"\n" + raw
+    return names, raw
+
+
+TABLE_TALLY: dict[str, dict[str, int]] = {}
+
+
+@pytest.mark.parametrize("name", list(TABLE_COMMANDS))
+def test_fuzz_pressure_tables(name: str, tmp_path: Path) -> None:
+    """Mutated pressure tables through every command that reads one: exit 2 with one line,
+    or exit 0 with finite numbers."""
+    tally = TABLE_TALLY.setdefault(name, {"tried": 0, "clean": 0, "exit 0": 0, "exit 2": 0})
+    table = tmp_path / "p.csv"
+
+    @settings(
+        max_examples=EXAMPLES,
+        derandomize=True,
+        database=None,
+        deadline=None,
+        suppress_health_check=list(HealthCheck),
+    )
+    @given(case=pressure_tables())
+    def example(case: tuple[list[str], bytes]) -> None:
+        mutations, raw = case
+        table.write_bytes(raw)
+        call = [*TABLE_COMMANDS[name], "--pressure-csv", str(table)]
+        tally["tried"] += 1
+        with hang_guard(HANG_GUARD):
+            code, out, err = run(call)
+        assert_clean([*call, f"(table: {mutations}, {raw[:200]!r})"], code, out, err)
+        tally["clean"] += 1
+        tally[f"exit {code}"] += 1
+
+    example()
+    print(
+        f"\nfuzz pressure tables {name}: tried {tally['tried']}, clean {tally['clean']} "
+        f"(exit 0: {tally['exit 0']}, exit 2: {tally['exit 2']})"
+    )
+
+
+#: the commands that take a table per cylinder, for a two-cylinder engine
+PER_CYLINDER = {
+    "bearings": ["bearings", "inline2-360", "--samples", "36"],
+    "bearings-sweep": ["bearings-sweep", "inline2-360", "--samples", "36"]
+    + ["--balance-factors", "0.5"],
+    "torsional": ["torsional", "--engine", "inline2-360", "--speed-points", "20"],
+    "cycle --engine": ["cycle", "--engine", "inline2-360"],
+}
+
+
+@pytest.mark.parametrize("name", list(PER_CYLINDER))
+def test_the_bad_table_of_several_is_named(name: str, workspace: Path, tmp_path: Path) -> None:
+    """Found by this fuzzing: of two tables, the one too short or not a file was shown as
+    the tuple of every file given (``--pressure-csv = ('p.csv', 'short.csv')``), so the
+    line did not say which; torsional showed the settings' field ``pressure_csv``."""
+    good, short, fifo = str(workspace / "p.csv"), str(workspace / "p-short.csv"), tmp_path / "f"
+    os.mkfifo(fifo)
+    for bad, allowed in [
+        (short, "must hold at least 4 rows of: angle_deg, pressure_bar (found 3)"),
+        (str(fifo), "is a pipe (FIFO), not a file"),
+    ]:
+        call = [*PER_CYLINDER[name], "--pressure-csv", good, "--pressure-csv", bad]
+        code, _, err = run(call)
+        assert code == 2 and err.startswith(f"error: --pressure-csv = {bad!r}: {allowed}"), err
+        assert_clean(call, code, "", err)
+
+
+def test_sensitivity_says_it_takes_one_table(workspace: Path) -> None:
+    """Found by this fuzzing: ``sensitivity`` given two tables said it takes "0 to 1
+    numbers, separated by commas"."""
+    table = str(workspace / "p.csv")
+    call = ["sensitivity", "--engine", "inline2-360", "--pressure-csv", table]
+    code, _, err = run([*call, "--pressure-csv", table])
+    assert code == 2
+    assert err.rstrip().endswith("must be at most 1 file, the option given once for each"), err
+
+
+@pytest.mark.parametrize("unit", ["oz", "lb", "ton", "grain"])
+def test_a_huge_number_in_a_unit_pint_converts_is_one_line(unit: str) -> None:
+    """Found by this fuzzing (a shop reading of 400 nines in oz): a number beyond a float
+    in a unit outside crankbalance's own table went to pint as an integer, and pint's
+    conversion raised OverflowError, a traceback; ``units.parse_quantity`` now refuses it
+    first, as it did in g and kg."""
+    huge = "9" * 400
+    finite = "must be a finite mass, e.g. '500 g'"
+    for call in (
+        ["balance-factor", "--reciprocating-mass", f"{huge} {unit}", "--crank-radius", "27 mm"],
+        ["shop", "plan", *SHOP_PLAN_BASE[2:], "--reading", f"{huge} {unit} @ 40 mm, 35 deg"],
+    ):
+        code, _, err = run(call)
+        assert code == 2 and err.rstrip().endswith(finite), (call, err)
+        assert_clean(call, code, "", err)

@@ -22,7 +22,7 @@ BOM = b"\xef\xbb\xbf"
 
 
 def test_bom_json_body_of_analyze_as_the_cli_reads_it(server: str, tmp_path: Path, capsys) -> None:
-    body = json.dumps(load_engine("v8-crossplane").to_file_dict()).encode()
+    body = json.dumps(load_engine("v8-crossplane").to_data()).encode()
     headers = {"Content-Type": "application/json"}
     status, with_bom = post(server, BOM + body, headers, "/api/analyze")
     assert status == 200, with_bom
@@ -83,3 +83,24 @@ def test_client_closing_mid_body_leaves_one_log_line(
     assert "Traceback" not in added and "ClientDisconnect" not in added
     assert lines[0].startswith("POST /api/analyze: request body = ")
     assert "of 5000 bytes received" in lines[0]
+
+
+def test_a_request_head_that_stalls_is_closed(tmp_path: Path) -> None:
+    """A client that sends part of a request's head and then stalls (slowloris) is closed
+    after the head deadline, with one log line; a whole request on another connection is
+    answered as before. The test waits for the server to close the socket (recv returns
+    b""); the socket's timeout is only the hang guard."""
+    from crankbalance.web.server import running_server
+
+    path = tmp_path / "server.log"
+    with open(path, "w") as log, running_server(log, timeout=HANG_GUARD, head_timeout=1.0) as url:
+        port = int(urlsplit(url).port or 0)
+        with socket.create_connection(("127.0.0.1", port), timeout=HANG_GUARD) as stalled:
+            stalled.sendall(b"GET /api/presets HTTP/1.1\r\nHost: 127.0.0.1\r\n")
+            assert stalled.recv(100) == b""  # closed by the server, not answered
+        with socket.create_connection(("127.0.0.1", port), timeout=HANG_GUARD) as whole:
+            whole.sendall(b"GET /api/presets HTTP/1.1\r\nHost: 127.0.0.1\r\n\r\n")
+            assert whole.recv(20).startswith(b"HTTP/1.1 200")
+    lines = [line for line in path.read_text().splitlines() if "did not arrive" in line]
+    assert len(lines) == 1 and "(44 bytes came); connection closed" in lines[0], lines
+    assert "Traceback" not in path.read_text()

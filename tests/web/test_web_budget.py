@@ -145,7 +145,7 @@ def test_bearing_sweep_over_budget_refused_before_the_first_case() -> None:
 
 def _engine_64() -> Any:
     """The inline-4 preset with 64 cylinders (the engine file's most)."""
-    data = load_engine("inline4").to_file_dict()
+    data = load_engine("inline4").to_data()
     data["crank_train"] = {**data["crank_train"], "cylinders": 64}
     data["crank_train"].pop("firing_order", None)
     return spec_from_dict(data)

@@ -69,7 +69,7 @@ def test_preset_change_compute_report(server: str, page, tmp_path: Path) -> None
     page.get_by_role("button", name="Compute results").click()
     _wait_text(page, "body", r"Counterweight mass:")
     # the same engine through the API
-    spec = load_engine("v8-crossplane").model_copy(update={"speed": 6000 * 3.141592653589793 / 30})
+    spec = load_engine("v8-crossplane").replace(speed=6000 * 3.141592653589793 / 30)
     api = analyze(spec).to_dict()
     study = balance_engine(spec).to_dict()
     with page.expect_download() as info:

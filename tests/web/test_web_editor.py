@@ -46,12 +46,10 @@ async def test_crossplane_inline4_from_the_preset(user: User, form) -> None:
     errors = {k: v.error for k, v in form.page_inputs().items() if v.error}
     assert not errors, errors
     spec = load_engine("inline4")
-    crossplane = spec.model_copy(
-        update={
-            "crank_train": spec.crank_train.model_copy(
-                update={"throw_angles": [0.0, math.pi / 2, 3 * math.pi / 2, math.pi]}
-            )
-        }
+    crossplane = spec.replace(
+        crank_train=spec.crank_train.replace(
+            throw_angles=[0.0, math.pi / 2, 3 * math.pi / 2, math.pi]
+        )
     )
     rows = form.rows("orders-table")
     ref = analyze(crossplane).to_dict()
@@ -116,7 +114,7 @@ async def test_mass_override_rows(user: User, form) -> None:
     assert rows[0]["reciprocating"] == "1.0400" and rows[1]["reciprocating"] == "0.9400"
     form.set("override-0-numbers", "1, 9")
     assert form.error("override-0-numbers") == (
-        "Mass override 1: cylinders: cylinder 9 does not exist (1..3)"
+        "Mass override 1: cylinders = 1, 9: cylinder 9 does not exist (1..3)"
     )
     form.set("override-0-numbers", "x")
     assert "whole numbers" in form.error("override-0-numbers")
@@ -168,7 +166,7 @@ def test_custom_throws_and_overrides_round_trip() -> None:
     project = Project.from_spec(spec)
     assert project.throws or project.throw_angles is not None or project.overrides
     assert project.spec == spec
-    data = spec.to_file_dict()
+    data = spec.to_data()
     data["masses"]["override"] = [
         {"cylinders": [2], "piston": "450 g", "conrod": "620 g"},
         {"throws": [1], "crankpin": "350 g"},

@@ -250,10 +250,8 @@ async def test_results_follow_the_detail_fields(user: User, form) -> None:
     form.set("field-rod_positions", "-15 mm, 15 mm")
     form.set("field-moment_reference", "40 mm")
     spec = load_engine("ducati-916")
-    ct = spec.crank_train.model_copy(
-        update={"rod_positions": [-0.015, 0.015], "moment_reference": 0.04}
-    )
-    ref = analyze(spec.model_copy(update={"crank_train": ct})).to_dict()
+    ct = spec.crank_train.replace(rod_positions=[-0.015, 0.015], moment_reference=0.04)
+    ref = analyze(spec.replace(crank_train=ct)).to_dict()
     rows = form.rows("orders-table")
     for row, force, moment in zip(rows, ref["free_forces"], ref["free_moments"], strict=False):
         assert float(row["force"]) == pytest.approx(force["amplitude_N"], rel=1e-3, abs=1e-6)
@@ -325,8 +323,8 @@ def test_ducati_rod_positions_move_the_rocking_couple(server: str, page) -> None
     before = float(_results_match(page, spec)[0][4])
     assert before > 1.0
     _field(page, "rod_positions").fill("-20 mm, 20 mm")
-    ct = spec.crank_train.model_copy(update={"rod_positions": [-0.02, 0.02]})
-    after = float(_results_match(page, spec.model_copy(update={"crank_train": ct}))[0][4])
+    ct = spec.crank_train.replace(rod_positions=[-0.02, 0.02])
+    after = float(_results_match(page, spec.replace(crank_train=ct))[0][4])
     assert after == pytest.approx(2 * before, rel=1e-3)
     _field(page, "rod_positions").fill("-20 mm")  # one value for two cylinders
     message = page.locator(".q-field--error .q-field__bottom").first
@@ -346,9 +344,9 @@ def test_radial9_link_pin_radius_in_the_browser(server: str, page) -> None:
     spec = load_engine("radial9-r985")
     _results_match(page, spec)
     _field(page, "link_pin_radius").fill("40 mm")
-    art = spec.crank_train.articulated.model_copy(update={"link_pin_radius": 0.04})
-    ct = spec.crank_train.model_copy(update={"articulated": art})
-    _results_match(page, spec.model_copy(update={"crank_train": ct}))
+    art = spec.crank_train.articulated.replace(link_pin_radius=0.04)
+    ct = spec.crank_train.replace(articulated=art)
+    _results_match(page, spec.replace(crank_train=ct))
     _shoot(page, "radial9_link_pin_radius")
 
 

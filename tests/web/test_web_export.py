@@ -93,14 +93,16 @@ def download(page, name: str, fmt: str, tmp_path: Path):
 
 def server_images(names: tuple[str, ...]) -> dict[str, bytes]:
     """kaleido's PNG of the page's figures of the V12 (the reference)."""
-    from crankbalance.output import figures, render
+    from crankbalance.output import render
+    from crankbalance.output.figures.crank3d import crank_3d
+    from crankbalance.output.figures.engine import orders_bar
     from crankbalance.web.project import Project
 
     c = Project.from_preset(ENGINE).compute()
     assert c is not None
     built = {
-        "crank3d": lambda: figures.crank_3d(c.analysis.model, c.study),
-        "orders": lambda: figures.orders_bar(c.analysis),
+        "crank3d": lambda: crank_3d(c.analysis.model, c.study),
+        "orders": lambda: orders_bar(c.analysis),
     }
     return {name: render.to_image(built[name](), "png") for name in names}
 

@@ -3,7 +3,7 @@ angle*, *Depth read to the*) through NiceGUI's simulated User.
 
 The plan on the page is checked against the library's rebalancing for the same inputs
 (:func:`crankbalance.studies.cylinder.rebalance_cylinder`, holes built as
-:class:`~crankbalance.physics.single_cylinder.DrilledHoles` with the point) and against the closed
+:class:`~crankbalance.physics.rebalancing.DrilledHoles` with the point) and against the closed
 form of a hole with a conical point (cylinder plus cone, V = A (s + h/3), h = (d/2) /
 tan(alpha/2)): the mass shown per web, and the point's height between the depth to the
 tip and the depth to the shoulder of the same correction."""
@@ -21,7 +21,8 @@ from nicegui.testing.user import User
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.single_cylinder import DrilledHoles, counterweight_moment, rebalance
+from crankbalance.physics.rebalancing import DrilledHoles, rebalance
+from crankbalance.physics.single_cylinder import counterweight_moment
 from crankbalance.schema.settings import (
     RebalanceOptions,
     ShopOptions,
@@ -56,7 +57,7 @@ def _reference(point_angle_deg: float, depth_to: str) -> Any:
         rot,
         rec,
         rot,
-        RebalanceOptions(new_reciprocating=NEW_RECIPROCATING).new_reciprocating,
+        RebalanceOptions.parse({"new_reciprocating": NEW_RECIPROCATING}).new_reciprocating,
         counterweight_moment(rot, rec, single.balance_factor, r) / r,
         r,
         r,
@@ -145,7 +146,7 @@ async def test_flat_point_gives_the_flat_plan_unchanged(user: User, form) -> Non
     flat = rebalance_cylinder(
         build_model(load_engine("single")),
         SingleCylinderOptions(),
-        RebalanceOptions(new_reciprocating=NEW_RECIPROCATING),
+        RebalanceOptions.parse({"new_reciprocating": NEW_RECIPROCATING}),
     )
     assert flat.correction.point_angle == math.pi, "the options' default is a flat bottom"
     depth = flat.iterations[-1].depth
@@ -227,7 +228,7 @@ def test_radial_hole_drawing_shows_the_point() -> None:
     """figures.drilling_plan, radial holes: the outline reaches the tip (rim - depth to the
     tip) and is full width down to the shoulder, the point's height (cone of half-angle
     59 deg) above the tip; a flat bottom is full width to its one depth."""
-    from crankbalance.output import figures
+    from crankbalance.output.figures.single import drilling_plan
 
     model = build_model(load_engine("single"))
     single = SingleCylinderOptions()
@@ -250,9 +251,7 @@ def test_radial_hole_drawing_shows_the_point() -> None:
         result = rebalance(rot, rec, rot, rec - 0.01, cw_mass, r, r, holes, 1e-7)
         depth = result.iterations[-1].depth
         assert depth > h
-        trace = next(
-            t for t in figures.drilling_plan(result, 0.03).data if t.legendgroup == "holes"
-        )
+        trace = next(t for t in drilling_plan(result, 0.03).data if t.legendgroup == "holes")
         y, x = list(trace.y), list(trace.x)
         assert trace.name.endswith(named), trace.name
         tip = depth + to_tip  # depth to the tip [m]

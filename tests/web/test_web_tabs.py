@@ -70,7 +70,8 @@ def _single_reference(new_reciprocating: str) -> tuple[Any, Any]:
 
     model = build_model(load_engine("single"))
     single = SingleCylinderOptions()
-    reb = rebalance_cylinder(model, single, RebalanceOptions(new_reciprocating=new_reciprocating))
+    new = RebalanceOptions.parse({"new_reciprocating": new_reciprocating})
+    reb = rebalance_cylinder(model, single, new)
     return reb, iso_check(model, single)
 
 
@@ -137,14 +138,14 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
     plan's depth; a rebalancing without holes draws none."""
     from dataclasses import replace
 
-    from crankbalance.output import figures
-    from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
+    from crankbalance.output.figures.single import drilling_plan
+    from crankbalance.physics.rebalancing import DrilledHoles, rebalance
 
     holes = DrilledHoles(diameter=0.006, radius=0.05, number=2, direction="radial")
     reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, holes, 1e-9)
     depth = reb.iterations[-1].depth * 1e3
     assert depth > 0
-    fig = figures.drilling_plan(reb, 0.031)
+    fig = drilling_plan(reb, 0.031)
     drawn = [t for t in fig.data if (t.name or "").startswith("hole") or t.legendgroup == "holes"]
     assert len(drawn) == holes.number
     for trace in drawn:
@@ -152,7 +153,7 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
         # corners of the slot: half the diameter (3 mm) beside the hole's axis
         assert min(reach) == pytest.approx(math.hypot(50 - depth, 3), rel=1e-9)
         assert max(reach) == pytest.approx(math.hypot(50, 3), rel=1e-9)
-    none = figures.drilling_plan(replace(reb, iterations=[]), 0.031)
+    none = drilling_plan(replace(reb, iterations=[]), 0.031)
     assert not [t for t in none.data if t.legendgroup == "holes"]
     assert "no hole needed" in none.layout.title.text
 
@@ -342,7 +343,9 @@ def test_holes_per_web_in_the_drilling_plan(server: str, page: Any) -> None:
     model = build_model(load_engine("single"))
     one, three = (
         rebalance_cylinder(
-            model, SingleCylinderOptions(), RebalanceOptions(new_reciprocating="359 g", holes=n)
+            model,
+            SingleCylinderOptions(),
+            RebalanceOptions.parse({"new_reciprocating": "359 g", "holes": n}),
         )
         for n in (1, 3)
     )

@@ -124,6 +124,18 @@ def _open(page: Any, label: str) -> None:
     page.wait_for_function(DRAWN)
     page.wait_for_function(tailwind_css.SETTLED)
     page.wait_for_function(STILL)
+    page.wait_for_function(TABS_MEASURED)
+
+
+#: every tab bar shown shows the scroll arrows exactly when its tabs overflow it, Quasar's rule
+#: (QTabs.updateContainer); after a change of the window's size Quasar applies it through a
+#: debounced resize observer, so a bar measured at once may still have the old width's state
+TABS_MEASURED = """() => [...document.querySelectorAll('.q-tabs')].every((bar) => {
+    const content = bar.querySelector('.q-tabs__content');
+    if (!content || bar.offsetParent === null) return true;  // a bar not shown
+    const tabs = [...content.children].reduce((sum, el) => sum + (el.offsetWidth || 0), 0);
+    const overflow = bar.offsetWidth > 0 && Math.min(content.scrollWidth, tabs) > bar.offsetWidth;
+    return bar.classList.contains('q-tabs--scrollable') === overflow; })"""
 
 
 #: no animation or transition of the page is running (the tab bar's indicator slides to

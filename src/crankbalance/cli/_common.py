@@ -60,14 +60,22 @@ def run_study(
     return run(name, engine, typed(values), naming=naming, **edge)
 
 
+def echo_notes(engine: str) -> None:
+    """Print the plausibility notes of a valid engine (unusual numbers, not errors; they are
+    not part of the JSON), one ``note:`` line each."""
+    from ..io.engine_file import load_engine
+
+    for note in load_engine(engine).plausibility():
+        click.echo(f"note: {note.text}")
+
+
 def default_help(model: type[Options], name: str, text: str = "") -> str:
     """A help text with the setting's default as one would type it, from the settings
     schema (the one place defaults are decided): ``"Bore. [default: 76.8 mm]"``."""
     from ..schema.settings import default_text
 
     default = default_text(model, name)
-    info = model.model_fields[name]
-    words = text or f"{info.title or name}."
+    words = text or f"{model.FIELDS[name].title or name}."
     return f"{words} [default: {default}]" if default else words
 
 

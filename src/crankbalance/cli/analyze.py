@@ -5,7 +5,7 @@ from __future__ import annotations
 import click
 
 from ..output.format import json_text, moment_point, number, plural, text
-from ._common import echo_table, format_option, run_study
+from ._common import echo_notes, echo_table, format_option, run_study
 
 
 @click.command()
@@ -95,6 +95,7 @@ def analyze(engine: str, fmt: str, orders: str | None) -> None:
         "Rotating masses (bare crank, no counterweights): "
         f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
     )
+    echo_notes(engine)
 
 
 def _distinct(values: list[float]) -> str:

@@ -7,7 +7,7 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number, plural, text
-from ._common import echo_table, format_option, run_study
+from ._common import echo_notes, echo_table, format_option, run_study
 
 
 @click.command()
@@ -37,6 +37,13 @@ from ._common import echo_table, format_option, run_study
     default=None,
     help="Balance the whole crank or each half on its own.",
 )
+@click.option(
+    "--verify",
+    is_flag=True,
+    default=False,
+    help="Also check the residuals in the time domain (every mass over a revolution, "
+    "then a Fourier transform) and print how well the two agree.",
+)
 def balance(
     engine: str,
     fmt: str,
@@ -44,18 +51,26 @@ def balance(
     balance_factor: str | None,
     method: str | None,
     scope: str | None,
+    verify: bool,
 ) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    values = {"angle": angle, "balance_factor": balance_factor, "method": method, "scope": scope}
+    values = {
+        "angle": angle,
+        "balance_factor": balance_factor,
+        "method": method,
+        "scope": scope,
+        "verify": verify or None,
+    }
     data = run_study("balance", engine, values, engine_option=False).to_dict()
     if fmt == "json":
         click.echo(json_text(data))
         return
     print_table(data)
+    echo_notes(engine)
 
 
 def print_table(data: dict[str, Any]) -> None:
@@ -123,7 +138,7 @@ def print_table(data: dict[str, Any]) -> None:
                     ]
                 )
         echo_table(["shaft", "y mm", "mass kg", "phase °"], rows)
-    click.echo("\nTime-domain check (amplitudes before -> after):")
+    click.echo("\nResiduals (amplitudes before -> after):")
     echo_table(
         ["component", "targeted", "force N", "after", "moment N·m", "after"],
         [
@@ -141,3 +156,14 @@ def print_table(data: dict[str, Any]) -> None:
     )
     for note in data["notes"]:
         click.echo(f"note: {note}")
+    check = data.get("verification")
+    if check is not None:
+        verdict = "agree" if check["agrees"] else "DO NOT agree"
+        click.echo(
+            f"\nTime-domain verification ({check['samples']} crank angles, Fourier transform): "
+            f"the residuals {verdict} to round-off; largest differences "
+            f"{text(check['force_difference_N'], 'force')} "
+            f"(round-off {text(check['force_round_off_N'], 'force')}) and "
+            f"{text(check['moment_difference_Nm'], 'moment')} "
+            f"(round-off {text(check['moment_round_off_Nm'], 'moment')})"
+        )

@@ -126,10 +126,10 @@ def explore(
         raise InputError("--output", output, "a file in an existing directory")
     points = 0
     if plot is not None:
-        from ..output.figures import EXPLORE_POINTS
+        from ..output.figures.explore import EXPLORE_POINTS
 
         check_figure(plot)
-        objectives = values.get("objectives") or ExploreOptions.model_fields["objectives"].default
+        objectives = values.get("objectives") or ExploreOptions.FIELDS["objectives"].default
         if len([name for name in str(objectives).split(",") if name.strip()]) < 2:
             raise InputError("--plot", plot, "two --objectives (its axes) and a top-N key")
         points = EXPLORE_POINTS
@@ -137,11 +137,11 @@ def explore(
         "explore", engine, values, output=output, progress=progress, figure_points=points
     )
     if plot is not None:
-        from ..output import figures
+        from ..output.figures.explore import explore_points, explore_scatter
 
         run = result.figure
-        shown = figures.explore_points(run.top, run.pareto)
-        fig = figures.explore_scatter(
+        shown = explore_points(run.top, run.pareto)
+        fig = explore_scatter(
             shown, run.pareto, result.objectives[0], result.objectives[1], total=run.rows
         )
         write_figure(plot, fig)

@@ -76,7 +76,10 @@ def build_figure(
 ) -> Any:
     """The figure ``kind`` of ``engine`` (preset name or engine file)."""
     from ..errors import InputError
-    from ..output import figures
+    from ..output.figures.balancing import residuals_bar
+    from ..output.figures.crank3d import crank_3d
+    from ..output.figures.engine import curves_figure, orders_bar, polar_figure
+    from ..output.figures.single import single_cylinder_forces
     from ..studies.engine import analyze, balance_engine
 
     if kind not in KINDS:
@@ -84,31 +87,31 @@ def build_figure(
     if kind == "residuals" or (kind in ("crank", "curves") and balance):
         study = balance_engine(engine)
         if kind == "residuals":
-            return figures.residuals_bar(study)
+            return residuals_bar(study)
         if kind == "crank":
-            return figures.crank_3d(study.model, study)
-        return figures.curves_figure(analyze(study.model), study, quantity)  # type: ignore[arg-type]
+            return crank_3d(study.model, study)
+        return curves_figure(analyze(study.model), study, quantity)  # type: ignore[arg-type]
     analysis = analyze(engine)
     if kind == "crank":
-        return figures.crank_3d(analysis.model)
+        return crank_3d(analysis.model)
     if kind == "orders":
-        return figures.orders_bar(analysis)
+        return orders_bar(analysis)
     if kind == "curves":
-        return figures.curves_figure(analysis, None, quantity)  # type: ignore[arg-type]
+        return curves_figure(analysis, None, quantity)  # type: ignore[arg-type]
     if kind == "polar":
         chosen: int | str = order.strip()
         if order.strip().isdigit():
             chosen = int(order)
-            if chosen < 1:  # figures.polar_figure takes 0 for the rotating masses
+            if chosen < 1:  # polar_figure takes 0 for the rotating masses
                 raise InputError("--order", order, "a harmonic order from 1, or 'rotating'")
-        return figures.polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
+        return polar_figure(analysis, chosen, quantity)  # type: ignore[arg-type]
     from ..studies.cylinder import cylinder_study
 
     count = analysis.model.cylinders
     if not 1 <= cylinder <= count:
         raise InputError("--cylinder", cylinder, f"a cylinder number from 1 to {count}")
     single = cylinder_study(analysis.model, cylinder, balance_factor)
-    fig = figures.single_cylinder_forces(single)
+    fig = single_cylinder_forces(single)
     fig.update_layout(
         title=f"{analysis.model.name}, cylinder {cylinder} alone: {fig.layout.title.text}"
     )

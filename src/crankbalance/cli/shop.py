@@ -281,7 +281,7 @@ def scatter(parts: str, engine: str, fmt: str, **values: Any) -> None:
         ],
     )
     if study.p_grade is not None:
-        grade = values.get("grade") or ShopOptions.model_fields["grade"].default
+        grade = values.get("grade") or ShopOptions.FIELDS["grade"].default
         click.echo(f"\nP(both planes meet {grade}) = {study.p_grade:.4g}")
 
 
@@ -307,7 +307,7 @@ def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: 
 
     given = typed(values)
     options = parse_settings(ShopOptions, given)
-    with named_fields(ShopOptions.model_fields, given, options, option_name):
+    with named_fields(ShopOptions.FIELDS, given, options, option_name):
         study = shop_study(engine, parts, options, PLAN_NAMES)
     path = write_sheet(study, output, chromium)
     click.echo(f"wrote {path}", err=True)

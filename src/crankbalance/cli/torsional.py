@@ -29,16 +29,16 @@ def _options(function: Any) -> Any:
     below), its help from the settings schema."""
     from ..schema.settings import TorsionalOptions, default_text
 
-    names = [n for n in TorsionalOptions.model_fields if n != "pressure_csv"]
+    names = [n for n in TorsionalOptions.FIELDS if n != "pressure_csv"]
     for name in reversed(names):
-        info = TorsionalOptions.model_fields[name]
+        spec = TorsionalOptions.FIELDS[name]
         default = default_text(TorsionalOptions, name)
         shown = f" [default: {default}]" if default else ""
-        if not default and info.description:
-            shown = f" [{info.description}]"
+        if not default and spec.hint:
+            shown = f" [{spec.hint}]"
         if name.endswith("_stiffness") and name != "damper_stiffness":
             shown += " E.g. '5e5 N*m/rad'."
-        function = click.option(option_name(name), default=None, help=f"{info.title}.{shown}")(
+        function = click.option(option_name(name), default=None, help=f"{spec.title}.{shown}")(
             function
         )
     return function

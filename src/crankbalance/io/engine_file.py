@@ -71,13 +71,13 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
 
 def engine_to_toml(spec: EngineSpec) -> str:
     """Write an engine spec as TOML text (quantities as unit strings)."""
-    return dumps_toml(spec.to_file_dict())
+    return dumps_toml(spec.to_data())
 
 
 def save_engine(spec: EngineSpec, path: str | os.PathLike[str]) -> None:
     """Save an engine file atomically; the format follows the suffix (.json or .toml)."""
     if file_format(path) == "json":
-        text = json.dumps(spec.to_file_dict(), indent=2) + "\n"
+        text = json.dumps(spec.to_data(), indent=2) + "\n"
     else:
         text = engine_to_toml(spec)
     write_atomic(path, text)

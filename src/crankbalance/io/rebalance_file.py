@@ -13,88 +13,111 @@ from __future__ import annotations
 
 import math
 import os
-from functools import partial
+from collections.abc import Mapping
 from pathlib import Path
-from typing import Annotated, Any, Literal
-
-from pydantic import BaseModel, BeforeValidator, ConfigDict, Field, ValidationError, model_validator
+from typing import Any, Literal
 
 from ..errors import InputError
-from ..schema.engine import FieldProblem, input_error, parse_in_range
+from ..schema.core import FieldProblem, Schema, entry, field, parse_in_range
 from ..units import parse_factor
 from .reading import parse_toml, read_text
 
 #: largest rebalance file read [bytes]; the example is about 2 kB
 MAX_FILE_BYTES = 1_000_000
 DOC = "docs/single_cylinder.md"
+#: most target balance factors of one rebalancing
+MAX_TARGETS = 50
 
 
-def _quantity(kind: str) -> Any:
-    return BeforeValidator(partial(parse_in_range, kind=kind))
-
-
-Length = Annotated[float, _quantity("length")]
-Mass = Annotated[float, _quantity("mass")]
-Area = Annotated[float, _quantity("area")]
-Density = Annotated[float, _quantity("density")]
-Speed = Annotated[float, _quantity("speed")]
-Unbalance = Annotated[float, _quantity("unbalance")]
-Angle = Annotated[float, _quantity("angle")]
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True)
-
-
-def _target(value: Any) -> Any:
+def _target(value: Any, where: str) -> Any:
     """A target balance factor: a number, a percentage or ``"factory"`` (the crank's own)."""
     if isinstance(value, str) and value.strip().lower() == "factory":
         return "factory"
     from ..physics.single_cylinder import check_balance_factor
 
     try:
-        number = parse_factor(value, "")
+        number = parse_factor(value, where)
     except InputError:
         raise InputError(
-            "", value, "must be a number such as 0.28, a percentage '28%' or 'factory'"
+            where, value, "must be a number such as 0.28, a percentage '28%' or 'factory'"
         ) from None
-    return check_balance_factor(number, "")
+    return check_balance_factor(number, where)
 
 
-Target = Annotated[float | Literal["factory"], BeforeValidator(_target)]
+def _part_masses(value: Any, where: str) -> dict[str, float]:
+    """A table of named part masses, ``[old.rotating]``: name -> mass [kg], each 0 or more."""
+    if not isinstance(value, Mapping):
+        raise InputError(where, value, "must be a table of part names and masses")
+    masses = {}
+    for name, mass in value.items():
+        masses[name] = parse_in_range(mass, "mass", f"{where}.{name}")
+        if masses[name] < 0:
+            raise InputError(f"{where}.{name}", mass, "must not be negative")
+    return masses
 
 
-def _positive(model: Any, names: tuple[str, ...]) -> None:
-    for name in names:
-        value = getattr(model, name)
-        if value is not None and not value > 0:
-            raise FieldProblem(name, "must be greater than zero")
+class _Table(Schema):
+    DOC = DOC
 
 
-class Counterweight(_Strict):
+class Counterweight(_Table):
     """``[counterweight]``: counterweights + webs, measured on the crank."""
 
-    mass: Mass | None = None
-    cg_radius: Length | None = None
+    mass: float | None = field(
+        "mass",
+        default=None,
+        gt=0,
+        title="Counterweight mass",
+        description="Mass of the counterweights with their webs.",
+    )
+    cg_radius: float | None = field(
+        "length",
+        default=None,
+        gt=0,
+        title="Counterweight CG radius",
+        description="Radius of the centre of gravity of the counterweights with their webs.",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> Counterweight:
-        _positive(self, ("mass", "cg_radius"))
-        return self
 
-
-class Parts(_Strict):
+class Parts(_Table):
     """``[old]`` or ``[new]``: the rotating and reciprocating masses of one cylinder, as
     named parts (``[old.rotating]``) or as totals (``rotating_mass``)."""
 
-    label: str | None = None
-    rotating: dict[str, Mass] | None = None
-    reciprocating: dict[str, Mass] | None = None
-    rotating_mass: Mass | None = None
-    reciprocating_mass: Mass | None = None
+    label: str | None = field(
+        "text", default=None, title="Label", description="A name for these parts."
+    )
+    rotating: dict[str, float] | None = field(
+        "any",
+        default=None,
+        parse=_part_masses,
+        words="a table of part names and masses, e.g. crankpin = '50 g'",
+        title="Rotating parts",
+        description="The rotating parts by name with their masses.",
+    )
+    reciprocating: dict[str, float] | None = field(
+        "any",
+        default=None,
+        parse=_part_masses,
+        words="a table of part names and masses, e.g. piston = '200 g'",
+        title="Reciprocating parts",
+        description="The reciprocating parts by name with their masses.",
+    )
+    rotating_mass: float | None = field(
+        "mass",
+        default=None,
+        gt=0,
+        title="Rotating mass",
+        description="The total rotating mass (instead of the parts).",
+    )
+    reciprocating_mass: float | None = field(
+        "mass",
+        default=None,
+        gt=0,
+        title="Reciprocating mass",
+        description="The total reciprocating mass (instead of the parts).",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> Parts:
+    def check(self) -> None:
         for kind in ("rotating", "reciprocating"):
             parts, total = getattr(self, kind), getattr(self, f"{kind}_mass")
             if parts is not None and total is not None:
@@ -105,12 +128,6 @@ class Parts(_Strict):
                 raise FieldProblem(kind, f"give the {kind} part masses or {kind}_mass")
             if parts is not None and not parts:
                 raise FieldProblem(kind, "lists no part")
-            for name, mass in (parts or {}).items():
-                if not mass >= 0:
-                    raise FieldProblem(f"{kind}.{name}", "must not be negative")
-            if total is not None and not total > 0:
-                raise FieldProblem(f"{kind}_mass", "must be greater than zero")
-        return self
 
     @property
     def rotating_total(self) -> float:
@@ -125,30 +142,94 @@ class Parts(_Strict):
         return sum(self.reciprocating.values())
 
 
-class Correction(_Strict):
+class Correction(_Table):
     """``[correction]``: how material comes off the counterweights (face or holes)."""
 
-    method: Literal["face", "holes"] = "face"
-    radius: Length | None = None
-    area: Area | None = None
-    orientation: Literal["radial", "axial"] | None = None
-    diameter: Length | None = None
-    number: int | None = Field(default=None, ge=1, le=1000)
-    direction: Literal["axial", "radial"] | None = None
-    point_angle: Angle | None = None
-    depth_to: Literal["shoulder", "tip"] | None = None
-    web_thickness: Length | None = None
-    webs: int = Field(default=2, ge=1, le=64)
-    density: Density | None = None
-    depth_resolution: Length | None = None
+    method: Literal["face", "holes"] = field(
+        "choice",
+        default="face",
+        choices=("face", "holes"),
+        title="Method",
+        description="face: grind the face; holes: drill.",
+    )
+    radius: float | None = field(
+        "length",
+        default=None,
+        gt=0,
+        title="Radius",
+        description="Radius at which material comes off.",
+    )
+    area: float | None = field(
+        "area", default=None, gt=0, title="Face area", description="Area ground per web."
+    )
+    orientation: Literal["radial", "axial"] | None = field(
+        "choice",
+        default=None,
+        choices=("radial", "axial"),
+        title="Face orientation",
+        description="The ground face's orientation.",
+    )
+    diameter: float | None = field(
+        "length", default=None, gt=0, title="Drill diameter", description="Drill diameter."
+    )
+    number: int | None = field(
+        "whole",
+        default=None,
+        ge=1,
+        le=1000,
+        title="Holes per web",
+        description="Holes drilled side by side in each web.",
+    )
+    direction: Literal["axial", "radial"] | None = field(
+        "choice",
+        default=None,
+        choices=("axial", "radial"),
+        title="Hole direction",
+        description="The holes' direction.",
+    )
+    point_angle: float | None = field(
+        "angle",
+        default=None,
+        zero=True,
+        title="Drill point angle",
+        description="The drill point's included angle (180 deg: flat bottom).",
+    )
+    depth_to: Literal["shoulder", "tip"] | None = field(
+        "choice",
+        default=None,
+        choices=("shoulder", "tip"),
+        title="Depth read to",
+        description="What the depths of pointed holes are read to.",
+    )
+    web_thickness: float | None = field(
+        "length",
+        default=None,
+        gt=0,
+        title="Web thickness",
+        description="Axial thickness of the web at the holes.",
+    )
+    webs: int = field(
+        "whole",
+        default=2,
+        ge=1,
+        le=64,
+        title="Webs",
+        description="Webs the correction is shared between.",
+    )
+    density: float | None = field(
+        "density", default=None, gt=0, title="Density", description="The crank's density."
+    )
+    depth_resolution: float | None = field(
+        "length",
+        default=None,
+        ge=0,
+        title="Machining step",
+        description="The step the depths are rounded to.",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> Correction:
-        _positive(self, ("radius", "area", "diameter", "density", "web_thickness"))
+    def check(self) -> None:
         if self.point_angle is not None and not 0 < self.point_angle <= math.pi:
             raise FieldProblem("point_angle", "must be above 0 and at most 180 deg (flat bottom)")
-        if self.depth_resolution is not None and self.depth_resolution < 0:
-            raise FieldProblem("depth_resolution", "must not be negative")
         for name, keys in METHOD_KEYS.items():
             if name == self.method:
                 continue
@@ -159,7 +240,6 @@ class Correction(_Strict):
                         f"does not apply to method {self.method!r}; remove it or set the "
                         "method (--method face|holes)",
                     )
-        return self
 
 
 #: [correction] keys that belong to one method only
@@ -169,59 +249,99 @@ METHOD_KEYS: dict[str, tuple[str, ...]] = {
 }
 
 
-class Tolerance(_Strict):
+class Tolerance(_Table):
     """``[tolerance]``: the permissible residual, given or from an ISO 21940-11 grade."""
 
-    grade: str | None = None
-    rotor_mass: Mass | None = None
-    speed: Speed | None = None
-    unbalance: Unbalance | None = None
+    grade: str | None = field(
+        "text", default=None, title="Grade", description="The ISO 21940-11 grade."
+    )
+    rotor_mass: float | None = field(
+        "mass", default=None, gt=0, title="Rotor mass", description="The crank's mass."
+    )
+    speed: float | None = field(
+        "speed", default=None, gt=0, title="Speed", description="The largest service speed."
+    )
+    unbalance: float | None = field(
+        "unbalance",
+        default=None,
+        gt=0,
+        title="Permissible unbalance",
+        description="The permissible residual unbalance, instead of a grade.",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> Tolerance:
-        _positive(self, ("rotor_mass", "speed", "unbalance"))
+    def check(self) -> None:
         if self.unbalance is not None:
             for key in ("grade", "rotor_mass", "speed"):
                 if getattr(self, key) is not None:
                     raise FieldProblem(
                         key, "give tolerance.unbalance, or grade, rotor_mass and speed, not both"
                     )
-        return self
 
 
-class RebalanceFile(_Strict):
+class RebalanceFile(_Table):
     """A whole rebalance parts file."""
 
-    name: str | None = None
-    crank_radius: Length | None = None
-    targets: list[Target] | None = Field(default=None, min_length=1, max_length=50)
-    counterweight: Counterweight | None = None
-    old: Parts | None = None
-    new: Parts | None = None
-    correction: Correction | None = None
-    tolerance: Tolerance | None = None
-
-    @model_validator(mode="before")
-    @classmethod
-    def _one_target(cls, data: Any) -> Any:
-        if isinstance(data, dict) and "targets" in data and not isinstance(data["targets"], list):
-            return {**data, "targets": [data["targets"]]}
-        return data
-
-    @model_validator(mode="after")
-    def _check(self) -> RebalanceFile:
-        _positive(self, ("crank_radius",))
-        return self
+    name: str | None = field("text", default=None, title="Name", description="A name.")
+    crank_radius: float | None = field(
+        "length", default=None, gt=0, title="Crank radius", description="Crank throw radius."
+    )
+    targets: list[float | str] | None = field(
+        "list",
+        default=None,
+        item=entry(
+            "any",
+            parse=_target,
+            words="a number such as 0.28, a percentage '28%' or 'factory'",
+        ),
+        min_items=1,
+        max_items=MAX_TARGETS,
+        title="Targets",
+        description="The balance factors to rebalance to (factory: the crank's own).",
+    )
+    counterweight: Counterweight | None = field(
+        "table",
+        default=None,
+        table=Counterweight,
+        title="Counterweight",
+        description="The counterweights with their webs, measured on the crank.",
+    )
+    old: Parts | None = field(
+        "table",
+        default=None,
+        table=Parts,
+        title="Old parts",
+        description="The cylinder's masses with the old parts.",
+    )
+    new: Parts | None = field(
+        "table",
+        default=None,
+        table=Parts,
+        title="New parts",
+        description="The cylinder's masses with the new parts.",
+    )
+    correction: Correction | None = field(
+        "table",
+        default=None,
+        table=Correction,
+        title="Correction",
+        description="How material comes off the counterweights.",
+    )
+    tolerance: Tolerance | None = field(
+        "table",
+        default=None,
+        table=Tolerance,
+        title="Tolerance",
+        description="The permissible residual unbalance.",
+    )
 
 
 def rebalance_file_from_dict(data: Any, source: str = "parts") -> RebalanceFile:
     """Validate the contents of a rebalance parts file; :class:`InputError` names the key."""
     if not isinstance(data, dict):
         raise InputError(source, type(data).__name__, "must be a table of keys and values")
-    try:
-        return RebalanceFile.model_validate(data)
-    except ValidationError as error:
-        raise input_error(error, data, RebalanceFile, DOC, source) from None
+    if "targets" in data and not isinstance(data["targets"], list):
+        data = {**data, "targets": [data["targets"]]}  # one target as itself
+    return RebalanceFile.parse(data)
 
 
 def read_rebalance_data(path: str | os.PathLike[str], field: str = "parts") -> dict[str, Any]:

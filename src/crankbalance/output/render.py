@@ -19,6 +19,9 @@ Public functions
     Path of a Chromium for printing.
 - ``html_to_pdf(html, chromium=None, timeout=120) -> bytes``
     Print an HTML document to PDF with headless Chromium (no network, fresh profile).
+- ``Exporter(chromium=None)``, ``EXPORTER``
+    The kept browser behind :func:`to_image` (``EXPORTER.pid()``: its launcher's process
+    id, for tests and benchmarks that watch it).
 """
 
 from __future__ import annotations
@@ -65,7 +68,7 @@ _OPEN_TIMEOUT = 120.0
 _IMAGE_TIMEOUT = 90.0
 
 
-class _Exporter:
+class Exporter:
     """One headless Chromium (a ``kaleido.Kaleido``) kept open for every image of a process.
 
     kaleido 1.x starts a Chromium per call unless one is kept open; its own sync server
@@ -180,7 +183,8 @@ class _Exporter:
                 atexit.unregister(self.close)
 
 
-_EXPORTER = _Exporter()
+#: the one exporter of the process, which every :func:`to_image` uses
+EXPORTER = Exporter()
 
 
 def to_image(
@@ -206,7 +210,7 @@ def to_image(
         "height": height or layout.height or 600,
         "scale": scale,
     }
-    return _EXPORTER.image(fig.to_dict(), opts)
+    return EXPORTER.image(fig.to_dict(), opts)
 
 
 def to_html(

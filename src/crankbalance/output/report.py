@@ -2,9 +2,13 @@
 inlined, no network) or a PDF (the same page with static SVG figures, printed by a headless
 Chromium).
 
-This module owns the report's content: what it shows, in which order, and the page's
-HTML. The figures come from :mod:`crankbalance.output.figures`; turning them into SVG or HTML and
-printing the page to PDF is done by :mod:`crankbalance.output.render`.
+This module owns the report's content: what it shows and in which order. The page's
+building blocks (style, tables, figures with captions, the document around them) are
+:mod:`crankbalance.output.html`'s, shared with the shop sheet; the figures come from
+:mod:`crankbalance.output.figures` (:mod:`~crankbalance.output.figures.engine`,
+:mod:`~crankbalance.output.figures.balancing`, :mod:`~crankbalance.output.figures.crank3d`);
+turning them into SVG or HTML and printing the page to PDF is done by
+:mod:`crankbalance.output.render`.
 
 Contents: engine data, mass split, free forces and moments by order, rotating masses,
 balancing masses (counterweights, balance shafts), residuals before/after balancing, the
@@ -24,7 +28,6 @@ Public functions
 
 from __future__ import annotations
 
-import base64
 import datetime as _dt
 import html as _html
 import json
@@ -35,10 +38,11 @@ from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from ..results import to_jsonable
-from .format import angle, convert, moment_point, number
+from .format import angle, convert, moment_point
+from .html import figure_html, fmt, page, table
 
 if TYPE_CHECKING:  # pragma: no cover
-    from .figures import Quantity
+    from .figures.common import Quantity
 
 REPORT_SCHEMA = "crankbalance.report/3"
 
@@ -114,19 +118,6 @@ def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
 
 
 # --------------------------------------------------------------------------- formatting
-def fmt(value: Any, digits: int = 5) -> str:
-    """A number as the report prints it (``digits`` significant figures)."""
-    if value is None:
-        return "–"
-    if isinstance(value, bool):
-        return "yes" if value else "no"
-    if isinstance(value, int):
-        return str(value)
-    if isinstance(value, float):
-        return number(value, digits)
-    return _html.escape(str(value))
-
-
 def _angle(value: float | None) -> float | None:
     """An angle in degrees in the one range of the output vocabulary, [0, 360)."""
     if value is None:
@@ -134,14 +125,10 @@ def _angle(value: float | None) -> float | None:
     return angle(0.0 if abs(value) < 1e-9 else float(value))
 
 
-def _table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
-    head = "".join(f"<th>{_html.escape(h)}</th>" for h in header)
-    body = "".join("<tr>" + "".join(f"<td>{fmt(c)}</td>" for c in row) + "</tr>" for row in rows)
-    return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
-
-
-def _maker_order(model: Any) -> str:
-    """`` (maker's numbering: 1-6-2-4-3-5)`` when the engine file used a maker's numbering."""
+def maker_order(model: Any) -> str:
+    """The firing order in the maker's numbering, as the report appends it to the firing
+    order: `` (maker's numbering: 1-6-2-4-3-5)`` when the engine file used a maker's
+    numbering and gave the firing order, else ``""``."""
     if model.maker_number is None or not model.firing_order_given:
         return ""
     return (
@@ -156,28 +143,12 @@ def _distinct(values: list[float], scale: float = 1.0, digits: int = 5) -> str:
     return shown[0] if len(set(shown)) == 1 else ", ".join(shown)
 
 
-CSS = """
-body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 2em auto; max-width: 1100px;
-       color: #222; line-height: 1.35; }
-h1 { font-size: 1.6em; margin-bottom: 0.1em; } h2 { border-bottom: 2px solid #1f3b73;
-  padding-bottom: 0.15em; margin-top: 1.6em; font-size: 1.25em; }
-h3 { font-size: 1.05em; margin-bottom: 0.3em; }
-table { border-collapse: collapse; margin: 0.4em 0 1em 0; font-size: 0.9em; }
-th, td { border: 1px solid #bbb; padding: 0.2em 0.6em; text-align: right; }
-th { background: #eef1f7; } td:first-child, th:first-child { text-align: left; }
-.meta { color: #666; font-size: 0.9em; } .note { color: #7a4b00; }
-figure { margin: 0.6em 0 1.2em 0; page-break-inside: avoid; break-inside: avoid; }
-figure img { width: 100%; max-width: 1000px; } figcaption { font-size: 0.85em; color: #555; }
-pre { background: #f6f6f6; padding: 0.6em; font-size: 0.8em; white-space: pre-wrap; }
-@media print { body { margin: 0; max-width: none; } h2 { page-break-after: avoid; }
-  table { page-break-inside: avoid; } }
-"""
-
-
 # --------------------------------------------------------------------------- figures
 def report_figures(report: Report) -> list[tuple[str, str, Any]]:
     """(id, caption, figure) of every figure in the report."""
-    from . import figures
+    from .figures.balancing import residuals_bar
+    from .figures.crank3d import crank_3d
+    from .figures.engine import curves_figure, orders_bar, polar_figure
 
     a, s = report.analysis, report.study
     figs: list[tuple[str, str, Any]] = [
@@ -185,18 +156,18 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
             "orders",
             "Free force and moment amplitudes by order (forward and backward phasors "
             "stacked; 'rot' is the bare crank's rotating masses).",
-            figures.orders_bar(a),
+            orders_bar(a),
         ),
         (
             "curves-force",
             "Free forces versus crank angle: reciprocating total, orders, and the "
             "whole engine before and after balancing.",
-            figures.curves_figure(a, s, "force"),
+            curves_figure(a, s, "force"),
         ),
         (
             "curves-moment",
             f"Free moments about {moment_point(a.model.moment_reference)} versus crank angle.",
-            figures.curves_figure(a, s, "moment"),
+            curves_figure(a, s, "moment"),
         ),
     ]
     amp = a.forces.force_amplitude + a.forces.moment_amplitude
@@ -213,7 +184,7 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
                 (
                     f"polar-{n}-{quantity}",
                     f"Rotating-vector diagram of order {n} ({quantity}).",
-                    figures.polar_figure(a, n, quantity),
+                    polar_figure(a, n, quantity),
                 )
             )
     figs += [
@@ -221,31 +192,16 @@ def report_figures(report: Report) -> list[tuple[str, str, Any]]:
             "crank",
             "The crankshaft at crank angle 0 with its counterweights and balance shafts "
             "(shafts beside the crank at a schematic distance).",
-            figures.crank_3d(s.model, s),
+            crank_3d(s.model, s),
         ),
         (
             "residuals",
             "Amplitude of every component before and after balancing (time-domain "
             "check of the solver).",
-            figures.residuals_bar(s),
+            residuals_bar(s),
         ),
     ]
     return figs
-
-
-def _figure_html(fig_id: str, caption: str, fig: Any, static: bool, first: bool) -> str:
-    from . import render
-
-    if static:
-        svg = render.to_image(fig, "svg", width=1000, height=fig.layout.height or 560)
-        data = base64.b64encode(svg).decode()
-        body = f'<img alt="{_html.escape(caption)}" src="data:image/svg+xml;base64,{data}"/>'
-    else:
-        body = render.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
-    return (
-        f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
-        "</figcaption></figure>"
-    )
 
 
 # --------------------------------------------------------------------------- HTML
@@ -282,10 +238,10 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
             "firing order",
             "-".join(str(c) for c in report.study.model.firing_order)
             + ("" if report.study.model.firing_order_given else " (not given: cylinder order)")
-            + _maker_order(report.study.model),
+            + maker_order(report.study.model),
         ],
     ]
-    parts.append(_table(["quantity", "value"], rows))
+    parts.append(table(["quantity", "value"], rows))
     throw_rows = [
         [
             t + 1,
@@ -296,9 +252,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         for t in range(e["throws"])
     ]
     parts.append("<h3>Throws</h3>")
-    parts.append(
-        _table(["throw", "angle [°]", "position y [mm]", "rotating mass [kg]"], throw_rows)
-    )
+    parts.append(table(["throw", "angle [°]", "position y [mm]", "rotating mass [kg]"], throw_rows))
     cyl_rows = [
         [
             c + 1,
@@ -310,7 +264,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     ]
     parts.append("<h3>Cylinders</h3>")
     parts.append(
-        _table(["cylinder", "throw", "bank angle [°]", "reciprocating mass [kg]"], cyl_rows)
+        table(["cylinder", "throw", "bank angle [°]", "reciprocating mass [kg]"], cyl_rows)
     )
 
     # mass split
@@ -324,7 +278,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     if m["conrods"]:
         rods = m["conrods"]
         parts.append(
-            _table(
+            table(
                 [
                     "conrod",
                     "mass [kg]",
@@ -370,7 +324,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         for f, mo in zip(a["free_forces"], a["free_moments"], strict=True)
     ]
     parts.append(
-        _table(
+        table(
             [
                 "order",
                 "force [N]",
@@ -408,7 +362,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
             f"{fmt(cw['total_mass_kg'])} kg.</p>"
         )
         parts.append(
-            _table(
+            table(
                 ["web", "throw", "position y [mm]", "mass [kg]", "direction [°]"],
                 [
                     [
@@ -452,7 +406,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
         ]
         if rows:
             parts.append(
-                _table(
+                table(
                     [
                         "shaft",
                         "speed ratio",
@@ -471,18 +425,18 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     # residuals
     parts.append("<h2>Residuals</h2>")
     parts.append(
-        "<p>Amplitude of every component before and after balancing, from a "
-        "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>"
+        "<p>Amplitude of every component before and after balancing, every balancing "
+        "mass added back to the free forces (targeted: cancelled by balance shafts).</p>"
     )
-    from .figures import roundoff_levels
+    from ..results import round_off
 
-    tiny_f, tiny_m = roundoff_levels(report.study.model)
+    tiny_f, tiny_m = round_off(report.study.model)
 
     def clean(value: float, tiny: float) -> float:
         return 0.0 if abs(value) < tiny else value
 
     parts.append(
-        _table(
+        table(
             [
                 "component",
                 "targeted",
@@ -517,7 +471,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     if figures:
         parts.append("<h2>Figures</h2>")
         for k, (fig_id, caption, fig) in enumerate(report_figures(report)):
-            parts.append(_figure_html(fig_id, caption, fig, static, k == 0))
+            parts.append(figure_html(fig_id, caption, fig, static, k == 0))
 
     # settings
     parts.append("<h2>Settings used</h2>")
@@ -529,15 +483,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     parts.append("<h3>Engine file</h3>")
     parts.append("<pre>" + esc(report.engine_file) + "</pre>")
 
-    data = json.dumps(to_jsonable(report.data()), default=_json_default).replace("</", "<\\/")
-    return (
-        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
-        f"<title>{esc(e['name'])}: balancing report</title>\n<style>{CSS}</style>\n"
-        "</head>\n<body>\n"
-        + "\n".join(parts)
-        + f'\n<script type="application/json" id="crankbalance-data">{data}</script>\n'
-        "</body>\n</html>\n"
-    )
+    data = json.dumps(to_jsonable(report.data()), default=_json_default)
+    return page(f"{e['name']}: balancing report", parts, data)
 
 
 def _json_default(value: Any) -> Any:

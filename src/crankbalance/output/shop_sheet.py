@@ -3,12 +3,12 @@
 It shows the parts per cylinder (the matched sets), the spread and the material to remove
 (matched, as listed, every part machined to the lightest), the bob-weight per crankpin, and
 with readings the hole plan per correction plane (a table and a drawing of the angles and
-depths, :func:`crankbalance.output.figures.hole_plan`) and the ISO 21940-11 sign-off. Every number
-comes from :class:`crankbalance.studies.shop.ShopStudy`, which is also embedded as JSON
-(``<script type="application/json" id="crankbalance-data">``). The page's machinery is the
-report's (:mod:`crankbalance.output.report`: tables, style, figures;
-:mod:`crankbalance.output.render`:
-PDF printing), written atomically (:func:`crankbalance.io.files.write_atomic`).
+depths, :func:`crankbalance.output.figures.shop.hole_plan`) and the ISO 21940-11 sign-off.
+Every number comes from :class:`crankbalance.studies.shop.ShopStudy`, which is also embedded as JSON
+(``<script type="application/json" id="crankbalance-data">``). The page is built as the
+report's is (:mod:`crankbalance.output.html`: style, tables, figures, the document;
+:mod:`crankbalance.output.render`: PDF printing), and written atomically
+(:func:`crankbalance.io.files.write_atomic`).
 """
 
 from __future__ import annotations
@@ -21,7 +21,7 @@ from typing import Any
 
 from ..errors import InputError
 from .format import json_text, text
-from .report import CSS, _figure_html, _table
+from .html import figure_html, page, table
 
 SHEET_SCHEMA = "crankbalance.shop-sheet/2"
 
@@ -33,7 +33,7 @@ def _g(value: float) -> str:
 def sheet_html(study: Any, static: bool = False) -> str:
     """The shop sheet of ``study`` (a ShopStudy) as one HTML document; ``static=True`` draws
     the figure as inline SVG (for printing to PDF)."""
-    from .figures import hole_plan
+    from .figures.shop import hole_plan
 
     esc = _html.escape
     p = study.parts
@@ -51,10 +51,10 @@ def sheet_html(study: Any, static: bool = False) -> str:
         for c in range(p.cylinders)
     ]
     header = ["cylinder", *m.kinds, "reciprocating", "rotating", "remove (recip.)"]
-    out.append(_table([*header, "remove (rotating)"], rows))
+    out.append(table([*header, "remove (rotating)"], rows))
     out.append("<h2>Material to remove</h2>")
     out.append(
-        _table(
+        table(
             ["", "reciprocating spread", "rotating spread", "material to remove"],
             [
                 [label, _g(x.reciprocating_spread), _g(x.rotating_spread), _g(x.removed_total)]
@@ -77,7 +77,7 @@ def sheet_html(study: Any, static: bool = False) -> str:
         f"crank radius {text(p.crank_radius, 'length')}.</p>"
     )
     out.append(
-        _table(
+        table(
             ["crankpin", "rods", "rotating", "reciprocating", "bob-weight"],
             [
                 [str(t + 1), str(b.rods_on_pin[t]), _g(b.rotating[t]), _g(b.reciprocating[t])]
@@ -116,13 +116,13 @@ def sheet_html(study: Any, static: bool = False) -> str:
             if holes.note:
                 notes.append(f"Plane {j + 1}: {holes.note}.")
         header = ["plane", "unbalance", "heavy spot", "holes", "angles", "depth to shoulder"]
-        out.append(_table([*header, "depth to tip", "mass per hole", "predicted residual"], rows))
+        out.append(table([*header, "depth to tip", "mass per hole", "predicted residual"], rows))
         out += [f"<p>{esc(note)}</p>" for note in notes]
-        out.append(_figure_html("holes", "Hole plan to scale", hole_plan(h), static, True))
+        out.append(figure_html("holes", "Hole plan to scale", hole_plan(h), static, True))
         c = h.check
         out.append("<h2>ISO 21940-11 sign-off</h2>")
         out.append(
-            _table(
+            table(
                 ["plane", "predicted residual", "permissible", "verdict"],
                 [
                     [str(j + 1), text(c.residual[j], "unbalance", 3)]
@@ -140,15 +140,7 @@ def sheet_html(study: Any, static: bool = False) -> str:
     from ..studies.shop import shop_json
 
     data = json_text({"schema": SHEET_SCHEMA, "study": shop_json(study)}, indent=None)
-    data = data.replace("</", "<\\/")
-    return (
-        '<!DOCTYPE html>\n<html lang="en">\n<head>\n<meta charset="utf-8"/>\n'
-        f"<title>{esc(p.engine)}: balance shop sheet</title>\n<style>{CSS}</style>\n"
-        "</head>\n<body>\n"
-        + "\n".join(out)
-        + f'\n<script type="application/json" id="crankbalance-data">{data}</script>\n'
-        "</body>\n</html>\n"
-    )
+    return page(f"{p.engine}: balance shop sheet", out, data)
 
 
 def write_sheet(study: Any, path: str | os.PathLike[str], chromium: str | None = None) -> Path:

@@ -1,39 +1,66 @@
-"""The engine description: pydantic models of the engine file (TOML/JSON), validated.
+"""The engine description: the schema of the engine file (TOML/JSON), validated.
 
 Quantities are strings with units (``"40 mm"``, ``"2000 rpm"``); they are parsed to SI
-floats on validation and written back with a display unit by ``model_dump()``. Unknown
-keys are errors. One model serves the engine file, the CLI and the web form.
+floats on validation and written back with a display unit by :meth:`Schema.to_data`.
+Unknown keys are errors, named with the closest allowed key. One schema serves the engine
+file, the CLI, the web form and the API; ``docs/engine_file.md``'s reference tables and
+``docs/engine.schema.json`` are written from it (:mod:`crankbalance.schema.document`).
+Besides the rules that make an engine valid, :meth:`EngineSpec.plausibility` says, as
+notes and not as errors, where a valid engine's numbers are unusual.
 
-See ``docs/engine_file.md`` for the format and the numbering conventions.
+See ``docs/engine_file.md`` for the format and the numbering conventions. The module is
+over 800 lines because every key carries its title and description here, once, for the
+documentation, the JSON Schema and the forms, beside the rules that check it.
 """
 
 from __future__ import annotations
 
-import json
 import math
-import re
-from functools import partial
-from typing import Annotated, Any, Literal
-
-from pydantic import (
-    BaseModel,
-    BeforeValidator,
-    ConfigDict,
-    Field,
-    PlainSerializer,
-    ValidationError,
-    model_validator,
-)
+from typing import Any, Literal, NamedTuple
 
 from ..errors import InputError
-from ..physics.firing import SCHEMES
-from ..units import RANGES, format_quantity, parse_quantity, range_si
+from .core import (
+    MAX_VALUE_CHARS,
+    FieldProblem,
+    Schema,
+    closest,
+    entry,
+    field,
+    parse_in_range,
+)
 
-Layout = Literal["inline", "vee", "boxer", "w", "radial", "vr", "custom"]
+__all__ = [
+    "BANKS",
+    "LAYOUTS",
+    "MAX_CYLINDERS",
+    "MAX_DESCRIPTION_CHARS",
+    "MAX_NAME_CHARS",
+    "MAX_OVERRIDES",
+    "MAX_PISTON_SPEED",
+    "MAX_QUANTITY_CHARS",
+    "MAX_THROWS",
+    "ROD_RATIO",
+    "W_TYPES",
+    "Articulated",
+    "BalanceShafts",
+    "Counterweights",
+    "CrankTrain",
+    "EngineSpec",
+    "FieldProblem",
+    "MassOverride",
+    "Masses",
+    "Note",
+    "ShaftSet",
+    "Throw",
+    "parse_in_range",
+    "spec_from_dict",
+    "throw_count",
+]
+
 LAYOUTS: tuple[str, ...] = ("inline", "vee", "boxer", "w", "radial", "vr", "custom")
 #: The two kinds of W engine: three banks on one pin each, or two VR banks (docs/engine_file.md).
 W_TYPES: tuple[str, ...] = ("broad-arrow", "vr")
-Kinematics = Literal["exact", "series", "first-order"]
+KINEMATICS: tuple[str, ...] = ("exact", "series", "first-order")
 
 # --------------------------------------------------------------------------- limits
 # Bounds on the work an engine file can ask for (docs/engine_file.md, "Limits").
@@ -44,97 +71,80 @@ MAX_THROWS = 64
 #: Most ``[[masses.override]]`` tables.
 MAX_OVERRIDES = 2 * MAX_CYLINDERS
 #: Longest quantity string, in characters.
-MAX_QUANTITY_CHARS = 100
+MAX_QUANTITY_CHARS = MAX_VALUE_CHARS
 #: Longest ``name`` and ``description``, in characters.
 MAX_NAME_CHARS = 200
 MAX_DESCRIPTION_CHARS = 10_000
+#: Longest ``numbering`` (the name of a maker's numbering scheme), in characters.
+MAX_NUMBERING_CHARS = 40
+
+# --------------------------------------------------------------------------- plausibility
+#: highest plausible mean piston speed [m/s] (racing engines reach about 25 m/s)
+MAX_PISTON_SPEED = 30.0
+#: usual range of the rod length in crank radii (rod ratio l/r)
+ROD_RATIO = (2.8, 4.5)
 
 
-def parse_in_range(value: Any, kind: str, field: str = "") -> float:
-    """A quantity string as an SI float, refused unless its size lies in the physical range
-    of its kind (:data:`crankbalance.units.RANGES`) or it is zero; strings longer than
-    :data:`MAX_QUANTITY_CHARS` are refused before parsing."""
-    if isinstance(value, str) and len(value) > MAX_QUANTITY_CHARS:
-        raise InputError(
-            field, value, f"must be one number and a unit, at most {MAX_QUANTITY_CHARS} characters"
-        )
-    number = parse_quantity(value, kind, field)
-    if kind in RANGES:
-        low, high = range_si(kind)
-        if abs(number) > high or 0 < abs(number) < low:
-            words = RANGES[kind]
-            size = " in size" if number < 0 else ""
-            raise InputError(field, value, f"must lie between {words[0]} and {words[1]}{size}")
-    return number
+class Note(NamedTuple):
+    """A plausibility note about a valid engine: the engine-file key it concerns (dotted,
+    ``crank_train.rod_length``) and what is unusual."""
+
+    field: str
+    text: str
 
 
-def _parser(kind: str) -> BeforeValidator:
-    return BeforeValidator(partial(parse_in_range, kind=kind))
+def _angle_or_optimal(value: Any, where: str) -> Any:
+    """``"optimal"`` or an angle with a unit in the physical range of an angle."""
+    if value == "optimal":
+        return value
+    try:
+        return parse_in_range(value, "angle", where)
+    except InputError:
+        if isinstance(value, str) and not any(c.isdigit() for c in value):
+            close = closest(value.strip().lower(), ["optimal"])
+            hint = "; did you mean 'optimal'?" if close else ""
+            raise InputError(where, value, f"must be 'optimal' or {ANGLE_WORDS}{hint}") from None
+        raise
 
 
-def _writer(kind: str) -> PlainSerializer:
-    return PlainSerializer(partial(format_quantity, kind=kind), return_type=str, when_used="json")
+ANGLE_WORDS = "an angle with a unit, e.g. '30 deg'"
 
 
-# quantities: unit strings in the file, SI floats once validated
-Length = Annotated[float, _parser("length"), _writer("length")]
-Mass = Annotated[float, _parser("mass"), _writer("mass")]
-Angle = Annotated[float, _parser("angle"), _writer("angle")]
-Speed = Annotated[float, _parser("speed"), _writer("speed")]
-Inertia = Annotated[float, _parser("inertia"), _writer("inertia")]
+class _EngineTable(Schema):
+    """A table of the engine file (named in the "is missing" messages)."""
 
-
-def _whole(value: Any) -> Any:
-    """A count, an index or a 0/1 flag: an integer as written (no true/false, no "4")."""
-    if isinstance(value, bool) or not isinstance(value, int):
-        raise ValueError("must be a whole number (not text, not true/false)")
-    return value
-
-
-def _finite(value: Any) -> Any:
-    """A plain number as written (no true/false, no "0.5"), finite."""
-    if isinstance(value, bool) or not isinstance(value, (int, float)):
-        raise ValueError("must be a number (not text, not true/false)")
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError("must be a finite number")
-    return value
-
-
-Whole = Annotated[int, BeforeValidator(_whole)]
-Fraction = Annotated[float, BeforeValidator(_finite)]
-
-
-class FieldProblem(ValueError):
-    """A validation failure of one named field inside a model validator (``field`` is
-    relative to the model raising it, or dotted from the root when it contains a dot)."""
-
-    def __init__(self, field: str, allowed: str) -> None:
-        super().__init__(allowed)
-        self.field = field
-        self.allowed = allowed
-
-
-class _Strict(BaseModel):
-    model_config = ConfigDict(extra="forbid", frozen=True, strict=False)
+    DOC = "docs/engine_file.md"
 
 
 # --------------------------------------------------------------------------- crank train
-class Throw(_Strict):
-    """One crank throw of a custom layout."""
+class Throw(_EngineTable):
+    """One crank throw of a custom layout (``[[crank_train.throw]]``)."""
 
-    position: Length = Field(
-        description="axial position of the throw mid-plane along the crank axis (any origin: "
-        "positions are taken from the middle of the throws' extent)"
+    position: float = field(
+        "length",
+        zero=True,
+        title="Throw position",
+        description="Axial position of the throw's mid-plane, from any origin: the positions are "
+        "re-centred on the middle of the throws' extent.",
     )
-    angle: Angle = Field(description="throw angle from the z axis, in the sense of rotation")
-    banks: list[Angle] = Field(
-        min_length=1,
-        max_length=MAX_CYLINDERS,
-        description="bank angle of each cylinder on this pin",
+    angle: float = field(
+        "angle",
+        zero=True,
+        title="Throw angle",
+        description="Angle of the throw from the z axis, in the sense of rotation.",
+    )
+    banks: list[float] = field(
+        "list",
+        item=entry("angle", zero=True),
+        min_items=1,
+        max_items=MAX_CYLINDERS,
+        title="Bank angles",
+        description="One bank angle per cylinder on the pin; the cylinders are numbered throw after"
+        " throw, in this order.",
     )
 
 
-class Articulated(_Strict):
+class Articulated(_EngineTable):
     """Master-and-link rods of a radial engine (``[crank_train.articulated]``).
 
     The master rod is the conrod of the master cylinder (its length ``rod_length``); every
@@ -142,100 +152,245 @@ class Articulated(_Strict):
     the ``[masses]`` conrod fields of each cylinder (overrides for the master or the links).
     """
 
-    master_cylinder: Whole = Field(default=1, ge=1, description="cylinder of the master rod")
-    link_pin_radius: Length = Field(
-        description="distance of each link pin from the centre of the master rod's big end"
+    master_cylinder: int = field(
+        "whole",
+        default=1,
+        ge=1,
+        title="Master cylinder",
+        description="Number of the cylinder the master rod drives; its rod is "
+        "crank_train.rod_length.",
     )
-    link_rod_length: Length = Field(description="centre distance of each link rod")
-    link_pin_angles: list[Angle] | None = Field(
+    link_pin_radius: float = field(
+        "length",
+        ge=0,
+        title="Link-pin radius",
+        description="Distance of every link (knuckle) pin from the centre of the master rod's big "
+        "end (0 gives the simple model).",
+    )
+    link_rod_length: float = field(
+        "length",
+        gt=0,
+        title="Link-rod length",
+        description="Centre distance of every link rod, link pin to wrist pin; longer than crank "
+        "radius plus link pin radius plus offset.",
+    )
+    link_pin_angles: list[float] | None = field(
+        "list",
         default=None,
-        max_length=MAX_CYLINDERS,
-        description="angle of each cylinder's link pin from the master rod's axis, one per "
-        "cylinder (the master's 0); default: the angle between the cylinder and the master",
+        item=entry("angle", zero=True),
+        max_items=MAX_CYLINDERS,
+        title="Link-pin angles",
+        description="One angle per cylinder (the master's 0 deg): the angle of that cylinder's link"
+        " pin from the master rod's axis, in the sense of rotation; default the angle "
+        "between the cylinder and the master cylinder, (k − m)·360°/n.",
     )
 
-    @model_validator(mode="after")
-    def _check(self) -> Articulated:
-        if self.link_pin_radius < 0:
-            raise FieldProblem("link_pin_radius", "must not be negative")
-        if self.link_rod_length <= 0:
-            raise FieldProblem("link_rod_length", "must be greater than zero")
-        return self
 
+class CrankTrain(_EngineTable):
+    """Layout and geometry of the crank train (``[crank_train]``)."""
 
-class CrankTrain(_Strict):
-    """Layout and geometry of the crank train."""
-
-    layout: Layout
-    cylinders: Whole | None = Field(default=None, ge=1, le=MAX_CYLINDERS)
-    firing_order: list[Whole] | None = Field(default=None, max_length=MAX_CYLINDERS)
-    strokes: Annotated[Literal[2, 4], BeforeValidator(_whole)] = 4
-    crank_radius: Length
-    rod_length: Length
-    crank_pitch: Length | None = None
-    bank_angle: Angle | None = None
-    pin_offset: Length = 0.0
-    crank_offset: Length = 0.0
-    throw_angles: list[Angle] | None = Field(default=None, max_length=MAX_THROWS)
-    throw: list[Throw] | None = Field(default=None, max_length=MAX_THROWS)
-    articulated: Articulated | None = None
-    w_type: Literal["broad-arrow", "vr"] | None = Field(
+    layout: str = field(
+        "choice",
+        choices=LAYOUTS,
+        title="Layout",
+        description="How the cylinders stand around the crank: inline, vee, boxer, w "
+        "(broad-arrow or from two VR banks), radial, vr, or custom (throws given one by one "
+        "as [[crank_train.throw]]).",
+    )
+    cylinders: int | None = field(
+        "whole",
         default=None,
-        description="layout w: 'broad-arrow' (three banks, default) or 'vr' (two VR banks)",
+        ge=1,
+        le=MAX_CYLINDERS,
+        title="Cylinders",
+        description="Number of cylinders (vee and boxer: even; broad-arrow W: a multiple of "
+        "3; W from VR banks: even, at least 4; VR: at least 2; radial: at least 3); layout "
+        "custom counts the banks of its throws.",
     )
-    vr_angle: Angle | None = Field(
-        default=None, description="W from VR banks: narrow angle between the rows of each bank"
+    firing_order: list[int] | None = field(
+        "list",
+        default=None,
+        item=entry("whole"),
+        max_items=MAX_CYLINDERS,
+        title="Firing order",
+        description="A permutation of 1..n, in crankbalance's numbering or, with numbering or "
+        "maker_numbers, in the maker's; default 1, 2, ..., n.",
+        hint="e.g. 1, 3, 2 (empty: cylinder order)",
     )
-    bore_offset: Length = Field(
+    strokes: int = field(
+        "choice",
+        default=4,
+        choices=(2, 4),
+        title="Strokes per cycle",
+        description="2 or 4: sets the even firing interval 360°·(strokes/2)/n.",
+    )
+    crank_radius: float = field(
+        "length",
+        gt=0,
+        title="Crank radius",
+        description="Throw radius, half the stroke.",
+        hint="e.g. 40 mm",
+    )
+    rod_length: float = field(
+        "length",
+        gt=0,
+        title="Rod length",
+        description="Conrod length, centre to centre; the rod must be longer than the crank radius "
+        "plus every cylinder's total offset.",
+        hint="e.g. 135 mm",
+    )
+    crank_pitch: float | None = field(
+        "length",
+        default=None,
+        gt=0,
+        title="Crank pitch",
+        description="Distance between consecutive throw mid-planes (required with more than one "
+        "throw).",
+        hint="e.g. 90 mm",
+    )
+    bank_angle: float | None = field(
+        "angle",
+        default=None,
+        zero=True,
+        title="Bank angle",
+        description="vee: angle between the two banks, (0, 180°]; broad-arrow W: angle between "
+        "adjacent banks, (0, 90°]; W from VR banks: angle between the two VR banks' "
+        "centre lines, (0, 180°]; VR: the narrow angle between its two rows, (0, 180°].",
+        hint="vee / W / VR only, e.g. 90 deg",
+    )
+    pin_offset: float = field(
+        "length",
         default=0.0,
-        description="VR rows: distance of each row's bore axes from the crank axis, positive "
-        "when the rows' axes meet beyond the crank axis (away from the head)",
+        zero=True,
+        title="Wrist-pin offset",
+        description="Wrist-pin offset (desaxé), the same for every cylinder.",
+        hint="e.g. 0 mm",
     )
-    pin_split: Angle | None = Field(
-        default=None,
-        description="VR rows: angle between the crankpins of the two rows (default: the split "
-        "even firing needs)",
-    )
-    bank_offsets: list[Length] | None = Field(
-        default=None,
-        max_length=3,
-        description="bore offset of each bank (vee, boxer: 2 banks; W: 3), added to "
-        "pin_offset + crank_offset for the cylinders of that bank",
-    )
-    cylinder_offsets: list[Length] | None = Field(
-        default=None,
-        max_length=MAX_CYLINDERS,
-        description="bore offset of each cylinder, added to pin_offset + crank_offset",
-    )
-    rod_positions: list[Length] | None = Field(
-        default=None,
-        max_length=MAX_CYLINDERS,
-        description="axial position of each cylinder's rod on its crankpin, from the "
-        "throw's mid-plane (side-by-side rods)",
-    )
-    numbering: str | None = Field(
-        default=None,
-        max_length=40,
-        description="the maker's cylinder numbering firing_order is written in: "
-        + ", ".join(SCHEMES),
-    )
-    maker_numbers: list[Whole] | None = Field(
-        default=None,
-        max_length=MAX_CYLINDERS,
-        description="crankbalance's number of each of the maker's cylinders 1, 2, ... "
-        "(firing_order is then in the maker's numbers)",
-    )
-    moment_reference: Length = Field(
+    crank_offset: float = field(
+        "length",
         default=0.0,
-        description="point moments are taken about, along the crank axis from the crank's "
-        "mid-point (the middle of the throws' extent)",
+        zero=True,
+        title="Crank offset",
+        description="Crank offset (desaxé), the same for every cylinder, added to pin_offset.",
+    )
+    throw_angles: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("angle", zero=True),
+        max_items=MAX_THROWS,
+        title="Throw angles",
+        description="One angle per throw: the crank given directly (needed for uneven-firing "
+        "engines); default: from the firing order with even intervals.",
+    )
+    throw: list[Throw] | None = field(
+        "list",
+        default=None,
+        item=entry("table", table=Throw),
+        max_items=MAX_THROWS,
+        title="Custom throws",
+        description="Custom layout only: the throws, in order (a [[crank_train.throw]] "
+        "table each).",
+    )
+    articulated: Articulated | None = field(
+        "table",
+        default=None,
+        table=Articulated,
+        title="Master-and-link rods",
+        description="Radial only: master-and-link rods (see Articulated rods).",
+    )
+    w_type: str | None = field(
+        "choice",
+        default=None,
+        choices=W_TYPES,
+        title="Kind of W",
+        description="Layout w only: broad-arrow (three banks, the default) or vr (two VR banks, "
+        "VW's W8/W12/W16).",
+    )
+    vr_angle: float | None = field(
+        "angle",
+        default=None,
+        zero=True,
+        title="VR angle",
+        description="W from VR banks only (required there): the narrow angle between the two rows "
+        "of each VR bank, (0, 90°].",
+    )
+    bore_offset: float = field(
+        "length",
+        default=0.0,
+        zero=True,
+        title="Rows' bore offset",
+        description="VR and W from VR banks only: distance of each row's bore axes from the crank "
+        "axis, positive when the two rows' axes meet beyond the crank axis (away from "
+        "the head), as in every VR.",
+    )
+    pin_split: float | None = field(
+        "angle",
+        default=None,
+        zero=True,
+        title="Pin split",
+        description="VR and W from VR banks only: angle between the two rows' crankpins as the "
+        "maker gives it, [0, 180°); default: the split even firing needs.",
+    )
+    bank_offsets: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        max_items=3,
+        title="Bank offsets",
+        description="vee, boxer (2 banks) and W (3 banks) only: the bore offset of each bank, one "
+        "length per bank, added to pin_offset + crank_offset for the cylinders of that "
+        "bank (banks as numbered below; not with VR rows, which take bore_offset).",
+    )
+    cylinder_offsets: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        max_items=MAX_CYLINDERS,
+        title="Cylinder offsets",
+        description="Any layout: the bore offset of each cylinder, one length per cylinder, added "
+        "to pin_offset + crank_offset (not together with bank_offsets).",
+    )
+    rod_positions: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        max_items=MAX_CYLINDERS,
+        title="Rod positions on the pin",
+        description="Any layout: the axial place of each cylinder's rod on its crankpin, from the "
+        "throw's mid-plane along +y, one length per cylinder (side-by-side rods on a "
+        "shared pin; a single rod off its throw's centre); default all 0 "
+        "(knife-and-fork or master rods: all in the mid-plane).",
+        hint="one per cylinder, e.g. -10 mm, 10 mm",
+    )
+    numbering: str | None = field(
+        "text",
+        default=None,
+        max_chars=MAX_NUMBERING_CHARS,
+        title="Maker's numbering",
+        description="The maker's numbering firing_order is written in: porsche-boxer, gm-vee or "
+        "ford-vee (see Makers' numbering).",
+        words="the name of a numbering scheme: porsche-boxer, gm-vee or ford-vee",
+    )
+    maker_numbers: list[int] | None = field(
+        "list",
+        default=None,
+        item=entry("whole"),
+        max_items=MAX_CYLINDERS,
+        title="Maker's cylinder numbers",
+        description="Any layout, instead of numbering: crankbalance's number of each of the maker's"
+        " cylinders 1, 2, ..., n (a permutation of 1..n).",
+    )
+    moment_reference: float = field(
+        "length",
+        default=0.0,
+        zero=True,
+        title="Moment reference",
+        description="The point moments are taken about, along +y from the crank's mid-point (e.g. "
+        "the engine's centre of mass or mount centre).",
     )
 
-    @model_validator(mode="after")
-    def _check(self) -> CrankTrain:
+    def check(self) -> None:
         r, l = self.crank_radius, self.rod_length
-        if r <= 0:
-            raise FieldProblem("crank_radius", "must be greater than zero")
         self._check_vr()
         if l <= r + abs(self.pin_offset + self.crank_offset):
             raise FieldProblem(
@@ -259,49 +414,7 @@ class CrankTrain(_Strict):
             if self.cylinders is not None and self.cylinders != count:
                 raise FieldProblem("cylinders", f"the throws carry {count} cylinders")
         else:
-            if self.throw is not None:
-                raise FieldProblem("throw", "[[crank_train.throw]] tables need layout = 'custom'")
-            if self.cylinders is None:
-                raise FieldProblem("cylinders", f"is required for layout '{self.layout}'")
-            n = self.cylinders
-            if self.layout in ("vee", "boxer") and n % 2:
-                raise FieldProblem(
-                    "cylinders", f"a {self.layout} engine needs an even number of cylinders"
-                )
-            if self.layout == "w" and n % 3 and not self.has_vr_rows:
-                raise FieldProblem(
-                    "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
-                )
-            if self.layout == "w" and self.has_vr_rows and (n % 2 or n < 4):
-                raise FieldProblem(
-                    "cylinders",
-                    "a W engine from two VR banks needs an even number of cylinders, at least 4",
-                )
-            if self.layout == "vr" and n < 2:
-                raise FieldProblem("cylinders", "a VR engine needs at least 2 cylinders")
-            if self.layout == "radial" and n < 3:
-                raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
-            if self.layout in ("vee", "w", "vr"):
-                if self.bank_angle is None:
-                    raise FieldProblem("bank_angle", f"is required for layout '{self.layout}'")
-                limit = 90.0 if self.layout == "w" and not self.has_vr_rows else 180.0
-                if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
-                    raise FieldProblem(
-                        "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
-                    )
-            elif self.bank_angle is not None:
-                raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
-            throws = throw_count(self.layout, n, self.w_type)
-            if throws > 1 and self.crank_pitch is None:
-                raise FieldProblem(
-                    "crank_pitch", "is required for an engine with more than one throw"
-                )
-            if self.crank_pitch is not None and self.crank_pitch <= 0:
-                raise FieldProblem("crank_pitch", "must be greater than zero")
-            if self.throw_angles is not None and len(self.throw_angles) != throws:
-                raise FieldProblem(
-                    "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
-                )
+            self._check_standard()
         n_cyl = self.cylinder_count
         self._check_offsets(n_cyl)
         self._check_numbering(n_cyl)
@@ -310,7 +423,48 @@ class CrankTrain(_Strict):
                 raise FieldProblem(
                     "firing_order", f"must be a permutation of 1..{n_cyl} (each cylinder once)"
                 )
-        return self
+
+    def _check_standard(self) -> None:
+        """The cylinders, bank angle, pitch and throw angles of a standard layout."""
+        if self.throw is not None:
+            raise FieldProblem("throw", "[[crank_train.throw]] tables need layout = 'custom'")
+        if self.cylinders is None:
+            raise FieldProblem("cylinders", f"is required for layout '{self.layout}'")
+        n = self.cylinders
+        if self.layout in ("vee", "boxer") and n % 2:
+            raise FieldProblem(
+                "cylinders", f"a {self.layout} engine needs an even number of cylinders"
+            )
+        if self.layout == "w" and n % 3 and not self.has_vr_rows:
+            raise FieldProblem(
+                "cylinders", "a W engine (three banks) needs a multiple of 3 cylinders"
+            )
+        if self.layout == "w" and self.has_vr_rows and (n % 2 or n < 4):
+            raise FieldProblem(
+                "cylinders",
+                "a W engine from two VR banks needs an even number of cylinders, at least 4",
+            )
+        if self.layout == "vr" and n < 2:
+            raise FieldProblem("cylinders", "a VR engine needs at least 2 cylinders")
+        if self.layout == "radial" and n < 3:
+            raise FieldProblem("cylinders", "a radial engine needs at least 3 cylinders")
+        if self.layout in ("vee", "w", "vr"):
+            if self.bank_angle is None:
+                raise FieldProblem("bank_angle", f"is required for layout '{self.layout}'")
+            limit = 90.0 if self.layout == "w" and not self.has_vr_rows else 180.0
+            if not 0 < math.degrees(self.bank_angle) < limit + 1e-9:
+                raise FieldProblem(
+                    "bank_angle", f"must lie in (0, {limit:g}] deg for layout '{self.layout}'"
+                )
+        elif self.bank_angle is not None:
+            raise FieldProblem("bank_angle", f"is not used with layout '{self.layout}'")
+        throws = throw_count(self.layout, n, self.w_type)
+        if throws > 1 and self.crank_pitch is None:
+            raise FieldProblem("crank_pitch", "is required for an engine with more than one throw")
+        if self.throw_angles is not None and len(self.throw_angles) != throws:
+            raise FieldProblem(
+                "throw_angles", f"needs one angle per throw; this engine has {throws} throws"
+            )
 
     def _check_offsets(self, n_cyl: int) -> None:
         """Per-bank and per-cylinder offsets and rod positions: one per bank or cylinder,
@@ -360,13 +514,17 @@ class CrankTrain(_Strict):
     def _check_numbering(self, n_cyl: int) -> None:
         """``numbering`` names a scheme for this layout; ``maker_numbers`` is a map."""
         if self.numbering is not None:
+            from ..physics.firing import SCHEMES
+
             if self.maker_numbers is not None:
                 raise FieldProblem(
                     "maker_numbers", "give either numbering (a named scheme) or maker_numbers"
                 )
             scheme = SCHEMES.get(self.numbering)
             if scheme is None:
-                raise FieldProblem("numbering", "must be one of " + ", ".join(SCHEMES))
+                close = closest(self.numbering, list(SCHEMES))
+                hint = f"; did you mean '{close}'?" if close else ""
+                raise FieldProblem("numbering", "must be one of " + ", ".join(SCHEMES) + hint)
             if scheme.layout != self.layout:
                 raise FieldProblem(
                     "numbering",
@@ -389,6 +547,8 @@ class CrankTrain(_Strict):
         if self.maker_numbers is not None:
             return tuple(int(c) for c in self.maker_numbers)
         if self.numbering is not None:
+            from ..physics.firing import SCHEMES
+
             return SCHEMES[self.numbering].to_crankbalance(self.cylinder_count)
         return None
 
@@ -503,56 +663,124 @@ _CYLINDER_FIELDS = (
 _THROW_FIELDS = ("crankpin", "crank_web", "crank_web_cg_radius", "rotating")
 
 
-class _MassFields(_Strict):
-    piston: Mass | None = Field(default=None, description="piston with rings and clips")
-    wrist_pin: Mass | None = None
-    conrod: Mass | None = None
-    conrod_rotating_fraction: Fraction | None = Field(default=None, ge=0.0, le=1.0)
-    conrod_cg_from_big_end: Length | None = None
-    conrod_inertia: Inertia | None = Field(default=None, description="conrod inertia about its CG")
-    crankpin: Mass | None = None
-    crank_web: Mass | None = Field(default=None, description="each of the two webs of a throw")
-    crank_web_cg_radius: Length | None = None
-    reciprocating: Mass | None = Field(default=None, description="total per cylinder")
-    rotating: Mass | None = Field(default=None, description="total per throw, big ends included")
+class _MassFields(_EngineTable):
+    """The masses of one cylinder and one throw (``[masses]`` and its overrides)."""
 
-    @model_validator(mode="after")
-    def _check_values(self) -> _MassFields:
-        for name in (
-            "piston",
-            "wrist_pin",
-            "conrod",
-            "crankpin",
-            "crank_web",
-            "reciprocating",
-            "rotating",
-            "conrod_inertia",
-        ):
-            value = getattr(self, name)
-            if value is not None and value < 0:
-                raise FieldProblem(name, "must not be negative")
-        if self.conrod is not None and self.conrod <= 0:
-            raise FieldProblem("conrod", "must be greater than zero")
+    piston: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Piston",
+        description="Piston with rings and clips.",
+    )
+    wrist_pin: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Wrist pin",
+        description="Wrist pin.",
+    )
+    conrod: float | None = field(
+        "mass",
+        default=None,
+        gt=0,
+        title="Conrod",
+        description="Conrod mass, with either conrod_rotating_fraction or conrod_cg_from_big_end "
+        "(its split); optional conrod_inertia.",
+    )
+    conrod_rotating_fraction: float | None = field(
+        "number",
+        default=None,
+        ge=0.0,
+        le=1.0,
+        title="Conrod rotating share",
+        description="Share of the conrod's mass at the big end, 0..1.",
+    )
+    conrod_cg_from_big_end: float | None = field(
+        "length",
+        default=None,
+        ge=0,
+        title="Conrod CG from the big end",
+        description="Distance of the conrod's centre of gravity from the big-end centre (instead of"
+        " conrod_rotating_fraction).",
+    )
+    conrod_inertia: float | None = field(
+        "inertia",
+        default=None,
+        ge=0,
+        title="Conrod inertia",
+        description="The conrod's moment of inertia about its CG: the analysis reports the error of"
+        " the two-mass split against it.",
+    )
+    crankpin: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Crankpin",
+        description="Crankpin (per throw).",
+    )
+    crank_web: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Crank web",
+        description="Each of the two webs of a throw, reduced to the crank radius with "
+        "crank_web_cg_radius: 2·m_web·r_web/r.",
+    )
+    crank_web_cg_radius: float | None = field(
+        "length",
+        default=None,
+        ge=0,
+        title="Crank-web CG radius",
+        description="Radius of a crank web's centre of gravity.",
+    )
+    reciprocating: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Reciprocating mass",
+        description="Total per cylinder (instead of piston, wrist pin and conrod share).",
+    )
+    rotating: float | None = field(
+        "mass",
+        default=None,
+        ge=0,
+        title="Rotating mass",
+        description="Total per throw, all big ends on the pin included (instead of crankpin and "
+        "webs).",
+    )
+
+    def check(self) -> None:
         if self.conrod_rotating_fraction is not None and self.conrod_cg_from_big_end is not None:
             raise FieldProblem(
                 "conrod_cg_from_big_end",
                 "give conrod_rotating_fraction or conrod_cg_from_big_end, not both",
             )
-        if self.conrod_cg_from_big_end is not None and self.conrod_cg_from_big_end < 0:
-            raise FieldProblem("conrod_cg_from_big_end", "must not be negative")
-        if self.crank_web_cg_radius is not None and self.crank_web_cg_radius < 0:
-            raise FieldProblem("crank_web_cg_radius", "must not be negative")
-        return self
 
 
 class MassOverride(_MassFields):
-    """Masses that differ for some cylinders (per-cylinder fields) or throws (per-throw fields)."""
+    """Masses that differ for some cylinders (per-cylinder fields) or throws (per-throw
+    fields) (``[[masses.override]]``)."""
 
-    cylinders: list[Whole] | None = Field(default=None, max_length=MAX_CYLINDERS)
-    throws: list[Whole] | None = Field(default=None, max_length=MAX_THROWS)
+    cylinders: list[int] | None = field(
+        "list",
+        default=None,
+        item=entry("whole"),
+        max_items=MAX_CYLINDERS,
+        title="Cylinders",
+        description="The cylinders whose per-cylinder masses this table gives.",
+    )
+    throws: list[int] | None = field(
+        "list",
+        default=None,
+        item=entry("whole"),
+        max_items=MAX_THROWS,
+        title="Throws",
+        description="The throws whose per-throw masses this table gives.",
+    )
 
-    @model_validator(mode="after")
-    def _check_target(self) -> MassOverride:
+    def check(self) -> None:
+        super().check()
         given = {k for k in _CYLINDER_FIELDS + _THROW_FIELDS if getattr(self, k) is not None}
         if self.cylinders is None and self.throws is None:
             raise FieldProblem(
@@ -572,20 +800,27 @@ class MassOverride(_MassFields):
             )
         if not given:
             raise FieldProblem("cylinders", "an override must change at least one mass")
-        return self
 
 
 class Masses(_MassFields):
-    """Masses per cylinder (reciprocating side) and per throw (rotating side).
+    """Masses per cylinder (reciprocating side) and per throw (rotating side)
+    (``[masses]``).
 
     Either parts (piston, wrist_pin, conrod with its split; crankpin, crank_web with its
     CG radius) or totals (``reciprocating`` per cylinder, ``rotating`` per throw).
     """
 
-    override: list[MassOverride] = Field(default_factory=list, max_length=MAX_OVERRIDES)
+    override: list[MassOverride] = field(
+        "list",
+        default=[],
+        item=entry("table", table=MassOverride),
+        max_items=MAX_OVERRIDES,
+        title="Mass overrides",
+        description="Masses that differ for some cylinders or throws ([[masses.override]] tables).",
+    )
 
-    @model_validator(mode="after")
-    def _check_complete(self) -> Masses:
+    def check(self) -> None:
+        super().check()
         parts_rec = ("piston", "wrist_pin", "conrod")
         if self.reciprocating is None:
             missing = [k for k in parts_rec if getattr(self, k) is None]
@@ -624,77 +859,187 @@ class Masses(_MassFields):
             raise FieldProblem(
                 "rotating", "give either `rotating` or the parts crankpin/crank_web, not both"
             )
-        return self
 
 
 # --------------------------------------------------------------------------- balancing options
-class Counterweights(_Strict):
-    """Crankshaft counterweights (2021 paper, section 3.1)."""
+class Counterweights(_EngineTable):
+    """Crankshaft counterweights (``[counterweights]``; 2021 paper, section 3.1)."""
 
-    webs: list[Annotated[Literal[0, 1], BeforeValidator(_whole)]] | None = Field(
+    webs: list[int] | None = field(
+        "list",
         default=None,
-        max_length=2 * MAX_THROWS,
-        description="two webs per throw, 1 = carries a counterweight (default all)",
+        item=entry("choice", choices=(0, 1)),
+        max_items=2 * MAX_THROWS,
+        title="Webs with a counterweight",
+        description="0/1 per web, two webs per throw (1: the web carries a counterweight); default "
+        "all webs.",
+        hint="0/1, two per throw, e.g. 1, 1, 0, 0, 1, 1 (empty: all)",
     )
-    cg_radius: Length
-    angle: Angle | Literal["optimal"] = 0.0
-    balance_factor: Fraction = Field(default=0.0, ge=0.0, le=2.0)
-    scope: Literal["auto", "whole", "halves"] = "auto"
-    method: Literal["pattern", "individual"] = "pattern"
-    web_offset: Length | None = Field(
+    cg_radius: float = field(
+        "length",
+        gt=0,
+        title="Counterweight CG radius",
+        description="Radius of the counterweights' CG.",
+        hint="e.g. 30 mm (empty: no counterweight table, defaults)",
+    )
+    angle: float | Literal["optimal"] = field(
+        "angle",
+        default=0.0,
+        parse=_angle_or_optimal,
+        words=f"'optimal' or {ANGLE_WORDS}",
+        title="Counterweight angle",
+        description="Angle of each counterweight from the position opposite its crankpin, or "
+        "optimal.",
+        hint="e.g. 30 deg, or optimal",
+    )
+    balance_factor: float = field(
+        "number",
+        default=0.0,
+        ge=0.0,
+        le=2.0,
+        title="Balance factor",
+        description="Share of the reciprocating mass of all cylinders on a pin put at that crankpin"
+        " on the counterweights (0.5 cancels the forward half of a single cylinder's "
+        "primary and the whole primary of a 90° V pair).",
+        hint="0..2, share of the primary reciprocating force",
+    )
+    scope: Literal["auto", "whole", "halves"] = field(
+        "choice",
+        default="auto",
+        choices=("auto", "whole", "halves"),
+        title="Counterweight scope",
+        description="auto (halves when the whole crank is balanced), whole or halves.",
+    )
+    method: Literal["pattern", "individual"] = field(
+        "choice",
+        default="pattern",
+        choices=("pattern", "individual"),
+        title="Counterweight method",
+        description="pattern: equal counterweights turned by ±α (the paper); individual: each its "
+        "own mass and angle (least Σm²).",
+    )
+    web_offset: float | None = field(
+        "length",
         default=None,
-        description="axial distance of each web from its throw mid-plane "
-        "(default: a quarter of the crank pitch, as the 2021 paper)",
+        ge=0,
+        title="Counterweight web offset",
+        description="Axial distance of each web from its throw mid-plane; default a quarter of the "
+        "crank pitch (paper Eq. 7), half the crank radius for one throw.",
     )
 
-    @model_validator(mode="after")
-    def _check(self) -> Counterweights:
-        if self.cg_radius <= 0:
-            raise FieldProblem("cg_radius", "must be greater than zero")
+    def check(self) -> None:
         if self.webs is not None and not any(self.webs):
             raise FieldProblem("webs", "has no counterweight (all zeros)")
-        if self.web_offset is not None and self.web_offset < 0:
-            raise FieldProblem("web_offset", "must not be negative")
-        return self
 
 
-class ShaftSet(_Strict):
-    """A set of balance shafts for one order."""
+class ShaftSet(_EngineTable):
+    """A set of balance shafts for one order (``[balance_shafts.primary]`` or
+    ``[balance_shafts.secondary]``)."""
 
-    arrangement: Literal["pair", "counter-rotating"] = "pair"
-    cg_radius: Length
-    length: Length
+    arrangement: Literal["pair", "counter-rotating"] = field(
+        "choice",
+        default="pair",
+        choices=("pair", "counter-rotating"),
+        title="Shaft arrangement",
+        description="pair (co- and counter-rotating) or counter-rotating.",
+    )
+    cg_radius: float = field(
+        "length",
+        gt=0,
+        title="Shaft CG radius",
+        description="CG radius of the shaft masses.",
+        hint="e.g. 30 mm",
+    )
+    length: float = field(
+        "length",
+        gt=0,
+        title="Shaft length",
+        description="Distance between the outer masses.",
+        hint="e.g. 200 mm",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> ShaftSet:
-        if self.cg_radius <= 0:
-            raise FieldProblem("cg_radius", "must be greater than zero")
-        if self.length <= 0:
-            raise FieldProblem("length", "must be greater than zero")
-        return self
+
+class BalanceShafts(_EngineTable):
+    """Balance shafts of the first and the second order (``[balance_shafts]``)."""
+
+    primary: ShaftSet | None = field(
+        "table",
+        default=None,
+        table=ShaftSet,
+        title="Primary shafts",
+        description="Shafts at crank speed against the first-order force and moment.",
+    )
+    secondary: ShaftSet | None = field(
+        "table",
+        default=None,
+        table=ShaftSet,
+        title="Secondary shafts",
+        description="Shafts at twice crank speed against the second-order force and moment.",
+    )
 
 
-class BalanceShafts(_Strict):
-    primary: ShaftSet | None = None
-    secondary: ShaftSet | None = None
-
-
-class EngineSpec(_Strict):
+class EngineSpec(_EngineTable):
     """A whole engine: the contents of one engine file."""
 
-    name: str = Field(default="engine", max_length=MAX_NAME_CHARS)
-    description: str = Field(default="", max_length=MAX_DESCRIPTION_CHARS)
-    speed: Speed
-    kinematics: Kinematics = "exact"
-    crank_train: CrankTrain
-    masses: Masses
-    counterweights: Counterweights | None = None
-    balance_shafts: BalanceShafts | None = None
+    name: str = field(
+        "text",
+        default="engine",
+        max_chars=MAX_NAME_CHARS,
+        title="Engine name",
+        description="Free text: the engine's name, shown in every output.",
+    )
+    description: str = field(
+        "text",
+        default="",
+        max_chars=MAX_DESCRIPTION_CHARS,
+        title="Description",
+        description="Free text.",
+    )
+    speed: float = field(
+        "speed",
+        gt=0,
+        title="Speed",
+        description="Crank speed (rpm, rad/s, Hz = rev/s).",
+        hint="e.g. 2000 rpm",
+    )
+    kinematics: Literal["exact", "series", "first-order"] = field(
+        "choice",
+        default="exact",
+        choices=KINEMATICS,
+        title="Kinematics",
+        description="exact: Fourier analysis of the exact slider-crank motion (offsets included); "
+        "series: classical series to λ⁵ (A2, A4, A6); first-order: A1 = 1, A2 = λ, as "
+        "the 2021 paper.",
+    )
+    crank_train: CrankTrain = field(
+        "table",
+        table=CrankTrain,
+        title="Crank train",
+        description="Layout and geometry of the crank train.",
+    )
+    masses: Masses = field(
+        "table",
+        table=Masses,
+        title="Masses",
+        description="Masses per cylinder and per throw, as parts or totals.",
+    )
+    counterweights: Counterweights | None = field(
+        "table",
+        default=None,
+        table=Counterweights,
+        title="Counterweights",
+        description="Options of the balancing solver (crankbalance balance); without it, "
+        "counterweights on every web at the crank radius at the optimal angle.",
+    )
+    balance_shafts: BalanceShafts | None = field(
+        "table",
+        default=None,
+        table=BalanceShafts,
+        title="Balance shafts",
+        description="Balance shafts the balancing solver sizes; without it, none.",
+    )
 
-    @model_validator(mode="after")
-    def _check(self) -> EngineSpec:
-        if self.speed <= 0:
-            raise FieldProblem("speed", "must be greater than zero")
+    def check(self) -> None:
         ct = self.crank_train
         n_cyl = ct.cylinder_count
         n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl, ct.w_type)
@@ -719,11 +1064,33 @@ class EngineSpec(_Strict):
                     "counterweights.webs",
                     f"needs one entry per web: {2 * n_throw} for {n_throw} throws",
                 )
-        return self
 
-    def to_file_dict(self) -> dict[str, Any]:
-        """The spec as an engine-file dictionary (quantities as unit strings)."""
-        return self.model_dump(mode="json", exclude_none=True, exclude_defaults=True)
+    def plausibility(self) -> list[Note]:
+        """Notes (not errors) about a valid engine whose numbers are unusual: a mean piston
+        speed 2 s n = 2 r omega / pi above :data:`MAX_PISTON_SPEED`, a rod length outside
+        :data:`ROD_RATIO` crank radii. Each names the key to check first."""
+        ct = self.crank_train
+        notes = []
+        piston_speed = 2.0 * ct.crank_radius * self.speed / math.pi
+        if piston_speed > MAX_PISTON_SPEED:
+            notes.append(
+                Note(
+                    "speed",
+                    f"mean piston speed {piston_speed:.3g} m/s, above about "
+                    f"{MAX_PISTON_SPEED:g} m/s; check the speed and the crank radius",
+                )
+            )
+        ratio = ct.rod_length / ct.crank_radius
+        if not ROD_RATIO[0] <= ratio <= ROD_RATIO[1]:
+            notes.append(
+                Note(
+                    "crank_train.rod_length",
+                    f"the rod is {ratio:.3g} crank radii long, outside the usual "
+                    f"{ROD_RATIO[0]:g}-{ROD_RATIO[1]:g}; check the rod length and the crank "
+                    "radius",
+                )
+            )
+        return notes
 
 
 #: override fields that give one quantity two ways (the later table would replace the
@@ -779,119 +1146,10 @@ def _check_articulated_engine(spec: EngineSpec) -> None:
         )
 
 
-# --------------------------------------------------------------------------- errors
+# --------------------------------------------------------------------------- reading
 def spec_from_dict(data: Any) -> EngineSpec:
-    """Validate an engine-file dictionary; raise :class:`InputError` on the first problem."""
+    """Validate an engine-file dictionary; raise :class:`InputError` on the first problem
+    (an unknown key anywhere first, named with the closest allowed key)."""
     if not isinstance(data, dict):
         raise InputError("engine file", type(data).__name__, "must be a table of keys and values")
-    try:
-        return EngineSpec.model_validate(data)
-    except ValidationError as error:
-        raise input_error(error, data) from None
-
-
-def input_error(
-    error: ValidationError,
-    data: Any,
-    root: type[BaseModel] | None = None,
-    doc: str = "docs/engine_file.md",
-    source: str = "engine file",
-) -> InputError:
-    """The first problem of a pydantic validation of ``data`` against ``root`` (default
-    :class:`EngineSpec`) as an :class:`InputError` naming the dotted key as written in the
-    file, the value and what is allowed; ``doc`` is where the format is described."""
-    first = error.errors(include_url=False)[0]
-    loc = list(first["loc"])
-    kind = first["type"]
-    value = first.get("input")
-    ctx = first.get("ctx") or {}
-    inner = ctx.get("error")
-    if isinstance(inner, FieldProblem):
-        path = inner.field.split(".") if "." in inner.field and not loc else loc + [inner.field]
-        return InputError(_dotted(path), _lookup(data, path), inner.allowed)
-    field = _dotted(loc) or source
-    if kind == "extra_forbidden":
-        parent = _model_at([str(p) for p in loc[:-1]], root or EngineSpec)
-        allowed = ", ".join(parent.model_fields) if parent is not None else f"see {doc}"
-        return InputError(field, value, f"unknown key; allowed keys here: {allowed}")
-    if kind == "missing":
-        return InputError(field, None, f"is missing; it is required (see {doc})")
-    if isinstance(inner, InputError):
-        return InputError(field, inner.value, inner.allowed)
-    if kind == "too_long":
-        return InputError(
-            field,
-            f"{ctx.get('actual_length')} entries",
-            f"takes at most {ctx.get('max_length')} entries (see {doc})",
-        )
-    if kind == "string_too_long":
-        return InputError(
-            field, f"{len(value)} characters", f"takes at most {ctx.get('max_length')} characters"
-        )
-    if kind in ("literal_error", "enum"):
-        return InputError(field, value, f"must be one of {ctx.get('expected', '')}")
-    message = str(first.get("msg", ""))
-    if message.startswith("Value error, "):
-        message = message[len("Value error, ") :]
-    return InputError(field, _short_value(value), message)
-
-
-def _lookup(data: Any, path: list[Any]) -> Any:
-    for part in path:
-        if isinstance(data, dict) and part in data:
-            data = data[part]
-        elif isinstance(data, list) and isinstance(part, int) and part < len(data):
-            data = data[part]
-        else:
-            return None
-    return _short_value(data)
-
-
-def _dotted(loc: Any) -> str:
-    out = ""
-    for part in loc:
-        if isinstance(part, int):
-            out += f"[{part}]"
-        elif isinstance(part, str) and part.startswith(("function-", "union[", "literal[")):
-            continue
-        else:
-            out += ("." if out else "") + _key_text(str(part))
-    return out
-
-
-def _key_text(key: str) -> str:
-    """A key as written in TOML: bare when it can be, else quoted with escapes (a key in a
-    message never carries a line break or a control character into the terminal)."""
-    return key if re.fullmatch(r"[A-Za-z0-9_-]+(\[\d+\])*", key) else json.dumps(key)
-
-
-def _short_value(value: Any) -> Any:
-    if isinstance(value, dict):
-        return "{...}"
-    return value
-
-
-def _model_at(loc: list[str], root: type[BaseModel]) -> type[BaseModel] | None:
-    model: Any = root
-    for part in loc:
-        if part.isdigit():
-            continue
-        field = model.model_fields.get(part) if hasattr(model, "model_fields") else None
-        if field is None:
-            return None
-        model = _inner_model(field.annotation)
-        if model is None:
-            return None
-    return model if isinstance(model, type) and issubclass(model, BaseModel) else None
-
-
-def _inner_model(annotation: Any) -> Any:
-    import typing
-
-    if isinstance(annotation, type) and issubclass(annotation, BaseModel):
-        return annotation
-    for arg in typing.get_args(annotation):
-        found = _inner_model(arg)
-        if found is not None:
-            return found
-    return None
+    return EngineSpec.parse(data)

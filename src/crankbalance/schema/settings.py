@@ -1,10 +1,12 @@
 """One schema for the settings of every study and every command, with one set of limits.
 
-The command line and the web form both validate a study's settings through these pydantic
-models, so that a setting has the same default, the same limits and the same message
-everywhere. Quantities are unit strings (``"8000 kg/m^3"``, ``"400 g"``) parsed to SI
-floats; plain numbers stay numbers. Every field has a default (``None`` where the study
-derives the value from the engine when it is not given).
+The command line, the web form and the API all validate a study's settings through these
+schemas (:mod:`crankbalance.schema.core`), so that a setting has the same default, the
+same limits and the same message everywhere. Quantities are unit strings
+(``"8000 kg/m^3"``, ``"400 g"``) parsed to SI floats; plain numbers stay numbers. Every
+field has a default (``None`` where the study derives the value from the engine when it is
+not given), a title (the label of a form and of a help text), a description (what it
+means; ``docs/settings.md`` is written from it) and, where a form shows one, a hint.
 
 Limits. Every value is checked *after* unit conversion: it must be a finite number (no
 NaN, no infinity, whatever the unit: ``"1e308 km"`` is refused) inside the physical range
@@ -15,36 +17,27 @@ of a shaft sweep, the balance factors of a sensitivity sweep).
 
 An edge names the fields as its users write them: the CLI as ``--max-mass``, the web form
 by its setting key; :func:`parse_options` takes that naming as a function, so that an
-error names the field the user typed.
+error names the field the user typed. This module is over 800 lines because it is the
+one description of about 250 settings of 26 studies and commands: splitting it would put
+a study's settings apart from the limits they share.
 """
 
 from __future__ import annotations
 
 import math
 import re
-import types
 from collections.abc import Callable, Mapping
-from functools import partial
-from typing import Annotated, Any, Literal, TypeVar, Union, get_args, get_origin
-
-from pydantic import (
-    AfterValidator,
-    BaseModel,
-    BeforeValidator,
-    ConfigDict,
-    Field,
-    ValidationError,
-    model_validator,
-)
-from pydantic.fields import FieldInfo
+from typing import Any, Literal, TypeVar, get_args
 
 from ..errors import InputError
 from ..physics.engine_cycle import BURN_DURATION_RANGE, IGNITION_RANGE
 from ..physics.engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from ..physics.explore.work import LARGEST_CHUNK, MAX_DRAWS
 from ..physics.single_cylinder import BALANCE_FACTOR_RANGE
-from ..units import KINDS, format_quantity, parse_factor, parse_quantity, range_si
 from ..units import RANGES as units_ranges
+from ..units import format_quantity, parse_factor, parse_quantity, range_si
+from . import core
+from .core import FieldProblem, Schema, entry, field
 
 #: the balance factors every study accepts (share of the reciprocating mass) [-]
 BALANCE_FACTOR_LIMITS = BALANCE_FACTOR_RANGE
@@ -62,8 +55,6 @@ for _kind in ("unbalance", "force", "torque"):
     RANGES[_kind] = (0.0, RANGES[_kind][1])
 #: the included angle of a drill point [rad]: above 0 (open), at most 180 deg (a flat bottom)
 RANGES["point_angle"] = (0.0, math.pi)
-#: (low, low is open, high, high is open) of a value
-Bounds = tuple[float | None, bool, float | None, bool]
 #: the smallest first moment a counterweight or a balance shaft is sized for [kg m]
 #: (0.001 g mm; a smaller requirement is zero for any balancing machine)
 MIN_UNBALANCE = 1e-9
@@ -103,166 +94,341 @@ MAX_COUNTERWEIGHT_DESIGNS = 1_000_000
 #: machine, paper-inline3: 168 000 designs 12.6 s against 9.2 s with two objectives, 496 000
 #: designs 79 s against 9.8 s), so about 200 000 take as long as the two objectives' budget
 MAX_THREE_OBJECTIVE_DESIGNS = 200_000
-
-
-def _quantity(kind: str) -> Any:
-    """A quantity string of ``kind`` parsed to SI."""
-    return BeforeValidator(partial(parse_quantity, kind=kind, field=""))
-
-
-def _range(kind: str) -> Any:
-    """The physical range of a kind of quantity (:data:`RANGES`)."""
-    low, high = RANGES[kind]
-    return Field(ge=low, le=high)
-
-
-def _number(value: Any) -> Any:
-    """A plain number: refuse NaN, infinities and booleans."""
-    if isinstance(value, bool):
-        raise ValueError("must be a number, not true/false")
-    if isinstance(value, str):
-        try:
-            value = float(value.strip())
-        except ValueError:
-            raise ValueError("must be a plain number") from None
-    if isinstance(value, float) and not math.isfinite(value):
-        raise ValueError("must be a finite number")
-    return value
-
-
-def _factor(value: Any) -> float:
-    """A balance factor as written: 0.28, "0.28" or "28%"."""
-    return parse_factor(value, "")
-
-
-def _target(value: Any) -> Any:
-    """A target balance factor: 0.28, "28%" or "factory" (the crank's own)."""
-    if isinstance(value, str) and value.strip().lower() == "factory":
-        return "factory"
-    factor = parse_factor(value, "")
-    low, high = BALANCE_FACTOR_LIMITS
-    if not low <= factor <= high:
-        raise InputError("", value, f"must be 'factory' or a number from {low:g} to {high:g}")
-    return factor
-
-
-def _angle_or_optimal(value: Any) -> Any:
-    """``"optimal"`` or an angle with a unit, in :data:`RANGES` ``["angle"]``."""
-    if isinstance(value, str) and value.strip().lower() == "optimal":
-        return "optimal"
-    angle = parse_quantity(value, "angle", "")
-    low, high = RANGES["angle"]
-    if not low <= angle <= high:
-        words = _range_words("angle", (low, False, high, False))
-        raise InputError("", value, f"must be 'optimal' or {words}")
-    return angle
-
-
-Length = Annotated[float, _quantity("length"), _range("length")]
-Area = Annotated[float, _quantity("area"), _range("area")]
-Position = Annotated[float, _quantity("length"), _range("position")]
-Mass = Annotated[float, _quantity("mass"), _range("mass")]
-Density = Annotated[float, _quantity("density"), _range("density")]
-Inertia = Annotated[float, _quantity("inertia"), _range("inertia")]
-Unbalance = Annotated[float, _quantity("unbalance"), _range("unbalance")]
-Speed = Annotated[float, _quantity("speed"), _range("speed")]
-Force = Annotated[float, _quantity("force"), _range("force")]
-Torque = Annotated[float, _quantity("torque"), _range("torque")]
-Time = Annotated[float, _quantity("time"), _range("time")]
-Stiffness = Annotated[float, _quantity("stiffness"), _range("stiffness")]
-Modulus = Annotated[float, _quantity("modulus"), _range("modulus")]
-Pressure = Annotated[float, _quantity("pressure"), _range("pressure")]
-Viscosity = Annotated[float, _quantity("viscosity"), _range("viscosity")]
-Angle = Annotated[float, _quantity("angle"), _range("angle")]
-#: a drill point's included angle: above 0, at most 180 deg (flat-bottomed holes)
-PointAngle = Annotated[
-    float,
-    _quantity("angle"),
-    Field(gt=RANGES["point_angle"][0], le=RANGES["point_angle"][1]),
-]
 #: what the depth of a pointed hole is read to: the shoulder (where the cylinder ends) or
 #: the tip of the point (the same for a flat bottom); the choices of the web's selects
 DepthTo = Literal["shoulder", "tip"]
 DEPTH_TO: tuple[str, ...] = get_args(DepthTo)
-Number = Annotated[float, BeforeValidator(_number)]
-Whole = Annotated[int, BeforeValidator(_number)]
-#: a balance factor: 0.28 or "28%", from 0 to 2
-Factor = Annotated[
-    float,
-    BeforeValidator(_factor),
-    Field(ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1]),
-]
-#: a Coulomb friction coefficient [-]
-FrictionCoefficient = Annotated[float, BeforeValidator(_number), Field(gt=0, le=1)]
-#: a first moment a counterweight or balance shaft is sized for [kg m]
-Requirement = Annotated[Unbalance, Field(ge=MIN_UNBALANCE)]
+#: the speed fluctuation a flywheel is sized for, from 1 ppm to 20 % [-] (the energy
+#: method's range, :data:`crankbalance.physics.engine_cycle_all.MAX_FLUCTUATION_TARGET`)
+FLUCTUATION_TARGET = (MIN_FLUCTUATION_TARGET, MAX_FLUCTUATION_TARGET)
+#: most pressure tables of one cycle (one per cylinder)
+MAX_PRESSURE_TABLES = 64
+#: the crank + flywheel inertia of ``cycle`` of the cylinder typed as options (without
+#: ``engine``): the thesis' motorcycle single (Hoem and Røsholm 2016) [kg m^2]
+THESIS_CRANK_INERTIA = 0.006
+#: what the torsional model and, through :func:`crankbalance.studies.crank.
+#: rotating_inertia`, every study of an engine assume of the front end (pulley, timing gear,
+#: damper hub) and of the flywheel with clutch when not typed: an automotive engine's
+#: [kg m^2] (docs/torsional.md)
+DEFAULT_FRONT_INERTIA = 0.010
+DEFAULT_FLYWHEEL_INERTIA = 0.15
+#: what an empty crank + flywheel inertia means in the option descriptions
+ENGINE_INERTIA_TEXT = (
+    "empty: the engine's, front end + throws + flywheel as the torsional model "
+    f"({DEFAULT_FRONT_INERTIA:g} + throws + {DEFAULT_FLYWHEEL_INERTIA:g} kg*m^2)"
+)
+#: what an empty crank dimension means in the option descriptions
+ENGINE_DIMENSION_TEXT = "empty: from the crank radius and web offset (as every study)"
+#: most main bearings one crank may be given (``bearings --bearing``)
+MAX_MAIN_BEARINGS = 64
+#: the crank-angle samples per revolution of ``bearings`` (the engine cycle's least, and
+#: ten per degree; the clearance contact model may allow fewer:
+#: :data:`crankbalance.physics.main_bearings.MAX_CONTACT_SIZE`)
+MIN_SAMPLES = 36
+MAX_SAMPLES = 3600
+#: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
+#: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
+MAX_CLEARANCE_STIFFNESS = 1e10
+#: the named counterweight patterns of a bearing sweep (``bearings-sweep --pattern``):
+#: a counterweight on every web, none at all, or the engine file's own pattern
+NAMED_PATTERNS = ("all", "none", "file")
+#: most counterweight patterns of one bearing sweep
+MAX_PATTERNS = 8
+#: most cases (patterns times balance factors; ``none`` counts once) of one bearing sweep:
+#: each case is a balance solve and both crank models over the cycle
+MAX_SWEEP_CASES = 64
+#: most cases x samples per revolution x cylinders of one bearing sweep, checked with the
+#: engine before the first case (:func:`crankbalance.studies.balance_loads.bearing_sweep`):
+#: its time and memory grow with it. The W16 preset's 61 cases at 3600 samples (3.5
+#: million) took 12 s of one core of the 2-core reference machine and 1.4 GB
+MAX_SWEEP_WORK = 4_000_000
+#: the range of a torsional stiffness [N m/rad] (a model engine's crank to a ship's shafting)
+TORSIONAL_STIFFNESS_RANGE = (1.0, 1e11)
+_TORSIONAL_EXAMPLE = "5e5 N*m/rad"
+#: a balancing-machine reading in words
+READING_WORDS = "an amount at a radius and an angle, e.g. '12.5 g @ 40 mm, 35 deg'"
+#: the longest engine file or preset name, file name, grade or expression a setting takes
+MAX_SETTING_CHARS = 1000
 
 
-def _zero_or_length(value: float) -> float:
-    """Zero, or a length in its physical range (no length of a trillionth of a millimetre)."""
-    if value != 0 and value < RANGES["length"][0]:
-        raise InputError("", value, f"must be {ZERO_OR_LENGTH}")
-    return value
+# --------------------------------------------------------------------------------------
+# the kinds of setting
+# --------------------------------------------------------------------------------------
+def quantity(
+    kind: str,
+    default: Any,
+    title: str,
+    description: str,
+    *,
+    within: str | None = None,
+    ge: float | None = None,
+    gt: float | None = None,
+    le: float | None = None,
+    lt: float | None = None,
+    **options: Any,
+) -> Any:
+    """A quantity setting of ``kind``, inside the signed range of its kind (or of
+    ``within``: ``"position"``, ``"point_angle"``) in :data:`RANGES`, narrowed by the
+    bounds given (the tightest of each side applies); a kind without a physical range
+    (a frequency, a power) takes the bounds given."""
+    low, high = RANGES.get(within or kind, (-math.inf, math.inf))
+    if gt is None or gt < low:
+        gt, ge = None, low if ge is None else max(ge, low)
+    if lt is None or lt > high:
+        lt, le = None, high if le is None else min(le, high)
+    return field(
+        kind,
+        default=default,
+        title=title,
+        description=description,
+        ge=ge,
+        gt=gt,
+        le=le,
+        lt=lt,
+        **options,
+    )
 
 
-#: a length that may be zero (a solid shaft's bore, a profile's rectangle height) [m]
-LengthOrZero = Annotated[Position, Field(ge=0), AfterValidator(_zero_or_length)]
-#: the weight w of the balance-shaft placement objective [-]
-ShaftWeight = Annotated[float, BeforeValidator(_number), Field(ge=0, le=1000)]
+def number(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A plain number setting (a ratio, a gain), finite, within the bounds given."""
+    return field("number", default=default, title=title, description=description, **options)
 
 
-def _number_sweep(value: Any) -> Any:
-    """A list of numbers as typed: ``"0,0.28,0.5"`` or ``"start:stop:step"`` (stop included,
-    at most :data:`MAX_SWEEP` values); a list is taken as it is. Its count and range are
-    checked by the field."""
-    if not isinstance(value, str):
-        return value
+def whole(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A whole-number setting (a count, an index, a seed), within the bounds given."""
+    return field("whole", default=default, title=title, description=description, **options)
+
+
+def choice(default: Any, choices: Any, title: str, description: str, **options: Any) -> Any:
+    """A setting that is one of ``choices``."""
+    return field(
+        "choice", default=default, choices=choices, title=title, description=description, **options
+    )
+
+
+def factor(
+    default: Any,
+    title: str,
+    description: str,
+    *,
+    low: float = BALANCE_FACTOR_LIMITS[0],
+    high: float = BALANCE_FACTOR_LIMITS[1],
+    **options: Any,
+) -> Any:
+    """A balance factor (or a share): ``0.28`` or ``"28%"``, from ``low`` to ``high``."""
+    return field(
+        "factor", default=default, ge=low, le=high, title=title, description=description, **options
+    )
+
+
+def text(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A text setting (a file name, a preset, a grade, an expression)."""
+    return field(
+        "text",
+        default=default,
+        max_chars=MAX_SETTING_CHARS,
+        title=title,
+        description=description,
+        **options,
+    )
+
+
+def _length_or_zero(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A length that may be zero (a solid shaft's bore, a profile's rectangle height)."""
+    return quantity("length", default, title, description, zero=True, **options)
+
+
+def _requirement(default: Any, title: str, description: str) -> Any:
+    """A first moment a counterweight or a balance shaft is sized for [kg m]."""
+    return quantity("unbalance", default, title, description, ge=MIN_UNBALANCE)
+
+
+def _point_angle(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A drill point's included angle: above 0, at most 180 deg (flat-bottomed holes)."""
+    return quantity("angle", default, title, description, within="point_angle", gt=0.0, **options)
+
+
+def _friction(default: Any, title: str, description: str, **options: Any) -> Any:
+    """A Coulomb friction coefficient [-]: above 0, at most 1."""
+    return number(default, title, description, gt=0, le=1, **options)
+
+
+def _weight(default: Any, title: str, description: str, **options: Any) -> Any:
+    """The weight w of the balance-shaft placement objective [-]."""
+    return number(default, title, description, ge=0, le=1000, **options)
+
+
+def _number_sweep(value: str, where: str) -> Any:
+    """A list of numbers typed as one text: ``"0,0.28,0.5"``, or ``"start:stop:step"`` (stop
+    included, at most :data:`MAX_SWEEP` values); the entries are then checked by the
+    list's field."""
+    if ":" not in value:
+        return value  # comma-separated: read by the list
     words = "must be numbers separated by commas, or start:stop:step with step > 0"
     try:
-        if ":" in value:
-            start, stop, step = (float(x) for x in value.split(":"))
-            span = (stop - start) / step
-            if not (step > 0 and 0 <= span < math.inf):
-                raise ValueError
-            if span > MAX_SWEEP:
-                raise InputError("", value, f"must give at most {MAX_SWEEP} values")
-            return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
-        numbers = [float(x) for x in value.split(",") if x.strip()]
+        start, stop, step = (float(x) for x in value.split(":"))
     except ValueError:
-        raise InputError("", value, words) from None
-    if not numbers or not all(math.isfinite(v) for v in numbers):
-        raise InputError("", value, "must hold at least one finite number")
-    return numbers
+        raise InputError(where, value, words) from None
+    span = (stop - start) / step if step > 0 else math.nan
+    if not (math.isfinite(start) and 0 <= span < math.inf):
+        raise InputError(where, value, words)
+    if span > MAX_SWEEP:
+        raise InputError(where, value, f"must give at most {MAX_SWEEP} values")
+    return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
 
 
-def _comma_list(value: Any) -> Any:
-    """A list typed as one text, its items separated by commas (``"1,0,0,1"``); a list is
-    taken as it is."""
-    if not isinstance(value, str):
-        return value
-    return [item.strip() for item in value.split(",") if item.strip()] or [value]
+def _balance_factors(default: Any, title: str, description: str, **options: Any) -> Any:
+    """The balance factors of a sweep: a list, or a text "0,0.25,0.5" or "start:stop:step"."""
+    return field(
+        "list",
+        default=default,
+        item=entry("factor", ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1]),
+        min_items=1,
+        max_items=MAX_SWEEP,
+        parse=_number_sweep,
+        title=title,
+        description=description,
+        **options,
+    )
 
 
-def _one_or_many(value: Any) -> Any:
-    """The values of a setting that may be given several times (an option repeated on the
-    command line, a JSON list): one value alone is a list of one."""
+def _damping(default: Any, title: str, description: str) -> Any:
+    """A damping ratio [-], from 0 to 0.5."""
+    return number(default, title, description, ge=0, le=0.5)
+
+
+def _angle_or_optimal(value: Any, where: str) -> Any:
+    """``"optimal"`` or an angle with a unit, in :data:`RANGES` ``["angle"]``."""
+    if isinstance(value, str) and value.strip().lower() == "optimal":
+        return "optimal"
+    low, high = RANGES["angle"]
+    words = f"'optimal' or {core.allowed(entry('angle', ge=low, le=high))}"
+    try:
+        angle = core.parse_in_range(value, "angle", where)
+    except InputError as error:
+        if isinstance(value, str) and not any(c.isdigit() for c in value):
+            raise InputError(where, value, f"must be {words}") from None
+        raise InputError(where, value, error.allowed) from None
+    if not low <= angle <= high:
+        raise InputError(where, value, f"must be {words}")
+    return angle
+
+
+def _target(value: Any, where: str) -> Any:
+    """A target balance factor: 0.28, "28%" or "factory" (the crank's own)."""
+    if isinstance(value, str) and value.strip().lower() == "factory":
+        return "factory"
+    low, high = BALANCE_FACTOR_LIMITS
+    words = f"must be 'factory' or a number from {low:g} to {high:g}"
+    try:
+        number = parse_factor(value, where)
+    except InputError:
+        raise InputError(where, value, words) from None
+    if not low <= number <= high:
+        raise InputError(where, value, words)
+    return number
+
+
+def _web_pattern(value: Any, where: str) -> str:
+    """A counterweight pattern as written: ``all``, ``none``, ``file`` or 0/1 per web,
+    ``1,0,0,1``; returned in one spelling (lower-case name, or the digits joined by commas)."""
+    shown = value
     if isinstance(value, (list, tuple)):
-        return list(value)
-    return [value]
+        value = ",".join(str(v) for v in value)
+    words = "must be all, none, file or 0/1 per web (two per throw) such as 1,0,0,1"
+    if not isinstance(value, str):
+        raise InputError(where, shown, words)
+    text = value.strip().lower()
+    if text in NAMED_PATTERNS:
+        return text
+    items = [item.strip() for item in text.split(",")]
+    if len(items) < 2 or any(item not in ("0", "1") for item in items):
+        raise InputError(where, shown, words)
+    if len(items) > 2 * MAX_MAIN_BEARINGS:
+        raise InputError(where, shown, f"must list at most {2 * MAX_MAIN_BEARINGS} webs")
+    if "1" not in items:
+        raise InputError(where, shown, "has no counterweight (all zeros): write none")
+    return ",".join(items)
 
 
-#: the balance factors of a sweep: a list, or a text "0,0.25,0.5" or "start:stop:step"
-BalanceFactors = Annotated[
-    list[Factor], BeforeValidator(_number_sweep), Field(min_length=1, max_length=MAX_SWEEP)
-]
-#: a setting that may be given several times
-Many = BeforeValidator(_one_or_many)
+def _reading(value: Any, where: str) -> Any:
+    """A balancing-machine reading as typed, ``"12.5 g @ 40 mm, 35 deg"``: the amount (a
+    mass, 0 or more) at a radius, and the angle; -> (mass [kg], radius [m], angle [rad])."""
+    if isinstance(value, (tuple, list)) and len(value) == 3:
+        if all(isinstance(v, (int, float)) and not isinstance(v, bool) for v in value):
+            return tuple(float(v) for v in value)  # as the settings hold it (SI)
+    if not isinstance(value, str):
+        raise InputError(where, value, f"must be {READING_WORDS}")
+    amount, _at, rest = value.partition("@")
+    radius, _comma, angle = rest.partition(",")
+    if not (_at and _comma):
+        raise InputError(where, value, f"must be {READING_WORDS}")
+    mass = parse_quantity(amount, "mass", where)
+    size = parse_quantity(radius, "length", where)
+    turn = parse_quantity(angle, "angle", where)
+    inside = [(mass, "mass", 0.0), (size, "length", RANGES["length"][0])]
+    for number_, kind, low in (*inside, (turn, "angle", RANGES["angle"][0])):
+        if not low <= number_ <= RANGES[kind][1]:
+            raise InputError(where, value, f"must be {READING_WORDS}, in range")
+    return (mass, size, turn)
 
 
-class StudyOptions(BaseModel):
+def parse_torsional_stiffness(value: Any, where: str = "") -> float:
+    """A torsional stiffness written with its unit per radian: ``"5e5 N*m/rad"`` [N m/rad]."""
+    low, high = TORSIONAL_STIFFNESS_RANGE
+    words = (
+        f"a torsional stiffness such as {_TORSIONAL_EXAMPLE!r}, from {low:g} to {high:g} N*m/rad"
+    )
+    if not isinstance(value, str) or "rad" not in value:
+        raise InputError(where, value, f"must be {words}")
+    stiffness = parse_quantity(value.replace("/rad", "").replace("/ rad", ""), "torque", where)
+    if not low <= stiffness <= high:
+        raise InputError(where, value, f"must be {words}")
+    return stiffness
+
+
+def _stiffness(title: str, description: str) -> Any:
+    """A torsional stiffness [N m/rad], not given by default."""
+    low, high = TORSIONAL_STIFFNESS_RANGE
+    return field(
+        "any",
+        default=None,
+        parse=parse_torsional_stiffness,
+        words=f"a torsional stiffness with its unit per radian, e.g. {_TORSIONAL_EXAMPLE!r}, "
+        f"from {low:g} to {high:g} N*m/rad",
+        title=title,
+        description=description,
+    )
+
+
+def _plot_order(value: Any, where: str) -> Any:
+    """A harmonic order from 1 to :data:`MAX_ORDER`, or ``"rotating"``."""
+    if isinstance(value, str) and value.strip().lower() == "rotating":
+        return "rotating"
+    words = f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'"
+    try:
+        number = float(value) if not isinstance(value, bool) else math.nan
+    except (TypeError, ValueError):
+        raise InputError(where, value, f"must be {words}") from None
+    if not (math.isfinite(number) and number == int(number) and 1 <= number <= MAX_ORDER):
+        raise InputError(where, value, f"must be {words}")
+    return int(number)
+
+
+def _slender(length: float, diameter: float) -> None:
+    """A shaft the beam model can describe: at least as long as its diameter."""
+    if length < diameter:
+        raise FieldProblem(
+            "length",
+            f"must be at least the diameter ({format_quantity(diameter, 'length', 6)}): the "
+            "beam model needs a shaft longer than it is thick",
+        )
+
+
+class StudyOptions(Schema):
     """Base of the study settings: unknown keys are errors, values are frozen and finite."""
 
-    model_config = ConfigDict(extra="forbid", frozen=True, allow_inf_nan=False, defer_build=True)
+    UNKNOWN = ("unknown setting", "known")
 
 
 # --------------------------------------------------------------------------------------
@@ -273,45 +439,95 @@ class StudyOptions(BaseModel):
 class AnalysisOptions(StudyOptions):
     """Free forces and moments: how many harmonic orders."""
 
-    orders: Whole = Field(8, ge=1, le=MAX_ORDER, title="Highest order")
-
-
-class CounterweightOptions(StudyOptions):
-    """Counterweight shape optimisation (Appl. Sci. 2021, Sec. 4-5)."""
-
-    density: Density = Field(8000.0, title="Density", description="e.g. 8000 kg/m^3")
-    max_mass: Mass | None = Field(None, title="Largest mass", description="e.g. 400 g")
-    max_radius: Length | None = Field(None, title="Largest radial space", description="e.g. 80 mm")
-    min_balance: Number = Field(100.0, ge=1, le=1000, title="Smallest balance [%]")
-    iterations: Whole = Field(40, ge=0, le=1000, title="Iterations")
-    population: Whole = Field(4096, ge=16, le=100_000, title="Population")
-    seed: Whole | None = Field(None, ge=0, le=2**32 - 1, title="Random seed")
-
-    @model_validator(mode="after")
-    def _budget(self) -> CounterweightOptions:
-        self.check_budget(2)
-        return self
-
-    def check_budget(self, objectives: int) -> None:
-        """Refuse more designs than the budget of ``objectives`` objectives (2: mass and
-        radial space, 3: with the inertia), naming ``iterations``."""
-        designs = counterweight_designs(self.population, self.iterations)
-        budget = MAX_COUNTERWEIGHT_DESIGNS if objectives < 3 else MAX_THREE_OBJECTIVE_DESIGNS
-        if designs > budget:
-            raise InputError(
-                "iterations",
-                self.iterations,
-                f"must keep population + iterations x {COUNTERWEIGHT_CHILDREN} at most "
-                f"{budget:,} designs, the optimiser's work budget with {objectives} objectives "
-                f"(here {self.population:,} + {self.iterations:,} x {COUNTERWEIGHT_CHILDREN} = "
-                f"{designs:,}): lower the iterations or the population",
-            )
+    orders: int = whole(
+        8,
+        "Highest order",
+        "The highest harmonic order of the free forces and moments computed.",
+        ge=1,
+        le=MAX_ORDER,
+    )
 
 
 def counterweight_designs(population: int, iterations: int) -> int:
     """The designs a counterweight optimisation evaluates: its first sample and
     :data:`COUNTERWEIGHT_CHILDREN` per round."""
     return population + iterations * COUNTERWEIGHT_CHILDREN
+
+
+class CounterweightOptions(StudyOptions):
+    """Counterweight shape optimisation (Appl. Sci. 2021, Sec. 4-5)."""
+
+    density: float = quantity(
+        "density",
+        8000.0,
+        "Density",
+        "Density of the counterweight's material.",
+        hint="e.g. 8000 kg/m^3",
+    )
+    max_mass: float | None = quantity(
+        "mass",
+        None,
+        "Largest mass",
+        "The heaviest counterweight a design may have; empty: no limit.",
+        hint="e.g. 400 g",
+    )
+    max_radius: float | None = quantity(
+        "length",
+        None,
+        "Largest radial space",
+        "The radial space a design may take from the crank axis; empty: no limit.",
+        hint="e.g. 80 mm",
+    )
+    min_balance: float = number(
+        100.0,
+        "Smallest balance [%]",
+        "The smallest first moment a design must reach, in per cent of the required one.",
+        ge=1,
+        le=1000,
+    )
+    iterations: int = whole(
+        40,
+        "Iterations",
+        "Rounds of the optimiser after its first sample, each breeding "
+        f"{COUNTERWEIGHT_CHILDREN} designs.",
+        ge=0,
+        le=1000,
+    )
+    population: int = whole(
+        4096, "Population", "Designs of the optimiser's first sample.", ge=16, le=100_000
+    )
+    seed: int | None = whole(
+        None,
+        "Random seed",
+        "Seed of the optimiser's random numbers, for repeatable runs; empty: a new seed each run.",
+        ge=0,
+        le=2**32 - 1,
+    )
+
+    def check(self) -> None:
+        problem = self.budget_problem(2)
+        if problem is not None:
+            raise FieldProblem("iterations", problem)
+
+    def check_budget(self, objectives: int) -> None:
+        """Refuse more designs than the budget of ``objectives`` objectives (2: mass and
+        radial space, 3: with the inertia), naming ``iterations``."""
+        problem = self.budget_problem(objectives)
+        if problem is not None:
+            raise InputError("iterations", self.iterations, problem)
+
+    def budget_problem(self, objectives: int) -> str | None:
+        """What is wrong with the designs' budget of ``objectives`` objectives, or None."""
+        designs = counterweight_designs(self.population, self.iterations)
+        budget = MAX_COUNTERWEIGHT_DESIGNS if objectives < 3 else MAX_THREE_OBJECTIVE_DESIGNS
+        if designs <= budget:
+            return None
+        return (
+            f"must keep population + iterations x {COUNTERWEIGHT_CHILDREN} at most "
+            f"{budget:,} designs, the optimiser's work budget with {objectives} objectives "
+            f"(here {self.population:,} + {self.iterations:,} x {COUNTERWEIGHT_CHILDREN} = "
+            f"{designs:,}): lower the iterations or the population"
+        )
 
 
 #: the profile parameters of a counterweight (the 2021 paper, Sec. 4), in the order of
@@ -330,133 +546,245 @@ class CounterweightRequirementOptions(StudyOptions):
     """The first moment a counterweight must carry, m_c r_c: given, or from a mass and its
     CG radius (or from the engine's balancing, the study's engine)."""
 
-    first_moment: Requirement | None = Field(None, title="Required first moment m_c r_c")
-    cw_mass: Mass | None = Field(None, title="Counterweight mass m_c")
-    cg_radius: Length | None = Field(None, title="Counterweight CG radius r_c")
+    first_moment: float | None = _requirement(
+        None,
+        "Required first moment m_c r_c",
+        "The first moment the counterweight must carry; empty: from the mass and CG radius, "
+        "or from the engine's balancing.",
+    )
+    cw_mass: float | None = quantity(
+        "mass", None, "Counterweight mass m_c", "The counterweight's mass, with its CG radius."
+    )
+    cg_radius: float | None = quantity(
+        "length", None, "Counterweight CG radius r_c", "The radius of its centre of gravity."
+    )
+
+
+def _profile(title: str) -> Any:
+    """A profile parameter of ``counterweight optimize``: a value fixes it, ``LOW..HIGH``
+    leaves it free in that range (read by the study), empty: the optimiser's range."""
+    return text(
+        None,
+        f"{title} (value or LOW..HIGH)",
+        "A value fixes the parameter, LOW..HIGH leaves it free in that range; empty: the "
+        "optimiser's range.",
+    )
 
 
 class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequirementOptions):
-    """``counterweight optimize``: the requirement, the profile parameters (a value fixes
-    one, ``"LOW..HIGH"`` leaves it free in that range, empty: the optimiser's range), the
-    radial measure, the objectives and how many Pareto designs are listed."""
+    """``counterweight optimize``: the requirement, the profile parameters, the radial
+    measure, the objectives and how many Pareto designs are listed."""
 
-    web_radius: str | None = Field(None, title="Web circle radius r_cw (value or LOW..HIGH)")
-    rectangle_height: str | None = Field(None, title="Rectangle height h_R (value or LOW..HIGH)")
-    trapezoid_angle: str | None = Field(None, title="delta (value or LOW..HIGH)")
-    segment_radius: str | None = Field(None, title="Segment radius R_cw (value or LOW..HIGH)")
-    segment_angle: str | None = Field(None, title="alpha (value or LOW..HIGH)")
-    thickness: str | None = Field(None, title="Thickness t_cw (value or LOW..HIGH)")
-    radius_measure: Literal["true", "paper"] = Field(
+    web_radius: str | None = _profile("Web circle radius r_cw")
+    rectangle_height: str | None = _profile("Rectangle height h_R")
+    trapezoid_angle: str | None = _profile("delta")
+    segment_radius: str | None = _profile("Segment radius R_cw")
+    segment_angle: str | None = _profile("alpha")
+    thickness: str | None = _profile("Thickness t_cw")
+    radius_measure: Literal["true", "paper"] = choice(
         "true",
-        title="Radial space",
-        description="true: the outer radius; paper: the 2021 paper's R_min bound",
+        ("true", "paper"),
+        "Radial space",
+        "How the radial space is measured: true, the outer radius; paper, the 2021 paper's "
+        "R_min bound.",
     )
-    inertia: bool = Field(False, title="Inertia as a third objective")
-    pareto: Whole = Field(
-        10, ge=0, le=10**6, title="Pareto designs listed (evenly spread along the front)"
+    inertia: bool = field(
+        "flag",
+        default=False,
+        title="Inertia as a third objective",
+        description="Minimise the counterweight's moment of inertia too.",
+    )
+    pareto: int = whole(
+        10,
+        "Pareto designs listed",
+        "How many designs of the Pareto front are listed, evenly spread along it.",
+        ge=0,
+        le=10**6,
     )
 
-    @model_validator(mode="after")
-    def _three_objectives(self) -> CounterweightOptimizeOptions:
-        if self.inertia:
-            self.check_budget(3)
-        return self
+    def check(self) -> None:
+        problem = self.budget_problem(3 if self.inertia else 2)
+        if problem is not None:
+            raise FieldProblem("iterations", problem)
 
 
 class SingleCylinderOptions(StudyOptions):
     """One cylinder of an engine: balance factor study and the ISO 21940-11 check."""
 
-    cylinder: Whole = Field(1, ge=1, title="Cylinder", description="1..number of cylinders")
-    balance_factor: Number = Field(
-        0.5, ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1], title="Balance factor"
+    cylinder: int = whole(
+        1,
+        "Cylinder",
+        "The cylinder of the engine studied alone (1-based).",
+        ge=1,
+        hint="1..number of cylinders",
     )
-    grade: str = Field("G6.3", title="ISO 21940-11 grade", description="e.g. G6.3")
-    rotor_mass: Mass | None = Field(
-        None, title="Rotor mass", description="empty: the crank's rotating masses"
+    balance_factor: float = number(
+        0.5,
+        "Balance factor",
+        "Share of the cylinder's reciprocating mass balanced by its counterweight.",
+        ge=BALANCE_FACTOR_LIMITS[0],
+        le=BALANCE_FACTOR_LIMITS[1],
     )
-    residual: Unbalance | None = Field(
-        None, title="Measured residual unbalance", description="optional, e.g. 8 g*mm"
+    grade: str = text(
+        "G6.3",
+        "ISO 21940-11 grade",
+        "The balance quality grade of the ISO check.",
+        hint="e.g. G6.3",
+    )
+    rotor_mass: float | None = quantity(
+        "mass",
+        None,
+        "Rotor mass",
+        "The rotor's mass for the permissible residual unbalance.",
+        hint="empty: the crank's rotating masses",
+    )
+    residual: float | None = quantity(
+        "unbalance",
+        None,
+        "Measured residual unbalance",
+        "A measured residual unbalance, checked against the permissible one.",
+        hint="optional, e.g. 8 g*mm",
     )
 
 
 class RebalanceOptions(StudyOptions):
     """Rebalancing one cylinder's throw after new parts (Hoem and Røsholm 2016, Sec. 6.4)."""
 
-    new_reciprocating: Mass | None = Field(
-        None, title="New reciprocating mass", description="empty: unchanged"
-    )
-    new_rotating: Mass | None = Field(
-        None, title="New rotating mass", description="empty: unchanged"
-    )
-    cw_mass: Mass | None = Field(
+    new_reciprocating: float | None = quantity(
+        "mass",
         None,
-        title="Counterweight mass (webs incl.)",
-        description="empty: what the balance factor needs at the CG radius",
+        "New reciprocating mass",
+        "The cylinder's reciprocating mass with the new parts.",
+        hint="empty: unchanged",
     )
-    cw_radius: Length | None = Field(
-        None, title="Counterweight CG radius", description="empty: crank radius"
+    new_rotating: float | None = quantity(
+        "mass",
+        None,
+        "New rotating mass",
+        "The throw's rotating mass with the new parts.",
+        hint="empty: unchanged",
     )
-    hole_diameter: Length = Field(0.008, title="Drill diameter", description="e.g. 8 mm")
-    point_angle: PointAngle = Field(
-        math.pi, title="Drill point angle", description="e.g. 118 deg (180 deg: flat-bottomed)"
+    cw_mass: float | None = quantity(
+        "mass",
+        None,
+        "Counterweight mass (webs incl.)",
+        "Mass of the counterweights with their webs.",
+        hint="empty: what the balance factor needs at the CG radius",
     )
-    depth_to: DepthTo = Field("tip", title="Depth read to the", description="tip or shoulder")
-    holes: Whole = Field(
-        1, ge=1, le=MAX_HOLES, title="Holes per web", description="side by side, e.g. 2"
+    cw_radius: float | None = quantity(
+        "length",
+        None,
+        "Counterweight CG radius",
+        "Radius of the centre of gravity of the counterweights with their webs.",
+        hint="empty: crank radius",
     )
-    hole_radius: Length | None = Field(
-        None, title="Hole radius", description="empty: counterweight CG radius"
+    hole_diameter: float = quantity(
+        "length",
+        0.008,
+        "Drill diameter",
+        "Diameter of the drill that takes material off the counterweights.",
+        hint="e.g. 8 mm",
     )
-
-
-def _slender(length: float, diameter: float) -> None:
-    """A shaft the beam model can describe: at least as long as its diameter."""
-    if length < diameter:
-        raise InputError(
-            "length",
-            length,
-            f"must be at least the diameter ({format_quantity(diameter, 'length', 6)}): the "
-            "beam model needs a shaft longer than it is thick",
-        )
+    point_angle: float = _point_angle(
+        math.pi,
+        "Drill point angle",
+        "The drill point's included angle (180 deg: flat-bottomed holes).",
+        hint="e.g. 118 deg (180 deg: flat-bottomed)",
+    )
+    depth_to: DepthTo = choice(
+        "tip",
+        DEPTH_TO,
+        "Depth read to the",
+        "What the depth of a pointed hole is read to: the tip of the point or "
+        "the shoulder where the cylinder ends.",
+        hint="tip or shoulder",
+    )
+    holes: int = whole(
+        1,
+        "Holes per web",
+        "Holes drilled side by side in each web.",
+        ge=1,
+        le=MAX_HOLES,
+        hint="side by side, e.g. 2",
+    )
+    hole_radius: float | None = quantity(
+        "length",
+        None,
+        "Hole radius",
+        "Radius at which the holes are drilled.",
+        hint="empty: counterweight CG radius",
+    )
 
 
 class ShaftPlacementOptions(StudyOptions):
     """Unbalance-mass placement on a balance shaft with end bearings (Kim 2018, Sec. 3.1)."""
 
-    length: Length = Field(0.3, title="Shaft length (between bearings)", description="e.g. 300 mm")
-    diameter: Length = Field(0.025, title="Shaft diameter", description="e.g. 25 mm")
-    weight: ShaftWeight = Field(2.0, title="Objective weight w", description="e.g. 2")
-    points: Whole = Field(41, ge=3, le=MAX_SHAFT_POINTS, title="Design points along the shaft")
+    length: float = quantity(
+        "length",
+        0.3,
+        "Shaft length (between bearings)",
+        "Length of the balance shaft between its end bearings.",
+        hint="e.g. 300 mm",
+    )
+    diameter: float = quantity(
+        "length", 0.025, "Shaft diameter", "Outer diameter of the balance shaft.", hint="e.g. 25 mm"
+    )
+    weight: float = _weight(
+        2.0,
+        "Objective weight w",
+        "Weight w of the bearing-load difference against the bending in the "
+        "placement objective (Kim 2018).",
+        hint="e.g. 2",
+    )
+    points: int = whole(
+        41,
+        "Design points along the shaft",
+        "Positions of the second mass tried along the shaft.",
+        ge=3,
+        le=MAX_SHAFT_POINTS,
+    )
 
-    @model_validator(mode="after")
-    def _beam(self) -> ShaftPlacementOptions:
+    def check(self) -> None:
         _slender(self.length, self.diameter)
-        return self
 
 
 class PerformanceOptions(StudyOptions):
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5)."""
 
-    bore: Length | None = Field(
+    bore: float | None = quantity(
+        "length",
         None,
-        title="Bore",
-        description="empty: 76.8 mm, the one-cylinder studies' (cycle, sensitivity)",
+        "Bore",
+        "Cylinder bore, for the gas force.",
+        hint="empty: 76.8 mm, the one-cylinder studies' (cycle, sensitivity)",
     )
-    balance_factors: BalanceFactors = Field(
+    balance_factors: list[float] = _balance_factors(
         [0.0, 0.25, 0.5, 0.75, 1.0],
-        title="Balance factors",
-        description="e.g. 0, 0.25, 0.5, 0.75, 1",
+        "Balance factors",
+        "The balance factors the study compares.",
+        hint="e.g. 0, 0.25, 0.5, 0.75, 1",
     )
-    crank_inertia: Inertia | None = Field(
+    crank_inertia: float | None = quantity(
+        "inertia",
         None,
-        title="Crank + flywheel inertia",
-        description="empty: the engine's (front end, throws and flywheel)",
+        "Crank + flywheel inertia",
+        "Inertia of the purely rotating parts, which sets the speed fluctuation.",
+        hint="empty: the engine's (front end, throws and flywheel)",
     )
-    friction_coefficient: FrictionCoefficient = Field(
-        0.005, title="Bearing friction coefficient", description="e.g. 0.005"
+    friction_coefficient: float = _friction(
+        0.005,
+        "Bearing friction coefficient",
+        "Coulomb friction coefficient of the main bearings.",
+        hint="e.g. 0.005",
     )
-    journal_diameter: Length = Field(0.03, title="Main journal diameter", description="e.g. 30 mm")
+    journal_diameter: float = quantity(
+        "length",
+        0.03,
+        "Main journal diameter",
+        "Diameter of the main journals, the friction's lever arm.",
+        hint="e.g. 30 mm",
+    )
 
 
 # --------------------------------------------------------------------------------------
@@ -467,20 +795,42 @@ class PerformanceOptions(StudyOptions):
 class BalanceOptions(StudyOptions):
     """``balance`` and ``report``: overrides of the engine file's counterweights."""
 
-    angle: Annotated[float | str, BeforeValidator(_angle_or_optimal)] | None = Field(
-        None, title="Counterweight angle", description="'optimal' or e.g. 30 deg"
+    angle: float | str | None = field(
+        "angle",
+        default=None,
+        parse=_angle_or_optimal,
+        words="'optimal' or "
+        + core.allowed(entry("angle", ge=RANGES["angle"][0], le=RANGES["angle"][1])),
+        title="Counterweight angle",
+        description="Angle of the counterweights from the position opposite the crankpin, "
+        "or optimal (least mass); empty: the engine file's, else optimal.",
+        hint="'optimal' or e.g. 30 deg",
     )
-    balance_factor: Factor | None = Field(None, title="Balance factor")
-    method: Literal["pattern", "individual"] | None = Field(
+    balance_factor: float | None = factor(
         None,
-        title="Counterweight method",
-        description="pattern: equal counterweights; individual: each its own mass and angle "
-        "(empty: the engine file's)",
+        "Balance factor",
+        "Share of the pin's reciprocating mass put on the crank counterweights; "
+        "empty: the engine file's.",
     )
-    scope: Literal["auto", "whole", "halves"] | None = Field(
+    method: Literal["pattern", "individual"] | None = choice(
         None,
-        title="Balance the whole crank or each half",
-        description="empty: the engine file's",
+        ("pattern", "individual"),
+        "Counterweight method",
+        "pattern: equal counterweights (2021 paper); individual: each its own mass and "
+        "angle; empty: the engine file's.",
+    )
+    scope: Literal["auto", "whole", "halves"] | None = choice(
+        None,
+        ("auto", "whole", "halves"),
+        "Balance the whole crank or each half",
+        "Balance the whole crank or each half on its own; empty: the engine file's.",
+    )
+    verify: bool = field(
+        "flag",
+        default=False,
+        title="Verify in the time domain",
+        description="Also check the residuals in the time domain (every mass over a "
+        "revolution, then a Fourier transform) and report how well the two agree.",
     )
 
 
@@ -488,60 +838,171 @@ class CounterweightDesignOptions(StudyOptions):
     """``counterweight optimize|show|export|check``: the requirement and the profile
     parameters (each a value, or for ``optimize`` both ends of a range)."""
 
-    first_moment: Requirement | None = Field(None, title="Required first moment m_c r_c")
-    cw_mass: Mass | None = Field(None, title="Counterweight mass m_c")
-    cg_radius: Length | None = Field(None, title="Counterweight CG radius r_c")
-    web_radius: Length | None = Field(None, title="Web circle radius r_cw")
-    rectangle_height: LengthOrZero | None = Field(None, title="Rectangle height h_R")
-    trapezoid_angle: Annotated[Angle, Field(ge=0)] | None = Field(None, title="delta")
-    segment_radius: Length | None = Field(None, title="Segment radius R_cw")
-    segment_angle: Annotated[Angle, Field(gt=0)] | None = Field(None, title="alpha")
-    thickness: Length | None = Field(None, title="Thickness t_cw")
-    density: Density = Field(8000.0, title="Density")
-    unit: Length = Field(1e-3, title="Length unit of a CAD file")
+    first_moment: float | None = _requirement(
+        None, "Required first moment m_c r_c", "The first moment the counterweight must carry."
+    )
+    cw_mass: float | None = quantity(
+        "mass",
+        None,
+        "Counterweight mass m_c",
+        "Counterweight mass from the balancing (with the CG radius: the requirement).",
+    )
+    cg_radius: float | None = quantity(
+        "length",
+        None,
+        "Counterweight CG radius r_c",
+        "Radius of the counterweight's centre of gravity from the balancing.",
+    )
+    web_radius: float | None = quantity(
+        "length", None, "Web circle radius r_cw", "Radius of the web's circle about the crank axis."
+    )
+    rectangle_height: float | None = _length_or_zero(
+        None, "Rectangle height h_R", "Height of the profile's rectangle."
+    )
+    trapezoid_angle: float | None = quantity(
+        "angle", None, "delta", "Angle delta of the profile's trapezoid flanks.", ge=0
+    )
+    segment_radius: float | None = quantity(
+        "length", None, "Segment radius R_cw", "Radius of the profile's outer circular segment."
+    )
+    segment_angle: float | None = quantity(
+        "angle", None, "alpha", "Angle alpha of the profile's outer circular segment.", gt=0
+    )
+    thickness: float | None = quantity(
+        "length", None, "Thickness t_cw", "Axial thickness of the counterweight."
+    )
+    density: float = quantity(
+        "density", 8000.0, "Density", "Density of the counterweight's material."
+    )
+    unit: float = quantity(
+        "length",
+        1e-3,
+        "Length unit of a CAD file",
+        "The length one unit of a checked CAD file stands for.",
+    )
 
 
 class FrictionOptions(StudyOptions):
     """``friction``: bearing friction torque under a constant plus a rotating load."""
 
-    load: Force = Field(0.0, title="Constant bearing load")
-    rotating_load: Force | None = Field(None, title="Rotating load")
-    unbalance: Unbalance | None = Field(None, title="Unbalance")
-    speed: Speed | None = Field(None, title="Shaft speed")
-    journal_diameter: Length | None = Field(None, title="Journal diameter")
-    friction_coefficient: FrictionCoefficient | None = Field(None, title="Friction coefficient")
-    torque: Torque | None = Field(None, title="Measured torque")
-    viscosity: Viscosity | None = Field(None, title="Oil viscosity")
-    bearing_length: Length | None = Field(None, title="Bearing length")
-    clearance: Length | None = Field(None, title="Radial clearance")
-    eccentricity: Number = Field(0.0, ge=0, lt=1, title="Eccentricity ratio")
-    attitude_angle: Angle = Field(0.0, title="Attitude angle")
+    load: float = quantity(
+        "force",
+        0.0,
+        "Constant bearing load",
+        "The constant part of the bearing load (weight, belt pull).",
+    )
+    rotating_load: float | None = quantity(
+        "force",
+        None,
+        "Rotating load",
+        "The rotating part of the bearing load (an unbalance force).",
+    )
+    unbalance: float | None = quantity(
+        "unbalance",
+        None,
+        "Unbalance",
+        "An unbalance whose force at the shaft speed is the rotating load.",
+    )
+    speed: float | None = quantity(
+        "speed",
+        None,
+        "Shaft speed",
+        "Shaft speed, for the rotating load of an unbalance and for the hydrodynamic bearing.",
+    )
+    journal_diameter: float | None = quantity(
+        "length", None, "Journal diameter", "Diameter of the bearing journal."
+    )
+    friction_coefficient: float | None = _friction(
+        None, "Friction coefficient", "Coulomb friction coefficient of the bearing."
+    )
+    torque: float | None = quantity(
+        "torque",
+        None,
+        "Measured torque",
+        "A measured friction torque, to back-compute the friction coefficient.",
+    )
+    viscosity: float | None = quantity(
+        "viscosity",
+        None,
+        "Oil viscosity",
+        "Dynamic viscosity of the oil of a hydrodynamic bearing.",
+    )
+    bearing_length: float | None = quantity(
+        "length", None, "Bearing length", "Axial length of a hydrodynamic bearing."
+    )
+    clearance: float | None = quantity(
+        "length", None, "Radial clearance", "Mean radial clearance of a hydrodynamic bearing."
+    )
+    eccentricity: float = number(
+        0.0,
+        "Eccentricity ratio",
+        "Eccentricity of the journal in the bearing over the clearance.",
+        ge=0,
+        lt=1,
+    )
+    attitude_angle: float = quantity(
+        "angle", 0.0, "Attitude angle", "Angle of the journal's eccentricity from the load."
+    )
 
 
 class BenchOptions(StudyOptions):
     """``bench``: the simulated rotor test bench (Hoem and Røsholm 2016, Sec. 5.2.5)."""
 
-    mass: Mass = Field(2.5464, title="Rotor mass")
-    inertia: Inertia = Field(2.847335e-3, title="Rotor moment of inertia")
-    unbalance: Unbalance = Field(0.0, title="Rotor unbalance")
-    journal_diameter: Length = Field(0.02, title="Journal diameter")
-    friction_coefficient: FrictionCoefficient | None = Field(None, title="Friction coefficient")
-    speed: Annotated[list[Speed], Many] = Field(
-        [3000 * _RPM], min_length=1, max_length=MAX_BENCH_RUNS, title="Set speeds"
+    mass: float = quantity("mass", 2.5464, "Rotor mass", "Mass of the rotor on the bench.")
+    inertia: float = quantity(
+        "inertia",
+        2.847335e-3,
+        "Rotor moment of inertia",
+        "Moment of inertia of the rotor about its axis.",
     )
-    ramp_time: Time = Field(2.0, title="Ramp time")
-    hold_time: Time = Field(1.5, title="Hold time")
-    kp: Number = Field(0.2, gt=0, le=1e4, title="PI proportional gain [N m s/rad]")
-    ki: Number = Field(10.0, ge=0, le=1e6, title="PI integral gain [N m/rad]")
+    unbalance: float = quantity("unbalance", 0.0, "Rotor unbalance", "Unbalance of the rotor.")
+    journal_diameter: float = quantity(
+        "length",
+        0.02,
+        "Journal diameter",
+        "Diameter of the rotor's journals in the bench's bearings.",
+    )
+    friction_coefficient: float | None = _friction(
+        None, "Friction coefficient", "Coulomb friction coefficient of each bearing."
+    )
+    speed: list[float] = field(
+        "list",
+        default=[3000 * _RPM],
+        item=entry("speed", ge=RANGES["speed"][0], le=RANGES["speed"][1]),
+        min_items=1,
+        max_items=MAX_BENCH_RUNS,
+        single=True,
+        title="Set speeds",
+        description="The speed each run ramps to and holds, one run per speed.",
+    )
+    ramp_time: float = quantity("time", 2.0, "Ramp time", "Duration of the speed ramp.")
+    hold_time: float = quantity(
+        "time",
+        1.5,
+        "Hold time",
+        f"Duration of the hold (a run simulates at most {MAX_BENCH_REVOLUTIONS} revolutions).",
+    )
+    kp: float = number(
+        0.2,
+        "PI proportional gain [N m s/rad]",
+        "Proportional gain of the bench's speed controller.",
+        gt=0,
+        le=1e4,
+    )
+    ki: float = number(
+        10.0,
+        "PI integral gain [N m/rad]",
+        "Integral gain of the bench's speed controller.",
+        ge=0,
+        le=1e6,
+    )
 
-    @model_validator(mode="after")
-    def _bounded_work(self) -> BenchOptions:
+    def check(self) -> None:
         fastest = max(self.speed)
         turns = fastest / (2 * math.pi) * (self.ramp_time / 2 + self.hold_time)
         if turns > MAX_BENCH_REVOLUTIONS:
-            raise InputError(
+            raise FieldProblem(
                 "hold_time",
-                self.hold_time,
                 f"the run at {format_quantity(fastest, 'speed', 6)} would simulate "
                 f"{turns:.3g} revolutions, at most {MAX_BENCH_REVOLUTIONS} are allowed: "
                 "shorten the ramp and hold times or lower the speed",
@@ -550,43 +1011,12 @@ class BenchOptions(StudyOptions):
         rate = proportional + integral
         if rate * (self.ramp_time + self.hold_time) > MAX_BENCH_CONTROL:
             gain = "kp" if proportional >= integral else "ki"
-            raise InputError(
+            raise FieldProblem(
                 gain,
-                getattr(self, gain),
                 f"the controller (time constant {1 / rate:.3g} s against the rotor's inertia) "
                 f"would need more than {MAX_BENCH_CONTROL} steps over the run: lower --kp "
                 "and --ki, raise the inertia or shorten the run",
             )
-        return self
-
-
-#: the speed fluctuation a flywheel is sized for, from 1 ppm to 20 % [-] (the energy
-#: method's range, :data:`crankbalance.physics.engine_cycle_all.MAX_FLUCTUATION_TARGET`)
-FluctuationTarget = Annotated[
-    float,
-    BeforeValidator(_factor),
-    Field(ge=MIN_FLUCTUATION_TARGET, le=MAX_FLUCTUATION_TARGET),
-]
-#: most pressure tables of one cycle (one per cylinder)
-MAX_PRESSURE_TABLES = 64
-
-
-#: the crank + flywheel inertia of ``cycle`` of the cylinder typed as options (without
-#: ``engine``): the thesis' motorcycle single (Hoem and Røsholm 2016) [kg m^2]
-THESIS_CRANK_INERTIA = 0.006
-#: what the torsional model and, through :func:`crankbalance.studies.crank.
-#: rotating_inertia`, every study of an engine assume of the front end (pulley, timing gear,
-#: damper hub) and of the flywheel with clutch when not typed: an automotive engine's
-#: [kg m^2] (docs/torsional.md)
-DEFAULT_FRONT_INERTIA = 0.010
-DEFAULT_FLYWHEEL_INERTIA = 0.15
-#: what an empty crank + flywheel inertia means in the option descriptions
-ENGINE_INERTIA_TEXT = (
-    "empty: the engine's, front end + throws + flywheel as the torsional model "
-    f"({DEFAULT_FRONT_INERTIA:g} + throws + {DEFAULT_FLYWHEEL_INERTIA:g} kg*m^2)"
-)
-#: what an empty crank dimension means in the option descriptions
-ENGINE_DIMENSION_TEXT = "empty: from the crank radius and web offset (as every study)"
 
 
 class CombustionOptions(StudyOptions):
@@ -595,82 +1025,144 @@ class CombustionOptions(StudyOptions):
     ``sensitivity``, ``bearings`` and ``torsional`` with the same defaults (the thesis'
     combustion, docs/engine_cycle.md)."""
 
-    compression_ratio: Number = Field(13.5, gt=1, le=100, title="Compression ratio")
+    compression_ratio: float = number(
+        13.5,
+        "Compression ratio",
+        "Geometric compression ratio of the Wiebe model's cylinder.",
+        gt=1,
+        le=100,
+    )
     # the Wiebe model's own ranges (engine_cycle.IGNITION_RANGE, BURN_DURATION_RANGE)
-    ignition: Angle = Field(
+    ignition: float = quantity(
+        "angle",
         math.radians(-25.0),
+        "Start of combustion from firing TDC",
+        "Crank angle of the start of combustion from firing top dead centre (negative: before it).",
         ge=IGNITION_RANGE[0],
         le=IGNITION_RANGE[1],
-        title="Start of combustion from firing TDC",
     )
-    burn_duration: Angle = Field(
+    burn_duration: float = quantity(
+        "angle",
         math.radians(50.0),
+        "Burn duration",
+        "Crank angle over which the Wiebe model burns the charge.",
         ge=BURN_DURATION_RANGE[0],
         le=BURN_DURATION_RANGE[1],
-        title="Burn duration",
     )
-    intake_pressure: Pressure = Field(1e5, title="Pressure at the start of compression")
-    pressure_csv: Annotated[list[str], Many] = Field(
-        [], max_length=MAX_PRESSURE_TABLES, title="Cylinder pressure tables"
+    intake_pressure: float = quantity(
+        "pressure",
+        1e5,
+        "Pressure at the start of compression",
+        "Cylinder pressure at the start of compression: the engine's load.",
+    )
+    pressure_csv: list[str] = field(
+        "list",
+        default=[],
+        item=entry("text", max_chars=MAX_SETTING_CHARS),
+        max_items=MAX_PRESSURE_TABLES,
+        single=True,
+        words=f"at most {MAX_PRESSURE_TABLES} files, the option given once for each",
+        title="Cylinder pressure tables",
+        description="Cylinder pressure tables instead of the Wiebe model (crank angle [deg "
+        "from firing TDC], absolute pressure [bar]): one for every cylinder, or one per "
+        "cylinder in cylinder order.",
     )
 
 
 class CycleOptions(CombustionOptions):
-    """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
-    engine (an engine without ``cylinder``: every cylinder firing), its gas pressure (the
-    Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel.
-    With an engine, stroke, conrod length, reciprocating mass, speed and strokes are the
-    engine's unless given (:func:`given`); the bore of one cylinder is the thesis' 76.8 mm
-    unless given, that of the whole engine the stroke (a square engine)."""
+    """``cycle`` and ``sensitivity``: one cylinder (typed, or of the study's engine) or the
+    whole engine (an engine without ``cylinder``: every cylinder firing), its gas pressure
+    (the Wiebe model, or tables: one for every cylinder or one per cylinder) and the
+    flywheel. With an engine, stroke, conrod length, reciprocating mass, speed and strokes
+    are the engine's unless given (:meth:`~crankbalance.schema.core.Schema.given`); the bore
+    of one cylinder is the thesis' 76.8 mm unless given, that of the whole engine the
+    stroke (a square engine)."""
 
-    cylinder: Whole | None = Field(
-        None, ge=1, le=10_000, title="Cylinder of the engine (none: all cylinders)"
-    )
-    bore: Length = Field(0.0768, title="Bore")
-    stroke: Length = Field(0.0538, title="Stroke")
-    rod_length: Length = Field(0.1035, title="Conrod length")
-    reciprocating_mass: Mass = Field(0.282, title="Reciprocating mass")
-    crank_inertia: Inertia | None = Field(
+    cylinder: int | None = whole(
         None,
-        title="Crank + flywheel inertia",
-        description=f"empty: {THESIS_CRANK_INERTIA:g} kg*m^2 (the thesis' single) without "
+        "Cylinder of the engine (none: all cylinders)",
+        "With an engine: the cylinder studied alone; empty: every cylinder firing.",
+        ge=1,
+        le=10_000,
+    )
+    bore: float = quantity("length", 0.0768, "Bore", "Cylinder bore.")
+    stroke: float = quantity("length", 0.0538, "Stroke", "Piston stroke, twice the crank radius.")
+    rod_length: float = quantity(
+        "length", 0.1035, "Conrod length", "Centre distance of the conrod."
+    )
+    reciprocating_mass: float = quantity(
+        "mass", 0.282, "Reciprocating mass", "Reciprocating mass of the cylinder."
+    )
+    crank_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Crank + flywheel inertia",
+        "Inertia of all purely rotating parts, which sets the speed fluctuation.",
+        hint=f"empty: {THESIS_CRANK_INERTIA:g} kg*m^2 (the thesis' single) without "
         f"an engine; with one, {ENGINE_INERTIA_TEXT.removeprefix('empty: ')}",
     )
-    journal_diameter: Length = Field(0.03, title="Main journal diameter")
-    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
-    speed: Speed = Field(9000 * _RPM, title="Mean speed")
-    strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle")
-    balance_factor: Factor = Field(0.5, title="Balance factor")
-    flywheel_inertia: Inertia | None = Field(None, title="Flywheel inertia (added to the crank)")
-    speed_fluctuation_target: FluctuationTarget | None = Field(
-        None, title="Speed fluctuation to size the flywheel for"
+    journal_diameter: float = quantity(
+        "length",
+        0.03,
+        "Main journal diameter",
+        "Diameter of the main journal, the friction's lever arm.",
+    )
+    friction_coefficient: float = _friction(
+        0.005, "Friction coefficient", "Coulomb friction coefficient of the main bearing."
+    )
+    speed: float = quantity("speed", 9000 * _RPM, "Mean speed", "Mean crank speed of the cycle.")
+    strokes: int = whole(4, "Strokes per cycle", "2 or 4 strokes per working cycle.", ge=2, le=4)
+    balance_factor: float = factor(
+        0.5,
+        "Balance factor",
+        "One cylinder: share of the reciprocating mass on the counterweight, on "
+        "top of the rotating mass.",
+    )
+    flywheel_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Flywheel inertia (added to the crank)",
+        "A flywheel's inertia, added to the crank inertia.",
+    )
+    speed_fluctuation_target: float | None = factor(
+        None,
+        "Speed fluctuation to size the flywheel for",
+        "Size the flywheel for this speed fluctuation (max - min) / mean.",
+        low=FLUCTUATION_TARGET[0],
+        high=FLUCTUATION_TARGET[1],
     )
 
 
 class SensitivityOptions(CycleOptions):
     """``sensitivity``: the cycle swept over balance factors and reciprocating-mass scales."""
 
-    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
-    pressure_csv: Annotated[list[str], Many] = Field(
-        [], max_length=1, title="Cylinder pressure table"
+    cylinder: int = whole(
+        1, "Cylinder of the engine", "With an engine: the cylinder studied.", ge=1, le=10_000
     )
-
-    balance_factors: BalanceFactors = Field([0.1 * k for k in range(11)], title="Balance factors")
-    mass_scales: Annotated[
-        list[Annotated[Number, Field(gt=0, le=10)]], BeforeValidator(_number_sweep)
-    ] = Field([1.0], min_length=1, max_length=MAX_SWEEP, title="Reciprocating-mass scales")
-
-
-#: most main bearings one crank may be given (``bearings --bearing``)
-MAX_MAIN_BEARINGS = 64
-#: the crank-angle samples per revolution of ``bearings`` (the engine cycle's least, and
-#: ten per degree; the clearance contact model may allow fewer:
-#: :data:`crankbalance.physics.main_bearings.MAX_CONTACT_SIZE`)
-MIN_SAMPLES = 36
-MAX_SAMPLES = 3600
-#: stiffest bearing ring the clearance contact of ``bearings`` is solved for [N/m] (oil
-#: films and bearing shells: 1e8-1e9 N/m; docs/main_bearings.md)
-MAX_CLEARANCE_STIFFNESS = 1e10
+    pressure_csv: list[str] = field(
+        "list",
+        default=[],
+        item=entry("text", max_chars=MAX_SETTING_CHARS),
+        max_items=1,
+        single=True,
+        words="at most 1 file, the option given once for each",
+        title="Cylinder pressure table",
+        description="A cylinder pressure table instead of the Wiebe model (crank angle [deg "
+        "from firing TDC], absolute pressure [bar]).",
+    )
+    balance_factors: list[float] = _balance_factors(
+        [0.1 * k for k in range(11)], "Balance factors", "The balance factors of the sweep."
+    )
+    mass_scales: list[float] = field(
+        "list",
+        default=[1.0],
+        item=entry("number", gt=0, le=10),
+        min_items=1,
+        max_items=MAX_SWEEP,
+        parse=_number_sweep,
+        title="Reciprocating-mass scales",
+        description="Factors on the reciprocating mass (lighter parts below 1).",
+    )
 
 
 class CrankDimensionOptions(StudyOptions):
@@ -678,17 +1170,33 @@ class CrankDimensionOptions(StudyOptions):
     the engine's, from its crank radius and web offset
     (:func:`crankbalance.studies.crank.crank_dimensions`), the same for both."""
 
-    journal_diameter: Length | None = Field(
-        None, title="Main journal diameter", description=ENGINE_DIMENSION_TEXT
+    journal_diameter: float | None = quantity(
+        "length",
+        None,
+        "Main journal diameter",
+        "Diameter of the main journals.",
+        hint=ENGINE_DIMENSION_TEXT,
     )
-    pin_diameter: Length | None = Field(
-        None, title="Crankpin diameter", description=ENGINE_DIMENSION_TEXT
+    pin_diameter: float | None = quantity(
+        "length",
+        None,
+        "Crankpin diameter",
+        "Diameter of the crankpins.",
+        hint=ENGINE_DIMENSION_TEXT,
     )
-    web_thickness: Length | None = Field(
-        None, title="Web thickness (axial)", description=ENGINE_DIMENSION_TEXT
+    web_thickness: float | None = quantity(
+        "length",
+        None,
+        "Web thickness (axial)",
+        "Axial thickness of a crank web.",
+        hint=ENGINE_DIMENSION_TEXT,
     )
-    web_width: Length | None = Field(
-        None, title="Web width (across the arm)", description=ENGINE_DIMENSION_TEXT
+    web_width: float | None = quantity(
+        "length",
+        None,
+        "Web width (across the arm)",
+        "Width of a crank web across its arm.",
+        hint=ENGINE_DIMENSION_TEXT,
     )
 
 
@@ -700,56 +1208,112 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     is the engine's (:func:`crankbalance.studies.crank.rotating_inertia`) and the combustion
     is :class:`CombustionOptions`': the same as ``cycle --engine`` and ``torsional``."""
 
-    speed: Speed | None = Field(None, title="Mean speed", description="empty: the engine's")
-    samples: Whole = Field(360, ge=MIN_SAMPLES, le=MAX_SAMPLES, title="Samples per revolution")
-    gas: bool = Field(True, title="Gas forces", description="off: inertia forces only")
-    bore: Length | None = Field(
-        None, title="Bore", description="empty: square engine (bore = stroke)"
+    speed: float | None = quantity(
+        "speed", None, "Mean speed", "Mean crank speed of the cycle.", hint="empty: the engine's"
     )
-    crank_inertia: Inertia | None = Field(
-        None, title="Crank + flywheel inertia", description=ENGINE_INERTIA_TEXT
+    samples: int = whole(
+        360,
+        "Samples per revolution",
+        "Crank-angle samples per revolution of the cycle.",
+        ge=MIN_SAMPLES,
+        le=MAX_SAMPLES,
     )
-    balance_factor: Factor | None = Field(
-        None, title="Balance factor", description="empty: the engine file's"
+    gas: bool = field(
+        "flag",
+        default=True,
+        title="Gas forces",
+        description="Gas forces from the Wiebe model or the pressure tables; off: inertia "
+        "forces only.",
+        hint="off: inertia forces only",
     )
-    webs: (
-        Annotated[
-            list[Annotated[int, BeforeValidator(_number), Field(ge=0, le=1)]],
-            BeforeValidator(_comma_list),
-        ]
-        | None
-    ) = Field(
+    bore: float | None = quantity(
+        "length",
         None,
-        min_length=2,
-        max_length=2 * MAX_MAIN_BEARINGS,
+        "Bore",
+        "Cylinder bore, for the gas force.",
+        hint="empty: square engine (bore = stroke)",
+    )
+    crank_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Crank + flywheel inertia",
+        "Inertia of the purely rotating parts, which sets the speed fluctuation.",
+        hint=ENGINE_INERTIA_TEXT,
+    )
+    balance_factor: float | None = factor(
+        None,
+        "Balance factor",
+        "Balance factor of the counterweights.",
+        hint="empty: the engine file's",
+    )
+    webs: list[int] | None = field(
+        "list",
+        default=None,
+        item=entry("whole", ge=0, le=1),
+        min_items=2,
+        max_items=2 * MAX_MAIN_BEARINGS,
         title="Counterweight webs (0/1, two per throw)",
-        description="empty: the engine file's",
+        description="The counterweight pattern, 0/1 per web, two per throw.",
+        hint="empty: the engine file's",
     )
-    modulus: Modulus = Field(210e9, title="Young's modulus of the crank")
-    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
-    bearing: Annotated[list[Position], Many] | None = Field(
-        None, min_length=2, max_length=MAX_MAIN_BEARINGS, title="Main-bearing positions"
+    modulus: float = quantity(
+        "modulus", 210e9, "Young's modulus of the crank", "Young's modulus of the crank's material."
     )
-    bearing_stiffness: Stiffness | None = Field(
-        None, title="Radial bearing stiffness", description="empty: rigid bearings"
+    poisson: float = number(
+        0.3, "Poisson's ratio", "Poisson's ratio of the crank's material.", gt=-1, lt=0.5
     )
-    friction_coefficient: FrictionCoefficient = Field(0.005, title="Friction coefficient")
-    viscosity: Viscosity | None = Field(None, title="Oil viscosity (Petroff)")
-    bearing_length: Length | None = Field(None, title="Bearing length (Petroff)")
-    clearance: Length | None = Field(
-        None, title="Radial clearance", description="Petroff friction; contact with a stiffness"
+    bearing: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
+        min_items=2,
+        max_items=MAX_MAIN_BEARINGS,
+        single=True,
+        title="Main-bearing positions",
+        description="Main-bearing positions along the crank from its mid-point; empty: "
+        "one between neighbouring throws and one at each end.",
     )
-    curves: bool = Field(False, title="The load and moment curves over the cycle in the JSON")
+    bearing_stiffness: float | None = quantity(
+        "stiffness",
+        None,
+        "Radial bearing stiffness",
+        "Radial stiffness of each main bearing.",
+        hint="empty: rigid bearings",
+    )
+    friction_coefficient: float = _friction(
+        0.005, "Friction coefficient", "Coulomb friction coefficient of the main bearings."
+    )
+    viscosity: float | None = quantity(
+        "viscosity", None, "Oil viscosity (Petroff)", "Oil viscosity, for the Petroff friction."
+    )
+    bearing_length: float | None = quantity(
+        "length",
+        None,
+        "Bearing length (Petroff)",
+        "Axial length of the main bearings, for the Petroff friction.",
+    )
+    clearance: float | None = quantity(
+        "length",
+        None,
+        "Radial clearance",
+        "Radial clearance of the main bearings: in the contact model with a "
+        "bearing stiffness, in the Petroff friction with viscosity and bearing length.",
+        hint="Petroff friction; contact with a stiffness",
+    )
+    curves: bool = field(
+        "flag",
+        default=False,
+        title="Curves in the JSON",
+        description="The load and moment curves over the cycle in the JSON result.",
+    )
 
-    @model_validator(mode="after")
-    def _petroff(self) -> BearingOptions:
+    def check(self) -> None:
         trio = ("viscosity", "bearing_length", "clearance")
         given = [name for name in trio if getattr(self, name) is not None]
         if given and given != ["clearance"] and len(given) < 3:
             missing = next(name for name in trio if getattr(self, name) is None)
-            raise InputError(
+            raise FieldProblem(
                 given[0],
-                getattr(self, given[0]),
                 f"needs {missing.replace('_', ' ')} too: the Petroff friction takes "
                 "viscosity, bearing length and clearance together",
             )
@@ -758,58 +1322,18 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
             and self.bearing_stiffness is not None
             and self.bearing_stiffness > MAX_CLEARANCE_STIFFNESS
         ):
-            raise InputError(
+            raise FieldProblem(
                 "bearing_stiffness",
-                self.bearing_stiffness,
                 f"must be at most {MAX_CLEARANCE_STIFFNESS:g} N/m with a clearance (the "
                 "contact solution converges up to there; stiffer rings are the model "
                 "without clearance)",
             )
         if given == ["clearance"] and self.bearing_stiffness is None:
-            raise InputError(
+            raise FieldProblem(
                 "clearance",
-                self.clearance,
                 "needs a bearing stiffness (the rings' contact) or viscosity and bearing "
                 "length (Petroff friction) to act",
             )
-        return self
-
-
-#: the named counterweight patterns of a bearing sweep (``bearings-sweep --pattern``):
-#: a counterweight on every web, none at all, or the engine file's own pattern
-NAMED_PATTERNS = ("all", "none", "file")
-#: most counterweight patterns of one bearing sweep
-MAX_PATTERNS = 8
-#: most cases (patterns times balance factors; ``none`` counts once) of one bearing sweep:
-#: each case is a balance solve and both crank models over the cycle
-MAX_SWEEP_CASES = 64
-#: most cases x samples per revolution x cylinders of one bearing sweep, checked with the
-#: engine before the first case (:func:`crankbalance.studies.balance_loads.bearing_sweep`):
-#: its time and memory grow with it. The W16 preset's 61 cases at 3600 samples (3.5
-#: million) took 12 s of one core of the 2-core reference machine and 1.4 GB
-MAX_SWEEP_WORK = 4_000_000
-
-
-def _web_pattern(value: Any) -> str:
-    """A counterweight pattern as written: ``all``, ``none``, ``file`` or 0/1 per web,
-    ``1,0,0,1``; returned in one spelling (lower-case name, or the digits joined by commas)."""
-    shown = value
-    if isinstance(value, (list, tuple)):
-        value = ",".join(str(v) for v in value)
-    allowed = "must be all, none, file or 0/1 per web (two per throw) such as 1,0,0,1"
-    if not isinstance(value, str):
-        raise InputError("patterns", shown, allowed)
-    text = value.strip().lower()
-    if text in NAMED_PATTERNS:
-        return text
-    items = [item.strip() for item in text.split(",")]
-    if len(items) < 2 or any(item not in ("0", "1") for item in items):
-        raise InputError("patterns", shown, allowed)
-    if len(items) > 2 * MAX_MAIN_BEARINGS:
-        raise InputError("patterns", shown, f"must list at most {2 * MAX_MAIN_BEARINGS} webs")
-    if "1" not in items:
-        raise InputError("patterns", shown, "has no counterweight (all zeros): write none")
-    return ",".join(items)
 
 
 class BearingSweepOptions(StudyOptions):
@@ -817,44 +1341,48 @@ class BearingSweepOptions(StudyOptions):
     factors (docs/main_bearings.md); the loads' own settings are :class:`BearingOptions`.
     ``none`` is one case whatever the balance factors."""
 
-    patterns: Annotated[list[Annotated[str, BeforeValidator(_web_pattern)]], Many] = Field(
-        ["all"],
-        min_length=1,
-        max_length=MAX_PATTERNS,
+    patterns: list[str] = field(
+        "list",
+        default=["all"],
+        item=entry("any", parse=_web_pattern, words="all, none, file or 0/1 per web"),
+        min_items=1,
+        max_items=MAX_PATTERNS,
+        single=True,
         title="Counterweight patterns",
-        description="all, none, file or 0/1 per web: 1,0,0,1,1,0,0,1",
+        description="The counterweight patterns compared: all, none, file (the engine "
+        "file's) or 0/1 per web, two per throw.",
+        hint="all, none, file or 0/1 per web: 1,0,0,1,1,0,0,1",
     )
-    balance_factors: BalanceFactors = Field(
-        [0.0, 0.25, 0.5, 0.75, 1.0], title="Balance factors", description="e.g. 0.4, 0.5, 0.6"
+    balance_factors: list[float] = _balance_factors(
+        [0.0, 0.25, 0.5, 0.75, 1.0],
+        "Balance factors",
+        "The balance factors of the patterns with counterweights.",
+        hint="e.g. 0.4, 0.5, 0.6",
     )
-    crank_model: Literal["indeterminate", "determinate"] = Field(
-        "indeterminate", title="Crank model of the table and the figure"
+    crank_model: Literal["indeterminate", "determinate"] = choice(
+        "indeterminate",
+        ("indeterminate", "determinate"),
+        "Crank model of the table and the figure",
+        "The crank model the table and the figure show (the JSON has both).",
     )
 
-    @model_validator(mode="after")
-    def _bounded(self) -> BearingSweepOptions:
+    def check(self) -> None:
         if len(set(self.patterns)) < len(self.patterns):
             twice = next(p for p in self.patterns if self.patterns.count(p) > 1)
-            raise InputError(
-                "patterns", self.patterns, f"must give each pattern once ({twice} twice)"
-            )
+            raise FieldProblem("patterns", f"must give each pattern once ({twice} twice)")
         if len(set(self.balance_factors)) < len(self.balance_factors):
             again = next(f for f in self.balance_factors if self.balance_factors.count(f) > 1)
-            raise InputError(
-                "balance_factors",
-                self.balance_factors,
-                f"must give each balance factor once ({again:g} twice)",
+            raise FieldProblem(
+                "balance_factors", f"must give each balance factor once ({again:g} twice)"
             )
         swept = sum(p != "none" for p in self.patterns)
         cases = swept * len(self.balance_factors) + ("none" in self.patterns)
         if cases > MAX_SWEEP_CASES:
-            raise InputError(
+            raise FieldProblem(
                 "patterns",
-                ", ".join(self.patterns),
                 f"must make at most {MAX_SWEEP_CASES} cases (patterns other than none times "
                 f"balance factors, and none once): here {cases}",
             )
-        return self
 
 
 #: the settings of ``bearings`` that ``bearings-sweep`` does not take: it sweeps the
@@ -866,50 +1394,74 @@ class BearingSweepStudyOptions(BearingSweepOptions, BearingOptions):
     """``bearings-sweep`` as one study: the sweep (:class:`BearingSweepOptions`) and the
     loads' settings of every case (:class:`BearingOptions`, but for :data:`NOT_SWEPT`)."""
 
-    @model_validator(mode="after")
-    def _not_swept(self) -> BearingSweepStudyOptions:
+    def check(self) -> None:
         for name in NOT_SWEPT:
-            if name in self.model_fields_set:
-                raise InputError(
+            if name in self.given():
+                raise FieldProblem(
                     name,
-                    getattr(self, name),
                     "is not a setting of the sweep: it sweeps the balance factors and the "
                     "counterweight patterns (balance_factors, patterns) and has no curves",
                 )
-        return self
+        BearingSweepOptions.check(self)
+        BearingOptions.check(self)
 
     def loads(self) -> BearingOptions:
-        """The settings of the loads of every case."""
-        values = {name: getattr(self, name) for name in BearingOptions.model_fields}
-        given_ = {name for name in BearingOptions.model_fields if name in self.model_fields_set}
-        return BearingOptions.model_construct(given_, **values)
+        """The settings of the loads of every case (the given ones still given)."""
+        return _part(self, BearingOptions)
 
     def sweep(self) -> BearingSweepOptions:
         """The sweep's own settings."""
-        values = {name: getattr(self, name) for name in BearingSweepOptions.model_fields}
-        given_ = {
-            name for name in BearingSweepOptions.model_fields if name in self.model_fields_set
-        }
-        return BearingSweepOptions.model_construct(given_, **values)
+        return _part(self, BearingSweepOptions)
+
+
+Part = TypeVar("Part", bound="StudyOptions")
+
+
+def _part(settings: StudyOptions, model: type[Part]) -> Part:
+    """The settings of ``model`` within ``settings`` (a schema made of several), its given
+    fields still given."""
+    given = settings.given()
+    part = model(**{name: getattr(settings, name) for name in model.FIELDS if name in given})
+    part.__dict__.update({name: getattr(settings, name) for name in model.FIELDS})
+    return part
 
 
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 
-    length: Length = Field(0.3, title="Shaft length")
-    diameter: Length = Field(0.025, title="Outer diameter")
-    bore: LengthOrZero = Field(0.0, title="Bore diameter (hollow shaft)")
-    modulus: Modulus = Field(210e9, title="Young's modulus")
-    density: Density = Field(7850.0, title="Density")
-    poisson: Number = Field(0.3, gt=-1, lt=0.5, title="Poisson's ratio")
-    unbalance_radius: Length = Field(0.02, title="CG radius of the unbalance masses")
-    bearing_stiffness: Stiffness | None = Field(None, title="Radial bearing stiffness")
-    theory: Literal["euler-bernoulli", "timoshenko"] = Field("euler-bernoulli", title="Beam theory")
+    length: float = quantity("length", 0.3, "Shaft length", "Length of the balance shaft.")
+    diameter: float = quantity("length", 0.025, "Outer diameter", "Outer diameter of the shaft.")
+    bore: float = _length_or_zero(
+        0.0, "Bore diameter (hollow shaft)", "Bore of a hollow shaft; 0 for a solid one."
+    )
+    modulus: float = quantity(
+        "modulus", 210e9, "Young's modulus", "Young's modulus of the shaft's material."
+    )
+    density: float = quantity("density", 7850.0, "Density", "Density of the shaft's material.")
+    poisson: float = number(
+        0.3, "Poisson's ratio", "Poisson's ratio of the shaft's material.", gt=-1, lt=0.5
+    )
+    unbalance_radius: float = quantity(
+        "length",
+        0.02,
+        "CG radius of the unbalance masses",
+        "Radius of the unbalance masses' centres of gravity (their mass is the unbalance over it).",
+    )
+    bearing_stiffness: float | None = quantity(
+        "stiffness",
+        None,
+        "Radial bearing stiffness",
+        "Radial stiffness of the shaft's bearings; empty: rigid.",
+    )
+    theory: Literal["euler-bernoulli", "timoshenko"] = choice(
+        "euler-bernoulli",
+        ("euler-bernoulli", "timoshenko"),
+        "Beam theory",
+        "The beam theory of the shaft: euler-bernoulli, or timoshenko (shear and rotary inertia).",
+    )
 
-    @model_validator(mode="after")
-    def _beam(self) -> ShaftSectionOptions:
+    def check(self) -> None:
         _slender(self.length, self.diameter)
-        return self
 
 
 class ShaftStudyOptions(ShaftSectionOptions):
@@ -917,135 +1469,312 @@ class ShaftStudyOptions(ShaftSectionOptions):
     engine) and the placement sweep; ``order`` is inline4's, ``type``, ``hold``,
     ``bearing_offset`` and ``z_min`` inline3's."""
 
-    unbalance: Requirement | None = Field(None, title="Required first moment")
-    speed: Speed | None = Field(None, title="Shaft speed")
-    weight: ShaftWeight = Field(2.0, title="Objective weight w")
-    weights: Annotated[list[ShaftWeight], BeforeValidator(_comma_list)] | None = Field(
-        None, min_length=1, max_length=MAX_SWEEP, title="Weights of the sweep"
-    )
-    points: Whole = Field(200, ge=3, le=MAX_SHAFT_POINTS, title="Design points")
-    secondary: Literal["reaction-difference", "inverse-frequency"] | None = Field(
+    unbalance: float | None = _requirement(
         None,
-        title="B of the objective",
-        description="empty: reaction-difference for inline4, inverse-frequency for inline3",
+        "Required first moment",
+        "The first moment m e the shaft must carry (without an engine).",
     )
-    order: Whole | None = Field(
+    speed: float | None = quantity(
+        "speed", None, "Shaft speed", "The shaft's speed (without an engine)."
+    )
+    weight: float = _weight(
+        2.0,
+        "Objective weight w",
+        "Weight w of the bearing-load difference against the bending in the "
+        "placement objective (Kim 2018).",
+    )
+    weights: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("number", ge=0, le=1000),
+        min_items=1,
+        max_items=MAX_SWEEP,
+        title="Weights of the sweep",
+        description="The weights w of the sweep; empty: 20 values from 0.2 to 4.",
+    )
+    points: int = whole(
+        200, "Design points", "Positions tried along the shaft.", ge=3, le=MAX_SHAFT_POINTS
+    )
+    secondary: Literal["reaction-difference", "inverse-frequency"] | None = choice(
         None,
+        ("reaction-difference", "inverse-frequency"),
+        "B of the objective",
+        "The second term B of the placement objective; empty: reaction-difference for "
+        "inline4, inverse-frequency for inline3.",
+    )
+    order: int | None = whole(
+        None,
+        "Order of the shaft the engine needs (1 or 2)",
+        "The order of the balance shaft; empty: 2 when the engine has a free second-order "
+        "force or moment, else 1.",
         ge=1,
         le=2,
-        title="Order of the shaft the engine needs (1 or 2)",
-        description="empty: 2 when the engine has a free second-order force or moment, else 1",
     )
-    type: Literal["I", "II", "III", "all"] = Field("all", title="Rotor type")
-    hold: Literal["couple", "unbalance"] = Field(
-        "couple", title="Keep the couple (physical) or each mass's unbalance (paper)"
+    type: Literal["I", "II", "III", "all"] = choice(
+        "all", ("I", "II", "III", "all"), "Rotor type", "The inline3 rotor types studied."
     )
-    bearing_offset: Length | None = Field(None, title="Bearing-to-mass distance")
-    z_min: Number = Field(0.3, ge=0, lt=1, title="Smallest second-mass position z/L")
+    hold: Literal["couple", "unbalance"] = choice(
+        "couple",
+        ("couple", "unbalance"),
+        "Keep the couple or each unbalance",
+        "What the inline3 sweep keeps: the couple (physical) or each mass's unbalance "
+        "(the paper's).",
+    )
+    bearing_offset: float | None = quantity(
+        "length",
+        None,
+        "Bearing-to-mass distance",
+        "Distance of a bearing from its nearest mass; empty: 0.1 of the length.",
+    )
+    z_min: float = number(
+        0.3,
+        "Smallest second-mass position z/L",
+        "The smallest position of the second mass in the sweep, as a share of the length.",
+        ge=0,
+        lt=1,
+    )
 
 
 class ShaftCheckOptions(ShaftSectionOptions):
     """``shaft check``: one layout (bearings, masses, unbalances, phases) and its limits."""
 
-    bearing: Annotated[list[Position], Many] = Field([], min_length=2, max_length=MAX_SHAFT_ITEMS)
-    mass: Annotated[list[Position], Many] = Field([], min_length=1, max_length=MAX_SHAFT_ITEMS)
-    unbalance: Annotated[list[Unbalance], Many] = Field(
-        [], min_length=1, max_length=MAX_SHAFT_ITEMS
+    bearing: list[float] = field(
+        "list",
+        default=[],
+        item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
+        min_items=2,
+        max_items=MAX_SHAFT_ITEMS,
+        single=True,
+        title="Bearing positions",
+        description="Bearing positions from the shaft's end, at least two.",
     )
-    phase: Annotated[list[Angle], Many] = Field([], max_length=MAX_SHAFT_ITEMS)
-    speed: Speed | None = Field(None, title="Shaft speed")
-    max_speed: Speed | None = Field(None, title="Maximum shaft speed")
-    margin: Number = Field(0.25, ge=0, le=10, title="Critical-speed separation")
-    bearing_capacity: Annotated[Force, Field(gt=0)] | None = Field(None, title="Bearing load")
-    deflection_limit: Length | None = Field(None, title="Allowed deflection")
+    mass: list[float] = field(
+        "list",
+        default=[],
+        item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
+        min_items=1,
+        max_items=MAX_SHAFT_ITEMS,
+        single=True,
+        title="Mass positions",
+        description="Positions of the unbalance masses from the shaft's end.",
+    )
+    unbalance: list[float] = field(
+        "list",
+        default=[],
+        item=entry("unbalance", ge=RANGES["unbalance"][0], le=RANGES["unbalance"][1]),
+        min_items=1,
+        max_items=MAX_SHAFT_ITEMS,
+        single=True,
+        title="Unbalances",
+        description="The unbalance of each mass, in the order of the masses.",
+    )
+    phase: list[float] = field(
+        "list",
+        default=[],
+        item=entry("angle", ge=RANGES["angle"][0], le=RANGES["angle"][1]),
+        max_items=MAX_SHAFT_ITEMS,
+        single=True,
+        title="Phases",
+        description="The angle of each mass about the shaft; empty: all at 0.",
+    )
+    speed: float | None = quantity("speed", None, "Shaft speed", "The shaft's running speed.")
+    max_speed: float | None = quantity(
+        "speed",
+        None,
+        "Maximum shaft speed",
+        "The highest speed of the checks; empty: the shaft speed.",
+    )
+    margin: float = number(
+        0.25,
+        "Critical-speed separation",
+        "Required separation of the first critical speed above the maximum "
+        "speed, as a share of it.",
+        ge=0,
+        le=10,
+    )
+    bearing_capacity: float | None = quantity(
+        "force", None, "Bearing load", "The load a bearing may carry.", gt=0
+    )
+    deflection_limit: float | None = quantity(
+        "length", None, "Allowed deflection", "The largest deflection the shaft may have."
+    )
 
 
 class BalanceFactorOptions(StudyOptions):
     """``balance-factor``: one crank's balance factor, bob-weight and force study."""
 
-    reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass")
-    crank_radius: Length | None = Field(None, title="Crank radius")
-    rotating_mass: Mass | None = Field(None, title="Rotating mass")
-    cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
-    cw_radius: Length | None = Field(None, title="Counterweight CG radius")
-    balance_factor: Factor | None = Field(None, title="Balance factor studied")
-    target: Factor | None = Field(None, title="Balance factor of the bob-weight")
-    speed: Speed | None = Field(None, title="Crank speed")
-    rod_length: Length | None = Field(None, title="Conrod length")
-    offset: Position | None = Field(None, title="Wrist-pin offset")
-    kinematics: Literal["exact", "series", "first-order"] | None = Field(
-        None,
-        title="Piston kinematics",
-        description="empty: the engine's; without an engine exact with a conrod length, "
-        "else first-order",
+    reciprocating_mass: float | None = quantity(
+        "mass", None, "Reciprocating mass", "Reciprocating mass m_rec."
     )
-    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder of the engine")
+    crank_radius: float | None = quantity(
+        "length", None, "Crank radius", "Crank throw radius, half the stroke."
+    )
+    rotating_mass: float | None = quantity(
+        "mass", None, "Rotating mass", "Rotating mass m_rot: crankpin, big end and its bearing."
+    )
+    cw_mass: float | None = quantity(
+        "mass",
+        None,
+        "Counterweight mass (webs incl.)",
+        "Mass of the counterweights with their webs.",
+    )
+    cw_radius: float | None = quantity(
+        "length",
+        None,
+        "Counterweight CG radius",
+        "Radius of the centre of gravity of the counterweights with their webs.",
+    )
+    balance_factor: float | None = factor(
+        None,
+        "Balance factor studied",
+        "The balance factor f_b studied; empty: the crank's own if its mass "
+        "properties are given, else 0.5.",
+    )
+    target: float | None = factor(
+        None,
+        "Balance factor of the bob-weight",
+        "The balance factor the bob-weight is sized for; empty: the one studied.",
+    )
+    speed: float | None = quantity("speed", None, "Crank speed", "Crank speed for the force study.")
+    rod_length: float | None = quantity(
+        "length", None, "Conrod length", "Conrod length, for the exact kinematics."
+    )
+    offset: float | None = quantity(
+        "length",
+        None,
+        "Wrist-pin offset",
+        "Offset of the wrist-pin path from the crank axis.",
+        within="position",
+    )
+    kinematics: Literal["exact", "series", "first-order"] | None = choice(
+        None,
+        ("exact", "series", "first-order"),
+        "Piston kinematics",
+        "The piston kinematics of the force study; empty: the engine's, without an engine "
+        "exact with a conrod length, else first-order.",
+    )
+    cylinder: int = whole(
+        1, "Cylinder of the engine", "The engine's cylinder studied (1-based).", ge=1, le=10_000
+    )
 
 
 class RebalancePartsOptions(StudyOptions):
     """``rebalance``: a parts file and the settings that override its values (the file's
     own schema, :mod:`crankbalance.io.rebalance_file`, then checks how they combine)."""
 
-    parts: str | None = Field(None, title="Parts file (TOML)")
-    crank_radius: Length | None = Field(None, title="Crank radius")
-    cw_mass: Mass | None = Field(None, title="Counterweight mass (webs incl.)")
-    cw_radius: Length | None = Field(None, title="Counterweight CG radius")
-    old_rotating_mass: Mass | None = Field(None, title="Rotating mass, old parts")
-    old_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, old parts")
-    new_rotating_mass: Mass | None = Field(None, title="Rotating mass, new parts")
-    new_reciprocating_mass: Mass | None = Field(None, title="Reciprocating mass, new parts")
-    target: Annotated[list[Annotated[float | str, BeforeValidator(_target)]], Many] = Field(
-        [], max_length=50, title="Target balance factors"
+    parts: str | None = text(None, "Parts file (TOML)", "The parts file of the rebalancing.")
+    crank_radius: float | None = quantity("length", None, "Crank radius", "Crank throw radius.")
+    cw_mass: float | None = quantity(
+        "mass",
+        None,
+        "Counterweight mass (webs incl.)",
+        "Mass of the counterweights with their webs.",
     )
-    method: Literal["face", "holes"] | None = Field(None, title="Correction method")
-    correction_radius: Length | None = Field(None, title="Radius of the correction")
-    face_area: Area | None = Field(None, title="Face area ground per web")
-    face_orientation: Literal["radial", "axial"] | None = Field(
-        None, title="Face ground radially or axially"
+    cw_radius: float | None = quantity(
+        "length",
+        None,
+        "Counterweight CG radius",
+        "Radius of the centre of gravity of the counterweights with their webs.",
     )
-    hole_diameter: Length | None = Field(None, title="Drill diameter")
-    holes: Whole | None = Field(None, ge=1, le=1000, title="Holes per web")
-    hole_direction: Literal["axial", "radial"] | None = Field(None, title="Hole direction")
-    point_angle: PointAngle | None = Field(None, title="Drill point angle (180 deg: flat)")
-    depth_to: DepthTo | None = Field(None, title="Depth read to")
-    web_thickness: Length | None = Field(None, title="Web thickness at the holes")
-    density: Density | None = Field(None, title="Crank material density")
-    depth_resolution: LengthOrZero | None = Field(None, title="Machining step")
-    grade: str | None = Field(None, title="ISO 21940-11 grade")
-    rotor_mass: Mass | None = Field(None, title="Crank mass")
-    speed: Speed | None = Field(None, title="Largest service speed")
-    tolerance: Requirement | None = Field(None, title="Permissible residual unbalance")
+    old_rotating_mass: float | None = quantity(
+        "mass", None, "Rotating mass, old parts", "The rotating mass with the old parts."
+    )
+    old_reciprocating_mass: float | None = quantity(
+        "mass", None, "Reciprocating mass, old parts", "The reciprocating mass with the old parts."
+    )
+    new_rotating_mass: float | None = quantity(
+        "mass", None, "Rotating mass, new parts", "The rotating mass with the new parts."
+    )
+    new_reciprocating_mass: float | None = quantity(
+        "mass", None, "Reciprocating mass, new parts", "The reciprocating mass with the new parts."
+    )
+    target: list[float | str] = field(
+        "list",
+        default=[],
+        item=entry(
+            "any",
+            parse=_target,
+            words="'factory' or a number from 0 to 2 (or a percentage)",
+        ),
+        max_items=50,
+        single=True,
+        title="Target balance factors",
+        description="The balance factors to rebalance to; factory: the crank's own.",
+    )
+    method: Literal["face", "holes"] | None = choice(
+        None, ("face", "holes"), "Correction method", "Grind a face or drill holes."
+    )
+    correction_radius: float | None = quantity(
+        "length", None, "Radius of the correction", "Radius at which material comes off."
+    )
+    face_area: float | None = quantity(
+        "area", None, "Face area ground per web", "Area of the face ground off each web."
+    )
+    face_orientation: Literal["radial", "axial"] | None = choice(
+        None,
+        ("radial", "axial"),
+        "Face ground radially or axially",
+        "Whether the face is ground radially or axially.",
+    )
+    hole_diameter: float | None = quantity(
+        "length", None, "Drill diameter", "Diameter of the drill."
+    )
+    holes: int | None = whole(
+        None, "Holes per web", "Holes drilled side by side in each web.", ge=1, le=1000
+    )
+    hole_direction: Literal["axial", "radial"] | None = choice(
+        None, ("axial", "radial"), "Hole direction", "The direction of the holes."
+    )
+    point_angle: float | None = _point_angle(
+        None,
+        "Drill point angle (180 deg: flat)",
+        "The drill point's included angle (180 deg: flat-bottomed holes).",
+    )
+    depth_to: DepthTo | None = choice(
+        None,
+        DEPTH_TO,
+        "Depth read to",
+        "What the depths of pointed holes are read to: tip or shoulder.",
+    )
+    web_thickness: float | None = quantity(
+        "length",
+        None,
+        "Web thickness at the holes",
+        "Axial thickness of the web at the holes: the deepest axial hole.",
+    )
+    density: float | None = quantity(
+        "density", None, "Crank material density", "Density of the crank's material."
+    )
+    depth_resolution: float | None = _length_or_zero(
+        None, "Machining step", "The step the depths are rounded to."
+    )
+    grade: str | None = text(
+        None, "ISO 21940-11 grade", "The balance quality grade for the tolerance."
+    )
+    rotor_mass: float | None = quantity(
+        "mass", None, "Crank mass", "The crank's mass, for the tolerance."
+    )
+    speed: float | None = quantity(
+        "speed", None, "Largest service speed", "The largest service speed, for the tolerance."
+    )
+    tolerance: float | None = _requirement(
+        None,
+        "Permissible residual unbalance",
+        "The permissible residual unbalance, instead of a grade.",
+    )
 
 
-def _reading(value: Any) -> Any:
-    """A balancing-machine reading as typed, ``"12.5 g @ 40 mm, 35 deg"``: the amount (a
-    mass, 0 or more) at a radius, and the angle; -> (mass [kg], radius [m], angle [rad])."""
-    if not isinstance(value, str):
-        return value
-    amount, _at, rest = value.partition("@")
-    radius, _comma, where = rest.partition(",")
-    if not (_at and _comma):
-        raise InputError("", value, f"must be {READING_WORDS}")
-    mass = parse_quantity(amount, "mass", "")
-    size = parse_quantity(radius, "length", "")
-    turn = parse_quantity(where, "angle", "")
-    inside = [(mass, "mass", 0.0), (size, "length", RANGES["length"][0])]
-    for number_, kind, low in (*inside, (turn, "angle", RANGES["angle"][0])):
-        if not low <= number_ <= RANGES[kind][1]:
-            raise InputError("", value, f"must be {READING_WORDS}, in range")
-    return (mass, size, turn)
-
-
-def _pair(value: Any) -> Any:
-    """Two values as typed, ``"0 mm, 400 mm"``, as a list."""
-    return [part.strip() for part in value.split(",")] if isinstance(value, str) else value
-
-
-#: a balancing-machine reading in words
-READING_WORDS = "an amount at a radius and an angle, e.g. '12.5 g @ 40 mm, 35 deg'"
-Reading = Annotated[tuple[float, float, float], BeforeValidator(_reading)]
-#: two axial positions (measuring or correction planes, bearings) [m]
-Positions = Annotated[list[Position], BeforeValidator(_pair), Field(min_length=2, max_length=2)]
+def _positions(title: str, description: str) -> Any:
+    """Two axial positions (measuring or correction planes, bearings) [m]."""
+    return field(
+        "list",
+        default=None,
+        item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
+        min_items=2,
+        max_items=2,
+        title=title,
+        description=description,
+    )
 
 
 #: most engines one ``shop scatter`` draws
@@ -1054,63 +1783,146 @@ MAX_SCATTER_SAMPLES = 10_000_000
 MAX_SCALE_STEP = 0.01
 
 
-def _scale_step(value: Any) -> float:
+def _scale_step(value: Any, where: str) -> float:
     """The resolution of a scale: 0 (exact), or a mass up to :data:`MAX_SCALE_STEP`."""
-    if (
-        isinstance(value, str)
-        and value.strip() == "0"
-        or (isinstance(value, int | float) and not isinstance(value, bool) and value == 0)
-    ):
+    if isinstance(value, str) and value.strip() == "0":
         return 0.0
-    step = parse_quantity(value, "mass", "")
+    if isinstance(value, int | float) and not isinstance(value, bool) and value == 0:
+        return 0.0
+    step = core.parse_in_range(value, "mass", where)
     if not 0 <= step <= MAX_SCALE_STEP:
-        raise InputError("", value, "must be a mass from 0 to 10 g")
+        raise InputError(where, value, "must be a mass from 0 to 10 g")
     return step
-
-
-#: the resolution of a scale [kg]
-ScaleStep = Annotated[float, BeforeValidator(_scale_step)]
 
 
 class ShopOptions(StudyOptions):
     """The balance shop (issue 16): the parts file, matching, bob-weights, readings to a hole
     plan, the ISO check, and the Monte Carlo of the weight scatter."""
 
-    parts: str | None = Field(None, title="Parts file (CSV or TOML)")
-    fraction: Factor = Field(0.5, title="Reciprocating fraction in the bob-weights")
-    method: Literal["milp", "pairing", "exhaustive", "as-listed"] = "milp"
-    time_limit: Time = Field(60.0, le=3600.0, title="Matching time limit")
-    reading: Annotated[list[Reading], Many] = Field(
-        [], max_length=2, title="Readings, one per measuring plane"
+    parts: str | None = text(None, "Parts file (CSV or TOML)", "The parts file of the shop.")
+    fraction: float = factor(
+        0.5,
+        "Reciprocating fraction in the bob-weights",
+        "Share of the reciprocating weight in the bob-weights.",
     )
-    convention: Literal["heavy", "light"] = "heavy"
-    measuring_planes: Positions | None = Field(None, title="Measuring planes")
-    correction_planes: Positions | None = Field(None, title="Correction planes")
-    hole_diameter: Length = Field(0.008, title="Drill diameter")
-    hole_radius: Length | None = Field(None, title="Radius of the holes")
-    max_depth: Length = Field(0.015, title="Deepest hole")
-    web_thickness: Length | None = Field(None, title="Web thickness at the holes")
-    depth_to: DepthTo | None = None
-    point_angle: PointAngle = Field(math.radians(118.0), title="Drill point angle")
-    direction: Literal["axial", "radial"] = "axial"
-    spacing: LengthOrZero = Field(0.002, title="Material between holes")
-    depth_resolution: LengthOrZero = Field(0.0001, title="Machining step")
-    density: Density = Field(7850.0, title="Crank material density")
-    slug_density: Density | None = Field(None, title="Heavy-metal density (add instead)")
-    grade: str = Field("G6.3", title="ISO 21940-11 grade")
-    rotor_mass: Mass | None = Field(None, title="Crank mass")
-    speed: Speed | None = Field(None, title="Largest service speed")
-    bearings: Positions | None = Field(None, title="Main bearings")
-    center_of_mass: Position | None = Field(None, title="Centre of mass")
-    samples: Whole = Field(100_000, ge=1, le=MAX_SCATTER_SAMPLES, title="Engines drawn")
-    seed: Whole = Field(0, ge=0, le=2**63 - 1, title="Seed of the random numbers")
-    scale_step: ScaleStep = Field(1e-4, title="Resolution of the scale")
+    method: Literal["milp", "pairing", "exhaustive", "as-listed"] = choice(
+        "milp",
+        ("milp", "pairing", "exhaustive", "as-listed"),
+        "Matching method",
+        "How the parts are matched: milp (least spread, proven optimal within "
+        "the time limit), pairing, exhaustive, or as listed.",
+    )
+    time_limit: float = quantity(
+        "time",
+        60.0,
+        "Matching time limit",
+        "Longest matching, the building of the model included.",
+        le=3600.0,
+    )
+    reading: list[tuple[float, float, float]] = field(
+        "list",
+        default=[],
+        item=entry("any", parse=_reading, words=READING_WORDS),
+        max_items=2,
+        single=True,
+        title="Readings, one per measuring plane",
+        description="The balancing machine's readings, measuring plane 1 then 2.",
+    )
+    convention: Literal["heavy", "light"] = choice(
+        "heavy",
+        ("heavy", "light"),
+        "Reading convention",
+        "The readings' angle is the heavy spot or the light spot.",
+    )
+    measuring_planes: list[float] | None = _positions(
+        "Measuring planes", "Axial positions of the two measuring planes."
+    )
+    correction_planes: list[float] | None = _positions(
+        "Correction planes", "Axial positions of the two correction planes."
+    )
+    hole_diameter: float = quantity("length", 0.008, "Drill diameter", "Diameter of the drill.")
+    hole_radius: float | None = quantity(
+        "length", None, "Radius of the holes", "Radius of the axial holes (or of the rim)."
+    )
+    max_depth: float = quantity("length", 0.015, "Deepest hole", "The deepest hole allowed.")
+    web_thickness: float | None = quantity(
+        "length",
+        None,
+        "Web thickness at the holes",
+        "Axial thickness of the web at the holes: the deepest axial hole, the widest radial one.",
+    )
+    depth_to: DepthTo | None = choice(
+        None,
+        DEPTH_TO,
+        "Depth read to",
+        "What the depths are read to: tip or shoulder (required with readings).",
+    )
+    point_angle: float = _point_angle(
+        math.radians(118.0),
+        "Drill point angle",
+        "The drill point's included angle (180 deg: flat-bottomed holes).",
+    )
+    direction: Literal["axial", "radial"] = choice(
+        "axial",
+        ("axial", "radial"),
+        "Hole direction",
+        "The direction of the holes: axial or radial.",
+    )
+    spacing: float = _length_or_zero(
+        0.002, "Material between holes", "Material left between neighbouring holes."
+    )
+    depth_resolution: float = _length_or_zero(
+        0.0001, "Machining step", "The step the depths are rounded to."
+    )
+    density: float = quantity(
+        "density", 7850.0, "Crank material density", "Density of the crank's material."
+    )
+    slug_density: float | None = quantity(
+        "density",
+        None,
+        "Heavy-metal density (add instead)",
+        "Add heavy metal of this density instead of drilling.",
+    )
+    grade: str = text("G6.3", "ISO 21940-11 grade", "The balance quality grade of the ISO check.")
+    rotor_mass: float | None = quantity(
+        "mass", None, "Crank mass", "The crank's mass, for the ISO check."
+    )
+    speed: float | None = quantity(
+        "speed",
+        None,
+        "Largest service speed",
+        "The largest service speed, for the ISO check; empty: the engine's.",
+    )
+    bearings: list[float] | None = _positions(
+        "Main bearings", "Axial positions of the two outer main bearings; empty: the planes."
+    )
+    center_of_mass: float | None = quantity(
+        "length",
+        None,
+        "Centre of mass",
+        "Axial position of the crank's centre of mass; empty: mid-bearings.",
+        within="position",
+    )
+    samples: int = whole(
+        100_000,
+        "Engines drawn",
+        "Engines drawn by the Monte Carlo of the weight scatter.",
+        ge=1,
+        le=MAX_SCATTER_SAMPLES,
+    )
+    seed: int = whole(0, "Random seed", "Seed of the random numbers.", ge=0, le=2**63 - 1)
+    scale_step: float = field(
+        "any",
+        default=1e-4,
+        parse=_scale_step,
+        words="0 or a mass up to 10 g",
+        title="Resolution of the scale",
+        description="The resolution of the scale the parts are weighed on; 0: exact.",
+    )
 
-    @model_validator(mode="after")
-    def _two_readings(self) -> ShopOptions:
+    def check(self) -> None:
         if len(self.reading) == 1:
-            raise InputError("reading", None, "must be given twice, one per measuring plane")
-        return self
+            raise FieldProblem("reading", "must be given twice, one per measuring plane")
 
 
 class ToleranceOptions(StudyOptions):
@@ -1118,105 +1930,176 @@ class ToleranceOptions(StudyOptions):
     engine the rotor mass and the speed default to its crank's rotating masses and its
     speed); ``list_grades`` lists the grades instead."""
 
-    grade: str | None = Field(None, title="Balance quality grade")
-    rotor_mass: Mass | None = Field(None, title="Rotor mass")
-    speed: Speed | None = Field(None, title="Largest service speed")
-    residual: Unbalance | None = Field(None, title="Measured residual unbalance")
-    bearing_a: Position | None = Field(None, title="Bearing A")
-    bearing_b: Position | None = Field(None, title="Bearing B")
-    center_of_mass: Position | None = Field(None, title="Centre of mass")
-    plane_1: Position | None = Field(None, title="Correction plane I")
-    plane_2: Position | None = Field(None, title="Correction plane II")
-    list_grades: bool = Field(False, title="List the grades")
+    grade: str | None = text(None, "Balance quality grade", "The ISO 21940-11 grade, e.g. G6.3.")
+    rotor_mass: float | None = quantity("mass", None, "Rotor mass", "The rotor's mass.")
+    speed: float | None = quantity(
+        "speed", None, "Largest service speed", "The rotor's largest service speed."
+    )
+    residual: float | None = quantity(
+        "unbalance",
+        None,
+        "Measured residual unbalance",
+        "A measured residual unbalance, for the verdict.",
+    )
+    bearing_a: float | None = quantity(
+        "length", None, "Bearing A", "Axial position of bearing A.", within="position"
+    )
+    bearing_b: float | None = quantity(
+        "length", None, "Bearing B", "Axial position of bearing B.", within="position"
+    )
+    center_of_mass: float | None = quantity(
+        "length",
+        None,
+        "Centre of mass",
+        "Axial position of the rotor's centre of mass.",
+        within="position",
+    )
+    plane_1: float | None = quantity(
+        "length",
+        None,
+        "Correction plane I",
+        "Axial position of correction plane I; empty: bearing A.",
+        within="position",
+    )
+    plane_2: float | None = quantity(
+        "length",
+        None,
+        "Correction plane II",
+        "Axial position of correction plane II; empty: bearing B.",
+        within="position",
+    )
+    list_grades: bool = field(
+        "flag", default=False, title="List the grades", description="List the ISO grades."
+    )
 
 
 class PlotOptions(StudyOptions):
     """``plot``: the settings of the figures that take any."""
 
-    order: Annotated[int, BeforeValidator(_number)] | Literal["rotating"] = Field(
-        1, title="Harmonic order"
+    order: int | str = field(
+        "any",
+        default=1,
+        parse=_plot_order,
+        words=f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'",
+        title="Harmonic order",
+        description="The harmonic order of the polar figure, or rotating for the bare "
+        "crank's masses.",
     )
-    cylinder: Whole = Field(1, ge=1, le=10_000, title="Cylinder")
-    balance_factor: Factor = Field(0.5, title="Balance factor")
-
-    @model_validator(mode="after")
-    def _order_range(self) -> PlotOptions:
-        if self.order != "rotating" and not 1 <= int(self.order) <= MAX_ORDER:
-            raise InputError(
-                "order", self.order, f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'"
-            )
-        return self
+    cylinder: int = whole(
+        1, "Cylinder", "The cylinder of the single-cylinder figure (1-based).", ge=1, le=10_000
+    )
+    balance_factor: float = factor(
+        0.5, "Balance factor", "The balance factor of the single-cylinder figure."
+    )
 
 
-def _no_vr_layout(value: Any) -> Any:
-    """The explorer's layouts: a VR is refused with the reason (it enumerates no VR)."""
+EXPLORE_LAYOUTS = ("inline", "vee", "boxer", "w")
+
+
+def _explore_layout(value: Any, where: str) -> str:
+    """The explorer's layouts; a VR is refused with the reason (it enumerates no VR)."""
     from ..physics.explore.orders import VR_REFUSED
 
-    if isinstance(value, str) and value.strip() == "vr":
-        raise InputError("", value, VR_REFUSED)
-    return value
+    if isinstance(value, str) and value.strip().lower() == "vr":
+        raise InputError(where, value, VR_REFUSED)
+    spec = core.entry("choice", choices=EXPLORE_LAYOUTS)
+    layout: str = core.parse_choice(spec, value, "text", where)
+    return layout
 
 
 class ExploreOptions(StudyOptions):
     """``explore``: the design-space explorer (docs/explorer.md)."""
 
-    layout: Annotated[Literal["inline", "vee", "boxer", "w"], BeforeValidator(_no_vr_layout)] = (
-        Field("inline", title="Layout")
+    layout: Literal["inline", "vee", "boxer", "w"] = field(
+        "any",
+        default="inline",
+        parse=_explore_layout,
+        words="one of inline, vee, boxer, w",
+        title="Layout",
+        description="The layout explored: inline, vee, boxer or w (broad arrow).",
     )
-    cylinders: Whole = Field(4, ge=1, le=20, title="Cylinders")
-    strokes: Whole = Field(4, ge=2, le=4, title="Strokes per cycle (2 or 4)")
-    bank_angle: Angle | None = Field(None, title="Vee or W bank angle")
-    crank: Literal["any", "flat", "cross", "split"] = Field("any", title="Crank family")
-    target: Literal["none", "counterweights", "primary", "secondary"] = Field(
-        "counterweights", title="Balancing target"
+    cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=20)
+    strokes: int = whole(
+        4, "Strokes per cycle (2 or 4)", "2 or 4 strokes per working cycle.", ge=2, le=4
     )
-    balance_factor: Factor = Field(0.0, title="Balance factor")
-    mode_shape: str = Field("uniform", title="Torsional mode shape")
-    orders: Whole = Field(8, ge=1, le=MAX_ORDER, title="Highest order")
-    objectives: str = Field("F1,M1,F2,M2", title="Pareto objectives (comma separated)")
-    filter: str | None = Field(None, title="Filter")
-    top: Whole = Field(20, ge=1, le=100_000, title="Rows of the top-N table")
-    top_key: str | None = Field(None, title="Column of the top-N table")
-    chunk: Whole | None = Field(
+    bank_angle: float | None = quantity(
+        "angle", None, "Vee or W bank angle", "The vee angle, or the angle between W banks."
+    )
+    crank: Literal["any", "flat", "cross", "split"] = choice(
+        "any",
+        ("any", "flat", "cross", "split"),
+        "Crank family",
+        "The cranks explored: any, flat, cross or split (split pins).",
+    )
+    target: Literal["none", "counterweights", "primary", "secondary"] = choice(
+        "counterweights",
+        ("none", "counterweights", "primary", "secondary"),
+        "Balancing target",
+        "What each candidate is balanced with: none, counterweights, or "
+        "primary or secondary shaft pairs.",
+    )
+    balance_factor: float = factor(
+        0.0, "Balance factor", "The balance factor of the candidates' counterweights."
+    )
+    mode_shape: str = text(
+        "uniform",
+        "Torsional mode shape",
+        "The torsional mode shape of the excitation merit: uniform, linear, or "
+        "one weight per cylinder.",
+    )
+    orders: int = whole(
+        8, "Highest order", "The highest harmonic order of the merits.", ge=1, le=MAX_ORDER
+    )
+    objectives: str = text(
+        "F1,M1,F2,M2",
+        "Pareto objectives (comma separated)",
+        "The columns of the Pareto front, all minimised.",
+    )
+    filter: str | None = text(
+        None, "Filter", "An expression on the columns that a candidate must meet to be kept."
+    )
+    top: int = whole(
+        20, "Rows of the top-N table", "Rows of the table of the best candidates.", ge=1, le=100_000
+    )
+    top_key: str | None = text(
         None,
+        "Column of the top-N table",
+        "The column the top-N table is sorted by; empty: residual_M, the "
+        "largest moment left after balancing (with target none the first objective).",
+    )
+    chunk: int | None = whole(
+        None,
+        "Indices per task (default: chosen from the problem; bounded by memory)",
+        "Candidates per task; empty: chosen from the problem.",
         ge=1,
         le=LARGEST_CHUNK,
-        title="Indices per task (default: chosen from the problem; bounded by memory)",
     )
-    workers: Whole | None = Field(None, ge=1, le=1024, title="Workers of a LocalCluster")
-    scheduler: str | None = Field(None, title="Address of a dask scheduler")
-    connect_timeout: Time = Field(5.0, ge=0.1, le=120.0, title="Time a scheduler has to answer")
-    sample: Whole | None = Field(None, ge=1, le=MAX_DRAWS, title="Random draws (search)")
-    seed: Whole = Field(0, ge=0, le=2**32 - 1, title="Random seed")
-
-
-#: the range of a torsional stiffness [N m/rad] (a model engine's crank to a ship's shafting)
-TORSIONAL_STIFFNESS_RANGE = (1.0, 1e11)
-_TORSIONAL_EXAMPLE = "5e5 N*m/rad"
-
-
-def _torsional_stiffness(value: Any) -> float:
-    """A torsional stiffness written with its unit per radian: ``"5e5 N*m/rad"``."""
-    low, high = TORSIONAL_STIFFNESS_RANGE
-    words = (
-        f"a torsional stiffness such as {_TORSIONAL_EXAMPLE!r}, from {low:g} to {high:g} N*m/rad"
+    workers: int | None = whole(
+        None,
+        "Workers of a LocalCluster",
+        "Run on a dask LocalCluster of this many worker processes.",
+        ge=1,
+        le=1024,
     )
-    if not isinstance(value, str) or "rad" not in value:
-        raise InputError("", value, f"must be {words}")
-    stiffness = parse_quantity(value.replace("/rad", "").replace("/ rad", ""), "torque", "")
-    if not low <= stiffness <= high:
-        raise InputError("", value, f"must be {words}")
-    return stiffness
-
-
-#: a torsional stiffness [N m/rad]
-TorsionalStiffness = Annotated[float, BeforeValidator(_torsional_stiffness)]
-#: a frequency [Hz] of a torsional system
-Frequency = Annotated[float, _quantity("frequency"), Field(gt=0, le=1e5)]
-#: a power [W] (the heat a damper may dissipate)
-Power = Annotated[float, _quantity("power"), Field(gt=0, le=1e9)]
-#: a damping ratio [-]
-DampingRatio = Annotated[float, BeforeValidator(_number), Field(ge=0, le=0.5)]
+    scheduler: str | None = text(
+        None, "Address of a dask scheduler", "Run on an existing dask cluster, tcp://HOST:PORT."
+    )
+    connect_timeout: float = quantity(
+        "time",
+        5.0,
+        "Time a scheduler has to answer",
+        "The time the scheduler has to answer.",
+        ge=0.1,
+        le=120.0,
+    )
+    sample: int | None = whole(
+        None,
+        "Random draws (search)",
+        "Random search: draw this many indices instead of enumerating all.",
+        ge=1,
+        le=MAX_DRAWS,
+    )
+    seed: int = whole(0, "Random seed", "Seed of the random search.", ge=0, le=2**32 - 1)
 
 
 class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
@@ -1226,205 +2109,171 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     Crank dimensions left empty are those ``bearings`` uses
     (:func:`crankbalance.studies.crank.crank_dimensions`)."""
 
-    speed_min: Speed = Field(600 * _RPM, title="Lowest speed")
-    speed_max: Speed | None = Field(None, title="Highest speed (default: the engine's)")
-    speed_points: Whole = Field(400, ge=10, le=2001, title="Speeds of the sweep")
-    highest_order: Number = Field(12.0, ge=0.5, le=MAX_ORDER, title="Highest engine order")
-    throw_inertia: Inertia | None = Field(None, title="Inertia of one throw with its big ends")
-    throw_stiffness: TorsionalStiffness | None = Field(
-        None, title="Stiffness between throws (default: Carter's formula, an approximation)"
+    speed_min: float = quantity("speed", 600 * _RPM, "Lowest speed", "The sweep's lowest speed.")
+    speed_max: float | None = quantity(
+        "speed",
+        None,
+        "Highest speed (default: the engine's)",
+        "The sweep's highest speed; empty: the engine's speed.",
     )
-    journal_length: Length | None = Field(
-        None, title="Main journal length", description=ENGINE_DIMENSION_TEXT
+    speed_points: int = whole(
+        400, "Speeds of the sweep", "Speeds of the sweep, evenly spaced.", ge=10, le=2001
     )
-    pin_length: Length | None = Field(
-        None, title="Crankpin length", description=ENGINE_DIMENSION_TEXT
+    highest_order: float = number(
+        12.0,
+        "Highest engine order",
+        "The highest engine order of the excitation (half orders for a four-stroke).",
+        ge=0.5,
+        le=MAX_ORDER,
     )
-    shear_modulus: Modulus = Field(80e9, title="Shear modulus of the crank")
-    front_inertia: Inertia = Field(
-        DEFAULT_FRONT_INERTIA, title="Pulley, timing gear and damper hub"
+    throw_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Inertia of one throw with its big ends",
+        "Inertia of one throw with its big ends; empty: from the engine.",
     )
-    front_stiffness: TorsionalStiffness | None = Field(
-        None, title="Front end to throw 1 (default: the throws')"
+    throw_stiffness: float | None = _stiffness(
+        "Stiffness between throws (default: Carter's formula, an approximation)",
+        "Torsional stiffness between neighbouring throws; empty: Carter's "
+        "formula from the crank's dimensions.",
     )
-    flywheel_inertia: Inertia = Field(DEFAULT_FLYWHEEL_INERTIA, title="Flywheel and clutch")
-    flywheel_stiffness: TorsionalStiffness | None = Field(
-        None, title="Last throw to flywheel (default: the throws')"
+    journal_length: float | None = quantity(
+        "length",
+        None,
+        "Main journal length",
+        "Axial length of a main journal.",
+        hint=ENGINE_DIMENSION_TEXT,
     )
-    damper_inertia: Inertia | None = Field(None, title="Damper ring (none: no damper)")
-    damper_frequency: Frequency | None = Field(None, title="Damper tuning frequency")
-    damper_damping_ratio: DampingRatio = Field(0.15, title="Damper damping ratio")
-    damper_allowed_power: Power | None = Field(None, title="Power the damper may dissipate")
-    load_inertia: Inertia | None = Field(None, title="Driven load (none: free end)")
-    load_stiffness: TorsionalStiffness | None = Field(None, title="Flywheel to load")
-    shaft_damping_ratio: DampingRatio = Field(0.02, title="Crank's own damping ratio")
-    bore: Length | None = Field(None, title="Bore (default: square)")
+    pin_length: float | None = quantity(
+        "length", None, "Crankpin length", "Axial length of a crankpin.", hint=ENGINE_DIMENSION_TEXT
+    )
+    shear_modulus: float = quantity(
+        "modulus", 80e9, "Shear modulus of the crank", "Shear modulus of the crank's material."
+    )
+    front_inertia: float = quantity(
+        "inertia",
+        DEFAULT_FRONT_INERTIA,
+        "Pulley, timing gear and damper hub",
+        "Inertia of the front end: pulley, timing gear and damper hub.",
+    )
+    front_stiffness: float | None = _stiffness(
+        "Front end to throw 1 (default: the throws')",
+        "Torsional stiffness from the front end to throw 1; empty: the throws'.",
+    )
+    flywheel_inertia: float = quantity(
+        "inertia",
+        DEFAULT_FLYWHEEL_INERTIA,
+        "Flywheel and clutch",
+        "Inertia of the flywheel with its clutch.",
+    )
+    flywheel_stiffness: float | None = _stiffness(
+        "Last throw to flywheel (default: the throws')",
+        "Torsional stiffness from the last throw to the flywheel; empty: the throws'.",
+    )
+    damper_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Damper ring (none: no damper)",
+        "Inertia of a tuned damper's ring; empty: no damper.",
+    )
+    damper_frequency: float | None = quantity(
+        "frequency", None, "Damper tuning frequency", "The damper's tuning frequency.", gt=0, le=1e5
+    )
+    damper_damping_ratio: float = _damping(
+        0.15, "Damper damping ratio", "The damper's damping ratio."
+    )
+    damper_allowed_power: float | None = quantity(
+        "power",
+        None,
+        "Power the damper may dissipate",
+        "The heat the damper may dissipate, checked against its power.",
+        gt=0,
+        le=1e9,
+    )
+    load_inertia: float | None = quantity(
+        "inertia",
+        None,
+        "Driven load (none: free end)",
+        "Inertia of the driven load; empty: a free end.",
+    )
+    load_stiffness: float | None = _stiffness(
+        "Flywheel to load", "Torsional stiffness from the flywheel to the load."
+    )
+    shaft_damping_ratio: float = _damping(
+        0.02, "Crank's own damping ratio", "The crank's own damping ratio."
+    )
+    bore: float | None = quantity(
+        "length",
+        None,
+        "Bore (default: square)",
+        "Cylinder bore, for the gas torque; empty: bore = stroke.",
+    )
 
-    @model_validator(mode="after")
-    def _consistent(self) -> TorsionalOptions:
+    def check(self) -> None:
         if self.speed_max is not None and self.speed_max <= self.speed_min:
-            raise InputError("speed_max", self.speed_max, "must be above the lowest speed")
+            raise FieldProblem("speed_max", "must be above the lowest speed")
         if (self.damper_inertia is None) != (self.damper_frequency is None):
-            raise InputError(
+            raise FieldProblem(
                 "damper_frequency" if self.damper_inertia is not None else "damper_inertia",
-                None,
                 "the damper needs both its ring inertia and its tuning frequency",
             )
         if self.damper_allowed_power is not None and self.damper_inertia is None:
-            raise InputError(
+            raise FieldProblem(
                 "damper_allowed_power",
-                None,
                 "needs a damper: give --damper-inertia and --damper-frequency",
             )
         if (self.load_inertia is None) != (self.load_stiffness is None):
-            raise InputError(
+            raise FieldProblem(
                 "load_stiffness" if self.load_inertia is not None else "load_inertia",
-                None,
                 "the load needs both its inertia and the stiffness to the flywheel",
             )
-        return self
 
 
+# --------------------------------------------------------------------------------------
+# parsing and words, by schema and field name
+# --------------------------------------------------------------------------------------
 Options = TypeVar("Options", bound=StudyOptions)
 
 
 def given(settings: StudyOptions) -> frozenset[str]:
     """The fields of ``settings`` that were given (typed on the command line, sent to the
-    API, passed to the model), as opposed to left at their defaults: a study takes an
+    API, passed to the schema), as opposed to left at their defaults: a study takes an
     engine's value where a setting was not given, and refuses a given one that would not
     act."""
-    return frozenset(settings.model_fields_set)
+    return settings.given()
 
 
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 
 
-def _unwrap(annotation: Any) -> tuple[Any, list[Any]]:
-    """The base type of an annotation and its metadata, through ``X | None`` and
-    ``Annotated`` (the constraints of a nested ``Field`` flattened)."""
-    found: list[Any] = []
-    while True:
-        origin = get_origin(annotation)
-        if origin is Annotated:
-            annotation, *extra = get_args(annotation)
-            for meta in extra:
-                found += list(meta.metadata) if isinstance(meta, FieldInfo) else [meta]
-        elif origin in (Union, types.UnionType):
-            options = [a for a in get_args(annotation) if a is not type(None)]
-            if len(options) != 1:
-                return annotation, found
-            annotation = options[0]
-        else:
-            return annotation, found
-
-
-def _metadata(model: type[StudyOptions], name: str) -> list[Any]:
-    """The field's constraints and validators, also those inside ``X | None``."""
-    info = model.model_fields[name]
-    return list(info.metadata) + _unwrap(info.annotation)[1]
-
-
-def _quantity_kind(metadata: list[Any]) -> str | None:
-    for meta in metadata:
-        func = getattr(meta, "func", None)
-        if isinstance(func, partial) and func.func is parse_quantity:
-            return str(func.keywords["kind"])
-    return None
-
-
-def _show(value: float) -> str:
-    return str(value) if isinstance(value, int) else f"{value:g}"
-
-
 def field_kind(model: type[StudyOptions], name: str) -> tuple[Kind, str | None]:
     """How a field is written: its kind and, for a quantity, the quantity kind."""
-    base, metadata = _unwrap(model.model_fields[name].annotation)
-    quantity = _quantity_kind(list(model.model_fields[name].metadata) + metadata)
-    if quantity is not None:
-        return "quantity", quantity
-    if get_origin(base) is list:
+    spec = model.FIELDS[name]
+    if spec.quantity is not None:
+        return "quantity", spec.quantity
+    if spec.kind == "list":
         return "list", None
-    if base is int:
+    if spec.kind == "whole":
         return "whole", None
-    if base is float:
+    if spec.kind in ("number", "factor"):
         return "number", None
     return "text", None
 
 
-def _bounds(metadata: list[Any]) -> Bounds:
-    """The tightest (low, low is open, high, high is open) of a field's constraints."""
-    low: float | None = None
-    high: float | None = None
-    low_open = high_open = False
-    for meta in metadata:
-        for attr, is_open in (("ge", False), ("gt", True)):
-            value = getattr(meta, attr, None)
-            if value is not None and (low is None or value > low or (value == low and is_open)):
-                low, low_open = value, is_open
-        for attr, is_open in (("le", False), ("lt", True)):
-            value = getattr(meta, attr, None)
-            if value is not None and (high is None or value < high or (value == high and is_open)):
-                high, high_open = value, is_open
-    return low, low_open, high, high_open
-
-
-def _range_words(quantity: str | None, bounds: Bounds, whole: bool = False) -> str:
-    """ "a length with a unit, e.g. '40 mm', from 0.001 mm to 100000 mm", "a number, greater
-    than 0 and at most 1", ... for ``bounds`` (low, low is open, high, high is open)."""
-    low, low_open, high, high_open = bounds
-    if quantity is not None:
-        article = "an" if quantity[0] in "aeiou" else "a"
-        what = f"{article} {quantity} with a unit, e.g. '{KINDS[quantity][2]}',"
-
-        def show(value: float) -> str:
-            return format_quantity(float(value), quantity, digits=6)
-    else:
-        what = "a whole number" if whole else "a number"
-        show = _show
-    if low is not None and high is not None and not low_open and not high_open:
-        return f"{what} from {show(low)} to {show(high)}"
-    parts = []
-    if low is not None:
-        parts.append(f"{'greater than' if low_open else 'at least'} {show(low)}")
-    if high is not None:
-        parts.append(f"{'less than' if high_open else 'at most'} {show(high)}")
-    return what.rstrip(",") + (", " + " and ".join(parts) if parts else "")
-
-
 #: what a length that may be zero accepts, in words
-ZERO_OR_LENGTH = (
-    f"0, or {_range_words('length', (RANGES['length'][0], False, RANGES['length'][1], False))}"
+ZERO_OR_LENGTH = core.allowed(
+    entry("length", zero=True, ge=RANGES["length"][0], le=RANGES["length"][1])
 )
 
 
 def allowed(model: type[StudyOptions], name: str) -> str:
     """What a field accepts, in words: "a whole number from 16 to 100000", ..."""
-    info = model.model_fields[name]
-    kind, quantity = field_kind(model, name)
-    base, _ = _unwrap(info.annotation)
-    if kind == "list":
-        _element, inner = _unwrap(get_args(base)[0])
-        metadata = _metadata(model, name)
-        shortest = next((m.min_length for m in metadata if hasattr(m, "min_length")), 0)
-        longest = next((m.max_length for m in metadata if hasattr(m, "max_length")), None)
-        count = f"{shortest} to {longest}" if longest else f"at least {shortest}"
-        quantity = _quantity_kind(inner)
-        if quantity is None:
-            rest = _range_words(None, _bounds(inner)).removeprefix("a number")
-            return f"{count} numbers{rest}, separated by commas"
-        return f"{count} values, each {_range_words(quantity, _bounds(inner))}"
-    if base is str:
-        return "a text"
-    if get_origin(base) is Literal:
-        return "one of " + ", ".join(str(choice) for choice in get_args(base))
-    if any(getattr(m, "func", None) is _zero_or_length for m in _metadata(model, name)):
-        return ZERO_OR_LENGTH
-    if name == "angle" and model is BalanceOptions:
-        low, high = RANGES["angle"]
-        return f"'optimal' or {_range_words('angle', (low, False, high, False))}"
-    if model is PlotOptions and name == "order":
-        return f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'"
-    return _range_words(quantity, _bounds(_metadata(model, name)), kind == "whole")
+    return core.allowed(model.FIELDS[name])
+
+
+def default_text(model: type[StudyOptions], name: str) -> str:
+    """A field's default as a user would type it ("" for a default of None)."""
+    return core.default_text(model.FIELDS[name])
 
 
 def parse_options(
@@ -1435,36 +2284,19 @@ def parse_options(
     """Validate a study's settings; raise :class:`InputError` naming the field as the user
     wrote it (``name(field)``), the value given and what is allowed.
 
-    Values that are ``None`` are left out, so that the schema's default applies. A value
-    in a list is named by its list's field and shown alone.
+    Values that are ``None`` are left out, so that the schema's default applies. Values
+    may be typed texts (the command line, the web form) or values of their type (the
+    study layer, the API's JSON). A value in a list is named by its list's field and shown
+    alone; an unknown setting is named with the closest known one.
     """
     given = {key: value for key, value in values.items() if value is not None}
     try:
-        return model.model_validate(given)
-    except ValidationError as error:
-        first = error.errors(include_url=False)[0]
-        loc = [str(p) for p in first["loc"]]
-        key = loc[0] if loc else ""
-        value = first.get("input") if len(loc) > 1 else given.get(key, first.get("input"))
-        inner = (first.get("ctx") or {}).get("error")
-        if first["type"] == "extra_forbidden":
-            raise InputError(
-                name(key), value, f"unknown setting; known: {', '.join(model.model_fields)}"
-            ) from None
-        if isinstance(inner, InputError) and not loc:  # a check across fields
-            field, text = inner.field, inner.allowed
-            text = text if text.startswith("the ") else predicate(text)
-            raise InputError(name(field), given.get(field, inner.value), text) from None
-        if key not in model.model_fields:
-            raise InputError(name(key), value, str(first.get("msg", ""))) from None
-        text = allowed(model, key)
-        if isinstance(inner, InputError):
-            text = inner.allowed
-        elif first["type"] in ("finite_number",) or (
-            isinstance(inner, ValueError) and "finite" in str(inner)
-        ):
-            text = _finite(text)
-        raise InputError(name(key), value, predicate(text)) from None
+        return model.parse(given, source="text", name=lambda path: name(str(path[0])))
+    except InputError as error:
+        words = error.allowed
+        if not words.startswith(("the ", "unknown ", "takes ")):
+            words = predicate(words)
+        raise InputError(error.field, error.value, words) from None
 
 
 #: how a message about a value goes on after the value ("'5 kg' has the wrong unit ...")
@@ -1482,25 +2314,3 @@ def predicate(text: str) -> str:
     if found:
         return found.group(1)
     return f"must be {text}"
-
-
-def _finite(text: str) -> str:
-    """What is allowed, said to be finite: "a whole number from 1 to 64" -> "a finite whole
-    number from 1 to 64"."""
-    found = re.match(r"an? (.*)", text)
-    return f"a finite {found.group(1)}" if found else f"{text} (a finite number)"
-
-
-def default_text(model: type[StudyOptions], name: str) -> str:
-    """A field's default as a user would type it ("" for a default of None)."""
-    value = model.model_fields[name].default
-    if value is None:
-        return ""
-    kind, quantity = field_kind(model, name)
-    if kind == "quantity":
-        return format_quantity(float(value), quantity or "length", digits=6)
-    if kind == "list":
-        return ", ".join(f"{v:g}" for v in value)
-    if isinstance(value, float):
-        return f"{value:g}"
-    return str(value)

@@ -17,7 +17,7 @@ from ..errors import InputError
 from ..physics.articulated import Articulation, default_link_pin_angles
 from ..physics.firing import check_firing_order, firing_tdc_angles, to_crankbalance_order
 from ..physics.model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
-from ..schema.engine import EngineSpec, MassOverride
+from ..schema.engine import EngineSpec
 
 
 def build_model(spec: EngineSpec) -> EngineModel:
@@ -261,7 +261,8 @@ def _vr_pin_split_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
 # --------------------------------------------------------------------------- masses
 def _overrides(spec: EngineSpec, kind: str, count: int) -> list[dict[str, float]]:
     """For each cylinder (or throw), the mass fields that apply after overrides."""
-    base = spec.masses.model_dump(exclude={"override"})
+    base = spec.masses.values()
+    del base["override"]
     rows = [dict(base) for _ in range(count)]
     for item in spec.masses.override:
         targets = item.cylinders if kind == "cylinders" else item.throws
@@ -269,8 +270,8 @@ def _overrides(spec: EngineSpec, kind: str, count: int) -> list[dict[str, float]
             continue
         changed = {
             k: v
-            for k, v in item.model_dump(exclude={"cylinders", "throws"}).items()
-            if v is not None and k in MassOverride.model_fields
+            for k, v in item.values().items()
+            if v is not None and k not in ("cylinders", "throws")
         }
         for number in targets:
             rows[number - 1].update(changed)

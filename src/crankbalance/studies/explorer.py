@@ -157,7 +157,7 @@ class ExploreResult:
 
         o = self.settings
         problem = {"engine": self.engine} | {
-            k: v for k, v in o.model_dump().items() if k not in RUN_SETTINGS
+            k: v for k, v in o.values().items() if k not in RUN_SETTINGS
         }
         out = to_jsonable(
             {
@@ -223,12 +223,12 @@ def explore(
         orders=o.orders,
     )
     columns = list(evaluate(enumeration.template(problem)))
-    objectives = tuple(
-        rank.column_name(name.strip(), columns, "objectives")
-        for name in o.objectives.split(",")
-        if name.strip()
-    )
-    key = rank.column_name(o.top_key, columns, "top_key") if o.top_key else None
+    names = [name.strip() for name in o.objectives.split(",")]
+    if not all(names):  # an empty name was dropped without a word ("" left no front at all)
+        raise InputError("objectives", o.objectives, "column names separated by commas, none empty")
+    objectives = tuple(rank.column_name(name, columns, "objectives") for name in names)
+    # an empty top_key is refused as an unknown column, not replaced by the default
+    key = None if o.top_key is None else rank.column_name(o.top_key, columns, "top_key")
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
     keep = Keep(objectives=objectives, key=key, n=max(o.top, figure_points))

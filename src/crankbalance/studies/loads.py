@@ -320,7 +320,7 @@ def named_setting(o: BearingOptions, error: InputError) -> InputError:
     setting with the value given (``bearing_positions`` is ``bearing``); another error, or
     one about the engine file's own counterweight pattern, as it is."""
     name = PHYSICS_FIELDS.get(error.field, error.field)
-    if name not in BearingOptions.model_fields or (name == "webs" and o.webs is None):
+    if name not in BearingOptions.FIELDS or (name == "webs" and o.webs is None):
         return error
     value = getattr(o, name) if name in given(o) else error.value
     return InputError(name, value, error.allowed)

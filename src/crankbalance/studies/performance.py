@@ -241,7 +241,16 @@ def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> A
                 f"{len(o.pressure_csv)} files",
                 f"give one table for every cylinder, or one per cylinder ({cylinders})",
             )
-        tables = [read_pressure_csv(path) for path in o.pressure_csv]
+        tables = []
+        for path in o.pressure_csv:
+            try:
+                tables.append(read_pressure_csv(path))
+            except InputError as error:
+                if error.field != "pressure_csv":  # a line of the table names file and line
+                    raise
+                # the file as a whole (missing, too short, not text): the option and this
+                # file, not every file the option was given
+                raise InputError("--pressure-csv", path, error.allowed) from None
         for path, (angle, pressure) in zip(o.pressure_csv, tables, strict=True):
             if strokes is None:
                 break

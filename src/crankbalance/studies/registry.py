@@ -98,7 +98,7 @@ class Study:
 
     def field_names(self) -> tuple[str, ...]:
         """The settings the study takes, in the model's order."""
-        names = tuple(self.model().model_fields)
+        names = tuple(self.model().FIELDS)
         if self.fields:
             names = tuple(n for n in names if n in self.fields)
         return tuple(n for n in names if n not in self.exclude)

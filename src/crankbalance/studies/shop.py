@@ -281,7 +281,7 @@ def shop_study(
     holes = None
     if options.reading:
         holes = hole_plan(options, engine_model(engine)[1].speed, names)
-    return ShopStudy(parts=study, holes=holes, settings=options.model_dump())
+    return ShopStudy(parts=study, holes=holes, settings=options.values())
 
 
 def part_scatter(inventory: Inventory) -> tuple[PartScatter, ...]:

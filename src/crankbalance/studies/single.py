@@ -574,7 +574,7 @@ def tolerance(engine: EngineLike | None, settings: ToleranceOptions) -> Toleranc
     o = settings
     typed = given(o)
     if o.list_grades:
-        others = [n for n in ToleranceOptions.model_fields if n in typed and n != "list_grades"]
+        others = [n for n in ToleranceOptions.FIELDS if n in typed and n != "list_grades"]
         for name in others + (["engine"] if engine is not None else []):
             raise InputError(
                 name,

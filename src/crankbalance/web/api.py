@@ -33,7 +33,8 @@ What a request must be (``docs/web.md``, "JSON API"), checked in this order:
   are refused.
 
 A client that closes the connection before its whole body arrived leaves one warning line in
-the server's log (no traceback) and nothing is computed.
+the server's log (no traceback) and nothing is computed; one that stops sending in the middle
+of its body is answered 408 after :data:`BODY_TIMEOUT` seconds.
 
 Bad input answers 422 with ``{"error": message, "field": field}``, the message the command
 line prints (naming the option without its dashes); a refused request answers its 4xx status
@@ -73,6 +74,11 @@ MAX_WORK = 4096
 #: seconds after which a computation is answered 503 (work within MAX_WORK takes well
 #: under a second; this is the guard for what the budget does not foresee)
 WALL_CLOCK = 120.0
+#: seconds the whole body may take to arrive once the headers are in: a client that stops
+#: sending in the middle of its body is answered 408 and its connection closed (a body of
+#: at most MAX_BODY bytes from this machine arrives in milliseconds; without the limit a
+#: client stopping mid-body held its connection open without end)
+BODY_TIMEOUT = 10.0
 
 
 class Refused(InputError):
@@ -352,24 +358,33 @@ class Disconnected(Refused):
 
 
 async def read_body(request: Any) -> bytes:
-    """The request's body, refused (413) as soon as it grows over :data:`MAX_BODY`;
+    """The request's body, refused (413) as soon as it grows over :data:`MAX_BODY`, and
+    (408) when it has not all arrived within :data:`BODY_TIMEOUT` seconds;
     :class:`Disconnected` when the client closes the connection before sending it all."""
     from starlette.requests import ClientDisconnect
 
     chunks: list[bytes] = []
     size = 0
+    length = request.headers.get("content-length")
     try:
-        async for chunk in request.stream():
-            size += len(chunk)
-            _check_size(size)
-            chunks.append(chunk)
+        async with asyncio.timeout(BODY_TIMEOUT):
+            async for chunk in request.stream():
+                size += len(chunk)
+                _check_size(size)
+                chunks.append(chunk)
     except ClientDisconnect:
-        length = request.headers.get("content-length")
         raise Disconnected(
             400,
             "request body",
             f"{size} of {length} bytes received" if length else f"{size} bytes received",
             "the client closed the connection before the whole body arrived; nothing computed",
+        ) from None
+    except TimeoutError:
+        raise Refused(
+            408,
+            "request body",
+            f"{size} of {length} bytes received" if length else f"{size} bytes received",
+            f"the whole body must arrive within {BODY_TIMEOUT:g} s; nothing computed",
         ) from None
     return b"".join(chunks)
 

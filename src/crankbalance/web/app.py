@@ -118,11 +118,11 @@ def warm_up() -> None:
     background as it starts): the first page of a fresh server would otherwise wait for the
     imports of the physics and of plotly's figure classes (about 0.6 s of a first load on
     an idle machine, seconds on a busy one)."""
-    from ..output import figures
+    from ..output.figures.crank3d import crank_3d
 
     c = Project.from_preset(DEFAULT_PRESET).compute()
     if c is not None:
-        figures.crank_3d(c.analysis.model, c.study).to_plotly_json()
+        crank_3d(c.analysis.model, c.study).to_plotly_json()
 
 
 def root(preset: str | None = None) -> None:

@@ -18,7 +18,6 @@ import logging
 import math
 import re
 import time
-import typing
 from dataclasses import dataclass, field
 from typing import Any, Literal
 
@@ -47,8 +46,8 @@ log = logging.getLogger("crankbalance.web")
 
 
 def _choices(model: Any, name: str, first: str | None = None) -> tuple[str, ...]:
-    """The allowed values of a ``Literal`` field of the spec model, as form options."""
-    values = [str(v) for v in typing.get_args(model.model_fields[name].annotation)]
+    """The allowed values of a choice of the engine file's schema, as form options."""
+    values = [str(v) for v in model.FIELDS[name].choices]
     if first is not None:
         values.sort(key=lambda v: v != first)
     return tuple(values)
@@ -553,7 +552,7 @@ class Project:
         self.load_spec(spec, settings)
 
     def load_spec(self, spec: EngineSpec, settings: dict[str, Any] | None = None) -> None:
-        data = spec.to_file_dict()
+        data = spec.to_data()
         texts: dict[str, str] = {}
         extras = copy.deepcopy(data)
         for f in FIELDS:
@@ -730,7 +729,11 @@ class Project:
         if "cw_cg_radius" in errors and offer and not self.texts.get("cw_cg_radius", "").strip():
             errors["cw_cg_radius"] += f"; e.g. {offer}, {CW_CG_WORDS} (button below)"
         self.errors = errors
-        self.warnings = {} if self.spec is None else plausibility(self.spec)
+        self.warnings = {}
+        for note in self.spec.plausibility() if self.spec is not None else ():
+            key = self.key_for(note.field)
+            if key is not None:
+                self.warnings[key] = f"Warning: {note.text}"
         return errors
 
     def default_cw_cg_radius(self) -> str | None:
@@ -808,7 +811,7 @@ class Project:
             raise InputError(
                 "project", None, "has errors; correct the fields marked in red before saving"
             )
-        return json.dumps(self.spec.to_file_dict(), indent=2) + "\n"
+        return json.dumps(self.spec.to_data(), indent=2) + "\n"
 
 
 # --------------------------------------------------------------------------- reading
@@ -851,34 +854,6 @@ def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
 #: inline-3 has its counterweight CG at 30 mm on a 40 mm crank radius
 CW_CG_SHARE = 0.75
 CW_CG_WORDS = "3/4 of the crank radius, as the 2021 paper's 30 mm for 40 mm"
-
-# --------------------------------------------------------------------------- warnings
-#: highest plausible mean piston speed [m/s]
-MAX_PISTON_SPEED = 30.0
-#: usual range of the rod length in crank radii (rod ratio l/r)
-ROD_RATIO = (2.8, 4.5)
-
-
-def plausibility(spec: EngineSpec) -> dict[str, str]:
-    """Warnings (not errors) about a valid engine whose numbers are unusual, by field key:
-    a mean piston speed 2 s n = 2 r omega / pi above :data:`MAX_PISTON_SPEED`, a rod
-    length outside :data:`ROD_RATIO` crank radii."""
-    ct = spec.crank_train
-    warnings = {}
-    piston_speed = 2.0 * ct.crank_radius * spec.speed / math.pi
-    if piston_speed > MAX_PISTON_SPEED:
-        warnings["speed"] = (
-            f"Warning: mean piston speed {piston_speed:.3g} m/s, above about "
-            f"{MAX_PISTON_SPEED:g} m/s; check the speed and the crank radius"
-        )
-    ratio = ct.rod_length / ct.crank_radius
-    if not ROD_RATIO[0] <= ratio <= ROD_RATIO[1]:
-        warnings["rod_length"] = (
-            f"Warning: the rod is {ratio:.3g} crank radii long, outside the usual "
-            f"{ROD_RATIO[0]:g}-{ROD_RATIO[1]:g}; check the rod length and the crank radius"
-        )
-    return warnings
-
 
 # --------------------------------------------------------------------------- messages
 _CELL = re.compile(

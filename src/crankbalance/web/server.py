@@ -18,6 +18,7 @@ from pathlib import Path
 from typing import Any
 
 from . import app as webapp
+from .http_guard import HEAD_TIMEOUT, head_deadline_protocol
 
 #: the CSS NiceGUI's Tailwind runtime generates for this page, captured in a browser by
 #: ``tests/web/tailwind_css.py`` (see docs/web.md, "Speed"); served in its place
@@ -26,9 +27,16 @@ TAILWIND_URL = "/crankbalance/tailwind.css"
 
 
 def serve(
-    port: int = 8080, preset: str = webapp.DEFAULT_PRESET, show: bool = False, **options: Any
+    port: int = 8080,
+    preset: str = webapp.DEFAULT_PRESET,
+    show: bool = False,
+    head_timeout: float = HEAD_TIMEOUT,
+    **options: Any,
 ) -> None:
     """Serve :func:`crankbalance.web.app.root` on 127.0.0.1 (blocks until stopped).
+
+    Every request's head must arrive within ``head_timeout`` seconds
+    (:mod:`crankbalance.web.http_guard`).
 
     The page's Tailwind classes are styled by :data:`TAILWIND_CSS`, a static stylesheet,
     instead of NiceGUI's Tailwind compiler in the browser; ``tailwind=True`` (an option of
@@ -59,6 +67,7 @@ def serve(
         show_welcome_message=False,
         reconnect_timeout=60.0,  # see docs/web.md, "Speed": a page busy drawing answers pings late
         tailwind=tailwind,
+        http=head_deadline_protocol(head_timeout),
         **options,
     )
 

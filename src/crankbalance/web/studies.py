@@ -70,10 +70,10 @@ PREFIXES: dict[str, type[StudyOptions]] = {
 def _fields() -> dict[str, tuple[str, str, str]]:
     out = {}
     for prefix, model in PREFIXES.items():
-        for name, info in model.model_fields.items():
+        for name, spec in model.FIELDS.items():
             kind, quantity = field_kind(model, name)
-            label = info.title or name
-            out[prefix + name] = (label, quantity or kind, info.description or allowed(model, name))
+            label = spec.title or name
+            out[prefix + name] = (label, quantity or kind, spec.hint or allowed(model, name))
     return out
 
 
@@ -86,11 +86,11 @@ def options(settings: dict[str, Any], model: type[Options]) -> Options:
     that default is "derived from the engine" (None), and is an error otherwise."""
     prefix = next(p for p, m in PREFIXES.items() if m is model)
     values: dict[str, Any] = {}
-    for name, info in model.model_fields.items():
+    for name, spec in model.FIELDS.items():
         key = prefix + name
         text = str(settings.get(key, "")).strip()
         if not text:
-            if info.default is not None:
+            if spec.default is not None:
                 raise InputError(key, None, f"must be given: {allowed(model, name)}")
             continue
         kind, _ = field_kind(model, name)
@@ -131,7 +131,7 @@ def setting_errors(settings: dict[str, Any]) -> dict[str, InputError]:
     for prefix, model in PREFIXES.items():
         texts: dict[str, str] = {}
         given: dict[str, Any] = {}
-        for name in model.model_fields:
+        for name in model.FIELDS:
             text = str(settings.get(prefix + name, "")).strip()
             if text:
                 texts[name] = text
@@ -162,7 +162,7 @@ def _texts(settings: Mapping[str, Any], prefix: str, model: type[StudyOptions]) 
     """The settings of one form given (non-empty texts) by their field: a list's text split
     into its items."""
     out: dict[str, Any] = {}
-    for name in model.model_fields:
+    for name in model.FIELDS:
         text = str(settings.get(prefix + name, "")).strip()
         if text:
             out[name] = _split(text) if field_kind(model, name)[0] == "list" else text

@@ -6,7 +6,7 @@ from typing import Any
 
 from nicegui import ui
 
-from ..output import figures
+from ..output.figures.crank3d import crank_3d
 from .crank_editor import CrankEditor
 from .project import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import FIGURE_CSS, Tab
@@ -116,4 +116,4 @@ class EngineTab(Tab):
         c = self.page.project.computed
         if c is None:
             return None
-        return figures.crank_3d(c.analysis.model, c.study)
+        return crank_3d(c.analysis.model, c.study)

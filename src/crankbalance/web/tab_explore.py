@@ -25,7 +25,7 @@ import numpy as np
 from nicegui import ui
 
 from ..errors import InputError
-from ..output import figures
+from ..output.figures.explore import explore_candidate, explore_scatter
 from . import studies
 from .widgets import StudyTab, TabSettingsMixin, fmt_g
 
@@ -275,7 +275,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     def _scatter(self) -> Any | None:
         if self.result is None or not self.result.rows:
             return None
-        return figures.explore_scatter(
+        return explore_scatter(
             self.result.top,
             self.result.pareto,
             *self.objectives,
@@ -285,7 +285,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
 
     def _candidate(self) -> Any | None:
         row = self._row(self.chosen)
-        return None if row is None else figures.explore_candidate(row)
+        return None if row is None else explore_candidate(row)
 
     # ------------------------------------------------------------------ load
     def on_row(self, event: Any) -> None:
@@ -312,7 +312,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         spec = project.spec or Project.from_preset(DEFAULT_PRESET).spec
         assert spec is not None
         try:
-            data = candidate_file(spec.to_file_dict(), self.problem, self.bank_angle, row)
+            data = candidate_file(spec.to_data(), self.problem, self.bank_angle, row)
             new = spec_from_dict(data)
         except InputError as error:
             ui.notify(f"Cannot load this candidate: {error}", type="negative", multi_line=True)

@@ -20,7 +20,7 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
-from ..output import figures
+from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
 from .widgets import StudyTab, TabSettingsMixin
 
 #: the tab's settings: key -> (label, default, hint)
@@ -167,9 +167,9 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         labels = tuple(
             c.pattern + ("" if c.balance_factor is None else f", f_b {middle:.3g}") for c in cases
         )
-        return figures.bearing_loads_figure(
+        return bearing_loads_figure(
             [c.study for c in cases], self.study.options.crank_model, labels
         )
 
     def _sweep(self) -> Any | None:
-        return None if self.study is None else figures.bearing_sweep_figure(self.study)
+        return None if self.study is None else bearing_sweep_figure(self.study)

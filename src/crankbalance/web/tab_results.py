@@ -9,7 +9,9 @@ import numpy as np
 from nicegui import ui
 
 from ..errors import InputError
-from ..output import figures
+from ..output.figures.balancing import residuals_bar
+from ..output.figures.common import Quantity, roundoff_levels
+from ..output.figures.engine import curves_figure, leading_quantity, orders_bar, polar_figure
 from ..output.format import text
 from .widgets import FigureCard, Tab, button_row, fmt_g
 
@@ -33,15 +35,15 @@ def order_rows(c: Any) -> list[dict[str, Any]]:
     return rows
 
 
-def leading_component(analysis: Any) -> tuple[figures.Quantity, str]:
+def leading_component(analysis: Any) -> tuple[Quantity, str]:
     """The quantity and order the curves and polar diagram open on: the free force or
     moment of largest amplitude, a moment M counted as the force M / L with L the crank's
-    length (the ratio of the round-off levels of :func:`figures.roundoff_levels`), so that
+    length (the ratio of the round-off levels of :func:`roundoff_levels`), so that
     a crossplane V8 opens on its first-order rocking couple, not on its small fourth-order
     force. The bare crank's rotating masses (``"rotating"``) when every order is zero,
     order 1 of the leading quantity when that is zero too."""
     f = analysis.forces
-    tf, tm = figures.roundoff_levels(analysis.model, 1e-12)
+    tf, tm = roundoff_levels(analysis.model, 1e-12)
     forces = np.asarray(f.force_amplitude, dtype=float) / tf
     moments = np.asarray(f.moment_amplitude, dtype=float) / tm
     if max(forces.max(initial=0.0), moments.max(initial=0.0)) >= 1.0:
@@ -52,7 +54,7 @@ def leading_component(analysis: Any) -> tuple[figures.Quantity, str]:
         return (
             "force" if abs(f.rotating_force) / tf >= abs(f.rotating_couple) / tm else "moment"
         ), "rotating"
-    return figures.leading_quantity(analysis), "1"
+    return leading_quantity(analysis), "1"
 
 
 #: the components the summary card lists (the largest first); smaller ones are counted
@@ -96,7 +98,7 @@ def summary_lines(c: Any) -> list[str]:
     length, as :func:`leading_component`); values below round-off count as zero."""
     analysis = c.analysis
     d = analysis.to_dict()
-    tf, tm = figures.roundoff_levels(analysis.model)
+    tf, tm = roundoff_levels(analysis.model)
     found: list[tuple[float, str]] = []
     for f, m in zip(d["free_forces"], d["free_moments"], strict=True):
         for row, quantity, unit, tiny, key in (
@@ -231,20 +233,18 @@ class ResultsTab(Tab):
             self.card(
                 "orders",
                 "Free forces and moments by order",
-                self.computed(lambda c: figures.orders_bar(c.analysis)),
+                self.computed(lambda c: orders_bar(c.analysis)),
             )
             self.card(
                 "residuals",
                 "Residuals before/after balancing",
-                self.computed(lambda c: figures.residuals_bar(c.study)),
+                self.computed(lambda c: residuals_bar(c.study)),
             )
             self.curves = self.card(
                 "curves",
                 "Curves over a revolution, before and after balancing",
                 self.computed(
-                    lambda c: figures.curves_figure(
-                        c.analysis, c.study, quantity=self.curve_quantity.value
-                    )
+                    lambda c: curves_figure(c.analysis, c.study, quantity=self.curve_quantity.value)
                 ),
             )
             self.polar = self.card(
@@ -308,4 +308,4 @@ class ResultsTab(Tab):
         order = order if order == "rotating" else int(order)
         if order != "rotating" and order > c.analysis.forces.orders[-1]:
             raise InputError("polar order", order, "is above the highest order computed")
-        return figures.polar_figure(c.analysis, order, quantity=self.curve_quantity.value)
+        return polar_figure(c.analysis, order, quantity=self.curve_quantity.value)

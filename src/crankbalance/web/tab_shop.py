@@ -19,7 +19,7 @@ from typing import Any
 from nicegui import run, ui
 
 from ..errors import InputError
-from ..output import figures
+from ..output.figures.shop import hole_plan
 from ..output.format import text
 from ..schema.settings import DEPTH_TO
 from .widgets import StudyTab, TabSettingsMixin, button_row, send_download
@@ -232,7 +232,7 @@ class ShopTab(TabSettingsMixin, StudyTab):
 
     def _holes(self) -> Any | None:
         holes = None if self.study is None else self.study.holes
-        return None if holes is None else figures.hole_plan(holes)
+        return None if holes is None else hole_plan(holes)
 
     async def download(self) -> None:
         from ..output.shop_sheet import sheet_html

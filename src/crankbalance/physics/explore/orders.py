@@ -17,6 +17,10 @@ the crank (removed by starting at cylinder 1), renumbering from the other end (a
 image of the engine) and, when the problem asks for it, time reversal. Which of these are
 symmetries of a topology is found from its geometry and masses, not assumed.
 ``docs/explorer.md`` ("Enumeration") explains the choices.
+
+Why one module over 800 lines: the index space, its unranking, the consistency of shared
+pins, the symmetries and the size of a range are one enumeration; split, each part would
+need the plan of the others.
 """
 
 from __future__ import annotations
@@ -58,6 +62,10 @@ PLAIN = {
     "throw_rotating_mass": 1.0,
 }
 _TOL = 1e-9  # [rad] angles closer than this are equal
+#: smallest bank angle [rad] of a vee or W: banks closer than this (a thousand times the
+#: tolerance of equal angles) cannot be told apart, and no symmetry, not even the identity,
+#: was found for them (a 1e-12 deg vee ended in a ValueError of numpy)
+MIN_BANK_ANGLE = 1000 * _TOL
 
 
 def _gap(a: NDArray[np.float64]) -> NDArray[np.float64]:
@@ -211,11 +219,12 @@ def _bank_angle(layout: str, bank_angle: float | None) -> float:
             raise InputError("bank_angle", bank_angle, f"is not used with layout {layout}")
         return 0.0
     limit = math.pi if layout == "vee" else math.pi / 2
-    if bank_angle is None or not 0 < bank_angle <= limit + 1e-12:
+    if bank_angle is None or not MIN_BANK_ANGLE <= bank_angle <= limit + 1e-12:
         raise InputError(
             "bank_angle",
             bank_angle,
-            f"required for layout {layout}, in (0, {math.degrees(limit):g}] deg",
+            f"required for layout {layout}, from {math.degrees(MIN_BANK_ANGLE):.2g} to "
+            f"{math.degrees(limit):g} deg",
         )
     return float(bank_angle)
 

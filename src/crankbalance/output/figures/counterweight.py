@@ -1,0 +1,130 @@
+"""Figures of the counterweight design and optimisation (:mod:`crankbalance.physics.counterweight`):
+the designs found and their Pareto front, and one counterweight's profile to scale.
+
+Public functions
+----------------
+- ``pareto_front(optimum, max_points=4000) -> Figure``  (counterweight.CounterweightOptimum)
+- ``counterweight_profile(design) -> Figure``             (counterweight.CounterweightDesign)
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from .common import COLORS, TEMPLATE, plotly_go, web_drawing
+
+if TYPE_CHECKING:  # pragma: no cover
+    import plotly.graph_objects as go
+
+
+def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
+    """Counterweight designs: every feasible design found (a sample of at most
+    ``max_points``), the Pareto front of mass versus radial space, and the least-mass and
+    least-radius designs (:class:`~crankbalance.physics.counterweight.CounterweightOptimum`)."""
+    go = plotly_go()
+    radius = np.asarray(optimum.radius) * 1e3
+    mass = np.asarray(optimum.mass) * 1e3
+    fig = go.Figure()
+    n = mass.size
+    if n:
+        pick = (
+            np.arange(n)
+            if n <= max_points
+            else np.random.default_rng(0).choice(n, max_points, replace=False)
+        )
+        fig.add_trace(
+            go.Scattergl(
+                x=radius[pick],
+                y=mass[pick],
+                mode="markers",
+                name=f"feasible designs ({n})",
+                marker={"color": "#c7c7c7", "size": 3},
+            )
+        )
+    front = np.asarray(optimum.pareto, dtype=int)
+    fig.add_trace(
+        go.Scatter(
+            x=radius[front],
+            y=mass[front],
+            mode="lines+markers",
+            name=f"Pareto front ({front.size})",
+            line={"color": COLORS["forward"], "width": 2},
+            marker={"size": 5},
+        )
+    )
+    for idx, label, color, symbol in (
+        (optimum.least_mass, "least mass", COLORS["counterweight"], "star"),
+        (optimum.least_radius, "least radius", COLORS["after"], "diamond"),
+    ):
+        fig.add_trace(
+            go.Scatter(
+                x=[radius[idx]],
+                y=[mass[idx]],
+                mode="markers",
+                name=f"{label}: {mass[idx]:.1f} g, {radius[idx]:.2f} mm",
+                marker={"color": color, "size": 15, "symbol": symbol},
+            )
+        )
+    measure = "outer radius" if optimum.radius_measure == "true" else "R_min bound (paper)"
+    fig.update_xaxes(title_text=f"radial space, {measure} [mm]")
+    fig.update_yaxes(title_text="counterweight mass [g]")
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=f"Counterweight designs for m r = {optimum.required_first_moment * 1e6:.5g} g·mm",
+    )
+    return fig
+
+
+def counterweight_profile(design: Any) -> go.Figure:
+    """The counterweight profile drawn to scale (mm): the outline, the web circle it sits on,
+    the crank axis and the centre of gravity
+    (:class:`~crankbalance.physics.counterweight.CounterweightDesign`)."""
+    go = plotly_go()
+    props = design.properties()
+    fig = go.Figure()
+    for k, loop in enumerate(design.outline(tolerance=2e-6)):
+        closed = np.vstack([loop, loop[:1]]) * 1e3
+        fig.add_trace(
+            go.Scatter(
+                x=closed[:, 0],
+                y=closed[:, 1],
+                mode="lines",
+                fill="toself",
+                fillcolor="rgba(127,140,141,0.6)",
+                name="profile",
+                legendgroup="profile",
+                showlegend=k == 0,
+                line={"color": "black", "width": 1.5},
+            )
+        )
+    ring = np.linspace(0, 2 * np.pi, 181)
+    r = design.web_radius * 1e3
+    fig.add_trace(
+        go.Scatter(
+            x=r * np.cos(ring),
+            y=r * np.sin(ring),
+            mode="lines",
+            name=f"web circle r_cw = {r:.2f} mm",
+            line={"color": "#c0392b", "dash": "dash", "width": 1},
+        )
+    )
+    cg = float(props.cg_radius) * 1e3
+    fig.add_trace(
+        go.Scatter(
+            x=[0.0],
+            y=[cg],
+            mode="markers",
+            name=f"CG at {cg:.2f} mm",
+            marker={"color": COLORS["after"], "size": 10, "symbol": "x"},
+        )
+    )
+    return web_drawing(
+        fig,
+        1.1 * max(float(props.outer_radius) * 1e3, r),
+        f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
+        f"{design.thickness * 1e3:.2f} mm, outer radius "
+        f"{float(props.outer_radius) * 1e3:.2f} mm",
+    )
