@@ -25,37 +25,15 @@ import time
 import tracemalloc
 
 import numpy as np
+from bench_solver import random_engines
 
-from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balancing import (
-    CounterweightOptions,
-    EngineBatch,
-    ShaftOptions,
-    balance,
-    balance_batch,
-    engine_batch,
-)
+from crankbalance.physics.balance_batch import balance_batch
+from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
 from crankbalance.physics.kinematics import harmonic_coefficients
-from crankbalance.studies.build import build_model
+from crankbalance.physics.model import EngineBatch
 
 TARGET = 50_000.0  # engines/s
 CW_RADIUS, SHAFT_RADIUS, SHAFT_LENGTH = 0.045, 0.03, 0.3
-
-
-def random_engines(engines: int) -> EngineBatch:
-    """Random cranks of the crossplane V8's topology."""
-    m = build_model(load_engine("v8-crossplane"))
-    rng = np.random.default_rng(1)
-    return engine_batch(
-        m,
-        engines,
-        throw_angle=rng.uniform(0, 2 * np.pi, (engines, m.throws)),
-        throw_rotating_mass=rng.uniform(0.5, 1.5, (engines, m.throws)),
-        reciprocating_mass=rng.uniform(0.3, 0.8, (engines, m.cylinders)),
-        crank_radius=rng.uniform(0.035, 0.05, engines),
-        rod_length=rng.uniform(0.13, 0.17, engines),
-        speed=rng.uniform(300, 900, engines),
-    )
 
 
 def best(func, repeat: int = 3) -> tuple[float, float]:

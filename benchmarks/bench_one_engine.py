@@ -17,11 +17,13 @@ from __future__ import annotations
 
 import os
 import time
+from collections.abc import Callable
 
 import numpy as np
 
 from crankbalance.io.engine_file import load_engine
 from crankbalance.physics.kinematics import harmonic_coefficients
+from crankbalance.physics.model import EngineModel
 from crankbalance.physics.shaking import free_forces
 from crankbalance.studies.build import build_model
 
@@ -41,10 +43,11 @@ def per_call(func, repeat: int = 7, number: int = 2000) -> tuple[float, float]:
     return best, best_cpu
 
 
-def main() -> None:
-    model = build_model(load_engine("v12-60"))
-    orders = 8
-    e = model.cylinder_offset[0]  # the preset: one offset for every cylinder
+def minimal_phasor_sum(model: EngineModel, orders: int = 8) -> Callable[[], tuple[np.ndarray, ...]]:
+    """The reference: the forward and backward phasors of force and couple of ``model`` as a
+    minimal numpy sum, ``c * (exp(i n theta) @ w)``, its harmonic coefficients computed here,
+    before any timing (one offset for every cylinder, as the presets have)."""
+    e = model.cylinder_offset[0]
     c = harmonic_coefficients(model.rod_ratio, orders, e / model.crank_radius)
     phi, beta = model.cylinder_angle, model.cylinder_bank
     y, mass = model.cylinder_position, model.reciprocating_mass
@@ -56,6 +59,15 @@ def main() -> None:
         fwd, cfwd = c * (turn @ w), c * (turn @ (w * y))
         bwd, cbwd = np.conj(c * (turn @ np.conj(w))), np.conj(c * (turn @ np.conj(w * y)))
         return fwd, bwd, cfwd, cbwd
+
+    return reference
+
+
+def main() -> None:
+    model = build_model(load_engine("v12-60"))
+    orders = 8
+    mass = model.reciprocating_mass
+    reference = minimal_phasor_sum(model, orders)
 
     ours = free_forces(model, orders)
     ref = reference()

@@ -15,12 +15,11 @@ from __future__ import annotations
 
 import math
 
+from crankbalance.physics.rebalancing import FaceRemoval, rebalance
 from crankbalance.physics.rotor_bench import equal_inertia_test_rotor
 from crankbalance.physics.single_cylinder import (
-    FaceRemoval,
     balance_factor_from_mass_properties,
     balance_factor_study,
-    rebalance,
     sum_parts,
 )
 from crankbalance.physics.tolerance import permissible_unbalance

@@ -11,24 +11,17 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balancing import (
-    BalanceResult,
+from crankbalance.physics.balance_batch import balance_batch, check_batch
+from crankbalance.physics.balance_counterweights import _lstsq2
+from crankbalance.physics.balance_types import (
     BatchBalance,
     BatchCounterweights,
     BatchShafts,
     CounterweightOptions,
-    Counterweights,
-    EngineBatch,
     ShaftOptions,
-    ShaftSet,
-    _lstsq2,
-    balance,
-    balance_batch,
-    check_batch,
-    engine_batch,
-    stack_models,
 )
-from crankbalance.physics.model import EngineModel
+from crankbalance.physics.balancing import BalanceResult, Counterweights, ShaftSet, balance
+from crankbalance.physics.model import EngineBatch, EngineModel, engine_batch, stack_models, take
 from crankbalance.studies.build import build_model
 
 #: agreement asked of the batch with the one-engine solver
@@ -441,3 +434,108 @@ def test_stack_models_needs_one_topology() -> None:
         stack_models([model_of("inline4"), model_of("v8-crossplane")])
     with pytest.raises(InputError, match="at least one"):
         stack_models([])
+
+
+# --------------------------------------------------------------------------- batch independence
+def w12_broad_arrow() -> EngineBatch:
+    """The 256 canonical cranks of the explorer's W12 broad arrow (60 deg between banks),
+    the plain engine's masses (docs/explorer.md)."""
+    from crankbalance.physics.explore import orders
+
+    p = orders.problem("w", 12, 4, bank_angle=math.radians(60))
+    c = orders.chunk(p, 0, orders.count(p))
+    return engine_batch(c.topology, c.size, throw_angle=c.throw_angle)
+
+
+#: the W12 candidate whose counterweight mass followed its batch (4.010 kg in one batch,
+#: 4.062 kg in another, 4.092 kg alone): its crank turns the pattern without effect
+W12_CRANK = np.radians([300.0, 120.0, 300.0, 120.0])
+
+
+def assert_same_numbers(a: BatchBalance, b: BatchBalance, batch: EngineBatch) -> None:
+    """Two results of the same engines equal to REL (1e-9) of each engine's scale: the
+    counterweights' first moments and masses, the pattern angle where there is a mass,
+    the flags, the shaft masses as m e^(i psi) and their layout, every residual."""
+    size = (batch.throw_rotating_mass.sum(axis=1) + batch.reciprocating_mass.sum(axis=1)) * (
+        batch.crank_radius
+    )
+    force = size * batch.speed**2
+    length = np.maximum(np.ptp(batch.topology.throw_position), batch.crank_radius)
+    for one, two in (
+        (a.counterweights, b.counterweights),
+        (a.extra_counterweights, b.extra_counterweights),
+    ):
+        assert (one is None) == (two is None)
+        if one is None or two is None:
+            continue
+        for flag in ("halves", "flipped", "already_balanced"):
+            assert np.array_equal(getattr(one, flag), getattr(two, flag)), flag
+        assert np.all(np.abs(one.moments - two.moments) <= REL * size[:, None])
+        assert np.all(np.abs(one.mass - two.mass) <= REL * size[:, None] / one.cg_radius)
+        massive = one.mass.max(axis=1) * one.cg_radius > REL * size
+        turn = np.angle(np.exp(1j * (one.alpha - two.alpha)))
+        assert np.all(np.abs(turn[massive]) <= REL), "pattern angle"
+    for one, two in ((a.primary, b.primary), (a.secondary, b.secondary)):
+        assert (one is None) == (two is None)
+        if one is None or two is None:
+            continue
+        assert np.array_equal(one.layout, two.layout)
+        v1, v2 = one.mass * np.exp(1j * one.phase), two.mass * np.exp(1j * two.phase)
+        assert np.all(np.abs(v1 - v2) <= REL * size[:, None, None] / one.cg_radius)
+    r1, r2 = a.residuals, b.residuals
+    assert np.array_equal(r1.balanced, r2.balanced)
+    for name, scale in (
+        ("force_before", force),
+        ("force_after", force),
+        ("moment_before", force * length),
+        ("moment_after", force * length),
+    ):
+        assert np.all(np.abs(getattr(r1, name) - getattr(r2, name)) <= REL * scale[:, None])
+
+
+@pytest.mark.parametrize(
+    ("cw", "primary", "secondary"),
+    [
+        (CounterweightOptions(0.05, angle="optimal"), None, None),  # the explorer's default
+        (CounterweightOptions(0.05, angle="optimal", balance_factor=0.5), PAIR, SECONDARY),
+        (CounterweightOptions(0.05, method="individual", balance_factor=0.3), SINGLE, None),
+    ],
+)
+def test_a_result_does_not_depend_on_its_batch(
+    cw: CounterweightOptions, primary: ShaftOptions | None, secondary: ShaftOptions | None
+) -> None:
+    """Every W12 crank balanced in one batch, in chunks of 7, in two halves and one by one
+    (a batch of one, and balance) gets the same numbers to 1e-9 relative."""
+    batch = w12_broad_arrow()
+    whole = balance_batch(batch, cw, primary, secondary)
+    assert_same_numbers(whole, balance_batch(batch, cw, primary, secondary, chunk=7), batch)
+    assert_same_numbers(whole, balance_batch(batch, cw, primary, secondary, chunk=128), batch)
+    alone = [
+        balance_batch(batch.take(slice(i, i + 1)), cw, primary, secondary)
+        for i in range(batch.size)
+    ]
+    for i, one in enumerate(alone):
+        assert_same_numbers(_take_one(whole, i), one, batch.take(slice(i, i + 1)))
+    assert_same_as_one_engine(batch, cw, primary, secondary)
+
+
+def _take_one(result: BatchBalance, i: int) -> BatchBalance:
+    one: BatchBalance = take(result, slice(i, i + 1))
+    return one
+
+
+def test_the_w12_crank_that_turning_the_pattern_does_not_change() -> None:
+    """Turning the equal-mass pattern of this crank changes neither its force nor its
+    couple (the second unknown of the optimal pattern is zero, not round-off): the least
+    mass is the pattern opposite the crankpins, as the one-unknown pattern at 0 deg."""
+    batch = w12_broad_arrow()
+    i = int(np.flatnonzero(np.all(np.isclose(batch.throw_angle, W12_CRANK), axis=1))[0])
+    model = batch.model(i)
+    optimal = balance(model, CounterweightOptions(0.05, angle="optimal"))
+    opposite = balance(model, CounterweightOptions(0.05, angle=0.0))
+    assert optimal.counterweights is not None and opposite.counterweights is not None
+    assert optimal.counterweights.alpha == pytest.approx(0.0, abs=1e-12)
+    np.testing.assert_allclose(
+        optimal.counterweights.mass, opposite.counterweights.mass, rtol=1e-12
+    )
+    assert optimal.counterweights.mass.sum() == pytest.approx(4.0, rel=1e-12)

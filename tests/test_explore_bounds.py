@@ -312,6 +312,24 @@ def test_the_chunk_changes_no_candidate() -> None:
     assert sorted(chosen.top["index"]) == sorted(small.top["index"])
 
 
+def test_the_chunk_changes_no_pareto_front() -> None:
+    """Issue 26: the W12's front had 119, 104 or 109 members with the chunk. Every
+    candidate's figures are computed alike in any batch (to the last bit, which the
+    front's comparisons see), so the front and its numbers are the chunk's no more."""
+    problem = _problem(*W12)
+    keep = Keep(objectives=("F1_N", "M1_Nm", "F2_N", "M2_Nm", "cw_mass_kg"), key="F1_N", n=1)
+    runs = [
+        run(problem, merit.merit, keep=keep, chunk=chunk) for chunk in (None, 2**21, 2**17, 100_000)
+    ]
+    first = runs[0].pareto
+    assert first["index"].size > 1
+    for other in runs[1:]:
+        assert sorted(other.pareto) == sorted(first)
+        order_a, order_b = np.argsort(first["index"]), np.argsort(other.pareto["index"])
+        for name in first:
+            assert np.array_equal(first[name][order_a], other.pareto[name][order_b]), name
+
+
 # ------------------------------------------------------------------------------ sizes
 @pytest.mark.parametrize(
     "args", [W12, V12, ("vee", 8, 4, math.radians(90)), ("inline", 7, 4, None)]

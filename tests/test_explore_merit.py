@@ -260,3 +260,20 @@ def test_bad_settings_name_the_field(kwargs: dict, field: str) -> None:
     with pytest.raises(InputError) as error:
         merit(batch([as_model("inline4")]), **kwargs)
     assert error.value.field == field
+
+
+@pytest.mark.parametrize("target", ["counterweights", "secondary"])
+def test_a_candidates_figures_do_not_depend_on_its_batch(target: str) -> None:
+    """Issue 26: every W12 broad-arrow candidate's figures, computed with all 256 and on
+    their own, are the same to the last bit (the Pareto front compares them so)."""
+    from crankbalance.physics.explore import orders
+
+    problem = orders.problem("w", 12, 4, bank_angle=math.radians(60))
+    cands = orders.chunk(problem, 0, orders.count(problem))
+    together = merit(cands, target=target, balance_factor=0.5)  # type: ignore[arg-type]
+    alone = [
+        merit(cands.part(i, i + 1), target=target, balance_factor=0.5)  # type: ignore[arg-type]
+        for i in range(cands.size)
+    ]
+    for name, column in together.items():
+        assert np.array_equal(column, [one[name][0] for one in alone]), name

@@ -19,7 +19,7 @@ from scipy.optimize import minimize_scalar
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balancing import CounterweightOptions, balance, engine_batch
+from crankbalance.physics.balancing import CounterweightOptions, balance
 from crankbalance.physics.kinematics import harmonic_coefficients, piston_position
 from crankbalance.physics.model import EngineModel
 from crankbalance.physics.shaking import (
@@ -285,14 +285,38 @@ def test_counterweights_carry_the_big_ends_couple() -> None:
     assert rot.moment_after < 1e-9 * rot.moment_before
 
 
-def test_batch_solvers_refuse_side_by_side_rods() -> None:
-    with pytest.raises(InputError, match="rod_positions"):
-        engine_batch(l_twin((0.3, 0.3)), 2)
+def test_batch_of_side_by_side_rods_is_the_one_engine_solver() -> None:
+    """Rods side by side on a pin keep the topology's places and big ends in a batch: the
+    batch gives each engine's one-engine numbers (the same solver), couples included."""
+    from crankbalance.physics.balance_batch import balance_batch
+    from crankbalance.physics.model import engine_batch
+
+    m = l_twin((0.3, 0.36))
+    batch = engine_batch(m, 3, speed=[500.0, 700.0, 900.0], reciprocating_mass=[0.5, 0.6])
+    options = CounterweightOptions(0.03, balance_factor=0.5)
+    result = balance_batch(batch, options)
+    assert result.counterweights is not None
+    for k in range(3):
+        one = balance(batch.model(k), options)
+        assert one.counterweights is not None
+        np.testing.assert_allclose(
+            result.counterweights.moments[k], one.counterweights.moments, rtol=1e-12
+        )
+        for j, name in enumerate(result.residuals.components):
+            want = one.residual(name)
+            assert result.residuals.moment_before[k, j] == pytest.approx(
+                want.moment_before, rel=1e-12
+            )
+            assert result.residuals.moment_after[k, j] == pytest.approx(
+                want.moment_after, rel=1e-12, abs=1e-9
+            )
+    assert one.residual("rotating").moment_before > 1.0, "the big ends' couple is there"
 
 
 def test_batch_takes_per_cylinder_offsets() -> None:
     """EngineBatch carries each cylinder's offset: engine k of a batch is the model."""
-    from crankbalance.physics.balancing import balance_batch
+    from crankbalance.physics.balance_batch import balance_batch
+    from crankbalance.physics.model import engine_batch
 
     m = odd_v6(DIFFERENT)
     batch = engine_batch(m, 3, speed=[500.0, 700.0, 900.0])

@@ -18,6 +18,7 @@ from hypothesis import given, settings
 from hypothesis import strategies as st
 
 from crankbalance.errors import InputError
+from crankbalance.physics.rebalancing import DrilledHoles, rebalance
 from crankbalance.physics.shop.holes import (
     DEFAULT_POINT_ANGLE,
     FLAT_BOTTOM,
@@ -28,7 +29,6 @@ from crankbalance.physics.shop.holes import (
     hole_geometry,
     hole_mass_properties,
 )
-from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
 
 trimesh = pytest.importorskip("trimesh")
 pytest.importorskip("manifold3d")

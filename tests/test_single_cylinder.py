@@ -9,6 +9,7 @@ import numpy as np
 import pytest
 
 from crankbalance.errors import InputError
+from crankbalance.physics import rebalancing as rb
 from crankbalance.physics import single_cylinder as sc
 from crankbalance.physics.rotor_bench import (
     crankpin_overlap,
@@ -177,8 +178,8 @@ def test_balance_factor_and_bob_weight_round_trip() -> None:
         (lambda: sc.bob_weight(-0.1, 0.28, 0.5), "rotating_mass"),
         (lambda: sc.bob_weight(0.1, 0.28, 3.0), "balance_factor"),
         (lambda: sc.sum_parts({"piston": 0.1, "pin": -0.01}), "parts.pin"),
-        (lambda: sc.FaceRemoval(area=0.0, radius=0.04), "face_area"),
-        (lambda: sc.DrilledHoles(diameter=0.008, radius=0.04, number=0), "holes"),
+        (lambda: rb.FaceRemoval(area=0.0, radius=0.04), "face_area"),
+        (lambda: rb.DrilledHoles(diameter=0.008, radius=0.04, number=0), "holes"),
     ],
 )
 def test_bad_input_names_the_field(call, field: str) -> None:
@@ -196,8 +197,8 @@ CW = dict(counterweight_mass=2.0204, counterweight_radius=0.00616, crank_radius=
 
 
 def test_axial_face_is_exact_in_one_pass() -> None:
-    corr = sc.FaceRemoval(area=1.5e-3, radius=0.035, orientation="axial", depth_resolution=0)
-    res = sc.rebalance(
+    corr = rb.FaceRemoval(area=1.5e-3, radius=0.035, orientation="axial", depth_resolution=0)
+    res = rb.rebalance(
         **OLD, **NEW, **CW, correction=corr, tolerance=1e-9, target_balance_factor=0.28
     )
     assert len(res.iterations) == 1
@@ -210,10 +211,10 @@ def test_axial_face_is_exact_in_one_pass() -> None:
 
 
 def test_radial_holes_iterate_and_converge() -> None:
-    corr = sc.DrilledHoles(
+    corr = rb.DrilledHoles(
         diameter=0.012, radius=0.045, number=3, direction="radial", depth_resolution=1e-6
     )
-    res = sc.rebalance(
+    res = rb.rebalance(
         **OLD, **NEW, **CW, correction=corr, tolerance=1e-6, target_balance_factor=0.28
     )
     assert res.status == "converged" and res.passed
@@ -235,17 +236,17 @@ def test_radial_holes_iterate_and_converge() -> None:
 
 
 def test_rebalance_needing_added_mass_is_refused() -> None:
-    corr = sc.FaceRemoval(area=1.5e-3, radius=0.04)
+    corr = rb.FaceRemoval(area=1.5e-3, radius=0.04)
     with pytest.raises(InputError, match="target_balance_factor"):
-        sc.rebalance(**OLD, **NEW, **CW, correction=corr, tolerance=1e-5, target_balance_factor=1.5)
+        rb.rebalance(**OLD, **NEW, **CW, correction=corr, tolerance=1e-5, target_balance_factor=1.5)
 
 
 def test_rebalance_bad_masses() -> None:
-    corr = sc.FaceRemoval(area=1.5e-3, radius=0.04)
+    corr = rb.FaceRemoval(area=1.5e-3, radius=0.04)
     with pytest.raises(InputError, match="new_rotating_mass"):
-        sc.rebalance(0.28, 0.28, -0.1, 0.26, 2.0, 0.006, 0.0269, corr, 1e-5)
+        rb.rebalance(0.28, 0.28, -0.1, 0.26, 2.0, 0.006, 0.0269, corr, 1e-5)
     with pytest.raises(InputError, match="target_balance_factor"):
-        sc.rebalance(
+        rb.rebalance(
             **OLD, **NEW, **CW, correction=corr, tolerance=1e-5, target_balance_factor=-0.2
         )
 

@@ -1,17 +1,107 @@
-"""Shared helpers for result objects: conversion to JSON-ready Python values."""
+"""Shared helpers for result objects: conversion to JSON-ready Python values, and the one
+rule of round-off ("below round-off is zero") every layer applies to forces and moments."""
 
 from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any
+from typing import Any, Protocol
 
 import numpy as np
+from numpy.typing import ArrayLike, NDArray
 
 from .errors import ResultError
 
 #: significant digits kept in JSON: enough for any measured input, none of the float noise
 JSON_DIGITS = 12
+
+#: share of a scale below which a quantity of that scale is round-off, i.e. zero: the sums
+#: of phasors that cancel leave about 1e-16 to 1e-15 of the size of their terms, and the
+#: smallest real residual a balancing study reports is far above 1e-12
+ROUND_OFF = 1e-12
+
+
+class EngineScales(Protocol):
+    """What :func:`round_off` reads of an engine or a batch of engines (leading engine axis):
+    an :class:`~crankbalance.physics.model.EngineModel` or an
+    :class:`~crankbalance.physics.model.EngineBatch`."""
+
+    @property
+    def reciprocating_mass(self) -> NDArray[np.float64]: ...
+    @property
+    def throw_rotating_mass(self) -> NDArray[np.float64]: ...
+    @property
+    def throw_position(self) -> NDArray[np.float64]: ...
+    @property
+    def crank_radius(self) -> Any: ...
+    @property
+    def speed(self) -> Any: ...
+
+
+def engine_scales(engine: EngineScales) -> tuple[Any, Any]:
+    r"""Force and length scales of an engine (or of each engine of a batch).
+
+    The force scale is every mass at the crank radius turning at the crank speed,
+    :math:`F = (\sum m_{rec} + \sum m_{rot})\,r\,\omega^2`; the length scale is the
+    crank's extent along its axis (first to last throw), or the crank radius when that is
+    smaller (a single throw has no extent).
+
+    Parameters
+    ----------
+    engine : EngineModel or EngineBatch
+        The engine(s): reciprocating masses [kg] per cylinder, rotating masses [kg] per
+        throw, throw positions [m], crank radius [m] and speed [rad/s].
+
+    Returns
+    -------
+    force : float or ndarray, shape (E,)
+        :math:`F` [N].
+    length : float or ndarray, shape (E,)
+        :math:`L = \max(y_{max} - y_{min}, r)` [m].
+    """
+    mass = np.sum(engine.reciprocating_mass, axis=-1) + np.sum(engine.throw_rotating_mass, axis=-1)
+    force = mass * engine.crank_radius * np.square(engine.speed)
+    length = np.maximum(np.ptp(engine.throw_position, axis=-1), engine.crank_radius)
+    return force, length
+
+
+def round_off(engine: EngineScales) -> tuple[Any, Any]:
+    """Round-off levels of an engine's forces and moments: a force or moment whose size is
+    at most its level is zero (:data:`ROUND_OFF` of :func:`engine_scales`).
+
+    Parameters
+    ----------
+    engine : EngineModel or EngineBatch
+        The engine(s), as :func:`engine_scales`.
+
+    Returns
+    -------
+    force : float or ndarray, shape (E,)
+        :math:`10^{-12} F` [N].
+    moment : float or ndarray, shape (E,)
+        :math:`10^{-12} F L` [N·m].
+    """
+    force, length = engine_scales(engine)
+    return ROUND_OFF * force, ROUND_OFF * force * length
+
+
+def below_round_off(value: ArrayLike, level: ArrayLike) -> NDArray[Any]:
+    """``value`` with every entry whose size is at most ``level`` set to exactly zero.
+
+    Parameters
+    ----------
+    value : array_like, real or complex
+        Forces [N] or moments [N·m].
+    level : array_like
+        Their round-off level (:func:`round_off`), broadcast against ``value``.
+
+    Returns
+    -------
+    ndarray
+        ``value`` with its round-off set to zero (same dtype).
+    """
+    v = np.asarray(value)
+    return np.where(np.abs(v) <= level, 0.0, v)  # a Python zero keeps v's dtype
 
 
 def clean_number(value: float, digits: int = JSON_DIGITS) -> float:

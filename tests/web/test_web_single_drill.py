@@ -3,7 +3,7 @@ angle*, *Depth read to the*) through NiceGUI's simulated User.
 
 The plan on the page is checked against the library's rebalancing for the same inputs
 (:func:`crankbalance.studies.cylinder.rebalance_cylinder`, holes built as
-:class:`~crankbalance.physics.single_cylinder.DrilledHoles` with the point) and against the closed
+:class:`~crankbalance.physics.rebalancing.DrilledHoles` with the point) and against the closed
 form of a hole with a conical point (cylinder plus cone, V = A (s + h/3), h = (d/2) /
 tan(alpha/2)): the mass shown per web, and the point's height between the depth to the
 tip and the depth to the shoulder of the same correction."""
@@ -21,7 +21,8 @@ from nicegui.testing.user import User
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.single_cylinder import DrilledHoles, counterweight_moment, rebalance
+from crankbalance.physics.rebalancing import DrilledHoles, rebalance
+from crankbalance.physics.single_cylinder import counterweight_moment
 from crankbalance.schema.settings import (
     RebalanceOptions,
     ShopOptions,

@@ -139,7 +139,7 @@ def test_drilling_drawing_radial_holes_reach_the_depth() -> None:
     from dataclasses import replace
 
     from crankbalance.output.figures.single import drilling_plan
-    from crankbalance.physics.single_cylinder import DrilledHoles, rebalance
+    from crankbalance.physics.rebalancing import DrilledHoles, rebalance
 
     holes = DrilledHoles(diameter=0.006, radius=0.05, number=2, direction="radial")
     reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, holes, 1e-9)

@@ -3,10 +3,9 @@ options a user typed, and the check for an optional extra."""
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import re
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -28,6 +27,56 @@ def parse_settings(model: type[Options], values: Mapping[str, Any]) -> Options:
     from ..schema.settings import parse_options
 
     return parse_options(model, values, option_name)
+
+
+def typed(values: Mapping[str, Any]) -> dict[str, Any]:
+    """The options the user typed, by parameter name: an option not given (None, or an
+    empty tuple for a repeatable one) is left out, so that the study's default applies; a
+    repeated option's values as a list."""
+    return {
+        name: list(value) if isinstance(value, tuple) else value
+        for name, value in values.items()
+        if value is not None and value != ()
+    }
+
+
+def run_study(
+    name: str, engine: Any, values: Mapping[str, Any], *, engine_option: bool = True, **edge: Any
+) -> Any:
+    """Study ``name`` of :mod:`crankbalance.studies.registry` on ``engine`` with the options
+    typed (``values``: parameter name, the setting's field, -> value as typed) and the
+    command's own arguments (``edge``: progress, an output file); an error names the option
+    as typed (``--balance-factor``, and ``--engine`` or ``engine`` for the engine as an
+    option or an argument)."""
+    from ..studies.registry import run, study
+
+    entry = study(name)
+
+    def naming(field: str) -> str:
+        if field == "engine":
+            return "--engine" if engine_option else "engine"
+        return "--" + entry.option(field)
+
+    return run(name, engine, typed(values), naming=naming, **edge)
+
+
+def echo_notes(engine: str) -> None:
+    """Print the plausibility notes of a valid engine (unusual numbers, not errors; they are
+    not part of the JSON), one ``note:`` line each."""
+    from ..io.engine_file import load_engine
+
+    for note in load_engine(engine).plausibility():
+        click.echo(f"note: {note.text}")
+
+
+def default_help(model: type[Options], name: str, text: str = "") -> str:
+    """A help text with the setting's default as one would type it, from the settings
+    schema (the one place defaults are decided): ``"Bore. [default: 76.8 mm]"``."""
+    from ..schema.settings import default_text
+
+    default = default_text(model, name)
+    words = text or f"{model.FIELDS[name].title or name}."
+    return f"{words} [default: {default}]" if default else words
 
 
 #: the optional extras of crankbalance (pyproject.toml) and the modules each provides
@@ -82,21 +131,6 @@ def refuse_unused(used: dict[str, bool], reason: str, given: set[str] | None = N
         if name in typed and not acts:
             context = click.get_current_context()
             raise InputError(option_name(name), context.params.get(name), reason)
-
-
-@contextlib.contextmanager
-def named_as_typed(typed: Mapping[str, Any]) -> Iterator[None]:
-    """Within the block, an :class:`~crankbalance.errors.InputError` of the physics about
-    a value the user typed (``typed``: field name -> the text typed) names its option
-    (``torque`` -> ``--torque``) and shows the text."""
-    from ..errors import InputError
-
-    try:
-        yield
-    except InputError as error:
-        if error.field not in typed:
-            raise
-        raise InputError(option_name(error.field), typed[error.field], error.allowed) from None
 
 
 def format_option(choices: Sequence[str]) -> Callable[[Any], Any]:

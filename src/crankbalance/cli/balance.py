@@ -7,7 +7,7 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number, plural, text
-from ._common import echo_table, format_option, given_options, parse_settings
+from ._common import echo_notes, echo_table, format_option, run_study
 
 
 @click.command()
@@ -37,6 +37,13 @@ from ._common import echo_table, format_option, given_options, parse_settings
     default=None,
     help="Balance the whole crank or each half on its own.",
 )
+@click.option(
+    "--verify",
+    is_flag=True,
+    default=False,
+    help="Also check the residuals in the time domain (every mass over a revolution, "
+    "then a Fourier transform) and print how well the two agree.",
+)
 def balance(
     engine: str,
     fmt: str,
@@ -44,38 +51,26 @@ def balance(
     balance_factor: str | None,
     method: str | None,
     scope: str | None,
+    verify: bool,
 ) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    from ..errors import InputError
-    from ..io.engine_file import load_engine
-    from ..schema.settings import BalanceOptions
-    from ..studies.engine import balance_engine
-
-    settings = parse_settings(BalanceOptions, {"angle": angle, "balance_factor": balance_factor})
-    overrides: dict[str, Any] = {
-        key: value
-        for key, value in (
-            ("angle", settings.angle),
-            ("balance_factor", settings.balance_factor),
-            ("method", method),
-            ("scope", scope),
-        )
-        if value is not None
+    values = {
+        "angle": angle,
+        "balance_factor": balance_factor,
+        "method": method,
+        "scope": scope,
+        "verify": verify or None,
     }
-    spec = load_engine(engine)
-    data = balance_engine(spec, **overrides).to_dict()  # checked finite by to_jsonable
-    if "angle" in given_options() and data["counterweight"]["method"] == "individual":
-        raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
+    data = run_study("balance", engine, values, engine_option=False).to_dict()
     if fmt == "json":
         click.echo(json_text(data))
         return
     print_table(data)
-    for note in spec.plausibility():  # unusual numbers of a valid engine (not in the JSON)
-        click.echo(f"note: {note.text}")
+    echo_notes(engine)
 
 
 def print_table(data: dict[str, Any]) -> None:
@@ -143,7 +138,7 @@ def print_table(data: dict[str, Any]) -> None:
                     ]
                 )
         echo_table(["shaft", "y mm", "mass kg", "phase °"], rows)
-    click.echo("\nTime-domain check (amplitudes before -> after):")
+    click.echo("\nResiduals (amplitudes before -> after):")
     echo_table(
         ["component", "targeted", "force N", "after", "moment N·m", "after"],
         [
@@ -161,3 +156,14 @@ def print_table(data: dict[str, Any]) -> None:
     )
     for note in data["notes"]:
         click.echo(f"note: {note}")
+    check = data.get("verification")
+    if check is not None:
+        verdict = "agree" if check["agrees"] else "DO NOT agree"
+        click.echo(
+            f"\nTime-domain verification ({check['samples']} crank angles, Fourier transform): "
+            f"the residuals {verdict} to round-off; largest differences "
+            f"{text(check['force_difference_N'], 'force')} "
+            f"(round-off {text(check['force_round_off_N'], 'force')}) and "
+            f"{text(check['moment_difference_Nm'], 'moment')} "
+            f"(round-off {text(check['moment_round_off_Nm'], 'moment')})"
+        )

@@ -42,6 +42,29 @@ def check_output(output: str, suffixes: Sequence[str], field: str = "--output") 
     return target
 
 
+#: the files a study's ``--plot`` writes
+FIGURE_SUFFIXES = (".png", ".svg", ".html")
+
+
+def check_figure(plot: str) -> None:
+    """Refuse a study's ``--plot`` file before any work: another kind of file, or a missing
+    extra to draw it (plotly; kaleido for an image)."""
+    from ._common import require_extra
+
+    check_output(plot, FIGURE_SUFFIXES, "--plot")
+    require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
+
+
+def write_figure(plot: str, fig: Any) -> None:
+    """Write a study's figure atomically, PNG, SVG or HTML by the file's suffix."""
+    from ..io.files import write_atomic
+    from ..output import render
+
+    fmt = Path(plot).suffix.lower().lstrip(".")
+    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
+    click.echo(f"wrote {plot}", err=True)
+
+
 def build_figure(
     kind: str,
     engine: str,

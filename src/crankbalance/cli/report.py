@@ -14,7 +14,7 @@ import click
     help="report.html (self-contained, interactive, works offline) or report.pdf "
     "(printed by headless Chromium).",
 )
-@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
+@click.option("--orders", default=None, help="Highest harmonic order (1-64). [default: 8]")
 @click.option(
     "--balance-factor",
     default=None,
@@ -35,7 +35,7 @@ import click
 def report(
     engine: str,
     output: str,
-    orders: str,
+    orders: str | None,
     balance_factor: str | None,
     angle: str | None,
     chromium: str | None,

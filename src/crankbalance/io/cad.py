@@ -27,7 +27,7 @@ from ..physics.counterweight import (
     DEFAULT_DENSITY,
     BoundaryLine,
     CounterweightDesign,
-    _check_positive_scalar,
+    check_positive_number,
     profile_boundary,
     profile_section,
 )
@@ -393,8 +393,8 @@ def mesh_mass_properties(
     required_first_moment : float, optional
         [kg m]; gives the balance [%].
     """
-    rho = _check_positive_scalar("density", density)
-    scale = _check_positive_scalar("length_unit", length_unit)
+    rho = check_positive_number("density", density)
+    scale = check_positive_number("length_unit", length_unit)
     path = Path(path)
     if not path.is_file():
         raise InputError("path", str(path), "must be an existing STL or STEP file")
@@ -443,7 +443,7 @@ def mesh_mass_properties(
     balance = None
     if required_first_moment is not None:
         balance = (
-            100.0 * first / _check_positive_scalar("required_first_moment", required_first_moment)
+            100.0 * first / check_positive_number("required_first_moment", required_first_moment)
         )
     return MeshMassProperties(
         volume, mass, cg, dist, first, inertia, bool(mesh.is_watertight), balance

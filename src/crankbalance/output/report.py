@@ -425,12 +425,12 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     # residuals
     parts.append("<h2>Residuals</h2>")
     parts.append(
-        "<p>Amplitude of every component before and after balancing, from a "
-        "time-domain rebuild of every mass (targeted: cancelled by balance shafts).</p>"
+        "<p>Amplitude of every component before and after balancing, every balancing "
+        "mass added back to the free forces (targeted: cancelled by balance shafts).</p>"
     )
-    from .figures.common import roundoff_levels
+    from ..results import round_off
 
-    tiny_f, tiny_m = roundoff_levels(report.study.model)
+    tiny_f, tiny_m = round_off(report.study.model)
 
     def clean(value: float, tiny: float) -> float:
         return 0.0 if abs(value) < tiny else value

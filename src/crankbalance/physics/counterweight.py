@@ -10,7 +10,7 @@ arcs, polygonised by :meth:`CounterweightDesign.outline`). The optimiser lives i
 :mod:`crankbalance.physics.counterweight_optimize`, the CAD files (SVG, DXF, STL, STEP, mesh
 read-back) in :mod:`crankbalance.io.cad`.
 
-About 900 lines, over the layout's ~800: the closed forms, the validity rules, the design
+Why one module over 800 lines: the closed forms, the validity rules, the design
 and the exact boundary all rest on the same intersection geometry (``l_c``, ``gamma``,
 ``lambda``, the hub crossing ``y*``), and every public function carries full numpydoc;
 splitting them would scatter one derivation over modules.
@@ -577,7 +577,7 @@ def counterweight_properties(
     validate_profile(web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
     _check_material(thickness, density)
     if required_first_moment is not None:
-        _check_positive_scalar("required_first_moment", required_first_moment)
+        check_positive_number("required_first_moment", required_first_moment)
     sec = profile_section(
         web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle
     )
@@ -615,7 +615,22 @@ def _properties_from_section(sec, thickness, density, required_first_moment=None
     )
 
 
-def _check_positive_scalar(name: str, value: Any) -> float:
+def check_positive_number(name: str, value: Any) -> float:
+    """A number greater than zero as a float, or :class:`~crankbalance.errors.InputError`
+    naming the field (also for a value that is not a number).
+
+    Parameters
+    ----------
+    name : str
+        The field to name in the error.
+    value : float
+        The number [its unit].
+
+    Returns
+    -------
+    float
+        ``value``, finite and greater than zero [its unit].
+    """
     try:
         v = float(value)
     except (TypeError, ValueError):
@@ -667,9 +682,9 @@ def thickness_for_first_moment(
     ----------
     .. [1] Appl. Sci. 2021, Sec. 4, Eqs. 28-30 (mass and first moment are linear in t_cw).
     """
-    u = _check_positive_scalar("required_first_moment", required_first_moment)
-    rho = _check_positive_scalar("density", density)
-    b = _check_positive_scalar("balance", balance)
+    u = check_positive_number("required_first_moment", required_first_moment)
+    rho = check_positive_number("density", density)
+    b = check_positive_number("balance", balance)
     validate_profile(web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle)
     sec = profile_section(
         web_radius, rectangle_height, trapezoid_angle, segment_radius, segment_angle
@@ -707,7 +722,7 @@ def required_first_moment(counterweights: Any, web: int | None = None) -> float:
         if web not in webs:
             raise InputError("web", web, f"one of the counterweight webs {webs}")
         m = float(mass[webs.index(web)])
-    return _check_positive_scalar("required_first_moment", m * float(counterweights.cg_radius))
+    return check_positive_number("required_first_moment", m * float(counterweights.cg_radius))
 
 
 # --------------------------------------------------------------------------------------

@@ -30,7 +30,7 @@ from .counterweight import (
     DEFAULT_DENSITY,
     PARAMETERS,
     CounterweightDesign,
-    _check_positive_scalar,
+    check_positive_number,
     profile_section,
     profile_validity,
 )
@@ -549,11 +549,11 @@ def optimize_counterweight(
        fixed/free selectors) and Table 3 (least mass, least radial space).
     """
     t0 = time.perf_counter()
-    required = _check_positive_scalar("required_first_moment", required_first_moment)
-    rho = _check_positive_scalar("density", density)
-    b_min = _check_positive_scalar("min_balance", min_balance)
-    m_max = math.inf if max_mass is None else _check_positive_scalar("max_mass", max_mass)
-    r_max = math.inf if max_radius is None else _check_positive_scalar("max_radius", max_radius)
+    required = check_positive_number("required_first_moment", required_first_moment)
+    rho = check_positive_number("density", density)
+    b_min = check_positive_number("min_balance", min_balance)
+    m_max = math.inf if max_mass is None else check_positive_number("max_mass", max_mass)
+    r_max = math.inf if max_radius is None else check_positive_number("max_radius", max_radius)
     if radius_measure not in ("true", "paper"):
         raise InputError("radius_measure", radius_measure, "must be 'true' or 'paper'")
     objs = tuple(objectives)

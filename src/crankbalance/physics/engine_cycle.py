@@ -412,9 +412,10 @@ def _heat_release(combustion: WiebeCombustion, bdc_volume: float) -> float:
     return c.combustion_efficiency * c.heating_value * air / c.air_fuel_ratio
 
 
-def _check_samples(samples_per_revolution: int) -> None:
+def check_samples(samples_per_revolution: int) -> None:
     """Raise :class:`~crankbalance.errors.InputError` unless the angle resolution of a
-    cycle is a whole number (not a bool) of at least 36 samples per revolution.
+    cycle is a whole number (not a bool) of at least 36 samples per revolution (one
+    cylinder's cycle here, every cylinder's in :mod:`crankbalance.physics.engine_cycle_all`).
 
     Parameters
     ----------
@@ -559,7 +560,21 @@ class CycleResult(ResultMixin):
     peak_shaking_force: float
 
 
-def _cycle_samples(strokes: int, samples_per_revolution: int) -> NDArray:
+def cycle_angles(strokes: int, samples_per_revolution: int) -> NDArray:
+    r"""The crank angles of one working cycle, centred on the firing top dead centre.
+
+    Parameters
+    ----------
+    strokes : int
+        Strokes per working cycle (2 or 4) [-].
+    samples_per_revolution : int
+        Samples of one crank revolution [-].
+
+    Returns
+    -------
+    ndarray, shape (samples_per_revolution * strokes / 2,)
+        Equally spaced angles from :math:`-\pi s/2` to before :math:`\pi s/2` [rad].
+    """
     n = samples_per_revolution * strokes // 2
     half = np.pi * strokes / 2
     return -half + 2 * half * np.arange(n) / n
@@ -635,7 +650,7 @@ def engine_cycle(
     if not specs or not all(isinstance(c, CylinderSpec) for c in specs):
         raise InputError("cylinders", cylinders, "must be one or more CylinderSpec")
     check_positive("speed", speed)
-    _check_samples(samples_per_revolution)
+    check_samples(samples_per_revolution)
     count = len(specs)
     cycle_angle = np.pi * strokes
     if phases is None:
@@ -644,14 +659,14 @@ def engine_cycle(
         phase = np.asarray(phases, dtype=float).reshape(-1)
         if phase.size != count or not np.all(np.isfinite(phase)):
             raise InputError("phases", phases, f"must give {count} finite angles")
-    theta = _cycle_samples(strokes, int(samples_per_revolution))
+    theta = cycle_angles(strokes, int(samples_per_revolution))
     w = speed
     pressures, gas_t, inertia_t, inline, transverse, shake_z, shake_x = ([] for _ in range(7))
     slope_sq, slope_dd = [], []
     indicated = 0.0
     for spec, ph in zip(specs, phase, strict=True):
         local = theta - ph
-        p = _pressure(local, spec, pressure, strokes)
+        p = cylinder_pressure(local, spec, pressure, strokes)
         pressures.append(p)
         f = cylinder_forces(local, spec, p, w)
         rod_z = f.inertia + f.gas  # rod force on piston, z
@@ -682,7 +697,7 @@ def engine_cycle(
     inertia_slope = np.sum(slope_dd, axis=0)
     driving = gas_torque - friction - load_torque
     work = np.concatenate([[0.0], np.cumsum(0.5 * (driving[1:] + driving[:-1]) * step)])
-    omega = _speed_from_energy(work, inertia_total, w, step)
+    omega = speed_from_energy(work, inertia_total, w, step)
     acceleration = (driving - 0.5 * inertia_slope * omega**2) / inertia_total
     shake_z_a, shake_x_a = np.array(shake_z), np.array(shake_x)
     return CycleResult(
@@ -820,7 +835,32 @@ def cylinder_forces(
     )
 
 
-def _pressure(angle: NDArray, spec: CylinderSpec, source: PressureSource, strokes: int) -> NDArray:
+def cylinder_pressure(
+    angle: NDArray, spec: CylinderSpec, source: PressureSource, strokes: int
+) -> NDArray:
+    """Cylinder pressure over the cycle from a Wiebe combustion or a table.
+
+    Parameters
+    ----------
+    angle : ndarray
+        Crank angle of the cylinder from its firing top dead centre [rad].
+    spec : CylinderSpec
+        The cylinder (bore, compression, for the Wiebe model).
+    source : WiebeCombustion or tuple of (ndarray, ndarray)
+        The Wiebe model, or a table (crank angle [rad], absolute pressure [Pa]).
+    strokes : int
+        Strokes per working cycle (2 or 4) [-].
+
+    Returns
+    -------
+    ndarray
+        Absolute cylinder pressure at every angle [Pa].
+
+    Raises
+    ------
+    InputError
+        For a source that is neither.
+    """
     if isinstance(source, WiebeCombustion):
         return wiebe_pressure(angle, spec, source, strokes)  # type: ignore[arg-type]
     if isinstance(source, tuple) and len(source) == 2:
@@ -832,8 +872,32 @@ def _pressure(angle: NDArray, spec: CylinderSpec, source: PressureSource, stroke
     )
 
 
-def _speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step: float) -> NDArray:
-    """Speed over the cycle from 1/2 J w^2 = E0 + W with the time-mean speed prescribed."""
+def speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step: float) -> NDArray:
+    r"""Speed over the cycle from :math:`\tfrac{1}{2} J\omega^2 = E_0 + W` with the
+    time-mean speed prescribed (Newton's method on :math:`E_0`).
+
+    Parameters
+    ----------
+    work : ndarray, shape (N,)
+        Work done on the crank since the start of the cycle at each sample [J].
+    inertia : ndarray, shape (N,)
+        Rotating inertia of the crank train at each sample [kg m^2].
+    mean_speed : float
+        Time-mean crank speed [rad/s].
+    step : float
+        Crank angle between samples [rad].
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        Crank speed at each sample [rad/s].
+
+    Raises
+    ------
+    InputError
+        Naming ``crank_inertia`` when the inertia is too small for the cycle (the crank
+        would nearly stop).
+    """
     # Start from E0 = 1/2 J_mean w^2 - mean(W); Newton on the time-mean speed condition.
     energy0 = 0.5 * float(np.mean(inertia)) * mean_speed**2 - float(np.mean(work))
     # the least E0 that keeps the kinetic energy above zero at every sample, with a margin

@@ -46,11 +46,11 @@ from ..results import ResultMixin
 from .engine_cycle import (
     CylinderSpec,
     PressureSource,
-    _check_samples,
-    _cycle_samples,
-    _pressure,
-    _speed_from_energy,
+    check_samples,
+    cycle_angles,
     cylinder_forces,
+    cylinder_pressure,
+    speed_from_energy,
 )
 from .firing import TDC_TOLERANCE, check_strokes, firing_angles
 from .model import EngineModel, tdc_angle
@@ -319,7 +319,7 @@ def engine_cycle_all(
     check_positive("speed", w)
     check_positive("bore", bore)
     check_positive("crank_inertia", crank_inertia)
-    _check_samples(samples_per_revolution)
+    check_samples(samples_per_revolution)
     if model.articulation is not None:
         raise InputError(
             "crank_train.articulated",
@@ -333,7 +333,7 @@ def engine_cycle_all(
     psi = _tdc_shift(model)
     cycle = math.pi * strokes
     first = model.firing_order[0] - 1 if model.firing_order_given else 0
-    theta = _cycle_samples(strokes, int(samples_per_revolution))
+    theta = cycle_angles(strokes, int(samples_per_revolution))
     step = cycle / theta.size
     specs = [
         CylinderSpec(
@@ -359,7 +359,7 @@ def engine_cycle_all(
         # ``theta`` for the first cylinder) has its origin: its firing top dead centre is
         # psi_c past the axis, so the cylinders fire at their real top dead centres
         local = theta - (fire[c] - fire[first]) + (psi[c] - psi[first])
-        p = _pressure(local, spec, sources[c], strokes)
+        p = cylinder_pressure(local, spec, sources[c], strokes)
         f = cylinder_forces(local, spec, p, w)
         axis = np.exp(1j * model.cylinder_bank[c])
         obliquity = f.u / f.q
@@ -387,10 +387,10 @@ def engine_cycle_all(
         variable = inertia_total - crank_inertia  # the reciprocating parts' share
         # the mean of the reciprocating parts' inertia turns with the crank like a flywheel
         required = max(total - float(np.mean(variable)), 0.0)
-        check = _speed_from_energy(work, required + variable, w, step)
+        check = speed_from_energy(work, required + variable, w, step)
         achieved = float(np.ptp(check) / w)
     try:
-        omega = _speed_from_energy(work, inertia_total, w, step)
+        omega = speed_from_energy(work, inertia_total, w, step)
     except InputError as error:
         if required is None:
             raise

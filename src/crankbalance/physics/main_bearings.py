@@ -32,6 +32,10 @@ convention of :func:`crankbalance.physics.beam.bending_moment_at`), a complex nu
 part is the moment of the z-components (bending in the y-z plane) and imaginary part that
 of the x-components; its magnitude is the resultant bending moment.
 
+Why one module over 800 lines: the loads, the stiffness and the three ways to carry them
+(lever rule, continuous beam, clearance contact) are one model, the crank as a beam on its
+bearings; each crank model takes the same loads and stiffness and gives the same result.
+
 References
 ----------
 J. M. Gere, S. P. Timoshenko, *Mechanics of Materials* (lever rule, force method,
@@ -49,7 +53,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive
-from ..results import ResultMixin
+from ..results import ROUND_OFF, ResultMixin, below_round_off
 from .beam import bending_moment_at
 from .friction import friction_torque, petroff_torque
 
@@ -1113,10 +1117,12 @@ def main_bearing_loads(
     positions = np.concatenate([loads.position, xb])
     every = np.concatenate([loads.load, reactions]).T  # (S, L + B)
     journal, pin = (_moments(x, positions, every) for x in (xb, yt))
-    # what is below round-off of the loads' moments is exactly zero (an end journal)
-    tiny = 1e-12 * float(np.abs(every).sum(axis=1).max(initial=0.0)) * float(np.ptp(positions))
-    journal = np.where(np.abs(journal) <= tiny, 0.0, journal)
-    pin = np.where(np.abs(pin) <= tiny, 0.0, pin)
+    # what is at most the round-off of the loads' moments is exactly zero (an end journal):
+    # the one rule (results.ROUND_OFF) on the scale of these loads, which gas forces make
+    # larger than the engine's inertia scale
+    scale = float(np.abs(every).sum(axis=1).max(initial=0.0)) * float(np.ptp(positions))
+    journal = below_round_off(journal, ROUND_OFF * scale)
+    pin = below_round_off(pin, ROUND_OFF * scale)
     bearing_load = -reactions
     magnitude = np.abs(bearing_load)
     return MainBearingLoads(

@@ -30,11 +30,14 @@ throws at the same axial place (one pin, or a pin split in two).
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from collections.abc import Callable, Sequence
+from dataclasses import dataclass, field, fields, replace
+from typing import Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..errors import InputError
 from ..results import ResultMixin
 from .articulated import ArticulatedRods, Articulation
 
@@ -353,3 +356,303 @@ def _vr_layout(
         np.arange(n, dtype=np.int64),
         banks.astype(np.float64),
     )
+
+
+# --------------------------------------------------------------------------- batches
+@dataclass(frozen=True)
+class EngineBatch:
+    """Many engines of one topology: arrays with a leading engine axis (E engines).
+
+    The ``topology`` fixes what the engines share: the throws' axial positions, the throw
+    and bank angle of each cylinder and the kinematics model. Each engine has its own throw
+    angles, masses, crank radius, conrod length, cylinder offsets and speed. Rods side by
+    side on a pin keep the topology's places (``cylinder_axial``) and big-end masses
+    (``cylinder_rotating_mass``). Build it with :func:`engine_batch` or
+    :func:`stack_models`; master-and-link rods (``articulation``) are refused there (each
+    engine's rods would need their own geometry).
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The shared layout (its throw angles, masses, radius, rod length, offset and speed
+        are not used).
+    throw_angle : ndarray, shape (E, T)
+        Throw angles [rad].
+    throw_rotating_mass : ndarray, shape (E, T)
+        Rotating mass of each throw at the crank radius [kg].
+    reciprocating_mass : ndarray, shape (E, C)
+        Reciprocating mass of each cylinder [kg].
+    crank_radius, rod_length : ndarray, shape (E,)
+        Crank radius and conrod length [m].
+    cylinder_offset : ndarray, shape (E, C)
+        Each cylinder's total offset (crank, wrist-pin and bank offsets) [m].
+    speed : ndarray, shape (E,)
+        Crank speed [rad/s].
+    """
+
+    topology: EngineModel
+    throw_angle: NDArray[np.float64]
+    throw_rotating_mass: NDArray[np.float64]
+    reciprocating_mass: NDArray[np.float64]
+    crank_radius: NDArray[np.float64]
+    rod_length: NDArray[np.float64]
+    cylinder_offset: NDArray[np.float64]
+    speed: NDArray[np.float64]
+
+    @property
+    def size(self) -> int:
+        """Number of engines E."""
+        return int(self.crank_radius.size)
+
+    def model(self, index: int) -> EngineModel:
+        """Engine ``index`` as an :class:`EngineModel`, for the one-engine functions."""
+        return replace(
+            self.topology,
+            throw_angle=self.throw_angle[index].copy(),
+            throw_rotating_mass=self.throw_rotating_mass[index].copy(),
+            reciprocating_mass=self.reciprocating_mass[index].copy(),
+            crank_radius=float(self.crank_radius[index]),
+            rod_length=float(self.rod_length[index]),
+            cylinder_offset=self.cylinder_offset[index].copy(),
+            speed=float(self.speed[index]),
+        )
+
+    def take(self, index: slice | NDArray[np.int64]) -> EngineBatch:
+        """The engines ``index`` (a slice or integer indices) as a batch."""
+        return take(self, index)
+
+    @property
+    def throw_position(self) -> NDArray[np.float64]:
+        """Axial position of each throw, shared by the engines (the topology's) [m]."""
+        return self.topology.throw_position
+
+    PER_ENGINE: ClassVar[tuple[str, ...]] = (
+        "throw_angle",
+        "throw_rotating_mass",
+        "reciprocating_mass",
+        "crank_radius",
+        "rod_length",
+        "cylinder_offset",
+        "speed",
+    )
+
+
+def engine_batch(
+    topology: EngineModel,
+    size: int | None = None,
+    *,
+    throw_angle: ArrayLike | None = None,
+    throw_rotating_mass: ArrayLike | None = None,
+    reciprocating_mass: ArrayLike | None = None,
+    crank_radius: ArrayLike | None = None,
+    rod_length: ArrayLike | None = None,
+    cylinder_offset: ArrayLike | None = None,
+    speed: ArrayLike | None = None,
+) -> EngineBatch:
+    """Engines of one topology from arrays; what is not given is the topology's value.
+
+    An array with a leading engine axis gives one value per engine; without it (per-throw
+    and per-cylinder arrays of one dimension, scalars) the value is shared by all engines.
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The shared layout and the default of every value not given.
+    size : int, optional
+        Number of engines E; default the leading axis of the arrays given (1 if none has
+        one).
+    throw_angle : array_like, shape (E, T) or (T,), optional
+        Throw angles [rad].
+    throw_rotating_mass : array_like, shape (E, T) or (T,), optional
+        Rotating mass of each throw at the crank radius [kg].
+    reciprocating_mass : array_like, shape (E, C) or (C,), optional
+        Reciprocating mass of each cylinder [kg].
+    crank_radius, rod_length : array_like, shape (E,) or scalar, optional
+        Crank radius and conrod length [m].
+    cylinder_offset : array_like, shape (E, C) or (C,), optional
+        Each cylinder's total offset (crank, wrist-pin and bank offsets) [m].
+    speed : array_like, shape (E,) or scalar, optional
+        Crank speed [rad/s].
+
+    Returns
+    -------
+    EngineBatch
+        The engines, every array with its leading engine axis.
+
+    Raises
+    ------
+    InputError
+        If the arrays disagree on the number of engines or have the wrong shape, or an
+        engine has a non-finite value, a crank radius or speed not above zero, a negative
+        mass, or a conrod not longer than the crank radius plus the offset; or the
+        topology has master-and-link rods.
+    """
+    if topology.articulation is not None:
+        raise InputError(
+            "articulation",
+            topology.name,
+            "master-and-link rods are not modelled for a batch of engines; analyse and "
+            "balance this engine on its own",
+        )
+    tails = {
+        "throw_angle": (topology.throws,),
+        "throw_rotating_mass": (topology.throws,),
+        "reciprocating_mass": (topology.cylinders,),
+        "crank_radius": (),
+        "rod_length": (),
+        "cylinder_offset": (topology.cylinders,),
+        "speed": (),
+    }
+    arguments = {
+        "throw_angle": throw_angle,
+        "throw_rotating_mass": throw_rotating_mass,
+        "reciprocating_mass": reciprocating_mass,
+        "crank_radius": crank_radius,
+        "rod_length": rod_length,
+        "cylinder_offset": cylinder_offset,
+        "speed": speed,
+    }
+    given = {k: np.asarray(v, dtype=float) for k, v in arguments.items() if v is not None}
+    sizes = {a.shape[0] for k, a in given.items() if a.ndim == len(tails[k]) + 1}
+    if size is not None:
+        sizes.add(size)
+    if len(sizes) > 1 or min(sizes, default=1) < 1:
+        raise InputError(
+            "engine_batch", sorted(sizes), "one number of engines, 1 or more, for every array"
+        )
+    n = sizes.pop() if sizes else 1
+    values: dict[str, NDArray] = {}
+    for name, tail in tails.items():
+        value = given.get(name, np.asarray(getattr(topology, name), dtype=float))
+        try:
+            values[name] = np.array(np.broadcast_to(value, (n, *tail)), dtype=float)
+        except ValueError:
+            raise InputError(name, list(np.shape(value)), f"shape {(n, *tail)} or {tail}") from None
+    _check_batch(values)
+    return EngineBatch(topology, **values)
+
+
+def _check_batch(values: dict[str, NDArray]) -> None:
+    """Raise :class:`InputError` for the first engine with an impossible value."""
+    r, length = values["crank_radius"], values["rod_length"]
+    e = np.abs(values["cylinder_offset"]).max(axis=-1, initial=0.0)
+    checks = [(name, np.isfinite(a), "must be finite") for name, a in values.items()]
+    checks += [
+        ("crank_radius", r > 0, "must be greater than zero"),
+        ("speed", values["speed"] > 0, "must be greater than zero"),
+        ("throw_rotating_mass", values["throw_rotating_mass"] >= 0, "must be zero or more"),
+        ("reciprocating_mass", values["reciprocating_mass"] >= 0, "must be zero or more"),
+        ("rod_length", length > r + np.abs(e), "must exceed the crank radius plus the offset"),
+    ]
+    for name, ok, allowed in checks:
+        bad = np.flatnonzero(~ok.reshape(ok.shape[0], -1).all(axis=1))
+        if bad.size:
+            i = int(bad[0])
+            raise InputError(name, values[name][i].tolist(), f"{allowed} (engine {i})")
+
+
+def stack_models(models: Sequence[EngineModel]) -> EngineBatch:
+    """Engine models of one topology stacked into a batch.
+
+    Parameters
+    ----------
+    models : sequence of EngineModel
+        The engines; all have the throw positions, cylinder throws and bank angles and the
+        kinematics model of the first.
+
+    Returns
+    -------
+    EngineBatch
+        The engines in the order given (the first is the topology).
+
+    Raises
+    ------
+    InputError
+        If ``models`` is empty, an engine has master-and-link rods or its topology differs
+        from the first's.
+    """
+    if not models:
+        raise InputError("models", [], "at least one engine")
+    for i, m in enumerate(models):
+        if m.articulation is not None:
+            raise InputError(
+                f"models[{i}]",
+                m.name,
+                "has master-and-link rods, which the batch solver does not model; "
+                "balance it on its own (balance)",
+            )
+    first = models[0]
+    for i, m in enumerate(models):
+        same = (
+            m.kinematics == first.kinematics
+            and np.array_equal(m.throw_position, first.throw_position)
+            and np.array_equal(m.cylinder_throw, first.cylinder_throw)
+            and np.array_equal(m.cylinder_bank, first.cylinder_bank)
+            and np.array_equal(m.cylinder_axial, first.cylinder_axial)
+            and np.array_equal(m.cylinder_rotating_mass, first.cylinder_rotating_mass)
+        )
+        if not same:
+            raise InputError(
+                "models",
+                f"engine {i} ({m.name})",
+                "engines of one topology: the throw positions, cylinder throws, bank "
+                "angles, rod places, big ends and kinematics of the first",
+            )
+    return engine_batch(
+        first,
+        len(models),
+        throw_angle=[m.throw_angle for m in models],
+        throw_rotating_mass=[m.throw_rotating_mass for m in models],
+        reciprocating_mass=[m.reciprocating_mass for m in models],
+        crank_radius=[m.crank_radius for m in models],
+        rod_length=[m.rod_length for m in models],
+        cylinder_offset=[m.cylinder_offset for m in models],
+        speed=[m.speed for m in models],
+    )
+
+
+def take(obj: Any, index: slice | NDArray[np.int64]) -> Any:
+    """The engines ``index`` (a slice or integer indices) of a batch dataclass: an
+    :class:`EngineBatch` or a batch result (its ``PER_ENGINE`` arrays, recursively).
+
+    Parameters
+    ----------
+    obj : dataclass with PER_ENGINE, or None
+        The batch (None gives None).
+    index : slice or ndarray of int
+        Which engines [-].
+
+    Returns
+    -------
+    dataclass or None
+        The same type, every per-engine array indexed.
+    """
+    return per_engine(obj, lambda a: a[index])
+
+
+def per_engine(obj: Any, func: Callable[[NDArray[Any]], NDArray[Any]]) -> Any:
+    """A batch dataclass with ``func`` applied to its ``PER_ENGINE`` arrays, recursively
+    (into fields that are batch dataclasses themselves).
+
+    Parameters
+    ----------
+    obj : dataclass with PER_ENGINE, or None
+        The batch (None gives None).
+    func : callable
+        Applied to each per-engine array (leading engine axis) [-].
+
+    Returns
+    -------
+    dataclass or None
+        The same type with the arrays ``func`` returned.
+    """
+    if obj is None:
+        return None
+    changes = {}
+    for f in fields(obj):
+        value = getattr(obj, f.name)
+        if f.name in obj.PER_ENGINE and value is not None:
+            changes[f.name] = func(value)
+        elif hasattr(value, "PER_ENGINE"):
+            changes[f.name] = per_engine(value, func)
+    return replace(obj, **changes)

@@ -37,11 +37,8 @@ from numpy.typing import NDArray
 
 from ..errors import InputError, check_finite, check_nonnegative, check_positive, check_range
 from ..results import ResultMixin
-from .single_cylinder import (
-    STEEL_DENSITY,
-    _check_mass,
-    balance_factor_from_mass_properties,
-)
+from .shop.holes import STEEL_DENSITY
+from .single_cylinder import balance_factor_from_mass_properties, check_mass
 
 STANDARD_GRAVITY = 9.80665
 #: Most evaluations of the equations of motion one :func:`run_bench` may take; a run that
@@ -587,7 +584,7 @@ def disc_inertia(mass: float, diameter: float) -> float:
     ----------
     Hoem and Røsholm (2016) Appendix E, Eq. 7.6.
     """
-    _check_mass("mass", mass)
+    check_mass("mass", mass)
     check_positive("diameter", diameter)
     return mass * (diameter / 2.0) ** 2 / 2.0
 
@@ -607,7 +604,7 @@ def point_mass_inertia(mass: float, radius: float) -> float:
     float
         Inertia about the axis [kg m^2].
     """
-    _check_mass("mass", mass)
+    check_mass("mass", mass)
     if not radius >= 0:
         raise InputError("radius", radius, "must be >= 0 [m]")
     return mass * radius**2
@@ -917,8 +914,8 @@ def stroking_effect(
             f"must lie in ({crankpin_bore:g}, {crankpin_diameter:g}] m "
             "(stroking makes the crankpin smaller, not below its bore)",
         )
-    _check_mass("crankpin_mass", crankpin_mass)
-    _check_mass("rotating_mass", rotating_mass)
+    check_mass("crankpin_mass", crankpin_mass)
+    check_mass("rotating_mass", rotating_mass)
     if crankpin_mass > rotating_mass:
         raise InputError(
             "crankpin_mass", crankpin_mass, f"must not exceed rotating_mass = {rotating_mass:g} kg"

@@ -25,6 +25,10 @@ The rotating masses give a forward first-order phasor only:
 :math:`F_{rot} = \sum_t m_t r\omega^2 e^{i\varphi_t}`.
 
 These are the forces the crank train exerts on the engine block (inertia forces).
+
+Why one module over 800 lines: the phasors of one engine and of a batch, their amplitudes
+and their curves are one computation, the sums over the cylinders (:func:`_cylinder_sums`),
+which the articulated rods enter through the same coefficients.
 """
 
 from __future__ import annotations
@@ -46,7 +50,7 @@ from .kinematics import (
     harmonic_coefficients,
     piston_acceleration,
 )
-from .model import EngineModel
+from .model import EngineBatch, EngineModel
 
 
 @dataclass(frozen=True)
@@ -145,18 +149,21 @@ def free_forces(
     if model.articulation is not None:
         link = _link_pin_phasors(model, orders)
         fwd, bwd, cfwd, cbwd = fwd + link[0], bwd + link[1], cfwd + link[2], cbwd + link[3]
-    turn = np.exp(1j * model.throw_angle)
-    rotating = accel * model.throw_rotating_mass
-    # the big ends of side-by-side rods at their own axial places (exact zeros otherwise)
-    couple = rotating * model.throw_position + accel * model.throw_axial_moment
+    rotating_force, rotating_couple = rotating_phasors(
+        model.throw_rotating_mass,
+        model.throw_rotating_moment,
+        model.throw_angle,
+        model.crank_radius,
+        model.speed,
+    )
     return FreeForces(
         orders=np.arange(1, orders + 1),
         force_forward=fwd,
         force_backward=bwd,
         couple_forward=cfwd,
         couple_backward=cbwd,
-        rotating_force=complex(np.vdot(rotating, turn)),
-        rotating_couple=complex(np.vdot(couple, turn)),
+        rotating_force=complex(rotating_force),
+        rotating_couple=complex(rotating_couple),
     )
 
 
@@ -182,22 +189,188 @@ def cylinder_coefficients(
 
     Returns
     -------
-    ndarray of complex, shape (C, K)
+    ndarray of complex, shape (C, K) or (1, K)
         :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
-        (:func:`crankbalance.physics.kinematics.harmonic_coefficients`) [-].
+        (:func:`crankbalance.physics.kinematics.harmonic_coefficients`), one row for all
+        when the cylinders share one offset (read-only then) [-].
     """
     mode = kinematics or model.kinematics
     if model.articulation is not None:
         return _articulated_rows(model, orders, mode)
-    ratio = model.cylinder_offset / model.crank_radius
-    shared, index = np.unique(ratio, return_inverse=True)
-    rows = [
-        cached_exact_coefficients(model.rod_ratio, float(e), orders)
-        if mode == "exact"
-        else harmonic_coefficients(model.rod_ratio, orders, float(e), mode)  # type: ignore[arg-type]
-        for e in shared
-    ]
-    return np.asarray(rows, dtype=complex).reshape(shared.size, orders)[index.reshape(-1)]
+    return coefficient_rows(
+        model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
+    )
+
+
+def coefficient_rows(
+    rod_ratio: ArrayLike, offset_ratio: ArrayLike, orders: int, kinematics: str
+) -> NDArray[np.complex128]:
+    r"""Harmonic coefficients :math:`c_{n,c}` of the cylinders of one engine or of a batch.
+
+    The kinematics of the free forces of a model (:func:`cylinder_coefficients`) and of a
+    batch (:func:`batch_free_forces`). Engines sharing their rod ratio and offsets share
+    one set of rows (each distinct offset once, exact ones from their cache); an engine
+    whose cylinders share one offset has one row for all (a cylinder axis of 1).
+
+    Parameters
+    ----------
+    rod_ratio : array_like, shape () or (E,)
+        :math:`\lambda = r/l` [-] of the engine or of each engine.
+    offset_ratio : array_like, shape (C,) or (E, C)
+        Each cylinder's offset over the crank radius, :math:`e/r` [-].
+    orders : int
+        Highest harmonic order K.
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model (:func:`crankbalance.physics.kinematics.harmonic_coefficients`).
+
+    Returns
+    -------
+    ndarray of complex, shape (C, K), (1, K), (E, 1, K) or (E, C, K)
+        :math:`c_n = a_n - i b_n` of orders 1..K, broadcasting over the cylinders (and the
+        engines) of the arguments; a cylinder axis of 1 when the cylinders share one row
+        (read-only then, from the cache) [-].
+    """
+    lam = np.asarray(rod_ratio, dtype=float)
+    ratio = np.asarray(offset_ratio, dtype=float)
+    first = ratio.reshape(-1, ratio.shape[-1])[0]
+    if np.all(lam == lam.flat[0]) and np.all(ratio == first):  # one set of rows for all
+        lam0 = float(lam.flat[0])
+
+        def row(e: float) -> NDArray[np.complex128]:
+            if kinematics == "exact":
+                return cached_exact_coefficients(lam0, e, orders)
+            return harmonic_coefficients(lam0, orders, e, kinematics)  # type: ignore[arg-type]
+
+        if np.all(first == first[0]):  # one offset: one row for every cylinder (read-only)
+            return row(float(first[0]))[None, :]
+        shared, index = np.unique(first, return_inverse=True)
+        rows = np.asarray([row(float(e)) for e in shared], dtype=complex)
+        return rows.reshape(shared.size, orders)[index.reshape(-1)]
+    if np.all(ratio == ratio[..., :1]):  # one offset per engine: one row per engine
+        return harmonic_coefficients(lam, orders, ratio[..., 0], kinematics)[..., None, :]  # type: ignore[arg-type]
+    return harmonic_coefficients(lam[..., None], orders, ratio, kinematics)  # type: ignore[arg-type]
+
+
+def rotating_phasors(
+    mass: ArrayLike,
+    moment: ArrayLike,
+    throw_angle: ArrayLike,
+    crank_radius: ArrayLike,
+    speed: ArrayLike,
+) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+    r"""First-order phasors of force and couple of the rotating masses, one engine or many.
+
+    .. math:: F_{rot} = r\omega^2 \sum_t m_t e^{i\varphi_t},\qquad
+              C_{rot} = r\omega^2 \sum_t (m_t y_t + \textstyle\sum_c m_{b,c} a_c)
+              e^{i\varphi_t}
+
+    (the big ends of side-by-side rods at their own axial places,
+    :attr:`~crankbalance.physics.model.EngineModel.throw_rotating_moment`).
+
+    Parameters
+    ----------
+    mass : array_like, shape (..., T)
+        Rotating mass of each throw at the crank radius [kg].
+    moment : array_like, shape (..., T)
+        Its first moment about the moment reference point along the crank axis [kg·m].
+    throw_angle : array_like, shape (..., T)
+        Throw angles [rad].
+    crank_radius, speed : array_like, shape (...)
+        Crank radius [m] and crank speed [rad/s].
+
+    Returns
+    -------
+    force : ndarray of complex, shape (...)
+        Forward first-order phasor :math:`F_{rot}` [N].
+    couple : ndarray of complex, shape (...)
+        Its couple :math:`C_{rot}` about the moment reference point [N·m].
+
+    References
+    ----------
+    Appl. Sci. 2021 (the rotating masses in the matrix formulation); Den Hartog (1956)
+    ch. 5.
+    """
+    turn = np.exp(1j * np.asarray(throw_angle, dtype=float))
+    accel = np.multiply(crank_radius, np.square(speed))
+    force = accel * np.sum(np.multiply(mass, turn), axis=-1)
+    couple = accel * np.sum(np.multiply(moment, turn), axis=-1)
+    return force, couple
+
+
+@dataclass(frozen=True)
+class BatchFreeForces(ResultMixin):
+    r"""Free forces and moments of a batch of engines by order (:class:`FreeForces`, with a
+    leading engine axis).
+
+    Parameters
+    ----------
+    orders : ndarray of int, shape (K,)
+        Harmonic orders 1..K.
+    force_forward, force_backward : ndarray of complex, shape (E, K)
+        :math:`F_n^{\pm}` of each engine [N].
+    couple_forward, couple_backward : ndarray of complex, shape (E, K)
+        :math:`C_n^{\pm}` about the moment reference point [N·m].
+    rotating_force : ndarray of complex, shape (E,)
+        First-order forward phasor of the rotating masses [N].
+    rotating_couple : ndarray of complex, shape (E,)
+        Its couple [N·m].
+    """
+
+    orders: NDArray[np.int64]
+    force_forward: NDArray[np.complex128]
+    force_backward: NDArray[np.complex128]
+    couple_forward: NDArray[np.complex128]
+    couple_backward: NDArray[np.complex128]
+    rotating_force: NDArray[np.complex128]
+    rotating_couple: NDArray[np.complex128]
+
+
+def batch_free_forces(batch: EngineBatch, orders: int = 8) -> BatchFreeForces:
+    """:func:`free_forces` of every engine of a batch, by the same three functions: the
+    harmonic coefficients (:func:`coefficient_rows`, computed once when the engines share
+    their rod ratio and offsets), the phasor sums over the cylinders
+    (:func:`reciprocating_phasors`) and the rotating masses (:func:`rotating_phasors`).
+
+    Parameters
+    ----------
+    batch : EngineBatch
+        The engines (:func:`crankbalance.physics.model.engine_batch`).
+    orders : int
+        Highest harmonic order K.
+
+    Returns
+    -------
+    BatchFreeForces
+        Phasors of every engine [N], [N·m].
+
+    References
+    ----------
+    As :func:`free_forces`.
+    """
+    topo = batch.topology
+    r = batch.crank_radius
+    coeff = coefficient_rows(
+        r / batch.rod_length, batch.cylinder_offset / r[:, None], orders, topo.kinematics
+    )
+    fwd, bwd, cfwd, cbwd = reciprocating_phasors(
+        coeff,
+        batch.reciprocating_mass,
+        np.take(batch.throw_angle, topo.cylinder_throw, axis=-1),
+        topo.cylinder_bank,
+        topo.cylinder_position,
+        r,
+        batch.speed,
+        per_cylinder=True,
+    )
+    y = topo.throw_position
+    force, couple = rotating_phasors(
+        batch.throw_rotating_mass,
+        batch.throw_rotating_mass * y + topo.throw_axial_moment,
+        batch.throw_angle,
+        r,
+        batch.speed,
+    )
+    return BatchFreeForces(np.arange(1, orders + 1), fwd, bwd, cfwd, cbwd, force, couple)
 
 
 def reciprocating_phasors(
@@ -242,11 +415,6 @@ def reciprocating_phasors(
             mass, throw_angle, bank, position, crank_radius, speed, c.shape[-1], c, per_cylinder
         )
     )
-
-
-#: Up to this many cylinders times orders :func:`_cylinder_sums` takes the exponentials of
-#: all the angles at once (one engine); beyond, the powers of one exponential per cylinder.
-SMALL = 1024
 
 
 def _phasors(sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
@@ -303,7 +471,7 @@ def _cylinder_sums(
     the last bit, as an engine whose cylinders share one offset).
     """
     if coefficients is not None and per_cylinder:
-        if np.all(coefficients == coefficients[..., :1, :]):
+        if coefficients.shape[-2] == 1 or np.all(coefficients == coefficients[..., :1, :]):
             coefficients, per_cylinder = coefficients[..., 0, :], False
         else:
             return _weighted_sums(p, theta, beta, position, orders, coefficients)
@@ -318,8 +486,14 @@ def _cylinder_sums(
 
 
 def _powers(theta: NDArray, orders: int) -> NDArray[np.complex128]:
-    """:math:`z_c^n = e^{in\theta_c}` of orders 1..K, shape (..., C, K)."""
-    if theta.size * orders <= SMALL:  # one engine: the fewest numpy calls
+    """:math:`z_c^n = e^{in\theta_c}` of orders 1..K, shape (..., C, K).
+
+    One engine (no engine axis): the exponentials of all the angles at once, the fewest
+    numpy calls. An engine axis, however long: the powers of one exponential per cylinder,
+    each engine's numbers computed alike whatever the batch (a batch of one gives the bits
+    of a batch of thousands, so a result does not depend on its batch).
+    """
+    if theta.ndim <= 1:  # one engine: the fewest numpy calls
         return np.exp(1j * theta[..., None] * np.arange(1.0, orders + 1))
     # many: z**1 .. z**K by doubling, z**(m+1..2m) = z**(1..m) * z**m, orders first so
     # that every product runs over all the engines and cylinders at once

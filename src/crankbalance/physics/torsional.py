@@ -32,6 +32,10 @@ speed ω; a harmonic of engine order n has the angular frequency Ω = n ω and i
 :math:`\mathrm{Re}(X e^{i n \theta})` with the crank angle θ = ω t (half orders for a
 four-stroke). Torques on the crank are positive with rotation.
 
+Why one module over 800 lines: the chain, its modes, the excitation and the forced response
+are one model of one vibration, the lumped chain, and the study bounds its work from all
+of them.
+
 References
 ----------
 Den Hartog (1956), ch. 5 (torsional vibration of engines: lumped model, mode shapes,

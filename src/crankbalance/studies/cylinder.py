@@ -21,13 +21,11 @@ import numpy as np
 from ..errors import InputError
 from ..physics.kinematics import KinematicsModel
 from ..physics.model import EngineModel
+from ..physics.rebalancing import DrilledHoles, RebalanceResult, rebalance
 from ..physics.single_cylinder import (
     BalanceFactorStudy,
-    DrilledHoles,
-    RebalanceResult,
     balance_factor_study,
     counterweight_moment,
-    rebalance,
 )
 from ..physics.tolerance import BalanceGrade, ToleranceVerdict
 from ..results import ResultMixin

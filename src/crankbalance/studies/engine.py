@@ -3,10 +3,11 @@ moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -14,10 +15,13 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import to_jsonable
+from ..results import below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
+
+if TYPE_CHECKING:  # the verification is imported when asked for
+    from ..physics.balance_check import Verification
 
 SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
@@ -42,6 +46,14 @@ def as_model(engine: EngineLike) -> EngineModel:
     return build_model(engine)
 
 
+def engine_label(engine: EngineLike) -> str:
+    """An engine as a message or an output names it: the preset name or the path as given,
+    else the name of the spec or model."""
+    if isinstance(engine, EngineSpec | EngineModel):
+        return str(engine.name)
+    return str(engine)
+
+
 @dataclass(frozen=True)
 class Analysis:
     """Free forces and moments of one engine (see :func:`analyze`)."""
@@ -55,25 +67,16 @@ class Analysis:
 
     def to_dict(self) -> dict[str, Any]:
         m, f = self.model, self.forces
-        # what is below round-off of the engine's force scale is reported as exactly zero
-        scale = (
-            float(np.sum(m.reciprocating_mass) + np.sum(m.throw_rotating_mass))
-            * (m.crank_radius * m.speed**2)
-            * max(1.0, float(np.ptp(m.throw_position)))
-        )
-        tiny = 1e-12 * scale
-
-        def clean(value: complex) -> complex:
-            return 0j if abs(value) < tiny else complex(value)
-
+        # what is at most the engine's round-off is reported as exactly zero
+        force, moment = round_off(m)
         f = FreeForces(
             orders=f.orders,
-            force_forward=np.array([clean(v) for v in f.force_forward]),
-            force_backward=np.array([clean(v) for v in f.force_backward]),
-            couple_forward=np.array([clean(v) for v in f.couple_forward]),
-            couple_backward=np.array([clean(v) for v in f.couple_backward]),
-            rotating_force=clean(f.rotating_force),
-            rotating_couple=clean(f.rotating_couple),
+            force_forward=below_round_off(f.force_forward, force),
+            force_backward=below_round_off(f.force_backward, force),
+            couple_forward=below_round_off(f.couple_forward, moment),
+            couple_backward=below_round_off(f.couple_backward, moment),
+            rotating_force=complex(below_round_off(f.rotating_force, force)),
+            rotating_couple=complex(below_round_off(f.rotating_couple, moment)),
         )
         rows_f, rows_m = [], []
         for k, order in enumerate(f.orders):
@@ -182,8 +185,9 @@ def firing_summary(m: EngineModel) -> dict[str, Any]:
 
 
 def _phase(value: complex) -> float:
-    """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor)."""
-    if abs(value) < 1e-12:
+    """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor: one at
+    most the round-off, which ``to_dict`` sets to zero first)."""
+    if value == 0:
         return 0.0
     return float(np.degrees(np.arctan2(value.imag, value.real)))
 
@@ -244,10 +248,12 @@ def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
 
 @dataclass(frozen=True)
 class BalanceStudy:
-    """Counterweights and balance shafts of one engine (see :func:`balance_engine`)."""
+    """Counterweights and balance shafts of one engine (see :func:`balance_engine`), and
+    the time-domain verification when it was asked for."""
 
     model: EngineModel
     result: Any  # balancing.BalanceResult
+    verification: Verification | None = None  # when asked for
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.balance/2`` (docs/json.md)."""
@@ -342,19 +348,52 @@ class BalanceStudy:
             "unbalanced": unbalanced,
             "notes": list(res.notes),
         }
+        if self.verification is not None:
+            out["verification"] = verification_dict(self.verification)
         result = to_jsonable(out)
         assert isinstance(result, dict)
         return result
 
 
+def verification_dict(verification: Verification) -> dict[str, Any]:
+    """The ``verification`` block of ``crankbalance.balance/2`` (docs/json.md): the
+    time-domain amplitudes and their largest differences from the solver's."""
+    return {
+        "samples": verification.samples,
+        "agrees": verification.agrees,
+        "force_difference_N": verification.force_difference,
+        "moment_difference_Nm": verification.moment_difference,
+        "force_round_off_N": verification.force_round_off,
+        "moment_round_off_Nm": verification.moment_round_off,
+        "components": [
+            {
+                "component": c.component,
+                "targeted": c.targeted,
+                "force_before_N": c.force_before,
+                "force_after_N": c.force_after,
+                "moment_before_Nm": c.moment_before,
+                "moment_after_Nm": c.moment_after,
+            }
+            for c in verification.residuals
+        ],
+    }
+
+
 def balance_engine(
-    engine: str | os.PathLike[str] | EngineSpec, orders: int = 8, **overrides: Any
+    engine: str | os.PathLike[str] | EngineSpec,
+    orders: int = 8,
+    *,
+    verify: bool = False,
+    **overrides: Any,
 ) -> BalanceStudy:
     """Counterweights and balance shafts of an engine, as its file asks for.
 
     ``overrides`` replace fields of the counterweight options (``angle``,
     ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``) or give
     ``primary``/``secondary`` as :class:`~crankbalance.physics.balancing.ShaftOptions` (or None).
+    ``verify`` adds the time-domain verification of the result
+    (:func:`crankbalance.physics.balance_check.verify`; the residuals themselves come from
+    the solver's phasors).
     """
     import dataclasses
 
@@ -368,4 +407,63 @@ def balance_engine(
     secondary = overrides.pop("secondary", secondary)
     if overrides:
         cw = dataclasses.replace(cw, **overrides)
-    return BalanceStudy(model, balance(model, cw, primary, secondary, orders))
+    result = balance(model, cw, primary, secondary, orders)
+    checked = None
+    if verify:
+        from ..physics.balance_check import verify as time_domain
+
+        checked = time_domain(model, result)
+    return BalanceStudy(model, result, checked)
+
+
+# --------------------------------------------------------------------------- the two studies
+def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
+    """The analysis study of the registry (``analyze``): :func:`analyze` of ``engine`` with
+    its settings (the highest order)."""
+    return analyze(engine, settings.orders)
+
+
+def balancing(engine: str | os.PathLike[str] | EngineSpec, settings: Any) -> BalanceStudy:
+    """The balancing study of the registry (``balance``): :func:`balance_engine` of
+    ``engine`` with the counterweight settings given in ``settings``
+    (:class:`~crankbalance.schema.settings.BalanceOptions`: angle, balance factor, method,
+    scope) in place of the engine file's, with the time-domain verification when it asks
+    for it (``verify``). An angle given for individual counterweights, which
+    take no common angle, is refused."""
+    from ..errors import InputError
+    from ..schema.settings import given
+
+    overrides = {
+        name: getattr(settings, name)
+        for name in ("angle", "balance_factor", "method", "scope")
+        if getattr(settings, name) is not None
+    }
+    study = balance_engine(engine, verify=settings.verify, **overrides)
+    counterweights = study.result.counterweights
+    if "angle" in given(settings) and counterweights is not None:
+        if counterweights.method == "individual":
+            raise InputError(
+                "angle", settings.angle, "only acts on equal counterweights (--method pattern)"
+            )
+    return study
+
+
+# --------------------------------------------------------------------------- the library
+PRESETS_SCHEMA = "crankbalance.presets/1"
+
+
+@functools.cache
+def preset_titles() -> tuple[tuple[str, str], ...]:
+    """(name, title) of every built-in engine, read once per process."""
+    from ..io.engine_file import list_presets
+
+    return tuple((name, load_engine(name).name) for name in list_presets())
+
+
+def presets_listing() -> dict[str, Any]:
+    """The JSON contract ``crankbalance.presets/1``: every built-in engine's name and title
+    (``crankbalance presets --format json`` and ``GET /api/presets``)."""
+    return {
+        "schema": PRESETS_SCHEMA,
+        "presets": [{"name": name, "title": title} for name, title in preset_titles()],
+    }

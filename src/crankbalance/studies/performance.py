@@ -237,7 +237,7 @@ def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> A
 
         if len(o.pressure_csv) not in (1, cylinders):
             raise InputError(
-                "--pressure-csv",
+                "pressure_csv",
                 f"{len(o.pressure_csv)} files",
                 f"give one table for every cylinder, or one per cylinder ({cylinders})",
             )

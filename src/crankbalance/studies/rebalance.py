@@ -2,7 +2,7 @@
 (Hoem and Røsholm (2016), Sec. 6.4, eight steps).
 
 The derivations from the file's content to the input of
-:func:`crankbalance.physics.single_cylinder.rebalance` live here: the correction object, the
+:func:`crankbalance.physics.rebalancing.rebalance` live here: the correction object, the
 permissible residual (given, or from an ISO 21940-11 grade), and one run per target
 balance factor. The ``rebalance`` command merges its options over the file and calls
 :func:`rebalance_parts`; nothing else derives these quantities.
@@ -16,14 +16,8 @@ from typing import Any
 
 from ..errors import InputError
 from ..io.rebalance_file import Correction, Parts, RebalanceFile, Tolerance
-from ..physics.shop.holes import FLAT_BOTTOM
-from ..physics.single_cylinder import (
-    STEEL_DENSITY,
-    DrilledHoles,
-    FaceRemoval,
-    RebalanceResult,
-    rebalance,
-)
+from ..physics.rebalancing import DrilledHoles, FaceRemoval, RebalanceResult, rebalance
+from ..physics.shop.holes import FLAT_BOTTOM, STEEL_DENSITY
 from ..results import ResultMixin
 
 
@@ -110,7 +104,7 @@ def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
 
 
 #: the keys of ``[correction]`` that name the quantities of a correction plan's messages
-#: (:func:`crankbalance.physics.single_cylinder.rebalance`, ``names``)
+#: (:func:`crankbalance.physics.rebalancing.rebalance`, ``names``)
 PLAN_KEYS = {
     "hole_diameter": "correction.diameter",
     "holes": "correction.number",

@@ -21,7 +21,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
-from ...results import ResultMixin
+from ...results import ResultMixin, round_off
 from .common import (
     COLORS,
     TEMPLATE,
@@ -29,7 +29,6 @@ from .common import (
     make_subplots,
     note_if_zero,
     plotly_go,
-    roundoff_levels,
     zero_below,
 )
 
@@ -64,7 +63,7 @@ def balanced_curves(
     "Before" is the reciprocating total of ``analysis`` plus the rotating masses of the
     bare crank; "after" adds every counterweight and shaft mass of ``balance_study``, as
     point masses (:func:`crankbalance.physics.balancing.point_mass_history`, the history the
-    solver's own time-domain check uses).
+    time-domain verification of a balance uses, :mod:`crankbalance.physics.balance_check`).
     Moments about the crankshaft mid-point, :math:`M = iC` (``M_x = y F_z``,
     ``M_z = -y F_x``).
     """
@@ -118,12 +117,13 @@ def _check_same_engine(analysis: Analysis, balance_study: BalanceStudy) -> None:
 
 def residuals_bar(balance_study: BalanceStudy) -> go.Figure:
     """Amplitude of every component (rotating masses, orders 1..K) before and after
-    balancing, force and moment, from the solver's time-domain check
-    (``balance_study.result.residuals``); values below round-off of the engine's force
-    scale (:func:`roundoff_levels`) are drawn as zero."""
+    balancing, force and moment, from the solver (``balance_study.result.residuals``: every
+    balancing mass added back to the free forces); values at most the round-off of the
+    engine's force
+    scale (:func:`crankbalance.results.round_off`) are drawn as zero."""
     go = plotly_go()
     res = balance_study.result.residuals
-    tiny = dict(zip(("force", "moment"), roundoff_levels(balance_study.model), strict=True))
+    tiny = dict(zip(("force", "moment"), round_off(balance_study.model), strict=True))
     names = [
         ("rotating" if c.component == "rotating" else c.component.replace("order", "order "))
         + (" *" if c.targeted else "")

@@ -13,6 +13,8 @@ from typing import TYPE_CHECKING, Any, Literal
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ...results import ROUND_OFF, below_round_off, engine_scales
+
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
@@ -62,21 +64,18 @@ def make_subplots(**kwargs: Any) -> Any:
     return subplots.make_subplots(**kwargs)
 
 
-def roundoff_levels(model: EngineModel, relative: float = 1e-10) -> tuple[float, float]:
-    """Round-off levels of an engine's forces [N] and moments [N·m]: values below are
-    drawn as zero (sums of phasors that cancel leave ~1e-12 N of noise)."""
-    mass = float(np.sum(model.reciprocating_mass) + np.sum(model.throw_rotating_mass))
-    force = mass * model.crank_radius * model.speed**2
-    length = max(float(np.ptp(model.throw_position)), model.crank_radius)
-    return relative * force, relative * force * length
+def roundoff_levels(model: EngineModel, relative: float = ROUND_OFF) -> tuple[float, float]:
+    """Round-off levels of an engine's forces [N] and moments [N·m], the one rule of
+    :func:`crankbalance.results.round_off` (its scales, its share); the figures call that
+    directly, this name stays for the web's callers (``web/tab_results.py``)."""
+    force, length = engine_scales(model)
+    return float(relative * force), float(relative * force * length)
 
 
 def zero_below(values: ArrayLike, tiny: float) -> NDArray[np.float64]:
-    """``values`` as floats, those below ``tiny`` in magnitude set to exactly 0 (round-off
-    drawn as zero, not as a bar of 1e-12 N)."""
-    out = np.array(values, dtype=float)
-    out[np.abs(out) < tiny] = 0.0
-    return out
+    """``values`` as floats, those at most ``tiny`` in magnitude set to exactly 0 (round-off
+    drawn as zero, not as a bar of 1e-12 N; :func:`crankbalance.results.below_round_off`)."""
+    return below_round_off(np.asarray(values, dtype=float), tiny)
 
 
 #: longest engine name shown under a figure title (longer names end in "…")

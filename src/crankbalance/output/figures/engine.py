@@ -27,6 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
+from ...results import round_off
 from ..format import moment_point
 from .balancing import balanced_curves
 from .common import (
@@ -38,7 +39,6 @@ from .common import (
     make_subplots,
     note_if_zero,
     plotly_go,
-    roundoff_levels,
     zero_below,
 )
 
@@ -62,7 +62,7 @@ def leading_quantity(analysis: Analysis) -> Quantity:
     order and the bare crank's rotating masses) is below round-off but a moment is not
     (e.g. an in-line 3), else ``"force"``."""
     f = analysis.forces
-    tf, tm = roundoff_levels(analysis.model, 1e-12)
+    tf, tm = round_off(analysis.model)
     forces = np.append(np.asarray(f.force_amplitude, dtype=float), abs(f.rotating_force))
     moments = np.append(np.asarray(f.moment_amplitude, dtype=float), abs(f.rotating_couple))
     if np.all(forces < tf) and np.any(moments >= tm):
@@ -82,7 +82,7 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         rows=1, cols=2, subplot_titles=("Free forces", "Free moments"), horizontal_spacing=0.12
     )
     labels = [str(int(n)) for n in f.orders] + ["rot"]
-    tf, tm = roundoff_levels(analysis.model, 1e-12)  # as Analysis.to_dict
+    tf, tm = round_off(analysis.model)  # as Analysis.to_dict
     parts = (
         (
             1,
@@ -175,7 +175,7 @@ def curves_figure(
         analysis.forces.force_amplitude if quantity == "force" else analysis.forces.moment_amplitude
     )
     top = len(c.orders) if orders is None else orders
-    tiny = roundoff_levels(analysis.model)[0 if quantity == "force" else 1]
+    tiny = round_off(analysis.model)[0 if quantity == "force" else 1]
 
     def y(source: Any, name: str, k: int | None = None) -> NDArray[np.float64]:
         values = getattr(source, name)
@@ -292,7 +292,7 @@ def polar_figure(
     _check_quantity(quantity)
     go = plotly_go()
     fwd, bwd, n, label = _order_phasors(analysis, order, quantity)
-    tiny = roundoff_levels(analysis.model, 1e-12)[0 if quantity == "force" else 1]
+    tiny = round_off(analysis.model)[0 if quantity == "force" else 1]
     fwd, bwd = (0j if abs(fwd) < tiny else fwd), (0j if abs(bwd) < tiny else bwd)
     unit = _unit(quantity)
     theta = np.linspace(0.0, 2 * np.pi / max(n, 1), 361)

@@ -11,14 +11,14 @@ merit"):
   (:mod:`crankbalance.physics.shaking`);
 - the rotating masses' force and couple, the crank without counterweights;
 - counterweight mass, balance shafts needed and what is left, for a balancing target with
-  a balance factor (:func:`crankbalance.physics.balancing.balance_batch`);
+  a balance factor (:func:`crankbalance.physics.balance_batch.balance_batch`);
 - crank symmetry: how far the crank is from its mirror image about its mid-plane;
 - firing intervals: the largest deviation from even firing, of the engine and of each bank;
 - torsional excitation: the relative vector sum of each engine order's gas-torque
   harmonic over the cylinders, weighted by a mode shape (:data:`TORSION_ASSUMPTION`).
 
-Values below round-off (1e-12 of the engine's force scale, the rule of the analysis JSON)
-are exactly zero, so a filter can ask for ``F2 == 0``.
+Forces and moments at most the engine's round-off (:func:`crankbalance.results.round_off`,
+the one rule of every output) are exactly zero, so a filter can ask for ``F2 == 0``.
 """
 
 from __future__ import annotations
@@ -30,15 +30,11 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
-from ..balancing import (
-    BatchBalance,
-    CounterweightOptions,
-    ShaftOptions,
-    balance_batch,
-    engine_batch,
-)
-from ..model import EngineModel
-from ..shaking import cylinder_coefficients, reciprocating_phasors
+from ...results import ROUND_OFF, below_round_off, round_off
+from ..balance_batch import balance_batch
+from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
+from ..model import EngineModel, engine_batch
+from ..shaking import batch_free_forces
 from .candidates import Candidates
 
 Target = Literal["none", "counterweights", "primary", "secondary"]
@@ -47,8 +43,6 @@ Target = Literal["none", "counterweights", "primary", "secondary"]
 TARGETS: tuple[str, ...] = ("none", "counterweights", "primary", "secondary")
 #: the named mode shapes (or one weight per cylinder)
 MODE_SHAPES: tuple[str, ...] = ("uniform", "linear")
-#: share of the engine's force scale below which a force or moment is exactly zero
-ROUND_OFF = 1e-12
 #: the assumption behind the torsional-excitation columns, to print beside them
 TORSION_ASSUMPTION = (
     "torsional excitation X<k> = |sum_c w_c exp(i k a_c)| / sum_c |w_c| for engine order "
@@ -239,48 +233,34 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
     dict of str to ndarray, each shape (B,)
         ``F<n>_N``, ``F<n>f_N``, ``F<n>b_N`` [N], ``M<n>_Nm``, ``M<n>f_Nm``, ``M<n>b_Nm``
         [N·m] for n = 1..K, and ``Frot_N`` [N], ``Mrot_Nm`` [N·m]: magnitudes of the
-        phasors of :func:`crankbalance.physics.shaking.free_forces` (the moment's magnitude is
-        the couple's), each zero below :data:`ROUND_OFF` of the force scale.
+        phasors of :func:`crankbalance.physics.shaking.batch_free_forces` (the moment's
+        magnitude is the couple's), each zero at most the engine's round-off
+        (:func:`crankbalance.results.round_off`).
     """
-    topo = candidates.topology
-    r, w = topo.crank_radius, topo.speed
-    coeff = cylinder_coefficients(topo, orders)  # (C, K), shared by the candidates
-    phi = candidates.throw_angle
-    fwd, bwd, cfwd, cbwd = reciprocating_phasors(
-        coeff,
-        topo.reciprocating_mass,
-        phi[:, topo.cylinder_throw],
-        topo.cylinder_bank,
-        topo.cylinder_position,
-        r,
-        w,
-        per_cylinder=True,
-    )
-    rotating = topo.throw_rotating_mass * r * w**2 * np.exp(1j * phi)  # (B, T)
-    # the analysis JSON's round-off rule (studies.engine.Analysis.to_dict)
-    scale = (
-        float(topo.reciprocating_mass.sum() + topo.throw_rotating_mass.sum())
-        * r
-        * w**2
-        * max(1.0, float(np.ptp(topo.throw_position)))
-    )
-    tiny = ROUND_OFF * scale
-
-    def size(phasor: NDArray) -> NDArray:
-        value = np.abs(phasor)
-        return np.where(value < tiny, 0.0, value)
-
+    if candidates.size == 0:  # an empty chunk of the enumeration: empty columns
+        names = [
+            f"{q}{n}{s}_{u}"
+            for n in range(1, orders + 1)
+            for q, u in (("F", "N"), ("M", "Nm"))
+            for s in ("", "f", "b")
+        ]
+        return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}
+    batch = engine_batch(candidates.topology, candidates.size, throw_angle=candidates.throw_angle)
+    f = batch_free_forces(batch, orders)
+    force, moment = (level[:, None] for level in round_off(batch))
     out: dict[str, NDArray] = {}
     for n in range(orders):
-        for name, unit, f, b in (("F", "N", fwd, bwd), ("M", "Nm", cfwd, cbwd)):
-            forward, backward = size(f[:, n]), size(b[:, n])
+        for name, unit, fwd, bwd, level in (
+            ("F", "N", f.force_forward, f.force_backward, force),
+            ("M", "Nm", f.couple_forward, f.couple_backward, moment),
+        ):
+            forward = np.abs(below_round_off(fwd[:, n], level[:, 0]))
+            backward = np.abs(below_round_off(bwd[:, n], level[:, 0]))
             out[f"{name}{n + 1}_{unit}"] = forward + backward
             out[f"{name}{n + 1}f_{unit}"] = forward
             out[f"{name}{n + 1}b_{unit}"] = backward
-    out["Frot_N"] = size(rotating.sum(axis=-1))
-    # the big ends of side-by-side rods at their own places (exact zeros otherwise)
-    couple = rotating * topo.throw_position + topo.throw_axial_moment * r * w**2 * np.exp(1j * phi)
-    out["Mrot_Nm"] = size(couple.sum(axis=-1))
+    out["Frot_N"] = np.abs(below_round_off(f.rotating_force, force[:, 0]))
+    out["Mrot_Nm"] = np.abs(below_round_off(f.rotating_couple, moment[:, 0]))
     return out
 
 
@@ -400,7 +380,7 @@ def torsional_excitation(
         angle = order * alpha
         value[:, j] = np.hypot(np.cos(angle) @ w, np.sin(angle) @ w)
     value /= np.abs(w).sum()
-    return np.where(value < 1e-12, 0.0, value)
+    return below_round_off(value, ROUND_OFF)  # a share of 1: the one rule on its own scale
 
 
 def balance_columns(

@@ -17,6 +17,10 @@ the crank (removed by starting at cylinder 1), renumbering from the other end (a
 image of the engine) and, when the problem asks for it, time reversal. Which of these are
 symmetries of a topology is found from its geometry and masses, not assumed.
 ``docs/explorer.md`` ("Enumeration") explains the choices.
+
+Why one module over 800 lines: the index space, its unranking, the consistency of shared
+pins, the symmetries and the size of a range are one enumeration; split, each part would
+need the plan of the others.
 """
 
 from __future__ import annotations

@@ -44,6 +44,10 @@ says so (:attr:`DrillingPlan.note`); when no number of holes fits, it is refused
 drill and the limit.
 
 SI units throughout; angles in radians, counterclockwise seen along the crank axis.
+
+Why one module over 800 lines: a hole and a plan of holes are one subject, the plan is
+the geometry of its holes (their depth, centroid and pitch), and the limits of a drill
+bind both.
 """
 
 from __future__ import annotations

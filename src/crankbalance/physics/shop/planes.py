@@ -61,8 +61,22 @@ CONVENTIONS: tuple[str, ...] = ("heavy", "light")
 SINGULAR = 1e-9
 
 
-def _pair(field: str, value: ArrayLike) -> NDArray[np.float64]:
-    """Two finite axial positions [m] that differ, as an array."""
+def axial_pair(field: str, value: ArrayLike) -> NDArray[np.float64]:
+    """Two finite axial positions that differ, as an array, or
+    :class:`~crankbalance.errors.InputError` naming the field.
+
+    Parameters
+    ----------
+    field : str
+        The field to name in the error.
+    value : array_like, shape (2,)
+        The two positions [m].
+
+    Returns
+    -------
+    ndarray, shape (2,)
+        The positions [m].
+    """
     planes = np.asarray(value, dtype=float)
     if planes.shape != (2,) or not np.all(np.isfinite(planes)):
         raise InputError(field, value, "must be two finite axial positions [m]")
@@ -142,7 +156,7 @@ def transfer_matrix(source: ArrayLike, target: ArrayLike) -> NDArray[np.float64]
     The two target unbalances have the resultant and the moment of the source ones (statics
     of a rigid rotor), exactly.
     """
-    z1, z2 = _pair("target", target)
+    z1, z2 = axial_pair("target", target)
     s = np.asarray(source, dtype=float)
     if s.ndim != 1 or not np.all(np.isfinite(s)):
         raise InputError("source", source, "must be finite axial positions [m]")
@@ -165,8 +179,8 @@ def rigid_influence(measuring_planes: ArrayLike, correction_planes: ArrayLike) -
         :math:`A` [-] with :math:`\\Delta R = A\\,W`: the transfer of the corrections from
         the correction planes to the measuring planes.
     """
-    _pair("measuring_planes", measuring_planes)
-    _pair("correction_planes", correction_planes)
+    axial_pair("measuring_planes", measuring_planes)
+    axial_pair("correction_planes", correction_planes)
     return transfer_matrix(correction_planes, measuring_planes).astype(complex)
 
 
@@ -300,8 +314,8 @@ def plan_correction(
     With the rigid :math:`A` this is the statics transfer of :func:`transfer_matrix` from
     the measuring to the correction planes.
     """
-    measuring = _pair("measuring_planes", measuring_planes)
-    planes = _pair("correction_planes", correction_planes)
+    measuring = axial_pair("measuring_planes", measuring_planes)
+    planes = axial_pair("correction_planes", correction_planes)
     read = _complex_pair("reading", reading)
     radius = _radius(correction_radius)
     if influence is None:
@@ -500,8 +514,8 @@ def plane_tolerances(
     tolerance : ndarray, shape (2,)
         Permissible residual of each correction plane, in the order given [kg m].
     """
-    a, b = np.sort(_pair("bearings", bearings))
-    planes = _pair("correction_planes", correction_planes)
+    a, b = np.sort(axial_pair("bearings", bearings))
+    planes = axial_pair("correction_planes", correction_planes)
     order = np.argsort(planes)
     total = permissible_unbalance(grade, rotor_mass, speed)
     low, high = planes[order]

@@ -54,7 +54,7 @@ from ...results import ResultMixin
 from ..model import EngineModel
 from ..shaking import cylinder_coefficients, reciprocating_phasors
 from ..single_cylinder import check_balance_factor
-from .planes import _pair, transfer_matrix
+from .planes import axial_pair, transfer_matrix
 
 Kind = Literal["rotating", "reciprocating"]
 Distribution = Literal["normal", "uniform"]
@@ -176,7 +176,7 @@ def sensitivities(
         :data:`PHASORS`, residual unbalance per plane [kg m/kg], forces [N/kg], couples
         [N m/kg], phasors at crank angle 0 (:mod:`crankbalance.physics.shaking`).
     """
-    planes = _pair("correction_planes", correction_planes)
+    planes = axial_pair("correction_planes", correction_planes)
     f_b = check_balance_factor(balance_factor)
     r, w = model.crank_radius, model.speed
     turn = np.exp(1j * model.cylinder_angle)  # (C,)

@@ -1,0 +1,451 @@
+r"""The balancing equations: crank counterweights and balance shafts for one engine or many
+engines of one layout at once, and what they leave (2021 paper, sections 2-3, generalised).
+
+This is the one implementation of the equations: :func:`crankbalance.physics.balancing.balance`
+solves one engine as a batch of one, :func:`crankbalance.physics.balance_batch.balance_batch`
+many engines chunk by chunk. Both hand :func:`solve` a :class:`SolverInput` (arrays with a
+leading engine axis) and read a :class:`BatchBalance`.
+
+Every order's free force and couple is a sum of a forward and a backward phasor
+(:mod:`crankbalance.physics.shaking`). A mass :math:`m` at radius :math:`\rho` turning at
+:math:`k\omega` with phase :math:`\psi` adds :math:`m\rho(k\omega)^2 e^{i\psi}` to the forward
+phasor of order k (to the backward one if it turns against the crank), and :math:`y` times
+that to the couple. So:
+
+* crank counterweights (order 1, forward) cancel the rotating masses and, with a balance
+  factor :math:`f_b`, the share :math:`f_b` of the reciprocating masses put on the crank;
+* a co-rotating primary shaft cancels the forward primary phasors left, a counter-rotating
+  one the backward ones; secondary shafts do the same at :math:`\pm 2\omega`.
+
+**Counterweights** (Eqs. 6-11): :mod:`crankbalance.physics.balance_counterweights`, the
+equal-mass pattern at a given or the least-mass angle, or each counterweight its own mass
+and angle, for the whole crank or each half; the share that carries the rotating masses
+is solved again at the same angle (the equations are linear in the targets).
+
+**Balance shafts** (Eqs. 13-22 with the errata of docs/references.md): a force alone takes
+one mass mid-shaft, a couple two masses at :math:`\pm l/2`, sized together with the force.
+
+**Residuals.** Each counterweight and shaft mass is added back as the point-mass phasor
+:math:`m\rho(k\omega)^2 e^{i\psi}` (and :math:`y` times it) to the free forces, component
+by component: the rotating masses with the counterweights' share that carries them, and
+each order of the reciprocating masses with the rest (the balance-factor share and the
+Eq. 17 extra set count to the first order). Values at most the engine's round-off
+(:func:`crankbalance.results.round_off`) are zero. The time-domain verification of these
+numbers is :func:`crankbalance.physics.balance_check.verify`, a separate, optional check.
+
+Every engine's numbers are computed by operations on its own row (element by element,
+sums over its own contiguous axes; columns picked with ``np.take``, whose result keeps each
+row in one piece): no matrix product runs across the engine axis, so a result does not
+depend, to the last bit, on the other engines of its batch (the explorer's Pareto front
+compares candidates to the last bit).
+
+Options, input and results are in :mod:`crankbalance.physics.balance_types`.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..results import ROUND_OFF, below_round_off, engine_scales
+from .balance_counterweights import Webs, solve_counterweights, web_geometry
+from .balance_types import (
+    BatchBalance,
+    BatchCounterweights,
+    BatchResiduals,
+    BatchShafts,
+    CounterweightOptions,
+    ShaftOptions,
+    SolverInput,
+)
+from .model import EngineBatch, EngineModel
+from .shaking import BatchFreeForces
+
+#: share of an engine's force scale (forces) or force scale times length scale (moments)
+#: below which the residual check counts a targeted component as cancelled
+CHECK_TOLERANCE = 1e-9
+
+
+# --------------------------------------------------------------------------- the input
+def solver_input(engine: EngineModel | EngineBatch, forces: BatchFreeForces) -> SolverInput:
+    """The solver's input for one engine (a batch of one) or a batch of one layout.
+
+    Parameters
+    ----------
+    engine : EngineModel or EngineBatch
+        The engine(s): throw angles [rad], rotating masses per throw [kg], reciprocating
+        masses per cylinder [kg], crank radius [m] and speed [rad/s], and the layout
+        (throw positions, each cylinder's throw and rod place, the big ends of
+        side-by-side rods).
+    forces : BatchFreeForces
+        Their free forces, orders 1..K with K at least 2
+        (:func:`crankbalance.physics.shaking.batch_free_forces`; for one engine
+        :func:`~crankbalance.physics.shaking.free_forces` with an engine axis of 1).
+
+    Returns
+    -------
+    SolverInput
+        The arrays of :func:`solve`.
+    """
+    rotating, rotating_couple, reciprocating, reciprocating_couple = throw_unbalance(engine)
+    force_scale, length = (np.reshape(x, -1) for x in engine_scales(engine))
+    return SolverInput(
+        throw_position=engine.throw_position,
+        throw_angle=np.reshape(engine.throw_angle, rotating.shape),
+        rotating=rotating,
+        rotating_couple=rotating_couple,
+        reciprocating=reciprocating,
+        reciprocating_couple=reciprocating_couple,
+        forces=forces,
+        crank_radius=np.reshape(engine.crank_radius, -1),
+        speed=np.reshape(engine.speed, -1),
+        length=length,
+        force_round_off=ROUND_OFF * force_scale,
+        moment_round_off=ROUND_OFF * force_scale * length,
+    )
+
+
+def throw_unbalance(
+    engine: EngineModel | EngineBatch,
+) -> tuple[NDArray[np.complex128], ...]:
+    r"""Per throw, the first moments the crank counterweights can carry, and their moments
+    along the crank, each mass at its own axial place (the big ends and rods of
+    side-by-side rods at the rod's place).
+
+    Parameters
+    ----------
+    engine : EngineModel or EngineBatch
+        The engine(s), as :func:`solver_input`.
+
+    Returns
+    -------
+    rotating : ndarray of complex, shape (E, T)
+        :math:`m_t r e^{i\varphi_t}` of the rotating masses [kg·m] (E = 1 for a model).
+    rotating_couple : ndarray of complex, shape (E, T)
+        :math:`(m_t y_t + \sum_c m_{b,c} a_c) r e^{i\varphi_t}` [kg·m²].
+    reciprocating : ndarray of complex, shape (E, T)
+        :math:`\sum_c m_{rec,c} r e^{i\varphi_t}` over the cylinders on the pin [kg·m].
+    reciprocating_couple : ndarray of complex, shape (E, T)
+        :math:`\sum_c m_{rec,c} (y_t + a_c) r e^{i\varphi_t}` [kg·m²].
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 6-10 (the unbalance the counterweights cancel).
+    """
+    topology = engine.topology if isinstance(engine, EngineBatch) else engine
+    y = topology.throw_position
+    throws, cylinders = topology.throws, topology.cylinders
+    throw_angle = np.reshape(engine.throw_angle, (-1, throws))
+    rotating_mass = np.reshape(engine.throw_rotating_mass, (-1, throws))
+    reciprocating_mass = np.reshape(engine.reciprocating_mass, (-1, cylinders))
+    turn = np.reshape(engine.crank_radius, (-1, 1)) * np.exp(1j * throw_angle)  # r e^{i phi}
+    # each cylinder's reciprocating mass on its pin, summed engine by engine (einsum's own
+    # loops, no matrix product across the engines)
+    pins = (np.arange(throws)[None, :] == topology.cylinder_throw[:, None]).astype(float)
+    pin_mass = np.einsum("ec,ct->et", reciprocating_mass, pins)
+    pin_axial = (
+        np.einsum("ec,ct->et", reciprocating_mass * topology.cylinder_axial, pins)
+        if np.any(topology.cylinder_axial)
+        else 0.0  # every rod in its throw's plane
+    )
+    return (
+        rotating_mass * turn,
+        (rotating_mass * y + topology.throw_axial_moment) * turn,
+        pin_mass * turn,
+        (pin_mass * y + pin_axial) * turn,
+    )
+
+
+# --------------------------------------------------------------------------- the solver
+def solve(
+    inputs: SolverInput,
+    counterweights: CounterweightOptions | None = None,
+    primary: ShaftOptions | None = None,
+    secondary: ShaftOptions | None = None,
+) -> BatchBalance:
+    """Counterweights, balance shafts and residuals of every engine of ``inputs``.
+
+    Parameters
+    ----------
+    inputs : SolverInput
+        The engines (:func:`solver_input`).
+    counterweights : CounterweightOptions, optional
+        Crank counterweights, the same for every engine.
+    primary, secondary : ShaftOptions, optional
+        Balance shafts at crank speed and at twice crank speed.
+
+    Returns
+    -------
+    BatchBalance
+        Per engine: counterweight masses [kg] and directions [rad], shaft masses [kg] and
+        phases [rad], residual forces [N] and moments [N·m] by component, and the check.
+
+    Raises
+    ------
+    InputError
+        For options no engine of the layout can have: a ``webs`` of the wrong length, a
+        ``halves`` scope the crank cannot have, a single counter-rotating shaft without
+        counterweights.
+    EngineFailed
+        For an engine the counterweights cannot balance: a part of the crank without a
+        counterweight, or all its counterweights in one plane with a couple to cancel.
+
+    References
+    ----------
+    Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
+    """
+    if primary is not None and primary.arrangement != "pair" and counterweights is None:
+        raise InputError(
+            "balance_shafts.primary.arrangement",
+            "counter-rotating",
+            "a single counter-rotating shaft needs [counterweights] on the "
+            "crank to take the co-rotating half",
+        )
+    forces = inputs.forces
+    w2 = inputs.speed**2
+    cw: BatchCounterweights | None = None
+    share: NDArray[np.complex128] | None = None
+    extra: BatchCounterweights | None = None
+    webs: Webs | None = None
+    fwd1, cfwd1 = forces.force_forward[:, 0], forces.couple_forward[:, 0]
+    if counterweights is not None:
+        fb = counterweights.balance_factor
+        target = inputs.rotating + fb * inputs.reciprocating
+        target_couple = inputs.rotating_couple + fb * inputs.reciprocating_couple
+        webs = web_geometry(inputs, counterweights)
+        halves = _halves(inputs, counterweights.scope, target, target_couple)
+        cw = solve_counterweights(inputs, webs, counterweights, halves, target, target_couple)
+        moments = share = cw.moments
+        if fb != 0.0:
+            # the share that carries the rotating masses alone, at the same angle (the
+            # equations are linear in the targets)
+            share = solve_counterweights(
+                inputs,
+                webs,
+                counterweights,
+                halves,
+                inputs.rotating,
+                inputs.rotating_couple,
+                angle=cw.alpha,
+            ).moments
+            # what the counterweights do beyond the rotating masses counts to order 1
+            beyond = (moments - share) * w2[:, None]
+            fwd1 = fwd1 + beyond.sum(axis=-1)
+            cfwd1 = cfwd1 + (beyond * cw.position).sum(axis=-1)
+
+    primary_set: BatchShafts | None = None
+    if primary is not None:
+        shafts = []
+        if primary.arrangement == "pair":
+            shafts.append(_shaft(inputs, 1, +1, fwd1, cfwd1, primary))
+        elif counterweights is not None and webs is not None:
+            # Eq. 17 done right: the co-rotating shaft's first moment and couple go onto
+            # the crank counterweights as an extra set of masses
+            opts = replace(counterweights, scope="whole", method="individual")
+            extra = solve_counterweights(
+                inputs,
+                webs,
+                opts,
+                np.zeros(inputs.size, bool),
+                (fwd1 / w2)[:, None],
+                (cfwd1 / w2)[:, None],
+            )
+        shafts.append(
+            _shaft(
+                inputs,
+                1,
+                -1,
+                forces.force_backward[:, 0],
+                forces.couple_backward[:, 0],
+                primary,
+            )
+        )
+        primary_set = _shaft_set(1, primary, shafts)
+
+    secondary_set: BatchShafts | None = None
+    if secondary is not None:
+        shafts = []
+        if secondary.arrangement == "pair":
+            shafts.append(
+                _shaft(
+                    inputs,
+                    2,
+                    +1,
+                    forces.force_forward[:, 1],
+                    forces.couple_forward[:, 1],
+                    secondary,
+                )
+            )
+        shafts.append(
+            _shaft(
+                inputs,
+                2,
+                -1,
+                forces.force_backward[:, 1],
+                forces.couple_backward[:, 1],
+                secondary,
+            )
+        )
+        secondary_set = _shaft_set(2, secondary, shafts)
+
+    residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set)
+    return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
+
+
+def _halves(
+    inputs: SolverInput, scope: str, target: NDArray, target_couple: NDArray
+) -> NDArray[np.bool_]:
+    """Whether each engine's crank halves are balanced on their own: as asked, or with
+    ``"auto"`` when the crank is balanced as a whole and has an even number of throws
+    (paper section 3.1)."""
+    if scope != "auto":
+        return np.full(inputs.size, scope == "halves")
+    throws = inputs.throw_position.size
+    if throws < 2 or throws % 2:
+        return np.zeros(inputs.size, bool)
+    w2 = inputs.speed**2
+    return (np.abs(target.sum(axis=-1)) <= inputs.force_round_off / w2) & (
+        np.abs(target_couple.sum(axis=-1)) <= inputs.moment_round_off / w2
+    )
+
+
+# --------------------------------------------------------------------------- shafts
+def _shaft(
+    inputs: SolverInput,
+    order: int,
+    sense: int,
+    force: NDArray,
+    couple: NDArray,
+    options: ShaftOptions,
+) -> tuple[int, NDArray, NDArray]:
+    """One balance shaft of every engine: sense, layout (E,) and the complex unknowns
+    :math:`m e^{i\\psi}` (E, 3) [kg] in the slots at -l/2, 0, +l/2.
+
+    Force only: one mass mid-shaft; couple only: two masses in opposite phase at
+    :math:`\\pm l/2` (paper Eq. 13); both: two masses at :math:`\\pm l/2` sized together.
+    """
+    gain = options.cg_radius * (order * inputs.speed) ** 2  # force per kg at phase 0
+    has_force = np.abs(force) > inputs.force_round_off
+    has_couple = np.abs(couple) > inputs.moment_round_off
+    half = options.length / 2
+    # v1 + v2 = -F/g ; -h v1 + h v2 = -C/g
+    v2 = np.where(
+        has_force,
+        (-force / gain - couple / (gain * half)) / 2,
+        -couple / (gain * options.length),
+    )
+    v1 = np.where(has_force, -force / gain - v2, -v2)
+    v = np.zeros((force.size, 3), complex)
+    v[:, 0] = np.where(has_couple, v1, 0.0)
+    v[:, 1] = np.where(has_force & ~has_couple, -force / gain, 0.0)
+    v[:, 2] = np.where(has_couple, v2, 0.0)
+    layout = np.where(has_couple, 2, np.where(has_force, 1, 0))
+    return sense, layout, v
+
+
+def _shaft_set(
+    order: int, options: ShaftOptions, shafts: list[tuple[int, NDArray, NDArray]]
+) -> BatchShafts:
+    v = np.stack([s[2] for s in shafts], axis=1)  # (E, S, 3)
+    mass = np.abs(v)
+    half = options.length / 2
+    return BatchShafts(
+        order,
+        options.arrangement,
+        options.length,
+        options.cg_radius,
+        np.array([s[0] for s in shafts]),
+        np.array([-half, 0.0, half]),
+        np.stack([s[1] for s in shafts], axis=1),
+        mass,
+        np.where(mass > 0, np.mod(np.angle(v), 2 * np.pi), 0.0),
+    )
+
+
+# --------------------------------------------------------------------------- residuals
+def balance_residuals(
+    inputs: SolverInput,
+    cw: BatchCounterweights | None,
+    share: NDArray | None,
+    extra: BatchCounterweights | None,
+    primary: BatchShafts | None,
+    secondary: BatchShafts | None,
+) -> BatchResiduals:
+    """Forces and moments before and after the balancing masses, from the masses as
+    reported (change one and the residual shows what it leaves).
+
+    Parameters
+    ----------
+    inputs : SolverInput
+        The engines and their free forces.
+    cw : BatchCounterweights or None
+        Crank counterweights.
+    share : ndarray of complex, shape (E, W), or None
+        First moments of the counterweights' share that carries the rotating masses
+        [kg·m]; the rest counts to the first order.
+    extra : BatchCounterweights or None
+        The Eq. 17 extra counterweights.
+    primary, secondary : BatchShafts or None
+        Balance shafts of order 1 and 2.
+
+    Returns
+    -------
+    BatchResiduals
+        Per engine and component: forces [N] and moments [N·m] before and after (zero at
+        most the round-off), and the check.
+    """
+    forces = inputs.forces
+    w2 = inputs.speed**2
+    rot_f, rot_c = forces.rotating_force, forces.rotating_couple
+    after_rot_f, after_rot_c = rot_f, rot_c
+    fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
+    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
+    first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
+    if cw is not None and share is not None:
+        after_rot_f = rot_f + w2 * share.sum(axis=-1)
+        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
+        first_order.append((cw.moments - share, cw.position))
+    if extra is not None:
+        first_order.append((extra.moments, extra.position))
+    for moments, position in first_order:
+        fwd[:, 0] += w2 * moments.sum(axis=-1)
+        cfwd[:, 0] += w2 * (moments * position).sum(axis=-1)
+    for group in (primary, secondary):
+        if group is None:
+            continue
+        k = group.order - 1
+        gain = group.cg_radius * (group.order * inputs.speed) ** 2
+        for s, sense in enumerate(group.sense):
+            f = group.mass[:, s] * gain[:, None] * np.exp(1j * group.phase[:, s])
+            force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
+            force[:, k] += f.sum(axis=-1)
+            couple[:, k] += (f * group.position).sum(axis=-1)
+    force_level = inputs.force_round_off[:, None]
+    moment_level = inputs.moment_round_off[:, None]
+
+    def amplitude(first: NDArray, forward: NDArray, backward: NDArray, level: NDArray) -> NDArray:
+        """Columns rotating and orders 1..K, zero at most the round-off."""
+        value = np.column_stack([np.abs(first), np.abs(forward) + np.abs(backward)])
+        return below_round_off(value, level)
+
+    force_before = amplitude(rot_f, forces.force_forward, forces.force_backward, force_level)
+    moment_before = amplitude(rot_c, forces.couple_forward, forces.couple_backward, moment_level)
+    force_after = amplitude(after_rot_f, fwd, bwd, force_level)
+    moment_after = amplitude(after_rot_c, cfwd, cbwd, moment_level)
+    orders = fwd.shape[1]
+    targeted = np.array(
+        [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
+    )
+    tolerance = CHECK_TOLERANCE / ROUND_OFF  # the levels are ROUND_OFF of the scales
+    balanced = np.all(
+        ~targeted
+        | ((force_after <= tolerance * force_level) & (moment_after <= tolerance * moment_level)),
+        axis=-1,
+    )
+    components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
+    return BatchResiduals(
+        components, targeted, force_before, force_after, moment_before, moment_after, balanced
+    )
