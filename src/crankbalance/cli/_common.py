@@ -125,12 +125,14 @@ def study_options(
 
 def setting_help(model: type[Options], name: str) -> str:
     """The help text of a setting from its schema: ``"Bore. Cylinder bore, for the gas
-    force. [default: 76.8 mm]"``; without a default, its hint in brackets instead."""
+    force. [default: 76.8 mm]"``; without a default, its hint in brackets instead, or for
+    a quantity an example of it as typed (``[e.g. '40 mm']``)."""
     from ..schema.core import default_text
+    from ..units import KINDS
 
     spec = model.FIELDS[name]
     title = spec.title or name.replace("_", " ").capitalize()
-    words = [title if title.endswith((".", "?", ")")) else title + "."]
+    words = [title if title.endswith((".", "?")) else title + "."]
     if spec.description:
         words.append(spec.description)
     if spec.choices:
@@ -140,6 +142,8 @@ def setting_help(model: type[Options], name: str) -> str:
         words.append(f"[default: {default}]")
     elif spec.hint:
         words.append(f"[{spec.hint}]")
+    elif spec.quantity is not None:
+        words.append(f"[e.g. '{spec.example or KINDS[spec.kind][2]}']")
     return " ".join(words)
 
 
