@@ -95,28 +95,44 @@ def study_options(
     from ..studies.registry import study
 
     entry = study(name)
+    return settings_options(
+        entry.model(),
+        [f for f in entry.field_names() if not only or f in only],
+        entry.option,
+        arguments=entry.arguments,
+    )
+
+
+def settings_options(
+    model: type[Options],
+    fields: Sequence[str] = (),
+    option: Callable[[str], str] | None = None,
+    *,
+    arguments: Sequence[str] = (),
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """:func:`study_options` for the settings ``fields`` (default: all) of a settings
+    model, for the commands that are no study of the registry (``plot``, ``report``):
+    ``option(field)`` is the option without dashes (default: the field with dashes)."""
+    named = option or (lambda field: field.replace("_", "-"))
 
     def decorate(function: Callable[..., Any]) -> Callable[..., Any]:
-        model = entry.model()
-        for field in reversed(entry.field_names()):
-            if only and field not in only:
-                continue
+        for field in reversed(fields or list(model.FIELDS)):
             spec = model.FIELDS[field]
-            if field in entry.arguments:
+            if field in arguments:
                 function = click.argument(field)(function)
                 continue
-            option = "--" + entry.option(field)
+            flag = "--" + named(field)
             kinds: dict[str, Any] = {}
             if spec.kind == "flag":
                 kinds["is_flag"] = True
                 if spec.default is True:
-                    option += f"/--no-{entry.option(field)}"
+                    flag += f"/--no-{named(field)}"
             if spec.kind == "list" and spec.single:
                 kinds["multiple"] = True
-            if field in entry.files and field in CLICK_PATHS:
+            if field in CLICK_PATHS:
                 kinds["type"] = click.Path(exists=True, dir_okay=False)
             function = click.option(
-                option, field, default=None, help=setting_help(model, field), **kinds
+                flag, field, default=None, help=setting_help(model, field), **kinds
             )(function)
         return function
 

@@ -822,7 +822,7 @@ class BalanceOptions(StudyOptions):
     scope: Literal["auto", "whole", "halves"] | None = choice(
         None,
         ("auto", "whole", "halves"),
-        "Balance the whole crank or each half",
+        "Whole crank or halves",
         "Balance the whole crank or each half on its own; empty: the engine file's.",
     )
     verify: bool = field(
