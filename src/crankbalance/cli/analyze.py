@@ -2,19 +2,21 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from ..output.format import json_text, moment_point, number, plural, text
-from ._common import echo_notes, echo_table, format_option, run_study
+from ._common import echo_notes, echo_table, format_option, run_study, study_options
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option("--orders", default=None, help="Highest harmonic order (1-64). [default: 8]")
-def analyze(engine: str, fmt: str, orders: str | None) -> None:
+@study_options("analyze")
+def analyze(engine: str, fmt: str, **values: Any) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
-    result = run_study("analyze", engine, {"orders": orders}, engine_option=False)
+    result = run_study("analyze", engine, values, engine_option=False)
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
         return

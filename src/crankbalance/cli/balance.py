@@ -7,64 +7,19 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number, plural, text
-from ._common import echo_notes, echo_table, format_option, run_study
+from ._common import echo_notes, echo_table, format_option, run_study, study_options
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json"))
-@click.option(
-    "--angle",
-    default=None,
-    help='Counterweight angle from the position opposite the crankpin ("30 deg") '
-    'or "optimal"; default: the engine file, else optimal.',
-)
-@click.option(
-    "--balance-factor",
-    default=None,
-    help="Share of the pin's reciprocating mass put on the crank counterweights "
-    "(0 to 2, or a percentage '50%').",
-)
-@click.option(
-    "--method",
-    type=click.Choice(["pattern", "individual"]),
-    default=None,
-    help="pattern: equal counterweights (2021 paper); individual: each its own mass and angle.",
-)
-@click.option(
-    "--scope",
-    type=click.Choice(["auto", "whole", "halves"]),
-    default=None,
-    help="Balance the whole crank or each half on its own.",
-)
-@click.option(
-    "--verify",
-    is_flag=True,
-    default=False,
-    help="Also check the residuals in the time domain (every mass over a revolution, "
-    "then a Fourier transform) and print how well the two agree.",
-)
-def balance(
-    engine: str,
-    fmt: str,
-    angle: str | None,
-    balance_factor: str | None,
-    method: str | None,
-    scope: str | None,
-    verify: bool,
-) -> None:
+@study_options("balance")
+def balance(engine: str, fmt: str, **values: Any) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    values = {
-        "angle": angle,
-        "balance_factor": balance_factor,
-        "method": method,
-        "scope": scope,
-        "verify": verify or None,
-    }
     data = run_study("balance", engine, values, engine_option=False).to_dict()
     if fmt == "json":
         click.echo(json_text(data))

@@ -9,108 +9,14 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number
-from ..schema.settings import BearingOptions
-from ._common import default_help, echo_table, format_option, refuse_unused, run_study
+from ._common import echo_table, format_option, refuse_unused, run_study, study_options
 from .plot import check_figure, write_figure
-
-
-def _shown(name: str, words: str) -> str:
-    return default_help(BearingOptions, name, words)
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json"))
-@click.option("--speed", default=None, help="Mean crank speed, e.g. '6000 rpm' (default: engine).")
-@click.option(
-    "--samples", default=None, help=_shown("samples", "Crank-angle samples per revolution.")
-)
-@click.option(
-    "--gas/--no-gas",
-    default=None,
-    help=_shown(
-        "gas", "Gas forces from the Wiebe model (or --pressure-csv); --no-gas: inertia only."
-    ),
-)
-@click.option("--bore", default=None, help="Bore (default: square engine, bore = stroke).")
-@click.option(
-    "--compression-ratio",
-    default=None,
-    help=_shown("compression_ratio", "Compression ratio, as every study."),
-)
-@click.option(
-    "--ignition",
-    default=None,
-    help=_shown("ignition", "Start of combustion from firing TDC, as every study."),
-)
-@click.option("--burn-duration", default=None, help=_shown("burn_duration", "Burn duration."))
-@click.option(
-    "--intake-pressure",
-    default=None,
-    help=_shown("intake_pressure", "Pressure at the start of compression (load)."),
-)
-@click.option(
-    "--pressure-csv",
-    type=click.Path(exists=True, dir_okay=False),
-    multiple=True,
-    help="Cylinder pressure table instead of the Wiebe model (as 'cycle': crank angle [deg "
-    "from firing TDC], absolute pressure [bar]); one for every cylinder, or repeated once "
-    "per cylinder in cylinder order.",
-)
-@click.option(
-    "--crank-inertia",
-    default=None,
-    help="Inertia of the purely rotating parts (crank, flywheel): the speed fluctuation "
-    "(default: the engine's, front end + throws + flywheel as 'torsional' and 'cycle "
-    "--engine').",
-)
-@click.option(
-    "--balance-factor", default=None, help="Balance factor of the counterweights (default: file)."
-)
-@click.option(
-    "--webs",
-    default=None,
-    help="Counterweight pattern, 0/1 per web, two per throw: '1,0,0,1,1,0,0,1' "
-    "(default: the engine file's, else every web).",
-)
-@click.option("--journal-diameter", default=None, help="Main-journal diameter (default 1.3 r).")
-@click.option("--pin-diameter", default=None, help="Crankpin diameter (default 1.1 r).")
-@click.option(
-    "--web-thickness", default=None, help="Axial web thickness (default 0.75 web offset)."
-)
-@click.option("--web-width", default=None, help="Web width across the arm (default 2.2 r).")
-@click.option("--modulus", default=None, help=_shown("modulus", "Young's modulus."))
-@click.option("--poisson", default=None, help=_shown("poisson", "Poisson's ratio."))
-@click.option(
-    "--bearing",
-    multiple=True,
-    help="Main-bearing position along the crank from its mid-point (repeat; default: one "
-    "between neighbouring throws and one at each end).",
-)
-@click.option(
-    "--bearing-stiffness",
-    default=None,
-    help="Radial stiffness of each main bearing, e.g. '5e8 N/m' (default: rigid).",
-)
-@click.option(
-    "--friction-coefficient",
-    default=None,
-    help=_shown("friction_coefficient", "Coulomb friction coefficient."),
-)
-@click.option("--viscosity", default=None, help="Oil viscosity, for the Petroff friction.")
-@click.option("--bearing-length", default=None, help="Bearing length, for the Petroff friction.")
-@click.option(
-    "--clearance",
-    default=None,
-    help="Radial clearance of the main bearings: in the contact model with "
-    "--bearing-stiffness, in the Petroff friction with --viscosity and --bearing-length.",
-)
-@click.option(
-    "--curves",
-    is_flag=True,
-    default=None,
-    help="JSON: add the load and moment curves over the cycle.",
-)
+@study_options("bearings")
 @click.option(
     "--plot",
     default=None,

@@ -1,8 +1,8 @@
 """``crankbalance bearings-sweep ENGINE``: main-bearing loads, friction and crank bending
 against the counterweight pattern and the balance factor (docs/main_bearings.md).
 
-The loads' settings are those of ``crankbalance bearings`` (the same options, taken from
-that command, one vocabulary); ``--balance-factors`` is written as in ``sensitivity``
+The loads' settings are those of ``crankbalance bearings`` (the same settings schema, one
+vocabulary); ``--balance-factors`` is written as in ``sensitivity``
 (``0.4,0.5,0.6`` or ``start:stop:step``) and ``--pattern`` (repeated) replaces
 ``--webs``."""
 
@@ -14,46 +14,16 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number
-from ..schema.settings import BearingSweepOptions
 from ..studies.balance_loads import COLUMNS, case_rows
 from ..studies.loads import assumed_text
-from ._common import default_help, echo_table, format_option, run_study
-from .bearings import bearings
+from ._common import echo_table, format_option, run_study, study_options
 from .plot import check_figure, write_figure
-
-#: options of ``bearings`` that this command does not take (swept, or a single run's)
-NOT_SHARED = ("balance_factor", "webs", "curves", "fmt", "plot", "engine")
 
 
 @click.command("bearings-sweep")
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option(
-    "--pattern",
-    "patterns",
-    multiple=True,
-    help="Counterweight pattern (repeat): all, none, file (the engine file's) or 0/1 per "
-    "web, two per throw, '1,0,0,1,1,0,0,1' (default: all).",
-)
-@click.option(
-    "--balance-factors",
-    default=None,
-    help=default_help(
-        BearingSweepOptions,
-        "balance_factors",
-        "Balance factors: '0.4,0.5,0.6' or start:stop:step.",
-    ),
-)
-@click.option(
-    "--crank-model",
-    type=click.Choice(["indeterminate", "determinate"]),
-    default=None,
-    help=default_help(
-        BearingSweepOptions,
-        "crank_model",
-        "Crank model of the table, the CSV and the figure (the JSON has both).",
-    ),
-)
+@study_options("bearings-sweep")
 @click.option(
     "--plot",
     default=None,
@@ -118,7 +88,3 @@ def print_table(data: dict[str, Any], rows: list[list[Any]]) -> None:
         "mean N: the largest mean load; friction: Coulomb, all main bearings; free: the "
         "first-order force and moment and the rotating moment left after balancing"
     )
-
-
-# the loads' options are those of ``bearings`` (one vocabulary, one set of help texts)
-bearings_sweep.params.extend(p for p in bearings.params if p.name not in NOT_SHARED)

@@ -15,10 +15,8 @@ import click
 from ..output.format import json_text, number
 from ..output.format import text as unit_text
 from ..physics.counterweight import SYMBOLS as SYMBOL
-from ..schema.settings import CounterweightOptimizeOptions, allowed
 from ..studies.counterweight import PARAMETERS
 from ._common import (
-    default_help,
     echo_table,
     format_option,
     option_name,
@@ -26,53 +24,17 @@ from ._common import (
     refuse_unused,
     require_extra,
     run_study,
+    study_options,
     typed,
 )
 
 
-def _limits(field: str) -> str:
-    """What a counterweight setting accepts (the one settings schema's limits)."""
-    return allowed(CounterweightOptimizeOptions, field)
-
-
-def _param_options(help_suffix: str):
-    def decorate(f):
-        for name, (kind, _k, unit) in reversed(PARAMETERS.items()):
-            f = click.option(
-                option_name(name),
-                name,
-                default=None,
-                help=f"{SYMBOL[name]} ({kind}, e.g. '20 {unit}'){help_suffix}",
-            )(f)
-        return f
-
-    return decorate
-
-
-def _requirement_options(f):
-    f = click.option(
+def _engine_option(f: Any) -> Any:
+    return click.option(
         "--engine",
         default=None,
-        help="engine file or preset: the requirement is its balancing's largest "
+        help="Engine file or preset: the requirement is its balancing's largest "
         "crank counterweight m_c*r_c.",
-    )(f)
-    f = click.option("--cg-radius", default=None, help="with --cw-mass: r_c, e.g. '30 mm'.")(f)
-    f = click.option(
-        "--cw-mass",
-        default=None,
-        help="counterweight mass m_c from the balancing, e.g. '263 g' (with --cg-radius).",
-    )(f)
-    f = click.option(
-        "--first-moment", default=None, help="required first moment m_c*r_c, e.g. '7880 g*mm'."
-    )(f)
-    return f
-
-
-def _density_option(f):
-    return click.option(
-        "--density",
-        default=None,
-        help=default_help(CounterweightOptimizeOptions, "density", "Material density."),
     )(f)
 
 
@@ -106,51 +68,8 @@ def counterweight() -> None:
 
 
 @counterweight.command()
-@_requirement_options
-@_param_options(": a value fixes it, 'LOW..HIGH' leaves it free in that range.")
-@_density_option
-@click.option("--max-mass", default=None, help="Largest counterweight mass, e.g. '400 g'.")
-@click.option("--max-radius", default=None, help="Largest radial space, e.g. '80 mm'.")
-@click.option(
-    "--min-balance",
-    default=None,
-    help=default_help(
-        CounterweightOptimizeOptions,
-        "min_balance",
-        "Smallest balance, achieved / required first moment [%].",
-    ),
-)
-@click.option(
-    "--radius-measure",
-    type=click.Choice(["true", "paper"]),
-    default=None,
-    help=default_help(
-        CounterweightOptimizeOptions,
-        "radius_measure",
-        "Radial space: true outer radius, or the paper's R_min bound.",
-    ),
-)
-@click.option("--inertia", is_flag=True, default=None, help="Inertia as a third objective.")
-@click.option(
-    "--iterations",
-    default=None,
-    help=default_help(CounterweightOptimizeOptions, "iterations", _limits("iterations") + "."),
-)
-@click.option(
-    "--population",
-    default=None,
-    help=default_help(CounterweightOptimizeOptions, "population", _limits("population") + "."),
-)
-@click.option("--seed", default=None, help="Random seed (repeatable runs); " + _limits("seed"))
-@click.option(
-    "--pareto",
-    default=None,
-    help=default_help(
-        CounterweightOptimizeOptions,
-        "pareto",
-        "How many Pareto designs to list (evenly spread along the front).",
-    ),
-)
+@_engine_option
+@study_options("counterweight-optimize")
 @click.option("--quiet", is_flag=True, help="No progress on stderr.")
 @format_option(("table", "json"))
 def optimize(engine: str | None, quiet: bool, fmt: str, **values: Any) -> None:
@@ -188,9 +107,8 @@ def optimize(engine: str | None, quiet: bool, fmt: str, **values: Any) -> None:
 
 
 @counterweight.command()
-@_requirement_options
-@_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
-@_density_option
+@_engine_option
+@study_options("counterweight-show")
 @format_option(("table", "json"))
 def show(engine: str | None, fmt: str, **values: Any) -> None:
     """Mass properties of one counterweight design."""
@@ -221,9 +139,8 @@ def show(engine: str | None, fmt: str, **values: Any) -> None:
 
 
 @counterweight.command()
-@_requirement_options
-@_param_options(" (thickness may be left out with a requirement: sized to 100 %).")
-@_density_option
+@_engine_option
+@study_options("counterweight-show")
 @click.option("--output", "-o", required=True, help="File: .svg, .dxf, .stl or .step (mm).")
 def export(engine: str | None, output: str, **values: Any) -> None:
     """Write a design as SVG/DXF profile, STL solid or STEP (needs crankbalance[cad]).
@@ -245,8 +162,8 @@ def export(engine: str | None, output: str, **values: Any) -> None:
 
 @counterweight.command()
 @click.argument("part")
-@_requirement_options
-@_density_option
+@_engine_option
+@study_options("counterweight-show", only=("first_moment", "cw_mass", "cg_radius", "density"))
 @click.option("--unit", default=None, help="Length unit of the file. [default: mm]")
 @format_option(("table", "json"))
 def check(part: str, engine: str | None, unit: str | None, fmt: str, **values: Any) -> None:

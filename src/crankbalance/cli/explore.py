@@ -17,9 +17,8 @@ import click
 
 from ..errors import InputError
 from ..output.format import json_text, number
-from ..physics.explore.work import CONNECT_TIMEOUT, MAX_DRAWS, TASK_CANDIDATES, TASK_MEMORY
 from ..schema.settings import ExploreOptions
-from ._common import default_help, echo_table, format_option, require_extra, run_study, typed
+from ._common import echo_table, format_option, require_extra, run_study, study_options, typed
 from .plot import check_figure, write_figure
 
 FORMATS = ("table", "json", "csv")
@@ -27,67 +26,9 @@ FORMATS = ("table", "json", "csv")
 DIST = {"workers": "distributed", "scheduler": "distributed", "output": "pyarrow"}
 
 
-def _shown(name: str, words: str) -> str:
-    return default_help(ExploreOptions, name, words)
-
-
 @click.command()
-@click.option(
-    "--layout", default=None, help=_shown("layout", "inline, vee, boxer or w (broad arrow).")
-)
-@click.option("--cylinders", default=None, help=_shown("cylinders", "Number of cylinders."))
-@click.option("--strokes", default=None, help=_shown("strokes", "2 or 4."))
-@click.option("--bank-angle", help="Vee angle, or the angle between W banks, e.g. '90 deg'.")
-@click.option(
-    "--crank", default=None, help=_shown("crank", "any, flat, cross or split (split pins).")
-)
 @click.option("--engine", help="Engine file or preset giving the masses and geometry.")
-@click.option(
-    "--target",
-    default=None,
-    help=_shown(
-        "target", "Balancing target: none, counterweights, primary or secondary (shaft pairs)."
-    ),
-)
-@click.option("--balance-factor", default=None, help=_shown("balance_factor", "e.g. 0.5 or 50%."))
-@click.option(
-    "--mode-shape",
-    default=None,
-    help=_shown(
-        "mode_shape",
-        "Torsional mode shape: uniform, linear, or one weight per cylinder '1,0.8,...'.",
-    ),
-)
-@click.option("--orders", default=None, help=_shown("orders", "Highest order (1-64)."))
-@click.option(
-    "--objectives",
-    default=None,
-    help=_shown("objectives", "Columns of the Pareto front, all minimised, comma separated."),
-)
-@click.option("--filter", help="Rows kept, e.g. 'F1 == 0 and M1 == 0'.")
-@click.option("--top", default=None, help=_shown("top", "Rows of the top-N table."))
-@click.option(
-    "--top-key",
-    help="Column of the top-N table [default: residual_M, the largest moment left after "
-    "balancing; with --target none the first objective].",
-)
-@click.option(
-    "--chunk",
-    help=f"Indices per task [default: chosen from the problem, about {TASK_CANDIDATES} "
-    f"candidates per task; at most what a task's {TASK_MEMORY // 2**20} MiB hold].",
-)
-@click.option("--workers", help="Run on a dask LocalCluster of N worker processes.")
-@click.option("--scheduler", help="Run on an existing dask cluster, tcp://HOST:PORT.")
-@click.option(
-    "--connect-timeout",
-    default=None,
-    help=f"Time the --scheduler has to answer (0.1 s to 120 s). [default: {CONNECT_TIMEOUT:g} s]",
-)
-@click.option(
-    "--sample",
-    help=f"Random search: draw N indices instead of enumerating all (at most {MAX_DRAWS:,}).",
-)
-@click.option("--seed", default=None, help=_shown("seed", "Seed of --sample."))
+@study_options("explore")
 @click.option(
     "--output",
     type=click.Path(dir_okay=False),

@@ -20,15 +20,7 @@ import click
 from ..errors import InputError
 from ..output.format import json_text, number, text
 from ..results import require_finite
-from ..schema.settings import (
-    MAX_BENCH_REVOLUTIONS,
-    MAX_BENCH_RUNS,
-    BenchOptions,
-    CycleOptions,
-    FrictionOptions,
-    SensitivityOptions,
-)
-from ._common import default_help, echo_table, format_option, run_study
+from ._common import echo_table, format_option, run_study, study_options
 from .plot import check_figure, write_figure
 
 FORMATS = ("table", "json", "csv")
@@ -60,34 +52,7 @@ def _progress(label: str):  # noqa: ANN202
 
 
 @click.command()
-@click.option(
-    "--load",
-    default=None,
-    help=default_help(FrictionOptions, "load", "Constant bearing load, e.g. the rotor weight."),
-)
-@click.option("--rotating-load", help="Rotating load (unbalance force), e.g. '42.2 N'.")
-@click.option(
-    "--unbalance", help="Unbalance, e.g. '427 g*mm' (with --speed instead of --rotating-load)."
-)
-@click.option("--speed", help="Shaft speed, e.g. '3000 rpm'.")
-@click.option("--journal-diameter", help="Journal diameter, e.g. '20 mm' (required).")
-@click.option("--friction-coefficient", help="Coulomb friction coefficient (above 0, at most 1).")
-@click.option("--torque", help="Measured torque: back-compute the friction coefficient (Eq. 5.1).")
-@click.option("--viscosity", help="Oil viscosity for the hydrodynamic bearing, e.g. '0.01 Pa*s'.")
-@click.option("--bearing-length", help="Bearing length (hydrodynamic).")
-@click.option("--clearance", help="Mean radial clearance (hydrodynamic), e.g. '20 um'.")
-@click.option(
-    "--eccentricity",
-    default=None,
-    help=default_help(
-        FrictionOptions, "eccentricity", "Eccentricity ratio, from 0 to below 1 (hydrodynamic)."
-    ),
-)
-@click.option(
-    "--attitude-angle",
-    default=None,
-    help=default_help(FrictionOptions, "attitude_angle", "Attitude angle (hydrodynamic)."),
-)
+@study_options("friction")
 @format_option(FORMATS)
 def friction(fmt: str, **values: Any) -> None:
     """Bearing friction torque under a constant plus a rotating load.
@@ -126,54 +91,7 @@ def friction(fmt: str, **values: Any) -> None:
 
 
 @click.command()
-@click.option("--mass", default=None, help=default_help(BenchOptions, "mass", "Rotor mass."))
-@click.option(
-    "--inertia",
-    default=None,
-    help=default_help(BenchOptions, "inertia", "Rotor moment of inertia."),
-)
-@click.option(
-    "--unbalance", default=None, help=default_help(BenchOptions, "unbalance", "Rotor unbalance.")
-)
-@click.option(
-    "--journal-diameter",
-    default=None,
-    help=default_help(BenchOptions, "journal_diameter", "Journal diameter."),
-)
-@click.option(
-    "--friction-coefficient",
-    help="Coulomb friction coefficient of each bearing (above 0, at most 1; required).",
-)
-@click.option(
-    "--speed",
-    multiple=True,
-    help=default_help(
-        BenchOptions,
-        "speed",
-        f"Set speed; repeat for several runs (at most {MAX_BENCH_RUNS}).",
-    ),
-)
-@click.option(
-    "--ramp-time",
-    default=None,
-    help=default_help(BenchOptions, "ramp_time", "Duration of the speed ramp (at most 600 s)."),
-)
-@click.option(
-    "--hold-time",
-    default=None,
-    help=default_help(
-        BenchOptions,
-        "hold_time",
-        f"Duration of the hold (at most 600 s; a run simulates at most "
-        f"{MAX_BENCH_REVOLUTIONS} revolutions).",
-    ),
-)
-@click.option(
-    "--kp", default=None, help=default_help(BenchOptions, "kp", "PI proportional gain [N m s/rad].")
-)
-@click.option(
-    "--ki", default=None, help=default_help(BenchOptions, "ki", "PI integral gain [N m/rad].")
-)
+@study_options("bench")
 @click.option(
     "--history",
     type=click.Path(dir_okay=False, writable=True),
@@ -234,90 +152,19 @@ def bench(history: str | None, fmt: str, **values: Any) -> None:
 # --------------------------------------------------------------------------------------
 
 
-def _engine_options(function: Any) -> Any:
-    def shown(name: str, words: str = "") -> str:
-        return default_help(CycleOptions, name, words)
-
-    options = [
-        click.option(
-            "--engine",
-            default=None,
-            help="Engine file or preset: stroke, rod length, offset, reciprocating "
-            "mass (of --cylinder), speed and stroke count come from it unless "
-            "given as options.",
-        ),
-        click.option(
-            "--cylinder",
-            default=None,
-            help="With --engine: the cylinder studied alone ('cycle': default all cylinders "
-            "at once; 'sensitivity': default 1).",
-        ),
-        click.option("--bore", default=None, help=shown("bore", "Bore (one cylinder).")),
-        click.option("--stroke", default=None, help=shown("stroke")),
-        click.option("--rod-length", default=None, help=shown("rod_length")),
-        click.option("--reciprocating-mass", default=None, help=shown("reciprocating_mass")),
-        click.option(
-            "--crank-inertia",
-            default=None,
-            help="Inertia of all purely rotating parts incl. flywheel [default: 0.006 kg*m^2, "
-            "the thesis' single, without --engine; with --engine the engine's: front end + "
-            "throws + flywheel, as 'torsional' and 'bearings'].",
-        ),
-        click.option("--journal-diameter", default=None, help=shown("journal_diameter")),
-        click.option("--friction-coefficient", default=None, help=shown("friction_coefficient")),
-        click.option("--speed", default=None, help=shown("speed", "Mean speed.")),
-        click.option(
-            "--strokes", type=click.Choice(["2", "4"]), default=None, help=shown("strokes")
-        ),
-        click.option("--compression-ratio", default=None, help=shown("compression_ratio")),
-        click.option(
-            "--ignition",
-            default=None,
-            help=shown("ignition", "Start of combustion from firing TDC."),
-        ),
-        click.option("--burn-duration", default=None, help=shown("burn_duration")),
-        click.option(
-            "--intake-pressure",
-            default=None,
-            help=shown("intake_pressure", "Pressure at the start of compression (load)."),
-        ),
-        click.option(
-            "--pressure-csv",
-            multiple=True,
-            type=click.Path(exists=True, dir_okay=False),
-            help="Cylinder pressure table instead of the Wiebe model: columns "
-            "crank angle [deg from firing TDC], absolute pressure [bar]. 'cycle' of a whole "
-            "engine: one for every cylinder, or repeated once per cylinder in cylinder order.",
-        ),
-    ]
-    for option in reversed(options):
-        function = option(function)
-    return function
+def _engine_option(function: Any) -> Any:
+    return click.option(
+        "--engine",
+        default=None,
+        help="Engine file or preset: stroke, rod length, offset, reciprocating "
+        "mass (of --cylinder), speed and stroke count come from it unless "
+        "given as options.",
+    )(function)
 
 
 @click.command()
-@_engine_options
-@click.option(
-    "--balance-factor",
-    default=None,
-    help=default_help(
-        CycleOptions,
-        "balance_factor",
-        "One cylinder: share of the reciprocating mass on the counterweight, on top of "
-        "100 % of the rotating mass.",
-    ),
-)
-@click.option(
-    "--flywheel-inertia",
-    default=None,
-    help="Flywheel inertia, added to --crank-inertia, e.g. '0.05 kg*m^2'.",
-)
-@click.option(
-    "--speed-fluctuation-target",
-    default=None,
-    help="Size the flywheel for this speed fluctuation (max - min)/mean, e.g. '0.01' or "
-    "'1%' (from 1e-6 to 0.2).",
-)
+@_engine_option
+@study_options("cycle")
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),
@@ -412,25 +259,8 @@ def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str
 
 
 @click.command()
-@_engine_options
-@click.option(
-    "--balance-factors",
-    default=None,
-    help=default_help(
-        SensitivityOptions,
-        "balance_factors",
-        "Balance factors: '0,0.28,0.5' or start:stop:step.",
-    ),
-)
-@click.option(
-    "--mass-scales",
-    default=None,
-    help=default_help(
-        SensitivityOptions,
-        "mass_scales",
-        "Factors on the reciprocating mass (lighter parts < 1), comma separated.",
-    ),
-)
+@_engine_option
+@study_options("sensitivity")
 @format_option(FORMATS)
 def sensitivity(fmt: str, engine: str | None, **values: Any) -> None:
     """Sweep the balance factor: friction, bearing loads, torque, acceleration, shaking."""

@@ -14,99 +14,15 @@ from typing import Any
 import click
 
 from ..output.format import json_text, text
-from ..schema.settings import MAX_SHAFT_POINTS, ShaftCheckOptions, ShaftStudyOptions
-from ._common import default_help, echo_table, format_option, run_study
+from ._common import echo_table, format_option, run_study, study_options
 
 
-def _section_options(function: Any) -> Any:
-    def shown(name: str, words: str) -> str:
-        return default_help(ShaftStudyOptions, name, words)
-
-    options = [
-        click.option(
-            "--length", default=None, help=shown("length", 'Shaft length, e.g. "300 mm".')
-        ),
-        click.option(
-            "--diameter",
-            default=None,
-            help=shown("diameter", 'Outer shaft diameter, e.g. "25 mm".'),
-        ),
-        click.option("--bore", default=None, help=shown("bore", "Bore diameter (hollow shaft).")),
-        click.option("--modulus", default=None, help=shown("modulus", "Young's modulus.")),
-        click.option("--density", default=None, help=shown("density", "Density.")),
-        click.option("--poisson", default=None, help=shown("poisson", "Poisson's ratio.")),
-        click.option(
-            "--unbalance-radius",
-            default=None,
-            help=shown(
-                "unbalance_radius",
-                "Centre-of-gravity radius of the unbalance masses (their mass m = U / e).",
-            ),
-        ),
-        click.option(
-            "--bearing-stiffness",
-            default=None,
-            help='Radial bearing stiffness, e.g. "2e8 N/m" (default: rigid).',
-        ),
-        click.option(
-            "--theory",
-            type=click.Choice(["euler-bernoulli", "timoshenko"]),
-            default=None,
-            help=shown("theory", "Beam theory."),
-        ),
-    ]
-    for option in reversed(options):
-        function = option(function)
-    return function
-
-
-def _study_options(function: Any) -> Any:
-    options = [
-        click.option(
-            "--engine",
-            default=None,
-            help="Engine file or preset: the balancing solver gives --unbalance and --speed.",
-        ),
-        click.option(
-            "--unbalance",
-            default=None,
-            help='Required first moment m*e of the shaft, e.g. "3.3 g*m".',
-        ),
-        click.option(
-            "--speed",
-            default=None,
-            help='Shaft speed (twice crank speed for second order), e.g. "12000 rpm".',
-        ),
-        click.option(
-            "--weight",
-            default=None,
-            help=default_help(ShaftStudyOptions, "weight", "w of the objective (0 to 1000)."),
-        ),
-        click.option(
-            "--weights",
-            default=None,
-            help="Comma-separated weights of the sweep (default 20 values 0.2 ... 4).",
-        ),
-        click.option(
-            "--points",
-            default=None,
-            help=default_help(
-                ShaftStudyOptions,
-                "points",
-                f"Design points along the shaft (3 to {MAX_SHAFT_POINTS}).",
-            ),
-        ),
-        click.option(
-            "--secondary",
-            type=click.Choice(["reaction-difference", "inverse-frequency"]),
-            default=None,
-            help="B of the objective (default: reaction-difference for inline4, "
-            "inverse-frequency for inline3).",
-        ),
-    ]
-    for option in reversed(options):
-        function = option(function)
-    return _section_options(function)
+def _engine_option(function: Any) -> Any:
+    return click.option(
+        "--engine",
+        default=None,
+        help="Engine file or preset: the balancing solver gives --unbalance and --speed.",
+    )(function)
 
 
 def _verdict(limit: float | None, ok: bool) -> str:
@@ -160,13 +76,8 @@ def shaft() -> None:
 
 
 @shaft.command()
-@_study_options
-@click.option(
-    "--order",
-    default=None,
-    help="With --engine: the order of the shaft, 1 or 2 (default: 2 when the engine has a free "
-    "second-order force or moment, else 1).",
-)
+@_engine_option
+@study_options("shaft-inline4")
 @format_option(("table", "json"))
 def inline4(fmt: str, engine: str | None, **values: Any) -> None:
     """Optimum unbalance-mass position of an inline-4 second-order shaft on end bearings."""
@@ -180,31 +91,8 @@ def inline4(fmt: str, engine: str | None, **values: Any) -> None:
 
 
 @shaft.command()
-@_study_options
-@click.option(
-    "--type",
-    type=click.Choice(["I", "II", "III", "all"]),
-    default=None,
-    help=default_help(ShaftStudyOptions, "type", "Rotor type (order of masses and bearings)."),
-)
-@click.option(
-    "--hold",
-    type=click.Choice(["couple", "unbalance"]),
-    default=None,
-    help=default_help(
-        ShaftStudyOptions, "hold", "Keep the couple (physical) or each mass's unbalance (paper)."
-    ),
-)
-@click.option("--bearing-offset", default=None, help="Bearing-to-mass distance (default 0.1 L).")
-@click.option(
-    "--z-min",
-    default=None,
-    help=default_help(
-        ShaftStudyOptions,
-        "z_min",
-        "Smallest second-mass position z / L of the sweep (0 to below 1).",
-    ),
-)
+@_engine_option
+@study_options("shaft-inline3")
 @format_option(("table", "json"))
 def inline3(fmt: str, engine: str | None, **values: Any) -> None:
     """Optimum second-mass position of an inline-3 primary-couple shaft, per rotor type.
@@ -234,42 +122,7 @@ def inline3(fmt: str, engine: str | None, **values: Any) -> None:
 
 
 @shaft.command()
-@click.option(
-    "--bearing",
-    multiple=True,
-    help="Bearing position from the shaft end (repeat, at least two).",
-)
-@click.option(
-    "--mass",
-    multiple=True,
-    help="Unbalance-mass position (repeat; match with --unbalance).",
-)
-@click.option(
-    "--unbalance",
-    multiple=True,
-    help='First moment m*e of each mass, e.g. "3.3 g*m" (one for all, or one per mass).',
-)
-@click.option(
-    "--phase",
-    multiple=True,
-    help='Angular position of each mass on the shaft, e.g. "180 deg" (default 0).',
-)
-@click.option("--speed", default=None, help="Shaft speed of the evaluation (required).")
-@click.option(
-    "--max-speed", default=None, help="Maximum shaft speed for the checks (default --speed)."
-)
-@click.option(
-    "--margin",
-    default=None,
-    help=default_help(
-        ShaftCheckOptions,
-        "margin",
-        "Required separation of the first critical speed above the maximum speed.",
-    ),
-)
-@click.option("--bearing-capacity", default=None, help='Allowed bearing load, e.g. "5 kN".')
-@click.option("--deflection-limit", default=None, help='Allowed deflection, e.g. "50 um".')
-@_section_options
+@study_options("shaft-check")
 @format_option(("table", "json"))
 def check(fmt: str, **values: Any) -> None:
     """State variables and design checks of one shaft layout."""

@@ -16,7 +16,7 @@ import click
 
 from ..output.format import text
 from ..schema.settings import ShopOptions
-from ._common import default_help, echo_table, option_name, parse_settings, run_study, typed
+from ._common import echo_table, option_name, parse_settings, run_study, study_options, typed
 
 FORMATS = click.Choice(["table", "json"])
 
@@ -27,82 +27,6 @@ def _engine(required: bool = True) -> Callable[[Any], Any]:
         required=required,
         help="Engine file or preset name (e.g. v8-crossplane): cylinders, pins, speed.",
     )
-
-
-#: the settings of the matching and bob-weights, as click options
-_PARTS_OPTIONS = (
-    click.option(
-        "--method",
-        type=click.Choice(["milp", "pairing", "exhaustive", "as-listed"]),
-        default=None,
-        help="Matching method (default milp: least spread, proven optimal within the time "
-        "limit; too large a problem is matched by a local search, said so in the output).",
-    ),
-    click.option(
-        "--time-limit",
-        help="Longest matching, the building of the model included, default '60 s'.",
-    ),
-    click.option(
-        "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
-    ),
-)
-
-#: the settings of the hole plan and the ISO check, as click options
-_PLAN_OPTIONS = (
-    click.option(
-        "--reading",
-        multiple=True,
-        help="Machine reading, twice (measuring plane 1, then 2): '12.5 g @ 40 mm, 35 deg'.",
-    ),
-    click.option(
-        "--convention",
-        type=click.Choice(["heavy", "light"]),
-        default=None,
-        help="The readings' angle is the heavy spot (default) or the light spot.",
-    ),
-    click.option(
-        "--measuring-planes", help="Axial positions of the measuring planes: '0 mm, 400 mm'."
-    ),
-    click.option(
-        "--correction-planes", help="Axial positions of the correction planes: '50 mm, 350 mm'."
-    ),
-    click.option("--hole-diameter", help="Drill diameter, default '8 mm'."),
-    click.option("--hole-radius", help="Radius of the axial holes (or of the rim), e.g. '45 mm'."),
-    click.option("--max-depth", help="Deepest hole allowed, default '15 mm'."),
-    click.option(
-        "--web-thickness",
-        help="Axial thickness of the web at the holes: the deepest axial hole, the widest "
-        "radial one (not given: holes at most 10 drill diameters deep).",
-    ),
-    click.option(
-        "--depth-to",
-        type=click.Choice(["shoulder", "tip"]),
-        default=None,
-        help="What the depths are read to (required with readings).",
-    ),
-    click.option("--point-angle", help="Drill point angle, default '118 deg' (180: flat)."),
-    click.option(
-        "--direction", type=click.Choice(["axial", "radial"]), default=None, help="Hole direction."
-    ),
-    click.option("--spacing", help="Material between holes, default '2 mm'."),
-    click.option("--depth-resolution", help="Machining step, default '0.1 mm'."),
-    click.option("--density", help="Crank material, default '7850 kg/m^3'."),
-    click.option("--slug-density", help="Add heavy metal of this density instead of drilling."),
-    click.option("--grade", help="ISO 21940-11 grade, default G6.3."),
-    click.option("--rotor-mass", help="Crank mass for the ISO check, e.g. '25 kg'."),
-    click.option("--speed", help="Largest service speed, default the engine's."),
-    click.option("--bearings", help="Main bearings: '-20 mm, 420 mm' (default the planes)."),
-    click.option("--center-of-mass", help="Crank centre of mass (default mid-bearings)."),
-)
-
-
-def _with(options: tuple[Callable[[Any], Any], ...]) -> Callable[[Any], Any]:
-    def wrap(func: Any) -> Any:
-        for option in reversed(options):
-            func = option(func)
-        return func
-
-    return wrap
 
 
 def _echo_json(result: Any) -> None:
@@ -122,13 +46,12 @@ def shop() -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-match")
 @_engine()
-@_with(_PARTS_OPTIONS)
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
+def match(engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
-    result = run_study("shop-match", engine, {**values, "parts": parts})
+    result = run_study("shop-match", engine, values)
     if fmt == "json":
         _echo_json(result)
         return
@@ -153,13 +76,12 @@ def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-bobweights")
 @_engine()
-@_with(_PARTS_OPTIONS)
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def bobweights(parts: str, engine: str, fmt: str, **values: Any) -> None:
+def bobweights(engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
-    result = run_study("shop-bobweights", engine, {**values, "parts": parts})
+    result = run_study("shop-bobweights", engine, values)
     if fmt == "json":
         _echo_json(result)
         return
@@ -225,7 +147,7 @@ def echo_hole_plan(result: Any) -> None:
 
 @shop.command()
 @_engine(required=False)
-@_with(_PLAN_OPTIONS)
+@study_options("shop-plan")
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
@@ -237,35 +159,12 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-scatter")
 @_engine()
-@click.option(
-    "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
-)
-@click.option(
-    "--correction-planes", required=True, help="From the crank mid-point: '-200 mm, 200 mm'."
-)
-@click.option("--rotor-mass", help="Crank mass, for the probability of meeting the grade.")
-@click.option("--grade", help="ISO 21940-11 grade, default G6.3.")
-@click.option("--speed", help="Largest service speed, default the engine's.")
-@click.option("--bearings", help="Main bearings (default the planes).")
-@click.option(
-    "--samples",
-    default=None,
-    help=default_help(ShopOptions, "samples", "Engines drawn (up to 1e7)."),
-)
-@click.option(
-    "--seed", default=None, help=default_help(ShopOptions, "seed", "Seed of the random numbers.")
-)
-@click.option(
-    "--scale-step",
-    default=None,
-    help=default_help(ShopOptions, "scale_step", "Resolution of the scale."),
-)
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def scatter(parts: str, engine: str, fmt: str, **values: Any) -> None:
+def scatter(engine: str, fmt: str, **values: Any) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
-    result = run_study("shop-scatter", engine, {**values, "parts": parts})
+    result = run_study("shop-scatter", engine, values)
     if fmt == "json":
         _echo_json(result)
         return
@@ -286,11 +185,11 @@ def scatter(parts: str, engine: str, fmt: str, **values: Any) -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-match")
 @_engine()
 @click.option("-o", "--output", required=True, help="sheet.html or sheet.pdf.")
 @click.option("--chromium", default=None, help="Chromium executable for the PDF.")
-@_with(_PARTS_OPTIONS + _PLAN_OPTIONS)
+@study_options("shop-plan")
 def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: Any) -> None:
     """The printable shop sheet of PARTS (and of the readings, when given): HTML or PDF.
 

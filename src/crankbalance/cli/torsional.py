@@ -15,7 +15,7 @@ from typing import Any
 
 import click
 
-from ._common import echo_table, format_option, option_name, run_study
+from ._common import echo_table, format_option, run_study, study_options
 from .plot import check_figure, write_figure
 
 _RPM = 30.0 / math.pi  # rad/s -> rpm
@@ -24,37 +24,9 @@ FORMATS = ("table", "json", "csv")
 TABLE_RESONANCES = 12
 
 
-def _options(function: Any) -> Any:
-    """An option for every setting of the study but the pressure tables (``--pressure-csv``
-    below), its help from the settings schema."""
-    from ..schema.settings import TorsionalOptions, default_text
-
-    names = [n for n in TorsionalOptions.FIELDS if n != "pressure_csv"]
-    for name in reversed(names):
-        spec = TorsionalOptions.FIELDS[name]
-        default = default_text(TorsionalOptions, name)
-        shown = f" [default: {default}]" if default else ""
-        if not default and spec.hint:
-            shown = f" [{spec.hint}]"
-        if name.endswith("_stiffness") and name != "damper_stiffness":
-            shown += " E.g. '5e5 N*m/rad'."
-        function = click.option(option_name(name), default=None, help=f"{spec.title}.{shown}")(
-            function
-        )
-    return function
-
-
 @click.command()
 @click.option("--engine", default=None, help="Engine file or preset (required).")
-@_options
-@click.option(
-    "--pressure-csv",
-    multiple=True,
-    type=click.Path(exists=True, dir_okay=False),
-    help="Cylinder pressure table instead of the Wiebe model (as 'cycle': crank angle [deg "
-    "from firing TDC], absolute pressure [bar]); one for every cylinder, or one per cylinder "
-    "in cylinder order.",
-)
+@study_options("torsional")
 @click.option(
     "--plot",
     type=click.Path(dir_okay=False),

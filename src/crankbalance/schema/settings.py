@@ -577,9 +577,9 @@ class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequiremen
 
     web_radius: str | None = _profile("Web circle radius r_cw")
     rectangle_height: str | None = _profile("Rectangle height h_R")
-    trapezoid_angle: str | None = _profile("delta")
+    trapezoid_angle: str | None = _profile("Trapezoid angle delta")
     segment_radius: str | None = _profile("Segment radius R_cw")
-    segment_angle: str | None = _profile("alpha")
+    segment_angle: str | None = _profile("Segment angle alpha")
     thickness: str | None = _profile("Thickness t_cw")
     radius_measure: Literal["true", "paper"] = choice(
         "true",
@@ -822,7 +822,7 @@ class BalanceOptions(StudyOptions):
     scope: Literal["auto", "whole", "halves"] | None = choice(
         None,
         ("auto", "whole", "halves"),
-        "Balance the whole crank or each half",
+        "Whole crank or halves",
         "Balance the whole crank or each half on its own; empty: the engine file's.",
     )
     verify: bool = field(
@@ -860,13 +860,21 @@ class CounterweightDesignOptions(StudyOptions):
         None, "Rectangle height h_R", "Height of the profile's rectangle."
     )
     trapezoid_angle: float | None = quantity(
-        "angle", None, "delta", "Angle delta of the profile's trapezoid flanks.", ge=0
+        "angle",
+        None,
+        "Trapezoid angle delta",
+        "Angle delta of the profile's trapezoid flanks.",
+        ge=0,
     )
     segment_radius: float | None = quantity(
         "length", None, "Segment radius R_cw", "Radius of the profile's outer circular segment."
     )
     segment_angle: float | None = quantity(
-        "angle", None, "alpha", "Angle alpha of the profile's outer circular segment.", gt=0
+        "angle",
+        None,
+        "Segment angle alpha",
+        "Angle alpha of the profile's outer circular segment.",
+        gt=0,
     )
     thickness: float | None = quantity(
         "length", None, "Thickness t_cw", "Axial thickness of the counterweight."

@@ -66,6 +66,9 @@ class Study:
     local : tuple of str
         Settings that act on the machine that computes (dask workers and schedulers); the
         API refuses them.
+    arguments : tuple of str
+        Settings the command line takes as arguments rather than options (the parts file
+        of ``shop match``); the API takes them by name as every other setting.
     """
 
     name: str
@@ -80,6 +83,7 @@ class Study:
     heavy: bool = False
     files: tuple[str, ...] = ()
     local: tuple[str, ...] = ()
+    arguments: tuple[str, ...] = ()
 
     def load(self) -> Callable[..., Any]:
         """The study function."""
@@ -348,8 +352,8 @@ STUDIES: dict[str, Study] = {
             heavy=True,
             local=("workers", "scheduler", "connect_timeout"),
         ),
-        _shop("match", _PARTS, heavy=True),
-        _shop("bobweights", _PARTS, heavy=True),
+        _shop("match", _PARTS, heavy=True, arguments=("parts",)),
+        _shop("bobweights", _PARTS, heavy=True, arguments=("parts",)),
         _shop("plan", _PLAN, engine="optional"),
         _shop(
             "scatter",
@@ -366,6 +370,7 @@ STUDIES: dict[str, Study] = {
                 "scale_step",
             ),
             heavy=True,
+            arguments=("parts",),
         ),
     )
 }
