@@ -512,26 +512,26 @@ class CounterweightProperties(ResultMixin):
     gamma : Intersection angle gamma of the web circle and the rectangle [rad] (Eq. 25).
     lam : Intersection angle lambda of the web circle and the chord [rad] (Eq. 24).
     area_green, area_blue, area_orange : Zone areas [m^2] (Eq. 26).
-    hub_protrusion : True where the web circle reaches out through the segment's arc.
+    hub_protrusion : True where the web circle reaches out through the segment's arc [-].
     balance : Achieved / required first moment [%] (only if a requirement was given).
     """
 
-    area: Any
-    volume: Any
-    mass: Any
-    cg_radius: Any
-    first_moment: Any
-    inertia: Any
-    outer_radius: Any
-    radius_bound: Any
-    overhang: Any
-    gamma: Any
-    lam: Any
-    area_green: Any
-    area_blue: Any
-    area_orange: Any
-    hub_protrusion: Any
-    balance: Any = None
+    area: float | np.ndarray
+    volume: float | np.ndarray
+    mass: float | np.ndarray
+    cg_radius: float | np.ndarray
+    first_moment: float | np.ndarray
+    inertia: float | np.ndarray
+    outer_radius: float | np.ndarray
+    radius_bound: float | np.ndarray
+    overhang: float | np.ndarray
+    gamma: float | np.ndarray
+    lam: float | np.ndarray
+    area_green: float | np.ndarray
+    area_blue: float | np.ndarray
+    area_orange: float | np.ndarray
+    hub_protrusion: bool | np.ndarray
+    balance: float | np.ndarray | None = None
 
 
 def counterweight_properties(
@@ -618,7 +618,9 @@ def _properties_from_section(
         area_green=out(sec.area_green),
         area_blue=out(sec.area_blue),
         area_orange=out(sec.area_orange),
-        hub_protrusion=out(sec.hub_protrusion),
+        hub_protrusion=bool(sec.hub_protrusion)
+        if np.ndim(sec.hub_protrusion) == 0
+        else sec.hub_protrusion,
         balance=None if balance is None else out(balance),
     )
 
