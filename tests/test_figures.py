@@ -498,3 +498,13 @@ def test_engine_torque_figure_of_one_cylinder_is_the_cycle_figure() -> None:
     assert engine_torque_figure(one.result).to_dict() == cycle_figure(one.result).to_dict()
     names = [t.name for t in engine_torque_figure(whole.result).data]
     assert [n for n in names if n.startswith("cylinder")] == [f"cylinder {k}" for k in range(1, 5)]
+
+
+def test_crank_3d_takes_an_analysis_or_a_balancing_study() -> None:
+    """crank_3d(analysis) draws the analysis' engine, crank_3d(study) the study's engine
+    with its balancing, as crank_3d(model) and crank_3d(model, study) do."""
+    b = balance_engine("inline4")
+    a = analyze(b.model)
+    assert crank_3d(b).to_dict() == crank_3d(b.model, b).to_dict()
+    assert crank_3d(a).to_dict() == crank_3d(a.model).to_dict()
+    assert crank_3d(b).to_dict() != crank_3d(b.model).to_dict()
