@@ -15,20 +15,27 @@ import math
 import re
 from collections.abc import Callable
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from ..physics.counterweight import CounterweightDesign, CounterweightProperties
-from ..physics.counterweight_optimize import CounterweightOptimum
+from ..physics.counterweight_optimize import CounterweightOptimum, OptimizationProgress
 from ..results import require_finite, to_jsonable
 from ..schema.settings import (
     COUNTERWEIGHT_CHILDREN,
     PROFILE_PARAMETERS,
     CounterweightDesignOptions,
     CounterweightOptimizeOptions,
+    CounterweightRequirementOptions,
     parse_options,
 )
 from .engine import EngineLike, engine_label
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..io.cad import MeshMassProperties
+
+#: the settings that may state a counterweight's requirement (:func:`requirement`)
+RequirementSettings = CounterweightRequirementOptions | CounterweightDesignOptions
 
 SCHEMA = "crankbalance.counterweight/2"
 
@@ -70,7 +77,7 @@ def design_row(values: dict[str, float]) -> dict[str, float]:
     return out
 
 
-def requirement(engine: EngineLike | None, settings: Any) -> float | None:
+def requirement(engine: EngineLike | None, settings: RequirementSettings) -> float | None:
     """The first moment m_c r_c [kg m] a counterweight must carry: ``first_moment``, or
     ``cw_mass`` times ``cg_radius``, or the heaviest crank counterweight of the engine's
     balancing; None when none is given. More than one is refused."""
@@ -101,7 +108,7 @@ def requirement(engine: EngineLike | None, settings: Any) -> float | None:
     return _required(None, settings)
 
 
-def _required(engine: EngineLike | None, settings: Any) -> float:
+def _required(engine: EngineLike | None, settings: RequirementSettings) -> float:
     """The requirement of a study that needs one (:func:`requirement`)."""
     if engine is not None or settings.first_moment is not None:
         found = requirement(engine, settings)
@@ -214,7 +221,7 @@ def optimize(
     engine: EngineLike | None,
     settings: CounterweightOptimizeOptions,
     *,
-    progress: Callable[[Any], Any] | None = None,
+    progress: Callable[[OptimizationProgress], bool | None] | None = None,
 ) -> OptimizeResult:
     """Feasible counterweights, their Pareto front, least-mass and least-radius designs
     (:func:`~crankbalance.physics.counterweight_optimize.optimize_counterweight`, with
@@ -366,7 +373,7 @@ class PartResult:
     """
 
     path: str
-    properties: Any
+    properties: MeshMassProperties
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.counterweight/2`` (mode ``part``)."""

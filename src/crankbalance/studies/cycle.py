@@ -18,7 +18,7 @@ import contextlib
 import math
 from collections.abc import Callable, Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -28,6 +28,13 @@ from ..physics.model import EngineModel
 from ..results import require_finite, to_jsonable
 from ..schema.settings import THESIS_CRANK_INERTIA, CycleOptions, SensitivityOptions, given
 from .engine import EngineLike, as_model, engine_label
+
+if TYPE_CHECKING:  # pragma: no cover
+    from numpy.typing import NDArray
+
+    from ..physics.engine_cycle import CycleResult, CylinderSpec, PressureSource, SensitivityResult
+    from ..physics.engine_cycle_all import EngineCycleResult
+
 from .performance import (
     WIEBE_OPTIONS,
     arithmetic_checked,
@@ -165,7 +172,9 @@ def _inertia_error(
     )
 
 
-def _cylinder(engine: EngineLike | None, o: CycleOptions) -> tuple[Any, Any, float, int, float]:
+def _cylinder(
+    engine: EngineLike | None, o: CycleOptions
+) -> tuple[CylinderSpec, PressureSource, float, int, float]:
     """The cylinder, its pressure source, speed, stroke count and crank + flywheel inertia
     (before ``flywheel_inertia``) of one cylinder's cycle; a setting that would not act is
     refused."""
@@ -232,7 +241,9 @@ def _cylinder(engine: EngineLike | None, o: CycleOptions) -> tuple[Any, Any, flo
         )
         speed = speed if "speed" in typed else float(model.speed)
         strokes = strokes if "strokes" in typed else int(model.strokes)
-    return cylinder, pressure_source(o, 1, strokes), speed, strokes, inertia
+    pressure = pressure_source(o, 1, strokes)
+    assert not isinstance(pressure, list)  # one cylinder: one source
+    return cylinder, pressure, speed, strokes, inertia
 
 
 def _flywheel(
@@ -265,9 +276,9 @@ class CycleStudy:
         The flywheel given, added to the crank [kg m^2].
     """
 
-    result: Any
+    result: CycleResult | EngineCycleResult
     payload: dict[str, Any]
-    curves: dict[str, Any]
+    curves: dict[str, NDArray[np.float64]]
     flywheel_inertia: float
 
     def to_dict(self) -> dict[str, Any]:
@@ -431,7 +442,7 @@ def _whole_engine(engine: EngineLike, o: CycleOptions) -> CycleStudy:
             np.mod(intervals, np.pi * model.strokes) if model.cylinders > 1 else intervals
         ).tolist(),
     }
-    curves: dict[str, Any] = {
+    curves: dict[str, NDArray[np.float64]] = {
         "angle_deg": np.degrees(result.angle),
         "crank_angle_deg": np.degrees(result.crank_angle),
         "gas_torque_Nm": result.gas_torque,
@@ -502,7 +513,7 @@ class SensitivityStudy:
         The flywheel given [kg m^2] (none: the sweep has no flywheel setting).
     """
 
-    result: Any
+    result: SensitivityResult
     payload: dict[str, Any]
     header: list[str]
     rows: list[list[float]]

@@ -20,8 +20,18 @@ from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
-if TYPE_CHECKING:  # the verification is imported when asked for
+if TYPE_CHECKING:  # the verification and the solver are imported when asked for
+    from numpy.typing import ArrayLike
+
     from ..physics.balance_check import Verification
+    from ..physics.balancing import (
+        BalanceResult,
+        CounterweightOptions,
+        Counterweights,
+        ShaftOptions,
+        ShaftSet,
+    )
+    from ..schema.settings import BalanceOptions
 
 SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
@@ -61,7 +71,7 @@ class Analysis:
     model: EngineModel
     forces: FreeForces
 
-    def curves(self, angle: Any = None) -> Curves:
+    def curves(self, angle: ArrayLike | None = None) -> Curves:
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
@@ -212,7 +222,9 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
 BALANCE_SCHEMA = "crankbalance.balance/2"
 
 
-def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
+def balance_options(
+    spec: EngineSpec,
+) -> tuple[CounterweightOptions, ShaftOptions | None, ShaftOptions | None]:
     """Solver options from an engine spec's [counterweights] and [balance_shafts] tables.
 
     Without a [counterweights] table the crank gets counterweights on every web at the
@@ -252,7 +264,7 @@ class BalanceStudy:
     the time-domain verification when it was asked for."""
 
     model: EngineModel
-    result: Any  # balancing.BalanceResult
+    result: BalanceResult
     verification: Verification | None = None  # when asked for
 
     def to_dict(self) -> dict[str, Any]:
@@ -260,7 +272,7 @@ class BalanceStudy:
         res, m = self.result, self.model
         components = {c.component: c for c in res.residuals}
 
-        def cw_dict(cw: Any) -> dict[str, Any] | None:
+        def cw_dict(cw: Counterweights | None) -> dict[str, Any] | None:
             if cw is None:
                 return None
             return {
@@ -284,7 +296,7 @@ class BalanceStudy:
                 "note": cw.note,
             }
 
-        def shafts_dict(group: Any) -> dict[str, Any] | None:
+        def shafts_dict(group: ShaftSet | None) -> dict[str, Any] | None:
             if group is None:
                 return None
             return {
@@ -423,7 +435,9 @@ def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
     return analyze(engine, settings.orders)
 
 
-def balancing(engine: str | os.PathLike[str] | EngineSpec, settings: Any) -> BalanceStudy:
+def balancing(
+    engine: str | os.PathLike[str] | EngineSpec, settings: BalanceOptions
+) -> BalanceStudy:
     """The balancing study of the registry (``balance``): :func:`balance_engine` of
     ``engine`` with the counterweight settings given in ``settings``
     (:class:`~crankbalance.schema.settings.BalanceOptions`: angle, balance factor, method,

@@ -17,7 +17,7 @@ import math
 import re
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,6 +28,9 @@ from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
 from .explore import Keep, RunResult, Sample, progress_line, run
 
+if TYPE_CHECKING:  # pragma: no cover
+    from ..physics.explore.orders import Problem
+
 SCHEMA = "crankbalance.explore/1"
 #: a dask scheduler's address, ``tcp://10.0.0.5:8786``
 SCHEDULER = re.compile(r"^[a-z]+://[^\s/:]+(:\d+)?$")
@@ -35,7 +38,7 @@ SCHEDULER = re.compile(r"^[a-z]+://[^\s/:]+(:\d+)?$")
 RUN_SETTINGS = ("scheduler", "connect_timeout")
 
 
-def _problem(engine: EngineLike | None, o: ExploreOptions) -> Any:
+def _problem(engine: EngineLike | None, o: ExploreOptions) -> Problem:
     """The enumeration's problem of the settings (and the engine's masses and geometry)."""
     from ..physics.explore import orders
 

@@ -16,7 +16,7 @@ import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -54,6 +54,11 @@ from .performance import (
     combustion_text,
     pressure_source,
 )
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..physics.balancing import BalanceResult
+    from ..physics.engine_cycle import PressureSource
+    from ..physics.engine_cycle_all import EngineCycleResult
 
 SCHEMA = "crankbalance.bearings/1"
 
@@ -98,8 +103,8 @@ class BearingStudy:
     """
 
     model: EngineModel
-    balance: Any
-    cycle: Any
+    balance: BalanceResult
+    cycle: EngineCycleResult
     options: BearingOptions
     section: CrankSection
     dimensions: CrankDimensions
@@ -222,7 +227,7 @@ class BearingStudy:
         return result
 
 
-def _counterweight_arrays(balance: Any) -> dict[str, Any]:
+def _counterweight_arrays(balance: BalanceResult) -> dict[str, Any]:
     """The counterweights (and the extra crank masses of a single counter-rotating primary
     shaft) as the arrays of :func:`crankbalance.physics.main_bearings.crank_loads`: first moments
     at one common radius."""
@@ -239,7 +244,9 @@ def _counterweight_arrays(balance: Any) -> dict[str, Any]:
     }
 
 
-def _pressure(o: BearingOptions, cylinders: int, strokes: int) -> Any:
+def _pressure(
+    o: BearingOptions, cylinders: int, strokes: int
+) -> PressureSource | list[PressureSource]:
     """The cylinder pressure source: Wiebe or tables (:func:`.performance.pressure_source`),
     or the crankcase pressure alone (no gas)."""
     if not o.gas:

@@ -28,6 +28,7 @@ from ..errors import InputError
 
 if TYPE_CHECKING:
     from ..schema.settings import StudyOptions
+    from .engine import EngineLike
 
 #: whether a study takes an engine: always, when given, or never
 EngineUse = Literal["required", "optional", "none"]
@@ -421,7 +422,7 @@ def parse(
 def named(
     entry: Study,
     values: Mapping[str, Any],
-    settings: Any,
+    settings: StudyOptions,
     name: Callable[[str], str] | None = None,
 ) -> Iterator[None]:
     """Within the block, an :class:`InputError` of the study about one of its settings (or
@@ -435,7 +436,7 @@ def named(
 def named_fields(
     fields: Iterable[str],
     values: Mapping[str, Any],
-    settings: Any,
+    settings: StudyOptions,
     name: Callable[[str], str],
 ) -> Iterator[None]:
     """:func:`named` for the settings ``fields`` of a model."""
@@ -462,7 +463,7 @@ def _same(a: Any, b: Any) -> bool:
 
 def run(
     name: str,
-    engine: Any,
+    engine: EngineLike | None,
     values: Mapping[str, Any],
     *,
     naming: Callable[[str], str] | None = None,
@@ -479,7 +480,7 @@ def run(
 
 def execute(
     name: str,
-    engine: Any,
+    engine: EngineLike | None,
     settings: StudyOptions,
     *,
     values: Mapping[str, Any] | None = None,

@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,6 +40,12 @@ from ..physics.shop.planes import (
 from ..physics.shop.scatter import PartScatter, ScatterStudy, scatter_study
 from ..results import ResultMixin, to_jsonable
 from ..schema.settings import ShopOptions
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..schema.engine import EngineSpec
+
+    #: an engine as the shop takes it: a preset name, an engine file or a spec
+    EngineSource = str | os.PathLike[str] | EngineSpec
 
 
 @dataclass(frozen=True)
@@ -138,7 +144,7 @@ class ShopStudy(ResultMixin):
     settings: dict[str, Any]
 
 
-def engine_model(engine: Any) -> tuple[str, EngineModel]:
+def engine_model(engine: EngineSource) -> tuple[str, EngineModel]:
     """The name and model of ``engine``: a preset name, an engine file or an EngineSpec."""
     from ..io.engine_file import load_engine
     from ..schema.engine import EngineSpec
@@ -149,7 +155,7 @@ def engine_model(engine: Any) -> tuple[str, EngineModel]:
 
 
 def parts_study(
-    engine: Any, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
+    engine: EngineSource, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
 ) -> PartsStudy:
     """Match the parts of ``parts`` (a parts file or an Inventory) to the cylinders of
     ``engine`` and give the bob-weights of the matched sets (``options.fraction``)."""
@@ -269,7 +275,7 @@ def hole_plan(
 
 
 def shop_study(
-    engine: Any,
+    engine: EngineSource,
     parts: str | os.PathLike[str] | Inventory,
     options: ShopOptions,
     names: dict[str, str] | None = None,
@@ -301,7 +307,7 @@ def part_scatter(inventory: Inventory) -> tuple[PartScatter, ...]:
 
 
 def scatter_of_parts(
-    engine: Any,
+    engine: EngineSource,
     parts: str | os.PathLike[str] | Inventory,
     options: ShopOptions,
     samples: int,
@@ -567,7 +573,7 @@ class ShopResult:
     """
 
     schema: str
-    result: Any
+    result: PartsStudy | BobWeights | HolePlan | ScatterStudy
     parts: PartsStudy | None = None
 
     def to_dict(self) -> dict[str, Any]:
@@ -584,7 +590,7 @@ def _parts_file(options: ShopOptions) -> str:
     return options.parts
 
 
-def shop_match(engine: Any, settings: ShopOptions) -> ShopResult:
+def shop_match(engine: EngineSource, settings: ShopOptions) -> ShopResult:
     """The weighed parts of the parts file matched to the cylinders of ``engine``
     (:func:`parts_study`)."""
     study = parts_study(engine, _parts_file(settings), settings)
@@ -593,7 +599,7 @@ def shop_match(engine: Any, settings: ShopOptions) -> ShopResult:
     return result
 
 
-def shop_bobweights(engine: Any, settings: ShopOptions) -> ShopResult:
+def shop_bobweights(engine: EngineSource, settings: ShopOptions) -> ShopResult:
     """The bob-weight of every crankpin from the matched sets of the parts file
     (:func:`parts_study`)."""
     study = parts_study(engine, _parts_file(settings), settings)
@@ -602,7 +608,7 @@ def shop_bobweights(engine: Any, settings: ShopOptions) -> ShopResult:
     return result
 
 
-def shop_plan(engine: Any, settings: ShopOptions) -> ShopResult:
+def shop_plan(engine: EngineSource | None, settings: ShopOptions) -> ShopResult:
     """Two-plane readings turned into holes per correction plane, and the ISO check
     (:func:`hole_plan`; the engine's speed unless ``speed`` is given)."""
     speed = engine_model(engine)[1].speed if engine is not None else None
@@ -611,7 +617,7 @@ def shop_plan(engine: Any, settings: ShopOptions) -> ShopResult:
     return result
 
 
-def shop_scatter(engine: Any, settings: ShopOptions) -> ShopResult:
+def shop_scatter(engine: EngineSource, settings: ShopOptions) -> ShopResult:
     """Monte Carlo of the weight scatter of the parts file: the residual per plane and the
     free forces (:func:`scatter_of_parts`, ``samples`` engines drawn from ``seed``, weighed
     to ``scale_step``)."""

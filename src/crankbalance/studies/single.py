@@ -14,7 +14,7 @@ from __future__ import annotations
 import math
 from dataclasses import dataclass
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from ..physics import single_cylinder as sc
@@ -28,6 +28,12 @@ from ..schema.settings import (
 )
 from .engine import EngineLike, as_model
 from .rebalance import RebalanceStudy, rebalance_parts
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..io.rebalance_file import RebalanceFile
+    from ..physics import rebalancing as rb
+    from ..physics.kinematics import KinematicsModel
+    from .rebalance import PartsSummary
 
 #: what a balance factor is, as every single-cylinder output says it
 BALANCE_FACTOR_NOTE = (
@@ -151,7 +157,7 @@ def balance_factor(
         o.speed,
     )
     e = o.offset or 0.0
-    kinematics: Any = o.kinematics
+    kinematics: KinematicsModel | None = o.kinematics
     if engine is not None:
         from .cylinder import cylinder_of
 
@@ -216,7 +222,9 @@ def balance_factor(
     bob = None if m_rot is None else sc.bob_weight(m_rot, m_rec, fb_target)
     study = None
     if w is not None:
-        model_name: Any = kinematics or ("exact" if l_rod is not None else "first-order")
+        model_name: KinematicsModel = kinematics or (
+            "exact" if l_rod is not None else "first-order"
+        )
         study = sc.balance_factor_study(
             m_rec,
             r,
@@ -370,7 +378,7 @@ def _file_value(name: str, value: Any) -> Any:
     return value
 
 
-def _plan_names(parts: Any, origin: dict[str, str]) -> dict[str, str]:
+def _plan_names(parts: RebalanceFile, origin: dict[str, str]) -> dict[str, str]:
     """How the messages of a correction plan name its quantities: the option that set a
     key, the file's key, or both when neither gave it (``--holes or correction.number``)."""
     names = {key: "--" + name.replace("_", "-") for key, name in origin.items()}
@@ -385,7 +393,7 @@ def _plan_names(parts: Any, origin: dict[str, str]) -> dict[str, str]:
     return names
 
 
-def _drill_point_used(parts: Any, o: RebalancePartsOptions) -> None:
+def _drill_point_used(parts: RebalanceFile, o: RebalancePartsOptions) -> None:
     """Refuse the drill-point settings where they would be ignored or leave the depth
     unstated: ``depth_to`` for flat-bottomed holes (one depth, nothing to read it to),
     ``point_angle`` below 180 deg without the depth reference (the point changes the depth
@@ -420,7 +428,7 @@ def _drill_point_used(parts: Any, o: RebalancePartsOptions) -> None:
         )
 
 
-def _parts_json(side: Any) -> dict[str, Any]:
+def _parts_json(side: PartsSummary) -> dict[str, Any]:
     return {
         "label": side.label,
         "rotating_mass_kg": side.rotating_mass,
@@ -430,9 +438,11 @@ def _parts_json(side: Any) -> dict[str, Any]:
     }
 
 
-def _correction_json(correction: Any) -> dict[str, Any]:
+def _correction_json(correction: rb.DrilledHoles | rb.FaceRemoval) -> dict[str, Any]:
+    from ..physics.rebalancing import FaceRemoval
+
     out: dict[str, Any] = {"kind": correction.kind, "radius_m": correction.radius}
-    if correction.kind == "face":
+    if isinstance(correction, FaceRemoval):
         out |= {"area_m2": correction.area, "orientation": correction.orientation}
     else:
         out |= {
@@ -454,7 +464,7 @@ def _correction_json(correction: Any) -> dict[str, Any]:
     }
 
 
-def _case_json(res: Any) -> dict[str, Any]:
+def _case_json(res: rb.RebalanceResult) -> dict[str, Any]:
     """One rebalancing result with the SI unit in every key that carries one."""
     return {
         "original_balance_factor": res.original_balance_factor,
@@ -523,7 +533,7 @@ class ToleranceResult:
     rotor_mass: float = 0.0
     speed: float = 0.0
     permissible: float = 0.0
-    planes: Any = None
+    planes: tl.PlaneAllocation | None = None
     verdict: tl.ToleranceVerdict | None = None
 
     def to_dict(self) -> dict[str, Any]:
@@ -613,7 +623,7 @@ def tolerance(engine: EngineLike | None, settings: ToleranceOptions) -> Toleranc
     return result
 
 
-def _grade_json(grade: Any) -> dict[str, Any]:
+def _grade_json(grade: tl.BalanceGrade) -> dict[str, Any]:
     return {
         "name": grade.name,
         "value_m_s": grade.value,

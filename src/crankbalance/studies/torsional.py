@@ -109,7 +109,7 @@ def torsional(engine: EngineLike, settings: TorsionalOptions) -> TorsionalResult
     return result
 
 
-def check_size(o: TorsionalOptions, train: Any, strokes: int, speeds: Any) -> None:
+def check_size(o: TorsionalOptions, train: tv.CrankTrain, strokes: int, speeds: np.ndarray) -> None:
     """Refuse, before any work, a study that would compute more than
     :data:`crankbalance.physics.torsional.MAX_RESPONSE_SIZE` amplitudes (speeds of the sweep
     and of the resonances in the range x engine orders x masses), naming the setting that
@@ -222,7 +222,7 @@ def _torsional(engine: EngineLike, o: TorsionalOptions) -> TorsionalResult:
     return TorsionalResult(study, model, speeds, crank)
 
 
-def _modes(modes: Any, names: list[str]) -> list[dict[str, Any]]:
+def _modes(modes: tv.TorsionalModes, names: list[str]) -> list[dict[str, Any]]:
     return [
         {
             "mode": m,
@@ -236,7 +236,7 @@ def _modes(modes: Any, names: list[str]) -> list[dict[str, Any]]:
     ]
 
 
-def payload(study: Any, model: Any, crank: dict[str, Any]) -> dict[str, Any]:
+def payload(study: tv.TorsionalStudy, model: EngineModel, crank: dict[str, Any]) -> dict[str, Any]:
     """The JSON of ``torsional`` without its schema; ``crank`` is what the study assumed of
     the crank and the combustion."""
     train = study.train
