@@ -158,7 +158,7 @@ def throw_unbalance(
     throws, cylinders = topology.throws, topology.cylinders
     throw_angle = np.reshape(engine.throw_angle, (-1, throws))
     rotating_mass = np.reshape(engine.throw_rotating_mass, (-1, throws))
-    reciprocating_mass = np.reshape(engine.reciprocating_mass, (-1, cylinders))
+    reciprocating_mass: NDArray = np.reshape(engine.reciprocating_mass, (-1, cylinders))
     first = _first_harmonic(engine, orders)
     if np.any(first != 1.0):  # offset cylinders: their forward primary, phase and size
         reciprocating_mass = reciprocating_mass * first
