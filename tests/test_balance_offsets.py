@@ -158,3 +158,62 @@ def test_batch_gives_the_one_engine_counterweights() -> None:
         assert one is not None
         np.testing.assert_allclose(batch.counterweights.mass[i], one.mass, rtol=1e-12)
         np.testing.assert_allclose(batch.counterweights.direction[i], one.direction, atol=1e-12)
+
+
+# --------------------------------------------------------------------------- what is left
+def test_pattern_that_cannot_reach_its_target_says_so() -> None:
+    """Equal counterweights at a fixed 10 deg on the VR6 at 0.5: the note says the target
+    is missed and by how much, and what is left names the way to reach it."""
+    model = _model("vr6")
+    options = CounterweightOptions(cg_radius=model.crank_radius, balance_factor=0.5, angle=0.17)
+    result = balance(model, options)
+    missed = [n for n in result.notes if "cannot reach their target" in n]
+    assert len(missed) == 1 and 'method = "individual"' in missed[0]
+    rotating = [r for r in result.remaining if r.component == "rotating"]
+    assert rotating and all("individual" in r.next_step for r in rotating)
+    # the amounts are the solver's forward and backward parts, which verify measures
+    order1 = result.residual("order1")
+    assert order1.moment_forward_after > 0 and order1.moment_backward_after > 300.0
+    checked = verify(model, result)
+    assert checked.agrees
+    assert checked.residuals[1].moment_forward_after == pytest.approx(
+        order1.moment_forward_after, rel=1e-9
+    )
+
+
+def test_default_balance_factor_leaves_the_forward_primary_and_says_what_removes_it() -> None:
+    from crankbalance.studies.engine import balance_engine
+
+    study = balance_engine("v2-90")
+    left = {(r.component, r.quantity, r.rotation): r for r in study.result.remaining}
+    forward = left[("order1", "force", "forward")]
+    assert forward.amount > 10e3 and "--balance-factor 0.5" in forward.next_step
+    assert ("order1", "force", "backward") not in left  # the 90-degree twin's is all forward
+    data = study.to_dict()
+    assert data["remaining"][0]["text"] == forward.text
+    assert data["remaining"][0]["unit"] == "N"
+    half = balance_engine("v2-90", balance_factor=0.5).result
+    assert not [r for r in half.remaining if r.order == 1]
+
+
+@pytest.mark.parametrize("name", ["v12-60", "boxer6", "inline4"])
+def test_balanced_engines_get_no_counterweights_unless_asked(name: str) -> None:
+    from crankbalance.studies.engine import balance_engine
+
+    result = balance_engine(name).result
+    assert result.counterweights is not None and not result.counterweights.mass.any()
+    assert any(n.startswith("no counterweights: ") for n in result.notes)
+    asked = balance_engine(name, scope="halves").result
+    assert asked.counterweights is not None and asked.counterweights.mass.min() > 0
+
+
+def test_balance_table_says_what_is_left(capsys: pytest.CaptureFixture[str]) -> None:
+    from crankbalance.cli import main
+
+    main(["balance", "v2-90"])
+    out = capsys.readouterr().out
+    assert "What is left, and what would remove it:" in out
+    assert "order 1 force, forward-rotating" in out and "--balance-factor 0.5" in out
+    main(["balance", "v12-60"])
+    out = capsys.readouterr().out
+    assert "none: already balanced" in out and 'scope = "halves"' in out

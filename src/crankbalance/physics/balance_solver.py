@@ -254,7 +254,7 @@ def solve(
         target = inputs.rotating + fb * inputs.reciprocating
         target_couple = inputs.rotating_couple + fb * inputs.reciprocating_couple
         webs = web_geometry(inputs, counterweights)
-        halves = _halves(inputs, counterweights.scope, target, target_couple)
+        halves = _halves(inputs, counterweights.scope)
         cw = solve_counterweights(inputs, webs, counterweights, halves, target, target_couple)
         moments = share = cw.moments
         if fb != 0.0:
@@ -333,21 +333,12 @@ def solve(
     return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
 
 
-def _halves(
-    inputs: SolverInput, scope: str, target: NDArray, target_couple: NDArray
-) -> NDArray[np.bool_]:
-    """Whether each engine's crank halves are balanced on their own: as asked, or with
-    ``"auto"`` when the crank is balanced as a whole and has an even number of throws
-    (paper section 3.1)."""
-    if scope != "auto":
-        return np.full(inputs.size, scope == "halves")
-    throws = inputs.throw_position.size
-    if throws < 2 or throws % 2:
-        return np.zeros(inputs.size, bool)
-    w2 = inputs.speed**2
-    return (np.abs(target.sum(axis=-1)) <= inputs.force_round_off / w2) & (
-        np.abs(target_couple.sum(axis=-1)) <= inputs.moment_round_off / w2
-    )
+def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
+    """Whether each engine's crank halves are balanced on their own: only when asked
+    (``"halves"``, paper section 3.1). ``"auto"`` balances the crank as a whole, so a
+    crank already balanced as a whole gets no counterweights (issue 27: the V12 and
+    flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there)."""
+    return np.full(inputs.size, scope == "halves")
 
 
 # --------------------------------------------------------------------------- shafts
@@ -473,6 +464,15 @@ def balance_residuals(
     moment_before = amplitude(rot_c, forces.couple_forward, forces.couple_backward, moment_level)
     force_after = amplitude(after_rot_f, fwd, bwd, force_level)
     moment_after = amplitude(after_rot_c, cfwd, cbwd, moment_level)
+    none = np.zeros_like(force_level)  # the rotating masses turn forward only
+    force_forward = below_round_off(
+        np.column_stack([np.abs(after_rot_f), np.abs(fwd)]), force_level
+    )
+    force_backward = below_round_off(np.column_stack([none, np.abs(bwd)]), force_level)
+    moment_forward = below_round_off(
+        np.column_stack([np.abs(after_rot_c), np.abs(cfwd)]), moment_level
+    )
+    moment_backward = below_round_off(np.column_stack([none, np.abs(cbwd)]), moment_level)
     orders = fwd.shape[1]
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
@@ -485,5 +485,15 @@ def balance_residuals(
     )
     components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
     return BatchResiduals(
-        components, targeted, force_before, force_after, moment_before, moment_after, balanced
+        components,
+        targeted,
+        force_before,
+        force_after,
+        moment_before,
+        moment_after,
+        force_forward,
+        force_backward,
+        moment_forward,
+        moment_backward,
+        balanced,
     )
