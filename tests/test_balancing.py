@@ -96,9 +96,14 @@ def test_already_balanced_needs_no_mass() -> None:
     res = balance(m, CounterweightOptions(0.04, scope="whole"))
     assert np.all(res.counterweights.mass == 0.0)
     assert "already balanced" in res.counterweights.note
-    res = balance(m, CounterweightOptions(0.04))  # auto: each half balanced on its own
+    res = balance(m, CounterweightOptions(0.04))  # auto: the whole crank, none needed
+    assert res.counterweights.scope == "whole" and not res.counterweights.mass.any()
+    assert any(note.startswith("no counterweights: ") for note in res.notes)
+    assert any('scope = "halves"' in note for note in res.notes)
+    res = balance(m, CounterweightOptions(0.04, scope="halves"))  # asked: each half
     assert res.counterweights.scope == "halves" and res.counterweights.mass.min() > 0
     assert res.residual("rotating").moment_after == 0.0
+    assert not any(note.startswith("no counterweights: ") for note in res.notes)
 
 
 def test_counterweights_in_one_plane_cannot_cancel_a_couple() -> None:

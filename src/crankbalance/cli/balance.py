@@ -44,21 +44,22 @@ def print_table(data: dict[str, Any]) -> None:
             f"{plural(cw['count'], 'counterweight')}, "
             f"{text(cw['total_mass_kg'], 'mass_kg')} in all"
         )
-        echo_table(
-            ["web", "throw", "y mm", "mass kg", "direction °"],
-            [
+        if cw["total_mass_kg"] > 0:
+            echo_table(
+                ["web", "throw", "y mm", "mass kg", "direction °"],
                 [
-                    str(w["web"]),
-                    str(w["throw"]),
-                    f"{w['position_m'] * 1e3:.2f}",
-                    f"{w['mass_kg']:.4f}",
-                    number(w["direction_deg"], 5),
-                ]
-                for w in cw["webs"]
-            ],
-        )
-        if cw["note"]:
-            click.echo(f"note: {cw['note']}")
+                    [
+                        str(w["web"]),
+                        str(w["throw"]),
+                        f"{w['position_m'] * 1e3:.2f}",
+                        f"{w['mass_kg']:.4f}",
+                        number(w["direction_deg"], 5),
+                    ]
+                    for w in cw["webs"]
+                ],
+            )
+        elif cw["note"]:
+            click.echo(f"none: {cw['note']}")
     extra = data["extra_counterweights"]
     if extra is not None:
         click.echo("\nExtra crank counterweight masses replacing the co-rotating primary shaft:")
@@ -111,6 +112,10 @@ def print_table(data: dict[str, Any]) -> None:
     )
     for note in data["notes"]:
         click.echo(f"note: {note}")
+    left = data["remaining"]
+    click.echo("\nWhat is left, and what would remove it:" if left else "\nNothing is left.")
+    for item in left:
+        click.echo(f"  {item['text']}: {item['next_step']}")
     check = data.get("verification")
     if check is not None:
         verdict = "agree" if check["agrees"] else "DO NOT agree"

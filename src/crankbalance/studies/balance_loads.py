@@ -288,7 +288,7 @@ def bearing_sweep(
             elif pattern != "file":
                 overrides["webs"] = tuple(int(v) for v in pattern.split(","))
             try:
-                solved = balance_engine(spec, **overrides)
+                solved = balance_engine(spec, halves_if_balanced=True, **overrides)
             except InputError as error:
                 if error.field != "counterweights.webs" or pattern == "file":
                     raise

@@ -96,7 +96,7 @@ def requirement(engine: EngineLike | None, settings: RequirementSettings) -> flo
         from .engine import balance_engine
         from .requirements import counterweight_requirement
 
-        study = balance_engine(engine)  # type: ignore[arg-type]
+        study = balance_engine(engine, halves_if_balanced=True)  # type: ignore[arg-type]
         try:
             return counterweight_requirement(study)
         except InputError as error:

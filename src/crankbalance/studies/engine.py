@@ -358,6 +358,19 @@ class BalanceStudy:
                 for c in res.residuals
             ],
             "unbalanced": unbalanced,
+            "remaining": [
+                {
+                    "component": r.component,
+                    "order": r.order,
+                    "quantity": r.quantity,
+                    "rotation": r.rotation,
+                    "amount": r.amount,
+                    "unit": "N" if r.quantity == "force" else "N·m",
+                    "text": r.text,
+                    "next_step": r.next_step,
+                }
+                for r in res.remaining
+            ],
             "notes": list(res.notes),
         }
         if self.verification is not None:
@@ -396,9 +409,15 @@ def balance_engine(
     orders: int = 8,
     *,
     verify: bool = False,
+    halves_if_balanced: bool = False,
     **overrides: Any,
 ) -> BalanceStudy:
     """Counterweights and balance shafts of an engine, as its file asks for.
+
+    With ``halves_if_balanced`` (the studies that need counterweights on the crank: crank
+    loads, the counterweight requirement), a crank the default scope ``"auto"`` leaves
+    without counterweights, being balanced as a whole, gets each half balanced on its own
+    (``scope = "halves"``, paper section 3.1), as ``auto`` did before issue 27.
 
     ``overrides`` replace fields of the counterweight options (``angle``,
     ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``) or give
@@ -420,6 +439,16 @@ def balance_engine(
     if overrides:
         cw = dataclasses.replace(cw, **overrides)
     result = balance(model, cw, primary, secondary, orders)
+    if (
+        halves_if_balanced
+        and cw is not None
+        and cw.scope == "auto"
+        and result.counterweights is not None
+        and not result.counterweights.mass.any()
+        and model.throws >= 2
+        and model.throws % 2 == 0
+    ):
+        result = balance(model, dataclasses.replace(cw, scope="halves"), primary, secondary, orders)
     checked = None
     if verify:
         from ..physics.balance_check import verify as time_domain

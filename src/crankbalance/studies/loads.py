@@ -358,7 +358,7 @@ def _bearing_loads(
     if o.webs is not None:
         overrides["webs"] = tuple(o.webs)
     if balance is None:
-        balance = balance_engine(spec, **overrides)
+        balance = balance_engine(spec, halves_if_balanced=True, **overrides)
     elif overrides:
         name = next(iter(overrides))
         raise InputError(
