@@ -190,21 +190,11 @@ def private_imports(path: Path, root: Path = SRC) -> set[str]:
     return found
 
 
-#: private names still imported across modules (issue 26 takes them off one by one); the
-#: list only shrinks: a private import not listed fails, and so does a listed one that is gone
-PRIVATE_IMPORTS_LEFT = {
-    "cli.bearings_sweep: cli.performance._number_list",
-}
-
-
 def test_no_private_names_across_modules() -> None:
     """No module imports another module's private name: what two modules share is public,
     with a docstring, in the module that owns it."""
     found = set().union(*(private_imports(path) for path in SRC.rglob("*.py")))
-    assert found <= PRIVATE_IMPORTS_LEFT, "private names imported across modules:\n" + "\n".join(
-        sorted(found - PRIVATE_IMPORTS_LEFT)
-    )
-    assert found == PRIVATE_IMPORTS_LEFT, f"gone, take off the list: {PRIVATE_IMPORTS_LEFT - found}"
+    assert not found, "private names imported across modules:\n" + "\n".join(sorted(found))
 
 
 def test_the_private_import_scan_finds_them(tmp_path: Path) -> None:

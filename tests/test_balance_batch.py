@@ -195,11 +195,11 @@ def test_batch_equals_the_one_engine_solver(
     batch = random_batch(name, 20, seed=len(name) * 31 + keep, keep=keep)
     many = assert_same_as_one_engine(batch, cw, primary, secondary, chunk=7)
     if keep and cw is not None and name == "inline4":
-        # the flat-plane inline-4 is balanced as a whole: its halves are balanced alone
+        # the flat-plane inline-4 is balanced as a whole: no counterweights by default
         assert many.counterweights is not None
-        assert (
-            many.counterweights.halves[:keep].all() and not many.counterweights.halves[keep:].any()
-        )
+        assert not many.counterweights.halves.any()
+        assert many.counterweights.already_balanced[:keep].all()
+        assert not many.counterweights.already_balanced[keep:].any()
 
 
 def test_batch_equals_the_one_engine_solver_with_few_orders_and_small_spread() -> None:
@@ -304,7 +304,8 @@ def test_residual_check_reports_what_the_pattern_cannot_cancel() -> None:
     assert not res.residuals.balanced.any()
     for i in range(batch.size):
         one = balance(batch.model(i), FIXED)
-        assert any("do not cancel the rotating masses" in note for note in one.notes)
+        assert any("cannot reach their target" in note for note in one.notes)
+        assert batch.size and one.counterweights is not None
 
 
 # --------------------------------------------------------------------------- degenerate
@@ -315,6 +316,9 @@ def test_already_balanced_and_halves_as_the_one_engine_solver() -> None:
     assert res.counterweights.already_balanced.all() and not res.counterweights.mass.any()
     assert res.primary is not None and not res.primary.layout.any(), "nothing to cancel"
     res = assert_same_as_one_engine(batch, CounterweightOptions(0.04), None, None)
+    assert res.counterweights is not None and not res.counterweights.halves.any()
+    assert res.counterweights.already_balanced.all(), "auto: none for a balanced crank"
+    res = assert_same_as_one_engine(batch, CounterweightOptions(0.04, scope="halves"), None, None)
     assert res.counterweights is not None and res.counterweights.halves.all()
 
 

@@ -47,7 +47,10 @@ def test_verification_finds_a_wrong_mass() -> None:
     domain measures what they leave, which the result does not report."""
     model = build_model(load_engine("inline4"))  # a secondary force for the shafts
     result = balance(
-        model, CounterweightOptions(0.045, angle="optimal"), None, ShaftOptions(0.03, 0.3)
+        model,
+        CounterweightOptions(0.045, angle="optimal", scope="halves"),
+        None,
+        ShaftOptions(0.03, 0.3),
     )
     assert verify(model, result).agrees
     cw = result.counterweights

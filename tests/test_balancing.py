@@ -96,9 +96,14 @@ def test_already_balanced_needs_no_mass() -> None:
     res = balance(m, CounterweightOptions(0.04, scope="whole"))
     assert np.all(res.counterweights.mass == 0.0)
     assert "already balanced" in res.counterweights.note
-    res = balance(m, CounterweightOptions(0.04))  # auto: each half balanced on its own
+    res = balance(m, CounterweightOptions(0.04))  # auto: the whole crank, none needed
+    assert res.counterweights.scope == "whole" and not res.counterweights.mass.any()
+    assert any(note.startswith("no counterweights: ") for note in res.notes)
+    assert any('scope = "halves"' in note for note in res.notes)
+    res = balance(m, CounterweightOptions(0.04, scope="halves"))  # asked: each half
     assert res.counterweights.scope == "halves" and res.counterweights.mass.min() > 0
     assert res.residual("rotating").moment_after == 0.0
+    assert not any(note.startswith("no counterweights: ") for note in res.notes)
 
 
 def test_counterweights_in_one_plane_cannot_cancel_a_couple() -> None:
@@ -224,11 +229,11 @@ def test_shaft_requirement_from_the_solver(capsys: pytest.CaptureFixture[str]) -
     assert json.loads(out)["input"]["unbalance_kg_m"] == pytest.approx(
         a2 * m.reciprocating_mass[0] * m.crank_radius / 2
     )
-    code, _out, err = run_cli(
-        ["shaft", "inline4", "--engine", "v12-60", "--length", "300 mm", "--diameter", "25 mm"],
-        capsys,
-    )
-    assert code == 2 and "no order-2 unbalance" in err
+    shaft = ["shaft", "inline4", "--engine", "v12-60", "--length", "300 mm", "--diameter", "25 mm"]
+    code, _out, err = run_cli([*shaft, "--order", "2"], capsys)
+    assert code == 2 and "--engine = 'v12-60': has no order-2 unbalance" in err
+    code, _out, err = run_cli(shaft, capsys)  # the engine's order: it has none
+    assert code == 2 and "no free first- or second-order force or moment" in err
 
 
 def test_balance_with_one_order_still_checks_orders_1_and_2() -> None:

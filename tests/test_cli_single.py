@@ -310,7 +310,7 @@ def test_rebalance_file_bounded_read(tmp_path, capsys) -> None:
     binary.write_bytes(b"\xff\xfe\x00name")
     for path, words in ((big, "larger than"), (binary, "UTF-8"), (tmp_path, "folder")):
         code, _, err = run(capsys, ["rebalance", "--parts", str(path)])
-        assert code == 2 and err.startswith("error: parts = ") and words in err, err
+        assert code == 2 and err.startswith("error: --parts = ") and words in err, err
 
 
 def test_rebalance_file_and_api_agree() -> None:

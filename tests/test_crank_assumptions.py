@@ -167,7 +167,7 @@ def test_one_combustion_for_every_study(capsys, bearings: dict) -> None:
     """The Wiebe defaults of bearings, torsional and cycle are CombustionOptions' (the
     thesis' combustion, docs/engine_cycle.md) and each output says so."""
     base = CombustionOptions()
-    for options in (BearingOptions(), CycleOptions(), TorsionalOptions(engine="inline4")):
+    for options in (BearingOptions(), CycleOptions(), TorsionalOptions()):
         assert options.compression_ratio == base.compression_ratio == 13.5
         assert options.ignition == base.ignition == pytest.approx(math.radians(-25.0))
     cycle = _json(capsys, ["cycle", "--engine", "inline4", "--format", "json"])

@@ -343,7 +343,8 @@ BEFORE_MERGE = {
 def test_crank_3d_draws_the_same_geometry_in_few_traces(engine: str, balanced: bool) -> None:
     """Same points, sizes and legend as the one-trace-per-segment figure, in at most one
     lines trace per line style and one markers trace per legend entry."""
-    b = balance_engine(engine)
+    # the cranks balanced as a whole with each half's counterweights, as drawn before
+    b = balance_engine(engine, halves_if_balanced=True)
     fig = crank_3d(b.model, b if balanced else None)
     segments, markers, legend = drawn_3d(fig)
     points = np.array([p for s in segments for p in s[3:5]] + [m[4] for m in markers])
@@ -470,3 +471,41 @@ def test_performance_figures_match_results() -> None:
     )
     bf = bench_figure(bench)
     assert np.asarray(traces(bf, "bearing A")[0].y) == pytest.approx(bench.bearing_load_a)
+
+
+def test_drilling_plan_refuses_a_face_correction() -> None:
+    """The drilling plan draws drilled holes only: a rebalancing by face removal is refused
+    by its kind (the plan tells the two corrections apart by their type)."""
+    from crankbalance.output.figures.single import drilling_plan
+    from crankbalance.physics.rebalancing import FaceRemoval, rebalance
+
+    face = FaceRemoval(area=4e-4, radius=0.05)
+    reb = rebalance(0.8, 0.4, 0.8, 0.39, 1.2, 0.031, 0.031, face, 1e-9)
+    with pytest.raises(InputError) as caught:
+        drilling_plan(reb, 0.031)
+    assert (caught.value.field, caught.value.value) == ("correction", "face")
+    assert "the plan draws holes" in str(caught.value)
+
+
+def test_engine_torque_figure_of_one_cylinder_is_the_cycle_figure() -> None:
+    """A single cylinder's cycle (CycleResult) gets the cycle figure, the whole engine's
+    (EngineCycleResult) its torque figure."""
+    from crankbalance.output.figures.performance import engine_torque_figure
+    from crankbalance.schema.settings import CycleOptions, parse_options
+    from crankbalance.studies.cycle import cycle
+
+    one = cycle(None, parse_options(CycleOptions, {}))
+    whole = cycle("inline4", parse_options(CycleOptions, {}))
+    assert engine_torque_figure(one.result).to_dict() == cycle_figure(one.result).to_dict()
+    names = [t.name for t in engine_torque_figure(whole.result).data]
+    assert [n for n in names if n.startswith("cylinder")] == [f"cylinder {k}" for k in range(1, 5)]
+
+
+def test_crank_3d_takes_an_analysis_or_a_balancing_study() -> None:
+    """crank_3d(analysis) draws the analysis' engine, crank_3d(study) the study's engine
+    with its balancing, as crank_3d(model) and crank_3d(model, study) do."""
+    b = balance_engine("inline4")
+    a = analyze(b.model)
+    assert crank_3d(b).to_dict() == crank_3d(b.model, b).to_dict()
+    assert crank_3d(a).to_dict() == crank_3d(a.model).to_dict()
+    assert crank_3d(b).to_dict() != crank_3d(b.model).to_dict()

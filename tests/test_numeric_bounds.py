@@ -244,11 +244,11 @@ def test_a_huge_sweep_is_refused_before_any_work(
 def test_the_cap_counts_what_the_study_computes(monkeypatch: pytest.MonkeyPatch) -> None:
     """response_size is the size of the arrays the study fills: at the cap it computes, one
     amplitude over it the physics refuses before the forced response."""
-    from crankbalance.cli.torsional import run_study
     from crankbalance.schema.settings import TorsionalOptions
+    from crankbalance.studies.torsional import torsional as run_study
 
-    o = TorsionalOptions.parse({"engine": "inline6", "speed_points": 30})
-    study, _model, speeds, _crank = run_study(o)
+    result = run_study("inline6", TorsionalOptions.parse({"speed_points": 30}))
+    study, speeds = result.study, result.speeds
     crossings = len(study.resonances)
     amplitudes = study.response.amplitude.size + crossings * study.response.amplitude[0].size
     assert torsional.response_size(study.train, study.excitation.orders, speeds) == (

@@ -67,12 +67,12 @@ def test_html_is_self_contained(paper_html: str) -> None:
 
 
 def test_overrides_reach_the_report() -> None:
-    r = build_report("inline4", balance_factor=0.5)
+    r = build_report("inline3", balance_factor=0.5)
     assert r.settings["counterweights"]["balance_factor"] == 0.5
     html = report_html(r, figures=False)
-    mass = balance_engine("inline4", balance_factor=0.5).to_dict()["counterweight"]["mass_kg"]
+    mass = balance_engine("inline3", balance_factor=0.5).to_dict()["counterweight"]["mass_kg"]
     assert f"<td>{g5(mass)}</td>" in html
-    assert mass > balance_engine("inline4").to_dict()["counterweight"]["mass_kg"]
+    assert mass > balance_engine("inline3").to_dict()["counterweight"]["mass_kg"]
 
 
 def test_write_report_html_and_bad_suffix(tmp_path: Path) -> None:

@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, Protocol
+from typing import Any, Protocol, TypeVar, overload
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -21,7 +21,13 @@ JSON_DIGITS = 12
 ROUND_OFF = 1e-12
 
 
-class EngineScales(Protocol):
+#: a scalar of an engine (float) or of each engine of a batch (ndarray, shape (E,))
+Scalar = TypeVar("Scalar", float, NDArray[np.float64], covariant=True)
+#: the scalars of a batch of engines, one per engine
+Batch = NDArray[np.float64]
+
+
+class EngineScales(Protocol[Scalar]):
     """What :func:`round_off` reads of an engine or a batch of engines (leading engine axis):
     an :class:`~crankbalance.physics.model.EngineModel` or an
     :class:`~crankbalance.physics.model.EngineBatch`."""
@@ -33,12 +39,16 @@ class EngineScales(Protocol):
     @property
     def throw_position(self) -> NDArray[np.float64]: ...
     @property
-    def crank_radius(self) -> Any: ...
+    def crank_radius(self) -> Scalar: ...
     @property
-    def speed(self) -> Any: ...
+    def speed(self) -> Scalar: ...
 
 
-def engine_scales(engine: EngineScales) -> tuple[Any, Any]:
+@overload
+def engine_scales(engine: EngineScales[float]) -> tuple[float, float]: ...
+@overload
+def engine_scales(engine: EngineScales[Batch]) -> tuple[Batch, Batch]: ...
+def engine_scales(engine: EngineScales[Scalar]) -> tuple[Scalar, Scalar]:
     r"""Force and length scales of an engine (or of each engine of a batch).
 
     The force scale is every mass at the crank radius turning at the crank speed,
@@ -65,7 +75,11 @@ def engine_scales(engine: EngineScales) -> tuple[Any, Any]:
     return force, length
 
 
-def round_off(engine: EngineScales) -> tuple[Any, Any]:
+@overload
+def round_off(engine: EngineScales[float]) -> tuple[float, float]: ...
+@overload
+def round_off(engine: EngineScales[Batch]) -> tuple[Batch, Batch]: ...
+def round_off(engine: EngineScales[Scalar]) -> tuple[Scalar, Scalar]:
     """Round-off levels of an engine's forces and moments: a force or moment whose size is
     at most its level is zero (:data:`ROUND_OFF` of :func:`engine_scales`).
 

@@ -103,6 +103,8 @@ ADDED: dict[str, str] = {
 LABELS: dict[str, str] = {
     r"^engine\.(firing_order|firing_order_maker|maker_number)\.\d+$": "the firing order as "
     "given, and in a maker's numbering with each cylinder's maker's number, issue 17",
+    r"^remaining(\.\d+\.|$)": "what is left in words with the next step (issue 27), the "
+    "forward and backward parts of the residuals the components pin",
 }
 
 #: keys whose value depends on the run, not on the engine

@@ -179,3 +179,39 @@ def test_the_fourier_analysis_reads_a_known_curve_back() -> None:
     rate = multibody.crank_angle(period + h, speed) - multibody.crank_angle(period - h, speed)
     assert rate / (2 * h) == pytest.approx(speed, rel=1e-6)
     assert multibody.crank_angle(period, speed) == pytest.approx(np.pi)
+
+
+@pytest.mark.parametrize("engine", ["vr6", "w16"])
+def test_counterweights_at_half_cancel_the_forward_primary_exudyn_sees(engine: str) -> None:
+    """Issue 27: crankbalance's counterweights at a balance factor of 0.5, added to the
+    simulated crank train as the point masses they are (a mass m at radius rho turning
+    with the crank adds m rho w^2 e^{i psi} to the forward first order, y times that to
+    the couple), cancel the forward first-order force and couple of the simulation (the
+    rotating masses and the offset pistons together) within the acceptance; the
+    counterweights opposite each crankpin (the rule before issue 27) do not."""
+    _require_exudyn()
+    from crankbalance.physics.balancing import CounterweightOptions, balance
+
+    sim, rows = _run(engine)
+    assert not _failures(rows)
+    model = multibody.ENGINES[engine][1]()
+    options = CounterweightOptions(cg_radius=model.crank_radius, balance_factor=0.5)
+    cw = balance(model, options).counterweights
+    assert cw is not None
+    w2 = model.speed**2
+    force_scale, moment_scale = multibody.first_order_scales(model, multibody.reference(model))
+    simulated = sim.phasors
+    force = simulated.force_forward[0] + w2 * cw.moments.sum()
+    couple = simulated.couple_forward[0] + w2 * (cw.moments * cw.position).sum()
+    assert abs(force) <= multibody.FLOOR * force_scale
+    assert abs(couple) <= multibody.FLOOR * moment_scale
+    # the old rule: half of each pin's reciprocating mass opposite the pin, on top of the
+    # share that carries the rotating masses
+    share = balance(model, dataclasses.replace(options, balance_factor=0.0)).counterweights
+    assert share is not None
+    pins = np.exp(1j * model.throw_angle[model.cylinder_throw])
+    old = 0.5 * model.reciprocating_mass * model.crank_radius * pins
+    old_couple = simulated.couple_forward[0] + w2 * (
+        (share.moments * share.position).sum() - (old * model.cylinder_position).sum()
+    )
+    assert abs(old_couple) > 100 * multibody.FLOOR * moment_scale

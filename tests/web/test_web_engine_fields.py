@@ -306,7 +306,6 @@ def _shoot(page: Any, name: str) -> None:
     for width, height in ((1280, 800), (390, 844)):
         page.set_viewport_size({"width": width, "height": height})
         page.wait_for_function(DRAWN)
-        page.locator("[data-testid=field-cylinder_offsets]").first.scroll_into_view_if_needed()
         page.screenshot(path=str(SHOTS / f"{name}_{width}.png"), full_page=True)
     page.set_viewport_size({"width": 1500, "height": 1000})
 

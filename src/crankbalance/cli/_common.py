@@ -3,10 +3,9 @@ options a user typed, and the check for an optional extra."""
 
 from __future__ import annotations
 
-import contextlib
 import importlib
 import re
-from collections.abc import Callable, Iterator, Mapping, Sequence
+from collections.abc import Callable, Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 import click
@@ -28,6 +27,140 @@ def parse_settings(model: type[Options], values: Mapping[str, Any]) -> Options:
     from ..schema.settings import parse_options
 
     return parse_options(model, values, option_name)
+
+
+def typed(values: Mapping[str, Any]) -> dict[str, Any]:
+    """The options the user typed, by parameter name: an option not given (None, or an
+    empty tuple for a repeatable one) is left out, so that the study's default applies; a
+    repeated option's values as a list."""
+    return {
+        name: list(value) if isinstance(value, tuple) else value
+        for name, value in values.items()
+        if value is not None and value != ()
+    }
+
+
+def run_study(
+    name: str, engine: Any, values: Mapping[str, Any], *, engine_option: bool = True, **edge: Any
+) -> Any:
+    """Study ``name`` of :mod:`crankbalance.studies.registry` on ``engine`` with the options
+    typed (``values``: parameter name, the setting's field, -> value as typed) and the
+    command's own arguments (``edge``: progress, an output file); an error names the option
+    as typed (``--balance-factor``, and ``--engine`` or ``engine`` for the engine as an
+    option or an argument)."""
+    from ..studies.registry import run, study
+
+    entry = study(name)
+
+    def naming(field: str) -> str:
+        if field == "engine":
+            return "--engine" if engine_option else "engine"
+        return "--" + entry.option(field)
+
+    return run(name, engine, typed(values), naming=naming, **edge)
+
+
+def echo_notes(engine: str) -> None:
+    """Print the plausibility notes of a valid engine (unusual numbers, not errors; they are
+    not part of the JSON), one ``note:`` line each."""
+    from ..io.engine_file import load_engine
+
+    for note in load_engine(engine).plausibility():
+        click.echo(f"note: {note.text}")
+
+
+#: the file settings click checks before the study runs (``click.Path``: "File 'p.csv'
+#: does not exist"), as these options always did; the other file settings (``--parts``) are
+#: read by the study, whose message says why a file cannot be read
+CLICK_PATHS = frozenset({"pressure_csv"})
+
+
+def study_options(
+    name: str, *, only: Sequence[str] = ()
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """Add a click parameter for every setting of study ``name`` of the registry
+    (:mod:`crankbalance.studies.registry`), from its settings schema alone: the option
+    ``--`` + :meth:`Study.option <crankbalance.studies.registry.Study.option>`, stored under
+    the field's name; its help the field's title, description and choices, then its
+    default as one would type it or, without a default, its hint (:func:`setting_help`).
+
+    Every option's default is None (not given): the schema decides every default. A
+    ``flag`` is a boolean flag (``--gas/--no-gas`` when it is on by default), a list that
+    may be given once or several times (``single``) a repeatable option, a choice a text
+    option (the schema reads it, with its did-you-mean message); the settings of
+    :attr:`Study.arguments` are arguments instead. The edge's options (``--format``,
+    ``--plot``, the engine) are the command's own. ``only``: the settings a command takes
+    when it takes only some of the study's (``counterweight check``: the requirement and the
+    density of ``counterweight show``)."""
+    from ..studies.registry import study
+
+    entry = study(name)
+    return settings_options(
+        entry.model(),
+        [f for f in entry.field_names() if not only or f in only],
+        entry.option,
+        arguments=entry.arguments,
+    )
+
+
+def settings_options(
+    model: type[Options],
+    fields: Sequence[str] = (),
+    option: Callable[[str], str] | None = None,
+    *,
+    arguments: Sequence[str] = (),
+) -> Callable[[Callable[..., Any]], Callable[..., Any]]:
+    """:func:`study_options` for the settings ``fields`` (default: all) of a settings
+    model, for the commands that are no study of the registry (``plot``, ``report``):
+    ``option(field)`` is the option without dashes (default: the field with dashes)."""
+    named = option or (lambda field: field.replace("_", "-"))
+
+    def decorate(function: Callable[..., Any]) -> Callable[..., Any]:
+        for field in reversed(fields or list(model.FIELDS)):
+            spec = model.FIELDS[field]
+            if field in arguments:
+                function = click.argument(field)(function)
+                continue
+            flag = "--" + named(field)
+            kinds: dict[str, Any] = {}
+            if spec.kind == "flag":
+                kinds["is_flag"] = True
+                if spec.default is True:
+                    flag += f"/--no-{named(field)}"
+            if spec.kind == "list" and spec.single:
+                kinds["multiple"] = True
+            if field in CLICK_PATHS:
+                kinds["type"] = click.Path(exists=True, dir_okay=False)
+            function = click.option(
+                flag, field, default=None, help=setting_help(model, field), **kinds
+            )(function)
+        return function
+
+    return decorate
+
+
+def setting_help(model: type[Options], name: str) -> str:
+    """The help text of a setting from its schema: ``"Bore. Cylinder bore, for the gas
+    force. [default: 76.8 mm]"``; without a default, its hint in brackets instead, or for
+    a quantity an example of it as typed (``[e.g. '40 mm']``)."""
+    from ..schema.core import default_text
+    from ..units import KINDS
+
+    spec = model.FIELDS[name]
+    title = spec.title or name.replace("_", " ").capitalize()
+    words = [title if title.endswith((".", "?")) else title + "."]
+    if spec.description:
+        words.append(spec.description)
+    if spec.choices:
+        words.append("One of: " + ", ".join(map(str, spec.choices)) + ".")
+    default = default_text(spec)
+    if default:
+        words.append(f"[default: {default}]")
+    elif spec.hint:
+        words.append(f"[{spec.hint}]")
+    elif spec.quantity is not None:
+        words.append(f"[e.g. '{spec.example or KINDS[spec.kind][2]}']")
+    return " ".join(words)
 
 
 #: the optional extras of crankbalance (pyproject.toml) and the modules each provides
@@ -82,21 +215,6 @@ def refuse_unused(used: dict[str, bool], reason: str, given: set[str] | None = N
         if name in typed and not acts:
             context = click.get_current_context()
             raise InputError(option_name(name), context.params.get(name), reason)
-
-
-@contextlib.contextmanager
-def named_as_typed(typed: Mapping[str, Any]) -> Iterator[None]:
-    """Within the block, an :class:`~crankbalance.errors.InputError` of the physics about
-    a value the user typed (``typed``: field name -> the text typed) names its option
-    (``torque`` -> ``--torque``) and shows the text."""
-    from ..errors import InputError
-
-    try:
-        yield
-    except InputError as error:
-        if error.field not in typed:
-            raise
-        raise InputError(option_name(error.field), typed[error.field], error.allowed) from None
 
 
 def format_option(choices: Sequence[str]) -> Callable[[Any], Any]:

@@ -2,25 +2,21 @@
 
 from __future__ import annotations
 
+from typing import Any
+
 import click
 
 from ..output.format import json_text, moment_point, number, plural, text
-from ._common import echo_table, format_option, option_name
+from ._common import echo_notes, echo_table, format_option, run_study, study_options
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json", "csv"))
-@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
-def analyze(engine: str, fmt: str, orders: str) -> None:
+@study_options("analyze")
+def analyze(engine: str, fmt: str, **values: Any) -> None:
     """Free forces and moments of ENGINE (an engine file or a preset name)."""
-    from ..io.engine_file import load_engine
-    from ..schema.settings import AnalysisOptions, parse_options
-    from ..studies.engine import analyze as run
-
-    highest = parse_options(AnalysisOptions, {"orders": orders}, option_name).orders
-    spec = load_engine(engine)
-    result = run(spec, highest)
+    result = run_study("analyze", engine, values, engine_option=False)
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
         return
@@ -101,8 +97,7 @@ def analyze(engine: str, fmt: str, orders: str) -> None:
         "Rotating masses (bare crank, no counterweights): "
         f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
     )
-    for note in spec.plausibility():  # unusual numbers of a valid engine (not in the JSON)
-        click.echo(f"note: {note.text}")
+    echo_notes(engine)
 
 
 def _distinct(values: list[float]) -> str:
@@ -156,17 +151,9 @@ def curves_csv(result: object) -> str:
 @format_option(("table", "json"))
 def presets(fmt: str) -> None:
     """List the built-in engines (use a name wherever an engine file is expected)."""
-    from ..io.engine_file import list_presets, load_engine
+    from ..studies.engine import preset_titles, presets_listing
 
-    names = list_presets()
     if fmt == "json":
-        click.echo(
-            json_text(
-                {
-                    "schema": "crankbalance.presets/1",
-                    "presets": [{"name": n, "title": load_engine(n).name} for n in names],
-                }
-            )
-        )
+        click.echo(json_text(presets_listing()))
         return
-    echo_table(["preset", "engine"], [[n, load_engine(n).name] for n in names])
+    echo_table(["preset", "engine"], [[name, title] for name, title in preset_titles()])

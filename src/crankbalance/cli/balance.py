@@ -7,85 +7,25 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number, plural, text
-from ._common import echo_table, format_option, given_options, parse_settings
+from ._common import echo_notes, echo_table, format_option, run_study, study_options
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json"))
-@click.option(
-    "--angle",
-    default=None,
-    help='Counterweight angle from the position opposite the crankpin ("30 deg") '
-    'or "optimal"; default: the engine file, else optimal.',
-)
-@click.option(
-    "--balance-factor",
-    default=None,
-    help="Share of the pin's reciprocating mass put on the crank counterweights "
-    "(0 to 2, or a percentage '50%').",
-)
-@click.option(
-    "--method",
-    type=click.Choice(["pattern", "individual"]),
-    default=None,
-    help="pattern: equal counterweights (2021 paper); individual: each its own mass and angle.",
-)
-@click.option(
-    "--scope",
-    type=click.Choice(["auto", "whole", "halves"]),
-    default=None,
-    help="Balance the whole crank or each half on its own.",
-)
-@click.option(
-    "--verify",
-    is_flag=True,
-    default=False,
-    help="Also check the residuals in the time domain (every mass over a revolution, "
-    "then a Fourier transform) and print how well the two agree.",
-)
-def balance(
-    engine: str,
-    fmt: str,
-    angle: str | None,
-    balance_factor: str | None,
-    method: str | None,
-    scope: str | None,
-    verify: bool,
-) -> None:
+@study_options("balance")
+def balance(engine: str, fmt: str, **values: Any) -> None:
     """Counterweights and balance shafts of ENGINE (an engine file or a preset name).
 
     The [counterweights] and [balance_shafts] tables of the engine file set what is
     solved; without them the crank gets counterweights on every web at the crank radius.
     """
-    from ..errors import InputError
-    from ..io.engine_file import load_engine
-    from ..schema.settings import BalanceOptions
-    from ..studies.engine import balance_engine
-
-    settings = parse_settings(BalanceOptions, {"angle": angle, "balance_factor": balance_factor})
-    overrides: dict[str, Any] = {
-        key: value
-        for key, value in (
-            ("angle", settings.angle),
-            ("balance_factor", settings.balance_factor),
-            ("method", method),
-            ("scope", scope),
-        )
-        if value is not None
-    }
-    spec = load_engine(engine)
-    data = balance_engine(
-        spec, verify=verify, **overrides
-    ).to_dict()  # checked finite by to_jsonable
-    if "angle" in given_options() and data["counterweight"]["method"] == "individual":
-        raise InputError("--angle", angle, "only acts on equal counterweights (--method pattern)")
+    data = run_study("balance", engine, values, engine_option=False).to_dict()
     if fmt == "json":
         click.echo(json_text(data))
         return
     print_table(data)
-    for note in spec.plausibility():  # unusual numbers of a valid engine (not in the JSON)
-        click.echo(f"note: {note.text}")
+    echo_notes(engine)
 
 
 def print_table(data: dict[str, Any]) -> None:
@@ -104,21 +44,22 @@ def print_table(data: dict[str, Any]) -> None:
             f"{plural(cw['count'], 'counterweight')}, "
             f"{text(cw['total_mass_kg'], 'mass_kg')} in all"
         )
-        echo_table(
-            ["web", "throw", "y mm", "mass kg", "direction °"],
-            [
+        if cw["total_mass_kg"] > 0:
+            echo_table(
+                ["web", "throw", "y mm", "mass kg", "direction °"],
                 [
-                    str(w["web"]),
-                    str(w["throw"]),
-                    f"{w['position_m'] * 1e3:.2f}",
-                    f"{w['mass_kg']:.4f}",
-                    number(w["direction_deg"], 5),
-                ]
-                for w in cw["webs"]
-            ],
-        )
-        if cw["note"]:
-            click.echo(f"note: {cw['note']}")
+                    [
+                        str(w["web"]),
+                        str(w["throw"]),
+                        f"{w['position_m'] * 1e3:.2f}",
+                        f"{w['mass_kg']:.4f}",
+                        number(w["direction_deg"], 5),
+                    ]
+                    for w in cw["webs"]
+                ],
+            )
+        elif cw["note"]:
+            click.echo(f"none: {cw['note']}")
     extra = data["extra_counterweights"]
     if extra is not None:
         click.echo("\nExtra crank counterweight masses replacing the co-rotating primary shaft:")
@@ -171,6 +112,10 @@ def print_table(data: dict[str, Any]) -> None:
     )
     for note in data["notes"]:
         click.echo(f"note: {note}")
+    left = data["remaining"]
+    click.echo("\nWhat is left, and what would remove it:" if left else "\nNothing is left.")
+    for item in left:
+        click.echo(f"  {item['text']}: {item['next_step']}")
     check = data.get("verification")
     if check is not None:
         verdict = "agree" if check["agrees"] else "DO NOT agree"

@@ -9,136 +9,20 @@ from typing import Any
 import click
 
 from ..output.format import json_text, number
-from ._common import (
-    echo_table,
-    format_option,
-    given_options,
-    option_name,
-    parse_settings,
-    refuse_unused,
-    require_extra,
-)
-
-#: the fields of the physics' errors that are options of this command under another name
-PHYSICS_FIELDS = {"bearing_positions": "bearing", "counterweights.webs": "webs"}
-#: the Petroff friction options (all three or none)
-PETROFF_OPTIONS = ("viscosity", "bearing_length", "clearance")
-
-
-def _combustion(name: str) -> str:
-    """The default of a combustion setting as typed: the one of every study
-    (:class:`~crankbalance.schema.settings.CombustionOptions`)."""
-    from ..schema.settings import CombustionOptions, default_text
-
-    return default_text(CombustionOptions, name)
-
-
-def _list(value: str | None) -> list[str] | None:
-    """A comma-separated option as a list of its items (None when not given)."""
-    if value is None:
-        return None
-    return [item.strip() for item in value.split(",") if item.strip()] or [value]
+from ._common import echo_table, format_option, refuse_unused, run_study, study_options
+from .plot import check_figure, write_figure
 
 
 @click.command()
 @click.argument("engine")
 @format_option(("table", "json"))
-@click.option("--speed", default=None, help="Mean crank speed, e.g. '6000 rpm' (default: engine).")
-@click.option(
-    "--samples", default="360", show_default=True, help="Crank-angle samples per revolution."
-)
-@click.option(
-    "--gas/--no-gas",
-    default=True,
-    show_default=True,
-    help="Gas forces from the Wiebe model (or --pressure-csv); --no-gas: inertia only.",
-)
-@click.option("--bore", default=None, help="Bore (default: square engine, bore = stroke).")
-@click.option(
-    "--compression-ratio",
-    default=None,
-    help=f"Compression ratio [default: {_combustion('compression_ratio')}, as every study].",
-)
-@click.option(
-    "--ignition",
-    default=None,
-    help=f"Start of combustion from firing TDC [default: {_combustion('ignition')}, as every "
-    "study].",
-)
-@click.option("--burn-duration", default="50 deg", show_default=True)
-@click.option(
-    "--intake-pressure",
-    default="1 bar",
-    show_default=True,
-    help="Pressure at the start of compression (load).",
-)
-@click.option(
-    "--pressure-csv",
-    type=click.Path(exists=True, dir_okay=False),
-    multiple=True,
-    help="Cylinder pressure table instead of the Wiebe model (as 'cycle': crank angle [deg "
-    "from firing TDC], absolute pressure [bar]); one for every cylinder, or repeated once "
-    "per cylinder in cylinder order.",
-)
-@click.option(
-    "--crank-inertia",
-    default=None,
-    help="Inertia of the purely rotating parts (crank, flywheel): the speed fluctuation "
-    "(default: the engine's, front end + throws + flywheel as 'torsional' and 'cycle "
-    "--engine').",
-)
-@click.option(
-    "--balance-factor", default=None, help="Balance factor of the counterweights (default: file)."
-)
-@click.option(
-    "--webs",
-    default=None,
-    help="Counterweight pattern, 0/1 per web, two per throw: '1,0,0,1,1,0,0,1' "
-    "(default: the engine file's, else every web).",
-)
-@click.option("--journal-diameter", default=None, help="Main-journal diameter (default 1.3 r).")
-@click.option("--pin-diameter", default=None, help="Crankpin diameter (default 1.1 r).")
-@click.option(
-    "--web-thickness", default=None, help="Axial web thickness (default 0.75 web offset)."
-)
-@click.option("--web-width", default=None, help="Web width across the arm (default 2.2 r).")
-@click.option("--modulus", default="210 GPa", show_default=True, help="Young's modulus.")
-@click.option("--poisson", default="0.3", show_default=True, help="Poisson's ratio.")
-@click.option(
-    "--bearing",
-    multiple=True,
-    help="Main-bearing position along the crank from its mid-point (repeat; default: one "
-    "between neighbouring throws and one at each end).",
-)
-@click.option(
-    "--bearing-stiffness",
-    default=None,
-    help="Radial stiffness of each main bearing, e.g. '5e8 N/m' (default: rigid).",
-)
-@click.option("--friction-coefficient", default="0.005", show_default=True)
-@click.option("--viscosity", default=None, help="Oil viscosity, for the Petroff friction.")
-@click.option("--bearing-length", default=None, help="Bearing length, for the Petroff friction.")
-@click.option(
-    "--clearance",
-    default=None,
-    help="Radial clearance of the main bearings: in the contact model with "
-    "--bearing-stiffness, in the Petroff friction with --viscosity and --bearing-length.",
-)
-@click.option("--curves", is_flag=True, help="JSON: add the load and moment curves over the cycle.")
+@study_options("bearings")
 @click.option(
     "--plot",
     default=None,
     help="Write the polar load diagrams and the journal bending moments: .png, .svg, .html.",
 )
-def bearings(
-    engine: str,
-    fmt: str,
-    curves: bool,
-    plot: str | None,
-    webs: str | None,
-    bearing: tuple[str, ...],
-    **options: Any,
-) -> None:
+def bearings(engine: str, fmt: str, plot: str | None, **values: Any) -> None:
     """Main-bearing loads and crank bending of ENGINE over one working cycle.
 
     Every cylinder fires in turn (gas and reciprocating inertia through the rods); the
@@ -147,67 +31,19 @@ def bearings(
     continuous beam on all bearings; its stiffness is an equivalent-stiffness
     approximation, docs/main_bearings.md).
     """
-    from ..errors import InputError
-    from ..schema.settings import BearingOptions
-    from ..studies.loads import bearing_loads
-    from ..studies.performance import WIEBE_OPTIONS
-
-    given = given_options()
-    o = parse_settings(
-        BearingOptions,
-        {
-            **options,
-            "webs": _list(webs),
-            "bearing": list(bearing) or None,
-            "pressure_csv": list(options["pressure_csv"]),
-        },
-    )
-    refuse_unused(
-        {name: o.gas and not o.pressure_csv for name in WIEBE_OPTIONS},
-        "only acts on the Wiebe combustion model (not with --pressure-csv or --no-gas)",
-        given,
-    )
-    refuse_unused({"pressure_csv": o.gas, "bore": o.gas}, "only acts with gas forces", given)
-    refuse_unused({"curves": fmt == "json"}, "only acts with --format json", given)
+    refuse_unused({"curves": fmt == "json"}, "only acts with --format json")
     if plot is not None:
-        from .plot import check_output
-
-        check_output(plot, (".png", ".svg", ".html"), "--plot")
-        require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
-    typed: dict[str, Any] = {**options, "webs": webs, "bearing": list(bearing) or None}
-    try:
-        study = bearing_loads(engine, o)
-    except InputError as error:
-        # an error of the physics about a setting names its option, with what was typed
-        name = PHYSICS_FIELDS.get(error.field, error.field)
-        if name not in BearingOptions.FIELDS or (
-            name == "webs" and o.webs is None  # the engine file's pattern
-        ):
-            raise
-        shown = typed.get(name) if name in given or name in ("webs", "bearing") else None
-        raise InputError(
-            option_name(name), error.value if shown is None else shown, error.allowed
-        ) from None
-    data = study.to_dict(curves=curves)  # checked finite by to_jsonable
+        check_figure(plot)
+    study = run_study("bearings", engine, values, engine_option=False)
+    data = study.to_dict()  # checked finite by to_jsonable
     if plot is not None:
-        _write_plot(plot, study)
+        from ..output import figures
+
+        write_figure(plot, figures.bearing_loads_figure(study))
     if fmt == "json":
         click.echo(json_text(data))
         return
     print_table(data)
-
-
-def _write_plot(plot: str, study: Any) -> None:
-    from pathlib import Path
-
-    from ..io.files import write_atomic
-    from ..output import render
-    from ..output.figures.loads import bearing_loads_figure
-
-    fig = bearing_loads_figure(study)
-    fmt = Path(plot).suffix.lower().lstrip(".")
-    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
-    click.echo(f"wrote {plot}", err=True)
 
 
 def print_table(data: dict[str, Any]) -> None:

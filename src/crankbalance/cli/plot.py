@@ -9,6 +9,9 @@ from typing import Any
 
 import click
 
+from ..schema.settings import PlotOptions
+from ._common import settings_options
+
 KINDS = ("orders", "curves", "polar", "crank", "residuals", "single")
 SUFFIXES = {".png": "png", ".svg": "svg", ".html": "html", ".htm": "html"}
 #: the options that change each kind of figure (any other one given is refused, not ignored)
@@ -40,6 +43,29 @@ def check_output(output: str, suffixes: Sequence[str], field: str = "--output") 
     ):
         raise InputError(field, output, "a file that can be written (permission denied)")
     return target
+
+
+#: the files a study's ``--plot`` writes
+FIGURE_SUFFIXES = (".png", ".svg", ".html")
+
+
+def check_figure(plot: str) -> None:
+    """Refuse a study's ``--plot`` file before any work: another kind of file, or a missing
+    extra to draw it (plotly; kaleido for an image)."""
+    from ._common import require_extra
+
+    check_output(plot, FIGURE_SUFFIXES, "--plot")
+    require_extra("web", "plotly", *(() if plot.lower().endswith(".html") else ("kaleido",)))
+
+
+def write_figure(plot: str, fig: Any) -> None:
+    """Write a study's figure atomically, PNG, SVG or HTML by the file's suffix."""
+    from ..io.files import write_atomic
+    from ..output import render
+
+    fmt = Path(plot).suffix.lower().lstrip(".")
+    write_atomic(plot, render.to_html(fig) if fmt == "html" else render.to_image(fig, fmt))  # type: ignore[arg-type]
+    click.echo(f"wrote {plot}", err=True)
 
 
 def build_figure(
@@ -105,12 +131,6 @@ def build_figure(
     help="Output file: .png, .svg or .html (self-contained, works offline).",
 )
 @click.option(
-    "--order",
-    default="1",
-    show_default=True,
-    help="polar: the harmonic order, or 'rotating' for the bare crank's masses.",
-)
-@click.option(
     "--quantity",
     type=click.Choice(["force", "moment"]),
     default="force",
@@ -124,15 +144,7 @@ def build_figure(
     help="curves/crank: include the engine after balancing (counterweights, shafts "
     "as the engine file asks).",
 )
-@click.option(
-    "--cylinder", default="1", show_default=True, help="single: cylinder number (1-based)."
-)
-@click.option(
-    "--balance-factor",
-    default="0.5",
-    show_default=True,
-    help="single: balance factor (0 = rotating mass only, 0.5 = 50 %).",
-)
+@settings_options(PlotOptions)
 @click.option(
     "--width", type=click.IntRange(100, 8000), default=None, help="Image width [px] (PNG/SVG)."
 )
@@ -145,11 +157,11 @@ def plot(
     kind: str,
     engine: str,
     output: str,
-    order: str,
     quantity: str,
     balance: bool,
-    cylinder: str,
-    balance_factor: str,
+    order: str | None,
+    cylinder: str | None,
+    balance_factor: str | None,
     width: int | None,
     height: int | None,
 ) -> None:
@@ -163,7 +175,6 @@ def plot(
     from click.core import ParameterSource
 
     from ..errors import InputError
-    from ..schema.settings import PlotOptions
     from ._common import parse_settings, require_extra
 
     if kind not in KINDS:

@@ -4,6 +4,9 @@ from __future__ import annotations
 
 import click
 
+from ..schema.settings import AnalysisOptions, BalanceOptions
+from ._common import settings_options
+
 
 @click.command()
 @click.argument("engine")
@@ -14,18 +17,8 @@ import click
     help="report.html (self-contained, interactive, works offline) or report.pdf "
     "(printed by headless Chromium).",
 )
-@click.option("--orders", default="8", show_default=True, help="Highest harmonic order (1-64).")
-@click.option(
-    "--balance-factor",
-    default=None,
-    help="Override the engine file's counterweight balance factor (0 = rotating masses "
-    "only, up to 2).",
-)
-@click.option(
-    "--angle",
-    default=None,
-    help="Override the counterweight angle: 'optimal' or an angle such as '30 deg'.",
-)
+@settings_options(AnalysisOptions, ("orders",))
+@settings_options(BalanceOptions, ("balance_factor", "angle"))
 @click.option(
     "--chromium",
     default=None,
@@ -35,7 +28,7 @@ import click
 def report(
     engine: str,
     output: str,
-    orders: str,
+    orders: str | None,
     balance_factor: str | None,
     angle: str | None,
     chromium: str | None,
@@ -44,7 +37,6 @@ def report(
     free forces and moments, balancing masses, residuals, figures and the settings used."""
     from ..errors import InputError
     from ..output.report import write_report
-    from ..schema.settings import AnalysisOptions, BalanceOptions
     from ._common import parse_settings, require_extra
     from .plot import check_output
 

@@ -9,15 +9,14 @@ writes the printable shop sheet (HTML or PDF). Every command validates its setti
 
 from __future__ import annotations
 
-import contextlib
-import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable
 from typing import Any
 
 import click
 
 from ..output.format import text
-from ._common import echo_table, option_name, parse_settings
+from ..schema.settings import ShopOptions
+from ._common import echo_table, option_name, parse_settings, run_study, study_options, typed
 
 FORMATS = click.Choice(["table", "json"])
 
@@ -30,119 +29,11 @@ def _engine(required: bool = True) -> Callable[[Any], Any]:
     )
 
 
-#: the settings of the matching and bob-weights, as click options
-_PARTS_OPTIONS = (
-    click.option(
-        "--method",
-        type=click.Choice(["milp", "pairing", "exhaustive", "as-listed"]),
-        default=None,
-        help="Matching method (default milp: least spread, proven optimal within the time "
-        "limit; too large a problem is matched by a local search, said so in the output).",
-    ),
-    click.option(
-        "--time-limit",
-        help="Longest matching, the building of the model included, default '60 s'.",
-    ),
-    click.option(
-        "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
-    ),
-)
-
-#: the settings of the hole plan and the ISO check, as click options
-_PLAN_OPTIONS = (
-    click.option(
-        "--reading",
-        multiple=True,
-        help="Machine reading, twice (measuring plane 1, then 2): '12.5 g @ 40 mm, 35 deg'.",
-    ),
-    click.option(
-        "--convention",
-        type=click.Choice(["heavy", "light"]),
-        default=None,
-        help="The readings' angle is the heavy spot (default) or the light spot.",
-    ),
-    click.option(
-        "--measuring-planes", help="Axial positions of the measuring planes: '0 mm, 400 mm'."
-    ),
-    click.option(
-        "--correction-planes", help="Axial positions of the correction planes: '50 mm, 350 mm'."
-    ),
-    click.option("--hole-diameter", help="Drill diameter, default '8 mm'."),
-    click.option("--hole-radius", help="Radius of the axial holes (or of the rim), e.g. '45 mm'."),
-    click.option("--max-depth", help="Deepest hole allowed, default '15 mm'."),
-    click.option(
-        "--web-thickness",
-        help="Axial thickness of the web at the holes: the deepest axial hole, the widest "
-        "radial one (not given: holes at most 10 drill diameters deep).",
-    ),
-    click.option(
-        "--depth-to",
-        type=click.Choice(["shoulder", "tip"]),
-        default=None,
-        help="What the depths are read to (required with readings).",
-    ),
-    click.option("--point-angle", help="Drill point angle, default '118 deg' (180: flat)."),
-    click.option(
-        "--direction", type=click.Choice(["axial", "radial"]), default=None, help="Hole direction."
-    ),
-    click.option("--spacing", help="Material between holes, default '2 mm'."),
-    click.option("--depth-resolution", help="Machining step, default '0.1 mm'."),
-    click.option("--density", help="Crank material, default '7850 kg/m^3'."),
-    click.option("--slug-density", help="Add heavy metal of this density instead of drilling."),
-    click.option("--grade", help="ISO 21940-11 grade, default G6.3."),
-    click.option("--rotor-mass", help="Crank mass for the ISO check, e.g. '25 kg'."),
-    click.option("--speed", help="Largest service speed, default the engine's."),
-    click.option("--bearings", help="Main bearings: '-20 mm, 420 mm' (default the planes)."),
-    click.option("--center-of-mass", help="Crank centre of mass (default mid-bearings)."),
-)
-
-
-def _with(options: tuple[Callable[[Any], Any], ...]) -> Callable[[Any], Any]:
-    def wrap(func: Any) -> Any:
-        for option in reversed(options):
-            func = option(func)
-        return func
-
-    return wrap
-
-
-def _settings(values: dict[str, Any]) -> Any:
-    """The typed options through :class:`~crankbalance.schema.settings.ShopOptions`."""
-    from ..schema.settings import ShopOptions
-
-    given = {k: v for k, v in values.items() if v not in (None, ())}
-    if "reading" in given:
-        given["reading"] = list(given["reading"])
-    return parse_settings(ShopOptions, given)
-
-
-@contextlib.contextmanager
-def _named(*others: str) -> Iterator[None]:
-    """An InputError about a setting names its option (``hole_radius`` -> ``--hole-radius``;
-    also the ``others``, the command's own options)."""
-    from ..errors import InputError
-    from ..schema.settings import ShopOptions
-
-    try:
-        yield
-    except InputError as error:
-        if error.field not in ShopOptions.FIELDS and error.field not in others:
-            raise
-        raise InputError(option_name(error.field), error.value, error.allowed) from None
-
-
-#: the options of the drilling plan's settings, for its messages (studies.shop.hole_plan)
-_OPTION_NAMES = {
-    name: option_name(name) for name in ("hole_diameter", "max_depth", "hole_radius")
-} | {"web_thickness": "--web-thickness"}
-
-
-def _echo_json(schema: str, result: Any) -> None:
+def _echo_json(result: Any) -> None:
     """The JSON of a shop result, every key with its unit (:func:`studies.shop.shop_json`)."""
     from ..output.format import json_text
-    from ..studies.shop import shop_json
 
-    click.echo(json_text({"schema": schema, "result": shop_json(result)}))
+    click.echo(json_text(result.to_dict()))
 
 
 def _g(value: float) -> str:
@@ -155,20 +46,16 @@ def shop() -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-match")
 @_engine()
-@_with(_PARTS_OPTIONS)
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
+def match(engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
-    from ..studies.shop import MATCH_SCHEMA, parts_study
-
-    options = _settings(values)
-    with _named():
-        study = parts_study(engine, parts, options)
+    result = run_study("shop-match", engine, values)
     if fmt == "json":
-        _echo_json(MATCH_SCHEMA, study)
+        _echo_json(result)
         return
+    study = result.parts
     m = study.matching
     rows = [
         [str(c + 1), *m.ids[c], _g(m.reciprocating[c]), _g(m.rotating[c])]
@@ -189,20 +76,16 @@ def match(parts: str, engine: str, fmt: str, **values: Any) -> None:
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-bobweights")
 @_engine()
-@_with(_PARTS_OPTIONS)
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def bobweights(parts: str, engine: str, fmt: str, **values: Any) -> None:
+def bobweights(engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
-    from ..studies.shop import BOBWEIGHTS_SCHEMA, parts_study
-
-    options = _settings(values)
-    with _named():
-        study = parts_study(engine, parts, options)
+    result = run_study("shop-bobweights", engine, values)
     if fmt == "json":
-        _echo_json(BOBWEIGHTS_SCHEMA, study.bob_weights)
+        _echo_json(result)
         return
+    study = result.parts
     b = study.bob_weights
     echo_table(
         ["pin", "rods", "rotating", "reciprocating", "bob-weight"],
@@ -264,101 +147,66 @@ def echo_hole_plan(result: Any) -> None:
 
 @shop.command()
 @_engine(required=False)
-@_with(_PLAN_OPTIONS)
+@study_options("shop-plan")
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
-    from ..studies.shop import PLAN_SCHEMA, engine_model, hole_plan
-
-    options = _settings(values)
-    speed = engine_model(engine)[1].speed if engine is not None else None
-    with _named():
-        result = hole_plan(options, speed, _OPTION_NAMES)
+    result = run_study("shop-plan", engine, values)
     if fmt == "json":
-        _echo_json(PLAN_SCHEMA, result)
+        _echo_json(result)
         return
-    echo_hole_plan(result)
+    echo_hole_plan(result.result)
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-scatter")
 @_engine()
-@click.option(
-    "--fraction", help="Share of the reciprocating weight in the bob-weights, default 0.5."
-)
-@click.option(
-    "--correction-planes", required=True, help="From the crank mid-point: '-200 mm, 200 mm'."
-)
-@click.option("--rotor-mass", help="Crank mass, for the probability of meeting the grade.")
-@click.option("--grade", help="ISO 21940-11 grade, default G6.3.")
-@click.option("--speed", help="Largest service speed, default the engine's.")
-@click.option("--bearings", help="Main bearings (default the planes).")
-@click.option("--samples", default="100000", show_default=True, help="Engines drawn (up to 1e7).")
-@click.option("--seed", default="0", show_default=True, help="Seed of the random numbers.")
-@click.option("--scale-step", default="0.1 g", show_default=True, help="Resolution of the scale.")
 @click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
-def scatter(
-    parts: str, engine: str, samples: str, seed: str, scale_step: str, fmt: str, **values: Any
-) -> None:
+def scatter(engine: str, fmt: str, **values: Any) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
-    from ..errors import InputError
-    from ..studies.shop import SCATTER_SCHEMA, scatter_of_parts
-    from ..units import parse_quantity
-
-    options = _settings(values)
-    count = _whole("--samples", samples, 1, 10_000_000)
-    start = _whole("--seed", seed, 0, 2**63 - 1)
-    step = parse_quantity(scale_step, "mass", "--scale-step") if scale_step.strip() != "0" else 0.0
-    if not 0 <= step <= 0.01:
-        raise InputError("--scale-step", scale_step, "must be a mass from 0 to 10 g")
-    with _named("samples"):
-        result = scatter_of_parts(engine, parts, options, count, start, step)
+    result = run_study("shop-scatter", engine, values)
     if fmt == "json":
-        _echo_json(SCATTER_SCHEMA, result)
+        _echo_json(result)
         return
+    study = result.result
     kinds = ("unbalance", "unbalance", "force", "force", "moment", "moment")
-    at = list(result.quantile_levels).index(0.95)
+    at = list(study.quantile_levels).index(0.95)
     echo_table(
         ["output", "mean", "95 %", "largest share"],
         [
-            [name, text(result.mean[k], kinds[k]), text(result.quantiles[k, at], kinds[k])]
-            + [result.dominant[k]]
-            for k, name in enumerate(result.outputs)
+            [name, text(study.mean[k], kinds[k]), text(study.quantiles[k, at], kinds[k])]
+            + [study.dominant[k]]
+            for k, name in enumerate(study.outputs)
         ],
     )
-    if result.p_grade is not None:
-        click.echo(f"\nP(both planes meet {options.grade}) = {result.p_grade:.4g}")
-
-
-def _whole(option: str, value: str, low: int, high: int) -> int:
-    from ..errors import InputError
-
-    try:
-        number = float(value)
-    except ValueError:
-        number = math.nan
-    if not (math.isfinite(number) and number == int(number) and low <= number <= high):
-        raise InputError(option, value, f"must be a whole number from {low} to {high:g}")
-    return int(number)
+    if study.p_grade is not None:
+        grade = values.get("grade") or ShopOptions.FIELDS["grade"].default
+        click.echo(f"\nP(both planes meet {grade}) = {study.p_grade:.4g}")
 
 
 @shop.command()
-@click.argument("parts")
+@study_options("shop-match")
 @_engine()
 @click.option("-o", "--output", required=True, help="sheet.html or sheet.pdf.")
 @click.option("--chromium", default=None, help="Chromium executable for the PDF.")
-@_with(_PARTS_OPTIONS + _PLAN_OPTIONS)
+@study_options("shop-plan")
 def sheet(parts: str, engine: str, output: str, chromium: str | None, **values: Any) -> None:
-    """The printable shop sheet of PARTS (and of the readings, when given): HTML or PDF."""
+    """The printable shop sheet of PARTS (and of the readings, when given): HTML or PDF.
+
+    It shows the studies ``shop match`` and ``shop plan`` with the same options."""
     from ..output.shop_sheet import write_sheet
-    from ..studies.shop import shop_study
+    from ..schema.settings import ShopOptions
+    from ..studies.shop import PLAN_NAMES, shop_study
     from ._common import require_extra
     from .plot import check_output
 
     pdf = check_output(output, (".html", ".htm", ".pdf")).suffix.lower() == ".pdf"
     require_extra("web", "plotly", *(("kaleido",) if pdf else ()))
-    options = _settings(values)
-    with _named():
-        study = shop_study(engine, parts, options, _OPTION_NAMES)
+    from ..studies.registry import named_fields
+
+    given = typed(values)
+    options = parse_settings(ShopOptions, given)
+    with named_fields(ShopOptions.FIELDS, given, options, option_name):
+        study = shop_study(engine, parts, options, PLAN_NAMES)
     path = write_sheet(study, output, chromium)
     click.echo(f"wrote {path}", err=True)

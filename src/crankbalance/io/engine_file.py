@@ -54,7 +54,10 @@ def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml")
 
 def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
     """Load an engine from a file path (``.toml`` or ``.json``) or a preset name."""
-    if not os.path.lexists(source):
+    from .reading import reading_given_files
+
+    if reading_given_files() or not os.path.lexists(source):
+        # a preset, or (for a request's files, not this machine's) a file given with it
         if str(source) in _preset_names():
             return parse_engine_text(preset_text(str(source)), f"preset {source}")
         raise InputError(

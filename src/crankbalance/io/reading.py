@@ -19,7 +19,9 @@ import os
 import re
 import stat
 import tomllib
-from collections.abc import Iterator
+from collections.abc import Iterator, Mapping
+from contextlib import contextmanager
+from contextvars import ContextVar
 from pathlib import Path
 from typing import Any, NoReturn
 
@@ -32,6 +34,27 @@ MAX_DEPTH = 32
 MAX_NUMBER_CHARS = 100
 
 _READ_CHUNK = 1 << 16
+
+#: the files a request gave with its content (:func:`given_files`): name -> text; None
+#: outside such a request, where files are read from the file system
+_GIVEN: ContextVar[Mapping[str, str] | None] = ContextVar("crankbalance_given_files", default=None)
+
+
+@contextmanager
+def given_files(files: Mapping[str, str]) -> Iterator[None]:
+    """Within the block, :func:`read_text` reads the files a request gave with their content
+    (``files``: name -> text, the JSON API's ``{"name", "text"}``) and no file of this
+    machine: a server reads no path a client names."""
+    token = _GIVEN.set(dict(files))
+    try:
+        yield
+    finally:
+        _GIVEN.reset(token)
+
+
+def reading_given_files() -> bool:
+    """Whether files are read from a request (:func:`given_files`), not from the disk."""
+    return _GIVEN.get() is not None
 
 
 def read_text(path: str | os.PathLike[str], field: str, what: str, limit: int) -> str:
@@ -62,6 +85,19 @@ def read_text(path: str | os.PathLike[str], field: str, what: str, limit: int) -
         than ``limit`` bytes, or is not UTF-8 text (or contains NUL bytes).
     """
     source = str(path)
+    given = _GIVEN.get()
+    if given is not None:
+        if source not in given:
+            raise InputError(
+                field,
+                source,
+                "is not a file given with the request: the API reads no file of the server, "
+                'send the file\'s content as {"name": ..., "text": ...}',
+            )
+        raw = given[source].encode("utf-8")
+        if len(raw) > limit:
+            raise InputError(field, source, f"is larger than {limit} bytes; give {what}")
+        return decode_text(raw, field, source, what)
     try:
         _check_regular(os.stat(path).st_mode, field, source, what)
         # O_NONBLOCK: should the path have turned into a pipe since the stat, the open

@@ -20,9 +20,12 @@ from __future__ import annotations
 
 import base64
 import html as _html
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 from .format import number
+
+if TYPE_CHECKING:  # pragma: no cover
+    import plotly.graph_objects as go
 
 CSS = """
 body { font-family: "DejaVu Sans", Arial, sans-serif; margin: 2em auto; max-width: 1100px;
@@ -65,7 +68,7 @@ def table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
-def figure_html(fig_id: str, caption: str, fig: Any, static: bool, first: bool) -> str:
+def figure_html(fig_id: str, caption: str, fig: go.Figure, static: bool, first: bool) -> str:
     """A plotly figure and its caption as a ``<figure id="figure-<fig_id>">``: an inline SVG
     image when ``static`` (for printing; 1000 px wide, the figure's own height or 560 px),
     else the interactive figure, with plotly.js inlined when it is the page's ``first``."""

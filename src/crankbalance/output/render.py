@@ -106,8 +106,16 @@ class Exporter:
         return int(browser.subprocess.pid)
 
     def _open(self) -> None:
+        import logging
+
         import kaleido
         from choreographer.browsers import Chromium
+
+        # choreographer reads the browser's pipe in pieces; a message split between two
+        # reads (seen under load, at the browser's exit) fails to decode and is dropped,
+        # "Ignoring", with its traceback logged to stderr. The message is dropped either
+        # way; its traceback is no message for a user, so that one logger stays quiet.
+        logging.getLogger("choreographer.channels.pipe").setLevel(logging.CRITICAL)
 
         class FlaggedChromium(Chromium):
             def get_cli(self) -> list[str]:

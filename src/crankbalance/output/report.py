@@ -42,6 +42,11 @@ from .format import angle, convert, moment_point
 from .html import figure_html, fmt, page, table
 
 if TYPE_CHECKING:  # pragma: no cover
+    import plotly.graph_objects as go
+
+    from ..physics.model import EngineModel
+    from ..schema.engine import EngineSpec
+    from ..studies.engine import Analysis, BalanceStudy
     from .figures.common import Quantity
 
 REPORT_SCHEMA = "crankbalance.report/3"
@@ -51,8 +56,8 @@ REPORT_SCHEMA = "crankbalance.report/3"
 class Report:
     """What a report shows: the analysis and balancing results and the settings."""
 
-    analysis: Any  # analysis.Analysis
-    study: Any  # analysis.BalanceStudy
+    analysis: Analysis
+    study: BalanceStudy
     engine_file: str  # TOML text of the engine, as used
     settings: dict[str, Any]
     created: str
@@ -68,7 +73,9 @@ class Report:
         }
 
 
-def build_report(engine: Any, orders: int = 8, **overrides: Any) -> Report:
+def build_report(
+    engine: str | os.PathLike[str] | EngineSpec, orders: int = 8, **overrides: Any
+) -> Report:
     """Analyse and balance ``engine`` (preset name, engine file or EngineSpec).
 
     ``overrides`` go to :func:`~crankbalance.studies.engine.balance_engine` (``angle``,
@@ -125,7 +132,7 @@ def _angle(value: float | None) -> float | None:
     return angle(0.0 if abs(value) < 1e-9 else float(value))
 
 
-def maker_order(model: Any) -> str:
+def maker_order(model: EngineModel) -> str:
     """The firing order in the maker's numbering, as the report appends it to the firing
     order: `` (maker's numbering: 1-6-2-4-3-5)`` when the engine file used a maker's
     numbering and gave the firing order, else ``""``."""
@@ -144,14 +151,14 @@ def _distinct(values: list[float], scale: float = 1.0, digits: int = 5) -> str:
 
 
 # --------------------------------------------------------------------------- figures
-def report_figures(report: Report) -> list[tuple[str, str, Any]]:
+def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
     """(id, caption, figure) of every figure in the report."""
     from .figures.balancing import residuals_bar
     from .figures.crank3d import crank_3d
     from .figures.engine import curves_figure, orders_bar, polar_figure
 
     a, s = report.analysis, report.study
-    figs: list[tuple[str, str, Any]] = [
+    figs: list[tuple[str, str, go.Figure]] = [
         (
             "orders",
             "Free force and moment amplitudes by order (forward and backward phasors "
@@ -494,7 +501,7 @@ def _json_default(value: Any) -> Any:
 
 # --------------------------------------------------------------------------- files
 def write_report(
-    engine: Any,
+    engine: str | os.PathLike[str] | EngineSpec,
     path: str | os.PathLike[str],
     orders: int = 8,
     chromium: str | None = None,

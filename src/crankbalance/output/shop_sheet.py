@@ -17,11 +17,14 @@ import datetime as _dt
 import html as _html
 import os
 from pathlib import Path
-from typing import Any
+from typing import TYPE_CHECKING
 
 from ..errors import InputError
 from .format import json_text, text
 from .html import figure_html, page, table
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..studies.shop import ShopStudy
 
 SHEET_SCHEMA = "crankbalance.shop-sheet/2"
 
@@ -30,7 +33,7 @@ def _g(value: float) -> str:
     return text(value, "mass", 5)
 
 
-def sheet_html(study: Any, static: bool = False) -> str:
+def sheet_html(study: ShopStudy, static: bool = False) -> str:
     """The shop sheet of ``study`` (a ShopStudy) as one HTML document; ``static=True`` draws
     the figure as inline SVG (for printing to PDF)."""
     from .figures.shop import hole_plan
@@ -143,7 +146,9 @@ def sheet_html(study: Any, static: bool = False) -> str:
     return page(f"{p.engine}: balance shop sheet", out, data)
 
 
-def write_sheet(study: Any, path: str | os.PathLike[str], chromium: str | None = None) -> Path:
+def write_sheet(
+    study: ShopStudy, path: str | os.PathLike[str], chromium: str | None = None
+) -> Path:
     """Write the shop sheet of ``study`` to ``path`` (``.html``/``.htm`` or ``.pdf``),
     atomically."""
     from ..io.files import write_atomic

@@ -48,8 +48,8 @@ class Verification(ResultMixin):
         ``"rotating"``, then ``"order1"``, ... as the result's, measured in the time domain
         (zero at most the round-off) [N], [N·m].
     force_difference : float
-        Largest difference of a force, before or after, between the time domain and the
-        solver [N].
+        Largest difference of a force, before or after (and the forward and backward parts after),
+        between the time domain and the solver [N].
     moment_difference : float
         The same for the moments [N·m].
     force_round_off, moment_round_off : float
@@ -147,6 +147,12 @@ def verify(model: EngineModel, result: BalanceResult, samples: int = SAMPLES) ->
         spectrum = np.fft.fft(series) / samples
         return float(abs(spectrum[order]) + abs(spectrum[-order]))
 
+    def parts(series: NDArray, order: int) -> tuple[float, float]:
+        """The co-rotating and counter-rotating parts of order ``order``: the spectrum
+        at +order and at -order."""
+        spectrum = np.fft.fft(series) / samples
+        return float(abs(spectrum[order])), float(abs(spectrum[-order]))
+
     force_level, moment_level = (float(x) for x in round_off(model))
 
     def measured(force: float, moment: float) -> tuple[float, float]:
@@ -155,11 +161,21 @@ def verify(model: EngineModel, result: BalanceResult, samples: int = SAMPLES) ->
             float(below_round_off(moment, moment_level)),
         )
 
+    def after(force: NDArray, couple: NDArray, order: int) -> tuple[float, ...]:
+        """Amplitudes of force and moment after, then their forward and backward parts
+        (force forward, force backward, moment forward, moment backward)."""
+        (f_fwd, f_bwd), (c_fwd, c_bwd) = parts(force, order), parts(couple, order)
+        return (
+            measured(amplitude(force, order), amplitude(couple, order))
+            + measured(f_fwd, c_fwd)
+            + measured(f_bwd, c_bwd)
+        )
+
     rows = [
         (
             result.residuals[0],
             measured(amplitude(rot_f, 1), amplitude(rot_c, 1)),
-            measured(amplitude(rot_f + cw_rot_f, 1), amplitude(rot_c + cw_rot_c, 1)),
+            after(rot_f + cw_rot_f, rot_c + cw_rot_c, 1),
         )
     ]
     for order in range(1, orders + 1):
@@ -169,21 +185,40 @@ def verify(model: EngineModel, result: BalanceResult, samples: int = SAMPLES) ->
             (
                 result.residuals[order],
                 measured(amplitude(rec_f, order), amplitude(rec_c, order)),
-                measured(amplitude(after_f, order), amplitude(after_c, order)),
+                after(after_f, after_c, order),
             )
         )
     residuals = tuple(
         ComponentResidual(
-            solver.component, solver.targeted, before[0], after[0], before[1], after[1]
+            solver.component,
+            solver.targeted,
+            before[0],
+            left[0],
+            before[1],
+            left[1],
+            left[2],
+            left[4],
+            left[3],
+            left[5],
         )
-        for solver, before, after in rows
+        for solver, before, left in rows
     )
     force_difference = max(
-        max(abs(t.force_before - s.force_before), abs(t.force_after - s.force_after))
+        max(
+            abs(t.force_before - s.force_before),
+            abs(t.force_after - s.force_after),
+            abs(t.force_forward_after - s.force_forward_after),
+            abs(t.force_backward_after - s.force_backward_after),
+        )
         for t, s in zip(residuals, result.residuals, strict=True)
     )
     moment_difference = max(
-        max(abs(t.moment_before - s.moment_before), abs(t.moment_after - s.moment_after))
+        max(
+            abs(t.moment_before - s.moment_before),
+            abs(t.moment_after - s.moment_after),
+            abs(t.moment_forward_after - s.moment_forward_after),
+            abs(t.moment_backward_after - s.moment_backward_after),
+        )
         for t, s in zip(residuals, result.residuals, strict=True)
     )
     return Verification(

@@ -36,7 +36,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF
+from ..results import ROUND_OFF, below_round_off
 from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
 
 
@@ -299,6 +299,12 @@ def solve_counterweights(
             direction[engines] = np.mod(turned, 2 * np.pi)
             alpha[engines] = turn
             flipped[engines] = flip
+    # what the counterweights leave of their target, the whole crank's crank-speed forward
+    # force and couple (zero when they reach it)
+    w2 = inputs.speed**2
+    moments = mass * options.cg_radius * np.exp(1j * direction)
+    missed_force = w2 * np.abs(moments.sum(axis=-1) + target.sum(axis=-1))
+    missed_moment = w2 * np.abs((moments * webs.position).sum(axis=-1) + target_couple.sum(axis=-1))
     return BatchCounterweights(
         options.method,
         options.cg_radius,
@@ -311,6 +317,8 @@ def solve_counterweights(
         halves.copy(),
         flipped,
         already,
+        below_round_off(missed_force, inputs.force_round_off),
+        below_round_off(missed_moment, inputs.moment_round_off),
     )
 
 

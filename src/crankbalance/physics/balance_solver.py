@@ -62,7 +62,7 @@ from .balance_types import (
     SolverInput,
 )
 from .model import EngineBatch, EngineModel
-from .shaking import BatchFreeForces
+from .shaking import BatchFreeForces, coefficient_rows, cylinder_coefficients
 
 #: share of an engine's force scale (forces) or force scale times length scale (moments)
 #: below which the residual check counts a targeted component as cancelled
@@ -90,7 +90,9 @@ def solver_input(engine: EngineModel | EngineBatch, forces: BatchFreeForces) -> 
     SolverInput
         The arrays of :func:`solve`.
     """
-    rotating, rotating_couple, reciprocating, reciprocating_couple = throw_unbalance(engine)
+    rotating, rotating_couple, reciprocating, reciprocating_couple = throw_unbalance(
+        engine, forces.orders.size
+    )
     force_scale, length = (np.reshape(x, -1) for x in engine_scales(engine))
     return SolverInput(
         throw_position=engine.throw_position,
@@ -109,16 +111,31 @@ def solver_input(engine: EngineModel | EngineBatch, forces: BatchFreeForces) -> 
 
 
 def throw_unbalance(
-    engine: EngineModel | EngineBatch,
+    engine: EngineModel | EngineBatch, orders: int = 2
 ) -> tuple[NDArray[np.complex128], ...]:
     r"""Per throw, the first moments the crank counterweights can carry, and their moments
     along the crank, each mass at its own axial place (the big ends and rods of
     side-by-side rods at the rod's place).
 
+    The reciprocating masses enter by the forward-rotating part of their first order:
+    cylinder c's forward primary phasor is
+    :math:`F_{1,c}^+ = \tfrac12 m_{rec,c} r\omega^2 c_{1,c} e^{i\varphi_c}`
+    (:mod:`crankbalance.physics.shaking`), the phasor of a mass
+    :math:`\tfrac12 m_{rec,c} r c_{1,c}` turning with the crank, so the first moment
+    :math:`m_{rec,c} r c_{1,c} e^{i\varphi_c}` put on the crank with a balance factor
+    :math:`f_b` leaves :math:`(1 - 2f_b) F_{1,c}^+`: 0.5 cancels the forward primary of
+    every cylinder. A centred cylinder has :math:`c_1 = 1` exactly (the pin's
+    :math:`m_{rec} r e^{i\varphi}` of the 2021 paper); an offset cylinder (bore, pin or
+    crank offset, a VR row) or the link rod of an articulated radial has its first
+    harmonic shifted in phase and amplitude, and :math:`c_{1,c}` carries the shift.
+
     Parameters
     ----------
     engine : EngineModel or EngineBatch
         The engine(s), as :func:`solver_input`.
+    orders : int
+        Orders of the harmonic coefficients the free forces were computed with (the
+        first is taken from the same rows, to the last bit).
 
     Returns
     -------
@@ -127,9 +144,10 @@ def throw_unbalance(
     rotating_couple : ndarray of complex, shape (E, T)
         :math:`(m_t y_t + \sum_c m_{b,c} a_c) r e^{i\varphi_t}` [kg·m²].
     reciprocating : ndarray of complex, shape (E, T)
-        :math:`\sum_c m_{rec,c} r e^{i\varphi_t}` over the cylinders on the pin [kg·m].
+        :math:`\sum_c m_{rec,c} c_{1,c} r e^{i\varphi_t}` over the cylinders on the pin
+        [kg·m].
     reciprocating_couple : ndarray of complex, shape (E, T)
-        :math:`\sum_c m_{rec,c} (y_t + a_c) r e^{i\varphi_t}` [kg·m²].
+        :math:`\sum_c m_{rec,c} c_{1,c} (y_t + a_c) r e^{i\varphi_t}` [kg·m²].
 
     References
     ----------
@@ -140,7 +158,10 @@ def throw_unbalance(
     throws, cylinders = topology.throws, topology.cylinders
     throw_angle = np.reshape(engine.throw_angle, (-1, throws))
     rotating_mass = np.reshape(engine.throw_rotating_mass, (-1, throws))
-    reciprocating_mass = np.reshape(engine.reciprocating_mass, (-1, cylinders))
+    reciprocating_mass: NDArray = np.reshape(engine.reciprocating_mass, (-1, cylinders))
+    first = _first_harmonic(engine, orders)
+    if np.any(first != 1.0):  # offset cylinders: their forward primary, phase and size
+        reciprocating_mass = reciprocating_mass * first
     turn = np.reshape(engine.crank_radius, (-1, 1)) * np.exp(1j * throw_angle)  # r e^{i phi}
     # each cylinder's reciprocating mass on its pin, summed engine by engine (einsum's own
     # loops, no matrix product across the engines)
@@ -157,6 +178,23 @@ def throw_unbalance(
         pin_mass * turn,
         (pin_mass * y + pin_axial) * turn,
     )
+
+
+def _first_harmonic(engine: EngineModel | EngineBatch, orders: int) -> NDArray[np.complex128]:
+    """:math:`c_{1,c}` of every cylinder, shape (E, C) or (1, C) or (1, 1), from the rows
+    the free forces use (:func:`crankbalance.physics.shaking.cylinder_coefficients`)."""
+    if isinstance(engine, EngineBatch):
+        r = engine.crank_radius
+        rows = coefficient_rows(
+            r / engine.rod_length,
+            engine.cylinder_offset / r[:, None],
+            orders,
+            engine.topology.kinematics,
+        )
+    else:
+        rows = cylinder_coefficients(engine, orders)
+    first = rows[..., 0]
+    return first[None, :] if first.ndim == 1 else first
 
 
 # --------------------------------------------------------------------------- the solver
@@ -216,7 +254,7 @@ def solve(
         target = inputs.rotating + fb * inputs.reciprocating
         target_couple = inputs.rotating_couple + fb * inputs.reciprocating_couple
         webs = web_geometry(inputs, counterweights)
-        halves = _halves(inputs, counterweights.scope, target, target_couple)
+        halves = _halves(inputs, counterweights.scope)
         cw = solve_counterweights(inputs, webs, counterweights, halves, target, target_couple)
         moments = share = cw.moments
         if fb != 0.0:
@@ -295,21 +333,12 @@ def solve(
     return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
 
 
-def _halves(
-    inputs: SolverInput, scope: str, target: NDArray, target_couple: NDArray
-) -> NDArray[np.bool_]:
-    """Whether each engine's crank halves are balanced on their own: as asked, or with
-    ``"auto"`` when the crank is balanced as a whole and has an even number of throws
-    (paper section 3.1)."""
-    if scope != "auto":
-        return np.full(inputs.size, scope == "halves")
-    throws = inputs.throw_position.size
-    if throws < 2 or throws % 2:
-        return np.zeros(inputs.size, bool)
-    w2 = inputs.speed**2
-    return (np.abs(target.sum(axis=-1)) <= inputs.force_round_off / w2) & (
-        np.abs(target_couple.sum(axis=-1)) <= inputs.moment_round_off / w2
-    )
+def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
+    """Whether each engine's crank halves are balanced on their own: only when asked
+    (``"halves"``, paper section 3.1). ``"auto"`` balances the crank as a whole, so a
+    crank already balanced as a whole gets no counterweights (issue 27: the V12 and
+    flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there)."""
+    return np.full(inputs.size, scope == "halves")
 
 
 # --------------------------------------------------------------------------- shafts
@@ -435,6 +464,15 @@ def balance_residuals(
     moment_before = amplitude(rot_c, forces.couple_forward, forces.couple_backward, moment_level)
     force_after = amplitude(after_rot_f, fwd, bwd, force_level)
     moment_after = amplitude(after_rot_c, cfwd, cbwd, moment_level)
+    none = np.zeros_like(force_level)  # the rotating masses turn forward only
+    force_forward = below_round_off(
+        np.column_stack([np.abs(after_rot_f), np.abs(fwd)]), force_level
+    )
+    force_backward = below_round_off(np.column_stack([none, np.abs(bwd)]), force_level)
+    moment_forward = below_round_off(
+        np.column_stack([np.abs(after_rot_c), np.abs(cfwd)]), moment_level
+    )
+    moment_backward = below_round_off(np.column_stack([none, np.abs(cbwd)]), moment_level)
     orders = fwd.shape[1]
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
@@ -447,5 +485,15 @@ def balance_residuals(
     )
     components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
     return BatchResiduals(
-        components, targeted, force_before, force_after, moment_before, moment_after, balanced
+        components,
+        targeted,
+        force_before,
+        force_after,
+        moment_before,
+        moment_after,
+        force_forward,
+        force_backward,
+        moment_forward,
+        moment_backward,
+        balanced,
     )

@@ -49,8 +49,9 @@ class CounterweightOptions:
         Share :math:`f_b` of the reciprocating masses the counterweights carry on top of
         the rotating masses [-].
     scope : {"auto", "whole", "halves"}
-        Balance the crank as a whole or each half on its own; ``"auto"`` takes halves when
-        the crank is balanced as a whole and has an even number of throws.
+        Balance the crank as a whole or each half on its own; ``"auto"`` (the default) is
+        the whole crank, and a crank already balanced as a whole gets no counterweight
+        mass (``"halves"`` gives each half its own, to relieve the main bearings).
     method : {"pattern", "individual"}
         The paper's equal-mass pattern, or each counterweight its own mass and angle
         (least :math:`\\sum m_j^2`).
@@ -199,6 +200,12 @@ class BatchCounterweights(ResultMixin):
         Whether the pattern pointed toward the crankpins and was flipped.
     already_balanced : ndarray of bool, shape (E,)
         Whether there was nothing to cancel (all masses zero).
+    missed_force : ndarray, shape (E,)
+        How far the counterweights fall short of their target, the crank-speed forward
+        force the target asked them to cancel and they leave (zero at most the engine's
+        round-off; more where an equal-mass pattern at a given angle cannot reach it) [N].
+    missed_moment : ndarray, shape (E,)
+        The same for the moment [N·m].
     """
 
     method: str
@@ -212,6 +219,8 @@ class BatchCounterweights(ResultMixin):
     halves: NDArray[np.bool_]
     flipped: NDArray[np.bool_]
     already_balanced: NDArray[np.bool_]
+    missed_force: NDArray[np.float64]
+    missed_moment: NDArray[np.float64]
 
     PER_ENGINE: ClassVar[tuple[str, ...]] = (
         "position",
@@ -221,6 +230,8 @@ class BatchCounterweights(ResultMixin):
         "halves",
         "flipped",
         "already_balanced",
+        "missed_force",
+        "missed_moment",
     )
 
     @property
@@ -295,6 +306,12 @@ class BatchResiduals(ResultMixin):
         :func:`crankbalance.results.round_off`).
     moment_before, moment_after : ndarray, shape (E, K + 1)
         The same for the moment about the crankshaft mid-point [N·m].
+    force_forward_after, force_backward_after : ndarray, shape (E, K + 1)
+        The forward- and backward-rotating parts of ``force_after``, :math:`|F_n^+|` and
+        :math:`|F_n^-|` (the rotating component is all forward), each zero at most the
+        round-off [N].
+    moment_forward_after, moment_backward_after : ndarray, shape (E, K + 1)
+        The same of ``moment_after``, :math:`|C_n^{+}|` and :math:`|C_n^{-}|` [N·m].
     balanced : ndarray of bool, shape (E,)
         The residual check: every targeted component is cancelled, its force and moment
         after balancing below :data:`CHECK_TOLERANCE` of the engine's force scale (times
@@ -307,6 +324,10 @@ class BatchResiduals(ResultMixin):
     force_after: NDArray[np.float64]
     moment_before: NDArray[np.float64]
     moment_after: NDArray[np.float64]
+    force_forward_after: NDArray[np.float64]
+    force_backward_after: NDArray[np.float64]
+    moment_forward_after: NDArray[np.float64]
+    moment_backward_after: NDArray[np.float64]
     balanced: NDArray[np.bool_]
 
     PER_ENGINE: ClassVar[tuple[str, ...]] = (
@@ -314,6 +335,10 @@ class BatchResiduals(ResultMixin):
         "force_after",
         "moment_before",
         "moment_after",
+        "force_forward_after",
+        "force_backward_after",
+        "moment_forward_after",
+        "moment_backward_after",
         "balanced",
     )
 

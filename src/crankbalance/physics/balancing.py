@@ -29,9 +29,10 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..results import ResultMixin, engine_scales
+from ..results import ROUND_OFF, ResultMixin, engine_scales
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
-from .balance_solver import solve, solver_input, throw_unbalance
+from .balance_remaining import Remaining, next_step
+from .balance_solver import CHECK_TOLERANCE, solve, solver_input, throw_unbalance
 from .balance_types import (
     BatchBalance,
     BatchCounterweights,
@@ -49,6 +50,7 @@ __all__ = [
     "ComponentResidual",
     "CounterweightOptions",
     "Counterweights",
+    "Remaining",
     "Shaft",
     "ShaftMass",
     "ShaftOptions",
@@ -58,6 +60,7 @@ __all__ = [
     "default_web_offset",
     "point_mass_history",
     "web_layout",
+    "what_is_left",
 ]
 
 
@@ -204,6 +207,11 @@ class ComponentResidual(ResultMixin):
         masses [N].
     moment_before, moment_after : float
         The same for the moment about the crankshaft mid-point [N·m].
+    force_forward_after, force_backward_after : float
+        The forward-rotating (co-rotating) and backward-rotating parts of
+        ``force_after``, :math:`|F_n^+|` and :math:`|F_n^-|` [N].
+    moment_forward_after, moment_backward_after : float
+        The same of ``moment_after``, :math:`|C_n^{+}|` and :math:`|C_n^{-}|` [N·m].
     """
 
     component: str
@@ -212,6 +220,10 @@ class ComponentResidual(ResultMixin):
     force_after: float
     moment_before: float
     moment_after: float
+    force_forward_after: float
+    force_backward_after: float
+    moment_forward_after: float
+    moment_backward_after: float
 
 
 @dataclass(frozen=True)
@@ -237,6 +249,9 @@ class BalanceResult(ResultMixin):
         First moments of the counterweights' share that carries the rotating masses
         [kg·m] (the rest, the balance-factor share, counts to the first order); None
         without counterweights.
+    remaining : tuple of Remaining
+        Every free force and couple left, forward and backward apart, in words with the
+        next step that would remove it (:func:`what_is_left`).
     """
 
     counterweights: Counterweights | None
@@ -246,6 +261,7 @@ class BalanceResult(ResultMixin):
     residuals: tuple[ComponentResidual, ...]
     notes: tuple[str, ...] = field(default=())
     rotating_share: NDArray[np.complex128] | None = None
+    remaining: tuple[Remaining, ...] = field(default=())
 
     def residual(self, component: str) -> ComponentResidual:
         for item in self.residuals:
@@ -360,7 +376,14 @@ def balance(
         found = solve(inputs, counterweights, primary, secondary)
     except EngineFailed as failed:
         raise failed.error from None
-    return _one_engine(found, counterweights, secondary, float(inputs.length[0]))
+    return _one_engine(
+        found,
+        counterweights,
+        primary,
+        secondary,
+        float(inputs.length[0]),
+        (float(inputs.force_round_off[0]), float(inputs.moment_round_off[0])),
+    )
 
 
 def batch_of_one(forces: FreeForces) -> BatchFreeForces:
@@ -390,21 +413,60 @@ def batch_of_one(forces: FreeForces) -> BatchFreeForces:
 def _one_engine(
     found: BatchBalance,
     counterweights: CounterweightOptions | None,
+    primary: ShaftOptions | None,
     secondary: ShaftOptions | None,
     length: float,
+    levels: tuple[float, float],
 ) -> BalanceResult:
-    """The :class:`BalanceResult` of a batch of one, with the solver's notes."""
+    """The :class:`BalanceResult` of a batch of one, with the solver's notes and what is
+    left (``levels``: the engine's force and moment round-off [N], [N·m])."""
     notes: list[str] = []
     cw = extra = None
+    missed = False
     if found.counterweights is not None and counterweights is not None:
-        if counterweights.scope == "auto" and found.counterweights.halves[0]:
-            notes.append(
-                "the crank is balanced as a whole; each half is balanced on its own "
-                "(paper section 3.1)"
-            )
         cw = _counterweights_of(found.counterweights)
-        if cw.note:
+        none_needed = bool(found.counterweights.already_balanced[0])
+        if cw.note and not (none_needed and counterweights.scope != "halves"):
             notes.append(cw.note)
+        if none_needed and counterweights.scope != "halves":
+            notes.append(
+                "no counterweights: the rotating masses"
+                + (
+                    " and the balance factor's share of the reciprocating ones"
+                    if counterweights.balance_factor
+                    else ""
+                )
+                + " leave no free first-order force or couple on the whole crank; "
+                'scope = "halves" puts counterweights on each half of the crank on its '
+                "own, to relieve the main bearings (paper section 3.1)"
+            )
+        tolerance = CHECK_TOLERANCE / ROUND_OFF
+        missed_force = float(found.counterweights.missed_force[0])
+        missed_moment = float(found.counterweights.missed_moment[0])
+        missed = missed_force > tolerance * levels[0] or missed_moment > tolerance * levels[1]
+        if missed:
+            notes.append(
+                "the counterweights cannot reach their target, "
+                + (
+                    "equal counterweights at this angle cannot balance it"
+                    if counterweights.method == "pattern"
+                    else "counterweights in these planes cannot balance it"
+                )
+                + " (the rotating masses"
+                + (
+                    f" and {counterweights.balance_factor:g} times the reciprocating "
+                    "masses' first order"
+                    if counterweights.balance_factor
+                    else ""
+                )
+                + f"): {missed_force:.4g} N and {missed_moment:.4g} N·m of the crank-speed "
+                "forward force and couple are left beyond it; "
+                + (
+                    'angle = "optimal" or method = "individual" can reach it'
+                    if counterweights.method == "pattern"
+                    else "put counterweights on webs in more planes"
+                )
+            )
     if found.extra_counterweights is not None:
         extra = _counterweights_of(found.extra_counterweights)
         notes.append(
@@ -426,10 +488,15 @@ def _one_engine(
             float(r.force_after[0, k]),
             float(r.moment_before[0, k]),
             float(r.moment_after[0, k]),
+            float(r.force_forward_after[0, k]),
+            float(r.force_backward_after[0, k]),
+            float(r.moment_forward_after[0, k]),
+            float(r.moment_backward_after[0, k]),
         )
         for k, name in enumerate(r.components)
     )
-    if cw is not None and residuals[0].force_after + residuals[0].moment_after / length > 0:
+    rotating_left = residuals[0].force_after + residuals[0].moment_after / length > 0
+    if cw is not None and rotating_left and not missed:
         notes.append(
             "the counterweights do not cancel the rotating masses (see the residual): with "
             "equal counterweights this angle cannot balance both force and couple; "
@@ -444,7 +511,56 @@ def _one_engine(
         residuals,
         tuple(notes),
         share,
+        what_is_left(residuals, counterweights, primary, secondary, missed),
     )
+
+
+def what_is_left(
+    residuals: Sequence[ComponentResidual],
+    counterweights: CounterweightOptions | None,
+    primary: ShaftOptions | None,
+    secondary: ShaftOptions | None,
+    missed: bool = False,
+) -> tuple[Remaining, ...]:
+    """Every free force and couple a balancing result leaves, forward and backward apart,
+    in words with the next step that would remove it.
+
+    Parameters
+    ----------
+    residuals : sequence of ComponentResidual
+        The result's residuals (``"rotating"``, ``"order1"``, ...) [N], [N·m].
+    counterweights : CounterweightOptions or None
+        The crank counterweights asked for (their balance factor and method).
+    primary, secondary : ShaftOptions or None
+        The balance shafts asked for.
+    missed : bool
+        Whether the counterweights fell short of their target (a pattern that cannot
+        reach it).
+
+    Returns
+    -------
+    tuple of Remaining
+        One entry per component, quantity and sense left, largest order last.
+    """
+    out: list[Remaining] = []
+    for c in residuals:
+        order = 1 if c.component == "rotating" else int(c.component.removeprefix("order"))
+        for quantity, unit, forward, backward in (
+            ("force", "N", c.force_forward_after, c.force_backward_after),
+            ("couple", "N·m", c.moment_forward_after, c.moment_backward_after),
+        ):
+            for rotation, amount in (("forward", forward), ("backward", backward)):
+                if amount <= 0.0:
+                    continue
+                source = "the rotating masses'" if c.component == "rotating" else f"order-{order}"
+                text = (
+                    f"{source} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+                    if c.component == "rotating"
+                    else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+                )
+                step = next_step(c.component, order, rotation, counterweights, primary, missed)
+                out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
+    return tuple(out)
 
 
 def _counterweights_of(found: BatchCounterweights) -> Counterweights:

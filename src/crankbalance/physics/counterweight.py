@@ -138,14 +138,16 @@ def circle_cap(radius: ArrayLike, centre_y: ArrayLike, cut_y: ArrayLike) -> Circ
     return CircleCap(area, c * area + s_c, j_c + 2.0 * c * s_c + c**2 * area)
 
 
-def _strip_polar_moment(y0, y1, w0, w1):
+def _strip_polar_moment(
+    y0: np.ndarray, y1: np.ndarray, w0: np.ndarray, w1: np.ndarray
+) -> np.ndarray:
     """Polar moment about the origin of ``|x| <= w(y)``, ``y0 <= y <= y1``, w linear.
 
     The integrand ``2/3 w^3 + 2 w y^2`` is a cubic in y, so Simpson's rule is exact.
     """
     ym, wm = 0.5 * (y0 + y1), 0.5 * (w0 + w1)
 
-    def f(y, w):
+    def f(y: np.ndarray, w: np.ndarray) -> np.ndarray:
         return 2.0 / 3.0 * w**3 + 2.0 * w * y**2
 
     return (y1 - y0) / 6.0 * (f(y0, w0) + 4.0 * f(ym, wm) + f(y1, w1))
@@ -287,7 +289,8 @@ def profile_section(
     gamma = 2.0 * np.arccos(np.clip(h_r / r, -1.0, 1.0))  # Eq. 25
     lam = 2.0 * np.arccos(np.clip(top / r, -1.0, 1.0))  # Eq. 24
 
-    def seg(radius, angle):  # area of a circular segment of full angle `angle`
+    def seg(radius: ArrayLike, angle: ArrayLike) -> np.ndarray:
+        # area of a circular segment of full angle `angle`
         return radius**2 * (angle / 2.0 - np.sin(angle / 2.0) * np.cos(angle / 2.0))
 
     # Eq. 26: areas
@@ -509,26 +512,26 @@ class CounterweightProperties(ResultMixin):
     gamma : Intersection angle gamma of the web circle and the rectangle [rad] (Eq. 25).
     lam : Intersection angle lambda of the web circle and the chord [rad] (Eq. 24).
     area_green, area_blue, area_orange : Zone areas [m^2] (Eq. 26).
-    hub_protrusion : True where the web circle reaches out through the segment's arc.
+    hub_protrusion : True where the web circle reaches out through the segment's arc [-].
     balance : Achieved / required first moment [%] (only if a requirement was given).
     """
 
-    area: Any
-    volume: Any
-    mass: Any
-    cg_radius: Any
-    first_moment: Any
-    inertia: Any
-    outer_radius: Any
-    radius_bound: Any
-    overhang: Any
-    gamma: Any
-    lam: Any
-    area_green: Any
-    area_blue: Any
-    area_orange: Any
-    hub_protrusion: Any
-    balance: Any = None
+    area: float | np.ndarray
+    volume: float | np.ndarray
+    mass: float | np.ndarray
+    cg_radius: float | np.ndarray
+    first_moment: float | np.ndarray
+    inertia: float | np.ndarray
+    outer_radius: float | np.ndarray
+    radius_bound: float | np.ndarray
+    overhang: float | np.ndarray
+    gamma: float | np.ndarray
+    lam: float | np.ndarray
+    area_green: float | np.ndarray
+    area_blue: float | np.ndarray
+    area_orange: float | np.ndarray
+    hub_protrusion: bool | np.ndarray
+    balance: float | np.ndarray | None = None
 
 
 def counterweight_properties(
@@ -584,16 +587,21 @@ def counterweight_properties(
     return _properties_from_section(sec, thickness, density, required_first_moment)
 
 
-def _properties_from_section(sec, thickness, density, required_first_moment=None):
+def _properties_from_section(
+    sec: ProfileSection,
+    thickness: ArrayLike,
+    density: ArrayLike,
+    required_first_moment: float | None = None,
+) -> CounterweightProperties:
     t = np.asarray(thickness, dtype=float)
     rho = np.asarray(density, dtype=float)
     mass = rho * t * sec.area
     first = rho * t * sec.first_moment
     balance = None if required_first_moment is None else 100.0 * first / required_first_moment
 
-    def out(v):
-        v = np.asarray(v)
-        return v.item() if v.ndim == 0 else v
+    def out(v: ArrayLike) -> float | np.ndarray:
+        a = np.asarray(v)
+        return a.item() if a.ndim == 0 else a
 
     return CounterweightProperties(
         area=out(sec.area),
@@ -610,7 +618,9 @@ def _properties_from_section(sec, thickness, density, required_first_moment=None
         area_green=out(sec.area_green),
         area_blue=out(sec.area_blue),
         area_orange=out(sec.area_orange),
-        hub_protrusion=out(sec.hub_protrusion),
+        hub_protrusion=bool(sec.hub_protrusion)
+        if np.ndim(sec.hub_protrusion) == 0
+        else sec.hub_protrusion,
         balance=None if balance is None else out(balance),
     )
 

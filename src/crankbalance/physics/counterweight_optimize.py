@@ -395,15 +395,15 @@ class _Problem:
 
     def __init__(
         self,
-        required,
-        bounds,
-        density,
-        max_mass,
-        max_radius,
-        min_balance,
-        radius_measure,
-        objectives,
-    ):
+        required: float,
+        bounds: Mapping[str, tuple[float, float]],
+        density: float,
+        max_mass: float,
+        max_radius: float,
+        min_balance: float,
+        radius_measure: RadiusMeasure,
+        objectives: Sequence[Objective],
+    ) -> None:
         self.required = required
         self.bounds = bounds
         self.density = density

@@ -40,6 +40,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InputError
 from ..results import ResultMixin
 from .articulated import ArticulatedRods, Articulation
+from .kinematics import KinematicsModel
 
 
 @dataclass(frozen=True)
@@ -144,7 +145,7 @@ class EngineModel:
 
     name: str
     speed: float
-    kinematics: str
+    kinematics: KinematicsModel
     crank_radius: float
     rod_length: float
     strokes: int

@@ -33,7 +33,7 @@ moves to just after top dead centre. SI units throughout.
 from __future__ import annotations
 
 import math
-from collections.abc import Sequence
+from collections.abc import Callable, Sequence
 from dataclasses import dataclass
 
 import numpy as np
@@ -429,7 +429,7 @@ class BalanceFactorStudy(ResultMixin):
     optimum_peak_resultant: float
 
 
-def _refined_peak(fun, samples: int = 720) -> float:
+def _refined_peak(fun: Callable[[NDArray], NDArray], samples: int = 720) -> float:
     """Largest value of a smooth 2*pi-periodic function: grid search, then local refinement."""
     from scipy.optimize import minimize_scalar
 
@@ -577,7 +577,7 @@ def balance_factor_study(
     def peak(fb: float) -> float:
         return peak_resultant(fb, *args)
 
-    def amplitude(fun) -> float:
+    def amplitude(fun: Callable[[NDArray], NDArray]) -> float:
         return _refined_peak(lambda psi: np.abs(fun(psi)))
 
     in_line_amplitude = amplitude(lambda psi: single_cylinder_forces(psi, balance_factor, *args)[0])

@@ -92,6 +92,7 @@ _OPTIONS: dict[str, Any] = {
     "words": "",
     "parse": None,
     "example": "",
+    "single": False,
 }
 
 
@@ -119,6 +120,7 @@ class Field:
     words: str
     parse: Callable[[Any, str], Any] | None
     example: str
+    single: bool
     #: the quantity kind (``"length"``...), or None for a plain kind
     quantity: str | None
     #: a quantity checked in size against the physical range of its kind: no bounds, or
@@ -174,6 +176,7 @@ def field(
     words: str = "",
     parse: Callable[[Any, str], Any] | None = None,
     example: str = "",
+    single: bool = False,
 ) -> Any:
     """Declare a field of a :class:`Schema`.
 
@@ -215,9 +218,13 @@ def field(
     parse : callable, optional
         ``parse(value, field_name) -> value``: a parser of its own (a value such as
         ``"optimal"`` or a reading); it raises :class:`InputError` for a bad value.
-        Explicit bounds still apply to a number it returns.
+        Explicit bounds still apply to a number it returns. On a ``list`` it reads a text
+        given for the whole list (``"0:1:0.1"``) into its entries.
     example : str
         An example of a quantity as typed (default the kind's, ``'40 mm'``).
+    single : bool
+        A ``list`` that takes a lone value as a list of one (a setting that may be given
+        several times: one ``--speed``, or ``"speed": "3000 rpm"`` in a JSON body).
 
     Returns
     -------
@@ -248,6 +255,7 @@ def field(
         words=words,
         parse=parse,
         example=example,
+        single=single,
     )
 
 
@@ -332,6 +340,7 @@ class Schema:
 
     def __init__(self, **values: Any) -> None:
         held = self.__dict__  # frozen: __setattr__ refuses, the fields are set here
+        held["_given"] = frozenset(values)
         for key, spec in self.FIELDS.items():
             if key in values:
                 held[key] = values.pop(key)
@@ -350,7 +359,15 @@ class Schema:
         raise AttributeError(f"{type(self).__name__} is frozen")
 
     def __reduce__(self) -> tuple[Any, ...]:
-        return (_rebuild, (type(self), {key: getattr(self, key) for key in self.FIELDS}))
+        values = {key: getattr(self, key) for key in self.FIELDS}
+        return (_rebuild, (type(self), values, self.given()))
+
+    def given(self) -> frozenset[str]:
+        """The fields that were given (parsed from the input or passed to the constructor),
+        as opposed to left at their defaults: a study takes an engine's value where a
+        setting was not given, and refuses a given one that would not act."""
+        given: frozenset[str] = self.__dict__["_given"]
+        return given
 
     def _values(self) -> tuple[Any, ...]:
         return tuple(getattr(self, key) for key in self.FIELDS)
@@ -444,7 +461,9 @@ class Schema:
 
     def replace(self, **changes: Any) -> Self:
         """A copy with ``changes`` (SI values, as the fields hold them), checked again."""
-        copy = type(self)(**{**{key: getattr(self, key) for key in self.FIELDS}, **changes})
+        copy = type(self)(**{**{key: getattr(self, key) for key in self.given()}, **changes})
+        kept = {key: getattr(self, key) for key in self.FIELDS if key not in copy.given()}
+        copy.__dict__.update(kept)  # the values left at their defaults, still not given
         copy.validate()
         return copy
 
@@ -471,9 +490,12 @@ class Schema:
         return iter(cls.FIELDS.items())
 
 
-def _rebuild(cls: type[Schema], values: dict[str, Any]) -> Schema:
-    """An instance from its values, as pickled (checked when it was made)."""
-    return cls(**values)
+def _rebuild(cls: type[Schema], values: dict[str, Any], given: frozenset[str]) -> Schema:
+    """An instance from its values and the fields given, as pickled (checked when it was
+    made)."""
+    instance = cls(**{key: values[key] for key in given})
+    instance.__dict__.update(values)
+    return instance
 
 
 def _held(value: Any) -> Any:
@@ -544,7 +566,7 @@ def _scalar(spec: Field, raw: Any, source: Source, where: str) -> Any:
         _check_bounds(spec, value, raw, where)
         return value
     if spec.kind == "choice":
-        return _choice(spec, raw, source, where)
+        return parse_choice(spec, raw, source, where)
     if spec.kind == "text":
         if not isinstance(raw, str):
             raise InputError(where, raw, "must be a text")
@@ -646,7 +668,8 @@ def _whole(spec: Field, raw: Any, source: Source, where: str) -> int:
     return int(number)
 
 
-def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
+def parse_choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
+    """One of ``spec.choices`` (a typed text matched without case); InputError naming ``where``."""
     if isinstance(raw, str) and source == "text" and raw not in spec.choices:
         for choice in spec.choices:  # a typed "4" for the choice 4, "Pattern" for "pattern"
             if str(choice).lower() == raw.strip().lower():
@@ -660,6 +683,10 @@ def _choice(spec: Field, raw: Any, source: Source, where: str) -> Any:
 
 
 def _list(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str | int, ...]) -> Any:
+    if spec.parse is not None and isinstance(raw, str):  # a text of the whole list
+        raw = spec.parse(raw, name(path))
+    if spec.single and not isinstance(raw, (list, tuple)):
+        raw = [raw]
     if isinstance(raw, str) and source == "text":
         raw = [part.strip() for part in raw.split(",")] if raw.strip() else []
     if not isinstance(raw, (list, tuple)):

@@ -924,8 +924,9 @@ class Counterweights(_EngineTable):
         le=2.0,
         title="Balance factor",
         description="Share of the reciprocating mass of all cylinders on a pin put at that crankpin"
-        " on the counterweights (0.5 cancels the forward half of a single cylinder's "
-        "primary and the whole primary of a 90° V pair).",
+        " on the counterweights, by each cylinder's forward first order, offsets included "
+        "(0.5 cancels the forward primary of every cylinder: the forward half of a single "
+        "cylinder's primary and the whole primary of a 90° V pair).",
         hint="0..2, share of the primary reciprocating force",
     )
     scope: Literal["auto", "whole", "halves"] = field(
@@ -933,7 +934,8 @@ class Counterweights(_EngineTable):
         default="auto",
         choices=("auto", "whole", "halves"),
         title="Counterweight scope",
-        description="auto (halves when the whole crank is balanced), whole or halves.",
+        description="auto or whole: the whole crank (a crank already balanced as a whole "
+        "gets no counterweight mass); halves: each half of the crank on its own.",
     )
     method: Literal["pattern", "individual"] = field(
         "choice",

@@ -258,14 +258,34 @@ def _weight(default: Any, title: str, description: str, **options: Any) -> Any:
     return number(default, title, description, ge=0, le=1000, **options)
 
 
+def _number_sweep(value: str, where: str) -> Any:
+    """A list of numbers typed as one text: ``"0,0.28,0.5"``, or ``"start:stop:step"`` (stop
+    included, at most :data:`MAX_SWEEP` values); the entries are then checked by the
+    list's field."""
+    if ":" not in value:
+        return value  # comma-separated: read by the list
+    words = "must be numbers separated by commas, or start:stop:step with step > 0"
+    try:
+        start, stop, step = (float(x) for x in value.split(":"))
+    except ValueError:
+        raise InputError(where, value, words) from None
+    span = (stop - start) / step if step > 0 else math.nan
+    if not (math.isfinite(start) and 0 <= span < math.inf):
+        raise InputError(where, value, words)
+    if span > MAX_SWEEP:
+        raise InputError(where, value, f"must give at most {MAX_SWEEP} values")
+    return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
+
+
 def _balance_factors(default: Any, title: str, description: str, **options: Any) -> Any:
-    """The balance factors of a sweep."""
+    """The balance factors of a sweep: a list, or a text "0,0.25,0.5" or "start:stop:step"."""
     return field(
         "list",
         default=default,
         item=entry("factor", ge=BALANCE_FACTOR_LIMITS[0], le=BALANCE_FACTOR_LIMITS[1]),
         min_items=1,
         max_items=MAX_SWEEP,
+        parse=_number_sweep,
         title=title,
         description=description,
         **options,
@@ -510,6 +530,84 @@ class CounterweightOptions(StudyOptions):
         )
 
 
+#: the profile parameters of a counterweight (the 2021 paper, Sec. 4), in the order of
+#: :class:`crankbalance.physics.counterweight.CounterweightDesign`
+PROFILE_PARAMETERS = (
+    "web_radius",
+    "rectangle_height",
+    "trapezoid_angle",
+    "segment_radius",
+    "segment_angle",
+    "thickness",
+)
+
+
+class CounterweightRequirementOptions(StudyOptions):
+    """The first moment a counterweight must carry, m_c r_c: given, or from a mass and its
+    CG radius (or from the engine's balancing, the study's engine)."""
+
+    first_moment: float | None = _requirement(
+        None,
+        "Required first moment m_c r_c",
+        "The first moment the counterweight must carry; empty: from the mass and CG radius, "
+        "or from the engine's balancing.",
+    )
+    cw_mass: float | None = quantity(
+        "mass", None, "Counterweight mass m_c", "The counterweight's mass, with its CG radius."
+    )
+    cg_radius: float | None = quantity(
+        "length", None, "Counterweight CG radius r_c", "The radius of its centre of gravity."
+    )
+
+
+def _profile(title: str) -> Any:
+    """A profile parameter of ``counterweight optimize``: a value fixes it, ``LOW..HIGH``
+    leaves it free in that range (read by the study), empty: the optimiser's range."""
+    return text(
+        None,
+        f"{title} (value or LOW..HIGH)",
+        "A value fixes the parameter, LOW..HIGH leaves it free in that range; empty: the "
+        "optimiser's range.",
+    )
+
+
+class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequirementOptions):
+    """``counterweight optimize``: the requirement, the profile parameters, the radial
+    measure, the objectives and how many Pareto designs are listed."""
+
+    web_radius: str | None = _profile("Web circle radius r_cw")
+    rectangle_height: str | None = _profile("Rectangle height h_R")
+    trapezoid_angle: str | None = _profile("Trapezoid angle delta")
+    segment_radius: str | None = _profile("Segment radius R_cw")
+    segment_angle: str | None = _profile("Segment angle alpha")
+    thickness: str | None = _profile("Thickness t_cw")
+    radius_measure: Literal["true", "paper"] = choice(
+        "true",
+        ("true", "paper"),
+        "Radial space",
+        "How the radial space is measured: true, the outer radius; paper, the 2021 paper's "
+        "R_min bound.",
+    )
+    inertia: bool = field(
+        "flag",
+        default=False,
+        title="Inertia as a third objective",
+        description="Minimise the counterweight's moment of inertia too.",
+    )
+    pareto: int = whole(
+        10,
+        "Pareto designs listed",
+        "How many designs of the Pareto front are listed, evenly spread along it.",
+        ge=0,
+        le=10**6,
+    )
+
+    def check(self) -> None:
+        problem = self.budget_problem(3 if self.inertia else 2)
+        if problem is not None:
+            raise FieldProblem("iterations", problem)
+
+
 class SingleCylinderOptions(StudyOptions):
     """One cylinder of an engine: balance factor study and the ISO 21940-11 check."""
 
@@ -659,7 +757,7 @@ class PerformanceOptions(StudyOptions):
         None,
         "Bore",
         "Cylinder bore, for the gas force.",
-        hint="empty: square engine (bore = stroke)",
+        hint="empty: 76.8 mm, the one-cylinder studies' (cycle, sensitivity)",
     )
     balance_factors: list[float] = _balance_factors(
         [0.0, 0.25, 0.5, 0.75, 1.0],
@@ -714,6 +812,26 @@ class BalanceOptions(StudyOptions):
         "Share of the pin's reciprocating mass put on the crank counterweights; "
         "empty: the engine file's.",
     )
+    method: Literal["pattern", "individual"] | None = choice(
+        None,
+        ("pattern", "individual"),
+        "Counterweight method",
+        "pattern: equal counterweights (2021 paper); individual: each its own mass and "
+        "angle; empty: the engine file's.",
+    )
+    scope: Literal["auto", "whole", "halves"] | None = choice(
+        None,
+        ("auto", "whole", "halves"),
+        "Whole crank or halves",
+        "Balance the whole crank or each half on its own; empty: the engine file's.",
+    )
+    verify: bool = field(
+        "flag",
+        default=False,
+        title="Verify in the time domain",
+        description="Also check the residuals in the time domain (every mass over a "
+        "revolution, then a Fourier transform) and report how well the two agree.",
+    )
 
 
 class CounterweightDesignOptions(StudyOptions):
@@ -742,13 +860,21 @@ class CounterweightDesignOptions(StudyOptions):
         None, "Rectangle height h_R", "Height of the profile's rectangle."
     )
     trapezoid_angle: float | None = quantity(
-        "angle", None, "delta", "Angle delta of the profile's trapezoid flanks.", ge=0
+        "angle",
+        None,
+        "Trapezoid angle delta",
+        "Angle delta of the profile's trapezoid flanks.",
+        ge=0,
     )
     segment_radius: float | None = quantity(
         "length", None, "Segment radius R_cw", "Radius of the profile's outer circular segment."
     )
     segment_angle: float | None = quantity(
-        "angle", None, "alpha", "Angle alpha of the profile's outer circular segment.", gt=0
+        "angle",
+        None,
+        "Segment angle alpha",
+        "Angle alpha of the profile's outer circular segment.",
+        gt=0,
     )
     thickness: float | None = quantity(
         "length", None, "Thickness t_cw", "Axial thickness of the counterweight."
@@ -853,6 +979,7 @@ class BenchOptions(StudyOptions):
         item=entry("speed", ge=RANGES["speed"][0], le=RANGES["speed"][1]),
         min_items=1,
         max_items=MAX_BENCH_RUNS,
+        single=True,
         title="Set speeds",
         description="The speed each run ramps to and holds, one run per speed.",
     )
@@ -941,6 +1068,7 @@ class CombustionOptions(StudyOptions):
         default=[],
         item=entry("text", max_chars=MAX_SETTING_CHARS),
         max_items=MAX_PRESSURE_TABLES,
+        single=True,
         words=f"at most {MAX_PRESSURE_TABLES} files, the option given once for each",
         title="Cylinder pressure tables",
         description="Cylinder pressure tables instead of the Wiebe model (crank angle [deg "
@@ -950,15 +1078,14 @@ class CombustionOptions(StudyOptions):
 
 
 class CycleOptions(CombustionOptions):
-    """``cycle`` and ``sensitivity``: one cylinder (typed, or of ``engine``) or the whole
-    engine (``engine`` without ``cylinder``: every cylinder firing), its gas pressure (the
-    Wiebe model, or tables: one for every cylinder or one per cylinder) and the flywheel."""
+    """``cycle`` and ``sensitivity``: one cylinder (typed, or of the study's engine) or the
+    whole engine (an engine without ``cylinder``: every cylinder firing), its gas pressure
+    (the Wiebe model, or tables: one for every cylinder or one per cylinder) and the
+    flywheel. With an engine, stroke, conrod length, reciprocating mass, speed and strokes
+    are the engine's unless given (:meth:`~crankbalance.schema.core.Schema.given`); the bore
+    of one cylinder is the thesis' 76.8 mm unless given, that of the whole engine the
+    stroke (a square engine)."""
 
-    engine: str | None = text(
-        None,
-        "Engine file or preset",
-        "The engine whose cylinders are studied; empty: the cylinder typed.",
-    )
     cylinder: int | None = whole(
         None,
         "Cylinder of the engine (none: all cylinders)",
@@ -1025,6 +1152,7 @@ class SensitivityOptions(CycleOptions):
         default=[],
         item=entry("text", max_chars=MAX_SETTING_CHARS),
         max_items=1,
+        single=True,
         words="at most 1 file, the option given once for each",
         title="Cylinder pressure table",
         description="A cylinder pressure table instead of the Wiebe model (crank angle [deg "
@@ -1039,6 +1167,7 @@ class SensitivityOptions(CycleOptions):
         item=entry("number", gt=0, le=10),
         min_items=1,
         max_items=MAX_SWEEP,
+        parse=_number_sweep,
         title="Reciprocating-mass scales",
         description="Factors on the reciprocating mass (lighter parts below 1).",
     )
@@ -1147,6 +1276,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
         item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
         min_items=2,
         max_items=MAX_MAIN_BEARINGS,
+        single=True,
         title="Main-bearing positions",
         description="Main-bearing positions along the crank from its mid-point; empty: "
         "one between neighbouring throws and one at each end.",
@@ -1177,6 +1307,12 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
         "Radial clearance of the main bearings: in the contact model with a "
         "bearing stiffness, in the Petroff friction with viscosity and bearing length.",
         hint="Petroff friction; contact with a stiffness",
+    )
+    curves: bool = field(
+        "flag",
+        default=False,
+        title="Curves in the JSON",
+        description="The load and moment curves over the cycle in the JSON result.",
     )
 
     def check(self) -> None:
@@ -1219,6 +1355,7 @@ class BearingSweepOptions(StudyOptions):
         item=entry("any", parse=_web_pattern, words="all, none, file or 0/1 per web"),
         min_items=1,
         max_items=MAX_PATTERNS,
+        single=True,
         title="Counterweight patterns",
         description="The counterweight patterns compared: all, none, file (the engine "
         "file's) or 0/1 per web, two per throw.",
@@ -1256,6 +1393,47 @@ class BearingSweepOptions(StudyOptions):
             )
 
 
+#: the settings of ``bearings`` that ``bearings-sweep`` does not take: it sweeps the
+#: balance factor and the counterweight pattern, and has no curves
+NOT_SWEPT = ("balance_factor", "webs", "curves")
+
+
+class BearingSweepStudyOptions(BearingSweepOptions, BearingOptions):
+    """``bearings-sweep`` as one study: the sweep (:class:`BearingSweepOptions`) and the
+    loads' settings of every case (:class:`BearingOptions`, but for :data:`NOT_SWEPT`)."""
+
+    def check(self) -> None:
+        for name in NOT_SWEPT:
+            if name in self.given():
+                raise FieldProblem(
+                    name,
+                    "is not a setting of the sweep: it sweeps the balance factors and the "
+                    "counterweight patterns (balance_factors, patterns) and has no curves",
+                )
+        BearingSweepOptions.check(self)
+        BearingOptions.check(self)
+
+    def loads(self) -> BearingOptions:
+        """The settings of the loads of every case (the given ones still given)."""
+        return _part(self, BearingOptions)
+
+    def sweep(self) -> BearingSweepOptions:
+        """The sweep's own settings."""
+        return _part(self, BearingSweepOptions)
+
+
+Part = TypeVar("Part", bound="StudyOptions")
+
+
+def _part(settings: StudyOptions, model: type[Part]) -> Part:
+    """The settings of ``model`` within ``settings`` (a schema made of several), its given
+    fields still given."""
+    given = settings.given()
+    part = model(**{name: getattr(settings, name) for name in model.FIELDS if name in given})
+    part.__dict__.update({name: getattr(settings, name) for name in model.FIELDS})
+    return part
+
+
 class ShaftSectionOptions(StudyOptions):
     """``shaft ...``: the shaft's section and material, the masses' radius, the bearings."""
 
@@ -1283,19 +1461,22 @@ class ShaftSectionOptions(StudyOptions):
         "Radial bearing stiffness",
         "Radial stiffness of the shaft's bearings; empty: rigid.",
     )
+    theory: Literal["euler-bernoulli", "timoshenko"] = choice(
+        "euler-bernoulli",
+        ("euler-bernoulli", "timoshenko"),
+        "Beam theory",
+        "The beam theory of the shaft: euler-bernoulli, or timoshenko (shear and rotary inertia).",
+    )
 
     def check(self) -> None:
         _slender(self.length, self.diameter)
 
 
 class ShaftStudyOptions(ShaftSectionOptions):
-    """``shaft inline4|inline3``: the required unbalance and the placement sweep."""
+    """``shaft inline4|inline3``: the required unbalance (given, or from the study's
+    engine) and the placement sweep; ``order`` is inline4's, ``type``, ``hold``,
+    ``bearing_offset`` and ``z_min`` inline3's."""
 
-    engine: str | None = text(
-        None,
-        "Engine file or preset",
-        "The engine whose balancing gives the shaft's unbalance and speed.",
-    )
     unbalance: float | None = _requirement(
         None,
         "Required first moment",
@@ -1322,6 +1503,31 @@ class ShaftStudyOptions(ShaftSectionOptions):
     points: int = whole(
         200, "Design points", "Positions tried along the shaft.", ge=3, le=MAX_SHAFT_POINTS
     )
+    secondary: Literal["reaction-difference", "inverse-frequency"] | None = choice(
+        None,
+        ("reaction-difference", "inverse-frequency"),
+        "B of the objective",
+        "The second term B of the placement objective; empty: reaction-difference for "
+        "inline4, inverse-frequency for inline3.",
+    )
+    order: int | None = whole(
+        None,
+        "Order of the shaft the engine needs (1 or 2)",
+        "The order of the balance shaft; empty: 2 when the engine has a free second-order "
+        "force or moment, else 1.",
+        ge=1,
+        le=2,
+    )
+    type: Literal["I", "II", "III", "all"] = choice(
+        "all", ("I", "II", "III", "all"), "Rotor type", "The inline3 rotor types studied."
+    )
+    hold: Literal["couple", "unbalance"] = choice(
+        "couple",
+        ("couple", "unbalance"),
+        "Keep the couple or each unbalance",
+        "What the inline3 sweep keeps: the couple (physical) or each mass's unbalance "
+        "(the paper's).",
+    )
     bearing_offset: float | None = quantity(
         "length",
         None,
@@ -1346,6 +1552,7 @@ class ShaftCheckOptions(ShaftSectionOptions):
         item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
         min_items=2,
         max_items=MAX_SHAFT_ITEMS,
+        single=True,
         title="Bearing positions",
         description="Bearing positions from the shaft's end, at least two.",
     )
@@ -1355,6 +1562,7 @@ class ShaftCheckOptions(ShaftSectionOptions):
         item=entry("length", ge=RANGES["position"][0], le=RANGES["position"][1]),
         min_items=1,
         max_items=MAX_SHAFT_ITEMS,
+        single=True,
         title="Mass positions",
         description="Positions of the unbalance masses from the shaft's end.",
     )
@@ -1364,6 +1572,7 @@ class ShaftCheckOptions(ShaftSectionOptions):
         item=entry("unbalance", ge=RANGES["unbalance"][0], le=RANGES["unbalance"][1]),
         min_items=1,
         max_items=MAX_SHAFT_ITEMS,
+        single=True,
         title="Unbalances",
         description="The unbalance of each mass, in the order of the masses.",
     )
@@ -1372,6 +1581,7 @@ class ShaftCheckOptions(ShaftSectionOptions):
         default=[],
         item=entry("angle", ge=RANGES["angle"][0], le=RANGES["angle"][1]),
         max_items=MAX_SHAFT_ITEMS,
+        single=True,
         title="Phases",
         description="The angle of each mass about the shaft; empty: all at 0.",
     )
@@ -1444,8 +1654,12 @@ class BalanceFactorOptions(StudyOptions):
         "Offset of the wrist-pin path from the crank axis.",
         within="position",
     )
-    engine: str | None = text(
-        None, "Engine file or preset", "An engine whose cylinder gives the masses and the geometry."
+    kinematics: Literal["exact", "series", "first-order"] | None = choice(
+        None,
+        ("exact", "series", "first-order"),
+        "Piston kinematics",
+        "The piston kinematics of the force study; empty: the engine's, without an engine "
+        "exact with a conrod length, else first-order.",
     )
     cylinder: int = whole(
         1, "Cylinder of the engine", "The engine's cylinder studied (1-based).", ge=1, le=10_000
@@ -1453,9 +1667,10 @@ class BalanceFactorOptions(StudyOptions):
 
 
 class RebalancePartsOptions(StudyOptions):
-    """``rebalance``: the options that override the values of a parts file (the file's
+    """``rebalance``: a parts file and the settings that override its values (the file's
     own schema, :mod:`crankbalance.io.rebalance_file`, then checks how they combine)."""
 
+    parts: str | None = text(None, "Parts file (TOML)", "The parts file of the rebalancing.")
     crank_radius: float | None = quantity("length", None, "Crank radius", "Crank throw radius.")
     cw_mass: float | None = quantity(
         "mass",
@@ -1490,8 +1705,12 @@ class RebalancePartsOptions(StudyOptions):
             words="'factory' or a number from 0 to 2 (or a percentage)",
         ),
         max_items=50,
+        single=True,
         title="Target balance factors",
         description="The balance factors to rebalance to; factory: the crank's own.",
+    )
+    method: Literal["face", "holes"] | None = choice(
+        None, ("face", "holes"), "Correction method", "Grind a face or drill holes."
     )
     correction_radius: float | None = quantity(
         "length", None, "Radius of the correction", "Radius at which material comes off."
@@ -1499,11 +1718,20 @@ class RebalancePartsOptions(StudyOptions):
     face_area: float | None = quantity(
         "area", None, "Face area ground per web", "Area of the face ground off each web."
     )
+    face_orientation: Literal["radial", "axial"] | None = choice(
+        None,
+        ("radial", "axial"),
+        "Face ground radially or axially",
+        "Whether the face is ground radially or axially.",
+    )
     hole_diameter: float | None = quantity(
         "length", None, "Drill diameter", "Diameter of the drill."
     )
     holes: int | None = whole(
         None, "Holes per web", "Holes drilled side by side in each web.", ge=1, le=1000
+    )
+    hole_direction: Literal["axial", "radial"] | None = choice(
+        None, ("axial", "radial"), "Hole direction", "The direction of the holes."
     )
     point_angle: float | None = _point_angle(
         None,
@@ -1557,9 +1785,29 @@ def _positions(title: str, description: str) -> Any:
     )
 
 
-class ShopOptions(StudyOptions):
-    """The balance shop (issue 16): matching, bob-weights, readings to a hole plan, ISO check."""
+#: most engines one ``shop scatter`` draws
+MAX_SCATTER_SAMPLES = 10_000_000
+#: the coarsest resolution of the scale of ``shop scatter`` [kg]
+MAX_SCALE_STEP = 0.01
 
+
+def _scale_step(value: Any, where: str) -> float:
+    """The resolution of a scale: 0 (exact), or a mass up to :data:`MAX_SCALE_STEP`."""
+    if isinstance(value, str) and value.strip() == "0":
+        return 0.0
+    if isinstance(value, int | float) and not isinstance(value, bool) and value == 0:
+        return 0.0
+    step = core.parse_in_range(value, "mass", where)
+    if not 0 <= step <= MAX_SCALE_STEP:
+        raise InputError(where, value, "must be a mass from 0 to 10 g")
+    return step
+
+
+class ShopOptions(StudyOptions):
+    """The balance shop (issue 16): the parts file, matching, bob-weights, readings to a hole
+    plan, the ISO check, and the Monte Carlo of the weight scatter."""
+
+    parts: str | None = text(None, "Parts file (CSV or TOML)", "The parts file of the shop.")
     fraction: float = factor(
         0.5,
         "Reciprocating fraction in the bob-weights",
@@ -1584,6 +1832,7 @@ class ShopOptions(StudyOptions):
         default=[],
         item=entry("any", parse=_reading, words=READING_WORDS),
         max_items=2,
+        single=True,
         title="Readings, one per measuring plane",
         description="The balancing machine's readings, measuring plane 1 then 2.",
     )
@@ -1662,6 +1911,22 @@ class ShopOptions(StudyOptions):
         "Axial position of the crank's centre of mass; empty: mid-bearings.",
         within="position",
     )
+    samples: int = whole(
+        100_000,
+        "Engines drawn",
+        "Engines drawn by the Monte Carlo of the weight scatter.",
+        ge=1,
+        le=MAX_SCATTER_SAMPLES,
+    )
+    seed: int = whole(0, "Random seed", "Seed of the random numbers.", ge=0, le=2**63 - 1)
+    scale_step: float = field(
+        "any",
+        default=1e-4,
+        parse=_scale_step,
+        words="0 or a mass up to 10 g",
+        title="Resolution of the scale",
+        description="The resolution of the scale the parts are weighed on; 0: exact.",
+    )
 
     def check(self) -> None:
         if len(self.reading) == 1:
@@ -1669,7 +1934,9 @@ class ShopOptions(StudyOptions):
 
 
 class ToleranceOptions(StudyOptions):
-    """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes."""
+    """``tolerance``: ISO 21940-11 permissible residual unbalance and its planes (with an
+    engine the rotor mass and the speed default to its crank's rotating masses and its
+    speed); ``list_grades`` lists the grades instead."""
 
     grade: str | None = text(None, "Balance quality grade", "The ISO 21940-11 grade, e.g. G6.3.")
     rotor_mass: float | None = quantity("mass", None, "Rotor mass", "The rotor's mass.")
@@ -1709,6 +1976,9 @@ class ToleranceOptions(StudyOptions):
         "Axial position of correction plane II; empty: bearing B.",
         within="position",
     )
+    list_grades: bool = field(
+        "flag", default=False, title="List the grades", description="List the ISO grades."
+    )
 
 
 class PlotOptions(StudyOptions):
@@ -1731,14 +2001,30 @@ class PlotOptions(StudyOptions):
     )
 
 
+EXPLORE_LAYOUTS = ("inline", "vee", "boxer", "w")
+
+
+def _explore_layout(value: Any, where: str) -> str:
+    """The explorer's layouts; a VR is refused with the reason (it enumerates no VR)."""
+    from ..physics.explore.orders import VR_REFUSED
+
+    if isinstance(value, str) and value.strip().lower() == "vr":
+        raise InputError(where, value, VR_REFUSED)
+    spec = core.entry("choice", choices=EXPLORE_LAYOUTS)
+    layout: str = core.parse_choice(spec, value, "text", where)
+    return layout
+
+
 class ExploreOptions(StudyOptions):
     """``explore``: the design-space explorer (docs/explorer.md)."""
 
-    layout: Literal["inline", "vee", "boxer", "w"] = choice(
-        "inline",
-        ("inline", "vee", "boxer", "w"),
-        "Layout",
-        "The layout explored: inline, vee, boxer or w (broad arrow).",
+    layout: Literal["inline", "vee", "boxer", "w"] = field(
+        "any",
+        default="inline",
+        parse=_explore_layout,
+        words="one of inline, vee, boxer, w",
+        title="Layout",
+        description="The layout explored: inline, vee, boxer or w (broad arrow).",
     )
     cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=20)
     strokes: int = whole(
@@ -1752,11 +2038,6 @@ class ExploreOptions(StudyOptions):
         ("any", "flat", "cross", "split"),
         "Crank family",
         "The cranks explored: any, flat, cross or split (split pins).",
-    )
-    engine: str | None = text(
-        None,
-        "Engine file or preset giving masses and geometry",
-        "An engine whose masses and geometry the candidates take.",
     )
     target: Literal["none", "counterweights", "primary", "secondary"] = choice(
         "counterweights",
@@ -1836,9 +2117,6 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     Crank dimensions left empty are those ``bearings`` uses
     (:func:`crankbalance.studies.crank.crank_dimensions`)."""
 
-    engine: str | None = text(
-        None, "Engine file or preset", "The engine whose crank train is modelled (required)."
-    )
     speed_min: float = quantity("speed", 600 * _RPM, "Lowest speed", "The sweep's lowest speed.")
     speed_max: float | None = quantity(
         "speed",
@@ -1940,8 +2218,6 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     )
 
     def check(self) -> None:
-        if self.engine is None:
-            raise FieldProblem("engine", "the engine file or preset is needed")
         if self.speed_max is not None and self.speed_max <= self.speed_min:
             raise FieldProblem("speed_max", "must be above the lowest speed")
         if (self.damper_inertia is None) != (self.damper_frequency is None):
@@ -1965,6 +2241,16 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
 # parsing and words, by schema and field name
 # --------------------------------------------------------------------------------------
 Options = TypeVar("Options", bound=StudyOptions)
+
+
+def given(settings: StudyOptions) -> frozenset[str]:
+    """The fields of ``settings`` that were given (typed on the command line, sent to the
+    API, passed to the schema), as opposed to left at their defaults: a study takes an
+    engine's value where a setting was not given, and refuses a given one that would not
+    act."""
+    return settings.given()
+
+
 Kind = Literal["quantity", "number", "whole", "text", "list"]
 
 

@@ -24,7 +24,13 @@ import numpy as np
 from ..errors import InputError
 from ..results import to_jsonable
 from ..schema.engine import EngineSpec
-from ..schema.settings import MAX_SWEEP_WORK, BearingOptions, BearingSweepOptions, parse_options
+from ..schema.settings import (
+    MAX_SWEEP_WORK,
+    BearingOptions,
+    BearingSweepOptions,
+    BearingSweepStudyOptions,
+    parse_options,
+)
 from .engine import BalanceStudy, balance_engine, balance_options, engine_summary
 from .loads import BearingStudy, bearing_loads
 
@@ -282,7 +288,7 @@ def bearing_sweep(
             elif pattern != "file":
                 overrides["webs"] = tuple(int(v) for v in pattern.split(","))
             try:
-                solved = balance_engine(spec, **overrides)
+                solved = balance_engine(spec, halves_if_balanced=True, **overrides)
             except InputError as error:
                 if error.field != "counterweights.webs" or pattern == "file":
                     raise
@@ -291,3 +297,26 @@ def bearing_sweep(
         if progress is not None:
             progress(len(cases), len(plan))
     return SweepStudy(options=s, bearing_options=o, cases=tuple(cases))
+
+
+def bearings_sweep(
+    engine: str | os.PathLike[str] | EngineSpec,
+    settings: BearingSweepStudyOptions,
+    *,
+    progress: Callable[[int, int], None] | None = None,
+) -> SweepStudy:
+    """The ``bearings-sweep`` study of the registry: :func:`bearing_sweep` of one settings
+    object, the sweep's and the loads' (a combustion setting that would not act refused, an
+    error of the physics named by its setting)."""
+    from .loads import named_setting, refuse_without_gas
+
+    loads = settings.loads()
+    refuse_without_gas(loads)
+    try:
+        study = bearing_sweep(engine, settings.sweep(), loads, progress)
+    except InputError as error:
+        if error.field == "patterns":
+            raise
+        raise named_setting(loads, error) from None
+    study.to_dict()  # checked finite
+    return study

@@ -25,6 +25,7 @@ from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import ArrayLike
 
 from ..errors import InputError
 from ..physics.model import EngineModel
@@ -173,7 +174,7 @@ def crank_dimensions(
 
 def rotating_inertia(
     model: EngineModel,
-    throw_inertia: Any = None,
+    throw_inertia: ArrayLike | None = None,
     front_inertia: float | None = None,
     flywheel_inertia: float | None = None,
 ) -> float:

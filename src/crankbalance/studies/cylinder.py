@@ -127,7 +127,7 @@ def cylinder_study(
         balance_factor,
         rod_length=cylinder.rod_length,
         offset=cylinder.offset,
-        model=kinematics or model.kinematics,  # type: ignore[arg-type]
+        model=kinematics or model.kinematics,
         **options,
     )
 

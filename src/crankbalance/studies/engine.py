@@ -3,6 +3,7 @@ moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
 
 from __future__ import annotations
 
+import functools
 import math
 import os
 from dataclasses import dataclass
@@ -19,8 +20,18 @@ from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
-if TYPE_CHECKING:  # the verification is imported when asked for
+if TYPE_CHECKING:  # the verification and the solver are imported when asked for
+    from numpy.typing import ArrayLike
+
     from ..physics.balance_check import Verification
+    from ..physics.balancing import (
+        BalanceResult,
+        CounterweightOptions,
+        Counterweights,
+        ShaftOptions,
+        ShaftSet,
+    )
+    from ..schema.settings import BalanceOptions
 
 SCHEMA = "crankbalance.analysis/3"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
@@ -45,6 +56,14 @@ def as_model(engine: EngineLike) -> EngineModel:
     return build_model(engine)
 
 
+def engine_label(engine: EngineLike) -> str:
+    """An engine as a message or an output names it: the preset name or the path as given,
+    else the name of the spec or model."""
+    if isinstance(engine, EngineSpec | EngineModel):
+        return str(engine.name)
+    return str(engine)
+
+
 @dataclass(frozen=True)
 class Analysis:
     """Free forces and moments of one engine (see :func:`analyze`)."""
@@ -52,7 +71,7 @@ class Analysis:
     model: EngineModel
     forces: FreeForces
 
-    def curves(self, angle: Any = None) -> Curves:
+    def curves(self, angle: ArrayLike | None = None) -> Curves:
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
@@ -203,7 +222,9 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
 BALANCE_SCHEMA = "crankbalance.balance/2"
 
 
-def balance_options(spec: EngineSpec) -> tuple[Any, Any, Any]:
+def balance_options(
+    spec: EngineSpec,
+) -> tuple[CounterweightOptions, ShaftOptions | None, ShaftOptions | None]:
     """Solver options from an engine spec's [counterweights] and [balance_shafts] tables.
 
     Without a [counterweights] table the crank gets counterweights on every web at the
@@ -243,7 +264,7 @@ class BalanceStudy:
     the time-domain verification when it was asked for."""
 
     model: EngineModel
-    result: Any  # balancing.BalanceResult
+    result: BalanceResult
     verification: Verification | None = None  # when asked for
 
     def to_dict(self) -> dict[str, Any]:
@@ -251,7 +272,7 @@ class BalanceStudy:
         res, m = self.result, self.model
         components = {c.component: c for c in res.residuals}
 
-        def cw_dict(cw: Any) -> dict[str, Any] | None:
+        def cw_dict(cw: Counterweights | None) -> dict[str, Any] | None:
             if cw is None:
                 return None
             return {
@@ -275,7 +296,7 @@ class BalanceStudy:
                 "note": cw.note,
             }
 
-        def shafts_dict(group: Any) -> dict[str, Any] | None:
+        def shafts_dict(group: ShaftSet | None) -> dict[str, Any] | None:
             if group is None:
                 return None
             return {
@@ -337,6 +358,19 @@ class BalanceStudy:
                 for c in res.residuals
             ],
             "unbalanced": unbalanced,
+            "remaining": [
+                {
+                    "component": r.component,
+                    "order": r.order,
+                    "quantity": r.quantity,
+                    "rotation": r.rotation,
+                    "amount": r.amount,
+                    "unit": "N" if r.quantity == "force" else "N·m",
+                    "text": r.text,
+                    "next_step": r.next_step,
+                }
+                for r in res.remaining
+            ],
             "notes": list(res.notes),
         }
         if self.verification is not None:
@@ -375,9 +409,15 @@ def balance_engine(
     orders: int = 8,
     *,
     verify: bool = False,
+    halves_if_balanced: bool = False,
     **overrides: Any,
 ) -> BalanceStudy:
     """Counterweights and balance shafts of an engine, as its file asks for.
+
+    With ``halves_if_balanced`` (the studies that need counterweights on the crank: crank
+    loads, the counterweight requirement), a crank the default scope ``"auto"`` leaves
+    without counterweights, being balanced as a whole, gets each half balanced on its own
+    (``scope = "halves"``, paper section 3.1), as ``auto`` did before issue 27.
 
     ``overrides`` replace fields of the counterweight options (``angle``,
     ``balance_factor``, ``method``, ``scope``, ``cg_radius``, ``webs``) or give
@@ -399,9 +439,74 @@ def balance_engine(
     if overrides:
         cw = dataclasses.replace(cw, **overrides)
     result = balance(model, cw, primary, secondary, orders)
+    if (
+        halves_if_balanced
+        and cw is not None
+        and cw.scope == "auto"
+        and result.counterweights is not None
+        and not result.counterweights.mass.any()
+        and model.throws >= 2
+        and model.throws % 2 == 0
+    ):
+        result = balance(model, dataclasses.replace(cw, scope="halves"), primary, secondary, orders)
     checked = None
     if verify:
         from ..physics.balance_check import verify as time_domain
 
         checked = time_domain(model, result)
     return BalanceStudy(model, result, checked)
+
+
+# --------------------------------------------------------------------------- the two studies
+def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
+    """The analysis study of the registry (``analyze``): :func:`analyze` of ``engine`` with
+    its settings (the highest order)."""
+    return analyze(engine, settings.orders)
+
+
+def balancing(
+    engine: str | os.PathLike[str] | EngineSpec, settings: BalanceOptions
+) -> BalanceStudy:
+    """The balancing study of the registry (``balance``): :func:`balance_engine` of
+    ``engine`` with the counterweight settings given in ``settings``
+    (:class:`~crankbalance.schema.settings.BalanceOptions`: angle, balance factor, method,
+    scope) in place of the engine file's, with the time-domain verification when it asks
+    for it (``verify``). An angle given for individual counterweights, which
+    take no common angle, is refused."""
+    from ..errors import InputError
+    from ..schema.settings import given
+
+    overrides = {
+        name: getattr(settings, name)
+        for name in ("angle", "balance_factor", "method", "scope")
+        if getattr(settings, name) is not None
+    }
+    study = balance_engine(engine, verify=settings.verify, **overrides)
+    counterweights = study.result.counterweights
+    if "angle" in given(settings) and counterweights is not None:
+        if counterweights.method == "individual":
+            raise InputError(
+                "angle", settings.angle, "only acts on equal counterweights (--method pattern)"
+            )
+    return study
+
+
+# --------------------------------------------------------------------------- the library
+PRESETS_SCHEMA = "crankbalance.presets/1"
+
+
+@functools.cache
+def preset_titles() -> tuple[tuple[str, str], ...]:
+    """(name, title) of every built-in engine, read once per process."""
+    from ..io.engine_file import list_presets
+
+    return tuple((name, load_engine(name).name) for name in list_presets())
+
+
+def presets_listing() -> dict[str, Any]:
+    """The JSON contract ``crankbalance.presets/1``: every built-in engine's name and title
+    (``crankbalance presets --format json`` and ``GET /api/presets``)."""
+    return {
+        "schema": PRESETS_SCHEMA,
+        "presets": [{"name": name, "title": title} for name, title in preset_titles()],
+    }

@@ -35,16 +35,25 @@ from collections import deque
 from collections.abc import Callable, Generator, Iterable, Mapping, Sequence
 from contextlib import ExitStack
 from dataclasses import dataclass
-from typing import IO, Any, overload
+from typing import IO, TYPE_CHECKING, Any, Protocol, overload
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics.explore.candidates import Candidates
-from ..physics.explore.work import CONNECT_TIMEOUT, FIGURES_SLICE, TASK_CANDIDATES, plan
+from ..physics.explore.work import (
+    CONNECT_TIMEOUT,
+    FIGURES_SLICE,
+    TASK_CANDIDATES,
+    plan,
+)
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..physics.explore.orders import Size
 
 Columns = dict[str, NDArray[Any]]
+
 #: figures of merit of a batch of candidates: one column (B,) per figure
 Evaluate = Callable[[Candidates], Mapping[str, NDArray[Any]]]
 #: which rows to keep: a boolean (B,) from the columns
@@ -56,6 +65,27 @@ Task = tuple[int, int] | NDArray[np.int64]
 SCHEDULER_PORT = 8786
 #: the columns every row has besides the figures of merit
 ROW_COLUMNS = ("index", "equivalents", "firing_order", "throw_angle_rad")
+
+
+class Enumeration(Protocol):
+    """What a run enumerates: :mod:`crankbalance.physics.explore.orders` (a module) or a
+    stand-in with the same four functions of its problem (opaque to the run)."""
+
+    def count(self, problem: Any, /) -> int:
+        """The number of indices of the problem [-]."""
+        ...
+
+    def size(self, problem: Any, start: int, stop: int, /) -> Size:
+        """The candidates and memory of the indices ``start`` to before ``stop``."""
+        ...
+
+    def template(self, problem: Any, /) -> Candidates:
+        """A few candidates of the problem, to learn the figures' columns."""
+        ...
+
+    def chunk(self, problem: Any, start: int, stop: int, /) -> Candidates:
+        """The candidates of the indices ``start`` to before ``stop``."""
+        ...
 
 
 @dataclass(frozen=True)
@@ -224,7 +254,7 @@ def _merge(keep: Keep, a: Columns, b: Columns, kind: str) -> Columns:
 
 
 # ------------------------------------------------------------------------------ tasks
-def _enumeration(source: Any) -> Any:
+def _enumeration(source: Enumeration | None) -> Enumeration:
     """``source``, or by default :mod:`crankbalance.physics.explore.orders`."""
     if source is None:
         from ..physics.explore import orders
@@ -233,7 +263,7 @@ def _enumeration(source: Any) -> Any:
     return source
 
 
-def _candidates(problem: Any, task: Task, source: Any) -> tuple[Candidates, int]:
+def _candidates(problem: Any, task: Task, source: Enumeration) -> tuple[Candidates, int]:
     """The candidates of ``task`` and the number of indices it covers."""
     if isinstance(task, tuple):
         start, stop = task
@@ -253,7 +283,7 @@ def evaluate_task(
     select: Select | None,
     keep: Keep,
     rows_wanted: bool,
-    source: Any,
+    source: Enumeration | None,
     task: Task,
 ) -> _Part:
     """One task, where it runs: candidates, figures, filter, Pareto set and top-N.
@@ -510,7 +540,7 @@ def run(
     sample: Sample | None = None,
     span: tuple[int, int] | None = None,
     progress: Callable[[int, int, float], None] | None = None,
-    source: Any = None,
+    source: Enumeration | None = None,
     connect_timeout: float = CONNECT_TIMEOUT,
 ) -> RunResult:
     """Evaluate every candidate of ``problem`` (or a sample), keeping the Pareto set and

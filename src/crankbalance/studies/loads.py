@@ -16,7 +16,7 @@ import dataclasses
 import os
 from collections.abc import Mapping
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -37,7 +37,7 @@ from ..physics.main_bearings import (
 from ..physics.model import EngineModel
 from ..results import to_jsonable
 from ..schema.engine import EngineSpec
-from ..schema.settings import MIN_SAMPLES, BearingOptions, parse_options
+from ..schema.settings import MIN_SAMPLES, BearingOptions, given, parse_options
 from .build import build_model
 from .crank import (
     DEFAULT_PROPORTIONS,
@@ -48,11 +48,17 @@ from .crank import (
 )
 from .engine import BalanceStudy, balance_engine, engine_summary
 from .performance import (
+    WIEBE_OPTIONS,
     arithmetic_checked,
     combustion_summary,
     combustion_text,
     pressure_source,
 )
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..physics.balancing import BalanceResult
+    from ..physics.engine_cycle import PressureSource
+    from ..physics.engine_cycle_all import EngineCycleResult
 
 SCHEMA = "crankbalance.bearings/1"
 
@@ -97,8 +103,8 @@ class BearingStudy:
     """
 
     model: EngineModel
-    balance: Any
-    cycle: Any
+    balance: BalanceResult
+    cycle: EngineCycleResult
     options: BearingOptions
     section: CrankSection
     dimensions: CrankDimensions
@@ -113,10 +119,12 @@ class BearingStudy:
         """Main-bearing positions [m]."""
         return self.results["indeterminate"].bearing_position
 
-    def to_dict(self, curves: bool = False) -> dict[str, Any]:
-        """The JSON contract ``crankbalance.bearings/1`` (docs/json.md); ``curves`` adds the
-        polar load and bending-moment curves over the cycle."""
+    def to_dict(self, curves: bool | None = None) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.bearings/1`` (docs/json.md); ``curves`` (default:
+        the setting ``curves``) adds the polar load and bending-moment curves over the
+        cycle."""
         o, s = self.options, self.section
+        curves = o.curves if curves is None else curves
         cw = self.balance.counterweights
         models: dict[str, Any] = {}
         for name, r in self.results.items():
@@ -219,7 +227,7 @@ class BearingStudy:
         return result
 
 
-def _counterweight_arrays(balance: Any) -> dict[str, Any]:
+def _counterweight_arrays(balance: BalanceResult) -> dict[str, Any]:
     """The counterweights (and the extra crank masses of a single counter-rotating primary
     shaft) as the arrays of :func:`crankbalance.physics.main_bearings.crank_loads`: first moments
     at one common radius."""
@@ -236,7 +244,9 @@ def _counterweight_arrays(balance: Any) -> dict[str, Any]:
     }
 
 
-def _pressure(o: BearingOptions, cylinders: int, strokes: int) -> Any:
+def _pressure(
+    o: BearingOptions, cylinders: int, strokes: int
+) -> PressureSource | list[PressureSource]:
     """The cylinder pressure source: Wiebe or tables (:func:`.performance.pressure_source`),
     or the crankcase pressure alone (no gas)."""
     if not o.gas:
@@ -291,6 +301,51 @@ def bearing_loads(
         return _bearing_loads(spec, o, balance)
 
 
+#: the fields of the physics' errors that are settings of the bearing studies under
+#: another name
+PHYSICS_FIELDS = {"bearing_positions": "bearing", "counterweights.webs": "webs"}
+
+
+def refuse_without_gas(o: BearingOptions) -> None:
+    """Refuse a combustion setting given where it does not act: the Wiebe model's without
+    gas forces or beside pressure tables, the tables and the bore without gas forces."""
+    typed = given(o)
+    for name in WIEBE_OPTIONS:
+        if name in typed and not (o.gas and not o.pressure_csv):
+            raise InputError(
+                name,
+                getattr(o, name),
+                "only acts on the Wiebe combustion model (not with --pressure-csv or --no-gas)",
+            )
+    for name in ("pressure_csv", "bore"):
+        if name in typed and not o.gas:
+            raise InputError(name, getattr(o, name), "only acts with gas forces")
+
+
+def named_setting(o: BearingOptions, error: InputError) -> InputError:
+    """An error of the physics about a setting of the bearing studies, named by its
+    setting with the value given (``bearing_positions`` is ``bearing``); another error, or
+    one about the engine file's own counterweight pattern, as it is."""
+    name = PHYSICS_FIELDS.get(error.field, error.field)
+    if name not in BearingOptions.FIELDS or (name == "webs" and o.webs is None):
+        return error
+    value = getattr(o, name) if name in given(o) else error.value
+    return InputError(name, value, error.allowed)
+
+
+def bearings(engine: str | os.PathLike[str] | EngineSpec, settings: BearingOptions) -> BearingStudy:
+    """The main-bearing loads and crank bending of an engine over one working cycle, both
+    crank models (the ``bearings`` study of the registry, :func:`bearing_loads`); a
+    combustion setting that would not act is refused."""
+    refuse_without_gas(settings)
+    try:
+        study = bearing_loads(engine, settings)
+    except InputError as error:
+        raise named_setting(settings, error) from None
+    study.to_dict()  # checked finite
+    return study
+
+
 def _bearing_loads(
     spec: EngineSpec, o: BearingOptions, balance: BalanceStudy | None
 ) -> BearingStudy:
@@ -303,7 +358,7 @@ def _bearing_loads(
     if o.webs is not None:
         overrides["webs"] = tuple(o.webs)
     if balance is None:
-        balance = balance_engine(spec, **overrides)
+        balance = balance_engine(spec, halves_if_balanced=True, **overrides)
     elif overrides:
         name = next(iter(overrides))
         raise InputError(

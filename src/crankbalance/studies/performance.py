@@ -18,7 +18,7 @@ import contextlib
 import dataclasses
 from collections.abc import Iterator
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -27,6 +27,9 @@ from ..physics.engine_cycle import CycleResult, CylinderSpec, PressureSource, en
 from ..physics.engine_cycle_all import EngineCycleResult, engine_cycle_all, flywheel_inertia
 from ..physics.model import EngineModel
 from .cylinder import cylinder_of
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..schema.settings import CombustionOptions
 
 
 def cycle_cylinder(
@@ -38,7 +41,7 @@ def cycle_cylinder(
     friction_coefficient: float,
     bore: float | None = None,
     balance_factor: float = 0.0,
-    **geometry: Any,
+    **geometry: float,
 ) -> CylinderSpec:
     """The :class:`~crankbalance.physics.engine_cycle.CylinderSpec` of cylinder ``number``
     (1-based).
@@ -191,7 +194,7 @@ def size_cylinder_flywheel(
 WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
 
 
-def combustion_summary(o: Any) -> dict[str, float] | None:
+def combustion_summary(o: CombustionOptions) -> dict[str, float] | None:
     """The Wiebe combustion of :class:`~crankbalance.schema.settings.CombustionOptions` as the JSON
     of ``cycle``, ``torsional`` and ``bearings`` shows it (SI units in the keys), the same
     defaults for all; None with pressure tables."""
@@ -222,7 +225,9 @@ def combustion_text(summary: dict[str, float] | None) -> str:
 _TABLE_COLUMNS = {"pressure table angle": "angle_deg", "pressure table pressure": "pressure_bar"}
 
 
-def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> Any:
+def pressure_source(
+    o: CombustionOptions, cylinders: int = 1, strokes: int | None = None
+) -> PressureSource | list[PressureSource]:
     """The gas pressure of ``cycle``, ``sensitivity``, ``torsional`` and ``bearings`` from
     their :class:`~crankbalance.schema.settings.CombustionOptions`: the pressure tables (one for
     every cylinder, or one per cylinder), else the Wiebe model of the options. With the
@@ -237,7 +242,7 @@ def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> A
 
         if len(o.pressure_csv) not in (1, cylinders):
             raise InputError(
-                "--pressure-csv",
+                "pressure_csv",
                 f"{len(o.pressure_csv)} files",
                 f"give one table for every cylinder, or one per cylinder ({cylinders})",
             )
@@ -260,7 +265,8 @@ def pressure_source(o: Any, cylinders: int = 1, strokes: int | None = None) -> A
                 column = _TABLE_COLUMNS.get(error.field)
                 where = f"pressure_csv {path}" + (f", {column}" if column else "")
                 raise InputError(where, error.value, error.allowed) from None
-        return tables[0] if len(tables) == 1 else tables
+        sources: list[PressureSource] = [*tables]
+        return sources[0] if len(sources) == 1 else sources
     return WiebeCombustion(
         compression_ratio=o.compression_ratio,
         ignition_angle=o.ignition,

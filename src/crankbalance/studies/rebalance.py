@@ -12,7 +12,6 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
 
 from ..errors import InputError
 from ..io.rebalance_file import Correction, Parts, RebalanceFile, Tolerance
@@ -146,7 +145,7 @@ def _summary(parts: Parts, side: str) -> PartsSummary:
 
 def rebalance_parts(
     parts: RebalanceFile,
-    targets: list[Any] | None = None,
+    targets: list[float | str] | None = None,
     names: dict[str, str] | None = None,
 ) -> RebalanceStudy:
     """Rebalance for each target balance factor (a number, or ``"factory"`` for the crank's

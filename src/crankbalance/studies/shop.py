@@ -12,7 +12,7 @@ from __future__ import annotations
 import dataclasses
 import os
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -40,6 +40,12 @@ from ..physics.shop.planes import (
 from ..physics.shop.scatter import PartScatter, ScatterStudy, scatter_study
 from ..results import ResultMixin, to_jsonable
 from ..schema.settings import ShopOptions
+
+if TYPE_CHECKING:  # pragma: no cover
+    from ..schema.engine import EngineSpec
+
+    #: an engine as the shop takes it: a preset name, an engine file or a spec
+    EngineSource = str | os.PathLike[str] | EngineSpec
 
 
 @dataclass(frozen=True)
@@ -138,7 +144,7 @@ class ShopStudy(ResultMixin):
     settings: dict[str, Any]
 
 
-def engine_model(engine: Any) -> tuple[str, EngineModel]:
+def engine_model(engine: EngineSource) -> tuple[str, EngineModel]:
     """The name and model of ``engine``: a preset name, an engine file or an EngineSpec."""
     from ..io.engine_file import load_engine
     from ..schema.engine import EngineSpec
@@ -149,7 +155,7 @@ def engine_model(engine: Any) -> tuple[str, EngineModel]:
 
 
 def parts_study(
-    engine: Any, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
+    engine: EngineSource, parts: str | os.PathLike[str] | Inventory, options: ShopOptions
 ) -> PartsStudy:
     """Match the parts of ``parts`` (a parts file or an Inventory) to the cylinders of
     ``engine`` and give the bob-weights of the matched sets (``options.fraction``)."""
@@ -269,7 +275,7 @@ def hole_plan(
 
 
 def shop_study(
-    engine: Any,
+    engine: EngineSource,
     parts: str | os.PathLike[str] | Inventory,
     options: ShopOptions,
     names: dict[str, str] | None = None,
@@ -301,7 +307,7 @@ def part_scatter(inventory: Inventory) -> tuple[PartScatter, ...]:
 
 
 def scatter_of_parts(
-    engine: Any,
+    engine: EngineSource,
     parts: str | os.PathLike[str] | Inventory,
     options: ShopOptions,
     samples: int,
@@ -466,6 +472,7 @@ _SETTING_KEYS: Names = {
     "speed": "speed_rad_s",
     "bearings": "bearings_m",
     "center_of_mass": "center_of_mass_m",
+    "scale_step": "scale_step_kg",
 }
 
 #: the scatter's six magnitudes (:data:`crankbalance.physics.shop.scatter.OUTPUTS`) and ten phasors
@@ -541,3 +548,87 @@ def shop_json(result: Any, path: str = "") -> Any:
     if isinstance(result, list | tuple):
         return [shop_json(value, f"{path}[{k}]") for k, value in enumerate(result)]
     return to_jsonable(result, path)
+
+
+# ---------------------------------------------------------------------------------------
+# the shop's studies of the registry: one function each, one settings object
+# ---------------------------------------------------------------------------------------
+
+#: how the messages of a drilling plan name its settings: the command line's options
+PLAN_NAMES = {name: "--" + name.replace("_", "-") for name in PLAN_SETTINGS.values()}
+
+
+@dataclass(frozen=True)
+class ShopResult:
+    """One result of the balance shop and its JSON schema.
+
+    Attributes
+    ----------
+    schema : str
+        ``crankbalance.shop.match/2``, ``.bobweights/2``, ``.plan/2`` or ``.scatter/2``.
+    result : PartsStudy, BobWeights, HolePlan or ScatterStudy
+        What the JSON holds.
+    parts : PartsStudy, optional
+        The matching the bob-weights come from.
+    """
+
+    schema: str
+    result: PartsStudy | BobWeights | HolePlan | ScatterStudy
+    parts: PartsStudy | None = None
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON contract of the schema: ``{"schema", "result"}``, every key with its
+        unit (:func:`shop_json`)."""
+        out = to_jsonable({"schema": self.schema, "result": shop_json(self.result)})
+        assert isinstance(out, dict)
+        return out
+
+
+def _parts_file(options: ShopOptions) -> str:
+    if options.parts is None:
+        raise InputError("parts", None, "is required: the parts file (CSV or TOML)")
+    return options.parts
+
+
+def shop_match(engine: EngineSource, settings: ShopOptions) -> ShopResult:
+    """The weighed parts of the parts file matched to the cylinders of ``engine``
+    (:func:`parts_study`)."""
+    study = parts_study(engine, _parts_file(settings), settings)
+    result = ShopResult(MATCH_SCHEMA, study, study)
+    result.to_dict()  # checked finite
+    return result
+
+
+def shop_bobweights(engine: EngineSource, settings: ShopOptions) -> ShopResult:
+    """The bob-weight of every crankpin from the matched sets of the parts file
+    (:func:`parts_study`)."""
+    study = parts_study(engine, _parts_file(settings), settings)
+    result = ShopResult(BOBWEIGHTS_SCHEMA, study.bob_weights, study)
+    result.to_dict()  # checked finite
+    return result
+
+
+def shop_plan(engine: EngineSource | None, settings: ShopOptions) -> ShopResult:
+    """Two-plane readings turned into holes per correction plane, and the ISO check
+    (:func:`hole_plan`; the engine's speed unless ``speed`` is given)."""
+    speed = engine_model(engine)[1].speed if engine is not None else None
+    result = ShopResult(PLAN_SCHEMA, hole_plan(settings, speed, PLAN_NAMES))
+    result.to_dict()  # checked finite
+    return result
+
+
+def shop_scatter(engine: EngineSource, settings: ShopOptions) -> ShopResult:
+    """Monte Carlo of the weight scatter of the parts file: the residual per plane and the
+    free forces (:func:`scatter_of_parts`, ``samples`` engines drawn from ``seed``, weighed
+    to ``scale_step``)."""
+    study = scatter_of_parts(
+        engine,
+        _parts_file(settings),
+        settings,
+        settings.samples,
+        settings.seed,
+        settings.scale_step,
+    )
+    result = ShopResult(SCATTER_SCHEMA, study)
+    result.to_dict()  # checked finite
+    return result

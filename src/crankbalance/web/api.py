@@ -1,8 +1,14 @@
 """A JSON API beside the web pages, on the same server (``crankbalance web``).
 
 * ``GET  /api/presets``: the engine library.
-* ``POST /api/analyze``: body an engine file -> the ``crankbalance.analysis/3`` JSON.
-* ``POST /api/balance``: the same -> the ``crankbalance.balance/2`` JSON.
+* ``POST /api/<study>``: every study of :mod:`crankbalance.studies.registry` (``analyze``,
+  ``balance-factor``, ``shop-match``, ...): the body ``{"engine": <preset name or engine-file
+  object>, "<option>": value, ...}`` with the command line's option names without their
+  dashes and values as the command line takes them (texts, JSON numbers, ``true`` for a
+  flag, a list for a repeated option), a file option's content as ``{"name": ..., "text":
+  ...}``; the answer is the command's ``--format json``, exactly.
+* ``POST /api/analyze`` and ``POST /api/balance`` also take an engine file as the whole body
+  (JSON, TOML, or a preset name as TOML), answered as ``analyze``/``balance`` of it.
 
 What a request must be (``docs/web.md``, "JSON API"), checked in this order:
 
@@ -10,27 +16,36 @@ What a request must be (``docs/web.md``, "JSON API"), checked in this order:
   (``127.0.0.1``, ``localhost``, ``[::1]``; a DNS-rebinding page has its own name there),
   and a browser's ``Origin`` (without one: ``Sec-Fetch-Site``, then ``Referer``) is this
   server. Clients that send none of these headers (curl, urllib, scripts) are served.
-* **Content-Type** ``application/json`` (a JSON engine file) or ``application/toml`` (a
-  TOML engine file, or a preset name as the whole body); anything else is 415. A form or
-  ``text/plain`` body, which a foreign page could send without asking the browser first,
-  never reaches the parser.
+* **Content-Type** ``application/json`` (a study's settings, or a JSON engine file) or, for
+  ``analyze`` and ``balance``, ``application/toml`` (a TOML engine file, or a preset name as
+  the whole body); anything else is 415. A form or ``text/plain`` body, which a foreign page
+  could send without asking the browser first, never reaches the parser.
 * **At most** :data:`MAX_BODY` bytes (413): refused from ``Content-Length`` before the body
   is read, and while it is read when the length is not given.
 * **Bounded work** (422): the engine's work units, (cylinders + throws) x orders, are at most
-  :data:`MAX_WORK` before computing starts; a computation still running after
-  :data:`WALL_CLOCK` seconds is answered 503 (the last resort: its thread finishes the work).
+  :data:`MAX_WORK` before computing starts, and every study checks its own work budget
+  before it starts (the optimiser's designs, a sweep's cases, the explorer's candidates);
+  a computation still running after :data:`WALL_CLOCK` seconds is answered 503 (a study in
+  a worker process is then ended; one in a thread finishes its work).
+* **Nothing of the server's machine**: a file is sent with the request, never named by a
+  path the server would read (:func:`crankbalance.io.reading.given_files`), and the
+  settings that act on the computing machine (the explorer's dask workers and scheduler)
+  are refused.
 
 A client that closes the connection before its whole body arrived leaves one warning line in
 the server's log (no traceback) and nothing is computed; one that stops sending in the middle
 of its body is answered 408 after :data:`BODY_TIMEOUT` seconds.
 
 Bad input answers 422 with ``{"error": message, "field": field}``, the message the command
-line prints; a refused request answers its 4xx status with the same two keys. 500 is left
-for a bug of crankbalance (logged with its traceback). Every request is computed on its own
-in a worker thread, so other users are answered meanwhile; nothing is shared between them.
+line prints (naming the option without its dashes); a refused request answers its 4xx status
+with the same two keys. 500 is left for a bug of crankbalance (logged with its traceback).
+A light study is computed in a worker thread, a heavy one (:attr:`crankbalance.studies.
+registry.Study.heavy`) in a worker process of :mod:`.pool`, so other users are answered
+meanwhile; nothing is shared between requests.
 """
 
 import asyncio
+import json
 import logging
 from collections.abc import Mapping
 from typing import Any
@@ -40,6 +55,8 @@ from ..errors import InputError
 from ..io.engine_file import list_presets, load_engine
 from ..schema.engine import EngineSpec, throw_count
 from ..studies.engine import analyze, balance_engine
+from ..studies.registry import STUDIES, Study, study
+from . import studies
 from .project import MAX_BYTES, parse_untrusted, read_text
 
 log = logging.getLogger("crankbalance.web")
@@ -160,9 +177,155 @@ def check_work(spec: EngineSpec, orders: int = ORDERS) -> None:
         )
 
 
+#: what a file option of a request is: its name (a file's suffix says its format) and text
+FILE_WORDS = 'the file\'s content as {"name": "parts.csv", "text": "..."}'
+#: longest name of a file sent with a request [characters]
+MAX_FILE_NAME = 255
+
+
+def _body_object(body: bytes, content_type: str | None, name: str) -> dict[str, Any]:
+    """The JSON object of a study's request body (415, 413 or 422 for anything else)."""
+    from ..io.reading import parse_json
+
+    fmt = body_format(content_type)
+    _check_size(len(body))
+    if fmt != "json":
+        raise Refused(
+            415,
+            "Content-Type",
+            content_type,
+            f"must be application/json: the settings of {name} are a JSON object",
+        )
+    data = parse_json(read_text(body, "request body"), "request body")
+    if not isinstance(data, dict):
+        raise InputError(
+            "request body",
+            type(data).__name__,
+            'must be a JSON object: {"engine": ..., "<option>": value, ...}',
+        )
+    return data
+
+
+def is_study_body(body: bytes, content_type: str | None) -> bool:
+    """Whether a body of ``analyze`` or ``balance`` is a study's settings (a JSON object with
+    an ``engine`` key; an engine file has none) rather than an engine file."""
+    media = (content_type or "").split(";")[0].strip().lower()
+    if media != "application/json" or len(body) > MAX_BODY:
+        return False
+    try:
+        data = json.loads(body.decode("utf-8-sig"))
+    except (ValueError, RecursionError):
+        return False
+    return isinstance(data, dict) and "engine" in data
+
+
+def _engine(entry: Study, value: Any) -> tuple[Any, EngineSpec | None]:
+    """The engine of a request as the study takes it (a preset name as given, or the spec
+    of an engine-file object) and its spec, for the work budget."""
+    if value is None:
+        if entry.engine == "required":
+            raise InputError("engine", None, "the engine file or preset is needed")
+        return None, None
+    if entry.engine == "none":
+        raise InputError("engine", value, f"{entry.name} takes no engine")
+    if isinstance(value, str):
+        if value not in list_presets():
+            raise InputError(
+                "engine",
+                value,
+                "must be a preset name (GET /api/presets) or an engine file as a JSON object; "
+                "the API reads no file of the server",
+            )
+        return value, load_engine(value)
+    if isinstance(value, dict):
+        spec = parse_untrusted(json.dumps(value), "engine", "json")
+        return spec, spec
+    raise InputError(
+        "engine", type(value).__name__, "must be a preset name or an engine file as a JSON object"
+    )
+
+
+def _files(option: str, value: Any, files: dict[str, str]) -> Any:
+    """The file names of a file option (``{"name", "text"}``, or a list of them for a
+    repeated one); their texts go into ``files``."""
+    if isinstance(value, list):
+        return [_files(option, item, files) for item in value]
+    if not (
+        isinstance(value, dict)
+        and set(value) == {"name", "text"}
+        and isinstance(value["name"], str)
+        and isinstance(value["text"], str)
+    ):
+        raise InputError(option, value, f"must be {FILE_WORDS}")
+    name, text = value["name"], value["text"]
+    if not name.strip() or len(name) > MAX_FILE_NAME or any(c in name for c in "\x00\n\r"):
+        raise InputError(
+            option, name, f"must be a file name of 1 to {MAX_FILE_NAME} characters on one line"
+        )
+    if files.get(name, text) != text:
+        raise InputError(option, name, "is given twice with different texts")
+    files[name] = text
+    return name
+
+
+def prepare(
+    name: str, body: bytes, content_type: str | None
+) -> tuple[str, Any, dict[str, Any], dict[str, str]]:
+    """A study's request before anything is computed: (study, engine, settings as given by
+    field, files given), with the settings checked (422 naming the option) and the engine's
+    work units within :data:`MAX_WORK`."""
+    entry = study(name)
+    data = _body_object(body, content_type, name)
+    engine, spec = _engine(entry, data.pop("engine", None))
+    values: dict[str, Any] = {}
+    files: dict[str, str] = {}
+    for option, value in data.items():
+        field = entry.field_of(option)
+        if field is None:
+            words = [entry.option(n) for n in entry.field_names() if n not in entry.local]
+            if option in entry.edge:
+                why = "is an option of the command line (its output), not of the API"
+            elif option in {entry.option(n) for n in entry.local}:
+                why = "acts on the machine that computes: the API does not take it"
+            else:
+                why = "is not an option of " + name
+            raise InputError(option, value, f"{why}; its options: engine, {', '.join(words)}")
+        if field in entry.local:
+            raise InputError(
+                option, value, "acts on the machine that computes: the API does not take it"
+            )
+        values[field] = _files(option, value, files) if field in entry.files else value
+    settings = parse(entry, values)
+    if spec is not None:
+        check_work(spec, getattr(settings, "orders", ORDERS) if name == "analyze" else ORDERS)
+    return name, engine, values, files
+
+
+def parse(entry: Study, values: dict[str, Any]) -> Any:
+    """The settings of a request, each error naming the option as the body writes it."""
+    from ..studies.registry import parse as parse_settings
+
+    return parse_settings(entry, values)
+
+
+def compute_study(name: str, body: bytes, content_type: str | None) -> tuple[int, dict[str, Any]]:
+    """Status code and JSON answer of one study's request, computed in this process (no web
+    framework involved): the handler of ``POST /api/<study>`` without its worker."""
+    try:
+        prepared = prepare(name, body, content_type)
+    except Refused as refused:
+        return refused.status, error_body(refused)
+    except InputError as error:
+        return 422, error_body(error)
+    return studies.api_answer(*prepared)
+
+
 def compute(kind: str, body: bytes, content_type: str | None) -> tuple[int, dict[str, Any]]:
     """Status code and JSON answer of one API call (no web framework involved): 415 or 413
-    for a body of another type or too large, 422 for bad input, 200 with finite numbers."""
+    for a body of another type or too large, 422 for bad input, 200 with finite numbers. A
+    body of study settings (:func:`is_study_body`) is answered by :func:`compute_study`."""
+    if is_study_body(body, content_type):
+        return compute_study(kind, body, content_type)
     try:
         fmt = body_format(content_type)
         _check_size(len(body))
@@ -241,7 +404,11 @@ def register(app: Any) -> None:
             if isinstance(refused, Disconnected):  # one line in the log, no traceback
                 log.warning("POST /api/%s: %s", kind, refused)
             return JSONResponse(error_body(refused), status_code=refused.status)
-        work = run_in_threadpool(compute, kind, body, request.headers.get("content-type"))
+        content_type = request.headers.get("content-type")
+        if is_study_body(body, content_type) or kind not in ("analyze", "balance"):
+            status, data = await answer_study(kind, body, content_type)
+            return JSONResponse(data, status_code=status)
+        work = run_in_threadpool(compute, kind, body, content_type)
         try:
             status, data = await asyncio.wait_for(work, WALL_CLOCK)
         except TimeoutError:
@@ -252,12 +419,56 @@ def register(app: Any) -> None:
 
     @app.get("/api/presets")
     def presets() -> JSONResponse:
-        return JSONResponse({"schema": "crankbalance.presets/1", "presets": list_presets()})
+        from ..studies.engine import presets_listing
 
-    @app.post("/api/analyze")
-    async def analyze_route(request: Request) -> JSONResponse:
-        return await answer("analyze", request)
+        return JSONResponse(presets_listing())
 
-    @app.post("/api/balance")
-    async def balance_route(request: Request) -> JSONResponse:
-        return await answer("balance", request)
+    def route(kind: str) -> Any:
+        async def handler(request: Request) -> JSONResponse:
+            return await answer(kind, request)
+
+        handler.__name__ = f"study_{kind.replace('-', '_')}"
+        return handler
+
+    for name in STUDIES:
+        app.post(f"/api/{name}")(route(name))
+
+
+async def answer_study(name: str, body: bytes, content_type: str | None) -> tuple[int, Any]:
+    """The answer of a study's request: checked in a worker thread (:func:`prepare`), then
+    computed in a worker process of :mod:`.pool` for a heavy study, in a worker thread for
+    another; after :data:`WALL_CLOCK` seconds 503 (the worker process is ended)."""
+    from starlette.concurrency import run_in_threadpool
+
+    from . import pool
+
+    try:
+        prepared = await run_in_threadpool(prepare, name, body, content_type)
+    except Refused as refused:
+        return refused.status, error_body(refused)
+    except InputError as error:
+        return 422, error_body(error)
+    too_long = {"error": f"the computation took longer than {WALL_CLOCK:g} s", "field": None}
+    if not STUDIES[name].heavy:
+        work = run_in_threadpool(studies.api_answer, *prepared)
+        try:
+            return await asyncio.wait_for(work, WALL_CLOCK)
+        except TimeoutError:
+            log.warning("POST /api/%s still computing after %g s: answered 503", name, WALL_CLOCK)
+            return 503, too_long
+    job = pool.Job(f"the study {name}")
+    try:
+        answer: tuple[int, Any] = await asyncio.wait_for(
+            pool.run(job, studies.api_answer, *prepared), WALL_CLOCK
+        )
+        return answer
+    except TimeoutError:
+        job.cancel()
+        log.warning("POST /api/%s still computing after %g s: ended, 503", name, WALL_CLOCK)
+        return 503, too_long
+    except pool.Busy as busy:
+        return 503, error_body(busy)
+    except pool.Cancelled:
+        return 503, {"error": "the study was cancelled", "field": None}
+    except InputError as error:  # the worker ended without an answer (out of memory)
+        return 422, error_body(error)

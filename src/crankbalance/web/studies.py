@@ -1,9 +1,13 @@
 """The study tabs of the web application as plain functions (no NiceGUI).
 
-Each takes the current computation (:class:`~.computation.Computed`) and the project's
-settings (texts as typed), validates the settings of its study through the one options
-schema (:mod:`crankbalance.schema.settings`) and calls the study layer
-(:mod:`crankbalance.studies`).
+Each takes the page's current computation (an :class:`Computation`: the engine's spec, its
+analysis and balancing) and the project's settings (texts as typed), validates the
+settings of its form through their model (:mod:`crankbalance.schema.settings`) and runs
+the command line's study with those settings through :mod:`crankbalance.studies.registry`:
+the same function, the same settings model, the same defaults (the Counterweight design
+tab's optimiser is ``counterweight-optimize``, the Single cylinder tab's balance-factor
+study and ISO check ``balance-factor`` and ``tolerance``, the Balance shaft tab's placement
+``shaft-inline4``, the Performance tab's sweep ``sensitivity``).
 A setting's key is its study's prefix and the schema's field name (``cw_population`` is
 ``population`` of :class:`~crankbalance.schema.settings.CounterweightOptions`); a bad setting
 raises :class:`~crankbalance.errors.InputError` whose ``field`` is that key, so that the
@@ -13,19 +17,19 @@ The tabs run these functions (and the study layer's ``bearing_sweep``, ``shop_st
 a worker process (:mod:`.pool`): they are module-level, take and return picklable data,
 and their settings (with the work budgets of the schema) are checked in the server before
 the run starts (:func:`counterweight_inputs`, :func:`check_single_cylinder`,
-:func:`options`). The fork server preloads this module.
+:func:`options`). The JSON API's studies run here too (:func:`api_answer`). The fork
+server preloads this module.
 """
 
 from __future__ import annotations
 
-from collections.abc import Callable
-from typing import Any, Literal
-
-import numpy as np
+import logging
+from collections.abc import Callable, Mapping
+from typing import Any, Protocol
 
 from ..errors import InputError
+from ..schema.engine import EngineSpec
 from ..schema.settings import (
-    COUNTERWEIGHT_CHILDREN,
     VERBS,
     AnalysisOptions,
     CounterweightOptions,
@@ -39,7 +43,18 @@ from ..schema.settings import (
     field_kind,
     parse_options,
 )
-from .computation import Computed
+
+log = logging.getLogger("crankbalance.web")
+
+
+class Computation(Protocol):
+    """What a study of a tab takes from the page's computation
+    (:class:`crankbalance.web.computation.Computed`)."""
+
+    spec: EngineSpec
+    analysis: Any
+    study: Any
+
 
 #: setting-key prefix -> the options model of that study ("" for the analysis)
 PREFIXES: dict[str, type[StudyOptions]] = {
@@ -143,8 +158,27 @@ def worded(key: str, value: Any, allowed: str) -> str:
     return f"{label}: {allowed}" if value is None else f"{label} ({value!r}): {allowed}"
 
 
+def _texts(settings: Mapping[str, Any], prefix: str, model: type[StudyOptions]) -> dict[str, Any]:
+    """The settings of one form given (non-empty texts) by their field: a list's text split
+    into its items."""
+    out: dict[str, Any] = {}
+    for name in model.FIELDS:
+        text = str(settings.get(prefix + name, "")).strip()
+        if text:
+            out[name] = _split(text) if field_kind(model, name)[0] == "list" else text
+    return out
+
+
+def _run(name: str, engine: Any, values: dict[str, Any], prefix: str) -> Any:
+    """Study ``name`` of the registry with the settings given (field -> text); an error
+    about one of them names its setting key (the prefix and the field)."""
+    from ..studies.registry import run
+
+    return run(name, engine, values, naming=lambda f: prefix + f if f in values else f)
+
+
 # --------------------------------------------------------------------------- counterweight
-def counterweight_requirement(computed: Computed) -> tuple[float, float, float]:
+def counterweight_requirement(computed: Computation) -> tuple[float, float, float]:
     """(first moment m_c r_c [kg m], counterweight mass [kg], CG radius [m]) of the heaviest
     crank counterweight found by the balancing solver."""
     from ..studies.requirements import counterweight_requirement as requirement
@@ -154,31 +188,28 @@ def counterweight_requirement(computed: Computed) -> tuple[float, float, float]:
     return moment, moment / radius, radius
 
 
-def counterweight_inputs(computed: Computed, settings: dict[str, Any]) -> tuple[float, Any]:
-    """The required first moment [kg m] and the validated :class:`CounterweightOptions` of
-    an optimisation (its work budget checked), before it starts."""
+def counterweight_inputs(computed: Computation, settings: dict[str, Any]) -> tuple[float, Any]:
+    """The required first moment [kg m] and the settings of the optimisation
+    (:class:`~crankbalance.schema.settings.CounterweightOptimizeOptions` of the study
+    ``counterweight-optimize``, its work budget checked), before it starts."""
+    from ..studies.registry import parse, study
+
     required, _mass, _radius = counterweight_requirement(computed)
-    return required, options(settings, CounterweightOptions)
+    options(settings, CounterweightOptions)  # the form's own checks, named by its keys
+    values = _texts(settings, "cw_", CounterweightOptions)
+    values["first_moment"] = f"{required!r} kg*m"  # the balancing's, read back exactly
+    o = parse(study("counterweight-optimize"), values, lambda f: "cw_" + f)
+    return required, o
 
 
-def optimise(required: float, o: CounterweightOptions) -> Any:
+def optimise(required: float, o: Any) -> Any:
     """The counterweight optimiser (2021 paper, Sec. 4-5) for a required first moment
-    [kg m], with the command line's number of designs per round
-    (:data:`~crankbalance.schema.settings.COUNTERWEIGHT_CHILDREN`): the same settings search the
-    same designs in both."""
-    from ..physics.counterweight_optimize import optimize_counterweight
+    [kg m]: the study ``counterweight-optimize`` of the command line with the settings of
+    :func:`counterweight_inputs`; its result (the optimiser's designs and front)."""
+    from ..studies.registry import execute
 
-    return optimize_counterweight(
-        required,
-        density=o.density,
-        max_mass=o.max_mass,
-        max_radius=o.max_radius,
-        min_balance=o.min_balance,
-        iterations=o.iterations,
-        population=o.population,
-        children=COUNTERWEIGHT_CHILDREN,
-        rng=o.seed,
-    )
+    assert abs(o.first_moment - required) <= 1e-12 * required
+    return execute("counterweight-optimize", None, o, naming=lambda f: "cw_" + f).optimum
 
 
 def pick_design(optimum: Any, choice: str) -> Any:
@@ -197,7 +228,7 @@ def design_choices(optimum: Any, count: int = 10) -> list[str]:
 
 
 # --------------------------------------------------------------------------- single cylinder
-def _single(computed: Computed, settings: dict[str, Any]) -> SingleCylinderOptions:
+def _single(computed: Computation, settings: dict[str, Any]) -> SingleCylinderOptions:
     o = options(settings, SingleCylinderOptions)
     count = computed.analysis.model.cylinders
     if o.cylinder > count:
@@ -207,30 +238,39 @@ def _single(computed: Computed, settings: dict[str, Any]) -> SingleCylinderOptio
     return o
 
 
-def single_study(computed: Computed, settings: dict[str, Any]) -> Any:
-    """Balance-factor study of one cylinder (Hoem and Røsholm 2016, Sec. 4.1)."""
-    from ..studies.cylinder import cylinder_study
-
-    o = _single(computed, settings)
-    return cylinder_study(computed.analysis.model, o.cylinder, o.balance_factor)
-
-
-def iso_check(computed: Computed, settings: dict[str, Any]) -> dict[str, Any]:
-    """ISO 21940-11 permissible residual unbalance at the engine speed and the verdict."""
-    from ..studies.cylinder import iso_check as check
-
-    try:
-        result = check(computed.analysis.model, _single(computed, settings))
-    except InputError as error:
-        if error.field == "grade":
-            raise InputError("sc_grade", error.value, error.allowed) from None
-        raise
-    return {name: getattr(result, name) for name in result.__dataclass_fields__}
+def single_study(computed: Computation, settings: dict[str, Any]) -> Any:
+    """Balance-factor study of one cylinder (Hoem and Røsholm 2016, Sec. 4.1): the study
+    ``balance-factor`` of the engine's cylinder at the balance factor."""
+    _single(computed, settings)
+    given = _texts(settings, "sc_", SingleCylinderOptions)
+    values: dict[str, Any] = {k: given[k] for k in ("cylinder", "balance_factor") if k in given}
+    return _run("balance-factor", computed.spec, values, "sc_").study
 
 
-def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
+def iso_check(computed: Computation, settings: dict[str, Any]) -> dict[str, Any]:
+    """ISO 21940-11 permissible residual unbalance at the engine speed and the verdict: the
+    study ``tolerance`` of the engine (its rotor mass, when not given, the crank's rotating
+    masses)."""
+    _single(computed, settings)
+    given = _texts(settings, "sc_", SingleCylinderOptions)
+    values: dict[str, Any] = {
+        k: given[k] for k in ("grade", "rotor_mass", "residual") if k in given
+    }
+    result = _run("tolerance", computed.spec, values, "sc_")
+    return {
+        "grade": result.grade,
+        "rotor_mass": result.rotor_mass,
+        "speed": result.speed,
+        "permissible": result.permissible,
+        "verdict": result.verdict,
+    }
+
+
+def rebalance_study(computed: Computation, settings: dict[str, Any]) -> Any:
     """Rebalance the cylinder's share of its throw after new parts (Hoem and Røsholm 2016,
-    Sec. 6.4, eight steps)."""
+    Sec. 6.4, eight steps): the engine's cylinder with drilled holes
+    (:func:`crankbalance.studies.cylinder.rebalance_cylinder`; the command line's
+    ``rebalance`` takes a parts file instead)."""
     from ..studies.cylinder import rebalance_cylinder
 
     model = computed.analysis.model
@@ -244,7 +284,7 @@ def rebalance_study(computed: Computed, settings: dict[str, Any]) -> Any:
         raise
 
 
-def single_cylinder(computed: Computed, settings: dict[str, Any]) -> tuple[Any, Any, Any]:
+def single_cylinder(computed: Computation, settings: dict[str, Any]) -> tuple[Any, Any, Any]:
     """The Single cylinder tab's three results: the balance-factor study, the ISO check and
     the rebalancing (:func:`single_study`, :func:`iso_check`, :func:`rebalance_study`)."""
     return (
@@ -254,103 +294,70 @@ def single_cylinder(computed: Computed, settings: dict[str, Any]) -> tuple[Any, 
     )
 
 
-def check_single_cylinder(computed: Computed, settings: dict[str, Any]) -> None:
+def check_single_cylinder(computed: Computation, settings: dict[str, Any]) -> None:
     """Refuse bad settings of the Single cylinder tab before its study starts."""
     _single(computed, settings)
     options(settings, RebalanceOptions)
 
 
 # --------------------------------------------------------------------------- balance shaft
-def shaft_requirement(computed: Computed, settings: dict[str, Any]) -> tuple[float, float, str]:
-    """(first moment of one shaft's mass [kg m], shaft speed [rad/s], which) for the
-    placement study, from the balancing solver: a secondary shaft pair when the engine has
-    a free second-order force or moment, else a primary counter-rotating shaft."""
-    from ..studies.requirements import default_shaft_order
-    from ..studies.requirements import shaft_requirement as requirement
-
-    o = options(settings, ShaftPlacementOptions)
-    order = default_shaft_order(computed.analysis)
-    need = requirement(computed.spec, order, o.length)
-    which = "secondary shaft pair" if order == 2 else "primary counter-rotating shaft"
-    return need.unbalance, need.speed, which
+#: what the shaft of each order is, in the tab's words
+SHAFT_WORDS = {2: "secondary shaft pair", 1: "primary counter-rotating shaft"}
 
 
-def shaft_placement(computed: Computed, settings: dict[str, Any]) -> tuple[Any, str]:
-    """Unbalance-mass placement on a shaft with end bearings (Kim 2018, Sec. 3.1)."""
-    from ..physics.balance_shaft import inline4_study
-    from ..physics.beam import ShaftSection
-
-    moment, speed, which = shaft_requirement(computed, settings)
-    o = options(settings, ShaftPlacementOptions)
-    study = inline4_study(
-        moment,
-        speed,
-        o.length,
-        ShaftSection(outer_diameter=o.diameter),
-        weight=o.weight,
-        positions=np.linspace(0.0, 1.0, o.points),
-    )
-    return study, which
+def shaft_placement(computed: Computation, settings: dict[str, Any]) -> tuple[Any, str]:
+    """Unbalance-mass placement on a shaft with end bearings (Kim 2018, Sec. 3.1): the study
+    ``shaft-inline4`` of the engine (a secondary shaft pair when the engine has a free
+    second-order force or moment, else a primary counter-rotating shaft)."""
+    options(settings, ShaftPlacementOptions)
+    values = _texts(settings, "bs_", ShaftPlacementOptions)
+    result = _run("shaft-inline4", computed.spec, values, "bs_")
+    return result.studies[0], SHAFT_WORDS[result.requirement.order]
 
 
 # --------------------------------------------------------------------------- performance
-def performance_study(computed: Computed, settings: dict[str, Any]) -> Any:
+def performance_study(computed: Computation, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
-    2016, Sec. 5) for one cylinder of the engine (its reciprocating mass, crank radius,
-    rod length, speed)."""
-    from ..physics.engine_cycle import balance_sensitivity
-    from ..schema.settings import CombustionOptions
-    from ..studies.crank import rotating_inertia
-    from ..studies.performance import arithmetic_checked, cycle_cylinder, pressure_source
-
-    model = computed.analysis.model
-    o = options(settings, PerformanceOptions)
-    fields = {
-        "bore": "pf_bore",
-        "crank_inertia": "pf_crank_inertia",
-        "journal_diameter": "pf_journal_diameter",
-        "friction_coefficient": "pf_friction_coefficient",
-    }
-    try:
-        cylinder = cycle_cylinder(
-            model,
-            1,
-            bore=o.bore,
-            crank_inertia=rotating_inertia(model) if o.crank_inertia is None else o.crank_inertia,
-            journal_diameter=o.journal_diameter,
-            friction_coefficient=o.friction_coefficient,
-        )
-        pressure = pressure_source(CombustionOptions.parse({}))  # the studies' one default
-        with arithmetic_checked("the performance study", "the engine and the tab's settings"):
-            return balance_sensitivity(
-                cylinder,
-                float(model.speed),
-                pressure,
-                o.balance_factors,
-                strokes=_strokes(model.strokes),
-                samples_per_revolution=180,
-            )
-    except InputError as error:
-        raise InputError(fields.get(error.field, error.field), error.value, error.allowed) from None
-
-
-def _strokes(value: Any) -> Literal[2, 4]:
-    """The engine's strokes per cycle as the Literal the dynamics API takes."""
-    strokes = int(value)
-    if strokes == 2:
-        return 2
-    if strokes == 4:
-        return 4
-    raise InputError("strokes", value, "2 or 4 strokes per cycle")
+    2016, Sec. 5) for cylinder 1 of the engine: the study ``sensitivity`` with the tab's
+    settings; its result (every indicator over the balance factors)."""
+    options(settings, PerformanceOptions)
+    values = _texts(settings, "pf_", PerformanceOptions)
+    return _run("sensitivity", computed.spec, values, "pf_").result
 
 
 # --------------------------------------------------------------------------- explorer
 def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
     """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
-    the two objectives, the rows by increasing column ``key``."""
+    the two objectives, the rows by increasing column ``key`` (the explorer's runner on the
+    tab's own problem; the command line's ``explore`` keeps a top-N list instead)."""
     from ..physics.explore import merit
     from ..studies.explore import Keep
     from ..studies.explore import run as run_explore
 
     keep = Keep(objectives=objectives, key=key, n=most)
     return run_explore(problem, merit.merit, select=select, keep=keep)
+
+
+# --------------------------------------------------------------------------- the JSON API
+def api_answer(
+    name: str, engine: Any, values: dict[str, Any], files: dict[str, str]
+) -> tuple[int, dict[str, Any]]:
+    """The status and JSON answer of a study's API request (:func:`crankbalance.web.api.
+    prepare` checked it): the study of the registry with the settings as sent, the files
+    sent read from the request alone (:func:`crankbalance.io.reading.given_files`); 422 for
+    bad input or a result that is not finite, 500 (logged) for a bug of crankbalance."""
+    from ..io.reading import given_files
+    from ..studies.registry import run
+
+    try:
+        with given_files(files):
+            return 200, run(name, engine, values).to_dict()
+    except InputError as error:
+        return 422, {"error": str(error), "field": error.field}
+    except ValueError as error:  # a result that is not finite (ResultError)
+        field = getattr(error, "quantity", None)
+        return 422, {"error": str(error), "field": field}
+    except Exception as error:  # a bug of crankbalance: logged in full, answered 500
+        log.exception("POST /api/%s failed", name)
+        message = f"internal error ({type(error).__name__}); please report it with the body"
+        return 500, {"error": message, "field": None}

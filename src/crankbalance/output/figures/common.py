@@ -57,7 +57,7 @@ def plotly_go() -> Any:
     return go
 
 
-def make_subplots(**kwargs: Any) -> Any:
+def make_subplots(**kwargs: Any) -> go.Figure:
     """``plotly.subplots.make_subplots(**kwargs)``, plotly imported on first use."""
     from plotly import subplots
 
@@ -99,7 +99,9 @@ def figure_title(main: str, engine: str | None = None, note: str | None = None) 
     return f"{main}<br><sup>{' · '.join(second)}</sup>"
 
 
-def note_if_zero(fig: Any, values: ArrayLike, unit: str, row: int, col: int, ref: str) -> None:
+def note_if_zero(
+    fig: go.Figure, values: ArrayLike, unit: str, row: int, col: int, ref: str
+) -> None:
     """Say so in a subplot whose bars are all exactly zero (instead of an empty -1..1 axis)."""
     if np.any(np.asarray(values, dtype=float) != 0.0):
         return

@@ -9,7 +9,7 @@ Public functions
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,11 +18,15 @@ from .common import COLORS, TEMPLATE, plotly_go, web_drawing
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.counterweight import CounterweightDesign
+    from ...physics.counterweight_optimize import CounterweightOptimum
 
-def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
+
+def pareto_front(optimum: CounterweightOptimum, max_points: int = 4000) -> go.Figure:
     """Counterweight designs: every feasible design found (a sample of at most
     ``max_points``), the Pareto front of mass versus radial space, and the least-mass and
-    least-radius designs (:class:`~crankbalance.physics.counterweight.CounterweightOptimum`)."""
+    least-radius designs
+    (:class:`~crankbalance.physics.counterweight_optimize.CounterweightOptimum`)."""
     go = plotly_go()
     radius = np.asarray(optimum.radius) * 1e3
     mass = np.asarray(optimum.mass) * 1e3
@@ -78,7 +82,7 @@ def pareto_front(optimum: Any, max_points: int = 4000) -> go.Figure:
     return fig
 
 
-def counterweight_profile(design: Any) -> go.Figure:
+def counterweight_profile(design: CounterweightDesign) -> go.Figure:
     """The counterweight profile drawn to scale (mm): the outline, the web circle it sits on,
     the crank axis and the centre of gravity
     (:class:`~crankbalance.physics.counterweight.CounterweightDesign`)."""

@@ -166,13 +166,17 @@ def crank_3d(
     enter the balance).
     """
     from ...physics.balancing import default_web_offset
+    from ...physics.model import EngineModel
 
     go = plotly_go()
-    m: Any = model
-    if hasattr(m, "model"):
-        if balance_study is None and hasattr(m, "result"):
-            balance_study = m
-        m = m.model
+    if isinstance(model, EngineModel):
+        m = model
+    else:  # an analysis or a balancing study: its engine (and the study's balancing)
+        from ...studies.engine import BalanceStudy
+
+        if balance_study is None and isinstance(model, BalanceStudy):
+            balance_study = model
+        m = model.model
     mm = 1e3
     r = m.crank_radius
     web = default_web_offset(m)

@@ -45,7 +45,9 @@ from .common import (
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.shaking import Curves
     from ...studies.engine import Analysis, BalanceStudy
+    from .balancing import BalancedCurves
 
 
 def _check_quantity(quantity: str) -> None:
@@ -177,7 +179,7 @@ def curves_figure(
     top = len(c.orders) if orders is None else orders
     tiny = round_off(analysis.model)[0 if quantity == "force" else 1]
 
-    def y(source: Any, name: str, k: int | None = None) -> NDArray[np.float64]:
+    def y(source: Curves | BalancedCurves, name: str, k: int | None = None) -> NDArray[np.float64]:
         values = getattr(source, name)
         return zero_below(values if k is None else values[k], tiny)
 

@@ -12,7 +12,7 @@ Public functions
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -22,13 +22,18 @@ from .common import COLORS, ORDER_COLORS, TEMPLATE, figure_title, make_subplots,
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...studies.balance_loads import SweepStudy
+    from ...studies.loads import BearingStudy
+
 
 #: line styles of the studies a bearing-load figure overlays (first: solid)
 STUDY_DASHES = ("solid", "dash", "dot", "dashdot")
 
 
 def bearing_loads_figure(
-    studies: Any, model: str = "indeterminate", labels: tuple[str, ...] | None = None
+    studies: BearingStudy | list[BearingStudy] | tuple[BearingStudy, ...],
+    model: str = "indeterminate",
+    labels: tuple[str, ...] | None = None,
 ) -> go.Figure:
     """Polar load diagram of every main bearing (top row: the force of the crank on the
     bearing over the cycle, x across horizontally, z along the cylinder axis vertically)
@@ -38,7 +43,7 @@ def bearing_loads_figure(
     if model not in ("determinate", "indeterminate"):
         raise InputError("model", model, "'determinate' or 'indeterminate'")
     go = plotly_go()
-    many = list(studies) if isinstance(studies, (list, tuple)) else [studies]
+    many: list[BearingStudy] = list(studies) if isinstance(studies, (list, tuple)) else [studies]
     names = (
         list(labels)
         if labels is not None
@@ -137,7 +142,7 @@ SWEEP_PANELS = (
 )
 
 
-def bearing_sweep_figure(sweep: Any) -> go.Figure:
+def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
     """Bearing loads against balance (:class:`~crankbalance.studies.balance_loads.
     SweepStudy`): the largest bearing load, the friction of all main bearings, the largest
     bending moment at a journal and the counterweight mass against the balance factor, one

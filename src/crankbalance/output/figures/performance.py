@@ -26,6 +26,10 @@ from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.engine_cycle import CycleResult, SensitivityResult
+    from ...physics.engine_cycle_all import EngineCycleResult
+    from ...physics.rotor_bench import BenchResult
+
 
 SENSITIVITY_LABELS = {
     "mean_friction_torque": ("mean friction torque", "N·m", 1.0),
@@ -39,7 +43,9 @@ SENSITIVITY_LABELS = {
 }
 
 
-def sensitivity_figure(result: Any, indicators: tuple[str, ...] | None = None) -> go.Figure:
+def sensitivity_figure(
+    result: SensitivityResult, indicators: tuple[str, ...] | None = None
+) -> go.Figure:
     """Performance indicators versus balance factor, one line per reciprocating-mass scale
     (:class:`~crankbalance.physics.engine_cycle.SensitivityResult`)."""
     go = plotly_go()
@@ -152,7 +158,7 @@ def _stacked_figure(
     return fig
 
 
-def bench_figure(result: Any) -> go.Figure:
+def bench_figure(result: BenchResult) -> go.Figure:
     """Rotor test bench time histories: speed, motor and friction torque, bearing loads
     (:class:`~crankbalance.physics.rotor_bench.BenchResult`)."""
     speed = {
@@ -190,7 +196,7 @@ def bench_figure(result: Any) -> go.Figure:
     )
 
 
-def cycle_figure(result: Any) -> go.Figure:
+def cycle_figure(result: CycleResult) -> go.Figure:
     """Engine-cycle histories versus crank angle: torques, bearing load and shaking forces
     (:class:`~crankbalance.physics.engine_cycle.CycleResult`)."""
     torques = [
@@ -229,11 +235,13 @@ def cycle_figure(result: Any) -> go.Figure:
     )
 
 
-def engine_torque_figure(result: Any) -> go.Figure:
+def engine_torque_figure(result: EngineCycleResult | CycleResult) -> go.Figure:
     """The whole engine's torque over the cycle, each cylinder's share, and the speed
     (:class:`~crankbalance.physics.engine_cycle_all.EngineCycleResult`); a single-cylinder
     :class:`~crankbalance.physics.engine_cycle.CycleResult` gets :func:`cycle_figure`."""
-    if not hasattr(result, "cylinder_gas_torque"):
+    from ...physics.engine_cycle_all import EngineCycleResult
+
+    if not isinstance(result, EngineCycleResult):
         return cycle_figure(result)
     deg = np.degrees(np.asarray(result.angle))
     torques = [

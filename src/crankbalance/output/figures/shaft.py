@@ -18,8 +18,10 @@ from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.balance_shaft import BalanceShaft, PlacementStudy, ShaftResponse
 
-def shaft_study(study: Any) -> go.Figure:
+
+def shaft_study(study: PlacementStudy) -> go.Figure:
     """Balance-shaft placement study (Kim 2018, Figs. 6-9): bearing loads, bending measure
     and first bending frequency along the design variable, and the normalised measures with
     the objective J and its optimum
@@ -93,7 +95,7 @@ def shaft_study(study: Any) -> go.Figure:
     return fig
 
 
-def shaft_response_figure(response: Any, shaft: Any = None) -> go.Figure:
+def shaft_response_figure(response: ShaftResponse, shaft: BalanceShaft | None = None) -> go.Figure:
     """Deflection amplitude along a balance shaft
     (:class:`~crankbalance.physics.balance_shaft.ShaftResponse`); with ``shaft``
     (:class:`~crankbalance.physics.balance_shaft.BalanceShaft`) the bearings and masses are

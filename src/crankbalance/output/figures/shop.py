@@ -8,7 +8,7 @@ Public functions
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -17,12 +17,14 @@ from .common import COLORS, TEMPLATE, figure_title, make_subplots, plotly_go
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...studies.shop import HolePlan
+
 
 #: font size of the hole plan's panel titles [px]
 HOLE_TITLE_SIZE = 12
 
 
-def hole_plan(result: Any) -> go.Figure:
+def hole_plan(result: HolePlan) -> go.Figure:
     """The holes of a two-plane correction to scale (mm), one panel per correction plane,
     seen along the crank axis: 0° (crankpin 1) straight up, angles counterclockwise as the
     crank's throw angles; the hole circle, the heavy spot, each hole with its angle and the

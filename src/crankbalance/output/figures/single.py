@@ -7,14 +7,15 @@ Public functions
 - ``single_cylinder_forces(study) -> Figure``  (physics.single_cylinder.BalanceFactorStudy)
 - ``single_cylinder_polar(study) -> Figure``
 - ``balance_factor_sweep(study) -> Figure``
-- ``drilling_plan(result, crank_radius) -> Figure``  (physics.single_cylinder.RebalanceResult)
+- ``drilling_plan(result, crank_radius) -> Figure``  (physics.rebalancing.RebalanceResult)
 """
 
 from __future__ import annotations
 
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ...errors import InputError
 from ..format import depth_read_to
@@ -23,8 +24,11 @@ from .common import COLORS, TEMPLATE, figure_title, plotly_go, web_drawing
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.rebalancing import DrilledHoles, RebalanceResult
+    from ...physics.single_cylinder import BalanceFactorStudy
 
-def single_cylinder_forces(study: Any) -> go.Figure:
+
+def single_cylinder_forces(study: BalanceFactorStudy) -> go.Figure:
     """In-line, transverse and resultant shaking force of one cylinder versus crank angle
     (:class:`~crankbalance.physics.single_cylinder.BalanceFactorStudy`)."""
     go = plotly_go()
@@ -54,7 +58,7 @@ def single_cylinder_forces(study: Any) -> go.Figure:
     return fig
 
 
-def single_cylinder_polar(study: Any) -> go.Figure:
+def single_cylinder_polar(study: BalanceFactorStudy) -> go.Figure:
     """Polar diagram of the residual shaking force of one cylinder: the tip of the force
     vector over a revolution (transverse horizontal, in-line vertical), with the circle of
     the peak resultant."""
@@ -104,7 +108,7 @@ def single_cylinder_polar(study: Any) -> go.Figure:
     return fig
 
 
-def balance_factor_sweep(study: Any) -> go.Figure:
+def balance_factor_sweep(study: BalanceFactorStudy) -> go.Figure:
     """Peak resultant shaking force versus balance factor, with the studied factor and the
     optimum marked."""
     go = plotly_go()
@@ -147,7 +151,9 @@ def balance_factor_sweep(study: Any) -> go.Figure:
     return fig
 
 
-def _radial_hole(holes: Any, depth: float, rim: float, phi: float) -> tuple[Any, Any]:
+def _radial_hole(
+    holes: DrilledHoles, depth: float, rim: float, phi: float
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
     """Outline (x, y) [mm] of a hole drilled inward from the rim at radius ``rim`` [mm],
     at ``phi`` [rad] from straight down, seen from the side: the full diameter down to the
     shoulder, then the drill point to the tip (a flat bottom for a 180° point); ``depth``
@@ -170,16 +176,18 @@ def _radial_hole(holes: Any, depth: float, rim: float, phi: float) -> tuple[Any,
     return x, y
 
 
-def drilling_plan(result: Any, crank_radius: float) -> go.Figure:
+def drilling_plan(result: RebalanceResult, crank_radius: float) -> go.Figure:
     """The drilled holes of a rebalancing to scale (mm), one web seen along the crank axis:
     the crank axis, the crankpin centre straight up, the holes on the counterweight side
     (180 deg from the crankpin) and a schematic counterweight outline
-    (:class:`~crankbalance.physics.single_cylinder.RebalanceResult` with a
-    :class:`~crankbalance.physics.single_cylinder.DrilledHoles` correction; ``crank_radius``
+    (:class:`~crankbalance.physics.rebalancing.RebalanceResult` with a
+    :class:`~crankbalance.physics.rebalancing.DrilledHoles` correction; ``crank_radius``
     [m])."""
+    from ...physics.rebalancing import DrilledHoles
+
     go = plotly_go()
     holes = result.correction
-    if getattr(holes, "kind", "") != "holes":
+    if not isinstance(holes, DrilledHoles):
         raise InputError("correction", getattr(holes, "kind", None), "the plan draws holes")
     depth = result.iterations[-1].depth if result.iterations else 0.0
     to = depth_read_to(holes.point_angle, holes.depth_to)

@@ -9,7 +9,7 @@ Public functions
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING, Any
+from typing import TYPE_CHECKING
 
 import numpy as np
 
@@ -18,8 +18,10 @@ from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
 
+    from ...physics.torsional import TorsionalStudy
 
-def torsional_figure(study: Any) -> go.Figure:
+
+def torsional_figure(study: TorsionalStudy) -> go.Figure:
     """Campbell diagram and forced response of the crank train
     (:class:`~crankbalance.physics.torsional.TorsionalStudy`): top, the natural frequencies [Hz]
     and the engine-order lines f = n · rpm / 60 over the speed range, a marker at every

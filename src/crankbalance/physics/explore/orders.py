@@ -35,6 +35,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
+from ..kinematics import KinematicsModel
 from ..model import EngineModel, standard_layout
 from .candidates import Candidates
 
@@ -253,7 +254,12 @@ def _topology(
     t = positions.size
     if base is None:
         name = f"plain {layout} {n}"
-        scalars = (PLAIN["speed"], "exact", PLAIN["crank_radius"], PLAIN["rod_length"])
+        scalars: tuple[float, KinematicsModel, float, float] = (
+            PLAIN["speed"],
+            "exact",
+            PLAIN["crank_radius"],
+            PLAIN["rod_length"],
+        )
         rot = np.full(t, PLAIN["throw_rotating_mass"])
         rec = np.full(n, PLAIN["reciprocating_mass"])
         offset, axial, big_end = np.zeros(n), np.zeros(n), np.zeros(n)
@@ -288,7 +294,7 @@ def _topology(
     return EngineModel(
         name=name,
         speed=float(speed),
-        kinematics=str(kinematics),
+        kinematics=kinematics,
         crank_radius=float(radius),
         rod_length=float(rod),
         strokes=strokes,
