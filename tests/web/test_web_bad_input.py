@@ -13,7 +13,8 @@ from nicegui.testing.user_simulation import user_simulation
 
 from crankbalance.io.engine_file import preset_text
 from crankbalance.web.app import root
-from crankbalance.web.project import FIELDS, MAX_BYTES, SETTINGS_TAG
+from crankbalance.web.form import FIELDS
+from crankbalance.web.project import MAX_BYTES, SETTINGS_TAG
 
 pytestmark = pytest.mark.anyio
 

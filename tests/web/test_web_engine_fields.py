@@ -22,7 +22,8 @@ from nicegui.testing.user import User
 
 from crankbalance.io.engine_file import load_engine
 from crankbalance.studies.engine import analyze
-from crankbalance.web.project import DETAIL_FIELDS, FIELD_BY_KEY, Project
+from crankbalance.web.form import DETAIL_FIELDS, FIELD_BY_KEY
+from crankbalance.web.project import Project
 
 from .conftest import DRAWN
 
@@ -118,12 +119,12 @@ def test_rod_positions_scale_the_rocking_couple() -> None:
         ("ducati-916", "rod_positions", "-10 mm", "needs one length per cylinder: 2"),
         ("ducati-916", "rod_positions", "-10 mm, 10", "a length needs a unit"),
         ("ducati-916", "bank_offsets", "1 mm", "needs one offset per bank: 2"),
-        ("radial9-r985", "link_rod_length", "100 mm", "must exceed crank radius plus link pin"),
+        ("radial9-r985", "link_rod_length", "100 mm", "plus link-pin radius"),
         ("radial9-r985", "link_pin_angles", "0 deg, 40 deg", "needs one angle per cylinder (9)"),
         ("radial9-r985", "master_cylinder", "12", "must be a cylinder number 1..9"),
-        ("inline4", "bank_offsets", "1 mm, 1 mm", "give bore offset of each cylinder"),
+        ("inline4", "bank_offsets", "1 mm, 1 mm", "give cylinder offsets"),
         ("w12-vw", "vr_angle", "100 deg", "must lie in (0, 90] deg"),
-        ("w12-vw", "bank_offsets", "1 mm, 1 mm, 1 mm", "give bore offset of the VR rows"),
+        ("w12-vw", "bank_offsets", "1 mm, 1 mm, 1 mm", "give rows' bore offset"),
         ("vr6", "pin_split", "200 deg", "must lie in [0, 180) deg"),
         ("vr6", "bore_offset", "130 mm", "leaves no rod"),
     ],
@@ -180,8 +181,8 @@ def test_both_kinds_of_offset_refused_together() -> None:
     project.set("bank_offsets", "1 mm, 1 mm")
     errors = project.set("cylinder_offsets", "0 mm, 2 mm")
     assert errors == {
-        "cylinder_offsets": "Bore offset of each cylinder = 0 mm, 2 mm: give either bore "
-        "offset of each bank or bore offset of each cylinder, not both"
+        "cylinder_offsets": "Cylinder offsets = 0 mm, 2 mm: give either bank offsets or "
+        "cylinder offsets, not both"
     }
 
 

@@ -524,6 +524,14 @@ def _value(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str |
         raise InputError(name(path), error.value, error.allowed) from None
 
 
+def parse_value(spec: Field, raw: Any, where: str, *, source: Source = "text") -> Any:
+    """One value of the field ``spec`` as written (a form's text by default) -> the value
+    the field holds, checked as :meth:`Schema.parse` checks it (kind, unit, range, list
+    size); a refusal is an :class:`InputError` naming ``where`` (a list's entries too).
+    Checks across fields are the schema's :meth:`Schema.check`, not made here."""
+    return _value(spec, raw, source, lambda _path: where, ())
+
+
 #: the field of a refusal before it is named (:func:`_value` names it)
 _HERE = "\x00field"
 

@@ -157,6 +157,7 @@ class Articulated(_EngineTable):
         default=1,
         ge=1,
         title="Master cylinder",
+        hint="master-and-link rods (empty: 1)",
         description="Number of the cylinder the master rod drives; its rod is "
         "crank_train.rod_length.",
     )
@@ -164,6 +165,8 @@ class Articulated(_EngineTable):
         "length",
         ge=0,
         title="Link-pin radius",
+        hint="link pins from the master's big-end centre, e.g. 56 mm (empty with the link rod "
+        "length: each rod on the pin)",
         description="Distance of every link (knuckle) pin from the centre of the master rod's big "
         "end (0 gives the simple model).",
     )
@@ -171,6 +174,7 @@ class Articulated(_EngineTable):
         "length",
         gt=0,
         title="Link-rod length",
+        hint="centre distance of each link rod, e.g. 198 mm",
         description="Centre distance of every link rod, link pin to wrist pin; longer than crank "
         "radius plus link pin radius plus offset.",
     )
@@ -180,6 +184,8 @@ class Articulated(_EngineTable):
         item=entry("angle", zero=True),
         max_items=MAX_CYLINDERS,
         title="Link-pin angles",
+        hint="one per cylinder from the master rod's axis, the master's 0 deg (empty: each "
+        "cylinder's angle from the master)",
         description="One angle per cylinder (the master's 0 deg): the angle of that cylinder's link"
         " pin from the master rod's axis, in the sense of rotation; default the angle "
         "between the cylinder and the master cylinder, (k − m)·360°/n.",
@@ -303,6 +309,7 @@ class CrankTrain(_EngineTable):
         default=None,
         choices=W_TYPES,
         title="Kind of W",
+        hint="broad-arrow: three banks on each pin; vr: two VR banks (empty: broad-arrow)",
         description="Layout w only: broad-arrow (three banks, the default) or vr (two VR banks, "
         "VW's W8/W12/W16).",
     )
@@ -311,6 +318,7 @@ class CrankTrain(_EngineTable):
         default=None,
         zero=True,
         title="VR angle",
+        hint="narrow angle between the rows of each VR bank, e.g. 15 deg",
         description="W from VR banks only (required there): the narrow angle between the two rows "
         "of each VR bank, (0, 90°].",
     )
@@ -319,6 +327,7 @@ class CrankTrain(_EngineTable):
         default=0.0,
         zero=True,
         title="Rows' bore offset",
+        hint="each row's bore axes from the crank axis, e.g. 12.5 mm (empty: 0 mm)",
         description="VR and W from VR banks only: distance of each row's bore axes from the crank "
         "axis, positive when the two rows' axes meet beyond the crank axis (away from "
         "the head), as in every VR.",
@@ -328,6 +337,7 @@ class CrankTrain(_EngineTable):
         default=None,
         zero=True,
         title="Pin split",
+        hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
         description="VR and W from VR banks only: angle between the two rows' crankpins as the "
         "maker gives it, [0, 180°); default: the split even firing needs.",
     )
@@ -337,6 +347,7 @@ class CrankTrain(_EngineTable):
         item=entry("length", zero=True),
         max_items=3,
         title="Bank offsets",
+        hint="one per bank (vee, boxer: 2; W: 3), e.g. 0 mm, 5 mm",
         description="vee, boxer (2 banks) and W (3 banks) only: the bore offset of each bank, one "
         "length per bank, added to pin_offset + crank_offset for the cylinders of that "
         "bank (banks as numbered below; not with VR rows, which take bore_offset).",
@@ -347,6 +358,7 @@ class CrankTrain(_EngineTable):
         item=entry("length", zero=True),
         max_items=MAX_CYLINDERS,
         title="Cylinder offsets",
+        hint="one per cylinder, e.g. 0 mm, 2 mm, 0 mm (not with the offsets per bank)",
         description="Any layout: the bore offset of each cylinder, one length per cylinder, added "
         "to pin_offset + crank_offset (not together with bank_offsets).",
     )
@@ -360,13 +372,16 @@ class CrankTrain(_EngineTable):
         "throw's mid-plane along +y, one length per cylinder (side-by-side rods on a "
         "shared pin; a single rod off its throw's centre); default all 0 "
         "(knife-and-fork or master rods: all in the mid-plane).",
-        hint="one per cylinder, e.g. -10 mm, 10 mm",
+        hint="one per cylinder from the throw's mid-plane, e.g. -10 mm, 10 mm "
+        "(side-by-side rods; empty: all 0)",
     )
     numbering: str | None = field(
         "text",
         default=None,
         max_chars=MAX_NUMBERING_CHARS,
         title="Maker's numbering",
+        hint="the firing order is then written in the maker's cylinder numbers (e.g. "
+        "porsche-boxer: 1, 6, 2, 4, 3, 5; empty: crankbalance's numbering)",
         description="The maker's numbering firing_order is written in: porsche-boxer, gm-vee or "
         "ford-vee (see Makers' numbering).",
         words="the name of a numbering scheme: porsche-boxer, gm-vee or ford-vee",
@@ -377,6 +392,8 @@ class CrankTrain(_EngineTable):
         item=entry("whole"),
         max_items=MAX_CYLINDERS,
         title="Maker's cylinder numbers",
+        hint="crankbalance's number of each of the maker's cylinders, e.g. 5, 1, 6, 2, 7, 3, "
+        "8, 4; the firing order is then in the maker's numbers (empty: none)",
         description="Any layout, instead of numbering: crankbalance's number of each of the maker's"
         " cylinders 1, 2, ..., n (a permutation of 1..n).",
     )
@@ -385,6 +402,7 @@ class CrankTrain(_EngineTable):
         default=0.0,
         zero=True,
         title="Moment reference",
+        hint="point moments are taken about, from the crank's mid-point (empty: 0 mm)",
         description="The point moments are taken about, along +y from the crank's mid-point (e.g. "
         "the engine's centre of mass or mount centre).",
     )
@@ -671,6 +689,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Piston",
+        hint="with rings, e.g. 500 g",
         description="Piston with rings and clips.",
     )
     wrist_pin: float | None = field(
@@ -694,6 +713,7 @@ class _MassFields(_EngineTable):
         ge=0.0,
         le=1.0,
         title="Conrod rotating share",
+        hint="0..1, e.g. 0.6667",
         description="Share of the conrod's mass at the big end, 0..1.",
     )
     conrod_cg_from_big_end: float | None = field(
@@ -701,6 +721,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Conrod CG from the big end",
+        hint="e.g. 45 mm",
         description="Distance of the conrod's centre of gravity from the big-end centre (instead of"
         " conrod_rotating_fraction).",
     )
@@ -709,6 +730,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Conrod inertia",
+        hint="about its CG; optional, e.g. 2000 kg*mm^2",
         description="The conrod's moment of inertia about its CG: the analysis reports the error of"
         " the two-mass split against it.",
     )
@@ -724,6 +746,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Crank web",
+        hint="each of the two webs of a throw",
         description="Each of the two webs of a throw, reduced to the crank radius with "
         "crank_web_cg_radius: 2·m_web·r_web/r.",
     )
@@ -739,6 +762,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Reciprocating mass",
+        hint="per cylinder",
         description="Total per cylinder (instead of piston, wrist pin and conrod share).",
     )
     rotating: float | None = field(
@@ -746,6 +770,7 @@ class _MassFields(_EngineTable):
         default=None,
         ge=0,
         title="Rotating mass",
+        hint="per throw, big ends included",
         description="Total per throw, all big ends on the pin included (instead of crankpin and "
         "webs).",
     )

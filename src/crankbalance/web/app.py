@@ -25,8 +25,10 @@ from nicegui import run, ui
 from ..errors import InputError
 from ..io.engine_file import list_presets
 from . import pool, studies
+from .computation import Computed
 from .exports import table_csv
-from .project import FIELD_BY_KEY, MAX_BYTES, Computed, FormField, Project, label_of, read_text
+from .form import FIELD_BY_KEY, FormField, key_label
+from .project import MAX_BYTES, Project, read_text
 from .tab_counterweight import CounterweightTab
 from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
@@ -40,6 +42,8 @@ from .tab_single import SingleTab
 from .widgets import Tab, send_download
 
 log = logging.getLogger("crankbalance.web")
+#: the preset a page opens on unless the server is given another (``crankbalance web
+#: --preset``, :func:`page_root`) or the address names one (``/?preset=v8-crossplane``)
 DEFAULT_PRESET = "paper-inline3"
 TABS = (
     ("engine", "Engine"),
@@ -113,27 +117,39 @@ BUSY_JS = """
 """
 
 
-def warm_up() -> None:
-    """Compute the default engine and build its 3-D crank once (the server runs this in the
-    background as it starts): the first page of a fresh server would otherwise wait for the
-    imports of the physics and of plotly's figure classes (about 0.6 s of a first load on
-    an idle machine, seconds on a busy one)."""
+def warm_up(preset: str = DEFAULT_PRESET) -> None:
+    """Compute the server's default engine ``preset`` and build its 3-D crank once (the
+    server runs this in the background as it starts): the first page of a fresh server
+    would otherwise wait for the imports of the physics and of plotly's figure classes
+    (about 0.6 s of a first load on an idle machine, seconds on a busy one)."""
     from ..output.figures.crank3d import crank_3d
 
-    c = Project.from_preset(DEFAULT_PRESET).compute()
+    c = Project.from_preset(preset).compute()
     if c is not None:
         crank_3d(c.analysis.model, c.study).to_plotly_json()
 
 
 def root(preset: str | None = None) -> None:
-    """The page: ``/`` or ``/?preset=v8-crossplane``."""
+    """The page: ``/`` or ``/?preset=v8-crossplane`` (on :data:`DEFAULT_PRESET`)."""
     Page(preset).build()
 
 
-class Page:
-    """One client's page and project."""
+def page_root(default_preset: str) -> Callable[[str | None], None]:
+    """The page of a server whose pages open on ``default_preset``: :func:`root` with
+    that default, passed to each page (and its tabs' context), no module state."""
 
-    def __init__(self, preset: str | None) -> None:
+    def root(preset: str | None = None) -> None:
+        Page(preset, default_preset).build()
+
+    return root
+
+
+class Page:
+    """One client's page and project; to its tabs, their context (it implements
+    :class:`~.context.TabContext`: the tabs are given the page and see that much of it)."""
+
+    def __init__(self, preset: str | None, default_preset: str = DEFAULT_PRESET) -> None:
+        self.default_preset = default_preset
         self.project = Project()
         self.inputs: dict[str, Any] = {}
         self.setting_inputs: dict[str, Any] = {}
@@ -160,13 +176,13 @@ class Page:
         #: the study of this page running in a worker process (one at a time), if any
         self.job: pool.Job | None = None
         message = ""
-        name = preset or DEFAULT_PRESET
+        name = preset or default_preset
         try:
             self.project = Project.from_preset(name)
         except InputError as error:
-            message = f"{error}; loaded {DEFAULT_PRESET} instead"
-            self.project = Project.from_preset(DEFAULT_PRESET)
-            name = DEFAULT_PRESET
+            message = f"{error}; loaded {default_preset} instead"
+            self.project = Project.from_preset(default_preset)
+            name = default_preset
         self.preset_name: str | None = name
         self.startup_message = message
 
@@ -497,9 +513,7 @@ class Page:
     def problem(self) -> str:
         """Why the form cannot be computed: the messages of the fields (by their label) and
         the general one."""
-        lines = [
-            f"{FIELD_BY_KEY[key].label}: {message}" for key, message in self.project.errors.items()
-        ]
+        lines = [f"{key_label(key)}: {message}" for key, message in self.project.errors.items()]
         if self.project.general_error:
             lines.append(self.project.general_error)
         return "; ".join(lines) or "the engine could not be computed"
@@ -512,10 +526,8 @@ class Page:
             self.status.set_text(f"Results of: {c.spec.name}")
             state = "current"
         else:
-            fields = ", ".join(
-                FIELD_BY_KEY[key].label if key in FIELD_BY_KEY else label_of(key)
-                for key in self.project.errors
-            )  # a crank-editor cell (throw.0.position, override.0.value) by its words
+            # a form field by its label, a crank-editor cell (override.0.value) by its words
+            fields = ", ".join(key_label(key) for key in self.project.errors)
             self.status.set_text(
                 f"Not computed: see {fields}" if fields else "Not computed: see the message above"
             )

@@ -17,10 +17,10 @@ from typing import TYPE_CHECKING, Any
 from nicegui import ui
 
 from ..schema.engine import throw_count
-from .project import MASS_FIELDS
+from .form import MASS_FIELDS
 
 if TYPE_CHECKING:
-    from .app import Page
+    from .context import TabContext
 
 #: mass fields an override may change, with their labels
 OVERRIDE_MASSES = {f.key: f.label for f in MASS_FIELDS}
@@ -39,7 +39,7 @@ def _mm(metres: float) -> str:
 class CrankEditor:
     """Rows of inputs for the crank and the mass overrides of ``page.project``."""
 
-    def __init__(self, page: Page) -> None:
+    def __init__(self, page: TabContext) -> None:
         self.page = page
         self.cells: dict[str, Any] = {}
         self.notes: dict[str, Any] = {}

@@ -16,7 +16,7 @@ from ..errors import InputError
 from .studies import SETTING_FIELDS, worded
 
 if TYPE_CHECKING:
-    from .app import Page
+    from .context import TabContext
 
 
 #: library arguments whose value is no number the user typed (a correction's kind)
@@ -41,7 +41,7 @@ def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[
     return None, text if value is None else f"{value!r}: {text}"
 
 
-def show_error(page: Page, error: InputError, aliases: dict[str, str] | None = None) -> str:
+def show_error(page: TabContext, error: InputError, aliases: dict[str, str] | None = None) -> str:
     """Show a study's error beside its setting (and in a notification, the input may be
     scrolled away); returns the message as shown in the tab."""
     key, text = in_words(error, aliases)

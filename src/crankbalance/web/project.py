@@ -15,28 +15,31 @@ from __future__ import annotations
 import copy
 import json
 import logging
-import math
 import re
 import time
 from dataclasses import dataclass, field
-from typing import Any, Literal
+from typing import Any
 
 from ..errors import InputError
-from ..physics.firing import SCHEMES
-from ..schema.engine import (
-    LAYOUTS,
-    W_TYPES,
-    Counterweights,
-    CrankTrain,
-    EngineSpec,
-    ShaftSet,
-    spec_from_dict,
+from ..schema.core import Field, default_text, parse_value
+from ..schema.engine import EngineSpec
+from .computation import Computed
+from .form import (
+    DEFAULTS,
+    FIELD_BY_KEY,
+    FIELDS,
+    NO_SHAFTS,
+    OVERRIDE_NUMBERS,
+    THROW_ANGLE,
+    THROWS,
+    FormField,
+    cell_for,
+    field_for,
+    form_message,
+    format_value,
 )
-from ..units import parse_quantity
+from .studies import PREFIXES, setting_errors
 
-Kind = Literal[
-    "text", "quantity", "quantitylist", "int", "float", "intlist", "choice", "angle_or_optimal"
-]
 SETTINGS_TAG = "# crankbalance-web settings: "
 SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag names it
 #: largest engine file or project the web page and the API take [bytes]: an engine file is
@@ -44,466 +47,45 @@ SETTINGS_WHERE = "crankbalance-web settings"  # the settings line, as its tag na
 MAX_BYTES = 65_536
 log = logging.getLogger("crankbalance.web")
 
-
-def _choices(model: Any, name: str, first: str | None = None) -> tuple[str, ...]:
-    """The allowed values of a choice of the engine file's schema, as form options."""
-    values = [str(v) for v in model.FIELDS[name].choices]
-    if first is not None:
-        values.sort(key=lambda v: v != first)
-    return tuple(values)
-
-
-@dataclass(frozen=True)
-class FormField:
-    """One input of the form, bound to ``path`` in the engine file."""
-
-    key: str
-    path: tuple[str, ...]
-    label: str
-    kind: Kind = "quantity"
-    unit: str = "length"  # quantity kind for kind == "quantity"
-    options: tuple[str, ...] = ()
-    hint: str = ""
-    group: str = ""  # "parts", "totals", "fraction", "cg", "primary", "secondary", ...
-    #: layouts the field means something for (empty: all); shown for the others only
-    #: while it holds a value, so that a value is never dropped unseen
-    layouts: tuple[str, ...] = ()
-
-    @property
-    def dotted(self) -> str:
-        return ".".join(self.path)
-
-
-F = FormField
-ENGINE_FIELDS: tuple[FormField, ...] = (
-    F("name", ("name",), "Engine name", "text"),
-    F("layout", ("crank_train", "layout"), "Layout", "choice", options=LAYOUTS),
-    F("cylinders", ("crank_train", "cylinders"), "Cylinders", "int"),
-    F(
-        "firing_order",
-        ("crank_train", "firing_order"),
-        "Firing order",
-        "intlist",
-        hint="e.g. 1, 3, 2 (empty: cylinder order)",
-    ),
-    F(
-        "strokes",
-        ("crank_train", "strokes"),
-        "Strokes per cycle",
-        "choice",
-        options=_choices(CrankTrain, "strokes", first="4"),
-    ),
-    F(
-        "bank_angle",
-        ("crank_train", "bank_angle"),
-        "Bank angle",
-        unit="angle",
-        hint="vee / W / VR only, e.g. 90 deg",
-    ),
-    F("crank_pitch", ("crank_train", "crank_pitch"), "Crank pitch", hint="e.g. 90 mm"),
-    F("crank_radius", ("crank_train", "crank_radius"), "Crank radius", hint="e.g. 40 mm"),
-    F("rod_length", ("crank_train", "rod_length"), "Rod length", hint="e.g. 135 mm"),
-    F("pin_offset", ("crank_train", "pin_offset"), "Wrist-pin offset", hint="e.g. 0 mm"),
-    F("speed", ("speed",), "Speed", unit="speed", hint="e.g. 2000 rpm"),
-    F(
-        "kinematics",
-        ("kinematics",),
-        "Kinematics",
-        "choice",
-        options=_choices(EngineSpec, "kinematics"),
-    ),
+#: the study settings the tabs show, each its study's prefix and the schema field's name
+#: (:data:`.studies.PREFIXES`: ``cw_density`` is ``density`` of ``CounterweightOptions``)
+STUDY_SETTINGS = (
+    "orders",
+    # counterweight design
+    *("cw_density", "cw_max_mass", "cw_max_radius", "cw_min_balance"),
+    *("cw_iterations", "cw_population", "cw_seed"),
+    # single cylinder and its rebalancing
+    *("sc_cylinder", "sc_balance_factor", "sc_grade", "sc_rotor_mass", "sc_residual"),
+    *("rb_new_reciprocating", "rb_new_rotating", "rb_cw_mass", "rb_cw_radius"),
+    *("rb_hole_diameter", "rb_point_angle", "rb_depth_to", "rb_holes", "rb_hole_radius"),
+    # balance shaft
+    *("bs_length", "bs_diameter", "bs_weight", "bs_points"),
+    # performance
+    *("pf_bore", "pf_balance_factors", "pf_crank_inertia", "pf_friction_coefficient"),
+    "pf_journal_diameter",
 )
-BALANCING_FIELDS: tuple[FormField, ...] = (
-    F(
-        "cw_webs",
-        ("counterweights", "webs"),
-        "Webs with a counterweight",
-        "intlist",
-        hint="0/1, two per throw, e.g. 1, 1, 0, 0, 1, 1 (empty: all)",
-        group="cw",
-    ),
-    F(
-        "cw_cg_radius",
-        ("counterweights", "cg_radius"),
-        "Counterweight CG radius",
-        hint="e.g. 30 mm (empty: no counterweight table, defaults)",
-        group="cw",
-    ),
-    F(
-        "cw_angle",
-        ("counterweights", "angle"),
-        "Counterweight angle",
-        "angle_or_optimal",
-        hint="e.g. 30 deg, or optimal",
-        group="cw",
-    ),
-    F(
-        "cw_balance_factor",
-        ("counterweights", "balance_factor"),
-        "Balance factor",
-        "float",
-        hint="0..2, share of the primary reciprocating force",
-        group="cw",
-    ),
-    F(
-        "cw_method",
-        ("counterweights", "method"),
-        "Counterweight method",
-        "choice",
-        options=_choices(Counterweights, "method"),
-        group="cw",
-    ),
-    F(
-        "primary_arrangement",
-        ("balance_shafts", "primary", "arrangement"),
-        "Primary shafts",
-        "choice",
-        options=("none", *_choices(ShaftSet, "arrangement")),
-        group="primary",
-    ),
-    F(
-        "primary_cg_radius",
-        ("balance_shafts", "primary", "cg_radius"),
-        "Primary shaft CG radius",
-        hint="e.g. 30 mm",
-        group="primary",
-    ),
-    F(
-        "primary_length",
-        ("balance_shafts", "primary", "length"),
-        "Primary shaft length",
-        hint="e.g. 200 mm",
-        group="primary",
-    ),
-    F(
-        "secondary_arrangement",
-        ("balance_shafts", "secondary", "arrangement"),
-        "Secondary shafts",
-        "choice",
-        options=("none", *_choices(ShaftSet, "arrangement")),
-        group="secondary",
-    ),
-    F(
-        "secondary_cg_radius",
-        ("balance_shafts", "secondary", "cg_radius"),
-        "Secondary shaft CG radius",
-        hint="e.g. 30 mm",
-        group="secondary",
-    ),
-    F(
-        "secondary_length",
-        ("balance_shafts", "secondary", "length"),
-        "Secondary shaft length",
-        hint="e.g. 200 mm",
-        group="secondary",
-    ),
-)
-#: the crank train's details beyond the general fields: offsets per bank or cylinder, rod
-#: positions on shared pins, the moment reference and a radial's master-and-link rods
-DETAIL_FIELDS: tuple[FormField, ...] = (
-    F(
-        "w_type",
-        ("crank_train", "w_type"),
-        "W type",
-        "choice",
-        options=W_TYPES,
-        hint="broad-arrow: three banks on each pin; vr: two VR banks (empty: broad-arrow)",
-        layouts=("w",),
-    ),
-    F(
-        "vr_angle",
-        ("crank_train", "vr_angle"),
-        "VR angle",
-        unit="angle",
-        hint="narrow angle between the rows of each VR bank, e.g. 15 deg",
-        group="w-vr",
-        layouts=("w",),
-    ),
-    F(
-        "bore_offset",
-        ("crank_train", "bore_offset"),
-        "Bore offset of the VR rows",
-        hint="each row's bore axes from the crank axis, e.g. 12.5 mm (empty: 0 mm)",
-        group="vr-rows",
-        layouts=("vr", "w"),
-    ),
-    F(
-        "pin_split",
-        ("crank_train", "pin_split"),
-        "Pin split of the VR rows",
-        unit="angle",
-        hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
-        group="vr-rows",
-        layouts=("vr", "w"),
-    ),
-    F(
-        "numbering",
-        ("crank_train", "numbering"),
-        "Maker's numbering",
-        "choice",
-        options=tuple(SCHEMES),
-        hint="the firing order is then written in the maker's cylinder numbers "
-        "(e.g. porsche-boxer: 1, 6, 2, 4, 3, 5; empty: crankbalance's numbering)",
-        layouts=("vee", "boxer"),
-    ),
-    F(
-        "maker_numbers",
-        ("crank_train", "maker_numbers"),
-        "Maker's numbers",
-        "intlist",
-        hint="crankbalance's number of each of the maker's cylinders, e.g. 5, 1, 6, 2, 7, "
-        "3, 8, 4; the firing order is then in the maker's numbers (empty: none)",
-    ),
-    F(
-        "bank_offsets",
-        ("crank_train", "bank_offsets"),
-        "Bore offset of each bank",
-        "quantitylist",
-        hint="one per bank (vee, boxer: 2; W: 3), e.g. 0 mm, 5 mm",
-        layouts=("vee", "boxer", "w"),
-        group="banks",
-    ),
-    F(
-        "cylinder_offsets",
-        ("crank_train", "cylinder_offsets"),
-        "Bore offset of each cylinder",
-        "quantitylist",
-        hint="one per cylinder, e.g. 0 mm, 2 mm, 0 mm (not with the offsets per bank)",
-    ),
-    F(
-        "rod_positions",
-        ("crank_train", "rod_positions"),
-        "Rod positions on the pin",
-        "quantitylist",
-        hint="one per cylinder from the throw's mid-plane, e.g. -10 mm, 10 mm "
-        "(side-by-side rods; empty: all 0)",
-        layouts=("vee", "boxer", "w", "radial", "custom"),
-    ),
-    F(
-        "moment_reference",
-        ("crank_train", "moment_reference"),
-        "Moment reference",
-        hint="point moments are taken about, from the crank's mid-point (empty: 0 mm)",
-    ),
-    F(
-        "master_cylinder",
-        ("crank_train", "articulated", "master_cylinder"),
-        "Master rod's cylinder",
-        "int",
-        hint="master-and-link rods (empty: 1)",
-        group="articulated",
-        layouts=("radial",),
-    ),
-    F(
-        "link_pin_radius",
-        ("crank_train", "articulated", "link_pin_radius"),
-        "Link pin radius",
-        hint="link pins from the master's big-end centre, e.g. 56 mm "
-        "(empty with the link rod length: each rod on the pin)",
-        group="articulated",
-        layouts=("radial",),
-    ),
-    F(
-        "link_rod_length",
-        ("crank_train", "articulated", "link_rod_length"),
-        "Link rod length",
-        hint="centre distance of each link rod, e.g. 198 mm",
-        group="articulated",
-        layouts=("radial",),
-    ),
-    F(
-        "link_pin_angles",
-        ("crank_train", "articulated", "link_pin_angles"),
-        "Link pin angles",
-        "quantitylist",
-        unit="angle",
-        hint="one per cylinder from the master rod's axis, the master's 0 deg "
-        "(empty: each cylinder's angle from the master)",
-        group="articulated",
-        layouts=("radial",),
-    ),
-)
-MASS_FIELDS: tuple[FormField, ...] = (
-    F(
-        "piston",
-        ("masses", "piston"),
-        "Piston (with rings)",
-        unit="mass",
-        hint="e.g. 500 g",
-        group="parts",
-    ),
-    F("wrist_pin", ("masses", "wrist_pin"), "Wrist pin", unit="mass", group="parts"),
-    F("conrod", ("masses", "conrod"), "Conrod", unit="mass", group="parts"),
-    F(
-        "conrod_rotating_fraction",
-        ("masses", "conrod_rotating_fraction"),
-        "Conrod rotating fraction",
-        "float",
-        hint="0..1, e.g. 0.6667",
-        group="fraction",
-    ),
-    F(
-        "conrod_cg_from_big_end",
-        ("masses", "conrod_cg_from_big_end"),
-        "Conrod CG from big end",
-        hint="e.g. 45 mm",
-        group="cg",
-    ),
-    F(
-        "conrod_inertia",
-        ("masses", "conrod_inertia"),
-        "Conrod inertia about its CG",
-        unit="inertia",
-        hint="optional, e.g. 2000 kg*mm^2",
-        group="parts",
-    ),
-    F("crankpin", ("masses", "crankpin"), "Crankpin", unit="mass", group="parts"),
-    F("crank_web", ("masses", "crank_web"), "Crank web (each)", unit="mass", group="parts"),
-    F(
-        "crank_web_cg_radius",
-        ("masses", "crank_web_cg_radius"),
-        "Crank web CG radius",
-        group="parts",
-    ),
-    F(
-        "reciprocating",
-        ("masses", "reciprocating"),
-        "Reciprocating mass per cylinder",
-        unit="mass",
-        group="totals",
-    ),
-    F(
-        "rotating",
-        ("masses", "rotating"),
-        "Rotating mass per throw (big ends incl.)",
-        unit="mass",
-        group="totals",
-    ),
-)
-FIELDS: tuple[FormField, ...] = ENGINE_FIELDS + DETAIL_FIELDS + BALANCING_FIELDS + MASS_FIELDS
-FIELD_BY_KEY: dict[str, FormField] = {f.key: f for f in FIELDS}
-FIELD_BY_PATH: dict[str, FormField] = {f.dotted: f for f in FIELDS}
-DEFAULTS: dict[str, str] = {
-    "strokes": "4",
-    "kinematics": "exact",
-    "cw_method": "pattern",
-    "primary_arrangement": "none",
-    "secondary_arrangement": "none",
-    "layout": "inline",
-}
+#: the web's own starting values where they differ from the schema's default: the
+#: counterweight optimiser starts with a smaller, seeded run than the command line's (a
+#: page answers in seconds, and the same run gives the same design)
+WEB_DEFAULTS = {"cw_iterations": "12", "cw_population": "1024", "cw_seed": "1"}
 
-#: settings of the study tabs (saved with the project as a comment line of the engine file)
+
+def _schema_default(key: str) -> str:
+    """The schema's default of a study setting, as typed ("" for none)."""
+    prefix = max((p for p in PREFIXES if key.startswith(p)), key=len)
+    return default_text(PREFIXES[prefix].FIELDS[key[len(prefix) :]])
+
+
+#: settings of the page and the study tabs (saved with the project as a comment line of
+#: the engine file): the page's own modes, then every study setting with its schema's
+#: default (or the web's, :data:`WEB_DEFAULTS`)
 DEFAULT_SETTINGS: dict[str, Any] = {
     "mass_mode": "parts",  # parts | totals
     "conrod_split": "cg",  # fraction | cg
-    "orders": 8,
     "curve_quantity": "force",
     "polar_order": 1,
-    # counterweight design
-    "cw_density": "8000 kg/m^3",
-    "cw_max_mass": "",
-    "cw_max_radius": "",
-    "cw_min_balance": "100",
-    "cw_iterations": "12",
-    "cw_population": "1024",
-    "cw_seed": "1",
-    # single cylinder
-    "sc_cylinder": "1",
-    "sc_balance_factor": "0.5",
-    "sc_grade": "G6.3",
-    "sc_rotor_mass": "",
-    "sc_residual": "",
-    "rb_new_reciprocating": "",
-    "rb_new_rotating": "",
-    "rb_cw_mass": "",
-    "rb_cw_radius": "",
-    "rb_hole_diameter": "8 mm",
-    "rb_point_angle": "180 deg",
-    "rb_depth_to": "tip",
-    "rb_holes": "1",
-    "rb_hole_radius": "",
-    # balance shaft
-    "bs_length": "300 mm",
-    "bs_diameter": "25 mm",
-    "bs_weight": "2",
-    "bs_points": "41",
-    # performance
-    "pf_bore": "",
-    "pf_balance_factors": "0, 0.25, 0.5, 0.75, 1",
-    "pf_crank_inertia": "",
-    "pf_friction_coefficient": "0.005",
-    "pf_journal_diameter": "30 mm",
+    **{key: WEB_DEFAULTS.get(key, _schema_default(key)) for key in STUDY_SETTINGS},
 }
-
-
-def _format_value(value: Any) -> str:
-    if isinstance(value, list):
-        return ", ".join(str(v) for v in value)
-    if isinstance(value, float):
-        return f"{value:g}"
-    return str(value)
-
-
-def check_field(f: FormField, text: str) -> Any:
-    """Parse the text of one field on its own; raise InputError naming the field."""
-    text = text.strip()
-    where = f.dotted
-    if f.kind == "text":
-        return text
-    if f.kind == "choice":
-        if text not in f.options:
-            raise InputError(where, text, f"must be one of {', '.join(f.options)}")
-        return int(text) if f.key == "strokes" else text
-    if f.kind == "int":
-        try:
-            return int(text)
-        except ValueError:
-            raise InputError(where, text, "must be a whole number, e.g. 3") from None
-    if f.kind == "float":
-        try:
-            value = float(text)
-        except ValueError:
-            raise InputError(where, text, "must be a number, e.g. 0.5") from None
-        if not math.isfinite(value):
-            raise InputError(where, text, "must be a finite number")
-        return value
-    if f.kind == "intlist":
-        parts = [p for p in text.replace(";", ",").replace(" ", ",").split(",") if p]
-        try:
-            return [int(p) for p in parts]
-        except ValueError:
-            raise InputError(
-                where, text, "must be whole numbers separated by commas, e.g. 1, 3, 2"
-            ) from None
-    if f.kind == "quantitylist":
-        parts = [p.strip() for p in text.replace(";", ",").split(",") if p.strip()]
-        example = "0 deg, 40 deg, 80 deg" if f.unit == "angle" else "-10 mm, 10 mm"
-        for part in parts:
-            try:
-                parse_quantity(part, f.unit, where)
-            except InputError as error:
-                raise InputError(
-                    where, part, f"{error.allowed}; give them separated by commas, e.g. {example}"
-                ) from None
-        return parts
-    if f.kind == "angle_or_optimal":
-        if text.lower() == "optimal":
-            return "optimal"
-        parse_quantity(text, "angle", where)
-        return text
-    parse_quantity(text, f.unit, where)
-    return text
-
-
-@dataclass
-class Computed:
-    """The results of one computation (None where a study failed)."""
-
-    spec: EngineSpec
-    analysis: Any
-    study: Any
-    elapsed: float
-    error: str = ""
 
 
 @dataclass
@@ -558,7 +140,7 @@ class Project:
         for f in FIELDS:
             value = _pop_path(extras, f.path)
             if value is not None:
-                texts[f.key] = _format_value(value)
+                texts[f.key] = format_value(value)
         train = extras.get("crank_train", {})
         angles = train.pop("throw_angles", None)
         throws = train.pop("throw", [])
@@ -571,7 +153,7 @@ class Project:
             table = data.get("balance_shafts", {}).get(name)
             if table is not None and f"{name}_arrangement" not in texts:
                 texts[f"{name}_arrangement"] = "pair"
-            if table is not None and texts.get(f"{name}_arrangement") == "none":
+            if table is not None and texts.get(f"{name}_arrangement") == NO_SHAFTS:
                 texts[f"{name}_arrangement"] = "pair"
         new_settings = dict(DEFAULT_SETTINGS)
         new_settings["mass_mode"] = "parts" if "piston" in masses else "totals"
@@ -591,9 +173,9 @@ class Project:
         self.overrides = [
             {
                 "target": "cylinders" if "cylinders" in item else "throws",
-                "numbers": _format_value(item.get("cylinders", item.get("throws", []))),
+                "numbers": format_value(item.get("cylinders", item.get("throws", []))),
                 "mass": key,
-                "value": _format_value(value),
+                "value": format_value(value),
             }
             for item in overrides
             for key, value in item.items()
@@ -629,7 +211,7 @@ class Project:
         if f.group in ("fraction", "cg") and s["conrod_split"] != f.group:
             return False
         if f.group in ("primary", "secondary") and not f.key.endswith("arrangement"):
-            return self.texts.get(f"{f.group}_arrangement", "none") != "none"
+            return self.texts.get(f"{f.group}_arrangement", NO_SHAFTS) != NO_SHAFTS
         return True
 
     def _means_something(self, f: FormField) -> bool:
@@ -653,16 +235,16 @@ class Project:
             text = self.texts.get(f.key, "").strip()
             if not self.active(f) or not text:
                 continue
-            if (f.key.endswith("_arrangement") and text == "none") or (
-                f.key == "cw_method" and text == "pattern"
+            if (f.key.endswith("_arrangement") and text == NO_SHAFTS) or (
+                f.key == "cw_method" and text == f.default
             ):
                 continue  # no shaft set / the default method needs no counterweight table
             try:
-                value = check_field(f, text)
+                f.check(text)
             except InputError as error:
                 errors[f.key] = self.message(error)
                 continue
-            _set_path(data, f.path, value)
+            _set_path(data, f.path, text)
         self._editor_dict(data, errors)
         return data, errors
 
@@ -670,44 +252,36 @@ class Project:
         """Put the crank editor's tables into the engine-file dictionary ``data``; the
         errors of single cells go to ``errors`` under the cell's key (``throw.2.banks``)."""
 
-        def angle(text: str, key: str) -> str:
+        def cell(spec: Field, text: str, key: str) -> str:
             try:
-                parse_quantity(text.strip(), "angle", key)
+                parse_value(spec, text.strip(), key)
             except InputError as error:
                 errors[key] = self.message(error)
             return text.strip()
 
         custom = self.texts.get("layout") == "custom"
         if self.throw_angles is not None and not custom:
-            angles = [angle(a, f"throw_angles.{k}") for k, a in enumerate(self.throw_angles)]
+            angles = [
+                cell(THROW_ANGLE, a, f"throw_angles.{k}") for k, a in enumerate(self.throw_angles)
+            ]
             _set_path(data, ("crank_train", "throw_angles"), angles)
         if custom and self.throws:
-            throws = []
-            for k, row in enumerate(self.throws):
-                try:
-                    parse_quantity(row["position"].strip(), "length", f"throw.{k}.position")
-                except InputError as error:
-                    errors[f"throw.{k}.position"] = self.message(error)
-                banks = [b for b in row["banks"].replace(";", ",").split(",") if b.strip()]
-                throws.append(
-                    {
-                        "position": row["position"].strip(),
-                        "angle": angle(row["angle"], f"throw.{k}.angle"),
-                        "banks": [angle(b, f"throw.{k}.banks") for b in banks],
-                    }
-                )
+            throws = [
+                {part: cell(spec, row[part], f"throw.{k}.{part}") for part, spec in THROWS}
+                for k, row in enumerate(self.throws)
+            ]
             _set_path(data, ("crank_train", "throw"), throws)
         items = []
         for k, row in enumerate(self.overrides):
-            numbers = F(f"override.{k}.numbers", ("override", str(k), "numbers"), "", "intlist")
+            where = f"override.{k}.numbers"
             try:
-                targets = check_field(numbers, row["numbers"])
-                value = check_field(FIELD_BY_KEY[row["mass"]], row["value"])
+                targets = parse_value(OVERRIDE_NUMBERS, row["numbers"].strip(), where)
+                FIELD_BY_KEY[row["mass"]].check(row["value"])
             except InputError as error:
-                part = "numbers" if error.field == numbers.key else "value"
+                part = "numbers" if error.field == where else "value"
                 errors[f"override.{k}.{part}"] = self.message(error)
                 continue
-            items.append({row["target"]: targets, row["mass"]: value})
+            items.append({row["target"]: targets, row["mass"]: row["value"].strip()})
         if self.overrides:
             _set_path(data, ("masses", "override"), items)
 
@@ -718,7 +292,7 @@ class Project:
         self.spec = None
         if not errors:
             try:
-                self.spec = spec_from_dict(data)
+                self.spec = EngineSpec.parse(data, source="text")
             except InputError as error:
                 key = self.key_for(error.field)
                 if key is not None:
@@ -740,7 +314,7 @@ class Project:
         """The counterweight CG radius offered from the engine's geometry:
         :data:`CW_CG_SHARE` of the crank radius (None while the crank radius is not valid)."""
         try:
-            radius = parse_quantity(self.texts.get("crank_radius", "").strip(), "length", "r")
+            radius = FIELD_BY_KEY["crank_radius"].check(self.texts.get("crank_radius", ""))
         except InputError:
             return None
         return f"{round(CW_CG_SHARE * radius * 1e3, 2):g} mm" if radius > 0 else None
@@ -751,7 +325,7 @@ class Project:
 
     def key_for(self, dotted: str) -> str | None:
         """The key of the form field or crank-editor cell an InputError's field belongs to."""
-        cell = _cell_for(dotted)
+        cell = cell_for(dotted)
         if cell is not None:
             return cell
         f = self.field_for(dotted)
@@ -759,7 +333,7 @@ class Project:
 
     def field_for(self, dotted: str) -> FormField | None:
         """The visible form field an InputError belongs to (None: a general message)."""
-        f = _field_for(dotted)
+        f = field_for(dotted)
         if f is not None and self.active(f):
             return f
         if dotted.split(".")[0].split("[")[0] == "masses":
@@ -855,123 +429,6 @@ def parse_untrusted(text: str, source: str, fmt: str) -> EngineSpec:
 CW_CG_SHARE = 0.75
 CW_CG_WORDS = "3/4 of the crank radius, as the 2021 paper's 30 mm for 40 mm"
 
-# --------------------------------------------------------------------------- messages
-_CELL = re.compile(
-    r"crank_train\.(throw_angles)\[(\d+)\]|crank_train\.(throw)\[(\d+)\]\.?(\w*)"
-    r"|masses\.(override)\[(\d+)\]\.?(\w*)"
-)
-#: words of keys that have no field of their own in the form
-_KEY_WORDS = {
-    "crank_train.throw_angles": "Throw angles (crank editor)",
-    "crank_train.throw": "Custom throws (crank editor)",
-    "crank_train.crank_offset": "Crank offset",
-    "crank_train.articulated": "Master-and-link rods",
-    "masses.override": "Mass overrides (crank editor)",
-    "counterweights.scope": "Counterweight scope",
-    "counterweights.web_offset": "Counterweight web offset",
-    "description": "Description",
-}
-
-
-def _cell_for(dotted: str) -> str | None:
-    """The crank-editor cell an engine-file key points at (``throw.2.banks``), or None."""
-    m = _CELL.fullmatch(dotted)
-    if m is None:
-        table = re.fullmatch(r"crank_train\.(throw_angles|throw)|masses\.(override)\b.*", dotted)
-        return None if table is None else table.group(1) or table.group(2)
-    if m.group(1):
-        return f"throw_angles.{m.group(2)}"
-    if m.group(3):
-        part = m.group(5) if m.group(5) in ("position", "angle", "banks") else "banks"
-        return f"throw.{m.group(4)}.{part}"
-    part = "numbers" if m.group(8) in ("", "cylinders", "throws") else "value"
-    return f"override.{m.group(7)}.{part}"
-
-
-def label_of(dotted: str) -> str:
-    """The words of the form for a key of the engine file or a crank-editor cell."""
-    m = re.fullmatch(r"(?:crank_train\.)?throw_angles[.\[](\d+)\]?", dotted)
-    if m:
-        return f"Throw {int(m.group(1)) + 1} angle"
-    m = re.fullmatch(r"(?:crank_train\.)?throw[.\[](\d+)\]?\.?(\w*)", dotted)
-    if m:
-        return f"Throw {int(m.group(1)) + 1} {m.group(2) or 'table'}"
-    m = re.fullmatch(r"(?:masses\.)?override[.\[](\d+)\]?\.?(\w*)", dotted)
-    if m:
-        part = m.group(2)
-        what = part if part in ("", "numbers", "cylinders", "throws", "value") else None
-        words = FIELD_BY_KEY[part].label.lower() if what is None else (what or "row")
-        return f"Mass override {int(m.group(1)) + 1}: {words}"
-    if dotted in _KEY_WORDS:
-        return _KEY_WORDS[dotted]
-    f = _field_for(dotted)
-    return dotted if f is None else f.label
-
-
-def _words(text: str) -> str:
-    """Keys of the engine file inside a message replaced by the form's words (lower case),
-    references to the documentation dropped."""
-    text = re.sub(r"\s*\(see docs/[^)]*\)|;?\s*see docs/\S+", "", text)
-    text = text.replace("[[crank_train.throw]] tables", "custom throws (crank editor)")
-    for target in ("cylinders", "throws"):  # the target of a mass override
-        text = text.replace(f"`{target} = [...]`", f"the target {target.capitalize()}")
-
-    def word(m: re.Match[str]) -> str:
-        key = m.group(1) or m.group(2)
-        if key in SHORT_KEYS:
-            key = SHORT_KEYS[key]
-        elif "." not in key and "_" not in key and not m.group(1):
-            return m.group(0)
-        label = label_of(key)
-        if label == key:
-            return m.group(0)
-        return label[0].lower() + label[1:]
-
-    return re.sub(
-        r"`([^`=]+?)(?: = \[\.\.\.\])?`|\b([a-z][a-z0-9_]*(?:\.[a-z_]+)+|[a-z]+_[a-z0-9_]+)\b",
-        word,
-        text,
-    )
-
-
-#: bare key names used in messages, with the key of the form they stand for
-SHORT_KEYS: dict[str, str] = {f.path[-1]: f.dotted for f in FIELDS if len(f.path) > 1}
-SHORT_KEYS.update(
-    {
-        "throw_angles": "crank_train.throw_angles",
-        "crank_offset": "crank_train.crank_offset",
-        "cylinders": "crank_train.cylinders",
-    }
-)
-
-
-def form_message(error: InputError) -> str:
-    """An InputError in the words of the form: the field's label (``Rod length``), not the
-    engine-file key (``crank_train.rod_length``), and other keys in the text as labels."""
-    label = label_of(error.field)
-    if error.field == label:  # not a key of the engine file: a file name, a setting
-        label = error.field
-    value = error.value
-    if isinstance(value, list):  # a list field as the form writes it: "-10 mm, 10 mm"
-        value = _format_value(value)
-    shown = "" if value is None else f" = {value if isinstance(value, str) else repr(value)}"
-    if len(shown) > 83:
-        shown = shown[:80] + "..."
-    return f"{label}{shown}: {_words(error.allowed)}"
-
-
-# --------------------------------------------------------------------------- helpers
-def _field_for(dotted: str) -> FormField | None:
-    """The form field an InputError's field path points at (the nearest one above it)."""
-    path = dotted.replace("[", ".[").split(".")
-    while path:
-        f = FIELD_BY_PATH.get(".".join(path))
-        if f is not None:
-            return f
-        path = path[:-1]
-    return None
-
-
 #: settings of the page that are a choice among words (the others are checked by the
 #: study's options schema, ``polar_order`` by :data:`_POLAR_ORDER`)
 SETTING_CHOICES: dict[str, tuple[str, ...]] = {
@@ -1007,8 +464,6 @@ def _settings_from_text(text: str) -> dict[str, Any]:
 def _settings_problem(settings: dict[str, Any]) -> str | None:
     """The message of the first setting of a saved project that is unknown, not a text or
     a number, or not a valid value (None when all are good)."""
-    from .studies import setting_errors  # studies imports this module
-
     for key, value in settings.items():
         if key not in DEFAULT_SETTINGS:
             allowed = "unknown setting; known: " + ", ".join(DEFAULT_SETTINGS)

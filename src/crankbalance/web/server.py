@@ -47,9 +47,10 @@ def serve(
 
     from . import api, pool
 
-    webapp.DEFAULT_PRESET = preset  # the server's default, set once before serving
     api.register(app)
-    app.on_startup(lambda: threading.Thread(target=webapp.warm_up, daemon=True).start())
+    app.on_startup(
+        lambda: threading.Thread(target=webapp.warm_up, args=(preset,), daemon=True).start()
+    )
     app.on_startup(lambda: threading.Thread(target=pool.warm_up, daemon=True).start())
     tailwind = bool(options.pop("tailwind", False))
     if not tailwind:
@@ -57,7 +58,7 @@ def serve(
         version = hashlib.sha256(TAILWIND_CSS.read_bytes()).hexdigest()[:12]  # cache key
         ui.add_head_html(f'<link rel="stylesheet" href="{TAILWIND_URL}?v={version}">', shared=True)
     ui.run(
-        webapp.root,
+        webapp.page_root(preset),
         host="127.0.0.1",
         port=port,
         title="crankbalance",

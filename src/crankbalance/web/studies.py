@@ -49,7 +49,7 @@ log = logging.getLogger("crankbalance.web")
 
 class Computation(Protocol):
     """What a study of a tab takes from the page's computation
-    (:class:`crankbalance.web.project.Computed`)."""
+    (:class:`crankbalance.web.computation.Computed`)."""
 
     spec: EngineSpec
     analysis: Any

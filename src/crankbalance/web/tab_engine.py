@@ -8,7 +8,7 @@ from nicegui import ui
 
 from ..output.figures.crank3d import crank_3d
 from .crank_editor import CrankEditor
-from .project import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
+from .form import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .widgets import FIGURE_CSS, Tab
 
 #: what the balance factor does, shown under the balancing fields

@@ -26,27 +26,31 @@ from nicegui import ui
 
 from ..errors import InputError
 from ..output.figures.explore import explore_candidate, explore_scatter
+from ..schema.settings import ExploreOptions
 from . import studies
-from .widgets import StudyTab, TabSettingsMixin, fmt_g
+from .widgets import StudyTab, TabSettingsMixin, fmt_g, from_schema, schema_choices
 
 #: most firing orders (indices of the enumeration) the page explores in its own process
 MAX_INDICES = 50_000
 #: the tab's settings: key -> (label, default, hint)
+#: most rows of the tab's table (the command line's top-N may ask for more)
+MAX_ROWS = 1000
 SETTINGS: dict[str, tuple[str, str, str]] = {
-    "layout": ("Layout", "inline", "inline, vee, boxer or w"),
-    "cylinders": ("Cylinders", "4", "e.g. 6"),
-    "strokes": ("Strokes per cycle", "4", "2 or 4"),
-    "bank_angle": ("Bank angle", "", "vee / W only, e.g. 90 deg"),
-    "crank": ("Crank family", "any", "any, flat or cross"),
+    "layout": from_schema(ExploreOptions, "layout"),
+    "cylinders": from_schema(ExploreOptions, "cylinders", hint="e.g. 6"),
+    "strokes": from_schema(ExploreOptions, "strokes"),  # a select of 4 and 2
+    "bank_angle": from_schema(ExploreOptions, "bank_angle", hint="vee / W only, e.g. 90 deg"),
+    "crank": from_schema(ExploreOptions, "crank"),
+    # the figure's two objectives are the page's own (the command line gives --objectives)
     "x": ("Objective (x axis)", "M1", "a column, e.g. F2, M1, X1p5"),
     "y": ("Objective (y axis)", "M2", "a column, e.g. M2, cw_mass"),
-    "filter": ("Filter", "", "e.g. F1 == 0 and M1 == 0 (empty: all)"),
-    "top": ("Rows of the table", "20", "1 to 1000"),
+    "filter": from_schema(ExploreOptions, "filter", hint="e.g. F1 == 0 and M1 == 0 (empty: all)"),
+    "top": from_schema(ExploreOptions, "top", hint=f"1 to {MAX_ROWS}"),
 }
 CHOICES = {
-    "layout": ("inline", "vee", "boxer", "w"),
-    "strokes": ("4", "2"),
-    "crank": ("any", "flat", "cross"),
+    "layout": schema_choices(ExploreOptions, "layout"),
+    "strokes": ("4", "2"),  # the schema's whole number, 2 or 4
+    "crank": schema_choices(ExploreOptions, "crank"),
 }
 #: the table's key: the largest moment left after crank counterweights
 KEY = "residual_M_Nm"
@@ -66,15 +70,15 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float 
     """The problem, the two objectives, the filter, the table's rows and the bank angle
     [rad] from the tab's texts; an :class:`InputError` names the setting's key."""
     from ..physics.explore import orders, rank
-    from ..schema.settings import ExploreOptions, parse_options
+    from ..schema.settings import parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
     o = parse_options(
         ExploreOptions,
         {k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank", "top")},
     )
-    if o.top > 1000:
-        raise InputError("top", values["top"], "1 to 1000 rows")
+    if o.top > MAX_ROWS:
+        raise InputError("top", values["top"], f"1 to {MAX_ROWS} rows")
     columns = _columns()
     x = rank.column_name(values["x"] or "", columns, "x")
     y = rank.column_name(values["y"] or "", columns, "y")
@@ -302,14 +306,13 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     def load(self, index: int) -> None:
         """Load the candidate of enumeration index ``index`` as the current engine."""
         from ..schema.engine import spec_from_dict
-        from .app import DEFAULT_PRESET
         from .project import Project
 
         row = self._row(index)
         if row is None:
             return
         project = self.page.project
-        spec = project.spec or Project.from_preset(DEFAULT_PRESET).spec
+        spec = project.spec or Project.from_preset(self.page.default_preset).spec
         assert spec is not None
         try:
             data = candidate_file(spec.to_data(), self.problem, self.bank_angle, row)

@@ -21,24 +21,31 @@ from nicegui import ui
 
 from ..errors import InputError
 from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
-from .widgets import StudyTab, TabSettingsMixin
+from ..schema.settings import BearingOptions, BearingSweepOptions
+from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 
 #: the tab's settings: key -> (label, default, hint)
 SETTINGS: dict[str, tuple[str, str, str]] = {
-    "patterns": (
-        "Counterweight patterns",
-        "all; none",
-        "all, none, file or 0/1 per web (two per throw); patterns separated by ;",
+    # the page's patterns are separated by ";" (the command line gives --pattern per pattern)
+    "patterns": from_schema(
+        BearingSweepOptions,
+        "patterns",
+        default="all; none",
+        hint="all, none, file or 0/1 per web (two per throw); patterns separated by ;",
     ),
-    "balance_factors": ("Balance factors", "0.4, 0.5, 0.6", "e.g. 0.4, 0.5, 0.6"),
-    "crank_model": ("Crank model", "indeterminate", "continuous beam or lever rule"),
-    "gas": ("Gas forces", "on", "off: inertia forces only"),
-    "speed": ("Mean speed", "", "empty: the engine's"),
-    "samples": ("Samples per revolution", "120", "36 to 3600"),
-    "bearing_stiffness": ("Radial bearing stiffness", "", "empty: rigid, e.g. 5e8 N/m"),
-    "friction_coefficient": ("Friction coefficient", "0.005", "e.g. 0.005"),
+    "balance_factors": from_schema(BearingSweepOptions, "balance_factors", default="0.4, 0.5, 0.6"),
+    "crank_model": from_schema(BearingSweepOptions, "crank_model"),
+    "gas": from_schema(BearingOptions, "gas", default="on"),  # a select of on and off
+    "speed": from_schema(BearingOptions, "speed"),
+    # the page's sweep samples a revolution more coarsely than the command line: it answers
+    # within the page's budget (docs/web.md)
+    "samples": from_schema(BearingOptions, "samples", default="120"),
+    "bearing_stiffness": from_schema(
+        BearingOptions, "bearing_stiffness", hint="empty: rigid, e.g. 5e8 N/m"
+    ),
+    "friction_coefficient": from_schema(BearingOptions, "friction_coefficient", hint="e.g. 0.005"),
 }
-CHOICES = {"crank_model": ("indeterminate", "determinate"), "gas": ("on", "off")}
+CHOICES = {"crank_model": schema_choices(BearingSweepOptions, "crank_model"), "gas": ("on", "off")}
 #: the settings of the sweep itself; the others are the loads' (BearingOptions)
 SWEEP = ("patterns", "balance_factors", "crank_model")
 
@@ -52,7 +59,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     """The :class:`~crankbalance.schema.settings.BearingSweepOptions` and
     :class:`~crankbalance.schema.settings.BearingOptions` of the tab's texts; an
     :class:`InputError` names the setting's key."""
-    from ..schema.settings import BearingOptions, BearingSweepOptions, parse_options
+    from ..schema.settings import parse_options
 
     values = {k: texts.get(k, "").strip() for k in SETTINGS}
     sweep = parse_options(

@@ -7,7 +7,7 @@ from typing import Any
 
 from nicegui import ui
 
-from .project import MASS_FIELDS
+from .form import MASS_FIELDS
 from .widgets import Tab, distinct
 
 

@@ -21,29 +21,44 @@ from nicegui import run, ui
 from ..errors import InputError
 from ..output.figures.shop import hole_plan
 from ..output.format import text
-from ..schema.settings import DEPTH_TO
-from .widgets import StudyTab, TabSettingsMixin, button_row, send_download
+from ..schema.settings import ShopOptions
+from .widgets import (
+    StudyTab,
+    TabSettingsMixin,
+    button_row,
+    from_schema,
+    schema_choices,
+    send_download,
+)
 
 #: the worked example's parts file (docs/balance_shop.md)
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "v8_parts.csv"
 #: the tab's settings: key -> (label, default, hint); "parts" is the pasted parts file
 SETTINGS: dict[str, tuple[str, str, str]] = {
+    # the parts file and the two readings are the page's own inputs (the command line reads
+    # a file and --reading-1/--reading-2 options), read by parse() below
     "parts": ("Parts (CSV)", "", "part,id,mass [g],big_end [g],small_end [g]"),
-    "fraction": ("Reciprocating fraction", "0.5", "e.g. 50% or 0.5"),
+    "fraction": from_schema(ShopOptions, "fraction", hint="e.g. 50% or 0.5"),
     "reading_1": ("Reading, plane 1", "", "e.g. 12.5 g @ 40 mm, 35 deg"),
     "reading_2": ("Reading, plane 2", "", "e.g. 8 g @ 40 mm, 200 deg"),
-    "convention": ("The machine shows the", "heavy", "heavy or light spot"),
-    "measuring_planes": ("Measuring planes", "", "e.g. 0 mm, 400 mm"),
-    "correction_planes": ("Correction planes", "", "e.g. 50 mm, 350 mm"),
-    "hole_diameter": ("Drill diameter", "8 mm", "e.g. 8 mm"),
-    "hole_radius": ("Radius of the holes", "", "e.g. 45 mm"),
-    "max_depth": ("Deepest hole", "15 mm", "e.g. 15 mm"),
-    "depth_to": ("Depth read to the", "tip", "tip or shoulder"),
-    "rotor_mass": ("Crank mass", "", "e.g. 25 kg"),
-    "bearings": ("Main bearings", "", "e.g. -20 mm, 420 mm (empty: the correction planes)"),
-    "grade": ("ISO 21940-11 grade", "G6.3", "e.g. G6.3"),
+    "convention": from_schema(ShopOptions, "convention"),
+    "measuring_planes": from_schema(ShopOptions, "measuring_planes", hint="e.g. 0 mm, 400 mm"),
+    "correction_planes": from_schema(ShopOptions, "correction_planes", hint="e.g. 50 mm, 350 mm"),
+    "hole_diameter": from_schema(ShopOptions, "hole_diameter", hint="e.g. 8 mm"),
+    "hole_radius": from_schema(ShopOptions, "hole_radius", hint="e.g. 45 mm"),
+    "max_depth": from_schema(ShopOptions, "max_depth", hint="e.g. 15 mm"),
+    # the select starts on the tip (the schema leaves it to the study: the tip)
+    "depth_to": from_schema(ShopOptions, "depth_to", default="tip"),
+    "rotor_mass": from_schema(ShopOptions, "rotor_mass", hint="e.g. 25 kg"),
+    "bearings": from_schema(
+        ShopOptions, "bearings", hint="e.g. -20 mm, 420 mm (empty: the correction planes)"
+    ),
+    "grade": from_schema(ShopOptions, "grade", hint="e.g. G6.3"),
 }
-CHOICES = {"convention": ("heavy", "light"), "depth_to": DEPTH_TO}
+CHOICES = {
+    "convention": schema_choices(ShopOptions, "convention"),
+    "depth_to": schema_choices(ShopOptions, "depth_to"),
+}
 #: settings that only the hole plan needs (the parts study runs without them)
 PLAN = ("measuring_planes", "correction_planes", "hole_radius", "rotor_mass", "bearings")
 
@@ -52,7 +67,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     """The inventory and the :class:`~crankbalance.schema.settings.ShopOptions` of the tab's
     texts; an :class:`InputError` names the setting's key (``parts`` for the parts file)."""
     from ..io.parts_file import parts_from_csv
-    from ..schema.settings import ShopOptions, parse_options
+    from ..schema.settings import parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
     if values["parts"] is None:

@@ -1,8 +1,9 @@
 """Pieces shared by the page shell (:mod:`.app`) and its tabs (``tab_*.py``).
 
 :class:`FigureCard` is a figure with its downloads, :class:`Tab` the base of one tab of the
-page, and the small helpers format numbers and send files to the browser. Nothing here
-imports the shell or a tab at run time (only for type checking), so there is no cycle.
+page, and the small helpers format numbers and send files to the browser. A tab sees the
+page through its context (:class:`~.context.TabContext`, held as ``self.page``); nothing
+here imports the shell or a tab, so there is no cycle.
 """
 
 from __future__ import annotations
@@ -18,10 +19,11 @@ from nicegui import run, ui
 from ..errors import InputError
 from ..output import figures, render
 from ..output.format import number
+from ..schema.core import Schema, allowed, default_text
 from .exports import figure_csv, figure_json
 
 if TYPE_CHECKING:
-    from .app import Page
+    from .context import TabContext
 
 log = logging.getLogger("crankbalance.web")
 #: download formats of a figure card
@@ -171,7 +173,7 @@ class FigureCard:
     """A plotly figure from :mod:`crankbalance.output.figures` with PNG/SVG/CSV/JSON downloads."""
 
     def __init__(
-        self, page: Page, name: str, title: str, builder: Callable[[], Any | None]
+        self, page: TabContext, name: str, title: str, builder: Callable[[], Any | None]
     ) -> None:
         self.page, self.name, self.title, self.builder = page, name, title, builder
         self.figure: Any | None = None
@@ -309,7 +311,8 @@ class FigureCard:
 
 
 class Tab(ABC):
-    """One tab of the page. The shell (:class:`~.app.Page`) calls :meth:`build` inside the
+    """One tab of the page, given the page's context (:class:`~.context.TabContext`, kept
+    as :attr:`page`). The shell (:class:`~.app.Page`) calls :meth:`build` inside the
     tab's panel (with the page, or when the tab is first opened: :attr:`built`),
     :meth:`show` after each recompute of a valid engine and :meth:`reset` when another
     project is loaded; the figure cards of the tab are in :attr:`cards` (refreshed by the
@@ -322,7 +325,7 @@ class Tab(ABC):
     #: :meth:`reset` and :meth:`show_errors` only on built tabs
     built = False
 
-    def __init__(self, page: Page) -> None:
+    def __init__(self, page: TabContext) -> None:
         self.page = page
         self.cards: list[FigureCard] = []
 
@@ -511,13 +514,31 @@ def send_download(content: str | bytes, filename: str, media_type: str) -> None:
     ui.download.content(data, filename, media_type)
 
 
+def from_schema(
+    model: type[Schema], name: str, *, default: str | None = None, hint: str = ""
+) -> tuple[str, str, str]:
+    """A row of a tab's own settings table (:attr:`TabSettingsMixin.settings_table`) that is
+    the field ``name`` of the settings schema ``model``: (label, default text, hint), the
+    schema's title and default, and its hint or else what it allows. A tab gives its own
+    ``default`` (a lighter run than the command line's) or ``hint`` (an example, or where
+    the page writes the value its own way) only where the schema has none or another."""
+    spec = model.FIELDS[name]
+    text = default_text(spec) if default is None else default
+    return spec.title, text, hint or spec.hint or allowed(spec)
+
+
+def schema_choices(model: type[Schema], name: str) -> tuple[str, ...]:
+    """The choices of a setting's select: the schema's."""
+    return tuple(str(choice) for choice in model.FIELDS[name].choices)
+
+
 class TabSettingsMixin:
     """A study tab whose settings are its own fields (not the project's settings): their
     texts in :attr:`texts`, the inputs in :attr:`fields`, each input named
     ``<tab name>-<key>`` for tests. An edit stores the text and calls ``self.check()``."""
 
     name: str
-    page: Page
+    page: TabContext
     texts: dict[str, str]
     fields: dict[str, Any]
     #: key -> (label, default text, hint) of each setting, in the order of the form
