@@ -234,7 +234,8 @@ def explore(
     key = None if o.top_key is None else rank.column_name(o.top_key, columns, "top_key")
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
-    keep = Keep(objectives=objectives, key=key, n=max(o.top, figure_points))
+    tolerance = tuple(float(t) for t in rank.tolerances(objectives, problem.topology))
+    keep = Keep(objectives, key, max(o.top, figure_points), tolerance)
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "filter")
     sample = None if o.sample is None else Sample(draws=o.sample, seed=o.seed)
     # the work of the run, before any enumeration, draw or task list (explore.work)
