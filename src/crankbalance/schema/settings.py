@@ -1836,8 +1836,17 @@ class ShopOptions(StudyOptions):
         "time",
         60.0,
         "Matching time limit",
-        "Longest matching, the building of the model included.",
+        "Longest matching, the building of the model included (and again for the "
+        "pairing of the sets on the journals).",
         le=3600.0,
+    )
+    journals: Literal["paired", "joint", "as-listed"] = choice(
+        "paired",
+        ("paired", "joint", "as-listed"),
+        "Sets on the journals",
+        "Which matched sets share a journal: paired (the least spread of the journals' "
+        "bob-weights, after the matching), joint (the parts matched for that spread at "
+        "once; method milp or exhaustive), or as listed (set c in cylinder c).",
     )
     reading: list[tuple[float, float, float]] = field(
         "list",
