@@ -189,3 +189,21 @@ def test_the_study_pairs_the_sets_on_the_journals(capsys: pytest.CaptureFixture[
     assert "spread of the journals' bob-weights" in table and "pin 1: cylinders 1, 5" in table
     code, _, err = run_cli([*args[:-1], "pairing", "--journals", "joint"], capsys)
     assert code == 2 and "--journals" in err and "milp or exhaustive" in err
+
+
+def test_the_shop_sheet_shows_the_journals() -> None:
+    """The sheet names how the sets went on the journals, the cylinders of each crankpin
+    with its bob-weight, and the spread against the sets as listed."""
+    from crankbalance.output.shop_sheet import sheet_html
+    from crankbalance.studies.shop import shop_study
+
+    study = shop_study("v8-crossplane", EXAMPLES / "v8_parts.csv", ShopOptions(method="as-listed"))
+    page = sheet_html(study, static=True)
+    assert "<h2>Sets on the journals</h2>" in page
+    assert "paired for the least spread of the journals&#x27; bob-weights (proven optimal)" in page
+    pairing = study.parts.journals
+    for t, weight in enumerate(pairing.bob_weight):
+        cylinders = ", ".join(str(c + 1) for c in np.flatnonzero(pairing.cylinder_throw == t))
+        assert f"<td>{t + 1}</td><td>{cylinders}</td><td>{weight * 1e3:.5g} g</td>" in page.replace(
+            "\n", ""
+        )
