@@ -54,6 +54,13 @@ print(
     f"remove {m.removed_total * 1e3:.1f} g (machining every part to the lightest: "
     f"{study.parts.machined.removed_total * 1e3:.1f} g)"
 )
+j = study.parts.journals  # which sets share a crankpin: the least spread of the journals
+pins = range(len(j.bob_weight))
+on_pin = [[c + 1 for c, t in enumerate(j.cylinder_throw) if t == pin] for pin in pins]
+print(
+    f"cylinders per crankpin {on_pin} ({j.status}): journals' spread {j.spread * 1e3:.2f} g, "
+    f"as listed {j.as_listed_spread * 1e3:.2f} g"
+)
 b = study.parts.bob_weights
 print("bob-weights per crankpin:", ", ".join(f"{w * 1e3:.1f} g" for w in b.bob_weight))
 assert study.holes is not None

@@ -73,6 +73,21 @@ def match(engine: str, fmt: str, **values: Any) -> None:
         f"remove {_g(listed.removed_total)}"
     )
     click.echo(f"every part machined to the lightest: remove {_g(study.machined.removed_total)}")
+    _echo_journals(study)
+
+
+def _echo_journals(study: Any) -> None:
+    """Which cylinders share each journal, and the spread of the journals' bob-weights."""
+    from ..output.shop_sheet import journal_cylinders, journals_words
+
+    j = study.journals
+    pins = "; ".join(
+        f"pin {t + 1}: cylinders {journal_cylinders(j, t)}" for t in range(len(j.bob_weight))
+    )
+    click.echo(
+        f"{journals_words(j)}: {pins}; spread of the journals' bob-weights {_g(j.spread)} "
+        f"(as listed {_g(j.as_listed_spread)})"
+    )
 
 
 @shop.command()
@@ -98,6 +113,7 @@ def bobweights(engine: str, fmt: str, **values: Any) -> None:
     left = study.remaining
     m = study.matching
     click.echo(f"\nsets matched by {m.method} ({m.status})")
+    _echo_journals(study)
     click.echo(
         f"fraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
         + "; ".join(

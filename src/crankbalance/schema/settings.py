@@ -149,6 +149,9 @@ _TORSIONAL_EXAMPLE = "5e5 N*m/rad"
 READING_WORDS = "an amount at a radius and an angle, e.g. '12.5 g @ 40 mm, 35 deg'"
 #: the longest engine file or preset name, file name, grade or expression a setting takes
 MAX_SETTING_CHARS = 1000
+#: most cylinders the explorer enumerates (its index space must fit a 64-bit integer:
+#: ``crankbalance.physics.explore.orders.MAX_CYLINDERS``), and so most angles of a fixed crank
+MAX_EXPLORE_CYLINDERS = 20
 
 
 # --------------------------------------------------------------------------------------
@@ -275,6 +278,15 @@ def _number_sweep(value: str, where: str) -> Any:
     if span > MAX_SWEEP:
         raise InputError(where, value, f"must give at most {MAX_SWEEP} values")
     return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
+
+
+def _angle_list(value: str, where: str) -> Any:
+    """A list of angles typed as one text with one unit at its end, ``"0,90,270,180 deg"``:
+    the unit is given to every number; any other text is read as a list of its own."""
+    match = re.fullmatch(r"\s*([-+0-9.eE,\s]+?)\s*(deg|rad)\s*", value)
+    if match is None:
+        return value
+    return [f"{number.strip()} {match.group(2)}" for number in match.group(1).split(",")]
 
 
 def _balance_factors(default: Any, title: str, description: str, **options: Any) -> Any:
@@ -1824,8 +1836,17 @@ class ShopOptions(StudyOptions):
         "time",
         60.0,
         "Matching time limit",
-        "Longest matching, the building of the model included.",
+        "Longest matching, the building of the model included (and again for the "
+        "pairing of the sets on the journals).",
         le=3600.0,
+    )
+    journals: Literal["paired", "joint", "as-listed"] = choice(
+        "paired",
+        ("paired", "joint", "as-listed"),
+        "Sets on the journals",
+        "Which matched sets share a journal: paired (the least spread of the journals' "
+        "bob-weights, after the matching), joint (the parts matched for that spread at "
+        "once; method milp or exhaustive), or as listed (set c in cylinder c).",
     )
     reading: list[tuple[float, float, float]] = field(
         "list",
@@ -2026,7 +2047,7 @@ class ExploreOptions(StudyOptions):
         title="Layout",
         description="The layout explored: inline, vee, boxer or w (broad arrow).",
     )
-    cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=20)
+    cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=MAX_EXPLORE_CYLINDERS)
     strokes: int = whole(
         4, "Strokes per cycle (2 or 4)", "2 or 4 strokes per working cycle.", ge=2, le=4
     )
@@ -2038,6 +2059,40 @@ class ExploreOptions(StudyOptions):
         ("any", "flat", "cross", "split"),
         "Crank family",
         "The cranks explored: any, flat, cross or split (split pins).",
+    )
+    fixed_crank: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("angle", ge=RANGES["angle"][0], le=RANGES["angle"][1]),
+        min_items=1,
+        max_items=MAX_EXPLORE_CYLINDERS,
+        parse=_angle_list,
+        title="Fixed crank",
+        description="Only the firing orders this crank allows: one throw angle per throw "
+        "(per cylinder with crank split), e.g. '0,90,270,180 deg'.",
+        hint="empty: every crank of the family",
+    )
+    mirror: bool = field(
+        "flag",
+        default=True,
+        title="Mirror image the same engine",
+        description="An engine numbered from the other end (its mirror image) counts as the "
+        "same; off: a distinct engine.",
+        hint="off: the mirror image is a distinct engine",
+    )
+    reversal: bool = field(
+        "flag",
+        default=False,
+        title="Time reversal the same engine",
+        description="An engine run backwards (the reverse firing order on the mirrored "
+        "crank) counts as the same.",
+    )
+    list_orders: bool = field(
+        "flag",
+        default=False,
+        title="List the orders of each engine",
+        description="List every firing order each engine of the tables stands for (its "
+        "equivalent descriptions).",
     )
     target: Literal["none", "counterweights", "primary", "secondary"] = choice(
         "counterweights",

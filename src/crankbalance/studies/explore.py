@@ -102,11 +102,16 @@ class Keep:
         Column of the top-N list; None for none.
     n : int
         Length of the top-N list.
+    tolerance : tuple of float
+        The round-off of each objective [its unit]
+        (:func:`crankbalance.physics.explore.rank.tolerances`): rows equal within it both
+        stay on the front; empty: exact comparison.
     """
 
     objectives: tuple[str, ...] = ()
     key: str | None = None
     n: int = 20
+    tolerance: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -230,7 +235,8 @@ def _pareto(keep: Keep, rows: Columns) -> Columns:
         return _take(rows, np.zeros(0, dtype=np.int64)) if keep.objectives else {}
     from ..physics.explore.rank import pareto
 
-    mask = np.asarray(pareto(_matrix(rows, keep.objectives)), dtype=bool)
+    tolerance = keep.tolerance or 0.0
+    mask = np.asarray(pareto(_matrix(rows, keep.objectives), tolerance), dtype=bool)
     kept = np.flatnonzero(mask)
     return _take(rows, kept[np.argsort(rows["index"][kept], kind="stable")])
 
