@@ -52,7 +52,7 @@ def test_html_embeds_the_api_json(paper_html: str) -> None:
     )
     assert match
     data = json.loads(match.group(1))
-    assert data["schema"] == "crankbalance.report/3"
+    assert data["schema"] == "crankbalance.report/4"
     assert data["balance"] == json.loads(json.dumps(balance_engine("paper-inline3").to_dict()))
     assert data["analysis"] == json.loads(json.dumps(analyze("paper-inline3").to_dict()))
     assert data["settings"]["counterweights"]["cg_radius"] == pytest.approx(0.03)

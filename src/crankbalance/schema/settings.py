@@ -437,7 +437,7 @@ class StudyOptions(Schema):
 
 
 class AnalysisOptions(StudyOptions):
-    """Free forces and moments: how many harmonic orders."""
+    """Free forces and moments: how many harmonic orders, and about which point."""
 
     orders: int = whole(
         8,
@@ -445,6 +445,19 @@ class AnalysisOptions(StudyOptions):
         "The highest harmonic order of the free forces and moments computed.",
         ge=1,
         le=MAX_ORDER,
+    )
+    moment_point: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Moment point",
+        description="The point the moments (the roll moment included) are taken about, x, y, "
+        "z: y along the crank from its mid-point, x across, z along the cylinder axis of an "
+        "in-line engine (e.g. a mount centre or the engine's centre of mass); empty: the "
+        "engine file's (crank_train.moment_point or moment_reference).",
+        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
     )
 
 
