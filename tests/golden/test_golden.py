@@ -103,6 +103,9 @@ ADDED: dict[str, str] = {
 LABELS: dict[str, str] = {
     r"^engine\.(firing_order|firing_order_maker|maker_number)\.\d+$": "the firing order as "
     "given, and in a maker's numbering with each cylinder's maker's number, issue 17",
+    r"(^|\.)combustion\.(heat_release_J|fuel_mass_kg|heating_value_J_kg|combustion_efficiency"
+    r"|gamma|exhaust_pressure_Pa|burn_end)$": "the combustion's settings stated, at the "
+    "defaults the model always took, issue 27",
 }
 
 #: keys whose value depends on the run, not on the engine
