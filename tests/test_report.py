@@ -43,6 +43,10 @@ def test_html_shows_balance_numbers(paper_html: str) -> None:
     moments = analyze("paper-inline3").to_dict()["free_moments"]
     for row in moments[:2]:
         assert f"<td>{g5(row['amplitude_Nm'])}</td>" in paper_html
+    # the sixth component (issue 27): the roll moment of each order
+    assert "roll [N·m]" in paper_html
+    rolls = [r for r in analyze("paper-inline3").to_dict()["roll_moments"] if r["amplitude_Nm"]]
+    assert rolls and all(f"<td>{g5(r['amplitude_Nm'])}</td>" in paper_html for r in rolls)
     assert "first-order" in paper_html and "[counterweights]" in paper_html  # settings used
 
 
