@@ -190,6 +190,10 @@ def test_analyze_moment_point_in_table_csv_and_json(capsys: pytest.CaptureFixtur
     k = f.order(2)
     shifted = f.roll[k] + 0.1 * (f.force_forward[k] + np.conj(f.force_backward[k]))
     assert rows[k]["amplitude_Nm"] == pytest.approx(abs(shifted), rel=1e-9)
+    # M_y = amplitude cos(n theta + phase): the phasor's own angle
+    assert rows[k]["phase_deg"] % 360 == pytest.approx(np.degrees(np.angle(shifted)) % 360)
+    with pytest.raises(InputError, match="moment_point"):
+        analyze("inline4", moment_point=(0.0, float("nan"), 0.0))
     assert abs(shifted) != pytest.approx(abs(f.roll[k]), rel=1e-3)
     code, out, err = run_cli([*args, "--format", "csv"], capsys)
     header = out.splitlines()[0].split(",")
