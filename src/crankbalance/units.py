@@ -41,6 +41,8 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "viscosity": ("Pa*s", "Pa*s", "0.01 Pa*s"),
     "power": ("W", "kW", "10 kW"),
     "frequency": ("Hz", "Hz", "50 Hz"),
+    "energy": ("J", "J", "500 J"),
+    "specific_energy": ("J/kg", "MJ/kg", "44 MJ/kg"),
 }
 
 #: The physical range of each kind of quantity: (smallest size other than zero, largest
@@ -117,7 +119,7 @@ _UNITS: tuple[tuple[tuple[str, ...], str, str, float, _Dims, str], ...] = (
     (("N",), "newton", "newtons", 1.0, _FORCE, "kMm"),
     (("Pa",), "pascal", "pascals", 1.0, _PRESSURE, "kMG"),
     (("bar",), "bar", "bars", 1e5, _PRESSURE, "m"),
-    (("J",), "joule", "joules", 1.0, _ENERGY, "k"),
+    (("J",), "joule", "joules", 1.0, _ENERGY, "kM"),
     (("W",), "watt", "watts", 1.0, _POWER, "kM"),
 )
 

@@ -77,7 +77,7 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
         click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "
-        f"(moments about {moment_point(e['moment_reference_m'])}):"
+        f"(moments about {moment_point(e['moment_point_m'])}; roll: about y):"
     )
     rows = [
         [
@@ -88,14 +88,21 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
             number(m["amplitude_Nm"]),
             number(m["forward_Nm"]),
             number(m["backward_Nm"]),
+            number(y["amplitude_Nm"]),
         ]
-        for f, m in zip(data["free_forces"], data["free_moments"], strict=True)
+        for f, m, y in zip(
+            data["free_forces"], data["free_moments"], data["roll_moments"], strict=True
+        )
     ]
-    echo_table(["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m"], rows)
+    echo_table(
+        ["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m", "roll N·m"],
+        rows,
+    )
     rot = data["rotating"]
+    roll = f", roll {text(rot['roll_Nm'], 'moment')}" if rot["roll_Nm"] else ""
     click.echo(
         "Rotating masses (bare crank, no counterweights): "
-        f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
+        f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}" + roll
     )
     echo_notes(engine)
 
@@ -116,26 +123,36 @@ def curves_csv(result: object) -> str:
     header = ["crank_angle_deg"]
     columns = [c.angle * 180 / 3.141592653589793]
     for k, order in enumerate(c.orders):
-        header += [f"fx_{order}_N", f"fz_{order}_N", f"mx_{order}_Nm", f"mz_{order}_Nm"]
-        columns += [c.fx[k], c.fz[k], c.mx[k], c.mz[k]]
+        header += [
+            f"fx_{order}_N",
+            f"fz_{order}_N",
+            f"mx_{order}_Nm",
+            f"my_{order}_Nm",
+            f"mz_{order}_Nm",
+        ]
+        columns += [c.fx[k], c.fz[k], c.mx[k], c.my[k], c.mz[k]]
     header += [
         "fx_total_N",
         "fz_total_N",
         "mx_total_Nm",
+        "my_total_Nm",
         "mz_total_Nm",
         "fx_rotating_N",
         "fz_rotating_N",
         "mx_rotating_Nm",
+        "my_rotating_Nm",
         "mz_rotating_Nm",
     ]
     columns += [
         c.total_fx,
         c.total_fz,
         c.total_mx,
+        c.total_my,
         c.total_mz,
         c.rotating_fx,
         c.rotating_fz,
         c.rotating_mx,
+        c.rotating_my,
         c.rotating_mz,
     ]
     from ..results import require_finite

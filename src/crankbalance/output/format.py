@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import json
 import math
+from collections.abc import Sequence
 from typing import Any
 
 from ..results import JSON_DIGITS, angle, clean_number, to_jsonable
@@ -124,12 +125,18 @@ def text(value: float, kind: str, digits: int = 4) -> str:
     return f"{shown} {unit}"
 
 
-def moment_point(reference: float) -> str:
+def moment_point(reference: float | Sequence[float]) -> str:
     """The point moments are taken about, in words: the crankshaft mid-point, or the point
-    ``reference`` [m] from it along +y (``EngineModel.moment_reference``)."""
-    if abs(reference) < 1e-12:
+    ``reference`` [m] from it along +y (``EngineModel.moment_reference``), or, given as
+    (x, y, z) [m] (``EngineModel.moment_point``) and off the crank axis, its three
+    coordinates."""
+    x, y, z = (0.0, float(reference), 0.0) if isinstance(reference, float | int) else reference
+    if abs(x) >= 1e-12 or abs(z) >= 1e-12:
+        where = ", ".join(text(v, "length") for v in (x, y, z))
+        return f"the point (x, y, z) = ({where}) from the crankshaft mid-point"
+    if abs(y) < 1e-12:
         return "the crankshaft mid-point"
-    return f"the point {text(reference, 'length')} from the crankshaft mid-point along +y"
+    return f"the point {text(y, 'length')} from the crankshaft mid-point along +y"
 
 
 def depth_read_to(point_angle: float, depth_to: str) -> str:

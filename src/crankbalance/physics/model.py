@@ -141,6 +141,11 @@ class EngineModel:
         The maker's number of each cylinder (by crankbalance's number) when the engine
         file gives its firing order in a maker's numbering (``crank_train.numbering`` or
         ``maker_numbers``); only shown in outputs, no computation uses it. None otherwise.
+    reference_x, reference_z : float
+        The moment reference point's distance from the crank axis [m], across (x) and
+        along the cylinder axis of an in-line engine (z); its place along the crank is
+        the origin of the axial positions. They move only the roll moment (about y): the
+        forces have no y component (:func:`with_moment_point`).
     """
 
     name: str
@@ -163,6 +168,8 @@ class EngineModel:
     firing_order_given: bool = True
     articulation: Articulation | None = None
     maker_number: tuple[int, ...] | None = None
+    reference_x: float = 0.0
+    reference_z: float = 0.0
 
     @property
     def rod_ratio(self) -> float:
@@ -191,6 +198,11 @@ class EngineModel:
         """Position of the moment reference point from the crank's mid-point (the middle of
         the throws' extent) along the crank axis [m]; 0 unless the engine file moves it."""
         return -0.5 * float(self.throw_position.min() + self.throw_position.max())
+
+    @property
+    def moment_point(self) -> tuple[float, float, float]:
+        """The moment reference point (x, y, z) [m], y from the crank's mid-point."""
+        return (self.reference_x, self.moment_reference, self.reference_z)
 
     @property
     def throw_axial_moment(self) -> NDArray[np.float64]:
@@ -223,6 +235,33 @@ class EngineModel:
         for name in ("cylinder_offset", "cylinder_axial", "cylinder_rotating_mass"):
             if np.shape(getattr(self, name)) != c:
                 raise ValueError(f"EngineModel.{name}: shape {c} (one per cylinder) expected")
+
+
+def with_moment_point(model: EngineModel, point: Sequence[float]) -> EngineModel:
+    """The same engine with its moments taken about another point.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine.
+    point : sequence of three floats
+        The new reference point (x, y, z) [m]: y along the crank axis from the crank's
+        mid-point, x and z across it (the axes of ``docs/theory.md``).
+
+    Returns
+    -------
+    EngineModel
+        ``model`` with its axial positions measured from the new point's y and the
+        point's x and z as ``reference_x`` and ``reference_z``.
+    """
+    x, y, z = (float(v) for v in point)
+    shift = model.moment_reference - y  # old reference minus new, along +y
+    return replace(
+        model,
+        throw_position=model.throw_position + shift,
+        reference_x=x,
+        reference_z=z,
+    )
 
 
 def tdc_angle(

@@ -30,7 +30,7 @@ from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypeVar, get_args
 
 from ..errors import InputError
-from ..physics.engine_cycle import BURN_DURATION_RANGE, IGNITION_RANGE
+from ..physics.engine_cycle import BURN_DURATION_RANGE, BURN_ENDS, GAMMA_RANGE, IGNITION_RANGE
 from ..physics.engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from ..physics.explore.work import LARGEST_CHUNK, MAX_DRAWS
 from ..physics.single_cylinder import BALANCE_FACTOR_RANGE
@@ -449,7 +449,7 @@ class StudyOptions(Schema):
 
 
 class AnalysisOptions(StudyOptions):
-    """Free forces and moments: how many harmonic orders."""
+    """Free forces and moments: how many harmonic orders, and about which point."""
 
     orders: int = whole(
         8,
@@ -457,6 +457,19 @@ class AnalysisOptions(StudyOptions):
         "The highest harmonic order of the free forces and moments computed.",
         ge=1,
         le=MAX_ORDER,
+    )
+    moment_point: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Moment point",
+        description="The point the moments (the roll moment included) are taken about, x, y, "
+        "z: y along the crank from its mid-point, x across, z along the cylinder axis of an "
+        "in-line engine (e.g. a mount centre or the engine's centre of mass); empty: the "
+        "engine file's (crank_train.moment_point or moment_reference).",
+        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
     )
 
 
@@ -1075,6 +1088,64 @@ class CombustionOptions(StudyOptions):
         "Pressure at the start of compression",
         "Cylinder pressure at the start of compression: the engine's load.",
     )
+    heat_release: float | None = quantity(
+        "energy",
+        None,
+        "Heat released per cycle",
+        "Heat the charge releases in one cylinder per cycle (not with fuel_mass).",
+        hint="empty: from the charge (pressure at the start of compression, 320 K, "
+        "air/fuel 14.7, heating value, combustion efficiency)",
+        gt=0,
+        le=1e7,
+    )
+    fuel_mass: float | None = quantity(
+        "mass",
+        None,
+        "Fuel per cycle",
+        "Fuel burnt in one cylinder per cycle; the heat released is combustion_efficiency x "
+        "fuel_mass x heating_value (not with heat_release).",
+        hint="empty: from the charge",
+        gt=0,
+        le=10.0,
+    )
+    heating_value: float = quantity(
+        "specific_energy",
+        44e6,
+        "Heating value of the fuel",
+        "Lower heating value of the fuel (the heat released from the charge or from fuel_mass).",
+        ge=1e6,
+        le=2e8,
+    )
+    combustion_efficiency: float = number(
+        0.8,
+        "Combustion efficiency",
+        "Share of the fuel's energy released as heat in the cylinder (lumps the heat lost to "
+        "the walls); not with heat_release.",
+        gt=0,
+        le=1,
+    )
+    gamma: float = number(
+        1.3,
+        "Ratio of specific heats",
+        "Ratio of specific heats of the charge, cp/cv, in compression, combustion and expansion.",
+        ge=GAMMA_RANGE[0],
+        le=GAMMA_RANGE[1],
+    )
+    exhaust_pressure: float | None = quantity(
+        "pressure",
+        None,
+        "Exhaust back-pressure",
+        "Cylinder pressure during the exhaust stroke of a four-stroke (a two-stroke is "
+        "scavenged at bottom dead centre).",
+        hint="empty: the pressure at the start of compression",
+    )
+    burn_end: str = choice(
+        "complete",
+        BURN_ENDS,
+        "End of the burn",
+        "The Wiebe burn's end: complete (its exponential tail runs on past the burn duration "
+        "to a complete burn) or stop (it ends at the burn duration, 99.3 % burnt).",
+    )
     pressure_csv: list[str] = field(
         "list",
         default=[],
@@ -1087,6 +1158,19 @@ class CombustionOptions(StudyOptions):
         "from firing TDC], absolute pressure [bar]): one for every cylinder, or one per "
         "cylinder in cylinder order.",
     )
+
+    def check(self) -> None:
+        typed = self.given()
+        if "heat_release" in typed and "fuel_mass" in typed:
+            raise FieldProblem(
+                "fuel_mass", "cannot be given with heat_release: give the one or the other"
+            )
+        if "heat_release" in typed:
+            for name in ("heating_value", "combustion_efficiency"):
+                if name in typed:
+                    raise FieldProblem(
+                        name, "cannot act with heat_release (the heat released is given)"
+                    )
 
 
 class CycleOptions(CombustionOptions):
@@ -1328,6 +1412,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     )
 
     def check(self) -> None:
+        CombustionOptions.check(self)
         trio = ("viscosity", "bearing_length", "clearance")
         given = [name for name in trio if getattr(self, name) is not None]
         if given and given != ["clearance"] and len(given) < 3:
@@ -2273,6 +2358,7 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     )
 
     def check(self) -> None:
+        CombustionOptions.check(self)
         if self.speed_max is not None and self.speed_max <= self.speed_min:
             raise FieldProblem("speed_max", "must be above the lowest speed")
         if (self.damper_inertia is None) != (self.damper_frequency is None):

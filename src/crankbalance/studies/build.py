@@ -46,8 +46,10 @@ def build_model(spec: EngineSpec) -> EngineModel:
             "the rod's place and makes a rotating couple",
         )
     # moments about the crank's mid-point (the middle of the throws' extent), or the point
-    # moment_reference from it: every axial position of the model is measured from there
+    # moment_reference (or moment_point) from it: every axial position of the model is
+    # measured from there, and a point off the axis moves the roll moment (model docs)
     middle = 0.5 * (positions.min() + positions.max())
+    point = ct.moment_point or [0.0, ct.moment_reference, 0.0]
     return EngineModel(
         name=spec.name,
         speed=spec.speed,
@@ -56,7 +58,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         rod_length=ct.rod_length,
         strokes=ct.strokes,
         throw_angle=angles,
-        throw_position=positions - (middle + ct.moment_reference),
+        throw_position=positions - (middle + point[1]),
         throw_rotating_mass=rot,
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
@@ -69,6 +71,8 @@ def build_model(spec: EngineSpec) -> EngineModel:
         firing_order_given=ct.firing_order is not None,
         articulation=_articulation(spec, banks),
         maker_number=maker_numbers(spec),
+        reference_x=point[0],
+        reference_z=point[2],
     )
 
 

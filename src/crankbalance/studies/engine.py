@@ -1,11 +1,12 @@
 """The analysis study: from an engine (file, preset, spec or model) to its free forces and
-moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
+moments, in the JSON contract ``crankbalance.analysis/4`` (docs/json.md)."""
 
 from __future__ import annotations
 
 import functools
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -13,7 +14,7 @@ import numpy as np
 
 from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
-from ..physics.model import EngineModel
+from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
 from ..results import below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
@@ -33,7 +34,7 @@ if TYPE_CHECKING:  # the verification and the solver are imported when asked for
     )
     from ..schema.settings import BalanceOptions
 
-SCHEMA = "crankbalance.analysis/3"
+SCHEMA = "crankbalance.analysis/4"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
 CONROD_KEYS: dict[str, str | tuple[str, float]] = {
     "mass": "mass_kg",
@@ -87,8 +88,10 @@ class Analysis:
             couple_backward=below_round_off(f.couple_backward, moment),
             rotating_force=complex(below_round_off(f.rotating_force, force)),
             rotating_couple=complex(below_round_off(f.rotating_couple, moment)),
+            roll=below_round_off(f.roll, moment),
+            rotating_roll=complex(below_round_off(f.rotating_roll, moment)),
         )
-        rows_f, rows_m = [], []
+        rows_f, rows_m, rows_roll = [], [], []
         for k, order in enumerate(f.orders):
             rows_f.append(
                 {
@@ -110,6 +113,13 @@ class Analysis:
                     "backward_phase_deg": _phase(1j * f.couple_backward[k]),
                 }
             )
+            rows_roll.append(
+                {
+                    "order": int(order),
+                    "amplitude_Nm": float(f.roll_amplitude[k]),
+                    "phase_deg": _roll_phase(f.roll[k]),
+                }
+            )
         out = {
             "schema": SCHEMA,
             "engine": {
@@ -120,6 +130,7 @@ class Analysis:
                 "cylinder_offset_m": m.cylinder_offset,
                 "cylinder_axial_m": m.cylinder_axial,
                 "moment_reference_m": m.moment_reference,
+                "moment_point_m": list(m.moment_point),
                 "throw_angle_deg": np.degrees(m.throw_angle),
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,
@@ -134,14 +145,19 @@ class Analysis:
             },
             "free_forces": rows_f,
             "free_moments": rows_m,
+            "roll_moments": rows_roll,
             "rotating": {
                 "force_N": abs(f.rotating_force),
                 "moment_Nm": abs(f.rotating_couple),
                 "force_phase_deg": _phase(f.rotating_force),
                 "moment_phase_deg": _phase(1j * f.rotating_couple),
+                "roll_Nm": abs(f.rotating_roll),
+                "roll_phase_deg": _roll_phase(f.rotating_roll),
             },
             "conventions": "phases: direction at crank angle 0, degrees from +z toward +x; "
-            f"moments about {moment_point(m.moment_reference)}",
+            "roll moments (about y, positive in the sense of rotation) amplitude * cos(n * "
+            "crank angle + phase); no free force along y; "
+            f"moments about {moment_point(m.moment_point)}",
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)
@@ -194,6 +210,14 @@ def firing_summary(m: EngineModel) -> dict[str, Any]:
     return out
 
 
+def _roll_phase(value: complex) -> float:
+    """Phase of a roll moment phasor R, M_y = abs(R) cos(n theta + arg R), in degrees (0 for a
+    zero phasor)."""
+    if value == 0:
+        return 0.0
+    return float(np.degrees(np.angle(value)))
+
+
 def _phase(value: complex) -> float:
     """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor: one at
     most the round-off, which ``to_dict`` sets to zero first)."""
@@ -202,7 +226,9 @@ def _phase(value: complex) -> float:
     return float(np.degrees(np.arctan2(value.imag, value.real)))
 
 
-def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
+def analyze(
+    engine: EngineLike, orders: int = 8, moment_point: Sequence[float] | None = None
+) -> Analysis:
     """Free forces and moments of an engine (orders 1..``orders``) and of its rotating masses.
 
     Parameters
@@ -211,10 +237,19 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
         Preset name, engine file, validated spec or built model.
     orders : int
         Highest harmonic order (1..64).
+    moment_point : sequence of three floats, optional
+        The point (x, y, z) [m] moments are taken about, y from the crank's mid-point;
+        None: the engine's (``crank_train.moment_point`` or ``moment_reference``).
     """
+    from ..errors import InputError
 
     orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     model = as_model(engine)
+    if moment_point is not None:
+        point = [float(v) for v in moment_point]
+        if len(point) != 3 or not all(math.isfinite(v) for v in point):
+            raise InputError("moment_point", moment_point, "three finite lengths x, y, z [m]")
+        model = with_moment_point(model, point)
     return Analysis(model=model, forces=free_forces(model, orders))
 
 
@@ -460,8 +495,8 @@ def balance_engine(
 # --------------------------------------------------------------------------- the two studies
 def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
     """The analysis study of the registry (``analyze``): :func:`analyze` of ``engine`` with
-    its settings (the highest order)."""
-    return analyze(engine, settings.orders)
+    its settings (the highest order, the moment point)."""
+    return analyze(engine, settings.orders, settings.moment_point)
 
 
 def balancing(
