@@ -23,10 +23,11 @@ import json
 import math
 from typing import Any
 
-from ..results import JSON_DIGITS, angle, clean_number, to_jsonable
+from ..results import JSON_DIGITS, UNITS, angle, clean_number, number, to_jsonable
 
 __all__ = [
     "JSON_DIGITS",
+    "UNITS",
     "angle",
     "clean_number",
     "depth_read_to",
@@ -36,32 +37,6 @@ __all__ = [
     "symbol",
     "text",
 ]
-
-#: the symbol printed after a value of each kind, and the factor from its SI value
-UNITS: dict[str, tuple[str, float]] = {
-    "force": ("N", 1.0),
-    "moment": ("N·m", 1.0),
-    "torque": ("N·m", 1.0),
-    "mass": ("g", 1e3),
-    "mass_kg": ("kg", 1.0),
-    "length": ("mm", 1e3),
-    "length_m": ("m", 1.0),
-    "deflection": ("µm", 1e6),
-    "unbalance": ("g·mm", 1e6),
-    "first_moment": ("g·mm", 1e6),
-    "inertia": ("kg·m²", 1.0),
-    "speed": ("rpm", 30.0 / math.pi),
-    "frequency": ("Hz", 1.0),
-    "angle": ("°", 180.0 / math.pi),
-    "angle_deg": ("°", 1.0),
-    "stress": ("MPa", 1e-6),
-    "pressure": ("bar", 1e-5),
-    "power": ("W", 1.0),
-    "energy": ("J", 1.0),
-    "time": ("s", 1.0),
-    "percent": ("%", 1.0),
-    "ratio": ("", 1.0),
-}
 
 #: the symbols, by name, for text that builds its own labels
 N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
@@ -77,22 +52,6 @@ N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
     "Hz",
     "°",
 )
-
-
-def number(value: float, digits: int = 4) -> str:
-    """A number with ``digits`` significant digits, never ``-0`` nor float noise.
-
-    Values of ``10**digits`` and more print whole (``15200``, not ``1.52e+04``).
-
-    >>> number(1999.9999999999998), number(-0.0001, 2), number(15200.0), number(0.5)
-    ('2000', '-0.0001', '15200', '0.5')
-    """
-    value = clean_number(float(value))
-    if 10.0**digits <= abs(value) < 1e15:
-        out = f"{round(value):d}"
-    else:
-        out = f"{value:.{digits}g}"
-    return "0" if float(out) == 0.0 else out
 
 
 def symbol(kind: str) -> str:

@@ -25,7 +25,7 @@ import numpy as np
 from ..errors import InputError
 from ..output.format import keyed
 from ..physics.model import EngineModel
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import THESIS_CRANK_INERTIA, CycleOptions, SensitivityOptions, given
 from .engine import EngineLike, as_model, engine_label
 
@@ -260,8 +260,8 @@ def _flywheel(
     }
 
 
-@dataclass(frozen=True)
-class CycleStudy:
+@dataclass(frozen=True, repr=False)
+class CycleStudy(ResultMixin):
     """One working cycle, of one cylinder or of the whole engine.
 
     Attributes
@@ -495,8 +495,8 @@ SENSITIVITY_KEYS = tuple(
 )
 
 
-@dataclass(frozen=True)
-class SensitivityStudy:
+@dataclass(frozen=True, repr=False)
+class SensitivityStudy(ResultMixin):
     """The cycle of one cylinder over balance factors and reciprocating-mass scales.
 
     Attributes

@@ -15,13 +15,13 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import below_round_off, round_off, to_jsonable
+from ..results import ResultMixin, below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
 if TYPE_CHECKING:  # the verification and the solver are imported when asked for
-    from numpy.typing import ArrayLike
+    from numpy.typing import ArrayLike, NDArray
 
     from ..physics.balance_check import Verification
     from ..physics.balancing import (
@@ -64,9 +64,10 @@ def engine_label(engine: EngineLike) -> str:
     return str(engine)
 
 
-@dataclass(frozen=True)
-class Analysis:
-    """Free forces and moments of one engine (see :func:`analyze`)."""
+@dataclass(frozen=True, repr=False)
+class Analysis(ResultMixin):
+    """Free forces and moments of one engine (see :func:`analyze`); a force or moment at
+    most the engine's round-off is exactly zero (:func:`without_round_off`)."""
 
     model: EngineModel
     forces: FreeForces
@@ -75,19 +76,27 @@ class Analysis:
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
-    def to_dict(self) -> dict[str, Any]:
-        m, f = self.model, self.forces
-        # what is at most the engine's round-off is reported as exactly zero
-        force, moment = round_off(m)
-        f = FreeForces(
-            orders=f.orders,
-            force_forward=below_round_off(f.force_forward, force),
-            force_backward=below_round_off(f.force_backward, force),
-            couple_forward=below_round_off(f.couple_forward, moment),
-            couple_backward=below_round_off(f.couple_backward, moment),
-            rotating_force=complex(below_round_off(f.rotating_force, force)),
-            rotating_couple=complex(below_round_off(f.rotating_couple, moment)),
+    def headline(self) -> tuple[str, ...]:
+        """The largest free force and moment of the reciprocating masses (with their
+        orders) and those of the rotating masses, in words with units."""
+        f = without_round_off(self.model, self.forces)
+
+        def largest(amplitudes: NDArray[np.float64], kind: str) -> str:
+            if not np.any(amplitudes > 0):
+                return text(0.0, kind)
+            k = int(np.argmax(amplitudes))
+            return f"{text(float(amplitudes[k]), kind)} (order {int(f.orders[k])})"
+
+        return (
+            f"free force {largest(f.force_amplitude, 'force')}, "
+            f"free moment {largest(f.moment_amplitude, 'moment')}",
+            f"rotating masses (bare crank): force {text(abs(f.rotating_force), 'force')}, "
+            f"moment {text(abs(f.rotating_couple), 'moment')}",
         )
+
+    def to_dict(self) -> dict[str, Any]:
+        m = self.model
+        f = without_round_off(m, self.forces)
         rows_f, rows_m = [], []
         for k, order in enumerate(f.orders):
             rows_f.append(
@@ -146,6 +155,22 @@ class Analysis:
         result = to_jsonable(out)
         assert isinstance(result, dict)
         return result
+
+
+def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
+    """``forces`` with every force and moment at most the engine's round-off
+    (:func:`crankbalance.results.round_off`) set to exactly zero, as every output shows
+    them."""
+    force, moment = round_off(model)
+    return FreeForces(
+        orders=forces.orders,
+        force_forward=below_round_off(forces.force_forward, force),
+        force_backward=below_round_off(forces.force_backward, force),
+        couple_forward=below_round_off(forces.couple_forward, moment),
+        couple_backward=below_round_off(forces.couple_backward, moment),
+        rotating_force=complex(below_round_off(forces.rotating_force, force)),
+        rotating_couple=complex(below_round_off(forces.rotating_couple, moment)),
+    )
 
 
 def engine_summary(m: EngineModel) -> dict[str, Any]:
@@ -215,7 +240,7 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
 
     orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     model = as_model(engine)
-    return Analysis(model=model, forces=free_forces(model, orders))
+    return Analysis(model=model, forces=without_round_off(model, free_forces(model, orders)))
 
 
 # --------------------------------------------------------------------------- balancing study
@@ -258,8 +283,8 @@ def balance_options(
     return cw, primary, secondary
 
 
-@dataclass(frozen=True)
-class BalanceStudy:
+@dataclass(frozen=True, repr=False)
+class BalanceStudy(ResultMixin):
     """Counterweights and balance shafts of one engine (see :func:`balance_engine`), and
     the time-domain verification when it was asked for."""
 

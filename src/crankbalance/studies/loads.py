@@ -35,7 +35,7 @@ from ..physics.main_bearings import (
     main_bearing_loads,
 )
 from ..physics.model import EngineModel
-from ..results import to_jsonable
+from ..results import ResultMixin, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import MIN_SAMPLES, BearingOptions, given, parse_options
 from .build import build_model
@@ -69,8 +69,8 @@ STIFFNESS_NOTE = (
 )
 
 
-@dataclass(frozen=True)
-class BearingStudy:
+@dataclass(frozen=True, repr=False)
+class BearingStudy(ResultMixin):
     """Main-bearing loads of one engine over its cycle, both crank models (see
     :func:`bearing_loads`).
 
