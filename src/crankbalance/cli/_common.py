@@ -16,6 +16,24 @@ if TYPE_CHECKING:
 _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 
 
+class SuggestingGroup(click.Group):
+    """A click group that answers a misspelt command with the closest one: ``No such
+    command 'analyse'; did you mean 'analyze'?``."""
+
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        name = click.utils.make_str(args[0]) if args else ""
+        known = self.list_commands(ctx)
+        if name and not name.startswith("-") and name not in known:
+            from ..schema.core import closest
+
+            close = closest(name, known)
+            if close is not None:
+                ctx.fail(f"No such command {name!r}; did you mean {close!r}?")
+        return super().resolve_command(ctx, args)
+
+
 def option_name(field: str) -> str:
     """The command-line option of a settings field: ``max_mass`` -> ``--max-mass``."""
     return "--" + field.replace("_", "-")

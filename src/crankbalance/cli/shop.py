@@ -16,7 +16,15 @@ import click
 
 from ..output.format import text
 from ..schema.settings import ShopOptions
-from ._common import echo_table, option_name, parse_settings, run_study, study_options, typed
+from ._common import (
+    SuggestingGroup,
+    echo_table,
+    option_name,
+    parse_settings,
+    run_study,
+    study_options,
+    typed,
+)
 
 FORMATS = click.Choice(["table", "json"])
 
@@ -40,7 +48,7 @@ def _g(value: float) -> str:
     return text(value, "mass", 5)
 
 
-@click.group()
+@click.group(cls=SuggestingGroup)
 def shop() -> None:
     """The balance shop: weighed parts to matched sets, bob-weights, a hole plan and a sheet."""
 
