@@ -56,7 +56,9 @@ def shop() -> None:
 @shop.command()
 @study_options("shop-match")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def match(engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
     result = run_study("shop-match", engine, values)
@@ -86,7 +88,9 @@ def match(engine: str, fmt: str, **values: Any) -> None:
 @shop.command()
 @study_options("shop-bobweights")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def bobweights(engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
     result = run_study("shop-bobweights", engine, values)
@@ -156,7 +160,9 @@ def echo_hole_plan(result: Any) -> None:
 @shop.command()
 @_engine(required=False)
 @study_options("shop-plan")
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
     result = run_study("shop-plan", engine, values)
@@ -169,7 +175,9 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
 @shop.command()
 @study_options("shop-scatter")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def scatter(engine: str, fmt: str, **values: Any) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
     result = run_study("shop-scatter", engine, values)

@@ -36,7 +36,7 @@ TABLE_RESONANCES = 12
 def torsional(fmt: str, plot: str | None, engine: str | None, **values: Any) -> None:
     """Torsional vibration of the crank train of --engine.
 
-    One inertia per throw (the throw with its big ends, default m_rot r^2, plus its
+    One inertia per throw (the throw with its big ends, default m_rot r², plus its
     pistons' mean share), the stiffness between throws (given, or Carter's formula from
     the journal, pin and web dimensions: an approximation), front end, flywheel, an
     optional tuned damper (--damper-inertia and --damper-frequency) and driven load.

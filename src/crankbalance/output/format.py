@@ -31,6 +31,7 @@ __all__ = [
     "angle",
     "clean_number",
     "depth_read_to",
+    "in_output_style",
     "json_text",
     "number",
     "plural",
@@ -52,6 +53,35 @@ N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
     "Hz",
     "°",
 )
+
+
+#: the parser's spellings of units (:mod:`crankbalance.units`, engine files, defaults) ->
+#: the output's symbols, in that order: ``kg*m**2`` and ``kg*m^2`` -> ``kg·m²``,
+#: ``g*mm`` -> ``g·mm``, ``N m`` -> ``N·m``, ``30 deg`` -> ``30°``
+_STYLE: tuple[tuple[str, str], ...] = (
+    (r"\b(N|kg) m\b", r"\1·m"),
+    (r"(?<=·m) s\b", "·s"),
+    (r"(\*\*|\^)2\b", "²"),
+    (r"(\*\*|\^)3\b", "³"),
+    (r"(?<=[A-Za-zµ])\*(?=[A-Za-zµ])", "·"),
+    (r"(?<=\d) ?(degrees\b|deg\b|°)", "°"),
+)
+
+
+def in_output_style(text: str) -> str:
+    """A text with its units written in the output's symbols (:data:`UNITS`): ``"0.002
+    kg*m^2"`` -> ``"0.002 kg·m²"``, ``"10 g*mm"`` -> ``"10 g·mm"``, ``"[N m s/rad]"`` ->
+    ``"[N·m·s/rad]"``, ``"30 deg"`` and ``"30 °"`` -> ``"30°"``; the parser reads every one
+    of them.
+
+    >>> in_output_style("0.002 kg*m**2, 10 g*mm, 1.5 N m, 30 deg, 7850 kg/m^3")
+    '0.002 kg·m², 10 g·mm, 1.5 N·m, 30°, 7850 kg/m³'
+    """
+    import re
+
+    for pattern, replacement in _STYLE:
+        text = re.sub(pattern, replacement, text)
+    return text
 
 
 def symbol(kind: str) -> str:
