@@ -40,6 +40,7 @@ UNITS: dict[str, tuple[str, float]] = {
     "inertia": ("kg·m²", 1.0),
     "speed": ("rpm", 30.0 / math.pi),
     "velocity": ("mm/s", 1e3),
+    "angular_acceleration": ("rad/s²", 1.0),
     "frequency": ("Hz", 1.0),
     "angle": ("°", 180.0 / math.pi),
     "angle_deg": ("°", 1.0),
@@ -259,6 +260,7 @@ def require_finite(value: Any, path: str = "") -> None:
 JSON_SUFFIXES: tuple[tuple[str, str], ...] = (
     ("_kg_m2", "inertia"),
     ("_kg_m", "unbalance"),
+    ("_rad_s2", "angular_acceleration"),
     ("_rad_s", "speed"),
     ("_m_s", "velocity"),
     ("_percent", "percent"),

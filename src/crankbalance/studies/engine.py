@@ -219,6 +219,34 @@ def firing_summary(m: EngineModel) -> dict[str, Any]:
     return out
 
 
+def firing(
+    model: EngineModel, fire: ArrayLike | None = None
+) -> tuple[list[int], NDArray[np.float64]]:
+    """The firing order and the crank angle from each cylinder of it to the next, the last
+    back to the first [rad], of the firing angles ``fire`` [rad] (default: the engine's own,
+    :func:`crankbalance.physics.engine_cycle_all.model_fire_angles`). The order is the
+    engine's when given or with ``fire``, else the order of its firing angles (the most
+    even firing its crank allows). A single cylinder's interval is the whole cycle.
+
+    Raises :class:`~crankbalance.errors.InputError` for an engine without a firing order
+    whose crank has too many firings to try
+    (:data:`crankbalance.physics.firing.MAX_FREE_CYLINDERS`).
+    """
+    order = list(model.firing_order)
+    if fire is None:
+        from ..physics.engine_cycle_all import model_fire_angles
+
+        fire = model_fire_angles(model)
+        if not model.firing_order_given:
+            order = [int(c) + 1 for c in np.argsort(fire, kind="stable")]
+            order = order[order.index(1) :] + order[: order.index(1)]  # from cylinder 1
+    cycle = np.pi * model.strokes
+    sequence = np.asarray(fire, dtype=float)[np.asarray(order) - 1]
+    intervals = np.diff(np.append(sequence, sequence[0] + cycle))
+    # one cylinder fires once a cycle: its interval is the cycle, not 0
+    return order, np.mod(intervals, cycle) if model.cylinders > 1 else intervals
+
+
 def _phase(value: complex) -> float:
     """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor: one at
     most the round-off, which ``to_dict`` sets to zero first)."""

@@ -216,8 +216,8 @@ def combustion_text(summary: dict[str, float] | None) -> str:
         return "combustion: pressure tables"
     return (
         f"Wiebe combustion: compression {summary['compression_ratio']:g}, ignition "
-        f"{math.degrees(summary['ignition_rad']):g} deg, burn "
-        f"{math.degrees(summary['burn_duration_rad']):g} deg"
+        f"{math.degrees(summary['ignition_rad']):g}°, burn "
+        f"{math.degrees(summary['burn_duration_rad']):g}°"
     )
 
 
