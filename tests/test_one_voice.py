@@ -112,3 +112,13 @@ def test_json_of_an_analysis_holds_no_float_noise(capsys: pytest.CaptureFixture[
     assert code == 0
     assert not NOISE.search(out)
     assert json.loads(out)["free_forces"][0]["amplitude_N"] == 0
+
+
+def test_tolerance_and_balance_factor_print_the_output_units(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    args = ["tolerance", "--grade", "G6.3", "--rotor-mass", "12 kg", "--speed", "6000 RPM"]
+    code, out, err = run_cli(args, capsys)
+    assert code == 0, err
+    assert "120.3 g·mm" in out and "10.03 µm" in out
+    assert "g*mm" not in out and " um" not in out

@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..output.format import json_text
+from ..output.format import in_output_style, json_text, text
 from ..units import format_quantity
 from ._common import format_table, run_study, study_options
 
@@ -19,11 +19,11 @@ FORMATS = click.Choice(["table", "json"])
 
 
 def _quantity(value: float, kind: str) -> str:
-    return format_quantity(value, kind, digits=5)
+    return in_output_style(format_quantity(value, kind, digits=5))
 
 
 def _gmm(value: float) -> str:
-    return f"{value * 1e6:.4g} g*mm"
+    return text(value, "unbalance")
 
 
 # ---------------------------------------------------------------------------------------
@@ -197,7 +197,7 @@ def tolerance_command(fmt: str, engine: str | None, **values: Any) -> None:
     rows = [
         ("grade", item.name),
         ("permissible residual U_per", _gmm(u_per)),
-        ("permissible eccentricity", f"{u_per / result.rotor_mass * 1e6:.4g} um"),
+        ("permissible eccentricity", text(u_per / result.rotor_mass, "deflection")),
     ]
     if allocation is not None:
         rows += [
