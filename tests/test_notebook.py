@@ -139,3 +139,24 @@ def test_pint_quantities_are_accepted_where_a_number_with_a_unit_is() -> None:
     values = {"grade": "G6.3", "rotor_mass": ureg("12 kg"), "speed": ureg("6000 rpm")}
     result = crankbalance.run("tolerance", None, values)
     assert re.search(r"permissible", repr(result))
+
+
+def test_a_notebook_executed_by_jupyter() -> None:
+    """The same session in a real kernel, when the documentation's notebook tools are
+    installed (nbclient, ipykernel: the docs extra): the analysis and the balance study
+    display as HTML tables with units, the figure as plotly's notebook output."""
+    nbformat = pytest.importorskip("nbformat")
+    nbclient = pytest.importorskip("nbclient")
+    pytest.importorskip("ipykernel")
+    pytest.importorskip("plotly")
+    cells = [
+        "import crankbalance\nanalysis = crankbalance.analyze('inline4')\nanalysis",
+        "crankbalance.balance_engine('v8-crossplane')",
+        "crankbalance.plot(analysis)[0]",
+    ]
+    notebook = nbformat.v4.new_notebook(cells=[nbformat.v4.new_code_cell(c) for c in cells])
+    nbclient.NotebookClient(notebook, timeout=600, kernel_name="python3").execute()
+    shown = [cell.outputs[-1]["data"] for cell in notebook.cells]
+    assert "<th>amplitude [N]</th>" in shown[0]["text/html"]
+    assert "<caption>components</caption>" in shown[1]["text/html"]
+    assert "application/vnd.plotly.v1+json" in shown[2] or "text/html" in shown[2]
