@@ -18,7 +18,7 @@ from .errors import InputError
 # one number, then a unit expression whose only digits are exponents ("kg*m^2", "m**3")
 _QUANTITY = re.compile(
     r"^\s*(?P<number>[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*"
-    r"(?P<unit>[A-Za-z°µμ%][A-Za-z°µμ%_/*^.\s\d()-]*)?$"
+    r"(?P<unit>[A-Za-z°µμ%][A-Za-z°µμ%·⋅²³_/*^.\s\d()-]*)?$"
 )
 _EXPONENT = re.compile(r"(\^|\*\*)\s*\(?-?\d+(\.\d+)?\)?")
 
@@ -214,6 +214,7 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         The value in SI units (angles in rad, speeds in rad/s).
     """
     si_unit, _display, example = KINDS[kind]
+    value = _from_pint(value, kind, field)
     if isinstance(value, bool) or not isinstance(value, str):
         if isinstance(value, (int, float)):
             raise InputError(field, value, f"{_a(kind)} needs a unit, e.g. {example!r}")
@@ -231,6 +232,8 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         # pint, which keeps an integer as it is and overflows converting it to a float
         raise InputError(field, value, f"must be a finite {kind}, e.g. {example!r}")
     magnitude: Any
+    unit = written_unit(unit)
+    text = f"{match.group('number')} {unit}"
     found = _table_unit(unit.replace("°", " deg"))
     if found is not None:  # units of the table only: no pint
         names, factor, dims = found
@@ -273,6 +276,40 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         except Exception:  # pint refuses the conversion: another dimension
             raise InputError(field, value, _wrong_unit(kind, example)) from None
     raise InputError(field, value, _wrong_unit(kind, example))
+
+
+#: spellings of units people write, as the parser reads them: the output's own symbols
+#: (``N·m``, ``kg·m²``, ``g·mm``) and the unambiguous ``RPM`` and ``Nm`` (no unit is
+#: spelt so: the nanometre is ``nm``); docs/engine_file.md lists them
+SPELLINGS: tuple[tuple[str, str], ...] = (
+    (r"·|⋅", "*"),
+    (r"²", "^2"),
+    (r"³", "^3"),
+    (r"\b(RPM|Rpm)\b", "rpm"),
+    (r"\b(k?)Nm\b", r"\1N*m"),
+)
+
+
+def written_unit(unit: str) -> str:
+    """A unit as written, with the spellings of :data:`SPELLINGS` read as the parser's:
+    ``"N·m"`` -> ``"N*m"``, ``"RPM"`` -> ``"rpm"``, ``"Nm"`` -> ``"N*m"``."""
+    for pattern, replacement in SPELLINGS:
+        unit = re.sub(pattern, replacement, unit)
+    return unit
+
+
+def _from_pint(value: Any, kind: str, field: str) -> Any:
+    """A pint quantity (of any registry) as its text, ``"3000 rpm"``; any other value as
+    it is. An array quantity is refused."""
+    if not (hasattr(value, "magnitude") and hasattr(value, "units") and hasattr(value, "to")):
+        return value
+    magnitude = value.magnitude
+    if isinstance(magnitude, bool) or not isinstance(magnitude, int | float):
+        try:
+            magnitude = float(magnitude)
+        except (TypeError, ValueError):
+            raise InputError(field, value, f"must be a single {kind}") from None
+    return f"{float(magnitude)!r} {format(value.units, '~')}"
 
 
 def _wrong_unit(kind: str, example: str) -> str:

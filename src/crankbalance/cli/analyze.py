@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import click
@@ -46,6 +47,7 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
         )
     elif "firing_order" in e:
         click.echo("Firing order " + "-".join(map(str, e["firing_order"])))
+    click.echo(_firing_text(result.model))
     if "articulated" in e:
         art = e["articulated"]
         click.echo(
@@ -107,6 +109,25 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
     echo_notes(engine)
 
 
+def _firing_text(model: Any) -> str:
+    """The firing intervals in words: "Firing intervals 180-180-180-180° (crank angle from
+    each cylinder of the order to the next)", and for an engine without a firing order the
+    order they assume."""
+    from ..errors import InputError
+    from ..studies.engine import firing
+
+    try:
+        order, intervals = firing(model)
+    except InputError as error:  # no order given and too many firings to try
+        return f"Firing intervals not derived: {error.allowed}"
+    steps = "-".join(number(math.degrees(a)) for a in intervals)
+    text = f"Firing intervals {steps}° (crank angle from each cylinder of the order to the next"
+    if not model.firing_order_given:
+        text += "; no firing order given: the most even this crank allows, order "
+        text += "-".join(map(str, order))
+    return text + ")"
+
+
 def _distinct(values: list[float]) -> str:
     """One value if all are equal, else the list (for per-cylinder masses)."""
     if max(values) - min(values) <= 1e-12 * max(abs(v) for v in values):
@@ -155,9 +176,16 @@ def curves_csv(result: object) -> str:
         c.rotating_my,
         c.rotating_mz,
     ]
-    from ..results import require_finite
+    from ..results import below_round_off, require_finite, round_off
 
     require_finite(dict(zip(header, columns, strict=True)), "curves")
+    # what is at most the engine's round-off is 0, as in the text and the JSON (no 6.9e-14,
+    # no -0)
+    force, moment = round_off(result.model)
+    columns = [columns[0]] + [
+        below_round_off(c, moment if name.endswith("_Nm") else force) + 0.0
+        for name, c in zip(header[1:], columns[1:], strict=True)
+    ]
     lines = [",".join(header)]
     for row in zip(*columns, strict=True):
         lines.append(",".join(f"{v:.9g}" for v in row))

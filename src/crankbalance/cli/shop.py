@@ -16,7 +16,15 @@ import click
 
 from ..output.format import text
 from ..schema.settings import ShopOptions
-from ._common import echo_table, option_name, parse_settings, run_study, study_options, typed
+from ._common import (
+    SuggestingGroup,
+    echo_table,
+    option_name,
+    parse_settings,
+    run_study,
+    study_options,
+    typed,
+)
 
 FORMATS = click.Choice(["table", "json"])
 
@@ -40,7 +48,7 @@ def _g(value: float) -> str:
     return text(value, "mass", 5)
 
 
-@click.group()
+@click.group(cls=SuggestingGroup)
 def shop() -> None:
     """The balance shop: weighed parts to matched sets, bob-weights, a hole plan and a sheet."""
 
@@ -48,7 +56,9 @@ def shop() -> None:
 @shop.command()
 @study_options("shop-match")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def match(engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
     result = run_study("shop-match", engine, values)
@@ -93,7 +103,9 @@ def _echo_journals(study: Any) -> None:
 @shop.command()
 @study_options("shop-bobweights")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def bobweights(engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
     result = run_study("shop-bobweights", engine, values)
@@ -164,7 +176,9 @@ def echo_hole_plan(result: Any) -> None:
 @shop.command()
 @_engine(required=False)
 @study_options("shop-plan")
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
     result = run_study("shop-plan", engine, values)
@@ -177,7 +191,9 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
 @shop.command()
 @study_options("shop-scatter")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def scatter(engine: str, fmt: str, **values: Any) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
     result = run_study("shop-scatter", engine, values)

@@ -9,6 +9,7 @@ from importlib import resources
 from typing import Any
 
 from ..errors import InputError
+from ..schema.core import closest
 from ..schema.engine import EngineSpec, spec_from_dict
 from .files import write_atomic
 from .reading import file_format, parse_json, parse_toml, read_text
@@ -48,8 +49,38 @@ def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml")
         raise InputError(source, "binary data", "must be a text file (TOML or JSON)")
     if not text.strip():
         raise InputError(source, "empty file", "must describe an engine (see docs/engine_file.md)")
-    data = parse_json(text, source) if fmt == "json" else parse_toml(text, source)
+    if fmt == "json":
+        return spec_from_dict(parse_json(text, source))
+    try:
+        data = parse_toml(text, source)
+    except InputError:
+        if looks_like_a_table(text):
+            raise InputError(source, None, _NOT_A_TABLE) from None
+        raise
     return spec_from_dict(data)
+
+
+#: files a spreadsheet saves, refused with :data:`_NOT_A_TABLE` before they are read
+SPREADSHEETS = (".csv", ".tsv", ".xlsx", ".xls", ".xlsm", ".ods")
+_NOT_A_TABLE = (
+    "is a spreadsheet's table, not an engine file; an engine file is TOML (or JSON) with "
+    'one key = "value with unit" a line under [tables], e.g. speed = "6000 rpm" '
+    "(docs/engine_file.md; `crankbalance presets` lists examples)"
+)
+
+
+def looks_like_a_table(text: str) -> bool:
+    """Whether text that is not TOML reads as a CSV table a spreadsheet saved: its first
+    line (not a comment) has no ``=``, no ``[`` at its start, and two or more cells
+    separated by commas, semicolons or tabs."""
+    for line in text.splitlines():
+        line = line.strip()
+        if not line or line.startswith("#"):
+            continue
+        if "=" in line or line.startswith("["):
+            return False
+        return any(len(line.split(sep)) > 1 for sep in (",", ";", "\t"))
+    return False
 
 
 def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
@@ -60,11 +91,16 @@ def load_engine(source: str | os.PathLike[str]) -> EngineSpec:
         # a preset, or (for a request's files, not this machine's) a file given with it
         if str(source) in _preset_names():
             return parse_engine_text(preset_text(str(source)), f"preset {source}")
+        close = closest(str(source), _preset_names())
+        hint = f"; did you mean the preset '{close}'?" if close else ""
         raise InputError(
             "engine",
             str(source),
-            "is neither an engine file nor a preset (`crankbalance presets` lists the presets)",
+            f"is neither an engine file nor a preset{hint} "
+            "(`crankbalance presets` lists the presets)",
         )
+    if os.path.splitext(str(source))[1].lower() in SPREADSHEETS:
+        raise InputError("engine", str(source), _NOT_A_TABLE)
     text = read_text(source, "engine", "an engine file (.toml or .json)", MAX_FILE_BYTES)
     return parse_engine_text(text, str(source), file_format(source))
 

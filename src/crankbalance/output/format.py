@@ -24,45 +24,21 @@ import math
 from collections.abc import Sequence
 from typing import Any
 
-from ..results import JSON_DIGITS, angle, clean_number, to_jsonable
+from ..results import JSON_DIGITS, UNITS, angle, clean_number, number, to_jsonable
 
 __all__ = [
     "JSON_DIGITS",
+    "UNITS",
     "angle",
     "clean_number",
     "depth_read_to",
+    "in_output_style",
     "json_text",
     "number",
     "plural",
     "symbol",
     "text",
 ]
-
-#: the symbol printed after a value of each kind, and the factor from its SI value
-UNITS: dict[str, tuple[str, float]] = {
-    "force": ("N", 1.0),
-    "moment": ("N·m", 1.0),
-    "torque": ("N·m", 1.0),
-    "mass": ("g", 1e3),
-    "mass_kg": ("kg", 1.0),
-    "length": ("mm", 1e3),
-    "length_m": ("m", 1.0),
-    "deflection": ("µm", 1e6),
-    "unbalance": ("g·mm", 1e6),
-    "first_moment": ("g·mm", 1e6),
-    "inertia": ("kg·m²", 1.0),
-    "speed": ("rpm", 30.0 / math.pi),
-    "frequency": ("Hz", 1.0),
-    "angle": ("°", 180.0 / math.pi),
-    "angle_deg": ("°", 1.0),
-    "stress": ("MPa", 1e-6),
-    "pressure": ("bar", 1e-5),
-    "power": ("W", 1.0),
-    "energy": ("J", 1.0),
-    "time": ("s", 1.0),
-    "percent": ("%", 1.0),
-    "ratio": ("", 1.0),
-}
 
 #: the symbols, by name, for text that builds its own labels
 N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
@@ -80,20 +56,33 @@ N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
 )
 
 
-def number(value: float, digits: int = 4) -> str:
-    """A number with ``digits`` significant digits, never ``-0`` nor float noise.
+#: the parser's spellings of units (:mod:`crankbalance.units`, engine files, defaults) ->
+#: the output's symbols, in that order: ``kg*m**2`` and ``kg*m^2`` -> ``kg·m²``,
+#: ``g*mm`` -> ``g·mm``, ``N m`` -> ``N·m``, ``30 deg`` -> ``30°``
+_STYLE: tuple[tuple[str, str], ...] = (
+    (r"\b(N|kg) m\b", r"\1·m"),
+    (r"(?<=·m) s\b", "·s"),
+    (r"(\*\*|\^)2\b", "²"),
+    (r"(\*\*|\^)3\b", "³"),
+    (r"(?<=[A-Za-zµ])\*(?=[A-Za-zµ])", "·"),
+    (r"(?<=\d) ?(degrees\b|deg\b|°)", "°"),
+)
 
-    Values of ``10**digits`` and more print whole (``15200``, not ``1.52e+04``).
 
-    >>> number(1999.9999999999998), number(-0.0001, 2), number(15200.0), number(0.5)
-    ('2000', '-0.0001', '15200', '0.5')
+def in_output_style(text: str) -> str:
+    """A text with its units written in the output's symbols (:data:`UNITS`): ``"0.002
+    kg*m^2"`` -> ``"0.002 kg·m²"``, ``"10 g*mm"`` -> ``"10 g·mm"``, ``"[N m s/rad]"`` ->
+    ``"[N·m·s/rad]"``, ``"30 deg"`` and ``"30 °"`` -> ``"30°"``; the parser reads every one
+    of them.
+
+    >>> in_output_style("0.002 kg*m**2, 10 g*mm, 1.5 N m, 30 deg, 7850 kg/m^3")
+    '0.002 kg·m², 10 g·mm, 1.5 N·m, 30°, 7850 kg/m³'
     """
-    value = clean_number(float(value))
-    if 10.0**digits <= abs(value) < 1e15:
-        out = f"{round(value):d}"
-    else:
-        out = f"{value:.{digits}g}"
-    return "0" if float(out) == 0.0 else out
+    import re
+
+    for pattern, replacement in _STYLE:
+        text = re.sub(pattern, replacement, text)
+    return text
 
 
 def symbol(kind: str) -> str:

@@ -456,12 +456,35 @@ def _tdc_shift(model: EngineModel) -> NDArray[np.float64]:
     ).reshape(-1)
 
 
+def model_fire_angles(model: EngineModel) -> NDArray[np.float64]:
+    """Crank angle of the first throw at which each cylinder of an engine fires.
+
+    Its firing order when the engine gives one, else the most even firing its crank
+    allows (:func:`crankbalance.physics.firing.firing_angles`, with each cylinder's top
+    dead centre past its axis).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine: throw [rad] and bank angles [rad] per cylinder, offsets [m], crank
+        radius [m], rod length [m], strokes, firing order.
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        Firing angle of each cylinder [rad], in [0, 2π·strokes/2).
+    """
+    order = model.firing_order if model.firing_order_given else None
+    return firing_angles(
+        model.cylinder_angle, model.cylinder_bank, order, model.strokes, _tdc_shift(model)
+    )
+
+
 def _fire_angles(model: EngineModel, fire_angle: ArrayLike | None) -> NDArray[np.float64]:
     """The firing angles of the model, or the given ones checked against its crank."""
     shift = _tdc_shift(model)
     if fire_angle is None:
-        order = model.firing_order if model.firing_order_given else None
-        return firing_angles(model.cylinder_angle, model.cylinder_bank, order, model.strokes, shift)
+        return model_fire_angles(model)
     fire = np.asarray(fire_angle, dtype=float).reshape(-1)
     if fire.size != model.cylinders or not np.all(np.isfinite(fire)):
         raise InputError("fire_angle", fire_angle, f"must give {model.cylinders} finite angles")

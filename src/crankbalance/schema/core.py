@@ -93,6 +93,7 @@ _OPTIONS: dict[str, Any] = {
     "parse": None,
     "example": "",
     "single": False,
+    "metavar": "",
 }
 
 
@@ -121,6 +122,9 @@ class Field:
     parse: Callable[[Any, str], Any] | None
     example: str
     single: bool
+    #: what a command's help shows after the option when the kind does not say it
+    #: (``STIFFNESS [N·m/rad]`` for a setting with a parser of its own); "" for the kind's
+    metavar: str
     #: the quantity kind (``"length"``...), or None for a plain kind
     quantity: str | None
     #: a quantity checked in size against the physical range of its kind: no bounds, or
@@ -177,6 +181,7 @@ def field(
     parse: Callable[[Any, str], Any] | None = None,
     example: str = "",
     single: bool = False,
+    metavar: str = "",
 ) -> Any:
     """Declare a field of a :class:`Schema`.
 
@@ -225,6 +230,9 @@ def field(
     single : bool
         A ``list`` that takes a lone value as a list of one (a setting that may be given
         several times: one ``--speed``, or ``"speed": "3000 rpm"`` in a JSON body).
+    metavar : str
+        What a command's help shows after the option when the kind does not say it
+        (``STIFFNESS [N·m/rad]``); empty: the kind's (``LENGTH [mm]``, ``NUMBER``).
 
     Returns
     -------
@@ -256,6 +264,7 @@ def field(
         parse=parse,
         example=example,
         single=single,
+        metavar=metavar,
     )
 
 

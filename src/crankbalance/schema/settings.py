@@ -410,6 +410,7 @@ def _stiffness(title: str, description: str) -> Any:
         f"from {low:g} to {high:g} N*m/rad",
         title=title,
         description=description,
+        metavar="STIFFNESS [N·m/rad]",
     )
 
 
@@ -585,14 +586,16 @@ class CounterweightRequirementOptions(StudyOptions):
     )
 
 
-def _profile(title: str) -> Any:
+def _profile(title: str, metavar: str) -> Any:
     """A profile parameter of ``counterweight optimize``: a value fixes it, ``LOW..HIGH``
-    leaves it free in that range (read by the study), empty: the optimiser's range."""
+    leaves it free in that range (read by the study), empty: the optimiser's range;
+    ``metavar`` its kind and unit in the command's help."""
     return text(
         None,
         f"{title} (value or LOW..HIGH)",
         "A value fixes the parameter, LOW..HIGH leaves it free in that range; empty: the "
         "optimiser's range.",
+        metavar=metavar,
     )
 
 
@@ -600,12 +603,12 @@ class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequiremen
     """``counterweight optimize``: the requirement, the profile parameters, the radial
     measure, the objectives and how many Pareto designs are listed."""
 
-    web_radius: str | None = _profile("Web circle radius r_cw")
-    rectangle_height: str | None = _profile("Rectangle height h_R")
-    trapezoid_angle: str | None = _profile("Trapezoid angle delta")
-    segment_radius: str | None = _profile("Segment radius R_cw")
-    segment_angle: str | None = _profile("Segment angle alpha")
-    thickness: str | None = _profile("Thickness t_cw")
+    web_radius: str | None = _profile("Web circle radius r_cw", "LENGTH [mm]")
+    rectangle_height: str | None = _profile("Rectangle height h_R", "LENGTH [mm]")
+    trapezoid_angle: str | None = _profile("Trapezoid angle delta", "ANGLE [°]")
+    segment_radius: str | None = _profile("Segment radius R_cw", "LENGTH [mm]")
+    segment_angle: str | None = _profile("Segment angle alpha", "ANGLE [°]")
+    thickness: str | None = _profile("Thickness t_cw", "LENGTH [mm]")
     radius_measure: Literal["true", "paper"] = choice(
         "true",
         ("true", "paper"),
@@ -1154,7 +1157,7 @@ class CombustionOptions(StudyOptions):
         single=True,
         words=f"at most {MAX_PRESSURE_TABLES} files, the option given once for each",
         title="Cylinder pressure tables",
-        description="Cylinder pressure tables instead of the Wiebe model (crank angle [deg "
+        description="Cylinder pressure tables instead of the Wiebe model (crank angle [° "
         "from firing TDC], absolute pressure [bar]): one for every cylinder, or one per "
         "cylinder in cylinder order.",
     )
@@ -1251,7 +1254,7 @@ class SensitivityOptions(CycleOptions):
         single=True,
         words="at most 1 file, the option given once for each",
         title="Cylinder pressure table",
-        description="A cylinder pressure table instead of the Wiebe model (crank angle [deg "
+        description="A cylinder pressure table instead of the Wiebe model (crank angle [° "
         "from firing TDC], absolute pressure [bar]).",
     )
     balance_factors: list[float] = _balance_factors(
@@ -2029,6 +2032,7 @@ class ShopOptions(StudyOptions):
         "any",
         default=1e-4,
         parse=_scale_step,
+        metavar="MASS [g]",
         words="0 or a mass up to 10 g",
         title="Resolution of the scale",
         description="The resolution of the scale the parts are weighed on; 0: exact.",
@@ -2094,6 +2098,7 @@ class PlotOptions(StudyOptions):
         "any",
         default=1,
         parse=_plot_order,
+        metavar="{ORDER|rotating}",
         words=f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'",
         title="Harmonic order",
         description="The harmonic order of the polar figure, or rotating for the bare "

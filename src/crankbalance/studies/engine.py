@@ -16,13 +16,13 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import below_round_off, round_off, to_jsonable
+from ..results import ResultMixin, below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
 if TYPE_CHECKING:  # the verification and the solver are imported when asked for
-    from numpy.typing import ArrayLike
+    from numpy.typing import ArrayLike, NDArray
 
     from ..physics.balance_check import Verification
     from ..physics.balancing import (
@@ -65,9 +65,10 @@ def engine_label(engine: EngineLike) -> str:
     return str(engine)
 
 
-@dataclass(frozen=True)
-class Analysis:
-    """Free forces and moments of one engine (see :func:`analyze`)."""
+@dataclass(frozen=True, repr=False)
+class Analysis(ResultMixin):
+    """Free forces and moments of one engine (see :func:`analyze`); a force or moment at
+    most the engine's round-off is exactly zero (:func:`without_round_off`)."""
 
     model: EngineModel
     forces: FreeForces
@@ -76,21 +77,27 @@ class Analysis:
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
-    def to_dict(self) -> dict[str, Any]:
-        m, f = self.model, self.forces
-        # what is at most the engine's round-off is reported as exactly zero
-        force, moment = round_off(m)
-        f = FreeForces(
-            orders=f.orders,
-            force_forward=below_round_off(f.force_forward, force),
-            force_backward=below_round_off(f.force_backward, force),
-            couple_forward=below_round_off(f.couple_forward, moment),
-            couple_backward=below_round_off(f.couple_backward, moment),
-            rotating_force=complex(below_round_off(f.rotating_force, force)),
-            rotating_couple=complex(below_round_off(f.rotating_couple, moment)),
-            roll=below_round_off(f.roll, moment),
-            rotating_roll=complex(below_round_off(f.rotating_roll, moment)),
+    def headline(self) -> tuple[str, ...]:
+        """The largest free force and moment of the reciprocating masses (with their
+        orders) and those of the rotating masses, in words with units."""
+        f = without_round_off(self.model, self.forces)
+
+        def largest(amplitudes: NDArray[np.float64], kind: str) -> str:
+            if not np.any(amplitudes > 0):
+                return text(0.0, kind)
+            k = int(np.argmax(amplitudes))
+            return f"{text(float(amplitudes[k]), kind)} (order {int(f.orders[k])})"
+
+        return (
+            f"free force {largest(f.force_amplitude, 'force')}, "
+            f"free moment {largest(f.moment_amplitude, 'moment')}",
+            f"rotating masses (bare crank): force {text(abs(f.rotating_force), 'force')}, "
+            f"moment {text(abs(f.rotating_couple), 'moment')}",
         )
+
+    def to_dict(self) -> dict[str, Any]:
+        m = self.model
+        f = without_round_off(m, self.forces)
         rows_f, rows_m, rows_roll = [], [], []
         for k, order in enumerate(f.orders):
             rows_f.append(
@@ -164,6 +171,24 @@ class Analysis:
         return result
 
 
+def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
+    """``forces`` with every force and moment at most the engine's round-off
+    (:func:`crankbalance.results.round_off`) set to exactly zero, as every output shows
+    them."""
+    force, moment = round_off(model)
+    return FreeForces(
+        orders=forces.orders,
+        force_forward=below_round_off(forces.force_forward, force),
+        force_backward=below_round_off(forces.force_backward, force),
+        couple_forward=below_round_off(forces.couple_forward, moment),
+        couple_backward=below_round_off(forces.couple_backward, moment),
+        rotating_force=complex(below_round_off(forces.rotating_force, force)),
+        rotating_couple=complex(below_round_off(forces.rotating_couple, moment)),
+        roll=below_round_off(forces.roll, moment),
+        rotating_roll=complex(below_round_off(forces.rotating_roll, moment)),
+    )
+
+
 def engine_summary(m: EngineModel) -> dict[str, Any]:
     """Name, size, speed and kinematics of an engine, as every JSON output starts."""
     return {
@@ -218,6 +243,34 @@ def _roll_phase(value: complex) -> float:
     return float(np.degrees(np.angle(value)))
 
 
+def firing(
+    model: EngineModel, fire: ArrayLike | None = None
+) -> tuple[list[int], NDArray[np.float64]]:
+    """The firing order and the crank angle from each cylinder of it to the next, the last
+    back to the first [rad], of the firing angles ``fire`` [rad] (default: the engine's own,
+    :func:`crankbalance.physics.engine_cycle_all.model_fire_angles`). The order is the
+    engine's when given or with ``fire``, else the order of its firing angles (the most
+    even firing its crank allows). A single cylinder's interval is the whole cycle.
+
+    Raises :class:`~crankbalance.errors.InputError` for an engine without a firing order
+    whose crank has too many firings to try
+    (:data:`crankbalance.physics.firing.MAX_FREE_CYLINDERS`).
+    """
+    order = list(model.firing_order)
+    if fire is None:
+        from ..physics.engine_cycle_all import model_fire_angles
+
+        fire = model_fire_angles(model)
+        if not model.firing_order_given:
+            order = [int(c) + 1 for c in np.argsort(fire, kind="stable")]
+            order = order[order.index(1) :] + order[: order.index(1)]  # from cylinder 1
+    cycle = np.pi * model.strokes
+    sequence = np.asarray(fire, dtype=float)[np.asarray(order) - 1]
+    intervals = np.diff(np.append(sequence, sequence[0] + cycle))
+    # one cylinder fires once a cycle: its interval is the cycle, not 0
+    return order, np.mod(intervals, cycle) if model.cylinders > 1 else intervals
+
+
 def _phase(value: complex) -> float:
     """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor: one at
     most the round-off, which ``to_dict`` sets to zero first)."""
@@ -250,7 +303,7 @@ def analyze(
         if len(point) != 3 or not all(math.isfinite(v) for v in point):
             raise InputError("moment_point", moment_point, "three finite lengths x, y, z [m]")
         model = with_moment_point(model, point)
-    return Analysis(model=model, forces=free_forces(model, orders))
+    return Analysis(model=model, forces=without_round_off(model, free_forces(model, orders)))
 
 
 # --------------------------------------------------------------------------- balancing study
@@ -293,8 +346,8 @@ def balance_options(
     return cw, primary, secondary
 
 
-@dataclass(frozen=True)
-class BalanceStudy:
+@dataclass(frozen=True, repr=False)
+class BalanceStudy(ResultMixin):
     """Counterweights and balance shafts of one engine (see :func:`balance_engine`), and
     the time-domain verification when it was asked for."""
 

@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
 from .explore import Keep, RunResult, Sample, progress_line, run
@@ -121,8 +121,8 @@ def records(
     return out
 
 
-@dataclass(frozen=True)
-class ExploreResult:
+@dataclass(frozen=True, repr=False)
+class ExploreResult(ResultMixin):
     """One run of the explorer.
 
     Attributes

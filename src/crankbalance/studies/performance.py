@@ -257,8 +257,8 @@ def combustion_text(summary: dict[str, Any] | None) -> str:
         )
     return (
         f"Wiebe combustion: compression {summary['compression_ratio']:g}, ignition "
-        f"{math.degrees(summary['ignition_rad']):g} deg, burn "
-        f"{math.degrees(summary['burn_duration_rad']):g} deg, "
+        f"{math.degrees(summary['ignition_rad']):g}°, burn "
+        f"{math.degrees(summary['burn_duration_rad']):g}°, "
         f"{BURN_END_WORDS[summary['burn_end']]}; {heat}, gamma {summary['gamma']:g}, "
         f"exhaust {summary['exhaust_pressure_Pa'] / 1e5:g} bar"
     )

@@ -49,7 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
     EngineSource = str | os.PathLike[str] | EngineSpec
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PartsStudy(ResultMixin):
     """Matched sets and bob-weights of an engine's weighed parts.
 
@@ -93,7 +93,7 @@ class PartsStudy(ResultMixin):
     journals: JournalPairing
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class HolePlan(ResultMixin):
     """A two-plane reading turned into holes per correction plane, and the ISO check.
 
@@ -130,7 +130,7 @@ class HolePlan(ResultMixin):
     center_of_mass: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ShopStudy(ResultMixin):
     """Everything the shop sheet shows: the parts study and, with readings, the hole plan.
 
@@ -615,8 +615,8 @@ def shop_json(result: Any, path: str = "") -> Any:
 PLAN_NAMES = {name: "--" + name.replace("_", "-") for name in PLAN_SETTINGS.values()}
 
 
-@dataclass(frozen=True)
-class ShopResult:
+@dataclass(frozen=True, repr=False)
+class ShopResult(ResultMixin):
     """One result of the balance shop and its JSON schema.
 
     Attributes
