@@ -5,7 +5,6 @@ from __future__ import annotations
 import json
 import os
 from functools import cache
-from importlib import resources
 from typing import Any
 
 from ..errors import InputError
@@ -15,6 +14,10 @@ from .reading import file_format, parse_json, parse_toml, read_text
 
 #: Largest engine file read [bytes]; an engine file is a few kB of TOML or JSON.
 MAX_FILE_BYTES = 2_000_000
+#: the preset folder, package data beside this package's modules (a plain path: importing
+#: importlib.resources, with zipfile and tempfile, cost every command more than a
+#: millisecond of its cold start, issue 30)
+PRESETS = os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "presets")
 
 
 def list_presets() -> list[str]:
@@ -25,8 +28,7 @@ def list_presets() -> list[str]:
 @cache
 def _preset_names() -> tuple[str, ...]:
     """The preset folder is package data: listed once per process, not on every load."""
-    folder = resources.files("crankbalance") / "presets"
-    return tuple(sorted(p.name[:-5] for p in folder.iterdir() if p.name.endswith(".toml")))
+    return tuple(sorted(name[:-5] for name in os.listdir(PRESETS) if name.endswith(".toml")))
 
 
 def preset_text(name: str) -> str:
@@ -37,7 +39,8 @@ def preset_text(name: str) -> str:
             name,
             "unknown preset; `crankbalance presets` lists them: " + ", ".join(list_presets()),
         )
-    return (resources.files("crankbalance") / "presets" / f"{name}.toml").read_text("utf-8")
+    with open(os.path.join(PRESETS, f"{name}.toml"), encoding="utf-8") as file:
+        return file.read()
 
 
 def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml") -> EngineSpec:

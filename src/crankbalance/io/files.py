@@ -47,7 +47,6 @@ import contextlib
 import errno
 import os
 import re
-import secrets
 import stat
 import sys
 from collections.abc import Iterator
@@ -267,7 +266,7 @@ def _create_temp(target: Path, real: Path) -> tuple[int, Path]:
     stem = "." + real.name[:200] + "."
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0)
     for _ in range(100):
-        temp = folder / f"{stem}{secrets.token_hex(6)}{TEMP_SUFFIX}"
+        temp = folder / f"{stem}{os.urandom(6).hex()}{TEMP_SUFFIX}"
         try:
             return os.open(temp, flags, 0o666), temp
         except FileExistsError:

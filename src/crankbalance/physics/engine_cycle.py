@@ -48,14 +48,11 @@ from ..errors import InputError, check_finite, check_nonnegative, check_positive
 from ..results import ResultMixin
 from . import kinematics
 from .firing import check_strokes
-from .single_cylinder import BALANCE_FACTOR_RANGE
+from .limits import BALANCE_FACTOR_RANGE
+from .limits import BURN_DURATION_RANGE as BURN_DURATION_RANGE
+from .limits import IGNITION_RANGE as IGNITION_RANGE
 
 GAS_CONSTANT_AIR = 287.0
-#: start of combustion the Wiebe model takes, from firing TDC [rad]: 90 deg before to
-#: 45 deg after (:class:`WiebeCombustion`; the study settings take the same range)
-IGNITION_RANGE = (-math.pi / 2, math.pi / 4)
-#: burn duration the Wiebe model takes [rad]: from 0.001 rad (0.06 deg) to 180 deg
-BURN_DURATION_RANGE = (1e-3, math.pi)
 
 Strokes = Literal[2, 4]
 
