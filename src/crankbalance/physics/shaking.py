@@ -192,14 +192,24 @@ def cylinder_coefficients(
     ndarray of complex, shape (C, K) or (1, K)
         :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
         (:func:`crankbalance.physics.kinematics.harmonic_coefficients`), one row for all
-        when the cylinders share one offset (read-only then) [-].
+        when the cylinders share one offset; read-only, kept by the model for the next
+        call (:attr:`~crankbalance.physics.model.EngineModel.derived`) [-].
     """
     mode = kinematics or model.kinematics
-    if model.articulation is not None:
-        return _articulated_rows(model, orders, mode)
-    return coefficient_rows(
-        model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
-    )
+    key = ("cylinder_coefficients", orders, mode)
+    rows = model.derived.get(key)  # the model is frozen: its rows are computed once
+    if rows is None:
+        if model.articulation is not None:
+            rows = _articulated_rows(model, orders, mode)
+        else:
+            rows = coefficient_rows(
+                model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
+            )
+        if rows.flags.writeable:
+            rows = rows.copy() if rows.base is not None else rows
+            rows.flags.writeable = False
+        model.derived[key] = rows
+    return rows
 
 
 def coefficient_rows(
@@ -292,8 +302,8 @@ def rotating_phasors(
     """
     turn = np.exp(1j * np.asarray(throw_angle, dtype=float))
     accel = np.multiply(crank_radius, np.square(speed))
-    force = accel * np.sum(np.multiply(mass, turn), axis=-1)
-    couple = accel * np.sum(np.multiply(moment, turn), axis=-1)
+    force = accel * np.multiply(mass, turn).sum(axis=-1)
+    couple = accel * np.multiply(moment, turn).sum(axis=-1)
     return force, couple
 
 
@@ -418,10 +428,10 @@ def reciprocating_phasors(
 
 
 def _phasors(sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`."""
-    phasors = sums.copy()
-    np.conjugate(phasors[..., 1::2, :], out=phasors[..., 1::2, :])
-    return phasors[..., 0, :], phasors[..., 1, :], phasors[..., 2, :], phasors[..., 3, :]
+    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`
+    (a new array of the caller's, whose rows 1 and 3 are conjugated in place)."""
+    np.conjugate(sums[..., 1::2, :], out=sums[..., 1::2, :])
+    return sums[..., 0, :], sums[..., 1, :], sums[..., 2, :], sums[..., 3, :]
 
 
 def _engine_sums(

@@ -379,7 +379,13 @@ class Schema:
         return self._values() == other._values()
 
     def __hash__(self) -> int:
-        return hash(tuple(tuple(v) if isinstance(v, list) else v for v in self._values()))
+        # an instance is frozen: its hash is computed once (a spec is the key of the
+        # built-model cache, studies.build; hashing it afresh cost 15 us)
+        held = self.__dict__
+        if "_hash" not in held:
+            values = self._values()
+            held["_hash"] = hash(tuple(tuple(v) if isinstance(v, list) else v for v in values))
+        return int(held["_hash"])
 
     def __repr__(self) -> str:
         shown = ", ".join(f"{key}={getattr(self, key)!r}" for key in self.FIELDS)
