@@ -68,3 +68,19 @@ def test_analysis_of_a_kept_model_is_that_of_a_fresh_one() -> None:
     for name in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
         assert np.array_equal(getattr(kept, name), getattr(fresh, name))
     assert kept.rotating_force == fresh.rotating_force
+
+
+def test_an_engine_text_read_again_gives_the_spec_made_the_first_time() -> None:
+    from crankbalance.errors import InputError
+    from crankbalance.io.engine_file import parse_engine_text, preset_text
+
+    assert load_engine("v6-60") is load_engine("v6-60")
+    text = preset_text("inline4")
+    spec = parse_engine_text(text, "a.toml")
+    assert parse_engine_text(text, "a.toml") is spec
+    changed = parse_engine_text(text.replace("6000 rpm", "3000 rpm"), "a.toml")
+    assert changed is not spec and changed.speed == spec.speed / 2
+    bad = text.replace("6000 rpm", "-1 rpm")
+    for _ in range(2):  # a refused text is refused every time, with its message
+        with pytest.raises(InputError, match="a.toml|speed"):
+            parse_engine_text(bad, "a.toml")

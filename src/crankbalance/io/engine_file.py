@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import json
 import os
-from functools import cache
+from functools import cache, lru_cache
 from typing import Any
 
 from ..errors import InputError
@@ -46,7 +46,19 @@ def preset_text(name: str) -> str:
 def parse_engine_text(text: str, source: str = "engine file", fmt: str = "toml") -> EngineSpec:
     """Validate the text of an engine file (TOML, or JSON with the same structure), parsed
     with the bounds of :mod:`crankbalance.io.reading` (nesting, number length, duplicate
-    JSON keys)."""
+    JSON keys). The spec (frozen) of a text read among the last :data:`PARSE_CACHE` is
+    the one made then."""
+    return _parsed(text, source, fmt)
+
+
+#: engine texts whose spec is kept (a spec is frozen; a text is a few kB): a preset or a
+#: file read again in one process (the web application, a notebook) is not parsed again
+PARSE_CACHE = 64
+
+
+@lru_cache(maxsize=PARSE_CACHE)
+def _parsed(text: str, source: str, fmt: str) -> EngineSpec:
+    """:func:`parse_engine_text`, kept by its arguments (a refused text is not kept)."""
     if "\x00" in text:
         raise InputError(source, "binary data", "must be a text file (TOML or JSON)")
     if not text.strip():

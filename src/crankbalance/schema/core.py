@@ -370,13 +370,13 @@ class Schema:
         return given
 
     def _values(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, key) for key in self.FIELDS)
+        return tuple(map(self.__dict__.__getitem__, self.FIELDS))  # every field is held there
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
         assert isinstance(other, Schema)
-        return self._values() == other._values()
+        return other is self or self._values() == other._values()
 
     def __hash__(self) -> int:
         # an instance is frozen: its hash is computed once (a spec is the key of the
