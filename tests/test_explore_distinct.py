@@ -56,3 +56,43 @@ def test_uniform_torsion_and_intervals_do_not_depend_on_the_cylinders_order() ->
     y = torsional_excitation(shuffled, w, k)
     assert not np.array_equal(y[0], y[1])
     assert np.array_equal(y[0], torsional_excitation(alpha, w, k)[0])
+
+
+SAMPLED_LAYOUTS = [
+    ("inline", 8, 4, {}),
+    ("inline", 6, 2, {}),
+    ("vee", 8, 4, {"bank_angle": np.radians(90)}),
+    ("vee", 8, 4, {"bank_angle": np.radians(90), "crank": "flat"}),
+    ("w", 12, 4, {"bank_angle": np.radians(60)}),
+    ("vee", 12, 4, {"bank_angle": np.radians(60), "crank": "split"}),
+    ("boxer", 6, 4, {}),
+    ("radial", 5, 4, {}),
+    ("inline", 4, 4, {"fixed_throw_angles": (0.0, np.pi, np.pi, 0.0)}),
+    ("inline", 4, 4, {"intervals": (np.pi / 2, 3 * np.pi / 2, np.pi / 2, 3 * np.pi / 2)}),
+    ("inline", 16, 4, {}),
+]
+
+
+@pytest.mark.parametrize("layout", SAMPLED_LAYOUTS, ids=lambda s: f"{s[0]}{s[1]}-{s[2]}{s[3]}")
+def test_candidates_at_indices_are_those_of_a_chunk_of_each(
+    layout: tuple[str, int, int, dict[str, object]],
+) -> None:
+    name, cylinders, strokes, options = layout
+    problem = orders.problem(name, cylinders, strokes, **options)  # type: ignore[arg-type]
+    total = orders.count(problem)
+    index = np.unique(np.random.default_rng(5).integers(0, total, size=min(600, total)))
+    together = orders.at(problem, index)
+    alone = [orders.chunk(problem, int(i), int(i) + 1) for i in index]
+    for field in ("throw_angle", "firing_order", "fire_angle", "equivalents", "index"):
+        expected = np.concatenate([getattr(one, field) for one in alone])
+        assert np.array_equal(getattr(together, field), expected), field
+
+
+def test_candidates_at_refuses_indices_out_of_order_or_range() -> None:
+    from crankbalance.errors import InputError
+
+    problem = orders.problem("inline", 6, 4)
+    for bad in ([3, 2], [1, 1], [-1], [orders.count(problem)]):
+        with pytest.raises(InputError, match="increasing, distinct"):
+            orders.at(problem, bad)
+    assert orders.at(problem, []).size == 0

@@ -69,7 +69,10 @@ ROW_COLUMNS = ("index", "equivalents", "firing_order", "throw_angle_rad")
 
 class Enumeration(Protocol):
     """What a run enumerates: :mod:`crankbalance.physics.explore.orders` (a module) or a
-    stand-in with the same four functions of its problem (opaque to the run)."""
+    stand-in with the same four functions of its problem (opaque to the run). A fifth,
+    ``at(problem, indices)`` (the candidates among sorted distinct indices, as ``chunk``
+    of each alone), is used for a random search's draws when the source has it; else
+    each draw is a ``chunk`` of one index."""
 
     def count(self, problem: Any, /) -> int:
         """The number of indices of the problem [-]."""
@@ -268,6 +271,9 @@ def _candidates(problem: Any, task: Task, source: Enumeration) -> tuple[Candidat
     if isinstance(task, tuple):
         start, stop = task
         return source.chunk(problem, start, stop), stop - start
+    picked = getattr(source, "at", None)  # all the sampled indices at once, when it can
+    if picked is not None:
+        return picked(problem, task), int(task.size)
     parts = [source.chunk(problem, int(i), int(i) + 1) for i in task]
     first = parts[0]
     joined = {
