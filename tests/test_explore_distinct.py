@@ -96,3 +96,23 @@ def test_candidates_at_refuses_indices_out_of_order_or_range() -> None:
         with pytest.raises(InputError, match="increasing, distinct"):
             orders.at(problem, bad)
     assert orders.at(problem, []).size == 0
+
+
+def test_a_task_evaluated_crank_by_crank_gives_its_rows_by_index() -> None:
+    """The slices of a task take the candidates crank by crank; the rows come back in
+    index order, each the figures of its candidate."""
+    import functools
+
+    from crankbalance.studies.explore import Keep, evaluate_task
+
+    problem = orders.problem("inline", 8, 4)
+    total = orders.count(problem)
+    evaluate = functools.partial(merit, target="counterweights")
+    keep = Keep(objectives=("F1_N", "M1_Nm"), key="residual_M_Nm", n=5)
+    part = evaluate_task(problem, evaluate, None, keep, True, None, (0, total))
+    assert part.rows is not None
+    cands = orders.chunk(problem, 0, total)
+    assert np.array_equal(part.rows["index"], cands.index)
+    whole = evaluate(cands)
+    for name, column in whole.items():
+        assert np.array_equal(part.rows[name], column), name
