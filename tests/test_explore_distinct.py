@@ -116,3 +116,21 @@ def test_a_task_evaluated_crank_by_crank_gives_its_rows_by_index() -> None:
     whole = evaluate(cands)
     for name, column in whole.items():
         assert np.array_equal(part.rows[name], column), name
+
+
+def test_rank_deficient_counterweight_systems_are_solved_together_as_lstsq_would() -> None:
+    """The nearly parallel two-unknown systems of the optimal pattern get their least-norm
+    solutions from one stacked SVD: those of numpy.linalg.lstsq, system by system."""
+    from crankbalance.physics.balance_counterweights import _lstsq2
+    from crankbalance.results import ROUND_OFF
+
+    rng = np.random.default_rng(0)
+    matrix = rng.normal(size=(60, 6, 2))
+    matrix[:20, :, 1] = matrix[:20, :, 0] * rng.normal(size=(20, 1))  # parallel columns
+    matrix[20:25] = 0.0  # nothing to solve
+    matrix[25:30, :, 1] = 3 * matrix[25:30, :, 0] + 1e-14 * rng.normal(size=(5, 6))
+    rhs = rng.normal(size=(60, 6))
+    x1, x2 = _lstsq2(matrix, rhs)
+    for i in range(60):
+        expected, *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=ROUND_OFF)
+        assert np.allclose([x1[i], x2[i]], expected, rtol=1e-12, atol=1e-12), i
