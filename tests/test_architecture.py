@@ -266,7 +266,8 @@ def test_cli_loads_only_the_packages_it_needs(command: str | None) -> None:
 #: modules a command of one engine must not load (issue 30, the cold start): the physics
 #: of other studies (the settings schema takes their limits from ``physics.limits``), the
 #: other studies, and the standard library's heavier modules that nothing on these paths
-#: needs (``importlib.resources`` brought zipfile and tempfile, ``secrets`` random)
+#: needs (``importlib.resources`` brought zipfile and tempfile, ``secrets`` random,
+#: ``pathlib`` urllib and ipaddress: io.files imports it on the first write)
 CLI_MODULES_UNLOADED = (
     "crankbalance.physics.engine_cycle",
     "crankbalance.physics.engine_cycle_all",
@@ -281,6 +282,7 @@ CLI_MODULES_UNLOADED = (
     "zipfile",
     "tempfile",
     "secrets",
+    "pathlib",
     "scipy",
     "plotly",
     "nicegui",

@@ -50,8 +50,10 @@ import re
 import stat
 import sys
 from collections.abc import Iterator
-from pathlib import Path
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # pathlib (with urllib and ipaddress) is imported on the first write
+    from pathlib import Path
 
 #: the end of every temporary file name (``.NAME.<12 hex digits>.tmp``)
 TEMP_SUFFIX = ".tmp"
@@ -110,6 +112,8 @@ def atomic_open(path: str | os.PathLike[str], mode: str = "w") -> Iterator[IO[An
     Anything else is refused before anything is opened. An OS error inside the block or
     while saving is raised as :class:`WriteError`.
     """
+    from pathlib import Path  # here: a command that writes nothing does not load it
+
     if mode not in ("w", "wb"):
         raise ValueError(f"atomic_open writes with mode 'w' or 'wb', not {mode!r}")
     target = Path(path)

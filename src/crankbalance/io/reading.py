@@ -22,7 +22,6 @@ import tomllib
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
-from pathlib import Path
 from typing import Any, NoReturn
 
 from ..errors import InputError
@@ -197,7 +196,8 @@ def _chunks(fd: int, count: int) -> Iterator[bytes]:
 
 def file_format(path: str | os.PathLike[str]) -> str:
     """``"json"`` for a ``.json`` file, else ``"toml"``."""
-    return "json" if Path(path).suffix.lower() == ".json" else "toml"
+    suffix = os.path.splitext(os.path.basename(os.fspath(path)))[1]  # no pathlib at start
+    return "json" if suffix.lower() == ".json" else "toml"
 
 
 # --------------------------------------------------------------------------- TOML, JSON
