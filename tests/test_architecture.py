@@ -283,20 +283,24 @@ CLI_MODULES_UNLOADED = (
     "tempfile",
     "secrets",
     "pathlib",
+    "json",
+    "crankbalance.physics.articulated",
     "scipy",
     "plotly",
     "nicegui",
     "dask",
 )
 _CLI_MODULES_PROBE = """
-import contextlib, io, json, sys
+import contextlib, io, sys
 from crankbalance.cli import main
 with contextlib.redirect_stdout(io.StringIO()):
     try:
         main(sys.argv[1:])
     except SystemExit:
         pass
-print(json.dumps(sorted(sys.modules)))
+loaded = sorted(sys.modules)  # before the probe's own json
+import json
+print(json.dumps(loaded))
 """
 
 

@@ -2,7 +2,6 @@
 
 from __future__ import annotations
 
-import json
 import os
 from functools import cache, lru_cache
 from typing import Any
@@ -92,6 +91,8 @@ def engine_to_toml(spec: EngineSpec) -> str:
 def save_engine(spec: EngineSpec, path: str | os.PathLike[str]) -> None:
     """Save an engine file atomically; the format follows the suffix (.json or .toml)."""
     if file_format(path) == "json":
+        import json  # here: loading an engine does not load it
+
         text = json.dumps(spec.to_data(), indent=2) + "\n"
     else:
         text = engine_to_toml(spec)
@@ -131,7 +132,14 @@ def _is_table_list(value: Any) -> bool:
 
 
 def _key(key: str) -> str:
-    return key if key.replace("_", "").replace("-", "").isalnum() else json.dumps(key)
+    return key if key.replace("_", "").replace("-", "").isalnum() else _quoted(key, ascii=True)
+
+
+def _quoted(text: str, ascii: bool = False) -> str:
+    """A TOML basic string (JSON's escapes are TOML's), non-ASCII escaped if ``ascii``."""
+    import json  # here: loading an engine does not load it
+
+    return json.dumps(text, ensure_ascii=ascii)
 
 
 def _value(value: Any) -> str:
@@ -140,7 +148,7 @@ def _value(value: Any) -> str:
     if isinstance(value, (int, float)):
         return repr(value)
     if isinstance(value, str):
-        return json.dumps(value, ensure_ascii=False)
+        return _quoted(value)
     if isinstance(value, list):
         return "[" + ", ".join(_value(v) for v in value) + "]"
     raise TypeError(f"cannot write {type(value).__name__} to TOML")

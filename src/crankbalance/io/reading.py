@@ -14,7 +14,6 @@ and, for JSON, a key given twice in one object. Every refusal is one
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import stat
@@ -229,6 +228,8 @@ def parse_json(text: str, field: str, value: Any = None) -> Any:
         :data:`MAX_NUMBER_CHARS` characters, gives a key twice in one object, or is not
         valid JSON.
     """
+    import json  # here: reading a TOML file does not load it
+
     _check_text(text, _JSON_TOKENS, field, value)
 
     def unique(pairs: list[tuple[str, Any]]) -> dict[str, Any]:

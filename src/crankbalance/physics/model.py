@@ -33,14 +33,16 @@ from __future__ import annotations
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields, replace
 from functools import cached_property
-from typing import Any, ClassVar
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import ArticulatedRods, Articulation
+
+if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from .articulated import ArticulatedRods, Articulation
 from .kinematics import KinematicsModel
 
 

@@ -40,9 +40,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import cylinder_coefficients as articulated_coefficients
-from .articulated import harmonics as articulated_harmonics
-from .articulated import inertia_force as articulated_inertia_force
 from .kinematics import (
     CHUNK,
     KinematicsModel,
@@ -776,6 +773,8 @@ def _articulated_rows(model: EngineModel, orders: int, mode: str) -> NDArray[np.
             "master-and-link rods are modelled with the exact kinematics only: 'exact'",
         )
     _single_throw(model)
+    from .articulated import cylinder_coefficients as articulated_coefficients
+
     return articulated_coefficients(rods, orders)
 
 
@@ -787,6 +786,8 @@ def _link_pin_phasors(model: EngineModel, orders: int) -> tuple[NDArray, ...]:
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import harmonics as articulated_harmonics
+
     h = articulated_harmonics(rods, orders)
     turn = np.exp(1j * h.orders * phi)
     mass = model.speed**2 * model.cylinder_rotating_mass
@@ -801,6 +802,8 @@ def _articulated_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDAr
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import inertia_force as articulated_inertia_force
+
     force = articulated_inertia_force(
         rods,
         model.reciprocating_mass,

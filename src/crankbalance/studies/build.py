@@ -11,15 +11,18 @@ from __future__ import annotations
 import dataclasses
 import functools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..physics.articulated import Articulation, default_link_pin_angles
 from ..physics.firing import check_firing_order, firing_tdc_angles, to_crankbalance_order
 from ..physics.model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
 from ..schema.engine import EngineSpec
+
+if TYPE_CHECKING:  # imported where a spec has master-and-link rods
+    from ..physics.articulated import Articulation
 
 #: built models kept for the specs seen last (a spec is frozen and hashable, a model frozen
 #: with read-only arrays: a study of an engine seen before skips the build, issue 30)
@@ -387,6 +390,8 @@ def _articulation(spec: EngineSpec, banks: NDArray) -> Articulation | None:
     art = spec.crank_train.articulated
     if art is None:
         return None
+    from ..physics.articulated import Articulation, default_link_pin_angles
+
     n = banks.size
     master = art.master_cylinder - 1
     links = np.arange(n) != master
