@@ -19,7 +19,6 @@ JSON keys carry SI values and name their unit in a suffix (``_m``, ``_kg``, ``_k
 
 from __future__ import annotations
 
-import json
 import math
 from collections.abc import Sequence
 from typing import Any
@@ -143,6 +142,8 @@ def plural(count: int, word: str, many: str | None = None) -> str:
 def json_text(payload: Any, indent: int | None = 2) -> str:
     """The text of one JSON output: every value through :func:`~crankbalance.results.to_jsonable`
     (12 significant digits, no ``-0.0``, angles in [0, 360))."""
+    import json  # here: a command printing a table does not load it
+
     return json.dumps(to_jsonable(payload), indent=indent, ensure_ascii=False)
 
 

@@ -48,20 +48,13 @@ from ..errors import InputError, check_finite, check_nonnegative, check_positive
 from ..results import ResultMixin
 from . import kinematics
 from .firing import check_strokes
-from .single_cylinder import BALANCE_FACTOR_RANGE
+from .limits import BALANCE_FACTOR_RANGE
+from .limits import BURN_DURATION_RANGE as BURN_DURATION_RANGE
+from .limits import BURN_ENDS as BURN_ENDS
+from .limits import GAMMA_RANGE as GAMMA_RANGE
+from .limits import IGNITION_RANGE as IGNITION_RANGE
 
 GAS_CONSTANT_AIR = 287.0
-#: start of combustion the Wiebe model takes, from firing TDC [rad]: 90 deg before to
-#: 45 deg after (:class:`WiebeCombustion`; the study settings take the same range)
-IGNITION_RANGE = (-math.pi / 2, math.pi / 4)
-#: burn duration the Wiebe model takes [rad]: from 0.001 rad (0.06 deg) to 180 deg
-BURN_DURATION_RANGE = (1e-3, math.pi)
-#: the Wiebe model's conventions for the end of the burn (:func:`wiebe_burn_fraction`):
-#: ``"complete"`` lets the exponential tail run on past the burn duration to a complete
-#: burn; ``"stop"`` ends the burn at the end of the duration, at :math:`1 - e^{-a}`
-BURN_ENDS = ("complete", "stop")
-#: ratio of specific heats the single-zone model takes [-]
-GAMMA_RANGE = (1.01, 1.67)
 
 Strokes = Literal[2, 4]
 

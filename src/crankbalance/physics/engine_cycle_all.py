@@ -53,16 +53,9 @@ from .engine_cycle import (
     speed_from_energy,
 )
 from .firing import TDC_TOLERANCE, check_strokes, firing_angles
+from .limits import MAX_FLUCTUATION_TARGET as MAX_FLUCTUATION_TARGET
+from .limits import MIN_FLUCTUATION_TARGET as MIN_FLUCTUATION_TARGET
 from .model import EngineModel, tdc_angle
-
-#: the largest target speed fluctuation a flywheel is sized for [-]. The energy method
-#: assumes a small fluctuation (omega_max + omega_min = 2 omega_mean); at 0.2 its check
-#: re-integration of every preset lands within 10 % of the target, while from about 0.4
-#: the inertia it gives lets the speed swing by more than half its mean and the check is
-#: refused (docs/engine_cycle.md; 0.5 before, a documented value that could not compute)
-MAX_FLUCTUATION_TARGET = 0.2
-#: the smallest one [-] (below, the inertia found is beyond any machine)
-MIN_FLUCTUATION_TARGET = 1e-6
 
 
 def flywheel_inertia(

@@ -32,14 +32,17 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields, replace
-from typing import Any, ClassVar
+from functools import cached_property
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import ArticulatedRods, Articulation
+
+if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from .articulated import ArticulatedRods, Articulation
 from .kinematics import KinematicsModel
 
 
@@ -86,6 +89,12 @@ class ConrodSplit(ResultMixin):
     inertia_two_mass: float
     inertia_given: float | None
     inertia_error: float | None
+
+
+def _read_only(array: NDArray[Any]) -> NDArray[Any]:
+    """``array``, made read-only (a derived array a model keeps and hands out)."""
+    array.flags.writeable = False
+    return array
 
 
 @dataclass(frozen=True)
@@ -183,15 +192,17 @@ class EngineModel:
     def throws(self) -> int:
         return int(self.throw_angle.size)
 
-    @property
+    # The derived arrays below are computed once per model (a frozen model: its arrays are
+    # read-only when studies.build made them) and returned read-only.
+    @cached_property
     def cylinder_angle(self) -> NDArray[np.float64]:
         """Throw angle of each cylinder's crankpin [rad]."""
-        return self.throw_angle[self.cylinder_throw]
+        return _read_only(self.throw_angle[self.cylinder_throw])
 
-    @property
+    @cached_property
     def cylinder_position(self) -> NDArray[np.float64]:
         """Axial position of each cylinder's rod [m]: its throw's plus ``cylinder_axial``."""
-        return self.throw_position[self.cylinder_throw] + self.cylinder_axial
+        return _read_only(self.throw_position[self.cylinder_throw] + self.cylinder_axial)
 
     @property
     def moment_reference(self) -> float:
@@ -204,22 +215,32 @@ class EngineModel:
         """The moment reference point (x, y, z) [m], y from the crank's mid-point."""
         return (self.reference_x, self.moment_reference, self.reference_z)
 
-    @property
+    @cached_property
     def throw_axial_moment(self) -> NDArray[np.float64]:
         r"""First moment of each throw's big ends about the throw's centre,
         :math:`\sum_c m_{b,c}\,a_c` over the rods on the throw [kg m], shape (T,)."""
-        return np.bincount(
-            self.cylinder_throw,
-            self.cylinder_rotating_mass * self.cylinder_axial,
-            minlength=self.throws,
-        ).astype(float)
+        return _read_only(
+            np.bincount(
+                self.cylinder_throw,
+                self.cylinder_rotating_mass * self.cylinder_axial,
+                minlength=self.throws,
+            ).astype(float)
+        )
 
-    @property
+    @cached_property
     def throw_rotating_moment(self) -> NDArray[np.float64]:
         r"""First moment of each throw's rotating mass about the moment reference point,
         :math:`m_t y_t + \sum_c m_{b,c} a_c` [kg m], shape (T,): the lever arm of the
         rotating couple, with the big ends of side-by-side rods at their own positions."""
-        return self.throw_rotating_mass * self.throw_position + self.throw_axial_moment
+        return _read_only(self.throw_rotating_mass * self.throw_position + self.throw_axial_moment)
+
+    @cached_property
+    def derived(self) -> dict[tuple[object, ...], NDArray[Any]]:
+        """Read-only arrays that physics functions derive from this model alone and keep
+        for the next call on it, keyed by the function's name and arguments (the harmonic
+        coefficient rows of :func:`crankbalance.physics.shaking.cylinder_coefficients`):
+        a model is frozen, so they hold as long as it lives."""
+        return {}
 
     @property
     def articulated_rods(self) -> ArticulatedRods | None:

@@ -45,9 +45,6 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import cylinder_coefficients as articulated_coefficients
-from .articulated import harmonics as articulated_harmonics
-from .articulated import inertia_force as articulated_inertia_force
 from .kinematics import (
     CHUNK,
     KinematicsModel,
@@ -266,14 +263,24 @@ def cylinder_coefficients(
     ndarray of complex, shape (C, K) or (1, K)
         :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
         (:func:`crankbalance.physics.kinematics.harmonic_coefficients`), one row for all
-        when the cylinders share one offset (read-only then) [-].
+        when the cylinders share one offset; read-only, kept by the model for the next
+        call (:attr:`~crankbalance.physics.model.EngineModel.derived`) [-].
     """
     mode = kinematics or model.kinematics
-    if model.articulation is not None:
-        return _articulated_rows(model, orders, mode)
-    return coefficient_rows(
-        model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
-    )
+    key = ("cylinder_coefficients", orders, mode)
+    rows = model.derived.get(key)  # the model is frozen: its rows are computed once
+    if rows is None:
+        if model.articulation is not None:
+            rows = _articulated_rows(model, orders, mode)
+        else:
+            rows = coefficient_rows(
+                model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
+            )
+        if rows.flags.writeable:
+            rows = rows.copy() if rows.base is not None else rows
+            rows.flags.writeable = False
+        model.derived[key] = rows
+    return rows
 
 
 def coefficient_rows(
@@ -366,8 +373,8 @@ def rotating_phasors(
     """
     turn = np.exp(1j * np.asarray(throw_angle, dtype=float))
     accel = np.multiply(crank_radius, np.square(speed))
-    force = accel * np.sum(np.multiply(mass, turn), axis=-1)
-    couple = accel * np.sum(np.multiply(moment, turn), axis=-1)
+    force = accel * np.multiply(mass, turn).sum(axis=-1)
+    couple = accel * np.multiply(moment, turn).sum(axis=-1)
     return force, couple
 
 
@@ -492,10 +499,10 @@ def reciprocating_phasors(
 
 
 def _phasors(sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`."""
-    phasors = sums.copy()
-    np.conjugate(phasors[..., 1::2, :], out=phasors[..., 1::2, :])
-    return phasors[..., 0, :], phasors[..., 1, :], phasors[..., 2, :], phasors[..., 3, :]
+    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`
+    (a new array of the caller's, whose rows 1 and 3 are conjugated in place)."""
+    np.conjugate(sums[..., 1::2, :], out=sums[..., 1::2, :])
+    return sums[..., 0, :], sums[..., 1, :], sums[..., 2, :], sums[..., 3, :]
 
 
 def _engine_sums(
@@ -886,6 +893,8 @@ def _articulated_rows(model: EngineModel, orders: int, mode: str) -> NDArray[np.
     assert rods is not None
     _exact_only(mode)
     _single_throw(model)
+    from .articulated import cylinder_coefficients as articulated_coefficients
+
     return articulated_coefficients(rods, orders)
 
 
@@ -907,6 +916,8 @@ def _link_pin_phasors(model: EngineModel, orders: int) -> tuple[NDArray, ...]:
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import harmonics as articulated_harmonics
+
     h = articulated_harmonics(rods, orders)
     turn = np.exp(1j * h.orders * phi)
     mass = model.speed**2 * model.cylinder_rotating_mass
@@ -921,6 +932,8 @@ def _articulated_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDAr
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import inertia_force as articulated_inertia_force
+
     force = articulated_inertia_force(
         rods,
         model.reciprocating_mass,

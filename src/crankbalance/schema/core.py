@@ -379,16 +379,22 @@ class Schema:
         return given
 
     def _values(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, key) for key in self.FIELDS)
+        return tuple(map(self.__dict__.__getitem__, self.FIELDS))  # every field is held there
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
         assert isinstance(other, Schema)
-        return self._values() == other._values()
+        return other is self or self._values() == other._values()
 
     def __hash__(self) -> int:
-        return hash(tuple(tuple(v) if isinstance(v, list) else v for v in self._values()))
+        # an instance is frozen: its hash is computed once (a spec is the key of the
+        # built-model cache, studies.build; hashing it afresh cost 15 us)
+        held = self.__dict__
+        if "_hash" not in held:
+            values = self._values()
+            held["_hash"] = hash(tuple(tuple(v) if isinstance(v, list) else v for v in values))
+        return int(held["_hash"])
 
     def __repr__(self) -> str:
         shown = ", ".join(f"{key}={getattr(self, key)!r}" for key in self.FIELDS)

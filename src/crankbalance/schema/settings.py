@@ -30,10 +30,16 @@ from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypeVar, get_args
 
 from ..errors import InputError
-from ..physics.engine_cycle import BURN_DURATION_RANGE, BURN_ENDS, GAMMA_RANGE, IGNITION_RANGE
-from ..physics.engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from ..physics.explore.work import LARGEST_CHUNK, MAX_DRAWS
-from ..physics.single_cylinder import BALANCE_FACTOR_RANGE
+from ..physics.limits import (
+    BALANCE_FACTOR_RANGE,
+    BURN_DURATION_RANGE,
+    BURN_ENDS,
+    GAMMA_RANGE,
+    IGNITION_RANGE,
+    MAX_FLUCTUATION_TARGET,
+    MIN_FLUCTUATION_TARGET,
+)
 from ..units import RANGES as units_ranges
 from ..units import format_quantity, parse_factor, parse_quantity, range_si
 from . import core
