@@ -52,10 +52,10 @@ from .engine_cycle import (
     cylinder_pressure,
     speed_from_energy,
 )
-from .firing import TDC_TOLERANCE, check_strokes, firing_angles
+from .firing import TDC_TOLERANCE, check_strokes
 from .limits import MAX_FLUCTUATION_TARGET as MAX_FLUCTUATION_TARGET
 from .limits import MIN_FLUCTUATION_TARGET as MIN_FLUCTUATION_TARGET
-from .model import EngineModel, tdc_angle
+from .model import EngineModel, model_fire_angles, tdc_shift
 
 
 def flywheel_inertia(
@@ -323,7 +323,7 @@ def engine_cycle_all(
     count = model.cylinders
     sources = _sources(pressure, count)
     fire = _fire_angles(model, fire_angle)
-    psi = _tdc_shift(model)
+    psi = tdc_shift(model)
     cycle = math.pi * strokes
     first = model.firing_order[0] - 1 if model.firing_order_given else 0
     theta = cycle_angles(strokes, int(samples_per_revolution))
@@ -442,40 +442,9 @@ def _sources(pressure: object, count: int) -> list[PressureSource]:
     return [pressure] * count  # type: ignore[list-item]
 
 
-def _tdc_shift(model: EngineModel) -> NDArray[np.float64]:
-    """Each cylinder's top dead centre past its axis (its offset slider-crank) [rad]."""
-    return np.asarray(
-        tdc_angle(model.cylinder_offset, model.crank_radius, model.rod_length), dtype=float
-    ).reshape(-1)
-
-
-def model_fire_angles(model: EngineModel) -> NDArray[np.float64]:
-    """Crank angle of the first throw at which each cylinder of an engine fires.
-
-    Its firing order when the engine gives one, else the most even firing its crank
-    allows (:func:`crankbalance.physics.firing.firing_angles`, with each cylinder's top
-    dead centre past its axis).
-
-    Parameters
-    ----------
-    model : EngineModel
-        The engine: throw [rad] and bank angles [rad] per cylinder, offsets [m], crank
-        radius [m], rod length [m], strokes, firing order.
-
-    Returns
-    -------
-    ndarray, shape (C,)
-        Firing angle of each cylinder [rad], in [0, 2π·strokes/2).
-    """
-    order = model.firing_order if model.firing_order_given else None
-    return firing_angles(
-        model.cylinder_angle, model.cylinder_bank, order, model.strokes, _tdc_shift(model)
-    )
-
-
 def _fire_angles(model: EngineModel, fire_angle: ArrayLike | None) -> NDArray[np.float64]:
     """The firing angles of the model, or the given ones checked against its crank."""
-    shift = _tdc_shift(model)
+    shift = tdc_shift(model)
     if fire_angle is None:
         return model_fire_angles(model)
     fire = np.asarray(fire_angle, dtype=float).reshape(-1)

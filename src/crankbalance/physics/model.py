@@ -43,6 +43,7 @@ from ..results import ResultMixin
 
 if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
     from .articulated import ArticulatedRods, Articulation
+from .firing import firing_angles
 from .kinematics import KinematicsModel
 
 
@@ -312,6 +313,48 @@ def tdc_angle(
     """
     e = np.asarray(offset, dtype=float)
     return np.arcsin(e / (np.asarray(rod_length, dtype=float) + np.asarray(crank_radius)))
+
+
+def tdc_shift(model: EngineModel) -> NDArray[np.float64]:
+    """Each cylinder's top dead centre past its axis (its offset slider-crank).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine: offsets [m], crank radius [m], rod length [m].
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        :func:`tdc_angle` of each cylinder [rad].
+    """
+    return np.asarray(
+        tdc_angle(model.cylinder_offset, model.crank_radius, model.rod_length), dtype=float
+    ).reshape(-1)
+
+
+def model_fire_angles(model: EngineModel) -> NDArray[np.float64]:
+    """Crank angle of the first throw at which each cylinder of an engine fires.
+
+    Its firing order when the engine gives one, else the most even firing its crank
+    allows (:func:`crankbalance.physics.firing.firing_angles`, with each cylinder's top
+    dead centre past its axis).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine: throw [rad] and bank angles [rad] per cylinder, offsets [m], crank
+        radius [m], rod length [m], strokes, firing order.
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        Firing angle of each cylinder [rad], in [0, 2π·strokes/2).
+    """
+    order = model.firing_order if model.firing_order_given else None
+    return firing_angles(
+        model.cylinder_angle, model.cylinder_bank, order, model.strokes, tdc_shift(model)
+    )
 
 
 def standard_layout(

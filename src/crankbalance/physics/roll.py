@@ -36,11 +36,14 @@ The gas forces' torque and its reaction are the engine cycle's
 from __future__ import annotations
 
 import functools
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
-from .articulated import ArticulatedRods, harmonics, motion, piston_position
+if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from .articulated import ArticulatedRods
+
 from .kinematics import (
     FOURIER_SAMPLES,
     KinematicsModel,
@@ -150,6 +153,8 @@ def articulated_roll(
     (:func:`crankbalance.physics.articulated.harmonics`), the sum over the pistons and link
     pins of the module's formula, and its discrete Fourier transform.
     """
+    from .articulated import harmonics
+
     n = harmonics(rods, orders).samples
     theta = 2.0 * np.pi * np.arange(n) / n
     curve = articulated_roll_curve(rods, reciprocating_mass, big_end_mass, theta, speed)
@@ -186,6 +191,8 @@ def articulated_roll_curve(
         [N·m].
     """
     w = float(speed)
+    from .articulated import motion, piston_position
+
     move = motion(rods, angle, w)
     axis = np.exp(1j * np.asarray(rods.bank_angle, dtype=float))[None, :]
     where = np.concatenate([piston_position(rods, move), move.big_end], axis=1)

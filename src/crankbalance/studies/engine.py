@@ -248,7 +248,7 @@ def firing(
 ) -> tuple[list[int], NDArray[np.float64]]:
     """The firing order and the crank angle from each cylinder of it to the next, the last
     back to the first [rad], of the firing angles ``fire`` [rad] (default: the engine's own,
-    :func:`crankbalance.physics.engine_cycle_all.model_fire_angles`). The order is the
+    :func:`crankbalance.physics.model.model_fire_angles`). The order is the
     engine's when given or with ``fire``, else the order of its firing angles (the most
     even firing its crank allows). A single cylinder's interval is the whole cycle.
 
@@ -258,7 +258,7 @@ def firing(
     """
     order = list(model.firing_order)
     if fire is None:
-        from ..physics.engine_cycle_all import model_fire_angles
+        from ..physics.model import model_fire_angles
 
         fire = model_fire_angles(model)
         if not model.firing_order_given:
