@@ -58,7 +58,8 @@ sphinx_gallery_conf = {
     "examples_dirs": str(ROOT / "examples"),
     "gallery_dirs": "gallery",
     "filename_pattern": r".*\.py$",  # every example is run, not only plot_*.py
-    "image_scrapers": (),  # the examples print their results; figures are written to files
+    # the examples print their results and write their figures to files (docs/_gallery.py)
+    "image_scrapers": ("_gallery.png_scraper",),
     "download_all_examples": False,
     "reset_modules": (),
     "abort_on_example_error": True,
@@ -68,6 +69,8 @@ sphinx_gallery_conf = {
 html_theme = "alabaster"
 html_title = f"crankbalance {release}"
 html_static_path: list[str] = []
+# wide enough for the tables the examples print and the README's commands
+html_theme_options = {"page_width": "1300px", "sidebar_width": "270px"}
 
 sys.path.insert(0, str(Path(__file__).resolve().parent))  # _gallery.py, named below by string
 sphinx_gallery_conf["reset_argv"] = "_gallery.reset_argv"

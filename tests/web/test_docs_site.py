@@ -1,6 +1,6 @@
 """The documentation site (docs/conf.py) builds with warnings as errors, every relative link
 of every page points at a file of the site, and Chromium shows the home page, an API page
-and a gallery example with their content.
+and gallery examples with their output and figure.
 
 The site is built from a copy of ``docs/`` and ``examples/`` in a scratch folder (Sphinx
 writes the pages it generates, ``api/`` and ``gallery/``, beside its sources)."""
@@ -80,3 +80,9 @@ def test_chromium_shows_the_home_an_api_page_and_an_example(site: Path, page: An
     text = page.locator("body").inner_text()
     assert "Free forces and moments of classic engines" in text
     assert "order 1: force" in text, "the example's printed output is on its page"
+
+    page.goto((site / "gallery" / "inline4_counterweights.html").as_uri())
+    figure = page.locator("img.sphx-glr-single-img")
+    assert figure.count() == 1, "the figure the example wrote is shown on its page"
+    width = figure.evaluate("(img) => img.complete ? img.naturalWidth : 0")
+    assert width > 300, "the figure is a drawn image"
