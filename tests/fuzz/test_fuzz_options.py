@@ -216,6 +216,7 @@ SHOP_PARTS = {
     "--method": ["as-listed", "pairing", "milp", *CHOICE],
     "--time-limit": quantity("time", "5 s"),
     "--fraction": number("0.5", "50%"),
+    "--journals": ["paired", "joint", "as-listed", *CHOICE],
 }
 SHOP_PLAN = {
     "--reading": [
@@ -769,6 +770,11 @@ COMMAND_TABLE: dict[str, Command] = {
             "--seed": number("1"),
             "--output": ["OUT/x.parquet", "/no/such/folder/x.parquet", "OUT", ""],
             "--plot": ["OUT/x.png", "OUT/x.html", "OUT/x.txt", "/no/such/folder/x.svg", ""],
+            "--fixed-crank": ["0,180,180,0 deg", "0,180 deg", "nonsense", "0,180,180,nan deg"],
+            "--mirror": [FLAG],
+            "--no-mirror": [FLAG],
+            "--reversal": [FLAG],
+            "--list-orders": [FLAG],
             "--progress": [FLAG],
             "--no-progress": [FLAG],
             "--format": FORMATS_CSV,

@@ -2139,6 +2139,7 @@ class ExploreOptions(StudyOptions):
         "any",
         default="inline",
         parse=_explore_layout,
+        choices=EXPLORE_LAYOUTS,  # the forms' select; read by the parser (a VR refused)
         words="one of inline, vee, boxer, w",
         title="Layout",
         description="The layout explored: inline, vee, boxer or w (broad arrow).",
