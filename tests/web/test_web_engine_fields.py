@@ -295,24 +295,29 @@ def _orders(page: Any) -> list[list[str]]:
 
 
 def _results_match(page: Any, spec: Any) -> list[list[str]]:
-    """Wait until the Results tab's table shows ``analyze(spec)``'s first-order force and
-    moment (to their printed digits: a radial's moment is the same before and after an edit,
-    so the moment alone would let a stale table pass), check every order, return the rows
-    and go back to the Engine tab."""
+    """Wait until the Results tab's table shows ``analyze(spec)``'s force and moment of every
+    order (to their printed digits: a radial's first-order force and moment are the same before
+    and after a link-pin edit, so the first row alone would let a stale table pass), check the
+    rows, return them and go back to the Engine tab."""
     expect = pytest.importorskip("playwright.sync_api").expect
     ref = analyze(spec).to_dict()
-    force = ref["free_forces"][0]["amplitude_N"]
-    moment = ref["free_moments"][0]["amplitude_Nm"]
+    want = [
+        [row, column, value]
+        for row, (force, moment) in enumerate(
+            zip(ref["free_forces"], ref["free_moments"], strict=True)
+        )
+        for column, value in ((2, force["amplitude_N"]), (5, moment["amplitude_Nm"]))
+    ]
     page.get_by_role("tab", name="Results", exact=True).click()
     cell = page.locator(".q-table tbody tr").first.locator("td").nth(4)
     expect(cell).to_have_text(re.compile(r"\S"))
     page.wait_for_function(
-        """([want]) => want.every(([column, value]) => {
-               const td = document.querySelector(
-                   `.q-table tbody tr td:nth-child(${column})`);
+        """([want]) => want.every(([row, column, value]) => {
+               const tr = document.querySelectorAll('.q-table tbody tr')[row];
+               const td = tr && tr.querySelector(`td:nth-child(${column})`);
                return td && Math.abs(Number(td.innerText) - value)
                             <= 1e-3 * Math.abs(value) + 1e-6; })""",
-        arg=[[[2, force], [5, moment]]],
+        arg=[want],
     )
     rows = _orders(page)
     for row, force, moment in zip(rows, ref["free_forces"], ref["free_moments"], strict=False):
