@@ -2035,10 +2035,9 @@ class ShopOptions(StudyOptions):
     )
     seed: int = whole(0, "Random seed", "Seed of the random numbers.", ge=0, le=2**63 - 1)
     scale_step: float = field(
-        "any",
+        "mass",
         default=1e-4,
         parse=_scale_step,
-        metavar="MASS [g]",
         words="0 or a mass up to 10 g",
         title="Resolution of the scale",
         description="The resolution of the scale the parts are weighed on; 0: exact.",
