@@ -83,6 +83,18 @@ def test_the_unit_spellings_people_use(typed: str, kind: str, written: str) -> N
     assert parse_quantity(typed, kind, "x") == pytest.approx(parse_quantity(written, kind, "x"))
 
 
+@pytest.mark.parametrize("typed", ["60 gr", "5 gr*mm", "60gr"])
+def test_gr_is_refused_as_ambiguous(typed: str) -> None:
+    """'gr' is pint's grain (64.8 mg) but a gram in many shops: neither is guessed."""
+    with pytest.raises(InputError, match="write 'g' or 'grain'"):
+        parse_quantity(typed, "mass" if "mm" not in typed else "unbalance", "x")
+
+
+def test_grams_and_grains_written_out_are_read() -> None:
+    assert parse_quantity("60 g", "mass", "x") == pytest.approx(0.06)
+    assert parse_quantity("60 grain", "mass", "x") == pytest.approx(60 * 64.79891e-6)
+
+
 def test_nm_is_still_the_nanometre() -> None:
     assert parse_quantity("3 nm", "length", "x") == pytest.approx(3e-9)
 

@@ -233,6 +233,12 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         raise InputError(field, value, f"must be a finite {kind}, e.g. {example!r}")
     magnitude: Any
     unit = written_unit(unit)
+    if re.search(AMBIGUOUS_GR, unit):
+        raise InputError(
+            field,
+            value,
+            "uses 'gr', which is grams to some and grains to others: write 'g' or 'grain'",
+        )
     text = f"{match.group('number')} {unit}"
     found = _table_unit(unit.replace("°", " deg"))
     if found is not None:  # units of the table only: no pint
@@ -277,6 +283,9 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
             raise InputError(field, value, _wrong_unit(kind, example)) from None
     raise InputError(field, value, _wrong_unit(kind, example))
 
+
+#: ``gr``: pint's grain (64.8 mg), but a gram in many shops: refused, not guessed
+AMBIGUOUS_GR = r"(?<![A-Za-z_])gr(?![A-Za-z_])"
 
 #: spellings of units people write, as the parser reads them: the output's own symbols
 #: (``N·m``, ``kg·m²``, ``g·mm``) and the unambiguous ``RPM`` and ``Nm`` (no unit is
