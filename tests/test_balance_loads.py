@@ -178,6 +178,7 @@ def test_cli_table_csv_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert out.count("\nall ") == 3 and out.count("\nnone ") == 1
     html = (tmp_path / "s.html").read_text()
     assert "largest bearing load" in html and "bearing 5" in html
+    assert "free first-order couple left" in html
     code, out, err = run_cli([*args, "--format", "csv", "--crank-model", "determinate"], capsys)
     assert code == 0, err
     lines = out.strip().splitlines()
