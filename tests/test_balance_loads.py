@@ -178,6 +178,7 @@ def test_cli_table_csv_and_plot(tmp_path: Path, capsys: pytest.CaptureFixture[st
     assert out.count("\nall ") == 3 and out.count("\nnone ") == 1
     html = (tmp_path / "s.html").read_text()
     assert "largest bearing load" in html and "bearing 5" in html
+    assert "free first-order couple left" in html
     code, out, err = run_cli([*args, "--format", "csv", "--crank-model", "determinate"], capsys)
     assert code == 0, err
     lines = out.strip().splitlines()
@@ -231,3 +232,125 @@ def test_swept_settings_are_refused_in_the_loads_options() -> None:
         bearing_sweep("inline4", {"patterns": ["all"]}, {"balance_factor": 0.5})
     with pytest.raises(InputError, match="swept"):
         bearing_sweep("inline4", {"patterns": ["all"]}, {"webs": [1] * 8})
+
+
+@pytest.mark.parametrize("preset", ["inline3", "v8-crossplane"])
+def test_free_forces_left_are_the_analysis_plus_the_counterweights(preset: str) -> None:
+    """What a case reports left (rotating masses, first order forward and backward, force
+    and couple) agrees with a second method: the analysis's phasors
+    (``studies.engine.analyze``) plus the centrifugal forces of the case's counterweights
+    as built (mass, CG radius, direction, axial position; their share carrying the
+    rotating masses to the rotating component, the rest to the first order), 1e-9."""
+    from crankbalance.studies.engine import analyze
+
+    sweep = bearing_sweep(
+        preset,
+        {
+            "patterns": [
+                "all",
+                "none",
+                "1,0,0,0,0,1" if preset == "inline3" else FOUR,
+            ],
+            "balance_factors": [0.0, 0.5, 0.8],
+        },
+        FAST,
+    )
+    for case in sweep.cases:
+        m = case.study.model
+        f = analyze(m).forces
+        w2 = m.speed**2
+        b = case.study.balance
+        assert b.extra_counterweights is None and b.primary is None and b.secondary is None
+        if b.counterweights is None:
+            rot = bal = np.zeros(1, dtype=complex)
+            y = np.zeros(1)
+        else:
+            cw = b.counterweights
+            total = cw.mass * cw.cg_radius * np.exp(1j * cw.direction)
+            assert b.rotating_share is not None
+            rot, bal, y = b.rotating_share, total - b.rotating_share, cw.position
+        expected = {
+            "rotating_force_N": abs(f.rotating_force + w2 * rot.sum()),
+            "rotating_moment_Nm": abs(f.rotating_couple + w2 * (y * rot).sum()),
+            "order1_force_forward_N": abs(f.force_forward[0] + w2 * bal.sum()),
+            "order1_force_backward_N": abs(f.force_backward[0]),
+            "order1_moment_forward_Nm": abs(f.couple_forward[0] + w2 * (y * bal).sum()),
+            "order1_moment_backward_Nm": abs(f.couple_backward[0]),
+        }
+        left = case.free_forces()
+        scale = abs(f.rotating_force) + abs(f.force_forward[0]) + 1.0
+        for key, value in expected.items():
+            tol = 1e-9 * (scale if key.endswith("_N") else scale * 0.5)
+            assert left[key] == pytest.approx(value, abs=max(tol, 1e-9 * value)), (case.label, key)
+        # the sum the summary weighs: the rotating and first-order parts, no less than the
+        # first-order force of everything together
+        together = abs(f.rotating_force + f.force_forward[0] + w2 * (rot.sum() + bal.sum()))
+        assert left["first_order_force_N"] >= together + abs(f.force_backward[0]) - 1e-9 * scale
+
+
+def test_summary_weighs_the_free_forces_not_the_peak_load_alone(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Inline-3: the crank without counterweights has the lowest peak bearing load but
+    leaves its whole rotating and first-order couple; the summary suggests the pattern
+    that leaves least (every web at 0.5, only the backward half of the primary couple),
+    keeps the bare crank in the Pareto set and warns about it, in the JSON and the table
+    alike (one text, the study's)."""
+    sweep = bearing_sweep(
+        "inline3", {"patterns": ["all", "none"], "balance_factors": [0.0, 0.5, 1.0]}, FAST
+    )
+    s = sweep.summary()
+    labels = [c.label for c in sweep.cases]
+    assert labels[s.lowest_load] == "no counterweights (none)"
+    assert labels[s.suggested] == "all at balance factor 0.5"
+    assert s.lowest_load in s.pareto and s.suggested in s.pareto
+    assert labels.index("all at balance factor 1") not in s.pareto  # 0 has a lower load
+    left = sweep.cases[s.suggested].free_forces()
+    assert left["order1_moment_forward_Nm"] == 0.0 and left["order1_moment_backward_Nm"] > 800
+    assert "no counterweights" in s.warning and "4879 N·m" in s.warning
+    data = _cli(
+        [
+            "bearings-sweep",
+            "inline3",
+            "--pattern",
+            "all",
+            "--pattern",
+            "none",
+            "--balance-factors",
+            "0,0.5,1",
+            "--samples",
+            "72",
+        ],
+        capsys,
+    )
+    assert data["summary"]["suggested"] == s.suggested
+    assert data["summary"]["text"] == list(s.text)
+    code, out, err = run_cli(
+        [
+            "bearings-sweep",
+            "inline3",
+            "--pattern",
+            "all",
+            "--pattern",
+            "none",
+            "--balance-factors",
+            "0,0.5,1",
+            "--samples",
+            "72",
+        ],
+        capsys,
+    )
+    assert code == 0, err
+    assert f"Warning: {s.warning}." in out and "M1- N·m" in out
+
+
+def test_summary_of_an_engine_without_free_first_order() -> None:
+    """Inline-4: no pattern leaves a free first-order force or couple, so the peak bearing
+    load decides and nothing is warned."""
+    sweep = bearing_sweep(
+        "inline4", {"patterns": ["all", FOUR, "none"], "balance_factors": [0.25, 0.5]}, FAST
+    )
+    s = sweep.summary()
+    assert s.suggested == s.lowest_load and s.warning == ""
+    loads = [c.metrics("indeterminate")["largest_load_N"] for c in sweep.cases]
+    assert loads[s.suggested] == min(loads)

@@ -3,6 +3,8 @@ the exact harmonic coefficients (issue 13)."""
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 import pytest
 
@@ -249,3 +251,35 @@ def test_cache_is_bounded() -> None:
     info = kinematics.cached_exact_coefficients.cache_info()
     assert info.maxsize == CACHE_SIZE
     assert info.currsize == CACHE_SIZE
+
+
+@pytest.mark.parametrize("preset", ["vr6", "w16", "inline3", "ducati-916", "v8-crossplane"])
+def test_batch_roll_is_the_one_engine_roll(preset: str) -> None:
+    """The batch path's sixth component: every engine's roll moment by order (offset
+    cylinders, side-by-side rods, a reference point off the crank axis, engines with their
+    own rod ratio, offsets and speed) is the one-engine analysis's roll to 1e-9."""
+    from crankbalance.physics.model import stack_models, with_moment_point
+    from crankbalance.physics.shaking import batch_free_forces
+    from crankbalance.studies.engine import as_model
+
+    base = with_moment_point(as_model(preset), (0.03, 0.01, -0.05))
+    rng = np.random.default_rng(7)
+    models = [base]
+    for _ in range(3):
+        models.append(
+            replace(
+                base,
+                throw_angle=rng.uniform(0.0, 2 * np.pi, base.throws),
+                rod_length=base.rod_length * rng.uniform(0.8, 1.3),
+                speed=base.speed * rng.uniform(0.5, 1.5),
+                cylinder_offset=base.cylinder_offset + rng.uniform(-3e-3, 3e-3),
+                reciprocating_mass=base.reciprocating_mass * rng.uniform(0.8, 1.2),
+            )
+        )
+    batch = batch_free_forces(stack_models(models), 6)
+    for k, m in enumerate(models):
+        one = free_forces(m, 6)
+        scale = np.abs(one.roll).max()
+        assert scale > 0
+        np.testing.assert_allclose(batch.roll[k], one.roll, rtol=0, atol=1e-9 * scale)
+        assert abs(batch.rotating_roll[k] - one.rotating_roll) <= 1e-9 * abs(one.rotating_roll)

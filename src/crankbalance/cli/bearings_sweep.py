@@ -85,6 +85,9 @@ def print_table(data: dict[str, Any], rows: list[list[Any]]) -> None:
     )
     click.echo(
         "max N: the largest load of any bearing over the cycle (of the worst bearing); "
-        "mean N: the largest mean load; friction: Coulomb, all main bearings; free: the "
-        "first-order force and moment and the rotating moment left after balancing"
+        "mean N: the largest mean load; friction: Coulomb, all main bearings; left after "
+        "balancing: Frot, Mrot the rotating masses' free force and couple, F1+/F1-, M1+/M1- "
+        "the first order's forward/backward-rotating (every order in the JSON)"
     )
+    for line in data["summary"]["text"]:  # the study's summary, its warning included
+        click.echo(line)

@@ -407,6 +407,8 @@ def batch_of_one(forces: FreeForces) -> BatchFreeForces:
         forces.couple_backward[None],
         np.array([forces.rotating_force]),
         np.array([forces.rotating_couple]),
+        forces.roll[None],
+        np.array([forces.rotating_roll]),
     )
 
 

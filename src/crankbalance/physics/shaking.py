@@ -228,14 +228,67 @@ def roll_phasors(
             rods, model.reciprocating_mass, model.cylinder_rotating_mass, orders, model.speed
         )
         return np.asarray(harm * np.exp(1j * n * phi), dtype=complex)
-    ratio = model.cylinder_offset / model.crank_radius
-    shared, index = np.unique(ratio, return_inverse=True)
-    rows = np.stack([roll_coefficients(model.rod_ratio, float(e), orders, mode) for e in shared])[
-        index.reshape(-1)
-    ]
-    scale = model.reciprocating_mass * (model.crank_radius * model.speed) ** 2
-    turn = np.exp(1j * np.outer(model.cylinder_angle - model.cylinder_bank, n))
-    return np.asarray(scale @ (rows * turn), dtype=complex)
+    return batch_roll_phasors(
+        np.array([model.rod_ratio]),
+        (model.cylinder_offset / model.crank_radius)[None],
+        model.reciprocating_mass[None],
+        (model.cylinder_angle - model.cylinder_bank)[None],
+        np.array([model.crank_radius]),
+        np.array([model.speed]),
+        orders,
+        mode,
+    )[0]
+
+
+def batch_roll_phasors(
+    rod_ratio: NDArray[np.float64],
+    offset_ratio: NDArray[np.float64],
+    mass: NDArray[np.float64],
+    angle: NDArray[np.float64],
+    crank_radius: NDArray[np.float64],
+    speed: NDArray[np.float64],
+    orders: int,
+    kinematics: KinematicsModel,
+) -> NDArray[np.complex128]:
+    r"""Roll moment of each order about the crank axis of many engines, :math:`R_n`: the
+    equations of :func:`roll_phasors` with an engine axis (one engine is a batch of one).
+
+    Parameters
+    ----------
+    rod_ratio : ndarray, shape (E,)
+        :math:`\lambda = r/l` of each engine [-].
+    offset_ratio : ndarray, shape (E, C)
+        Each cylinder's offset over the crank radius, :math:`e/r` [-].
+    mass : ndarray, shape (E, C)
+        Reciprocating mass of each cylinder [kg].
+    angle : ndarray, shape (E, C)
+        Each cylinder's throw angle less its bank angle, :math:`\varphi_c - \beta_c` [rad].
+    crank_radius, speed : ndarray, shape (E,)
+        Crank radius [m] and crank speed [rad/s].
+    orders : int
+        Highest harmonic order K.
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model.
+
+    Returns
+    -------
+    ndarray of complex, shape (E, K)
+        :math:`R_n = r^2\omega^2 \sum_c m_c d_{n,c} e^{in(\varphi_c - \beta_c)}` of every
+        engine, each engine's from its own row (no sum across the engines) [N·m].
+    """
+    ratio = np.broadcast_to(np.asarray(offset_ratio, dtype=float), np.shape(mass))
+    lam = np.broadcast_to(np.asarray(rod_ratio, dtype=float)[:, None], ratio.shape)
+    if np.all(lam == lam.flat[0]) and np.all(ratio == ratio.flat[0]):  # one row for all
+        rows = roll_coefficients(float(lam.flat[0]), float(ratio.flat[0]), orders, kinematics)
+    else:  # each distinct (rod ratio, offset) once, from the cache
+        pairs = np.stack([lam.reshape(-1), ratio.reshape(-1)], axis=-1)
+        shared, index = np.unique(pairs, axis=0, return_inverse=True)
+        rows = np.stack(
+            [roll_coefficients(float(a), float(e), orders, kinematics) for a, e in shared]
+        )[index.reshape(-1)].reshape(*ratio.shape, orders)
+    scale = np.asarray(mass, dtype=float) * ((crank_radius * speed) ** 2)[:, None]
+    turn = _powers(np.asarray(angle, dtype=float), orders)
+    return np.asarray(np.einsum("ec,eck->ek", scale, rows * turn), dtype=complex)
 
 
 def cylinder_coefficients(
@@ -395,6 +448,11 @@ class BatchFreeForces(ResultMixin):
         First-order forward phasor of the rotating masses [N].
     rotating_couple : ndarray of complex, shape (E,)
         Its couple [N·m].
+    roll : ndarray of complex, shape (E, K)
+        :math:`R_n`, the roll moment of each order about the axis through the moment
+        reference point parallel to the crank (:attr:`FreeForces.roll`) [N·m].
+    rotating_roll : ndarray of complex, shape (E,)
+        The rotating masses' first-order roll moment about that axis [N·m].
     """
 
     orders: NDArray[np.int64]
@@ -404,13 +462,16 @@ class BatchFreeForces(ResultMixin):
     couple_backward: NDArray[np.complex128]
     rotating_force: NDArray[np.complex128]
     rotating_couple: NDArray[np.complex128]
+    roll: NDArray[np.complex128]
+    rotating_roll: NDArray[np.complex128]
 
 
 def batch_free_forces(batch: EngineBatch, orders: int = 8) -> BatchFreeForces:
-    """:func:`free_forces` of every engine of a batch, by the same three functions: the
+    """:func:`free_forces` of every engine of a batch, by the same functions: the
     harmonic coefficients (:func:`coefficient_rows`, computed once when the engines share
     their rod ratio and offsets), the phasor sums over the cylinders
-    (:func:`reciprocating_phasors`) and the rotating masses (:func:`rotating_phasors`).
+    (:func:`reciprocating_phasors`), the rotating masses (:func:`rotating_phasors`) and the
+    roll moment (:func:`batch_roll_phasors`, about the topology's reference point).
 
     Parameters
     ----------
@@ -451,7 +512,21 @@ def batch_free_forces(batch: EngineBatch, orders: int = 8) -> BatchFreeForces:
         r,
         batch.speed,
     )
-    return BatchFreeForces(np.arange(1, orders + 1), fwd, bwd, cfwd, cbwd, force, couple)
+    q = complex(topo.reference_x, topo.reference_z)
+    roll = batch_roll_phasors(
+        r / batch.rod_length,
+        batch.cylinder_offset / r[:, None],
+        batch.reciprocating_mass,
+        np.take(batch.throw_angle, topo.cylinder_throw, axis=-1) - topo.cylinder_bank,
+        r,
+        batch.speed,
+        orders,
+        topo.kinematics,
+    )
+    roll = roll + q * fwd + np.conj(q * bwd)
+    return BatchFreeForces(
+        np.arange(1, orders + 1), fwd, bwd, cfwd, cbwd, force, couple, roll, q * force
+    )
 
 
 def reciprocating_phasors(

@@ -10,19 +10,28 @@ is exactly the ``bearings`` run with the same settings. The pattern ``none`` is 
 without counterweights (the engine file's balance shafts kept), one case whatever the
 balance factors. The CLI (``crankbalance bearings-sweep``) and the web tab "Crank loads"
 call :func:`bearing_sweep`.
+
+Every case also reports the free forces and couples its balancing leaves, every component
+and order forward and backward apart, in words with the next step
+(:attr:`~crankbalance.physics.balancing.BalanceResult.remaining`), and the study weighs
+them in its summary (:meth:`SweepStudy.summary`): the Pareto set over the peak bearing
+load and the free first-order force and couple left, and one suggested case by a stated
+order of criteria (docs/main_bearings.md, "Which case the summary names").
 """
 
 from __future__ import annotations
 
 import os
-from collections.abc import Callable, Mapping
+from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
+from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ResultMixin, to_jsonable
+from ..physics.model import EngineModel
+from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import (
     MAX_SWEEP_WORK,
@@ -35,8 +44,16 @@ from .engine import BalanceStudy, balance_engine, balance_options, engine_summar
 from .loads import BearingStudy, bearing_loads
 
 SCHEMA = "crankbalance.bearings-sweep/1"
-#: the residual components reported as the free forces left after balancing
-RESIDUAL_COMPONENTS = ("rotating", "order1", "order2")
+#: relative tolerance within which two cases' criteria count as equal in the summary (on
+#: top of the engine's round-off for the free force and couple, results.round_off)
+TIE = 1e-9
+#: the summary's criteria, in the order the suggested case is chosen by: key of a case's
+#: numbers, words
+CRITERIA = (
+    ("first_order_force_N", "free first-order force left"),
+    ("first_order_moment_Nm", "free first-order couple left"),
+    ("largest_load_N", "peak bearing load"),
+)
 #: the columns of a case in the CLI's table and CSV and the web tab's table: key of the
 #: JSON (a case's, its free forces' or its crank model's), short label
 COLUMNS = (
@@ -49,9 +66,12 @@ COLUMNS = (
     ("largest_journal_moment_Nm", "journal N·m"),
     ("largest_pin_moment_Nm", "pin N·m"),
     ("coulomb_friction_power_W", "friction W"),
-    ("order1_force_N", "free F1 N"),
-    ("order1_moment_Nm", "free M1 N·m"),
-    ("rotating_moment_Nm", "free Mrot N·m"),
+    ("rotating_force_N", "Frot N"),
+    ("rotating_moment_Nm", "Mrot N·m"),
+    ("order1_force_forward_N", "F1+ N"),
+    ("order1_force_backward_N", "F1- N"),
+    ("order1_moment_forward_Nm", "M1+ N·m"),
+    ("order1_moment_backward_Nm", "M1- N·m"),
 )
 
 
@@ -123,14 +143,157 @@ class SweepCase:
         }
 
     def free_forces(self) -> dict[str, float]:
-        """The largest free force and moment about the crank's mid-point left after
-        balancing, per component (the balancing result's time-domain residuals) [N, N m]."""
+        """The free forces and couples (moments about the moment reference point) the
+        balancing leaves, every component of its residuals (``rotating``, ``order1``,
+        ``order2``, ...): the largest over a revolution and its forward- and
+        backward-rotating parts; and the first-order sums the summary weighs
+        (:meth:`first_order`) [N, N·m]."""
         out: dict[str, float] = {}
-        for name in RESIDUAL_COMPONENTS:
-            c = self.study.balance.residual(name)
+        for c in self.study.balance.residuals:
+            name = c.component
             out[f"{name}_force_N"] = float(c.force_after)
             out[f"{name}_moment_Nm"] = float(c.moment_after)
+            out[f"{name}_force_forward_N"] = float(c.force_forward_after)
+            out[f"{name}_force_backward_N"] = float(c.force_backward_after)
+            out[f"{name}_moment_forward_Nm"] = float(c.moment_forward_after)
+            out[f"{name}_moment_backward_Nm"] = float(c.moment_backward_after)
+        force, moment = self.first_order()
+        out["first_order_force_N"] = force
+        out["first_order_moment_Nm"] = moment
         return out
+
+    def first_order(self) -> tuple[float, float]:
+        """The free first-order force and couple left, as the summary weighs them: the
+        rotating masses' (with the counterweights' share that carries them) plus the
+        reciprocating first order's, forward and backward, in sum: their largest over a
+        revolution when they act in phase, an upper bound of it otherwise [N, N·m]."""
+        b = self.study.balance
+        rot, o1 = b.residual("rotating"), b.residual("order1")
+        return (
+            float(rot.force_after + o1.force_after),
+            float(rot.moment_after + o1.moment_after),
+        )
+
+    @property
+    def label(self) -> str:
+        """The case in words: its pattern and balance factor."""
+        if self.balance_factor is None:
+            return "no counterweights (none)" if self.pattern == "none" else self.pattern
+        return f"{self.pattern} at balance factor {self.balance_factor:g}"
+
+
+@dataclass(frozen=True)
+class SweepSummary(ResultMixin):
+    """What the summary of a sweep says (docs/main_bearings.md, "Which case the summary
+    names").
+
+    Attributes
+    ----------
+    pareto : tuple of int
+        The cases (indices into :attr:`SweepStudy.cases`) no other case beats on every
+        criterion of :data:`CRITERIA` and strictly on one; equal cases all stay.
+    suggested : int
+        The case with the least free first-order force left, of those the least free
+        first-order couple left, of those the lowest peak bearing load (each within
+        :data:`TIE` and the engine's round-off).
+    lowest_load : int
+        The case with the lowest peak bearing load alone.
+    text : tuple of str
+        The summary in words: the suggested case and the first-order force and couple it
+        leaves (with the next step; the higher orders are the same for every case, no
+        counterweight acts on them), the Pareto set, and a
+        warning when the lowest peak bearing load leaves a larger free first-order force
+        or couple than the suggested case.
+    warning : str
+        That warning, or "".
+    """
+
+    pareto: tuple[int, ...]
+    suggested: int
+    lowest_load: int
+    text: tuple[str, ...]
+    warning: str
+
+
+def criteria(cases: Sequence[SweepCase], model: str) -> NDArray[np.float64]:
+    """The summary's criteria of every case (:data:`CRITERIA`), shape (cases, 3):
+    free first-order force [N], couple [N·m], peak bearing load of ``model`` [N]."""
+    rows = []
+    for c in cases:
+        force, moment = c.first_order()
+        rows.append((force, moment, float(c.study.results[model].max_load.max())))
+    return np.array(rows, dtype=float)
+
+
+def tie_levels(values: NDArray[np.float64], model: EngineModel) -> NDArray[np.float64]:
+    """How far apart two cases' criteria may be and still count as equal: :data:`TIE` of
+    each criterion's largest value, and at least the engine's round-off for the free force
+    and couple (:func:`crankbalance.results.round_off`)."""
+    force, moment = round_off(model)
+    return np.maximum(TIE * np.abs(values).max(axis=0), (force, moment, 0.0))
+
+
+def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
+    """Weigh the cases of a sweep: their Pareto set over the peak bearing load and the free
+    first-order force and couple left, the suggested case by the stated order of criteria,
+    and the summary in words.
+
+    Parameters
+    ----------
+    cases : sequence of SweepCase
+        The sweep's cases (at least one).
+    model : str
+        The crank model whose peak bearing load counts.
+
+    Returns
+    -------
+    SweepSummary
+        The Pareto set, the suggested case, the lowest-load case and the text.
+    """
+    values = criteria(cases, model)
+    tie = tie_levels(values, cases[0].study.model)
+    count = len(cases)
+
+    def beats(a: int, b: int) -> bool:
+        no_worse = np.all(values[a] <= values[b] + tie)
+        better = np.any(values[a] < values[b] - tie)
+        return bool(no_worse and better)
+
+    pareto = tuple(i for i in range(count) if not any(beats(j, i) for j in range(count)))
+    left = list(range(count))
+    for k in range(values.shape[1]):  # the stated order of criteria
+        best = min(values[i, k] for i in left)
+        left = [i for i in left if values[i, k] <= best + tie[k]]
+    suggested = left[0]
+    loads = values[:, 2]
+    lowest = int(np.flatnonzero(loads <= loads.min() + tie[2])[0])
+    chosen = cases[suggested]
+    load = chosen.metrics(model)
+    text = [
+        f"Suggested: {chosen.label} (least free first-order force left, then couple, then "
+        f"peak bearing load): {load['largest_load_N']:.5g} N on bearing "
+        f"{load['worst_bearing']}, free first-order force {values[suggested, 0]:.4g} N and "
+        f"couple {values[suggested, 1]:.4g} N·m left."
+    ]
+    for r in chosen.study.balance.remaining:
+        if r.order == 1:  # higher orders: the same for every case (no counterweight acts)
+            text.append(f"It leaves the {r.text}; next step: {r.next_step}.")
+    text.append(
+        "Pareto set (peak bearing load, free first-order force and couple left): "
+        + "; ".join(cases[i].label for i in pareto)
+        + "."
+    )
+    warning = ""
+    if any(values[lowest, k] > values[suggested, k] + tie[k] for k in (0, 1)):
+        low = cases[lowest]
+        warning = (
+            f"the lowest peak bearing load, {low.label} ({loads[lowest]:.5g} N), leaves a free "
+            f"first-order force of {values[lowest, 0]:.4g} N and couple of "
+            f"{values[lowest, 1]:.4g} N·m, where {chosen.label} leaves "
+            f"{values[suggested, 0]:.4g} N and {values[suggested, 1]:.4g} N·m"
+        )
+        text.append(f"Warning: {warning}.")
+    return SweepSummary(pareto, suggested, lowest, tuple(text), warning)
 
 
 @dataclass(frozen=True, repr=False)
@@ -156,9 +319,14 @@ class SweepStudy(ResultMixin):
         """The cases of one pattern, over the balance factors."""
         return tuple(c for c in self.cases if c.pattern == pattern)
 
+    def summary(self) -> SweepSummary:
+        """The cases weighed (:func:`summarize`) with the sweep's crank model."""
+        return summarize(self.cases, self.options.crank_model)
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.bearings-sweep/1`` (docs/json.md)."""
         first = self.cases[0].study
+        summary = self.summary()
         settings = first.to_dict()["settings"]
         out = {
             "schema": SCHEMA,
@@ -178,10 +346,30 @@ class SweepStudy(ResultMixin):
                     else c.study.balance.counterweights.count,
                     "counterweight_mass_kg": c.counterweight_mass,
                     "free_forces": c.free_forces(),
+                    "remaining": [
+                        {
+                            "component": r.component,
+                            "order": r.order,
+                            "quantity": r.quantity,
+                            "rotation": r.rotation,
+                            "amount": r.amount,
+                            "text": r.text,
+                            "next_step": r.next_step,
+                        }
+                        for r in c.study.balance.remaining
+                    ],
                     "models": {name: c.metrics(name) for name in c.study.results},
                 }
                 for c in self.cases
             ],
+            "summary": {
+                "criteria": [key for key, _ in CRITERIA],
+                "pareto": list(summary.pareto),
+                "suggested": summary.suggested,
+                "lowest_load": summary.lowest_load,
+                "text": list(summary.text),
+                "warning": summary.warning or None,
+            },
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)

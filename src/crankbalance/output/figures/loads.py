@@ -139,24 +139,27 @@ SWEEP_PANELS = (
     ("coulomb_friction_power_W", "friction, all main bearings [W]"),
     ("largest_journal_moment_Nm", "largest journal |M| [N·m]"),
     ("counterweight_mass_kg", "counterweight mass [kg]"),
+    ("first_order_force_N", "free first-order force left [N]"),
+    ("first_order_moment_Nm", "free first-order couple left [N·m]"),
 )
 
 
 def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
     """Bearing loads against balance
     (:class:`~crankbalance.studies.balance_loads.SweepStudy`): the largest bearing load, the
-    friction of all main bearings, the largest bending moment at a journal and the
-    counterweight mass against the balance factor, one line per pattern (``none`` a dotted
+    friction of all main bearings, the largest bending moment at a journal, the
+    counterweight mass and the free first-order force and couple left against the balance
+    factor, one line per pattern (``none`` a dotted
     level), and the peak load of every bearing per case (bars), all of the sweep's crank
     model."""
     go = plotly_go()
     model = sweep.options.crank_model
     data = sweep.to_dict()
     fig = make_subplots(
-        rows=3,
+        rows=4,
         cols=2,
-        specs=[[{}, {}], [{}, {}], [{"colspan": 2}, None]],
-        row_heights=[0.3, 0.3, 0.4],
+        specs=[[{}, {}], [{}, {}], [{}, {}], [{"colspan": 2}, None]],
+        row_heights=[0.2, 0.2, 0.2, 0.4],
         vertical_spacing=0.1,
         horizontal_spacing=0.1,
         subplot_titles=[title for _, title in SWEEP_PANELS]
@@ -170,7 +173,10 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         color = ORDER_COLORS[n % len(ORDER_COLORS)]
         none = pattern == "none"
         for p, (key, title) in enumerate(SWEEP_PANELS):
-            values = [c[key] if key in c else c["models"][model][key] for c in cases]
+            values = [
+                c[key] if key in c else c["free_forces"].get(key, c["models"][model].get(key))
+                for c in cases
+            ]
             fig.add_trace(
                 go.Scatter(
                     x=span if none else [c["balance_factor"] for c in cases],
@@ -200,21 +206,21 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
                 marker={"color": ORDER_COLORS[patterns.index(case["pattern"]) % len(ORDER_COLORS)]},
                 hovertemplate=f"{label}<br>%{{x}}<br>peak %{{y:.4g}} N<extra></extra>",
             ),
-            row=3,
+            row=4,
             col=1,
         )
     for p, (_, title) in enumerate(SWEEP_PANELS):
         fig.update_xaxes(title_text="balance factor", row=1 + p // 2, col=1 + p % 2)
         unit = title.split(" [")[-1].rstrip("]")
         fig.update_yaxes(title_text=unit, row=1 + p // 2, col=1 + p % 2)
-    fig.update_yaxes(title_text="N", row=3, col=1)
+    fig.update_yaxes(title_text="N", row=4, col=1)
     speed = data["settings"]["speed_rad_s"] * 30 / math.pi
     fig.update_layout(
         template=TEMPLATE,
         barmode="group",
-        height=900,
+        height=1150,
         width=1000,
-        legend={"orientation": "h", "y": -0.08},
+        legend={"orientation": "h", "y": -0.06},
         title=figure_title(
             f"Main-bearing loads against balance ({model} crank)",
             data["engine"]["name"],
