@@ -18,7 +18,7 @@ from crankbalance.physics.explore import merit
 from crankbalance.physics.explore import orders as enumeration
 from crankbalance.schema.settings import ExploreOptions
 from crankbalance.studies.build import build_model
-from crankbalance.studies.engine import analyze
+from crankbalance.studies.engine import analyze, balance_engine
 from crankbalance.studies.explorer import _problem
 
 ORDERS = 4
@@ -114,15 +114,17 @@ def test_vr6_order_of_the_preset_fires_evenly_with_its_offsets() -> None:
 
 
 def test_w12_from_vr_banks_candidates_agree_with_analyze() -> None:
-    spec = _engine("w12-vw")
-    crank = [f"{math.degrees(a)} deg" for a in build_model(spec).throw_angle]
-    _check("w12-vw", {"layout": "w", "cylinders": 12, "bank_angle": "72 deg", "fixed_crank": crank})
+    settings = {"layout": "w", "cylinders": 12, "bank_angle": "72 deg"}
+    _check("w12-vw", settings | {"fixed_crank": _fixed("w12-vw")})
 
 
 def test_w16_fixed_crank_candidates_agree_with_analyze() -> None:
-    spec = _engine("w16")
-    crank = [f"{math.degrees(a)} deg" for a in build_model(spec).throw_angle]
-    settings = {"layout": "w", "cylinders": 16, "bank_angle": "90 deg", "fixed_crank": crank}
+    settings = {
+        "layout": "w",
+        "cylinders": 16,
+        "bank_angle": "90 deg",
+        "fixed_crank": _fixed("w16"),
+    }
     size = _check("w16", settings)
     assert size >= 1
 
@@ -141,7 +143,8 @@ def test_articulated_radial_candidates_agree_with_analyze() -> None:
 
 
 def _w16_crank() -> list[str]:
-    return [f"{math.degrees(a):.4f} deg" for a in build_model(_engine("w16")).throw_angle]
+    """The W16's crank as a user would type it, to four decimals of a degree."""
+    return _fixed("w16", 4)
 
 
 def test_fixed_crank_prunes_the_enumeration() -> None:
@@ -246,3 +249,45 @@ def test_explore_command_runs_vr6_and_w16(capsys: pytest.CaptureFixture[str]) ->
     )
     data = json.loads(capsys.readouterr().out)
     assert data["counts"]["distinct_engines"] == 128
+
+
+def _fixed(preset: str, decimals: int | None = None) -> list[str]:
+    """The preset's crank as ``--fixed-crank`` values, exact or to ``decimals``."""
+    angles = [math.degrees(a) for a in build_model(_engine(preset)).throw_angle]
+    return [f"{a if decimals is None else round(a, decimals)} deg" for a in angles]
+
+
+@pytest.mark.parametrize(
+    ("preset", "settings", "extra"),
+    [
+        ("vr6", {"layout": "vr", "cylinders": 6, "bank_angle": "15 deg"}, None),
+        ("w12-vw", {"layout": "w", "cylinders": 12, "bank_angle": "72 deg"}, None),
+        ("w16", {"layout": "w", "cylinders": 16, "bank_angle": "90 deg"}, None),
+        ("v8-crossplane", {"layout": "vee", "cylinders": 8, "bank_angle": "90 deg"}, SIDE_BY_SIDE),
+    ],
+)
+def test_counterweights_agree_with_balance_engine(
+    preset: str, settings: dict[str, object], extra: dict[str, object] | None
+) -> None:
+    """The explorer's counterweight mass and what its counterweights leave (balance factor
+    0.5) equal ``balance_engine`` of the engine file written with the candidate's order."""
+    if preset.startswith("w"):
+        settings = settings | {"fixed_crank": _fixed(preset)}
+    spec = _engine(preset, extra=extra)
+    problem = _problem(spec, ExploreOptions.parse(settings))
+    batch = enumeration.chunk(problem, 0, enumeration.count(problem))
+    columns = merit.merit(batch, target="counterweights", balance_factor=0.5, orders=ORDERS)
+    for i in sorted({0, batch.size // 2, batch.size - 1}):
+        order = [int(c) for c in batch.firing_order[i]]
+        study = balance_engine(_engine(preset, order, extra), ORDERS, balance_factor=0.5)
+        result = study.result
+        assert result.counterweights is not None
+        mass = result.counterweights.mass.sum()
+        if result.extra_counterweights is not None:
+            mass += result.extra_counterweights.mass.sum()
+        force = max(c.force_after for c in result.residuals)
+        moment = max(c.moment_after for c in result.residuals)
+        scale = max(c.force_before for c in result.residuals)
+        assert columns["cw_mass_kg"][i] == pytest.approx(mass, rel=1e-9, abs=1e-12)
+        assert columns["residual_F_N"][i] == pytest.approx(force, rel=1e-9, abs=1e-12 * scale)
+        assert columns["residual_M_Nm"][i] == pytest.approx(moment, rel=1e-9, abs=1e-12 * scale)
