@@ -291,3 +291,10 @@ def test_counterweights_agree_with_balance_engine(
         assert columns["cw_mass_kg"][i] == pytest.approx(mass, rel=1e-9, abs=1e-12)
         assert columns["residual_F_N"][i] == pytest.approx(force, rel=1e-9, abs=1e-12 * scale)
         assert columns["residual_M_Nm"][i] == pytest.approx(moment, rel=1e-9, abs=1e-12 * scale)
+
+
+def test_broad_arrow_w12_candidates_agree_with_analyze() -> None:
+    """The broad-arrow W12 of the presets (three banks on four shared pins): every one of
+    its 256 engines' forces as analyze gives them."""
+    size = _check("w12", {"layout": "w", "cylinders": 12, "bank_angle": "60 deg"}, rows=256)
+    assert size == 256
