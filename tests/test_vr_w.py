@@ -23,7 +23,6 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import list_presets, load_engine
-from crankbalance.physics.explore.orders import problem
 from crankbalance.physics.model import EngineModel, standard_layout, vr_rows
 from crankbalance.physics.shaking import exact_time_domain, free_forces
 from crankbalance.schema.engine import spec_from_dict
@@ -442,31 +441,7 @@ def test_vr_keys_refused_elsewhere() -> None:
     assert info.value.field == "crank_train.cylinders" and "even" in info.value.allowed
 
 
-def test_explorer_refuses_vr() -> None:
-    with pytest.raises(InputError) as info:
-        problem("vr", 6, 4)
-    assert "not enumerated by the explorer" in info.value.allowed
-
-
 def test_presets_listed() -> None:
     names = list_presets()
     for name in ("vr6", "w8", "w12-vw", "w16", "w12"):
         assert name in names
-
-
-def test_explore_command_refuses_vr(capsys: pytest.CaptureFixture[str]) -> None:
-    """`crankbalance explore --layout vr`: one line naming the option, exit status 2."""
-    from crankbalance.cli import main
-
-    with pytest.raises(SystemExit) as stop:
-        main(["explore", "--layout", "vr", "--cylinders", "6"])
-    err = capsys.readouterr().err
-    assert stop.value.code == 2 and err.count("\n") == 1
-    assert "--layout = 'vr': is not enumerated by the explorer" in err
-    with pytest.raises(SystemExit) as stop:
-        main(
-            ["explore", "--layout", "w", "--cylinders", "12", "--bank-angle", "72 deg"]
-            + ["--engine", "w12-vw"]
-        )
-    err = capsys.readouterr().err
-    assert stop.value.code == 2 and "--engine = 'w12-vw': is not enumerated" in err

@@ -2117,31 +2117,18 @@ class PlotOptions(StudyOptions):
     )
 
 
-EXPLORE_LAYOUTS = ("inline", "vee", "boxer", "w")
-
-
-def _explore_layout(value: Any, where: str) -> str:
-    """The explorer's layouts; a VR is refused with the reason (it enumerates no VR)."""
-    from ..physics.explore.orders import VR_REFUSED
-
-    if isinstance(value, str) and value.strip().lower() == "vr":
-        raise InputError(where, value, VR_REFUSED)
-    spec = core.entry("choice", choices=EXPLORE_LAYOUTS)
-    layout: str = core.parse_choice(spec, value, "text", where)
-    return layout
+EXPLORE_LAYOUTS = ("inline", "vee", "boxer", "w", "vr", "radial")
 
 
 class ExploreOptions(StudyOptions):
     """``explore``: the design-space explorer (docs/explorer.md)."""
 
-    layout: Literal["inline", "vee", "boxer", "w"] = field(
-        "any",
-        default="inline",
-        parse=_explore_layout,
-        choices=EXPLORE_LAYOUTS,  # the forms' select; read by the parser (a VR refused)
-        words="one of inline, vee, boxer, w",
-        title="Layout",
-        description="The layout explored: inline, vee, boxer or w (broad arrow).",
+    layout: Literal["inline", "vee", "boxer", "w", "vr", "radial"] = choice(
+        "inline",
+        EXPLORE_LAYOUTS,
+        "Layout",
+        "The layout explored: inline, vee, boxer, w (broad arrow; a W from VR banks with "
+        "its engine file), vr or radial.",
     )
     cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=MAX_EXPLORE_CYLINDERS)
     strokes: int = whole(

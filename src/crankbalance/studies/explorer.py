@@ -42,7 +42,7 @@ def _problem(engine: EngineLike | None, o: ExploreOptions) -> Problem:
     """The enumeration's problem of the settings (and the engine's masses and geometry)."""
     from ..physics.explore import orders
 
-    base = None
+    base, vr_angle = None, None
     if engine is not None:
         from ..schema.engine import EngineSpec
         from .build import build_model
@@ -53,8 +53,9 @@ def _problem(engine: EngineLike | None, o: ExploreOptions) -> Problem:
             from ..io.engine_file import load_engine
 
             spec = load_engine(engine)  # type: ignore[arg-type]
-        if spec.crank_train.has_vr_rows:
-            raise InputError("engine", engine_label(engine), orders.VR_REFUSED)
+        ct = spec.crank_train
+        if ct.has_vr_rows and ct.layout == "w":  # a W from VR banks: the rows' narrow angle
+            vr_angle = ct.vr_angle
         base = build_model(spec)
     try:
         return orders.problem(
@@ -67,6 +68,7 @@ def _problem(engine: EngineLike | None, o: ExploreOptions) -> Problem:
             base=base,
             mirror=o.mirror,
             reversal=o.reversal,
+            vr_angle=vr_angle,
         )
     except InputError as error:
         if error.field == "fixed_throw_angles":

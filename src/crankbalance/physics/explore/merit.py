@@ -23,6 +23,7 @@ the one rule of every output) are exactly zero, so a filter can ask for ``F2 == 
 
 from __future__ import annotations
 
+import dataclasses
 import math
 from typing import Literal
 
@@ -34,7 +35,7 @@ from ...results import ROUND_OFF, below_round_off, round_off
 from ..balance_batch import balance_batch
 from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
 from ..model import EngineModel, engine_batch
-from ..shaking import batch_free_forces
+from ..shaking import BatchFreeForces, batch_free_forces, free_forces
 from .candidates import Candidates
 
 Target = Literal["none", "counterweights", "primary", "secondary"]
@@ -114,6 +115,13 @@ def merit(
     topo = candidates.topology
     if target not in TARGETS:
         raise InputError("target", target, f"one of {', '.join(TARGETS)}")
+    if target != "none" and topo.articulation is not None:
+        raise InputError(
+            "target",
+            target,
+            "none for an engine with master-and-link rods (its counterweights: "
+            "`crankbalance balance` of the engine file)",
+        )
     if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
         raise InputError("orders", orders, "an integer from 1 to 64")
     weights = mode_weights(topo, mode_shape)
@@ -285,9 +293,14 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
             for s in ("", "f", "b")
         ]
         return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}
-    batch = engine_batch(candidates.topology, candidates.size, throw_angle=candidates.throw_angle)
-    f = batch_free_forces(batch, orders)
-    force, moment = (level[:, None] for level in round_off(batch))
+    if candidates.topology.articulation is not None:
+        f, force, moment = _articulated_forces(candidates, orders)
+    else:
+        batch = engine_batch(
+            candidates.topology, candidates.size, throw_angle=candidates.throw_angle
+        )
+        f = batch_free_forces(batch, orders)
+        force, moment = (level[:, None] for level in round_off(batch))
     out: dict[str, NDArray] = {}
     for n in range(orders):
         for name, unit, fwd, bwd, level in (
@@ -302,6 +315,36 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
     out["Frot_N"] = np.abs(below_round_off(f.rotating_force, force[:, 0]))
     out["Mrot_Nm"] = np.abs(below_round_off(f.rotating_couple, moment[:, 0]))
     return out
+
+
+def _articulated_forces(
+    candidates: Candidates, orders: int
+) -> tuple[BatchFreeForces, NDArray[np.float64], NDArray[np.float64]]:
+    """The phasors of a batch whose topology has master-and-link rods, one engine at a
+    time by the one-engine path (:func:`crankbalance.physics.shaking.free_forces`, the
+    exact articulated piston motion), with their round-off levels (B, 1): the batch model
+    has no master-and-link rods, and :func:`merit` calls this once per distinct crank (one
+    for a radial, whose every order shares its single throw)."""
+    rows = []
+    for angle in candidates.throw_angle:
+        model = dataclasses.replace(candidates.topology, throw_angle=np.array(angle, dtype=float))
+        rows.append((free_forces(model, orders), round_off(model)))
+    f = BatchFreeForces(
+        np.arange(1, orders + 1),
+        *(
+            np.array([getattr(r[0], name) for r in rows])
+            for name in (
+                "force_forward",
+                "force_backward",
+                "couple_forward",
+                "couple_backward",
+                "rotating_force",
+                "rotating_couple",
+            )
+        ),
+    )
+    levels = np.array([r[1] for r in rows], dtype=float)
+    return f, levels[:, :1], levels[:, 1:]
 
 
 def mirror_asymmetry(throw_angle: ArrayLike) -> NDArray[np.float64]:

@@ -36,17 +36,12 @@ from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
 from ..kinematics import KinematicsModel
-from ..model import EngineModel, standard_layout
+from ..model import EngineModel, standard_layout, tdc_angle
 from .candidates import Candidates
 
-#: Layouts the explorer enumerates.
-LAYOUTS = ("inline", "boxer", "vee", "w", "radial")
-#: Why layout "vr" (and a W from VR banks) is refused: docs/explorer.md.
-VR_REFUSED = (
-    "is not enumerated by the explorer: VR engines and Ws from VR banks have offset rows "
-    "and one pin per cylinder; analyse one with `crankbalance analyze` and an engine file "
-    "(docs/engine_file.md)"
-)
+#: Layouts the explorer enumerates ("vr": two offset rows, one crankpin per cylinder; a W
+#: from VR banks is layout "w" with ``vr_angle``).
+LAYOUTS = ("inline", "boxer", "vee", "w", "radial", "vr")
 #: Crank families: every crank the orders imply, planar cranks only, non-planar only, or
 #: one crankpin per cylinder (vee and W).
 CRANKS = ("any", "flat", "cross", "split")
@@ -63,6 +58,10 @@ PLAIN = {
     "throw_rotating_mass": 1.0,
 }
 _TOL = 1e-9  # [rad] angles closer than this are equal
+#: how close a candidate's crank must be to a fixed crank (``fixed_throw_angles``) [rad]:
+#: 1e-4 deg, so a crank typed to four decimals of a degree (a VR's pins at 104.7027 deg)
+#: is found; the candidate keeps its own exact crank
+FIXED_CRANK_TOL = math.radians(1e-4)
 #: smallest bank angle [rad] of a vee or W: banks closer than this (a thousand times the
 #: tolerance of equal angles) cannot be told apart, and no symmetry, not even the identity,
 #: was found for them (a 1e-12 deg vee ended in a ValueError of numpy)
@@ -119,6 +118,19 @@ class Problem:
     def _plan(self) -> _Plan:
         return _make_plan(self)
 
+    @cached_property
+    def pin_bank(self) -> NDArray[np.float64]:
+        r"""Angle of each cylinder's crankpin at the crank angle where it fires [rad]:
+        :math:`\beta_c + \psi_c - \psi_1`, its bank angle turned by the offset
+        slider-crank's top-dead-centre angle :math:`\psi_c = \arcsin(e_c/(l+r))`
+        (:func:`~crankbalance.physics.model.tdc_angle`) less cylinder 1's, the rule of
+        ``studies/build.py``: a candidate's crank is :math:`\varphi_{t(c)} =
+        \beta_c + \psi_c - \psi_1 - f_c`, so the offset rows of a VR engine fire at the
+        candidate's even intervals (the bank angle itself without offsets)."""
+        t = self.topology
+        psi = tdc_angle(t.cylinder_offset, t.crank_radius, t.rod_length)
+        return np.asarray(t.cylinder_bank + (psi - psi[0]), dtype=float)
+
 
 @dataclass(frozen=True)
 class _Plan:
@@ -144,20 +156,23 @@ def problem(
     base: EngineModel | None = None,
     mirror: bool = True,
     reversal: bool = False,
+    vr_angle: float | None = None,
 ) -> Problem:
     """A problem from words: layout, cylinders, strokes and the crank family.
 
     Parameters
     ----------
     layout : str
-        ``inline``, ``boxer``, ``vee``, ``w`` (broad arrow, three banks) or ``radial``.
+        ``inline``, ``boxer``, ``vee``, ``w`` (broad arrow, three banks; two VR banks with
+        ``vr_angle``), ``radial`` or ``vr`` (two rows ``bank_angle`` apart, one crankpin
+        per cylinder; the rows' bore offsets come with ``base``).
     cylinders : int
         Number of cylinders, 1 to :data:`MAX_CYLINDERS`.
     strokes : int
         2 or 4.
     bank_angle : float, optional
-        Vee angle, or the angle between neighbouring banks of a W [rad]; required for
-        those two layouts and not used by the others.
+        Vee angle, the angle between neighbouring banks of a W, or a VR's narrow angle
+        between its rows [rad]; required for those layouts and not used by the others.
     crank : str
         ``any`` (every crank a firing order implies), ``flat`` (planar: every throw at 0 or
         π from throw 1), ``cross`` (not planar) or ``split`` (vee and W: each cylinder has
@@ -175,33 +190,43 @@ def problem(
         Count an engine numbered from the other end as the same (default True).
     reversal : bool
         Count an engine run backwards as the same (default False).
+    vr_angle : float, optional
+        Layout ``w`` only: a W from two VR banks, ``bank_angle`` apart, each with two rows
+        ``vr_angle`` apart (:func:`~crankbalance.physics.model.standard_layout`) [rad].
 
     Returns
     -------
     Problem
         The problem, ready for :func:`count` and :func:`chunk`.
     """
-    if layout == "vr":
-        raise InputError("layout", layout, VR_REFUSED)
     if layout not in LAYOUTS:
         raise InputError("layout", layout, f"one of {', '.join(LAYOUTS)}")
     if isinstance(cylinders, bool) or not isinstance(cylinders, (int, np.integer)):
         raise InputError("cylinders", cylinders, "a whole number")
     if not 1 <= cylinders <= MAX_CYLINDERS:
         raise InputError("cylinders", cylinders, f"from 1 to {MAX_CYLINDERS}")
-    per_throw = {"vee": 2, "boxer": 2, "w": 3}.get(layout, 1)
+    if vr_angle is not None and layout != "w":
+        raise InputError("vr_angle", vr_angle, "only with layout w (a W from VR banks)")
+    if vr_angle is not None and not MIN_BANK_ANGLE <= vr_angle <= math.pi / 2:
+        raise InputError("vr_angle", vr_angle, f"from {math.degrees(MIN_BANK_ANGLE):.2g} to 90 deg")
+    per_throw = {"vee": 2, "boxer": 2, "w": 3 if vr_angle is None else 2}.get(layout, 1)
     if cylinders % per_throw:
-        raise InputError("cylinders", cylinders, f"a multiple of {per_throw} for layout {layout}")
+        vr_w = " (a W from two VR banks: give its engine file)" if layout == "w" else ""
+        raise InputError(
+            "cylinders", cylinders, f"a multiple of {per_throw} for layout {layout}{vr_w}"
+        )
     if strokes not in (2, 4):
         raise InputError("strokes", strokes, "2 or 4")
     v = _bank_angle(layout, bank_angle)
     if crank not in CRANKS:
         raise InputError("crank", crank, f"one of {', '.join(CRANKS)}")
-    if crank == "split" and layout not in ("vee", "w"):
-        raise InputError("crank", crank, "split crankpins need layout vee or w")
+    if crank == "split" and (layout not in ("vee", "w") or vr_angle is not None):
+        raise InputError(
+            "crank", crank, "split crankpins need layout vee or a broad-arrow w (a VR has them)"
+        )
     cycle = 2 * math.pi * strokes / 2
     steps = _intervals(intervals, cylinders, cycle)
-    topology = _topology(layout, cylinders, strokes, v, crank == "split", base)
+    topology = _topology(layout, cylinders, strokes, v, crank == "split", base, vr_angle)
     fixed = None
     if fixed_throw_angles is not None:
         fixed = tuple(float(a) for a in fixed_throw_angles)
@@ -215,11 +240,11 @@ def problem(
 
 
 def _bank_angle(layout: str, bank_angle: float | None) -> float:
-    if layout not in ("vee", "w"):
+    if layout not in ("vee", "w", "vr"):
         if bank_angle is not None:
             raise InputError("bank_angle", bank_angle, f"is not used with layout {layout}")
         return 0.0
-    limit = math.pi if layout == "vee" else math.pi / 2
+    limit = math.pi if layout in ("vee", "vr") else math.pi / 2
     if bank_angle is None or not MIN_BANK_ANGLE <= bank_angle <= limit + 1e-12:
         raise InputError(
             "bank_angle",
@@ -248,9 +273,16 @@ def _intervals(intervals: Sequence[float] | None, n: int, cycle: float) -> tuple
 
 
 def _topology(
-    layout: str, n: int, strokes: int, v: float, split: bool, base: EngineModel | None
+    layout: str,
+    n: int,
+    strokes: int,
+    v: float,
+    split: bool,
+    base: EngineModel | None,
+    vr_angle: float | None,
 ) -> EngineModel:
-    positions, throw_of, banks = standard_layout(layout, n, v, PLAIN["crank_pitch"])
+    positions, throw_of, banks = standard_layout(layout, n, v, PLAIN["crank_pitch"], vr_angle)
+    articulation = None
     t = positions.size
     if base is None:
         name = f"plain {layout} {n}"
@@ -286,6 +318,7 @@ def _topology(
         offset = base.cylinder_offset.astype(float)
         axial = base.cylinder_axial.astype(float)
         big_end = base.cylinder_rotating_mass.astype(float)
+        articulation = base.articulation  # master-and-link rods: merit per distinct crank
     if split:  # one pin per cylinder, at its rod's position, with its share of the mass
         share = np.bincount(throw_of, minlength=t)[throw_of]
         positions, rot = positions[throw_of] + axial, rot[throw_of] / share
@@ -309,6 +342,7 @@ def _topology(
         cylinder_rotating_mass=big_end,
         firing_order=tuple(range(1, n + 1)),
         firing_order_given=False,
+        articulation=articulation,
     )
 
 
@@ -423,9 +457,11 @@ def _root(problem: Problem, r: int) -> _Prefixes:
     throw_of = problem.topology.cylinder_throw
     m = problem._plan.cylinders - 1
     pin = np.full((1, problem.topology.throws), np.nan)
-    pin[0, throw_of[0]] = np.remainder(
-        problem.topology.cylinder_bank[0] - problem._plan.times[r, 0], 2 * np.pi
-    )
+    first = np.remainder(problem.pin_bank[0] - problem._plan.times[r, 0], 2 * np.pi)
+    pin[0, throw_of[0]] = first
+    if problem.fixed_throw_angles is not None:  # every pin known: a fixed crank prunes early
+        fixed = np.array(problem.fixed_throw_angles)
+        pin[0] = np.remainder(first + fixed - fixed[throw_of[0]], 2 * np.pi)
     rest = np.arange(1, m + 1, dtype=np.int64)[None, :]
     return np.zeros(1, dtype=np.int64), np.zeros((1, m + 1), dtype=np.int64), pin, rest
 
@@ -443,7 +479,7 @@ def _children(
     """
     plan = problem._plan
     m = plan.cylinders - 1
-    bank, throw_of = problem.topology.cylinder_bank, problem.topology.cylinder_throw
+    bank, throw_of = problem.pin_bank, problem.topology.cylinder_throw
     lo, slots, pin, rest = prefixes
     width = int(plan.factorial[k])
     digit = np.tile(np.arange(m - k), lo.size)
@@ -453,7 +489,8 @@ def _children(
     angle = np.remainder(bank[cylinder] - plan.times[r, k + 1], 2 * np.pi)
     known = pin[parent, throw_of[cylinder]]
     ok = (child_lo < hi_end) & (child_lo + width > lo_end)
-    ok &= np.isnan(known) | (_gap(angle - known) < _TOL)
+    tol = _TOL if problem.fixed_throw_angles is None else FIXED_CRANK_TOL
+    ok &= np.isnan(known) | (_gap(angle - known) < tol)
     parent, digit, cylinder, angle = parent[ok], digit[ok], cylinder[ok], angle[ok]
     lo = child_lo[ok]
     slots = slots[parent]
@@ -585,7 +622,8 @@ def size(problem: Problem, start: int, stop: int) -> Size:
         raise InputError("span", (start, stop), f"0 <= start <= stop <= {total}")
     plan = problem._plan
     m = plan.cylinders - 1
-    if np.unique(problem.topology.cylinder_throw).size == plan.cylinders:
+    unshared = np.unique(problem.topology.cylinder_throw).size == plan.cylinders
+    if unshared and problem.fixed_throw_angles is None:
         built = sum(_blocks(plan, start, stop, k) for k in range(m + 1))
         return Size(stop - start, built, stop - start, True)
     rng = np.random.default_rng(0)
@@ -711,7 +749,7 @@ def _crank(
     """Fire angles (B, C), throw angles (B, T) [rad] and which rows the problem allows."""
     plan = problem._plan
     fire = plan.times[rot[:, None], slots]
-    pin = np.remainder(problem.topology.cylinder_bank - fire, 2 * np.pi)
+    pin = np.remainder(problem.pin_bank - fire, 2 * np.pi)
     ok = np.all(_gap(pin - pin[:, plan.pin_first]) < _TOL, axis=1)
     throw = pin[:, plan.throw_first]
     relative = throw - throw[:, :1]
@@ -720,7 +758,7 @@ def _crank(
         ok &= planar if problem.crank == "flat" else ~planar
     if problem.fixed_throw_angles is not None:
         fixed = np.array(problem.fixed_throw_angles)
-        ok &= np.all(_gap(relative - (fixed - fixed[0])) < _TOL, axis=1)
+        ok &= np.all(_gap(relative - (fixed - fixed[0])) < FIXED_CRANK_TOL, axis=1)
     return fire, throw, ok
 
 
@@ -797,9 +835,7 @@ def at(problem: Problem, index: ArrayLike) -> Candidates:
     plan = problem._plan
     slots, rot = _unrank(plan, index)
     # the enumeration's rule: each cylinder agrees with the one placed before it on its pin
-    angle = np.remainder(
-        problem.topology.cylinder_bank - plan.times[rot[:, None], slots], 2 * np.pi
-    )
+    angle = np.remainder(problem.pin_bank - plan.times[rot[:, None], slots], 2 * np.pi)
     reached = np.ones(index.size, dtype=bool)
     throw_of = problem.topology.cylinder_throw
     for t in range(problem.topology.throws):

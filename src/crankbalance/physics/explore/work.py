@@ -218,7 +218,8 @@ def plan(
             field,
             value,
             f"a run of at most {MAX_CANDIDATES:,} candidates (this one: {found}); take fewer "
-            f"cylinders or a random search (--sample N, at most {MAX_DRAWS:,} draws)",
+            "cylinders, a fixed crank (--fixed-crank) or a random search (--sample N, at "
+            f"most {MAX_DRAWS:,} draws)",
         )
 
     def task_bytes(c: int) -> int:
