@@ -340,6 +340,8 @@ def _articulated_forces(
                 "couple_backward",
                 "rotating_force",
                 "rotating_couple",
+                "roll",
+                "rotating_roll",
             )
         ),
     )
