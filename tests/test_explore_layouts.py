@@ -12,13 +12,14 @@ import tomllib
 import numpy as np
 import pytest
 
-from crankbalance.errors import InputError
 from crankbalance.io.engine_file import dumps_toml, parse_engine_text, preset_text
+from crankbalance.physics.balance_types import ShaftOptions
 from crankbalance.physics.explore import merit
 from crankbalance.physics.explore import orders as enumeration
+from crankbalance.physics.model import model_fire_angles
 from crankbalance.schema.settings import ExploreOptions
 from crankbalance.studies.build import build_model
-from crankbalance.studies.engine import analyze, balance_engine
+from crankbalance.studies.engine import analyze, balance_engine, firing
 from crankbalance.studies.explorer import _problem
 
 ORDERS = 4
@@ -188,22 +189,91 @@ def test_shared_pin_v16_with_a_fixed_crank_is_small() -> None:
         assert _same_engine(row, np.radians(crank))
 
 
-def test_articulated_engine_asks_for_target_none() -> None:
-    options = ExploreOptions.parse({"layout": "radial", "cylinders": 5})
-    problem = _problem(_engine("radial5-kinner"), options)
+@pytest.mark.parametrize("preset", ["radial5-kinner", "radial9-r985"])
+@pytest.mark.parametrize("target", ["counterweights", "primary", "secondary"])
+def test_articulated_balancing_agrees_with_balance_engine(preset: str, target: str) -> None:
+    """Master-and-link rods: every balancing target of the explorer (formerly refused) is
+    the one-engine balancing of its crank, ``balance_engine`` of the engine file with the
+    candidate's order and the explorer's default shafts (balance factor 0.5)."""
+    cylinders = int(preset[6])
+    problem = _problem(
+        _engine(preset), ExploreOptions.parse({"layout": "radial", "cylinders": cylinders})
+    )
     batch = enumeration.chunk(problem, 0, enumeration.count(problem))
-    with pytest.raises(InputError) as info:
-        merit.merit(batch, target="counterweights")
-    assert info.value.field == "target" and "none" in info.value.allowed
+    columns = merit.merit(batch, target=target, balance_factor=0.5, orders=ORDERS)
+    topo = problem.topology
+    shaft = ShaftOptions(cg_radius=topo.crank_radius, length=2 * topo.crank_radius)
+    level = merit.TARGETS.index(target)
+    for i in range(batch.size):  # a radial: one crank, one engine
+        order = [int(c) for c in batch.firing_order[i]]
+        result = balance_engine(
+            _engine(preset, order),
+            ORDERS,
+            balance_factor=0.5,
+            primary=shaft if level >= 2 else None,
+            secondary=shaft if level >= 3 else None,
+        ).result
+        assert result.counterweights is not None
+        shafts = [s for g in (result.primary, result.secondary) if g for s in g.shafts]
+        want = {
+            "cw_mass_kg": result.counterweights.mass.sum(),
+            "shafts": sum(1 for s in shafts if s.masses),
+            "shaft_mass_kg": sum(m.mass for s in shafts for m in s.masses),
+            "residual_F_N": max(c.force_after for c in result.residuals),
+            "residual_M_Nm": max(c.moment_after for c in result.residuals),
+        }
+        scale = max(c.force_before for c in result.residuals)
+        assert want["cw_mass_kg"] > 0 and want["shafts"] == 2 * (level - 1)
+        for name, value in want.items():
+            assert columns[name][i] == pytest.approx(value, rel=1e-9, abs=1e-12 * scale), name
+
+
+def test_articulated_explore_command_balances(capsys: pytest.CaptureFixture[str]) -> None:
+    """`crankbalance explore --engine radial5-kinner` with the default target
+    (counterweights): the counterweight mass of `crankbalance balance` of the file."""
+    import json
+
+    from crankbalance.cli import main
+
+    main(
+        ["explore", "--engine", "radial5-kinner", "--layout", "radial", "--cylinders", "5"]
+        + ["--balance-factor", "0.5", "--format", "json"]
+    )
+    row = json.loads(capsys.readouterr().out)["top"][0]
+    result = balance_engine(_engine("radial5-kinner"), balance_factor=0.5).result
+    assert result.counterweights is not None
+    assert row["cw_mass_kg"] == pytest.approx(result.counterweights.mass.sum(), rel=1e-9)
+
+
+@pytest.mark.parametrize("preset", ["radial5-kinner", "radial7-scarab", "radial9-r985"])
+def test_articulated_firing_intervals_agree_with_analyze(preset: str) -> None:
+    """The explorer's firing-interval figures of an articulated radial are those of the
+    firing intervals `crankbalance analyze` prints for the engine file with the
+    candidate's order (``studies.engine.firing``: the model's own firing angles)."""
+    cylinders = int(preset[6])
+    problem = _problem(
+        _engine(preset), ExploreOptions.parse({"layout": "radial", "cylinders": cylinders})
+    )
+    batch = enumeration.chunk(problem, 0, enumeration.count(problem))
+    columns = merit.merit(batch, target="none", orders=ORDERS)
+    cycle = 4 * math.pi
+    for i in range(batch.size):
+        model = build_model(_engine(preset, [int(c) for c in batch.firing_order[i]]))
+        order, intervals = firing(model)
+        assert order == [int(c) for c in batch.firing_order[i]]
+        want = float(np.max(np.abs(intervals - cycle / cylinders)))
+        got = float(columns["interval_dev_rad"][i])
+        assert got == pytest.approx(want, abs=1e-9)
+        # one bank angle per cylinder: a bank's one interval is the whole cycle
+        assert columns["bank_interval_dev_rad"][i] == pytest.approx(0.0, abs=1e-9)
+        # the candidate's fire angles are the model's own (cylinder 1 at the same start)
+        fire, mine = model_fire_angles(model), batch.fire_angle[i]
+        assert np.allclose(np.mod(mine - mine[0], cycle), np.mod(fire - fire[0], cycle))
 
 
 @pytest.mark.parametrize(
     ("arguments", "message"),
     [
-        (
-            ["--layout", "radial", "--cylinders", "5", "--engine", "radial5-kinner"],
-            "--target = 'counterweights': none for an engine with master-and-link rods",
-        ),
         (
             ["--layout", "w", "--cylinders", "16", "--bank-angle", "90 deg"],
             "--cylinders = '16': a multiple of 3 for layout w (a W from two VR banks: give "

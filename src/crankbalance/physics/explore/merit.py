@@ -34,6 +34,7 @@ from ...errors import InputError
 from ...results import ROUND_OFF, below_round_off, round_off
 from ..balance_batch import balance_batch
 from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
+from ..balancing import balance
 from ..model import EngineModel, engine_batch
 from ..shaking import BatchFreeForces, batch_free_forces, free_forces
 from .candidates import Candidates
@@ -42,6 +43,14 @@ Target = Literal["none", "counterweights", "primary", "secondary"]
 #: balancing targets, from the least to the most: no balancing, crank counterweights
 #: only, counterweights and a primary shaft pair, and a secondary shaft pair as well
 TARGETS: tuple[str, ...] = ("none", "counterweights", "primary", "secondary")
+#: the balancing columns of a target other than "none" (:func:`balance_columns`)
+BALANCE_COLUMNS: tuple[str, ...] = (
+    "cw_mass_kg",
+    "shafts",
+    "shaft_mass_kg",
+    "residual_F_N",
+    "residual_M_Nm",
+)
 #: the named mode shapes (or one weight per cylinder)
 MODE_SHAPES: tuple[str, ...] = ("uniform", "linear")
 #: the assumption behind the torsional-excitation columns, to print beside them
@@ -115,13 +124,6 @@ def merit(
     topo = candidates.topology
     if target not in TARGETS:
         raise InputError("target", target, f"one of {', '.join(TARGETS)}")
-    if target != "none" and topo.articulation is not None:
-        raise InputError(
-            "target",
-            target,
-            "none for an engine with master-and-link rods (its counterweights: "
-            "`crankbalance balance` of the engine file)",
-        )
     if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
         raise InputError("orders", orders, "an integer from 1 to 64")
     weights = mode_weights(topo, mode_shape)
@@ -325,10 +327,7 @@ def _articulated_forces(
     exact articulated piston motion), with their round-off levels (B, 1): the batch model
     has no master-and-link rods, and :func:`merit` calls this once per distinct crank (one
     for a radial, whose every order shares its single throw)."""
-    rows = []
-    for angle in candidates.throw_angle:
-        model = dataclasses.replace(candidates.topology, throw_angle=np.array(angle, dtype=float))
-        rows.append((free_forces(model, orders), round_off(model)))
+    rows = [(free_forces(model, orders), round_off(model)) for model in _one_engines(candidates)]
     f = BatchFreeForces(
         np.arange(1, orders + 1),
         *(
@@ -347,6 +346,15 @@ def _articulated_forces(
     )
     levels = np.array([r[1] for r in rows], dtype=float)
     return f, levels[:, :1], levels[:, 1:]
+
+
+def _one_engines(candidates: Candidates) -> list[EngineModel]:
+    """Each candidate as an engine of its own (the topology on the candidate's crank), for
+    the one-engine path of master-and-link rods, which the batch model has not."""
+    return [
+        dataclasses.replace(candidates.topology, throw_angle=np.array(angle, dtype=float))
+        for angle in candidates.throw_angle
+    ]
 
 
 def mirror_asymmetry(throw_angle: ArrayLike) -> NDArray[np.float64]:
@@ -519,7 +527,7 @@ def balance_columns(
         [N], ``residual_M_Nm`` [N·m] (see :func:`merit`).
     """
     topo = candidates.topology
-    names = ("cw_mass_kg", "shafts", "shaft_mass_kg", "residual_F_N", "residual_M_Nm")
+    names = BALANCE_COLUMNS
     if candidates.size == 0:
         return {name: np.zeros(0) for name in names}
     cw = counterweights or CounterweightOptions(
@@ -530,11 +538,15 @@ def balance_columns(
         length=max(float(np.ptp(topo.throw_position)), 2 * topo.crank_radius),
     )
     level = TARGETS.index(target)
+    primary = shaft if level >= 2 else None
+    secondary = shaft if level >= 3 else None
+    if topo.articulation is not None:
+        return _articulated_balance(candidates, cw, primary, secondary, orders)
     result: BatchBalance = balance_batch(
         engine_batch(topo, candidates.size, throw_angle=candidates.throw_angle),
         cw,
-        shaft if level >= 2 else None,
-        shaft if level >= 3 else None,
+        primary,
+        secondary,
         orders,
     )
     count = np.zeros(candidates.size, dtype=np.int64)
@@ -561,3 +573,41 @@ def balance_columns(
             strict=True,
         )
     )
+
+
+def _articulated_balance(
+    candidates: Candidates,
+    counterweights: CounterweightOptions,
+    primary: ShaftOptions | None,
+    secondary: ShaftOptions | None,
+    orders: int,
+) -> dict[str, NDArray]:
+    """:func:`balance_columns` of a batch whose topology has master-and-link rods: each
+    candidate balanced by the one-engine solver
+    (:func:`crankbalance.physics.balancing.balance`, what ``crankbalance balance`` calls, on
+    the exact articulated forces), since the batch model has no master-and-link rods;
+    :func:`merit` calls it once per distinct crank (one for a radial)."""
+    rows = []
+    for k, model in enumerate(_one_engines(candidates)):
+        try:
+            result = balance(model, counterweights, primary, secondary, orders)
+        except InputError as e:  # named as balance_batch names an engine of the batch
+            raise InputError(e.field, e.value, f"{e.allowed} (engine {k} of the batch)") from None
+        assert result.counterweights is not None  # counterweights are always asked for
+        cw_mass = float(result.counterweights.mass.sum())
+        if result.extra_counterweights is not None:  # a single counter-rotating primary shaft
+            cw_mass += float(result.extra_counterweights.mass.sum())
+        shafts = [s for group in (result.primary, result.secondary) if group for s in group.shafts]
+        rows.append(
+            (
+                cw_mass,
+                sum(1 for s in shafts if s.masses),
+                sum(m.mass for s in shafts for m in s.masses),
+                max(c.force_after for c in result.residuals),
+                max(c.moment_after for c in result.residuals),
+            )
+        )
+    columns = np.array(rows, dtype=float).T
+    out = dict(zip(BALANCE_COLUMNS, columns, strict=True))
+    out["shafts"] = out["shafts"].astype(np.int64)
+    return out
