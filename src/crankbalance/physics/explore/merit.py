@@ -11,7 +11,9 @@ merit"):
   (:mod:`crankbalance.physics.shaking`);
 - the rotating masses' force and couple, the crank without counterweights;
 - counterweight mass, balance shafts needed and what is left, for a balancing target with
-  a balance factor (:func:`crankbalance.physics.balance_batch.balance_batch`);
+  a balance factor (:func:`crankbalance.physics.balance_batch.balance_batch`; an engine
+  with master-and-link rods by the one-engine :func:`crankbalance.physics.balancing.balance`
+  once per distinct crank, as its forces by :func:`crankbalance.physics.shaking.free_forces`);
 - crank symmetry: how far the crank is from its mirror image about its mid-plane;
 - firing intervals: the largest deviation from even firing, of the engine and of each bank;
 - torsional excitation: the relative vector sum of each engine order's gas-torque
