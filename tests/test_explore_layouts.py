@@ -12,6 +12,7 @@ import tomllib
 import numpy as np
 import pytest
 
+from crankbalance.errors import InputError
 from crankbalance.io.engine_file import dumps_toml, parse_engine_text, preset_text
 from crankbalance.physics.balance_types import ShaftOptions
 from crankbalance.physics.explore import merit
@@ -368,3 +369,25 @@ def test_broad_arrow_w12_candidates_agree_with_analyze() -> None:
     its 256 engines' forces as analyze gives them."""
     size = _check("w12", {"layout": "w", "cylinders": 12, "bank_angle": "60 deg"}, rows=256)
     assert size == 256
+
+
+def test_articulated_balancing_refuses_as_the_batch_does() -> None:
+    """Options a radial cannot have are refused on the one-engine path with the batch
+    solver's line: the field, the value and what is allowed (the plain radial of the same
+    layout, without master-and-link rods, takes the batch path)."""
+    from crankbalance.physics.balance_types import CounterweightOptions
+
+    options = ExploreOptions.parse({"layout": "radial", "cylinders": 5})
+    articulated = _problem(_engine("radial5-kinner"), options)
+    plain = enumeration.problem("radial", 5, 4)
+    assert articulated.topology.articulation is not None
+    assert plain.topology.articulation is None
+    cw = CounterweightOptions(cg_radius=0.05, scope="halves")
+    messages = []
+    for problem in (articulated, plain):
+        batch = enumeration.chunk(problem, 0, enumeration.count(problem))
+        with pytest.raises(InputError) as info:
+            merit.merit(batch, counterweights=cw)
+        messages.append(str(info.value))
+    assert messages[0] == messages[1]
+    assert messages[0].startswith("counterweights.scope = 'halves': ")

@@ -590,11 +590,8 @@ def _articulated_balance(
     the exact articulated forces), since the batch model has no master-and-link rods;
     :func:`merit` calls it once per distinct crank (one for a radial)."""
     rows = []
-    for k, model in enumerate(_one_engines(candidates)):
-        try:
-            result = balance(model, counterweights, primary, secondary, orders)
-        except InputError as e:  # named as balance_batch names an engine of the batch
-            raise InputError(e.field, e.value, f"{e.allowed} (engine {k} of the batch)") from None
+    for model in _one_engines(candidates):
+        result = balance(model, counterweights, primary, secondary, orders)
         assert result.counterweights is not None  # counterweights are always asked for
         cw_mass = float(result.counterweights.mass.sum())
         if result.extra_counterweights is not None:  # a single counter-rotating primary shaft
