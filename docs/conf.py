@@ -2,12 +2,15 @@
 
 Build it with ``python -m sphinx -W -b html docs docs/_build/html`` (the ``docs`` extra;
 ``.ci/run`` builds it with warnings as errors). The Markdown documents of ``docs/`` are read
-by myst-parser, the API reference is generated from the numpydoc docstrings (autosummary),
-and the scripts of ``examples/`` are run and shown with their output by sphinx-gallery.
+by myst-parser (through myst-nb), the API reference is generated from the numpydoc docstrings
+(autosummary), the scripts of ``examples/`` are run and shown with their output by
+sphinx-gallery, and the tutorials (``docs/tutorials/``, MyST text notebooks) and the
+validation page are executed by myst-nb in a Jupyter kernel at every build.
 """
 
 from __future__ import annotations
 
+import os
 import sys
 from pathlib import Path
 
@@ -22,7 +25,7 @@ copyright = "crankbalance developers, MIT licence"
 version = release = crankbalance.__version__
 
 extensions = [
-    "myst_parser",
+    "myst_nb",  # myst-parser for the Markdown documents, and the executed notebooks
     "numpydoc",
     "sphinx.ext.autodoc",
     "sphinx.ext.autosummary",
@@ -30,7 +33,7 @@ extensions = [
     "sphinx_gallery.gen_gallery",
 ]
 
-source_suffix = {".rst": "restructuredtext", ".md": "markdown"}
+source_suffix = {".rst": "restructuredtext", ".md": "myst-nb"}
 exclude_patterns = [
     "_build",
     "sg_execution_times.rst",
@@ -46,6 +49,26 @@ suppress_warnings = ["myst.header", "ref.citation"]
 # myst-parser: `$...$` maths as in the Markdown documents, headings linkable
 myst_enable_extensions = ["dollarmath", "colon_fence"]
 myst_heading_anchors = 3
+
+# myst-nb: the text notebooks (tutorials/*.md, validation_tables.md) are run at every build in
+# their own folder (so a tutorial reads ../../examples/), and an error in a cell fails the
+# build; NOTEBOOK_GUARD [s] only ends a cell that hangs
+NOTEBOOK_GUARD = 600
+nb_execution_mode = "force"
+nb_execution_raise_on_error = True
+nb_execution_show_tb = True
+nb_execution_timeout = NOTEBOOK_GUARD
+nb_merge_streams = True
+# a Markdown output (the validation page's tables) is read as MyST, tables included
+nb_render_markdown_format = "myst"
+# plotly's figures as HTML drawn by plotly.js, which the first figure of a page embeds (no
+# address outside the site); in Jupyter itself the default renderer is left as it is. The
+# kernel inherits this environment.
+os.environ.setdefault("PLOTLY_RENDERER", "plotly_mimetype+notebook")
+# The page shows that HTML; plotly's JSON beside it (for JupyterLab) has no renderer here
+# and is left out without a warning. A figure without its HTML would then be missing from
+# its page: tests/web/test_docs_site.py checks each tutorial's figures are drawn.
+suppress_warnings.append("mystnb.unknown_mime_type")
 
 # autosummary writes one page per public object of the modules listed in api.rst
 autosummary_generate = True

@@ -1,9 +1,11 @@
 """The documentation site (docs/conf.py) builds with warnings as errors, every relative link
-of every page points at a file of the site, and Chromium shows the home page, an API page
-and gallery examples with their output and figure.
+of every page points at a file of the site, and Chromium shows the home page, an API page,
+gallery examples with their output and figure, a tutorial (an executed notebook) with its
+interactive figures drawn, and the validation page's tables with their verdicts.
 
-The site is built from a copy of ``docs/`` and ``examples/`` in a scratch folder (Sphinx
-writes the pages it generates, ``api/`` and ``gallery/``, beside its sources)."""
+The site is built from a copy of ``docs/``, ``examples/`` and ``validation/`` (the
+validation page runs the multibody harness) in a scratch folder (Sphinx writes the pages it
+generates, ``api/`` and ``gallery/``, beside its sources)."""
 
 from __future__ import annotations
 
@@ -23,10 +25,12 @@ from .conftest import ROOT
 pytest.importorskip("sphinx")
 pytest.importorskip("myst_parser")
 pytest.importorskip("sphinx_gallery")
+pytest.importorskip("myst_nb")
 
 #: hang guard [s] of the build (it runs every example of the gallery)
 BUILD_GUARD = 1200
 HREF = re.compile(r'(?:href|src)="([^"#?]+)[^"]*"')
+SCRIPT = re.compile(r"<script\b[^>]*>.*?</script>", re.S)
 
 
 @pytest.fixture(scope="module")
@@ -36,6 +40,7 @@ def site(tmp_path_factory: pytest.TempPathFactory) -> Path:
     skip = shutil.ignore_patterns("_build", "api", "gallery", "sg_execution_times.rst")
     shutil.copytree(ROOT / "docs", root / "docs", ignore=skip)
     shutil.copytree(ROOT / "examples", root / "examples")
+    shutil.copytree(ROOT / "validation", root / "validation")
     (root / "src").symlink_to(ROOT / "src")
     env = {k: v for k, v in os.environ.items() if k != "PYTEST_CURRENT_TEST"}
     out = root / "docs" / "_build" / "html"
@@ -57,13 +62,16 @@ def test_every_page_links_only_to_pages_and_files_of_the_site(site: Path) -> Non
     assert len(pages) > 40
     broken = []
     for page in pages:
-        for target in HREF.findall(page.read_text(errors="replace")):
+        html = SCRIPT.sub("", page.read_text(errors="replace"))  # plotly.js has src= in it
+        for target in HREF.findall(html):
             if urlsplit(target).scheme or target.startswith("//"):
                 continue  # an outside address (mathjax, the references' DOIs)
             if not (page.parent / unquote(target)).exists():
                 broken.append(f"{page.relative_to(site)} -> {target}")
     assert not broken, broken[:20]
-    for name in ("index.html", "api.html", "gallery/index.html", "theory.html"):
+    tutorials = [f"tutorials/{p.stem}.html" for p in (ROOT / "docs" / "tutorials").glob("*.md")]
+    assert len(tutorials) == 4
+    for name in ("index.html", "api.html", "gallery/index.html", "theory.html", *tutorials):
         assert (site / name).is_file(), name
 
 
@@ -86,3 +94,43 @@ def test_chromium_shows_the_home_an_api_page_and_an_example(site: Path, page: An
     assert figure.count() == 1, "the figure the example wrote is shown on its page"
     width = figure.evaluate("(img) => img.complete ? img.naturalWidth : 0")
     assert width > 300, "the figure is a drawn image"
+
+
+def test_chromium_shows_a_tutorial_with_its_figures(site: Path, page: Any) -> None:
+    page.goto((site / "index.html").as_uri())
+    page.locator("a", has_text="Crossplane against flat-plane V8").first.click()
+    page.wait_for_load_state("load")  # 5 MB: plotly.js is in the page
+    assert page.title().startswith("Crossplane against flat-plane V8")
+    text = page.locator("body").inner_text()
+    assert "20320.8" in text, "the flat-plane's second-order force, computed by the build"
+    shown = page.locator("div.crankbalance-result h4").all_inner_texts()
+    assert "BalanceStudy: V8 90 deg, crossplane crank" in shown, "a result's HTML display"
+    # plotly.js (embedded in the page, no outside address) draws each figure as SVG
+    drawn = page.locator(".plotly-graph-div .main-svg")
+    drawn.first.wait_for(state="attached")
+    assert page.locator(".plotly-graph-div").count() == 3
+    bars = page.locator(".plotly-graph-div").first.locator("g.trace.bars path")
+    assert bars.count() > 0, "the first figure has its bars"
+
+
+def test_chromium_shows_the_validation_page(site: Path, page: Any) -> None:
+    page.goto((site / "index.html").as_uri())
+    page.locator("a", has_text="Validation: published tables").first.click()
+    page.wait_for_load_state("load")
+    text = page.locator("body").inner_text()
+    for source in (
+        "Table 2: inline-3, counterweight m_c",
+        "Fig. 7: optimum position",
+        "Table 6.1",
+        "Table 5.6",
+        "force, order 1 [N]",
+    ):
+        assert source in text, source
+    tables = page.locator("table")
+    assert tables.count() >= 8, "three published sources and five engines"
+    header = tables.nth(0).locator("th").all_inner_texts()
+    assert header == ["quantity", "published", "crankbalance", "tolerance", "verdict"]
+    assert "EXUDYN" in tables.nth(3).locator("th").all_inner_texts()
+    verdicts = page.locator("table tbody tr td:last-child").all_inner_texts()
+    assert len(verdicts) > 60 and set(verdicts) == {"ok"}
+    assert "0 failed" in text
