@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..results import ROUND_OFF, ResultMixin, engine_scales
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import Remaining, next_step
-from .balance_solver import CHECK_TOLERANCE, solve, solver_input, throw_unbalance
+from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
 from .balance_types import (
     BatchBalance,
     BatchCounterweights,
@@ -42,7 +42,6 @@ from .balance_types import (
     ShaftOptions,
 )
 from .model import EngineModel
-from .shaking import BatchFreeForces, FreeForces, free_forces
 
 __all__ = [
     "AngleSweep",
@@ -371,7 +370,7 @@ def balance(
     ----------
     Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
     """
-    inputs = solver_input(model, batch_of_one(free_forces(model, max(orders, 2))))
+    inputs = model_input(model, max(orders, 2))
     try:
         found = solve(inputs, counterweights, primary, secondary)
     except EngineFailed as failed:
@@ -383,30 +382,6 @@ def balance(
         secondary,
         float(inputs.length[0]),
         (float(inputs.force_round_off[0]), float(inputs.moment_round_off[0])),
-    )
-
-
-def batch_of_one(forces: FreeForces) -> BatchFreeForces:
-    """One engine's free forces with an engine axis of 1 (views, no copy).
-
-    Parameters
-    ----------
-    forces : FreeForces
-        Phasors of one engine [N], [N·m].
-
-    Returns
-    -------
-    BatchFreeForces
-        The same phasors, shape (1, K) and (1,).
-    """
-    return BatchFreeForces(
-        forces.orders,
-        forces.force_forward[None],
-        forces.force_backward[None],
-        forces.couple_forward[None],
-        forces.couple_backward[None],
-        np.array([forces.rotating_force]),
-        np.array([forces.rotating_couple]),
     )
 
 
