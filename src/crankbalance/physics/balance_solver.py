@@ -45,7 +45,7 @@ Options, input and results are in :mod:`crankbalance.physics.balance_types`.
 from __future__ import annotations
 
 from dataclasses import replace
-from typing import TypeVar
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -172,7 +172,7 @@ def batch_of_one(forces: FreeForces) -> BatchFreeForces:
 
 def _read_only(record: _Record) -> _Record:
     """``record`` with read-only views of its arrays (a record a model keeps)."""
-    views = {}
+    views: dict[str, Any] = {}
     for name, value in vars(record).items():
         if isinstance(value, np.ndarray):
             views[name] = value.view()
