@@ -456,19 +456,20 @@ def _one_engine(
         )
     r = found.residuals
     residuals = tuple(
-        ComponentResidual(
-            name,
-            bool(r.targeted[k]),
-            float(r.force_before[0, k]),
-            float(r.force_after[0, k]),
-            float(r.moment_before[0, k]),
-            float(r.moment_after[0, k]),
-            float(r.force_forward_after[0, k]),
-            float(r.force_backward_after[0, k]),
-            float(r.moment_forward_after[0, k]),
-            float(r.moment_backward_after[0, k]),
+        ComponentResidual(name, *row)
+        for name, *row in zip(
+            r.components,
+            r.targeted.tolist(),
+            r.force_before[0].tolist(),
+            r.force_after[0].tolist(),
+            r.moment_before[0].tolist(),
+            r.moment_after[0].tolist(),
+            r.force_forward_after[0].tolist(),
+            r.force_backward_after[0].tolist(),
+            r.moment_forward_after[0].tolist(),
+            r.moment_backward_after[0].tolist(),
+            strict=True,
         )
-        for k, name in enumerate(r.components)
     )
     rotating_left = residuals[0].force_after + residuals[0].moment_after / length > 0
     if cw is not None and rotating_left and not missed:
