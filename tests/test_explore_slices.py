@@ -25,20 +25,28 @@ def _sorted(throw_angle: np.ndarray) -> tuple[np.ndarray, np.ndarray]:
     return throw_angle, np.lexsort(throw_angle.T[::-1])
 
 
-def test_no_crank_of_the_inline8_falls_into_two_slices() -> None:
+@pytest.mark.parametrize(
+    ("cranks", "rows", "slices"),
+    [(FIGURES_SLICE, FIGURES_ROWS, 1), (100, 600, 6), (1000, 300, 9)],
+)
+def test_no_crank_of_the_inline8_falls_into_two_slices(
+    monkeypatch: pytest.MonkeyPatch, cranks: int, rows: int, slices: int
+) -> None:
+    monkeypatch.setattr(explore, "FIGURES_SLICE", cranks)
+    monkeypatch.setattr(explore, "FIGURES_ROWS", rows)
     problem = orders.problem("inline", 8, 4)
     cands = orders.chunk(problem, 0, orders.count(problem))
     by_crank = np.lexsort(cands.throw_angle.T[::-1])
-    slices = figures_slices(cands.throw_angle, by_crank)
-    assert slices[0][0] == 0 and slices[-1][1] == cands.size
-    assert all(a[1] == b[0] for a, b in zip(slices, slices[1:], strict=False))
-    assert len(slices) == 2  # 546 distinct cranks, 2 544 candidates
+    found = figures_slices(cands.throw_angle, by_crank)  # 546 distinct cranks, 2 544 rows
+    assert len(found) == slices
+    assert found[0][0] == 0 and found[-1][1] == cands.size
+    assert all(a[1] == b[0] for a, b in zip(found, found[1:], strict=False))
     seen: set[bytes] = set()
-    for start, stop in slices:
-        cranks = set(_crank_keys(cands.throw_angle[by_crank[start:stop]]))
-        assert 0 < stop - start <= FIGURES_ROWS and len(cranks) <= FIGURES_SLICE
-        assert not cranks & seen  # every crank in one slice only
-        seen |= cranks
+    for start, stop in found:
+        held = set(_crank_keys(cands.throw_angle[by_crank[start:stop]]))
+        assert 0 < stop - start <= rows and len(held) <= cranks
+        assert not held & seen  # every crank in one slice only
+        seen |= held
     assert len(seen) == np.unique(cands.throw_angle, axis=0).shape[0]
 
 

@@ -48,10 +48,12 @@ TASK_MEMORY = 512 * 2**20
 #: small beside them, and its arrays stay tens of MB
 TASK_CANDIDATES = 8192
 #: distinct cranks whose figures of merit (free forces, balancing) a task computes at
-#: once: measured fastest, or within 15 % of it, for 4 to 20 cylinders and 1 to 64 orders;
-#: from about 1000 on, the BLAS library's threads make the figures up to 2 times slower on
-#: a busy machine
-FIGURES_SLICE = 512
+#: once: 512 candidates was measured fastest, or within 15 % of it, for 4 to 20 cylinders
+#: and 1 to 64 orders, when the figures were computed per candidate with matrix products
+#: (more made the BLAS library's threads slow them on a busy machine); per distinct crank
+#: and without matrix products across engines (issue 30), 1024 cranks measured up to 10 %
+#: faster than 512 on the in-line 7 to 12 (BLAS 1 thread; benchmarks/bench_explore_floor.py)
+FIGURES_SLICE = 1024
 #: candidates whose figures of merit a task computes at once, at most: a slice holds whole
 #: cranks (issue 30: each crank's figures once per task, and few slices, each with its
 #: fixed cost) up to FIGURES_SLICE distinct cranks and this many candidates
