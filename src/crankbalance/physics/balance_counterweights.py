@@ -155,6 +155,15 @@ def web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
     InputError
         If ``options.webs`` does not have two entries per throw.
     """
+    key = ("webs", options.webs, options.web_offset)
+    webs: Webs | None = inputs.memo.get(key)
+    if webs is None:
+        webs = inputs.memo[key] = _web_geometry(inputs, options)
+    return webs
+
+
+def _web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
+    """:func:`web_geometry` computed, its arrays read-only (the input keeps them)."""
     y = inputs.throw_position
     throw, side = web_sides(y.size, options.webs)
     if options.web_offset is not None:
@@ -172,6 +181,8 @@ def web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
         order = np.argsort(inverse, kind="stable")
         groups = np.split(order, np.cumsum(np.bincount(inverse))[:-1])
     number = 2 * throw + (side > 0) + 1
+    for array in (throw, number, position):
+        array.flags.writeable = False
     return Webs(throw, number, position, groups)
 
 
@@ -245,17 +256,13 @@ def solve_counterweights(
     alpha = np.zeros(n)
     flipped = np.zeros(n, bool)
     already = np.zeros(n, bool)
-    y_throw = inputs.throw_position
     first = inputs.force_round_off / inputs.speed**2  # first moments at round-off [kg·m]
     for group in webs.groups:
-        length = float(inputs.length[group[0]])
-        normal = webs.position[group[0]] / length
         for scope in ("whole", "halves"):
             sub = group[halves[group] == (scope == "halves")]
             if not sub.size:
                 continue
-            parts = _parts(y_throw, length, scope, webs.throw)
-            rows: list[NDArray] = []
+            length, normal, parts, a, side = _equations(inputs, webs, options, scope, group)
             rhs: list[NDArray] = []
             sums = []
             for throw_mask, web_mask in parts:
@@ -266,9 +273,7 @@ def solve_counterweights(
                 force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
                 couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
-                rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
                 rhs += [-force, -couple / inputs.length[sub]]
-            a = np.array(rows)  # (Q, W), the same for the engines of the group
             b = np.stack(rhs, axis=-1)  # (E, Q)
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
@@ -285,8 +290,6 @@ def solve_counterweights(
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
             opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
-            middle = crank_middle(y_throw) / length
-            side = np.sign(np.round(normal - middle, 12))
             if angle is None and options.angle == "optimal":
                 turn, m_c = _optimal_patterns(a, b, opposite, side)
             else:
@@ -320,6 +323,31 @@ def solve_counterweights(
         below_round_off(missed_force, inputs.force_round_off),
         below_round_off(missed_moment, inputs.moment_round_off),
     )
+
+
+def _equations(
+    inputs: SolverInput, webs: Webs, options: CounterweightOptions, scope: str, group: NDArray
+) -> tuple[float, NDArray, list[tuple[NDArray, NDArray]], NDArray, NDArray]:
+    """The length scale, the webs' positions over it, the parts (throw mask, web mask), the
+    equations' matrix (Q, W) and each web's side of the crank's mid-plane (-1, 0, +1) of
+    the engines of ``group`` balanced as ``scope`` says: the same for every engine of the
+    group, kept by the input for its next solve."""
+    key = ("equations", options.webs, options.web_offset, scope, int(group[0]))
+    found = inputs.memo.get(key)
+    if found is None:
+        length = float(inputs.length[group[0]])
+        normal = webs.position[group[0]] / length
+        parts = _parts(inputs.throw_position, length, scope, webs.throw)
+        rows: list[NDArray] = []
+        for _throw_mask, web_mask in parts:
+            rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
+        a = np.array(rows)  # (Q, W), the same for the engines of the group
+        # the side of the crank's mid-plane of each web, for the pattern's sign rule
+        side = np.sign(np.round(normal - crank_middle(inputs.throw_position) / length, 12))
+        for array in (normal, a, side, *(m for part in parts for m in part)):
+            array.flags.writeable = False
+        found = inputs.memo[key] = (length, normal, parts, a, side)
+    return found
 
 
 def _check_planes(
