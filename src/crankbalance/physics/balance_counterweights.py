@@ -289,9 +289,9 @@ def solve_counterweights(
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
-            opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
+            opposite, factors = _pattern(inputs, webs, options, scope, group, engines)
             if angle is None and options.angle == "optimal":
-                turn, m_c = _optimal_patterns(a, b, opposite, side)
+                turn, m_c = _optimal_patterns(a, b, opposite, side, factors)
             else:
                 fixed = options.angle if angle is None else angle[engines]
                 turn = np.broadcast_to(np.asarray(fixed, dtype=float), engines.shape)
@@ -347,6 +347,30 @@ def _equations(
         for array in (normal, a, side, *(m for part in parts for m in part)):
             array.flags.writeable = False
         found = inputs.memo[key] = (length, normal, parts, a, side)
+    return found
+
+
+def _pattern(
+    inputs: SolverInput,
+    webs: Webs,
+    options: CounterweightOptions,
+    scope: str,
+    group: NDArray,
+    engines: NDArray,
+) -> tuple[NDArray, _Factors | None]:
+    """Each web's direction opposite its crankpin (E, W) [rad] of ``engines`` (a part of
+    ``group``), and the factors of their least-mass pattern's equations
+    (:func:`_pattern_factors`; None with webs in the mid-plane): from the engines alone,
+    kept by the input for its next solve."""
+    key = ("pattern", options.webs, options.web_offset, scope, int(group[0]), engines.tobytes())
+    found = inputs.memo.get(key)
+    if found is None:
+        opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
+        _, _, _, a, side = _equations(inputs, webs, options, scope, group)
+        factors = None if np.any(side == 0) else _pattern_factors(a, opposite, side)
+        for array in (opposite, *(factors or ())):
+            array.flags.writeable = False
+        found = inputs.memo[key] = (opposite, factors)
     return found
 
 
@@ -416,18 +440,28 @@ def _floor(a: NDArray) -> float:
 
 
 def _optimal_patterns(
-    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray, factors: _Factors | None = None
 ) -> tuple[NDArray, NDArray]:
     """Turn angle and first moment of the least-mass pattern that balances, per engine.
 
     Without counterweights in the mid-plane the pattern is linear in
     :math:`X = m_c r_c\\cos\\alpha`, :math:`Y = m_c r_c\\sin\\alpha`: least squares, least
-    :math:`m_c` among the exact solutions. Otherwise, engine by engine, an angle scan and a
+    :math:`m_c` among the exact solutions (``factors``: those of :func:`_pattern_factors`
+    for these arguments, when kept). Otherwise, engine by engine, an angle scan and a
     bounded refinement (:func:`optimal_pattern_scan`).
     """
     if np.any(side == 0):
         found = [optimal_pattern_scan(a, b[i], opposite[i], side) for i in range(len(b))]
         return np.array([f[0] for f in found]), np.array([f[1] for f in found])
+    if factors is None:
+        factors = _pattern_factors(a, opposite, side)
+    x, yv = _solve2(factors, np.concatenate([b.real, b.imag], axis=-1))
+    return np.arctan2(yv, x), np.hypot(x, yv)
+
+
+def _pattern_factors(a: NDArray, opposite: NDArray, side: NDArray) -> _Factors:
+    """The factors (:func:`_factor2`) of the least-mass pattern's least squares: a (Q, W),
+    opposite (E, W), side (W,) without zeros."""
     # direction e^{i(opposite + side*alpha)} = base (cos alpha + i side sin alpha)
     base = np.exp(1j * opposite)
     cx, cy = _coefficients(base, a), _coefficients(1j * side * base, a)
@@ -435,18 +469,27 @@ def _optimal_patterns(
         [np.concatenate([cx.real, cx.imag], axis=-1), np.concatenate([cy.real, cy.imag], axis=-1)],
         axis=-1,
     )
-    x, yv = _lstsq2(matrix, np.concatenate([b.real, b.imag], axis=-1))
-    return np.arctan2(yv, x), np.hypot(x, yv)
+    return _factor2(matrix)
+
+
+#: :func:`_factor2` of systems (E, R, 2): the matrix, q1 (E, R), r12 (E,), u (E, R), the
+#: divisors of x2 and x1 (E,), and the systems that need their least-norm solution
+_Factors = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
 
 
 def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     """Least squares with two unknowns for many systems: matrix (E, R, 2), rhs (E, R).
 
-    A QR factorisation by Gram-Schmidt; a system whose columns are nearly parallel
-    (condition above about 1e6) goes to :func:`numpy.linalg.lstsq`, for its least-norm
-    solution, singular values below :data:`~crankbalance.results.ROUND_OFF` of the largest
-    counting as zero.
+    A QR factorisation by Gram-Schmidt (:func:`_factor2`, :func:`_solve2`); a system whose
+    columns are nearly parallel (condition above about 1e6) goes to
+    :func:`numpy.linalg.lstsq`'s rule, for its least-norm solution, singular values below
+    :data:`~crankbalance.results.ROUND_OFF` of the largest counting as zero.
     """
+    return _solve2(_factor2(matrix), rhs)
+
+
+def _factor2(matrix: NDArray) -> _Factors:
+    """The QR factors of :func:`_lstsq2` (Gram-Schmidt), of the matrix alone."""
     c1, c2 = matrix[..., 0], matrix[..., 1]
     r11 = np.linalg.norm(c1, axis=-1)
     ok = r11 > 0
@@ -455,9 +498,15 @@ def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     u = c2 - r12[:, None] * q1
     r22 = np.linalg.norm(u, axis=-1)
     ok &= r11 * r22 > 1e-6 * (r11**2 + r12**2 + r22**2)
-    x2 = np.sum(u * rhs, axis=-1) / np.where(ok, r22**2, 1.0)
-    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / np.where(ok, r11, 1.0)
     bad = np.flatnonzero(~ok)
+    return matrix, q1, r12, u, np.where(ok, r22**2, 1.0), np.where(ok, r11, 1.0), bad
+
+
+def _solve2(factors: _Factors, rhs: NDArray) -> tuple[NDArray, NDArray]:
+    """:func:`_lstsq2` of the systems of ``factors`` (:func:`_factor2`) for ``rhs`` (E, R)."""
+    matrix, q1, r12, u, den2, den1, bad = factors
+    x2 = np.sum(u * rhs, axis=-1) / den2
+    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / den1
     if bad.size:  # the least-norm solutions of all of them at once (issue 30)
         x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2
