@@ -523,18 +523,29 @@ def balance_residuals(
             force[:, k] += f.sum(axis=-1)
             couple[:, k] += (f * group.position).sum(axis=-1)
     orders = fwd.shape[1]
-    # every size at once, (E, 4, K + 1): the forward and backward parts before, then after
-    # (the rotating masses turn forward only: no backward rotating part)
-    force_size = _parts_size(
-        rot_f, forces.force_forward, forces.force_backward, after_rot_f, fwd, bwd
-    )
-    moment_size = _parts_size(
-        rot_c, forces.couple_forward, forces.couple_backward, after_rot_c, cfwd, cbwd
-    )
+    # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
+    # parts before, then after (the rotating masses turn forward only: no backward part)
+    parts = np.zeros((fwd.shape[0], 2, 4, orders + 1), complex)
+    for q, columns in enumerate(
+        (
+            (rot_f, forces.force_forward, forces.force_backward, after_rot_f, fwd, bwd),
+            (rot_c, forces.couple_forward, forces.couple_backward, after_rot_c, cfwd, cbwd),
+        )
+    ):
+        rotating, forward, backward, rotating_after, forward_after, backward_after = columns
+        parts[:, q, 0, 0], parts[:, q, 0, 1:], parts[:, q, 1, 1:] = rotating, forward, backward
+        parts[:, q, 2, 0], parts[:, q, 2, 1:] = rotating_after, forward_after
+        parts[:, q, 3, 1:] = backward_after
+    size = np.abs(parts)
     force_level = inputs.force_round_off[:, None]
     moment_level = inputs.moment_round_off[:, None]
-    force_before, force_after, force_forward, force_backward = _sizes(force_size, force_level)
-    moment_before, moment_after, moment_forward, moment_backward = _sizes(moment_size, moment_level)
+    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
+    each = below_round_off(size, level)  # forward after, backward after
+    both = below_round_off(size[:, :, 0::2] + size[:, :, 1::2], level)  # before, after
+    force_before, force_after = both[:, 0, 0], both[:, 0, 1]
+    moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
+    force_forward, force_backward = each[:, 0, 2], each[:, 0, 3]
+    moment_forward, moment_backward = each[:, 1, 2], each[:, 1, 3]
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
     )
@@ -558,29 +569,3 @@ def balance_residuals(
         moment_backward,
         balanced,
     )
-
-
-def _sizes(size: NDArray, level: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """Before, after, forward after and backward after of :func:`balance_residuals` from the
-    sizes (E, 4, K + 1) of the forward and backward parts before and after; each zero at
-    most ``level`` (E, 1)."""
-    level = level[:, :, None]
-    parts = below_round_off(size, level)  # forward after, backward after
-    both = below_round_off(size[:, 0::2] + size[:, 1::2], level)  # before, after
-    return both[:, 0], both[:, 1], parts[:, 2], parts[:, 3]
-
-
-def _parts_size(
-    rotating: NDArray,
-    forward: NDArray,
-    backward: NDArray,
-    rotating_after: NDArray,
-    forward_after: NDArray,
-    backward_after: NDArray,
-) -> NDArray:
-    """Sizes (E, 4, K + 1) of the forward and backward parts of every component before and
-    after: the rotating masses (E,) in column 0 (forward only), orders (E, K) after it."""
-    parts = np.zeros((forward.shape[0], 4, forward.shape[1] + 1), complex)
-    parts[:, 0, 0], parts[:, 0, 1:], parts[:, 1, 1:] = rotating, forward, backward
-    parts[:, 2, 0], parts[:, 2, 1:], parts[:, 3, 1:] = rotating_after, forward_after, backward_after
-    return np.abs(parts)
