@@ -31,6 +31,7 @@ equations per group); each engine's numbers are computed on its own row
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -262,14 +263,15 @@ def solve_counterweights(
             sub = group[halves[group] == (scope == "halves")]
             if not sub.size:
                 continue
-            length, normal, parts, a, side = _equations(inputs, webs, options, scope, group)
+            equations = _equations(inputs, webs, options, scope, group)
+            a, side = equations.a, equations.side
             rhs: list[NDArray] = []
             sums = []
-            for throw_mask, web_mask in parts:
+            for (_, web_mask), part_throws in zip(equations.parts, equations.throws, strict=True):
                 # np.take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
-                throws = np.flatnonzero(throw_mask) if target.shape[-1] > 1 else [0]
+                throws = part_throws if target.shape[-1] > 1 else [0]
                 force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
                 couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
@@ -280,11 +282,11 @@ def solve_counterweights(
             live = ~still
             if not live.any():
                 continue
-            _check_planes(inputs, webs, options, sub, live, sums)
+            _check_planes(inputs, webs, options, sub, live, sums, equations.planes)
             engines, b = sub[live], b[live]
             if options.method == "individual":
                 # least sum |v|^2 among the exact solutions
-                pinv = np.linalg.pinv(a, rcond=ROUND_OFF)  # (W, Q)
+                pinv = equations.pinv  # (W, Q)
                 v = np.einsum("eq,wq->ew", b, pinv.astype(b.dtype))  # each engine's row
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
@@ -325,28 +327,71 @@ def solve_counterweights(
     )
 
 
+@dataclass(frozen=True)
+class _Equations:
+    """The counterweight equations of the engines of one group balanced as one scope says
+    (:func:`_equations`): the same for every engine of the group.
+
+    Parameters
+    ----------
+    length : float
+        The length scale [m].
+    normal : ndarray, shape (W,)
+        The webs' positions over it [-].
+    parts : list of (ndarray of bool, ndarray of bool)
+        Each part's throw mask (T,) and web mask (W,).
+    throws : list of ndarray of int
+        Each part's throws (the positions in the throw mask).
+    planes : list of str
+        Each part's webs: ``"none"``, ``"one"`` plane or ``"many"``.
+    a : ndarray, shape (Q, W)
+        The equations' matrix.
+    side : ndarray, shape (W,)
+        Each web's side of the crank's mid-plane (-1, 0, +1), for the pattern's sign rule.
+    """
+
+    length: float
+    normal: NDArray
+    parts: list[tuple[NDArray, NDArray]]
+    throws: list[NDArray]
+    planes: list[str]
+    a: NDArray
+    side: NDArray
+
+    @cached_property
+    def pinv(self) -> NDArray:
+        """The pseudo-inverse (W, Q) of ``a``, singular values at most
+        :data:`~crankbalance.results.ROUND_OFF` of the largest counting as zero (read-only)."""
+        found = np.linalg.pinv(self.a, rcond=ROUND_OFF)
+        found.flags.writeable = False
+        return found
+
+
 def _equations(
     inputs: SolverInput, webs: Webs, options: CounterweightOptions, scope: str, group: NDArray
-) -> tuple[float, NDArray, list[tuple[NDArray, NDArray]], NDArray, NDArray]:
-    """The length scale, the webs' positions over it, the parts (throw mask, web mask), the
-    equations' matrix (Q, W) and each web's side of the crank's mid-plane (-1, 0, +1) of
-    the engines of ``group`` balanced as ``scope`` says: the same for every engine of the
-    group, kept by the input for its next solve."""
+) -> _Equations:
+    """The equations of the engines of ``group`` balanced as ``scope`` says, kept by the
+    input for its next solve (its arrays read-only)."""
     key = ("equations", options.webs, options.web_offset, scope, int(group[0]))
-    found = inputs.memo.get(key)
+    found: _Equations | None = inputs.memo.get(key)
     if found is None:
         length = float(inputs.length[group[0]])
         normal = webs.position[group[0]] / length
         parts = _parts(inputs.throw_position, length, scope, webs.throw)
         rows: list[NDArray] = []
+        planes = []
         for _throw_mask, web_mask in parts:
             rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
+            plane = np.round(normal[web_mask], 12)
+            planes.append(
+                "none" if plane.size == 0 else "one" if plane.min() == plane.max() else "many"
+            )
         a = np.array(rows)  # (Q, W), the same for the engines of the group
-        # the side of the crank's mid-plane of each web, for the pattern's sign rule
         side = np.sign(np.round(normal - crank_middle(inputs.throw_position) / length, 12))
-        for array in (normal, a, side, *(m for part in parts for m in part)):
+        throws = [np.flatnonzero(throw_mask) for throw_mask, _ in parts]
+        for array in (normal, a, side, *throws, *(m for part in parts for m in part)):
             array.flags.writeable = False
-        found = inputs.memo[key] = (length, normal, parts, a, side)
+        found = inputs.memo[key] = _Equations(length, normal, parts, throws, planes, a, side)
     return found
 
 
@@ -366,8 +411,9 @@ def _pattern(
     found = inputs.memo.get(key)
     if found is None:
         opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
-        _, _, _, a, side = _equations(inputs, webs, options, scope, group)
-        factors = None if np.any(side == 0) else _pattern_factors(a, opposite, side)
+        equations = _equations(inputs, webs, options, scope, group)
+        side = equations.side
+        factors = None if np.any(side == 0) else _pattern_factors(equations.a, opposite, side)
         for array in (opposite, *(factors or ())):
             array.flags.writeable = False
         found = inputs.memo[key] = (opposite, factors)
@@ -381,14 +427,14 @@ def _check_planes(
     sub: NDArray,
     live: NDArray,
     sums: list[tuple[NDArray, NDArray, NDArray]],
+    planes: list[str],
 ) -> None:
     """A part without counterweight, or all its counterweights in one plane while a
-    couple is to be cancelled: :class:`EngineFailed` naming the first such engine."""
+    couple is to be cancelled: :class:`EngineFailed` naming the first such engine
+    (``planes``: each part's, :class:`_Equations`)."""
     couple_first = inputs.moment_round_off[sub] / inputs.speed[sub] ** 2  # [kg·m²]
-    length = inputs.length[sub[0]]
-    for web_mask, force, couple in sums:
-        planes = np.round(webs.position[sub[0]][web_mask] / length, 12)
-        if planes.size == 0:
+    for (web_mask, force, couple), kind in zip(sums, planes, strict=True):
+        if kind == "none":
             raise EngineFailed(
                 InputError(
                     "counterweights.webs",
@@ -397,7 +443,7 @@ def _check_planes(
                 ),
                 int(sub[live][0]),
             )
-        if planes.min() == planes.max():  # one plane
+        if kind == "one":
             plane = webs.position[sub, np.flatnonzero(web_mask)[0]]
             bad = live & (np.abs(couple - plane * force) > couple_first)
             if bad.any():
