@@ -291,8 +291,9 @@ def solve_counterweights(
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
-            opposite, factors = _pattern(inputs, webs, options, scope, group, engines)
-            if angle is None and options.angle == "optimal":
+            optimal = angle is None and options.angle == "optimal"
+            opposite, factors = _pattern(inputs, webs, options, scope, group, engines, optimal)
+            if optimal:
                 turn, m_c = _optimal_patterns(a, b, opposite, side, factors)
             else:
                 fixed = options.angle if angle is None else angle[engines]
@@ -402,22 +403,30 @@ def _pattern(
     scope: str,
     group: NDArray,
     engines: NDArray,
+    optimal: bool,
 ) -> tuple[NDArray, _Factors | None]:
     """Each web's direction opposite its crankpin (E, W) [rad] of ``engines`` (a part of
-    ``group``), and the factors of their least-mass pattern's equations
-    (:func:`_pattern_factors`; None with webs in the mid-plane): from the engines alone,
-    kept by the input for its next solve."""
+    ``group``), and, for the least-mass pattern (``optimal``), the factors of its equations
+    (:func:`_pattern_factors`; None with webs in the mid-plane or not ``optimal``): from the
+    engines alone. One engine's input (kept by its model) keeps them for its next solve; a
+    batch's, solved once, does not (they would only hold memory)."""
     key = ("pattern", options.webs, options.web_offset, scope, int(group[0]), engines.tobytes())
     found = inputs.memo.get(key)
-    if found is None:
+    if found is None or (optimal and found[1] is None and not np.any(found[2] == 0)):
         opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
         equations = _equations(inputs, webs, options, scope, group)
         side = equations.side
-        factors = None if np.any(side == 0) else _pattern_factors(equations.a, opposite, side)
+        factors = (
+            _pattern_factors(equations.a, opposite, side)
+            if optimal and not np.any(side == 0)
+            else None
+        )
         for array in (opposite, *(factors or ())):
             array.flags.writeable = False
-        found = inputs.memo[key] = (opposite, factors)
-    return found
+        found = (opposite, factors, side)
+        if inputs.size == 1:
+            inputs.memo[key] = found
+    return found[0], found[1]
 
 
 def _check_planes(
