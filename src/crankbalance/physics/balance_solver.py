@@ -540,12 +540,13 @@ def balance_residuals(
     force_level = inputs.force_round_off[:, None]
     moment_level = inputs.moment_round_off[:, None]
     level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
-    each = below_round_off(size, level)  # forward after, backward after
+    # (the results are views of these two, which they cover whole: no memory held beyond)
+    each = below_round_off(size[:, :, 2:], level)  # forward after, backward after
     both = below_round_off(size[:, :, 0::2] + size[:, :, 1::2], level)  # before, after
     force_before, force_after = both[:, 0, 0], both[:, 0, 1]
     moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
-    force_forward, force_backward = each[:, 0, 2], each[:, 0, 3]
-    moment_forward, moment_backward = each[:, 1, 2], each[:, 1, 3]
+    force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
+    moment_forward, moment_backward = each[:, 1, 0], each[:, 1, 1]
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
     )
