@@ -68,3 +68,15 @@ def test_the_solver_input_is_kept_by_the_model_read_only() -> None:
     assert kinds == {"webs", "equations", "pattern"}
     webs = next(v for k, v in first.memo.items() if k[0] == "webs")
     assert not webs.position.flags.writeable
+
+
+def test_a_result_owns_its_arrays() -> None:
+    """The webs the input keeps are read-only; a result's counterweights are its own."""
+    model, _ = _fresh("v8-crossplane")
+    result = balance(model, CounterweightOptions(cg_radius=0.04))
+    assert result.counterweights is not None
+    for array in (result.counterweights.web, result.counterweights.position):
+        assert array.flags.writeable
+        array[...] = 0
+    again = balance(model, CounterweightOptions(cg_radius=0.04))
+    assert again.counterweights is not None and again.counterweights.position.any()

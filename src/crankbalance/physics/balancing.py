@@ -553,9 +553,9 @@ def _counterweights_of(found: BatchCounterweights) -> Counterweights:
         "halves" if found.halves[0] else "whole",
         found.cg_radius,
         float(found.alpha[0]) if pattern else None,
-        found.web,
+        found.web.copy(),  # the solver's are kept by the model's input (read-only)
         found.throw,
-        found.position[0],
+        found.position[0].copy(),
         found.mass[0],
         found.direction[0],
         note,
