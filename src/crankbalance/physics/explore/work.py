@@ -51,8 +51,9 @@ TASK_CANDIDATES = 8192
 #: once: 512 candidates was measured fastest, or within 15 % of it, for 4 to 20 cylinders
 #: and 1 to 64 orders, when the figures were computed per candidate with matrix products
 #: (more made the BLAS library's threads slow them on a busy machine); per distinct crank
-#: and without matrix products across engines (issue 30), 1024 cranks measured up to 10 %
-#: faster than 512 on the in-line 7 to 12 (BLAS 1 thread; benchmarks/bench_explore_floor.py)
+#: and without matrix products across engines (issue 30), 1024 cranks measured 5-10 %
+#: faster than 512 on the in-line 8, 9 and 12 (two-stroke), within the noise on a 7 ms run
+#: of the in-line 7 (CPU time, best of 5, BLAS 1 thread)
 FIGURES_SLICE = 1024
 #: candidates whose figures of merit a task computes at once, at most: a slice holds whole
 #: cranks (issue 30: each crank's figures once per task, and few slices, each with its
