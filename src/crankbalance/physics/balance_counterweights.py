@@ -31,6 +31,7 @@ equations per group); each engine's numbers are computed on its own row
 from __future__ import annotations
 
 from dataclasses import dataclass
+from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
@@ -155,6 +156,15 @@ def web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
     InputError
         If ``options.webs`` does not have two entries per throw.
     """
+    key = ("webs", options.webs, options.web_offset)
+    webs: Webs | None = inputs.memo.get(key)
+    if webs is None:
+        webs = inputs.memo[key] = _web_geometry(inputs, options)
+    return webs
+
+
+def _web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
+    """:func:`web_geometry` computed, its arrays read-only (the input keeps them)."""
     y = inputs.throw_position
     throw, side = web_sides(y.size, options.webs)
     if options.web_offset is not None:
@@ -172,6 +182,8 @@ def web_geometry(inputs: SolverInput, options: CounterweightOptions) -> Webs:
         order = np.argsort(inverse, kind="stable")
         groups = np.split(order, np.cumsum(np.bincount(inverse))[:-1])
     number = 2 * throw + (side > 0) + 1
+    for array in (throw, number, position):
+        array.flags.writeable = False
     return Webs(throw, number, position, groups)
 
 
@@ -245,50 +257,44 @@ def solve_counterweights(
     alpha = np.zeros(n)
     flipped = np.zeros(n, bool)
     already = np.zeros(n, bool)
-    y_throw = inputs.throw_position
     first = inputs.force_round_off / inputs.speed**2  # first moments at round-off [kg·m]
     for group in webs.groups:
-        length = float(inputs.length[group[0]])
-        normal = webs.position[group[0]] / length
         for scope in ("whole", "halves"):
             sub = group[halves[group] == (scope == "halves")]
             if not sub.size:
                 continue
-            parts = _parts(y_throw, length, scope, webs.throw)
-            rows: list[NDArray] = []
+            equations = _equations(inputs, webs, options, scope, group)
+            a, side = equations.a, equations.side
             rhs: list[NDArray] = []
             sums = []
-            for throw_mask, web_mask in parts:
+            for (_, web_mask), part_throws in zip(equations.parts, equations.throws, strict=True):
                 # np.take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
-                throws = np.flatnonzero(throw_mask) if target.shape[-1] > 1 else [0]
+                throws = part_throws if target.shape[-1] > 1 else [0]
                 force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
                 couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
-                rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
                 rhs += [-force, -couple / inputs.length[sub]]
-            a = np.array(rows)  # (Q, W), the same for the engines of the group
             b = np.stack(rhs, axis=-1)  # (E, Q)
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
             live = ~still
             if not live.any():
                 continue
-            _check_planes(inputs, webs, options, sub, live, sums)
+            _check_planes(inputs, webs, options, sub, live, sums, equations.planes)
             engines, b = sub[live], b[live]
             if options.method == "individual":
                 # least sum |v|^2 among the exact solutions
-                pinv = np.linalg.pinv(a, rcond=ROUND_OFF)  # (W, Q)
+                pinv = equations.pinv  # (W, Q)
                 v = np.einsum("eq,wq->ew", b, pinv.astype(b.dtype))  # each engine's row
                 mass[engines] = np.abs(v) / options.cg_radius
                 direction[engines] = np.where(mass[engines] > 0, np.angle(v), 0.0)
                 continue
-            opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
-            middle = crank_middle(y_throw) / length
-            side = np.sign(np.round(normal - middle, 12))
-            if angle is None and options.angle == "optimal":
-                turn, m_c = _optimal_patterns(a, b, opposite, side)
+            optimal = angle is None and options.angle == "optimal"
+            opposite, factors = _pattern(inputs, webs, options, scope, group, engines, optimal)
+            if optimal:
+                turn, m_c = _optimal_patterns(a, b, opposite, side, factors)
             else:
                 fixed = options.angle if angle is None else angle[engines]
                 turn = np.broadcast_to(np.asarray(fixed, dtype=float), engines.shape)
@@ -322,6 +328,107 @@ def solve_counterweights(
     )
 
 
+@dataclass(frozen=True)
+class _Equations:
+    """The counterweight equations of the engines of one group balanced as one scope says
+    (:func:`_equations`): the same for every engine of the group.
+
+    Parameters
+    ----------
+    length : float
+        The length scale [m].
+    normal : ndarray, shape (W,)
+        The webs' positions over it [-].
+    parts : list of (ndarray of bool, ndarray of bool)
+        Each part's throw mask (T,) and web mask (W,).
+    throws : list of ndarray of int
+        Each part's throws (the positions in the throw mask).
+    planes : list of str
+        Each part's webs: ``"none"``, ``"one"`` plane or ``"many"``.
+    a : ndarray, shape (Q, W)
+        The equations' matrix.
+    side : ndarray, shape (W,)
+        Each web's side of the crank's mid-plane (-1, 0, +1), for the pattern's sign rule.
+    """
+
+    length: float
+    normal: NDArray
+    parts: list[tuple[NDArray, NDArray]]
+    throws: list[NDArray]
+    planes: list[str]
+    a: NDArray
+    side: NDArray
+
+    @cached_property
+    def pinv(self) -> NDArray:
+        """The pseudo-inverse (W, Q) of ``a``, singular values at most
+        :data:`~crankbalance.results.ROUND_OFF` of the largest counting as zero (read-only)."""
+        found = np.linalg.pinv(self.a, rcond=ROUND_OFF)
+        found.flags.writeable = False
+        return found
+
+
+def _equations(
+    inputs: SolverInput, webs: Webs, options: CounterweightOptions, scope: str, group: NDArray
+) -> _Equations:
+    """The equations of the engines of ``group`` balanced as ``scope`` says, kept by the
+    input for its next solve (its arrays read-only)."""
+    key = ("equations", options.webs, options.web_offset, scope, int(group[0]))
+    found: _Equations | None = inputs.memo.get(key)
+    if found is None:
+        length = float(inputs.length[group[0]])
+        normal = webs.position[group[0]] / length
+        parts = _parts(inputs.throw_position, length, scope, webs.throw)
+        rows: list[NDArray] = []
+        planes = []
+        for _throw_mask, web_mask in parts:
+            rows += [np.where(web_mask, 1.0, 0.0), np.where(web_mask, normal, 0.0)]
+            plane = np.round(normal[web_mask], 12)
+            planes.append(
+                "none" if plane.size == 0 else "one" if plane.min() == plane.max() else "many"
+            )
+        a = np.array(rows)  # (Q, W), the same for the engines of the group
+        side = np.sign(np.round(normal - crank_middle(inputs.throw_position) / length, 12))
+        throws = [np.flatnonzero(throw_mask) for throw_mask, _ in parts]
+        for array in (normal, a, side, *throws, *(m for part in parts for m in part)):
+            array.flags.writeable = False
+        found = inputs.memo[key] = _Equations(length, normal, parts, throws, planes, a, side)
+    return found
+
+
+def _pattern(
+    inputs: SolverInput,
+    webs: Webs,
+    options: CounterweightOptions,
+    scope: str,
+    group: NDArray,
+    engines: NDArray,
+    optimal: bool,
+) -> tuple[NDArray, _Factors | None]:
+    """Each web's direction opposite its crankpin (E, W) [rad] of ``engines`` (a part of
+    ``group``), and, for the least-mass pattern (``optimal``), the factors of its equations
+    (:func:`_pattern_factors`; None with webs in the mid-plane or not ``optimal``): from the
+    engines alone. One engine's input (kept by its model) keeps them for its next solve; a
+    batch's, solved once, does not (they would only hold memory)."""
+    key = ("pattern", options.webs, options.web_offset, scope, int(group[0]), engines.tobytes())
+    found = inputs.memo.get(key)
+    if found is None or (optimal and found[1] is None and not np.any(found[2] == 0)):
+        opposite = np.take(inputs.throw_angle[engines], webs.throw, axis=-1) + np.pi
+        equations = _equations(inputs, webs, options, scope, group)
+        side = equations.side
+        factors = (
+            _pattern_factors(equations.a, opposite, side)
+            if optimal and not np.any(side == 0)
+            else None
+        )
+        for array in (opposite, *(factors or ())):
+            array.flags.writeable = False
+        found = (opposite, factors, side)
+        if inputs.size == 1:
+            inputs.memo[key] = found
+    return found[0], found[1]
+
+
 def _check_planes(
     inputs: SolverInput,
     webs: Webs,
@@ -329,14 +436,14 @@ def _check_planes(
     sub: NDArray,
     live: NDArray,
     sums: list[tuple[NDArray, NDArray, NDArray]],
+    planes: list[str],
 ) -> None:
     """A part without counterweight, or all its counterweights in one plane while a
-    couple is to be cancelled: :class:`EngineFailed` naming the first such engine."""
+    couple is to be cancelled: :class:`EngineFailed` naming the first such engine
+    (``planes``: each part's, :class:`_Equations`)."""
     couple_first = inputs.moment_round_off[sub] / inputs.speed[sub] ** 2  # [kg·m²]
-    length = inputs.length[sub[0]]
-    for web_mask, force, couple in sums:
-        planes = np.round(webs.position[sub[0]][web_mask] / length, 12)
-        if planes.size == 0:
+    for (web_mask, force, couple), kind in zip(sums, planes, strict=True):
+        if kind == "none":
             raise EngineFailed(
                 InputError(
                     "counterweights.webs",
@@ -345,7 +452,7 @@ def _check_planes(
                 ),
                 int(sub[live][0]),
             )
-        if planes.min() == planes.max():  # one plane
+        if kind == "one":
             plane = webs.position[sub, np.flatnonzero(web_mask)[0]]
             bad = live & (np.abs(couple - plane * force) > couple_first)
             if bad.any():
@@ -388,18 +495,28 @@ def _floor(a: NDArray) -> float:
 
 
 def _optimal_patterns(
-    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray
+    a: NDArray, b: NDArray, opposite: NDArray, side: NDArray, factors: _Factors | None = None
 ) -> tuple[NDArray, NDArray]:
     """Turn angle and first moment of the least-mass pattern that balances, per engine.
 
     Without counterweights in the mid-plane the pattern is linear in
     :math:`X = m_c r_c\\cos\\alpha`, :math:`Y = m_c r_c\\sin\\alpha`: least squares, least
-    :math:`m_c` among the exact solutions. Otherwise, engine by engine, an angle scan and a
+    :math:`m_c` among the exact solutions (``factors``: those of :func:`_pattern_factors`
+    for these arguments, when kept). Otherwise, engine by engine, an angle scan and a
     bounded refinement (:func:`optimal_pattern_scan`).
     """
     if np.any(side == 0):
         found = [optimal_pattern_scan(a, b[i], opposite[i], side) for i in range(len(b))]
         return np.array([f[0] for f in found]), np.array([f[1] for f in found])
+    if factors is None:
+        factors = _pattern_factors(a, opposite, side)
+    x, yv = _solve2(factors, np.concatenate([b.real, b.imag], axis=-1))
+    return np.arctan2(yv, x), np.hypot(x, yv)
+
+
+def _pattern_factors(a: NDArray, opposite: NDArray, side: NDArray) -> _Factors:
+    """The factors (:func:`_factor2`) of the least-mass pattern's least squares: a (Q, W),
+    opposite (E, W), side (W,) without zeros."""
     # direction e^{i(opposite + side*alpha)} = base (cos alpha + i side sin alpha)
     base = np.exp(1j * opposite)
     cx, cy = _coefficients(base, a), _coefficients(1j * side * base, a)
@@ -407,18 +524,27 @@ def _optimal_patterns(
         [np.concatenate([cx.real, cx.imag], axis=-1), np.concatenate([cy.real, cy.imag], axis=-1)],
         axis=-1,
     )
-    x, yv = _lstsq2(matrix, np.concatenate([b.real, b.imag], axis=-1))
-    return np.arctan2(yv, x), np.hypot(x, yv)
+    return _factor2(matrix)
+
+
+#: :func:`_factor2` of systems (E, R, 2): the matrix, q1 (E, R), r12 (E,), u (E, R), the
+#: divisors of x2 and x1 (E,), and the systems that need their least-norm solution
+_Factors = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
 
 
 def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     """Least squares with two unknowns for many systems: matrix (E, R, 2), rhs (E, R).
 
-    A QR factorisation by Gram-Schmidt; a system whose columns are nearly parallel
-    (condition above about 1e6) goes to :func:`numpy.linalg.lstsq`, for its least-norm
-    solution, singular values below :data:`~crankbalance.results.ROUND_OFF` of the largest
-    counting as zero.
+    A QR factorisation by Gram-Schmidt (:func:`_factor2`, :func:`_solve2`); a system whose
+    columns are nearly parallel (condition above about 1e6) goes to
+    :func:`numpy.linalg.lstsq`'s rule, for its least-norm solution, singular values below
+    :data:`~crankbalance.results.ROUND_OFF` of the largest counting as zero.
     """
+    return _solve2(_factor2(matrix), rhs)
+
+
+def _factor2(matrix: NDArray) -> _Factors:
+    """The QR factors of :func:`_lstsq2` (Gram-Schmidt), of the matrix alone."""
     c1, c2 = matrix[..., 0], matrix[..., 1]
     r11 = np.linalg.norm(c1, axis=-1)
     ok = r11 > 0
@@ -427,9 +553,15 @@ def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     u = c2 - r12[:, None] * q1
     r22 = np.linalg.norm(u, axis=-1)
     ok &= r11 * r22 > 1e-6 * (r11**2 + r12**2 + r22**2)
-    x2 = np.sum(u * rhs, axis=-1) / np.where(ok, r22**2, 1.0)
-    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / np.where(ok, r11, 1.0)
     bad = np.flatnonzero(~ok)
+    return matrix, q1, r12, u, np.where(ok, r22**2, 1.0), np.where(ok, r11, 1.0), bad
+
+
+def _solve2(factors: _Factors, rhs: NDArray) -> tuple[NDArray, NDArray]:
+    """:func:`_lstsq2` of the systems of ``factors`` (:func:`_factor2`) for ``rhs`` (E, R)."""
+    matrix, q1, r12, u, den2, den1, bad = factors
+    x2 = np.sum(u * rhs, axis=-1) / den2
+    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / den1
     if bad.size:  # the least-norm solutions of all of them at once (issue 30)
         x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2

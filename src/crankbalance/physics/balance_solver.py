@@ -45,6 +45,7 @@ Options, input and results are in :mod:`crankbalance.physics.balance_types`.
 from __future__ import annotations
 
 from dataclasses import replace
+from typing import Any, TypeVar
 
 import numpy as np
 from numpy.typing import NDArray
@@ -62,7 +63,15 @@ from .balance_types import (
     SolverInput,
 )
 from .model import EngineBatch, EngineModel
-from .shaking import BatchFreeForces, coefficient_rows, cylinder_coefficients
+from .shaking import (
+    BatchFreeForces,
+    FreeForces,
+    coefficient_rows,
+    cylinder_coefficients,
+    free_forces,
+)
+
+_Record = TypeVar("_Record", SolverInput, BatchFreeForces)
 
 #: share of an engine's force scale (forces) or force scale times length scale (moments)
 #: below which the residual check counts a targeted component as cancelled
@@ -108,6 +117,69 @@ def solver_input(engine: EngineModel | EngineBatch, forces: BatchFreeForces) -> 
         force_round_off=ROUND_OFF * force_scale,
         moment_round_off=ROUND_OFF * force_scale * length,
     )
+
+
+def model_input(model: EngineModel, orders: int) -> SolverInput:
+    """The solver's input of one engine (a batch of one), its free forces of orders
+    1..``orders`` included, computed once per model and kept by it
+    (:attr:`~crankbalance.physics.model.EngineModel.derived`; a model is frozen), its
+    arrays read-only.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    orders : int
+        Highest order of the free forces, at least 2.
+
+    Returns
+    -------
+    SolverInput
+        The arrays of :func:`solve`, an engine axis of 1.
+    """
+    key = ("balance_solver.model_input", orders)
+    found: SolverInput | None = model.derived.get(key)
+    if found is None:
+        batch = batch_of_one(free_forces(model, orders))
+        found = _read_only(replace(solver_input(model, batch), forces=_read_only(batch)))
+        model.derived[key] = found
+    return found
+
+
+def batch_of_one(forces: FreeForces) -> BatchFreeForces:
+    """One engine's free forces with an engine axis of 1 (views, no copy).
+
+    Parameters
+    ----------
+    forces : FreeForces
+        Phasors of one engine [N], [N·m].
+
+    Returns
+    -------
+    BatchFreeForces
+        The same phasors, shape (1, K) and (1,).
+    """
+    return BatchFreeForces(
+        forces.orders,
+        forces.force_forward[None],
+        forces.force_backward[None],
+        forces.couple_forward[None],
+        forces.couple_backward[None],
+        np.array([forces.rotating_force]),
+        np.array([forces.rotating_couple]),
+        forces.roll[None],
+        np.array([forces.rotating_roll]),
+    )
+
+
+def _read_only(record: _Record) -> _Record:
+    """``record`` with read-only views of its arrays (a record a model keeps)."""
+    views: dict[str, Any] = {}
+    for name, value in vars(record).items():
+        if isinstance(value, np.ndarray):
+            views[name] = value.view()
+            views[name].flags.writeable = False
+    return replace(record, **views)
 
 
 def throw_unbalance(
@@ -452,28 +524,31 @@ def balance_residuals(
             force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
             force[:, k] += f.sum(axis=-1)
             couple[:, k] += (f * group.position).sum(axis=-1)
+    orders = fwd.shape[1]
+    # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
+    # parts before, then after (the rotating masses turn forward only: no backward part)
+    parts = np.zeros((fwd.shape[0], 2, 4, orders + 1), complex)
+    for q, columns in enumerate(
+        (
+            (rot_f, forces.force_forward, forces.force_backward, after_rot_f, fwd, bwd),
+            (rot_c, forces.couple_forward, forces.couple_backward, after_rot_c, cfwd, cbwd),
+        )
+    ):
+        rotating, forward, backward, rotating_after, forward_after, backward_after = columns
+        parts[:, q, 0, 0], parts[:, q, 0, 1:], parts[:, q, 1, 1:] = rotating, forward, backward
+        parts[:, q, 2, 0], parts[:, q, 2, 1:] = rotating_after, forward_after
+        parts[:, q, 3, 1:] = backward_after
+    size = np.abs(parts)
     force_level = inputs.force_round_off[:, None]
     moment_level = inputs.moment_round_off[:, None]
-
-    def amplitude(first: NDArray, forward: NDArray, backward: NDArray, level: NDArray) -> NDArray:
-        """Columns rotating and orders 1..K, zero at most the round-off."""
-        value = np.column_stack([np.abs(first), np.abs(forward) + np.abs(backward)])
-        return below_round_off(value, level)
-
-    force_before = amplitude(rot_f, forces.force_forward, forces.force_backward, force_level)
-    moment_before = amplitude(rot_c, forces.couple_forward, forces.couple_backward, moment_level)
-    force_after = amplitude(after_rot_f, fwd, bwd, force_level)
-    moment_after = amplitude(after_rot_c, cfwd, cbwd, moment_level)
-    none = np.zeros_like(force_level)  # the rotating masses turn forward only
-    force_forward = below_round_off(
-        np.column_stack([np.abs(after_rot_f), np.abs(fwd)]), force_level
-    )
-    force_backward = below_round_off(np.column_stack([none, np.abs(bwd)]), force_level)
-    moment_forward = below_round_off(
-        np.column_stack([np.abs(after_rot_c), np.abs(cfwd)]), moment_level
-    )
-    moment_backward = below_round_off(np.column_stack([none, np.abs(cbwd)]), moment_level)
-    orders = fwd.shape[1]
+    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
+    # (the results are views of these two, which they cover whole: no memory held beyond)
+    each = below_round_off(size[:, :, 2:], level)  # forward after, backward after
+    both = below_round_off(size[:, :, 0::2] + size[:, :, 1::2], level)  # before, after
+    force_before, force_after = both[:, 0, 0], both[:, 0, 1]
+    moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
+    force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
+    moment_forward, moment_backward = each[:, 1, 0], each[:, 1, 1]
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
     )

@@ -10,8 +10,8 @@ counterweights; :mod:`crankbalance.physics.balancing` turns a result of one engi
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-from typing import ClassVar, Literal
+from dataclasses import dataclass, field
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -129,6 +129,11 @@ class SolverInput:
     force_round_off, moment_round_off : ndarray, shape (E,)
         Round-off levels of forces [N] and moments [N·m]
         (:func:`crankbalance.results.round_off`).
+    memo : dict
+        What the solver derives from these engines alone (the webs and the equations of
+        the counterweights of each web choice), kept for the next solve of the same input:
+        one engine's input is kept by its model
+        (:func:`crankbalance.physics.balance_solver.model_input`).
     """
 
     throw_position: NDArray[np.float64]
@@ -143,6 +148,7 @@ class SolverInput:
     length: NDArray[np.float64]
     force_round_off: NDArray[np.float64]
     moment_round_off: NDArray[np.float64]
+    memo: dict[tuple[object, ...], Any] = field(default_factory=dict, compare=False, repr=False)
 
     @property
     def size(self) -> int:

@@ -32,7 +32,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..results import ROUND_OFF, ResultMixin, engine_scales
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import Remaining, next_step
-from .balance_solver import CHECK_TOLERANCE, solve, solver_input, throw_unbalance
+from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
 from .balance_types import (
     BatchBalance,
     BatchCounterweights,
@@ -42,7 +42,6 @@ from .balance_types import (
     ShaftOptions,
 )
 from .model import EngineModel
-from .shaking import BatchFreeForces, FreeForces, free_forces
 
 __all__ = [
     "AngleSweep",
@@ -371,7 +370,7 @@ def balance(
     ----------
     Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
     """
-    inputs = solver_input(model, batch_of_one(free_forces(model, max(orders, 2))))
+    inputs = model_input(model, max(orders, 2))
     try:
         found = solve(inputs, counterweights, primary, secondary)
     except EngineFailed as failed:
@@ -383,32 +382,6 @@ def balance(
         secondary,
         float(inputs.length[0]),
         (float(inputs.force_round_off[0]), float(inputs.moment_round_off[0])),
-    )
-
-
-def batch_of_one(forces: FreeForces) -> BatchFreeForces:
-    """One engine's free forces with an engine axis of 1 (views, no copy).
-
-    Parameters
-    ----------
-    forces : FreeForces
-        Phasors of one engine [N], [N·m].
-
-    Returns
-    -------
-    BatchFreeForces
-        The same phasors, shape (1, K) and (1,).
-    """
-    return BatchFreeForces(
-        forces.orders,
-        forces.force_forward[None],
-        forces.force_backward[None],
-        forces.couple_forward[None],
-        forces.couple_backward[None],
-        np.array([forces.rotating_force]),
-        np.array([forces.rotating_couple]),
-        forces.roll[None],
-        np.array([forces.rotating_roll]),
     )
 
 
@@ -483,19 +456,20 @@ def _one_engine(
         )
     r = found.residuals
     residuals = tuple(
-        ComponentResidual(
-            name,
-            bool(r.targeted[k]),
-            float(r.force_before[0, k]),
-            float(r.force_after[0, k]),
-            float(r.moment_before[0, k]),
-            float(r.moment_after[0, k]),
-            float(r.force_forward_after[0, k]),
-            float(r.force_backward_after[0, k]),
-            float(r.moment_forward_after[0, k]),
-            float(r.moment_backward_after[0, k]),
+        ComponentResidual(name, *row)
+        for name, *row in zip(
+            r.components,
+            r.targeted.tolist(),
+            r.force_before[0].tolist(),
+            r.force_after[0].tolist(),
+            r.moment_before[0].tolist(),
+            r.moment_after[0].tolist(),
+            r.force_forward_after[0].tolist(),
+            r.force_backward_after[0].tolist(),
+            r.moment_forward_after[0].tolist(),
+            r.moment_backward_after[0].tolist(),
+            strict=True,
         )
-        for k, name in enumerate(r.components)
     )
     rotating_left = residuals[0].force_after + residuals[0].moment_after / length > 0
     if cw is not None and rotating_left and not missed:
@@ -579,9 +553,9 @@ def _counterweights_of(found: BatchCounterweights) -> Counterweights:
         "halves" if found.halves[0] else "whole",
         found.cg_radius,
         float(found.alpha[0]) if pattern else None,
-        found.web,
+        found.web.copy(),  # the solver's are kept by the model's input (read-only)
         found.throw,
-        found.position[0],
+        found.position[0].copy(),
         found.mass[0],
         found.direction[0],
         note,

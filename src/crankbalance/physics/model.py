@@ -236,11 +236,13 @@ class EngineModel:
         return _read_only(self.throw_rotating_mass * self.throw_position + self.throw_axial_moment)
 
     @cached_property
-    def derived(self) -> dict[tuple[object, ...], NDArray[Any]]:
-        """Read-only arrays that physics functions derive from this model alone and keep
-        for the next call on it, keyed by the function's name and arguments (the harmonic
-        coefficient rows of :func:`crankbalance.physics.shaking.cylinder_coefficients`):
-        a model is frozen, so they hold as long as it lives."""
+    def derived(self) -> dict[tuple[object, ...], Any]:
+        """Read-only arrays (or frozen records of them) that physics functions derive from
+        this model alone and keep for the next call on it, keyed by the function's name and
+        arguments (the harmonic coefficient rows of
+        :func:`crankbalance.physics.shaking.cylinder_coefficients`, the balancing solver's
+        input of :func:`crankbalance.physics.balance_solver.model_input`): a model is
+        frozen, so they hold as long as it lives."""
         return {}
 
     @property

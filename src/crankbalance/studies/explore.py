@@ -44,6 +44,7 @@ from ..errors import InputError
 from ..physics.explore.candidates import Candidates
 from ..physics.explore.work import (
     CONNECT_TIMEOUT,
+    FIGURES_ROWS,
     FIGURES_SLICE,
     TASK_CANDIDATES,
     plan,
@@ -289,6 +290,50 @@ def _candidates(problem: Any, task: Task, source: Enumeration) -> tuple[Candidat
     return Candidates(first.topology, **joined), int(task.size)
 
 
+def figures_slices(
+    throw_angle: NDArray[np.float64], by_crank: NDArray[np.int64] | None
+) -> list[tuple[int, int]]:
+    """The slices of a task's candidates whose figures are computed at once: positions
+    (start, stop) in ``by_crank`` (the candidates sorted crank by crank). A slice holds
+    whole cranks, at most :data:`~crankbalance.physics.explore.work.FIGURES_SLICE` distinct
+    ones and :data:`~crankbalance.physics.explore.work.FIGURES_ROWS` candidates, so that a
+    crank's figures are computed once in the task and the slices, each with its fixed
+    cost, are few (issue 30); a crank with more candidates than a slice is cut into slices
+    of its own.
+
+    Parameters
+    ----------
+    throw_angle : ndarray, shape (B, T)
+        The candidates' throw angles [rad].
+    by_crank : ndarray of int, shape (B,), or None
+        The candidates' positions sorted crank by crank (``np.lexsort`` of the throw
+        angles); None for no candidates.
+
+    Returns
+    -------
+    list of (int, int)
+        The slices, in order, covering every position once ([(0, 0)] for no candidates,
+        which evaluates the empty batch).
+    """
+    if by_crank is None or not by_crank.size:
+        return [(0, 0)]
+    size = by_crank.size
+    ordered = throw_angle[by_crank]
+    # where each crank starts in the sorted order, and the end
+    starts = np.flatnonzero(np.r_[True, np.any(ordered[1:] != ordered[:-1], axis=1), True])
+    slices = []
+    start, crank = 0, 0  # position, and its crank (starts[crank] <= start)
+    while start < size:
+        # whole cranks: at most FIGURES_SLICE of them and FIGURES_ROWS candidates
+        last = min(crank + FIGURES_SLICE, starts.size - 1)
+        last = int(np.searchsorted(starts[: last + 1], start + FIGURES_ROWS, side="right")) - 1
+        stop = int(starts[last]) if last > crank else min(start + FIGURES_ROWS, size)
+        slices.append((start, stop))
+        start = stop
+        crank = int(np.searchsorted(starts, start, side="right")) - 1
+    return slices
+
+
 def evaluate_task(
     problem: Any,
     evaluate: Evaluate,
@@ -300,24 +345,26 @@ def evaluate_task(
 ) -> _Part:
     """One task, where it runs: candidates, figures, filter, Pareto set and top-N.
 
-    The figures are computed :data:`~crankbalance.physics.explore.work.FIGURES_SLICE` candidates at
-    a time (faster, and their temporaries stay small however many candidates a task of a
-    shared-pin layout holds); the slices' Pareto sets and top-N lists merge into the
-    task's. The slices take the candidates crank by crank (the candidates of one crank
-    side by side), so that a slice holds few distinct cranks, whose figures
-    :func:`~crankbalance.physics.explore.merit.merit` computes once each; the rows come
-    back by increasing index."""
+    The figures are computed slice by slice (:func:`figures_slices`: at most
+    :data:`~crankbalance.physics.explore.work.FIGURES_SLICE` distinct cranks and
+    :data:`~crankbalance.physics.explore.work.FIGURES_ROWS` candidates; faster, and their
+    temporaries stay small however many candidates a task of a shared-pin layout holds);
+    the slices' Pareto sets and top-N lists merge into the task's. The slices take the
+    candidates crank by crank (the candidates of one crank side by side) and end between
+    two cranks, so that a crank's figures, which
+    :func:`~crankbalance.physics.explore.merit.merit` computes once per distinct crank of a
+    slice, are computed once in the task; the rows come back by increasing index."""
     candidates, covered = _candidates(problem, task, _enumeration(source))
     kept: list[Columns] = []
     pareto: Columns = {}
     top: Columns = {}
     passed = 0
     by_crank = np.lexsort(candidates.throw_angle.T[::-1]) if candidates.size else None
-    for start in range(0, max(candidates.size, 1), FIGURES_SLICE):
+    for start, stop in figures_slices(candidates.throw_angle, by_crank):
         piece = (
-            candidates.part(start, start + FIGURES_SLICE)
+            candidates.part(start, stop)
             if by_crank is None
-            else candidates.take(by_crank[start : start + FIGURES_SLICE])
+            else candidates.take(by_crank[start:stop])
         )
         rows = _rows(piece, evaluate(piece))
         if select is not None:

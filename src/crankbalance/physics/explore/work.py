@@ -47,10 +47,18 @@ TASK_MEMORY = 512 * 2**20
 #: candidates per task of the chosen chunk: a task's own cost (about a millisecond) is
 #: small beside them, and its arrays stay tens of MB
 TASK_CANDIDATES = 8192
-#: candidates whose figures of merit a task computes at once: measured fastest, or within
-#: 15 % of it, for 4 to 20 cylinders and 1 to 64 orders; from about 1000 on, the BLAS
-#: library's threads make the figures up to 2 times slower on a busy machine
-FIGURES_SLICE = 512
+#: distinct cranks whose figures of merit (free forces, balancing) a task computes at
+#: once: 512 candidates was measured fastest, or within 15 % of it, for 4 to 20 cylinders
+#: and 1 to 64 orders, when the figures were computed per candidate with matrix products
+#: (more made the BLAS library's threads slow them on a busy machine); per distinct crank
+#: and without matrix products across engines (issue 30), 1024 cranks measured 5-10 %
+#: faster than 512 on the in-line 8, 9 and 12 (two-stroke), within the noise on a 7 ms run
+#: of the in-line 7 (CPU time, best of 5, BLAS 1 thread)
+FIGURES_SLICE = 1024
+#: candidates whose figures of merit a task computes at once, at most: a slice holds whole
+#: cranks (issue 30: each crank's figures once per task, and few slices, each with its
+#: fixed cost) up to FIGURES_SLICE distinct cranks and this many candidates
+FIGURES_ROWS = 4096
 #: the largest chunk [indices]: the largest index space, 20!
 LARGEST_CHUNK = math.factorial(20)
 #: seconds a dask scheduler has to answer (``--connect-timeout``; 0.1 s to 120 s) [s]
@@ -61,9 +69,10 @@ CONNECT_TIMEOUT = 5.0
 #: fixed memory of a task [bytes]
 TASK_BASE = 16 * 2**20
 #: memory of a candidate's figures of merit while they are computed, per cylinder and
-#: per column of its row [bytes] (a task computes them FIGURES_SLICE at a time)
+#: per column of its row [bytes] (a task computes them at most FIGURES_ROWS at a time)
 CELL_BYTES = 3
-#: the same per cylinder besides the columns (the balancing solver) [bytes]
+#: the same per cylinder besides the columns (the balancing solver, at most FIGURES_SLICE
+#: distinct cranks at a time) [bytes]
 CYLINDER_BYTES = 400
 #: memory of a consistent order in a task, per cylinder (its slots, fire and throw
 #: angles, the indices of its equivalent descriptions) [bytes]
@@ -123,6 +132,29 @@ def candidate_bytes(cylinders: int, columns: int) -> int:
         Bytes.
     """
     return cylinders * (CELL_BYTES * columns + CYLINDER_BYTES)
+
+
+def figures_bytes(per_candidate: int, cylinders: int, held: int) -> int:
+    """Memory of the figures of merit of a task holding ``held`` candidates while one slice
+    of them is computed: the columns of at most :data:`FIGURES_ROWS` candidates and the
+    balancing of at most :data:`FIGURES_SLICE` distinct cranks.
+
+    Parameters
+    ----------
+    per_candidate : int
+        :func:`candidate_bytes` of the problem [bytes].
+    cylinders : int
+        Cylinders of the engine [-].
+    held : int
+        Candidates of the task [-].
+
+    Returns
+    -------
+    int
+        Bytes.
+    """
+    solver = CYLINDER_BYTES * cylinders
+    return (per_candidate - solver) * min(held, FIGURES_ROWS) + solver * min(held, FIGURES_SLICE)
 
 
 def order_bytes(cylinders: int, columns: int) -> int:
@@ -226,7 +258,7 @@ def plan(
         share = min(c, indices) / indices if indices else 0.0
         held = min(c, math.ceil(size.orders * share))
         built = min(c + 1, math.ceil(size.widest * share))
-        figures = per_candidate * min(held, FIGURES_SLICE)
+        figures = figures_bytes(per_candidate, cylinders, held)
         prefixes = min(PREFIX_BYTES * cylinders * built, TREE_BYTES)
         return TASK_BASE + figures + per_order * held + prefixes
 
@@ -265,7 +297,7 @@ def _sampled(
 
     def task_bytes(c: int) -> int:
         held = min(c, draws)
-        figures = per_candidate * min(held, FIGURES_SLICE)
+        figures = figures_bytes(per_candidate, cylinders, held)
         return TASK_BASE + figures + per_order * held
 
     most = _largest(task_bytes, draws)
