@@ -253,3 +253,9 @@ def test_hysteretic_response_at_resonance_is_the_loss_factor_peak() -> None:
     # each mount transmits a quarter of k(1+iη) q
     expected = KC * math.hypot(1, eta) * 100.0 / (4 * KC * eta)
     np.testing.assert_allclose(response.mount_peak[0, 0], expected, rtol=1e-9)
+
+
+def test_mode_shapes_have_their_largest_entry_positive() -> None:
+    shapes = pm.modes(_viscous_powertrain()).shapes
+    largest = shapes[np.argmax(np.abs(shapes), axis=0), np.arange(6)]
+    assert np.all(largest > 0)

@@ -426,8 +426,8 @@ class Modes(ResultMixin):
     frequencies : ndarray, shape (6,)
         Natural frequencies, ascending [Hz].
     shapes : ndarray, shape (6, 6)
-        Column r: mode r's q, mass-normalised, translations then rotations [m/kg^0.5]
-        and [rad/kg^0.5].
+        Column r: mode r's q, mass-normalised, its largest entry positive; translations
+        then rotations [m/kg^0.5] and [rad/kg^0.5].
     energy : ndarray, shape (6, 6)
         Row r: per cent of mode r's kinetic energy in x, y, z, roll, pitch, yaw (the
         coordinates u_x, u_y, u_z, θ_y (roll about the crank axis), θ_x, θ_z):
@@ -475,6 +475,9 @@ def modes(pt: Powertrain) -> Modes:
     mass = mass_matrix(pt)
     values, vectors = linalg.eigh(stiffness_matrix(pt), mass)
     values = np.clip(values, 0.0, None)
+    # each shape's sign: its largest entry positive (eigh's sign is arbitrary)
+    largest = vectors[np.argmax(np.abs(vectors), axis=0), np.arange(6)]
+    vectors = vectors * np.where(largest < 0, -1.0, 1.0)[None, :]
     energy = 100.0 * vectors * (mass @ vectors)  # (6 coordinates, 6 modes)
     energy = energy[list(ENERGY_ORDER), :].T
     roll = int(np.argmax(energy[:, 3]))
