@@ -179,3 +179,49 @@ def test_a_speed_range_below_the_lowest_speed_is_refused(
         ["mounts", str(CAR), "--speed-min", "3000 rpm", "--speed-max", "2000 rpm"], capsys
     )
     assert code == 2 and "--speed-max" in err
+
+
+def test_balanced_forces_are_the_balance_studys_residuals() -> None:
+    """The phasors a balancing leaves, as the mount study takes them, have the amplitudes
+    of the balance study's residuals (one solver, one answer)."""
+    from crankbalance.physics.balance_types import CounterweightOptions
+    from crankbalance.studies.engine import balance_engine
+    from crankbalance.studies.mounts import balanced_forces
+
+    spec = load_engine(str(BIKE))
+    model = analyze(spec, orders=2).model
+    options = CounterweightOptions(cg_radius=0.033, angle="optimal", balance_factor=0.5)
+    left = balanced_forces(model, options, orders=2)
+    study = balance_engine(spec, orders=2, angle="optimal", balance_factor=0.5)
+    order1 = study.result.residual("order1")
+    assert abs(left.force_forward[0]) == pytest.approx(order1.force_forward_after, abs=1e-6)
+    assert abs(left.force_backward[0]) == pytest.approx(order1.force_backward_after, abs=1e-6)
+    assert abs(left.couple_forward[0]) == pytest.approx(order1.moment_forward_after, abs=1e-6)
+    assert abs(left.rotating_force) < 1e-6 * abs(analyze(spec, orders=2).forces.rotating_force)
+    # a 90 deg V-twin's forward primary is its whole primary: half the reciprocating mass
+    # on the counterweights cancels it
+    assert abs(left.force_forward[0]) < 1e-9 * abs(analyze(spec).forces.force_forward[0])
+    np.testing.assert_allclose(left.roll, analyze(spec, orders=2).forces.roll)
+
+
+def test_comparing_balance_factors_at_the_mounts_is_a_loop() -> None:
+    from crankbalance.physics.balance_types import CounterweightOptions
+    from crankbalance.studies.mounts import MAX_CHOICES, Choice, compare, comparison_table
+
+    settings = MountsOptions.parse({"orders": 2, "speed_samples": 60})
+    choices = [Choice("bare crank", None)] + [
+        Choice(f"bf {bf}", CounterweightOptions(0.033, angle="optimal", balance_factor=bf))
+        for bf in (0.0, 0.5)
+    ]
+    rows = comparison_table(compare(str(BIKE), settings, choices))
+    assert [r["choice"] for r in rows] == ["bare crank", "bf 0.0", "bf 0.5"]
+    # the rotating masses left free add to the first order; half the reciprocating mass on
+    # the counterweights removes the V-twin's primary force and leaves its rocking couple
+    assert rows[0]["order_1_N"] > rows[1]["order_1_N"] > 10 * rows[2]["order_1_N"]
+    # counterweights act at crank speed only: the second order is the same for all
+    assert rows[0]["order_2_N"] == pytest.approx(rows[2]["order_2_N"])
+    # balance factor 0 is the study's default (rotating masses carried by counterweights)
+    plain = mounts(str(BIKE), settings)
+    assert rows[1]["largest_N"] == pytest.approx(float(plain.response.mount_peak.max()))
+    with pytest.raises(InputError):
+        compare(str(BIKE), settings, [Choice("x", None)] * (MAX_CHOICES + 1))

@@ -13,7 +13,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
-from typing import Any
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
@@ -28,7 +28,13 @@ from ..schema.engine import Powertrain as PowertrainTable
 from ..schema.settings import MountsOptions
 from .engine import EngineLike, analyze
 
+if TYPE_CHECKING:
+    from ..physics.balance_types import CounterweightOptions, ShaftOptions
+
 SCHEMA = "crankbalance.mounts/1"
+#: Most balancing choices of one comparison (:func:`compare`); each is one balancing and
+#: one mount study.
+MAX_CHOICES = 32
 _RPM = 30.0 / math.pi  # rad/s -> rpm
 
 
@@ -61,6 +67,18 @@ def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
         mounts=mounts,
         up=np.array(table.up or (0.0, 0.0, 1.0), dtype=float),
     )
+
+
+def spec_of(engine: EngineLike) -> EngineSpec | None:
+    """The engine file's spec of a preset name, a path or a spec (read once); None for a
+    built model, which has no ``[powertrain]``."""
+    if isinstance(engine, EngineSpec):
+        return engine
+    if isinstance(engine, EngineModel):
+        return None
+    from ..io.engine_file import load_engine
+
+    return load_engine(engine)
 
 
 def engine_loads(forces: FreeForces, rotating: str) -> NDArray[np.complex128]:
@@ -135,13 +153,7 @@ def mounts(
             f"speed samples x orders ({o.orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
         )
     if powertrain is None:
-        spec: EngineSpec | None = None
-        if isinstance(engine, EngineSpec):
-            spec = engine
-        elif not isinstance(engine, EngineModel):
-            from ..io.engine_file import load_engine
-
-            spec = load_engine(engine)
+        spec = spec_of(engine)
         if spec is None or spec.powertrain is None:
             raise InputError(
                 "engine",
@@ -282,3 +294,130 @@ def payload(r: MountsResult) -> dict[str, Any]:
             },
         },
     }
+
+
+# --------------------------------------------------------------------------- balancing choices
+def balanced_forces(
+    model: EngineModel,
+    counterweights: CounterweightOptions | None,
+    primary: ShaftOptions | None = None,
+    secondary: ShaftOptions | None = None,
+    orders: int = 4,
+) -> FreeForces:
+    """The free forces and moments an engine leaves with the balancing masses the solver
+    finds for these options (:func:`crankbalance.physics.balance_solver.solve`), as one
+    :class:`FreeForces` the mount study takes (``forces=``).
+
+    The balancing masses (crank counterweights and balance shafts, all on the crank axis as
+    the solver places them) change the forces and the couples; their roll about the
+    reference point is the moment of their forces, :math:`qF` with :math:`q = p_x + ip_z`
+    (zero about a point on the crank axis). The reciprocating roll is the engine's.
+    """
+    from ..physics.balance_solver import residual_phasors, solve, solver_input
+    from ..physics.balance_types import EngineFailed
+    from ..physics.balancing import batch_of_one
+
+    forces = analyze(model, orders=max(orders, 2)).forces
+    inputs = solver_input(model, batch_of_one(forces))
+    try:
+        found = solve(inputs, counterweights, primary, secondary)
+    except EngineFailed as failed:
+        raise failed.error from None
+    rot_f, rot_c, fwd, bwd, cfwd, cbwd = residual_phasors(
+        inputs,
+        found.counterweights,
+        found.rotating_share,
+        found.extra_counterweights,
+        found.primary,
+        found.secondary,
+    )
+    q = complex(model.reference_x, model.reference_z)
+    added_f, added_b = fwd[0] - forces.force_forward, bwd[0] - forces.force_backward
+    roll = forces.roll + q * added_f + np.conj(q * added_b)
+    return FreeForces(
+        orders=forces.orders,
+        force_forward=fwd[0],
+        force_backward=bwd[0],
+        couple_forward=cfwd[0],
+        couple_backward=cbwd[0],
+        rotating_force=complex(rot_f[0]),
+        rotating_couple=complex(rot_c[0]),
+        roll=roll,
+        rotating_roll=complex(q * rot_f[0]),
+    )
+
+
+@dataclass(frozen=True)
+class Choice:
+    """One balancing choice of a comparison at the mounts.
+
+    Attributes
+    ----------
+    label : str
+        Its name in the table.
+    counterweights : CounterweightOptions or None
+        Crank counterweights (None: a bare crank, the rotating masses left free).
+    primary, secondary : ShaftOptions or None
+        Balance shafts of order 1 and 2.
+    """
+
+    label: str
+    counterweights: CounterweightOptions | None
+    primary: ShaftOptions | None = None
+    secondary: ShaftOptions | None = None
+
+
+def compare(
+    engine: EngineLike, settings: MountsOptions, choices: list[Choice]
+) -> list[tuple[str, MountsResult]]:
+    """The mount study of ``engine`` under each balancing choice: one loop over
+    :func:`balanced_forces` and :func:`mounts` (the rotating masses as the balancing leaves
+    them: ``settings.rotating`` is taken as ``bare``, the forces already hold the
+    counterweights).
+
+    Returns
+    -------
+    list of (label, MountsResult)
+    """
+    if not choices:
+        raise InputError("choices", choices, "at least one balancing choice")
+    if len(choices) > MAX_CHOICES:
+        raise InputError("choices", len(choices), f"at most {MAX_CHOICES} balancing choices")
+    spec = spec_of(engine)
+    source: EngineLike = spec if spec is not None else engine
+    model = analyze(source, orders=settings.orders).model
+    bare = settings.replace(rotating="bare")
+    out = []
+    for choice in choices:
+        forces = balanced_forces(
+            model, choice.counterweights, choice.primary, choice.secondary, settings.orders
+        )
+        out.append((choice.label, mounts(source, bare, forces=forces)))
+    return out
+
+
+def comparison_table(results: list[tuple[str, MountsResult]]) -> list[dict[str, Any]]:
+    """One row per choice: the largest mount force of each order over the speed range,
+    the mount and the speed [N], [rpm].
+
+    Parameters
+    ----------
+    results : list of (label, MountsResult)
+        From :func:`compare`.
+
+    Returns
+    -------
+    list of dict
+        ``{"choice", "order_<n>_N", "order_<n>_mount", "order_<n>_rpm", "largest_N"}``.
+    """
+    rows = []
+    for label, result in results:
+        row: dict[str, Any] = {"choice": label}
+        for entry in payload(result)["orders"]:
+            n = entry["order"]
+            row[f"order_{n}_N"] = entry["largest"]["force_N"]
+            row[f"order_{n}_mount"] = entry["largest"]["mount"]
+            row[f"order_{n}_rpm"] = entry["largest"]["speed_rpm"]
+        row["largest_N"] = float(result.response.mount_peak.max())
+        rows.append(row)
+    return rows
