@@ -225,3 +225,10 @@ def test_comparing_balance_factors_at_the_mounts_is_a_loop() -> None:
     assert rows[1]["largest_N"] == pytest.approx(float(plain.response.mount_peak.max()))
     with pytest.raises(InputError):
         compare(str(BIKE), settings, [Choice("x", None)] * (MAX_CHOICES + 1))
+
+
+def test_the_energy_table_shows_no_negative_zero(capsys: pytest.CaptureFixture[str]) -> None:
+    """The V-twin's products of inertia give two rotations a share of about -0.01 %."""
+    code, out, err = _run(["mounts", str(BIKE), "--orders", "2", "--speed-samples", "20"], capsys)
+    assert code == 0, err
+    assert "-0.0 " not in out and " 0.0 " in out

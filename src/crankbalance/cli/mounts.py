@@ -78,7 +78,7 @@ def _echo(d: dict[str, Any]) -> None:
         ["mode", "f [Hz]", "x", "y", "z", "roll", "pitch", "yaw"],
         [
             [str(m["mode"]), f"{m['frequency_Hz']:.2f}"]
-            + [f"{v:.1f}" for v in m["energy_percent"].values()]
+            + [_percent(v) for v in m["energy_percent"].values()]
             for m in d["modes"]
         ],
     )
@@ -113,3 +113,10 @@ def _echo(d: dict[str, Any]) -> None:
             for o in d["orders"]
         ],
     )
+
+
+def _percent(value: float) -> str:
+    """A share in per cent to 0.1, a rounded negative zero as 0.0 (products of inertia give
+    a rotation's share a small negative part)."""
+    shown = f"{value:.1f}"
+    return "0.0" if shown == "-0.0" else shown
