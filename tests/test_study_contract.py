@@ -20,6 +20,7 @@ import contextlib
 import io
 import json
 import shutil
+import tomllib
 from pathlib import Path
 from typing import Any
 
@@ -35,7 +36,7 @@ from .conftest import hang_guard
 ROOT = Path(__file__).resolve().parents[1]
 EXAMPLES = ROOT / "examples"
 #: the commands whose engine is an argument (ENGINE), not ``--engine``
-ENGINE_ARGUMENT = {"analyze", "balance", "bearings", "bearings-sweep"}
+ENGINE_ARGUMENT = {"analyze", "balance", "bearings", "bearings-sweep", "mounts"}
 #: the studies whose parts file is an argument (PARTS), not ``--parts``
 PARTS_ARGUMENT = {"shop-match", "shop-bobweights", "shop-scatter"}
 #: keys whose value depends on the run, not on the inputs
@@ -173,6 +174,13 @@ CASES: dict[str, list[tuple[str | None, dict[str, Any]]]] = {
         ("paper-inline3", {"samples": "36", "balance-factors": "0.4,0.6"}),
     ],
     "torsional": [("inline4", {"speed-points": "20"}), ("inline6", {"speed-points": "20"})],
+    "mounts": [
+        ("mounts_inline4_car.toml", {"speed-samples": "20"}),
+        (
+            "mounts_vtwin_motorcycle.toml",
+            {"speed-samples": "20", "orders": "2", "rotating": "bare"},
+        ),
+    ],
     "explore": [(None, {"cylinders": "3"}), ("inline4", {"cylinders": "4", "top": "5"})],
     "shop-match": [
         ("v8-crossplane", {"parts": "v8_parts.csv"}),
@@ -201,7 +209,13 @@ CASES: dict[str, list[tuple[str | None, dict[str, Any]]]] = {
     ],
 }
 #: the files of the cases, by the name a case gives
-FILES = {"crf250r_rebalance.toml", "v8_parts.csv", "table.csv"}
+FILES = {
+    "crf250r_rebalance.toml",
+    "v8_parts.csv",
+    "table.csv",
+    "mounts_inline4_car.toml",
+    "mounts_vtwin_motorcycle.toml",
+}
 
 
 @pytest.fixture
@@ -254,6 +268,8 @@ def api_body(name: str, engine: str | None, options: dict[str, Any]) -> bytes:
     """The API body of a case: a file option's content sent with it."""
     entry = STUDIES[name]
     body: dict[str, Any] = {} if engine is None else {"engine": engine}
+    if engine is not None and engine.endswith(".toml"):  # an engine file: sent as an object
+        body["engine"] = tomllib.loads(Path(engine).read_text())
     for option, value in options.items():
         if entry.field_of(option) in entry.files:
             names = value if isinstance(value, list) else [value]

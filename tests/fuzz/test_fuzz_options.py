@@ -683,6 +683,30 @@ COMMAND_TABLE: dict[str, Command] = {
             "--format": FORMATS_CSV,
         },
     ),
+    "mounts": Command(
+        ["mounts"],
+        [
+            [
+                str(ROOT / "examples" / "mounts_inline4_car.toml"),
+                str(ROOT / "examples" / "mounts_vtwin_motorcycle.toml"),
+                "inline4",
+                "no-such-engine",
+                "",
+            ]
+        ],
+        ["--speed-samples", "20"],
+        {
+            "--speed-min": SPEED,
+            "--speed-max": quantity("speed", "6000 rpm"),
+            "--speed-samples": number("2", "20", "10001", "10002"),
+            "--orders": number("1", "4", "64", "65"),
+            "--mean-torque": quantity("torque", "120 N*m"),
+            "--rotating": ["balanced", "bare", *CHOICE],
+            "--point": ["0 mm, 330 mm, 260 mm", "1 mm, 2 mm", "nan mm, 0, 0", "1e300 m, 0, 0"],
+            "--plot": OUTPUT,
+            "--format": FORMATS,
+        },
+    ),
     "bearings": Command(
         ["bearings"],
         [["inline4", "single", "v8-crossplane", "no-such-engine", ""]],

@@ -177,6 +177,16 @@ def cases() -> dict[str, list[str]]:
     # cycle/3: --engine alone runs every cylinder; the golden file is of one cylinder
     out["cycle-engine"] = ["cycle", "--engine", "single", "--cylinder", "1", "--format", "json"]
     out["sensitivity-engine"] = ["sensitivity", "--engine", "single", "--format", "json"]
+    out["mounts-inline4-car"] = [
+        "mounts",
+        str(EXAMPLES / "mounts_inline4_car.toml"),
+        "--speed-samples",
+        "40",
+        "--mean-torque",
+        "120 N*m",
+        "--format",
+        "json",
+    ]
     out["bench"] = [
         "bench",
         "--speed",

@@ -68,6 +68,10 @@ COMMANDS: dict[str, tuple[str, str]] = {
         "crankbalance.cli.torsional:torsional",
         "Torsional vibration of the crank train: modes, resonances, damper.",
     ),
+    "mounts": (
+        "crankbalance.cli.mounts:mounts",
+        "The powertrain on its mounts: statics, modes, mount forces over speed.",
+    ),
     "shop": ("crankbalance.cli.shop:shop", "Balance shop: parts, bob-weights, hole plan, sheet."),
     "bearings": (
         "crankbalance.cli.bearings:bearings",

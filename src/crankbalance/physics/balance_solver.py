@@ -467,6 +467,70 @@ def _shaft_set(
 
 
 # --------------------------------------------------------------------------- residuals
+def residual_phasors(
+    inputs: SolverInput,
+    cw: BatchCounterweights | None,
+    share: NDArray | None,
+    extra: BatchCounterweights | None,
+    primary: BatchShafts | None,
+    secondary: BatchShafts | None,
+) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """The free forces and couples the balancing masses leave, as phasors: the engine's plus
+    those of the counterweights (the share that carries the rotating masses to the rotating
+    component, the rest to the first order), the extra counterweights and the shafts.
+
+    Parameters
+    ----------
+    inputs : SolverInput
+        The engines and their free forces.
+    cw : BatchCounterweights or None
+        Crank counterweights.
+    share : ndarray of complex, shape (E, W), or None
+        First moments of the counterweights' share that carries the rotating masses
+        [kg·m].
+    extra : BatchCounterweights or None
+        The Eq. 17 extra counterweights.
+    primary, secondary : BatchShafts or None
+        Balance shafts of order 1 and 2.
+
+    Returns
+    -------
+    rotating_force, rotating_couple : ndarray of complex, shape (E,)
+        The rotating component left [N], [N·m].
+    force_forward, force_backward : ndarray of complex, shape (E, K)
+        Each order's force phasors left [N].
+    couple_forward, couple_backward : ndarray of complex, shape (E, K)
+        Each order's couple phasors left [N·m].
+    """
+    forces = inputs.forces
+    w2 = inputs.speed**2
+    rot_f, rot_c = forces.rotating_force, forces.rotating_couple
+    after_rot_f, after_rot_c = rot_f, rot_c
+    fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
+    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
+    first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
+    if cw is not None and share is not None:
+        after_rot_f = rot_f + w2 * share.sum(axis=-1)
+        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
+        first_order.append((cw.moments - share, cw.position))
+    if extra is not None:
+        first_order.append((extra.moments, extra.position))
+    for moments, position in first_order:
+        fwd[:, 0] += w2 * moments.sum(axis=-1)
+        cfwd[:, 0] += w2 * (moments * position).sum(axis=-1)
+    for group in (primary, secondary):
+        if group is None:
+            continue
+        k = group.order - 1
+        gain = group.cg_radius * (group.order * inputs.speed) ** 2
+        for s, sense in enumerate(group.sense):
+            f = group.mass[:, s] * gain[:, None] * np.exp(1j * group.phase[:, s])
+            force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
+            force[:, k] += f.sum(axis=-1)
+            couple[:, k] += (f * group.position).sum(axis=-1)
+    return after_rot_f, after_rot_c, fwd, bwd, cfwd, cbwd
+
+
 def balance_residuals(
     inputs: SolverInput,
     cw: BatchCounterweights | None,
@@ -499,31 +563,10 @@ def balance_residuals(
         most the round-off), and the check.
     """
     forces = inputs.forces
-    w2 = inputs.speed**2
     rot_f, rot_c = forces.rotating_force, forces.rotating_couple
-    after_rot_f, after_rot_c = rot_f, rot_c
-    fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
-    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
-    first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
-    if cw is not None and share is not None:
-        after_rot_f = rot_f + w2 * share.sum(axis=-1)
-        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
-        first_order.append((cw.moments - share, cw.position))
-    if extra is not None:
-        first_order.append((extra.moments, extra.position))
-    for moments, position in first_order:
-        fwd[:, 0] += w2 * moments.sum(axis=-1)
-        cfwd[:, 0] += w2 * (moments * position).sum(axis=-1)
-    for group in (primary, secondary):
-        if group is None:
-            continue
-        k = group.order - 1
-        gain = group.cg_radius * (group.order * inputs.speed) ** 2
-        for s, sense in enumerate(group.sense):
-            f = group.mass[:, s] * gain[:, None] * np.exp(1j * group.phase[:, s])
-            force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
-            force[:, k] += f.sum(axis=-1)
-            couple[:, k] += (f * group.position).sum(axis=-1)
+    after_rot_f, after_rot_c, fwd, bwd, cfwd, cbwd = residual_phasors(
+        inputs, cw, share, extra, primary, secondary
+    )
     orders = fwd.shape[1]
     # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
     # parts before, then after (the rotating masses turn forward only: no backward part)

@@ -49,7 +49,9 @@ __all__ = [
     "FieldProblem",
     "MassOverride",
     "Masses",
+    "Mount",
     "Note",
+    "Powertrain",
     "ShaftSet",
     "Throw",
     "parse_in_range",
@@ -1024,6 +1026,154 @@ class BalanceShafts(_EngineTable):
     )
 
 
+# --------------------------------------------------------------------------- powertrain
+#: Most ``[[powertrain.mount]]`` tables (physics.mounts.MAX_MOUNTS).
+MAX_MOUNTS = 16
+#: Largest loss factor of a mount.
+MAX_LOSS_FACTOR = 2.0
+
+
+class Mount(_EngineTable):
+    """One elastic mount of the powertrain (``[[powertrain.mount]]``)."""
+
+    name: str = field(
+        "text",
+        default="",
+        max_chars=MAX_NAME_CHARS,
+        title="Mount name",
+        description="Its name in the tables; empty: mount 1, mount 2, ... in order.",
+    )
+    position: list[float] = field(
+        "list",
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Mount position",
+        description="Its elastic centre x, y, z from the crank's reference point "
+        "(crank_train.moment_point), in the engine axes.",
+        hint="x, y, z, e.g. -250 mm, 180 mm, 120 mm",
+    )
+    stiffness: list[float] = field(
+        "list",
+        item=entry("stiffness", ge=0.0, zero=True),
+        min_items=3,
+        max_items=3,
+        title="Mount stiffnesses",
+        description="Principal stiffnesses: compression, first shear, second shear. Before "
+        "orientation the compression axis is the engine's z, the first shear x, the second y.",
+        hint="compression, shear, shear, e.g. 250 N/mm, 80 N/mm, 80 N/mm",
+    )
+    orientation: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("angle", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Mount orientation",
+        description="Rotations of its axes: a about the engine's x, then b about y, then c "
+        "about z (fixed axes, R = Rz(c) Ry(b) Rx(a)); default 0, 0, 0.",
+        hint="a, b, c, e.g. 0 deg, 30 deg, 0 deg",
+    )
+    loss_factor: float = field(
+        "number",
+        default=0.1,
+        ge=0.0,
+        le=MAX_LOSS_FACTOR,
+        title="Loss factor",
+        description="Hysteretic damping η of all three directions, stiffness k(1 + iη) (rubber "
+        "about 0.05-0.25); default 0.1.",
+    )
+
+
+class Powertrain(_EngineTable):
+    """The powertrain (engine and gearbox) as a rigid body on its mounts (``[powertrain]``,
+    docs/mounts.md)."""
+
+    mass: float = field(
+        "mass",
+        gt=0.0,
+        title="Powertrain mass",
+        description="Mass of the powertrain: engine, gearbox and all that the mounts carry.",
+        hint="e.g. 180 kg",
+    )
+    cg: list[float] = field(
+        "list",
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Centre of gravity",
+        description="Its centre of gravity x, y, z from the crank's reference point.",
+        hint="x, y, z, e.g. 0 mm, 150 mm, 60 mm",
+    )
+    inertia: list[float] = field(
+        "list",
+        item=entry("inertia", gt=0.0),
+        min_items=3,
+        max_items=3,
+        title="Moments of inertia",
+        description="Ixx, Iyy, Izz about the centre of gravity, engine axes.",
+        hint="e.g. 8 kg*m^2, 6 kg*m^2, 9 kg*m^2",
+    )
+    products: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("inertia", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Products of inertia",
+        description="The tensor's off-diagonal entries Ixy, Iyz, Ixz about the centre of "
+        "gravity, each −∫xy dm etc. (the negative of the product of inertia); default 0.",
+        hint="Ixy, Iyz, Ixz, e.g. 0.3 kg*m^2, 0 kg*m^2, -0.5 kg*m^2",
+    )
+    up: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("number"),
+        min_items=3,
+        max_items=3,
+        title="Upward direction",
+        description="The upward vertical in the engine axes, x, y, z (any length); default "
+        "0, 0, 1 (cylinders up). Weight acts against it.",
+    )
+    mount: list[Mount] = field(
+        "list",
+        item=entry("table", table=Mount),
+        min_items=1,
+        max_items=MAX_MOUNTS,
+        title="Mounts",
+        description="The mounts, a [[powertrain.mount]] table each (at least three to hold the "
+        "body in all six directions, unless each holds in several).",
+    )
+
+    def check(self) -> None:
+        if self.up is not None and not any(self.up):
+            raise FieldProblem("up", "must not be 0, 0, 0")
+        ixx, iyy, izz = self.inertia
+        if ixx + iyy < izz or iyy + izz < ixx or ixx + izz < iyy:
+            raise FieldProblem(
+                "inertia",
+                "no rigid body has these: each moment must be at most the sum of the other two",
+            )
+        if self.products is not None:
+            import numpy as np
+
+            tensor = np.array(
+                [
+                    [ixx, self.products[0], self.products[2]],
+                    [self.products[0], iyy, self.products[1]],
+                    [self.products[2], self.products[1], izz],
+                ]
+            )
+            if np.linalg.eigvalsh(tensor)[0] <= 0:
+                raise FieldProblem(
+                    "products", "with these the inertia tensor is not positive definite"
+                )
+        names = [m.name for m in self.mount if m.name]
+        for name in names:
+            if names.count(name) > 1:
+                raise FieldProblem("mount", f"two mounts are named {name!r}")
+
+
 class EngineSpec(_EngineTable):
     """A whole engine: the contents of one engine file."""
 
@@ -1083,6 +1233,14 @@ class EngineSpec(_EngineTable):
         table=BalanceShafts,
         title="Balance shafts",
         description="Balance shafts the balancing solver sizes; without it, none.",
+    )
+    powertrain: Powertrain | None = field(
+        "table",
+        default=None,
+        table=Powertrain,
+        title="Powertrain on its mounts",
+        description="The powertrain as a rigid body on elastic mounts (crankbalance mounts, "
+        "docs/mounts.md); without it, no mount study.",
     )
 
     def check(self) -> None:

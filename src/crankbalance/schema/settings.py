@@ -2376,6 +2376,59 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
             )
 
 
+class MountsOptions(StudyOptions):
+    """``mounts``: the powertrain on its mounts (docs/mounts.md): the speed range and its
+    samples, the engine orders, the mean torque of the statics, the rotating masses, a point
+    whose motion is shown."""
+
+    speed_min: float = quantity("speed", 600 * _RPM, "Lowest speed", "The sweep's lowest speed.")
+    speed_max: float | None = quantity(
+        "speed",
+        None,
+        "Highest speed (default: the engine's)",
+        "The sweep's highest speed; empty: the engine's speed.",
+    )
+    speed_samples: int = whole(
+        400, "Speeds of the sweep", "Speeds of the sweep, evenly spaced.", ge=2, le=10_001
+    )
+    orders: int = whole(
+        4,
+        "Engine orders",
+        "The orders 1..n of the free forces and moments applied to the powertrain "
+        "(speed samples x orders at most 50000: physics.mounts.MAX_RESPONSE_POINTS).",
+        ge=1,
+        le=MAX_ORDER,
+    )
+    mean_torque: float = quantity(
+        "torque",
+        0.0,
+        "Mean engine torque",
+        "The steady torque of the statics, on the crank in the sense of rotation (the block "
+        "takes its reaction about the crank axis).",
+    )
+    rotating: str = choice(
+        "balanced",
+        ("balanced", "bare"),
+        "Rotating masses",
+        "balanced: the crank's counterweights carry the rotating masses (no rotating force "
+        "reaches the mounts); bare: the bare crank's rotating force and moment are applied.",
+    )
+    point: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Point shown",
+        description="A point of the powertrain (x, y, z from the reference point) whose "
+        "largest displacement per order is shown; empty: the centre of gravity.",
+    )
+
+    def check(self) -> None:
+        if self.speed_max is not None and self.speed_max <= self.speed_min:
+            raise FieldProblem("speed_max", "must be above the lowest speed")
+
+
 # --------------------------------------------------------------------------------------
 # parsing and words, by schema and field name
 # --------------------------------------------------------------------------------------

@@ -344,6 +344,14 @@ STUDIES: dict[str, Study] = {
             files=("pressure_csv",),
         ),
         Study(
+            "mounts",
+            ("mounts",),
+            "crankbalance.studies.mounts:mounts",
+            "MountsOptions",
+            "required",
+            edge=("format", "plot"),
+        ),
+        Study(
             "explore",
             ("explore",),
             "crankbalance.studies.explorer:explore",

@@ -20,6 +20,7 @@ module                    figures of
                           sensitivity to the balance factor
 :mod:`.loads`             the main-bearing loads and their sweep against balance
 :mod:`.torsional`         the torsional vibration study
+:mod:`.mounts`            the powertrain on its mounts
 :mod:`.explore`           the design-space explorer
 :mod:`.shop`              the balance shop's hole plan
 :mod:`.study`             :func:`plot`: the figures of any study's result
@@ -50,6 +51,7 @@ from .crank3d import crank_3d
 from .engine import curves_figure, orders_bar, polar_figure
 from .explore import explore_candidate, explore_scatter
 from .loads import bearing_loads_figure, bearing_sweep_figure
+from .mounts import mounts_figure
 from .performance import bench_figure, cycle_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
 from .shop import hole_plan
@@ -78,6 +80,7 @@ __all__ = [
     "explore_candidate",
     "explore_scatter",
     "hole_plan",
+    "mounts_figure",
     "orders_bar",
     "pareto_front",
     "plot",

@@ -12,6 +12,7 @@ from .counterweight import counterweight_profile, pareto_front
 from .crank3d import crank_3d
 from .engine import curves_figure, orders_bar, polar_figure
 from .loads import bearing_loads_figure, bearing_sweep_figure
+from .mounts import mounts_figure
 from .performance import engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
 from .shop import hole_plan
@@ -42,6 +43,7 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     "BearingStudy": (bearing_loads_figure,),
     "SweepStudy": (bearing_sweep_figure,),
     "TorsionalResult": (lambda r: torsional_figure(r.study),),
+    "MountsResult": (mounts_figure,),
     "ShopResult": (
         lambda r: hole_plan(r.result) if type(r.result).__name__ == "HolePlan" else None,
     ),
@@ -59,7 +61,7 @@ def plot(result: Any) -> list[Any]:
         force and moment curves, polar diagram, 3-D crank), a balancing study (residuals,
         3-D crank with its counterweights), a balance-factor study, a counterweight
         optimisation or design, a shaft check or placement, a cycle, a sensitivity, the
-        bearing loads or their sweep, a torsional study, a hole plan.
+        bearing loads or their sweep, a torsional study, a mount study, a hole plan.
 
     Returns
     -------

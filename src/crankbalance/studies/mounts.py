@@ -1,0 +1,422 @@
+"""The powertrain on its mounts as a study of the registry (``mounts``, docs/mounts.md).
+
+The engine file's ``[powertrain]`` table (or a :class:`~crankbalance.physics.mounts.Powertrain`
+given in Python) is the rigid body; the engine's free forces and moments of every order
+(:func:`crankbalance.studies.engine.analyze`, about the crank's reference point), or those
+of a given balancing (``forces``), drive it. The statics under weight and the mean torque,
+the six modes with their kinetic-energy table and the torque-roll axis, the crossings of
+the orders with the modes in the speed range, and the forced response with the force
+every mount transmits.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+from numpy.typing import NDArray
+
+from ..errors import InputError
+from ..physics import mounts as pm
+from ..physics.model import EngineModel
+from ..physics.shaking import FreeForces
+from ..results import ResultMixin, to_jsonable
+from ..schema.engine import EngineSpec
+from ..schema.engine import Powertrain as PowertrainTable
+from ..schema.settings import MountsOptions
+from .engine import EngineLike, analyze
+
+if TYPE_CHECKING:
+    from ..physics.balance_types import CounterweightOptions, ShaftOptions
+
+SCHEMA = "crankbalance.mounts/1"
+#: Most balancing choices of one comparison (:func:`compare`); each is one balancing and
+#: one mount study.
+MAX_CHOICES = 32
+_RPM = 30.0 / math.pi  # rad/s -> rpm
+
+
+def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
+    """The physics' powertrain from the engine file's ``[powertrain]`` table (SI values).
+
+    Parameters
+    ----------
+    table : schema.engine.Powertrain
+        The validated table.
+
+    Returns
+    -------
+    physics.mounts.Powertrain
+    """
+    mounts = tuple(
+        pm.Mount(
+            name=m.name or f"mount {k + 1}",
+            position=np.array(m.position, dtype=float),
+            stiffness=np.array(m.stiffness, dtype=float),
+            orientation=np.array(m.orientation or (0.0, 0.0, 0.0), dtype=float),
+            loss_factor=float(m.loss_factor),
+        )
+        for k, m in enumerate(table.mount)
+    )
+    return pm.Powertrain(
+        mass=float(table.mass),
+        cg=np.array(table.cg, dtype=float),
+        inertia=pm.inertia_tensor(table.inertia, table.products or (0.0, 0.0, 0.0)),
+        mounts=mounts,
+        up=np.array(table.up or (0.0, 0.0, 1.0), dtype=float),
+    )
+
+
+def spec_of(engine: EngineLike) -> EngineSpec | None:
+    """The engine file's spec of a preset name, a path or a spec (read once); None for a
+    built model, which has no ``[powertrain]``."""
+    if isinstance(engine, EngineSpec):
+        return engine
+    if isinstance(engine, EngineModel):
+        return None
+    from ..io.engine_file import load_engine
+
+    return load_engine(engine)
+
+
+def engine_loads(forces: FreeForces, rotating: str) -> NDArray[np.complex128]:
+    """The six load amplitudes of every order at the reference point (K, 6), the rotating
+    masses' first order added when ``rotating == "bare"``."""
+    ff, cf, roll = forces.force_forward.copy(), forces.couple_forward.copy(), forces.roll.copy()
+    if rotating == "bare":
+        ff[0] += forces.rotating_force
+        cf[0] += forces.rotating_couple
+        roll[0] += forces.rotating_roll
+    return pm.order_loads(ff, forces.force_backward, cf, forces.couple_backward, roll)
+
+
+@dataclass(frozen=True, repr=False)
+class MountsResult(ResultMixin):
+    """The mount study of one engine.
+
+    Attributes
+    ----------
+    name : str
+        The engine's name.
+    model : EngineModel
+    powertrain : physics.mounts.Powertrain
+    statics : physics.mounts.Statics
+    modes : physics.mounts.Modes
+    crossings : tuple of physics.mounts.Crossing
+    response : physics.mounts.Response
+    point : ndarray, shape (3,)
+        The point whose displacement is shown [m].
+    loads : ndarray of complex, shape (K, 6)
+        The load amplitudes of each order at the engine's speed [N], [N·m].
+    """
+
+    name: str
+    model: EngineModel
+    powertrain: pm.Powertrain
+    statics: pm.Statics
+    modes: pm.Modes
+    crossings: tuple[pm.Crossing, ...]
+    response: pm.Response
+    point: NDArray[np.float64]
+    loads: NDArray[np.complex128]
+
+    def to_dict(self) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.mounts/1`` (SI units in the keys, speeds in rpm)."""
+        out = to_jsonable({"schema": SCHEMA, **payload(self)})
+        assert isinstance(out, dict)
+        return out
+
+
+def mounts(
+    engine: EngineLike,
+    settings: MountsOptions,
+    powertrain: pm.Powertrain | None = None,
+    forces: FreeForces | None = None,
+) -> MountsResult:
+    """The powertrain of ``engine`` on its mounts: statics, modes, crossings and the forced
+    response to the engine's free forces and moments.
+
+    ``powertrain`` replaces the engine file's ``[powertrain]`` table; ``forces`` replaces the
+    engine's free forces (those of a balancing, say: comparing balancing choices is a loop
+    over them), taken about the model's reference point at its speed. The work is bounded
+    before it starts (speed samples x orders at most
+    :data:`~crankbalance.physics.mounts.MAX_RESPONSE_POINTS`).
+    """
+    o = settings
+    n_points = pm.response_size(o.speed_samples, o.orders)
+    if n_points > pm.MAX_RESPONSE_POINTS:
+        raise InputError(
+            "speed_samples",
+            o.speed_samples,
+            f"speed samples x orders ({o.orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
+        )
+    if powertrain is None:
+        spec = spec_of(engine)
+        if spec is None or spec.powertrain is None:
+            raise InputError(
+                "engine",
+                getattr(engine, "name", engine),
+                "needs a [powertrain] table with its mounts (docs/mounts.md)",
+            )
+        powertrain = powertrain_of(spec.powertrain)
+        engine = spec
+    analysis = analyze(engine, orders=o.orders)
+    model = analysis.model
+    if forces is None:
+        forces = analysis.forces
+    elif forces.orders.size < o.orders:
+        raise InputError("orders", o.orders, f"the forces given have {forces.orders.size} orders")
+    loads = engine_loads(forces, o.rotating)[: o.orders]
+    high = o.speed_max if o.speed_max is not None else model.speed
+    if high <= o.speed_min:
+        raise InputError("speed_min", o.speed_min, "must be below the engine's speed")
+    speeds = np.linspace(o.speed_min, high, o.speed_samples)
+    orders = forces.orders[: o.orders]
+    statics = pm.statics(powertrain, o.mean_torque)
+    modes = pm.modes(powertrain)
+    response = pm.forced_response(powertrain, loads, orders, model.speed, speeds)
+    point = np.array(o.point if o.point is not None else powertrain.cg, dtype=float)
+    result = MountsResult(
+        model.name,
+        model,
+        powertrain,
+        statics,
+        modes,
+        pm.crossings(modes.frequencies, orders, o.speed_min, high),
+        response,
+        point,
+        loads,
+    )
+    result.to_dict()  # checked finite
+    return result
+
+
+def payload(r: MountsResult) -> dict[str, Any]:
+    """The JSON of a mount study without its schema key."""
+    pt, st, md, rs = r.powertrain, r.statics, r.modes, r.response
+    names = [m.name for m in pt.mounts]
+    speeds_rpm = rs.speeds * _RPM
+    point = np.abs(rs.point(pt.cg, r.point))  # (S, K, 3)
+    point_peak = pm.peak_magnitude(rs.point(pt.cg, r.point))
+    orders = []
+    for k, n in enumerate(rs.orders):
+        per_mount: list[dict[str, Any]] = []
+        for i, name in enumerate(names):
+            s = int(np.argmax(rs.mount_peak[:, k, i]))
+            per_mount.append(
+                {
+                    "mount": name,
+                    "force_N": float(rs.mount_peak[s, k, i]),
+                    "speed_rpm": float(speeds_rpm[s]),
+                }
+            )
+        top = max(per_mount, key=lambda e: float(e["force_N"]))
+        s = int(np.argmax(point_peak[:, k]))
+        orders.append(
+            {
+                "order": int(n),
+                "loads_at_engine_speed": dict(
+                    zip(
+                        ("fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm"),
+                        (float(abs(v)) for v in r.loads[k]),
+                        strict=True,
+                    )
+                ),
+                "largest": top,
+                "mounts": per_mount,
+                "point_displacement_m": float(point_peak[s, k]),
+                "point_xyz_m": [float(v) for v in point[s, k]],
+                "point_speed_rpm": float(speeds_rpm[s]),
+            }
+        )
+    return {
+        "engine": {"name": r.name, "speed_rpm": r.model.speed * _RPM},
+        "reference_point_m": list(r.model.moment_point),
+        "powertrain": {
+            "mass_kg": pt.mass,
+            "cg_m": pt.cg,
+            "inertia_kg_m2": pt.inertia,
+            "up": pt.up / np.linalg.norm(pt.up),
+        },
+        "mounts": [
+            {
+                "name": m.name,
+                "position_m": m.position,
+                "stiffness_N_m": {
+                    "compression": m.stiffness[0],
+                    "shear1": m.stiffness[1],
+                    "shear2": m.stiffness[2],
+                },
+                "orientation_deg": np.degrees(m.orientation),
+                "loss_factor": m.loss_factor,
+            }
+            for m in pt.mounts
+        ],
+        "statics": {
+            "mean_torque_Nm": -st.load[4],
+            "cg_displacement_m": st.displacement[:3],
+            "rotation_rad": st.displacement[3:],
+            "mount_loads": [
+                {
+                    "mount": name,
+                    "force_N": st.mount_loads[i],
+                    "axial_N": st.mount_loads_local[i, 0],
+                    "shear1_N": st.mount_loads_local[i, 1],
+                    "shear2_N": st.mount_loads_local[i, 2],
+                }
+                for i, name in enumerate(names)
+            ],
+        },
+        "modes": [
+            {
+                "mode": r_ + 1,
+                "frequency_Hz": md.frequencies[r_],
+                "energy_percent": dict(zip(pm.ENERGY_NAMES, md.energy[r_], strict=True)),
+                "shape": dict(zip(pm.COORDINATES, md.shapes[:, r_], strict=True)),
+            }
+            for r_ in range(6)
+        ],
+        "torque_roll_axis": md.torque_roll_axis,
+        "roll_mode": md.roll_mode + 1,
+        "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
+        "crossings": [
+            {"mode": c.mode + 1, "order": c.order, "speed_rpm": c.speed * _RPM} for c in r.crossings
+        ],
+        "point_m": r.point,
+        "orders": orders,
+        "sweep": {
+            "speed_rpm": speeds_rpm,
+            "mount_force_N": {
+                name: {str(int(n)): rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
+                for i, name in enumerate(names)
+            },
+        },
+    }
+
+
+# --------------------------------------------------------------------------- balancing choices
+def balanced_forces(
+    model: EngineModel,
+    counterweights: CounterweightOptions | None,
+    primary: ShaftOptions | None = None,
+    secondary: ShaftOptions | None = None,
+    orders: int = 4,
+) -> FreeForces:
+    """The free forces and moments an engine leaves with the balancing masses the solver
+    finds for these options (:func:`crankbalance.physics.balance_solver.solve`), as one
+    :class:`FreeForces` the mount study takes (``forces=``).
+
+    The balancing masses (crank counterweights and balance shafts, all on the crank axis as
+    the solver places them) change the forces and the couples; their roll about the
+    reference point is the moment of their forces, :math:`qF` with :math:`q = p_x + ip_z`
+    (zero about a point on the crank axis). The reciprocating roll is the engine's.
+    """
+    from ..physics.balance_solver import batch_of_one, residual_phasors, solve, solver_input
+    from ..physics.balance_types import EngineFailed
+
+    forces = analyze(model, orders=max(orders, 2)).forces
+    inputs = solver_input(model, batch_of_one(forces))
+    try:
+        found = solve(inputs, counterweights, primary, secondary)
+    except EngineFailed as failed:
+        raise failed.error from None
+    rot_f, rot_c, fwd, bwd, cfwd, cbwd = residual_phasors(
+        inputs,
+        found.counterweights,
+        found.rotating_share,
+        found.extra_counterweights,
+        found.primary,
+        found.secondary,
+    )
+    q = complex(model.reference_x, model.reference_z)
+    added_f, added_b = fwd[0] - forces.force_forward, bwd[0] - forces.force_backward
+    roll = forces.roll + q * added_f + np.conj(q * added_b)
+    return FreeForces(
+        orders=forces.orders,
+        force_forward=fwd[0],
+        force_backward=bwd[0],
+        couple_forward=cfwd[0],
+        couple_backward=cbwd[0],
+        rotating_force=complex(rot_f[0]),
+        rotating_couple=complex(rot_c[0]),
+        roll=roll,
+        rotating_roll=complex(q * rot_f[0]),
+    )
+
+
+@dataclass(frozen=True)
+class Choice:
+    """One balancing choice of a comparison at the mounts.
+
+    Attributes
+    ----------
+    label : str
+        Its name in the table.
+    counterweights : CounterweightOptions or None
+        Crank counterweights (None: a bare crank, the rotating masses left free).
+    primary, secondary : ShaftOptions or None
+        Balance shafts of order 1 and 2.
+    """
+
+    label: str
+    counterweights: CounterweightOptions | None
+    primary: ShaftOptions | None = None
+    secondary: ShaftOptions | None = None
+
+
+def compare(
+    engine: EngineLike, settings: MountsOptions, choices: list[Choice]
+) -> list[tuple[str, MountsResult]]:
+    """The mount study of ``engine`` under each balancing choice: one loop over
+    :func:`balanced_forces` and :func:`mounts` (the rotating masses as the balancing leaves
+    them: ``settings.rotating`` is taken as ``bare``, the forces already hold the
+    counterweights).
+
+    Returns
+    -------
+    list of (label, MountsResult)
+    """
+    if not choices:
+        raise InputError("choices", choices, "at least one balancing choice")
+    if len(choices) > MAX_CHOICES:
+        raise InputError("choices", len(choices), f"at most {MAX_CHOICES} balancing choices")
+    spec = spec_of(engine)
+    source: EngineLike = spec if spec is not None else engine
+    model = analyze(source, orders=settings.orders).model
+    bare = settings.replace(rotating="bare")
+    out = []
+    for choice in choices:
+        forces = balanced_forces(
+            model, choice.counterweights, choice.primary, choice.secondary, settings.orders
+        )
+        out.append((choice.label, mounts(source, bare, forces=forces)))
+    return out
+
+
+def comparison_table(results: list[tuple[str, MountsResult]]) -> list[dict[str, Any]]:
+    """One row per choice: the largest mount force of each order over the speed range,
+    the mount and the speed [N], [rpm].
+
+    Parameters
+    ----------
+    results : list of (label, MountsResult)
+        From :func:`compare`.
+
+    Returns
+    -------
+    list of dict
+        ``{"choice", "order_<n>_N", "order_<n>_mount", "order_<n>_rpm", "largest_N"}``.
+    """
+    rows = []
+    for label, result in results:
+        row: dict[str, Any] = {"choice": label}
+        for entry in payload(result)["orders"]:
+            n = entry["order"]
+            row[f"order_{n}_N"] = entry["largest"]["force_N"]
+            row[f"order_{n}_mount"] = entry["largest"]["mount"]
+            row[f"order_{n}_rpm"] = entry["largest"]["speed_rpm"]
+        row["largest_N"] = float(result.response.mount_peak.max())
+        rows.append(row)
+    return rows
