@@ -101,3 +101,13 @@ def test_a_rebalancing_has_its_before_and_after_figure(folder: Path) -> None:
     (figure,) = crankbalance.plot(result)  # a face removal: no drilling plan
     before, after = figure.data
     assert before.y[0] > after.y[0] > 0
+
+
+def test_a_rebalancing_drilled_with_holes_has_its_drilling_plans(folder: Path) -> None:
+    pytest.importorskip("plotly")
+    holes = {"method": "holes", "hole_diameter": "12 mm", "holes": 3, "correction_radius": "40 mm"}
+    result = run("rebalance", None, {"parts": "crf250r_rebalance.toml", **holes})
+    unbalance, *plans = crankbalance.plot(result)
+    assert len(plans) == 2  # one per target
+    assert all("Drilling plan" in str(plan.layout.title.text) for plan in plans)
+    assert "(the HTML display has 1 more verdict)" in repr(result)

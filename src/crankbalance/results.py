@@ -453,7 +453,8 @@ def summary_text(summary: Summary) -> str:
         lines += _text_table(summary.tables[0])
     rest = []
     if len(summary.verdicts) > REPR_VERDICTS:
-        rest.append(f"{len(summary.verdicts) - REPR_VERDICTS} more verdicts")
+        more = len(summary.verdicts) - REPR_VERDICTS
+        rest.append(f"{more} more verdict{'s' if more > 1 else ''}")
     if len(summary.tables) > 1:
         rest.append("tables: " + ", ".join(t.caption for t in summary.tables[1:]))
     if summary.notes:
