@@ -12,7 +12,7 @@ import sys
 import pytest
 
 import crankbalance
-from crankbalance.results import ResultMixin, key_label, summarize
+from crankbalance.results import REPR_LINES, ResultMixin, key_label, summarize
 from crankbalance.studies.registry import STUDIES
 
 
@@ -84,7 +84,7 @@ def test_a_notebook_session() -> None:
     analysis = crankbalance.analyze("inline4")
     shown = _display(analysis)
     text = shown["text/plain"]
-    assert len(text.splitlines()) <= 8 and len(text) < 1000, text
+    assert len(text.splitlines()) <= REPR_LINES and len(text) < 1500, text
     assert text.startswith("Analysis: Inline-4, flat crank")
     assert "free force 12804 N (order 2), free moment 0 N·m" in text
     assert "engine · speed [rpm] 6000" in text
@@ -96,7 +96,7 @@ def test_a_notebook_session() -> None:
     study = crankbalance.balance_engine("v8-crossplane")
     shown = _display(study)
     assert shown["text/plain"].startswith("BalanceStudy: V8 90 deg, crossplane crank")
-    assert len(shown["text/plain"].splitlines()) <= 10
+    assert len(shown["text/plain"].splitlines()) <= REPR_LINES
     assert "unbalanced: order4: force 489.9 N, moment 0 N·m" in shown["text/plain"]
     assert "<caption>components</caption>" in shown["text/html"]
     assert "<th>force after [N]</th>" in shown["text/html"]

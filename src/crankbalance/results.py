@@ -262,6 +262,7 @@ JSON_SUFFIXES: tuple[tuple[str, str], ...] = (
     ("_kg_m", "unbalance"),
     ("_rad_s2", "angular_acceleration"),
     ("_rad_s", "speed"),
+    ("_rad", "angle"),
     ("_m_s", "velocity"),
     ("_percent", "percent"),
     ("_deg", "angle_deg"),
@@ -281,6 +282,23 @@ DISPLAY_ROWS = 12
 DISPLAY_ITEMS = 8
 #: values (name and value) the ``repr`` of a result shows, after its verdicts
 REPR_VALUES = 6
+#: verdicts the ``repr`` of a result shows (the rest counted; the HTML display has them all)
+REPR_VERDICTS = 3
+#: values a line of the ``repr`` of a result shows
+REPR_VALUES_PER_LINE = 3
+#: rows and columns of the one table the ``repr`` of a result shows
+REPR_ROWS = 5
+REPR_COLUMNS = 6
+#: characters of a line of the ``repr`` (a longer line is cut with "…")
+REPR_WIDTH = 110
+#: a text of a result longer than this is a note (shown in the HTML display under "notes",
+#: counted in the ``repr``), not a verdict
+NOTE_LENGTH = 160
+#: a list of texts each at most this long is a list of names, shown in one line; a list
+#: with a longer text is a list of sentences, one line each
+WORD_LENGTH = 24
+#: lines of the ``repr`` of a result at most: title, verdicts, values, one table, the rest
+REPR_LINES = 15
 
 
 def key_label(key: str) -> tuple[str, str]:
@@ -325,12 +343,14 @@ class Table:
 @dataclasses.dataclass(frozen=True)
 class Summary:
     """What a result shows in a notebook: a title, its verdicts (sentences), its values
-    (label with unit, value) and its tables."""
+    (label with unit, value), its tables (the first is the one the ``repr`` shows) and its
+    notes (definitions and assumptions: long texts)."""
 
     title: str
     verdicts: tuple[str, ...] = ()
     values: tuple[tuple[str, str], ...] = ()
     tables: tuple[Table, ...] = ()
+    notes: tuple[str, ...] = ()
 
 
 def _is_row(value: Any) -> bool:
@@ -349,13 +369,21 @@ def _table(caption: str, rows: list[dict[str, Any]]) -> Table:
     return Table(caption, tuple(label for label, _ in labels), body, more)
 
 
-def summarize(title: str, data: dict[str, Any], verdicts: tuple[str, ...] = ()) -> Summary:
-    """The display of a result's JSON (``to_dict()``): its strings and lists of strings as
-    verdicts, its numbers (those of its tables too, one level down) as values with their
-    units, its lists of rows as tables; the ``schema`` key is left out."""
+def summarize(
+    title: str, data: dict[str, Any], verdicts: tuple[str, ...] = (), first: str = ""
+) -> Summary:
+    """The display of a result's JSON (``to_dict()``): its short top-level texts (a list of
+    names, :data:`WORD_LENGTH`, as one line) as verdicts after ``verdicts``, its other
+    texts (nested, or longer than :data:`NOTE_LENGTH`) as notes, its numbers (those of its
+    tables too, two levels down) as values with their units, its lists of rows as tables,
+    the one captioned ``first`` first; the ``schema`` key is left out."""
     said = list(verdicts)
+    notes: list[str] = []
     values: list[tuple[str, str]] = []
     tables: list[Table] = []
+
+    def text(nested: bool, line: str) -> None:
+        (notes if nested or len(line) > NOTE_LENGTH else said).append(line)
 
     def walk(prefix: str, table: dict[str, Any], depth: int) -> None:
         for key, value in table.items():
@@ -364,9 +392,13 @@ def summarize(title: str, data: dict[str, Any], verdicts: tuple[str, ...] = ()) 
             label, kind = key_label(key)
             name = f"{prefix}{label}"
             if isinstance(value, str) and (not prefix or len(value) > 40):
-                said.append(value if not prefix else f"{name}: {value}")
+                text(bool(prefix), f"{name}: {value}" if prefix else value)
             elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
-                said.extend(f"{name}: {v}" for v in value)
+                if max(map(len, value)) <= WORD_LENGTH:  # names: one line
+                    text(bool(prefix), f"{name}: {shown(value)}")
+                else:  # sentences: one each
+                    for item in value:
+                        text(bool(prefix), f"{name}: {item}")
             elif isinstance(value, list) and value and _is_row(value[0]):
                 tables.append(_table(name, [v for v in value if _is_row(v)]))
             elif _is_row(value):
@@ -376,25 +408,66 @@ def summarize(title: str, data: dict[str, Any], verdicts: tuple[str, ...] = ()) 
                 values.append((name, shown(value, kind)))
 
     walk("", data, 0)
-    return Summary(title, tuple(said), tuple(values), tuple(tables))
+    tables.sort(key=lambda t: t.caption != first)
+    return Summary(title, tuple(said), tuple(values), tuple(tables), tuple(notes))
+
+
+def _cut(line: str, width: int = REPR_WIDTH) -> str:
+    return line if len(line) <= width else line[: width - 1] + "…"
+
+
+def _text_table(table: Table) -> list[str]:
+    """A table of a ``repr``: its caption, its header and its first :data:`REPR_ROWS` rows
+    of :data:`REPR_COLUMNS` columns, aligned, and a line counting the rows left out."""
+    columns = min(len(table.header), REPR_COLUMNS)
+    rows = [table.header[:columns], *(row[:columns] for row in table.rows[:REPR_ROWS])]
+    rows = [tuple(_cut(cell, 28) for cell in row) for row in rows]
+    widths = [max(len(row[k]) for row in rows) for k in range(columns)]
+    caption = f"{table.caption}:"
+    if columns < len(table.header):
+        caption += f" (first {columns} of {len(table.header)} columns)"
+    lines = [caption]
+    lines += [
+        _cut("  " + "  ".join(c.rjust(w) for c, w in zip(row, widths, strict=True))) for row in rows
+    ]
+    more = len(table.rows) - REPR_ROWS + table.more
+    if more > 0:
+        lines.append(f"  … {more} more rows")
+    return lines
 
 
 def summary_text(summary: Summary) -> str:
-    """The ``repr`` of a result: its title, its verdicts and its first values
-    (:data:`REPR_VALUES`), and the names of its tables."""
-    lines = [summary.title, *summary.verdicts]
+    """The ``repr`` of a result, at most :data:`REPR_LINES` lines: its title, its first
+    verdicts (:data:`REPR_VERDICTS`), its first values (:data:`REPR_VALUES`, in lines of
+    :data:`REPR_VALUES_PER_LINE`),
+    its first table (:data:`REPR_ROWS` rows) and a line naming what the HTML display
+    shows besides (its other tables, the notes). A verdict is shown whole (a short text of
+    the JSON, at most :data:`NOTE_LENGTH` characters, or a sentence of the result's
+    headline); the other lines are cut at :data:`REPR_WIDTH` characters."""
+    lines = [summary.title, *summary.verdicts[:REPR_VERDICTS]]
     first = summary.values[:REPR_VALUES]
-    if first:
-        lines.append("; ".join(f"{label} {value}" for label, value in first))
+    for at in range(0, len(first), REPR_VALUES_PER_LINE):
+        shown = first[at : at + REPR_VALUES_PER_LINE]
+        lines.append(_cut("; ".join(f"{label} {value}" for label, value in shown)))
     if summary.tables:
-        names = ", ".join(t.caption for t in summary.tables)
-        lines.append(f"tables: {names} (.to_dict() has every value; crankbalance.plot: figures)")
+        lines += _text_table(summary.tables[0])
+    rest = []
+    if len(summary.verdicts) > REPR_VERDICTS:
+        more = len(summary.verdicts) - REPR_VERDICTS
+        rest.append(f"{more} more verdict{'s' if more > 1 else ''}")
+    if len(summary.tables) > 1:
+        rest.append("tables: " + ", ".join(t.caption for t in summary.tables[1:]))
+    if summary.notes:
+        rest.append(f"{len(summary.notes)} notes" if len(summary.notes) > 1 else "1 note")
+    if rest:
+        lines.append(_cut(f"(the HTML display has {'; '.join(rest)})"))
     return "\n".join(lines)
 
 
 def summary_html(summary: Summary) -> str:
     """The HTML display of a result (Jupyter's ``_repr_html_``): its title, its verdicts,
-    a table of its values and its tables, units in the column labels."""
+    its first table, a table of its values, its other tables (units in the column labels)
+    and its notes, folded."""
     from html import escape
 
     def table(caption: str, header: tuple[str, ...], rows: Any, more: int = 0) -> str:
@@ -409,13 +482,18 @@ def summary_html(summary: Summary) -> str:
             f"<tbody>{body}</tbody></table>"
         )
 
+    tables = [table(t.caption, t.header, t.rows, t.more) for t in summary.tables]
     parts = [f"<div class='crankbalance-result'><h4>{escape(summary.title)}</h4>"]
     if summary.verdicts:
         items = "".join(f"<li>{escape(v)}</li>" for v in summary.verdicts)
         parts.append(f"<ul>{items}</ul>")
+    parts += tables[:1]
     if summary.values:
         parts.append(table("values", ("quantity", "value"), summary.values))
-    parts += [table(t.caption, t.header, t.rows, t.more) for t in summary.tables]
+    parts += tables[1:]
+    if summary.notes:
+        items = "".join(f"<li>{escape(v)}</li>" for v in summary.notes)
+        parts.append(f"<details><summary>notes</summary><ul>{items}</ul></details>")
     parts.append("</div>")
     return "".join(parts)
 
@@ -425,9 +503,9 @@ class ResultMixin:
     study result (a dataclass with ``repr=False``) displays itself in a notebook.
 
     The display is driven by ``to_dict()`` (:func:`summarize`: units from the keys'
-    suffixes, round-off as 0) with the verdicts of :meth:`headline`: ``repr(result)`` is a
-    few lines, ``result._repr_html_()`` the tables. Its figures are
-    :func:`crankbalance.plot` of it.
+    suffixes, round-off as 0) with the verdicts of :meth:`headline` and the table of
+    :meth:`main_table` first: ``repr(result)`` is at most :data:`REPR_LINES` lines,
+    ``result._repr_html_()`` the tables. Its figures are :func:`crankbalance.plot` of it.
     """
 
     def to_dict(self) -> dict[str, Any]:
@@ -440,13 +518,18 @@ class ResultMixin:
         strings of ``to_dict()`` are shown)."""
         return ()
 
+    def main_table(self) -> str:
+        """The caption of the table the ``repr`` shows and the HTML display puts first
+        (by default the first of ``to_dict()``)."""
+        return ""
+
     def display_summary(self) -> Summary:
         """What the result shows in a notebook (:func:`summarize` of ``to_dict()``)."""
         data = self.to_dict()
         engine = data.get("engine")
         name = engine.get("name") if isinstance(engine, dict) else None
         title = type(self).__name__ + (f": {name}" if isinstance(name, str) else "")
-        return summarize(title, data, self.headline())
+        return summarize(title, data, self.headline(), self.main_table())
 
     def __repr__(self) -> str:
         return summary_text(self.display_summary())

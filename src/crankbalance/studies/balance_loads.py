@@ -323,6 +323,10 @@ class SweepStudy(ResultMixin):
         """The cases weighed (:func:`summarize`) with the sweep's crank model."""
         return summarize(self.cases, self.options.crank_model)
 
+    def headline(self) -> tuple[str, ...]:
+        """The suggested case and the Pareto set, in words (:meth:`summary`)."""
+        return self.summary().text
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.bearings-sweep/1`` (docs/json.md)."""
         first = self.cases[0].study

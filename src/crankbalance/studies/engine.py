@@ -77,6 +77,10 @@ class Analysis(ResultMixin):
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
+    def main_table(self) -> str:
+        """The free forces, order by order."""
+        return "free forces"
+
     def headline(self) -> tuple[str, ...]:
         """The largest free force and moment of the reciprocating masses (with their
         orders) and those of the rotating masses, in words with units."""
@@ -354,6 +358,10 @@ class BalanceStudy(ResultMixin):
     model: EngineModel
     result: BalanceResult
     verification: Verification | None = None  # when asked for
+
+    def main_table(self) -> str:
+        """Each component's free force and moment before and after balancing."""
+        return "components"
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.balance/2`` (docs/json.md)."""

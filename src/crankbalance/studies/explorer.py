@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ResultMixin, require_finite, to_jsonable
+from ..results import ResultMixin, key_label, require_finite, shown, to_jsonable
 from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
 from .explore import Keep, RunResult, Sample, progress_line, run
@@ -169,6 +169,28 @@ class ExploreResult(ResultMixin):
             "pareto": int(result.pareto["index"].size) if result.pareto else 0,
             "seconds": result.seconds,
         }
+
+    def headline(self) -> tuple[str, ...]:
+        """What was looked at, and the best candidate by the top-N key."""
+        c = self.counts()
+        said = (
+            f"{c['orders']} firing orders, {c['distinct_engines']} distinct engines, "
+            f"{c['kept_by_filter']} kept, {c['pareto']} in the Pareto set of "
+            + ", ".join(key_label(name)[0] for name in self.objectives),
+        )
+        top = self.top()
+        if self.key is None or not top:
+            return said
+        label, kind = key_label(self.key)
+        best = top[0]
+        return (
+            *said,
+            f"best by {label}: firing order {best['firing_order']} ({shown(best[self.key], kind)})",
+        )
+
+    def main_table(self) -> str:
+        """The top-N list."""
+        return "top"
 
     def top(self) -> list[dict[str, Any]]:
         """The top-N rows."""

@@ -54,6 +54,8 @@ class RebalanceStudy(ResultMixin):
         Where it comes from ("given", or the ISO grade, rotor mass and speed).
     cases : list of RebalanceResult
         One per target, in the order given.
+    crank_radius : float, optional
+        The crank radius [m] (the drilling plan's figure draws the crankpin with it).
     """
 
     name: str
@@ -62,6 +64,7 @@ class RebalanceStudy(ResultMixin):
     tolerance: float
     tolerance_source: str
     cases: list[RebalanceResult]
+    crank_radius: float | None = None
 
 
 def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
@@ -208,4 +211,5 @@ def rebalance_parts(
         tolerance=tolerance,
         tolerance_source=source,
         cases=cases,
+        crank_radius=parts.crank_radius,
     )

@@ -39,7 +39,7 @@ from ..physics.shop.planes import (
     reading_unbalance,
 )
 from ..physics.shop.scatter import PartScatter, ScatterStudy, scatter_study
-from ..results import ResultMixin, to_jsonable
+from ..results import ResultMixin, number, to_jsonable
 from ..schema.settings import ShopOptions
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -632,6 +632,44 @@ class ShopResult(ResultMixin):
     schema: str
     result: PartsStudy | BobWeights | HolePlan | ScatterStudy
     parts: PartsStudy | None = None
+
+    def headline(self) -> tuple[str, ...]:
+        """The matching's spreads and the bob-weights, the plan's verdict, or the scatter's
+        residual per plane, in words with units."""
+        r = self.result
+
+        def grams(values: Any) -> str:
+            return ", ".join(number(float(v) * 1e3) for v in values) + " g"
+
+        if isinstance(r, PartsStudy):
+            m = r.matching
+            return (
+                f"matched ({m.method}{', proven optimal' if m.optimal else ''}): spread "
+                f"{number(m.reciprocating_spread * 1e3)} g reciprocating, "
+                f"{number(m.rotating_spread * 1e3)} g rotating; "
+                f"{number(m.removed_total * 1e3)} g to machine off to even the sets",
+                f"bob-weights per crankpin: {grams(r.bob_weights.bob_weight)}",
+            )
+        if isinstance(r, BobWeights):
+            return (
+                f"bob-weights per crankpin ({number(r.fraction * 100)} % of the "
+                f"reciprocating): {grams(r.bob_weight)}",
+            )
+        if isinstance(r, HolePlan):
+            verdict = "within" if r.check.passed else "NOT within"
+            return (f"residual after the holes {verdict} {r.grade} in every plane",)
+        return (
+            f"{r.samples} engines drawn; residual unbalance [g·mm] of the correction planes:",
+            *(
+                f"plane {k}: mean {number(r.mean[k - 1] * 1e6)}, maximum "
+                f"{number(r.maximum[k - 1] * 1e6)}"
+                for k in (1, 2)
+            ),
+        )
+
+    def main_table(self) -> str:
+        """The holes of a plan (the other results' first table)."""
+        return "result · holes"
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract of the schema: ``{"schema", "result"}``, every key with its

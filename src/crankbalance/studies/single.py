@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import InputError
 from ..physics import single_cylinder as sc
 from ..physics import tolerance as tl
-from ..results import ResultMixin, require_finite, to_jsonable
+from ..results import ResultMixin, number, require_finite, to_jsonable
 from ..schema.settings import (
     BalanceFactorOptions,
     RebalancePartsOptions,
@@ -250,6 +250,18 @@ class RebalanceResult(ResultMixin):
     (:class:`~crankbalance.studies.rebalance.RebalanceStudy`)."""
 
     study: RebalanceStudy
+
+    def headline(self) -> tuple[str, ...]:
+        """Per target: the balance factor reached, the residual against the tolerance."""
+        study = self.study
+        return tuple(
+            f"target {number(c.target_balance_factor)}: balance factor "
+            f"{number(c.achieved_balance_factor)} reached, residual "
+            f"{number(abs(c.residual) * 1e6)} g·mm "
+            f"{'within' if c.passed else 'OVER'} the tolerance "
+            f"{number(study.tolerance * 1e6)} g·mm ({c.status})"
+            for c in study.cases
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.rebalance/2``."""
@@ -535,6 +547,25 @@ class ToleranceResult(ResultMixin):
     permissible: float = 0.0
     planes: tl.PlaneAllocation | None = None
     verdict: tl.ToleranceVerdict | None = None
+
+    def headline(self) -> tuple[str, ...]:
+        """The permissible unbalance of the grade, rotor mass and speed, and the verdict on
+        a measured residual."""
+        if self.grade is None:
+            return (f"{len(self.grades)} balance grades of ISO 21940-11",)
+        said = (
+            f"permissible unbalance {number(self.permissible * 1e6)} g·mm "
+            f"({self.grade.name}, {number(self.rotor_mass)} kg, "
+            f"{number(self.speed * 30 / math.pi)} rpm)",
+        )
+        if self.verdict is None:
+            return said
+        v = self.verdict
+        return (
+            *said,
+            f"measured residual {number(v.residual * 1e6)} g·mm: "
+            f"{'within' if v.passed else 'OVER'} the grade ({number(v.ratio * 100)} %)",
+        )
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.tolerance/2`` (``crankbalance.grades/2`` for

@@ -58,6 +58,7 @@ from .shop import hole_plan
 from .single import (
     balance_factor_sweep,
     drilling_plan,
+    rebalance_unbalance,
     single_cylinder_forces,
     single_cylinder_polar,
 )
@@ -85,6 +86,7 @@ __all__ = [
     "pareto_front",
     "plot",
     "polar_figure",
+    "rebalance_unbalance",
     "residuals_bar",
     "sensitivity_figure",
     "shaft_response_figure",

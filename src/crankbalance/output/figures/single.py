@@ -8,6 +8,7 @@ Public functions
 - ``single_cylinder_polar(study) -> Figure``
 - ``balance_factor_sweep(study) -> Figure``
 - ``drilling_plan(result, crank_radius) -> Figure``  (physics.rebalancing.RebalanceResult)
+- ``rebalance_unbalance(study) -> Figure``  (studies.rebalance.RebalanceStudy)
 """
 
 from __future__ import annotations
@@ -26,6 +27,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ...physics.rebalancing import DrilledHoles, RebalanceResult
     from ...physics.single_cylinder import BalanceFactorStudy
+    from ...studies.rebalance import RebalanceStudy
 
 
 def single_cylinder_forces(study: BalanceFactorStudy) -> go.Figure:
@@ -247,3 +249,31 @@ def drilling_plan(result: RebalanceResult, crank_radius: float) -> go.Figure:
         else "no hole needed"
     )
     return web_drawing(fig, 1.15 * max(outer, r), figure_title("Drilling plan", note=what))
+
+
+def rebalance_unbalance(study: RebalanceStudy) -> go.Figure:
+    """The unbalance of a rebalancing before and after its correction, per target balance
+    factor: the unbalance the new parts leave (to correct) and the residual after the
+    correction, against the tolerance [g·mm]."""
+    go = plotly_go()
+    targets = [f"target {case.target_balance_factor:.4g}" for case in study.cases]
+    fig = go.Figure()
+    for name, values, color in (
+        ("before: unbalance to correct", [c.unbalance for c in study.cases], COLORS["before"]),
+        ("after: residual", [c.residual for c in study.cases], COLORS["after"]),
+    ):
+        grams = [abs(v) * 1e6 for v in values]
+        fig.add_trace(go.Bar(x=targets, y=grams, name=name, marker={"color": color}))
+    fig.add_hline(
+        y=study.tolerance * 1e6,
+        line={"dash": "dash", "color": COLORS["total"]},
+        annotation_text=f"tolerance {study.tolerance * 1e6:.4g} g·mm",
+    )
+    fig.update_yaxes(title_text="unbalance [g·mm]", rangemode="tozero")
+    fig.update_layout(
+        template=TEMPLATE,
+        barmode="group",
+        title=figure_title("Rebalancing: unbalance before and after", note=study.name),
+        legend={"orientation": "h", "y": -0.2},
+    )
+    return fig

@@ -11,16 +11,59 @@ from .balancing import residuals_bar
 from .counterweight import counterweight_profile, pareto_front
 from .crank3d import crank_3d
 from .engine import curves_figure, orders_bar, polar_figure
+from .explore import explore_candidate, explore_points, explore_scatter
 from .loads import bearing_loads_figure, bearing_sweep_figure
 from .mounts import mounts_figure
-from .performance import engine_torque_figure, sensitivity_figure
+from .performance import bench_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
 from .shop import hole_plan
-from .single import balance_factor_sweep, single_cylinder_forces, single_cylinder_polar
+from .single import (
+    balance_factor_sweep,
+    drilling_plan,
+    rebalance_unbalance,
+    single_cylinder_forces,
+    single_cylinder_polar,
+)
 from .torsional import torsional_figure
 
-#: a study result's class name -> the builders of its figures (each takes the result and
-#: gives one figure or none); a result of another class has no figure
+
+def _drilling_plans(study: Any) -> list[Any]:
+    """The drilling plan of every case of a rebalancing drilled with holes (a face removal
+    has no plan to draw)."""
+    from ...physics.rebalancing import DrilledHoles
+
+    if study.crank_radius is None:
+        return []
+    return [
+        drilling_plan(case, study.crank_radius)
+        for case in study.cases
+        if isinstance(case.correction, DrilledHoles)
+    ]
+
+
+def _explore_scatter(result: Any) -> Any:
+    """The candidates over the first two objectives, the Pareto set highlighted (the
+    figure of ``crankbalance explore --plot``): the rows of the run's figure when it kept
+    them (``figure_points``), else its top-N and Pareto set."""
+    if len(result.objectives) < 2:
+        return None
+    run = result.figure or result.run
+    shown = explore_points(run.top, run.pareto)
+    x, y = result.objectives[0], result.objectives[1]
+    return explore_scatter(shown, run.pareto, x, y, total=run.rows)
+
+
+def _explore_best(result: Any) -> Any:
+    """The free forces and moments of the best candidate by the top-N key."""
+    top = result.run.top
+    if not top or not len(next(iter(top.values()))):
+        return None
+    return explore_candidate({name: column[:1] for name, column in top.items()})
+
+
+#: a study result's figure key (:func:`figure_key`: its class name, a shop result's with
+#: the class of what it holds) -> the builders of its figures (each takes the result and
+#: gives one figure, a list of figures, or none)
 FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     "Analysis": (
         orders_bar,
@@ -35,19 +78,42 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
         lambda r: None if r.study is None else single_cylinder_forces(r.study),
         lambda r: None if r.study is None else single_cylinder_polar(r.study),
     ),
+    "RebalanceResult": (lambda r: rebalance_unbalance(r.study), lambda r: _drilling_plans(r.study)),
     "OptimizeResult": (lambda r: pareto_front(r.optimum),),
     "DesignResult": (lambda r: counterweight_profile(r.design),),
+    "PlacementResult": (lambda r: [shaft_study(s) for s in r.studies],),
     "CheckResult": (lambda r: shaft_response_figure(r.response, r.design),),
+    "BenchStudy": (lambda r: [bench_figure(run) for run in r.runs],),
     "CycleStudy": (lambda r: engine_torque_figure(r.result),),
     "SensitivityStudy": (lambda r: sensitivity_figure(r.result),),
     "BearingStudy": (bearing_loads_figure,),
     "SweepStudy": (bearing_sweep_figure,),
     "TorsionalResult": (lambda r: torsional_figure(r.study),),
     "MountsResult": (mounts_figure,),
-    "ShopResult": (
-        lambda r: hole_plan(r.result) if type(r.result).__name__ == "HolePlan" else None,
-    ),
+    "ExploreResult": (_explore_scatter, _explore_best),
+    "ShopResult.HolePlan": (lambda r: hole_plan(r.result),),
 }
+
+#: the results that have no figure, by figure key, and why (:func:`plot` says so)
+NO_FIGURES: dict[str, str] = {
+    "ToleranceResult": "the permissible unbalance of a grade is one number (its display)",
+    "FrictionResult": "the friction torque and power of one load case are a table (its "
+    "display); the bench study draws them over time",
+    "ShopResult.PartsStudy": "the matched sets are a table (its display, the shop sheet of "
+    "crankbalance shop sheet)",
+    "ShopResult.BobWeights": "the bob-weights are one number per crankpin (its display)",
+    "ShopResult.ScatterStudy": "the scatter's distribution is summed up in its quantiles "
+    "and histograms (its display and to_dict())",
+}
+
+
+def figure_key(result: Any) -> str:
+    """The key of ``result`` in :data:`FIGURES` and :data:`NO_FIGURES`: its class name, a
+    shop result's with the class of what it holds (``ShopResult.HolePlan``)."""
+    name = type(result).__name__
+    if name == "ShopResult":
+        return f"{name}.{type(result.result).__name__}"
+    return name
 
 
 def plot(result: Any) -> list[Any]:
@@ -59,19 +125,30 @@ def plot(result: Any) -> list[Any]:
     result : study result
         What a study returned: :class:`~crankbalance.studies.engine.Analysis` (orders,
         force and moment curves, polar diagram, 3-D crank), a balancing study (residuals,
-        3-D crank with its counterweights), a balance-factor study, a counterweight
-        optimisation or design, a shaft check or placement, a cycle, a sensitivity, the
-        bearing loads or their sweep, a torsional study, a mount study, a hole plan.
+        3-D crank with its counterweights), a balance-factor study, a rebalancing (the
+        drilling plan of each target), a counterweight optimisation or design, a shaft
+        check or placement, a bench study (one figure per speed), a cycle, a sensitivity,
+        the bearing loads or their sweep, a torsional study, an explorer run (the
+        candidates over two objectives with the Pareto set, the best candidate's orders),
+        a mount study, a shop's hole plan.
 
     Returns
     -------
     list of plotly.graph_objects.Figure
         The result's figures.
+
+    Raises
+    ------
+    InputError
+        For a result without figures, saying why (:data:`NO_FIGURES`), or not a study's.
     """
-    name = type(result).__name__
-    if name == "PlacementResult":
-        return [shaft_study(s) for s in result.studies]
-    if name not in FIGURES:
-        raise InputError("result", name, "a study result with figures: " + ", ".join(FIGURES))
-    figures = (build(result) for build in FIGURES[name])
-    return [f for f in figures if f is not None]
+    key = figure_key(result)
+    if key in NO_FIGURES:
+        raise InputError("result", key, f"has no figure: {NO_FIGURES[key]}")
+    if key not in FIGURES:
+        raise InputError("result", key, "a study result with figures: " + ", ".join(FIGURES))
+    figures: list[Any] = []
+    for build in FIGURES[key]:
+        made = build(result)
+        figures += made if isinstance(made, list) else [] if made is None else [made]
+    return figures
