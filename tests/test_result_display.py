@@ -6,6 +6,7 @@ runs on a case of tests/test_study_contract.py (its cheap settings and example f
 
 from __future__ import annotations
 
+import math
 import shutil
 from pathlib import Path
 
@@ -13,7 +14,7 @@ import pytest
 
 import crankbalance
 from crankbalance.output.figures.study import FIGURES, NO_FIGURES, figure_key
-from crankbalance.results import REPR_LINES, REPR_WIDTH
+from crankbalance.results import REPR_LINES, REPR_WIDTH, key_label, shown
 from crankbalance.studies.registry import STUDIES, run
 
 from .conftest import hang_guard
@@ -75,7 +76,11 @@ def test_the_explorer_shows_its_verdicts_its_top_table_and_figures(folder: Path)
     text = repr(result)
     assert "firing orders" in text and "distinct engines" in text and "Pareto set" in text
     assert "best by residual M [N·m]: firing order 1-2-4-3 (0)" in text, text
-    assert "top:" in text and "throw angle [°]" in text
+    # the top table's first columns are the ones it was ranked by, not its index,
+    # equivalents and throw angles
+    header = text.splitlines()[text.splitlines().index("top: (first 6 of 78 columns)") + 1]
+    assert header.split() == "firing order residual M [N·m] F1 [N] M1 [N·m] F2 [N] M2 [N·m]".split()
+    assert "throw angle" not in text and "equivalents" not in text
     assert "torsional excitation" not in text
     html = result._repr_html_()
     assert html.index("<caption>top</caption>") < html.index("<caption>values</caption>")
@@ -111,3 +116,24 @@ def test_a_rebalancing_drilled_with_holes_has_its_drilling_plans(folder: Path) -
     assert len(plans) == 2  # one per target
     assert all("Drilling plan" in str(plan.layout.title.text) for plan in plans)
     assert "(the HTML display has 1 more verdict)" in repr(result)
+
+
+def test_a_crank_position_is_shown_in_0_to_360_a_signed_angle_keeps_its_sign(
+    folder: Path,
+) -> None:
+    """The bearings' peak-load crank angles were shown as -171° and -351° (the load's
+    angle grid runs over [-360°, 360°)): a position of the crank is shown in [0, 360) as
+    the text output has it; a twist or a deviation keeps its sign."""
+    result = run("bearings", "inline4", {})
+    rows = result.to_dict()["models"]["determinate"]["bearings"]
+    radians = [row["peak_load_crank_angle_rad"] for row in rows]
+    assert min(radians) < 0  # the case this is about
+    table = next(
+        t for t in result.display_summary().tables if t.caption == "models · determinate · bearings"
+    )
+    at = table.header.index("peak load crank angle [°]")
+    shown_degrees = [float(row[at]) for row in table.rows]
+    assert all(0 <= d < 360 for d in shown_degrees)
+    assert shown_degrees == pytest.approx([math.degrees(r) % 360 for r in radians], abs=0.5)
+    label, kind = key_label("crank_twist_rad")
+    assert label == "crank twist [°]" and shown(-0.01, kind) == "-0.573"

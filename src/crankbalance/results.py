@@ -44,6 +44,7 @@ UNITS: dict[str, tuple[str, float]] = {
     "frequency": ("Hz", 1.0),
     "angle": ("°", 180.0 / math.pi),
     "angle_deg": ("°", 1.0),
+    "crank_angle": ("°", 180.0 / math.pi),
     "stress": ("MPa", 1e-6),
     "pressure": ("bar", 1e-5),
     "power": ("W", 1.0),
@@ -276,6 +277,11 @@ JSON_SUFFIXES: tuple[tuple[str, str], ...] = (
     ("_m", "length"),
     ("_s", "time"),
 )
+#: the JSON keys (in radians) whose value is a position of the crank, which a display
+#: shows in [0, 360) like the text output (:func:`angle`); other angles in radians keep
+#: their sign, which says a direction (a deviation, a twist, a rotation, an ignition
+#: before top dead centre) or their range (a firing angle of a four-stroke in [0, 720))
+CRANK_ANGLES = ("peak_load_crank_angle_rad", "throw_angle_rad")
 #: rows of a table a display shows (the rest counted); ``to_dict()`` has them all
 DISPLAY_ROWS = 12
 #: numbers of a list a display shows (the rest counted)
@@ -303,7 +309,10 @@ REPR_LINES = 15
 
 def key_label(key: str) -> tuple[str, str]:
     """A JSON key as a display names it, and its kind of :data:`UNITS` (``""`` for a value
-    without unit): ``amplitude_N`` -> ``("amplitude [N]", "force")``."""
+    without unit): ``amplitude_N`` -> ``("amplitude [N]", "force")``; a key of
+    :data:`CRANK_ANGLES` is of the kind ``crank_angle``."""
+    if key in CRANK_ANGLES:
+        return f"{key[: -len('_rad')].replace('_', ' ')} [°]", "crank_angle"
     for suffix, kind in JSON_SUFFIXES:
         if key.endswith(suffix) and len(key) > len(suffix):
             return f"{key[: -len(suffix)].replace('_', ' ')} [{UNITS[kind][0]}]", kind
@@ -313,13 +322,15 @@ def key_label(key: str) -> tuple[str, str]:
 def shown(value: Any, kind: str = "") -> str:
     """A JSON value as a display shows it: a number in the unit of ``kind`` (the SI value
     times its factor of :data:`UNITS`, 4 significant digits, round-off as 0), a list of up
-    to :data:`DISPLAY_ITEMS` of them, ``yes``/``no``, ``-`` for none."""
+    to :data:`DISPLAY_ITEMS` of them, ``yes``/``no``, ``-`` for none; a position of the
+    crank (kind ``crank_angle``) in [0, 360)."""
     if value is None:
         return "-"
     if isinstance(value, bool):
         return "yes" if value else "no"
     if isinstance(value, int | float):
-        return number(float(value) * (UNITS[kind][1] if kind else 1.0))
+        converted = float(value) * (UNITS[kind][1] if kind else 1.0)
+        return number(angle(converted) if kind == "crank_angle" else converted)
     if isinstance(value, list):
         items = [shown(v, kind) for v in value[:DISPLAY_ITEMS]]
         more = len(value) - DISPLAY_ITEMS
@@ -357,9 +368,11 @@ def _is_row(value: Any) -> bool:
     return isinstance(value, dict) and set(value) != {"re", "im"}
 
 
-def _table(caption: str, rows: list[dict[str, Any]]) -> Table:
+def _table(caption: str, rows: list[dict[str, Any]], columns: tuple[str, ...] = ()) -> Table:
+    """The table of ``rows``, its ``columns`` (JSON keys it has) first."""
     keys = [k for k, v in rows[0].items() if not (isinstance(v, list) and v and _is_row(v[0]))]
     keys = [k for k in keys if not _is_row(rows[0][k])]
+    keys = [k for k in dict.fromkeys(columns) if k in keys] + [k for k in keys if k not in columns]
     labels = [key_label(k) for k in keys]
     body = tuple(
         tuple(shown(row.get(k), kind) for k, (_, kind) in zip(keys, labels, strict=True))
@@ -370,13 +383,18 @@ def _table(caption: str, rows: list[dict[str, Any]]) -> Table:
 
 
 def summarize(
-    title: str, data: dict[str, Any], verdicts: tuple[str, ...] = (), first: str = ""
+    title: str,
+    data: dict[str, Any],
+    verdicts: tuple[str, ...] = (),
+    first: str = "",
+    columns: tuple[str, ...] = (),
 ) -> Summary:
     """The display of a result's JSON (``to_dict()``): its short top-level texts (a list of
     names, :data:`WORD_LENGTH`, as one line) as verdicts after ``verdicts``, its other
     texts (nested, or longer than :data:`NOTE_LENGTH`) as notes, its numbers (those of its
     tables too, two levels down) as values with their units, its lists of rows as tables,
-    the one captioned ``first`` first; the ``schema`` key is left out."""
+    the one captioned ``first`` first, with its ``columns`` (JSON keys) first; the
+    ``schema`` key is left out."""
     said = list(verdicts)
     notes: list[str] = []
     values: list[tuple[str, str]] = []
@@ -400,7 +418,8 @@ def summarize(
                     for item in value:
                         text(bool(prefix), f"{name}: {item}")
             elif isinstance(value, list) and value and _is_row(value[0]):
-                tables.append(_table(name, [v for v in value if _is_row(v)]))
+                rows = [v for v in value if _is_row(v)]
+                tables.append(_table(name, rows, columns if name == first else ()))
             elif _is_row(value):
                 if depth < 2:
                     walk(f"{name} · ", value, depth + 1)
@@ -523,13 +542,18 @@ class ResultMixin:
         (by default the first of ``to_dict()``)."""
         return ""
 
+    def main_columns(self) -> tuple[str, ...]:
+        """The JSON keys of the columns the table of :meth:`main_table` shows first (the
+        ``repr`` shows its first :data:`REPR_COLUMNS`); by default its own order."""
+        return ()
+
     def display_summary(self) -> Summary:
         """What the result shows in a notebook (:func:`summarize` of ``to_dict()``)."""
         data = self.to_dict()
         engine = data.get("engine")
         name = engine.get("name") if isinstance(engine, dict) else None
         title = type(self).__name__ + (f": {name}" if isinstance(name, str) else "")
-        return summarize(title, data, self.headline(), self.main_table())
+        return summarize(title, data, self.headline(), self.main_table(), self.main_columns())
 
     def __repr__(self) -> str:
         return summary_text(self.display_summary())

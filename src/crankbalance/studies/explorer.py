@@ -192,6 +192,12 @@ class ExploreResult(ResultMixin):
         """The top-N list."""
         return "top"
 
+    def main_columns(self) -> tuple[str, ...]:
+        """The top-N list's firing order, then its key and the objectives (the columns it
+        was ranked by), before the index, the equivalents and the throw angles."""
+        key = () if self.key is None else (self.key,)
+        return ("firing_order", *key, *self.objectives)
+
     def top(self) -> list[dict[str, Any]]:
         """The top-N rows."""
         return records(self.run.top, self.names, self.problem) if self.run.top else []
