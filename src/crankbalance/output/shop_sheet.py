@@ -2,7 +2,8 @@
 
 It shows the parts per cylinder (the matched sets), the spread and the material to remove
 (matched, as listed, every part machined to the lightest), which sets share each journal
-(crankpin) and the spread of the journals' bob-weights, the bob-weight per crankpin, and
+(crankpin) and the spread of the journals' bob-weights, drawn with the sets
+(:func:`crankbalance.output.figures.shop.matched_sets`), the bob-weight per crankpin, and
 with readings the hole plan per correction plane (a table and a drawing of the angles and
 depths, :func:`crankbalance.output.figures.shop.hole_plan`) and the ISO 21940-11 sign-off.
 Every number comes from :class:`crankbalance.studies.shop.ShopStudy`, which is also embedded as JSON
@@ -54,7 +55,7 @@ def journal_cylinders(pairing: JournalPairing, journal: int) -> str:
 def sheet_html(study: ShopStudy, static: bool = False) -> str:
     """The shop sheet of ``study`` (a ShopStudy) as one HTML document; ``static=True`` draws
     the figure as inline SVG (for printing to PDF)."""
-    from .figures.shop import hole_plan
+    from .figures.shop import hole_plan, matched_sets
 
     esc = _html.escape
     p = study.parts
@@ -106,6 +107,7 @@ def sheet_html(study: ShopStudy, static: bool = False) -> str:
             ],
         )
     )
+    out.append(figure_html("sets", "Matched sets and their spread", matched_sets(p), static, True))
     b = p.bob_weights
     out.append("<h2>Bob-weights</h2>")
     out.append(
@@ -154,7 +156,7 @@ def sheet_html(study: ShopStudy, static: bool = False) -> str:
         header = ["plane", "unbalance", "heavy spot", "holes", "angles", "depth to shoulder"]
         out.append(table([*header, "depth to tip", "mass per hole", "predicted residual"], rows))
         out += [f"<p>{esc(note)}</p>" for note in notes]
-        out.append(figure_html("holes", "Hole plan to scale", hole_plan(h), static, True))
+        out.append(figure_html("holes", "Hole plan to scale", hole_plan(h), static, False))
         c = h.check
         out.append("<h2>ISO 21940-11 sign-off</h2>")
         out.append(

@@ -22,7 +22,7 @@ module                    figures of
 :mod:`.torsional`         the torsional vibration study
 :mod:`.mounts`            the powertrain on its mounts
 :mod:`.explore`           the design-space explorer
-:mod:`.shop`              the balance shop's hole plan
+:mod:`.shop`              the balance shop: matched sets, bob-weights, scatter, hole plan
 :mod:`.study`             :func:`plot`: the figures of any study's result
 ========================  ===============================================================
 
@@ -54,7 +54,7 @@ from .loads import bearing_loads_figure, bearing_sweep_figure
 from .mounts import mounts_figure
 from .performance import bench_figure, cycle_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
-from .shop import hole_plan
+from .shop import bob_weights_figure, hole_plan, matched_sets, scatter_histograms
 from .single import (
     balance_factor_sweep,
     drilling_plan,
@@ -72,6 +72,7 @@ __all__ = [
     "bearing_loads_figure",
     "bearing_sweep_figure",
     "bench_figure",
+    "bob_weights_figure",
     "counterweight_profile",
     "crank_3d",
     "curves_figure",
@@ -81,6 +82,7 @@ __all__ = [
     "explore_candidate",
     "explore_scatter",
     "hole_plan",
+    "matched_sets",
     "mounts_figure",
     "orders_bar",
     "pareto_front",
@@ -88,6 +90,7 @@ __all__ = [
     "polar_figure",
     "rebalance_unbalance",
     "residuals_bar",
+    "scatter_histograms",
     "sensitivity_figure",
     "shaft_response_figure",
     "shaft_study",

@@ -16,7 +16,7 @@ from .loads import bearing_loads_figure, bearing_sweep_figure
 from .mounts import mounts_figure
 from .performance import bench_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
-from .shop import hole_plan
+from .shop import bob_weights_figure, hole_plan, matched_sets, scatter_histograms
 from .single import (
     balance_factor_sweep,
     drilling_plan,
@@ -92,6 +92,11 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     "MountsResult": (mounts_figure,),
     "ExploreResult": (_explore_scatter, _explore_best),
     "ShopResult.HolePlan": (lambda r: hole_plan(r.result),),
+    "ShopResult.PartsStudy": (lambda r: matched_sets(r.result),),
+    "ShopResult.BobWeights": (
+        lambda r: bob_weights_figure(r.result, None if r.parts is None else r.parts.engine),
+    ),
+    "ShopResult.ScatterStudy": (lambda r: scatter_histograms(r.result),),
 }
 
 #: the results that have no figure, by figure key, and why (:func:`plot` says so)
@@ -99,11 +104,6 @@ NO_FIGURES: dict[str, str] = {
     "ToleranceResult": "the permissible unbalance of a grade is one number (its display)",
     "FrictionResult": "the friction torque and power of one load case are a table (its "
     "display); the bench study draws them over time",
-    "ShopResult.PartsStudy": "the matched sets are a table (its display, the shop sheet of "
-    "crankbalance shop sheet)",
-    "ShopResult.BobWeights": "the bob-weights are one number per crankpin (its display)",
-    "ShopResult.ScatterStudy": "the scatter's distribution is summed up in its quantiles "
-    "and histograms (its display and to_dict())",
 }
 
 
@@ -130,7 +130,9 @@ def plot(result: Any) -> list[Any]:
         check or placement, a bench study (one figure per speed), a cycle, a sensitivity,
         the bearing loads or their sweep, a torsional study, an explorer run (the
         candidates over two objectives with the Pareto set, the best candidate's orders),
-        a mount study, a shop's hole plan.
+        a mount study, a shop's matched sets (and the journals' bob-weights), its
+        bob-weights, its scatter (the histograms with the quantiles and the tolerance),
+        its hole plan.
 
     Returns
     -------
