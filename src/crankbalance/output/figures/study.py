@@ -101,7 +101,8 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
 
 #: the results that have no figure, by figure key, and why (:func:`plot` says so)
 NO_FIGURES: dict[str, str] = {
-    "ToleranceResult": "the permissible unbalance of a grade is one number (its display)",
+    "ToleranceResult": "the permissible unbalance of a grade, its split between two planes "
+    "and the verdict on a residual are a few numbers, no curve (its display)",
     "FrictionResult": "the friction torque and power of one load case are a table (its "
     "display); the bench study draws them over time",
 }
