@@ -67,7 +67,7 @@ def test_preset_change_compute_report(server: str, page, tmp_path: Path) -> None
     latency = time.perf_counter() - t0
     page.get_by_role("tab", name="Masses").click()
     page.get_by_role("button", name="Compute results").click()
-    _wait_text(page, "body", r"Counterweight mass:")
+    _wait_text(page, "body", r"Counterweight web 1")
     # the same engine through the API
     spec = load_engine("v8-crossplane").replace(speed=6000 * 3.141592653589793 / 30)
     api = analyze(spec).to_dict()

@@ -293,7 +293,7 @@ def test_odd_fire_v10_in_the_browser(server: str, page, tmp_path: Path) -> None:
     )
     api = json.loads(cli.stdout)
     page.get_by_role("tab", name="Results").click()
-    table = page.locator(".q-table tbody").first
+    table = page.locator("[data-testid=orders-table] tbody").first
     expect(table.locator("tr")).to_have_count(len(api["free_forces"]))
     expect(page.locator(".q-header")).to_contain_text("Results of:")
     cells = [

@@ -266,7 +266,7 @@ def _field(page: Any, key: str) -> Any:
 
 def _orders(page: Any) -> list[list[str]]:
     """The rows of the Results tab's orders table as shown."""
-    table = page.locator(".q-table tbody").first
+    table = page.locator("[data-testid=orders-table] tbody").first
     text = table.inner_text().strip()
     return [[c.strip() for c in row.split("\t")] for row in text.splitlines()]
 
@@ -281,7 +281,7 @@ def _results_match(page: Any, spec: Any) -> list[list[str]]:
     force = ref["free_forces"][0]["amplitude_N"]
     moment = ref["free_moments"][0]["amplitude_Nm"]
     page.get_by_role("tab", name="Results", exact=True).click()
-    cell = page.locator(".q-table tbody tr").first.locator("td").nth(4)
+    cell = page.locator("[data-testid=orders-table] tbody tr").first.locator("td").nth(4)
     expect(cell).to_have_text(re.compile(r"\S"))
     page.wait_for_function(
         """([want]) => want.every(([column, value]) => {

@@ -16,6 +16,7 @@ every figure comes from :mod:`crankbalance.output.figures`, the tabs only lay th
 
 from __future__ import annotations
 
+import json
 import logging
 from collections.abc import Callable
 from typing import Any
@@ -59,7 +60,10 @@ TABS = (
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
-RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance", "shop", "loads")
+#: the preset menu's entry while the form holds a preset edited (:meth:`Page.show_preset`);
+#: choosing the preset itself then loads it again
+EDITED = "{name} (edited)"
 #: the tabs built with the page (its first screen); every other tab's content is built when
 #: the tab is first opened (:meth:`Page.open_tab`), which keeps the page the server sends
 #: (and the browser mounts) small: about a third of the elements of all nine tabs
@@ -91,25 +95,34 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
 }
 """
 #: the busy bar: an action of the page (an edit, a choice, a button) that the server has
-#: not answered within 0.2 s shows a moving bar at the top until its first answer arrives
+#: not handled within 0.2 s shows a moving bar at the top until the server acknowledges it
+#: (socket.io's acknowledgement, sent when NiceGUI's handler of the event returns), so the
+#: bar stops with the work, also for an action that changes nothing on the page (a study
+#: setting edited, the same preset chosen again). An async handler (a study's run)
+#: returns at once: its work shows in its tab (spinner, progress, Cancel)
 BUSY_JS = """
 <div id="cb-busy" data-testid="busy"></div>
 <script>
 (() => {
-  let timer = null;
-  const idle = () => {
-    clearTimeout(timer); timer = null; document.body.classList.remove('cb-busy');
+  const state = window.cbBusy = {sent: 0, pending: 0, timer: null};
+  const done = () => {
+    state.pending = Math.max(0, state.pending - 1);
+    if (state.pending > 0) return;
+    clearTimeout(state.timer); state.timer = null; document.body.classList.remove('cb-busy');
   };
   const hook = () => {
     const s = window.socket;
     if (!s) { setTimeout(hook, 50); return; }
     const emit = s.emit.bind(s);
     s.emit = (name, ...args) => {
-      if (name === 'event' && timer === null)
-        timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
-      return emit(name, ...args);
+      if (name !== 'event' || typeof args[args.length - 1] === 'function')
+        return emit(name, ...args);
+      state.sent += 1; state.pending += 1;
+      if (state.timer === null)
+        state.timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
+      return emit(name, ...args, done);  // the server's acknowledgement: handled
     };
-    s.onAny(idle);
+    s.on('disconnect', () => { state.pending = 1; done(); });
   };
   hook();
 })();
@@ -185,6 +198,10 @@ class Page:
             name = default_preset
         self.preset_name: str | None = name
         self.startup_message = message
+        #: the engine as loaded (:meth:`engine_state`), to tell an edited preset
+        self.loaded_state = self.engine_state()
+        #: True while the page itself sets the preset menu (not the user's choice)
+        self.setting_preset = False
 
     # ================================================================== layout
     def build(self) -> None:
@@ -347,9 +364,38 @@ class Page:
         self.update_all()
 
     def on_preset(self, event: Any) -> None:
-        if not event.value or event.value == self.preset_name:
+        """The user chose a preset: load it, also the one shown when the form holds it
+        edited (the menu then shows ``<name> (edited)``, :meth:`show_preset`)."""
+        if self.setting_preset or not event.value or event.value not in list_presets():
             return
         self.load(Project.from_preset(event.value), preset=event.value)
+
+    def engine_state(self) -> str:
+        """What describes the engine in the form (texts, mass modes, crank editor, keys
+        kept as they are), as one text to compare."""
+        p = self.project
+        modes = {k: p.settings.get(k) for k in ("mass_mode", "conrod_split")}
+        state = (p.texts, modes, p.throw_angles, p.throws, p.overrides, p.extras)
+        return json.dumps(state, sort_keys=True, default=str)
+
+    def show_preset(self) -> None:
+        """The preset menu names the preset the form holds, ``<name> (edited)`` once the
+        form differs from it, nothing for another project (:meth:`load`)."""
+        name = self.preset_name
+        if name is None or not hasattr(self, "preset_select"):
+            return
+        edited = EDITED.format(name=name)
+        value = edited if self.engine_state() != self.loaded_state else name
+        if self.preset_select.value == value:
+            return
+        self.setting_preset = True
+        try:
+            options = list_presets()
+            self.preset_select.set_options(
+                [edited, *options] if value == edited else options, value=value
+            )
+        finally:
+            self.setting_preset = False
 
     def on_tab(self, event: Any) -> None:
         self.open_tab(str(event.value))
@@ -374,6 +420,7 @@ class Page:
             tab.show(self.project.computed)
         self.show_errors()
         self.show_setting_errors()
+        self.show_state()
 
     def go(self, tab: str) -> None:
         self.panels.set_value(tab)
@@ -416,7 +463,12 @@ class Page:
         an explorer candidate), so that it never names an engine the form does not hold."""
         self.project = project
         self.preset_name = preset
-        self.preset_select.set_value(preset)
+        self.loaded_state = self.engine_state()
+        self.setting_preset = True
+        try:
+            self.preset_select.set_options(list_presets(), value=preset)
+        finally:
+            self.setting_preset = False
         for tab in self.built_tabs():
             tab.reset()
         for key, element in self.inputs.items():
@@ -494,6 +546,7 @@ class Page:
         self.recompute()
         self.show_errors()
         self.show_state()
+        self.show_preset()
 
     def orders(self) -> int:
         """The highest order to compute (the setting; 8 while it is invalid)."""
@@ -513,7 +566,10 @@ class Page:
     def problem(self) -> str:
         """Why the form cannot be computed: the messages of the fields (by their label) and
         the general one."""
-        lines = [f"{key_label(key)}: {message}" for key, message in self.project.errors.items()]
+        lines = [
+            message if message.startswith(key_label(key)) else f"{key_label(key)}: {message}"
+            for key, message in self.project.errors.items()
+        ]
         if self.project.general_error:
             lines.append(self.project.general_error)
         return "; ".join(lines) or "the engine could not be computed"
@@ -543,6 +599,8 @@ class Page:
             )
             note.set_visibility(c is None)
             self.bodies[name].classes(**{"add" if c is None else "remove": "cb-stale"})
+        for tab in self.built_tabs():
+            tab.show_fresh(c is not None, "" if c is not None else self.problem())
 
     def recompute(self) -> None:
         self.show_setting_errors()

@@ -207,9 +207,36 @@ def optimise(required: float, o: Any) -> Any:
     [kg m]: the study ``counterweight-optimize`` of the command line with the settings of
     :func:`counterweight_inputs`; its result (the optimiser's designs and front)."""
     from ..studies.registry import execute
+    from .pool import report
+
+    def progress(state: Any) -> None:
+        report(
+            {
+                "iteration": state.iteration,
+                "iterations": state.n_iterations,
+                "evaluated": state.nfev,
+                "feasible": state.n_feasible,
+                "elapsed": state.elapsed,
+            }
+        )
 
     assert abs(o.first_moment - required) <= 1e-12 * required
-    return execute("counterweight-optimize", None, o, naming=lambda f: "cw_" + f).optimum
+    return execute(
+        "counterweight-optimize", None, o, naming=lambda f: "cw_" + f, progress=progress
+    ).optimum
+
+
+def progress_text(progress: dict[str, Any]) -> str:
+    """The optimiser's progress in words, with the time left estimated from the rounds done
+    (each round evaluates about as many designs)."""
+    done, total = int(progress["iteration"]), int(progress["iterations"])
+    elapsed = float(progress["elapsed"])
+    left = elapsed / done * (total - done) if done else None
+    estimate = "" if left is None else f", about {left:.0f} s left" if left >= 1 else ", <1 s left"
+    return (
+        f"optimising … round {done} of {total}, {progress['evaluated']:,} designs evaluated "
+        f"({progress['feasible']:,} feasible), {elapsed:.1f} s{estimate}"
+    )
 
 
 def pick_design(optimum: Any, choice: str) -> Any:

@@ -336,6 +336,11 @@ class Tab(ABC):
     def show(self, c: Any) -> None:  # noqa: B027 (optional: most tabs show only figures)
         """Show the numbers of the newly computed engine ``c``."""
 
+    def show_fresh(self, fresh: bool, problem: str) -> None:  # noqa: B027 (optional)
+        """Whether the computed engine is the form's (``fresh``), else why not (``problem``):
+        a tab that shows numbers outside the greyed result tabs (the Masses tab's resulting
+        masses) hides them while the form cannot be computed."""
+
     def reset(self) -> None:  # noqa: B027 (optional: only study tabs keep results)
         """Forget the results of the previous project (a new one was loaded)."""
 
@@ -434,11 +439,19 @@ class StudyTab(Tab):
         if job is not None and job.owner == self.name:
             job.cancel()
 
-    async def in_worker(self, what: str, function: Callable[..., Any], *args: Any) -> Any | None:
+    async def in_worker(
+        self,
+        what: str,
+        function: Callable[..., Any],
+        *args: Any,
+        progress: Callable[[Any], None] | None = None,
+    ) -> Any | None:
         """``function(*args)`` in a worker process (:func:`.pool.run`: bounded, second to
         the server, ended by :meth:`cancel_run` or when the page goes away); its result,
         None when cancelled. A page runs one study at a time; the study's own
-        :class:`InputError` is raised (a second study of the page is refused with one)."""
+        :class:`InputError` is raised (a second study of the page is refused with one).
+        ``progress`` is given each progress report of the study (:func:`.pool.report`), on
+        the server's event loop."""
         from . import pool
 
         page = self.page
@@ -449,6 +462,7 @@ class StudyTab(Tab):
                 "is still running on this page: wait for it or cancel it on its tab",
             )
         job = pool.Job(what, owner=self.name)
+        job.on_progress = progress
         page.job = job
         self.cancel.set_visibility(True)
         try:
