@@ -108,3 +108,35 @@ def test_masses_and_balancing_card(server: str, page) -> None:
     open_tab(page, "Crank loads")
     expect(page.locator("[data-testid=loads-stale]").first).to_contain_text("Not computed")
     shot(page, "loads_invalid")
+
+
+@pytest.mark.parametrize("preset", ["paper-inline3", "ducati-916"])
+def test_dashboard_first_screen(server: str, page, preset: str) -> None:
+    """Issue 28, item 1: at 1280x800 the first screen says what the tool does and shows the
+    key results beside the inputs, above the fold; the detail card is folded for an engine
+    that uses none of its fields (the inline-3) and open for one that does (the Ducati's
+    rod positions)."""
+    page.set_viewport_size({"width": 1280, "height": 800})
+    page.goto(server + f"/?preset={preset}")
+    current(page)
+    expect(page.locator("[data-testid=tagline]").first).to_contain_text("counterweights")
+    key = page.locator("[data-testid=key-results]").first
+    expect(key).to_contain_text("Balanced for")
+    expect(key).to_contain_text("Left after balancing")
+    box = key.bounding_box()
+    general = page.get_by_text("Engine general parameters").first.bounding_box()
+    page.screenshot(path=str(SHOTS / f"fresh_dashboard_{preset}.png"))
+    assert box["y"] + box["height"] <= 800, box  # above the fold
+    assert box["x"] > general["x"] + general["width"], (box, general)  # beside the inputs
+    details = page.locator("[data-testid=engine-details]").first
+    rods = page.locator("[data-testid=field-rod_positions]").first
+    if preset == "paper-inline3":
+        expect(rods).to_be_hidden()
+    else:
+        expect(rods).to_be_visible()
+    expect(details).to_be_visible()
+    page.screenshot(path=str(SHOTS / f"fresh_dashboard_{preset}.png"))
+    # an invalid form: the key results say so instead of showing old numbers
+    page.locator("[data-testid=field-crank_radius]").first.fill("abc")
+    expect(page.locator("[data-testid=key-stale]").first).to_contain_text("Not computed")
+    expect(page.locator("[data-testid=key-lines]").first).to_be_hidden()

@@ -58,6 +58,11 @@ TABS = (
     ("shop", "Balance shop"),
     ("loads", "Crank loads"),
 )
+#: the one line under the header saying what the tool does
+TAGLINE = (
+    "crankbalance: the free forces and moments of an engine's crank train, and the "
+    "counterweights and balance shafts that cancel them, as you type."
+)
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
 RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance", "shop", "loads")
@@ -230,6 +235,9 @@ class Page:
             self.status = (
                 ui.label("").classes("text-body2").props("data-testid=status").mark("status")
             )
+        ui.label(TAGLINE).classes("text-body2 text-grey-8 q-px-md").props(
+            "data-testid=tagline"
+        ).mark("tagline")
         with (
             ui.expansion(
                 "Load a project file (.toml or .json, the engine-file format)", icon="upload_file"

@@ -209,8 +209,8 @@ def balance_lines(b: dict[str, Any]) -> list[str]:
     speed, how many parts of each kind, the first- and second-order residuals."""
     speed = float(b["engine"]["speed_rad_s"])
     lines = [
-        f"Balanced for **{text(speed, 'speed', 5)}** (masses and angles do not depend on the "
-        "speed; the forces left scale with its square)"
+        f"Balanced for **{text(speed, 'speed', 5)}** (the masses hold at every speed; the "
+        "forces left scale with its square)"
     ]
     cw = b["counterweight"]
     if cw and cw.get("webs"):
