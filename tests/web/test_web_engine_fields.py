@@ -286,7 +286,7 @@ def _results_match(page: Any, spec: Any) -> list[list[str]]:
     page.wait_for_function(
         """([want]) => want.every(([column, value]) => {
                const td = document.querySelector(
-                   `.q-table tbody tr td:nth-child(${column})`);
+                   `[data-testid=orders-table] tbody tr td:nth-child(${column})`);
                return td && Math.abs(Number(td.innerText) - value)
                             <= 1e-3 * Math.abs(value) + 1e-6; })""",
         arg=[[[2, force], [5, moment]]],

@@ -40,7 +40,8 @@ UPDATED = """([after]) => {
 }"""
 UPDATE = "() => Number(document.querySelector('[data-testid=status]')?.dataset.update || 0)"
 #: the cells of the orders table of the Results tab, row by row
-TABLE = """() => [...document.querySelectorAll('.q-tab-panel:not([hidden]) .q-table tbody tr')]
+TABLE = """() => [...document.querySelectorAll(
+        '.q-tab-panel:not([hidden]) [data-testid=orders-table] tbody tr')]
     .filter((tr) => tr.offsetParent !== null)
     .map((tr) => [...tr.querySelectorAll('td')].map((td) => td.innerText.trim()))"""
 
