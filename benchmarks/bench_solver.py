@@ -13,7 +13,9 @@ repeats):
 2. One built model's ``free_forces`` against a minimal numpy phasor sum with the harmonic
    coefficients given (``bench_one_engine.minimal_phasor_sum``), the V12; target: at most
    2 times.
-3. The batched balancing throughput: ``balance_batch`` on random cranks of the crossplane
+3. ``analyze(spec)`` of a spec seen before (its model kept by ``build_model``) against
+   ``free_forces(model)``, the same three presets; target: at most 1.3 times (issue 30).
+4. The batched balancing throughput: ``balance_batch`` on random cranks of the crossplane
    V8's topology (``random_engines``: throw angles, masses, radius, rod and speed drawn per
    engine), optimal counterweights with a balance factor of 0.5 and two shaft pairs.
 
@@ -37,7 +39,7 @@ from crankbalance.io.engine_file import load_engine
 from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions
 from crankbalance.physics.shaking import free_forces
 from crankbalance.studies.build import build_model
-from crankbalance.studies.engine import balance_engine
+from crankbalance.studies.engine import analyze, balance_engine
 
 try:
     from crankbalance.physics.balance_batch import balance_batch
@@ -49,7 +51,7 @@ except ImportError:  # the code before issue 26
     )
 
 PRESETS = ("inline4", "v8-crossplane", "v12-60")
-TARGET_BALANCE, TARGET_FREE_FORCES = 4.0, 2.0
+TARGET_BALANCE, TARGET_FREE_FORCES, TARGET_ANALYZE = 4.0, 2.0, 1.3
 CW_RADIUS, SHAFT_RADIUS, SHAFT_LENGTH = 0.045, 0.03, 0.3
 
 
@@ -92,7 +94,21 @@ def main() -> None:
         balance_engine(spec)  # warm up (imports, caches)
         t_bal = per_call(lambda spec=spec: balance_engine(spec), repeat=5, number=300)
         t_ff = per_call(lambda model=model: free_forces(model, 8), repeat=5, number=2000)
+        analyze(spec)  # the spec seen before
+        t_an = per_call(lambda spec=spec: analyze(spec, 8), repeat=5, number=2000)
         rows += [
+            (
+                f"{name}: analyze(spec), seen before",
+                f"{t_an[0] * 1e3:.4f} ms",
+                f"{t_an[1] * 1e3:.4f} ms",
+                "",
+            ),
+            (
+                f"{name}: ratio analyze / free_forces",
+                f"{t_an[0] / t_ff[0]:.2f}",
+                f"{t_an[1] / t_ff[1]:.2f}",
+                f"<= {TARGET_ANALYZE:g}",
+            ),
             (
                 f"{name}: balance_engine(spec)",
                 f"{t_bal[0] * 1e3:.4f} ms",

@@ -1,4 +1,8 @@
-"""Master-and-link rods against the simple radial model, for the articulated presets.
+"""
+Articulated radials: master-and-link rods
+=========================================
+
+Master-and-link rods against the simple radial model, for the articulated presets.
 
 For each radial preset with ``[crank_train.articulated]`` this prints
 

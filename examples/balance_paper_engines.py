@@ -1,14 +1,20 @@
-"""Counterweights and balance shafts of the 2021 paper's two engines (Tables 2 and 5),
+"""
+The 2021 paper's two engines balanced
+=====================================
+
+Counterweights and balance shafts of the 2021 paper's two engines (Tables 2 and 5),
 through the Python API, beside the printed values.
 
 Run: python examples/balance_paper_engines.py
 """
 
+import sys
 from pathlib import Path
 
 from crankbalance.studies.engine import balance_engine
 
-HERE = Path(__file__).resolve().parent
+# this script's path, also when the documentation's gallery runs it (without __file__)
+HERE = Path(sys.argv[0]).resolve().parent
 PRINTED = {
     "paper_inline3.toml": {"counterweight": 1.2413, "primary": 0.4884, "secondary": 0.0362},
     "paper_v4.toml": {"counterweight": 1.700, "primary": 0.3948, "secondary": 0.1299},

@@ -1,4 +1,8 @@
-"""Inline-4 second-order balance shaft: where to put the unbalance mass (Kim 2018).
+"""
+Inline-4 second-order balance shaft
+===================================
+
+Inline-4 second-order balance shaft: where to put the unbalance mass (Kim 2018).
 
 Takes the built-in "inline4" engine, works out the first moment each shaft of the
 counter-rotating pair must carry, finds the optimum mass position along a shaft on end

@@ -1,4 +1,8 @@
-"""Design a crankshaft counterweight for the inline-3 of the 2021 paper (Tables 1-2).
+"""
+A counterweight for the paper's inline-3
+========================================
+
+Design a crankshaft counterweight for the inline-3 of the 2021 paper (Tables 1-2).
 
 The balancing solver, run on the engine file of Table 1, asks for m_c = 1.2413 kg at
 r_c = 30 mm on each of the four counterweights (Table 2), i.e. a first moment of
@@ -13,6 +17,7 @@ Run: python examples/counterweight_design.py
 
 from __future__ import annotations
 
+import sys
 import tempfile
 from pathlib import Path
 
@@ -21,7 +26,8 @@ from crankbalance.physics.counterweight import required_first_moment
 from crankbalance.physics.counterweight_optimize import optimize_counterweight
 from crankbalance.studies.engine import balance_engine
 
-ENGINE = Path(__file__).resolve().parent / "paper_inline3.toml"
+# this script's path, also when the documentation's gallery runs it (without __file__)
+ENGINE = Path(sys.argv[0]).resolve().parent / "paper_inline3.toml"
 REQUIRED = required_first_moment(balance_engine(ENGINE).result.counterweights)  # [kg m]
 print(f"required first moment m_c r_c = {REQUIRED * 1e3:.2f} kg*mm (Table 2: 1.2413 kg x 30 mm)")
 

@@ -1,4 +1,8 @@
-"""Honda CRF250R rebalanced for MXRR conrod and wrist pin (Hoem and Røsholm 2016, ch. 4 and 6).
+"""
+Honda CRF250R rebalanced
+========================
+
+Honda CRF250R rebalanced for MXRR conrod and wrist pin (Hoem and Røsholm 2016, ch. 4 and 6).
 
 Reproduces: the rotating and reciprocating masses of Table 6.1, the factory balance factor
 (Sec. 6.3.3), the ISO 1940 permissible unbalance (Sec. 4.3) and the rebalancing to 28 % and to

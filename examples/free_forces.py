@@ -1,4 +1,8 @@
-"""Free forces and moments of a few classic engines, through the Python API.
+"""
+Free forces and moments of classic engines
+==========================================
+
+Free forces and moments of a few classic engines, through the Python API.
 
 Run: python examples/free_forces.py
 """

@@ -1,4 +1,8 @@
-"""Inline-4 with eight or four counterweights: main-bearing loads and crank bending.
+"""
+Inline-4 with eight or four counterweights
+==========================================
+
+Inline-4 with eight or four counterweights: main-bearing loads and crank bending.
 
 An inline-4 with a flat (0-180-180-0) crank is free of first-order forces and couples
 without any counterweight, yet its crank carries each half's rotating masses as a couple

@@ -1,4 +1,8 @@
-"""The NTNU thesis' test rotor on the simulated bench.
+"""
+The NTNU thesis' test rotor on the bench
+========================================
+
+The NTNU thesis' test rotor on the simulated bench.
 
 Hoem and Røsholm (2016), chapter 5, Tables 5.5 and 5.6.
 

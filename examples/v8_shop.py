@@ -1,9 +1,14 @@
-"""The balance shop, worked for a 90° crossplane V8 (docs/balance_shop.md): from the weighed
+"""
+The balance shop for a crossplane V8
+====================================
+
+The balance shop, worked for a 90° crossplane V8 (docs/balance_shop.md): from the weighed
 parts in v8_parts.csv to matched sets, bob-weights, the hole plan of a two-plane reading, the
 ISO 21940-11 sign-off, and the printable shop sheet (v8_shop_sheet.html in the working
-directory; `crankbalance shop sheet ... -o sheet.pdf` prints it to PDF).
+directory, or the file given as the first argument; `crankbalance shop sheet ... -o sheet.pdf`
+prints it to PDF).
 
-The same from the command line:
+The same from the command line::
 
     crankbalance shop match examples/v8_parts.csv --engine v8-crossplane
     crankbalance shop sheet examples/v8_parts.csv --engine v8-crossplane -o sheet.html \\
@@ -15,13 +20,15 @@ The same from the command line:
 from __future__ import annotations
 
 import math
+import sys
 from pathlib import Path
 
 from crankbalance.output.shop_sheet import write_sheet
 from crankbalance.schema.settings import ShopOptions, parse_options
 from crankbalance.studies.shop import shop_study
 
-PARTS = Path(__file__).resolve().parent / "v8_parts.csv"
+# this script's path, also when the documentation's gallery runs it (without __file__)
+PARTS = Path(sys.argv[0]).resolve().parent / "v8_parts.csv"
 
 # the settings as a shop person types them (units in the text)
 options = parse_options(
@@ -54,6 +61,13 @@ print(
     f"remove {m.removed_total * 1e3:.1f} g (machining every part to the lightest: "
     f"{study.parts.machined.removed_total * 1e3:.1f} g)"
 )
+j = study.parts.journals  # which sets share a crankpin: the least spread of the journals
+pins = range(len(j.bob_weight))
+on_pin = [[c + 1 for c, t in enumerate(j.cylinder_throw) if t == pin] for pin in pins]
+print(
+    f"cylinders per crankpin {on_pin} ({j.status}): journals' spread {j.spread * 1e3:.2f} g, "
+    f"as listed {j.as_listed_spread * 1e3:.2f} g"
+)
 b = study.parts.bob_weights
 print("bob-weights per crankpin:", ", ".join(f"{w * 1e3:.1f} g" for w in b.bob_weight))
 assert study.holes is not None
@@ -66,4 +80,4 @@ for j, holes in enumerate(study.holes.holes):
         f"(permissible {study.holes.check.tolerance[j] * 1e6:.1f} g·mm)"
     )
 print("ISO 21940-11", study.holes.grade, "PASS" if study.holes.check.passed else "FAIL")
-print("wrote", write_sheet(study, "v8_shop_sheet.html"))
+print("wrote", write_sheet(study, sys.argv[1] if len(sys.argv) > 1 else "v8_shop_sheet.html"))

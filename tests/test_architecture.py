@@ -249,6 +249,70 @@ def test_cli_loads_only_the_packages_it_needs(command: str | None) -> None:
     )
 
 
+#: modules a command of one engine must not load (issue 30, the cold start): the physics
+#: of other studies (the settings schema takes their limits from ``physics.limits``), the
+#: other studies, and the standard library's heavier modules that nothing on these paths
+#: needs (``importlib.resources`` brought zipfile and tempfile, ``secrets`` random,
+#: ``pathlib`` urllib and ipaddress: io.files imports it on the first write)
+CLI_MODULES_UNLOADED = (
+    "crankbalance.physics.engine_cycle",
+    "crankbalance.physics.engine_cycle_all",
+    "crankbalance.physics.single_cylinder",
+    "crankbalance.physics.torsional",
+    "crankbalance.physics.explore.orders",
+    "crankbalance.studies.explore",
+    "crankbalance.studies.single",
+    "crankbalance.output.figures",
+    "importlib.resources",
+    "importlib.metadata",
+    "zipfile",
+    "tempfile",
+    "secrets",
+    "pathlib",
+    "json",
+    "crankbalance.physics.articulated",
+    "scipy",
+    "plotly",
+    "nicegui",
+    "dask",
+)
+_CLI_MODULES_PROBE = """
+import contextlib, io, sys
+from crankbalance.cli import main
+with contextlib.redirect_stdout(io.StringIO()):
+    try:
+        main(sys.argv[1:])
+    except SystemExit:
+        pass
+loaded = sorted(sys.modules)  # before the probe's own json
+import json
+print(json.dumps(loaded))
+"""
+
+
+@pytest.mark.parametrize(
+    "args",
+    [["analyze", "--help"], ["analyze", "inline4"], ["balance", "inline4"]],
+    ids=" ".join,
+)
+def test_cli_import_list_is_lean(args: list[str]) -> None:
+    """A fresh ``crankbalance analyze`` or ``balance`` of a preset (or its help) loads none
+    of :data:`CLI_MODULES_UNLOADED` (reads ``sys.modules``; times nothing)."""
+    out = subprocess.run(
+        [sys.executable, "-c", _CLI_MODULES_PROBE, *args],
+        capture_output=True,
+        text=True,
+        check=True,
+    )
+    loaded = set(json.loads(out.stdout))
+    unwanted = sorted(
+        name
+        for name in loaded
+        if any(name == u or name.startswith(u + ".") for u in CLI_MODULES_UNLOADED)
+    )
+    assert not unwanted, f"crankbalance {' '.join(args)} loads {', '.join(unwanted)}"
+
+
 # Transitive purity: importing a physics module must not load an edge, directly or through
 # another module (docs: physics is numpy/scipy only). Each module is imported in a fresh
 # interpreter of its own; all of them start at once, so the test takes about as long as

@@ -18,7 +18,7 @@ def test_analyze_json_contract(capsys: pytest.CaptureFixture[str]) -> None:
     )
     assert code == 0, err
     data = json.loads(out)
-    assert data["schema"] == "crankbalance.analysis/3"
+    assert data["schema"] == "crankbalance.analysis/4"
     assert [f["order"] for f in data["free_forces"]] == list(range(1, 9))
     for row in data["free_forces"]:
         assert {"order", "amplitude_N", "forward_N", "backward_N"} <= set(row)

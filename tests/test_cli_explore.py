@@ -99,3 +99,80 @@ def test_an_in_process_run_loads_neither_dask_nor_pyarrow() -> None:
         [sys.executable, "-c", probe], capture_output=True, text=True, check=True
     ).stdout
     assert out.rstrip().endswith("[]")
+
+
+VEE8 = ["explore", "--layout", "vee", "--cylinders", "8", "--bank-angle", "90 deg"]
+
+
+@pytest.mark.parametrize(
+    ("options", "mirror", "reversal"),
+    [([], True, False), (["--no-mirror"], False, False), (["--reversal"], True, True)],
+)
+def test_what_counts_as_one_engine(
+    capsys: pytest.CaptureFixture[str], options: list[str], mirror: bool, reversal: bool
+) -> None:
+    """--no-mirror makes the mirror image a distinct engine, --reversal an engine run
+    backwards the same: the counts of the Python API's problem (V8: 40, 72, 26)."""
+    code, text, err = run_cli([*VEE8, *options, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(text)
+    problem = orders.problem("vee", 8, 4, np.pi / 2, mirror=mirror, reversal=reversal)
+    expected = orders.chunk(problem, 0, orders.count(problem)).size
+    assert data["counts"]["distinct_engines"] == expected
+    assert data["problem"]["mirror"] is mirror and data["problem"]["reversal"] is reversal
+    assert expected == {(True, False): 40, (False, False): 72, (True, True): 26}[mirror, reversal]
+
+
+def test_a_fixed_crank(capsys: pytest.CaptureFixture[str]) -> None:
+    """The flat inline-4's crank allows two firing orders, 1-2-4-3 and 1-3-4-2; the table
+    says the crank is fixed; a crank of the wrong length is one line naming the option."""
+    args = ["explore", "--cylinders", "4", "--fixed-crank", "0,180,180,0 deg"]
+    code, text, err = run_cli([*args, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(text)
+    assert sorted(r["firing_order"] for r in data["top"]) == ["1-2-4-3", "1-3-4-2"]
+    assert data["problem"]["fixed_crank"] == pytest.approx([0, np.pi, np.pi, 0])
+    code, table, err = run_cli(args, capsys)
+    assert code == 0, err
+    assert "fixed at 0, 180, 180, 0 deg" in table.splitlines()[0]
+    code, _, err = run_cli(["explore", "--cylinders", "4", "--fixed-crank", "0,180 deg"], capsys)
+    assert code == 2
+    assert err.strip() == "error: --fixed-crank = '0,180 deg': 4 finite angles, one per throw"
+
+
+def test_each_engine_lists_the_orders_it_stands_for(capsys: pytest.CaptureFixture[str]) -> None:
+    """--list-orders: every row names its equivalent orders (the API's equivalent_orders),
+    as many as its equivalents, its own first; in the table and the CSV too."""
+    args = [*VEE8, "--list-orders", "--top", "40"]
+    code, text, err = run_cli([*args, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(text)
+    problem = orders.problem("vee", 8, 4, np.pi / 2)
+    rows = data["top"] + data["pareto"]
+    assert len(data["top"]) == 40 and any(r["equivalents"] > 1 for r in rows)
+    for row in rows:
+        order = tuple(int(c) for c in row["firing_order"].split("-"))
+        listed = ["-".join(map(str, o)) for o in orders.equivalent_orders(problem, order)]
+        assert row["orders"] == listed and len(listed) == row["equivalents"]
+        assert listed[0] == row["firing_order"]
+    code, table, err = run_cli(args, capsys)
+    assert code == 0, err
+    assert "stands for" in table
+    code, text, err = run_cli([*args, "--format", "csv"], capsys)
+    assert code == 0, err
+    first = next(csv.DictReader(io.StringIO(text)))
+    assert first["orders"].split(" ") == data["top"][0]["orders"]
+    code, text, err = run_cli([*VEE8, "--format", "json"], capsys)
+    assert "orders" not in json.loads(text)["top"][0]  # not asked: not listed
+
+
+def test_the_inline5_front_keeps_engines_equal_to_round_off(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """Issue 27: every one of the inline-5's 12 engines is on its (M1, M2) front, the pairs
+    whose figures differ by round-off among them (exact dominance kept 9)."""
+    args = ["explore", "--cylinders", "5", "--objectives", "M1,M2", "--target", "none"]
+    code, text, err = run_cli([*args, "--format", "json"], capsys)
+    assert code == 0, err
+    data = json.loads(text)
+    assert data["counts"]["distinct_engines"] == data["counts"]["pareto"] == 12

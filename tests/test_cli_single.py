@@ -160,7 +160,7 @@ def test_rebalance_table_and_override(capsys) -> None:
         capsys, ["rebalance", "--parts", str(EXAMPLE), "--target", "0.5", "--tolerance", "5 g*mm"]
     )
     assert code == 0
-    assert "target f_b = 0.5000" in out and "PASS" in out and "5 g*mm" in out
+    assert "target f_b = 0.5000" in out and "PASS" in out and "5 g·mm" in out
 
 
 def test_rebalance_options_only_holes(capsys) -> None:

@@ -13,6 +13,7 @@ import pytest
 from scipy import integrate
 
 from crankbalance.errors import InputError
+from crankbalance.output.format import text
 from crankbalance.physics import torsional as tv
 from crankbalance.schema.settings import (
     BearingOptions,
@@ -185,13 +186,14 @@ def test_text_outputs_show_what_was_assumed(capsys) -> None:
     ):
         code, out, err = run_cli(args, capsys)
         assert code == 0, err
-        assert "kg m^2" in out and "compression 13.5, ignition -25 deg" in out, out
+        assert "kg·m²" in out and "compression 13.5, ignition -25°" in out, out
     # a typed flywheel is named apart from the engine's inertia, for one cylinder too
     engine = rotating_inertia(as_model("single"))
     args = ["cycle", "--engine", "single", "--cylinder", "1", "--flywheel-inertia", "0.05 kg*m^2"]
     code, out, err = run_cli(args, capsys)
     assert code == 0, err
-    assert f"crank + flywheel {engine:.4g} + flywheel 0.05 kg m^2 (the engine's" in out, out
+    shown = f"crank + flywheel {text(engine, 'inertia')} + flywheel 0.05 kg·m² (the engine's"
+    assert shown in out, out
 
 
 def test_a_web_too_thick_for_the_derived_lengths_is_named() -> None:

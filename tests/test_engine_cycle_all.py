@@ -313,7 +313,7 @@ def test_cli_cycle_runs_every_cylinder_by_default(capsys):
     assert data["summary"]["mean_torque_Nm"] == pytest.approx(result.mean_torque, rel=1e-9)
     assert "flywheel" not in data
     code, text, err = _cli(args, capsys)
-    assert code == 0 and "all 8 cylinders" in text and "intervals 90/90" in text
+    assert code == 0 and "all 8 cylinders" in text and "intervals 90-90" in text
 
 
 def _cli_wiebe() -> WiebeCombustion:
@@ -552,4 +552,4 @@ def test_one_cylinder_fires_once_a_cycle_in_the_output(capsys):
     engine = json.loads(out)["engine"]
     assert engine["firing_interval_rad"] == pytest.approx([4 * math.pi])
     code, out, _ = run_cli(["cycle", "--engine", "single"], capsys)
-    assert "one cylinder" in out and "intervals 720 deg" in out
+    assert "one cylinder" in out and "intervals 720°" in out

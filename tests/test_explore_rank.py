@@ -10,7 +10,16 @@ from hypothesis import strategies as st
 from hypothesis.extra.numpy import arrays
 
 from crankbalance.errors import InputError
-from crankbalance.physics.explore.rank import BLOCK, column_name, pareto, parse_filter, top
+from crankbalance.physics.explore import merit, orders
+from crankbalance.physics.explore.rank import (
+    BLOCK,
+    column_name,
+    pareto,
+    parse_filter,
+    tolerances,
+    top,
+)
+from crankbalance.results import round_off
 
 COLUMNS = {
     "F1_N": np.array([0.0, 1.0, 2.0, 0.0]),
@@ -108,6 +117,61 @@ def test_pareto_merges_over_chunks(values: np.ndarray, data: st.DataObject) -> N
     survivors = np.concatenate(kept) if kept else np.arange(0)
     merged = survivors[pareto(values[survivors])]
     assert sorted(merged.tolist()) == np.flatnonzero(pareto(values)).tolist()
+
+
+#: the round-off added to the integer objectives below (a third of the tolerance)
+NOISE = 1e-7
+
+
+@settings(derandomize=True, database=None, deadline=None, max_examples=150)
+@given(objectives, st.data())
+def test_rows_equal_within_the_tolerance_both_stay(values: np.ndarray, data: st.DataObject) -> None:
+    """Integer objectives with round-off added (up to a third of the tolerance): the front
+    with the tolerance is the exact front of the clean integers, and merges over chunks."""
+    noise = np.array(
+        data.draw(st.lists(st.floats(-NOISE, NOISE), min_size=values.size, max_size=values.size))
+    ).reshape(values.shape)
+    noisy, tol = values + noise, 3 * NOISE
+    assert pareto(noisy, tol).tolist() == brute_pareto(values).tolist()
+    cuts = sorted(data.draw(st.lists(st.integers(0, len(values)), max_size=4)))
+    kept = [p[pareto(noisy[p], tol)] for p in np.split(np.arange(len(values)), cuts)]
+    survivors = np.concatenate(kept)
+    merged = survivors[pareto(noisy[survivors], tol)]
+    assert sorted(merged.tolist()) == np.flatnonzero(brute_pareto(values)).tolist()
+
+
+def test_a_dominating_row_after_the_first_in_the_sort() -> None:
+    """Row 1 sorts after row 0 (its first objective larger by round-off) and dominates it
+    in the second: the last pass of the sweep drops row 0."""
+    values = np.array([[1.0, 5.0], [1.0 + 1e-12, 3.0], [1.0 + 2e-12, 3.0 + 1e-12]])
+    assert pareto(values, 1e-9).tolist() == [False, True, True]
+    assert pareto(values).tolist() == [True, True, False]
+    with pytest.raises(InputError, match="tolerance"):
+        pareto(values, -1.0)
+
+
+def test_the_inline5_orders_equal_to_round_off_all_stay() -> None:
+    """Issue 27: the inline-5's orders come in pairs with the same (M1, M2) to the last
+    bits (1-2-4-3-5 and 1-3-2-4-5: 3642.1426557924365 and 3642.142655792436 N·m); exact
+    dominance dropped one of each pair, the engine's round-off keeps both, and all twelve
+    distinct engines are on the front (M1 falls as M2 rises)."""
+    problem = orders.problem("inline", 5, 4)
+    candidates = orders.chunk(problem, 0, orders.count(problem))
+    columns = merit.merit(candidates, target="none", orders=2)
+    values = np.column_stack([columns["M1_Nm"], columns["M2_Nm"]])
+    tol = tolerances(["M1_Nm", "M2_Nm"], problem.topology)
+    assert tol.tolist() == [round_off(problem.topology)[1]] * 2
+    assert candidates.size == 12 and pareto(values).sum() == 9  # the bug: three dropped
+    assert pareto(values, tol).all()
+
+
+def test_tolerances_follow_the_unit_of_each_column() -> None:
+    engine = orders.problem("inline", 4, 4).topology
+    force, moment = round_off(engine)
+    tol = tolerances(["F2_N", "M1_Nm", "cw_mass_kg", "mirror_rad", "X2", "shafts"], engine)
+    mass = force / (engine.crank_radius * engine.speed**2)
+    assert tol.tolist() == pytest.approx([force, moment, mass, 1e-12 * np.pi, 1e-12, 1e-12])
+    assert mass == pytest.approx(1e-12 * (4 * 0.5 + 4 * 1.0))
 
 
 def test_pareto_across_blocks() -> None:

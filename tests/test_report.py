@@ -43,6 +43,10 @@ def test_html_shows_balance_numbers(paper_html: str) -> None:
     moments = analyze("paper-inline3").to_dict()["free_moments"]
     for row in moments[:2]:
         assert f"<td>{g5(row['amplitude_Nm'])}</td>" in paper_html
+    # the sixth component (issue 27): the roll moment of each order
+    assert "roll [N·m]" in paper_html
+    rolls = [r for r in analyze("paper-inline3").to_dict()["roll_moments"] if r["amplitude_Nm"]]
+    assert rolls and all(f"<td>{g5(r['amplitude_Nm'])}</td>" in paper_html for r in rolls)
     assert "first-order" in paper_html and "[counterweights]" in paper_html  # settings used
 
 
@@ -52,7 +56,7 @@ def test_html_embeds_the_api_json(paper_html: str) -> None:
     )
     assert match
     data = json.loads(match.group(1))
-    assert data["schema"] == "crankbalance.report/3"
+    assert data["schema"] == "crankbalance.report/4"
     assert data["balance"] == json.loads(json.dumps(balance_engine("paper-inline3").to_dict()))
     assert data["analysis"] == json.loads(json.dumps(analyze("paper-inline3").to_dict()))
     assert data["settings"]["counterweights"]["cg_radius"] == pytest.approx(0.03)

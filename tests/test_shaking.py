@@ -93,7 +93,7 @@ def test_preset_library() -> None:
         assert required in names
     for name in names:
         data = analyze(name).to_dict()
-        assert data["schema"] == "crankbalance.analysis/3"
+        assert data["schema"] == "crankbalance.analysis/4"
         assert len(data["free_forces"]) == 8
 
 

@@ -252,7 +252,7 @@ SUFFIXES += ("_kg2", "_kg2_m2", "_N2", "_N2_m2")
 DIMENSIONLESS = {
     "fraction", "cylinders", "rods_on_pin", "part", "number", "share_a", "ratio", "samples",
     "seed", "quantile_levels", "histogram", "overflow", "variance_share", "p_grade", "p_free",
-    "p_all", "influence", "gap",
+    "p_all", "influence", "gap", "cylinder_throw", "set_of_cylinder", "journal_sets",
 }  # fmt: skip
 
 

@@ -23,7 +23,9 @@ same crank train in EXUDYN (Gerstmayr's open-source multibody code, PyPI ``exudy
 
 The reaction forces of every joint to the ground, and the moments of those forces about
 the crankshaft mid-point (y = 0) plus the joints' reaction torques, summed, are the
-shaking force and moment the crank train puts on the block. Over the last revolution
+shaking force and moment the crank train puts on the block. The roll moment about y
+(issue 27) is that sum's y part without the drive (whose torque goes to the driven
+machine), each piston's side force taken where the piston is. Over the last revolution
 (uniform steps of the constant-speed part), their Fourier series gives, by order, the
 forward and backward phasors of :math:`F_z + iF_x` and of the couple
 :math:`C = -i\,(M_z + iM_x)`, the convention of :mod:`crankbalance.physics.shaking`; they are
@@ -160,6 +162,7 @@ def _phasors(
     force_backward: NDArray,
     couple_forward: NDArray,
     couple_backward: NDArray,
+    roll: NDArray,
 ) -> FreeForces:
     return FreeForces(
         orders=np.arange(1, np.size(force_forward) + 1),
@@ -169,6 +172,8 @@ def _phasors(
         couple_backward=couple_backward,
         rotating_force=0j,
         rotating_couple=0j,
+        roll=roll,
+        rotating_roll=0j,
     )
 
 
@@ -195,7 +200,9 @@ def reference(model: EngineModel, orders: int = ORDERS) -> Phasors:
     ff, cf = f.force_forward.copy(), f.couple_forward.copy()
     ff[0] += f.rotating_force
     cf[0] += f.rotating_couple
-    return _phasors(ff, f.force_backward.copy(), cf, f.couple_backward.copy())
+    roll = f.roll.copy()
+    roll[0] += f.rotating_roll
+    return _phasors(ff, f.force_backward.copy(), cf, f.couple_backward.copy(), roll)
 
 
 def _about_centre(points: list[tuple[float, NDArray, NDArray]]) -> tuple[float, NDArray, NDArray]:
@@ -239,12 +246,13 @@ def about(phasors: Phasors, point: float) -> Phasors:
         phasors.force_backward,
         phasors.couple_forward - point * phasors.force_forward,
         phasors.couple_backward - point * phasors.force_backward,
+        phasors.roll,
     )
 
 
 def extrapolate(fine: Phasors, coarse: Phasors) -> Phasors:
     """Richardson's extrapolation (4 X(h) - X(2h)) / 3 of phasors whose error is in h**2."""
-    names = ("force_forward", "force_backward", "couple_forward", "couple_backward")
+    names = ("force_forward", "force_backward", "couple_forward", "couple_backward", "roll")
     return _phasors(*((4 * getattr(fine, k) - getattr(coarse, k)) / 3 for k in names))
 
 
@@ -258,7 +266,7 @@ def solve(
     Returns the phasors, the number of bodies and the solver's time [s].
     """
     import exudyn as exu
-    from exudyn.utilities import ObjectGround, RigidBodyInertia, SensorObject
+    from exudyn.utilities import ObjectGround, RigidBodyInertia, SensorBody, SensorObject
 
     if len(model.conrods) != model.cylinders:
         raise ValueError(
@@ -328,6 +336,7 @@ def solve(
     if art is not None:
         order.remove(art.master)
         order.insert(0, art.master)
+    moving: dict[int, Any] = {}  # the piston each cylinder's joint to the ground holds
     master_body: Any = None  # the master rod, its crankpin and its axis (unit vector)
     master_pin, master_axis = np.zeros(3), np.zeros(3)
     for c in order:
@@ -401,6 +410,7 @@ def solve(
             show=False,
         )
         ground_joints.append((joint, axes, wrist))
+        moving[joint] = piston
 
     sensors = [
         tuple(
@@ -416,6 +426,17 @@ def solve(
         )
         for joint, _axes, _pos in ground_joints
     ]
+    places = {
+        joint: mbs.AddSensor(
+            SensorBody(
+                bodyNumber=body,
+                storeInternal=True,
+                writeToFile=False,
+                outputVariableType=exu.OutputVariableType.Position,
+            )
+        )
+        for joint, body in moving.items()
+    }
     mbs.Assemble()
     h = period / steps
     settings = exu.SimulationSettings()
@@ -436,20 +457,40 @@ def solve(
     force = np.zeros(0)
     moment = np.zeros(0)
     times = np.zeros(0)
-    for (f_sensor, m_sensor), (_joint, frame, origin) in zip(sensors, ground_joints, strict=True):
+    roll = np.zeros(0)
+    for (f_sensor, m_sensor), (joint, frame, origin) in zip(sensors, ground_joints, strict=True):
         f_data = np.asarray(mbs.GetSensorStoredData(f_sensor))
         m_data = np.asarray(mbs.GetSensorStoredData(m_sensor))
         f_global = f_data[:, 1:4] @ frame.T
         m_global = m_data[:, 1:4] @ frame.T + np.cross(origin, f_global)
+        # the roll moment on the block: every joint to the ground but the drive, whose
+        # torque about y is what the crank passes to the machine it drives. A piston's
+        # joint reports its force at the ground's marker (the wrist pin's first place):
+        # the wall's side force acts where the piston is, which moves the roll (and not
+        # the moments across the axis: the piston moves in the x-z plane, without a force
+        # along y)
+        block_roll = np.zeros(len(m_global)) if joint == drive_joint else m_global[:, 1]
+        if joint in places:
+            where = np.asarray(mbs.GetSensorStoredData(places[joint]))[:, 1:4]
+            block_roll = block_roll + np.cross(where - origin, f_global)[:, 1]
         if not times.size:
-            times, force, moment = f_data[:, 0], f_global, m_global
+            times, force, moment, roll = f_data[:, 0], f_global, m_global, block_roll
         else:
-            force, moment = force + f_global, moment + m_global
-    return _fourier(times, force, moment, w, orders), bodies, seconds
+            force, moment, roll = force + f_global, moment + m_global, roll + block_roll
+    return _fourier(times, force, moment, w, orders, roll), bodies, seconds
 
 
-def _fourier(times: NDArray, force: NDArray, moment: NDArray, speed: float, orders: int) -> Phasors:
-    """Phasors of the last revolution's samples (times at whole steps, the last one in)."""
+def _fourier(
+    times: NDArray,
+    force: NDArray,
+    moment: NDArray,
+    speed: float,
+    orders: int,
+    roll: NDArray | None = None,
+) -> Phasors:
+    """Phasors of the last revolution's samples (times at whole steps, the last one in);
+    the roll moment about y on the block (``roll``, default none) as R_n of
+    M_y = Re(R_n exp(i n theta))."""
     theta = np.array([crank_angle(float(t), speed) for t in times])
     last = theta > theta[-1] - 2 * math.pi + 1e-9 * (2 * math.pi)
     theta = theta[last]
@@ -457,7 +498,10 @@ def _fourier(times: NDArray, force: NDArray, moment: NDArray, speed: float, orde
     c = -1j * (moment[last, 2] + 1j * moment[last, 0])  # couple C, M = iC
     turn = np.exp(-1j * np.arange(1, orders + 1)[:, None] * theta[None, :])
     n = theta.size
-    return _phasors(turn @ f / n, turn.conj() @ f / n, turn @ c / n, turn.conj() @ c / n)
+    y = np.zeros(n) if roll is None else roll[last]
+    return _phasors(
+        turn @ f / n, turn.conj() @ f / n, turn @ c / n, turn.conj() @ c / n, 2 * turn @ y / n
+    )
 
 
 # --------------------------------------------------------------------------- comparison
@@ -466,7 +510,7 @@ class Row:
     """One order of one quantity: amplitudes [N or N m], the limit and the phasor error."""
 
     engine: str
-    quantity: str  # "force" or "moment"
+    quantity: str  # "force", "moment" or "roll" (about y)
     order: int
     crankbalance: float
     exudyn: float
@@ -502,20 +546,36 @@ def first_order_scales(model: EngineModel, ref: Phasors) -> tuple[float, float]:
     return force, max(float(ref.moment_amplitude[0]), force * arm)
 
 
+def roll_scale(model: EngineModel, ref: Phasors) -> float:
+    """The roll moment's scale the floor of its acceptance is taken from [N m]: the
+    engine's largest roll order, or one cylinder's inertia torque, m r^2 w^2 / 2 (the
+    engine's may cancel)."""
+    one = 0.5 * float(np.max(model.reciprocating_mass)) * (model.crank_radius * model.speed) ** 2
+    return max(float(np.max(ref.roll_amplitude)), one)
+
+
 def compare(engine: str, model: EngineModel, simulated: Phasors, orders: int = ORDERS) -> list[Row]:
-    """The acceptance of issue 17, order by order, for force and moment."""
+    """The acceptance of issue 17, order by order, for force and moment, and of issue 27
+    for the roll moment about y (the same limits, its floor from :func:`roll_scale`)."""
     ref = reference(model, orders)
     scale_force, scale_moment = first_order_scales(model, ref)
-    floors = {"force": FLOOR * scale_force, "moment": FLOOR * scale_moment}
+    floors = {
+        "force": FLOOR * scale_force,
+        "moment": FLOOR * scale_moment,
+        "roll": FLOOR * roll_scale(model, ref),
+    }
     rows = []
-    for quantity in ("force", "moment"):
+    for quantity in ("force", "moment", "roll"):
         a_ref = getattr(ref, f"{quantity}_amplitude")
         a_sim = getattr(simulated, f"{quantity}_amplitude")
-        kind = "force" if quantity == "force" else "couple"
-        err = np.maximum(
-            np.abs(getattr(ref, f"{kind}_forward") - getattr(simulated, f"{kind}_forward")),
-            np.abs(getattr(ref, f"{kind}_backward") - getattr(simulated, f"{kind}_backward")),
-        )
+        if quantity == "roll":  # one real curve per order: its phasor R_n
+            err = np.abs(ref.roll - simulated.roll)
+        else:
+            kind = "force" if quantity == "force" else "couple"
+            err = np.maximum(
+                np.abs(getattr(ref, f"{kind}_forward") - getattr(simulated, f"{kind}_forward")),
+                np.abs(getattr(ref, f"{kind}_backward") - getattr(simulated, f"{kind}_backward")),
+            )
         for k in range(orders):
             rows.append(
                 Row(
@@ -552,7 +612,8 @@ def table(results: Sequence[tuple[str, Simulation, list[Row]]]) -> str:
         "Written by `python validation/multibody.py --write validation/results.md`",
         "(model and acceptance: `docs/validation.md`). Amplitude of each order, the largest",
         "magnitude over a revolution, |X+| + |X-| of its forward and backward phasors; forces",
-        "in N, moments in N·m about the crankshaft mid-point; order 1 includes the rotating",
+        "in N, moments in N·m about the crankshaft mid-point (*roll*: about the crank axis,",
+        "|R_n| of one real curve per order); order 1 includes the rotating",
         "masses. EXUDYN's phasors are extrapolated from runs with N and N/2 steps per",
         "revolution (docs/validation.md). *rel. diff.* is |EXUDYN - crankbalance| /",
         "crankbalance (blank where",

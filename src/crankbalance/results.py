@@ -15,10 +15,43 @@ from .errors import ResultError
 #: significant digits kept in JSON: enough for any measured input, none of the float noise
 JSON_DIGITS = 12
 
+#: an angle at most this far from 0 (or 360) is 0 [deg]: far below any angle measured or
+#: machined, far above the float noise of a phase (about 1e-15 °)
+ANGLE_ROUND_OFF = 1e-9
+
 #: share of a scale below which a quantity of that scale is round-off, i.e. zero: the sums
 #: of phasors that cancel leave about 1e-16 to 1e-15 of the size of their terms, and the
 #: smallest real residual a balancing study reports is far above 1e-12
 ROUND_OFF = 1e-12
+
+
+#: the symbol printed after a value of each kind, and the factor from its SI value
+UNITS: dict[str, tuple[str, float]] = {
+    "force": ("N", 1.0),
+    "moment": ("N·m", 1.0),
+    "torque": ("N·m", 1.0),
+    "mass": ("g", 1e3),
+    "mass_kg": ("kg", 1.0),
+    "length": ("mm", 1e3),
+    "length_m": ("m", 1.0),
+    "deflection": ("µm", 1e6),
+    "unbalance": ("g·mm", 1e6),
+    "first_moment": ("g·mm", 1e6),
+    "inertia": ("kg·m²", 1.0),
+    "speed": ("rpm", 30.0 / math.pi),
+    "velocity": ("mm/s", 1e3),
+    "angular_acceleration": ("rad/s²", 1.0),
+    "frequency": ("Hz", 1.0),
+    "angle": ("°", 180.0 / math.pi),
+    "angle_deg": ("°", 1.0),
+    "stress": ("MPa", 1e-6),
+    "pressure": ("bar", 1e-5),
+    "power": ("W", 1.0),
+    "energy": ("J", 1.0),
+    "time": ("s", 1.0),
+    "percent": ("%", 1.0),
+    "ratio": ("", 1.0),
+}
 
 
 #: a scalar of an engine (float) or of each engine of a batch (ndarray, shape (E,))
@@ -132,15 +165,34 @@ def clean_number(value: float, digits: int = JSON_DIGITS) -> float:
     return rounded + 0.0  # -0.0 + 0.0 == 0.0
 
 
+def number(value: float, digits: int = 4) -> str:
+    """A number with ``digits`` significant digits, never ``-0`` nor float noise.
+
+    Values of ``10**digits`` and more print whole (``15200``, not ``1.52e+04``).
+
+    >>> number(1999.9999999999998), number(-0.0001, 2), number(15200.0), number(0.5)
+    ('2000', '-0.0001', '15200', '0.5')
+    """
+    value = clean_number(float(value))
+    if 10.0**digits <= abs(value) < 1e15:
+        out = f"{round(value):d}"
+    else:
+        out = f"{value:.{digits}g}"
+    return "0" if float(out) == 0.0 else out
+
+
 def angle(degrees: float) -> float:
     """An angle in degrees, in the one range used everywhere: [0, 360).
 
-    >>> angle(-90.0), angle(360.0), angle(-1e-13)
-    (270.0, 0.0, 0.0)
+    An angle within :data:`ANGLE_ROUND_OFF` of 0 or 360 is 0 (the phase of a sum of phasors
+    that cancel carries about 1e-15 ° of noise).
+
+    >>> angle(-90.0), angle(360.0), angle(-1e-13), angle(2.98e-15)
+    (270.0, 0.0, 0.0, 0.0)
     """
     value = clean_number(float(degrees)) % 360.0
     value = clean_number(value)
-    return 0.0 if value >= 360.0 else value
+    return 0.0 if min(value, 360.0 - value) <= ANGLE_ROUND_OFF else value
 
 
 def _clean(value: Any, is_angle: bool) -> Any:
@@ -202,10 +254,202 @@ def require_finite(value: Any, path: str = "") -> None:
     to_jsonable(value, path)
 
 
+# --------------------------------------------------------------------------- display
+#: the kind (of :data:`UNITS`) of a JSON key's value, by the suffix naming its SI unit,
+#: longest first (``_kg_m2`` before ``_kg_m`` before ``_m``)
+JSON_SUFFIXES: tuple[tuple[str, str], ...] = (
+    ("_kg_m2", "inertia"),
+    ("_kg_m", "unbalance"),
+    ("_rad_s2", "angular_acceleration"),
+    ("_rad_s", "speed"),
+    ("_m_s", "velocity"),
+    ("_percent", "percent"),
+    ("_deg", "angle_deg"),
+    ("_Nm", "moment"),
+    ("_kg", "mass_kg"),
+    ("_Pa", "pressure"),
+    ("_hz", "frequency"),
+    ("_N", "force"),
+    ("_W", "power"),
+    ("_J", "energy"),
+    ("_m", "length"),
+    ("_s", "time"),
+)
+#: rows of a table a display shows (the rest counted); ``to_dict()`` has them all
+DISPLAY_ROWS = 12
+#: numbers of a list a display shows (the rest counted)
+DISPLAY_ITEMS = 8
+#: values (name and value) the ``repr`` of a result shows, after its verdicts
+REPR_VALUES = 6
+
+
+def key_label(key: str) -> tuple[str, str]:
+    """A JSON key as a display names it, and its kind of :data:`UNITS` (``""`` for a value
+    without unit): ``amplitude_N`` -> ``("amplitude [N]", "force")``."""
+    for suffix, kind in JSON_SUFFIXES:
+        if key.endswith(suffix) and len(key) > len(suffix):
+            return f"{key[: -len(suffix)].replace('_', ' ')} [{UNITS[kind][0]}]", kind
+    return key.replace("_", " "), ""
+
+
+def shown(value: Any, kind: str = "") -> str:
+    """A JSON value as a display shows it: a number in the unit of ``kind`` (the SI value
+    times its factor of :data:`UNITS`, 4 significant digits, round-off as 0), a list of up
+    to :data:`DISPLAY_ITEMS` of them, ``yes``/``no``, ``-`` for none."""
+    if value is None:
+        return "-"
+    if isinstance(value, bool):
+        return "yes" if value else "no"
+    if isinstance(value, int | float):
+        return number(float(value) * (UNITS[kind][1] if kind else 1.0))
+    if isinstance(value, list):
+        items = [shown(v, kind) for v in value[:DISPLAY_ITEMS]]
+        more = len(value) - DISPLAY_ITEMS
+        return ", ".join(items) + (f", … ({more} more)" if more > 0 else "")
+    if isinstance(value, dict) and set(value) == {"re", "im"}:
+        return f"{shown(value['re'], kind)} + {shown(value['im'], kind)}j"
+    return str(value)
+
+
+@dataclasses.dataclass(frozen=True)
+class Table:
+    """A table of a result's display: its caption, the column labels (unit in brackets)
+    and the rows as text; ``more`` rows are left out (:data:`DISPLAY_ROWS`)."""
+
+    caption: str
+    header: tuple[str, ...]
+    rows: tuple[tuple[str, ...], ...]
+    more: int = 0
+
+
+@dataclasses.dataclass(frozen=True)
+class Summary:
+    """What a result shows in a notebook: a title, its verdicts (sentences), its values
+    (label with unit, value) and its tables."""
+
+    title: str
+    verdicts: tuple[str, ...] = ()
+    values: tuple[tuple[str, str], ...] = ()
+    tables: tuple[Table, ...] = ()
+
+
+def _is_row(value: Any) -> bool:
+    return isinstance(value, dict) and set(value) != {"re", "im"}
+
+
+def _table(caption: str, rows: list[dict[str, Any]]) -> Table:
+    keys = [k for k, v in rows[0].items() if not (isinstance(v, list) and v and _is_row(v[0]))]
+    keys = [k for k in keys if not _is_row(rows[0][k])]
+    labels = [key_label(k) for k in keys]
+    body = tuple(
+        tuple(shown(row.get(k), kind) for k, (_, kind) in zip(keys, labels, strict=True))
+        for row in rows[:DISPLAY_ROWS]
+    )
+    more = max(len(rows) - DISPLAY_ROWS, 0)
+    return Table(caption, tuple(label for label, _ in labels), body, more)
+
+
+def summarize(title: str, data: dict[str, Any], verdicts: tuple[str, ...] = ()) -> Summary:
+    """The display of a result's JSON (``to_dict()``): its strings and lists of strings as
+    verdicts, its numbers (those of its tables too, one level down) as values with their
+    units, its lists of rows as tables; the ``schema`` key is left out."""
+    said = list(verdicts)
+    values: list[tuple[str, str]] = []
+    tables: list[Table] = []
+
+    def walk(prefix: str, table: dict[str, Any], depth: int) -> None:
+        for key, value in table.items():
+            if key == "schema":
+                continue
+            label, kind = key_label(key)
+            name = f"{prefix}{label}"
+            if isinstance(value, str) and (not prefix or len(value) > 40):
+                said.append(value if not prefix else f"{name}: {value}")
+            elif isinstance(value, list) and value and all(isinstance(v, str) for v in value):
+                said.extend(f"{name}: {v}" for v in value)
+            elif isinstance(value, list) and value and _is_row(value[0]):
+                tables.append(_table(name, [v for v in value if _is_row(v)]))
+            elif _is_row(value):
+                if depth < 2:
+                    walk(f"{name} · ", value, depth + 1)
+            elif not (isinstance(value, list) and not value):
+                values.append((name, shown(value, kind)))
+
+    walk("", data, 0)
+    return Summary(title, tuple(said), tuple(values), tuple(tables))
+
+
+def summary_text(summary: Summary) -> str:
+    """The ``repr`` of a result: its title, its verdicts and its first values
+    (:data:`REPR_VALUES`), and the names of its tables."""
+    lines = [summary.title, *summary.verdicts]
+    first = summary.values[:REPR_VALUES]
+    if first:
+        lines.append("; ".join(f"{label} {value}" for label, value in first))
+    if summary.tables:
+        names = ", ".join(t.caption for t in summary.tables)
+        lines.append(f"tables: {names} (.to_dict() has every value; crankbalance.plot: figures)")
+    return "\n".join(lines)
+
+
+def summary_html(summary: Summary) -> str:
+    """The HTML display of a result (Jupyter's ``_repr_html_``): its title, its verdicts,
+    a table of its values and its tables, units in the column labels."""
+    from html import escape
+
+    def table(caption: str, header: tuple[str, ...], rows: Any, more: int = 0) -> str:
+        head = "".join(f"<th>{escape(h)}</th>" for h in header)
+        body = "".join(
+            "<tr>" + "".join(f"<td>{escape(cell)}</td>" for cell in row) + "</tr>" for row in rows
+        )
+        if more:
+            body += f'<tr><td colspan="{len(header)}">… {more} more rows</td></tr>'
+        return (
+            f"<table><caption>{escape(caption)}</caption><thead><tr>{head}</tr></thead>"
+            f"<tbody>{body}</tbody></table>"
+        )
+
+    parts = [f"<div class='crankbalance-result'><h4>{escape(summary.title)}</h4>"]
+    if summary.verdicts:
+        items = "".join(f"<li>{escape(v)}</li>" for v in summary.verdicts)
+        parts.append(f"<ul>{items}</ul>")
+    if summary.values:
+        parts.append(table("values", ("quantity", "value"), summary.values))
+    parts += [table(t.caption, t.header, t.rows, t.more) for t in summary.tables]
+    parts.append("</div>")
+    return "".join(parts)
+
+
 class ResultMixin:
-    """Mixin for frozen result dataclasses: ``to_dict()`` gives JSON-ready values."""
+    """Mixin for frozen result dataclasses: ``to_dict()`` gives JSON-ready values, and a
+    study result (a dataclass with ``repr=False``) displays itself in a notebook.
+
+    The display is driven by ``to_dict()`` (:func:`summarize`: units from the keys'
+    suffixes, round-off as 0) with the verdicts of :meth:`headline`: ``repr(result)`` is a
+    few lines, ``result._repr_html_()`` the tables. Its figures are
+    :func:`crankbalance.plot` of it.
+    """
 
     def to_dict(self) -> dict[str, Any]:
         out = to_jsonable(self)
         assert isinstance(out, dict)
         return out
+
+    def headline(self) -> tuple[str, ...]:
+        """The key verdicts of the result, in sentences with units (none by default: the
+        strings of ``to_dict()`` are shown)."""
+        return ()
+
+    def display_summary(self) -> Summary:
+        """What the result shows in a notebook (:func:`summarize` of ``to_dict()``)."""
+        data = self.to_dict()
+        engine = data.get("engine")
+        name = engine.get("name") if isinstance(engine, dict) else None
+        title = type(self).__name__ + (f": {name}" if isinstance(name, str) else "")
+        return summarize(title, data, self.headline())
+
+    def __repr__(self) -> str:
+        return summary_text(self.display_summary())
+
+    def _repr_html_(self) -> str:
+        return summary_html(self.display_summary())

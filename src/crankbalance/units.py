@@ -18,7 +18,7 @@ from .errors import InputError
 # one number, then a unit expression whose only digits are exponents ("kg*m^2", "m**3")
 _QUANTITY = re.compile(
     r"^\s*(?P<number>[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?)\s*"
-    r"(?P<unit>[A-Za-z°µμ%][A-Za-z°µμ%_/*^.\s\d()-]*)?$"
+    r"(?P<unit>[A-Za-z°µμ%][A-Za-z°µμ%·⋅²³_/*^.\s\d()-]*)?$"
 )
 _EXPONENT = re.compile(r"(\^|\*\*)\s*\(?-?\d+(\.\d+)?\)?")
 
@@ -41,6 +41,8 @@ KINDS: dict[str, tuple[str, str, str]] = {
     "viscosity": ("Pa*s", "Pa*s", "0.01 Pa*s"),
     "power": ("W", "kW", "10 kW"),
     "frequency": ("Hz", "Hz", "50 Hz"),
+    "energy": ("J", "J", "500 J"),
+    "specific_energy": ("J/kg", "MJ/kg", "44 MJ/kg"),
 }
 
 #: The physical range of each kind of quantity: (smallest size other than zero, largest
@@ -117,7 +119,7 @@ _UNITS: tuple[tuple[tuple[str, ...], str, str, float, _Dims, str], ...] = (
     (("N",), "newton", "newtons", 1.0, _FORCE, "kMm"),
     (("Pa",), "pascal", "pascals", 1.0, _PRESSURE, "kMG"),
     (("bar",), "bar", "bars", 1e5, _PRESSURE, "m"),
-    (("J",), "joule", "joules", 1.0, _ENERGY, "k"),
+    (("J",), "joule", "joules", 1.0, _ENERGY, "kM"),
     (("W",), "watt", "watts", 1.0, _POWER, "kM"),
 )
 
@@ -212,6 +214,7 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         The value in SI units (angles in rad, speeds in rad/s).
     """
     si_unit, _display, example = KINDS[kind]
+    value = _from_pint(value, kind, field)
     if isinstance(value, bool) or not isinstance(value, str):
         if isinstance(value, (int, float)):
             raise InputError(field, value, f"{_a(kind)} needs a unit, e.g. {example!r}")
@@ -229,6 +232,8 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         # pint, which keeps an integer as it is and overflows converting it to a float
         raise InputError(field, value, f"must be a finite {kind}, e.g. {example!r}")
     magnitude: Any
+    unit = written_unit(unit)
+    text = f"{match.group('number')} {unit}"
     found = _table_unit(unit.replace("°", " deg"))
     if found is not None:  # units of the table only: no pint
         names, factor, dims = found
@@ -271,6 +276,40 @@ def parse_quantity(value: Any, kind: str, field: str) -> float:
         except Exception:  # pint refuses the conversion: another dimension
             raise InputError(field, value, _wrong_unit(kind, example)) from None
     raise InputError(field, value, _wrong_unit(kind, example))
+
+
+#: spellings of units people write, as the parser reads them: the output's own symbols
+#: (``N·m``, ``kg·m²``, ``g·mm``) and the unambiguous ``RPM`` and ``Nm`` (no unit is
+#: spelt so: the nanometre is ``nm``); docs/engine_file.md lists them
+SPELLINGS: tuple[tuple[str, str], ...] = (
+    (r"·|⋅", "*"),
+    (r"²", "^2"),
+    (r"³", "^3"),
+    (r"\b(RPM|Rpm)\b", "rpm"),
+    (r"\b(k?)Nm\b", r"\1N*m"),
+)
+
+
+def written_unit(unit: str) -> str:
+    """A unit as written, with the spellings of :data:`SPELLINGS` read as the parser's:
+    ``"N·m"`` -> ``"N*m"``, ``"RPM"`` -> ``"rpm"``, ``"Nm"`` -> ``"N*m"``."""
+    for pattern, replacement in SPELLINGS:
+        unit = re.sub(pattern, replacement, unit)
+    return unit
+
+
+def _from_pint(value: Any, kind: str, field: str) -> Any:
+    """A pint quantity (of any registry) as its text, ``"3000 rpm"``; any other value as
+    it is. An array quantity is refused."""
+    if not (hasattr(value, "magnitude") and hasattr(value, "units") and hasattr(value, "to")):
+        return value
+    magnitude = value.magnitude
+    if isinstance(magnitude, bool) or not isinstance(magnitude, int | float):
+        try:
+            magnitude = float(magnitude)
+        except (TypeError, ValueError):
+            raise InputError(field, value, f"must be a single {kind}") from None
+    return f"{float(magnitude)!r} {format(value.units, '~')}"
 
 
 def _wrong_unit(kind: str, example: str) -> str:

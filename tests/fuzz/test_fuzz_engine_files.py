@@ -389,14 +389,21 @@ def _length_list(count: int, draw: Draw) -> list[Any]:
 
 
 def offsets(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
-    """bank_offsets, cylinder_offsets, rod_positions and moment_reference: added, changed
-    or deleted, lists of the right and wrong lengths, both offsets at once."""
+    """bank_offsets, cylinder_offsets, rod_positions, moment_reference and moment_point:
+    added, changed or deleted, lists of the right and wrong lengths, both offsets (and both
+    points) at once."""
     train = data["crank_train"]
     n = _cylinders(train)
     for key in draw(
         st.lists(
             st.sampled_from(
-                ["bank_offsets", "cylinder_offsets", "rod_positions", "moment_reference"]
+                [
+                    "bank_offsets",
+                    "cylinder_offsets",
+                    "rod_positions",
+                    "moment_reference",
+                    "moment_point",
+                ]
             ),
             min_size=1,
             max_size=3,
@@ -404,6 +411,8 @@ def offsets(data: dict[str, Any], draw: Draw) -> tuple[str | bytes, str]:
     ):
         if key == "moment_reference":
             _set_or_delete(train, key, [*LENGTHS, ["5 mm"]], draw)
+        elif key == "moment_point":
+            train[key] = _length_list(3, draw)
         elif draw(st.integers(0, 4)) == 4:
             train.pop(key, None)
         else:

@@ -105,6 +105,9 @@ LABELS: dict[str, str] = {
     "given, and in a maker's numbering with each cylinder's maker's number, issue 17",
     r"^remaining(\.\d+\.|$)": "what is left in words with the next step (issue 27), the "
     "forward and backward parts of the residuals the components pin",
+    r"(^|\.)combustion\.(heat_release_J|fuel_mass_kg|heating_value_J_kg|combustion_efficiency"
+    r"|gamma|exhaust_pressure_Pa|burn_end)$": "the combustion's settings stated, at the "
+    "defaults the model always took, issue 27",
 }
 
 #: keys whose value depends on the run, not on the engine

@@ -69,7 +69,7 @@ def _failures(rows: list) -> str:
 def test_every_order_agrees_with_exudyn(engine: str) -> None:
     _require_exudyn()
     sim, rows = _run(engine)
-    assert len(rows) == 2 * multibody.ORDERS
+    assert len(rows) == 3 * multibody.ORDERS  # force, moment and roll
     assert not _failures(rows), (
         f"{engine}: crankbalance against EXUDYN (issue 17 acceptance: 0.5 % of the order's "
         f"amplitude or 1e-4 of the largest first-order amplitude):\n{_failures(rows)}"
@@ -81,6 +81,25 @@ def test_every_order_agrees_with_exudyn(engine: str) -> None:
     # zeros that pass everywhere
     biggest = max(rows, key=lambda r: r.crankbalance / r.limit)
     assert biggest.crankbalance > 100 * biggest.limit, f"{engine}: no load above the floor"
+
+
+def test_the_roll_moment_is_the_simulations() -> None:
+    """Issue 27: the roll moment about the crank axis (the reaction of the inertia torque
+    and the offset cylinders' side forces) against the simulation's ground reactions
+    without the drive: the offset single's every order, and the VR6's third (its six
+    cylinders' inertia torques add in the third order) with its first two cancelled; the
+    same engines without the offsets' moment arm fail."""
+    _require_exudyn()
+    for engine in ("single-desaxe", "vr6"):
+        sim, rows = _run(engine)
+        roll = [r for r in rows if r.quantity == "roll"]
+        assert len(roll) == multibody.ORDERS and not _failures(roll), _failures(roll)
+        biggest = max(roll, key=lambda r: r.crankbalance / r.limit)
+        assert biggest.exudyn > 100 * biggest.limit, f"{engine}: no roll above the floor"
+        model = multibody.ENGINES[engine][1]()
+        centred = dataclasses.replace(model, cylinder_offset=0 * model.cylinder_offset)
+        wrong = [r for r in multibody.compare(engine, centred, sim.phasors) if r.quantity == "roll"]
+        assert _failures(wrong), f"{engine}: the roll without offsets passed"
 
 
 def test_the_comparison_sees_a_one_percent_change() -> None:

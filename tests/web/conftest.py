@@ -15,6 +15,7 @@ import asyncio
 import contextlib
 import os
 import subprocess
+import time
 from collections.abc import AsyncIterator, Callable, Iterator
 from pathlib import Path
 from typing import Any
@@ -97,6 +98,12 @@ def logged_server(tmp_path_factory: pytest.TempPathFactory) -> Iterator[tuple[st
 
     path = tmp_path_factory.mktemp("server") / "server.log"
     with open(path, "w") as log, running_server(log, timeout=HANG_GUARD) as url:
+        # the server's "ready" line may come just after its first answer: wait for it, so
+        # that a test reading the log's new lines sees only what its requests caused
+        deadline = time.monotonic() + HANG_GUARD  # a hang guard, not a timing
+        while "crankbalance web: ready" not in path.read_text():
+            assert time.monotonic() < deadline, "no ready line from the server; hung?"
+            time.sleep(0.05)
         yield url, path
 
 

@@ -103,7 +103,7 @@ def test_own_pages_and_scripts_are_served(server: str, headers: dict[str, str]) 
     headers = {k: v.replace("SERVER", server) for k, v in headers.items()}
     status, answer = post(server, preset_text("v6-60").encode(), {**TOML, **headers})
     assert status == 200, answer
-    assert answer["schema"] == "crankbalance.analysis/3" and answer["engine"]["cylinders"] == 6
+    assert answer["schema"] == "crankbalance.analysis/4" and answer["engine"]["cylinders"] == 6
 
 
 def test_json_body_and_preset_name(server: str) -> None:

@@ -124,7 +124,7 @@ async def test_downloads_are_the_api_numbers(user: User, form) -> None:
     assert data["schema"] == "crankbalance.balance/2"
     assert abs(data["counterweight"]["mass_kg"] - 1.2413) < 1e-4, "2021 paper Table 2"
     data = json.loads(await form.download("download-analysis"))
-    assert data["schema"] == "crankbalance.analysis/3"
+    assert data["schema"] == "crankbalance.analysis/4"
     text = (await form.download("download-orders-csv")).decode()
     assert text.splitlines()[0].startswith("trace,point,x,y")
     data = json.loads(await form.download("download-curves-json"))

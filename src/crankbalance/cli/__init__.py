@@ -20,6 +20,7 @@ import click
 
 from ..errors import InputError, ResultError
 from ..io.files import WriteError
+from ._common import SuggestingGroup
 
 COMMANDS: dict[str, tuple[str, str]] = {
     # name: ("module:attribute", one-line help)
@@ -85,7 +86,7 @@ class _NotWritten(click.ClickException):
     exit_code = 2
 
 
-class LazyGroup(click.Group):
+class LazyGroup(SuggestingGroup):
     """A click group whose commands are imported on first use."""
 
     def list_commands(self, ctx: click.Context) -> list[str]:

@@ -16,6 +16,24 @@ if TYPE_CHECKING:
 _NUMBER = re.compile(r"^\s*([-+]?[\d.]+([eE][-+]?\d+)?%?|-|yes|no)?\s*$")
 
 
+class SuggestingGroup(click.Group):
+    """A click group that answers a misspelt command with the closest one: ``No such
+    command 'analyse'; did you mean 'analyze'?``."""
+
+    def resolve_command(
+        self, ctx: click.Context, args: list[str]
+    ) -> tuple[str | None, click.Command | None, list[str]]:
+        name = click.utils.make_str(args[0]) if args else ""
+        known = self.list_commands(ctx)
+        if name and not name.startswith("-") and name not in known:
+            from ..schema.core import closest
+
+            close = closest(name, known)
+            if close is not None:
+                ctx.fail(f"No such command {name!r}; did you mean {close!r}?")
+        return super().resolve_command(ctx, args)
+
+
 def option_name(field: str) -> str:
     """The command-line option of a settings field: ``max_mass`` -> ``--max-mass``."""
     return "--" + field.replace("_", "-")
@@ -131,6 +149,8 @@ def settings_options(
                 kinds["multiple"] = True
             if field in CLICK_PATHS:
                 kinds["type"] = click.Path(exists=True, dir_okay=False)
+            elif field not in CLICK_PATHS:
+                kinds["metavar"] = setting_metavar(model, field)
             function = click.option(
                 flag, field, default=None, help=setting_help(model, field), **kinds
             )(function)
@@ -139,10 +159,48 @@ def settings_options(
     return decorate
 
 
+#: the metavar of a setting of each plain kind (a quantity's is its kind and unit)
+METAVARS = {
+    "number": "NUMBER",
+    "whole": "INTEGER",
+    "factor": "FRACTION",
+    "choice": "CHOICE",
+    "text": "TEXT",
+}
+#: choices a metavar lists in full (more are "CHOICE", listed in the help)
+METAVAR_CHOICES = 5
+
+
+def setting_metavar(model: type[Options], name: str) -> str:
+    """What ``--help`` shows after a setting's option: a quantity's kind and display unit
+    (``LENGTH [mm]``, ``INERTIA [kg·m²]``), a number's kind (``NUMBER``, ``INTEGER``,
+    ``FRACTION``: 0.5 or 50%), a few choices (``{exact|series}``), a list's item with
+    ``,...``."""
+    from ..output.format import in_output_style
+    from ..units import KINDS
+
+    spec = model.FIELDS[name]
+    if spec.kind == "list" and spec.item is not None:
+        return f"{_metavar(spec.item, KINDS, in_output_style)},..."
+    return _metavar(spec, KINDS, in_output_style)
+
+
+def _metavar(spec: Any, kinds: Mapping[str, Any], style: Callable[[str], str]) -> str:
+    if spec.metavar:
+        return str(spec.metavar)
+    if spec.quantity is not None and spec.kind in kinds:
+        unit = kinds[spec.kind][1]
+        return f"{spec.kind.upper()} [{'°' if unit == 'deg' else style(unit)}]"
+    if spec.choices and len(spec.choices) <= METAVAR_CHOICES:
+        return "{" + "|".join(map(str, spec.choices)) + "}"
+    return METAVARS.get(spec.kind, "TEXT")
+
+
 def setting_help(model: type[Options], name: str) -> str:
     """The help text of a setting from its schema: ``"Bore. Cylinder bore, for the gas
     force. [default: 76.8 mm]"``; without a default, its hint in brackets instead, or for
     a quantity an example of it as typed (``[e.g. '40 mm']``)."""
+    from ..output.format import in_output_style
     from ..schema.core import default_text
     from ..units import KINDS
 
@@ -160,7 +218,7 @@ def setting_help(model: type[Options], name: str) -> str:
         words.append(f"[{spec.hint}]")
     elif spec.quantity is not None:
         words.append(f"[e.g. '{spec.example or KINDS[spec.kind][2]}']")
-    return " ".join(words)
+    return in_output_style(" ".join(words))
 
 
 #: the optional extras of crankbalance (pyproject.toml) and the modules each provides

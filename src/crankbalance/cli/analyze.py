@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import math
 from typing import Any
 
 import click
@@ -46,6 +47,7 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
         )
     elif "firing_order" in e:
         click.echo("Firing order " + "-".join(map(str, e["firing_order"])))
+    click.echo(_firing_text(result.model))
     if "articulated" in e:
         art = e["articulated"]
         click.echo(
@@ -77,7 +79,7 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
         click.echo(line)
     click.echo(
         "Free forces and moments of the reciprocating masses "
-        f"(moments about {moment_point(e['moment_reference_m'])}):"
+        f"(moments about {moment_point(e['moment_point_m'])}; roll: about y):"
     )
     rows = [
         [
@@ -88,16 +90,42 @@ def analyze(engine: str, fmt: str, **values: Any) -> None:
             number(m["amplitude_Nm"]),
             number(m["forward_Nm"]),
             number(m["backward_Nm"]),
+            number(y["amplitude_Nm"]),
         ]
-        for f, m in zip(data["free_forces"], data["free_moments"], strict=True)
+        for f, m, y in zip(
+            data["free_forces"], data["free_moments"], data["roll_moments"], strict=True
+        )
     ]
-    echo_table(["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m"], rows)
+    echo_table(
+        ["order", "force N", "fwd N", "bwd N", "moment N·m", "fwd N·m", "bwd N·m", "roll N·m"],
+        rows,
+    )
     rot = data["rotating"]
+    roll = f", roll {text(rot['roll_Nm'], 'moment')}" if rot["roll_Nm"] else ""
     click.echo(
         "Rotating masses (bare crank, no counterweights): "
-        f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}"
+        f"force {text(rot['force_N'], 'force')}, moment {text(rot['moment_Nm'], 'moment')}" + roll
     )
     echo_notes(engine)
+
+
+def _firing_text(model: Any) -> str:
+    """The firing intervals in words: "Firing intervals 180-180-180-180° (crank angle from
+    each cylinder of the order to the next)", and for an engine without a firing order the
+    order they assume."""
+    from ..errors import InputError
+    from ..studies.engine import firing
+
+    try:
+        order, intervals = firing(model)
+    except InputError as error:  # no order given and too many firings to try
+        return f"Firing intervals not derived: {error.allowed}"
+    steps = "-".join(number(math.degrees(a)) for a in intervals)
+    text = f"Firing intervals {steps}° (crank angle from each cylinder of the order to the next"
+    if not model.firing_order_given:
+        text += "; no firing order given: the most even this crank allows, order "
+        text += "-".join(map(str, order))
+    return text + ")"
 
 
 def _distinct(values: list[float]) -> str:
@@ -116,31 +144,48 @@ def curves_csv(result: object) -> str:
     header = ["crank_angle_deg"]
     columns = [c.angle * 180 / 3.141592653589793]
     for k, order in enumerate(c.orders):
-        header += [f"fx_{order}_N", f"fz_{order}_N", f"mx_{order}_Nm", f"mz_{order}_Nm"]
-        columns += [c.fx[k], c.fz[k], c.mx[k], c.mz[k]]
+        header += [
+            f"fx_{order}_N",
+            f"fz_{order}_N",
+            f"mx_{order}_Nm",
+            f"my_{order}_Nm",
+            f"mz_{order}_Nm",
+        ]
+        columns += [c.fx[k], c.fz[k], c.mx[k], c.my[k], c.mz[k]]
     header += [
         "fx_total_N",
         "fz_total_N",
         "mx_total_Nm",
+        "my_total_Nm",
         "mz_total_Nm",
         "fx_rotating_N",
         "fz_rotating_N",
         "mx_rotating_Nm",
+        "my_rotating_Nm",
         "mz_rotating_Nm",
     ]
     columns += [
         c.total_fx,
         c.total_fz,
         c.total_mx,
+        c.total_my,
         c.total_mz,
         c.rotating_fx,
         c.rotating_fz,
         c.rotating_mx,
+        c.rotating_my,
         c.rotating_mz,
     ]
-    from ..results import require_finite
+    from ..results import below_round_off, require_finite, round_off
 
     require_finite(dict(zip(header, columns, strict=True)), "curves")
+    # what is at most the engine's round-off is 0, as in the text and the JSON (no 6.9e-14,
+    # no -0)
+    force, moment = round_off(result.model)
+    columns = [columns[0]] + [
+        below_round_off(c, moment if name.endswith("_Nm") else force) + 0.0
+        for name, c in zip(header[1:], columns[1:], strict=True)
+    ]
     lines = [",".join(header)]
     for row in zip(*columns, strict=True):
         lines.append(",".join(f"{v:.9g}" for v in row))

@@ -17,6 +17,7 @@ from ..output.format import text as unit_text
 from ..physics.counterweight import SYMBOLS as SYMBOL
 from ..studies.counterweight import PARAMETERS
 from ._common import (
+    SuggestingGroup,
     echo_table,
     format_option,
     option_name,
@@ -57,7 +58,7 @@ def _table_rows(rows: list[dict[str, float]], labels: list[str]) -> None:
     echo_table(header, table)
 
 
-@click.group()
+@click.group(cls=SuggestingGroup)
 def counterweight() -> None:
     """Counterweight shape: optimise, show a design, export it, check a CAD part.
 

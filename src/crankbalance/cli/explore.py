@@ -9,6 +9,7 @@ all imported when the command runs, dask and pyarrow only when asked for.
 
 from __future__ import annotations
 
+import math
 import os
 from pathlib import Path
 from typing import Any
@@ -92,10 +93,12 @@ def explore(
     records = result.top()
     names = result.names
     if fmt == "csv":
-        header = ["rank", "index", "firing_order", "equivalents", *names]
+        listed = ["orders"] if result.settings.list_orders else []
+        header = ["rank", "index", "firing_order", "equivalents", *listed, *names]
         lines = [",".join(header)]
         for k, r in enumerate(records, 1):
             cells = [str(k), str(r["index"]), r["firing_order"], str(r["equivalents"])]
+            cells += [" ".join(r["orders"])] if listed else []  # orders: no comma
             lines.append(",".join(cells + [f"{r[n]:.9g}" for n in names]))
         click.echo("\n".join(lines))
         return
@@ -106,18 +109,21 @@ def explore(
     shown_columns = list(dict.fromkeys([*result.objectives, *([result.key] if result.key else [])]))
     sampled = f", {run.covered:,} sampled" if o.sample else ""
     click.echo(
-        f"{o.layout} {o.cylinders}-cylinder {o.strokes}-stroke, crank {o.crank}: "
+        f"{o.layout} {o.cylinders}-cylinder {o.strokes}-stroke, crank {o.crank}"
+        f"{_equivalences(o)}: "
         f"{run.total:,} firing orders{sampled}, {run.candidates:,} distinct engines, "
         f"{run.rows:,} kept, Pareto front of {counts['pareto']} over "
         f"{', '.join(result.objectives) or 'nothing'} ({number(run.seconds, 3)} s)"
     )
+    listed = ["stands for"] if o.list_orders else []
     echo_table(
-        ["rank", "firing order", "equiv", *shown_columns],
+        ["rank", "firing order", "equiv", *listed, *shown_columns],
         [
             [
                 str(k),
                 r["firing_order"],
                 str(r["equivalents"]),
+                *([" ".join(r["orders"])] if listed else []),
                 *(number(r[n]) for n in shown_columns),
             ]
             for k, r in enumerate(records, 1)
@@ -126,3 +132,16 @@ def explore(
     click.echo(f"Assumption: {merit.TORSION_ASSUMPTION}.")
     if output is not None:
         click.echo(f"Rows written to {output}.")
+
+
+def _equivalences(o: ExploreOptions) -> str:
+    """What the run counts as one engine, when not the default, and a fixed crank."""
+    words = []
+    if o.fixed_crank is not None:
+        degrees = ", ".join(f"{math.degrees(a):g}" for a in o.fixed_crank)
+        words.append(f"fixed at {degrees} deg")
+    if not o.mirror:
+        words.append("mirror images distinct")
+    if o.reversal:
+        words.append("time reversal the same")
+    return f" ({'; '.join(words)})" if words else ""

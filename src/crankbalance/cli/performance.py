@@ -208,7 +208,7 @@ def _echo_cycle(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> None:
     speed, strokes = payload["speed_rad_s"], payload["strokes"]
     if "engine" in payload:
         engine = payload["engine"]
-        steps = "/".join(f"{_math.degrees(a):.4g}" for a in engine["firing_interval_rad"])
+        steps = "-".join(number(_math.degrees(a)) for a in engine["firing_interval_rad"])
         click.echo(
             f"{engine['name']}: "
             + (
@@ -218,7 +218,7 @@ def _echo_cycle(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> None:
             )
             + f", {text(speed, 'speed')}, "
             f"{strokes}-stroke, firing order {'-'.join(map(str, engine['firing_order']))} "
-            f"(intervals {steps} deg)"
+            f"(intervals {steps}°)"
         )
     else:
         click.echo(
@@ -226,18 +226,39 @@ def _echo_cycle(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> None:
             f"balance factor {number(payload['cylinder']['balance_factor'])}"
         )
     click.echo(_assumed_text(payload, flywheel_inertia))
-    rows = [[k, number(v, 5)] for k, v in payload["summary"].items()]
-    if "flywheel" in payload:
-        rows += [
-            [k, number(v, 5)] for k, v in payload["flywheel"].items() if k not in payload["summary"]
-        ]
-    echo_table(["quantity", "value"], rows)
+    values = dict(payload["summary"])
+    values.update(payload.get("flywheel") or {})
+    echo_table(["quantity", "value"], [summary_row(k, v) for k, v in values.items()])
+
+
+#: the values of ``cycle``'s summary that are fractions, shown as percentages (as their
+#: settings are given: ``--speed-fluctuation-target 1%``)
+PERCENT_KEYS = frozenset(
+    {"speed_fluctuation", "speed_fluctuation_target", "check_speed_fluctuation"}
+)
+
+
+def summary_row(key: str, value: float) -> list[str]:
+    """A row of a summary table in words with its unit: ``mean_torque_Nm`` ->
+    ``["mean torque", "236.4 N·m"]``, ``speed_fluctuation`` 0.0144 -> ``["speed
+    fluctuation", "1.44 %"]`` (the unit from the JSON key's suffix,
+    :func:`crankbalance.results.key_label`)."""
+    from ..results import UNITS, key_label
+
+    if key in PERCENT_KEYS:
+        label, kind, value = key.replace("_", " "), "percent", 100.0 * value
+    else:
+        label, kind = key_label(key)
+        label = label.split(" [")[0]
+    unit = UNITS[kind][0] if kind else ""
+    shown = number(value * (UNITS[kind][1] if kind and kind != "percent" else 1.0), 5)
+    return [label, f"{shown} {unit}".rstrip()]
 
 
 def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str:
     """One line of the crank + flywheel inertia and the combustion ``cycle`` or
     ``sensitivity`` took (``flywheel_inertia``: that of ``--flywheel-inertia``, in the
-    inertia of one cylinder's payload) [kg m^2]."""
+    inertia of one cylinder's payload) [kg·m²]."""
     from ..studies.performance import combustion_text
 
     if "engine" in payload:
@@ -252,8 +273,8 @@ def _assumed_text(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> str
         "engine": "the engine's: front end + throws + flywheel, as 'torsional' and 'bearings'",
         "thesis": "the thesis' single",
     }[origin]
-    extra = f" + flywheel {flywheel:.4g}" if flywheel else ""
-    return f"crank + flywheel {inertia:.4g}{extra} kg m^2 ({source}); " + combustion_text(
+    extra = f" + flywheel {text(flywheel, 'inertia')}" if flywheel else ""
+    return f"crank + flywheel {text(inertia, 'inertia')}{extra} ({source}); " + combustion_text(
         payload["combustion"]
     )
 

@@ -14,7 +14,7 @@ from typing import Any
 import click
 
 from ..output.format import json_text, text
-from ._common import echo_table, format_option, run_study, study_options
+from ._common import SuggestingGroup, echo_table, format_option, run_study, study_options
 
 
 def _engine_option(function: Any) -> Any:
@@ -70,7 +70,7 @@ def _echo_study(study: Any, every: int) -> None:
     )
 
 
-@click.group()
+@click.group(cls=SuggestingGroup)
 def shaft() -> None:
     """Balance-shaft bearing and unbalance-mass layout (beam model, Kim 2018)."""
 

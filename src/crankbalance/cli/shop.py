@@ -16,7 +16,15 @@ import click
 
 from ..output.format import text
 from ..schema.settings import ShopOptions
-from ._common import echo_table, option_name, parse_settings, run_study, study_options, typed
+from ._common import (
+    SuggestingGroup,
+    echo_table,
+    option_name,
+    parse_settings,
+    run_study,
+    study_options,
+    typed,
+)
 
 FORMATS = click.Choice(["table", "json"])
 
@@ -40,7 +48,7 @@ def _g(value: float) -> str:
     return text(value, "mass", 5)
 
 
-@click.group()
+@click.group(cls=SuggestingGroup)
 def shop() -> None:
     """The balance shop: weighed parts to matched sets, bob-weights, a hole plan and a sheet."""
 
@@ -48,7 +56,9 @@ def shop() -> None:
 @shop.command()
 @study_options("shop-match")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def match(engine: str, fmt: str, **values: Any) -> None:
     """Match the weighed parts of PARTS (CSV or TOML) to the cylinders of the engine."""
     result = run_study("shop-match", engine, values)
@@ -73,12 +83,29 @@ def match(engine: str, fmt: str, **values: Any) -> None:
         f"remove {_g(listed.removed_total)}"
     )
     click.echo(f"every part machined to the lightest: remove {_g(study.machined.removed_total)}")
+    _echo_journals(study)
+
+
+def _echo_journals(study: Any) -> None:
+    """Which cylinders share each journal, and the spread of the journals' bob-weights."""
+    from ..output.shop_sheet import journal_cylinders, journals_words
+
+    j = study.journals
+    pins = "; ".join(
+        f"pin {t + 1}: cylinders {journal_cylinders(j, t)}" for t in range(len(j.bob_weight))
+    )
+    click.echo(
+        f"{journals_words(j)}: {pins}; spread of the journals' bob-weights {_g(j.spread)} "
+        f"(as listed {_g(j.as_listed_spread)})"
+    )
 
 
 @shop.command()
 @study_options("shop-bobweights")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def bobweights(engine: str, fmt: str, **values: Any) -> None:
     """Bob-weight per crankpin from the matched sets of PARTS."""
     result = run_study("shop-bobweights", engine, values)
@@ -98,6 +125,7 @@ def bobweights(engine: str, fmt: str, **values: Any) -> None:
     left = study.remaining
     m = study.matching
     click.echo(f"\nsets matched by {m.method} ({m.status})")
+    _echo_journals(study)
     click.echo(
         f"fraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
         + "; ".join(
@@ -148,7 +176,9 @@ def echo_hole_plan(result: Any) -> None:
 @shop.command()
 @_engine(required=False)
 @study_options("shop-plan")
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def plan(engine: str | None, fmt: str, **values: Any) -> None:
     """Two-plane readings to holes per correction plane, and the ISO check."""
     result = run_study("shop-plan", engine, values)
@@ -161,7 +191,9 @@ def plan(engine: str | None, fmt: str, **values: Any) -> None:
 @shop.command()
 @study_options("shop-scatter")
 @_engine()
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def scatter(engine: str, fmt: str, **values: Any) -> None:
     """Monte Carlo of the weight scatter in PARTS: residual per plane, free forces."""
     result = run_study("shop-scatter", engine, values)

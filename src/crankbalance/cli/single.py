@@ -11,7 +11,7 @@ from typing import Any
 
 import click
 
-from ..output.format import json_text
+from ..output.format import in_output_style, json_text, text
 from ..units import format_quantity
 from ._common import format_table, run_study, study_options
 
@@ -19,11 +19,11 @@ FORMATS = click.Choice(["table", "json"])
 
 
 def _quantity(value: float, kind: str) -> str:
-    return format_quantity(value, kind, digits=5)
+    return in_output_style(format_quantity(value, kind, digits=5))
 
 
 def _gmm(value: float) -> str:
-    return f"{value * 1e6:.4g} g*mm"
+    return text(value, "unbalance")
 
 
 # ---------------------------------------------------------------------------------------
@@ -39,7 +39,9 @@ def _gmm(value: float) -> str:
     default=None,
     help="Engine file or preset: take masses and geometry of one cylinder from it.",
 )
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def balance_factor(engine: str | None, fmt: str, **values: Any) -> None:
     """Balance factor of a crank, its bob-weight, and the single-cylinder force study.
 
@@ -86,7 +88,9 @@ def balance_factor(engine: str | None, fmt: str, **values: Any) -> None:
 
 @click.command("rebalance")
 @study_options("rebalance")
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def rebalance_command(fmt: str, **values: Any) -> None:
     """Rebalance a single-cylinder crank after new parts (Hoem and Røsholm (2016), Sec. 6.4, eight
     steps).
@@ -135,7 +139,7 @@ def rebalance_command(fmt: str, **values: Any) -> None:
                 "m_corr [g]",
                 _depth_header(res.correction),
                 "removed [g]",
-                "residual [g*mm]",
+                "residual [g·mm]",
                 "within",
             )
             click.echo(format_table(header, rows))
@@ -168,9 +172,11 @@ def _depth_header(correction: Any) -> str:
     "for the crank's mass) and the speed default to the engine's.",
 )
 @study_options("tolerance")
-@click.option("--format", "fmt", type=FORMATS, default="table", show_default=True)
+@click.option(
+    "--format", "fmt", type=FORMATS, default="table", show_default=True, help="Output format."
+)
 def tolerance_command(fmt: str, engine: str | None, **values: Any) -> None:
-    """ISO 21940-11 permissible residual unbalance U_per = 1000 G m / Omega [g*mm]."""
+    """ISO 21940-11 permissible residual unbalance U_per = 1000 G m / Omega [g·mm]."""
     result = run_study("tolerance", engine, values)
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
@@ -191,7 +197,7 @@ def tolerance_command(fmt: str, engine: str | None, **values: Any) -> None:
     rows = [
         ("grade", item.name),
         ("permissible residual U_per", _gmm(u_per)),
-        ("permissible eccentricity", f"{u_per / result.rotor_mass * 1e6:.4g} um"),
+        ("permissible eccentricity", text(u_per / result.rotor_mass, "deflection")),
     ]
     if allocation is not None:
         rows += [

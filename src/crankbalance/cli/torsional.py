@@ -15,6 +15,7 @@ from typing import Any
 
 import click
 
+from ..output.format import text
 from ._common import echo_table, format_option, run_study, study_options
 from .plot import check_figure, write_figure
 
@@ -36,7 +37,7 @@ TABLE_RESONANCES = 12
 def torsional(fmt: str, plot: str | None, engine: str | None, **values: Any) -> None:
     """Torsional vibration of the crank train of --engine.
 
-    One inertia per throw (the throw with its big ends, default m_rot r^2, plus its
+    One inertia per throw (the throw with its big ends, default m_rot r², plus its
     pistons' mean share), the stiffness between throws (given, or Carter's formula from
     the journal, pin and web dimensions: an approximation), front end, flywheel, an
     optional tuned damper (--damper-inertia and --damper-frequency) and driven load.
@@ -74,7 +75,7 @@ def _echo(payload: dict[str, Any]) -> None:
     )
     _echo_assumed(payload["crank"])
     echo_table(
-        ["mass", "inertia [kg m^2]", "stiffness to next [N m/rad]"],
+        ["mass", "inertia [kg·m²]", "stiffness to next [N·m/rad]"],
         [
             [m["name"], f"{m['inertia_kg_m2']:.5g}", f"{s['stiffness_Nm_rad']:.4g}" if s else ""]
             for m, s in zip(payload["masses"], [*payload["sections"], None], strict=True)
@@ -109,31 +110,31 @@ def _echo(payload: dict[str, Any]) -> None:
         "(those of largest crank twist; all in --format json); the response is synthesised "
         "from all orders:"
     )
-    echo_table(
+    # the power of a damper: a column only with a damper (without one it is all zero)
+    damped = payload["damper"] is not None
+    header = [
+        "mode",
+        "order",
+        "speed [rpm]",
+        "rel. excitation",
+        "front [°]",
+        "twist [°]",
+        "torque [N·m]",
+    ]
+    rows = [
         [
-            "mode",
-            "order",
-            "speed [rpm]",
-            "rel. excitation",
-            "front [deg]",
-            "twist [deg]",
-            "torque [N m]",
-            "damper [W]",
-        ],
-        [
-            [
-                str(r["mode"]),
-                f"{r['order']:g}",
-                f"{r['speed_rad_s'] * _RPM:.0f}",
-                f"{r['relative_excitation']:.3f}",
-                f"{math.degrees(r['front_amplitude_rad']):.4f}",
-                f"{math.degrees(r['crank_twist_rad']):.4f}",
-                f"{r['max_section_torque_Nm']:.1f}",
-                f"{r['damper_power_W']:.2f}",
-            ]
-            for r in shown
-        ],
-    )
+            str(r["mode"]),
+            f"{r['order']:g}",
+            f"{r['speed_rad_s'] * _RPM:.0f}",
+            f"{r['relative_excitation']:.3f}",
+            f"{math.degrees(r['front_amplitude_rad']):.4f}",
+            f"{math.degrees(r['crank_twist_rad']):.4f}",
+            f"{r['max_section_torque_Nm']:.1f}",
+        ]
+        + ([f"{r['damper_power_W']:.2f}"] if damped else [])
+        for r in shown
+    ]
+    echo_table(header + (["damper [W]"] if damped else []), rows)
     d = payload["damper"]
     if d is None:
         click.echo("No damper (give --damper-inertia and --damper-frequency).")
@@ -152,7 +153,7 @@ def _echo(payload: dict[str, Any]) -> None:
 def _echo_assumed(crank: dict[str, Any]) -> None:
     """One line of the crank dimensions and combustion the study took (typed, or the
     engine's: the same for every study, docs/torsional.md)."""
-    parts = [f"front + throws + flywheel {crank['rotating_inertia_kg_m2']:.4g} kg m^2"]
+    parts = [f"front + throws + flywheel {text(crank['rotating_inertia_kg_m2'], 'inertia')}"]
     d = crank["dimensions"]
     if d is not None:
         typed = set(d["typed"])

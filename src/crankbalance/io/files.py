@@ -47,12 +47,13 @@ import contextlib
 import errno
 import os
 import re
-import secrets
 import stat
 import sys
 from collections.abc import Iterator
-from pathlib import Path
-from typing import IO, Any
+from typing import IO, TYPE_CHECKING, Any
+
+if TYPE_CHECKING:  # pathlib (with urllib and ipaddress) is imported on the first write
+    from pathlib import Path
 
 #: the end of every temporary file name (``.NAME.<12 hex digits>.tmp``)
 TEMP_SUFFIX = ".tmp"
@@ -111,6 +112,8 @@ def atomic_open(path: str | os.PathLike[str], mode: str = "w") -> Iterator[IO[An
     Anything else is refused before anything is opened. An OS error inside the block or
     while saving is raised as :class:`WriteError`.
     """
+    from pathlib import Path  # here: a command that writes nothing does not load it
+
     if mode not in ("w", "wb"):
         raise ValueError(f"atomic_open writes with mode 'w' or 'wb', not {mode!r}")
     target = Path(path)
@@ -267,7 +270,7 @@ def _create_temp(target: Path, real: Path) -> tuple[int, Path]:
     stem = "." + real.name[:200] + "."
     flags = os.O_WRONLY | os.O_CREAT | os.O_EXCL | getattr(os, "O_CLOEXEC", 0)
     for _ in range(100):
-        temp = folder / f"{stem}{secrets.token_hex(6)}{TEMP_SUFFIX}"
+        temp = folder / f"{stem}{os.urandom(6).hex()}{TEMP_SUFFIX}"
         try:
             return os.open(temp, flags, 0o666), temp
         except FileExistsError:

@@ -3,8 +3,10 @@
 
 Kinds of parts (:data:`KINDS`): ``piston``, ``pin``, ``rings`` (a ring set), ``locks``
 (a pair of pin locks), ``rod`` (big end and small end from the usual two-end weighing,
-with the total if weighed), ``shell`` (a big-end bearing shell pair) and ``oil`` (the
-allowance for the oil in one big end, given once, added to every rod).
+with the total if weighed), ``shell`` (a big-end bearing shell pair), and the oil, given
+once: ``oil`` the allowance in one big end, added to every rod, or ``journal_oil`` the oil
+in one rod journal, shared by the rods on it (the same total either way:
+:meth:`~crankbalance.physics.shop.matching.Inventory.per_rod`).
 
 CSV: one part per row, a header naming the columns, units in brackets on the mass
 columns::
@@ -67,7 +69,10 @@ KINDS: dict[str, str] = {
     "rod": "both",
     "shell": "rotating",
     "oil": "allowance",
+    "journal_oil": "allowance",
 }
+#: the kinds given once, as an allowance: per rod, per journal (shared by its rods)
+ALLOWANCES = ("oil", "journal_oil")
 #: longest cell of a CSV parts file, in characters (a mark or a mass needs a few; the TOML
 #: file's quantities have the same bound)
 MAX_CELL_CHARS = MAX_QUANTITY_CHARS
@@ -315,11 +320,11 @@ def parts_from_toml(data: Any, source: str = "parts.toml") -> Inventory:
         where = f"{source}: {key}"
         if key == "name":
             continue
-        if key == "oil":
-            parts.append(_Part("oil", "", _quantity(value, where), None, None, "oil", where))
+        if key in ALLOWANCES:
+            parts.append(_Part(key, "", _quantity(value, where), None, None, key, where))
             continue
         kind = _kind(key, f"{source}: key")
-        if kind == "oil" or not isinstance(value, list):
+        if kind in ALLOWANCES or not isinstance(value, list):
             raise InputError(where, value, f"must be an array of tables ([[{key}]]) of parts")
         for index, entry in enumerate(value, start=1):
             at = f"{key}[{index}]"
@@ -370,7 +375,7 @@ def _inventory(parts: list[_Part], source: str) -> Inventory:
     by_kind: dict[str, list[tuple[str, float, float]]] = {}
     oil: list[_Part] = []
     for part in parts:
-        if part.kind == "oil":
+        if part.kind in ALLOWANCES:
             oil.append(part)
             continue
         share = _shares(part)
@@ -383,13 +388,17 @@ def _inventory(parts: list[_Part], source: str) -> Inventory:
         marks.append((mark, *share))
     if len(oil) > 1:
         raise InputError(
-            f"{oil[1].field}", None, "gives the oil allowance twice; give it once (it is per rod)"
+            f"{oil[1].field}",
+            None,
+            "gives the oil allowance twice; give it once, per rod (oil) or per journal "
+            "(journal_oil)",
         )
-    allowance = 0.0
+    allowance = {name: 0.0 for name in ALLOWANCES}
     if oil:
         if oil[0].mass is None:
-            raise InputError(oil[0].at("mass"), None, "is missing; give the oil per rod")
-        allowance = oil[0].mass
+            per = "rod" if oil[0].kind == "oil" else "journal"
+            raise InputError(oil[0].at("mass"), None, f"is missing; give the oil per {per}")
+        allowance[oil[0].kind] = oil[0].mass
     if not by_kind:
         raise InputError("parts", source, f"lists no part; give at least one of {', '.join(KINDS)}")
     kinds = tuple(
@@ -401,7 +410,7 @@ def _inventory(parts: list[_Part], source: str) -> Inventory:
         )
         for name, entries in by_kind.items()
     )
-    return Inventory(kinds, 0.0, allowance)
+    return Inventory(kinds, 0.0, allowance["oil"], allowance["journal_oil"])
 
 
 def _shares(part: _Part) -> tuple[float, float]:

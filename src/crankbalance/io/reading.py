@@ -14,7 +14,6 @@ and, for JSON, a key given twice in one object. Every refusal is one
 
 from __future__ import annotations
 
-import json
 import os
 import re
 import stat
@@ -22,7 +21,6 @@ import tomllib
 from collections.abc import Iterator, Mapping
 from contextlib import contextmanager
 from contextvars import ContextVar
-from pathlib import Path
 from typing import Any, NoReturn
 
 from ..errors import InputError
@@ -197,7 +195,8 @@ def _chunks(fd: int, count: int) -> Iterator[bytes]:
 
 def file_format(path: str | os.PathLike[str]) -> str:
     """``"json"`` for a ``.json`` file, else ``"toml"``."""
-    return "json" if Path(path).suffix.lower() == ".json" else "toml"
+    suffix = os.path.splitext(os.path.basename(os.fspath(path)))[1]  # no pathlib at start
+    return "json" if suffix.lower() == ".json" else "toml"
 
 
 # --------------------------------------------------------------------------- TOML, JSON
@@ -229,6 +228,8 @@ def parse_json(text: str, field: str, value: Any = None) -> Any:
         :data:`MAX_NUMBER_CHARS` characters, gives a key twice in one object, or is not
         valid JSON.
     """
+    import json  # here: reading a TOML file does not load it
+
     _check_text(text, _JSON_TOKENS, field, value)
 
     def unique(pairs: list[tuple[str, Any]]) -> dict[str, Any]:

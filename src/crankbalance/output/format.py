@@ -19,49 +19,25 @@ JSON keys carry SI values and name their unit in a suffix (``_m``, ``_kg``, ``_k
 
 from __future__ import annotations
 
-import json
 import math
+from collections.abc import Sequence
 from typing import Any
 
-from ..results import JSON_DIGITS, angle, clean_number, to_jsonable
+from ..results import JSON_DIGITS, UNITS, angle, clean_number, number, to_jsonable
 
 __all__ = [
     "JSON_DIGITS",
+    "UNITS",
     "angle",
     "clean_number",
     "depth_read_to",
+    "in_output_style",
     "json_text",
     "number",
     "plural",
     "symbol",
     "text",
 ]
-
-#: the symbol printed after a value of each kind, and the factor from its SI value
-UNITS: dict[str, tuple[str, float]] = {
-    "force": ("N", 1.0),
-    "moment": ("N·m", 1.0),
-    "torque": ("N·m", 1.0),
-    "mass": ("g", 1e3),
-    "mass_kg": ("kg", 1.0),
-    "length": ("mm", 1e3),
-    "length_m": ("m", 1.0),
-    "deflection": ("µm", 1e6),
-    "unbalance": ("g·mm", 1e6),
-    "first_moment": ("g·mm", 1e6),
-    "inertia": ("kg·m²", 1.0),
-    "speed": ("rpm", 30.0 / math.pi),
-    "frequency": ("Hz", 1.0),
-    "angle": ("°", 180.0 / math.pi),
-    "angle_deg": ("°", 1.0),
-    "stress": ("MPa", 1e-6),
-    "pressure": ("bar", 1e-5),
-    "power": ("W", 1.0),
-    "energy": ("J", 1.0),
-    "time": ("s", 1.0),
-    "percent": ("%", 1.0),
-    "ratio": ("", 1.0),
-}
 
 #: the symbols, by name, for text that builds its own labels
 N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
@@ -79,20 +55,33 @@ N, NM, KG, G, MM, UM, GMM, KGM2, RPM, HZ, DEG = (
 )
 
 
-def number(value: float, digits: int = 4) -> str:
-    """A number with ``digits`` significant digits, never ``-0`` nor float noise.
+#: the parser's spellings of units (:mod:`crankbalance.units`, engine files, defaults) ->
+#: the output's symbols, in that order: ``kg*m**2`` and ``kg*m^2`` -> ``kg·m²``,
+#: ``g*mm`` -> ``g·mm``, ``N m`` -> ``N·m``, ``30 deg`` -> ``30°``
+_STYLE: tuple[tuple[str, str], ...] = (
+    (r"\b(N|kg) m\b", r"\1·m"),
+    (r"(?<=·m) s\b", "·s"),
+    (r"(\*\*|\^)2\b", "²"),
+    (r"(\*\*|\^)3\b", "³"),
+    (r"(?<=[A-Za-zµ])\*(?=[A-Za-zµ])", "·"),
+    (r"(?<=\d) ?(degrees\b|deg\b|°)", "°"),
+)
 
-    Values of ``10**digits`` and more print whole (``15200``, not ``1.52e+04``).
 
-    >>> number(1999.9999999999998), number(-0.0001, 2), number(15200.0), number(0.5)
-    ('2000', '-0.0001', '15200', '0.5')
+def in_output_style(text: str) -> str:
+    """A text with its units written in the output's symbols (:data:`UNITS`): ``"0.002
+    kg*m^2"`` -> ``"0.002 kg·m²"``, ``"10 g*mm"`` -> ``"10 g·mm"``, ``"[N m s/rad]"`` ->
+    ``"[N·m·s/rad]"``, ``"30 deg"`` and ``"30 °"`` -> ``"30°"``; the parser reads every one
+    of them.
+
+    >>> in_output_style("0.002 kg*m**2, 10 g*mm, 1.5 N m, 30 deg, 7850 kg/m^3")
+    '0.002 kg·m², 10 g·mm, 1.5 N·m, 30°, 7850 kg/m³'
     """
-    value = clean_number(float(value))
-    if 10.0**digits <= abs(value) < 1e15:
-        out = f"{round(value):d}"
-    else:
-        out = f"{value:.{digits}g}"
-    return "0" if float(out) == 0.0 else out
+    import re
+
+    for pattern, replacement in _STYLE:
+        text = re.sub(pattern, replacement, text)
+    return text
 
 
 def symbol(kind: str) -> str:
@@ -124,12 +113,18 @@ def text(value: float, kind: str, digits: int = 4) -> str:
     return f"{shown} {unit}"
 
 
-def moment_point(reference: float) -> str:
+def moment_point(reference: float | Sequence[float]) -> str:
     """The point moments are taken about, in words: the crankshaft mid-point, or the point
-    ``reference`` [m] from it along +y (``EngineModel.moment_reference``)."""
-    if abs(reference) < 1e-12:
+    ``reference`` [m] from it along +y (``EngineModel.moment_reference``), or, given as
+    (x, y, z) [m] (``EngineModel.moment_point``) and off the crank axis, its three
+    coordinates."""
+    x, y, z = (0.0, float(reference), 0.0) if isinstance(reference, float | int) else reference
+    if abs(x) >= 1e-12 or abs(z) >= 1e-12:
+        where = ", ".join(text(v, "length") for v in (x, y, z))
+        return f"the point (x, y, z) = ({where}) from the crankshaft mid-point"
+    if abs(y) < 1e-12:
         return "the crankshaft mid-point"
-    return f"the point {text(reference, 'length')} from the crankshaft mid-point along +y"
+    return f"the point {text(y, 'length')} from the crankshaft mid-point along +y"
 
 
 def depth_read_to(point_angle: float, depth_to: str) -> str:
@@ -147,6 +142,8 @@ def plural(count: int, word: str, many: str | None = None) -> str:
 def json_text(payload: Any, indent: int | None = 2) -> str:
     """The text of one JSON output: every value through :func:`~crankbalance.results.to_jsonable`
     (12 significant digits, no ``-0.0``, angles in [0, 360))."""
+    import json  # here: a command printing a table does not load it
+
     return json.dumps(to_jsonable(payload), indent=indent, ensure_ascii=False)
 
 

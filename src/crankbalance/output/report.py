@@ -49,7 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..studies.engine import Analysis, BalanceStudy
     from .figures.common import Quantity
 
-REPORT_SCHEMA = "crankbalance.report/3"
+REPORT_SCHEMA = "crankbalance.report/4"
 
 
 @dataclass(frozen=True)
@@ -173,7 +173,7 @@ def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
         ),
         (
             "curves-moment",
-            f"Free moments about {moment_point(a.model.moment_reference)} versus crank angle.",
+            f"Free moments about {moment_point(a.model.moment_point)} versus crank angle.",
             curves_figure(a, s, "moment"),
         ),
     ]
@@ -315,8 +315,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     parts.append(
         "<p>Reciprocating masses, by order; amplitude = largest magnitude over a "
         "revolution = |forward| + |backward|; moments about "
-        f"{moment_point(report.study.model.moment_reference)}; "
-        "phases at crank angle 0 from +z toward +x.</p>"
+        f"{moment_point(report.study.model.moment_point)}; the roll moment about the axis "
+        "through it along the crank (y); phases at crank angle 0 from +z toward +x.</p>"
     )
     rows = [
         [
@@ -327,8 +327,9 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
             mo["amplitude_Nm"],
             mo["forward_Nm"],
             mo["backward_Nm"],
+            y["amplitude_Nm"],
         ]
-        for f, mo in zip(a["free_forces"], a["free_moments"], strict=True)
+        for f, mo, y in zip(a["free_forces"], a["free_moments"], a["roll_moments"], strict=True)
     ]
     parts.append(
         table(
@@ -340,6 +341,7 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
                 "moment [N·m]",
                 "forward [N·m]",
                 "backward [N·m]",
+                "roll [N·m]",
             ],
             rows,
             "free",

@@ -1,7 +1,8 @@
 """The balance shop sheet: one printable page for the bench, HTML or PDF (issue 16).
 
 It shows the parts per cylinder (the matched sets), the spread and the material to remove
-(matched, as listed, every part machined to the lightest), the bob-weight per crankpin, and
+(matched, as listed, every part machined to the lightest), which sets share each journal
+(crankpin) and the spread of the journals' bob-weights, the bob-weight per crankpin, and
 with readings the hole plan per correction plane (a table and a drawing of the angles and
 depths, :func:`crankbalance.output.figures.shop.hole_plan`) and the ISO 21940-11 sign-off.
 Every number comes from :class:`crankbalance.studies.shop.ShopStudy`, which is also embedded as JSON
@@ -24,6 +25,7 @@ from .format import json_text, text
 from .html import figure_html, page, table
 
 if TYPE_CHECKING:  # pragma: no cover
+    from ..physics.shop.journals import JournalPairing
     from ..studies.shop import ShopStudy
 
 SHEET_SCHEMA = "crankbalance.shop-sheet/2"
@@ -31,6 +33,22 @@ SHEET_SCHEMA = "crankbalance.shop-sheet/2"
 
 def _g(value: float) -> str:
     return text(value, "mass", 5)
+
+
+def journals_words(pairing: JournalPairing) -> str:
+    """How the sets were put on the journals, in words."""
+    how = {
+        "milp": "paired for the least spread of the journals' bob-weights",
+        "exhaustive": "paired for the least spread of the journals' bob-weights",
+        "as-listed": "as listed",
+        "joint": "matched and paired at once for the least spread of the journals' bob-weights",
+    }[pairing.method]
+    return f"Sets {how} ({pairing.status})"
+
+
+def journal_cylinders(pairing: JournalPairing, journal: int) -> str:
+    """The numbers of the cylinders on a journal, ``"1, 5"``."""
+    return ", ".join(str(c + 1) for c, t in enumerate(pairing.cylinder_throw) if t == journal)
 
 
 def sheet_html(study: ShopStudy, static: bool = False) -> str:
@@ -70,6 +88,21 @@ def sheet_html(study: ShopStudy, static: bool = False) -> str:
                     _g(0.0),
                     _g(p.machined.removed_total),
                 ]
+            ],
+        )
+    )
+    pairing = p.journals
+    out.append("<h2>Sets on the journals</h2>")
+    out.append(
+        f"<p>{esc(journals_words(pairing))}; spread of the journals' bob-weights "
+        f"{_g(pairing.spread)} (as listed {_g(pairing.as_listed_spread)}).</p>"
+    )
+    out.append(
+        table(
+            ["crankpin", "cylinders (sets in the parts table)", "bob-weight"],
+            [
+                [str(t + 1), journal_cylinders(pairing, t), _g(pairing.bob_weight[t])]
+                for t in range(len(pairing.bob_weight))
             ],
         )
     )

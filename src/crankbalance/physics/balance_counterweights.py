@@ -429,9 +429,21 @@ def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
     ok &= r11 * r22 > 1e-6 * (r11**2 + r12**2 + r22**2)
     x2 = np.sum(u * rhs, axis=-1) / np.where(ok, r22**2, 1.0)
     x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / np.where(ok, r11, 1.0)
-    for i in np.flatnonzero(~ok):
-        (x1[i], x2[i]), *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=ROUND_OFF)
+    bad = np.flatnonzero(~ok)
+    if bad.size:  # the least-norm solutions of all of them at once (issue 30)
+        x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2
+
+
+def _least_norm2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:
+    """Least-norm least squares of many systems (E, R, 2) by their singular values, as
+    :func:`numpy.linalg.lstsq` with ``rcond=ROUND_OFF`` solves each (a singular value at
+    most ROUND_OFF of the largest counts as zero), one stacked SVD for all."""
+    u, s, vt = np.linalg.svd(matrix, full_matrices=False)  # (E, R, 2), (E, 2), (E, 2, 2)
+    keep = s > ROUND_OFF * s[:, :1]
+    projected = np.einsum("erk,er->ek", u, rhs) / np.where(keep, s, 1.0)
+    x = np.einsum("ekj,ek->ej", vt, np.where(keep, projected, 0.0))
+    return x[:, 0], x[:, 1]
 
 
 def pattern_masses(

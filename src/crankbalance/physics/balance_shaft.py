@@ -380,7 +380,7 @@ class DesignChecks(ResultMixin):
         Allowed deflection [m]; None if not checked.
     deflection_ok : bool
     dynamic_amplification : float
-        Single-mode estimate 1 / |1 - (Omega / omega_1)^2| of how much the whirling
+        Single-mode estimate ``1 / |1 - (Omega / omega_1)^2|`` of how much the whirling
         shaft exceeds the static (rotating-frame) deflection [-].
     ok : bool
         All checks pass.

@@ -48,14 +48,13 @@ from ..errors import InputError, check_finite, check_nonnegative, check_positive
 from ..results import ResultMixin
 from . import kinematics
 from .firing import check_strokes
-from .single_cylinder import BALANCE_FACTOR_RANGE
+from .limits import BALANCE_FACTOR_RANGE
+from .limits import BURN_DURATION_RANGE as BURN_DURATION_RANGE
+from .limits import BURN_ENDS as BURN_ENDS
+from .limits import GAMMA_RANGE as GAMMA_RANGE
+from .limits import IGNITION_RANGE as IGNITION_RANGE
 
 GAS_CONSTANT_AIR = 287.0
-#: start of combustion the Wiebe model takes, from firing TDC [rad]: 90 deg before to
-#: 45 deg after (:class:`WiebeCombustion`; the study settings take the same range)
-IGNITION_RANGE = (-math.pi / 2, math.pi / 4)
-#: burn duration the Wiebe model takes [rad]: from 0.001 rad (0.06 deg) to 180 deg
-BURN_DURATION_RANGE = (1e-3, math.pi)
 
 Strokes = Literal[2, 4]
 
@@ -221,11 +220,17 @@ def wiebe_burn_fraction(
     burn_duration: float,
     efficiency_factor: float = 5.0,
     form_factor: float = 2.0,
+    burn_end: str = "complete",
 ) -> NDArray:
     r"""Wiebe mass fraction burnt [-].
 
     .. math:: x_b = 1 - \exp\!\Big[-a\Big(\frac{\theta - \theta_0}{\Delta\theta}\Big)^{m+1}\Big]
               \quad (\theta > \theta_0),\qquad 0 \text{ before}
+
+    With ``burn_end = "complete"`` the exponential runs on past
+    :math:`\theta_0 + \Delta\theta` (99.3 % burnt there for a = 5) to a complete burn; with
+    ``"stop"`` the burn ends at :math:`\theta_0 + \Delta\theta`, the fraction held at
+    :math:`1 - e^{-a}` after it.
 
     Parameters
     ----------
@@ -239,6 +244,8 @@ def wiebe_burn_fraction(
         Wiebe :math:`a` (5 gives 99.3 % burnt at the end of the duration) [-].
     form_factor : float
         Wiebe :math:`m` [-].
+    burn_end : {"complete", "stop"}
+        End-of-burn convention (:data:`BURN_ENDS`).
 
     Returns
     -------
@@ -250,7 +257,10 @@ def wiebe_burn_fraction(
     Heywood, Internal Combustion Engine Fundamentals, Eq. 9.23.
     """
     check_positive("burn_duration", burn_duration)
-    phase = np.clip((np.asarray(angle, dtype=float) - ignition_angle) / burn_duration, 0, None)
+    if burn_end not in BURN_ENDS:
+        raise InputError("burn_end", burn_end, "'complete' or 'stop'")
+    top = 1.0 if burn_end == "stop" else None
+    phase = np.clip((np.asarray(angle, dtype=float) - ignition_angle) / burn_duration, 0, top)
     return 1.0 - np.exp(-efficiency_factor * phase ** (form_factor + 1.0))
 
 
@@ -284,6 +294,11 @@ class WiebeCombustion(ResultMixin):
         Pressure during the exhaust stroke (four-stroke) [Pa]; default the intake pressure.
     efficiency_factor, form_factor : float
         Wiebe :math:`a` and :math:`m` [-].
+    fuel_mass : float, optional
+        Fuel burnt per cycle [kg]; the heat released is then
+        ``combustion_efficiency * fuel_mass * heating_value`` (not with ``heat_release``).
+    burn_end : {"complete", "stop"}
+        End-of-burn convention of :func:`wiebe_burn_fraction` (:data:`BURN_ENDS`).
     """
 
     compression_ratio: float
@@ -299,6 +314,8 @@ class WiebeCombustion(ResultMixin):
     exhaust_pressure: float | None = None
     efficiency_factor: float = 5.0
     form_factor: float = 2.0
+    fuel_mass: float | None = None
+    burn_end: str = "complete"
 
     def __post_init__(self) -> None:
         if not (self.compression_ratio > 1 and math.isfinite(self.compression_ratio)):
@@ -312,7 +329,15 @@ class WiebeCombustion(ResultMixin):
         check_range("combustion_efficiency", self.combustion_efficiency, 0.0, 1.0)
         if self.heat_release is not None:
             check_nonnegative("heat_release", self.heat_release)
-        check_range("gamma", self.gamma, 1.01, 1.67)
+        if self.fuel_mass is not None:
+            check_nonnegative("fuel_mass", self.fuel_mass)
+            if self.heat_release is not None:
+                raise InputError(
+                    "fuel_mass", self.fuel_mass, "give either heat_release or fuel_mass, not both"
+                )
+        if self.burn_end not in BURN_ENDS:
+            raise InputError("burn_end", self.burn_end, "'complete' or 'stop'")
+        check_range("gamma", self.gamma, *GAMMA_RANGE)
         if self.exhaust_pressure is not None:
             check_positive("exhaust_pressure", self.exhaust_pressure)
         check_positive("efficiency_factor", self.efficiency_factor)
@@ -338,7 +363,9 @@ def wiebe_pressure(
     Valves are taken to open and close at the dead centres: for a four-stroke the exhaust
     stroke runs at ``exhaust_pressure`` and the intake stroke at ``intake_pressure``; for a
     two-stroke the cylinder is scavenged at bottom dead centre. The heat released is
-    :math:`Q = \eta_c\,L_{hv}\,p_1 V_1/(R T_1\,\mathrm{AFR})` unless given.
+    Q as given (``heat_release``), else :math:`\eta_c\,m_f\,L_{hv}` of the fuel given
+    (``fuel_mass``), else :math:`Q = \eta_c\,L_{hv}\,p_1 V_1/(R T_1\,\mathrm{AFR})` of
+    the charge; with ``burn_end = "stop"`` the share :math:`1 - e^{-a}` of it.
 
     Parameters
     ----------
@@ -385,6 +412,7 @@ def wiebe_pressure(
         combustion.burn_duration,
         combustion.efficiency_factor,
         combustion.form_factor,
+        combustion.burn_end,
     )
     integrand = volume ** (gamma - 1.0)
     source = np.concatenate(
@@ -408,6 +436,8 @@ def _heat_release(combustion: WiebeCombustion, bdc_volume: float) -> float:
     if combustion.heat_release is not None:
         return combustion.heat_release
     c = combustion
+    if c.fuel_mass is not None:
+        return c.combustion_efficiency * c.fuel_mass * c.heating_value
     air = c.intake_pressure * bdc_volume / (GAS_CONSTANT_AIR * c.intake_temperature)
     return c.combustion_efficiency * c.heating_value * air / c.air_fuel_ratio
 

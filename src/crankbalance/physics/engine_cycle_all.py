@@ -52,17 +52,10 @@ from .engine_cycle import (
     cylinder_pressure,
     speed_from_energy,
 )
-from .firing import TDC_TOLERANCE, check_strokes, firing_angles
-from .model import EngineModel, tdc_angle
-
-#: the largest target speed fluctuation a flywheel is sized for [-]. The energy method
-#: assumes a small fluctuation (omega_max + omega_min = 2 omega_mean); at 0.2 its check
-#: re-integration of every preset lands within 10 % of the target, while from about 0.4
-#: the inertia it gives lets the speed swing by more than half its mean and the check is
-#: refused (docs/engine_cycle.md; 0.5 before, a documented value that could not compute)
-MAX_FLUCTUATION_TARGET = 0.2
-#: the smallest one [-] (below, the inertia found is beyond any machine)
-MIN_FLUCTUATION_TARGET = 1e-6
+from .firing import TDC_TOLERANCE, check_strokes
+from .limits import MAX_FLUCTUATION_TARGET as MAX_FLUCTUATION_TARGET
+from .limits import MIN_FLUCTUATION_TARGET as MIN_FLUCTUATION_TARGET
+from .model import EngineModel, model_fire_angles, tdc_shift
 
 
 def flywheel_inertia(
@@ -330,7 +323,7 @@ def engine_cycle_all(
     count = model.cylinders
     sources = _sources(pressure, count)
     fire = _fire_angles(model, fire_angle)
-    psi = _tdc_shift(model)
+    psi = tdc_shift(model)
     cycle = math.pi * strokes
     first = model.firing_order[0] - 1 if model.firing_order_given else 0
     theta = cycle_angles(strokes, int(samples_per_revolution))
@@ -449,19 +442,11 @@ def _sources(pressure: object, count: int) -> list[PressureSource]:
     return [pressure] * count  # type: ignore[list-item]
 
 
-def _tdc_shift(model: EngineModel) -> NDArray[np.float64]:
-    """Each cylinder's top dead centre past its axis (its offset slider-crank) [rad]."""
-    return np.asarray(
-        tdc_angle(model.cylinder_offset, model.crank_radius, model.rod_length), dtype=float
-    ).reshape(-1)
-
-
 def _fire_angles(model: EngineModel, fire_angle: ArrayLike | None) -> NDArray[np.float64]:
     """The firing angles of the model, or the given ones checked against its crank."""
-    shift = _tdc_shift(model)
+    shift = tdc_shift(model)
     if fire_angle is None:
-        order = model.firing_order if model.firing_order_given else None
-        return firing_angles(model.cylinder_angle, model.cylinder_bank, order, model.strokes, shift)
+        return model_fire_angles(model)
     fire = np.asarray(fire_angle, dtype=float).reshape(-1)
     if fire.size != model.cylinders or not np.all(np.isfinite(fire)):
         raise InputError("fire_angle", fire_angle, f"must give {model.cylinders} finite angles")

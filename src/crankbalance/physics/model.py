@@ -32,14 +32,18 @@ from __future__ import annotations
 
 from collections.abc import Callable, Sequence
 from dataclasses import dataclass, field, fields, replace
-from typing import Any, ClassVar
+from functools import cached_property
+from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import ArticulatedRods, Articulation
+
+if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from .articulated import ArticulatedRods, Articulation
+from .firing import firing_angles
 from .kinematics import KinematicsModel
 
 
@@ -86,6 +90,12 @@ class ConrodSplit(ResultMixin):
     inertia_two_mass: float
     inertia_given: float | None
     inertia_error: float | None
+
+
+def _read_only(array: NDArray[Any]) -> NDArray[Any]:
+    """``array``, made read-only (a derived array a model keeps and hands out)."""
+    array.flags.writeable = False
+    return array
 
 
 @dataclass(frozen=True)
@@ -141,6 +151,11 @@ class EngineModel:
         The maker's number of each cylinder (by crankbalance's number) when the engine
         file gives its firing order in a maker's numbering (``crank_train.numbering`` or
         ``maker_numbers``); only shown in outputs, no computation uses it. None otherwise.
+    reference_x, reference_z : float
+        The moment reference point's distance from the crank axis [m], across (x) and
+        along the cylinder axis of an in-line engine (z); its place along the crank is
+        the origin of the axial positions. They move only the roll moment (about y): the
+        forces have no y component (:func:`with_moment_point`).
     """
 
     name: str
@@ -163,6 +178,8 @@ class EngineModel:
     firing_order_given: bool = True
     articulation: Articulation | None = None
     maker_number: tuple[int, ...] | None = None
+    reference_x: float = 0.0
+    reference_z: float = 0.0
 
     @property
     def rod_ratio(self) -> float:
@@ -176,15 +193,17 @@ class EngineModel:
     def throws(self) -> int:
         return int(self.throw_angle.size)
 
-    @property
+    # The derived arrays below are computed once per model (a frozen model: its arrays are
+    # read-only when studies.build made them) and returned read-only.
+    @cached_property
     def cylinder_angle(self) -> NDArray[np.float64]:
         """Throw angle of each cylinder's crankpin [rad]."""
-        return self.throw_angle[self.cylinder_throw]
+        return _read_only(self.throw_angle[self.cylinder_throw])
 
-    @property
+    @cached_property
     def cylinder_position(self) -> NDArray[np.float64]:
         """Axial position of each cylinder's rod [m]: its throw's plus ``cylinder_axial``."""
-        return self.throw_position[self.cylinder_throw] + self.cylinder_axial
+        return _read_only(self.throw_position[self.cylinder_throw] + self.cylinder_axial)
 
     @property
     def moment_reference(self) -> float:
@@ -193,21 +212,36 @@ class EngineModel:
         return -0.5 * float(self.throw_position.min() + self.throw_position.max())
 
     @property
+    def moment_point(self) -> tuple[float, float, float]:
+        """The moment reference point (x, y, z) [m], y from the crank's mid-point."""
+        return (self.reference_x, self.moment_reference, self.reference_z)
+
+    @cached_property
     def throw_axial_moment(self) -> NDArray[np.float64]:
         r"""First moment of each throw's big ends about the throw's centre,
         :math:`\sum_c m_{b,c}\,a_c` over the rods on the throw [kg m], shape (T,)."""
-        return np.bincount(
-            self.cylinder_throw,
-            self.cylinder_rotating_mass * self.cylinder_axial,
-            minlength=self.throws,
-        ).astype(float)
+        return _read_only(
+            np.bincount(
+                self.cylinder_throw,
+                self.cylinder_rotating_mass * self.cylinder_axial,
+                minlength=self.throws,
+            ).astype(float)
+        )
 
-    @property
+    @cached_property
     def throw_rotating_moment(self) -> NDArray[np.float64]:
         r"""First moment of each throw's rotating mass about the moment reference point,
         :math:`m_t y_t + \sum_c m_{b,c} a_c` [kg m], shape (T,): the lever arm of the
         rotating couple, with the big ends of side-by-side rods at their own positions."""
-        return self.throw_rotating_mass * self.throw_position + self.throw_axial_moment
+        return _read_only(self.throw_rotating_mass * self.throw_position + self.throw_axial_moment)
+
+    @cached_property
+    def derived(self) -> dict[tuple[object, ...], NDArray[Any]]:
+        """Read-only arrays that physics functions derive from this model alone and keep
+        for the next call on it, keyed by the function's name and arguments (the harmonic
+        coefficient rows of :func:`crankbalance.physics.shaking.cylinder_coefficients`):
+        a model is frozen, so they hold as long as it lives."""
+        return {}
 
     @property
     def articulated_rods(self) -> ArticulatedRods | None:
@@ -223,6 +257,33 @@ class EngineModel:
         for name in ("cylinder_offset", "cylinder_axial", "cylinder_rotating_mass"):
             if np.shape(getattr(self, name)) != c:
                 raise ValueError(f"EngineModel.{name}: shape {c} (one per cylinder) expected")
+
+
+def with_moment_point(model: EngineModel, point: Sequence[float]) -> EngineModel:
+    """The same engine with its moments taken about another point.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine.
+    point : sequence of three floats
+        The new reference point (x, y, z) [m]: y along the crank axis from the crank's
+        mid-point, x and z across it (the axes of ``docs/theory.md``).
+
+    Returns
+    -------
+    EngineModel
+        ``model`` with its axial positions measured from the new point's y and the
+        point's x and z as ``reference_x`` and ``reference_z``.
+    """
+    x, y, z = (float(v) for v in point)
+    shift = model.moment_reference - y  # old reference minus new, along +y
+    return replace(
+        model,
+        throw_position=model.throw_position + shift,
+        reference_x=x,
+        reference_z=z,
+    )
 
 
 def tdc_angle(
@@ -252,6 +313,48 @@ def tdc_angle(
     """
     e = np.asarray(offset, dtype=float)
     return np.arcsin(e / (np.asarray(rod_length, dtype=float) + np.asarray(crank_radius)))
+
+
+def tdc_shift(model: EngineModel) -> NDArray[np.float64]:
+    """Each cylinder's top dead centre past its axis (its offset slider-crank).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine: offsets [m], crank radius [m], rod length [m].
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        :func:`tdc_angle` of each cylinder [rad].
+    """
+    return np.asarray(
+        tdc_angle(model.cylinder_offset, model.crank_radius, model.rod_length), dtype=float
+    ).reshape(-1)
+
+
+def model_fire_angles(model: EngineModel) -> NDArray[np.float64]:
+    """Crank angle of the first throw at which each cylinder of an engine fires.
+
+    Its firing order when the engine gives one, else the most even firing its crank
+    allows (:func:`crankbalance.physics.firing.firing_angles`, with each cylinder's top
+    dead centre past its axis).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine: throw [rad] and bank angles [rad] per cylinder, offsets [m], crank
+        radius [m], rod length [m], strokes, firing order.
+
+    Returns
+    -------
+    ndarray, shape (C,)
+        Firing angle of each cylinder [rad], in [0, 2π·strokes/2).
+    """
+    order = model.firing_order if model.firing_order_given else None
+    return firing_angles(
+        model.cylinder_angle, model.cylinder_bank, order, model.strokes, tdc_shift(model)
+    )
 
 
 def standard_layout(

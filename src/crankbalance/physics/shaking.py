@@ -9,9 +9,14 @@ force is
 
 with a forward (co-rotating) and a backward (counter-rotating) phasor. Its largest
 magnitude over a revolution is :math:`|F_n^+| + |F_n^-|`. Moments are taken about the
-crankshaft mid-point; the *couple* :math:`C = \sum y\,F` carries the same phasors
-weighted by the axial position y, and the moment vector is :math:`M = iC`
-(:math:`M_x = y F_z`, :math:`M_z = -y F_x`).
+moment reference point (the crankshaft mid-point unless the engine file moves it); the
+*couple* :math:`C = \sum y\,F` carries the same phasors weighted by the axial position y,
+and the moment vector across the crank axis is :math:`M = iC` (:math:`M_x = y F_z`,
+:math:`M_z = -y F_x`). The sixth component, the *roll moment* :math:`M_y` about the crank
+axis (:mod:`crankbalance.physics.roll`), is a real curve of each order,
+:math:`M_{y,n} = \mathrm{Re}(R_n e^{in\theta})`; about a reference point off the crank
+axis at :math:`(p_x, p_y, p_z)` it gains :math:`p_x F_z - p_z F_x`, which is
+:math:`R_n \mathrel{+}= qF_n^+ + \overline{qF_n^-}` with :math:`q = p_x + ip_z`.
 
 For cylinder c (throw angle :math:`\varphi_c`, bank angle :math:`\beta_c`, reciprocating
 mass :math:`m_c`) with the normalised inertia harmonics :math:`c_n = a_n - i b_n`
@@ -40,17 +45,16 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ResultMixin
-from .articulated import cylinder_coefficients as articulated_coefficients
-from .articulated import harmonics as articulated_harmonics
-from .articulated import inertia_force as articulated_inertia_force
 from .kinematics import (
     CHUNK,
     KinematicsModel,
     cached_exact_coefficients,
     harmonic_coefficients,
     piston_acceleration,
+    piston_velocity,
 )
 from .model import EngineBatch, EngineModel
+from .roll import articulated_roll, articulated_roll_curve, roll_coefficients
 
 
 @dataclass(frozen=True)
@@ -73,7 +77,16 @@ class FreeForces(ResultMixin):
     rotating_force : complex
         First-order forward phasor of the rotating masses [N].
     rotating_couple : complex
-        Its couple about the crankshaft mid-point [N·m].
+        Its couple about the moment reference point [N·m].
+    roll : ndarray of complex, shape (K,)
+        :math:`R_n`, the roll moment of each order about the axis through the moment
+        reference point parallel to the crank, :math:`M_{y,n} = \mathrm{Re}(R_n
+        e^{in\theta})`: the reaction of the reciprocating inertia torque, the moment of
+        the offset cylinders' inertia forces, and of every force about a reference point
+        off the crank axis [N·m].
+    rotating_roll : complex
+        The rotating masses' first-order roll moment about that axis, :math:`qF_{rot}`
+        (zero about the crank axis itself) [N·m].
 
     References
     ----------
@@ -88,6 +101,8 @@ class FreeForces(ResultMixin):
     couple_backward: NDArray[np.complex128]
     rotating_force: complex
     rotating_couple: complex
+    roll: NDArray[np.complex128]
+    rotating_roll: complex
 
     @property
     def force_amplitude(self) -> NDArray[np.float64]:
@@ -98,6 +113,11 @@ class FreeForces(ResultMixin):
     def moment_amplitude(self) -> NDArray[np.float64]:
         """Largest magnitude of each order's moment over a revolution [N·m]."""
         return np.abs(self.couple_forward) + np.abs(self.couple_backward)
+
+    @property
+    def roll_amplitude(self) -> NDArray[np.float64]:
+        """Largest roll moment of each order over a revolution, :math:`|R_n|` [N·m]."""
+        return np.abs(self.roll)
 
     def order(self, n: int) -> int:
         """Index of order ``n`` in the arrays."""
@@ -156,6 +176,8 @@ def free_forces(
         model.crank_radius,
         model.speed,
     )
+    q = complex(model.reference_x, model.reference_z)
+    roll = roll_phasors(model, orders, kinematics) + q * fwd + np.conj(q * bwd)
     return FreeForces(
         orders=np.arange(1, orders + 1),
         force_forward=fwd,
@@ -164,7 +186,56 @@ def free_forces(
         couple_backward=cbwd,
         rotating_force=complex(rotating_force),
         rotating_couple=complex(rotating_couple),
+        roll=roll,
+        rotating_roll=complex(q * rotating_force),
     )
+
+
+def roll_phasors(
+    model: EngineModel, orders: int = 8, kinematics: KinematicsModel | None = None
+) -> NDArray[np.complex128]:
+    r"""Roll moment of each order about the crank axis, :math:`R_n` (module docstring).
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    orders : int
+        Highest harmonic order K.
+    kinematics : {"exact", "series", "first-order"}, optional
+        Overrides ``model.kinematics``.
+
+    Returns
+    -------
+    ndarray of complex, shape (K,)
+        :math:`R_n = r^2\omega^2 \sum_c m_c d_{n,c} e^{in(\varphi_c - \beta_c)}` with
+        each cylinder's harmonics :math:`d_{n,c}`
+        (:func:`crankbalance.physics.roll.roll_coefficients`); with master-and-link rods
+        the assembly's exact roll (:func:`crankbalance.physics.roll.articulated_roll`)
+        [N·m].
+
+    References
+    ----------
+    The inertia torque of the slider-crank, Taylor (1985) ch. 8; Den Hartog (1956) ch. 5.
+    """
+    mode = kinematics or model.kinematics
+    n = np.arange(1, orders + 1)
+    rods = model.articulated_rods
+    if rods is not None:
+        _exact_only(mode)
+        phi, _y = _single_throw(model)
+        harm = articulated_roll(
+            rods, model.reciprocating_mass, model.cylinder_rotating_mass, orders, model.speed
+        )
+        return np.asarray(harm * np.exp(1j * n * phi), dtype=complex)
+    ratio = model.cylinder_offset / model.crank_radius
+    shared, index = np.unique(ratio, return_inverse=True)
+    rows = np.stack([roll_coefficients(model.rod_ratio, float(e), orders, mode) for e in shared])[
+        index.reshape(-1)
+    ]
+    scale = model.reciprocating_mass * (model.crank_radius * model.speed) ** 2
+    turn = np.exp(1j * np.outer(model.cylinder_angle - model.cylinder_bank, n))
+    return np.asarray(scale @ (rows * turn), dtype=complex)
 
 
 def cylinder_coefficients(
@@ -192,14 +263,24 @@ def cylinder_coefficients(
     ndarray of complex, shape (C, K) or (1, K)
         :math:`c_n = a_n - i b_n` of orders 1..K of each cylinder
         (:func:`crankbalance.physics.kinematics.harmonic_coefficients`), one row for all
-        when the cylinders share one offset (read-only then) [-].
+        when the cylinders share one offset; read-only, kept by the model for the next
+        call (:attr:`~crankbalance.physics.model.EngineModel.derived`) [-].
     """
     mode = kinematics or model.kinematics
-    if model.articulation is not None:
-        return _articulated_rows(model, orders, mode)
-    return coefficient_rows(
-        model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
-    )
+    key = ("cylinder_coefficients", orders, mode)
+    rows = model.derived.get(key)  # the model is frozen: its rows are computed once
+    if rows is None:
+        if model.articulation is not None:
+            rows = _articulated_rows(model, orders, mode)
+        else:
+            rows = coefficient_rows(
+                model.rod_ratio, model.cylinder_offset / model.crank_radius, orders, mode
+            )
+        if rows.flags.writeable:
+            rows = rows.copy() if rows.base is not None else rows
+            rows.flags.writeable = False
+        model.derived[key] = rows
+    return rows
 
 
 def coefficient_rows(
@@ -292,8 +373,8 @@ def rotating_phasors(
     """
     turn = np.exp(1j * np.asarray(throw_angle, dtype=float))
     accel = np.multiply(crank_radius, np.square(speed))
-    force = accel * np.sum(np.multiply(mass, turn), axis=-1)
-    couple = accel * np.sum(np.multiply(moment, turn), axis=-1)
+    force = accel * np.multiply(mass, turn).sum(axis=-1)
+    couple = accel * np.multiply(moment, turn).sum(axis=-1)
     return force, couple
 
 
@@ -418,10 +499,10 @@ def reciprocating_phasors(
 
 
 def _phasors(sums: NDArray) -> tuple[NDArray, NDArray, NDArray, NDArray]:
-    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`."""
-    phasors = sums.copy()
-    np.conjugate(phasors[..., 1::2, :], out=phasors[..., 1::2, :])
-    return phasors[..., 0, :], phasors[..., 1, :], phasors[..., 2, :], phasors[..., 3, :]
+    """:math:`F^+, F^-, C^+, C^-` from the coefficient-weighted sums of :func:`_cylinder_sums`
+    (a new array of the caller's, whose rows 1 and 3 are conjugated in place)."""
+    np.conjugate(sums[..., 1::2, :], out=sums[..., 1::2, :])
+    return sums[..., 0, :], sums[..., 1, :], sums[..., 2, :], sums[..., 3, :]
 
 
 def _engine_sums(
@@ -606,7 +687,8 @@ class Curves(ResultMixin):
     """Forces [N] and moments [N·m] versus crank angle of the first throw [rad].
 
     Arrays by order have shape (K, M); totals (M,). Components: ``fx``, ``fz`` and
-    ``mx``, ``mz`` (moment about the crankshaft mid-point).
+    ``mx``, ``my``, ``mz`` (moment about the moment reference point; ``my`` the roll
+    moment about the axis through it along the crank).
 
     Parameters
     ----------
@@ -617,16 +699,22 @@ class Curves(ResultMixin):
     fx, fz : ndarray, shape (K, M)
         Reciprocating inertia force of each order, components x and z [N].
     mx, mz : ndarray, shape (K, M)
-        Its moment about the crankshaft mid-point, components x and z [N·m].
+        Its moment about the moment reference point, components x and z [N·m].
+    my : ndarray, shape (K, M)
+        Roll moment of each order (:attr:`FreeForces.roll`) [N·m].
     total_fx, total_fz : ndarray, shape (M,)
         Total reciprocating force [N]: exact time domain for the exact kinematics, the sum
         of the orders otherwise.
     total_mx, total_mz : ndarray, shape (M,)
         Total reciprocating moment [N·m], as ``total_fx``.
+    total_my : ndarray, shape (M,)
+        Total roll moment [N·m], as ``total_fx`` (:func:`roll_time_domain`).
     rotating_fx, rotating_fz : ndarray, shape (M,)
         Force of the rotating masses [N].
     rotating_mx, rotating_mz : ndarray, shape (M,)
-        Moment of the rotating masses about the crankshaft mid-point [N·m].
+        Moment of the rotating masses about the moment reference point [N·m].
+    rotating_my : ndarray, shape (M,)
+        Their roll moment (zero unless the reference point is off the crank axis) [N·m].
     """
 
     angle: NDArray[np.float64]
@@ -643,6 +731,9 @@ class Curves(ResultMixin):
     rotating_fz: NDArray[np.float64]
     rotating_mx: NDArray[np.float64]
     rotating_mz: NDArray[np.float64]
+    my: NDArray[np.float64]
+    total_my: NDArray[np.float64]
+    rotating_my: NDArray[np.float64]
 
 
 def phasor_curve(
@@ -698,13 +789,16 @@ def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = Non
     )
     f = phasor_curve(forces.force_forward, forces.force_backward, forces.orders, theta)
     m = 1j * phasor_curve(forces.couple_forward, forces.couple_backward, forces.orders, theta)
+    roll = (forces.roll[:, None] * np.exp(1j * np.outer(forces.orders, theta))).real
     if model.kinematics == "exact":
         total_f, total_c = exact_time_domain(model, theta)
         total_m = 1j * total_c
+        total_roll = roll_time_domain(model, theta)
     else:
-        total_f, total_m = f.sum(axis=0), m.sum(axis=0)
+        total_f, total_m, total_roll = f.sum(axis=0), m.sum(axis=0), roll.sum(axis=0)
     rot = phasor_curve([forces.rotating_force], [0.0], [1], theta)[0]
     rot_m = 1j * phasor_curve([forces.rotating_couple], [0.0], [1], theta)[0]
+    rot_roll = (forces.rotating_roll * np.exp(1j * theta)).real
     return Curves(
         angle=theta,
         orders=forces.orders,
@@ -720,7 +814,45 @@ def curves(model: EngineModel, forces: FreeForces, angle: ArrayLike | None = Non
         rotating_fz=rot.real,
         rotating_mx=rot_m.imag,
         rotating_mz=rot_m.real,
+        my=roll,
+        total_my=total_roll,
+        rotating_my=rot_roll,
     )
+
+
+def roll_time_domain(model: EngineModel, angle: ArrayLike) -> NDArray[np.float64]:
+    r"""Roll moment of the reciprocating masses versus crank angle, straight from the exact
+    motion (no harmonic analysis), about the axis through the moment reference point.
+
+    Parameters
+    ----------
+    model : EngineModel
+        The engine (SI arrays).
+    angle : array_like, shape (M,)
+        Crank angles of the first throw [rad].
+
+    Returns
+    -------
+    ndarray, shape (M,)
+        :math:`M_y = \sum_c -F_c(e_c + \dot s_c/\omega) + p_x F_z - p_z F_x` [N·m]
+        (:mod:`crankbalance.physics.roll`; the link pins' part with master-and-link rods).
+    """
+    theta = np.asarray(angle, dtype=float)
+    force, _couple = exact_time_domain(model, theta)
+    shift = (complex(model.reference_x, model.reference_z) * force).real
+    rods = model.articulated_rods
+    if rods is not None:
+        phi, _y = _single_throw(model)
+        curve = articulated_roll_curve(
+            rods, model.reciprocating_mass, model.cylinder_rotating_mass, theta + phi, model.speed
+        )
+        return np.asarray(curve + shift, dtype=float)
+    psi = theta[:, None] + (model.cylinder_angle - model.cylinder_bank)[None, :]
+    r, l, e, w = model.crank_radius, model.rod_length, model.cylinder_offset, model.speed
+    accel = piston_acceleration(psi, r, l, e[None, :], w)
+    rate = piston_velocity(psi, r, l, e[None, :], w)
+    axial = model.reciprocating_mass[None, :] * accel  # -F along each cylinder axis
+    return np.asarray((axial * (e[None, :] + rate / w)).sum(axis=1) + shift, dtype=float)
 
 
 def exact_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDArray, NDArray]:
@@ -759,14 +891,21 @@ def _articulated_rows(model: EngineModel, orders: int, mode: str) -> NDArray[np.
     (:func:`crankbalance.physics.articulated.cylinder_coefficients`)."""
     rods = model.articulated_rods
     assert rods is not None
+    _exact_only(mode)
+    _single_throw(model)
+    from .articulated import cylinder_coefficients as articulated_coefficients
+
+    return articulated_coefficients(rods, orders)
+
+
+def _exact_only(mode: str) -> None:
+    """Refuse a kinematics model other than the exact one for master-and-link rods."""
     if mode != "exact":
         raise InputError(
             "kinematics",
             mode,
             "master-and-link rods are modelled with the exact kinematics only: 'exact'",
         )
-    _single_throw(model)
-    return articulated_coefficients(rods, orders)
 
 
 def _link_pin_phasors(model: EngineModel, orders: int) -> tuple[NDArray, ...]:
@@ -777,6 +916,8 @@ def _link_pin_phasors(model: EngineModel, orders: int) -> tuple[NDArray, ...]:
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import harmonics as articulated_harmonics
+
     h = articulated_harmonics(rods, orders)
     turn = np.exp(1j * h.orders * phi)
     mass = model.speed**2 * model.cylinder_rotating_mass
@@ -791,6 +932,8 @@ def _articulated_time_domain(model: EngineModel, angle: ArrayLike) -> tuple[NDAr
     rods = model.articulated_rods
     assert rods is not None
     phi, _y = _single_throw(model)
+    from .articulated import inertia_force as articulated_inertia_force
+
     force = articulated_inertia_force(
         rods,
         model.reciprocating_mass,

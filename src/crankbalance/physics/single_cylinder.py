@@ -42,10 +42,7 @@ from numpy.typing import ArrayLike, NDArray
 from ..errors import InputError, check_positive, check_range
 from ..results import ResultMixin
 from .kinematics import KINEMATICS_MODELS, KinematicsModel, piston_acceleration
-
-#: Range of balance factors accepted as input (0 = rotating mass only, 2 = 200 %).
-BALANCE_FACTOR_RANGE: tuple[float, float] = (0.0, 2.0)
-
+from .limits import BALANCE_FACTOR_RANGE as BALANCE_FACTOR_RANGE
 
 # ---------------------------------------------------------------------------------------
 # validation helpers

@@ -93,6 +93,7 @@ _OPTIONS: dict[str, Any] = {
     "parse": None,
     "example": "",
     "single": False,
+    "metavar": "",
 }
 
 
@@ -121,6 +122,9 @@ class Field:
     parse: Callable[[Any, str], Any] | None
     example: str
     single: bool
+    #: what a command's help shows after the option when the kind does not say it
+    #: (``STIFFNESS [N·m/rad]`` for a setting with a parser of its own); "" for the kind's
+    metavar: str
     #: the quantity kind (``"length"``...), or None for a plain kind
     quantity: str | None
     #: a quantity checked in size against the physical range of its kind: no bounds, or
@@ -177,6 +181,7 @@ def field(
     parse: Callable[[Any, str], Any] | None = None,
     example: str = "",
     single: bool = False,
+    metavar: str = "",
 ) -> Any:
     """Declare a field of a :class:`Schema`.
 
@@ -225,6 +230,9 @@ def field(
     single : bool
         A ``list`` that takes a lone value as a list of one (a setting that may be given
         several times: one ``--speed``, or ``"speed": "3000 rpm"`` in a JSON body).
+    metavar : str
+        What a command's help shows after the option when the kind does not say it
+        (``STIFFNESS [N·m/rad]``); empty: the kind's (``LENGTH [mm]``, ``NUMBER``).
 
     Returns
     -------
@@ -256,6 +264,7 @@ def field(
         parse=parse,
         example=example,
         single=single,
+        metavar=metavar,
     )
 
 
@@ -370,16 +379,22 @@ class Schema:
         return given
 
     def _values(self) -> tuple[Any, ...]:
-        return tuple(getattr(self, key) for key in self.FIELDS)
+        return tuple(map(self.__dict__.__getitem__, self.FIELDS))  # every field is held there
 
     def __eq__(self, other: object) -> bool:
         if type(other) is not type(self):
             return NotImplemented
         assert isinstance(other, Schema)
-        return self._values() == other._values()
+        return other is self or self._values() == other._values()
 
     def __hash__(self) -> int:
-        return hash(tuple(tuple(v) if isinstance(v, list) else v for v in self._values()))
+        # an instance is frozen: its hash is computed once (a spec is the key of the
+        # built-model cache, studies.build; hashing it afresh cost 15 us)
+        held = self.__dict__
+        if "_hash" not in held:
+            values = self._values()
+            held["_hash"] = hash(tuple(tuple(v) if isinstance(v, list) else v for v in values))
+        return int(held["_hash"])
 
     def __repr__(self) -> str:
         shown = ", ".join(f"{key}={getattr(self, key)!r}" for key in self.FIELDS)

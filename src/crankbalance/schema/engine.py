@@ -404,12 +404,31 @@ class CrankTrain(_EngineTable):
         title="Moment reference",
         hint="point moments are taken about, from the crank's mid-point (empty: 0 mm)",
         description="The point moments are taken about, along +y from the crank's mid-point (e.g. "
-        "the engine's centre of mass or mount centre).",
+        "the engine's centre of mass or mount centre), on the crank axis; a point off the "
+        "axis is moment_point.",
+    )
+    moment_point: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Moment point",
+        description="The point moments (the roll moment about y included) are taken about, "
+        "x, y, z: y along +y from the crank's mid-point, x across, z along the cylinder axis "
+        "of an in-line engine (e.g. a mount centre or the engine's centre of mass); not "
+        "together with moment_reference, which is the point (0, moment_reference, 0).",
+        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
     )
 
     def check(self) -> None:
         r, l = self.crank_radius, self.rod_length
         self._check_vr()
+        if self.moment_point is not None and self.moment_reference != 0.0:
+            raise FieldProblem(
+                "moment_point",
+                "give either moment_point (x, y, z) or moment_reference (y), not both",
+            )
         if l <= r + abs(self.pin_offset + self.crank_offset):
             raise FieldProblem(
                 "rod_length",

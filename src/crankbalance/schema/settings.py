@@ -30,10 +30,16 @@ from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypeVar, get_args
 
 from ..errors import InputError
-from ..physics.engine_cycle import BURN_DURATION_RANGE, IGNITION_RANGE
-from ..physics.engine_cycle_all import MAX_FLUCTUATION_TARGET, MIN_FLUCTUATION_TARGET
 from ..physics.explore.work import LARGEST_CHUNK, MAX_DRAWS
-from ..physics.single_cylinder import BALANCE_FACTOR_RANGE
+from ..physics.limits import (
+    BALANCE_FACTOR_RANGE,
+    BURN_DURATION_RANGE,
+    BURN_ENDS,
+    GAMMA_RANGE,
+    IGNITION_RANGE,
+    MAX_FLUCTUATION_TARGET,
+    MIN_FLUCTUATION_TARGET,
+)
 from ..units import RANGES as units_ranges
 from ..units import format_quantity, parse_factor, parse_quantity, range_si
 from . import core
@@ -149,6 +155,9 @@ _TORSIONAL_EXAMPLE = "5e5 N*m/rad"
 READING_WORDS = "an amount at a radius and an angle, e.g. '12.5 g @ 40 mm, 35 deg'"
 #: the longest engine file or preset name, file name, grade or expression a setting takes
 MAX_SETTING_CHARS = 1000
+#: most cylinders the explorer enumerates (its index space must fit a 64-bit integer:
+#: ``crankbalance.physics.explore.orders.MAX_CYLINDERS``), and so most angles of a fixed crank
+MAX_EXPLORE_CYLINDERS = 20
 
 
 # --------------------------------------------------------------------------------------
@@ -277,6 +286,15 @@ def _number_sweep(value: str, where: str) -> Any:
     return [start + k * step for k in range(int(math.floor(span + 1e-9)) + 1)]
 
 
+def _angle_list(value: str, where: str) -> Any:
+    """A list of angles typed as one text with one unit at its end, ``"0,90,270,180 deg"``:
+    the unit is given to every number; any other text is read as a list of its own."""
+    match = re.fullmatch(r"\s*([-+0-9.eE,\s]+?)\s*(deg|rad)\s*", value)
+    if match is None:
+        return value
+    return [f"{number.strip()} {match.group(2)}" for number in match.group(1).split(",")]
+
+
 def _balance_factors(default: Any, title: str, description: str, **options: Any) -> Any:
     """The balance factors of a sweep: a list, or a text "0,0.25,0.5" or "start:stop:step"."""
     return field(
@@ -398,6 +416,7 @@ def _stiffness(title: str, description: str) -> Any:
         f"from {low:g} to {high:g} N*m/rad",
         title=title,
         description=description,
+        metavar="STIFFNESS [N·m/rad]",
     )
 
 
@@ -437,7 +456,7 @@ class StudyOptions(Schema):
 
 
 class AnalysisOptions(StudyOptions):
-    """Free forces and moments: how many harmonic orders."""
+    """Free forces and moments: how many harmonic orders, and about which point."""
 
     orders: int = whole(
         8,
@@ -445,6 +464,19 @@ class AnalysisOptions(StudyOptions):
         "The highest harmonic order of the free forces and moments computed.",
         ge=1,
         le=MAX_ORDER,
+    )
+    moment_point: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title="Moment point",
+        description="The point the moments (the roll moment included) are taken about, x, y, "
+        "z: y along the crank from its mid-point, x across, z along the cylinder axis of an "
+        "in-line engine (e.g. a mount centre or the engine's centre of mass); empty: the "
+        "engine file's (crank_train.moment_point or moment_reference).",
+        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
     )
 
 
@@ -560,14 +592,16 @@ class CounterweightRequirementOptions(StudyOptions):
     )
 
 
-def _profile(title: str) -> Any:
+def _profile(title: str, metavar: str) -> Any:
     """A profile parameter of ``counterweight optimize``: a value fixes it, ``LOW..HIGH``
-    leaves it free in that range (read by the study), empty: the optimiser's range."""
+    leaves it free in that range (read by the study), empty: the optimiser's range;
+    ``metavar`` its kind and unit in the command's help."""
     return text(
         None,
         f"{title} (value or LOW..HIGH)",
         "A value fixes the parameter, LOW..HIGH leaves it free in that range; empty: the "
         "optimiser's range.",
+        metavar=metavar,
     )
 
 
@@ -575,12 +609,12 @@ class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequiremen
     """``counterweight optimize``: the requirement, the profile parameters, the radial
     measure, the objectives and how many Pareto designs are listed."""
 
-    web_radius: str | None = _profile("Web circle radius r_cw")
-    rectangle_height: str | None = _profile("Rectangle height h_R")
-    trapezoid_angle: str | None = _profile("Trapezoid angle delta")
-    segment_radius: str | None = _profile("Segment radius R_cw")
-    segment_angle: str | None = _profile("Segment angle alpha")
-    thickness: str | None = _profile("Thickness t_cw")
+    web_radius: str | None = _profile("Web circle radius r_cw", "LENGTH [mm]")
+    rectangle_height: str | None = _profile("Rectangle height h_R", "LENGTH [mm]")
+    trapezoid_angle: str | None = _profile("Trapezoid angle delta", "ANGLE [°]")
+    segment_radius: str | None = _profile("Segment radius R_cw", "LENGTH [mm]")
+    segment_angle: str | None = _profile("Segment angle alpha", "ANGLE [°]")
+    thickness: str | None = _profile("Thickness t_cw", "LENGTH [mm]")
     radius_measure: Literal["true", "paper"] = choice(
         "true",
         ("true", "paper"),
@@ -1063,6 +1097,64 @@ class CombustionOptions(StudyOptions):
         "Pressure at the start of compression",
         "Cylinder pressure at the start of compression: the engine's load.",
     )
+    heat_release: float | None = quantity(
+        "energy",
+        None,
+        "Heat released per cycle",
+        "Heat the charge releases in one cylinder per cycle (not with fuel_mass).",
+        hint="empty: from the charge (pressure at the start of compression, 320 K, "
+        "air/fuel 14.7, heating value, combustion efficiency)",
+        gt=0,
+        le=1e7,
+    )
+    fuel_mass: float | None = quantity(
+        "mass",
+        None,
+        "Fuel per cycle",
+        "Fuel burnt in one cylinder per cycle; the heat released is combustion_efficiency x "
+        "fuel_mass x heating_value (not with heat_release).",
+        hint="empty: from the charge",
+        gt=0,
+        le=10.0,
+    )
+    heating_value: float = quantity(
+        "specific_energy",
+        44e6,
+        "Heating value of the fuel",
+        "Lower heating value of the fuel (the heat released from the charge or from fuel_mass).",
+        ge=1e6,
+        le=2e8,
+    )
+    combustion_efficiency: float = number(
+        0.8,
+        "Combustion efficiency",
+        "Share of the fuel's energy released as heat in the cylinder (lumps the heat lost to "
+        "the walls); not with heat_release.",
+        gt=0,
+        le=1,
+    )
+    gamma: float = number(
+        1.3,
+        "Ratio of specific heats",
+        "Ratio of specific heats of the charge, cp/cv, in compression, combustion and expansion.",
+        ge=GAMMA_RANGE[0],
+        le=GAMMA_RANGE[1],
+    )
+    exhaust_pressure: float | None = quantity(
+        "pressure",
+        None,
+        "Exhaust back-pressure",
+        "Cylinder pressure during the exhaust stroke of a four-stroke (a two-stroke is "
+        "scavenged at bottom dead centre).",
+        hint="empty: the pressure at the start of compression",
+    )
+    burn_end: str = choice(
+        "complete",
+        BURN_ENDS,
+        "End of the burn",
+        "The Wiebe burn's end: complete (its exponential tail runs on past the burn duration "
+        "to a complete burn) or stop (it ends at the burn duration, 99.3 % burnt).",
+    )
     pressure_csv: list[str] = field(
         "list",
         default=[],
@@ -1071,10 +1163,23 @@ class CombustionOptions(StudyOptions):
         single=True,
         words=f"at most {MAX_PRESSURE_TABLES} files, the option given once for each",
         title="Cylinder pressure tables",
-        description="Cylinder pressure tables instead of the Wiebe model (crank angle [deg "
+        description="Cylinder pressure tables instead of the Wiebe model (crank angle [° "
         "from firing TDC], absolute pressure [bar]): one for every cylinder, or one per "
         "cylinder in cylinder order.",
     )
+
+    def check(self) -> None:
+        typed = self.given()
+        if "heat_release" in typed and "fuel_mass" in typed:
+            raise FieldProblem(
+                "fuel_mass", "cannot be given with heat_release: give the one or the other"
+            )
+        if "heat_release" in typed:
+            for name in ("heating_value", "combustion_efficiency"):
+                if name in typed:
+                    raise FieldProblem(
+                        name, "cannot act with heat_release (the heat released is given)"
+                    )
 
 
 class CycleOptions(CombustionOptions):
@@ -1155,7 +1260,7 @@ class SensitivityOptions(CycleOptions):
         single=True,
         words="at most 1 file, the option given once for each",
         title="Cylinder pressure table",
-        description="A cylinder pressure table instead of the Wiebe model (crank angle [deg "
+        description="A cylinder pressure table instead of the Wiebe model (crank angle [° "
         "from firing TDC], absolute pressure [bar]).",
     )
     balance_factors: list[float] = _balance_factors(
@@ -1316,6 +1421,7 @@ class BearingOptions(CombustionOptions, CrankDimensionOptions):
     )
 
     def check(self) -> None:
+        CombustionOptions.check(self)
         trio = ("viscosity", "bearing_length", "clearance")
         given = [name for name in trio if getattr(self, name) is not None]
         if given and given != ["clearance"] and len(given) < 3:
@@ -1824,8 +1930,17 @@ class ShopOptions(StudyOptions):
         "time",
         60.0,
         "Matching time limit",
-        "Longest matching, the building of the model included.",
+        "Longest matching, the building of the model included (and again for the "
+        "pairing of the sets on the journals).",
         le=3600.0,
+    )
+    journals: Literal["paired", "joint", "as-listed"] = choice(
+        "paired",
+        ("paired", "joint", "as-listed"),
+        "Sets on the journals",
+        "Which matched sets share a journal: paired (the least spread of the journals' "
+        "bob-weights, after the matching), joint (the parts matched for that spread at "
+        "once; method milp or exhaustive), or as listed (set c in cylinder c).",
     )
     reading: list[tuple[float, float, float]] = field(
         "list",
@@ -1923,6 +2038,7 @@ class ShopOptions(StudyOptions):
         "any",
         default=1e-4,
         parse=_scale_step,
+        metavar="MASS [g]",
         words="0 or a mass up to 10 g",
         title="Resolution of the scale",
         description="The resolution of the scale the parts are weighed on; 0: exact.",
@@ -1988,6 +2104,7 @@ class PlotOptions(StudyOptions):
         "any",
         default=1,
         parse=_plot_order,
+        metavar="{ORDER|rotating}",
         words=f"a harmonic order from 1 to {MAX_ORDER}, or 'rotating'",
         title="Harmonic order",
         description="The harmonic order of the polar figure, or rotating for the bare "
@@ -2022,11 +2139,12 @@ class ExploreOptions(StudyOptions):
         "any",
         default="inline",
         parse=_explore_layout,
+        choices=EXPLORE_LAYOUTS,  # the forms' select; read by the parser (a VR refused)
         words="one of inline, vee, boxer, w",
         title="Layout",
         description="The layout explored: inline, vee, boxer or w (broad arrow).",
     )
-    cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=20)
+    cylinders: int = whole(4, "Cylinders", "Number of cylinders.", ge=1, le=MAX_EXPLORE_CYLINDERS)
     strokes: int = whole(
         4, "Strokes per cycle (2 or 4)", "2 or 4 strokes per working cycle.", ge=2, le=4
     )
@@ -2038,6 +2156,40 @@ class ExploreOptions(StudyOptions):
         ("any", "flat", "cross", "split"),
         "Crank family",
         "The cranks explored: any, flat, cross or split (split pins).",
+    )
+    fixed_crank: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("angle", ge=RANGES["angle"][0], le=RANGES["angle"][1]),
+        min_items=1,
+        max_items=MAX_EXPLORE_CYLINDERS,
+        parse=_angle_list,
+        title="Fixed crank",
+        description="Only the firing orders this crank allows: one throw angle per throw "
+        "(per cylinder with crank split), e.g. '0,90,270,180 deg'.",
+        hint="empty: every crank of the family",
+    )
+    mirror: bool = field(
+        "flag",
+        default=True,
+        title="Mirror image the same engine",
+        description="An engine numbered from the other end (its mirror image) counts as the "
+        "same; off: a distinct engine.",
+        hint="off: the mirror image is a distinct engine",
+    )
+    reversal: bool = field(
+        "flag",
+        default=False,
+        title="Time reversal the same engine",
+        description="An engine run backwards (the reverse firing order on the mirrored "
+        "crank) counts as the same.",
+    )
+    list_orders: bool = field(
+        "flag",
+        default=False,
+        title="List the orders of each engine",
+        description="List every firing order each engine of the tables stands for (its "
+        "equivalent descriptions).",
     )
     target: Literal["none", "counterweights", "primary", "secondary"] = choice(
         "counterweights",
@@ -2218,6 +2370,7 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
     )
 
     def check(self) -> None:
+        CombustionOptions.check(self)
         if self.speed_max is not None and self.speed_max <= self.speed_min:
             raise FieldProblem("speed_max", "must be above the lowest speed")
         if (self.damper_inertia is None) != (self.damper_frequency is None):

@@ -22,7 +22,7 @@ from typing import Any
 import numpy as np
 
 from ..errors import InputError
-from ..results import to_jsonable
+from ..results import ResultMixin, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import (
     MAX_SWEEP_WORK,
@@ -133,8 +133,8 @@ class SweepCase:
         return out
 
 
-@dataclass(frozen=True)
-class SweepStudy:
+@dataclass(frozen=True, repr=False)
+class SweepStudy(ResultMixin):
     """Bearing loads of one engine over counterweight patterns and balance factors (see
     :func:`bearing_sweep`).
 

@@ -8,21 +8,47 @@ the model. Numbering of cylinders and throws: ``docs/engine_file.md``.
 
 from __future__ import annotations
 
+import dataclasses
+import functools
 import math
+from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..physics.articulated import Articulation, default_link_pin_angles
 from ..physics.firing import check_firing_order, firing_tdc_angles, to_crankbalance_order
 from ..physics.model import ConrodSplit, EngineModel, standard_layout, tdc_angle, vr_rows
 from ..schema.engine import EngineSpec
 
+if TYPE_CHECKING:  # imported where a spec has master-and-link rods
+    from ..physics.articulated import Articulation
+
+#: built models kept for the specs seen last (a spec is frozen and hashable, a model frozen
+#: with read-only arrays: a study of an engine seen before skips the build, issue 30)
+BUILD_CACHE = 64
+
 
 def build_model(spec: EngineSpec) -> EngineModel:
     """Turn a validated :class:`~crankbalance.schema.engine.EngineSpec` into an
-    :class:`EngineModel`."""
+    :class:`EngineModel` (the same, read-only model for an equal spec seen among the last
+    :data:`BUILD_CACHE`)."""
+    return _built(spec)
+
+
+@functools.lru_cache(maxsize=BUILD_CACHE)
+def _built(spec: EngineSpec) -> EngineModel:
+    """:func:`build_model`, kept by the spec; every array of the model made read-only."""
+    model = _build(spec)
+    for f in dataclasses.fields(model):
+        value = getattr(model, f.name)
+        if isinstance(value, np.ndarray):
+            value.flags.writeable = False
+    return model
+
+
+def _build(spec: EngineSpec) -> EngineModel:
+    """The model of ``spec`` (its arrays are new)."""
     ct = spec.crank_train
     positions, cylinder_throw, banks = _layout(spec)
     n = cylinder_throw.size
@@ -46,8 +72,10 @@ def build_model(spec: EngineSpec) -> EngineModel:
             "the rod's place and makes a rotating couple",
         )
     # moments about the crank's mid-point (the middle of the throws' extent), or the point
-    # moment_reference from it: every axial position of the model is measured from there
+    # moment_reference (or moment_point) from it: every axial position of the model is
+    # measured from there, and a point off the axis moves the roll moment (model docs)
     middle = 0.5 * (positions.min() + positions.max())
+    point = ct.moment_point or [0.0, ct.moment_reference, 0.0]
     return EngineModel(
         name=spec.name,
         speed=spec.speed,
@@ -56,7 +84,7 @@ def build_model(spec: EngineSpec) -> EngineModel:
         rod_length=ct.rod_length,
         strokes=ct.strokes,
         throw_angle=angles,
-        throw_position=positions - (middle + ct.moment_reference),
+        throw_position=positions - (middle + point[1]),
         throw_rotating_mass=rot,
         cylinder_throw=cylinder_throw,
         cylinder_bank=banks,
@@ -69,6 +97,8 @@ def build_model(spec: EngineSpec) -> EngineModel:
         firing_order_given=ct.firing_order is not None,
         articulation=_articulation(spec, banks),
         maker_number=maker_numbers(spec),
+        reference_x=point[0],
+        reference_z=point[2],
     )
 
 
@@ -364,6 +394,8 @@ def _articulation(spec: EngineSpec, banks: NDArray) -> Articulation | None:
     art = spec.crank_train.articulated
     if art is None:
         return None
+    from ..physics.articulated import Articulation, default_link_pin_angles
+
     n = banks.size
     master = art.master_cylinder - 1
     links = np.arange(n) != master

@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import InputError
 from ..physics.counterweight import CounterweightDesign, CounterweightProperties
 from ..physics.counterweight_optimize import CounterweightOptimum, OptimizationProgress
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import (
     COUNTERWEIGHT_CHILDREN,
     PROFILE_PARAMETERS,
@@ -146,8 +146,8 @@ def value_or_range(name: str, text: str) -> float | tuple[float, float]:
 
 
 # --------------------------------------------------------------------------- optimize
-@dataclass(frozen=True)
-class OptimizeResult:
+@dataclass(frozen=True, repr=False)
+class OptimizeResult(ResultMixin):
     """A counterweight optimisation: the requirement, its settings, the parameter bounds
     searched and the optimiser's result, with the Pareto designs listed.
 
@@ -264,8 +264,8 @@ def optimize(
 
 
 # --------------------------------------------------------------------------- show
-@dataclass(frozen=True)
-class DesignResult:
+@dataclass(frozen=True, repr=False)
+class DesignResult(ResultMixin):
     """One counterweight design and its mass properties.
 
     Attributes
@@ -360,8 +360,8 @@ PART_KEYS: dict[str, str | tuple[str, float]] = {
 }
 
 
-@dataclass(frozen=True)
-class PartResult:
+@dataclass(frozen=True, repr=False)
+class PartResult(ResultMixin):
     """The mass properties of a CAD part about the crank axis, against a requirement.
 
     Attributes

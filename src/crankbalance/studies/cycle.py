@@ -25,9 +25,9 @@ import numpy as np
 from ..errors import InputError
 from ..output.format import keyed
 from ..physics.model import EngineModel
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import THESIS_CRANK_INERTIA, CycleOptions, SensitivityOptions, given
-from .engine import EngineLike, as_model, engine_label
+from .engine import EngineLike, as_model, engine_label, firing
 
 if TYPE_CHECKING:  # pragma: no cover
     from numpy.typing import NDArray
@@ -260,8 +260,8 @@ def _flywheel(
     }
 
 
-@dataclass(frozen=True)
-class CycleStudy:
+@dataclass(frozen=True, repr=False)
+class CycleStudy(ResultMixin):
     """One working cycle, of one cylinder or of the whole engine.
 
     Attributes
@@ -421,8 +421,6 @@ def _whole_engine(engine: EngineLike, o: CycleOptions) -> CycleStudy:
         )
     order = list(model.firing_order)
     fire = result.fire_angle
-    sequence = fire[np.array(order) - 1]
-    intervals = np.diff(np.append(sequence, sequence[0] + np.pi * model.strokes))
     about = {
         "name": model.name,
         "cylinders": model.cylinders,
@@ -437,10 +435,7 @@ def _whole_engine(engine: EngineLike, o: CycleOptions) -> CycleStudy:
         "flywheel_inertia_kg_m2": o.flywheel_inertia or 0.0,
         "firing_order": order,
         "fire_angle_rad": fire.tolist(),
-        # one cylinder fires once a cycle: its interval is the cycle, not 0
-        "firing_interval_rad": (
-            np.mod(intervals, np.pi * model.strokes) if model.cylinders > 1 else intervals
-        ).tolist(),
+        "firing_interval_rad": firing(model, fire)[1].tolist(),
     }
     curves: dict[str, NDArray[np.float64]] = {
         "angle_deg": np.degrees(result.angle),
@@ -495,8 +490,8 @@ SENSITIVITY_KEYS = tuple(
 )
 
 
-@dataclass(frozen=True)
-class SensitivityStudy:
+@dataclass(frozen=True, repr=False)
+class SensitivityStudy(ResultMixin):
     """The cycle of one cylinder over balance factors and reciprocating-mass scales.
 
     Attributes

@@ -1,11 +1,12 @@
 """The analysis study: from an engine (file, preset, spec or model) to its free forces and
-moments, in the JSON contract ``crankbalance.analysis/3`` (docs/json.md)."""
+moments, in the JSON contract ``crankbalance.analysis/4`` (docs/json.md)."""
 
 from __future__ import annotations
 
 import functools
 import math
 import os
+from collections.abc import Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -13,15 +14,15 @@ import numpy as np
 
 from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
-from ..physics.model import EngineModel
+from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import below_round_off, round_off, to_jsonable
+from ..results import ResultMixin, below_round_off, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
 
 if TYPE_CHECKING:  # the verification and the solver are imported when asked for
-    from numpy.typing import ArrayLike
+    from numpy.typing import ArrayLike, NDArray
 
     from ..physics.balance_check import Verification
     from ..physics.balancing import (
@@ -33,7 +34,7 @@ if TYPE_CHECKING:  # the verification and the solver are imported when asked for
     )
     from ..schema.settings import BalanceOptions
 
-SCHEMA = "crankbalance.analysis/3"
+SCHEMA = "crankbalance.analysis/4"
 #: the keys of a conrod's two-mass split in the analysis JSON (unit in a suffix)
 CONROD_KEYS: dict[str, str | tuple[str, float]] = {
     "mass": "mass_kg",
@@ -64,9 +65,10 @@ def engine_label(engine: EngineLike) -> str:
     return str(engine)
 
 
-@dataclass(frozen=True)
-class Analysis:
-    """Free forces and moments of one engine (see :func:`analyze`)."""
+@dataclass(frozen=True, repr=False)
+class Analysis(ResultMixin):
+    """Free forces and moments of one engine (see :func:`analyze`); a force or moment at
+    most the engine's round-off is exactly zero (:func:`without_round_off`)."""
 
     model: EngineModel
     forces: FreeForces
@@ -75,20 +77,28 @@ class Analysis:
         """Curves versus crank angle (720 points over a revolution by default)."""
         return curves(self.model, self.forces, angle)
 
-    def to_dict(self) -> dict[str, Any]:
-        m, f = self.model, self.forces
-        # what is at most the engine's round-off is reported as exactly zero
-        force, moment = round_off(m)
-        f = FreeForces(
-            orders=f.orders,
-            force_forward=below_round_off(f.force_forward, force),
-            force_backward=below_round_off(f.force_backward, force),
-            couple_forward=below_round_off(f.couple_forward, moment),
-            couple_backward=below_round_off(f.couple_backward, moment),
-            rotating_force=complex(below_round_off(f.rotating_force, force)),
-            rotating_couple=complex(below_round_off(f.rotating_couple, moment)),
+    def headline(self) -> tuple[str, ...]:
+        """The largest free force and moment of the reciprocating masses (with their
+        orders) and those of the rotating masses, in words with units."""
+        f = without_round_off(self.model, self.forces)
+
+        def largest(amplitudes: NDArray[np.float64], kind: str) -> str:
+            if not np.any(amplitudes > 0):
+                return text(0.0, kind)
+            k = int(np.argmax(amplitudes))
+            return f"{text(float(amplitudes[k]), kind)} (order {int(f.orders[k])})"
+
+        return (
+            f"free force {largest(f.force_amplitude, 'force')}, "
+            f"free moment {largest(f.moment_amplitude, 'moment')}",
+            f"rotating masses (bare crank): force {text(abs(f.rotating_force), 'force')}, "
+            f"moment {text(abs(f.rotating_couple), 'moment')}",
         )
-        rows_f, rows_m = [], []
+
+    def to_dict(self) -> dict[str, Any]:
+        m = self.model
+        f = without_round_off(m, self.forces)
+        rows_f, rows_m, rows_roll = [], [], []
         for k, order in enumerate(f.orders):
             rows_f.append(
                 {
@@ -110,6 +120,13 @@ class Analysis:
                     "backward_phase_deg": _phase(1j * f.couple_backward[k]),
                 }
             )
+            rows_roll.append(
+                {
+                    "order": int(order),
+                    "amplitude_Nm": float(f.roll_amplitude[k]),
+                    "phase_deg": _roll_phase(f.roll[k]),
+                }
+            )
         out = {
             "schema": SCHEMA,
             "engine": {
@@ -120,6 +137,7 @@ class Analysis:
                 "cylinder_offset_m": m.cylinder_offset,
                 "cylinder_axial_m": m.cylinder_axial,
                 "moment_reference_m": m.moment_reference,
+                "moment_point_m": list(m.moment_point),
                 "throw_angle_deg": np.degrees(m.throw_angle),
                 "throw_position_m": m.throw_position,
                 "cylinder_throw": m.cylinder_throw + 1,
@@ -134,18 +152,41 @@ class Analysis:
             },
             "free_forces": rows_f,
             "free_moments": rows_m,
+            "roll_moments": rows_roll,
             "rotating": {
                 "force_N": abs(f.rotating_force),
                 "moment_Nm": abs(f.rotating_couple),
                 "force_phase_deg": _phase(f.rotating_force),
                 "moment_phase_deg": _phase(1j * f.rotating_couple),
+                "roll_Nm": abs(f.rotating_roll),
+                "roll_phase_deg": _roll_phase(f.rotating_roll),
             },
             "conventions": "phases: direction at crank angle 0, degrees from +z toward +x; "
-            f"moments about {moment_point(m.moment_reference)}",
+            "roll moments (about y, positive in the sense of rotation) amplitude * cos(n * "
+            "crank angle + phase); no free force along y; "
+            f"moments about {moment_point(m.moment_point)}",
         }
         result = to_jsonable(out)
         assert isinstance(result, dict)
         return result
+
+
+def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
+    """``forces`` with every force and moment at most the engine's round-off
+    (:func:`crankbalance.results.round_off`) set to exactly zero, as every output shows
+    them."""
+    force, moment = round_off(model)
+    return FreeForces(
+        orders=forces.orders,
+        force_forward=below_round_off(forces.force_forward, force),
+        force_backward=below_round_off(forces.force_backward, force),
+        couple_forward=below_round_off(forces.couple_forward, moment),
+        couple_backward=below_round_off(forces.couple_backward, moment),
+        rotating_force=complex(below_round_off(forces.rotating_force, force)),
+        rotating_couple=complex(below_round_off(forces.rotating_couple, moment)),
+        roll=below_round_off(forces.roll, moment),
+        rotating_roll=complex(below_round_off(forces.rotating_roll, moment)),
+    )
 
 
 def engine_summary(m: EngineModel) -> dict[str, Any]:
@@ -194,6 +235,42 @@ def firing_summary(m: EngineModel) -> dict[str, Any]:
     return out
 
 
+def _roll_phase(value: complex) -> float:
+    """Phase of a roll moment phasor R, M_y = abs(R) cos(n theta + arg R), in degrees (0 for a
+    zero phasor)."""
+    if value == 0:
+        return 0.0
+    return float(np.degrees(np.angle(value)))
+
+
+def firing(
+    model: EngineModel, fire: ArrayLike | None = None
+) -> tuple[list[int], NDArray[np.float64]]:
+    """The firing order and the crank angle from each cylinder of it to the next, the last
+    back to the first [rad], of the firing angles ``fire`` [rad] (default: the engine's own,
+    :func:`crankbalance.physics.model.model_fire_angles`). The order is the
+    engine's when given or with ``fire``, else the order of its firing angles (the most
+    even firing its crank allows). A single cylinder's interval is the whole cycle.
+
+    Raises :class:`~crankbalance.errors.InputError` for an engine without a firing order
+    whose crank has too many firings to try
+    (:data:`crankbalance.physics.firing.MAX_FREE_CYLINDERS`).
+    """
+    order = list(model.firing_order)
+    if fire is None:
+        from ..physics.model import model_fire_angles
+
+        fire = model_fire_angles(model)
+        if not model.firing_order_given:
+            order = [int(c) + 1 for c in np.argsort(fire, kind="stable")]
+            order = order[order.index(1) :] + order[: order.index(1)]  # from cylinder 1
+    cycle = np.pi * model.strokes
+    sequence = np.asarray(fire, dtype=float)[np.asarray(order) - 1]
+    intervals = np.diff(np.append(sequence, sequence[0] + cycle))
+    # one cylinder fires once a cycle: its interval is the cycle, not 0
+    return order, np.mod(intervals, cycle) if model.cylinders > 1 else intervals
+
+
 def _phase(value: complex) -> float:
     """Direction of a phasor in degrees from +z toward +x (0 for a zero phasor: one at
     most the round-off, which ``to_dict`` sets to zero first)."""
@@ -202,7 +279,9 @@ def _phase(value: complex) -> float:
     return float(np.degrees(np.arctan2(value.imag, value.real)))
 
 
-def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
+def analyze(
+    engine: EngineLike, orders: int = 8, moment_point: Sequence[float] | None = None
+) -> Analysis:
     """Free forces and moments of an engine (orders 1..``orders``) and of its rotating masses.
 
     Parameters
@@ -211,11 +290,20 @@ def analyze(engine: EngineLike, orders: int = 8) -> Analysis:
         Preset name, engine file, validated spec or built model.
     orders : int
         Highest harmonic order (1..64).
+    moment_point : sequence of three floats, optional
+        The point (x, y, z) [m] moments are taken about, y from the crank's mid-point;
+        None: the engine's (``crank_train.moment_point`` or ``moment_reference``).
     """
+    from ..errors import InputError
 
     orders = parse_options(AnalysisOptions, {"orders": orders}).orders
     model = as_model(engine)
-    return Analysis(model=model, forces=free_forces(model, orders))
+    if moment_point is not None:
+        point = [float(v) for v in moment_point]
+        if len(point) != 3 or not all(math.isfinite(v) for v in point):
+            raise InputError("moment_point", moment_point, "three finite lengths x, y, z [m]")
+        model = with_moment_point(model, point)
+    return Analysis(model=model, forces=without_round_off(model, free_forces(model, orders)))
 
 
 # --------------------------------------------------------------------------- balancing study
@@ -258,8 +346,8 @@ def balance_options(
     return cw, primary, secondary
 
 
-@dataclass(frozen=True)
-class BalanceStudy:
+@dataclass(frozen=True, repr=False)
+class BalanceStudy(ResultMixin):
     """Counterweights and balance shafts of one engine (see :func:`balance_engine`), and
     the time-domain verification when it was asked for."""
 
@@ -460,8 +548,8 @@ def balance_engine(
 # --------------------------------------------------------------------------- the two studies
 def analysis(engine: EngineLike, settings: AnalysisOptions) -> Analysis:
     """The analysis study of the registry (``analyze``): :func:`analyze` of ``engine`` with
-    its settings (the highest order)."""
-    return analyze(engine, settings.orders)
+    its settings (the highest order, the moment point)."""
+    return analyze(engine, settings.orders, settings.moment_point)
 
 
 def balancing(

@@ -69,7 +69,10 @@ ROW_COLUMNS = ("index", "equivalents", "firing_order", "throw_angle_rad")
 
 class Enumeration(Protocol):
     """What a run enumerates: :mod:`crankbalance.physics.explore.orders` (a module) or a
-    stand-in with the same four functions of its problem (opaque to the run)."""
+    stand-in with the same four functions of its problem (opaque to the run). A fifth,
+    ``at(problem, indices)`` (the candidates among sorted distinct indices, as ``chunk``
+    of each alone), is used for a random search's draws when the source has it; else
+    each draw is a ``chunk`` of one index."""
 
     def count(self, problem: Any, /) -> int:
         """The number of indices of the problem [-]."""
@@ -102,11 +105,16 @@ class Keep:
         Column of the top-N list; None for none.
     n : int
         Length of the top-N list.
+    tolerance : tuple of float
+        The round-off of each objective [its unit]
+        (:func:`crankbalance.physics.explore.rank.tolerances`): rows equal within it both
+        stay on the front; empty: exact comparison.
     """
 
     objectives: tuple[str, ...] = ()
     key: str | None = None
     n: int = 20
+    tolerance: tuple[float, ...] = ()
 
 
 @dataclass(frozen=True)
@@ -230,7 +238,8 @@ def _pareto(keep: Keep, rows: Columns) -> Columns:
         return _take(rows, np.zeros(0, dtype=np.int64)) if keep.objectives else {}
     from ..physics.explore.rank import pareto
 
-    mask = np.asarray(pareto(_matrix(rows, keep.objectives)), dtype=bool)
+    tolerance = keep.tolerance or 0.0
+    mask = np.asarray(pareto(_matrix(rows, keep.objectives), tolerance), dtype=bool)
     kept = np.flatnonzero(mask)
     return _take(rows, kept[np.argsort(rows["index"][kept], kind="stable")])
 
@@ -268,6 +277,9 @@ def _candidates(problem: Any, task: Task, source: Enumeration) -> tuple[Candidat
     if isinstance(task, tuple):
         start, stop = task
         return source.chunk(problem, start, stop), stop - start
+    picked = getattr(source, "at", None)  # all the sampled indices at once, when it can
+    if picked is not None:
+        return picked(problem, task), int(task.size)
     parts = [source.chunk(problem, int(i), int(i) + 1) for i in task]
     first = parts[0]
     joined = {
@@ -291,14 +303,22 @@ def evaluate_task(
     The figures are computed :data:`~crankbalance.physics.explore.work.FIGURES_SLICE` candidates at
     a time (faster, and their temporaries stay small however many candidates a task of a
     shared-pin layout holds); the slices' Pareto sets and top-N lists merge into the
-    task's."""
+    task's. The slices take the candidates crank by crank (the candidates of one crank
+    side by side), so that a slice holds few distinct cranks, whose figures
+    :func:`~crankbalance.physics.explore.merit.merit` computes once each; the rows come
+    back by increasing index."""
     candidates, covered = _candidates(problem, task, _enumeration(source))
     kept: list[Columns] = []
     pareto: Columns = {}
     top: Columns = {}
     passed = 0
+    by_crank = np.lexsort(candidates.throw_angle.T[::-1]) if candidates.size else None
     for start in range(0, max(candidates.size, 1), FIGURES_SLICE):
-        piece = candidates.part(start, start + FIGURES_SLICE)
+        piece = (
+            candidates.part(start, start + FIGURES_SLICE)
+            if by_crank is None
+            else candidates.take(by_crank[start : start + FIGURES_SLICE])
+        )
         rows = _rows(piece, evaluate(piece))
         if select is not None:
             rows = _take(rows, np.flatnonzero(np.asarray(select(rows), dtype=bool)))
@@ -307,10 +327,14 @@ def evaluate_task(
             kept.append(rows)
         pareto = _merge(keep, pareto, _pareto(keep, rows), "pareto")
         top = _merge(keep, top, _top(keep, rows), "top")
+    rows_of_task = None
+    if rows_wanted:
+        rows_of_task = _concat(kept)
+        rows_of_task = _take(rows_of_task, np.argsort(rows_of_task["index"], kind="stable"))
     return _Part(
         candidates=candidates.size,
         covered=covered,
-        rows=_concat(kept) if rows_wanted else None,
+        rows=rows_of_task,
         passed=passed,
         pareto=pareto,
         top=top,

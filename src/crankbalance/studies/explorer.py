@@ -23,7 +23,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
 from .explore import Keep, RunResult, Sample, progress_line, run
@@ -63,9 +63,14 @@ def _problem(engine: EngineLike | None, o: ExploreOptions) -> Problem:
             o.strokes,
             bank_angle=o.bank_angle,
             crank=o.crank,
+            fixed_throw_angles=o.fixed_crank,
             base=base,
+            mirror=o.mirror,
+            reversal=o.reversal,
         )
     except InputError as error:
+        if error.field == "fixed_throw_angles":
+            raise InputError("fixed_crank", o.fixed_crank, error.allowed) from None
         if error.field != "base":
             raise
         raise InputError("engine", engine_label(engine), error.allowed) from None  # type: ignore[arg-type]
@@ -92,8 +97,12 @@ def _order_text(order: NDArray[Any]) -> str:
     return "-".join(str(int(c)) for c in order)
 
 
-def records(rows: Mapping[str, NDArray[Any]], names: list[str]) -> list[dict[str, Any]]:
-    """Rows as dictionaries: the firing order as text, the throw angles as a list."""
+def records(
+    rows: Mapping[str, NDArray[Any]], names: list[str], problem: Problem | None = None
+) -> list[dict[str, Any]]:
+    """Rows as dictionaries: the firing order as text, the throw angles as a list, and with
+    a ``problem`` every firing order the row's engine stands for (``orders``, the first the
+    row's own: :func:`crankbalance.physics.explore.orders.equivalent_orders`)."""
     out = []
     for i in range(rows["index"].size):
         record: dict[str, Any] = {
@@ -102,13 +111,18 @@ def records(rows: Mapping[str, NDArray[Any]], names: list[str]) -> list[dict[str
             "equivalents": int(rows["equivalents"][i]),
             "throw_angle_rad": [float(a) for a in rows["throw_angle_rad"][i]],
         }
+        if problem is not None:
+            from ..physics.explore.orders import equivalent_orders
+
+            listed = equivalent_orders(problem, rows["firing_order"][i].tolist())
+            record["orders"] = ["-".join(map(str, order)) for order in listed]
         record.update({name: float(rows[name][i]) for name in names})
         out.append(record)
     return out
 
 
-@dataclass(frozen=True)
-class ExploreResult:
+@dataclass(frozen=True, repr=False)
+class ExploreResult(ResultMixin):
     """One run of the explorer.
 
     Attributes
@@ -128,6 +142,9 @@ class ExploreResult:
         What the run kept; its ``top`` holds ``settings.top`` rows (:attr:`figure` more).
     figure : RunResult, optional
         The run with the rows of a figure (``figure_points`` of :func:`explore`).
+    problem : Problem, optional
+        The enumeration's problem when the rows list the orders they stand for
+        (``list_orders``).
     """
 
     settings: ExploreOptions
@@ -138,6 +155,7 @@ class ExploreResult:
     names: list[str]
     run: RunResult
     figure: RunResult | None = None
+    problem: Problem | None = None
 
     def counts(self) -> dict[str, Any]:
         result = self.run
@@ -152,7 +170,7 @@ class ExploreResult:
 
     def top(self) -> list[dict[str, Any]]:
         """The top-N rows."""
-        return records(self.run.top, self.names) if self.run.top else []
+        return records(self.run.top, self.names, self.problem) if self.run.top else []
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.explore/1``."""
@@ -171,7 +189,9 @@ class ExploreResult:
                 "top_key": self.key,
                 "torsion_assumption": merit.TORSION_ASSUMPTION,
                 "top": self.top(),
-                "pareto": records(self.run.pareto, self.names) if self.run.pareto else [],
+                "pareto": records(self.run.pareto, self.names, self.problem)
+                if self.run.pareto
+                else [],
                 "output": self.run.output,
             }
         )
@@ -234,7 +254,8 @@ def explore(
     key = None if o.top_key is None else rank.column_name(o.top_key, columns, "top_key")
     if key is None:  # the largest moment left after balancing, else the first objective
         key = "residual_M_Nm" if "residual_M_Nm" in columns else next(iter(objectives), None)
-    keep = Keep(objectives=objectives, key=key, n=max(o.top, figure_points))
+    tolerance = tuple(float(t) for t in rank.tolerances(objectives, problem.topology))
+    keep = Keep(objectives, key, max(o.top, figure_points), tolerance)
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "filter")
     sample = None if o.sample is None else Sample(draws=o.sample, seed=o.seed)
     # the work of the run, before any enumeration, draw or task list (explore.work)
@@ -269,4 +290,5 @@ def explore(
     for part in (result.top, result.pareto):
         require_finite({n: np.asarray(part[n], dtype=float) for n in names if n in part})
     label = None if engine is None else engine_label(engine)
-    return ExploreResult(o, label, work.chunk, objectives, keep.key, names, result, figure)
+    listing = problem if o.list_orders else None
+    return ExploreResult(o, label, work.chunk, objectives, keep.key, names, result, figure, listing)

@@ -14,7 +14,7 @@ from ..errors import InputError
 from ..output.format import keyed
 from ..physics import friction as fr
 from ..physics.rotor_bench import BenchResult, BenchRotor
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import BenchOptions, FrictionOptions, given
 
 FRICTION_SCHEMA = "crankbalance.friction/1"
@@ -42,8 +42,8 @@ def _checked(payload: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-@dataclass(frozen=True)
-class FrictionResult:
+@dataclass(frozen=True, repr=False)
+class FrictionResult(ResultMixin):
     """The friction of one bearing.
 
     Attributes
@@ -167,8 +167,8 @@ def friction(settings: FrictionOptions) -> FrictionResult:
     return result
 
 
-@dataclass(frozen=True)
-class BenchStudy:
+@dataclass(frozen=True, repr=False)
+class BenchStudy(ResultMixin):
     """Runs of the simulated rotor test bench, one per set speed.
 
     Attributes

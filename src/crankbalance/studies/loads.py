@@ -22,6 +22,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..output.format import text
 from ..physics.main_bearings import (
     CRANK_MODELS,
     MAX_CONTACT_SIZE,
@@ -35,7 +36,7 @@ from ..physics.main_bearings import (
     main_bearing_loads,
 )
 from ..physics.model import EngineModel
-from ..results import to_jsonable
+from ..results import ResultMixin, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import MIN_SAMPLES, BearingOptions, given, parse_options
 from .build import build_model
@@ -69,8 +70,8 @@ STIFFNESS_NOTE = (
 )
 
 
-@dataclass(frozen=True)
-class BearingStudy:
+@dataclass(frozen=True, repr=False)
+class BearingStudy(ResultMixin):
     """Main-bearing loads of one engine over its cycle, both crank models (see
     :func:`bearing_loads`).
 
@@ -490,7 +491,7 @@ def assumed_text(s: dict[str, Any]) -> str:
 
     combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
     return (
-        f"crank + flywheel {s['crank_inertia_kg_m2']:.4g} kg m^2"
+        f"crank + flywheel {text(s['crank_inertia_kg_m2'], 'inertia')}"
         + ("*" if s["crank_inertia_from"] == "engine" else "")
         + f"; journal {mm('journal_diameter')}, pin {mm('pin_diameter')}, web "
         f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "

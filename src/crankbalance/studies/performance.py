@@ -191,13 +191,33 @@ def size_cylinder_flywheel(
 
 
 #: the options of the Wiebe combustion model (a pressure table replaces them)
-WIEBE_OPTIONS = ("compression_ratio", "ignition", "burn_duration", "intake_pressure")
+WIEBE_OPTIONS = (
+    "compression_ratio",
+    "ignition",
+    "burn_duration",
+    "intake_pressure",
+    "heat_release",
+    "fuel_mass",
+    "heating_value",
+    "combustion_efficiency",
+    "gamma",
+    "exhaust_pressure",
+    "burn_end",
+)
+
+#: the end-of-burn conventions in words (:data:`~crankbalance.physics.engine_cycle.BURN_ENDS`)
+BURN_END_WORDS = {
+    "complete": "burn complete (the Wiebe tail runs on past the duration)",
+    "stop": "burn stopped at the end of the duration (99.3 % burnt)",
+}
 
 
-def combustion_summary(o: CombustionOptions) -> dict[str, float] | None:
+def combustion_summary(o: CombustionOptions) -> dict[str, Any] | None:
     """The Wiebe combustion of :class:`~crankbalance.schema.settings.CombustionOptions` as the JSON
     of ``cycle``, ``torsional`` and ``bearings`` shows it (SI units in the keys), the same
-    defaults for all; None with pressure tables."""
+    defaults for all; None with pressure tables. The heat released is stated as given
+    (``heat_release_J``), or by the fuel (``fuel_mass_kg``) or the charge (both null), with
+    the heating value and combustion efficiency those use."""
     if o.pressure_csv:
         return None
     return {
@@ -205,19 +225,42 @@ def combustion_summary(o: CombustionOptions) -> dict[str, float] | None:
         "ignition_rad": float(o.ignition),
         "burn_duration_rad": float(o.burn_duration),
         "intake_pressure_Pa": float(o.intake_pressure),
+        "heat_release_J": o.heat_release,
+        "fuel_mass_kg": o.fuel_mass,
+        "heating_value_J_kg": float(o.heating_value),
+        "combustion_efficiency": float(o.combustion_efficiency),
+        "gamma": float(o.gamma),
+        "exhaust_pressure_Pa": float(
+            o.intake_pressure if o.exhaust_pressure is None else o.exhaust_pressure
+        ),
+        "burn_end": o.burn_end,
     }
 
 
-def combustion_text(summary: dict[str, float] | None) -> str:
+def combustion_text(summary: dict[str, Any] | None) -> str:
     """The combustion of :func:`combustion_summary` in words, for the text outputs."""
     import math
 
     if summary is None:
         return "combustion: pressure tables"
+    if summary["heat_release_J"] is not None:
+        heat = f"heat released {summary['heat_release_J']:g} J per cycle"
+    else:
+        source = (
+            "the charge"
+            if summary["fuel_mass_kg"] is None
+            else f"{1e3 * summary['fuel_mass_kg']:g} g of fuel per cycle"
+        )
+        heat = (
+            f"heat from {source} ({summary['heating_value_J_kg'] / 1e6:g} MJ/kg, "
+            f"efficiency {summary['combustion_efficiency']:g})"
+        )
     return (
         f"Wiebe combustion: compression {summary['compression_ratio']:g}, ignition "
-        f"{math.degrees(summary['ignition_rad']):g} deg, burn "
-        f"{math.degrees(summary['burn_duration_rad']):g} deg"
+        f"{math.degrees(summary['ignition_rad']):g}°, burn "
+        f"{math.degrees(summary['burn_duration_rad']):g}°, "
+        f"{BURN_END_WORDS[summary['burn_end']]}; {heat}, gamma {summary['gamma']:g}, "
+        f"exhaust {summary['exhaust_pressure_Pa'] / 1e5:g} bar"
     )
 
 
@@ -267,9 +310,25 @@ def pressure_source(
                 raise InputError(where, error.value, error.allowed) from None
         sources: list[PressureSource] = [*tables]
         return sources[0] if len(sources) == 1 else sources
+    from ..schema.settings import given
+
+    if strokes == 2 and "exhaust_pressure" in given(o):
+        raise InputError(
+            "exhaust_pressure",
+            o.exhaust_pressure,
+            "acts on a four-stroke's exhaust stroke only (a two-stroke is scavenged at "
+            "bottom dead centre)",
+        )
     return WiebeCombustion(
         compression_ratio=o.compression_ratio,
         ignition_angle=o.ignition,
         burn_duration=o.burn_duration,
         intake_pressure=o.intake_pressure,
+        heat_release=o.heat_release,
+        fuel_mass=o.fuel_mass,
+        heating_value=o.heating_value,
+        combustion_efficiency=o.combustion_efficiency,
+        gamma=o.gamma,
+        exhaust_pressure=o.exhaust_pressure,
+        burn_end=o.burn_end,
     )

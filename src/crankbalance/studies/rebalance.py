@@ -40,7 +40,7 @@ class PartsSummary(ResultMixin):
     reciprocating_parts: dict[str, float]
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class RebalanceStudy(ResultMixin):
     """The rebalancing of one crank for each target balance factor.
 

@@ -134,7 +134,7 @@ def _shop(command: str, fields: tuple[str, ...], **more: Any) -> Study:
 
 
 #: the settings of a shop study that reads a parts file: the matching and bob-weights
-_PARTS = ("parts", "method", "time_limit", "fraction")
+_PARTS = ("parts", "method", "time_limit", "journals", "fraction")
 #: the settings of the hole plan and its ISO check
 _PLAN = (
     "reading",

@@ -28,7 +28,7 @@ from ..physics.balance_shaft import (
     ShaftResponse,
 )
 from ..physics.beam import BeamTheory, ShaftSection
-from ..results import to_jsonable
+from ..results import ResultMixin, to_jsonable
 from ..schema.settings import ShaftCheckOptions, ShaftSectionOptions, ShaftStudyOptions, given
 from .engine import EngineLike, engine_label
 
@@ -198,8 +198,8 @@ def study_json(study: PlacementStudy) -> dict[str, Any]:
     }
 
 
-@dataclass(frozen=True)
-class PlacementResult:
+@dataclass(frozen=True, repr=False)
+class PlacementResult(ResultMixin):
     """The placement studies of one shaft: one for inline4, one per rotor type for inline3.
 
     Attributes
@@ -281,8 +281,8 @@ def inline3(engine: EngineLike | None, settings: ShaftStudyOptions) -> Placement
     return result
 
 
-@dataclass(frozen=True)
-class CheckResult:
+@dataclass(frozen=True, repr=False)
+class CheckResult(ResultMixin):
     """One shaft layout, its state variables and its design checks."""
 
     design: BalanceShaft

@@ -22,6 +22,7 @@ from ..output.format import keyed
 from ..physics.model import EngineModel
 from ..physics.shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
 from ..physics.shop.holes import DrillingPlan, drilling_plan
+from ..physics.shop.journals import JournalPairing, pair_journals
 from ..physics.shop.matching import (
     Inventory,
     MachineToLightest,
@@ -48,7 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
     EngineSource = str | os.PathLike[str] | EngineSpec
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class PartsStudy(ResultMixin):
     """Matched sets and bob-weights of an engine's weighed parts.
 
@@ -74,6 +75,9 @@ class PartsStudy(ResultMixin):
         Bob-weight per crankpin from the matched sets [kg].
     remaining : RemainingForces
         Free forces [N] and couples [N m] the fraction leaves (orders 1 and 2).
+    journals : JournalPairing
+        Which sets share a journal (``ShopOptions.journals``) and the journals'
+        bob-weights [kg]; ``matching`` lists the sets in their cylinders after it.
     """
 
     engine: str
@@ -86,9 +90,10 @@ class PartsStudy(ResultMixin):
     crank_radius: float
     bob_weights: BobWeights
     remaining: RemainingForces
+    journals: JournalPairing
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class HolePlan(ResultMixin):
     """A two-plane reading turned into holes per correction plane, and the ISO check.
 
@@ -125,7 +130,7 @@ class HolePlan(ResultMixin):
     center_of_mass: float
 
 
-@dataclass(frozen=True)
+@dataclass(frozen=True, repr=False)
 class ShopStudy(ResultMixin):
     """Everything the shop sheet shows: the parts study and, with readings, the hole plan.
 
@@ -164,16 +169,23 @@ def parts_study(
     name, model = engine_model(engine)
     source = "inventory" if isinstance(parts, Inventory) else str(parts)
     inventory = parts if isinstance(parts, Inventory) else load_parts_file(parts)
+    inventory = inventory.per_rod(model.cylinder_throw, "journal_oil")
     cylinders = len(model.cylinder_throw)
     inventory.check(cylinders, "engine")
+    joint = options.journals == "joint"
+    if joint and options.method not in ("milp", "exhaustive"):
+        raise InputError("journals", "joint", "needs method milp or exhaustive")
     matched = match_parts(
         inventory,
         cylinders,
         options.method,
+        objective="journal" if joint else None,
         time_limit=options.time_limit,
         model=model,
         fraction=options.fraction,
     )
+    journals = journal_pairing(model, matched, options)
+    matched = in_cylinders(matched, journals.set_of_cylinder)
     return PartsStudy(
         engine=name,
         parts_source=source,
@@ -185,6 +197,45 @@ def parts_study(
         crank_radius=model.crank_radius,
         bob_weights=bob_weights(model, options.fraction, matched.rotating, matched.reciprocating),
         remaining=remaining_forces(model, options.fraction, matched.reciprocating),
+        journals=journals,
+    )
+
+
+def journal_pairing(model: EngineModel, matched: Matching, options: ShopOptions) -> JournalPairing:
+    """Which of the matched sets share a journal (``options.journals``): the least spread
+    of the journals' bob-weights (:func:`~crankbalance.physics.shop.journals.pair_journals`,
+    within ``options.time_limit``), the matching's own (``joint``: the parts were matched
+    for it) or set c in cylinder c (``as-listed``)."""
+    weight = matched.rotating + options.fraction * matched.reciprocating
+    method = "milp" if options.journals == "paired" else "as-listed"
+    pairing = pair_journals(
+        weight, model.cylinder_throw, model.throws, method, time_limit=options.time_limit
+    )
+    if options.journals != "joint":
+        return pairing
+    # the parts were matched for the journals' spread: the matching's sets stay put
+    return dataclasses.replace(
+        pairing,
+        method="joint",
+        optimal=matched.optimal,
+        status=f"matched with the journals: {matched.status}",
+    )
+
+
+def in_cylinders(matched: Matching, set_of_cylinder: NDArray[np.int64]) -> Matching:
+    """The matching with its set ``set_of_cylinder[c]`` in cylinder c (a spread or a
+    variance does not change: the sets only move between cylinders)."""
+    order = np.asarray(set_of_cylinder)
+    if np.array_equal(order, np.arange(order.size)):
+        return matched
+    return dataclasses.replace(
+        matched,
+        part=matched.part[:, order],
+        ids=tuple(matched.ids[s] for s in order),
+        reciprocating=matched.reciprocating[order],
+        rotating=matched.rotating[order],
+        remove_reciprocating=matched.remove_reciprocating[order],
+        remove_rotating=matched.remove_rotating[order],
     )
 
 
@@ -368,6 +419,7 @@ _KEYS: dict[str, Names] = {
     "Inventory": {
         "reciprocating_allowance": "reciprocating_allowance_kg",
         "rotating_allowance": "rotating_allowance_kg",
+        "journal_allowance": "journal_allowance_kg",
     },
     "Matching": {
         "reciprocating": "reciprocating_kg",
@@ -401,6 +453,11 @@ _KEYS: dict[str, Names] = {
         "couple_amplitude": "couple_amplitude_Nm",
     },
     "PartsStudy": {"crank_radius": "crank_radius_m"},
+    "JournalPairing": {
+        "bob_weight": "bob_weight_kg",
+        "spread": "spread_kg",
+        "as_listed_spread": "as_listed_spread_kg",
+    },
     "TwoPlanePlan": {
         "measuring_planes": "measuring_planes_m",
         "correction_planes": "correction_planes_m",
@@ -452,7 +509,7 @@ _KEYS: dict[str, Names] = {
 }
 
 #: the unit of a matching's objective (and its bound), by objective
-_OBJECTIVE_SUFFIX = {"spread": "_kg", "variance": "_kg2", "free": "_N"}
+_OBJECTIVE_SUFFIX = {"spread": "_kg", "variance": "_kg2", "free": "_N", "journal": "_kg"}
 
 #: the JSON keys of the settings (:class:`~crankbalance.schema.settings.ShopOptions`, SI)
 _SETTING_KEYS: Names = {
@@ -558,8 +615,8 @@ def shop_json(result: Any, path: str = "") -> Any:
 PLAN_NAMES = {name: "--" + name.replace("_", "-") for name in PLAN_SETTINGS.values()}
 
 
-@dataclass(frozen=True)
-class ShopResult:
+@dataclass(frozen=True, repr=False)
+class ShopResult(ResultMixin):
     """One result of the balance shop and its JSON schema.
 
     Attributes

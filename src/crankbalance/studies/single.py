@@ -19,7 +19,7 @@ from typing import TYPE_CHECKING, Any
 from ..errors import InputError
 from ..physics import single_cylinder as sc
 from ..physics import tolerance as tl
-from ..results import require_finite, to_jsonable
+from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import (
     BalanceFactorOptions,
     RebalancePartsOptions,
@@ -58,8 +58,8 @@ def _checked(payload: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class BalanceFactorResult:
+@dataclass(frozen=True, repr=False)
+class BalanceFactorResult(ResultMixin):
     """The balance factor of a crank, its bob-weight and the single-cylinder force study.
 
     Attributes
@@ -244,8 +244,8 @@ def balance_factor(
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class RebalanceResult:
+@dataclass(frozen=True, repr=False)
+class RebalanceResult(ResultMixin):
     """The rebalancing of one crank for each target balance factor
     (:class:`~crankbalance.studies.rebalance.RebalanceStudy`)."""
 
@@ -505,8 +505,8 @@ def _case_json(res: rb.RebalanceResult) -> dict[str, Any]:
 PLANE_SETTINGS = ("bearing_a", "bearing_b", "center_of_mass", "plane_1", "plane_2")
 
 
-@dataclass(frozen=True)
-class ToleranceResult:
+@dataclass(frozen=True, repr=False)
+class ToleranceResult(ResultMixin):
     """ISO 21940-11 permissible residual unbalance, its split between two correction planes
     and the verdict on a measured residual; or, for ``list_grades``, the grades.
 

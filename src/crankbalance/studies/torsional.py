@@ -21,7 +21,7 @@ import numpy as np
 from ..errors import InputError
 from ..physics import torsional as tv
 from ..physics.model import EngineModel
-from ..results import to_jsonable
+from ..results import ResultMixin, to_jsonable
 from ..schema.settings import TorsionalOptions, default_text, given
 from .engine import EngineLike, engine_label
 from .performance import WIEBE_OPTIONS, arithmetic_checked
@@ -48,8 +48,8 @@ def _shown(o: TorsionalOptions, name: str) -> Any:
     return default_text(TorsionalOptions, name)
 
 
-@dataclass(frozen=True)
-class TorsionalResult:
+@dataclass(frozen=True, repr=False)
+class TorsionalResult(ResultMixin):
     """The torsional study of one engine.
 
     Attributes

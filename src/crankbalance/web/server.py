@@ -52,6 +52,11 @@ def serve(
         lambda: threading.Thread(target=webapp.warm_up, args=(preset,), daemon=True).start()
     )
     app.on_startup(lambda: threading.Thread(target=pool.warm_up, daemon=True).start())
+    url = f"http://127.0.0.1:{port}/"
+    print(f"crankbalance web: starting on {url} (Ctrl+C stops it)", flush=True)
+    app.on_startup(
+        lambda: threading.Thread(target=_say_ready, args=(port, url), daemon=True).start()
+    )
     tailwind = bool(options.pop("tailwind", False))
     if not tailwind:
         app.add_static_file(local_file=TAILWIND_CSS, url_path=TAILWIND_URL)
@@ -71,6 +76,26 @@ def serve(
         http=head_deadline_protocol(head_timeout),
         **options,
     )
+
+
+#: how long [s] the "ready" line waits for the server's socket before it gives up (silently)
+READY_WAIT = 600.0
+
+
+def _say_ready(port: int, url: str) -> None:
+    """Print the "ready" line once the server accepts connections on ``port``.
+
+    NiceGUI's start-up handlers run before uvicorn opens its socket, so this thread tries to
+    connect until it can (at most :data:`READY_WAIT` seconds).
+    """
+    deadline = time.monotonic() + READY_WAIT
+    while time.monotonic() < deadline:
+        try:
+            with socket.create_connection(("127.0.0.1", port), timeout=2):
+                print(f"crankbalance web: ready, open {url} in a browser", flush=True)
+                return
+        except OSError:
+            time.sleep(0.1)
 
 
 @contextmanager

@@ -180,11 +180,19 @@ def _run(name: str, engine: Any, values: dict[str, Any], prefix: str) -> Any:
 # --------------------------------------------------------------------------- counterweight
 def counterweight_requirement(computed: Computation) -> tuple[float, float, float]:
     """(first moment m_c r_c [kg m], counterweight mass [kg], CG radius [m]) of the heaviest
-    crank counterweight found by the balancing solver."""
+    crank counterweight found by the balancing solver; for a crank balanced as a whole
+    (which the balancing leaves without counterweights), that of each half balanced on its
+    own, as the command line's ``counterweight optimize --engine`` takes it."""
+    from ..studies.engine import balance_engine
     from ..studies.requirements import counterweight_requirement as requirement
 
-    moment = requirement(computed.study)
-    radius = float(computed.study.result.counterweights.cg_radius)
+    study = computed.study
+    try:
+        moment = requirement(study)
+    except InputError:
+        study = balance_engine(computed.spec, halves_if_balanced=True)
+        moment = requirement(study)
+    radius = float(study.result.counterweights.cg_radius)
     return moment, moment / radius, radius
 
 

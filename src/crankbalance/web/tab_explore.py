@@ -26,7 +26,7 @@ from nicegui import ui
 
 from ..errors import InputError
 from ..output.figures.explore import explore_candidate, explore_scatter
-from ..schema.settings import EXPLORE_LAYOUTS, ExploreOptions
+from ..schema.settings import ExploreOptions
 from . import studies
 from .widgets import StudyTab, TabSettingsMixin, fmt_g, from_schema, schema_choices
 
@@ -48,9 +48,7 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "top": from_schema(ExploreOptions, "top", hint=f"1 to {MAX_ROWS}"),
 }
 CHOICES = {
-    # the field parses its text itself (a VR refused with the reason): its choices are
-    # the schema's list of explored layouts
-    "layout": EXPLORE_LAYOUTS,
+    "layout": schema_choices(ExploreOptions, "layout"),
     "strokes": ("4", "2"),  # the schema's whole number, 2 or 4
     "crank": schema_choices(ExploreOptions, "crank"),
 }

@@ -22,6 +22,7 @@ module                    figures of
 :mod:`.torsional`         the torsional vibration study
 :mod:`.explore`           the design-space explorer
 :mod:`.shop`              the balance shop's hole plan
+:mod:`.study`             :func:`plot`: the figures of any study's result
 ========================  ===============================================================
 
 Every public builder is also a name of this package (``from crankbalance.output.figures
@@ -58,6 +59,7 @@ from .single import (
     single_cylinder_forces,
     single_cylinder_polar,
 )
+from .study import plot
 from .torsional import torsional_figure
 
 __all__ = [
@@ -78,6 +80,7 @@ __all__ = [
     "hole_plan",
     "orders_bar",
     "pareto_front",
+    "plot",
     "polar_figure",
     "residuals_bar",
     "sensitivity_figure",

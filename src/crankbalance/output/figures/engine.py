@@ -73,15 +73,21 @@ def leading_quantity(analysis: Analysis) -> Quantity:
 
 
 def orders_bar(analysis: Analysis) -> go.Figure:
-    """Force and moment amplitudes per order, forward and backward phasors stacked.
+    """Force and moment amplitudes per order, forward and backward phasors stacked, and the
+    roll moment's.
 
     The stacked bar height is the amplitude :math:`|F_n^+| + |F_n^-|` (the largest
     magnitude over a revolution, ``analysis.forces.force_amplitude``); the rotating masses
-    of the bare crank are shown as an extra forward bar labelled "rot".
+    of the bare crank are shown as an extra forward bar labelled "rot". The third panel is
+    the sixth component, the roll moment about y (``analysis.forces.roll_amplitude``, a
+    real curve of each order: one bar).
     """
     f = analysis.forces
     fig = make_subplots(
-        rows=1, cols=2, subplot_titles=("Free forces", "Free moments"), horizontal_spacing=0.12
+        rows=1,
+        cols=3,
+        subplot_titles=("Free forces (x, z)", "Free moments (x, z)", "Roll moment (y)"),
+        horizontal_spacing=0.08,
     )
     labels = [str(int(n)) for n in f.orders] + ["rot"]
     tf, tm = round_off(analysis.model)  # as Analysis.to_dict
@@ -130,6 +136,22 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         )
         fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(title_text="order", type="category", row=1, col=col)
+    roll = zero_below(np.append(f.roll_amplitude, abs(f.rotating_roll)), tm)
+    note_if_zero(fig, roll, "N·m", 1, 3, "3")
+    fig.add_trace(
+        plotly_go().Bar(
+            x=labels,
+            y=roll,
+            name="roll (about y)",
+            marker_color=COLORS["forward"],
+            marker_pattern_shape="/",
+            hovertemplate="order %{x}<br>roll %{y:.4g} N·m<extra></extra>",
+        ),
+        row=1,
+        col=3,
+    )
+    fig.update_yaxes(title_text="amplitude [N·m]", row=1, col=3)
+    fig.update_xaxes(title_text="order", type="category", row=1, col=3)
     fig.update_layout(
         barmode="stack",
         template=TEMPLATE,
@@ -234,7 +256,7 @@ def curves_figure(
     fig.update_xaxes(tickvals=list(range(0, 361, 45)), range=[0, 360], row=1, col=1)
     name = "forces"
     if quantity == "moment":
-        name = f"moments about {moment_point(analysis.model.moment_reference)}".replace(
+        name = f"moments about {moment_point(analysis.model.moment_point)}".replace(
             "the crankshaft mid-point", "the mid-point"
         )
     fig.update_layout(

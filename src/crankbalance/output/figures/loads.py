@@ -143,11 +143,12 @@ SWEEP_PANELS = (
 
 
 def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
-    """Bearing loads against balance (:class:`~crankbalance.studies.balance_loads.
-    SweepStudy`): the largest bearing load, the friction of all main bearings, the largest
-    bending moment at a journal and the counterweight mass against the balance factor, one
-    line per pattern (``none`` a dotted level), and the peak load of every bearing per case
-    (bars), all of the sweep's crank model."""
+    """Bearing loads against balance
+    (:class:`~crankbalance.studies.balance_loads.SweepStudy`): the largest bearing load, the
+    friction of all main bearings, the largest bending moment at a journal and the
+    counterweight mass against the balance factor, one line per pattern (``none`` a dotted
+    level), and the peak load of every bearing per case (bars), all of the sweep's crank
+    model."""
     go = plotly_go()
     model = sweep.options.crank_model
     data = sweep.to_dict()

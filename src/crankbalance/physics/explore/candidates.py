@@ -51,6 +51,28 @@ class Candidates:
         """Number of candidates B."""
         return int(self.index.size)
 
+    def take(self, which: NDArray[np.int64]) -> Candidates:
+        """The candidates at positions ``which`` (copies).
+
+        Parameters
+        ----------
+        which : ndarray of int, shape (D,)
+            Positions in the batch [-].
+
+        Returns
+        -------
+        Candidates
+            Those candidates, in the order of ``which``.
+        """
+        return Candidates(
+            topology=self.topology,
+            throw_angle=self.throw_angle[which],
+            firing_order=self.firing_order[which],
+            fire_angle=self.fire_angle[which],
+            equivalents=self.equivalents[which],
+            index=self.index[which],
+        )
+
     def part(self, start: int, stop: int) -> Candidates:
         """The candidates from position ``start`` to before ``stop`` (views, no copy).
 

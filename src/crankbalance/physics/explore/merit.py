@@ -117,8 +117,19 @@ def merit(
     if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
         raise InputError("orders", orders, "an integer from 1 to 64")
     weights = mode_weights(topo, mode_shape)
-    out = free_columns(candidates, int(orders))
-    out["mirror_rad"] = mirror_asymmetry(candidates.throw_angle)
+    # the forces, the symmetry and the balancing depend on the crank alone: computed once
+    # per distinct crank of the batch, each candidate's row taken from its crank's (every
+    # engine's numbers come from its own row, so they are the bits of a batch of all)
+    first, crank_of = distinct_rows(candidates.throw_angle)
+    cranks = candidates if first.size == candidates.size else candidates.take(first)
+
+    def each(columns: dict[str, NDArray]) -> dict[str, NDArray]:
+        """Every candidate's row of columns computed per distinct crank."""
+        return columns if cranks is candidates else {k: v[crank_of] for k, v in columns.items()}
+
+    out = each(
+        free_columns(cranks, int(orders)) | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)}
+    )
     cycle = 2 * np.pi * topo.strokes / 2
     out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
     out["bank_interval_dev_rad"] = bank_interval_deviation(
@@ -130,9 +141,38 @@ def merit(
         out[order_name(order)] = excitation[:, k]
     if target != "none":
         out.update(
-            balance_columns(candidates, target, balance_factor, counterweights, shafts, int(orders))
+            each(
+                balance_columns(cranks, target, balance_factor, counterweights, shafts, int(orders))
+            )
         )
     return out
+
+
+def distinct_rows(rows: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
+    """The distinct rows of a 2-D array, bit for bit (a crank of the batch, each once).
+
+    Parameters
+    ----------
+    rows : array_like, shape (B, N)
+        The rows (throw angles [rad], say).
+
+    Returns
+    -------
+    first : ndarray of int, shape (D,)
+        Position of the first row of each distinct row, in increasing order [-].
+    inverse : ndarray of int, shape (B,)
+        For each row, the position in ``first`` of its distinct row [-], so that
+        ``rows[first][inverse]`` is ``rows``.
+    """
+    a = np.ascontiguousarray(rows)
+    if a.shape[0] <= 1:
+        return np.arange(a.shape[0]), np.zeros(a.shape[0], dtype=np.int64)
+    key = a.view(np.dtype((np.void, a.dtype.itemsize * a.shape[1]))).ravel()
+    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    order = np.argsort(first)  # distinct rows in the order they first appear
+    rank = np.empty_like(order)
+    rank[order] = np.arange(order.size)
+    return first[order].astype(np.int64), rank[inverse.reshape(-1)].astype(np.int64)
 
 
 def order_name(order: float) -> str:
@@ -307,6 +347,15 @@ def interval_deviation(fire_angle: ArrayLike, cycle: float) -> NDArray[np.float6
         cylinder.
     """
     alpha = np.sort(np.mod(np.asarray(fire_angle, dtype=float), cycle), axis=-1)
+    if alpha.shape[0] > 1:  # each distinct set of angles once (all alike for even firing)
+        first, inverse = distinct_rows(alpha)
+        if first.size < alpha.shape[0]:
+            return _deviation(alpha[first], cycle)[inverse]
+    return _deviation(alpha, cycle)
+
+
+def _deviation(alpha: NDArray[np.float64], cycle: float) -> NDArray[np.float64]:
+    """:func:`interval_deviation` of angles sorted in [0, cycle)."""
     gaps = np.diff(alpha, axis=-1, append=alpha[:, :1] + cycle)
     dev = np.abs(gaps - cycle / alpha.shape[-1]).max(axis=-1, initial=0.0)
     return np.where(dev < 1e-9, 0.0, dev)
@@ -352,7 +401,9 @@ def torsional_excitation(
 
     with :math:`\alpha_c` the crank angle at which cylinder c fires: 1 where every
     cylinder's harmonic adds in phase (the major orders of an even-firing engine with a
-    uniform mode), 0 where they cancel (:data:`TORSION_ASSUMPTION`).
+    uniform mode), 0 where they cancel (:data:`TORSION_ASSUMPTION`). Computed once per
+    distinct row of fire angles (with equal weights, per distinct set: every even-firing
+    candidate of a problem has the same value), the angles summed in increasing order.
 
     Parameters
     ----------
@@ -375,10 +426,18 @@ def torsional_excitation(
     w = np.asarray(weights, dtype=float)
     alpha = np.asarray(fire_angle, dtype=float)
     k = np.asarray(orders, dtype=float)
+    if alpha.shape[0] > 1:
+        if np.all(w == w[0]):  # equal weights: the sum does not depend on the cylinders' order
+            alpha = np.sort(alpha, axis=-1)
+        first, inverse = distinct_rows(alpha)  # each distinct set of fire angles once
+        if first.size < alpha.shape[0]:
+            return torsional_excitation(alpha[first], w, k)[inverse]
     value = np.empty((alpha.shape[0], k.size))
     for j, order in enumerate(k):  # one order at a time: temporaries of (B, C)
         angle = order * alpha
-        value[:, j] = np.hypot(np.cos(angle) @ w, np.sin(angle) @ w)
+        # each row summed on its own (not a matrix product, whose rounding may depend on
+        # the number of rows): a candidate's value does not depend on its batch
+        value[:, j] = np.hypot((np.cos(angle) * w).sum(axis=-1), (np.sin(angle) * w).sum(axis=-1))
     value /= np.abs(w).sum()
     return below_round_off(value, ROUND_OFF)  # a share of 1: the one rule on its own scale
 

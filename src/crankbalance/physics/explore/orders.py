@@ -32,7 +32,7 @@ from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
-from numpy.typing import NDArray
+from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
 from ..kinematics import KinematicsModel
@@ -748,6 +748,67 @@ def chunk(problem: Problem, start: int, stop: int) -> Candidates:
     if not 0 <= start <= stop <= total:
         raise InputError("chunk", (start, stop), f"0 <= start <= stop <= {total}")
     index, slots, rot = _consistent(problem, start, stop)
+    fire, throw, ok = _crank(problem, slots, rot)
+    index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
+    images = _orbit(problem, slots, rot, index)
+    keep = np.min(images, axis=1) == index
+    return Candidates(
+        topology=problem.topology,
+        throw_angle=throw[keep],
+        firing_order=np.argsort(slots[keep], axis=1) + 1,
+        fire_angle=fire[keep],
+        equivalents=_distinct(images[keep]),
+        index=index[keep],
+    )
+
+
+def at(problem: Problem, index: ArrayLike) -> Candidates:
+    """The canonical candidates among the given indices: what :func:`chunk` of each index
+    alone gives, for all of them at once (a random search's draws, each its own index).
+
+    Each index is unranked directly (:func:`_unrank`) and kept when the enumeration would
+    reach it (cylinders sharing a crankpin agree on its angle, compared in firing sequence
+    as :func:`_children` compares them), the crank family and the fixed crank allow it,
+    and no equivalent description has a smaller index.
+
+    Parameters
+    ----------
+    problem : Problem
+        The problem.
+    index : array_like of int, shape (B,)
+        Indices, increasing and distinct, each ``0 <= index < count(problem)`` [-].
+
+    Returns
+    -------
+    Candidates
+        The canonical candidates among them, by increasing index.
+
+    Raises
+    ------
+    InputError
+        For indices outside the index space, not increasing or not distinct.
+    """
+    index = np.asarray(index, dtype=np.int64).reshape(-1)
+    total = count(problem)
+    if index.size and (index[0] < 0 or index[-1] >= total or np.any(np.diff(index) <= 0)):
+        raise InputError(
+            "index", f"{index.size} indices", f"increasing, distinct, from 0 to {total - 1}"
+        )
+    plan = problem._plan
+    slots, rot = _unrank(plan, index)
+    # the enumeration's rule: each cylinder agrees with the one placed before it on its pin
+    angle = np.remainder(
+        problem.topology.cylinder_bank - plan.times[rot[:, None], slots], 2 * np.pi
+    )
+    reached = np.ones(index.size, dtype=bool)
+    throw_of = problem.topology.cylinder_throw
+    for t in range(problem.topology.throws):
+        group = np.flatnonzero(throw_of == t)
+        if group.size > 1:
+            order = np.argsort(slots[:, group], axis=1)
+            placed = np.take_along_axis(angle[:, group], order, axis=1)
+            reached &= np.all(_gap(np.diff(placed, axis=1)) < _TOL, axis=1)
+    index, slots, rot = index[reached], slots[reached], rot[reached]
     fire, throw, ok = _crank(problem, slots, rot)
     index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
     images = _orbit(problem, slots, rot, index)

@@ -34,6 +34,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...results import ROUND_OFF, EngineScales, round_off
 
 #: the unit suffixes a column name may be written without
 UNITS: tuple[str, ...] = ("N", "Nm", "kg", "rad")
@@ -358,17 +359,55 @@ def _check_size(text: str, field: str) -> None:
         )
 
 
-def pareto(values: ArrayLike) -> NDArray[np.bool_]:
-    """Mask of the rows no other row dominates (every objective minimised).
+def tolerances(names: Iterable[str], engine: EngineScales[float]) -> NDArray[np.float64]:
+    r"""Round-off tolerance of each objective, from the engine's scale (the one rule of
+    :func:`crankbalance.results.round_off`).
 
-    Row j dominates row i when it is no worse in every column and better in one; equal
-    rows do not dominate each other, so both stay. Mergeable: for any split of the rows,
-    ``pareto`` of the rows kept by ``pareto`` of each part is ``pareto`` of all.
+    A column's unit suffix gives its level: ``_N`` the engine's force round-off, ``_Nm``
+    its moment round-off, ``_kg`` :data:`~crankbalance.results.ROUND_OFF` times the
+    engine's mass (the force level over :math:`r\omega^2`), ``_rad``
+    :data:`~crankbalance.results.ROUND_OFF` times π (the largest angle of those columns),
+    and a pure number :data:`~crankbalance.results.ROUND_OFF` (shares of 1, counts).
+
+    Parameters
+    ----------
+    names : iterable of str
+        The objectives' column names, with their unit suffixes.
+    engine : EngineModel
+        The engine every candidate shares: masses [kg], throw positions [m], crank radius
+        [m] and speed [rad/s] (the topology of the explorer's problem).
+
+    Returns
+    -------
+    ndarray, shape (K,)
+        The tolerance of each objective [its unit].
+    """
+    force, moment = round_off(engine)
+    mass = force / (engine.crank_radius * engine.speed**2)
+    level = {"N": force, "Nm": moment, "kg": mass, "rad": ROUND_OFF * math.pi}
+    out = []
+    for name in names:
+        base, _, unit = name.rpartition("_")
+        out.append(level[unit] if base and unit in level else ROUND_OFF)
+    return np.asarray(out, dtype=float)
+
+
+def pareto(values: ArrayLike, tolerance: ArrayLike = 0.0) -> NDArray[np.bool_]:
+    r"""Mask of the rows no other row dominates (every objective minimised).
+
+    Row j dominates row i when it is no worse in every column and better in one, both
+    beyond the column's ``tolerance``: :math:`v_{jk} \le v_{ik} + t_k` for every k and
+    :math:`v_{jk} < v_{ik} - t_k` for one. Rows equal within the tolerance (differing by
+    round-off) do not dominate each other, so both stay. Mergeable: for any split of the
+    rows, ``pareto`` of the rows kept by ``pareto`` of each part is ``pareto`` of all.
 
     Parameters
     ----------
     values : array_like, shape (B, K)
         The objectives of each row [their units]; NaN is not allowed.
+    tolerance : array_like, shape (K,) or scalar
+        The round-off of each objective [its unit] (:func:`tolerances`), at least 0;
+        default 0 (exact comparison).
 
     Returns
     -------
@@ -377,42 +416,56 @@ def pareto(values: ArrayLike) -> NDArray[np.bool_]:
 
     Notes
     -----
-    The rows are sorted lexicographically; a row can only be dominated by one before it,
-    and if by a dominated one, then by a row of the front (dominance is transitive). So
-    one sweep in blocks compares each block with the front found so far and with itself:
-    about B·F·K comparisons for a front of F rows.
+    The rows are sorted lexicographically, so a row is dominated exactly (tolerance 0)
+    only by one before it, and a row dominated by a dominated row is dominated by a row of
+    the front (dominance is transitive). One sweep in blocks compares each block with the
+    front found so far and with itself: about B·F·K comparisons for a front of F rows. With
+    a tolerance a row can be dominated by one after it (its first objective larger by less
+    than the tolerance), so a last pass compares the front with itself (F·F·K).
+    Transitivity holds with a tolerance as long as values closer than the tolerance are
+    round-off of one value, as every figure of merit's are (docs/explorer.md, "Ranking").
     """
     v = np.asarray(values, dtype=float)
     if v.ndim != 2:
         raise InputError("pareto", list(v.shape), "a (rows, objectives) array")
     if np.isnan(v).any():
         raise InputError("pareto", "NaN", "finite or infinite objectives, not NaN")
+    tol = np.broadcast_to(np.asarray(tolerance, dtype=float), (v.shape[1],))
+    if not (np.isfinite(tol).all() and (tol >= 0).all()):
+        raise InputError("tolerance", tol.tolist(), "finite numbers of 0 or more")
     order = np.lexsort(v.T[::-1]) if v.shape[1] else np.arange(v.shape[0])
     sorted_v = v[order]
-    keep = np.zeros(v.shape[0], bool)
+    kept: list[NDArray[np.int64]] = []
     front = np.empty((0, v.shape[1]))
     for start in range(0, v.shape[0], BLOCK):
         block = sorted_v[start : start + BLOCK]
-        alive = np.flatnonzero(~_dominated(block, front))
-        alive = alive[~_dominated(block[alive], block[alive])]
-        keep[order[start + alive]] = True
+        alive = np.flatnonzero(~_dominated(block, front, tol))
+        alive = alive[~_dominated(block[alive], block[alive], tol)]
+        kept.append(start + alive)
         front = np.concatenate([front, block[alive]])
+    rows = np.concatenate(kept) if kept else np.zeros(0, np.int64)
+    if tol.any():  # a row dominated by one after it in the sort
+        rows = rows[~_dominated(front, front, tol)]
+    keep = np.zeros(v.shape[0], bool)
+    keep[order[rows]] = True
     return keep
 
 
-def _dominated(rows: NDArray, by: NDArray) -> NDArray[np.bool_]:
-    """Whether each of ``rows`` is dominated by one of ``by`` (a slice of ``by`` at once,
-    objective by objective: (rows, by) temporaries, never (rows, by, K))."""
+def _dominated(rows: NDArray, by: NDArray, tol: NDArray) -> NDArray[np.bool_]:
+    """Whether each of ``rows`` is dominated by one of ``by`` beyond ``tol`` (a block of
+    each at once, objective by objective: (rows, by) temporaries, never (rows, by, K))."""
     out = np.zeros(rows.shape[0], bool)
-    for start in range(0, by.shape[0], 16 * BLOCK):
-        b = by[start : start + 16 * BLOCK]
-        no_worse = np.ones((rows.shape[0], b.shape[0]), bool)
-        better = np.zeros_like(no_worse)
-        for k in range(rows.shape[1]):
-            mine, theirs = rows[:, k, None], b[None, :, k]
-            no_worse &= theirs <= mine
-            better |= theirs < mine
-        out |= (no_worse & better).any(axis=1)
+    for first in range(0, rows.shape[0], 16 * BLOCK):
+        r = rows[first : first + 16 * BLOCK]
+        for start in range(0, by.shape[0], 16 * BLOCK):
+            b = by[start : start + 16 * BLOCK]
+            no_worse = np.ones((r.shape[0], b.shape[0]), bool)
+            better = np.zeros_like(no_worse)
+            for k in range(r.shape[1]):
+                mine, theirs = r[:, k, None], b[None, :, k]
+                no_worse &= theirs <= mine + tol[k]
+                better |= theirs < mine - tol[k]
+            out[first : first + r.shape[0]] |= (no_worse & better).any(axis=1)
     return out
 
 

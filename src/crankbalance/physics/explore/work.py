@@ -34,8 +34,9 @@ MAX_CANDIDATES = 50_000_000
 #: (measured: 1.9 million prefixes/s against 3 300 to 8 800 candidates/s); a run's work is
 #: its candidates plus its prefixes divided by this, against :data:`MAX_CANDIDATES`
 PREFIXES_PER_CANDIDATE = 500
-#: the cost of one random draw, in indices of a range (each draw is its own enumeration
-#: call: measured 7 to 24, docs/explorer.md)
+#: the cost of one random draw, in indices of a range: measured 7 to 24 when each draw was
+#: its own enumeration call, about 0.5 since orders.at takes them all at once (issue 30);
+#: kept as an upper bound (docs/explorer.md)
 DRAW_COST = 20
 #: random draws one run may make (``--sample``): the time of :data:`MAX_CANDIDATES`
 MAX_DRAWS = MAX_CANDIDATES // DRAW_COST

@@ -28,6 +28,12 @@ Methods, all exact for the objective they state:
     :math:`\cos(\pi/K)` of :math:`|z|`, linear in the assignment: exact for that
     measure); the true amplitudes are reported. The cylinders are not interchangeable
     here, so there is no symmetry breaking.
+``"milp"`` with ``objective="journal"`` (and ``model=``)
+    The weighted spread plus the spread of the journals' bob-weights
+    :math:`\max_t B_t - \min_t B_t`, :math:`B_t` the sum over the cylinders on journal t
+    of :math:`W^{rot}_c + f\,W^{rec}_c` (:mod:`.journals`): the sets matched and put on
+    the journals at once, the joint optimum of the two. The cylinders of a journal, and
+    journals of as many rods, are interchangeable (symmetry breaking on the first kind).
 ``"pairing"``
     Two kinds paired on a separable objective by ``scipy.optimize.linear_sum_assignment``:
     the sum over the sets of the weighted squared deviation of the set weights from the
@@ -75,6 +81,7 @@ from ...errors import InputError
 from ...results import ResultMixin
 from ..model import EngineModel
 from ..shaking import free_forces
+from .journals import JournalBasis
 
 #: largest number of assignments the exhaustive search visits
 EXHAUSTIVE_LIMIT = 2_000_000
@@ -95,7 +102,7 @@ _CLOCK_EVERY = 2048
 #: the clock of the time limit (seconds, monotonic)
 _now = time.monotonic
 #: objectives of the matching
-OBJECTIVES = ("spread", "variance", "free")
+OBJECTIVES = ("spread", "variance", "free", "journal")
 #: sides of the polygon that measures a phasor's magnitude in the free-force objective
 POLYGON_SIDES = 16
 METHODS = ("milp", "pairing", "exhaustive", "as-listed")
@@ -140,16 +147,60 @@ class Inventory(ResultMixin):
         Added to every set's reciprocating weight [kg].
     rotating_allowance : float
         Added to every set's rotating weight [kg] (the oil in the big end).
+    journal_allowance : float
+        Rotating allowance per journal, shared by the rods on it [kg] (the oil in a rod
+        journal, as builders give it); :meth:`per_rod` turns it into the rods'
+        ``rotating_allowance`` for an engine, and nothing matches before that.
     """
 
     kinds: tuple[PartKind, ...]
     reciprocating_allowance: float = 0.0
     rotating_allowance: float = 0.0
+    journal_allowance: float = 0.0
 
     @property
     def names(self) -> tuple[str, ...]:
         """The kinds' names."""
         return tuple(kind.name for kind in self.kinds)
+
+    def per_rod(self, cylinder_throw: ArrayLike, field: str = "oil") -> Inventory:
+        """The inventory with its per-journal allowance shared by the rods of each journal:
+        every journal holds as many rods, each gets ``journal_allowance / rods``, so the
+        total over the engine and each journal's share stay the same.
+
+        Parameters
+        ----------
+        cylinder_throw : array_like of int, shape (C,)
+            The journal (0-based) of each cylinder [-].
+        field : str
+            How the user named the allowance, for the error.
+
+        Returns
+        -------
+        Inventory
+            With ``journal_allowance`` 0 and the share added to ``rotating_allowance``.
+
+        Raises
+        ------
+        InputError
+            If the journals hold different numbers of rods (the allowance per rod would
+            differ between sets).
+        """
+        if not self.journal_allowance:
+            return self
+        rods = np.bincount(np.asarray(cylinder_throw, dtype=np.int64))
+        rods = rods[rods > 0]
+        if rods.size == 0 or np.any(rods != rods[0]):
+            raise InputError(
+                field,
+                f"{1000 * self.journal_allowance:g} g per journal",
+                "per journal on an engine whose journals hold as many rods each "
+                f"(this one: {sorted(set(rods.tolist()))} rods); give the oil per rod",
+            )
+        share = self.journal_allowance / int(rods[0])
+        return replace(
+            self, rotating_allowance=self.rotating_allowance + share, journal_allowance=0.0
+        )
 
     def check(self, cylinders: int, field: str = "cylinders") -> None:
         """Raise :class:`InputError` unless every kind has a part for each of ``cylinders``.
@@ -165,6 +216,12 @@ class Inventory(ResultMixin):
             raise InputError(field, cylinders, "must be a whole number of cylinders, 1 or more")
         if not self.kinds:
             raise InputError("parts", None, "lists no part; give at least one kind of part")
+        if self.journal_allowance:
+            raise InputError(
+                "oil",
+                f"{1000 * self.journal_allowance:g} g per journal",
+                "shared by the rods of each journal first (Inventory.per_rod with the engine)",
+            )
         for kind in self.kinds:
             if kind.count < cylinders:
                 raise InputError(
@@ -317,6 +374,10 @@ class FreeForceBasis(ResultMixin):
     orders: int
 
 
+#: what an objective takes from the engine: the free-force phasors or the journals
+Basis = FreeForceBasis | JournalBasis | None
+
+
 def _components(model: EngineModel, length: float, orders: int) -> NDArray[np.complex128]:
     """The phasor components of an engine's free forces (FreeForceBasis order)."""
     forces = free_forces(model, orders)
@@ -410,7 +471,7 @@ def objective_value(
     part: NDArray[np.int64],
     objective: str = "spread",
     weights: tuple[float, float] = (1.0, 1.0),
-    basis: FreeForceBasis | None = None,
+    basis: Basis = None,
 ) -> float:
     """The objective of an assignment (see the module docstring).
 
@@ -420,20 +481,22 @@ def objective_value(
         The parts.
     part : ndarray of int, shape (K, C)
         Index of the part of each kind in each cylinder.
-    objective : {"spread", "variance", "free"}
+    objective : {"spread", "variance", "free", "journal"}
         Weighted spread [kg], weighted sum of squared deviations from the mean of all
-        listed parts [kg^2], or the free forces and couples (module docstring) [N].
+        listed parts [kg^2], the free forces and couples (module docstring) [N], or the
+        weighted spread plus the spread of the journals' bob-weights [kg].
     weights : tuple of float
         Weights of the reciprocating and rotating terms [-].
-    basis : FreeForceBasis, optional
-        The engine's phasors, for the ``"free"`` objective.
+    basis : FreeForceBasis or JournalBasis, optional
+        The engine's phasors, for the ``"free"`` objective; its journals, for
+        ``"journal"``.
 
     Returns
     -------
     float
         The objective [kg], [kg^2] or, for ``"free"``, [N].
     """
-    if objective == "free" and basis is None:
+    if objective in ("free", "journal") and basis is None:
         raise InputError("objective", objective, "needs the engine (model)")
     if objective not in OBJECTIVES:
         raise InputError("objective", objective, f"must be one of {', '.join(OBJECTIVES)}")
@@ -447,18 +510,22 @@ def _objectives(
     rot: NDArray[np.float64],
     objective: str,
     weights: tuple[float, float],
-    basis: FreeForceBasis | None,
+    basis: Basis,
 ) -> NDArray[np.float64]:
     """The objective of many assignments at once, from their set weights of shape (M, C)."""
+    w_rec, w_rot = _weights(weights)
+    if objective == "journal":  # the sets' spread and the journals'
+        assert isinstance(basis, JournalBasis)
+        sets = w_rec * np.ptp(rec, axis=-1) + w_rot * np.ptp(rot, axis=-1)
+        return sets + np.ptp(basis.weights(rec, rot), axis=-1)
     if objective == "free":
-        assert basis is not None
+        assert isinstance(basis, FreeForceBasis)
         z = (
             basis.constant
             + (rec - inventory.reciprocating_allowance) @ basis.reciprocating
             + (rot - inventory.rotating_allowance) @ basis.rotating
         )
         return np.sum(_polygon(z), axis=-1)
-    w_rec, w_rot = _weights(weights)
     if objective == "spread":
         return w_rec * np.ptp(rec, axis=-1) + w_rot * np.ptp(rot, axis=-1)
     mean_rec, mean_rot = _means(inventory)
@@ -472,7 +539,7 @@ def local_search(
     cylinders: int,
     objective: str = "spread",
     weights: tuple[float, float] = (1.0, 1.0),
-    basis: FreeForceBasis | None = None,
+    basis: Basis = None,
     stop: float = math.inf,
 ) -> tuple[NDArray[np.int64], bool]:
     """A bounded heuristic matching: from the parts as listed, the best single move of one
@@ -584,9 +651,11 @@ def match_parts(
         Number of cylinders (sets).
     method : {"milp", "pairing", "exhaustive", "as-listed"}
         How to assign.
-    objective : {"spread", "variance", "free"}, optional
-        What to minimise: ``"spread"`` (default) or ``"free"`` for ``milp``, ``"variance"``
-        for ``pairing``; ``exhaustive`` takes any.
+    objective : {"spread", "variance", "free", "journal"}, optional
+        What to minimise: ``"spread"`` (default), ``"free"`` or ``"journal"`` (the weighted
+        spread plus the spread of the journals' bob-weights: the sets matched and put on
+        the journals at once) for ``milp``, ``"variance"`` for ``pairing``;
+        ``exhaustive`` takes any.
     weights : tuple of float
         Weights of the reciprocating and rotating terms [-].
     time_limit : float
@@ -595,9 +664,11 @@ def match_parts(
         returned with ``optimal`` False, the proven lower ``bound`` and ``status`` saying
         so (module docstring, "Bounded work").
     model : EngineModel, optional
-        The engine, for the ``"free"`` objective (its layout, kinematics and speed).
+        The engine, for the ``"free"`` objective (its layout, kinematics and speed) and
+        the ``"journal"`` objective (which journal each cylinder is on).
     fraction : float
-        Fraction of the reciprocating share in the bob-weights [-] (``"free"``).
+        Fraction of the reciprocating share in the bob-weights [-] (``"free"``,
+        ``"journal"``).
     orders : int
         Highest order of the free forces (``"free"``).
 
@@ -629,7 +700,7 @@ def match_parts(
     weights = _weights(weights)
     if method not in METHODS:
         raise InputError("method", method, f"must be one of {', '.join(METHODS)}")
-    solves = {"milp": ("spread", "free"), "pairing": ("variance",)}
+    solves = {"milp": ("spread", "free", "journal"), "pairing": ("variance",)}
     goal = objective or solves.get(method, ("spread",))[0]
     if goal not in OBJECTIVES:
         raise InputError("objective", goal, f"must be one of {', '.join(OBJECTIVES)}")
@@ -637,15 +708,23 @@ def match_parts(
         raise InputError(
             "objective", goal, f"method {method!r} minimises the {' or '.join(solves[method])}"
         )
-    basis = None
-    if goal == "free":
+    basis: Basis = None
+    if goal in ("free", "journal"):
         if model is None:
             raise InputError("objective", goal, "needs the engine (model) the sets go in")
         if model.cylinders != cylinders:
             raise InputError(
                 "cylinders", cylinders, f"must be the engine's {model.cylinders} cylinders"
             )
+    if goal == "free":
+        assert model is not None
         basis = free_force_basis(model, inventory, fraction, orders)
+    if goal == "journal":
+        from ..single_cylinder import check_balance_factor
+
+        assert model is not None
+        check_balance_factor(fraction, "fraction")
+        basis = JournalBasis(np.asarray(model.cylinder_throw), model.throws, float(fraction))
     if method == "as-listed":
         part = np.tile(np.arange(cylinders), (len(inventory.kinds), 1))
         return _matching(
@@ -666,7 +745,7 @@ def _milp_matching(
     cylinders: int,
     objective: str,
     weights: tuple[float, float],
-    basis: FreeForceBasis | None,
+    basis: Basis,
     clock: _Clock,
 ) -> Matching:
     """The MILP within the time limit, after a local search (module docstring, "Bounded
@@ -709,7 +788,7 @@ def _matching(
     objective: str,
     weights: tuple[float, float],
     bound: float | None,
-    basis: FreeForceBasis | None = None,
+    basis: Basis = None,
     status: str | None = None,
 ) -> Matching:
     """The Matching of an assignment; ``bound`` None: proven optimal."""
@@ -725,7 +804,7 @@ def _matching(
     if bound is not None and gap is not None and value > 0:
         status += f" (gap {100 * gap:.3g} %)"
     force = couple = np.zeros(0)
-    if basis is not None:
+    if isinstance(basis, FreeForceBasis):
         z = np.abs(_phasors(inventory, part, basis)).reshape(basis.orders, 4)
         force = z[:, 0] + z[:, 1]
         couple = (z[:, 2] + z[:, 3]) * basis.length
@@ -818,14 +897,14 @@ def _exhaustive(
     cylinders: int,
     objective: str,
     weights: tuple[float, float],
-    basis: FreeForceBasis | None,
+    basis: Basis,
     clock: _Clock,
 ) -> tuple[NDArray[np.int64], str | None]:
     """Every assignment (up to the order of the cylinders, unless the objective is the free
     force); the best (first found on ties), and None, or the status when the time limit
     ended the search first."""
     kinds = inventory.kinds
-    ordered = objective == "free"  # the cylinders are not interchangeable
+    ordered = objective in ("free", "journal")  # the cylinders are not interchangeable
     count = (math.perm if ordered else math.comb)(kinds[0].count, cylinders)
     for kind in kinds[1:]:
         count *= math.perm(kind.count, cylinders)
@@ -860,10 +939,13 @@ def _exhaustive(
     return best, None
 
 
-def _milp_nonzeros(inventory: Inventory, cylinders: int, basis: FreeForceBasis | None) -> int:
+def _milp_nonzeros(inventory: Inventory, cylinders: int, basis: Basis) -> int:
     """The most nonzeros the MILP's constraint matrix can have, counted before it is built."""
     n_x = cylinders * sum(kind.count for kind in inventory.kinds)
     assignment = 2 * n_x  # one part of each kind per cylinder; each part at most once
+    if isinstance(basis, JournalBasis):  # the spread's rows; B_t <= U, B_t >= L; symmetry
+        journals = 2 * (n_x + basis.throws) + 2 * inventory.kinds[0].count * cylinders
+        return assignment + 4 * (n_x + cylinders) + journals
     if basis is None:  # W_c <= U and W_c >= L per share and cylinder; the symmetry rows
         symmetry = 2 * inventory.kinds[0].count * max(cylinders - 1, 0)
         return assignment + 4 * (n_x + cylinders) + symmetry
@@ -907,7 +989,7 @@ def _milp(
     cylinders: int,
     weights: tuple[float, float],
     clock: _Clock,
-    basis: FreeForceBasis | None = None,
+    basis: Basis = None,
 ) -> tuple[NDArray[np.int64] | None, float | None] | None:
     """The least weighted spread, or with ``basis`` the least free forces, by mixed-integer
     linear programming (module docstring), within what remains of the time limit.
@@ -940,6 +1022,12 @@ def _milp(
         scale, cost_extra, fixed = _spread_rows(
             inventory, c_count, first_column, n_x, weights, rows
         )
+    elif isinstance(basis, JournalBasis):  # the sets' spread, then the journals'
+        scale, sets, _ = _spread_rows(
+            inventory, c_count, first_column, n_x, weights, rows, symmetry=False
+        )
+        _, journals, fixed = _journal_rows(inventory, first_column, n_x + sets.size, basis, rows)
+        cost_extra = np.concatenate([sets, journals])
     else:
         built = _free_rows(inventory, c_count, first_column, n_x, basis, rows, clock)
         if built is None:
@@ -985,9 +1073,10 @@ def _spread_rows(
     n_x: int,
     weights: tuple[float, float],
     rows: _Rows,
+    symmetry: bool = True,
 ) -> tuple[float, NDArray[np.float64], bool]:
-    """Rows of the spread: L <= W_c <= U per share; the symmetry breaking; the costs of
-    (U_rec, L_rec, U_rot, L_rot)."""
+    """Rows of the spread: L <= W_c <= U per share; the symmetry breaking (``symmetry``:
+    the cylinders are interchangeable); the costs of (U_rec, L_rec, U_rot, L_rot)."""
     kinds = inventory.kinds
     scale = 1000.0  # grams: the set weights are hundreds, the spreads single units
     cylinder = np.arange(c_count)
@@ -1012,8 +1101,8 @@ def _spread_rows(
     # symmetry: cylinders are interchangeable for a spread, so the first kind's part
     # index increases along the cylinders (with no spares: part c in cylinder c)
     n0 = kinds[0].count
-    fixed = n0 == c_count
-    if not fixed and c_count > 1:
+    fixed = symmetry and n0 == c_count
+    if symmetry and not fixed and c_count > 1:
         first = rows.block(c_count - 1, -np.inf, -1.0)
         index = np.arange(n0)
         for c in range(c_count - 1):
@@ -1021,6 +1110,49 @@ def _spread_rows(
             rows.entries(first + c, index * c_count + c + 1, -index.astype(float))
     w_rec, w_rot = weights
     return scale, np.array([w_rec, -w_rec, w_rot, -w_rot]), fixed
+
+
+def _journal_rows(
+    inventory: Inventory,
+    first_column: NDArray,
+    column: int,
+    basis: JournalBasis,
+    rows: _Rows,
+) -> tuple[float, NDArray[np.float64], bool]:
+    """Rows of the journals' bob-weights: L <= B_t <= U (U and L the columns ``column``
+    and ``column + 1``), B_t the sum over the cylinders on journal t of their parts'
+    R + f M and the allowances; the symmetry breaking; the costs of (U, L)."""
+    scale = 1000.0  # grams, as the spread
+    f = basis.fraction
+    share = np.concatenate([k.rotating + f * k.reciprocating for k in inventory.kinds])
+    per_set = inventory.rotating_allowance + f * inventory.reciprocating_allowance
+    rods = np.bincount(basis.cylinder_throw, minlength=basis.throws)
+    base = scale * per_set * rods
+    # per journal: B_t - U <= -base_t, then B_t - L >= -base_t
+    low = np.ravel(np.column_stack([np.full(basis.throws, -np.inf), -base]))
+    high = np.ravel(np.column_stack([-base, np.full(basis.throws, np.inf)]))
+    first = rows.block(2 * basis.throws, low, high)
+    for c, t in enumerate(basis.cylinder_throw):
+        for bound in (0, 1):  # U, L
+            rows.entries(first + 2 * int(t) + bound, first_column + c, scale * share)
+    for t in range(basis.throws):
+        rows.entries(first + 2 * t, column, -1.0)
+        rows.entries(first + 2 * t + 1, column + 1, -1.0)
+    # symmetry: the cylinders of a journal are interchangeable, and so are journals of as
+    # many rods: the first kind's part index increases along the cylinders of a journal
+    # and, when every journal holds as many rods, along the journals' first cylinders
+    on = [np.flatnonzero(basis.cylinder_throw == t) for t in range(basis.throws)]
+    pairs = [(int(a), int(b)) for c in on for a, b in itertools.pairwise(c)]
+    if len({c.size for c in on}) == 1:
+        pairs += [(int(a[0]), int(b[0])) for a, b in itertools.pairwise(on) if a.size]
+    if pairs:
+        c_count = basis.cylinder_throw.size
+        index = np.arange(inventory.kinds[0].count)
+        first = rows.block(len(pairs), -np.inf, -1.0)
+        for row, (a, b) in enumerate(pairs):
+            rows.entries(first + row, index * c_count + a, index.astype(float))
+            rows.entries(first + row, index * c_count + b, -index.astype(float))
+    return scale, np.array([1.0, -1.0]), False
 
 
 def _free_rows(

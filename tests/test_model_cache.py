@@ -1,0 +1,85 @@
+"""The built model is kept per spec, and what a model derives is kept per model (issue 30:
+a study of an engine seen before skips the build; ``free_forces`` takes its coefficient
+rows from the model). Nothing here is timed."""
+
+from __future__ import annotations
+
+import dataclasses
+
+import numpy as np
+import pytest
+
+from crankbalance.io.engine_file import load_engine
+from crankbalance.physics.shaking import cylinder_coefficients, free_forces
+from crankbalance.studies.build import build_model
+
+
+def test_an_equal_spec_gets_the_same_model() -> None:
+    first = build_model(load_engine("v12-60"))
+    again = build_model(load_engine("v12-60"))  # parsed afresh: equal, not the same object
+    assert again is first
+    other = build_model(load_engine("inline4"))
+    assert other is not first
+
+
+def test_a_changed_spec_gets_its_own_model() -> None:
+    spec = load_engine("inline4")
+    model = build_model(spec)
+    faster = spec.replace(speed=2 * spec.speed)
+    assert hash(faster) != hash(spec)
+    assert build_model(faster).speed == 2 * model.speed
+    assert build_model(spec) is model
+
+
+def test_a_kept_model_cannot_be_changed_in_place() -> None:
+    model = build_model(load_engine("v8-crossplane"))
+    for f in dataclasses.fields(model):
+        value = getattr(model, f.name)
+        if isinstance(value, np.ndarray):
+            with pytest.raises(ValueError, match="read-only"):
+                value[...] = 0
+    for derived in (model.cylinder_angle, model.cylinder_position, model.throw_rotating_moment):
+        with pytest.raises(ValueError, match="read-only"):
+            derived[...] = 0
+
+
+def test_a_spec_hash_is_kept_and_equals_a_fresh_one() -> None:
+    spec = load_engine("v6-60")
+    kept = hash(spec)
+    assert hash(load_engine("v6-60")) == kept == hash(spec)
+
+
+def test_coefficient_rows_are_computed_once_per_model_and_order() -> None:
+    model = build_model(load_engine("v12-60"))
+    rows = cylinder_coefficients(model, 8)
+    assert cylinder_coefficients(model, 8) is rows
+    assert not rows.flags.writeable
+    assert cylinder_coefficients(model, 6) is not rows
+    assert cylinder_coefficients(model, 8, "series") is not rows
+
+
+def test_analysis_of_a_kept_model_is_that_of_a_fresh_one() -> None:
+    spec = load_engine("v6-60")
+    kept = free_forces(build_model(spec), 8)  # the kept model (analyze zeroes round-off)
+    fresh_model = dataclasses.replace(build_model(spec))  # a new model: nothing derived yet
+    assert not fresh_model.derived
+    fresh = free_forces(fresh_model, 8)
+    for name in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
+        assert np.array_equal(getattr(kept, name), getattr(fresh, name))
+    assert kept.rotating_force == fresh.rotating_force
+
+
+def test_an_engine_text_read_again_gives_the_spec_made_the_first_time() -> None:
+    from crankbalance.errors import InputError
+    from crankbalance.io.engine_file import parse_engine_text, preset_text
+
+    assert load_engine("v6-60") is load_engine("v6-60")
+    text = preset_text("inline4")
+    spec = parse_engine_text(text, "a.toml")
+    assert parse_engine_text(text, "a.toml") is spec
+    changed = parse_engine_text(text.replace("6000 rpm", "3000 rpm"), "a.toml")
+    assert changed is not spec and changed.speed == spec.speed / 2
+    bad = text.replace("6000 rpm", "-1 rpm")
+    for _ in range(2):  # a refused text is refused every time, with its message
+        with pytest.raises(InputError, match="a.toml|speed"):
+            parse_engine_text(bad, "a.toml")
