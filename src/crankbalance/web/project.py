@@ -64,10 +64,6 @@ STUDY_SETTINGS = (
     *("pf_bore", "pf_balance_factors", "pf_crank_inertia", "pf_friction_coefficient"),
     "pf_journal_diameter",
 )
-#: the web's own starting values where they differ from the schema's default: the
-#: counterweight optimiser starts with a smaller, seeded run than the command line's (a
-#: page answers in seconds, and the same run gives the same design)
-WEB_DEFAULTS = {"cw_iterations": "12", "cw_population": "1024", "cw_seed": "1"}
 
 
 def _schema_default(key: str) -> str:
@@ -78,13 +74,13 @@ def _schema_default(key: str) -> str:
 
 #: settings of the page and the study tabs (saved with the project as a comment line of
 #: the engine file): the page's own modes, then every study setting with its schema's
-#: default (or the web's, :data:`WEB_DEFAULTS`)
+#: default (no edge decides a default: the page starts where the command line does)
 DEFAULT_SETTINGS: dict[str, Any] = {
     "mass_mode": "parts",  # parts | totals
     "conrod_split": "cg",  # fraction | cg
     "curve_quantity": "force",
     "polar_order": 1,
-    **{key: WEB_DEFAULTS.get(key, _schema_default(key)) for key in STUDY_SETTINGS},
+    **{key: _schema_default(key) for key in STUDY_SETTINGS},
 }
 
 

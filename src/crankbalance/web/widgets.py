@@ -534,8 +534,10 @@ def from_schema(
     """A row of a tab's own settings table (:attr:`TabSettingsMixin.settings_table`) that is
     the field ``name`` of the settings schema ``model``: (label, default text, hint), the
     schema's title and default, and its hint or else what it allows. A tab gives its own
-    ``default`` (a lighter run than the command line's) or ``hint`` (an example, or where
-    the page writes the value its own way) only where the schema has none or another."""
+    ``default`` only where the page writes the schema's default its own way (a select's
+    ``on`` for a flag, a study's choice where the schema leaves it empty), never another run
+    than the command line's; and its own ``hint`` (an example, or where the page writes the
+    value its own way) only where the schema has none or another."""
     spec = model.FIELDS[name]
     text = default_text(spec) if default is None else default
     return spec.title, text, hint or spec.hint or allowed(spec)
