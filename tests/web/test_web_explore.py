@@ -104,3 +104,36 @@ def test_a_large_problem_points_to_the_command_line(server: str, browser) -> Non
         expect(message).to_contain_text("362,880")
     finally:
         page.close()
+
+
+def test_pareto_ties_within_round_off_are_kept_as_the_command_line_keeps_them(
+    server: str, browser
+) -> None:
+    """The inline-5's Pareto set over M1 and M2 holds orders whose moments differ by
+    round-off only: the tab keeps them with the round-off tolerance
+    (``rank.tolerances``) as ``crankbalance explore`` does (the tab runs its study), not the
+    fewer of an exact comparison."""
+    from crankbalance.physics.explore import merit
+    from crankbalance.schema.settings import ExploreOptions, parse_options
+    from crankbalance.studies.explore import Keep, run
+    from crankbalance.studies.explorer import explore
+
+    options = {"layout": "inline", "cylinders": 5, "objectives": "M1,M2"}
+    want = len(explore(None, parse_options(ExploreOptions, options)).to_dict()["pareto"])
+    # an exact comparison (no tolerance) drops some of them
+    exact = run(orders.problem("inline", 5, 4), merit.merit, keep=Keep(("M1_Nm", "M2_Nm")))
+    assert exact.pareto["index"].size < want
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    try:
+        page.goto(server + "/")
+        connected(page)
+        open_tab(page, "Explorer")
+        for key, value in (("cylinders", "5"), ("x", "M1"), ("y", "M2")):
+            field = page.locator(f"[data-testid=explore-{key}]").first
+            field.fill(value)
+            expect(field).to_have_value(value)
+        page.get_by_role("button", name="Explore").click()
+        summary = page.locator("[data-testid=explore-summary]").first
+        expect(summary).to_contain_text(f"Pareto set of {want} over")
+    finally:
+        page.close()

@@ -361,16 +361,15 @@ def performance_study(computed: Computation, settings: dict[str, Any]) -> Any:
 
 
 # --------------------------------------------------------------------------- explorer
-def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
-    """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
-    the two objectives, the rows by increasing column ``key`` (the explorer's runner on the
-    tab's own problem; the command line's ``explore`` keeps a top-N list instead)."""
-    from ..physics.explore import merit
-    from ..studies.explore import Keep
-    from ..studies.explore import run as run_explore
+def explore(settings: Any, most: int) -> Any:
+    """The Explorer tab's run: the study ``explore`` of the command line (no engine: the
+    layout's plain engine) with the tab's settings, its Pareto set with the round-off
+    tolerance of :func:`crankbalance.physics.explore.rank.tolerances` (ties kept as the
+    command line keeps them); the rows of its figure run, every candidate kept by the filter
+    (at most ``most``) by increasing top-N key."""
+    from ..studies.explorer import explore as explore_study
 
-    keep = Keep(objectives=objectives, key=key, n=most)
-    return run_explore(problem, merit.merit, select=select, keep=keep)
+    return explore_study(None, settings, figure_points=most).figure
 
 
 # --------------------------------------------------------------------------- the JSON API

@@ -66,24 +66,29 @@ def _columns(orders: int = 8) -> tuple[str, ...]:
     return tuple(merit.merit(enumeration.chunk(problem, 0, 1), orders=orders))
 
 
-def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float | None]:
-    """The problem, the two objectives, the filter, the table's rows and the bank angle
+def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], ExploreOptions, int, float | None]:
+    """The problem, the two objectives, the settings of the study ``explore`` (the tab's
+    objectives, filter and the table's key :data:`KEY`), the table's rows and the bank angle
     [rad] from the tab's texts; an :class:`InputError` names the setting's key."""
     from ..physics.explore import orders, rank
     from ..schema.settings import parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
-    o = parse_options(
-        ExploreOptions,
-        {k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank", "top")},
-    )
-    if o.top > MAX_ROWS:
-        raise InputError("top", values["top"], f"1 to {MAX_ROWS} rows")
     columns = _columns()
     x = rank.column_name(values["x"] or "", columns, "x")
     y = rank.column_name(values["y"] or "", columns, "y")
     text = values["filter"]
-    chosen = None if text is None else rank.parse_filter(text, columns, "filter")
+    if text is not None:  # checked here to be named beside the tab's field
+        rank.parse_filter(text, columns, "filter")
+    o = parse_options(
+        ExploreOptions,
+        {
+            **{k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank")},
+            **{"top": values["top"], "objectives": f"{x},{y}", "filter": text, "top_key": KEY},
+        },
+    )
+    if o.top > MAX_ROWS:
+        raise InputError("top", values["top"], f"1 to {MAX_ROWS} rows")
     problem = orders.problem(o.layout, o.cylinders, o.strokes, o.bank_angle, crank=o.crank)
     total = orders.count(problem)
     if total > MAX_INDICES:
@@ -93,7 +98,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float 
             f"a problem of at most {MAX_INDICES:,} firing orders in the web app (this one has "
             f"{total:,}): run it with `crankbalance explore --workers N` (docs/explorer.md)",
         )
-    return problem, (x, y), chosen, o.top, o.bank_angle
+    return problem, (x, y), o, o.top, o.bank_angle
 
 
 def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
@@ -221,13 +226,13 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     async def run(self) -> None:
         done = await self.run_study(
             studies.explore,
-            lambda parsed, _: (*parsed[:3], KEY, MAX_INDICES),
+            lambda parsed, _: (parsed[2], MAX_INDICES),
             "exploring …",
             engine=False,
         )
         if done is None:
             return
-        (problem, objectives, _select, top, bank_angle), result = done
+        (problem, objectives, _study, top, bank_angle), result = done
         self.result, self.problem, self.objectives, self.top = result, problem, objectives, top
         self.bank_angle = bank_angle
         self.chosen = int(result.top["index"][0]) if result.rows else None
