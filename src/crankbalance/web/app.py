@@ -16,7 +16,6 @@ every figure comes from :mod:`crankbalance.output.figures`, the tabs only lay th
 
 from __future__ import annotations
 
-import json
 import logging
 from collections.abc import Callable
 from typing import Any
@@ -203,8 +202,6 @@ class Page:
             name = default_preset
         self.preset_name: str | None = name
         self.startup_message = message
-        #: the engine as loaded (:meth:`engine_state`), to tell an edited preset
-        self.loaded_state = self.engine_state()
         #: True while the page itself sets the preset menu (not the user's choice)
         self.setting_preset = False
 
@@ -378,14 +375,6 @@ class Page:
             return
         self.load(Project.from_preset(event.value), preset=event.value)
 
-    def engine_state(self) -> str:
-        """What describes the engine in the form (texts, mass modes, crank editor, keys
-        kept as they are), as one text to compare."""
-        p = self.project
-        modes = {k: p.settings.get(k) for k in ("mass_mode", "conrod_split")}
-        state = (p.texts, modes, p.throw_angles, p.throws, p.overrides, p.extras)
-        return json.dumps(state, sort_keys=True, default=str)
-
     def show_preset(self) -> None:
         """The preset menu names the preset the form holds, ``<name> (edited)`` once the
         form differs from it, nothing for another project (:meth:`load`)."""
@@ -393,7 +382,8 @@ class Page:
         if name is None or not hasattr(self, "preset_select"):
             return
         edited = EDITED.format(name=name)
-        value = edited if self.engine_state() != self.loaded_state else name
+        project = self.project
+        value = edited if project.engine_state() != project.loaded_state else name
         if self.preset_select.value == value:
             return
         self.setting_preset = True
@@ -471,7 +461,6 @@ class Page:
         an explorer candidate), so that it never names an engine the form does not hold."""
         self.project = project
         self.preset_name = preset
-        self.loaded_state = self.engine_state()
         self.setting_preset = True
         try:
             self.preset_select.set_options(list_presets(), value=preset)

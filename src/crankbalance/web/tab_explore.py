@@ -119,8 +119,9 @@ def candidate_file(
 ) -> dict[str, Any]:
     """The engine-file dictionary ``data`` (the current engine) with the crank of the
     explorer's candidate ``row`` of ``problem``: layout, cylinders, strokes, bank angle
-    [rad], firing order and throw angles; custom throws, mass overrides and the webs list
-    (their counts follow the crank) are dropped, and so are the per-bank and per-cylinder
+    [rad], firing order and throw angles; the description (the current engine's words),
+    custom throws, mass overrides and the webs list (their counts follow the crank) are
+    dropped, and so are the per-bank and per-cylinder
     offsets and rod positions unless the layout and the number of cylinders stay (then a
     maker's numbering stays too, and the firing order is written in it)."""
     order = [int(c) for c in row["firing_order"]]
@@ -144,6 +145,7 @@ def candidate_file(
     out = {k: v for k, v in data.items() if k != "crank_train"}
     out["crank_train"] = train
     out["name"] = f"Explorer {problem.layout}-{len(order)} {'-'.join(map(str, order))}"
+    out.pop("description", None)  # the current engine's words, not the candidate's
     out.get("masses", {}).pop("override", None)
     out.get("counterweights", {}).pop("webs", None)
     return out
