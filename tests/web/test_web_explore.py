@@ -137,3 +137,38 @@ def test_pareto_ties_within_round_off_are_kept_as_the_command_line_keeps_them(
         expect(summary).to_contain_text(f"Pareto set of {want} over")
     finally:
         page.close()
+
+
+def test_every_explorer_column_has_words() -> None:
+    """The table names its columns in words with their unit, never the raw name."""
+    from crankbalance.web.tab_explore import _columns, column_words
+
+    for name in _columns():
+        assert column_words(name) != name, name
+    assert column_words("M1_Nm") == "free moment, order 1 [N·m]"
+    assert column_words("F2b_N") == "free force, order 2, backward [N]"
+    assert column_words("X1p5") == "torsional excitation, order 1.5"
+
+
+def test_the_table_names_its_columns_in_words(server: str, browser) -> None:
+    """The inline-4's table heads its columns in words (not ``M1_Nm`` or
+    ``residual_M_Nm``) and says what the count of orders giving the same engine is."""
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    try:
+        page.goto(server + "/")
+        expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+        explore_inline4(page)
+        head = page.locator("[data-testid=explore-table] thead").first
+        for words in (
+            "free moment, order 1 [N·m]",
+            "free moment, order 2 [N·m]",
+            "largest moment left after balancing [N·m]",
+            "orders giving it",
+        ):
+            expect(head).to_contain_text(words)
+        for raw in ("M1_Nm", "residual_M_Nm", "equiv"):
+            expect(head).not_to_contain_text(raw)
+        note = page.locator(".q-tab-panel:visible", has_text="Orders giving it").first
+        expect(note).to_contain_text("give this same engine")
+    finally:
+        page.close()

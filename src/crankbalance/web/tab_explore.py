@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import threading
 from typing import Any
 
@@ -54,6 +55,46 @@ CHOICES = {
 }
 #: the table's key: the largest moment left after crank counterweights
 KEY = "residual_M_Nm"
+#: the explorer's columns without an order, in words (docs/explorer.md's table of columns)
+COLUMN_WORDS = {
+    "Frot_N": "force of the rotating masses (no counterweights)",
+    "Mrot_Nm": "couple of the rotating masses (no counterweights)",
+    "cw_mass_kg": "counterweight mass",
+    "shafts": "balance shafts needed",
+    "shaft_mass_kg": "balance-shaft mass",
+    "residual_F_N": "largest force left after balancing",
+    "residual_M_Nm": "largest moment left after balancing",
+    "mirror_rad": "distance of the crank from its mirror image",
+    "interval_dev_rad": "firing intervals' deviation from even",
+    "bank_interval_dev_rad": "worst bank's firing intervals' deviation from even",
+}
+#: an explorer column's unit suffix -> its unit as shown
+UNITS = (("_Nm", "N·m"), ("_N", "N"), ("_kg", "kg"), ("_rad", "rad"))
+#: a free force's or moment's column: ``F2_N``, ``M1f_Nm`` (f forward, b backward)
+FREE_COLUMN = re.compile(r"^([FM])(\d+)([fb]?)_(N|Nm)$")
+#: what the table's column ``equiv`` counts
+EQUIVALENTS_NOTE = (
+    "*Orders giving it*: how many firing orders of the problem give this same engine "
+    "(renumbered from the other end, run backwards or mirrored: the same forces, moments "
+    "and excitations); the row shows the first of them."
+)
+
+
+def column_words(name: str) -> str:
+    """An explorer column in words with its unit: ``M1_Nm`` -> ``free moment, order 1
+    [N·m]``, ``X1p5`` -> ``torsional excitation, order 1.5``."""
+    unit = next((u for suffix, u in UNITS if name.endswith(suffix)), "")
+    free = FREE_COLUMN.match(name)
+    if free:
+        kind, order, part, _ = free.groups()
+        what = "free force" if kind == "F" else "free moment"
+        part = {"f": ", forward", "b": ", backward", "": ""}[part]
+        words = f"{what}, order {order}{part}"
+    elif re.fullmatch(r"X\d+(p\d+)?", name):
+        words = f"torsional excitation, order {name[1:].replace('p', '.')}"
+    else:
+        words = COLUMN_WORDS.get(name, name)
+    return f"{words} [{unit}]" if unit else words
 
 
 @functools.lru_cache(maxsize=8)
@@ -184,6 +225,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
                     .mark("explore-table")
                 )
                 self.table.on("rowClick", self.on_row)
+                ui.markdown(EQUIVALENTS_NOTE).classes("text-grey-7").mark("explore-equivalents")
                 ui.label("Click a row (or a point) to load that engine in the form.").classes(
                     "text-grey-7"
                 )
@@ -241,10 +283,11 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         self.summary.set_content(
             f"{result.total:,} firing orders, **{result.candidates:,} distinct engines**, "
             f"{result.rows:,} kept by the filter, Pareto set of "
-            f"{result.pareto['index'].size if result.pareto else 0} over `{objectives[0]}` and "
-            f"`{objectives[1]}` ({result.seconds:.2f} s). The table is ordered by `{KEY}` (the "
-            "largest moment left after crank counterweights); figures are of the plain engine "
-            "of the enumeration (docs/explorer.md)."
+            f"{result.pareto['index'].size if result.pareto else 0} over "
+            f"{column_words(objectives[0])} (`{objectives[0]}`) and "
+            f"{column_words(objectives[1])} (`{objectives[1]}`) ({result.seconds:.2f} s). "
+            f"The table is ordered by the {column_words(KEY)} (`{KEY}`); figures are of the "
+            "plain engine of the enumeration (docs/explorer.md)."
         )
         self._fill_table()
         for card in self.cards:
@@ -257,8 +300,8 @@ class ExploreTab(TabSettingsMixin, StudyTab):
             {"name": "rank", "label": "#", "field": "rank"},
             {"name": "order", "label": "firing order", "field": "order", "align": "left"},
             {"name": "throws", "label": "throws [deg]", "field": "throws", "align": "left"},
-            {"name": "equivalents", "label": "equiv", "field": "equivalents"},
-            *({"name": n, "label": n, "field": n} for n in names),
+            {"name": "equivalents", "label": "orders giving it", "field": "equivalents"},
+            *({"name": n, "label": column_words(n), "field": n} for n in names),
         ]
         self.table.rows = [
             {
