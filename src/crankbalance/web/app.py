@@ -98,6 +98,34 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
   .q-tab-panel .q-table__container { max-width: 100%; overflow-x: auto; }
 }
 """
+#: toasts close with their tab: every toast's dismiss function is kept (Quasar's
+#: ``Notify.create`` wrapped, which NiceGUI's ``ui.notify`` calls) and :meth:`Page.on_tab`
+#: dismisses them all when another tab is opened (on a phone a toast covered a field of the
+#: next tab)
+TOASTS_JS = """
+<script>
+(() => {
+  const toasts = window.cbToasts = {shown: new Set(), dismiss() {
+    for (const close of this.shown) close();
+    this.shown.clear();
+  }};
+  const hook = () => {
+    if (!window.Quasar || !Quasar.Notify || !Quasar.Notify.create) {
+      setTimeout(hook, 50); return;
+    }
+    const create = Quasar.Notify.create;
+    Quasar.Notify.create = (options) => {
+      const close = create.call(Quasar.Notify, options);
+      if (typeof close === "function") toasts.shown.add(close);
+      return close;
+    };
+  };
+  hook();
+})();
+</script>
+"""
+#: closes the toasts shown (:data:`TOASTS_JS`)
+DISMISS_TOASTS = "window.cbToasts && window.cbToasts.dismiss()"
 #: the busy bar: an action of the page (an edit, a choice, a button) that the server has
 #: not handled within 0.2 s shows a moving bar at the top until the server acknowledges it
 #: (socket.io's acknowledgement, sent when NiceGUI's handler of the event returns), so the
@@ -211,6 +239,7 @@ class Page:
         ui.context.client.on_delete(self.cancel_job)  # the page went away: its study stops
         ui.add_css(CSS)
         ui.add_body_html(BUSY_JS)
+        ui.add_body_html(TOASTS_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (
@@ -396,6 +425,7 @@ class Page:
             self.setting_preset = False
 
     def on_tab(self, event: Any) -> None:
+        ui.run_javascript(DISMISS_TOASTS)  # the toasts of the tab left close with it
         self.open_tab(str(event.value))
         self.refresh_cards(str(event.value))
 

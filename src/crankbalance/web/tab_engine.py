@@ -10,7 +10,7 @@ from ..output.figures.crank3d import crank_3d
 from .crank_editor import CrankEditor
 from .form import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .tab_results import balance_lines
-from .widgets import FIGURE_CSS, Tab
+from .widgets import FIGURE_CSS, FIGURE_JS, Tab
 
 #: the key results beside the form list at most this many components the balancing leaves
 #: (the largest first, as the balance result orders them; the Results tab has them all)
@@ -44,6 +44,7 @@ class EngineTab(Tab):
     def build(self) -> None:
         ui.add_css(".cb-warning .q-field__messages { color: #a15c00; font-weight: 500; }")
         ui.add_css(FIGURE_CSS)  # the figures of every tab
+        ui.add_body_html(FIGURE_JS)
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Engine general parameters").classes("text-subtitle1")

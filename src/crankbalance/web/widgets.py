@@ -60,6 +60,40 @@ FIGURE_CSS = """
 }
 """
 
+#: plotly's config of every figure card: not "responsive" (NiceGUI's plot then adds no
+#: ResizeObserver of its own; that one resized figures of hidden tab panels too, and
+#: plotly.js refused each with "Resize must be passed a displayed plot div element")
+FIGURE_CONFIG = {"responsive": False}
+#: the figures' own resizing (added to the page once, by the Engine tab): one ResizeObserver
+#: on every figure card's plot (class ``cb-figure``, found as they are built), which resizes
+#: a drawn plot when its box changes and it is displayed; a plot in a hidden tab panel is
+#: resized when the panel is shown (its box then changes from nothing to the panel's width)
+FIGURE_JS = """
+<script>
+(() => {
+  const resize = (el) => {
+    if (!el.isConnected || el.offsetParent === null || !el._fullLayout) return;
+    const plot = window.getElement && getElement(Number(el.id.replace(/^c/, "")));
+    if (plot && plot.Plotly) plot.Plotly.Plots.resize(el);
+  };
+  const observer = new ResizeObserver((entries) => entries.forEach((e) => resize(e.target)));
+  const plots = document.getElementsByClassName("cb-figure");
+  const watched = new WeakSet();
+  let pending = false;
+  const watch = () => {
+    pending = false;
+    for (const el of plots) {
+      if (!watched.has(el)) { watched.add(el); observer.observe(el); }
+    }
+  };
+  new MutationObserver(() => {
+    if (!pending) { pending = true; requestAnimationFrame(watch); }
+  }).observe(document.body, {childList: true, subtree: true});
+  watch();
+})();
+</script>
+"""
+
 
 def button_row() -> Any:
     """A row of buttons that wraps (and stays a row on a phone, where the page's rows turn
@@ -197,7 +231,7 @@ class FigureCard:
             self.note = ui.label("").classes("text-grey-7")
             with ui.element("div").classes("cb-figure-box"):
                 self.plot = (
-                    ui.plotly({"data": [], "layout": {}})
+                    ui.plotly({"data": [], "layout": {}, "config": FIGURE_CONFIG})
                     .classes("w-full cb-figure")
                     .props(f"data-testid=figure-{name}")
                     .mark(f"figure-{name}")
@@ -231,6 +265,7 @@ class FigureCard:
             f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
         )
         shown["layout"] = layout
+        shown["config"] = FIGURE_CONFIG
         self.stale = False
         # an edit that leaves the figure as it is (the speed, for the 3-D crank) redraws
         # nothing: a 3-D scene costs the browser a fifth of a second in software WebGL
