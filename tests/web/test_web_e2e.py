@@ -32,8 +32,6 @@ TABS = [
 DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
     .filter((e) => e.offsetParent !== null)
     .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
-#: plotly complains when a figure in a hidden tab panel is resized; harmless
-BENIGN = ("Resize must be passed a displayed plot div element",)
 
 
 def _field(page, key: str):
@@ -99,7 +97,7 @@ def test_preset_change_compute_report(server: str, page, tmp_path: Path) -> None
     for got, ref in zip(data["free_moments"], api["free_moments"], strict=True):
         assert abs(got["amplitude_Nm"] - ref["amplitude_Nm"]) <= 1e-9 * max(1, ref["amplitude_Nm"])
     assert abs(data["engine"]["speed_rad_s"] * 30 / math.pi - 6000) < 1e-9
-    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+    assert not errors, errors
     print(f"input-to-update latency in the browser: {latency * 1e3:.0f} ms ({status})")
 
 

@@ -359,7 +359,7 @@ def test_ducati_rod_positions_move_the_rocking_couple(server: str, page) -> None
     expect(message).to_contain_text("Rod positions on the pin = -20 mm: needs one length")
     assert "crank_train" not in message.inner_text()
     _shoot(page, "ducati_rod_positions_message")
-    assert not [e for e in errors if "Resize must be passed" not in e], errors
+    assert not errors, errors
 
 
 def test_radial9_link_pin_radius_in_the_browser(server: str, page) -> None:
