@@ -150,6 +150,16 @@ class Form:
         assert len(found) == 1, f"expected one element marked {marker!r}, found {len(found)}"
         return next(iter(found))
 
+    def find_hidden(self, marker: str) -> Any:
+        """The one element carrying ``marker``, shown or hidden (:meth:`element` finds
+        only the shown ones)."""
+        from nicegui import ElementFilter
+
+        with self.user:
+            found = list(ElementFilter(marker=marker, only_visible=False))
+        assert len(found) == 1, f"expected one element marked {marker!r}, found {len(found)}"
+        return found[0]
+
     def open(self, tab: str) -> None:
         """Open a tab as a click on it would: a tab other than Engine and Results is built
         when it is first opened."""

@@ -11,7 +11,9 @@ process running, a message shown), never a sleep.
 from __future__ import annotations
 
 import asyncio
+import base64
 import os
+import re
 import signal
 import time
 from collections.abc import Iterator
@@ -248,19 +250,53 @@ async def test_cancel_button_ends_the_optimiser(
 ) -> None:
     job = await _start_the_largest_optimiser(user, form, jobs)
     assert form.element("counterweight-cancel").visible
-    user.find(marker="optimise").click()  # a second study of the page meanwhile: refused
-    await form.until(lambda: "is still running on this page" in form.text("cw-summary"))
+    button = form.element("optimise")
+    assert not button.enabled  # no second run of the page meanwhile
+    # progress after each round, with the time left
+    await form.until(lambda: "round" in form.text("cw-progress"), "the optimiser's progress")
+    progress = form.text("cw-progress")
+    assert re.fullmatch(
+        r"optimising … round \d+ of 244, [\d,]+ designs evaluated \([\d,]+ feasible\), "
+        r"[\d.]+ s, (about \d+ s|<1 s) left",
+        progress,
+    ), progress
     assert len(jobs) == 1
     user.find(marker="counterweight-cancel").click()
     await form.until(lambda: form.text("cw-summary") == CANCELLED, "the cancel")
     assert job.process.exitcode == -signal.SIGKILL
     await user.should_not_see(marker="counterweight-cancel")  # hidden once it has ended
+    assert button.enabled and form.text("cw-progress") == ""
 
 
-async def test_the_page_going_away_ends_its_study(
+async def test_a_second_study_of_the_page_is_refused(
     user: User, form: Form, jobs: list[pool.Job]
 ) -> None:
-    job = await _start_the_largest_optimiser(user, form, jobs)
-    user.client.delete()  # what NiceGUI does when the page is gone for good
-    await until(lambda: job.process.exitcode is not None, "the worker to end")
-    assert job.cancelled and job.process.exitcode == -signal.SIGKILL
+    """The optimiser's button is disabled while it runs; another tab's study is refused."""
+    await _start_the_largest_optimiser(user, form, jobs)
+    form.open("performance")
+    await form.until(lambda: user.find(marker="run-performance").elements, "the tab")
+    user.find(marker="run-performance").click()
+    await form.until(
+        lambda: any("is still running on this page" in m for m in user.notify.messages),
+        "the refusal",
+    )
+    assert len(jobs) == 1
+
+
+async def test_the_pareto_cloud_is_thinned(user: User, form: Form, jobs: list[pool.Job]) -> None:
+    """The page draws the front and at most PARETO_CLOUD of the feasible designs."""
+    from crankbalance.web.tab_counterweight import PARETO_CLOUD
+
+    await user.open("/")
+    await form.see("Results of:")
+    form.open("counterweight")
+    user.find(marker="optimise").click()
+    await form.see("on the Pareto front")
+    await form.until(lambda: form.element("figure-pareto").figure["data"], "the front drawn")
+    data = form.element("figure-pareto").figure["data"]
+    cloud = next(t for t in data if str(t.get("name", "")).startswith("feasible designs"))
+    feasible = int(re.search(r"\((\d+)\)", cloud["name"]).group(1))
+    assert feasible > PARETO_CLOUD, "the default run finds more designs than are drawn"
+    x = cloud["x"]  # plotly's typed array: base64 of float64
+    shown = len(x) if isinstance(x, list | tuple) else len(base64.b64decode(x["bdata"])) // 8
+    assert shown == PARETO_CLOUD

@@ -32,8 +32,6 @@ TABS = [
 DRAWN = """() => [...document.querySelectorAll('.q-tab-panel .js-plotly-plot')]
     .filter((e) => e.offsetParent !== null)
     .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
-#: plotly complains when a figure in a hidden tab panel is resized; harmless
-BENIGN = ("Resize must be passed a displayed plot div element",)
 
 
 def _field(page, key: str):
@@ -67,7 +65,7 @@ def test_preset_change_compute_report(server: str, page, tmp_path: Path) -> None
     latency = time.perf_counter() - t0
     page.get_by_role("tab", name="Masses").click()
     page.get_by_role("button", name="Compute results").click()
-    _wait_text(page, "body", r"Counterweight mass:")
+    _wait_text(page, "body", r"Counterweight web 1")
     # the same engine through the API
     spec = load_engine("v8-crossplane").replace(speed=6000 * 3.141592653589793 / 30)
     api = analyze(spec).to_dict()
@@ -99,7 +97,7 @@ def test_preset_change_compute_report(server: str, page, tmp_path: Path) -> None
     for got, ref in zip(data["free_moments"], api["free_moments"], strict=True):
         assert abs(got["amplitude_Nm"] - ref["amplitude_Nm"]) <= 1e-9 * max(1, ref["amplitude_Nm"])
     assert abs(data["engine"]["speed_rad_s"] * 30 / math.pi - 6000) < 1e-9
-    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+    assert not errors, errors
     print(f"input-to-update latency in the browser: {latency * 1e3:.0f} ms ({status})")
 
 

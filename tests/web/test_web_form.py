@@ -73,21 +73,30 @@ def test_a_good_text_gives_the_schema_s_value() -> None:
 
 
 def test_the_study_settings_start_at_the_schema_s_defaults() -> None:
-    """Every study setting of the page starts at its schema's default, but for the web's
-    own smaller optimiser run (WEB_DEFAULTS)."""
-    from crankbalance.schema.settings import CounterweightOptions, PerformanceOptions
-    from crankbalance.web.project import DEFAULT_SETTINGS, STUDY_SETTINGS, WEB_DEFAULTS
+    """Every study setting of the page starts at its schema's default (no edge decides a
+    default: the page starts where the command line does), the optimiser's run and the
+    Crank loads sweep included."""
+    from crankbalance.schema.settings import (
+        BearingOptions,
+        BearingSweepOptions,
+        CounterweightOptions,
+        PerformanceOptions,
+    )
+    from crankbalance.web import tab_loads
+    from crankbalance.web.project import DEFAULT_SETTINGS, STUDY_SETTINGS
 
     assert set(STUDY_SETTINGS) <= set(DEFAULT_SETTINGS)
     assert DEFAULT_SETTINGS["cw_density"] == default_text(CounterweightOptions.FIELDS["density"])
     assert DEFAULT_SETTINGS["pf_balance_factors"] == default_text(
         PerformanceOptions.FIELDS["balance_factors"]
     )
-    assert (
-        DEFAULT_SETTINGS["cw_population"]
-        == WEB_DEFAULTS["cw_population"]
-        != default_text(CounterweightOptions.FIELDS["population"])
-    )
+    for name in ("iterations", "population", "seed"):
+        assert DEFAULT_SETTINGS[f"cw_{name}"] == default_text(CounterweightOptions.FIELDS[name])
+    loads = {key: default for key, (_label, default, _hint) in tab_loads.SETTINGS.items()}
+    assert loads["samples"] == default_text(BearingOptions.FIELDS["samples"])
+    assert loads["balance_factors"] == default_text(BearingSweepOptions.FIELDS["balance_factors"])
+    assert loads["patterns"] == "; ".join(BearingSweepOptions.FIELDS["patterns"].default)
+    assert loads["gas"] == ("on" if BearingOptions.FIELDS["gas"].default else "off")
 
 
 def test_the_study_tabs_own_settings_are_the_schema_s() -> None:

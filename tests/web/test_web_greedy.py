@@ -29,8 +29,8 @@ LARGEST = (219, 100_000)
 
 
 def _start_the_largest_optimiser(page: Any, server: str) -> tuple[Any, Any]:
-    """Open the Counterweight tab, type the largest settings, click Optimise; (its summary,
-    its Cancel button) once the study holds a worker."""
+    """Open the Counterweight tab, type the largest settings, click Optimise; (its progress
+    line, its Cancel button) once the study holds a worker."""
     iterations, population = LARGEST
     assert counterweight_designs(population, iterations) <= MAX_COUNTERWEIGHT_DESIGNS
     assert counterweight_designs(population, iterations + 1) > MAX_COUNTERWEIGHT_DESIGNS
@@ -42,7 +42,7 @@ def _start_the_largest_optimiser(page: Any, server: str) -> tuple[Any, Any]:
         field.fill(str(value))
         expect(field).to_have_value(str(value))
     page.get_by_role("button", name="Optimise").click()
-    summary = page.locator(".q-tab-panel:visible .nicegui-markdown", has_text="optimising").first
+    summary = page.locator("[data-testid=cw-progress]", has_text="optimising").first
     cancel = page.locator("[data-testid=counterweight-cancel]").first
     expect(cancel).to_be_visible()  # the study is running in its worker
     return summary, cancel

@@ -68,10 +68,9 @@ BOXES = """() => {
       const [boxLeft, , boxRight] = box(e.closest('.cb-figure-box') || e);
       return [name, boxLeft, top, boxRight, bottom, area];
     });
-  return {fields, figures, width: document.documentElement.scrollWidth};
+  return {fields, figures, width: document.documentElement.scrollWidth,
+          scrollX: window.scrollX, panel: box(panel), viewport: window.innerWidth};
 }"""
-#: plotly complains when a figure in a hidden tab panel is resized; harmless
-BENIGN = ("Resize must be passed a displayed plot div element",)
 
 
 def _open_tab(page: Any, tab: str) -> None:
@@ -125,8 +124,13 @@ def _check_phone(page: Any, preset: str, tab: str) -> None:
     shown = page.evaluate(BOXES)
     where = f"{preset}, {tab}"
     assert not _overlaps(shown["fields"]), (where, _overlaps(shown["fields"]))
+    # what the page was like, should a field run past (a failure seen once, issue 28, not
+    # reproduced since: the panel's box, the sideways scroll and the window's width)
+    state = {k: shown[k] for k in ("panel", "scrollX", "viewport", "width")}
     for name, left, _top, right, _bottom in shown["fields"]:
-        assert left >= -0.5 and right <= PHONE["width"] + 0.5, f"{where}: {name} runs past"
+        assert left >= -0.5 and right <= PHONE["width"] + 0.5, (
+            f"{where}: {name} runs past ({left:.1f}..{right:.1f} px; {state})"
+        )
     for name, left, top, right, bottom, area in shown["figures"]:
         assert bottom - top > 150, f"{where}: {name} is {bottom - top:.0f} px high"
         assert area > 100, f"{where}: {name} plots in {area:.0f} px (squeezed to its title)"
@@ -171,4 +175,4 @@ def test_every_tab_fits_a_phone(server: str, browser: Any, preset: str) -> None:
             _check_phone(page, preset, tab)
     finally:
         page.close()
-    assert not [e for e in errors if not e.startswith(BENIGN)], errors
+    assert not errors, errors

@@ -31,8 +31,6 @@ SHOTS = os.environ.get("CRANKBALANCE_SHOTS")
 #: how often a wait looks at the page [ms] (a poll, not a timing: plotly's WebGL scene can
 #: hold back the animation frames that Playwright's default polling waits for)
 POLL = 100
-#: plotly complains when a figure in a hidden tab panel is resized; harmless
-BENIGN = ("Resize must be passed a displayed plot div element",)
 #: the header's state and update count (every processed edit raises the count)
 UPDATED = """([after]) => {
     const s = document.querySelector('[data-testid=status]');
@@ -40,7 +38,8 @@ UPDATED = """([after]) => {
 }"""
 UPDATE = "() => Number(document.querySelector('[data-testid=status]')?.dataset.update || 0)"
 #: the cells of the orders table of the Results tab, row by row
-TABLE = """() => [...document.querySelectorAll('.q-tab-panel:not([hidden]) .q-table tbody tr')]
+TABLE = """() => [...document.querySelectorAll(
+        '.q-tab-panel:not([hidden]) [data-testid=orders-table] tbody tr')]
     .filter((tr) => tr.offsetParent !== null)
     .map((tr) => [...tr.querySelectorAll('td')].map((td) => td.innerText.trim()))"""
 
@@ -96,11 +95,10 @@ class Session:
         self.page.goto(f"{server}/?preset={preset}")
 
     def _page_error(self, error: Any) -> None:
-        if not str(error).startswith(BENIGN):
-            self.problems.append(f"page error: {error}")
+        self.problems.append(f"page error: {error}")
 
     def _console(self, message: Any) -> None:
-        if message.type == "error" and not message.text.startswith(BENIGN):
+        if message.type == "error":
             self.problems.append(f"console error: {message.text}")
 
     def _response(self, response: Any) -> None:

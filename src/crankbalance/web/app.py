@@ -57,9 +57,17 @@ TABS = (
     ("shop", "Balance shop"),
     ("loads", "Crank loads"),
 )
+#: the one line under the header saying what the tool does
+TAGLINE = (
+    "crankbalance: the free forces and moments of an engine's crank train, and the "
+    "counterweights and balance shafts that cancel them, as you type."
+)
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
-RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance", "shop", "loads")
+#: the preset menu's entry while the form holds a preset edited (:meth:`Page.show_preset`);
+#: choosing the preset itself then loads it again
+EDITED = "{name} (edited)"
 #: the tabs built with the page (its first screen); every other tab's content is built when
 #: the tab is first opened (:meth:`Page.open_tab`), which keeps the page the server sends
 #: (and the browser mounts) small: about a third of the elements of all nine tabs
@@ -90,26 +98,63 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
   .q-tab-panel .q-table__container { max-width: 100%; overflow-x: auto; }
 }
 """
+#: toasts close with their tab: every toast's dismiss function is kept (Quasar's
+#: ``Notify.create`` wrapped, which NiceGUI's ``ui.notify`` calls) and :meth:`Page.on_tab`
+#: dismisses them all when another tab is opened (on a phone a toast covered a field of the
+#: next tab)
+TOASTS_JS = """
+<script>
+(() => {
+  const toasts = window.cbToasts = {shown: new Set(), dismiss() {
+    for (const close of this.shown) close();
+    this.shown.clear();
+  }};
+  const hook = () => {
+    if (!window.Quasar || !Quasar.Notify || !Quasar.Notify.create) {
+      setTimeout(hook, 50); return;
+    }
+    const create = Quasar.Notify.create;
+    Quasar.Notify.create = (options) => {
+      const close = create.call(Quasar.Notify, options);
+      if (typeof close === "function") toasts.shown.add(close);
+      return close;
+    };
+  };
+  hook();
+})();
+</script>
+"""
+#: closes the toasts shown (:data:`TOASTS_JS`)
+DISMISS_TOASTS = "window.cbToasts && window.cbToasts.dismiss()"
 #: the busy bar: an action of the page (an edit, a choice, a button) that the server has
-#: not answered within 0.2 s shows a moving bar at the top until its first answer arrives
+#: not handled within 0.2 s shows a moving bar at the top until the server acknowledges it
+#: (socket.io's acknowledgement, sent when NiceGUI's handler of the event returns), so the
+#: bar stops with the work, also for an action that changes nothing on the page (a study
+#: setting edited, the same preset chosen again). An async handler (a study's run)
+#: returns at once: its work shows in its tab (spinner, progress, Cancel)
 BUSY_JS = """
 <div id="cb-busy" data-testid="busy"></div>
 <script>
 (() => {
-  let timer = null;
-  const idle = () => {
-    clearTimeout(timer); timer = null; document.body.classList.remove('cb-busy');
+  const state = window.cbBusy = {sent: 0, pending: 0, timer: null};
+  const done = () => {
+    state.pending = Math.max(0, state.pending - 1);
+    if (state.pending > 0) return;
+    clearTimeout(state.timer); state.timer = null; document.body.classList.remove('cb-busy');
   };
   const hook = () => {
     const s = window.socket;
     if (!s) { setTimeout(hook, 50); return; }
     const emit = s.emit.bind(s);
     s.emit = (name, ...args) => {
-      if (name === 'event' && timer === null)
-        timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
-      return emit(name, ...args);
+      if (name !== 'event' || typeof args[args.length - 1] === 'function')
+        return emit(name, ...args);
+      state.sent += 1; state.pending += 1;
+      if (state.timer === null)
+        state.timer = setTimeout(() => document.body.classList.add('cb-busy'), 200);
+      return emit(name, ...args, done);  // the server's acknowledgement: handled
     };
-    s.onAny(idle);
+    s.on('disconnect', () => { state.pending = 1; done(); });
   };
   hook();
 })();
@@ -185,6 +230,8 @@ class Page:
             name = default_preset
         self.preset_name: str | None = name
         self.startup_message = message
+        #: True while the page itself sets the preset menu (not the user's choice)
+        self.setting_preset = False
 
     # ================================================================== layout
     def build(self) -> None:
@@ -192,6 +239,7 @@ class Page:
         ui.context.client.on_delete(self.cancel_job)  # the page went away: its study stops
         ui.add_css(CSS)
         ui.add_body_html(BUSY_JS)
+        ui.add_body_html(TOASTS_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (
@@ -213,6 +261,9 @@ class Page:
             self.status = (
                 ui.label("").classes("text-body2").props("data-testid=status").mark("status")
             )
+        ui.label(TAGLINE).classes("text-body2 text-grey-8 q-px-md").props(
+            "data-testid=tagline"
+        ).mark("tagline")
         with (
             ui.expansion(
                 "Load a project file (.toml or .json, the engine-file format)", icon="upload_file"
@@ -347,11 +398,34 @@ class Page:
         self.update_all()
 
     def on_preset(self, event: Any) -> None:
-        if not event.value or event.value == self.preset_name:
+        """The user chose a preset: load it, also the one shown when the form holds it
+        edited (the menu then shows ``<name> (edited)``, :meth:`show_preset`)."""
+        if self.setting_preset or not event.value or event.value not in list_presets():
             return
         self.load(Project.from_preset(event.value), preset=event.value)
 
+    def show_preset(self) -> None:
+        """The preset menu names the preset the form holds, ``<name> (edited)`` once the
+        form differs from it, nothing for another project (:meth:`load`)."""
+        name = self.preset_name
+        if name is None or not hasattr(self, "preset_select"):
+            return
+        edited = EDITED.format(name=name)
+        project = self.project
+        value = edited if project.engine_state() != project.loaded_state else name
+        if self.preset_select.value == value:
+            return
+        self.setting_preset = True
+        try:
+            options = list_presets()
+            self.preset_select.set_options(
+                [edited, *options] if value == edited else options, value=value
+            )
+        finally:
+            self.setting_preset = False
+
     def on_tab(self, event: Any) -> None:
+        ui.run_javascript(DISMISS_TOASTS)  # the toasts of the tab left close with it
         self.open_tab(str(event.value))
         self.refresh_cards(str(event.value))
 
@@ -374,6 +448,7 @@ class Page:
             tab.show(self.project.computed)
         self.show_errors()
         self.show_setting_errors()
+        self.show_state()
 
     def go(self, tab: str) -> None:
         self.panels.set_value(tab)
@@ -416,7 +491,11 @@ class Page:
         an explorer candidate), so that it never names an engine the form does not hold."""
         self.project = project
         self.preset_name = preset
-        self.preset_select.set_value(preset)
+        self.setting_preset = True
+        try:
+            self.preset_select.set_options(list_presets(), value=preset)
+        finally:
+            self.setting_preset = False
         for tab in self.built_tabs():
             tab.reset()
         for key, element in self.inputs.items():
@@ -494,6 +573,7 @@ class Page:
         self.recompute()
         self.show_errors()
         self.show_state()
+        self.show_preset()
 
     def orders(self) -> int:
         """The highest order to compute (the setting; 8 while it is invalid)."""
@@ -513,7 +593,10 @@ class Page:
     def problem(self) -> str:
         """Why the form cannot be computed: the messages of the fields (by their label) and
         the general one."""
-        lines = [f"{key_label(key)}: {message}" for key, message in self.project.errors.items()]
+        lines = [
+            message if message.startswith(key_label(key)) else f"{key_label(key)}: {message}"
+            for key, message in self.project.errors.items()
+        ]
         if self.project.general_error:
             lines.append(self.project.general_error)
         return "; ".join(lines) or "the engine could not be computed"
@@ -543,6 +626,8 @@ class Page:
             )
             note.set_visibility(c is None)
             self.bodies[name].classes(**{"add" if c is None else "remove": "cb-stale"})
+        for tab in self.built_tabs():
+            tab.show_fresh(c is not None, "" if c is not None else self.problem())
 
     def recompute(self) -> None:
         self.show_setting_errors()

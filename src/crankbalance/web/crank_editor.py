@@ -224,7 +224,9 @@ class CrankEditor:
             for t in range(len(model.throw_angle))
         ]
         p.throw_angles = None
-        for key, value in (("layout", "custom"), ("bank_angle", "")):
+        # the throws carry their positions and banks: the crank pitch and the bank angle
+        # describe nothing of a custom crank (a saved file holds neither)
+        for key, value in (("layout", "custom"), ("bank_angle", ""), ("crank_pitch", "")):
             p.texts[key] = value  # first: the inputs' change events then find nothing new
             self.page.inputs[key].set_value(value)
         self.changed()

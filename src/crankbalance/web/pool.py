@@ -52,6 +52,8 @@ MEMORY_LIMIT = 6 * 2**30
 PRELOAD = ["crankbalance.web.studies"]
 
 _context: Any = None
+#: in a worker process: the sending end of its pipe, for :func:`report`
+_sender: Any = None
 _slots: weakref.WeakKeyDictionary[asyncio.AbstractEventLoop, asyncio.Semaphore] = (
     weakref.WeakKeyDictionary()
 )
@@ -83,6 +85,9 @@ class Job:
         self.cancelled = False
         self.process: Any = None
         self._stop: asyncio.Event | None = None
+        #: called on the server's event loop with each progress report of the study
+        #: (:func:`report` in the worker), if set
+        self.on_progress: Callable[[Any], None] | None = None
 
     def cancel(self) -> None:
         """Stop the run: a waiting one never starts, a running one's process is killed."""
@@ -187,7 +192,7 @@ async def _in_process(job: Job, function: Callable[..., Any], args: tuple[Any, .
         send.close()  # the worker holds the only sending end: its exit ends the receive
         if job.cancelled:  # cancelled while it started
             process.kill()
-        answer = await loop.run_in_executor(None, _receive, receive)
+        answer = await loop.run_in_executor(None, _receive, receive, job, loop)
     finally:
         if process.pid is not None and process.is_alive():
             process.kill()  # the page's handler itself was cancelled: the work stops too
@@ -216,12 +221,26 @@ async def _in_process(job: Job, function: Callable[..., Any], args: tuple[Any, .
     )
 
 
-def _receive(connection: Any) -> Any:
-    """The worker's answer, or None when it ended without one (killed, out of memory)."""
+def _receive(connection: Any, job: Job, loop: asyncio.AbstractEventLoop) -> Any:
+    """The worker's answer, or None when it ended without one (killed, out of memory);
+    each progress report before it goes to ``job.on_progress`` on the event loop."""
     try:
-        return connection.recv()
+        while True:
+            answer = connection.recv()
+            if answer[0] != "progress":
+                return answer
+            if job.on_progress is not None:
+                loop.call_soon_threadsafe(job.on_progress, answer[1])
     except (EOFError, OSError):
         return None
+
+
+def report(progress: Any) -> None:
+    """In a worker process: send ``progress`` (plain data) to the page that runs the study
+    (its :attr:`Job.on_progress`); elsewhere (a study run in the server's own process, the
+    command line) nothing."""
+    if _sender is not None:
+        _sender.send(("progress", progress))
 
 
 def _work(send: Any, function: Callable[..., Any], args: tuple[Any, ...]) -> None:
@@ -229,6 +248,8 @@ def _work(send: Any, function: Callable[..., Any], args: tuple[Any, ...]) -> Non
     signal.signal(signal.SIGINT, signal.SIG_IGN)  # Ctrl-C of the server ends it through its parent
     os.nice(NICE)
     resource.setrlimit(resource.RLIMIT_AS, (MEMORY_LIMIT, MEMORY_LIMIT))
+    global _sender
+    _sender = send
     try:
         answer: tuple[Any, ...] = ("ok", function(*args))
     except InputError as error:

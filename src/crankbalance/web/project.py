@@ -64,10 +64,6 @@ STUDY_SETTINGS = (
     *("pf_bore", "pf_balance_factors", "pf_crank_inertia", "pf_friction_coefficient"),
     "pf_journal_diameter",
 )
-#: the web's own starting values where they differ from the schema's default: the
-#: counterweight optimiser starts with a smaller, seeded run than the command line's (a
-#: page answers in seconds, and the same run gives the same design)
-WEB_DEFAULTS = {"cw_iterations": "12", "cw_population": "1024", "cw_seed": "1"}
 
 
 def _schema_default(key: str) -> str:
@@ -78,13 +74,13 @@ def _schema_default(key: str) -> str:
 
 #: settings of the page and the study tabs (saved with the project as a comment line of
 #: the engine file): the page's own modes, then every study setting with its schema's
-#: default (or the web's, :data:`WEB_DEFAULTS`)
+#: default (no edge decides a default: the page starts where the command line does)
 DEFAULT_SETTINGS: dict[str, Any] = {
     "mass_mode": "parts",  # parts | totals
     "conrod_split": "cg",  # fraction | cg
     "curve_quantity": "force",
     "polar_order": 1,
-    **{key: WEB_DEFAULTS.get(key, _schema_default(key)) for key in STUDY_SETTINGS},
+    **{key: _schema_default(key) for key in STUDY_SETTINGS},
 }
 
 
@@ -106,6 +102,8 @@ class Project:
     overrides: list[dict[str, str]] = field(default_factory=list)
     spec: EngineSpec | None = None
     computed: Computed | None = None
+    #: the engine as loaded (:meth:`engine_state`), to tell whether it was edited since
+    loaded_state: str = ""
 
     # ------------------------------------------------------------------ loading
     @classmethod
@@ -182,6 +180,26 @@ class Project:
             if key not in ("cylinders", "throws")
         ]
         self.validate()
+        self.loaded_state = self.engine_state()
+
+    def engine_state(self) -> str:
+        """What describes the engine in the form (its engine-file dictionary as the form
+        would write it, without the description), as one text to compare."""
+        data, errors = self.file_dict()
+        data.pop("description", None)
+        return json.dumps([data, errors], sort_keys=True, default=str)
+
+    def saved_spec(self) -> EngineSpec:
+        """The engine as saved: only what describes the current engine. The description of
+        the engine as loaded (a preset's, a file's) is dropped once the engine was edited:
+        the page cannot tell whether its words still hold (docs/web.md)."""
+        if self.spec is None:
+            raise InputError(
+                "project", None, "has errors; correct the fields marked in red before saving"
+            )
+        if not self.spec.description or self.engine_state() == self.loaded_state:
+            return self.spec
+        return self.spec.replace(description="")
 
     # ------------------------------------------------------------------ editing
     def set(self, key: str, text: str) -> dict[str, str]:
@@ -370,22 +388,16 @@ class Project:
 
     # ------------------------------------------------------------------ saving
     def to_toml(self) -> str:
-        """The project as an engine file (its settings in a comment line the CLI ignores)."""
+        """The project as an engine file (its settings in a comment line the CLI ignores):
+        :meth:`saved_spec`."""
         from ..io.engine_file import engine_to_toml
 
-        if self.spec is None:
-            raise InputError(
-                "project", None, "has errors; correct the fields marked in red before saving"
-            )
+        spec = self.saved_spec()
         settings = json.dumps(self.settings, separators=(",", ":"), sort_keys=True)
-        return f"{SETTINGS_TAG}{settings}\n" + engine_to_toml(self.spec)
+        return f"{SETTINGS_TAG}{settings}\n" + engine_to_toml(spec)
 
     def to_json(self) -> str:
-        if self.spec is None:
-            raise InputError(
-                "project", None, "has errors; correct the fields marked in red before saving"
-            )
-        return json.dumps(self.spec.to_data(), indent=2) + "\n"
+        return json.dumps(self.saved_spec().to_data(), indent=2) + "\n"
 
 
 # --------------------------------------------------------------------------- reading

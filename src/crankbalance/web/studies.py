@@ -215,9 +215,36 @@ def optimise(required: float, o: Any) -> Any:
     [kg m]: the study ``counterweight-optimize`` of the command line with the settings of
     :func:`counterweight_inputs`; its result (the optimiser's designs and front)."""
     from ..studies.registry import execute
+    from .pool import report
+
+    def progress(state: Any) -> None:
+        report(
+            {
+                "iteration": state.iteration,
+                "iterations": state.n_iterations,
+                "evaluated": state.nfev,
+                "feasible": state.n_feasible,
+                "elapsed": state.elapsed,
+            }
+        )
 
     assert abs(o.first_moment - required) <= 1e-12 * required
-    return execute("counterweight-optimize", None, o, naming=lambda f: "cw_" + f).optimum
+    return execute(
+        "counterweight-optimize", None, o, naming=lambda f: "cw_" + f, progress=progress
+    ).optimum
+
+
+def progress_text(progress: dict[str, Any]) -> str:
+    """The optimiser's progress in words, with the time left estimated from the rounds done
+    (each round evaluates about as many designs)."""
+    done, total = int(progress["iteration"]), int(progress["iterations"])
+    elapsed = float(progress["elapsed"])
+    left = elapsed / done * (total - done) if done else None
+    estimate = "" if left is None else f", about {left:.0f} s left" if left >= 1 else ", <1 s left"
+    return (
+        f"optimising … round {done} of {total}, {progress['evaluated']:,} designs evaluated "
+        f"({progress['feasible']:,} feasible), {elapsed:.1f} s{estimate}"
+    )
 
 
 def pick_design(optimum: Any, choice: str) -> Any:
@@ -334,16 +361,15 @@ def performance_study(computed: Computation, settings: dict[str, Any]) -> Any:
 
 
 # --------------------------------------------------------------------------- explorer
-def explore(problem: Any, objectives: tuple[str, str], select: Any, key: str, most: int) -> Any:
-    """The Explorer tab's run: every candidate kept (at most ``most``), the Pareto set over
-    the two objectives, the rows by increasing column ``key`` (the explorer's runner on the
-    tab's own problem; the command line's ``explore`` keeps a top-N list instead)."""
-    from ..physics.explore import merit
-    from ..studies.explore import Keep
-    from ..studies.explore import run as run_explore
+def explore(settings: Any, most: int) -> Any:
+    """The Explorer tab's run: the study ``explore`` of the command line (no engine: the
+    layout's plain engine) with the tab's settings, its Pareto set with the round-off
+    tolerance of :func:`crankbalance.physics.explore.rank.tolerances` (ties kept as the
+    command line keeps them); the rows of its figure run, every candidate kept by the filter
+    (at most ``most``) by increasing top-N key."""
+    from ..studies.explorer import explore as explore_study
 
-    keep = Keep(objectives=objectives, key=key, n=most)
-    return run_explore(problem, merit.merit, select=select, keep=keep)
+    return explore_study(None, settings, figure_points=most).figure
 
 
 # --------------------------------------------------------------------------- the JSON API

@@ -42,6 +42,10 @@ def space_warnings(optimum: Any, limit: float) -> list[str]:
     return out
 
 
+#: feasible designs drawn beside the Pareto front at most (a sample; the front is drawn
+#: whole): a run evaluates up to a million designs, more than a browser draws smoothly
+PARETO_CLOUD = 3000
+
 #: argument names of the optimiser -> the settings of this tab
 ALIASES = {
     name: f"cw_{name}"
@@ -71,14 +75,17 @@ class CounterweightTab(StudyTab):
                 )
                 self.cw_space = ui.markdown("").classes("text-grey-8 max-w-xs").mark("cw-space")
                 with button_row():
-                    ui.button("Optimise", on_click=self.optimise).props("color=primary").mark(
-                        "optimise"
+                    self.optimise_button = (
+                        ui.button("Optimise", on_click=self.optimise)
+                        .props("color=primary data-testid=optimise")
+                        .mark("optimise")
                     )
                     self.cancel_button()
             with ui.card().classes("grow"):
                 ui.label("Results").classes("text-subtitle1")
                 self.rerun_note()
-                self.cw_summary = ui.markdown("").mark("cw-summary")
+                self.cw_progress = ui.label("").props("data-testid=cw-progress").mark("cw-progress")
+                self.cw_summary = ui.markdown("").props("data-testid=cw-summary").mark("cw-summary")
                 self.cw_choice = (
                     ui.select(
                         ["least mass", "least radius"],
@@ -98,7 +105,7 @@ class CounterweightTab(StudyTab):
             self.card(
                 "pareto",
                 "Pareto front (mass against radial space)",
-                lambda: plot_or_none("pareto_front", self.optimum),
+                lambda: plot_or_none("pareto_front", self.optimum, PARETO_CLOUD),
             )
             self.card(
                 "profile",
@@ -138,10 +145,14 @@ class CounterweightTab(StudyTab):
         if not str(settings.get("cw_max_radius", "")).strip():
             settings["cw_max_radius"] = f"{limit * 1e3:.6g} mm"  # the engine's space
         started = self.stamp()
+        self.optimise_button.disable()  # one run at a time; Cancel stops it
+        self.cw_progress.set_text("optimising … starting")
         try:
             required, o = studies.counterweight_inputs(c, settings)  # and the work budget
-            self.cw_summary.set_content("optimising …")
-            optimum = await self.in_worker(self.what, studies.optimise, required, o)
+            self.cw_summary.set_content("")
+            optimum = await self.in_worker(
+                self.what, studies.optimise, required, o, progress=self.show_progress
+            )
         except InputError as error:
             message = show_error(self.page, error, ALIASES)
             if error.field == "constraints" and settings["cw_max_radius"] != (
@@ -150,6 +161,9 @@ class CounterweightTab(StudyTab):
                 message += f" (*Largest radial space* was empty: the engine's {limit * 1e3:.1f} mm)"
             self.cw_summary.set_content(message)
             return
+        finally:
+            self.optimise_button.enable()
+            self.cw_progress.set_text("")
         if optimum is None:
             self.cw_summary.set_content(CANCELLED)
             return
@@ -170,6 +184,11 @@ class CounterweightTab(StudyTab):
         self.cw_summary.set_content("  \n".join(text + space_warnings(optimum, limit)))
         for card in self.cards:
             card.refresh()
+
+    def show_progress(self, progress: dict[str, Any]) -> None:
+        """A progress report of the running optimiser (after each of its rounds)."""
+        if self.page.job is not None and self.page.job.owner == self.name:
+            self.cw_progress.set_text(studies.progress_text(progress))
 
     def show_design(self) -> None:
         for card in self.cards:

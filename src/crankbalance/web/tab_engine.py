@@ -9,7 +9,12 @@ from nicegui import ui
 from ..output.figures.crank3d import crank_3d
 from .crank_editor import CrankEditor
 from .form import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
-from .widgets import FIGURE_CSS, Tab
+from .tab_results import balance_lines
+from .widgets import FIGURE_CSS, FIGURE_JS, Tab
+
+#: the key results beside the form list at most this many components the balancing leaves
+#: (the largest first, as the balance result orders them; the Results tab has them all)
+KEY_LEFT = 4
 
 #: what the balance factor does, shown under the balancing fields
 BALANCE_FACTOR_WORDS = (
@@ -39,20 +44,36 @@ class EngineTab(Tab):
     def build(self) -> None:
         ui.add_css(".cb-warning .q-field__messages { color: #a15c00; font-weight: 500; }")
         ui.add_css(FIGURE_CSS)  # the figures of every tab
+        ui.add_body_html(FIGURE_JS)
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Engine general parameters").classes("text-subtitle1")
                 with ui.grid(columns=2):
                     for f in ENGINE_FIELDS:
                         self.page.field(f)
-            with ui.card().mark("engine-details"):
-                ui.label("Offsets, rod positions and radial rods").classes("text-subtitle1")
-                ui.label(DETAIL_WORDS).classes("text-caption text-grey-8 max-w-md")
-                with ui.grid(columns=2):
-                    for f in DETAIL_FIELDS:
-                        self.page.field(f)
-                # emptied when the layout is no longer W (else it is refused there)
-                self.page.inputs["w_type"].props("clearable")
+            # beside the general card from 1280 px wide: grows from 380 px, not from its
+            # content's width (a long line of the results would push it below the form)
+            with ui.column().style("flex: 1 1 380px; min-width: 0"):
+                with (
+                    ui.card().classes("w-full").props("data-testid=key-results").mark("key-results")
+                ):
+                    ui.label("Key results").classes("text-subtitle1")
+                    self.key_stale = (
+                        ui.label("")
+                        .classes("text-negative text-body1")
+                        .props("data-testid=key-stale")
+                        .mark("key-stale")
+                    )
+                    self.key_stale.set_visibility(False)
+                    self.key_results = (
+                        ui.markdown("").props("data-testid=key-lines").mark("key-lines")
+                    )
+                self.show_3d = (
+                    ui.switch("Live 3-D view", value=True, on_change=self._toggle_3d)
+                    .props("data-testid=show-3d")
+                    .mark("show-3d")
+                )
+                self.crank_card = self.card("crank3d", "Crankshaft (3-D)", self._crank_figure)
             with ui.card():
                 ui.label("Balancing components parameters").classes("text-subtitle1")
                 with ui.grid(columns=2):
@@ -66,13 +87,18 @@ class EngineTab(Tab):
                 ui.label(BALANCE_FACTOR_WORDS).classes("text-caption text-grey-8 max-w-md").mark(
                     "balance-factor-explained"
                 )
-            with ui.column().classes("grow min-w-[420px]"):
-                self.show_3d = (
-                    ui.switch("Live 3-D view", value=True, on_change=self._toggle_3d)
-                    .props("data-testid=show-3d")
-                    .mark("show-3d")
-                )
-                self.crank_card = self.card("crank3d", "Crankshaft (3-D)", self._crank_figure)
+            with (
+                ui.expansion("Offsets, rod positions and radial rods", value=self._details_used())
+                .classes("q-card")
+                .props("data-testid=engine-details header-class=text-subtitle1")
+                .mark("engine-details") as self.details
+            ):
+                ui.label(DETAIL_WORDS).classes("text-caption text-grey-8 max-w-md")
+                with ui.grid(columns=2):
+                    for f in DETAIL_FIELDS:
+                        self.page.field(f)
+                # emptied when the layout is no longer W (else it is refused there)
+                self.page.inputs["w_type"].props("clearable")
         self.editor = CrankEditor(self.page)
         self.editor.build()
 
@@ -105,6 +131,30 @@ class EngineTab(Tab):
 
     def reset(self) -> None:
         self.editor.rebuild()
+        self.details.set_value(self._details_used())
+
+    def _details_used(self) -> bool:
+        """Whether the engine uses a field of the detail card (offsets, rod positions,
+        radial rods, VR): the card opens for it and stays folded for the others."""
+        return any(self.page.project.texts.get(f.key, "").strip() for f in DETAIL_FIELDS)
+
+    def show(self, c: Any) -> None:
+        """The key results beside the form: the speed, the counterweights and shafts, the
+        residuals, and the largest components the balancing leaves."""
+        b = c.study.to_dict()
+        left = b.get("remaining") or []
+        lines = balance_lines(b)
+        lines.append("**Left after balancing:** " + ("none" if not left else ""))
+        items = [f"- {item['text']}" for item in left[:KEY_LEFT]]
+        if len(left) > KEY_LEFT:
+            items.append(f"- and {len(left) - KEY_LEFT} smaller (see Results)")
+        self.key_results.set_content("  \n".join(lines) + "\n\n" + "\n".join(items))
+
+    def show_fresh(self, fresh: bool, problem: str) -> None:
+        """The key results only for the form as it is, else why not."""
+        self.key_stale.set_text("" if fresh else f"Not computed: {problem}.")
+        self.key_stale.set_visibility(not fresh)
+        self.key_results.set_visibility(fresh)
 
     def _toggle_3d(self) -> None:
         """The 3-D view can be switched off (software WebGL is heavy on small machines)."""

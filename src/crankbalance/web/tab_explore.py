@@ -18,6 +18,7 @@ from __future__ import annotations
 
 import functools
 import math
+import re
 import threading
 from typing import Any
 
@@ -54,6 +55,46 @@ CHOICES = {
 }
 #: the table's key: the largest moment left after crank counterweights
 KEY = "residual_M_Nm"
+#: the explorer's columns without an order, in words (docs/explorer.md's table of columns)
+COLUMN_WORDS = {
+    "Frot_N": "force of the rotating masses (no counterweights)",
+    "Mrot_Nm": "couple of the rotating masses (no counterweights)",
+    "cw_mass_kg": "counterweight mass",
+    "shafts": "balance shafts needed",
+    "shaft_mass_kg": "balance-shaft mass",
+    "residual_F_N": "largest force left after balancing",
+    "residual_M_Nm": "largest moment left after balancing",
+    "mirror_rad": "distance of the crank from its mirror image",
+    "interval_dev_rad": "firing intervals' deviation from even",
+    "bank_interval_dev_rad": "worst bank's firing intervals' deviation from even",
+}
+#: an explorer column's unit suffix -> its unit as shown
+UNITS = (("_Nm", "N·m"), ("_N", "N"), ("_kg", "kg"), ("_rad", "rad"))
+#: a free force's or moment's column: ``F2_N``, ``M1f_Nm`` (f forward, b backward)
+FREE_COLUMN = re.compile(r"^([FM])(\d+)([fb]?)_(N|Nm)$")
+#: what the table's column ``equiv`` counts
+EQUIVALENTS_NOTE = (
+    "*Orders giving it*: how many firing orders of the problem give this same engine "
+    "(renumbered from the other end, run backwards or mirrored: the same forces, moments "
+    "and excitations); the row shows the first of them."
+)
+
+
+def column_words(name: str) -> str:
+    """An explorer column in words with its unit: ``M1_Nm`` -> ``free moment, order 1
+    [N·m]``, ``X1p5`` -> ``torsional excitation, order 1.5``."""
+    unit = next((u for suffix, u in UNITS if name.endswith(suffix)), "")
+    free = FREE_COLUMN.match(name)
+    if free:
+        kind, order, part, _ = free.groups()
+        what = "free force" if kind == "F" else "free moment"
+        part = {"f": ", forward", "b": ", backward", "": ""}[part]
+        words = f"{what}, order {order}{part}"
+    elif re.fullmatch(r"X\d+(p\d+)?", name):
+        words = f"torsional excitation, order {name[1:].replace('p', '.')}"
+    else:
+        words = COLUMN_WORDS.get(name, name)
+    return f"{words} [{unit}]" if unit else words
 
 
 @functools.lru_cache(maxsize=8)
@@ -66,24 +107,29 @@ def _columns(orders: int = 8) -> tuple[str, ...]:
     return tuple(merit.merit(enumeration.chunk(problem, 0, 1), orders=orders))
 
 
-def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float | None]:
-    """The problem, the two objectives, the filter, the table's rows and the bank angle
+def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], ExploreOptions, int, float | None]:
+    """The problem, the two objectives, the settings of the study ``explore`` (the tab's
+    objectives, filter and the table's key :data:`KEY`), the table's rows and the bank angle
     [rad] from the tab's texts; an :class:`InputError` names the setting's key."""
     from ..physics.explore import orders, rank
     from ..schema.settings import parse_options
 
     values = {k: (texts.get(k, "").strip() or None) for k in SETTINGS}
-    o = parse_options(
-        ExploreOptions,
-        {k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank", "top")},
-    )
-    if o.top > MAX_ROWS:
-        raise InputError("top", values["top"], f"1 to {MAX_ROWS} rows")
     columns = _columns()
     x = rank.column_name(values["x"] or "", columns, "x")
     y = rank.column_name(values["y"] or "", columns, "y")
     text = values["filter"]
-    chosen = None if text is None else rank.parse_filter(text, columns, "filter")
+    if text is not None:  # checked here to be named beside the tab's field
+        rank.parse_filter(text, columns, "filter")
+    o = parse_options(
+        ExploreOptions,
+        {
+            **{k: values[k] for k in ("layout", "cylinders", "strokes", "bank_angle", "crank")},
+            **{"top": values["top"], "objectives": f"{x},{y}", "filter": text, "top_key": KEY},
+        },
+    )
+    if o.top > MAX_ROWS:
+        raise InputError("top", values["top"], f"1 to {MAX_ROWS} rows")
     problem = orders.problem(o.layout, o.cylinders, o.strokes, o.bank_angle, crank=o.crank)
     total = orders.count(problem)
     if total > MAX_INDICES:
@@ -93,7 +139,7 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], Any, int, float 
             f"a problem of at most {MAX_INDICES:,} firing orders in the web app (this one has "
             f"{total:,}): run it with `crankbalance explore --workers N` (docs/explorer.md)",
         )
-    return problem, (x, y), chosen, o.top, o.bank_angle
+    return problem, (x, y), o, o.top, o.bank_angle
 
 
 def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
@@ -114,8 +160,9 @@ def candidate_file(
 ) -> dict[str, Any]:
     """The engine-file dictionary ``data`` (the current engine) with the crank of the
     explorer's candidate ``row`` of ``problem``: layout, cylinders, strokes, bank angle
-    [rad], firing order and throw angles; custom throws, mass overrides and the webs list
-    (their counts follow the crank) are dropped, and so are the per-bank and per-cylinder
+    [rad], firing order and throw angles; the description (the current engine's words),
+    custom throws, mass overrides and the webs list (their counts follow the crank) are
+    dropped, and so are the per-bank and per-cylinder
     offsets and rod positions unless the layout and the number of cylinders stay (then a
     maker's numbering stays too, and the firing order is written in it)."""
     order = [int(c) for c in row["firing_order"]]
@@ -139,6 +186,7 @@ def candidate_file(
     out = {k: v for k, v in data.items() if k != "crank_train"}
     out["crank_train"] = train
     out["name"] = f"Explorer {problem.layout}-{len(order)} {'-'.join(map(str, order))}"
+    out.pop("description", None)  # the current engine's words, not the candidate's
     out.get("masses", {}).pop("override", None)
     out.get("counterweights", {}).pop("webs", None)
     return out
@@ -177,6 +225,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
                     .mark("explore-table")
                 )
                 self.table.on("rowClick", self.on_row)
+                ui.markdown(EQUIVALENTS_NOTE).classes("text-grey-7").mark("explore-equivalents")
                 ui.label("Click a row (or a point) to load that engine in the form.").classes(
                     "text-grey-7"
                 )
@@ -221,23 +270,24 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     async def run(self) -> None:
         done = await self.run_study(
             studies.explore,
-            lambda parsed, _: (*parsed[:3], KEY, MAX_INDICES),
+            lambda parsed, _: (parsed[2], MAX_INDICES),
             "exploring …",
             engine=False,
         )
         if done is None:
             return
-        (problem, objectives, _select, top, bank_angle), result = done
+        (problem, objectives, _study, top, bank_angle), result = done
         self.result, self.problem, self.objectives, self.top = result, problem, objectives, top
         self.bank_angle = bank_angle
         self.chosen = int(result.top["index"][0]) if result.rows else None
         self.summary.set_content(
             f"{result.total:,} firing orders, **{result.candidates:,} distinct engines**, "
             f"{result.rows:,} kept by the filter, Pareto set of "
-            f"{result.pareto['index'].size if result.pareto else 0} over `{objectives[0]}` and "
-            f"`{objectives[1]}` ({result.seconds:.2f} s). The table is ordered by `{KEY}` (the "
-            "largest moment left after crank counterweights); figures are of the plain engine "
-            "of the enumeration (docs/explorer.md)."
+            f"{result.pareto['index'].size if result.pareto else 0} over "
+            f"{column_words(objectives[0])} (`{objectives[0]}`) and "
+            f"{column_words(objectives[1])} (`{objectives[1]}`) ({result.seconds:.2f} s). "
+            f"The table is ordered by the {column_words(KEY)} (`{KEY}`); figures are of the "
+            "plain engine of the enumeration (docs/explorer.md)."
         )
         self._fill_table()
         for card in self.cards:
@@ -250,8 +300,8 @@ class ExploreTab(TabSettingsMixin, StudyTab):
             {"name": "rank", "label": "#", "field": "rank"},
             {"name": "order", "label": "firing order", "field": "order", "align": "left"},
             {"name": "throws", "label": "throws [deg]", "field": "throws", "align": "left"},
-            {"name": "equivalents", "label": "equiv", "field": "equivalents"},
-            *({"name": n, "label": n, "field": n} for n in names),
+            {"name": "equivalents", "label": "orders giving it", "field": "equivalents"},
+            *({"name": n, "label": column_words(n), "field": n} for n in names),
         ]
         self.table.rows = [
             {

@@ -24,22 +24,24 @@ from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
 from ..schema.settings import BearingOptions, BearingSweepOptions
 from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 
-#: the tab's settings: key -> (label, default, hint)
+#: the schema's default of the gas forces (the page's select says on or off)
+GAS_DEFAULT = bool(BearingOptions.FIELDS["gas"].default)
+#: the tab's settings: key -> (label, default, hint), each starting at the schema's default
+#: (the command line's)
 SETTINGS: dict[str, tuple[str, str, str]] = {
     # the page's patterns are separated by ";" (the command line gives --pattern per pattern)
     "patterns": from_schema(
         BearingSweepOptions,
         "patterns",
-        default="all; none",
+        default="; ".join(BearingSweepOptions.FIELDS["patterns"].default),
         hint="all, none, file or 0/1 per web (two per throw); patterns separated by ;",
     ),
-    "balance_factors": from_schema(BearingSweepOptions, "balance_factors", default="0.4, 0.5, 0.6"),
+    "balance_factors": from_schema(BearingSweepOptions, "balance_factors"),
     "crank_model": from_schema(BearingSweepOptions, "crank_model"),
-    "gas": from_schema(BearingOptions, "gas", default="on"),  # a select of on and off
+    # a select of on and off, starting at the schema's default
+    "gas": from_schema(BearingOptions, "gas", default="on" if GAS_DEFAULT else "off"),
     "speed": from_schema(BearingOptions, "speed"),
-    # the page's sweep samples a revolution more coarsely than the command line: it answers
-    # within the page's budget (docs/web.md)
-    "samples": from_schema(BearingOptions, "samples", default="120"),
+    "samples": from_schema(BearingOptions, "samples"),
     "bearing_stiffness": from_schema(
         BearingOptions, "bearing_stiffness", hint="empty: rigid, e.g. 5e8 N/m"
     ),

@@ -35,6 +35,13 @@ class MassesTab(Tab):
                         page.field(f)
             with ui.card().classes("min-w-[360px]"):
                 ui.label("Resulting masses").classes("text-subtitle1")
+                self.not_computed = (
+                    ui.label("")
+                    .classes("text-negative text-body1 max-w-sm")
+                    .props("data-testid=masses-stale")
+                    .mark("masses-stale")
+                )
+                self.not_computed.set_visibility(False)
                 self.mass_summary = ui.markdown("").mark("mass-summary")
                 self.mass_table = (
                     ui.table(
@@ -55,9 +62,17 @@ class MassesTab(Tab):
                         rows=[],
                         row_key="cylinder",
                     )
-                    .props("dense flat")
+                    .props("dense flat data-testid=mass-table")
                     .mark("mass-table")
                 )
+
+    def show_fresh(self, fresh: bool, problem: str) -> None:
+        """The resulting masses only for the form as it is: while it cannot be computed
+        they are hidden and the card says why."""
+        self.not_computed.set_text("" if fresh else f"Not computed: {problem}.")
+        self.not_computed.set_visibility(not fresh)
+        self.mass_summary.set_visibility(fresh)
+        self.mass_table.set_visibility(fresh)
 
     def show(self, c: Any) -> None:
         model = c.analysis.model

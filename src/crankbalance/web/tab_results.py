@@ -146,6 +146,110 @@ def summary_lines(c: Any) -> list[str]:
     return lines
 
 
+#: the columns of the balancing card's table: one row per crank counterweight and per mass
+#: of each balance shaft (:func:`balance_rows`)
+BALANCE_COLUMNS = [
+    {"name": k, "label": label, "field": k, "align": "left" if k == "part" else "right"}
+    for k, label in (
+        ("part", "Part"),
+        ("position", "Position"),
+        ("mass", "Mass"),
+        ("radius", "CG radius"),
+        ("angle", "Angle / phase"),
+    )
+]
+
+
+def _mass(kg: float) -> str:
+    """A mass [kg] as shown: grams, 5 significant digits."""
+    return text(kg, "mass", 5)
+
+
+def balance_rows(b: dict[str, Any]) -> list[dict[str, Any]]:
+    """The balancing card's rows of a balance result (``BalanceStudy.to_dict``): each crank
+    counterweight (its web, throw, position along the crank, mass, CG radius, direction)
+    and each mass of each balance shaft (its shaft's rotation and speed, position, mass,
+    CG radius, phase); angles at crank angle 0, degrees from the first cylinder's pin."""
+    rows: list[dict[str, Any]] = []
+    for key, label in (("counterweight", "Counterweight"), ("extra_counterweights", "Extra")):
+        cw = b.get(key)
+        if not cw:
+            continue
+        for web in cw.get("webs", []):
+            rows.append(
+                {
+                    "part": f"{label} web {web['web']} (throw {web['throw']})",
+                    "position": text(web["position_m"], "length"),
+                    "mass": _mass(web["mass_kg"]),
+                    "radius": text(cw["cg_radius_m"], "length"),
+                    "angle": text(web["direction_deg"], "angle_deg", 5),
+                }
+            )
+    for key, label in (("primary_shafts", "Primary"), ("secondary_shafts", "Secondary")):
+        group = b.get(key)
+        if not group:
+            continue
+        for k, shaft in enumerate(group["shafts"], start=1):
+            name = f"{label} shaft {k} ({shaft['rotation']}, {abs(shaft['speed_ratio'])}×)"
+            for mass in shaft["masses"]:
+                rows.append(
+                    {
+                        "part": name,
+                        "position": text(mass["position_m"], "length"),
+                        "mass": _mass(mass["mass_kg"]),
+                        "radius": text(shaft["cg_radius_m"], "length"),
+                        "angle": f"phase {text(mass['phase_deg'], 'angle_deg', 5)}",
+                    }
+                )
+    return [{**row, "key": k} for k, row in enumerate(rows)]
+
+
+def balance_lines(b: dict[str, Any]) -> list[str]:
+    """The lines above the balancing card's table: what balances the engine at which
+    speed, how many parts of each kind, the first- and second-order residuals."""
+    speed = float(b["engine"]["speed_rad_s"])
+    lines = [
+        f"Balanced for **{text(speed, 'speed', 5)}** (the masses hold at every speed; the "
+        "forces left scale with its square)"
+    ]
+    cw = b["counterweight"]
+    if cw and cw.get("webs"):
+        lines.append(
+            f"**Crank counterweights:** {len(cw['webs'])}, "
+            f"{_mass(cw['total_mass_kg'])} in all ({cw['method']})"
+        )
+    else:
+        lines.append("**Crank counterweights:** none")
+    for key, label in (("primary_shafts", "Primary"), ("secondary_shafts", "Secondary")):
+        group = b[key]
+        if group:
+            lines.append(
+                f"**{label} balance shafts:** {len(group['shafts'])} ({group['arrangement']})"
+            )
+        else:
+            lines.append(f"**{label} balance shafts:** none")
+    r = b["residual"]
+    lines.append(
+        f"Residual primary force {text(r['order1_force_N'], 'force')}, moment "
+        f"{text(r['order1_moment_Nm'], 'moment')}; secondary force "
+        f"{text(r['order2_force_N'], 'force')}, moment {text(r['order2_moment_Nm'], 'moment')}"
+    )
+    return lines
+
+
+def left_lines(b: dict[str, Any]) -> list[str]:
+    """ "What is left" after the balancing (``remaining`` of the balance result): each free
+    component that stays, and what would remove it; then the balancing's notes."""
+    lines = ["**What is left**"]
+    remaining = b.get("remaining") or []
+    for item in remaining:
+        lines.append(f"- {item['text']} → {item['next_step']}")
+    if not remaining:
+        lines.append("- nothing: no free force or moment is left up to this order")
+    lines += [f"_{n}_" for n in b["notes"]]
+    return lines
+
+
 class ResultsTab(Tab):
     name = "results"
     curves: FigureCard
@@ -167,6 +271,16 @@ class ResultsTab(Tab):
             with ui.card().classes("min-w-[340px]"):
                 ui.label("Balancing masses").classes("text-subtitle1")
                 self.balance_summary = ui.markdown("").mark("balance-summary")
+                self.balance_table = (
+                    ui.table(columns=BALANCE_COLUMNS, rows=[], row_key="part")
+                    .props("dense flat wrap-cells")
+                    .classes("w-full")
+                    .props("data-testid=balance-table")
+                    .mark("balance-table")
+                )
+                self.balance_left = (
+                    ui.markdown("").props("data-testid=balance-left").mark("balance-left")
+                )
                 with button_row():
                     ui.button(
                         "Analysis JSON", on_click=lambda: page.download_data("analysis")
@@ -203,7 +317,7 @@ class ResultsTab(Tab):
                         rows=[],
                         row_key="order",
                     )
-                    .props("dense flat")
+                    .props("dense flat data-testid=orders-table")
                     .mark("orders-table")
                 )
         with ui.row().classes("w-full items-center gap-4"):
@@ -278,30 +392,10 @@ class ResultsTab(Tab):
             self.polar_order.set_value(order)
         self.quiet = False
         b = c.study.to_dict()
-        lines = []
-        cw = b["counterweight"]
-        if cw:
-            angle = "—" if cw["angle_deg"] is None else text(cw["angle_deg"], "angle_deg", 5)
-            lines.append(
-                f"**Counterweight mass:** {cw['mass_kg']:.4f} kg × {cw['count']} "
-                f"at {text(cw['cg_radius_m'], 'length')}, angle {angle}"
-            )
-        for key, label in (("primary_shafts", "Primary"), ("secondary_shafts", "Secondary")):
-            group = b[key]
-            if group:
-                lines.append(
-                    f"**{label} shaft mass:** {group['mass_kg']:.4f} kg ({group['arrangement']})"
-                )
-            else:
-                lines.append(f"**{label} shafts:** none")
-        r = b["residual"]
-        lines.append(
-            f"Residual primary force {text(r['order1_force_N'], 'force')}, moment "
-            f"{text(r['order1_moment_Nm'], 'moment')}; secondary force "
-            f"{text(r['order2_force_N'], 'force')}, moment {text(r['order2_moment_Nm'], 'moment')}"
-        )
-        lines += [f"_{n}_" for n in b["notes"]]
-        self.balance_summary.set_content("  \n".join(lines))
+        self.balance_table.rows = balance_rows(b)
+        self.balance_table.update()
+        self.balance_summary.set_content("  \n".join(balance_lines(b)))
+        self.balance_left.set_content("\n".join(left_lines(b)))
 
     def _polar(self, c: Any) -> Any:
         order: Any = self.polar_order.value

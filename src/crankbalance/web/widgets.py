@@ -60,6 +60,108 @@ FIGURE_CSS = """
 }
 """
 
+#: plotly's config of every figure card: not "responsive" (NiceGUI's plot then adds no
+#: ResizeObserver of its own; that one resized figures of hidden tab panels too, and
+#: plotly.js refused each with "Resize must be passed a displayed plot div element")
+FIGURE_CONFIG = {"responsive": False}
+#: the figures' own resizing (added to the page once, by the Engine tab): one ResizeObserver
+#: on every figure card's plot (class ``cb-figure``, found as they are built), which resizes
+#: a drawn plot when its box changes and it is displayed; a plot in a hidden tab panel is
+#: resized when the panel is shown (its box then changes from nothing to the panel's width)
+FIGURE_JS = """
+<script>
+(() => {
+  const resize = (el) => {
+    if (!el.isConnected || el.offsetParent === null || !el._fullLayout) return;
+    const plot = window.getElement && getElement(Number(el.id.replace(/^c/, "")));
+    if (plot && plot.Plotly) plot.Plotly.Plots.resize(el);
+  };
+  const observer = new ResizeObserver((entries) => entries.forEach((e) => resize(e.target)));
+  const plots = document.getElementsByClassName("cb-figure");
+  const watched = new WeakSet();
+  let pending = false;
+  const watch = () => {
+    pending = false;
+    for (const el of plots) {
+      if (!watched.has(el)) { watched.add(el); observer.observe(el); }
+    }
+  };
+  new MutationObserver(() => {
+    if (!pending) { pending = true; requestAnimationFrame(watch); }
+  }).observe(document.body, {childList: true, subtree: true});
+  watch();
+})();
+</script>
+"""
+
+#: the smallest span of a figure's value axis, as a share of the largest magnitude on it:
+#: the resolution of the page's 5 significant digits (:func:`fmt_g`); a curve that varies
+#: less (0.0004 % in issue 28) is drawn flat in the middle of that span instead of being
+#: stretched over the axis, which drew an "optimum" out of round-off
+MIN_SPAN_SHARE = 1e-4
+#: the card's note over a figure whose every value is 0 (drawn, but nothing to see)
+ALL_ZERO = "0 everywhere: every value of this figure is zero (nothing left to balance)."
+#: 2-D traces whose values are ``y`` (cartesian) or ``r`` (polar)
+CARTESIAN = ("scatter", "scattergl", "bar")
+POLAR = ("scatterpolar", "barpolar")
+
+
+def _values(trace: Any) -> Any | None:
+    """The finite values of a 2-D trace [its unit], None for any other trace (3-D, maps)."""
+    import numpy as np
+
+    kind = trace.type or "scatter"
+    data = trace.y if kind in CARTESIAN else trace.r if kind in POLAR else None
+    if data is None:
+        return None
+    try:
+        values = np.asarray(data, dtype=float).ravel()
+    except (TypeError, ValueError):  # categories on the value axis
+        return None
+    return values[np.isfinite(values)]
+
+
+def all_zero(figure: Any) -> bool:
+    """Whether every value of the figure's 2-D traces is 0 (and it has only such traces)."""
+    found = []
+    for trace in figure.data:
+        values = _values(trace)
+        if values is None:
+            return False
+        found.append(values)
+    return any(v.size for v in found) and all(not v.any() for v in found)
+
+
+def value_ranges(figure: Any, layout: dict[str, Any]) -> dict[str, list[float]]:
+    """The ranges to give the value axes of ``figure``'s line traces whose values vary by
+    less than :data:`MIN_SPAN_SHARE` of their magnitude (axis key of the layout -> range):
+    that span, centred on the values. Axes with bars (their range includes 0), a range or a
+    log scale of their own are left as they are."""
+    import numpy as np
+
+    lines: dict[str, list[Any]] = {}
+    bars: set[str] = set()
+    for trace in figure.data:
+        if (trace.type or "scatter") not in ("scatter", "scattergl"):
+            if trace.type == "bar":
+                bars.add(f"yaxis{(trace.yaxis or 'y')[1:]}")
+            continue
+        values = _values(trace)
+        if values is not None and values.size:
+            lines.setdefault(f"yaxis{(trace.yaxis or 'y')[1:]}", []).append(values)
+    out = {}
+    for key, parts in lines.items():
+        axis = layout.get(key) or {}
+        if key in bars or axis.get("range") is not None or axis.get("type") == "log":
+            continue
+        values = np.concatenate(parts)
+        low, high = float(values.min()), float(values.max())
+        span = MIN_SPAN_SHARE * max(abs(low), abs(high))
+        if span > 0 and high - low < span:
+            middle = 0.5 * (low + high)
+            out[key] = [middle - 0.5 * span, middle + 0.5 * span]
+    return out
+
 
 def button_row() -> Any:
     """A row of buttons that wraps (and stays a row on a phone, where the page's rows turn
@@ -197,7 +299,7 @@ class FigureCard:
             self.note = ui.label("").classes("text-grey-7")
             with ui.element("div").classes("cb-figure-box"):
                 self.plot = (
-                    ui.plotly({"data": [], "layout": {}})
+                    ui.plotly({"data": [], "layout": {}, "config": FIGURE_CONFIG})
                     .classes("w-full cb-figure")
                     .props(f"data-testid=figure-{name}")
                     .mark(f"figure-{name}")
@@ -215,10 +317,12 @@ class FigureCard:
             self.plot.set_visibility(False)
             self.sent = None
             return
-        self.note.set_text("")
+        self.note.set_text(ALL_ZERO if all_zero(self.figure) else "")
         self.plot.set_visibility(True)
         shown = self.figure.to_plotly_json()
         layout = {**shown.get("layout", {}), **FIGURE_LAYOUT}
+        for key, span in value_ranges(self.figure, layout).items():
+            layout[key] = {**layout.get(key, {}), "range": span, "autorange": False}
         layout["legend"] = {**layout.get("legend", {}), **LEGEND}
         title = layout.get("title")
         if isinstance(title, dict) and isinstance(title.get("text"), str):
@@ -231,6 +335,7 @@ class FigureCard:
             f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
         )
         shown["layout"] = layout
+        shown["config"] = FIGURE_CONFIG
         self.stale = False
         # an edit that leaves the figure as it is (the speed, for the 3-D crank) redraws
         # nothing: a 3-D scene costs the browser a fifth of a second in software WebGL
@@ -336,6 +441,11 @@ class Tab(ABC):
     def show(self, c: Any) -> None:  # noqa: B027 (optional: most tabs show only figures)
         """Show the numbers of the newly computed engine ``c``."""
 
+    def show_fresh(self, fresh: bool, problem: str) -> None:  # noqa: B027 (optional)
+        """Whether the computed engine is the form's (``fresh``), else why not (``problem``):
+        a tab that shows numbers outside the greyed result tabs (the Masses tab's resulting
+        masses) hides them while the form cannot be computed."""
+
     def reset(self) -> None:  # noqa: B027 (optional: only study tabs keep results)
         """Forget the results of the previous project (a new one was loaded)."""
 
@@ -434,11 +544,19 @@ class StudyTab(Tab):
         if job is not None and job.owner == self.name:
             job.cancel()
 
-    async def in_worker(self, what: str, function: Callable[..., Any], *args: Any) -> Any | None:
+    async def in_worker(
+        self,
+        what: str,
+        function: Callable[..., Any],
+        *args: Any,
+        progress: Callable[[Any], None] | None = None,
+    ) -> Any | None:
         """``function(*args)`` in a worker process (:func:`.pool.run`: bounded, second to
         the server, ended by :meth:`cancel_run` or when the page goes away); its result,
         None when cancelled. A page runs one study at a time; the study's own
-        :class:`InputError` is raised (a second study of the page is refused with one)."""
+        :class:`InputError` is raised (a second study of the page is refused with one).
+        ``progress`` is given each progress report of the study (:func:`.pool.report`), on
+        the server's event loop."""
         from . import pool
 
         page = self.page
@@ -449,6 +567,7 @@ class StudyTab(Tab):
                 "is still running on this page: wait for it or cancel it on its tab",
             )
         job = pool.Job(what, owner=self.name)
+        job.on_progress = progress
         page.job = job
         self.cancel.set_visibility(True)
         try:
@@ -520,8 +639,10 @@ def from_schema(
     """A row of a tab's own settings table (:attr:`TabSettingsMixin.settings_table`) that is
     the field ``name`` of the settings schema ``model``: (label, default text, hint), the
     schema's title and default, and its hint or else what it allows. A tab gives its own
-    ``default`` (a lighter run than the command line's) or ``hint`` (an example, or where
-    the page writes the value its own way) only where the schema has none or another."""
+    ``default`` only where the page writes the schema's default its own way (a select's
+    ``on`` for a flag, a study's choice where the schema leaves it empty), never another run
+    than the command line's; and its own ``hint`` (an example, or where the page writes the
+    value its own way) only where the schema has none or another."""
     spec = model.FIELDS[name]
     text = default_text(spec) if default is None else default
     return spec.title, text, hint or spec.hint or allowed(spec)
