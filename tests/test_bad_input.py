@@ -111,6 +111,21 @@ CASES: list[tuple[str, Callable[[dict[str, Any]], None], str]] = [
         "crank_train.throw",
     ),
     (
+        "custom with an unused crank pitch",
+        lambda d: (
+            d["crank_train"].update(
+                layout="custom",
+                throw=[
+                    {"position": f"{k * 90} mm", "angle": "0 deg", "banks": ["0 deg"]}
+                    for k in range(4)
+                ],
+            ),
+            d["crank_train"].pop("cylinders"),
+            d["crank_train"].pop("firing_order"),
+        ),
+        "crank_train.crank_pitch",
+    ),
+    (
         "radial with two cylinders",
         lambda d: d["crank_train"].update(layout="radial", cylinders=2, firing_order=None),
         "crank_train.cylinders",

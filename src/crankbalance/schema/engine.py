@@ -442,9 +442,11 @@ class CrankTrain(_EngineTable):
                 raise FieldProblem(
                     "throw", "layout 'custom' needs its throws as [[crank_train.throw]] tables"
                 )
-            for key in ("throw_angles", "bank_angle"):
+            for key in ("throw_angles", "bank_angle", "crank_pitch"):
                 if getattr(self, key) is not None:
-                    raise FieldProblem(key, "is not used with layout 'custom' (give it per throw)")
+                    raise FieldProblem(
+                        key, "is not used with layout 'custom' (each throw gives its own)"
+                    )
             count = sum(len(t.banks) for t in self.throw)
             if count > MAX_CYLINDERS:
                 raise FieldProblem(
