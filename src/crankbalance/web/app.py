@@ -34,6 +34,7 @@ from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
 from .tab_loads import LoadsTab
 from .tab_masses import MassesTab
+from .tab_mounts import MountsTab
 from .tab_performance import PerformanceTab
 from .tab_results import ResultsTab, order_rows
 from .tab_shaft import ShaftTab
@@ -56,10 +57,11 @@ TABS = (
     ("explore", "Explorer"),
     ("shop", "Balance shop"),
     ("loads", "Crank loads"),
+    ("mounts", "Mounts"),
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
-RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance")
+RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance", "mounts")
 #: the tabs built with the page (its first screen); every other tab's content is built when
 #: the tab is first opened (:meth:`Page.open_tab`), which keeps the page the server sends
 #: (and the browser mounts) small: about a third of the elements of all nine tabs
@@ -165,6 +167,7 @@ class Page:
             ExploreTab(self),
             ShopTab(self),
             LoadsTab(self),
+            MountsTab(self),
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]
