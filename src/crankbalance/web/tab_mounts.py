@@ -168,7 +168,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
                 self.modes_table = (
                     ui.table(
                         columns=[
-                            {"name": "mode", "label": "mode", "field": "mode", "align": "left"},
+                            {"name": "mode", "label": "mode", "field": "mode"},
                             {"name": "frequency", "label": "f [Hz]", "field": "frequency"},
                             *({"name": k, "label": h, "field": k} for k, h in ENERGY),
                         ],
@@ -185,14 +185,16 @@ class MountsTab(TabSettingsMixin, StudyTab):
                 self.orders_table = (
                     ui.table(
                         columns=[
-                            {"name": k, "label": label, "field": k, "align": a}
-                            for k, label, a in (
-                                ("order", "order", "left"),
-                                ("mount", "mount", "left"),
-                                ("force", "force [N]", "right"),
-                                ("speed", "at [rpm]", "right"),
-                                ("point", "point moves [mm]", "right"),
-                                ("point_speed", "at [rpm]", "right"),
+                            # Quasar's default alignment (right): a column aligned left
+                            # would need a class the page's stylesheet does not ship
+                            {"name": k, "label": label, "field": k}
+                            for k, label in (
+                                ("order", "order"),
+                                ("mount", "mount"),
+                                ("force", "force [N]"),
+                                ("speed", "at [rpm]"),
+                                ("point", "point moves [mm]"),
+                                ("point_speed", "at [rpm]"),
                             )
                         ],
                         rows=[],
