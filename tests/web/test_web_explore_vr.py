@@ -36,3 +36,39 @@ def test_a_banked_candidate_keeps_its_bank_angle(
     assert out["crank_train"]["bank_angle"] == f"{degrees:.9g} deg"
     loaded = EngineSpec.parse(out, source="candidate")
     assert loaded.crank_train.bank_angle == pytest.approx(math.radians(degrees))
+
+
+def test_a_vr_row_loads_with_its_bank_angle(server: str, browser) -> None:
+    """In the browser: explore the VR-4 at 15 deg, click a row; the engine loaded is a VR
+    with the bank angle explored (computed: the header names it)."""
+    playwright_api = pytest.importorskip("playwright.sync_api")
+    expect = playwright_api.expect
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    try:
+        page.goto(server + "/")
+        status = page.locator("[data-testid=status]").first
+        expect(status).to_contain_text("Results of:")
+        page.wait_for_function("() => window.socket && window.socket.connected")
+        tab = page.get_by_role("tab", name="Explorer", exact=True)
+        tab.click()
+        expect(tab).to_have_attribute("aria-selected", "true")
+        page.locator("[data-testid=explore-layout]").first.click()
+        page.get_by_role("option", name="vr", exact=True).click()
+        expect(page.locator("[data-testid=explore-layout]").first).to_contain_text("vr")
+        page.locator("[data-testid=explore-bank_angle]").first.fill("15 deg")
+        page.get_by_role("button", name="Explore").click()
+        summary = page.locator("[data-testid=explore-summary]").first
+        expect(summary).to_contain_text("distinct engines")
+        table = page.locator("[data-testid=explore-table]").first
+        table.locator("tbody tr").first.click()
+        expect(status).to_contain_text("Results of: Explorer vr-4")
+        engine = page.get_by_role("tab", name="Engine", exact=True)
+        engine.click()
+        expect(engine).to_have_attribute("aria-selected", "true")
+        expect(page.locator("[data-testid=field-layout]").first).to_contain_text("vr")
+        expect(page.locator("[data-testid=field-bank_angle]").first).to_have_value("15 deg")
+        assert not [e for e in errors if "Resize must be passed" not in e], errors
+    finally:
+        page.close()

@@ -52,3 +52,34 @@ async def test_loads_summary_warning_and_marks(user, form) -> None:
     form.set("field-rod_length", "150 mm")
     await form.until(lambda: form.rows("loads-cases") == [], "the result cleared")
     await user.should_not_see(marker="loads-warning")
+
+
+def test_loads_summary_in_the_browser(server: str, browser) -> None:
+    """In the browser: the summary, the highlighted warning and the marked rows."""
+    playwright_api = pytest.importorskip("playwright.sync_api")
+    expect = playwright_api.expect
+    summary = expected()["summary"]
+    page = browser.new_page(viewport={"width": 1280, "height": 800})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    try:
+        page.goto(server + "/?preset=inline3")
+        expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+        page.wait_for_function("() => window.socket && window.socket.connected")
+        tab = page.get_by_role("tab", name="Crank loads", exact=True)
+        tab.click()
+        expect(tab).to_have_attribute("aria-selected", "true")
+        for key, value in TYPED.items():
+            page.locator(f"[data-testid=loads-{key}]").first.fill(value)
+        page.locator(".q-tab-panel:visible").get_by_role("button", name="Run", exact=True).click()
+        expect(page.locator("[data-testid=loads-summary]").first).to_contain_text("Suggested:")
+        warning = page.locator("[data-testid=loads-warning]").first
+        expect(warning).to_be_visible()
+        expect(warning).to_have_text(f"Warning: {summary['warning']}.")
+        rows = page.locator("[data-testid=loads-cases]").first.locator("tbody tr")
+        expect(rows.nth(summary["suggested"]).locator("td").last).to_contain_text("suggested")
+        for n in summary["pareto"]:
+            expect(rows.nth(n).locator("td").last).to_contain_text("Pareto")
+        assert not [e for e in errors if "Resize must be passed" not in e], errors
+    finally:
+        page.close()
