@@ -31,6 +31,7 @@ LAZY = {
     "explore": "explore-table",
     "shop": "shop-summary",
     "loads": "loads-summary",
+    "mounts": "mounts-summary",
 }
 LABELS = dict(TABS)
 

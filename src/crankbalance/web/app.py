@@ -34,6 +34,7 @@ from .tab_engine import EngineTab
 from .tab_explore import ExploreTab
 from .tab_loads import LoadsTab
 from .tab_masses import MassesTab
+from .tab_mounts import MountsTab
 from .tab_performance import PerformanceTab
 from .tab_results import ResultsTab, order_rows
 from .tab_shaft import ShaftTab
@@ -56,6 +57,7 @@ TABS = (
     ("explore", "Explorer"),
     ("shop", "Balance shop"),
     ("loads", "Crank loads"),
+    ("mounts", "Mounts"),
 )
 #: the one line under the header saying what the tool does
 TAGLINE = (
@@ -64,7 +66,16 @@ TAGLINE = (
 )
 #: the tabs that show results of the computed engine (greyed, with the reason, while the
 #: form cannot be computed)
-RESULT_TABS = ("results", "counterweight", "single", "shaft", "performance", "shop", "loads")
+RESULT_TABS = (
+    "results",
+    "counterweight",
+    "single",
+    "shaft",
+    "performance",
+    "shop",
+    "loads",
+    "mounts",
+)
 #: the preset menu's entry while the form holds a preset edited (:meth:`Page.show_preset`);
 #: choosing the preset itself then loads it again
 EDITED = "{name} (edited)"
@@ -210,6 +221,7 @@ class Page:
             ExploreTab(self),
             ShopTab(self),
             LoadsTab(self),
+            MountsTab(self),
         )
         self.tabs: dict[str, Tab] = {tab.name: tab for tab in tabs}
         assert list(self.tabs) == [name for name, _ in TABS]

@@ -40,7 +40,7 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "layout": from_schema(ExploreOptions, "layout"),
     "cylinders": from_schema(ExploreOptions, "cylinders", hint="e.g. 6"),
     "strokes": from_schema(ExploreOptions, "strokes"),  # a select of 4 and 2
-    "bank_angle": from_schema(ExploreOptions, "bank_angle", hint="vee / W only, e.g. 90 deg"),
+    "bank_angle": from_schema(ExploreOptions, "bank_angle", hint="vee, W and VR only, e.g. 90 deg"),
     "crank": from_schema(ExploreOptions, "crank"),
     # the figure's two objectives are the page's own (the command line gives --objectives)
     "x": ("Objective (x axis)", "M1", "a column, e.g. F2, M1, X1p5"),
@@ -181,7 +181,7 @@ def candidate_file(
         firing_order=_in_maker_numbers(train, order),
         throw_angles=[f"{math.degrees(a) % 360:.6g} deg" for a in row["throw_angle_rad"]],
     )
-    if bank_angle is not None and problem.layout in ("vee", "w"):
+    if bank_angle is not None and problem.layout in ("vee", "w", "vr"):
         train["bank_angle"] = f"{math.degrees(bank_angle):.9g} deg"
     out = {k: v for k, v in data.items() if k != "crank_train"}
     out["crank_train"] = train

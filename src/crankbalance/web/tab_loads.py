@@ -8,7 +8,9 @@ at their defaults), as typed. The run is :func:`crankbalance.studies.balance_loa
 bearing_sweep` in a worker process (:mod:`.pool`). The result belongs to the engine and
 the settings it was run for (the never-stale rule of :class:`~.widgets.StudyTab`): once
 either changes it is cleared and the tab says to re-run. Shown: a table (one row per
-case, the CLI's columns), the polar load diagrams of every pattern at the middle balance
+case, the CLI's columns, the suggested case and the Pareto set marked), the study's
+summary (:meth:`~crankbalance.studies.balance_loads.SweepStudy.summary`, its warning
+highlighted), the polar load diagrams of every pattern at the middle balance
 factor overlaid, and the sweep figure (metrics against the balance factor, peak load per
 bearing per case).
 """
@@ -84,6 +86,15 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     return sweep, loads
 
 
+def case_mark(n: int, summary: dict[str, Any]) -> str:
+    """The mark of case ``n`` in the table: the study's suggested case and its Pareto set
+    (the ``summary`` of the sweep's JSON)."""
+    marks = ["suggested"] if n == summary["suggested"] else []
+    if n in summary["pareto"]:
+        marks.append("Pareto")
+    return ", ".join(marks)
+
+
 class LoadsTab(TabSettingsMixin, StudyTab):
     settings_table = SETTINGS
     parse_settings = staticmethod(parse)
@@ -101,6 +112,13 @@ class LoadsTab(TabSettingsMixin, StudyTab):
                 self.summary = (
                     ui.markdown("").props("data-testid=loads-summary").mark("loads-summary")
                 )
+                self.warning = (
+                    ui.label("")
+                    .classes("text-body1 text-weight-bold bg-orange-2 q-pa-sm")
+                    .props("data-testid=loads-warning")
+                    .mark("loads-warning")
+                )
+                self.warning.set_visibility(False)
                 self.table = (
                     ui.table(columns=[], rows=[], row_key="case")
                     .classes("w-full")
@@ -114,6 +132,7 @@ class LoadsTab(TabSettingsMixin, StudyTab):
     def clear(self) -> None:
         self.study = None
         self.summary.set_content("")
+        self.warning.set_visibility(False)
         self.table.rows = []
         self.table.update()
         for card in self.cards:
@@ -137,20 +156,27 @@ class LoadsTab(TabSettingsMixin, StudyTab):
 
         data = self.study.to_dict()
         rows = case_rows(data)
-        best = min(rows, key=lambda row: row[4])
+        summary = data["summary"]
+        lowest = rows[summary["lowest_load"]]
         s = data["settings"]
         assumed = assumed_text(s).replace("*", "\\*")  # a star marks the engine's values
+        # the study's summary (the suggested case, the Pareto set), its warning highlighted
+        lines = [t for t in summary["text"] if not t.startswith("Warning: ")]
         self.summary.set_content(
             f"{data['engine']['name']}: {len(rows)} cases, {data['crank_model']} crank, "
-            f"{'gas and inertia' if s['gas'] else 'inertia only'}. Lowest peak bearing load: "
-            f"{best[0]}"
-            + ("" if best[1] is None else f" at balance factor {number(best[1], 3)}")
-            + f" ({number(best[4], 5)} N on bearing {best[3]}).\n\nAssumed: {assumed}."
+            f"{'gas and inertia' if s['gas'] else 'inertia only'}.\n\n"
+            + "\n\n".join(line.replace("*", "\\*") for line in lines)
+            + f"\n\nLowest peak bearing load: {lowest[0]}"
+            + ("" if lowest[1] is None else f" at balance factor {number(lowest[1], 3)}")
+            + f" ({number(lowest[4], 5)} N on bearing {lowest[3]}).\n\nAssumed: {assumed}."
         )
+        warning = summary["warning"]
+        self.warning.set_text("" if not warning else f"Warning: {warning}.")
+        self.warning.set_visibility(bool(warning))
         self.table.columns = [
             {"name": key, "label": label, "field": key, "align": "left" if i == 0 else "right"}
             for i, (key, label) in enumerate(COLUMNS)
-        ]
+        ] + [{"name": "mark", "label": "", "field": "mark", "align": "left"}]
         self.table.rows = [
             {
                 "case": n,
@@ -158,6 +184,7 @@ class LoadsTab(TabSettingsMixin, StudyTab):
                     key: "–" if v is None else (v if isinstance(v, (str, int)) else number(v, 5))
                     for (key, _), v in zip(COLUMNS, row, strict=True)
                 },
+                "mark": case_mark(n, summary),
             }
             for n, row in enumerate(rows)
         ]

@@ -51,7 +51,7 @@ from .crank3d import crank_3d
 from .engine import curves_figure, orders_bar, polar_figure
 from .explore import explore_candidate, explore_scatter
 from .loads import bearing_loads_figure, bearing_sweep_figure
-from .mounts import mounts_figure
+from .mounts import mode_shapes_figure, mounts_figure, mounts_layout_figure
 from .performance import bench_figure, cycle_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
 from .shop import bob_weights_figure, hole_plan, matched_sets, scatter_histograms
@@ -83,7 +83,9 @@ __all__ = [
     "explore_scatter",
     "hole_plan",
     "matched_sets",
+    "mode_shapes_figure",
     "mounts_figure",
+    "mounts_layout_figure",
     "orders_bar",
     "pareto_front",
     "plot",

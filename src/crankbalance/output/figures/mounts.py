@@ -4,15 +4,18 @@ of the six rigid-body modes and the force every mount transmits over speed.
 Public functions
 ----------------
 - ``mounts_figure(result) -> Figure``               (studies.mounts.MountsResult)
+- ``mounts_layout_figure(result) -> Figure``        (studies.mounts.MountsResult)
+- ``mode_shapes_figure(result) -> Figure``          (studies.mounts.MountsResult)
 """
 
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from ...physics.mounts import point_map, rotation
 from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
 
 if TYPE_CHECKING:  # pragma: no cover
@@ -21,6 +24,13 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...studies.mounts import MountsResult
 
 _DASHES = ("solid", "dash", "dot", "dashdot", "longdash", "longdashdot")
+#: the largest displacement of a drawn mode shape, as a share of the layout's size (the
+#: mounts, the centre of gravity and the reference point): shapes are drawn to scale, not
+#: to size (a mode has no amplitude of its own)
+MODE_DRAWN = 0.2
+#: length of a mount's compression-axis stroke in the layout, as a share of its size
+AXIS_DRAWN = 0.12
+_MM = 1000.0
 
 
 def mounts_figure(result: MountsResult) -> go.Figure:
@@ -100,4 +110,251 @@ def mounts_figure(result: MountsResult) -> go.Figure:
     fig.update_yaxes(title_text="force [N]", row=2, col=1)
     fig.update_xaxes(title_text="speed [rpm]", row=2, col=1)
     fig.update_layout(template=TEMPLATE, title=f"{result.name}: the powertrain on its mounts")
+    return fig
+
+
+def _layout_points(result: MountsResult) -> np.ndarray:
+    """The mounts, the centre of gravity and the reference point (N + 2, 3) [m]."""
+    pt = result.powertrain
+    return np.array(
+        [*(m.position for m in pt.mounts), pt.cg, result.model.moment_point], dtype=float
+    )
+
+
+def _size(points: np.ndarray) -> float:
+    """The layout's size: its largest extent along an axis [m] (at least 1 mm)."""
+    return float(max(np.ptp(points, axis=0).max(), 1e-3))
+
+
+def _line(go: Any, a: np.ndarray, b: np.ndarray, name: str, **style: Any) -> Any:
+    """A 3-D segment from ``a`` to ``b`` [m], drawn in mm."""
+    return go.Scatter3d(
+        x=[a[0] * _MM, b[0] * _MM],
+        y=[a[1] * _MM, b[1] * _MM],
+        z=[a[2] * _MM, b[2] * _MM],
+        mode="lines",
+        name=name,
+        **style,
+    )
+
+
+def _scene() -> dict[str, Any]:
+    return {
+        "xaxis_title": "x [mm]",
+        "yaxis_title": "y, crank axis [mm]",
+        "zaxis_title": "z [mm]",
+        "aspectmode": "data",
+    }
+
+
+def mounts_layout_figure(result: MountsResult) -> go.Figure:
+    """The mount layout drawn with the powertrain (3-D, engine axes, mm): each mount (its
+    name, its compression axis as a short stroke), the centre of gravity, the crank axis
+    through the reference point, the torque-roll axis and the roll mode's axis of rotation
+    through the centre of gravity, and the lines from the centre of gravity to the mounts."""
+    go = plotly_go()
+    pt, modes = result.powertrain, result.modes
+    points = _layout_points(result)
+    size = _size(points)
+    cg, ref = np.asarray(pt.cg, dtype=float), np.asarray(result.model.moment_point, dtype=float)
+    fig = go.Figure()
+    ys = points[:, 1]
+    reach = 0.15 * size
+    fig.add_trace(
+        _line(
+            go,
+            np.array([ref[0], ys.min() - reach, ref[2]]),
+            np.array([ref[0], ys.max() + reach, ref[2]]),
+            "crank axis",
+            line={"color": COLORS["crank"], "width": 6},
+        )
+    )
+    for m in pt.mounts:
+        fig.add_trace(
+            _line(
+                go,
+                np.asarray(m.position, dtype=float),
+                cg,
+                f"{m.name} to G",
+                showlegend=False,
+                line={"color": COLORS["before"], "width": 2, "dash": "dot"},
+                hoverinfo="skip",
+            )
+        )
+    half = 0.5 * AXIS_DRAWN * size
+    for k, m in enumerate(pt.mounts):
+        axis = rotation(m.orientation)[:, 2]
+        p = np.asarray(m.position, dtype=float)
+        fig.add_trace(
+            _line(
+                go,
+                p - half * axis,
+                p + half * axis,
+                "compression axes",
+                legendgroup="compression",
+                showlegend=k == 0,
+                line={"color": COLORS["forward"], "width": 5},
+                hoverinfo="skip",
+            )
+        )
+    fig.add_trace(
+        go.Scatter3d(
+            x=[m.position[0] * _MM for m in pt.mounts],
+            y=[m.position[1] * _MM for m in pt.mounts],
+            z=[m.position[2] * _MM for m in pt.mounts],
+            mode="markers+text",
+            name="mounts",
+            text=[m.name for m in pt.mounts],
+            marker={"size": 6, "color": COLORS["forward"]},
+            hovertemplate="%{text}: %{x:.0f}, %{y:.0f}, %{z:.0f} mm<extra></extra>",
+        )
+    )
+    fig.add_trace(
+        go.Scatter3d(
+            x=[cg[0] * _MM],
+            y=[cg[1] * _MM],
+            z=[cg[2] * _MM],
+            mode="markers+text",
+            name=f"centre of gravity ({pt.mass:.4g} kg)",
+            text=["G"],
+            marker={"size": 7, "color": COLORS["total"], "symbol": "diamond"},
+            hovertemplate="G: %{x:.0f}, %{y:.0f}, %{z:.0f} mm<extra></extra>",
+        )
+    )
+    roll = modes.shapes[3:, modes.roll_mode]
+    roll = roll / max(float(np.linalg.norm(roll)), 1e-300)
+    for axis, name, color in (
+        (modes.torque_roll_axis, "torque-roll axis", COLORS["after"]),
+        (roll, f"roll mode {modes.roll_mode + 1}: its axis of rotation", COLORS["counterweight"]),
+    ):
+        fig.add_trace(
+            _line(
+                go,
+                cg - 0.6 * size * axis,
+                cg + 0.6 * size * axis,
+                name,
+                line={"color": color, "width": 4, "dash": "dash"},
+            )
+        )
+    fig.update_layout(
+        template=TEMPLATE,
+        title=f"{result.name}: mounts, centre of gravity, crank axis",
+        scene=_scene(),
+        height=560,
+        margin={"l": 0, "r": 0, "t": 60, "b": 0},
+    )
+    return fig
+
+
+def mode_shapes_figure(result: MountsResult) -> go.Figure:
+    """The six rigid-body modes drawn (3-D, engine axes, mm): the layout at rest (grey) and
+    displaced by each mode (the mounts and the centre of gravity joined as in
+    :func:`mounts_layout_figure`, a stroke from rest to the displaced point at each), one mode at a
+    time (a menu picks it; the roll mode first). Displacements are to scale, not to size:
+    the largest of each mode is :data:`MODE_DRAWN` of the layout's size."""
+    go = plotly_go()
+    pt, modes = result.powertrain, result.modes
+    cg = np.asarray(pt.cg, dtype=float)
+    body = np.array([*(m.position for m in pt.mounts), cg], dtype=float)  # mounts, then G
+    size = _size(_layout_points(result))
+    names = [m.name for m in pt.mounts] + ["G"]
+
+    def frame(p: np.ndarray) -> tuple[list[float | None], ...]:
+        """Lines from G (last point) to each mount, in mm (None breaks the line)."""
+        xs: list[float | None] = []
+        ys: list[float | None] = []
+        zs: list[float | None] = []
+        for i in range(len(p) - 1):
+            for q in (p[-1], p[i]):
+                xs.append(q[0] * _MM)
+                ys.append(q[1] * _MM)
+                zs.append(q[2] * _MM)
+            xs.append(None)
+            ys.append(None)
+            zs.append(None)
+        return xs, ys, zs
+
+    fig = go.Figure()
+    x0, y0, z0 = frame(body)
+    fig.add_trace(
+        go.Scatter3d(
+            x=x0, y=y0, z=z0, mode="lines", name="at rest", line={"color": "#bbbbbb", "width": 4}
+        )
+    )
+    traces_per_mode = 2
+    first = modes.roll_mode
+    for r in range(6):
+        moved = np.array([point_map(cg, p) @ modes.shapes[:, r] for p in body])
+        largest = float(np.linalg.norm(moved, axis=1).max())
+        scale = MODE_DRAWN * size / largest if largest > 0 else 0.0
+        shown = body + scale * moved
+        xs, ys, zs = frame(shown)
+        label = f"mode {r + 1}: {modes.frequencies[r]:.3g} Hz"
+        fig.add_trace(
+            go.Scatter3d(
+                x=xs,
+                y=ys,
+                z=zs,
+                mode="lines",
+                name=label,
+                visible=r == first,
+                line={"color": ORDER_COLORS[r % len(ORDER_COLORS)], "width": 6},
+                hoverinfo="skip",
+            )
+        )
+        ax: list[float | None] = []
+        ay: list[float | None] = []
+        az: list[float | None] = []
+        for p, q in zip(body, shown, strict=True):
+            ax += [p[0] * _MM, q[0] * _MM, None]
+            ay += [p[1] * _MM, q[1] * _MM, None]
+            az += [p[2] * _MM, q[2] * _MM, None]
+        fig.add_trace(
+            go.Scatter3d(
+                x=ax,
+                y=ay,
+                z=az,
+                mode="lines+markers",
+                name=f"mode {r + 1}: motion of the mounts and G",
+                visible=r == first,
+                line={"color": COLORS["total"], "width": 3},
+                marker={"size": [0, 5, 0] * len(body), "color": COLORS["total"]},
+                text=[n for n in names for _ in range(3)],
+                hovertemplate="%{text}<extra></extra>",
+            )
+        )
+    buttons = []
+    for r in range(6):
+        visible = [True] + [k // traces_per_mode == r for k in range(traces_per_mode * 6)]
+        energy = modes.energy[r]
+        most = ("x", "y", "z", "roll", "pitch", "yaw")[int(np.argmax(energy))]
+        buttons.append(
+            {
+                "label": f"mode {r + 1}: {modes.frequencies[r]:.3g} Hz, {most}",
+                "method": "update",
+                "args": [
+                    {"visible": visible},
+                    {"title.text": f"{result.name}: mode {r + 1} ({most} {energy.max():.0f} %)"},
+                ],
+            }
+        )
+    energy = modes.energy[first]
+    most = ("x", "y", "z", "roll", "pitch", "yaw")[int(np.argmax(energy))]
+    fig.update_layout(
+        template=TEMPLATE,
+        title=f"{result.name}: mode {first + 1} ({most} {energy.max():.0f} %)",
+        scene=_scene(),
+        height=560,
+        margin={"l": 0, "r": 0, "t": 90, "b": 0},
+        updatemenus=[
+            {
+                "buttons": buttons,
+                "active": first,
+                "x": 1,
+                "xanchor": "right",
+                "y": 1,
+                "yanchor": "bottom",
+            }
+        ],
+    )
     return fig
