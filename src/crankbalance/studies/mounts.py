@@ -12,6 +12,7 @@ every mount transmits.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -20,6 +21,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics import mounts as pm
+from ..physics import mounts_optimize as po
 from ..physics.model import EngineModel
 from ..physics.shaking import FreeForces
 from ..results import ResultMixin, to_jsonable
@@ -110,6 +112,14 @@ class MountsResult(ResultMixin):
         The point whose displacement is shown [m].
     loads : ndarray of complex, shape (K, 6)
         The load amplitudes of each order at the engine's speed [N], [N·m].
+    comparison : tuple of (str, MountsResult)
+        The balancing choices compared, when asked (``compare_*`` settings).
+    optimum : physics.mounts.MountOptimum or None
+        The mount optimiser's answer, when asked (``optimize``).
+    optimum_modes : physics.mounts.Modes or None
+        The modes of the optimised mounts.
+    optimum_response : physics.mounts.Response or None
+        The forced response of the optimised mounts on the study's speeds.
     """
 
     name: str
@@ -121,6 +131,10 @@ class MountsResult(ResultMixin):
     response: pm.Response
     point: NDArray[np.float64]
     loads: NDArray[np.complex128]
+    comparison: tuple[tuple[str, MountsResult], ...] = ()
+    optimum: po.MountOptimum | None = None
+    optimum_modes: pm.Modes | None = None
+    optimum_response: pm.Response | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.mounts/1`` (SI units in the keys, speeds in rpm)."""
@@ -134,9 +148,14 @@ def mounts(
     settings: MountsOptions,
     powertrain: pm.Powertrain | None = None,
     forces: FreeForces | None = None,
+    *,
+    progress: Callable[[int, int, float], None] | None = None,
 ) -> MountsResult:
     """The powertrain of ``engine`` on its mounts: statics, modes, crossings and the forced
-    response to the engine's free forces and moments.
+    response to the engine's free forces and moments; with the ``compare_*`` settings the
+    same study under each balancing choice (:func:`compare`), with ``optimize`` the mount
+    optimiser's answer (:func:`crankbalance.physics.mounts.optimize_mounts`; ``progress``
+    is called after each of its generations with (generation, generations, best)).
 
     ``powertrain`` replaces the engine file's ``[powertrain]`` table; ``forces`` replaces the
     engine's free forces (those of a balancing, say: comparing balancing choices is a loop
@@ -162,6 +181,9 @@ def mounts(
             )
         powertrain = powertrain_of(spec.powertrain)
         engine = spec
+    if o.optimize is not None:  # bounded before any work
+        goals = goals_of(o)
+        po.check_optimizer_work(powertrain, goals)
     analysis = analyze(engine, orders=o.orders)
     model = analysis.model
     if forces is None:
@@ -178,6 +200,19 @@ def mounts(
     modes = pm.modes(powertrain)
     response = pm.forced_response(powertrain, loads, orders, model.speed, speeds)
     point = np.array(o.point if o.point is not None else powertrain.cg, dtype=float)
+    comparison: tuple[tuple[str, MountsResult], ...] = ()
+    if o.comparing():
+        comparison = tuple(compare(engine, o, choices_of(engine, o), powertrain))
+    optimum = optimum_modes = optimum_response = None
+    if o.optimize is not None:
+        coarse = np.linspace(o.speed_min, high, min(po.OPTIMIZER_SPEEDS, o.speed_samples))
+        optimum = po.optimize_mounts(
+            powertrain, goals, loads, orders, model.speed, coarse, progress=progress
+        )
+        optimum_modes = pm.modes(optimum.powertrain)
+        optimum_response = pm.forced_response(
+            optimum.powertrain, loads, orders, model.speed, speeds
+        )
     result = MountsResult(
         model.name,
         model,
@@ -188,6 +223,10 @@ def mounts(
         response,
         point,
         loads,
+        comparison,
+        optimum,
+        optimum_modes,
+        optimum_response,
     )
     result.to_dict()  # checked finite
     return result
@@ -231,7 +270,7 @@ def payload(r: MountsResult) -> dict[str, Any]:
                 "point_speed_rpm": float(speeds_rpm[s]),
             }
         )
-    return {
+    out = {
         "engine": {"name": r.name, "speed_rpm": r.model.speed * _RPM},
         "reference_point_m": list(r.model.moment_point),
         "powertrain": {
@@ -292,6 +331,77 @@ def payload(r: MountsResult) -> dict[str, Any]:
                 name: {str(int(n)): rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
                 for i, name in enumerate(names)
             },
+        },
+    }
+    if r.comparison:
+        out["comparison"] = comparison_table(list(r.comparison))
+    if r.optimum is not None:
+        out["optimum"] = optimum_payload(r)
+    return out
+
+
+def goals_of(settings: MountsOptions) -> po.MountGoals:
+    """The mount optimiser's goals from the settings (``optimize`` given)."""
+    o = settings
+    low, high = o.stiffness_range
+    return po.MountGoals(
+        variables=tuple(o.optimize or ()),
+        stiffness_range=(float(low), float(high)),
+        position_range=float(o.position_range),
+        band=None if o.frequency_band is None else (o.frequency_band[0], o.frequency_band[1]),
+        roll_energy=o.roll_energy,
+        roll_axis_angle=o.roll_axis_angle,
+        objective=o.objective,
+        iterations=o.optimize_iterations,
+    )
+
+
+def optimum_payload(r: MountsResult) -> dict[str, Any]:
+    """The JSON of the mount optimiser's answer: the mounts found, the goals and their
+    margins before and after, the modes and the largest mount force per order."""
+    opt, md, rs = r.optimum, r.optimum_modes, r.optimum_response
+    assert opt is not None and md is not None and rs is not None
+    g = opt.goals
+    scale = (
+        np.exp(opt.variables[: len(r.powertrain.mounts)]) if "stiffness" in g.variables else None
+    )
+    return {
+        "variables": list(g.variables),
+        "objective": g.objective,
+        "objective_before": opt.objective_before,
+        "objective_after": opt.objective_after,
+        "objective_unit": "N" if g.objective == "force" else "-",
+        "goals": {
+            "frequency_band_Hz": g.band,
+            "roll_energy_percent": g.roll_energy,
+            "roll_axis_angle_deg": None
+            if g.roll_axis_angle is None
+            else math.degrees(g.roll_axis_angle),
+        },
+        "margins_before": opt.margins_before,
+        "margins_after": opt.margins_after,
+        "feasible": opt.feasible,
+        "evaluations": opt.evaluations,
+        "generations": opt.generations,
+        "mounts": [
+            {
+                "name": m.name,
+                "position_m": m.position,
+                "moved_m": m.position - r.powertrain.mounts[i].position,
+                "stiffness_factor": None if scale is None else float(scale[i]),
+                "stiffness_N_m": {
+                    "compression": m.stiffness[0],
+                    "shear1": m.stiffness[1],
+                    "shear2": m.stiffness[2],
+                },
+            }
+            for i, m in enumerate(opt.powertrain.mounts)
+        ],
+        "frequencies_Hz": md.frequencies,
+        "roll_mode_energy_percent": md.energy[md.roll_mode, 3],
+        "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
+        "largest_mount_force_N": {
+            str(int(n)): float(rs.mount_peak[:, k, :].max()) for k, n in enumerate(rs.orders)
         },
     }
 
@@ -367,7 +477,10 @@ class Choice:
 
 
 def compare(
-    engine: EngineLike, settings: MountsOptions, choices: list[Choice]
+    engine: EngineLike,
+    settings: MountsOptions,
+    choices: list[Choice],
+    powertrain: pm.Powertrain | None = None,
 ) -> list[tuple[str, MountsResult]]:
     """The mount study of ``engine`` under each balancing choice: one loop over
     :func:`balanced_forces` and :func:`mounts` (the rotating masses as the balancing leaves
@@ -385,13 +498,19 @@ def compare(
     spec = spec_of(engine)
     source: EngineLike = spec if spec is not None else engine
     model = analyze(source, orders=settings.orders).model
-    bare = settings.replace(rotating="bare")
+    bare = settings.replace(
+        rotating="bare",
+        compare_patterns=None,
+        compare_balance_factors=None,
+        compare_shafts=False,
+        optimize=None,
+    )
     out = []
     for choice in choices:
         forces = balanced_forces(
             model, choice.counterweights, choice.primary, choice.secondary, settings.orders
         )
-        out.append((choice.label, mounts(source, bare, forces=forces)))
+        out.append((choice.label, mounts(source, bare, powertrain, forces=forces)))
     return out
 
 
@@ -420,3 +539,53 @@ def comparison_table(results: list[tuple[str, MountsResult]]) -> list[dict[str, 
         row["largest_N"] = float(result.response.mount_peak.max())
         rows.append(row)
     return rows
+
+
+def choices_of(engine: EngineLike, settings: MountsOptions) -> list[Choice]:
+    """The balancing choices of the ``compare_*`` settings: every counterweight pattern
+    (``compare_patterns``, default the engine file's) with every balance factor
+    (``compare_balance_factors``, default the engine file's), ``none`` once as a bare
+    crank, each without and (``compare_shafts``) with the engine file's balance shafts;
+    the other counterweight options are the engine file's (:func:`balance_options`)."""
+    from dataclasses import replace
+
+    from .engine import balance_options
+
+    spec = spec_of(engine)
+    if spec is None:
+        raise InputError("engine", getattr(engine, "name", engine), "an engine file or preset")
+    base, primary, secondary = balance_options(spec)
+    if settings.compare_shafts and primary is None and secondary is None:
+        raise InputError(
+            "compare_shafts", True, "needs a [balance_shafts] table in the engine file"
+        )
+    patterns = settings.compare_patterns or ["file"]
+    factors = settings.compare_balance_factors or [base.balance_factor]
+    shafts = [False, True] if settings.compare_shafts else [False]
+    count = len(shafts) * sum(1 if p == "none" else len(factors) for p in patterns)
+    if count > MAX_CHOICES:
+        raise InputError(
+            "compare_patterns",
+            ", ".join(patterns),
+            f"with the balance factors and shafts must make at most {MAX_CHOICES} "
+            f"balancing choices: here {count}",
+        )
+    out = []
+    for pattern in patterns:
+        for factor in [None] if pattern == "none" else factors:
+            for on in shafts:
+                words = "shafts" if on else ""
+                if factor is None:
+                    cw = None
+                    label = "no counterweights"
+                else:
+                    webs = base.webs
+                    if pattern == "all":
+                        webs = None
+                    elif pattern != "file":
+                        webs = tuple(int(v) for v in pattern.split(","))
+                    cw = replace(base, webs=webs, balance_factor=float(factor))
+                    label = f"{pattern} bf {float(factor):g}"
+                label = f"{label}, {words}" if words else label
+                out.append(Choice(label, cw, primary if on else None, secondary if on else None))
+    return out
