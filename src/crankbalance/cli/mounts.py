@@ -71,6 +71,19 @@ def _echo(d: dict[str, Any]) -> None:
     click.echo(
         f"{d['engine']['name']}: powertrain {pt['mass_kg']:.4g} kg on {len(d['mounts'])} mounts"
     )
+    parts = pt.get("estimated_from")
+    if parts:
+        crank = sum(p["mass_kg"] for p in parts if p["part"] not in ("block", "gearbox"))
+        boxes = [
+            f"{p['part']} {p['mass_kg']:.4g} kg" for p in parts if p["part"] in ("block", "gearbox")
+        ]
+        c, i = pt["cg_m"], pt["inertia_kg_m2"]
+        click.echo(
+            f"Estimated ([powertrain.estimate]) from {', '.join(boxes)} and the crank train's "
+            f"masses {crank:.3g} kg: centre of gravity {1e3 * c[0]:+.1f}, {1e3 * c[1]:+.1f}, "
+            f"{1e3 * c[2]:+.1f} mm; Ixx, Iyy, Izz {i[0][0]:.3g}, {i[1][1]:.3g}, {i[2][2]:.3g} "
+            f"kg·m²; Ixy, Iyz, Ixz {i[0][1]:.3g}, {i[1][2]:.3g}, {i[0][2]:.3g} kg·m²"
+        )
     st = d["statics"]
     u, t = st["cg_displacement_m"], st["rotation_rad"]
     click.echo(

@@ -21,6 +21,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics import mounts as pm
+from ..physics import mounts_estimate as pe
 from ..physics import mounts_optimize as po
 from ..physics.model import EngineModel
 from ..physics.shaking import FreeForces
@@ -40,13 +41,31 @@ MAX_CHOICES = 32
 _RPM = 30.0 / math.pi  # rad/s -> rpm
 
 
-def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
-    """The physics' powertrain from the engine file's ``[powertrain]`` table (SI values).
+def estimate_parts(table: PowertrainTable, model: EngineModel) -> tuple[pe.Part, ...]:
+    """The parts of ``[powertrain.estimate]``: the block's box, the crank train's masses at
+    their places (:func:`crankbalance.physics.mounts_estimate.crank_train_parts`) and the
+    gearbox's box; empty without the table."""
+    e = table.estimate
+    if e is None:
+        return ()
+    parts = [pe.box_part("block", e.block_mass, e.block_size, e.block_center)]
+    parts += pe.crank_train_parts(model)
+    if e.gearbox_mass is not None and e.gearbox_size is not None and e.gearbox_center is not None:
+        parts.append(pe.box_part("gearbox", e.gearbox_mass, e.gearbox_size, e.gearbox_center))
+    return tuple(parts)
+
+
+def powertrain_of(table: PowertrainTable, model: EngineModel | None = None) -> pm.Powertrain:
+    """The physics' powertrain from the engine file's ``[powertrain]`` table (SI values);
+    with ``[powertrain.estimate]`` its mass, centre of gravity and inertia are the sum of
+    :func:`estimate_parts` (``model`` needed).
 
     Parameters
     ----------
     table : schema.engine.Powertrain
         The validated table.
+    model : EngineModel, optional
+        The engine's model, for an estimate.
 
     Returns
     -------
@@ -62,10 +81,18 @@ def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
         )
         for k, m in enumerate(table.mount)
     )
+    if table.estimate is not None:
+        if model is None:
+            raise ValueError("an estimated powertrain needs the engine's model")
+        mass, cg, inertia = pe.combine(estimate_parts(table, model))
+    else:
+        assert table.mass is not None and table.cg is not None and table.inertia is not None
+        mass, cg = float(table.mass), np.array(table.cg, dtype=float)
+        inertia = pm.inertia_tensor(table.inertia, table.products or (0.0, 0.0, 0.0))
     return pm.Powertrain(
-        mass=float(table.mass),
-        cg=np.array(table.cg, dtype=float),
-        inertia=pm.inertia_tensor(table.inertia, table.products or (0.0, 0.0, 0.0)),
+        mass=mass,
+        cg=cg,
+        inertia=inertia,
         mounts=mounts,
         up=np.array(table.up or (0.0, 0.0, 1.0), dtype=float),
     )
@@ -120,6 +147,8 @@ class MountsResult(ResultMixin):
         The modes of the optimised mounts.
     optimum_response : physics.mounts.Response or None
         The forced response of the optimised mounts on the study's speeds.
+    parts : tuple of physics.mounts_estimate.Part
+        The parts the powertrain was estimated from (``[powertrain.estimate]``), else empty.
     """
 
     name: str
@@ -135,6 +164,7 @@ class MountsResult(ResultMixin):
     optimum: po.MountOptimum | None = None
     optimum_modes: pm.Modes | None = None
     optimum_response: pm.Response | None = None
+    parts: tuple[pe.Part, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.mounts/1`` (SI units in the keys, speeds in rpm)."""
@@ -179,13 +209,17 @@ def mounts(
                 getattr(engine, "name", engine),
                 "needs a [powertrain] table with its mounts (docs/mounts.md)",
             )
-        powertrain = powertrain_of(spec.powertrain)
         engine = spec
+    analysis = analyze(engine, orders=o.orders)
+    model = analysis.model
+    parts: tuple[pe.Part, ...] = ()
+    if powertrain is None:
+        assert isinstance(engine, EngineSpec) and engine.powertrain is not None
+        parts = estimate_parts(engine.powertrain, model)
+        powertrain = powertrain_of(engine.powertrain, model)
     if o.optimize is not None:  # bounded before any work
         goals = goals_of(o)
         po.check_optimizer_work(powertrain, goals)
-    analysis = analyze(engine, orders=o.orders)
-    model = analysis.model
     if forces is None:
         forces = analysis.forces
     elif forces.orders.size < o.orders:
@@ -227,6 +261,7 @@ def mounts(
         optimum,
         optimum_modes,
         optimum_response,
+        parts,
     )
     result.to_dict()  # checked finite
     return result
@@ -270,7 +305,7 @@ def payload(r: MountsResult) -> dict[str, Any]:
                 "point_speed_rpm": float(speeds_rpm[s]),
             }
         )
-    out = {
+    out: dict[str, Any] = {
         "engine": {"name": r.name, "speed_rpm": r.model.speed * _RPM},
         "reference_point_m": list(r.model.moment_point),
         "powertrain": {
@@ -333,6 +368,10 @@ def payload(r: MountsResult) -> dict[str, Any]:
             },
         },
     }
+    if r.parts:
+        out["powertrain"]["estimated_from"] = [
+            {"part": p.name, "mass_kg": p.mass, "centre_m": p.centre} for p in r.parts
+        ]
     if r.comparison:
         out["comparison"] = comparison_table(list(r.comparison))
     if r.optimum is not None:
