@@ -295,6 +295,7 @@ def optimize_mounts(
     speeds: ArrayLike,
     progress: Callable[[int, int, float], None] | None = None,
     seed: int = 0,
+    gas: ArrayLike | None = None,
 ) -> MountOptimum:
     """Mount stiffnesses and/or positions within bounds toward the goals: a differential
     evolution (``scipy.optimize.differential_evolution``, seeded, the goals as nonlinear
@@ -323,6 +324,8 @@ def optimize_mounts(
         among the layouts that meet the goals, inf while none does).
     seed : int
         The evolution's random seed [-].
+    gas : array_like of complex, shape (K, 6), optional
+        Loads that do not scale with the speed (the gas torque's reaction) [N·m].
 
     Returns
     -------
@@ -347,7 +350,7 @@ def optimize_mounts(
         trial = with_variables(pt, goals, x)
         if not _holds(trial):
             return 1e12
-        return rms_mount_force(forced_response(trial, loads, orders, reference_speed, speeds))
+        return rms_mount_force(forced_response(trial, loads, orders, reference_speed, speeds, gas))
 
     def margins(x: NDArray[np.float64]) -> NDArray[np.float64]:
         evaluated[0] += 1

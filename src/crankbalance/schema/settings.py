@@ -2376,10 +2376,12 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
             )
 
 
-class MountsOptions(StudyOptions):
+class MountsOptions(CombustionOptions):
     """``mounts``: the powertrain on its mounts (docs/mounts.md): the speed range and its
     samples, the engine orders, the mean torque of the statics, the rotating masses, a point
-    whose motion is shown."""
+    whose motion is shown; the gas torque's reaction when asked (with the combustion of
+    :class:`CombustionOptions`); the comparison of balancing choices and the mount
+    optimiser."""
 
     speed_min: float = quantity("speed", 600 * _RPM, "Lowest speed", "The sweep's lowest speed.")
     speed_max: float | None = quantity(
@@ -2422,6 +2424,21 @@ class MountsOptions(StudyOptions):
         title="Point shown",
         description="A point of the powertrain (x, y, z from the reference point) whose "
         "largest displacement per order is shown; empty: the centre of gravity.",
+    )
+    gas_torque: bool = field(
+        "flag",
+        default=False,
+        title="Gas-torque reaction",
+        description="Also apply the reaction of the gas torque about the crank axis at every "
+        "order (half orders of a four-stroke included) from the engine cycle (the Wiebe "
+        "model or the pressure tables); it does not scale with the speed (docs/mounts.md).",
+    )
+    bore: float | None = quantity(
+        "length",
+        None,
+        "Bore",
+        "Cylinder bore, for the gas torque; empty: bore = stroke.",
+        gt=0,
     )
     compare_patterns: list[str] | None = field(
         "list",

@@ -39,6 +39,9 @@ SCHEMA = "crankbalance.mounts/1"
 #: one mount study.
 MAX_CHOICES = 32
 _RPM = 30.0 / math.pi  # rad/s -> rpm
+#: A gas-torque harmonic below this fraction of the largest is round-off of the sum over
+#: the cylinders (an order the firing cancels) and is taken as zero.
+GAS_ROUND_OFF = 1e-9
 
 
 def estimate_parts(table: PowertrainTable, model: EngineModel) -> tuple[pe.Part, ...]:
@@ -138,7 +141,7 @@ class MountsResult(ResultMixin):
     point : ndarray, shape (3,)
         The point whose displacement is shown [m].
     loads : ndarray of complex, shape (K, 6)
-        The load amplitudes of each order at the engine's speed [N], [N·m].
+        The inertia load amplitudes of each order at the engine's speed [N], [N·m].
     comparison : tuple of (str, MountsResult)
         The balancing choices compared, when asked (``compare_*`` settings).
     optimum : physics.mounts.MountOptimum or None
@@ -149,6 +152,11 @@ class MountsResult(ResultMixin):
         The forced response of the optimised mounts on the study's speeds.
     parts : tuple of physics.mounts_estimate.Part
         The parts the powertrain was estimated from (``[powertrain.estimate]``), else empty.
+    gas_loads : ndarray of complex, shape (K, 6), or None
+        The gas torque's reaction of each order (``gas_torque``), the same at every speed
+        [N·m]; ``loads`` then holds zeros at the half orders.
+    settings : MountsOptions or None
+        The settings of the run.
     """
 
     name: str
@@ -165,6 +173,8 @@ class MountsResult(ResultMixin):
     optimum_modes: pm.Modes | None = None
     optimum_response: pm.Response | None = None
     parts: tuple[pe.Part, ...] = ()
+    gas_loads: NDArray[np.complex128] | None = None
+    settings: MountsOptions | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.mounts/1`` (SI units in the keys, speeds in rpm)."""
@@ -194,12 +204,14 @@ def mounts(
     :data:`~crankbalance.physics.mounts.MAX_RESPONSE_POINTS`).
     """
     o = settings
-    n_points = pm.response_size(o.speed_samples, o.orders)
+    refuse_combustion_without_gas(o)
+    n_orders = o.orders * (2 if o.gas_torque else 1)  # a four-stroke's gas: half orders
+    n_points = pm.response_size(o.speed_samples, n_orders)
     if n_points > pm.MAX_RESPONSE_POINTS:
         raise InputError(
             "speed_samples",
             o.speed_samples,
-            f"speed samples x orders ({o.orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
+            f"speed samples x orders ({n_orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
         )
     if powertrain is None:
         spec = spec_of(engine)
@@ -229,10 +241,13 @@ def mounts(
     if high <= o.speed_min:
         raise InputError("speed_min", o.speed_min, "must be below the engine's speed")
     speeds = np.linspace(o.speed_min, high, o.speed_samples)
-    orders = forces.orders[: o.orders]
+    orders = np.asarray(forces.orders[: o.orders], dtype=float)
+    gas: NDArray[np.complex128] | None = None
+    if o.gas_torque:
+        orders, loads, gas = with_gas(model, o, orders, loads)
     statics = pm.statics(powertrain, o.mean_torque)
     modes = pm.modes(powertrain)
-    response = pm.forced_response(powertrain, loads, orders, model.speed, speeds)
+    response = pm.forced_response(powertrain, loads, orders, model.speed, speeds, gas)
     point = np.array(o.point if o.point is not None else powertrain.cg, dtype=float)
     comparison: tuple[tuple[str, MountsResult], ...] = ()
     if o.comparing():
@@ -241,11 +256,11 @@ def mounts(
     if o.optimize is not None:
         coarse = np.linspace(o.speed_min, high, min(po.OPTIMIZER_SPEEDS, o.speed_samples))
         optimum = po.optimize_mounts(
-            powertrain, goals, loads, orders, model.speed, coarse, progress=progress
+            powertrain, goals, loads, orders, model.speed, coarse, progress=progress, gas=gas
         )
         optimum_modes = pm.modes(optimum.powertrain)
         optimum_response = pm.forced_response(
-            optimum.powertrain, loads, orders, model.speed, speeds
+            optimum.powertrain, loads, orders, model.speed, speeds, gas
         )
     result = MountsResult(
         model.name,
@@ -262,6 +277,8 @@ def mounts(
         optimum_modes,
         optimum_response,
         parts,
+        gas,
+        o,
     )
     result.to_dict()  # checked finite
     return result
@@ -290,7 +307,7 @@ def payload(r: MountsResult) -> dict[str, Any]:
         s = int(np.argmax(point_peak[:, k]))
         orders.append(
             {
-                "order": int(n),
+                "order": order_number(n),
                 "loads_at_engine_speed": dict(
                     zip(
                         ("fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm"),
@@ -356,18 +373,30 @@ def payload(r: MountsResult) -> dict[str, Any]:
         "roll_mode": md.roll_mode + 1,
         "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
         "crossings": [
-            {"mode": c.mode + 1, "order": c.order, "speed_rpm": c.speed * _RPM} for c in r.crossings
+            {"mode": c.mode + 1, "order": order_number(c.order), "speed_rpm": c.speed * _RPM}
+            for c in r.crossings
         ],
         "point_m": r.point,
         "orders": orders,
         "sweep": {
             "speed_rpm": speeds_rpm,
             "mount_force_N": {
-                name: {str(int(n)): rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
+                name: {f"{n:g}": rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
                 for i, name in enumerate(names)
             },
         },
     }
+    if r.gas_loads is not None:
+        from .performance import combustion_summary
+
+        out["gas_torque"] = {
+            "speed_dependence": "none: a pressure over the crank angle, the same at every speed",
+            "combustion": combustion_summary(r.settings) if r.settings is not None else None,
+            "roll_Nm": [
+                {"order": order_number(n), "amplitude_Nm": float(abs(r.gas_loads[k, 4]))}
+                for k, n in enumerate(rs.orders)
+            ],
+        }
     if r.parts:
         out["powertrain"]["estimated_from"] = [
             {"part": p.name, "mass_kg": p.mass, "centre_m": p.centre} for p in r.parts
@@ -377,6 +406,67 @@ def payload(r: MountsResult) -> dict[str, Any]:
     if r.optimum is not None:
         out["optimum"] = optimum_payload(r)
     return out
+
+
+def order_number(n: float) -> int | float:
+    """An engine order as the JSON shows it: a whole number, or a half order as 0.5, 1.5."""
+    return int(n) if float(n).is_integer() else float(n)
+
+
+def with_gas(
+    model: EngineModel,
+    settings: MountsOptions,
+    orders: NDArray[np.float64],
+    loads: NDArray[np.complex128],
+) -> tuple[NDArray[np.float64], NDArray[np.complex128], NDArray[np.complex128]]:
+    """The orders of the engine's cycle up to ``settings.orders`` (half orders of a
+    four-stroke), the inertia loads at them (zeros at the half orders) and the gas torque's
+    reaction on the block: :math:`M_y = -\\mathrm{Re}\\sum_n G_n e^{in\\theta}` with
+    :math:`G_n` the harmonics of the engine cycle's gas torque on the crank
+    (:func:`crankbalance.physics.engine_cycle_all.engine_cycle_all` with the combustion of
+    the settings, :func:`crankbalance.physics.torsional.order_harmonics` over the first
+    throw's crank angle). The mean gas torque is not in it (``mean_torque`` is the statics').
+    """
+    from ..physics.engine_cycle_all import engine_cycle_all
+    from ..physics.torsional import engine_orders, order_harmonics
+    from .crank import rotating_inertia
+    from .performance import pressure_source
+
+    o = settings
+    every = engine_orders(model.strokes, float(o.orders))
+    # the gas torque does not depend on the speed or the crank's inertia (a pressure over
+    # the crank angle); the cycle needs one to integrate its speed
+    cycle = engine_cycle_all(
+        model,
+        pressure_source(o, model.cylinders, model.strokes),
+        bore=o.bore if o.bore is not None else 2.0 * model.crank_radius,
+        crank_inertia=rotating_inertia(model),
+    )
+    harmonics = order_harmonics(cycle.crank_angle, cycle.gas_torque, every)
+    # orders the firing cancels come out of the sum as round-off: zero, as the free forces'
+    harmonics[np.abs(harmonics) < GAS_ROUND_OFF * np.abs(harmonics).max(initial=0.0)] = 0.0
+    gas = np.zeros((every.size, 6), dtype=complex)
+    gas[:, 4] = -harmonics
+    inertia = np.zeros((every.size, 6), dtype=complex)
+    for k, n in enumerate(orders):
+        inertia[int(np.argmin(np.abs(every - n)))] = loads[k]
+    return np.asarray(every, dtype=float), inertia, gas
+
+
+def refuse_combustion_without_gas(settings: MountsOptions) -> None:
+    """A combustion setting given without ``gas_torque``, or a Wiebe setting beside
+    pressure tables, would not act: refused, naming it."""
+    from .performance import WIEBE_OPTIONS
+
+    typed = settings.given()
+    for name in (*WIEBE_OPTIONS, "pressure_csv", "bore"):
+        if name in typed and not settings.gas_torque:
+            raise InputError(name, getattr(settings, name), "only acts with --gas-torque")
+    for name in WIEBE_OPTIONS:
+        if name in typed and settings.pressure_csv:
+            raise InputError(
+                name, getattr(settings, name), "only acts on the Wiebe model, not with tables"
+            )
 
 
 def goals_of(settings: MountsOptions) -> po.MountGoals:
@@ -440,7 +530,7 @@ def optimum_payload(r: MountsResult) -> dict[str, Any]:
         "roll_mode_energy_percent": md.energy[md.roll_mode, 3],
         "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
         "largest_mount_force_N": {
-            str(int(n)): float(rs.mount_peak[:, k, :].max()) for k, n in enumerate(rs.orders)
+            f"{n:g}": float(rs.mount_peak[:, k, :].max()) for k, n in enumerate(rs.orders)
         },
     }
 

@@ -351,6 +351,7 @@ STUDIES: dict[str, Study] = {
             "required",
             options={"compare_patterns": "compare-pattern"},
             edge=("format", "plot", "quiet"),
+            files=("pressure_csv",),
         ),
         Study(
             "explore",
