@@ -234,3 +234,13 @@ def test_the_optimisers_work_is_bounded_before_it_starts(
     with pytest.raises(InputError, match="optimize"):
         pt, loads, orders, speed, speeds = _car_case(4)
         po.optimize_mounts(pt, po.MountGoals(()), loads, orders, speed, speeds)
+
+
+def test_each_variable_and_choice_is_given_once(capsys: pytest.CaptureFixture[str]) -> None:
+    for args in (
+        ["--optimize", "stiffness, stiffness"],
+        ["--compare-balance-factors", "0.5,0.5"],
+        ["--compare-pattern", "all", "--compare-pattern", "all"],
+    ):
+        code, _, err = _run(["mounts", str(CAR), *args], capsys)
+        assert code == 2 and "must give each value once" in err, args

@@ -2546,7 +2546,7 @@ class MountsOptions(CombustionOptions):
         band = self.frequency_band
         if band is not None and band[0] >= band[1]:
             raise FieldProblem("frequency_band", "must be lowest then highest, apart")
-        for name in ("compare_patterns", "compare_balance_factors"):
+        for name in ("compare_patterns", "compare_balance_factors", "optimize"):
             items = getattr(self, name)
             if items is not None and len(set(items)) < len(items):
                 raise FieldProblem(name, "must give each value once")
