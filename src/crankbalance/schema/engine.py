@@ -1160,7 +1160,7 @@ class Powertrain(_EngineTable):
         gt=0.0,
         title="Powertrain mass",
         description="Mass of the powertrain: engine, gearbox and all that the mounts carry "
-        "(with cg and inertia; or an [powertrain.estimate] table instead of the three).",
+        "(with cg and inertia; or a [powertrain.estimate] table instead of the three).",
         hint="e.g. 180 kg",
     )
     cg: list[float] | None = field(
