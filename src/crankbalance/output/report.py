@@ -12,6 +12,8 @@ turning them into SVG or HTML and printing the page to PDF is done by
 
 Contents: engine data, mass split, free forces and moments by order, rotating masses,
 balancing masses (counterweights, balance shafts), residuals before/after balancing, the
+powertrain on its mounts when the engine file has a ``[powertrain]`` (the mount study under
+the forces the balancing leaves, :func:`crankbalance.studies.mounts.compare`), the
 figures of :mod:`crankbalance.output.figures`, and the settings used (solver options and the engine
 file itself). Every number comes from :func:`crankbalance.studies.engine.analyze` and
 :func:`crankbalance.studies.engine.balance_engine`; both results are also embedded as JSON
@@ -47,6 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..physics.model import EngineModel
     from ..schema.engine import EngineSpec
     from ..studies.engine import Analysis, BalanceStudy
+    from ..studies.mounts import MountsResult
     from .figures.common import Quantity
 
 REPORT_SCHEMA = "crankbalance.report/4"
@@ -61,16 +64,21 @@ class Report:
     engine_file: str  # TOML text of the engine, as used
     settings: dict[str, Any]
     created: str
+    mounts: MountsResult | None = None  # the engine file has a [powertrain]
 
     def data(self) -> dict[str, Any]:
-        """The numbers of the report (the API's JSON contracts) and its settings."""
-        return {
+        """The numbers of the report (the API's JSON contracts) and its settings; with a
+        ``[powertrain]`` the mount study of the balanced engine (``mounts``)."""
+        out = {
             "schema": REPORT_SCHEMA,
             "created": self.created,
             "analysis": self.analysis.to_dict(),
             "balance": self.study.to_dict(),
             "settings": self.settings,
         }
+        if self.mounts is not None:
+            out["mounts"] = self.mounts.to_dict()
+        return out
 
 
 def build_report(
@@ -121,7 +129,15 @@ def build_report(
         "units": "SI (m, kg, rad) in the options; angles in the tables in degrees",
     }
     created = _dt.datetime.now(_dt.UTC).strftime("%Y-%m-%d %H:%M UTC")
-    return Report(analysis, study, engine_to_toml(spec), settings, created)
+    mounts = None
+    if spec.powertrain is not None:
+        from ..schema.settings import MountsOptions
+        from ..studies.mounts import Choice, compare
+
+        # the mount study's defaults, under the forces this balancing leaves
+        choice = Choice("as balanced", cw, primary, secondary)
+        mounts = compare(spec, MountsOptions.parse({}), [choice])[0][1]
+    return Report(analysis, study, engine_to_toml(spec), settings, created, mounts)
 
 
 # --------------------------------------------------------------------------- formatting
@@ -208,6 +224,18 @@ def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
             residuals_bar(s),
         ),
     ]
+    if report.mounts is not None:
+        from .figures.mounts import mounts_figure
+
+        figs.append(
+            (
+                "mounts",
+                "The powertrain on its mounts, under the forces the balancing leaves: the "
+                "Campbell diagram of its six rigid-body modes and the force each mount "
+                "transmits over speed, by order.",
+                mounts_figure(report.mounts),
+            )
+        )
     return figs
 
 
@@ -476,6 +504,9 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     for note in b["notes"]:
         parts.append(f'<p class="note">{esc(note)}</p>')
 
+    if report.mounts is not None:
+        parts += _mounts_section(report.mounts)
+
     # figures
     if figures:
         parts.append("<h2>Figures</h2>")
@@ -494,6 +525,72 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
 
     data = json.dumps(to_jsonable(report.data()), default=_json_default)
     return page(f"{e['name']}: balancing report", parts, data)
+
+
+def _mounts_section(result: MountsResult) -> list[str]:
+    """The powertrain on its mounts (docs/mounts.md) under the forces the balancing leaves:
+    the body, the six modes with their kinetic energy, the torque-roll axis, the crossings
+    and the largest mount force of each order."""
+    d = result.to_dict()
+    pt, speed = d["powertrain"], d["sweep"]["speed_rpm"]
+    out = ["<h2>The powertrain on its mounts</h2>"]
+    out.append(
+        f"<p>The engine file's [powertrain]: {fmt(pt['mass_kg'])} kg on {len(d['mounts'])} "
+        f"mounts, driven by the free forces and moments of orders 1 to {len(d['orders'])} "
+        "that the balancing above leaves, from "
+        f"{fmt(speed[0], 4)} to {fmt(speed[-1], 4)} rpm (crankbalance mounts, "
+        "docs/mounts.md).</p>"
+    )
+    out.append(
+        table(
+            [
+                "mode",
+                "frequency [Hz]",
+                "x [%]",
+                "y [%]",
+                "z [%]",
+                "roll [%]",
+                "pitch [%]",
+                "yaw [%]",
+            ],
+            [
+                [m["mode"], round(m["frequency_Hz"], 2)]
+                + [round(v, 1) + 0.0 for v in m["energy_percent"].values()]  # -0.0 as 0.0
+                for m in d["modes"]
+            ],
+            "mount-modes",
+        )
+    )
+    out.append(
+        f"<p>The roll mode (mode {d['roll_mode']}) turns "
+        f"{fmt(d['roll_mode_angle_to_torque_roll_axis_deg'], 3)}° from the torque-roll axis. "
+        + (
+            "Orders crossing a mode in the speed range: "
+            + ", ".join(
+                f"order {c['order']} × mode {c['mode']} at {fmt(c['speed_rpm'], 4)} rpm"
+                for c in d["crossings"]
+            )
+            if d["crossings"]
+            else "No order crosses a mode in the speed range"
+        )
+        + ".</p>"
+    )
+    out.append(
+        table(
+            ["order", "largest mount force [N]", "mount", "at [rpm]"],
+            [
+                [
+                    o["order"],
+                    o["largest"]["force_N"],
+                    o["largest"]["mount"],
+                    o["largest"]["speed_rpm"],
+                ]
+                for o in d["orders"]
+            ],
+            "mount-forces",
+        )
+    )
+    return out
 
 
 def _json_default(value: Any) -> Any:

@@ -598,8 +598,8 @@ class Response(ResultMixin):
     ----------
     speeds : ndarray, shape (S,)
         Crank speeds [rad/s].
-    orders : ndarray of int, shape (K,)
-        Engine orders [-].
+    orders : ndarray, shape (K,)
+        Engine orders [-] (halves of a four-stroke's gas torque among them).
     displacement : ndarray of complex, shape (S, K, 6)
         q of each order: :math:`\\mathrm{Re}(Q e^{in\\theta})` [m], [rad].
     mount_forces : ndarray of complex, shape (S, K, N, 3)
@@ -609,7 +609,7 @@ class Response(ResultMixin):
     """
 
     speeds: NDArray[np.float64]
-    orders: NDArray[np.int64]
+    orders: NDArray[np.float64]
     displacement: NDArray[np.complex128]
     mount_forces: NDArray[np.complex128]
     mount_peak: NDArray[np.float64]
@@ -638,11 +638,13 @@ def forced_response(
     orders: ArrayLike,
     reference_speed: float,
     speeds: ArrayLike,
+    constant_loads: ArrayLike | None = None,
 ) -> Response:
     """Steady-state response of every order at every speed to the engine's loads.
 
     The loads are inertia forces, proportional to the speed squared: given at
-    ``reference_speed``, they are scaled by :math:`(\\omega/\\omega_0)^2`.
+    ``reference_speed``, they are scaled by :math:`(\\omega/\\omega_0)^2`. The
+    ``constant_loads`` (the gas torque's reaction) are added as they are at every speed.
 
     Parameters
     ----------
@@ -650,12 +652,14 @@ def forced_response(
         The powertrain.
     loads : array_like of complex, shape (K, 6)
         Each order's amplitudes at the reference point (:func:`order_loads`) [N], [N·m].
-    orders : array_like of int, shape (K,)
+    orders : array_like, shape (K,)
         The engine orders n [-].
     reference_speed : float
         The crank speed the loads are given at [rad/s].
     speeds : array_like, shape (S,)
         Crank speeds [rad/s].
+    constant_loads : array_like of complex, shape (K, 6), optional
+        Loads of each order that do not change with the speed [N], [N·m].
 
     Returns
     -------
@@ -663,7 +667,7 @@ def forced_response(
     """
     check_held(pt)
     speeds = np.asarray(speeds, dtype=float)
-    orders = np.asarray(orders, dtype=np.int64)
+    orders = np.asarray(orders, dtype=float)
     if response_size(speeds.size, orders.size) > MAX_RESPONSE_POINTS:
         raise InputError(
             "speed_samples",
@@ -681,6 +685,8 @@ def forced_response(
     )
     scale = (speeds / reference_speed) ** 2
     force = at_cg(loads, pt.cg)[None, :, :] * scale[:, None, None]
+    if constant_loads is not None:
+        force = force + at_cg(constant_loads, pt.cg)[None, :, :]
     q = np.asarray(np.linalg.solve(dynamic, force[..., None])[..., 0], dtype=complex)
     forces = np.empty((*q.shape[:2], len(pt.mounts), 3), dtype=complex)
     for i, mount in enumerate(pt.mounts):
@@ -699,14 +705,14 @@ class Crossing(ResultMixin):
     ----------
     mode : int
         The mode's index (0 the lowest) [-].
-    order : int
+    order : float
         The engine order [-].
     speed : float
         The crank speed where the order's frequency equals the mode's [rad/s].
     """
 
     mode: int
-    order: int
+    order: float
     speed: float
 
 
@@ -719,7 +725,7 @@ def crossings(
     ----------
     frequencies : array_like, shape (6,)
         Natural frequencies [Hz].
-    orders : array_like of int
+    orders : array_like
         Engine orders [-].
     low, high : float
         The speed range [rad/s].
@@ -731,8 +737,8 @@ def crossings(
     """
     out = []
     for r, f in enumerate(np.asarray(frequencies, dtype=float)):
-        for n in np.asarray(orders, dtype=int):
+        for n in np.asarray(orders, dtype=float):
             speed = 2 * math.pi * f / n
             if low <= speed <= high:
-                out.append(Crossing(r, int(n), float(speed)))
+                out.append(Crossing(r, float(n), float(speed)))
     return tuple(out)

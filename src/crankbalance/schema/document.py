@@ -29,6 +29,9 @@ from .engine import (
     EngineSpec,
     Masses,
     MassOverride,
+    Mount,
+    Powertrain,
+    PowertrainEstimate,
     ShaftSet,
     Throw,
 )
@@ -44,6 +47,9 @@ ENGINE_TABLES: dict[str, type[Schema]] = {
     "counterweights": Counterweights,
     "balance_shafts": BalanceShafts,
     "balance_shafts.primary": ShaftSet,
+    "powertrain": Powertrain,
+    "powertrain.mount": Mount,
+    "powertrain.estimate": PowertrainEstimate,
 }
 #: the documents written, relative to the repository's root
 ENGINE_FILE_DOC = "docs/engine_file.md"

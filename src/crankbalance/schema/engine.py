@@ -21,6 +21,7 @@ from typing import Any, Literal, NamedTuple
 from ..errors import InputError
 from .core import (
     MAX_VALUE_CHARS,
+    REQUIRED,
     FieldProblem,
     Schema,
     closest,
@@ -1087,19 +1088,86 @@ class Mount(_EngineTable):
     )
 
 
-class Powertrain(_EngineTable):
-    """The powertrain (engine and gearbox) as a rigid body on its mounts (``[powertrain]``,
-    docs/mounts.md)."""
+def _box(part: str, what: str, optional: bool = False) -> Any:
+    return field(
+        "list",
+        default=None if optional else REQUIRED,
+        item=entry("length", gt=0.0),
+        min_items=3,
+        max_items=3,
+        title=f"{part} size",
+        description=f"The {what} as a solid box of uniform density: its edges along x, y, z.",
+        hint="x, y, z, e.g. 400 mm, 450 mm, 500 mm",
+    )
 
-    mass: float = field(
+
+def _centre(part: str, what: str, optional: bool = False) -> Any:
+    return field(
+        "list",
+        default=None if optional else REQUIRED,
+        item=entry("length", zero=True),
+        min_items=3,
+        max_items=3,
+        title=f"{part} centre",
+        description=f"The centre of the {what}'s box x, y, z from the crank's reference point.",
+        hint="x, y, z, e.g. 0 mm, 0 mm, 150 mm",
+    )
+
+
+class PowertrainEstimate(_EngineTable):
+    """The powertrain's mass, centre of gravity and inertia estimated from the engine's own
+    crank-train masses, a block and a gearbox as boxes (``[powertrain.estimate]``,
+    docs/mounts.md, "Estimating the powertrain")."""
+
+    block_mass: float = field(
         "mass",
         gt=0.0,
+        title="Block mass",
+        description="Mass of the engine without its crank train's rotating and reciprocating "
+        "masses: block, head, crankshaft journals and counterweights, flywheel, ancillaries.",
+        hint="e.g. 110 kg",
+    )
+    block_size: list[float] = _box("Block", "block")
+    block_center: list[float] = _centre("Block", "block")
+    gearbox_mass: float | None = field(
+        "mass",
+        default=None,
+        gt=0.0,
+        title="Gearbox mass",
+        description="Mass of the gearbox (with the clutch and the differential); empty: no "
+        "gearbox.",
+        hint="e.g. 45 kg",
+    )
+    gearbox_size: list[float] | None = _box("Gearbox", "gearbox", optional=True)
+    gearbox_center: list[float] | None = _centre("Gearbox", "gearbox", optional=True)
+
+    def check(self) -> None:
+        given = [
+            getattr(self, n) is not None for n in ("gearbox_mass", "gearbox_size", "gearbox_center")
+        ]
+        if any(given) and not all(given):
+            raise FieldProblem(
+                "gearbox_mass", "a gearbox needs gearbox_mass, gearbox_size and gearbox_center"
+            )
+
+
+class Powertrain(_EngineTable):
+    """The powertrain (engine and gearbox) as a rigid body on its mounts (``[powertrain]``,
+    docs/mounts.md): its mass, centre of gravity and inertia given, or estimated
+    (``[powertrain.estimate]``)."""
+
+    mass: float | None = field(
+        "mass",
+        default=None,
+        gt=0.0,
         title="Powertrain mass",
-        description="Mass of the powertrain: engine, gearbox and all that the mounts carry.",
+        description="Mass of the powertrain: engine, gearbox and all that the mounts carry "
+        "(with cg and inertia; or a [powertrain.estimate] table instead of the three).",
         hint="e.g. 180 kg",
     )
-    cg: list[float] = field(
+    cg: list[float] | None = field(
         "list",
+        default=None,
         item=entry("length", zero=True),
         min_items=3,
         max_items=3,
@@ -1107,14 +1175,23 @@ class Powertrain(_EngineTable):
         description="Its centre of gravity x, y, z from the crank's reference point.",
         hint="x, y, z, e.g. 0 mm, 150 mm, 60 mm",
     )
-    inertia: list[float] = field(
+    inertia: list[float] | None = field(
         "list",
+        default=None,
         item=entry("inertia", gt=0.0),
         min_items=3,
         max_items=3,
         title="Moments of inertia",
         description="Ixx, Iyy, Izz about the centre of gravity, engine axes.",
         hint="e.g. 8 kg*m^2, 6 kg*m^2, 9 kg*m^2",
+    )
+    estimate: PowertrainEstimate | None = field(
+        "table",
+        default=None,
+        table=PowertrainEstimate,
+        title="Estimate of the powertrain",
+        description="Estimate mass, centre of gravity and inertia from the crank train's "
+        "masses, a block and a gearbox as boxes (instead of mass, cg, inertia and products).",
     )
     products: list[float] | None = field(
         "list",
@@ -1150,6 +1227,20 @@ class Powertrain(_EngineTable):
     def check(self) -> None:
         if self.up is not None and not any(self.up):
             raise FieldProblem("up", "must not be 0, 0, 0")
+        body = [n for n in ("mass", "cg", "inertia", "products") if getattr(self, n) is not None]
+        if self.estimate is not None:
+            if body:
+                raise FieldProblem(
+                    body[0], "is estimated by [powertrain.estimate]: give one or the other"
+                )
+        else:
+            for name in ("mass", "cg", "inertia"):
+                if getattr(self, name) is None:
+                    raise FieldProblem(
+                        name, "is missing (or give a [powertrain.estimate] table instead)"
+                    )
+        if self.inertia is None:
+            return
         ixx, iyy, izz = self.inertia
         if ixx + iyy < izz or iyy + izz < ixx or ixx + izz < iyy:
             raise FieldProblem(

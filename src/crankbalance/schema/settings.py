@@ -2376,10 +2376,12 @@ class TorsionalOptions(CombustionOptions, CrankDimensionOptions):
             )
 
 
-class MountsOptions(StudyOptions):
+class MountsOptions(CombustionOptions):
     """``mounts``: the powertrain on its mounts (docs/mounts.md): the speed range and its
     samples, the engine orders, the mean torque of the statics, the rotating masses, a point
-    whose motion is shown."""
+    whose motion is shown; the gas torque's reaction when asked (with the combustion of
+    :class:`CombustionOptions`); the comparison of balancing choices and the mount
+    optimiser."""
 
     speed_min: float = quantity("speed", 600 * _RPM, "Lowest speed", "The sweep's lowest speed.")
     speed_max: float | None = quantity(
@@ -2423,10 +2425,139 @@ class MountsOptions(StudyOptions):
         description="A point of the powertrain (x, y, z from the reference point) whose "
         "largest displacement per order is shown; empty: the centre of gravity.",
     )
+    gas_torque: bool = field(
+        "flag",
+        default=False,
+        title="Gas-torque reaction",
+        description="Also apply the reaction of the gas torque about the crank axis at every "
+        "order (half orders of a four-stroke included) from the engine cycle (the Wiebe "
+        "model or the pressure tables); it does not scale with the speed (docs/mounts.md).",
+    )
+    bore: float | None = quantity(
+        "length",
+        None,
+        "Bore",
+        "Cylinder bore, for the gas torque; empty: bore = stroke.",
+        gt=0,
+    )
+    compare_patterns: list[str] | None = field(
+        "list",
+        default=None,
+        item=entry("any", parse=_web_pattern, words="all, none, file or 0/1 per web"),
+        min_items=1,
+        max_items=MAX_PATTERNS,
+        single=True,
+        title="Compare counterweight patterns",
+        description="Compare these counterweight patterns at the mounts (all, none, file or "
+        "0/1 per web, two per throw); empty: the engine file's, if another comparison "
+        "setting is given (at most 32 balancing choices: studies.mounts.MAX_CHOICES).",
+        hint="all, none, file or 0/1 per web: 1,0,0,1",
+    )
+    compare_balance_factors: list[float] | None = _balance_factors(
+        None,
+        "Compare balance factors",
+        "Compare these balance factors at the mounts (each pattern with counterweights "
+        "takes every one); empty: the engine file's, if another comparison setting is given.",
+        hint="e.g. 0, 0.5, 1",
+    )
+    compare_shafts: bool = field(
+        "flag",
+        default=False,
+        title="Compare balance shafts on and off",
+        description="Compare every balancing with and without the engine file's balance "
+        "shafts at the mounts (the file needs a [balance_shafts] table).",
+    )
+    optimize: list[str] | None = field(
+        "list",
+        default=None,
+        item=entry("choice", choices=("stiffness", "position")),
+        min_items=1,
+        max_items=2,
+        title="Optimise the mounts",
+        description="What the mount optimiser may change: stiffness (each mount's three "
+        "stiffnesses scaled by one factor), position (each mount moved along x, y, z); "
+        "empty: no optimisation (docs/mounts.md, 'The mount optimiser').",
+        hint="stiffness, position",
+    )
+    objective: str = choice(
+        "force",
+        ("force", "change"),
+        "Optimiser's objective",
+        "force: the least root-mean-square mount force over the speed range; change: the "
+        "least change of the mounts that meets the goals.",
+    )
+    stiffness_range: list[float] = field(
+        "list",
+        default=[0.5, 2.0],
+        item=entry("number", gt=0, le=100),
+        min_items=2,
+        max_items=2,
+        title="Stiffness factors",
+        description="The lowest and highest factor on each mount's stiffnesses.",
+    )
+    position_range: float = quantity(
+        "length",
+        0.02,
+        "Mount movement",
+        "How far the optimiser may move each mount along each axis.",
+    )
+    frequency_band: list[float] | None = field(
+        "list",
+        default=None,
+        item=entry("frequency", ge=0, le=1e4),
+        min_items=2,
+        max_items=2,
+        title="Frequency band",
+        description="The optimiser's goal: all six natural frequencies in this band (e.g. "
+        "below the firing frequency at idle over the square root of 2); empty: no band.",
+        hint="e.g. 5 Hz, 14 Hz",
+    )
+    roll_energy: float | None = number(
+        None,
+        "Roll energy",
+        "The optimiser's goal: at least this per cent of the roll mode's kinetic energy "
+        "in roll; empty: none.",
+        ge=0,
+        le=100,
+    )
+    roll_axis_angle: float | None = quantity(
+        "angle",
+        None,
+        "Angle to the torque-roll axis",
+        "The optimiser's goal: the roll mode turns at most this far from the torque-roll "
+        "axis; empty: none.",
+        ge=0,
+        le=math.pi / 2,
+    )
+    optimize_iterations: int = whole(
+        40,
+        "Optimiser iterations",
+        "Generations of the differential evolution (the work is bounded: "
+        "physics.mounts_optimize.MAX_OPTIMIZER_EVALUATIONS).",
+        ge=1,
+        le=500,
+    )
 
     def check(self) -> None:
         if self.speed_max is not None and self.speed_max <= self.speed_min:
             raise FieldProblem("speed_max", "must be above the lowest speed")
+        if self.stiffness_range[0] > self.stiffness_range[1]:
+            raise FieldProblem("stiffness_range", "must be lowest then highest")
+        band = self.frequency_band
+        if band is not None and band[0] >= band[1]:
+            raise FieldProblem("frequency_band", "must be lowest then highest, apart")
+        for name in ("compare_patterns", "compare_balance_factors", "optimize"):
+            items = getattr(self, name)
+            if items is not None and len(set(items)) < len(items):
+                raise FieldProblem(name, "must give each value once")
+
+    def comparing(self) -> bool:
+        """Whether a comparison of balancing choices is asked for."""
+        return bool(
+            self.compare_patterns is not None
+            or self.compare_balance_factors is not None
+            or self.compare_shafts
+        )
 
 
 # --------------------------------------------------------------------------------------

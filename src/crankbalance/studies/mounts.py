@@ -12,6 +12,7 @@ every mount transmits.
 from __future__ import annotations
 
 import math
+from collections.abc import Callable
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -20,6 +21,8 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics import mounts as pm
+from ..physics import mounts_estimate as pe
+from ..physics import mounts_optimize as po
 from ..physics.model import EngineModel
 from ..physics.shaking import FreeForces
 from ..results import ResultMixin, to_jsonable
@@ -36,15 +39,36 @@ SCHEMA = "crankbalance.mounts/1"
 #: one mount study.
 MAX_CHOICES = 32
 _RPM = 30.0 / math.pi  # rad/s -> rpm
+#: A gas-torque harmonic below this fraction of the largest is round-off of the sum over
+#: the cylinders (an order the firing cancels) and is taken as zero.
+GAS_ROUND_OFF = 1e-9
 
 
-def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
-    """The physics' powertrain from the engine file's ``[powertrain]`` table (SI values).
+def estimate_parts(table: PowertrainTable, model: EngineModel) -> tuple[pe.Part, ...]:
+    """The parts of ``[powertrain.estimate]``: the block's box, the crank train's masses at
+    their places (:func:`crankbalance.physics.mounts_estimate.crank_train_parts`) and the
+    gearbox's box; empty without the table."""
+    e = table.estimate
+    if e is None:
+        return ()
+    parts = [pe.box_part("block", e.block_mass, e.block_size, e.block_center)]
+    parts += pe.crank_train_parts(model)
+    if e.gearbox_mass is not None and e.gearbox_size is not None and e.gearbox_center is not None:
+        parts.append(pe.box_part("gearbox", e.gearbox_mass, e.gearbox_size, e.gearbox_center))
+    return tuple(parts)
+
+
+def powertrain_of(table: PowertrainTable, model: EngineModel | None = None) -> pm.Powertrain:
+    """The physics' powertrain from the engine file's ``[powertrain]`` table (SI values);
+    with ``[powertrain.estimate]`` its mass, centre of gravity and inertia are the sum of
+    :func:`estimate_parts` (``model`` needed).
 
     Parameters
     ----------
     table : schema.engine.Powertrain
         The validated table.
+    model : EngineModel, optional
+        The engine's model, for an estimate.
 
     Returns
     -------
@@ -60,10 +84,18 @@ def powertrain_of(table: PowertrainTable) -> pm.Powertrain:
         )
         for k, m in enumerate(table.mount)
     )
+    if table.estimate is not None:
+        if model is None:
+            raise ValueError("an estimated powertrain needs the engine's model")
+        mass, cg, inertia = pe.combine(estimate_parts(table, model))
+    else:
+        assert table.mass is not None and table.cg is not None and table.inertia is not None
+        mass, cg = float(table.mass), np.array(table.cg, dtype=float)
+        inertia = pm.inertia_tensor(table.inertia, table.products or (0.0, 0.0, 0.0))
     return pm.Powertrain(
-        mass=float(table.mass),
-        cg=np.array(table.cg, dtype=float),
-        inertia=pm.inertia_tensor(table.inertia, table.products or (0.0, 0.0, 0.0)),
+        mass=mass,
+        cg=cg,
+        inertia=inertia,
         mounts=mounts,
         up=np.array(table.up or (0.0, 0.0, 1.0), dtype=float),
     )
@@ -109,7 +141,22 @@ class MountsResult(ResultMixin):
     point : ndarray, shape (3,)
         The point whose displacement is shown [m].
     loads : ndarray of complex, shape (K, 6)
-        The load amplitudes of each order at the engine's speed [N], [N·m].
+        The inertia load amplitudes of each order at the engine's speed [N], [N·m].
+    comparison : tuple of (str, MountsResult)
+        The balancing choices compared, when asked (``compare_*`` settings).
+    optimum : physics.mounts.MountOptimum or None
+        The mount optimiser's answer, when asked (``optimize``).
+    optimum_modes : physics.mounts.Modes or None
+        The modes of the optimised mounts.
+    optimum_response : physics.mounts.Response or None
+        The forced response of the optimised mounts on the study's speeds.
+    parts : tuple of physics.mounts_estimate.Part
+        The parts the powertrain was estimated from (``[powertrain.estimate]``), else empty.
+    gas_loads : ndarray of complex, shape (K, 6), or None
+        The gas torque's reaction of each order (``gas_torque``), the same at every speed
+        [N·m]; ``loads`` then holds zeros at the half orders.
+    settings : MountsOptions or None
+        The settings of the run.
     """
 
     name: str
@@ -121,6 +168,13 @@ class MountsResult(ResultMixin):
     response: pm.Response
     point: NDArray[np.float64]
     loads: NDArray[np.complex128]
+    comparison: tuple[tuple[str, MountsResult], ...] = ()
+    optimum: po.MountOptimum | None = None
+    optimum_modes: pm.Modes | None = None
+    optimum_response: pm.Response | None = None
+    parts: tuple[pe.Part, ...] = ()
+    gas_loads: NDArray[np.complex128] | None = None
+    settings: MountsOptions | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.mounts/1`` (SI units in the keys, speeds in rpm)."""
@@ -134,9 +188,14 @@ def mounts(
     settings: MountsOptions,
     powertrain: pm.Powertrain | None = None,
     forces: FreeForces | None = None,
+    *,
+    progress: Callable[[int, int, float], None] | None = None,
 ) -> MountsResult:
     """The powertrain of ``engine`` on its mounts: statics, modes, crossings and the forced
-    response to the engine's free forces and moments.
+    response to the engine's free forces and moments; with the ``compare_*`` settings the
+    same study under each balancing choice (:func:`compare`), with ``optimize`` the mount
+    optimiser's answer (:func:`crankbalance.physics.mounts.optimize_mounts`; ``progress``
+    is called after each of its generations with (generation, generations, best)).
 
     ``powertrain`` replaces the engine file's ``[powertrain]`` table; ``forces`` replaces the
     engine's free forces (those of a balancing, say: comparing balancing choices is a loop
@@ -145,12 +204,14 @@ def mounts(
     :data:`~crankbalance.physics.mounts.MAX_RESPONSE_POINTS`).
     """
     o = settings
-    n_points = pm.response_size(o.speed_samples, o.orders)
+    refuse_combustion_without_gas(o)
+    n_orders = o.orders * (2 if o.gas_torque else 1)  # a four-stroke's gas: half orders
+    n_points = pm.response_size(o.speed_samples, n_orders)
     if n_points > pm.MAX_RESPONSE_POINTS:
         raise InputError(
             "speed_samples",
             o.speed_samples,
-            f"speed samples x orders ({o.orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
+            f"speed samples x orders ({n_orders}) must be at most {pm.MAX_RESPONSE_POINTS}",
         )
     if powertrain is None:
         spec = spec_of(engine)
@@ -160,10 +221,17 @@ def mounts(
                 getattr(engine, "name", engine),
                 "needs a [powertrain] table with its mounts (docs/mounts.md)",
             )
-        powertrain = powertrain_of(spec.powertrain)
         engine = spec
     analysis = analyze(engine, orders=o.orders)
     model = analysis.model
+    parts: tuple[pe.Part, ...] = ()
+    if powertrain is None:
+        assert isinstance(engine, EngineSpec) and engine.powertrain is not None
+        parts = estimate_parts(engine.powertrain, model)
+        powertrain = powertrain_of(engine.powertrain, model)
+    if o.optimize is not None:  # bounded before any work
+        goals = goals_of(o)
+        po.check_optimizer_work(powertrain, goals)
     if forces is None:
         forces = analysis.forces
     elif forces.orders.size < o.orders:
@@ -173,11 +241,27 @@ def mounts(
     if high <= o.speed_min:
         raise InputError("speed_min", o.speed_min, "must be below the engine's speed")
     speeds = np.linspace(o.speed_min, high, o.speed_samples)
-    orders = forces.orders[: o.orders]
+    orders = np.asarray(forces.orders[: o.orders], dtype=float)
+    gas: NDArray[np.complex128] | None = None
+    if o.gas_torque:
+        orders, loads, gas = with_gas(model, o, orders, loads)
     statics = pm.statics(powertrain, o.mean_torque)
     modes = pm.modes(powertrain)
-    response = pm.forced_response(powertrain, loads, orders, model.speed, speeds)
+    response = pm.forced_response(powertrain, loads, orders, model.speed, speeds, gas)
     point = np.array(o.point if o.point is not None else powertrain.cg, dtype=float)
+    comparison: tuple[tuple[str, MountsResult], ...] = ()
+    if o.comparing():
+        comparison = tuple(compare(engine, o, choices_of(engine, o), powertrain))
+    optimum = optimum_modes = optimum_response = None
+    if o.optimize is not None:
+        coarse = np.linspace(o.speed_min, high, min(po.OPTIMIZER_SPEEDS, o.speed_samples))
+        optimum = po.optimize_mounts(
+            powertrain, goals, loads, orders, model.speed, coarse, progress=progress, gas=gas
+        )
+        optimum_modes = pm.modes(optimum.powertrain)
+        optimum_response = pm.forced_response(
+            optimum.powertrain, loads, orders, model.speed, speeds, gas
+        )
     result = MountsResult(
         model.name,
         model,
@@ -188,6 +272,13 @@ def mounts(
         response,
         point,
         loads,
+        comparison,
+        optimum,
+        optimum_modes,
+        optimum_response,
+        parts,
+        gas,
+        o,
     )
     result.to_dict()  # checked finite
     return result
@@ -216,7 +307,7 @@ def payload(r: MountsResult) -> dict[str, Any]:
         s = int(np.argmax(point_peak[:, k]))
         orders.append(
             {
-                "order": int(n),
+                "order": order_number(n),
                 "loads_at_engine_speed": dict(
                     zip(
                         ("fx_N", "fy_N", "fz_N", "mx_Nm", "my_Nm", "mz_Nm"),
@@ -231,7 +322,7 @@ def payload(r: MountsResult) -> dict[str, Any]:
                 "point_speed_rpm": float(speeds_rpm[s]),
             }
         )
-    return {
+    out: dict[str, Any] = {
         "engine": {"name": r.name, "speed_rpm": r.model.speed * _RPM},
         "reference_point_m": list(r.model.moment_point),
         "powertrain": {
@@ -282,16 +373,164 @@ def payload(r: MountsResult) -> dict[str, Any]:
         "roll_mode": md.roll_mode + 1,
         "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
         "crossings": [
-            {"mode": c.mode + 1, "order": c.order, "speed_rpm": c.speed * _RPM} for c in r.crossings
+            {"mode": c.mode + 1, "order": order_number(c.order), "speed_rpm": c.speed * _RPM}
+            for c in r.crossings
         ],
         "point_m": r.point,
         "orders": orders,
         "sweep": {
             "speed_rpm": speeds_rpm,
             "mount_force_N": {
-                name: {str(int(n)): rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
+                name: {f"{n:g}": rs.mount_peak[:, k, i] for k, n in enumerate(rs.orders)}
                 for i, name in enumerate(names)
             },
+        },
+    }
+    if r.gas_loads is not None:
+        from .performance import combustion_summary
+
+        out["gas_torque"] = {
+            "speed_dependence": "none: a pressure over the crank angle, the same at every speed",
+            "combustion": combustion_summary(r.settings) if r.settings is not None else None,
+            "roll_Nm": [
+                {"order": order_number(n), "amplitude_Nm": float(abs(r.gas_loads[k, 4]))}
+                for k, n in enumerate(rs.orders)
+            ],
+        }
+    if r.parts:
+        out["powertrain"]["estimated_from"] = [
+            {"part": p.name, "mass_kg": p.mass, "centre_m": p.centre} for p in r.parts
+        ]
+    if r.comparison:
+        out["comparison"] = comparison_table(list(r.comparison))
+    if r.optimum is not None:
+        out["optimum"] = optimum_payload(r)
+    return out
+
+
+def order_number(n: float) -> int | float:
+    """An engine order as the JSON shows it: a whole number, or a half order as 0.5, 1.5."""
+    return int(n) if float(n).is_integer() else float(n)
+
+
+def with_gas(
+    model: EngineModel,
+    settings: MountsOptions,
+    orders: NDArray[np.float64],
+    loads: NDArray[np.complex128],
+) -> tuple[NDArray[np.float64], NDArray[np.complex128], NDArray[np.complex128]]:
+    """The orders of the engine's cycle up to ``settings.orders`` (half orders of a
+    four-stroke), the inertia loads at them (zeros at the half orders) and the gas torque's
+    reaction on the block: :math:`M_y = -\\mathrm{Re}\\sum_n G_n e^{in\\theta}` with
+    :math:`G_n` the harmonics of the engine cycle's gas torque on the crank
+    (:func:`crankbalance.physics.engine_cycle_all.engine_cycle_all` with the combustion of
+    the settings, :func:`crankbalance.physics.torsional.order_harmonics` over the first
+    throw's crank angle). The mean gas torque is not in it (``mean_torque`` is the statics').
+    """
+    from ..physics.engine_cycle_all import engine_cycle_all
+    from ..physics.torsional import engine_orders, order_harmonics
+    from .crank import rotating_inertia
+    from .performance import pressure_source
+
+    o = settings
+    every = engine_orders(model.strokes, float(o.orders))
+    # the gas torque does not depend on the speed or the crank's inertia (a pressure over
+    # the crank angle); the cycle needs one to integrate its speed
+    cycle = engine_cycle_all(
+        model,
+        pressure_source(o, model.cylinders, model.strokes),
+        bore=o.bore if o.bore is not None else 2.0 * model.crank_radius,
+        crank_inertia=rotating_inertia(model),
+    )
+    harmonics = order_harmonics(cycle.crank_angle, cycle.gas_torque, every)
+    # orders the firing cancels come out of the sum as round-off: zero, as the free forces'
+    harmonics[np.abs(harmonics) < GAS_ROUND_OFF * np.abs(harmonics).max(initial=0.0)] = 0.0
+    gas = np.zeros((every.size, 6), dtype=complex)
+    gas[:, 4] = -harmonics
+    inertia = np.zeros((every.size, 6), dtype=complex)
+    for k, n in enumerate(orders):
+        inertia[int(np.argmin(np.abs(every - n)))] = loads[k]
+    return np.asarray(every, dtype=float), inertia, gas
+
+
+def refuse_combustion_without_gas(settings: MountsOptions) -> None:
+    """A combustion setting given without ``gas_torque``, or a Wiebe setting beside
+    pressure tables, would not act: refused, naming it."""
+    from .performance import WIEBE_OPTIONS
+
+    typed = settings.given()
+    for name in (*WIEBE_OPTIONS, "pressure_csv", "bore"):
+        if name in typed and not settings.gas_torque:
+            raise InputError(name, getattr(settings, name), "only acts with --gas-torque")
+    for name in WIEBE_OPTIONS:
+        if name in typed and settings.pressure_csv:
+            raise InputError(
+                name, getattr(settings, name), "only acts on the Wiebe model, not with tables"
+            )
+
+
+def goals_of(settings: MountsOptions) -> po.MountGoals:
+    """The mount optimiser's goals from the settings (``optimize`` given)."""
+    o = settings
+    low, high = o.stiffness_range
+    return po.MountGoals(
+        variables=tuple(o.optimize or ()),
+        stiffness_range=(float(low), float(high)),
+        position_range=float(o.position_range),
+        band=None if o.frequency_band is None else (o.frequency_band[0], o.frequency_band[1]),
+        roll_energy=o.roll_energy,
+        roll_axis_angle=o.roll_axis_angle,
+        objective=o.objective,
+        iterations=o.optimize_iterations,
+    )
+
+
+def optimum_payload(r: MountsResult) -> dict[str, Any]:
+    """The JSON of the mount optimiser's answer: the mounts found, the goals and their
+    margins before and after, the modes and the largest mount force per order."""
+    opt, md, rs = r.optimum, r.optimum_modes, r.optimum_response
+    assert opt is not None and md is not None and rs is not None
+    g = opt.goals
+    scale = (
+        np.exp(opt.variables[: len(r.powertrain.mounts)]) if "stiffness" in g.variables else None
+    )
+    return {
+        "variables": list(g.variables),
+        "objective": g.objective,
+        "objective_before": opt.objective_before,
+        "objective_after": opt.objective_after,
+        "objective_unit": "N" if g.objective == "force" else "-",
+        "goals": {
+            "frequency_band_Hz": g.band,
+            "roll_energy_percent": g.roll_energy,
+            "roll_axis_angle_deg": None
+            if g.roll_axis_angle is None
+            else math.degrees(g.roll_axis_angle),
+        },
+        "margins_before": opt.margins_before,
+        "margins_after": opt.margins_after,
+        "feasible": opt.feasible,
+        "evaluations": opt.evaluations,
+        "generations": opt.generations,
+        "mounts": [
+            {
+                "name": m.name,
+                "position_m": m.position,
+                "moved_m": m.position - r.powertrain.mounts[i].position,
+                "stiffness_factor": None if scale is None else float(scale[i]),
+                "stiffness_N_m": {
+                    "compression": m.stiffness[0],
+                    "shear1": m.stiffness[1],
+                    "shear2": m.stiffness[2],
+                },
+            }
+            for i, m in enumerate(opt.powertrain.mounts)
+        ],
+        "frequencies_Hz": md.frequencies,
+        "roll_mode_energy_percent": md.energy[md.roll_mode, 3],
+        "roll_mode_angle_to_torque_roll_axis_deg": math.degrees(md.roll_axis_angle),
+        "largest_mount_force_N": {
+            f"{n:g}": float(rs.mount_peak[:, k, :].max()) for k, n in enumerate(rs.orders)
         },
     }
 
@@ -367,7 +606,10 @@ class Choice:
 
 
 def compare(
-    engine: EngineLike, settings: MountsOptions, choices: list[Choice]
+    engine: EngineLike,
+    settings: MountsOptions,
+    choices: list[Choice],
+    powertrain: pm.Powertrain | None = None,
 ) -> list[tuple[str, MountsResult]]:
     """The mount study of ``engine`` under each balancing choice: one loop over
     :func:`balanced_forces` and :func:`mounts` (the rotating masses as the balancing leaves
@@ -385,13 +627,19 @@ def compare(
     spec = spec_of(engine)
     source: EngineLike = spec if spec is not None else engine
     model = analyze(source, orders=settings.orders).model
-    bare = settings.replace(rotating="bare")
+    bare = settings.replace(
+        rotating="bare",
+        compare_patterns=None,
+        compare_balance_factors=None,
+        compare_shafts=False,
+        optimize=None,
+    )
     out = []
     for choice in choices:
         forces = balanced_forces(
             model, choice.counterweights, choice.primary, choice.secondary, settings.orders
         )
-        out.append((choice.label, mounts(source, bare, forces=forces)))
+        out.append((choice.label, mounts(source, bare, powertrain, forces=forces)))
     return out
 
 
@@ -420,3 +668,53 @@ def comparison_table(results: list[tuple[str, MountsResult]]) -> list[dict[str, 
         row["largest_N"] = float(result.response.mount_peak.max())
         rows.append(row)
     return rows
+
+
+def choices_of(engine: EngineLike, settings: MountsOptions) -> list[Choice]:
+    """The balancing choices of the ``compare_*`` settings: every counterweight pattern
+    (``compare_patterns``, default the engine file's) with every balance factor
+    (``compare_balance_factors``, default the engine file's), ``none`` once as a bare
+    crank, each without and (``compare_shafts``) with the engine file's balance shafts;
+    the other counterweight options are the engine file's (:func:`balance_options`)."""
+    from dataclasses import replace
+
+    from .engine import balance_options
+
+    spec = spec_of(engine)
+    if spec is None:
+        raise InputError("engine", getattr(engine, "name", engine), "an engine file or preset")
+    base, primary, secondary = balance_options(spec)
+    if settings.compare_shafts and primary is None and secondary is None:
+        raise InputError(
+            "compare_shafts", True, "needs a [balance_shafts] table in the engine file"
+        )
+    patterns = settings.compare_patterns or ["file"]
+    factors = settings.compare_balance_factors or [base.balance_factor]
+    shafts = [False, True] if settings.compare_shafts else [False]
+    count = len(shafts) * sum(1 if p == "none" else len(factors) for p in patterns)
+    if count > MAX_CHOICES:
+        raise InputError(
+            "compare_patterns",
+            ", ".join(patterns),
+            f"with the balance factors and shafts must make at most {MAX_CHOICES} "
+            f"balancing choices: here {count}",
+        )
+    out = []
+    for pattern in patterns:
+        for factor in [None] if pattern == "none" else factors:
+            for on in shafts:
+                words = "shafts" if on else ""
+                if factor is None:
+                    cw = None
+                    label = "no counterweights"
+                else:
+                    webs = base.webs
+                    if pattern == "all":
+                        webs = None
+                    elif pattern != "file":
+                        webs = tuple(int(v) for v in pattern.split(","))
+                    cw = replace(base, webs=webs, balance_factor=float(factor))
+                    label = f"{pattern} bf {float(factor):g}"
+                label = f"{label}, {words}" if words else label
+                out.append(Choice(label, cw, primary if on else None, secondary if on else None))
+    return out

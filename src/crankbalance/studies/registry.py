@@ -349,7 +349,10 @@ STUDIES: dict[str, Study] = {
             "crankbalance.studies.mounts:mounts",
             "MountsOptions",
             "required",
-            edge=("format", "plot"),
+            options={"compare_patterns": "compare-pattern"},
+            edge=("format", "plot", "quiet"),
+            files=("pressure_csv",),
+            heavy=True,
         ),
         Study(
             "explore",

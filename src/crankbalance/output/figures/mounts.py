@@ -36,17 +36,24 @@ _MM = 1000.0
 def mounts_figure(result: MountsResult) -> go.Figure:
     """Top, the Campbell diagram: the six natural frequencies [Hz] of the powertrain on its
     mounts and the engine-order lines f = n · rpm / 60 over the speed range, a marker at
-    every crossing; bottom, the largest force of each mount over a cycle [N] against speed,
-    one line per mount (dash) and order (colour)."""
+    every crossing; middle, the largest force of each mount over a cycle [N] against speed,
+    one line per mount (dash) and order (colour); with a comparison of balancing choices or
+    an optimisation, a third row: the largest force of any mount and order against speed,
+    for the mounts as given, each choice and the optimised mounts."""
     go = plotly_go()
     response, modes = result.response, result.modes
     rpm = np.asarray(response.speeds) * 30 / math.pi
+    extra = bool(result.comparison) or result.optimum_response is not None
     fig = make_subplots(
-        rows=2,
+        rows=3 if extra else 2,
         cols=1,
         shared_xaxes=True,
         vertical_spacing=0.08,
-        subplot_titles=("Campbell diagram: rigid-body modes", "Force transmitted by each mount"),
+        subplot_titles=(
+            "Campbell diagram: rigid-body modes",
+            "Force transmitted by each mount",
+            *(["Largest mount force (every mount and order)"] if extra else []),
+        ),
     )
     for n in response.orders:
         fig.add_trace(
@@ -108,7 +115,9 @@ def mounts_figure(result: MountsResult) -> go.Figure:
                 col=1,
             )
     fig.update_yaxes(title_text="force [N]", row=2, col=1)
-    fig.update_xaxes(title_text="speed [rpm]", row=2, col=1)
+    if extra:
+        _largest(fig, result, rpm)
+    fig.update_xaxes(title_text="speed [rpm]", row=3 if extra else 2, col=1)
     fig.update_layout(template=TEMPLATE, title=f"{result.name}: the powertrain on its mounts")
     return fig
 
@@ -358,3 +367,26 @@ def mode_shapes_figure(result: MountsResult) -> go.Figure:
         ],
     )
     return fig
+
+
+def _largest(fig: go.Figure, result: MountsResult, rpm: np.ndarray) -> None:
+    """Third row: the largest force of any mount and order over speed, for the mounts as
+    given, each balancing choice compared and the optimised mounts."""
+    go = plotly_go()
+    lines = [("mounts as given", result.response.mount_peak, "solid")]
+    lines += [(label, r.response.mount_peak, "solid") for label, r in result.comparison]
+    if result.optimum_response is not None:
+        lines.append(("optimised mounts", result.optimum_response.mount_peak, "dash"))
+    for k, (label, peak, dash) in enumerate(lines):
+        fig.add_trace(
+            go.Scatter(
+                x=rpm,
+                y=peak.max(axis=(1, 2)),
+                mode="lines",
+                name=label,
+                line={"color": ORDER_COLORS[k % len(ORDER_COLORS)], "dash": dash},
+            ),
+            row=3,
+            col=1,
+        )
+    fig.update_yaxes(title_text="force [N]", row=3, col=1)

@@ -13,7 +13,7 @@ from .crank3d import crank_3d
 from .engine import curves_figure, orders_bar, polar_figure
 from .explore import explore_candidate, explore_points, explore_scatter
 from .loads import bearing_loads_figure, bearing_sweep_figure
-from .mounts import mounts_figure
+from .mounts import mode_shapes_figure, mounts_figure, mounts_layout_figure
 from .performance import bench_figure, engine_torque_figure, sensitivity_figure
 from .shaft import shaft_response_figure, shaft_study
 from .shop import bob_weights_figure, hole_plan, matched_sets, scatter_histograms
@@ -89,7 +89,7 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     "BearingStudy": (bearing_loads_figure,),
     "SweepStudy": (bearing_sweep_figure,),
     "TorsionalResult": (lambda r: torsional_figure(r.study),),
-    "MountsResult": (mounts_figure,),
+    "MountsResult": (mounts_figure, mounts_layout_figure, mode_shapes_figure),
     "ExploreResult": (_explore_scatter, _explore_best),
     "ShopResult.HolePlan": (lambda r: hole_plan(r.result),),
     "ShopResult.PartsStudy": (lambda r: matched_sets(r.result),),
