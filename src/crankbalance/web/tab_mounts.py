@@ -58,11 +58,13 @@ def _split(text: str) -> list[str]:
 
 
 def values_of(texts: dict[str, str]) -> dict[str, Any]:
-    """The settings given (non-empty texts) by field; a list's text split into its items."""
+    """The settings given by field (a text that is neither empty nor the schema's default as
+    the field shows it: a default is not a setting given, so the combustion settings the
+    tab shows do not count as typed without the gas torque); a list's text split."""
     out: dict[str, Any] = {}
     for name in MountsOptions.FIELDS:
         text = texts.get(name, "").strip()
-        if text:
+        if text and text != SETTINGS[name][1]:
             out[name] = _split(text) if field_kind(MountsOptions, name)[0] == "list" else text
     return out
 
