@@ -74,7 +74,7 @@ def test_a_hole_deeper_than_the_part_is_refused_with_the_split() -> None:
     n, each = holes.split(31.7 * MM)
     message = str(error.value)
     assert "--web-thickness = 14 mm" in message
-    assert f"split them: {n} holes per web side by side, {each * 1e3:.4g} mm deep" in message
+    assert f"split them: {n} per web side by side, {each * 1e3:.4g} mm deep" in message
     assert f"(--holes: {n})" in message
     # flat-bottomed: n holes of the same diameter, total depth the single hole's
     assert n * each == pytest.approx(31.7 * MM, rel=1e-12)

@@ -271,7 +271,7 @@ class DrilledHoles(_Layer, ResultMixin):
         needed, each = self.split(depth)
         to = "" if self.point_angle == FLAT_BOTTOM else f" to the {self.depth_to}"
         advice = (
-            f"split them: {needed} holes per web side by side, {each * 1e3:.4g} mm deep{to}, "
+            f"split them: {needed} per web side by side, {each * 1e3:.4g} mm deep{to}, "
             f"take off the same mass ({_name(names, 'holes')}: {needed}), or give a larger drill"
             if needed
             else f"no number of holes up to {MAX_SPLIT_HOLES} per web fits; give a larger drill"
