@@ -89,3 +89,29 @@ def test_the_drills_length_limits_the_depth() -> None:
     assert short.split(31.7 * MM) == (2, pytest.approx(31.7 * MM / 2))
     with pytest.raises(InputError, match="drill_length"):
         DrilledHoles(D, 40 * MM, drill_length=0.0)
+
+
+def test_the_cli_names_the_drill_length_and_the_split_passes(
+    capsys: pytest.CaptureFixture[str],
+) -> None:
+    """``rebalance --drill-length``: one 8 mm hole per web would be 119.9 mm deep, deeper
+    than a 50 mm drill: refused in one line with the split (3 per web, 39.98 mm each, the
+    same mass); the split typed in passes, each hole within the drill's length."""
+    import json
+
+    from .conftest import EXAMPLES, run_cli
+
+    args = ["rebalance", "--parts", str(EXAMPLES / "crf250r_rebalance.toml")]
+    args += ["--method", "holes", "--hole-diameter", "8 mm", "--drill-length", "50 mm"]
+    code, out, err = run_cli(args, capsys)
+    assert code == 2 and out == "" and len(err.splitlines()) == 1, err
+    assert "deeper than the drill's length, --drill-length = 50 mm" in err
+    depth = float(err.split("per web ")[1].split(" mm deep")[0]) * MM  # 119.9 mm, as shown
+    n, each = DrilledHoles(D, 40 * MM, drill_length=50 * MM).split(depth)
+    shown = float(err.split("split them: 3 per web side by side, ")[1].split(" mm")[0])
+    assert n == 3 and shown == pytest.approx(each * 1e3, abs=0.02), err  # 119.9 mm / 3
+    code, out, err = run_cli([*args, "--holes", str(n), "--format", "json"], capsys)
+    assert code == 0, err
+    for case in json.loads(out)["cases"]:
+        assert case["passed"] and case["correction"]["drill_length_m"] == pytest.approx(0.05)
+        assert all(it["depth_m"] <= 0.05 for it in case["iterations"])

@@ -1870,6 +1870,12 @@ class RebalancePartsOptions(StudyOptions):
         "Web thickness at the holes",
         "Axial thickness of the web at the holes: the deepest axial hole.",
     )
+    drill_length: float | None = quantity(
+        "length",
+        None,
+        "Drill length",
+        "Usable length of the drill: the deepest hole it makes, to the tip.",
+    )
     density: float | None = quantity(
         "density", None, "Crank material density", "Density of the crank's material."
     )
