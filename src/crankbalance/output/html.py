@@ -42,7 +42,7 @@ figure { margin: 0.6em 0 1.2em 0; page-break-inside: avoid; break-inside: avoid;
 figure img { width: 100%; max-width: 1000px; } figcaption { font-size: 0.85em; color: #555; }
 pre { background: #f6f6f6; padding: 0.6em; font-size: 0.8em; white-space: pre-wrap; }
 @media print { body { margin: 0; max-width: none; } h2 { page-break-after: avoid; }
-  table { page-break-inside: avoid; } figure.screen-only { display: none; } }
+  table { page-break-inside: avoid; } figure.screen-only, .modebar { display: none; } }
 """
 
 

@@ -53,7 +53,7 @@ def crank_views(
         rows=1,
         cols=len(VIEWS),
         subplot_titles=[title for title, _, _ in VIEWS],
-        horizontal_spacing=0.07,
+        horizontal_spacing=0.1,
     )
     go = plotly_go()
     for col, (_, across, up) in enumerate(VIEWS, start=1):
