@@ -529,6 +529,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--point-angle": quantity("angle", "118 deg", "180 deg"),
             "--depth-to": ["shoulder", "tip", *CHOICE],
             "--web-thickness": quantity("length", "15 mm"),
+            "--drill-length": quantity("length", "60 mm"),
             "--density": quantity("density", "7850 kg/m^3"),
             "--depth-resolution": quantity("length", "0.001 mm"),
             "--grade": ["G6.3", "G2.5", "G7", ""],

@@ -208,6 +208,13 @@ class Correction(_Table):
         title="Web thickness",
         description="Axial thickness of the web at the holes.",
     )
+    drill_length: float | None = field(
+        "length",
+        default=None,
+        gt=0,
+        title="Drill length",
+        description="Usable length of the drill: the deepest hole, to the tip.",
+    )
     webs: int = field(
         "whole",
         default=2,
@@ -245,7 +252,15 @@ class Correction(_Table):
 #: [correction] keys that belong to one method only
 METHOD_KEYS: dict[str, tuple[str, ...]] = {
     "face": ("area", "orientation"),
-    "holes": ("diameter", "number", "direction", "point_angle", "depth_to", "web_thickness"),
+    "holes": (
+        "diameter",
+        "number",
+        "direction",
+        "point_angle",
+        "depth_to",
+        "web_thickness",
+        "drill_length",
+    ),
 }
 
 

@@ -12,7 +12,8 @@ Public names
 - ``CSS``: the style of every page (screen and print).
 - ``fmt(value, digits=5) -> str``: a value as a table cell.
 - ``table(header, rows, cls="") -> str``: an HTML table.
-- ``figure_html(fig_id, caption, fig, static, first) -> str``: a figure and its caption.
+- ``figure_html(fig_id, caption, fig, static, first, screen_only=False) -> str``: a figure
+  and its caption.
 - ``page(title, body, data) -> str``: the whole document.
 """
 
@@ -41,7 +42,7 @@ figure { margin: 0.6em 0 1.2em 0; page-break-inside: avoid; break-inside: avoid;
 figure img { width: 100%; max-width: 1000px; } figcaption { font-size: 0.85em; color: #555; }
 pre { background: #f6f6f6; padding: 0.6em; font-size: 0.8em; white-space: pre-wrap; }
 @media print { body { margin: 0; max-width: none; } h2 { page-break-after: avoid; }
-  table { page-break-inside: avoid; } }
+  table { page-break-inside: avoid; } figure.screen-only, .modebar { display: none; } }
 """
 
 
@@ -68,10 +69,19 @@ def table(header: list[str], rows: list[list[Any]], cls: str = "") -> str:
     return f'<table class="{cls}"><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>'
 
 
-def figure_html(fig_id: str, caption: str, fig: go.Figure, static: bool, first: bool) -> str:
+def figure_html(
+    fig_id: str,
+    caption: str,
+    fig: go.Figure,
+    static: bool,
+    first: bool,
+    screen_only: bool = False,
+) -> str:
     """A plotly figure and its caption as a ``<figure id="figure-<fig_id>">``: an inline SVG
     image when ``static`` (for printing; 1000 px wide, the figure's own height or 560 px),
-    else the interactive figure, with plotly.js inlined when it is the page's ``first``."""
+    else the interactive figure, with plotly.js inlined when it is the page's ``first``.
+    ``screen_only`` (an interactive figure that does not print, a WebGL scene) hides it in
+    print (class ``screen-only``); a static figure always prints."""
     from . import render
 
     if static:
@@ -80,8 +90,9 @@ def figure_html(fig_id: str, caption: str, fig: go.Figure, static: bool, first: 
         body = f'<img alt="{_html.escape(caption)}" src="data:image/svg+xml;base64,{data}"/>'
     else:
         body = render.to_html(fig, include_plotlyjs=first, full_html=False, div_id=f"fig-{fig_id}")
+    cls = ' class="screen-only"' if screen_only and not static else ""
     return (
-        f'<figure id="figure-{fig_id}">{body}<figcaption>{_html.escape(caption)}'
+        f'<figure id="figure-{fig_id}"{cls}>{body}<figcaption>{_html.escape(caption)}'
         "</figcaption></figure>"
     )
 

@@ -24,8 +24,13 @@ Public functions
 ----------------
 - ``build_report(engine, orders=8, **overrides) -> Report``
 - ``report_html(report, static=False) -> str``
+- ``report_bytes(report, fmt, chromium=None) -> bytes`` (``"html"`` or ``"pdf"``)
 - ``write_report(engine, path, orders=8, chromium=None, **overrides) -> Path``
   (``.html`` or ``.pdf`` by suffix, written atomically)
+
+The 3-D crank is a WebGL scene that a browser does not print: the interactive page shows it
+on screen only and prints the same crank drawn flat in three views
+(:func:`crankbalance.output.figures.crank_views.crank_views`); the PDF has both as images.
 """
 
 from __future__ import annotations
@@ -53,6 +58,11 @@ if TYPE_CHECKING:  # pragma: no cover
     from .figures.common import Quantity
 
 REPORT_SCHEMA = "crankbalance.report/4"
+#: the report's figures that are WebGL scenes: on screen only in the interactive page (a
+#: browser does not print them; the flat views of :mod:`.figures.crank_views` print instead)
+SCREEN_ONLY_FIGURES = frozenset({"crank"})
+#: the file formats of a report (:func:`report_bytes`), by file suffix
+REPORT_FORMATS = ("html", "pdf")
 
 
 @dataclass(frozen=True)
@@ -171,6 +181,7 @@ def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
     """(id, caption, figure) of every figure in the report."""
     from .figures.balancing import residuals_bar
     from .figures.crank3d import crank_3d
+    from .figures.crank_views import crank_views
     from .figures.engine import curves_figure, orders_bar, polar_figure
 
     a, s = report.analysis, report.study
@@ -216,6 +227,12 @@ def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
             "The crankshaft at crank angle 0 with its counterweights and balance shafts "
             "(shafts beside the crank at a schematic distance).",
             crank_3d(s.model, s),
+        ),
+        (
+            "crank-views",
+            "The same crankshaft drawn flat, seen from the side, from above and along the "
+            "crank axis (equal scales; these views print where the 3-D view cannot).",
+            crank_views(s.model, s),
         ),
         (
             "residuals",
@@ -511,7 +528,8 @@ def report_html(report: Report, static: bool = False, figures: bool = True) -> s
     if figures:
         parts.append("<h2>Figures</h2>")
         for k, (fig_id, caption, fig) in enumerate(report_figures(report)):
-            parts.append(figure_html(fig_id, caption, fig, static, k == 0))
+            screen_only = fig_id in SCREEN_ONLY_FIGURES
+            parts.append(figure_html(fig_id, caption, fig, static, k == 0, screen_only))
 
     # settings
     parts.append("<h2>Settings used</h2>")
@@ -615,12 +633,20 @@ def write_report(
     if suffix not in (".html", ".htm", ".pdf"):
         raise InputError("output", str(path), "a file name ending in .html or .pdf")
     report = build_report(engine, orders, **overrides)
-    if suffix == ".pdf":
-        from .render import find_chromium, html_to_pdf
-
-        exe = find_chromium(chromium)  # fail before the figures are drawn
-        data: str | bytes = html_to_pdf(report_html(report, static=True), exe)
-    else:
-        data = report_html(report)
-    write_atomic(target, data)
+    write_atomic(target, report_bytes(report, "pdf" if suffix == ".pdf" else "html", chromium))
     return target
+
+
+def report_bytes(report: Report, fmt: str, chromium: str | None = None) -> bytes:
+    """The report as a file's bytes: ``fmt`` ``"html"`` (the interactive page, UTF-8) or
+    ``"pdf"`` (the page with static SVG figures, printed by a headless Chromium:
+    :func:`crankbalance.output.render.html_to_pdf`); the command line's ``report`` and the
+    web's download both use it."""
+    if fmt not in REPORT_FORMATS:
+        raise InputError("format", fmt, "'html' or 'pdf'")
+    if fmt == "html":
+        return report_html(report).encode("utf-8")
+    from .render import find_chromium, html_to_pdf
+
+    exe = find_chromium(chromium)  # fail before the figures are drawn
+    return html_to_pdf(report_html(report, static=True), exe)

@@ -53,6 +53,8 @@ from .single_cylinder import (
 )
 
 CorrectionKind = Literal["holes", "face"]
+#: most holes per web a split of too deep holes proposes (:meth:`DrilledHoles.split`)
+MAX_SPLIT_HOLES = 1000
 FaceOrientation = Literal["axial", "radial"]
 
 
@@ -145,6 +147,9 @@ class DrilledHoles(_Layer, ResultMixin):
         Axial thickness of the web at the holes [m]: an axial hole ends in it (tip depth at
         most the thickness), a radial hole fits in it. None when not known: the drill's
         reach alone limits the depth (:func:`crankbalance.physics.shop.holes.depth_limit`).
+    drill_length : float, optional
+        The drill's usable length [m]: no hole deeper, to the tip. None: a jobber drill's,
+        :data:`~crankbalance.physics.shop.holes.MAX_DEPTH_RATIO` diameters.
 
     Volume, mass and centroid of each hole are those of
     :func:`crankbalance.physics.shop.holes.hole_mass_properties`, drill point included.
@@ -161,6 +166,7 @@ class DrilledHoles(_Layer, ResultMixin):
     point_angle: float = FLAT_BOTTOM
     depth_to: DepthReference = "shoulder"
     web_thickness: float | None = None
+    drill_length: float | None = None
     kind: str = field(default="holes", init=False)
 
     def __post_init__(self) -> None:
@@ -171,6 +177,8 @@ class DrilledHoles(_Layer, ResultMixin):
         self._check_layer()
         if self.web_thickness is not None:
             check_positive("web_thickness", self.web_thickness)
+        if self.drill_length is not None:
+            check_positive("drill_length", self.drill_length)
         hole_geometry(self.diameter, 0.0, self.depth_to, self.point_angle)  # checks both
 
     def check_drill(self, names: Mapping[str, str] | None = None) -> None:
@@ -204,36 +212,75 @@ class DrilledHoles(_Layer, ResultMixin):
                     f"{self.web_thickness * 1e3:.4g} mm: give a smaller drill",
                 )
 
+    def depth_limit(self, names: Mapping[str, str] | None = None) -> tuple[float, str]:
+        """The deepest hole, to the tip [m], and where the limit comes from: the drill's
+        length (or reach) and, for axial holes, the web's thickness
+        (:func:`~crankbalance.physics.shop.holes.depth_limit`)."""
+        part = self.web_thickness if self.direction == "axial" else None
+        return depth_limit(
+            self.diameter,
+            part,
+            {
+                "web_thickness": _name(names, "web_thickness"),
+                "drill_length": _name(names, "drill_length"),
+            },
+            self.drill_length,
+        )
+
+    def split(self, depth: float, max_holes: int = MAX_SPLIT_HOLES) -> tuple[int, float]:
+        r"""Split holes: the fewest holes per web (at least :attr:`number`, at most
+        ``max_holes``) that take off the same mass as :attr:`number` holes ``depth`` deep
+        (as read to ``depth_to``) [m], each within :meth:`depth_limit`, and their depth [m].
+
+        Each hole keeps its drill point, so n holes of depth :math:`t_n` remove
+        :math:`n V(t_n) = N V(t)` with :math:`V = \pi d^2/4\,(s + h/3)`
+        (:func:`~crankbalance.physics.shop.holes.depth_for_volume`). Returns
+        ``(number, depth)`` unchanged when the holes fit; ``(0, nan)`` when no number up to
+        ``max_holes`` fits.
+        """
+        limit, _ = self.depth_limit()
+        volume = float(hole_geometry(self.diameter, depth, self.depth_to, self.point_angle).volume)
+        total = volume * self.number
+        for n in range(self.number, max_holes + 1):
+            each = depth_for_volume(self.diameter, total / n, self.depth_to, self.point_angle)
+            tip = float(
+                hole_geometry(self.diameter, each, self.depth_to, self.point_angle).tip_depth
+            )
+            if tip <= limit * (1 + 1e-9):
+                return n, each
+        return 0, math.nan
+
     def check_plan(self, depth: float, names: Mapping[str, str] | None = None) -> None:
         """Refuse holes ``depth`` deep (as read to ``depth_to``) [m] that go deeper, to the
-        tip, than the drill reaches or than the web is thick (axial holes)
-        (:func:`~crankbalance.physics.shop.holes.depth_limit`), proposing as many holes per web
-        as keep every hole within the limit.
+        tip, than the drill reaches (its length) or than the web is thick (axial holes)
+        (:meth:`depth_limit`), proposing split holes: the fewest holes per web, side by side,
+        that take off the same mass within the limit (:meth:`split`), and their depth.
 
         Parameters
         ----------
         depth : float
             Depth of every hole [m].
         names : mapping of str to str, optional
-            How the user named ``hole_diameter``, ``holes`` and ``web_thickness``.
+            How the user named ``hole_diameter``, ``holes``, ``web_thickness`` and
+            ``drill_length``.
         """
-        part = self.web_thickness if self.direction == "axial" else None
-        limit, words = depth_limit(
-            self.diameter, part, {"web_thickness": _name(names, "web_thickness")}
-        )
+        limit, words = self.depth_limit(names)
         tip = float(hole_geometry(self.diameter, depth, self.depth_to, self.point_angle).tip_depth)
         if tip <= limit * (1 + 1e-9):
             return
-        deepest = limit - hole_geometry(self.diameter, 0.0, "tip", self.point_angle).cone_height
-        at_limit = self.removed_mass(limit if self.depth_to == "tip" else max(deepest, 0.0))
-        per_hole = at_limit / self._holes
-        needed = math.ceil(self.removed_mass(depth) / (per_hole * self.webs) - 1e-9)
+        needed, each = self.split(depth)
+        to = "" if self.point_angle == FLAT_BOTTOM else f" to the {self.depth_to}"
+        advice = (
+            f"split them: {needed} per web side by side, {each * 1e3:.4g} mm deep{to}, "
+            f"take off the same mass ({_name(names, 'holes')}: {needed}), or give a larger drill"
+            if needed
+            else f"no number of holes up to {MAX_SPLIT_HOLES} per web fits; give a larger drill"
+        )
         raise InputError(
             _name(names, "hole_diameter"),
             f"{self.diameter * 1e3:.4g} mm",
             f"would need {self.number} hole(s) per web {tip * 1e3:.4g} mm deep to the tip, "
-            f"deeper than {words}; spread the material over {needed} holes per web "
-            f"({_name(names, 'holes')}: {needed}), or give a larger drill",
+            f"deeper than {words}; {advice}",
         )
 
     @property

@@ -748,6 +748,20 @@ class RebalanceOptions(StudyOptions):
         "Radius at which the holes are drilled.",
         hint="empty: counterweight CG radius",
     )
+    web_thickness: float | None = quantity(
+        "length",
+        None,
+        "Web thickness at the holes",
+        "Axial thickness of the web at the holes: the deepest axial hole, to the tip.",
+        hint="e.g. 14 mm (empty: the drill's reach alone)",
+    )
+    drill_length: float | None = quantity(
+        "length",
+        None,
+        "Drill length",
+        "Usable length of the drill: the deepest hole it makes, to the tip.",
+        hint="empty: 10 drill diameters (a jobber drill)",
+    )
 
 
 class ShaftPlacementOptions(StudyOptions):
@@ -1855,6 +1869,12 @@ class RebalancePartsOptions(StudyOptions):
         None,
         "Web thickness at the holes",
         "Axial thickness of the web at the holes: the deepest axial hole.",
+    )
+    drill_length: float | None = quantity(
+        "length",
+        None,
+        "Drill length",
+        "Usable length of the drill: the deepest hole it makes, to the tip.",
     )
     density: float | None = quantity(
         "density", None, "Crank material density", "Density of the crank's material."

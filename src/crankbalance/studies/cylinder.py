@@ -166,8 +166,9 @@ def rebalance_cylinder(
 ) -> RebalanceResult:
     """Rebalance one cylinder's share of its throw after new parts, by drilled holes (of
     ``options.point_angle``, flat-bottomed at 180 deg, their depths read to
-    ``options.depth_to``), to the balance factor ``single.balance_factor`` and the ISO
-    tolerance of :func:`iso_check`.
+    ``options.depth_to``; no deeper than ``options.web_thickness`` and the drill's length
+    ``options.drill_length``, else refused with split holes proposed), to the balance
+    factor ``single.balance_factor`` and the ISO tolerance of :func:`iso_check`.
 
     Without a counterweight mass the crank is taken to be balanced to that factor with the
     old parts (the counterweight is what the factor needs at the CG radius).
@@ -185,6 +186,8 @@ def rebalance_cylinder(
         number=options.holes,
         point_angle=options.point_angle,
         depth_to=options.depth_to,
+        web_thickness=options.web_thickness,
+        drill_length=options.drill_length,
     )
     return rebalance(
         old_rot,

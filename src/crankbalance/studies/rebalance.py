@@ -102,6 +102,7 @@ def correction_of(table: Correction | None) -> DrilledHoles | FaceRemoval:
         point_angle=FLAT_BOTTOM if table.point_angle is None else table.point_angle,
         depth_to=table.depth_to or "shoulder",
         web_thickness=table.web_thickness,
+        drill_length=table.drill_length,
     )
 
 
@@ -111,6 +112,7 @@ PLAN_KEYS = {
     "hole_diameter": "correction.diameter",
     "holes": "correction.number",
     "web_thickness": "correction.web_thickness",
+    "drill_length": "correction.drill_length",
     "correction_radius": "correction.radius",
 }
 

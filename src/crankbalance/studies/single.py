@@ -294,6 +294,7 @@ CORRECTION_KEYS = (
     ("point_angle", "point_angle"),
     ("depth_to", "depth_to"),
     ("web_thickness", "web_thickness"),
+    ("drill_length", "drill_length"),
     ("density", "density"),
     ("depth_resolution", "depth_resolution"),
 )
@@ -469,6 +470,8 @@ def _correction_json(correction: rb.DrilledHoles | rb.FaceRemoval) -> dict[str, 
             }
         if correction.web_thickness is not None:
             out["web_thickness_m"] = correction.web_thickness
+        if correction.drill_length is not None:
+            out["drill_length_m"] = correction.drill_length
     return out | {
         "webs": correction.webs,
         "density_kg_m3": correction.density,

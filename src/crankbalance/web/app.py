@@ -20,7 +20,7 @@ import logging
 from collections.abc import Callable
 from typing import Any
 
-from nicegui import run, ui
+from nicegui import ui
 
 from ..errors import InputError
 from ..io.engine_file import list_presets
@@ -556,25 +556,10 @@ class Page:
         else:
             send_download(table_csv(order_rows(c)), "orders.csv", "text/csv")
 
-    async def download_report(self) -> None:
-        from ..output import report
+    async def download_report(self, fmt: str = "html") -> None:
+        from .report_download import download_report
 
-        c = self.fresh()
-        if c is None or self.project.spec is None:
-            ui.notify(f"Not computed: {self.problem()}", type="warning", multi_line=True)
-            return
-        try:
-            html = await run.io_bound(
-                _report_html, report, self.project.spec, len(c.analysis.forces.orders)
-            )
-        except Exception as error:  # the report must never take the page down
-            log.warning("report failed: %s", error)
-            ui.notify(f"report failed: {error}", type="negative")
-            return
-        if html is None:
-            ui.notify("report cancelled (server stopping)", type="warning")
-            return
-        send_download(html, "report.html", "text/html")
+        await download_report(self, fmt)
 
     # ================================================================== updates
     def update_all(self) -> None:
@@ -691,9 +676,3 @@ class Page:
     def built_tabs(self) -> list[Tab]:
         """The tabs whose content exists (the first screen and those opened so far)."""
         return [tab for tab in self.tabs.values() if tab.built]
-
-
-def _report_html(report: Any, spec: Any, orders: int) -> str:
-    """The self-contained HTML report of :mod:`crankbalance.output.report` for the current engine,
-    with the orders of the Results tab."""
-    return str(report.report_html(report.build_report(spec, orders)))

@@ -71,5 +71,5 @@ class TabContext(Protocol):
     def download_data(self, what: str) -> None:
         """Send the computed data (``"analysis"``, ``"balance"``, ``"orders"``)."""
 
-    async def download_report(self) -> None:
-        """Send the HTML report of the computed engine."""
+    async def download_report(self, fmt: str = "html") -> None:
+        """Send the report of the computed engine (``fmt``: ``"html"`` or ``"pdf"``)."""

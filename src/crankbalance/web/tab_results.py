@@ -297,6 +297,9 @@ class ResultsTab(Tab):
                     ui.button("Report HTML", on_click=page.download_report).props(
                         "outline dense"
                     ).mark("download-report")
+                    ui.button("Report PDF", on_click=lambda: page.download_report("pdf")).props(
+                        "outline dense"
+                    ).mark("download-report-pdf")
                 page.setting("orders", page.update_all)
             with ui.card().classes("grow"):
                 ui.label("Free forces and moments by order").classes("text-subtitle1")

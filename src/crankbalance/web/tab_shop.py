@@ -49,6 +49,12 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
     "max_depth": from_schema(ShopOptions, "max_depth", hint="e.g. 15 mm"),
     # the select starts on the tip (the schema leaves it to the study: the tip)
     "depth_to": from_schema(ShopOptions, "depth_to", default="tip"),
+    # the drill the sheet prints ("Ø8 mm, point 118°, axial"), and the web it must fit in
+    "point_angle": from_schema(ShopOptions, "point_angle", hint="e.g. 118 deg (180 deg: flat)"),
+    "direction": from_schema(ShopOptions, "direction"),
+    "web_thickness": from_schema(
+        ShopOptions, "web_thickness", hint="e.g. 14 mm (empty: the drill's reach alone)"
+    ),
     "rotor_mass": from_schema(ShopOptions, "rotor_mass", hint="e.g. 25 kg"),
     "bearings": from_schema(
         ShopOptions, "bearings", hint="e.g. -20 mm, 420 mm (empty: the correction planes)"
@@ -58,6 +64,7 @@ SETTINGS: dict[str, tuple[str, str, str]] = {
 CHOICES = {
     "convention": schema_choices(ShopOptions, "convention"),
     "depth_to": schema_choices(ShopOptions, "depth_to"),
+    "direction": schema_choices(ShopOptions, "direction"),
 }
 #: settings that only the hole plan needs (the parts study runs without them)
 PLAN = ("measuring_planes", "correction_planes", "hole_radius", "rotor_mass", "bearings")

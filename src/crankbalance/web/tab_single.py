@@ -34,6 +34,8 @@ ALIASES = {
     "correction_radius": "rb_hole_radius",
     "correction": "rb_holes",
     "holes": "rb_holes",
+    "web_thickness": "rb_web_thickness",
+    "drill_length": "rb_drill_length",
 }
 #: settings of this tab that are a choice among words (a select, not a text input)
 CHOICES = {"rb_depth_to": DEPTH_TO}
@@ -56,6 +58,16 @@ def depth_words(holes: Any) -> str:
     if not to:
         return "(flat-bottomed)"
     return f"{to.strip()} ({math.degrees(holes.point_angle):.4g}° drill point)"
+
+
+def depth_limit_words(holes: Any) -> str:
+    """The deepest hole the plan was checked against, to the tip, and where that limit
+    comes from (the web's thickness, the drill's length or reach):
+    :meth:`~crankbalance.physics.rebalancing.DrilledHoles.depth_limit` in the tab's words."""
+    limit, words = holes.depth_limit(
+        {"web_thickness": "Web thickness at the holes", "drill_length": "Drill length"}
+    )
+    return f"{limit * 1e3:.4g} mm to the tip ({words})"
 
 
 def pass_columns(holes: Any) -> list[dict[str, Any]]:
@@ -86,6 +98,7 @@ def drilling_plan(result: Any) -> list[tuple[str, str]]:
         ),
         ("Drill diameter", f"{holes.diameter * 1e3:.4g} mm"),
         ("Depth", f"{last.depth * 1e3:.3f} mm {depth_words(holes)}"),
+        ("Deepest possible", depth_limit_words(holes)),
         (
             "Radius" if axial else "Rim radius",
             f"{holes.radius * 1e3:.4g} mm from the crank axis",
@@ -163,7 +176,7 @@ class SingleTab(StudyTab):
                     "rb_point_angle",
                 )
                 self.choice("rb_depth_to")
-                self.settings("rb_holes", "rb_hole_radius")
+                self.settings("rb_holes", "rb_hole_radius", "rb_web_thickness", "rb_drill_length")
                 self.rebalance_summary = ui.markdown("").mark("rebalance-summary")
             with ui.card().classes("grow max-w-full"):
                 ui.label("Drilling plan").classes("text-subtitle1")

@@ -165,9 +165,11 @@ def depth_limit(
     diameter: float,
     part_depth: float | None = None,
     names: Mapping[str, str] | None = None,
+    drill_length: float | None = None,
 ) -> tuple[float, str]:
     """The deepest hole a drill may make in a part, to the tip, and where the limit comes
-    from: :data:`MAX_DEPTH_RATIO` drill diameters, or the part's depth when that is less.
+    from: the drill's length (else :data:`MAX_DEPTH_RATIO` drill diameters), or the part's
+    depth when that is less.
 
     Parameters
     ----------
@@ -178,6 +180,9 @@ def depth_limit(
         None when not known (then the drill's reach alone limits, and the words say so).
     names : mapping of str to str, optional
         How the user named the quantities (``{"web_thickness": "--web-thickness"}``).
+    drill_length : float, optional
+        The drill's usable length (its flutes) [m]; None: a jobber drill's,
+        :data:`MAX_DEPTH_RATIO` diameters.
 
     Returns
     -------
@@ -186,13 +191,15 @@ def depth_limit(
     words : str
         The limit and where it comes from, for messages.
     """
-    reach = MAX_DEPTH_RATIO * diameter
+    reach = MAX_DEPTH_RATIO * diameter if drill_length is None else drill_length
     thickness = _named(names, "web_thickness")
     if part_depth is not None and part_depth <= reach:
         return float(part_depth), f"the part's depth, {thickness} = {_mm(part_depth)}"
     words = (
         f"{MAX_DEPTH_RATIO:g} times the {_mm(diameter)} drill, {_mm(reach)}, the reach of a "
         "jobber drill"
+        if drill_length is None
+        else f"the drill's length, {_named(names, 'drill_length')} = {_mm(reach)}"
     )
     if part_depth is None:
         words += f" (the part's depth is not given: {thickness})"
