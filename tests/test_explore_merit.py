@@ -19,6 +19,8 @@ from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, b
 from crankbalance.physics.explore.candidates import Candidates
 from crankbalance.physics.explore.merit import (
     TORSION_ASSUMPTION,
+    bank_interval_deviation,
+    interval_deviation,
     merit,
     mode_weights,
     torsion_orders,
@@ -277,3 +279,17 @@ def test_a_candidates_figures_do_not_depend_on_its_batch(target: str) -> None:
     ]
     for name, column in together.items():
         assert np.array_equal(column, [one[name][0] for one in alone]), name
+
+
+def test_one_bank_takes_the_whole_interval_deviation_given() -> None:
+    rng = np.random.default_rng(3)
+    fire = rng.uniform(0, 4 * PI, (50, 6))
+    whole = interval_deviation(fire, 4 * PI)
+    inline = np.zeros(6)
+    given = bank_interval_deviation(fire, inline, 4 * PI, whole=whole)
+    assert given.tobytes() == bank_interval_deviation(fire, inline, 4 * PI).tobytes()
+    assert given is not whole
+    vee = np.array([0.0, 1.0] * 3)  # two banks: each bank's own, the whole not used
+    assert bank_interval_deviation(fire, vee, 4 * PI, whole=np.full(50, -1.0)).tolist() == (
+        bank_interval_deviation(fire, vee, 4 * PI).tolist()
+    )

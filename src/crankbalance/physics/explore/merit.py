@@ -145,7 +145,7 @@ def merit(
     cycle = 2 * np.pi * topo.strokes / 2
     out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
     out["bank_interval_dev_rad"] = bank_interval_deviation(
-        candidates.fire_angle, topo.cylinder_bank, cycle
+        candidates.fire_angle, topo.cylinder_bank, cycle, whole=out["interval_dev_rad"]
     )
     steps = torsion_orders(topo.strokes, int(orders))
     excitation = torsional_excitation(candidates.fire_angle, weights, steps)
@@ -417,7 +417,7 @@ def _deviation(alpha: NDArray[np.float64], cycle: float) -> NDArray[np.float64]:
 
 
 def bank_interval_deviation(
-    fire_angle: ArrayLike, bank: ArrayLike, cycle: float
+    fire_angle: ArrayLike, bank: ArrayLike, cycle: float, whole: ArrayLike | None = None
 ) -> NDArray[np.float64]:
     """Largest deviation from even firing of the cylinders of each bank, over the banks.
 
@@ -433,6 +433,9 @@ def bank_interval_deviation(
         Bank angle of each cylinder [rad].
     cycle : float
         Crank angle of one working cycle [rad].
+    whole : array_like, shape (B,), optional
+        :func:`interval_deviation` of all the cylinders, when computed before: an engine
+        of one bank takes a copy of it [rad].
 
     Returns
     -------
@@ -441,8 +444,11 @@ def bank_interval_deviation(
     """
     alpha = np.asarray(fire_angle, dtype=float)
     key = np.round(np.mod(np.asarray(bank, dtype=float), 2 * np.pi), 9)
+    banks = np.unique(key)
+    if whole is not None and banks.size == 1:  # one bank: its deviation is the whole's
+        return np.array(whole, dtype=float)
     dev = np.zeros(alpha.shape[0])
-    for value in np.unique(key):
+    for value in banks:
         dev = np.maximum(dev, interval_deviation(alpha[:, key == value], cycle))
     return dev
 
