@@ -139,9 +139,8 @@ def merit(
         """Every candidate's row of columns computed per distinct crank."""
         return columns if cranks is candidates else {k: v[crank_of] for k, v in columns.items()}
 
-    out = each(
-        free_columns(cranks, int(orders)) | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)}
-    )
+    free, forces = _free_columns(cranks, int(orders))
+    out = each(free | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)})
     cycle = 2 * np.pi * topo.strokes / 2
     out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
     out["bank_interval_dev_rad"] = bank_interval_deviation(
@@ -154,7 +153,9 @@ def merit(
     if target != "none":
         out.update(
             each(
-                balance_columns(cranks, target, balance_factor, counterweights, shafts, int(orders))
+                balance_columns(
+                    cranks, target, balance_factor, counterweights, shafts, int(orders), forces
+                )
             )
         )
     return out
@@ -289,6 +290,15 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
         magnitude is the couple's), each zero at most the engine's round-off
         (:func:`crankbalance.results.round_off`).
     """
+    return _free_columns(candidates, orders)[0]
+
+
+def _free_columns(
+    candidates: Candidates, orders: int
+) -> tuple[dict[str, NDArray], BatchFreeForces | None]:
+    """:func:`free_columns` and the phasors they come from, when the batch solver can take
+    them (:func:`~crankbalance.physics.balance_batch.balance_batch`'s ``forces``: a
+    topology without master-and-link rods, orders 1..K with K at least 2); else None."""
     if candidates.size == 0:  # an empty chunk of the enumeration: empty columns
         names = [
             f"{q}{n}{s}_{u}"
@@ -296,7 +306,8 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
             for q, u in (("F", "N"), ("M", "Nm"))
             for s in ("", "f", "b")
         ]
-        return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}
+        return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}, None
+    shared = None
     if candidates.topology.articulation is not None:
         f, force, moment = _articulated_forces(candidates, orders)
     else:
@@ -305,6 +316,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
         )
         f = batch_free_forces(batch, orders)
         force, moment = (level[:, None] for level in round_off(batch))
+        shared = f if orders >= 2 else None
     out: dict[str, NDArray] = {}
     for n in range(orders):
         for name, unit, fwd, bwd, level in (
@@ -318,7 +330,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
             out[f"{name}{n + 1}b_{unit}"] = backward
     out["Frot_N"] = np.abs(below_round_off(f.rotating_force, force[:, 0]))
     out["Mrot_Nm"] = np.abs(below_round_off(f.rotating_couple, moment[:, 0]))
-    return out
+    return out, shared
 
 
 def _articulated_forces(
@@ -510,6 +522,7 @@ def balance_columns(
     counterweights: CounterweightOptions | None,
     shafts: ShaftOptions | None,
     orders: int,
+    forces: BatchFreeForces | None = None,
 ) -> dict[str, NDArray]:
     """Counterweights and balance shafts every candidate needs for a balancing target.
 
@@ -527,6 +540,10 @@ def balance_columns(
         See :func:`merit`.
     orders : int
         Highest order of the residuals.
+    forces : BatchFreeForces, optional
+        The candidates' free forces of orders 1..max(``orders``, 2)
+        (:func:`~crankbalance.physics.shaking.batch_free_forces` of their batch), when
+        :func:`merit` has them already; default: computed by the solver.
 
     Returns
     -------
@@ -556,6 +573,7 @@ def balance_columns(
         primary,
         secondary,
         orders,
+        forces=forces,
     )
     count = np.zeros(candidates.size, dtype=np.int64)
     shaft_mass = np.zeros(candidates.size)
