@@ -124,11 +124,7 @@ def merit(
     major and minor orders): Den Hartog (1956) ch. 5 (textbook).
     """
     topo = candidates.topology
-    if target not in TARGETS:
-        raise InputError("target", target, f"one of {', '.join(TARGETS)}")
-    if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
-        raise InputError("orders", orders, "an integer from 1 to 64")
-    weights = mode_weights(topo, mode_shape)
+    weights = _checked(topo, target, mode_shape, orders)
     # the forces, the symmetry and the balancing depend on the crank alone: computed once
     # per distinct crank of the batch, each candidate's row taken from its crank's (every
     # engine's numbers come from its own row, so they are the bits of a batch of all)
@@ -159,6 +155,59 @@ def merit(
             )
         )
     return out
+
+
+def _checked(
+    topology: EngineModel, target: str, mode_shape: str | ArrayLike, orders: int
+) -> NDArray[np.float64]:
+    """The mode's weights at the cylinders, after the checks of :func:`merit`'s target,
+    orders and mode shape."""
+    if target not in TARGETS:
+        raise InputError("target", target, f"one of {', '.join(TARGETS)}")
+    if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
+        raise InputError("orders", orders, "an integer from 1 to 64")
+    return mode_weights(topology, mode_shape)
+
+
+def column_names(
+    topology: EngineModel,
+    target: Target = "counterweights",
+    balance_factor: float = 0.0,
+    mode_shape: str | ArrayLike = "uniform",
+    orders: int = 8,
+) -> list[str]:
+    """The names of the columns :func:`merit` gives for a batch of ``topology``, in its
+    order, without evaluating a candidate (the run's plan counts them:
+    :func:`crankbalance.physics.explore.work.plan`).
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The layout.
+    target, balance_factor, mode_shape, orders
+        As :func:`merit` (``balance_factor`` [-] does not change the columns).
+
+    Returns
+    -------
+    list of str
+        The column names.
+
+    Raises
+    ------
+    InputError
+        As :func:`merit`, for an unknown target or mode shape, a mode shape of the wrong
+        length, or orders outside 1..64.
+    """
+    _checked(topology, target, mode_shape, orders)
+    names = [
+        f"{q}{n}{s}_{u}"
+        for n in range(1, int(orders) + 1)
+        for q, u in (("F", "N"), ("M", "Nm"))
+        for s in ("", "f", "b")
+    ]
+    names += ["Frot_N", "Mrot_Nm", "mirror_rad", "interval_dev_rad", "bank_interval_dev_rad"]
+    names += [order_name(order) for order in torsion_orders(topology.strokes, int(orders))]
+    return names + (list(BALANCE_COLUMNS) if target != "none" else [])
 
 
 def distinct_rows(rows: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
@@ -300,13 +349,8 @@ def _free_columns(
     them (:func:`~crankbalance.physics.balance_batch.balance_batch`'s ``forces``: a
     topology without master-and-link rods, orders 1..K with K at least 2); else None."""
     if candidates.size == 0:  # an empty chunk of the enumeration: empty columns
-        names = [
-            f"{q}{n}{s}_{u}"
-            for n in range(1, orders + 1)
-            for q, u in (("F", "N"), ("M", "Nm"))
-            for s in ("", "f", "b")
-        ]
-        return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}, None
+        names = column_names(candidates.topology, "none", orders=orders)[: 6 * orders + 2]
+        return {name: np.zeros(0) for name in names}, None
     shared = None
     if candidates.topology.articulation is not None:
         f, force, moment = _articulated_forces(candidates, orders)
