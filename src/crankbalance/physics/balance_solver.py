@@ -51,7 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, below_round_off, engine_scales
+from ..results import ROUND_OFF, engine_scales
 from .balance_counterweights import Webs, solve_counterweights, web_geometry
 from .balance_types import (
     BatchBalance,
@@ -498,16 +498,19 @@ def balance_residuals(
         Per engine and component: forces [N] and moments [N·m] before and after (zero at
         most the round-off), and the check.
     """
-    forces = inputs.forces
     w2 = inputs.speed**2
-    rot_f, rot_c = forces.rotating_force, forces.rotating_couple
-    after_rot_f, after_rot_c = rot_f, rot_c
-    fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
-    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
+    before, level, force_limit, moment_limit = _residual_start(inputs)
+    # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
+    # parts before, then after (the rotating masses turn forward only: no backward part);
+    # the after parts start as the before ones, and each mass adds its phasors to them
+    parts = before.copy()
+    rotating_after = parts[:, :, 2, 0]  # (E, 2): the rotating masses' force and couple
+    fwd, bwd = parts[:, 0, 2, 1:], parts[:, 0, 3, 1:]
+    cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
     first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
     if cw is not None and share is not None:
-        after_rot_f = rot_f + w2 * share.sum(axis=-1)
-        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
+        rotating_after[:, 0] += w2 * share.sum(axis=-1)
+        rotating_after[:, 1] += w2 * (share * cw.position).sum(axis=-1)
         first_order.append((cw.moments - share, cw.position))
     if extra is not None:
         first_order.append((extra.moments, extra.position))
@@ -525,26 +528,13 @@ def balance_residuals(
             force[:, k] += f.sum(axis=-1)
             couple[:, k] += (f * group.position).sum(axis=-1)
     orders = fwd.shape[1]
-    # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
-    # parts before, then after (the rotating masses turn forward only: no backward part)
-    parts = np.zeros((fwd.shape[0], 2, 4, orders + 1), complex)
-    for q, columns in enumerate(
-        (
-            (rot_f, forces.force_forward, forces.force_backward, after_rot_f, fwd, bwd),
-            (rot_c, forces.couple_forward, forces.couple_backward, after_rot_c, cfwd, cbwd),
-        )
-    ):
-        rotating, forward, backward, rotating_after, forward_after, backward_after = columns
-        parts[:, q, 0, 0], parts[:, q, 0, 1:], parts[:, q, 1, 1:] = rotating, forward, backward
-        parts[:, q, 2, 0], parts[:, q, 2, 1:] = rotating_after, forward_after
-        parts[:, q, 3, 1:] = backward_after
     size = np.abs(parts)
-    force_level = inputs.force_round_off[:, None]
-    moment_level = inputs.moment_round_off[:, None]
-    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
-    # (the results are views of these two, which they cover whole: no memory held beyond)
-    each = below_round_off(size[:, :, 2:], level)  # forward after, backward after
-    both = below_round_off(size[:, :, 0::2] + size[:, :, 1::2], level)  # before, after
+    # (the results are views of these two, which they cover whole: no memory held beyond;
+    # a size is its own size, so the round-off cut compares it as below_round_off does)
+    after = size[:, :, 2:]  # forward after, backward after
+    each = np.where(after <= level, 0.0, after)
+    total = size[:, :, 0::2] + size[:, :, 1::2]  # before, after
+    both = np.where(total <= level, 0.0, total)
     force_before, force_after = both[:, 0, 0], both[:, 0, 1]
     moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
     force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
@@ -552,10 +542,8 @@ def balance_residuals(
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
     )
-    tolerance = CHECK_TOLERANCE / ROUND_OFF  # the levels are ROUND_OFF of the scales
     balanced = np.all(
-        ~targeted
-        | ((force_after <= tolerance * force_level) & (moment_after <= tolerance * moment_level)),
+        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
         axis=-1,
     )
     components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
@@ -572,3 +560,35 @@ def balance_residuals(
         moment_backward,
         balanced,
     )
+
+
+def _residual_start(inputs: SolverInput) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """What the residuals of ``inputs`` start from, whatever the masses: the parts before,
+    twice (E, 2, 4, K + 1) (:func:`balance_residuals`), the round-off levels (E, 2, 1, 1)
+    and the check's limits of the force and moment left (E, 1) [N], [N·m]. Kept by one
+    engine's input for its next solve (read-only); a batch's, solved once, does not."""
+    kept: tuple[NDArray, NDArray, NDArray, NDArray] | None = inputs.memo.get(("residuals",))
+    if kept is not None:
+        return kept
+    forces = inputs.forces
+    orders = forces.force_forward.shape[1]
+    before = np.zeros((forces.force_forward.shape[0], 2, 4, orders + 1), complex)
+    for q, (rotating, forward, backward) in enumerate(
+        (
+            (forces.rotating_force, forces.force_forward, forces.force_backward),
+            (forces.rotating_couple, forces.couple_forward, forces.couple_backward),
+        )
+    ):
+        for after in (0, 2):
+            before[:, q, after, 0], before[:, q, after, 1:] = rotating, forward
+            before[:, q, after + 1, 1:] = backward
+    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
+    tolerance = CHECK_TOLERANCE / ROUND_OFF  # the levels are ROUND_OFF of the scales
+    force_limit = tolerance * inputs.force_round_off[:, None]
+    moment_limit = tolerance * inputs.moment_round_off[:, None]
+    found = (before, level, force_limit, moment_limit)
+    if inputs.size == 1:
+        for array in found:
+            array.flags.writeable = False
+        inputs.memo[("residuals",)] = found
+    return found
