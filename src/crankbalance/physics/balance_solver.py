@@ -503,7 +503,7 @@ def balance_residuals(
     # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
     # parts before, then after (the rotating masses turn forward only: no backward part);
     # the after parts start as the before ones, and each mass adds its phasors to them
-    parts = before.copy()
+    parts = before.copy() if inputs.size == 1 else before  # a batch's is its own
     rotating_after = parts[:, :, 2, 0]  # (E, 2): the rotating masses' force and couple
     fwd, bwd = parts[:, 0, 2, 1:], parts[:, 0, 3, 1:]
     cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
