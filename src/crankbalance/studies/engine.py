@@ -16,7 +16,7 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import ResultMixin, below_round_off, round_off, to_jsonable
+from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
@@ -183,19 +183,17 @@ def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
         level = np.repeat([force, moment, force, moment], [2 * k, 3 * k, 1, 2])
         level.flags.writeable = False
         model.derived[("round_off", k)] = level
-    v = below_round_off(
-        np.concatenate(
-            (
-                f.force_forward,
-                f.force_backward,
-                f.couple_forward,
-                f.couple_backward,
-                f.roll,
-                (f.rotating_force, f.rotating_couple, f.rotating_roll),
-            )
-        ),
-        level,
+    v = np.concatenate(
+        (
+            f.force_forward,
+            f.force_backward,
+            f.couple_forward,
+            f.couple_backward,
+            f.roll,
+            (f.rotating_force, f.rotating_couple, f.rotating_roll),
+        )
     )
+    v[np.abs(v) <= level] = 0.0  # below_round_off's rule, in place on this own copy
     rotating_force, rotating_couple, rotating_roll = v[-3:].tolist()
     return FreeForces(
         orders=f.orders,
