@@ -320,6 +320,7 @@ def solve(
     share: NDArray[np.complex128] | None = None
     extra: BatchCounterweights | None = None
     webs: Webs | None = None
+    moments: NDArray[np.complex128] | None = None  # the counterweights' first moments
     fwd1, cfwd1 = forces.force_forward[:, 0], forces.couple_forward[:, 0]
     if counterweights is not None:
         fb = counterweights.balance_factor
@@ -401,7 +402,7 @@ def solve(
         )
         secondary_set = _shaft_set(2, secondary, shafts)
 
-    residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set)
+    residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set, moments)
     return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
 
 
@@ -474,6 +475,7 @@ def balance_residuals(
     extra: BatchCounterweights | None,
     primary: BatchShafts | None,
     secondary: BatchShafts | None,
+    moments: NDArray | None = None,
 ) -> BatchResiduals:
     """Forces and moments before and after the balancing masses, from the masses as
     reported (change one and the residual shows what it leaves).
@@ -491,6 +493,9 @@ def balance_residuals(
         The Eq. 17 extra counterweights.
     primary, secondary : BatchShafts or None
         Balance shafts of order 1 and 2.
+    moments : ndarray of complex, shape (E, W), optional
+        ``cw.moments``, when the caller has them (:func:`solve`) [kg·m]; default:
+        computed from ``cw``'s masses and directions.
 
     Returns
     -------
@@ -511,7 +516,7 @@ def balance_residuals(
     if cw is not None and share is not None:
         rotating_after[:, 0] += w2 * share.sum(axis=-1)
         rotating_after[:, 1] += w2 * (share * cw.position).sum(axis=-1)
-        first_order.append((cw.moments - share, cw.position))
+        first_order.append(((cw.moments if moments is None else moments) - share, cw.position))
     if extra is not None:
         first_order.append((extra.moments, extra.position))
     for moments, position in first_order:

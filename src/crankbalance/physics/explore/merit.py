@@ -37,7 +37,7 @@ from ...results import ROUND_OFF, below_round_off, round_off
 from ..balance_batch import balance_batch
 from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
 from ..balancing import balance
-from ..model import EngineModel, engine_batch
+from ..model import EngineBatch, EngineModel, engine_batch
 from ..shaking import BatchFreeForces, batch_free_forces, free_forces
 from .candidates import Candidates
 
@@ -135,7 +135,7 @@ def merit(
         """Every candidate's row of columns computed per distinct crank."""
         return columns if cranks is candidates else {k: v[crank_of] for k, v in columns.items()}
 
-    free, forces = _free_columns(cranks, int(orders))
+    free, shared = _free_columns(cranks, int(orders))
     out = each(free | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)})
     cycle = 2 * np.pi * topo.strokes / 2
     out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
@@ -150,7 +150,7 @@ def merit(
         out.update(
             each(
                 balance_columns(
-                    cranks, target, balance_factor, counterweights, shafts, int(orders), forces
+                    cranks, target, balance_factor, counterweights, shafts, int(orders), shared
                 )
             )
         )
@@ -344,10 +344,10 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
 
 def _free_columns(
     candidates: Candidates, orders: int
-) -> tuple[dict[str, NDArray], BatchFreeForces | None]:
-    """:func:`free_columns` and the phasors they come from, when the batch solver can take
-    them (:func:`~crankbalance.physics.balance_batch.balance_batch`'s ``forces``: a
-    topology without master-and-link rods, orders 1..K with K at least 2); else None."""
+) -> tuple[dict[str, NDArray], tuple[EngineBatch, BatchFreeForces] | None]:
+    """:func:`free_columns`, and the batch and phasors they come from when the batch
+    solver can take them (:func:`balance_columns`' ``shared``: a topology without
+    master-and-link rods, orders 1..K with K at least 2); else None."""
     if candidates.size == 0:  # an empty chunk of the enumeration: empty columns
         names = column_names(candidates.topology, "none", orders=orders)[: 6 * orders + 2]
         return {name: np.zeros(0) for name in names}, None
@@ -360,7 +360,7 @@ def _free_columns(
         )
         f = batch_free_forces(batch, orders)
         force, moment = (level[:, None] for level in round_off(batch))
-        shared = f if orders >= 2 else None
+        shared = (batch, f) if orders >= 2 else None
     out: dict[str, NDArray] = {}
     for n in range(orders):
         for name, unit, fwd, bwd, level in (
@@ -566,7 +566,7 @@ def balance_columns(
     counterweights: CounterweightOptions | None,
     shafts: ShaftOptions | None,
     orders: int,
-    forces: BatchFreeForces | None = None,
+    shared: tuple[EngineBatch, BatchFreeForces] | None = None,
 ) -> dict[str, NDArray]:
     """Counterweights and balance shafts every candidate needs for a balancing target.
 
@@ -584,10 +584,11 @@ def balance_columns(
         See :func:`merit`.
     orders : int
         Highest order of the residuals.
-    forces : BatchFreeForces, optional
-        The candidates' free forces of orders 1..max(``orders``, 2)
-        (:func:`~crankbalance.physics.shaking.batch_free_forces` of their batch), when
-        :func:`merit` has them already; default: computed by the solver.
+    shared : (EngineBatch, BatchFreeForces), optional
+        The candidates' batch (:func:`~crankbalance.physics.model.engine_batch` of their
+        throw angles) and its free forces of orders 1..max(``orders``, 2)
+        (:func:`~crankbalance.physics.shaking.batch_free_forces`), when :func:`merit` has
+        them already; default: built here, the forces computed by the solver.
 
     Returns
     -------
@@ -611,14 +612,11 @@ def balance_columns(
     secondary = shaft if level >= 3 else None
     if topo.articulation is not None:
         return _articulated_balance(candidates, cw, primary, secondary, orders)
-    result: BatchBalance = balance_batch(
+    batch, forces = shared or (
         engine_batch(topo, candidates.size, throw_angle=candidates.throw_angle),
-        cw,
-        primary,
-        secondary,
-        orders,
-        forces=forces,
+        None,
     )
+    result: BatchBalance = balance_batch(batch, cw, primary, secondary, orders, forces=forces)
     count = np.zeros(candidates.size, dtype=np.int64)
     shaft_mass = np.zeros(candidates.size)
     for group in (result.primary, result.secondary):
