@@ -516,7 +516,8 @@ def balance_residuals(
     if cw is not None and share is not None:
         rotating_after[:, 0] += w2 * share.sum(axis=-1)
         rotating_after[:, 1] += w2 * (share * cw.position).sum(axis=-1)
-        first_order.append(((cw.moments if moments is None else moments) - share, cw.position))
+        if share is not moments:  # (no balance factor: all of it is the share, nothing beyond)
+            first_order.append(((cw.moments if moments is None else moments) - share, cw.position))
     if extra is not None:
         first_order.append((extra.moments, extra.position))
     for moments, position in first_order:
