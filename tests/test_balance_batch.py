@@ -11,7 +11,7 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balance_batch import balance_batch, check_batch
+from crankbalance.physics.balance_batch import BATCH_CHUNK, balance_batch, check_batch
 from crankbalance.physics.balance_counterweights import _lstsq2
 from crankbalance.physics.balance_types import (
     BatchBalance,
@@ -22,6 +22,7 @@ from crankbalance.physics.balance_types import (
 )
 from crankbalance.physics.balancing import BalanceResult, Counterweights, ShaftSet, balance
 from crankbalance.physics.model import EngineBatch, EngineModel, engine_batch, stack_models, take
+from crankbalance.physics.shaking import batch_free_forces
 from crankbalance.studies.build import build_model
 
 #: agreement asked of the batch with the one-engine solver
@@ -246,6 +247,37 @@ def test_chunks_change_nothing_beyond_round_off() -> None:
     whole = balance_batch(batch, OPTIMAL, SINGLE, SECONDARY)
     pieces = balance_batch(batch, OPTIMAL, SINGLE, SECONDARY, chunk=4)
     assert_identical(whole, pieces)
+
+
+def test_forces_given_are_the_forces_computed() -> None:
+    """``forces=`` (the explorer's free forces, computed once) gives the same bits as the
+    forces computed inside (one chunk; in several, the forces of the whole batch differ
+    from each chunk's in the last bits at most, as chunks do); forces of another batch
+    or of too few orders are refused."""
+    batch = random_batch("v6-90", 25, seed=9)
+    forces = batch_free_forces(batch, 8)
+    computed = balance_batch(batch, OPTIMAL, SINGLE, SECONDARY, 8, BATCH_CHUNK)
+    assert_bits(computed, balance_batch(batch, OPTIMAL, SINGLE, SECONDARY, forces=forces))
+    assert_identical(
+        computed, balance_batch(batch, OPTIMAL, SINGLE, SECONDARY, 8, 4, forces=forces)
+    )
+    with pytest.raises(InputError, match="forces"):
+        balance_batch(batch, OPTIMAL, forces=batch_free_forces(batch, 3))
+    with pytest.raises(InputError, match="forces"):
+        balance_batch(batch.take(slice(0, 5)), OPTIMAL, forces=batch_free_forces(batch, 8))
+
+
+def assert_bits(a: object, b: object) -> None:
+    """Equal dataclasses, field by field, arrays bit for bit."""
+    if dataclasses.is_dataclass(a):
+        assert type(a) is type(b)
+        for f in dataclasses.fields(a):
+            assert_bits(getattr(a, f.name), getattr(b, f.name))
+    elif isinstance(a, np.ndarray):
+        assert isinstance(b, np.ndarray) and (a.dtype, a.shape) == (b.dtype, b.shape)
+        assert a.tobytes() == b.tobytes()
+    else:
+        assert a == b
 
 
 def assert_identical(a: object, b: object) -> None:

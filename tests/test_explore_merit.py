@@ -8,6 +8,7 @@ own.
 
 from __future__ import annotations
 
+import functools
 import math
 from dataclasses import replace
 
@@ -16,14 +17,20 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
+from crankbalance.physics.explore import merit as merit_module
+from crankbalance.physics.explore import orders as orders_module
 from crankbalance.physics.explore.candidates import Candidates
 from crankbalance.physics.explore.merit import (
     TORSION_ASSUMPTION,
+    bank_interval_deviation,
+    column_names,
+    interval_deviation,
     merit,
     mode_weights,
     torsion_orders,
 )
 from crankbalance.physics.explore.rank import parse_filter
+from crankbalance.physics.explore.work import column_count, plan
 from crankbalance.physics.kinematics import harmonic_coefficients
 from crankbalance.physics.model import EngineModel
 from crankbalance.studies.engine import analyze, as_model
@@ -277,3 +284,66 @@ def test_a_candidates_figures_do_not_depend_on_its_batch(target: str) -> None:
     ]
     for name, column in together.items():
         assert np.array_equal(column, [one[name][0] for one in alone]), name
+
+
+def test_one_bank_takes_the_whole_interval_deviation_given() -> None:
+    rng = np.random.default_rng(3)
+    fire = rng.uniform(0, 4 * PI, (50, 6))
+    whole = interval_deviation(fire, 4 * PI)
+    inline = np.zeros(6)
+    given = bank_interval_deviation(fire, inline, 4 * PI, whole=whole)
+    assert given.tobytes() == bank_interval_deviation(fire, inline, 4 * PI).tobytes()
+    assert given is not whole
+    vee = np.array([0.0, 1.0] * 3)  # two banks: each bank's own, the whole not used
+    assert bank_interval_deviation(fire, vee, 4 * PI, whole=np.full(50, -1.0)).tolist() == (
+        bank_interval_deviation(fire, vee, 4 * PI).tolist()
+    )
+
+
+# ------------------------------------------------------------- the columns, unevaluated
+@pytest.mark.parametrize(
+    ("layout", "cylinders", "strokes"),
+    [("inline", 4, 4), ("inline", 3, 2), ("vee", 6, 4), ("boxer", 4, 4), ("radial", 5, 4)],
+)
+def test_column_names_are_merit_s_columns(layout: str, cylinders: int, strokes: int) -> None:
+    """``column_names`` (the run's plan counts columns by it) names what ``merit`` gives,
+    in its order, for every target, a few orders and mode shapes; ``column_count`` counts
+    them without an evaluation for ``merit`` and by one for anything else."""
+    bank = math.pi / 2 if layout == "vee" else None
+    problem = orders_module.problem(layout, cylinders, strokes, bank)
+    template = orders_module.template(problem)
+    for target in ("none", "counterweights", "primary", "secondary"):
+        for k in (1, 2, 5):
+            for mode in ("uniform", "linear", [1.0] * cylinders):
+                got = column_names(template.topology, target, 0.3, mode, k)
+                assert got == list(merit(template, target, 0.3, mode, k))
+                evaluate = functools.partial(
+                    merit, target=target, balance_factor=0.3, mode_shape=mode, orders=k
+                )
+                assert column_count(evaluate, template) == len(got)
+                assert column_count(lambda c, e=evaluate: e(c), template) == len(got)
+
+
+def test_column_count_checks_as_merit_does(monkeypatch: pytest.MonkeyPatch) -> None:
+    """The plan's count refuses what ``merit`` refuses, with the same line, and does not
+    evaluate ``merit`` for its own keywords (but does for counterweight options)."""
+    problem = orders_module.problem("inline", 4, 4)
+    template = orders_module.template(problem)
+    for kwargs in ({"target": "all"}, {"orders": 0}, {"mode_shape": "cubic"}):
+        with pytest.raises(InputError) as by_merit:
+            merit(template, **kwargs)  # type: ignore[arg-type]
+        with pytest.raises(InputError) as by_count:
+            plan(problem, functools.partial(merit, **kwargs))
+        assert str(by_count.value) == str(by_merit.value)
+    calls: list[int] = []
+
+    def counted(candidates: Candidates, **kwargs: object) -> dict[str, np.ndarray]:
+        calls.append(candidates.size)
+        return merit(candidates, **kwargs)  # type: ignore[arg-type]
+
+    monkeypatch.setattr(merit_module, "merit", counted)
+    plan(problem, functools.partial(counted, target="primary", orders=3))
+    assert calls == []
+    cw = CounterweightOptions(cg_radius=0.04)
+    plan(problem, functools.partial(counted, target="primary", counterweights=cw))
+    assert calls == [1]

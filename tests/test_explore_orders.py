@@ -284,6 +284,34 @@ def test_chunks_equal_the_whole() -> None:
             np.testing.assert_array_equal(joined, getattr(whole, name), err_msg=name)
 
 
+@pytest.mark.parametrize(
+    "p",
+    [
+        orders.problem("inline", 9, 4),  # 8 Lehmer digits: blocks of the table's 6
+        orders.problem("inline", 5, 2, intervals=[1.0, 1.2, 1.4, 1.1, 2 * math.pi - 4.7]),
+        orders.problem("inline", 3, 4),  # fewer digits than the table
+        orders.problem("inline", 1, 4),
+    ],
+)
+def test_every_order_of_pins_alone_is_the_pruned_enumeration(
+    p: orders.Problem, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    # no cylinder shares a pin: the orders come from the table of permutations, the same
+    # as the enumeration digit by digit (forced here) and as each index unranked
+    total = orders.count(p)
+    edges = sorted({0, 1, 5, 719, 720, 721, 5039, 5041, total // 3, total - 2, total})
+    edges = [e for e in edges if 0 <= e <= total]
+    fast = [orders._consistent(p, a, b) for a, b in itertools.pairwise(edges)]
+    monkeypatch.setattr(orders, "_pins_alone", lambda plan: False)
+    for (a, b), got in zip(itertools.pairwise(edges), fast, strict=True):
+        want = orders._consistent(p, a, b)
+        for g, w in zip(got, want, strict=True):
+            np.testing.assert_array_equal(g, w)
+        slots, rot = orders._unrank(p._plan, np.arange(a, b))
+        np.testing.assert_array_equal(got[1], slots)
+        np.testing.assert_array_equal(got[2], rot)
+
+
 def lehmer_rank(order: tuple[int, ...]) -> int:
     """Lexicographic rank of an order among the orders from cylinder 1, by hand."""
     rest = list(order[1:])

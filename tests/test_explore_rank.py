@@ -186,6 +186,22 @@ def test_pareto_across_blocks() -> None:
         pareto([[np.nan, 1.0]])
 
 
+def test_equal_rows_share_their_fate_across_blocks() -> None:
+    """The explorer's case: each crank's candidates repeat its forces and moments, over
+    more rows than a block; a zero and a negative zero are one value."""
+    rng = np.random.default_rng(11)
+    distinct = rng.integers(0, 30, (120, 3)).astype(float)
+    distinct[::4, 0] = 30 - distinct[::4, 1]  # a wide front
+    distinct[0] = 0.0  # (0, 0, 0) dominates all but its equals
+    distinct = np.unique(distinct, axis=0)[1:]  # without it: a front of many rows
+    which = rng.integers(0, distinct.shape[0], 3 * BLOCK + 9)
+    values = distinct[which]
+    values[values == 0] *= rng.choice([1.0, -1.0], size=int((values == 0).sum()))
+    front = brute_pareto(distinct)
+    assert pareto(values).tolist() == front[which].tolist()
+    assert pareto(values, [1e-9, 1e-9, 1e-9]).tolist() == front[which].tolist()
+
+
 @settings(derandomize=True, database=None, deadline=None, max_examples=150)
 @given(
     arrays(np.float64, st.integers(0, 40), elements=st.integers(0, 6)),

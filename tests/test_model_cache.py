@@ -10,8 +10,9 @@ import numpy as np
 import pytest
 
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.shaking import cylinder_coefficients, free_forces
+from crankbalance.physics.shaking import cylinder_coefficients, free_forces, roll_phasors
 from crankbalance.studies.build import build_model
+from crankbalance.studies.engine import analyze
 
 
 def test_an_equal_spec_gets_the_same_model() -> None:
@@ -58,15 +59,58 @@ def test_coefficient_rows_are_computed_once_per_model_and_order() -> None:
     assert cylinder_coefficients(model, 8, "series") is not rows
 
 
-def test_analysis_of_a_kept_model_is_that_of_a_fresh_one() -> None:
-    spec = load_engine("v6-60")
-    kept = free_forces(build_model(spec), 8)  # the kept model (analyze zeroes round-off)
-    fresh_model = dataclasses.replace(build_model(spec))  # a new model: nothing derived yet
-    assert not fresh_model.derived
-    fresh = free_forces(fresh_model, 8)
-    for name in ("force_forward", "force_backward", "couple_forward", "couple_backward"):
-        assert np.array_equal(getattr(kept, name), getattr(fresh, name))
-    assert kept.rotating_force == fresh.rotating_force
+PHASORS = ("force_forward", "force_backward", "couple_forward", "couple_backward", "roll")
+ROTATING = ("rotating_force", "rotating_couple", "rotating_roll")
+
+
+@pytest.mark.parametrize("name", ["v6-60", "w8", "radial5-kinner"])  # w8: two offsets
+def test_analysis_of_a_kept_model_is_that_of_a_fresh_one(name: str) -> None:
+    spec = load_engine(name)
+    kept_model = build_model(spec)
+    modes = ("exact",) if kept_model.articulation is not None else ("exact", "series")
+    for mode in modes:
+        for orders in (8, 3):
+            free_forces(kept_model, orders, mode)  # derives what the model keeps
+            kept = free_forces(kept_model, orders, mode)  # from what it kept
+            fresh_model = dataclasses.replace(kept_model)  # a new model: nothing derived yet
+            assert not fresh_model.derived
+            fresh = free_forces(fresh_model, orders, mode)
+            for field in PHASORS:  # the same bits
+                assert getattr(kept, field).tobytes() == getattr(fresh, field).tobytes()
+            for field in ROTATING:
+                assert getattr(kept, field) == getattr(fresh, field)
+
+
+def test_roll_rows_and_sum_weights_are_kept_per_model_read_only() -> None:
+    model = dataclasses.replace(build_model(load_engine("w8")))  # nothing derived yet
+    first = roll_phasors(model, 8)
+    kept = {key: value for key, value in model.derived.items() if key[0] == "roll_rows"}
+    assert list(kept) == [("roll_rows", 8, "exact")]
+    rows, angle, scale = kept["roll_rows", 8, "exact"]
+    assert rows.shape == (1, model.cylinders, 8)  # two offsets: a row per cylinder
+    for array in (rows, angle, scale):
+        assert not array.flags.writeable
+    assert np.array_equal(roll_phasors(model, 8), first)
+    assert model.derived["roll_rows", 8, "exact"][0] is rows  # not computed again
+    roll_phasors(model, 8, "series")
+    assert model.derived["roll_rows", 8, "series"][0] is not rows
+    free_forces(model, 8)
+    for array in model.derived["free_forces.weights",]:
+        assert not array.flags.writeable
+
+
+def test_analysis_of_a_kept_model_zeroes_the_same_round_off_as_a_fresh_one() -> None:
+    spec = load_engine("inline4")  # second-order forces only: many entries at round-off
+    kept = analyze(spec, 5).forces
+    again = analyze(spec, 5).forces  # the model, its levels and the orders check kept
+    fresh = analyze(dataclasses.replace(build_model(spec)), 5).forces
+    for field in PHASORS:
+        assert getattr(again, field).tobytes() == getattr(kept, field).tobytes()
+        assert getattr(fresh, field).tobytes() == getattr(kept, field).tobytes()
+    assert kept.force_forward[0] == 0 and kept.couple_forward[1] == 0  # zeroed
+    for field in ROTATING:
+        assert type(getattr(kept, field)) is complex
+        assert getattr(again, field) == getattr(fresh, field) == getattr(kept, field)
 
 
 def test_an_engine_text_read_again_gives_the_spec_made_the_first_time() -> None:

@@ -14,6 +14,7 @@ batch.
 
 from __future__ import annotations
 
+from dataclasses import replace
 from typing import Any
 
 import numpy as np
@@ -28,7 +29,7 @@ from .balance_types import (
     ShaftOptions,
 )
 from .model import EngineBatch, per_engine, take
-from .shaking import batch_free_forces
+from .shaking import BatchFreeForces, batch_free_forces
 
 #: engines solved together in one pass of :func:`balance_batch` (bounds the temporaries to
 #: a few MB; the result grows with the batch, about 1 kB per engine)
@@ -42,6 +43,7 @@ def balance_batch(
     secondary: ShaftOptions | None = None,
     orders: int = 8,
     chunk: int = BATCH_CHUNK,
+    forces: BatchFreeForces | None = None,
 ) -> BatchBalance:
     """Counterweights and balance shafts for many engines of one layout at once.
 
@@ -63,6 +65,10 @@ def balance_batch(
         Orders reported in the residuals (orders 1 and 2 always are).
     chunk : int
         Engines solved together.
+    forces : BatchFreeForces, optional
+        The engines' free forces of orders 1..max(``orders``, 2), as
+        :func:`~crankbalance.physics.shaking.batch_free_forces` gives them, when the caller
+        has them already (the explorer's figures of merit); default: computed here.
 
     Returns
     -------
@@ -73,15 +79,28 @@ def balance_batch(
     Raises
     ------
     InputError
-        As ``balance``, for the first engine it fails on; or a ``chunk`` below 1.
+        As ``balance``, for the first engine it fails on; or a ``chunk`` below 1; or
+        ``forces`` of another number of engines or orders.
 
     References
     ----------
     Appl. Sci. 2021, Eqs. 1-23, with the errata of docs/references.md.
     """
+    count = max(orders, 2)
+    if forces is not None and forces.force_forward.shape != (batch.size, count):
+        raise InputError(
+            "forces",
+            f"shape {forces.force_forward.shape}",
+            f"the free forces of the {batch.size} engines, orders 1..{count}",
+        )
     out: Any = None  # _chunked gives one chunk or more
     for start, piece in _chunked(batch, chunk):
-        inputs = solver_input(piece, batch_free_forces(piece, max(orders, 2)))
+        piece_forces = (
+            batch_free_forces(piece, count)
+            if forces is None
+            else _rows(forces, slice(start, start + piece.size))
+        )
+        inputs = solver_input(piece, piece_forces)
         try:
             part = solve(inputs, counterweights, primary, secondary)
         except EngineFailed as failed:
@@ -130,6 +149,20 @@ def check_batch(
         )
         out = _gather(out, part, start, batch.size)
     return out
+
+
+def _rows(forces: BatchFreeForces, index: slice) -> BatchFreeForces:
+    """The engines ``index`` of ``forces`` (views; the orders are shared)."""
+    if index.start == 0 and index.stop >= forces.rotating_force.size:
+        return forces
+    return replace(
+        forces,
+        **{
+            name: value[index]
+            for name, value in vars(forces).items()
+            if isinstance(value, np.ndarray) and name != "orders"
+        },
+    )
 
 
 def _chunked(batch: EngineBatch, chunk: int) -> list[tuple[int, EngineBatch]]:

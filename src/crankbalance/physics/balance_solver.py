@@ -51,7 +51,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, below_round_off, engine_scales
+from ..results import ROUND_OFF, engine_scales
 from .balance_counterweights import Webs, solve_counterweights, web_geometry
 from .balance_types import (
     BatchBalance,
@@ -320,6 +320,7 @@ def solve(
     share: NDArray[np.complex128] | None = None
     extra: BatchCounterweights | None = None
     webs: Webs | None = None
+    moments: NDArray[np.complex128] | None = None  # the counterweights' first moments
     fwd1, cfwd1 = forces.force_forward[:, 0], forces.couple_forward[:, 0]
     if counterweights is not None:
         fb = counterweights.balance_factor
@@ -401,7 +402,7 @@ def solve(
         )
         secondary_set = _shaft_set(2, secondary, shafts)
 
-    residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set)
+    residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set, moments)
     return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
 
 
@@ -502,17 +503,37 @@ def residual_phasors(
     couple_forward, couple_backward : ndarray of complex, shape (E, K)
         Each order's couple phasors left [N·m].
     """
-    forces = inputs.forces
+    parts = _residual_start(inputs)[0].copy()
+    return _add_balancing(parts, inputs, cw, share, extra, primary, secondary)
+
+
+def _add_balancing(
+    parts: NDArray,
+    inputs: SolverInput,
+    cw: BatchCounterweights | None,
+    share: NDArray | None,
+    extra: BatchCounterweights | None,
+    primary: BatchShafts | None,
+    secondary: BatchShafts | None,
+    moments: NDArray | None = None,
+) -> tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]:
+    """Add the balancing masses' phasors, in place, to the "after" parts of ``parts``
+    (E, 2, 4, K + 1) (:func:`_residual_start`'s layout, the after parts a copy of the
+    before ones): the share of the counterweights that carries the rotating masses to the
+    rotating component, the rest (``moments``, the counterweights' first moments when the
+    solver has them, less the share) and the extra counterweights to the first order, the
+    shafts to their order. Returns views of the after parts: rotating force and couple
+    (E,), forward and backward forces, forward and backward couples (E, K)."""
     w2 = inputs.speed**2
-    rot_f, rot_c = forces.rotating_force, forces.rotating_couple
-    after_rot_f, after_rot_c = rot_f, rot_c
-    fwd, bwd = forces.force_forward.copy(), forces.force_backward.copy()
-    cfwd, cbwd = forces.couple_forward.copy(), forces.couple_backward.copy()
+    rotating_after = parts[:, :, 2, 0]  # (E, 2): the rotating masses' force and couple
+    fwd, bwd = parts[:, 0, 2, 1:], parts[:, 0, 3, 1:]
+    cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
     first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
     if cw is not None and share is not None:
-        after_rot_f = rot_f + w2 * share.sum(axis=-1)
-        after_rot_c = rot_c + w2 * (share * cw.position).sum(axis=-1)
-        first_order.append((cw.moments - share, cw.position))
+        rotating_after[:, 0] += w2 * share.sum(axis=-1)
+        rotating_after[:, 1] += w2 * (share * cw.position).sum(axis=-1)
+        if share is not moments:  # (no balance factor: all of it is the share, nothing beyond)
+            first_order.append(((cw.moments if moments is None else moments) - share, cw.position))
     if extra is not None:
         first_order.append((extra.moments, extra.position))
     for moments, position in first_order:
@@ -528,7 +549,7 @@ def residual_phasors(
             force, couple = (fwd, cfwd) if sense > 0 else (bwd, cbwd)
             force[:, k] += f.sum(axis=-1)
             couple[:, k] += (f * group.position).sum(axis=-1)
-    return after_rot_f, after_rot_c, fwd, bwd, cfwd, cbwd
+    return rotating_after[:, 0], rotating_after[:, 1], fwd, bwd, cfwd, cbwd
 
 
 def balance_residuals(
@@ -538,6 +559,7 @@ def balance_residuals(
     extra: BatchCounterweights | None,
     primary: BatchShafts | None,
     secondary: BatchShafts | None,
+    moments: NDArray | None = None,
 ) -> BatchResiduals:
     """Forces and moments before and after the balancing masses, from the masses as
     reported (change one and the residual shows what it leaves).
@@ -555,6 +577,9 @@ def balance_residuals(
         The Eq. 17 extra counterweights.
     primary, secondary : BatchShafts or None
         Balance shafts of order 1 and 2.
+    moments : ndarray of complex, shape (E, W), optional
+        ``cw.moments``, when the caller has them (:func:`solve`) [kg·m]; default:
+        computed from ``cw``'s masses and directions.
 
     Returns
     -------
@@ -562,32 +587,20 @@ def balance_residuals(
         Per engine and component: forces [N] and moments [N·m] before and after (zero at
         most the round-off), and the check.
     """
-    forces = inputs.forces
-    rot_f, rot_c = forces.rotating_force, forces.rotating_couple
-    after_rot_f, after_rot_c, fwd, bwd, cfwd, cbwd = residual_phasors(
-        inputs, cw, share, extra, primary, secondary
-    )
-    orders = fwd.shape[1]
+    before, level, force_limit, moment_limit = _residual_start(inputs)
     # every size at once, (E, 2, 4, K + 1): forces then moments; the forward and backward
-    # parts before, then after (the rotating masses turn forward only: no backward part)
-    parts = np.zeros((fwd.shape[0], 2, 4, orders + 1), complex)
-    for q, columns in enumerate(
-        (
-            (rot_f, forces.force_forward, forces.force_backward, after_rot_f, fwd, bwd),
-            (rot_c, forces.couple_forward, forces.couple_backward, after_rot_c, cfwd, cbwd),
-        )
-    ):
-        rotating, forward, backward, rotating_after, forward_after, backward_after = columns
-        parts[:, q, 0, 0], parts[:, q, 0, 1:], parts[:, q, 1, 1:] = rotating, forward, backward
-        parts[:, q, 2, 0], parts[:, q, 2, 1:] = rotating_after, forward_after
-        parts[:, q, 3, 1:] = backward_after
+    # parts before, then after (the rotating masses turn forward only: no backward part);
+    # the after parts start as the before ones, and each mass adds its phasors to them
+    parts = before.copy() if inputs.size == 1 else before  # a batch's is its own
+    fwd = _add_balancing(parts, inputs, cw, share, extra, primary, secondary, moments)[2]
+    orders = fwd.shape[1]
     size = np.abs(parts)
-    force_level = inputs.force_round_off[:, None]
-    moment_level = inputs.moment_round_off[:, None]
-    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
-    # (the results are views of these two, which they cover whole: no memory held beyond)
-    each = below_round_off(size[:, :, 2:], level)  # forward after, backward after
-    both = below_round_off(size[:, :, 0::2] + size[:, :, 1::2], level)  # before, after
+    # (the results are views of these two, which they cover whole: no memory held beyond;
+    # a size is its own size, so the round-off cut compares it as below_round_off does)
+    after = size[:, :, 2:]  # forward after, backward after
+    each = np.where(after <= level, 0.0, after)
+    total = size[:, :, 0::2] + size[:, :, 1::2]  # before, after
+    both = np.where(total <= level, 0.0, total)
     force_before, force_after = both[:, 0, 0], both[:, 0, 1]
     moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
     force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
@@ -595,10 +608,8 @@ def balance_residuals(
     targeted = np.array(
         [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
     )
-    tolerance = CHECK_TOLERANCE / ROUND_OFF  # the levels are ROUND_OFF of the scales
     balanced = np.all(
-        ~targeted
-        | ((force_after <= tolerance * force_level) & (moment_after <= tolerance * moment_level)),
+        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
         axis=-1,
     )
     components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
@@ -615,3 +626,35 @@ def balance_residuals(
         moment_backward,
         balanced,
     )
+
+
+def _residual_start(inputs: SolverInput) -> tuple[NDArray, NDArray, NDArray, NDArray]:
+    """What the residuals of ``inputs`` start from, whatever the masses: the parts before,
+    twice (E, 2, 4, K + 1) (:func:`balance_residuals`), the round-off levels (E, 2, 1, 1)
+    and the check's limits of the force and moment left (E, 1) [N], [N·m]. Kept by one
+    engine's input for its next solve (read-only); a batch's, solved once, does not."""
+    kept: tuple[NDArray, NDArray, NDArray, NDArray] | None = inputs.memo.get(("residuals",))
+    if kept is not None:
+        return kept
+    forces = inputs.forces
+    orders = forces.force_forward.shape[1]
+    before = np.zeros((forces.force_forward.shape[0], 2, 4, orders + 1), complex)
+    for q, (rotating, forward, backward) in enumerate(
+        (
+            (forces.rotating_force, forces.force_forward, forces.force_backward),
+            (forces.rotating_couple, forces.couple_forward, forces.couple_backward),
+        )
+    ):
+        for after in (0, 2):
+            before[:, q, after, 0], before[:, q, after, 1:] = rotating, forward
+            before[:, q, after + 1, 1:] = backward
+    level = np.stack([inputs.force_round_off, inputs.moment_round_off], axis=-1)[..., None, None]
+    tolerance = CHECK_TOLERANCE / ROUND_OFF  # the levels are ROUND_OFF of the scales
+    force_limit = tolerance * inputs.force_round_off[:, None]
+    moment_limit = tolerance * inputs.moment_round_off[:, None]
+    found = (before, level, force_limit, moment_limit)
+    if inputs.size == 1:
+        for array in found:
+            array.flags.writeable = False
+        inputs.memo[("residuals",)] = found
+    return found

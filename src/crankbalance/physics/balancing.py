@@ -520,6 +520,16 @@ def what_is_left(
     """
     out: list[Remaining] = []
     for c in residuals:
+        if (
+            max(
+                c.force_forward_after,
+                c.force_backward_after,
+                c.moment_forward_after,
+                c.moment_backward_after,
+            )
+            <= 0.0
+        ):
+            continue  # nothing left of this component
         order = 1 if c.component == "rotating" else int(c.component.removeprefix("order"))
         for quantity, unit, forward, backward in (
             ("force", "N", c.force_forward_after, c.force_backward_after),

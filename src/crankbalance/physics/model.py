@@ -237,10 +237,14 @@ class EngineModel:
 
     @cached_property
     def derived(self) -> dict[tuple[object, ...], Any]:
-        """Read-only arrays (or frozen records of them) that physics functions derive from
-        this model alone and keep for the next call on it, keyed by the function's name and
+        """Read-only arrays (or frozen records of them) that functions derive from this
+        model alone and keep for the next call on it, keyed by the function's name and
         arguments (the harmonic coefficient rows of
-        :func:`crankbalance.physics.shaking.cylinder_coefficients`, the balancing solver's
+        :func:`crankbalance.physics.shaking.cylinder_coefficients`, the roll harmonics and
+        weights of :func:`crankbalance.physics.shaking.roll_phasors`, the weights of the
+        sums and the rotating masses' phasors of
+        :func:`crankbalance.physics.shaking.free_forces`, the round-off levels of
+        :func:`crankbalance.studies.engine.without_round_off`, the balancing solver's
         input of :func:`crankbalance.physics.balance_solver.model_input`): a model is
         frozen, so they hold as long as it lives."""
         return {}

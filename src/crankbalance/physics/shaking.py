@@ -153,29 +153,32 @@ def free_forces(
     cranks, in-line and V); Den Hartog (1956) ch. 5.
     """
     coeff = cylinder_coefficients(model, orders, kinematics)
-    accel = model.crank_radius * model.speed**2  # r w^2 [m/s^2]
-    bank = model.cylinder_bank
+    p, theta, weights = _model_weights(model)
     fwd, bwd, cfwd, cbwd = _phasors(
         _cylinder_sums(
-            0.5 * accel * model.reciprocating_mass,
-            model.cylinder_angle - bank,
-            bank,
+            p,
+            theta,
+            model.cylinder_bank,
             model.cylinder_position,
             orders,
             coeff,
             per_cylinder=True,
+            weights=weights,
         )
     )
     if model.articulation is not None:
         link = _link_pin_phasors(model, orders)
         fwd, bwd, cfwd, cbwd = fwd + link[0], bwd + link[1], cfwd + link[2], cbwd + link[3]
-    rotating_force, rotating_couple = rotating_phasors(
-        model.throw_rotating_mass,
-        model.throw_rotating_moment,
-        model.throw_angle,
-        model.crank_radius,
-        model.speed,
-    )
+    rotating = model.derived.get(("rotating_phasors",))  # of the model alone: kept by it
+    if rotating is None:
+        rotating = model.derived[("rotating_phasors",)] = rotating_phasors(
+            model.throw_rotating_mass,
+            model.throw_rotating_moment,
+            model.throw_angle,
+            model.crank_radius,
+            model.speed,
+        )
+    rotating_force, rotating_couple = rotating
     q = complex(model.reference_x, model.reference_z)
     roll = roll_phasors(model, orders, kinematics) + q * fwd + np.conj(q * bwd)
     return FreeForces(
@@ -189,6 +192,23 @@ def free_forces(
         roll=roll,
         rotating_roll=complex(q * rotating_force),
     )
+
+
+def _model_weights(model: EngineModel) -> tuple[NDArray, NDArray, NDArray[np.complex128]]:
+    r"""The arguments of :func:`_cylinder_sums` that :func:`free_forces` takes from ``model``
+    alone: :math:`p_c = \tfrac{1}{2} m_c r\omega^2`, :math:`\theta_c = \varphi_c -
+    \beta_c` and the weights of :func:`_sum_weights`, computed once per model and kept by
+    it (:attr:`~crankbalance.physics.model.EngineModel.derived`, read-only)."""
+    found = model.derived.get(("free_forces.weights",))
+    if found is None:
+        accel = model.crank_radius * model.speed**2  # r w^2 [m/s^2]
+        p = 0.5 * accel * model.reciprocating_mass
+        theta = model.cylinder_angle - model.cylinder_bank
+        weights = _sum_weights(p, model.cylinder_bank, model.cylinder_position)
+        for kept in (p, theta, weights):  # new arrays
+            kept.flags.writeable = False
+        found = model.derived[("free_forces.weights",)] = (p, theta, weights)
+    return found
 
 
 def roll_phasors(
@@ -212,14 +232,14 @@ def roll_phasors(
         each cylinder's harmonics :math:`d_{n,c}`
         (:func:`crankbalance.physics.roll.roll_coefficients`); with master-and-link rods
         the assembly's exact roll (:func:`crankbalance.physics.roll.articulated_roll`)
-        [N·m].
+        [N·m]. The rows :math:`d_{n,c}` and the weights are computed once per model and
+        kept by it (:attr:`~crankbalance.physics.model.EngineModel.derived`, read-only).
 
     References
     ----------
     The inertia torque of the slider-crank, Taylor (1985) ch. 8; Den Hartog (1956) ch. 5.
     """
     mode = kinematics or model.kinematics
-    n = np.arange(1, orders + 1)
     rods = model.articulated_rods
     if rods is not None:
         _exact_only(mode)
@@ -227,17 +247,26 @@ def roll_phasors(
         harm = articulated_roll(
             rods, model.reciprocating_mass, model.cylinder_rotating_mass, orders, model.speed
         )
-        return np.asarray(harm * np.exp(1j * n * phi), dtype=complex)
-    return batch_roll_phasors(
-        np.array([model.rod_ratio]),
-        (model.cylinder_offset / model.crank_radius)[None],
-        model.reciprocating_mass[None],
-        (model.cylinder_angle - model.cylinder_bank)[None],
-        np.array([model.crank_radius]),
-        np.array([model.speed]),
-        orders,
-        mode,
-    )[0]
+        return np.asarray(harm * np.exp(1j * np.arange(1, orders + 1) * phi), dtype=complex)
+    key = ("roll_rows", orders, mode)
+    found = model.derived.get(key)  # the model is frozen: its rows and weights are kept
+    if found is None:
+        rows = roll_rows(
+            np.array([model.rod_ratio]),
+            (model.cylinder_offset / model.crank_radius)[None],
+            orders,
+            mode,
+        )
+        angle = (model.cylinder_angle - model.cylinder_bank)[None]
+        scale = (
+            np.asarray(model.reciprocating_mass[None], dtype=float)
+            * ((np.array([model.crank_radius]) * np.array([model.speed])) ** 2)[:, None]
+        )
+        for kept in (rows, angle, scale):  # new arrays, or the cache's read-only row
+            kept.flags.writeable = False
+        found = model.derived[key] = (rows, angle, scale)
+    rows, angle, scale = found
+    return _roll_sum(rows, angle, scale, orders)[0]
 
 
 def batch_roll_phasors(
@@ -277,17 +306,61 @@ def batch_roll_phasors(
         engine, each engine's from its own row (no sum across the engines) [N·m].
     """
     ratio = np.broadcast_to(np.asarray(offset_ratio, dtype=float), np.shape(mass))
+    rows = roll_rows(rod_ratio, ratio, orders, kinematics)
+    scale = np.asarray(mass, dtype=float) * ((crank_radius * speed) ** 2)[:, None]
+    return _roll_sum(rows, np.asarray(angle, dtype=float), scale, orders)
+
+
+def roll_rows(
+    rod_ratio: NDArray[np.float64],
+    offset_ratio: NDArray[np.float64],
+    orders: int,
+    kinematics: KinematicsModel,
+) -> NDArray[np.complex128]:
+    r"""Roll harmonics :math:`d_{n,c}` of each cylinder of many engines
+    (:func:`crankbalance.physics.roll.roll_coefficients`), the rows of
+    :func:`batch_roll_phasors`.
+
+    Parameters
+    ----------
+    rod_ratio : ndarray, shape (E,)
+        :math:`\lambda = r/l` of each engine [-].
+    offset_ratio : ndarray, shape (E, C)
+        Each cylinder's offset over the crank radius, :math:`e/r` [-].
+    orders : int
+        Highest harmonic order K.
+    kinematics : {"exact", "series", "first-order"}
+        Piston kinematics model.
+
+    Returns
+    -------
+    ndarray of complex, shape (K,) or (E, C, K)
+        One row for all when every engine and cylinder shares its rod ratio and offset
+        (read-only, from the cache), else each cylinder's row; each distinct pair of rod
+        ratio and offset computed once [-].
+    """
+    ratio = np.asarray(offset_ratio, dtype=float)
     lam = np.broadcast_to(np.asarray(rod_ratio, dtype=float)[:, None], ratio.shape)
     if np.all(lam == lam.flat[0]) and np.all(ratio == ratio.flat[0]):  # one row for all
-        rows = roll_coefficients(float(lam.flat[0]), float(ratio.flat[0]), orders, kinematics)
-    else:  # each distinct (rod ratio, offset) once, from the cache
-        pairs = np.stack([lam.reshape(-1), ratio.reshape(-1)], axis=-1)
-        shared, index = np.unique(pairs, axis=0, return_inverse=True)
-        rows = np.stack(
-            [roll_coefficients(float(a), float(e), orders, kinematics) for a, e in shared]
-        )[index.reshape(-1)].reshape(*ratio.shape, orders)
-    scale = np.asarray(mass, dtype=float) * ((crank_radius * speed) ** 2)[:, None]
-    turn = _powers(np.asarray(angle, dtype=float), orders)
+        return roll_coefficients(float(lam.flat[0]), float(ratio.flat[0]), orders, kinematics)
+    # each distinct (rod ratio, offset) once, from the cache
+    pairs = np.stack([lam.reshape(-1), ratio.reshape(-1)], axis=-1)
+    shared, index = np.unique(pairs, axis=0, return_inverse=True)
+    return np.stack([roll_coefficients(float(a), float(e), orders, kinematics) for a, e in shared])[
+        index.reshape(-1)
+    ].reshape(*ratio.shape, orders)
+
+
+def _roll_sum(
+    rows: NDArray[np.complex128],
+    angle: NDArray[np.float64],
+    scale: NDArray[np.float64],
+    orders: int,
+) -> NDArray[np.complex128]:
+    r""":math:`R_n = \sum_c s_c d_{n,c} e^{in\theta_c}` of each engine (shape (E, K)) from
+    the rows of :func:`roll_rows`, the angles (E, C) and the weights :math:`s_c = m_c
+    r^2\omega^2` (E, C)."""
+    turn = _powers(angle, orders)
     return np.asarray(np.einsum("ec,eck->ek", scale, rows * turn), dtype=complex)
 
 
@@ -607,6 +680,7 @@ def _cylinder_sums(
     orders: int,
     coefficients: NDArray | None = None,
     per_cylinder: bool = False,
+    weights: NDArray[np.complex128] | None = None,
 ) -> NDArray[np.complex128]:
     r"""The four sums over the cylinders behind the phasors of :func:`reciprocating_phasors`.
 
@@ -624,21 +698,31 @@ def _cylinder_sums(
     ``per_cylinder`` coefficients :math:`c_{n,c}` (shape (..., C, K)) each cylinder's power
     is weighted by its own row, :math:`F_n^+ = \sum_c c_{n,c} w_c z_c^n` and so on; when
     all the rows are equal the shared row is factored out instead (the same numbers, to
-    the last bit, as an engine whose cylinders share one offset).
+    the last bit, as an engine whose cylinders share one offset). ``weights``: those of
+    :func:`_sum_weights` of ``p``, ``beta`` and ``position``, computed before (one model's,
+    kept by :func:`free_forces`).
     """
     if coefficients is not None and per_cylinder:
         if coefficients.shape[-2] == 1 or np.all(coefficients == coefficients[..., :1, :]):
             coefficients, per_cylinder = coefficients[..., 0, :], False
         else:
             return _weighted_sums(p, theta, beta, position, orders, coefficients)
+    if weights is None:
+        weights = _sum_weights(p, beta, position)
+    sums = weights @ _powers(theta, orders)
+    return sums if coefficients is None else coefficients[..., None, :] * sums
+
+
+def _sum_weights(p: NDArray, beta: NDArray, position: ArrayLike) -> NDArray[np.complex128]:
+    r"""The weights of the four sums of :func:`_cylinder_sums`, :math:`w_c`, :math:`\bar
+    w_c`, :math:`w_c y_c`, :math:`\bar w_c y_c` (shape (..., 4, C))."""
     w = p * np.exp(1j * beta)
     wy = w * position
     weights = np.empty(wy.shape[:-1] + (4,) + wy.shape[-1:], dtype=complex)  # (..., 4, C)
     weights[..., 0, :] = w
     weights[..., 2, :] = wy
     np.conjugate(weights[..., 0::2, :], out=weights[..., 1::2, :])
-    sums = weights @ _powers(theta, orders)
-    return sums if coefficients is None else coefficients[..., None, :] * sums
+    return weights
 
 
 def _powers(theta: NDArray, orders: int) -> NDArray[np.complex128]:

@@ -16,7 +16,7 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import ResultMixin, below_round_off, round_off, to_jsonable
+from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
@@ -178,18 +178,37 @@ class Analysis(ResultMixin):
 def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
     """``forces`` with every force and moment at most the engine's round-off
     (:func:`crankbalance.results.round_off`) set to exactly zero, as every output shows
-    them."""
-    force, moment = round_off(model)
+    them. The levels are the model's own, kept by it
+    (:attr:`~crankbalance.physics.model.EngineModel.derived`)."""
+    f, k = forces, forces.orders.size
+    level = model.derived.get(("round_off", k))
+    if level is None:  # each value's level, in the order of the values below
+        force, moment = round_off(model)
+        level = np.repeat([force, moment, force, moment], [2 * k, 3 * k, 1, 2])
+        level.flags.writeable = False
+        model.derived[("round_off", k)] = level
+    v = np.concatenate(
+        (
+            f.force_forward,
+            f.force_backward,
+            f.couple_forward,
+            f.couple_backward,
+            f.roll,
+            (f.rotating_force, f.rotating_couple, f.rotating_roll),
+        )
+    )
+    v[np.abs(v) <= level] = 0.0  # below_round_off's rule, in place on this own copy
+    rotating_force, rotating_couple, rotating_roll = v[-3:].tolist()
     return FreeForces(
-        orders=forces.orders,
-        force_forward=below_round_off(forces.force_forward, force),
-        force_backward=below_round_off(forces.force_backward, force),
-        couple_forward=below_round_off(forces.couple_forward, moment),
-        couple_backward=below_round_off(forces.couple_backward, moment),
-        rotating_force=complex(below_round_off(forces.rotating_force, force)),
-        rotating_couple=complex(below_round_off(forces.rotating_couple, moment)),
-        roll=below_round_off(forces.roll, moment),
-        rotating_roll=complex(below_round_off(forces.rotating_roll, moment)),
+        orders=f.orders,
+        force_forward=v[:k],
+        force_backward=v[k : 2 * k],
+        couple_forward=v[2 * k : 3 * k],
+        couple_backward=v[3 * k : 4 * k],
+        rotating_force=rotating_force,
+        rotating_couple=rotating_couple,
+        roll=v[4 * k : 5 * k],
+        rotating_roll=rotating_roll,
     )
 
 
@@ -283,6 +302,12 @@ def _phase(value: complex) -> float:
     return float(np.degrees(np.arctan2(value.imag, value.real)))
 
 
+@functools.lru_cache(maxsize=64)
+def _orders(orders: Any) -> int:
+    """The setting ``orders`` of :func:`analyze`, checked (a whole number is checked once)."""
+    return parse_options(AnalysisOptions, {"orders": orders}).orders
+
+
 def analyze(
     engine: EngineLike, orders: int = 8, moment_point: Sequence[float] | None = None
 ) -> Analysis:
@@ -298,11 +323,11 @@ def analyze(
         The point (x, y, z) [m] moments are taken about, y from the crank's mid-point;
         None: the engine's (``crank_train.moment_point`` or ``moment_reference``).
     """
-    from ..errors import InputError
-
-    orders = parse_options(AnalysisOptions, {"orders": orders}).orders
+    orders = _orders(orders) if type(orders) is int else _orders.__wrapped__(orders)
     model = as_model(engine)
     if moment_point is not None:
+        from ..errors import InputError
+
         point = [float(v) for v in moment_point]
         if len(point) != 3 or not all(math.isfinite(v) for v in point):
             raise InputError("moment_point", moment_point, "three finite lengths x, y, z [m]")

@@ -37,7 +37,7 @@ from ...results import ROUND_OFF, below_round_off, round_off
 from ..balance_batch import balance_batch
 from ..balance_types import BatchBalance, CounterweightOptions, ShaftOptions
 from ..balancing import balance
-from ..model import EngineModel, engine_batch
+from ..model import EngineBatch, EngineModel, engine_batch
 from ..shaking import BatchFreeForces, batch_free_forces, free_forces
 from .candidates import Candidates
 
@@ -124,11 +124,7 @@ def merit(
     major and minor orders): Den Hartog (1956) ch. 5 (textbook).
     """
     topo = candidates.topology
-    if target not in TARGETS:
-        raise InputError("target", target, f"one of {', '.join(TARGETS)}")
-    if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
-        raise InputError("orders", orders, "an integer from 1 to 64")
-    weights = mode_weights(topo, mode_shape)
+    weights = _checked(topo, target, mode_shape, orders)
     # the forces, the symmetry and the balancing depend on the crank alone: computed once
     # per distinct crank of the batch, each candidate's row taken from its crank's (every
     # engine's numbers come from its own row, so they are the bits of a batch of all)
@@ -139,13 +135,12 @@ def merit(
         """Every candidate's row of columns computed per distinct crank."""
         return columns if cranks is candidates else {k: v[crank_of] for k, v in columns.items()}
 
-    out = each(
-        free_columns(cranks, int(orders)) | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)}
-    )
+    free, shared = _free_columns(cranks, int(orders))
+    out = each(free | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)})
     cycle = 2 * np.pi * topo.strokes / 2
     out["interval_dev_rad"] = interval_deviation(candidates.fire_angle, cycle)
     out["bank_interval_dev_rad"] = bank_interval_deviation(
-        candidates.fire_angle, topo.cylinder_bank, cycle
+        candidates.fire_angle, topo.cylinder_bank, cycle, whole=out["interval_dev_rad"]
     )
     steps = torsion_orders(topo.strokes, int(orders))
     excitation = torsional_excitation(candidates.fire_angle, weights, steps)
@@ -154,10 +149,65 @@ def merit(
     if target != "none":
         out.update(
             each(
-                balance_columns(cranks, target, balance_factor, counterweights, shafts, int(orders))
+                balance_columns(
+                    cranks, target, balance_factor, counterweights, shafts, int(orders), shared
+                )
             )
         )
     return out
+
+
+def _checked(
+    topology: EngineModel, target: str, mode_shape: str | ArrayLike, orders: int
+) -> NDArray[np.float64]:
+    """The mode's weights at the cylinders, after the checks of :func:`merit`'s target,
+    orders and mode shape."""
+    if target not in TARGETS:
+        raise InputError("target", target, f"one of {', '.join(TARGETS)}")
+    if not (isinstance(orders, int | np.integer) and 1 <= orders <= 64):
+        raise InputError("orders", orders, "an integer from 1 to 64")
+    return mode_weights(topology, mode_shape)
+
+
+def column_names(
+    topology: EngineModel,
+    target: Target = "counterweights",
+    balance_factor: float = 0.0,
+    mode_shape: str | ArrayLike = "uniform",
+    orders: int = 8,
+) -> list[str]:
+    """The names of the columns :func:`merit` gives for a batch of ``topology``, in its
+    order, without evaluating a candidate (the run's plan counts them:
+    :func:`crankbalance.physics.explore.work.plan`).
+
+    Parameters
+    ----------
+    topology : EngineModel
+        The layout.
+    target, balance_factor, mode_shape, orders
+        As :func:`merit` (``balance_factor`` [-] does not change the columns).
+
+    Returns
+    -------
+    list of str
+        The column names.
+
+    Raises
+    ------
+    InputError
+        As :func:`merit`, for an unknown target or mode shape, a mode shape of the wrong
+        length, or orders outside 1..64.
+    """
+    _checked(topology, target, mode_shape, orders)
+    names = [
+        f"{q}{n}{s}_{u}"
+        for n in range(1, int(orders) + 1)
+        for q, u in (("F", "N"), ("M", "Nm"))
+        for s in ("", "f", "b")
+    ]
+    names += ["Frot_N", "Mrot_Nm", "mirror_rad", "interval_dev_rad", "bank_interval_dev_rad"]
+    names += [order_name(order) for order in torsion_orders(topology.strokes, int(orders))]
+    return names + (list(BALANCE_COLUMNS) if target != "none" else [])
 
 
 def distinct_rows(rows: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]]:
@@ -289,14 +339,19 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
         magnitude is the couple's), each zero at most the engine's round-off
         (:func:`crankbalance.results.round_off`).
     """
+    return _free_columns(candidates, orders)[0]
+
+
+def _free_columns(
+    candidates: Candidates, orders: int
+) -> tuple[dict[str, NDArray], tuple[EngineBatch, BatchFreeForces] | None]:
+    """:func:`free_columns`, and the batch and phasors they come from when the batch
+    solver can take them (:func:`balance_columns`' ``shared``: a topology without
+    master-and-link rods, orders 1..K with K at least 2); else None."""
     if candidates.size == 0:  # an empty chunk of the enumeration: empty columns
-        names = [
-            f"{q}{n}{s}_{u}"
-            for n in range(1, orders + 1)
-            for q, u in (("F", "N"), ("M", "Nm"))
-            for s in ("", "f", "b")
-        ]
-        return {name: np.zeros(0) for name in names + ["Frot_N", "Mrot_Nm"]}
+        names = column_names(candidates.topology, "none", orders=orders)[: 6 * orders + 2]
+        return {name: np.zeros(0) for name in names}, None
+    shared = None
     if candidates.topology.articulation is not None:
         f, force, moment = _articulated_forces(candidates, orders)
     else:
@@ -305,6 +360,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
         )
         f = batch_free_forces(batch, orders)
         force, moment = (level[:, None] for level in round_off(batch))
+        shared = (batch, f) if orders >= 2 else None
     out: dict[str, NDArray] = {}
     for n in range(orders):
         for name, unit, fwd, bwd, level in (
@@ -318,7 +374,7 @@ def free_columns(candidates: Candidates, orders: int) -> dict[str, NDArray]:
             out[f"{name}{n + 1}b_{unit}"] = backward
     out["Frot_N"] = np.abs(below_round_off(f.rotating_force, force[:, 0]))
     out["Mrot_Nm"] = np.abs(below_round_off(f.rotating_couple, moment[:, 0]))
-    return out
+    return out, shared
 
 
 def _articulated_forces(
@@ -417,7 +473,7 @@ def _deviation(alpha: NDArray[np.float64], cycle: float) -> NDArray[np.float64]:
 
 
 def bank_interval_deviation(
-    fire_angle: ArrayLike, bank: ArrayLike, cycle: float
+    fire_angle: ArrayLike, bank: ArrayLike, cycle: float, whole: ArrayLike | None = None
 ) -> NDArray[np.float64]:
     """Largest deviation from even firing of the cylinders of each bank, over the banks.
 
@@ -433,6 +489,9 @@ def bank_interval_deviation(
         Bank angle of each cylinder [rad].
     cycle : float
         Crank angle of one working cycle [rad].
+    whole : array_like, shape (B,), optional
+        :func:`interval_deviation` of all the cylinders, when computed before: an engine
+        of one bank takes a copy of it [rad].
 
     Returns
     -------
@@ -441,8 +500,11 @@ def bank_interval_deviation(
     """
     alpha = np.asarray(fire_angle, dtype=float)
     key = np.round(np.mod(np.asarray(bank, dtype=float), 2 * np.pi), 9)
+    banks = np.unique(key)
+    if whole is not None and banks.size == 1:  # one bank: its deviation is the whole's
+        return np.array(whole, dtype=float)
     dev = np.zeros(alpha.shape[0])
-    for value in np.unique(key):
+    for value in banks:
         dev = np.maximum(dev, interval_deviation(alpha[:, key == value], cycle))
     return dev
 
@@ -504,6 +566,7 @@ def balance_columns(
     counterweights: CounterweightOptions | None,
     shafts: ShaftOptions | None,
     orders: int,
+    shared: tuple[EngineBatch, BatchFreeForces] | None = None,
 ) -> dict[str, NDArray]:
     """Counterweights and balance shafts every candidate needs for a balancing target.
 
@@ -521,6 +584,11 @@ def balance_columns(
         See :func:`merit`.
     orders : int
         Highest order of the residuals.
+    shared : (EngineBatch, BatchFreeForces), optional
+        The candidates' batch (:func:`~crankbalance.physics.model.engine_batch` of their
+        throw angles) and its free forces of orders 1..max(``orders``, 2)
+        (:func:`~crankbalance.physics.shaking.batch_free_forces`), when :func:`merit` has
+        them already; default: built here, the forces computed by the solver.
 
     Returns
     -------
@@ -544,13 +612,11 @@ def balance_columns(
     secondary = shaft if level >= 3 else None
     if topo.articulation is not None:
         return _articulated_balance(candidates, cw, primary, secondary, orders)
-    result: BatchBalance = balance_batch(
+    batch, forces = shared or (
         engine_batch(topo, candidates.size, throw_angle=candidates.throw_angle),
-        cw,
-        primary,
-        secondary,
-        orders,
+        None,
     )
+    result: BatchBalance = balance_batch(batch, cw, primary, secondary, orders, forces=forces)
     count = np.zeros(candidates.size, dtype=np.int64)
     shaft_mass = np.zeros(candidates.size)
     for group in (result.primary, result.secondary):

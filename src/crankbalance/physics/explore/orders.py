@@ -26,6 +26,7 @@ need the plan of the others.
 from __future__ import annotations
 
 import functools
+import itertools
 import math
 from collections.abc import Iterator, Sequence
 from dataclasses import dataclass
@@ -509,6 +510,51 @@ def _rotations(plan: _Plan, start: int, stop: int) -> Iterator[tuple[int, int, i
         yield r, start - r * plan.span, stop - r * plan.span
 
 
+#: Lehmer digits at the end of an index that :func:`_every_order` takes from one table of
+#: the permutations of that many cylinders (6: 720 rows)
+TABLE_DIGITS = 6
+
+
+def _pins_alone(plan: _Plan) -> bool:
+    """Whether every cylinder has a crankpin of its own (no pin to agree on)."""
+    return bool(np.array_equal(plan.pin_first, np.arange(plan.cylinders)))
+
+
+@functools.cache
+def _lexicographic(j: int) -> NDArray[np.int64]:
+    """Every permutation of ``range(j)`` in lexicographic order, shape (j!, j), read-only."""
+    table = np.array(list(itertools.permutations(range(j))), dtype=np.int64)
+    table = table.reshape(math.factorial(j), j)
+    table.flags.writeable = False
+    return table
+
+
+def _every_order(
+    plan: _Plan, start: int, stop: int
+) -> tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]:
+    """What :func:`_consistent` gives when no two cylinders share a pin: every index of
+    ``[start, stop)`` (each its :func:`_unrank`), built block by block. The last ``j`` =
+    min(C - 1, :data:`TABLE_DIGITS`) Lehmer digits run through all their values in a block
+    of j! indices, which places the cylinders the block's first index leaves for the last
+    j slots in every order, lexicographically: one table of those permutations serves
+    every block."""
+    n = plan.cylinders
+    j = min(n - 1, TABLE_DIGITS)
+    width = math.factorial(j)
+    first = start // width
+    heads = np.arange(first, -(-stop // width), dtype=np.int64) * width
+    head_slots, _ = _unrank(plan, heads)
+    head = np.argsort(head_slots, axis=1)  # the cylinder in each slot; the last j ascending
+    sequence = np.empty((heads.size, width, n), dtype=np.int64)
+    sequence[:, :, : n - j] = head[:, None, : n - j]
+    sequence[:, :, n - j :] = head[:, n - j :][:, _lexicographic(j)]
+    sequence = sequence.reshape(-1, n)[start - first * width : stop - first * width]
+    slots = np.empty_like(sequence)
+    slots[np.arange(sequence.shape[0])[:, None], sequence] = np.arange(n)
+    index = np.arange(start, stop, dtype=np.int64)
+    return index, slots, index // plan.span
+
+
 #: most children of one level of the enumeration of a range, times the cylinders (8 bytes
 #: each: 16 MB per array): a wider level is enumerated half after half (:func:`_consistent`)
 LEVEL_ELEMENTS = 2_000_000
@@ -532,6 +578,8 @@ def _consistent(
     """
     plan = problem._plan
     m = plan.cylinders - 1
+    if problem.fixed_throw_angles is None and _pins_alone(plan):  # nothing to prune
+        return _every_order(plan, start, stop)
     out: list[tuple[NDArray[np.int64], NDArray[np.int64], NDArray[np.int64]]] = []
     for r, lo_end, hi_end in _rotations(plan, start, stop):
         waiting: list[tuple[int, _Prefixes]] = [(0, _root(problem, r))]
@@ -750,7 +798,10 @@ def _crank(
     plan = problem._plan
     fire = plan.times[rot[:, None], slots]
     pin = np.remainder(problem.pin_bank - fire, 2 * np.pi)
-    ok = np.all(_gap(pin - pin[:, plan.pin_first]) < _TOL, axis=1)
+    if _pins_alone(plan):  # every pin's one cylinder agrees with itself
+        ok = np.ones(pin.shape[0], dtype=bool)
+    else:
+        ok = np.all(_gap(pin - pin[:, plan.pin_first]) < _TOL, axis=1)
     throw = pin[:, plan.throw_first]
     relative = throw - throw[:, :1]
     if problem.crank in ("flat", "cross"):

@@ -418,10 +418,11 @@ def pareto(values: ArrayLike, tolerance: ArrayLike = 0.0) -> NDArray[np.bool_]:
     -----
     The rows are sorted lexicographically, so a row is dominated exactly (tolerance 0)
     only by one before it, and a row dominated by a dominated row is dominated by a row of
-    the front (dominance is transitive). One sweep in blocks compares each block with the
-    front found so far and with itself: about B·F·K comparisons for a front of F rows. With
-    a tolerance a row can be dominated by one after it (its first objective larger by less
-    than the tolerance), so a last pass compares the front with itself (F·F·K).
+    the front (dominance is transitive). Equal rows are swept once. One sweep in blocks
+    compares each block with the front found so far and with itself: about B·F·K
+    comparisons for a front of F rows. With a tolerance a row can be dominated by one
+    after it (its first objective larger by less than the tolerance), so a last pass
+    compares the front with itself (F·F·K).
     Transitivity holds with a tolerance as long as values closer than the tolerance are
     round-off of one value, as every figure of merit's are (docs/explorer.md, "Ranking").
     """
@@ -435,6 +436,15 @@ def pareto(values: ArrayLike, tolerance: ArrayLike = 0.0) -> NDArray[np.bool_]:
         raise InputError("tolerance", tol.tolist(), "finite numbers of 0 or more")
     order = np.lexsort(v.T[::-1]) if v.shape[1] else np.arange(v.shape[0])
     sorted_v = v[order]
+    if v.shape[0] > 1 and v.shape[1]:
+        # equal rows share their fate (they never dominate one another and dominate the
+        # same rows): the sweep runs over the distinct rows only (the explorer's
+        # candidates of one crank have equal forces and moments)
+        fresh = np.concatenate([[True], np.any(sorted_v[1:] != sorted_v[:-1], axis=1)])
+        if not fresh.all():
+            keep = np.zeros(v.shape[0], bool)
+            keep[order] = pareto(sorted_v[fresh], tol)[np.cumsum(fresh) - 1]
+            return keep
     kept: list[NDArray[np.int64]] = []
     front = np.empty((0, v.shape[1]))
     for start in range(0, v.shape[0], BLOCK):

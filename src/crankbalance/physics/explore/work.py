@@ -15,6 +15,7 @@ numbers.
 
 from __future__ import annotations
 
+import functools
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -176,6 +177,43 @@ def order_bytes(cylinders: int, columns: int) -> int:
     return ORDER_BYTES * cylinders + 8 * (columns + 2 * cylinders)
 
 
+#: the keyword arguments of :func:`crankbalance.physics.explore.merit.merit` that
+#: :func:`column_count` reads without evaluating (the others, the counterweight and shaft
+#: options, are checked by an evaluation of the template)
+NAMED_COLUMNS = frozenset({"target", "balance_factor", "mode_shape", "orders"})
+
+
+def column_count(evaluate: Callable[[Candidates], Mapping[str, Any]], template: Candidates) -> int:
+    """The number of columns ``evaluate`` gives: from
+    :func:`~crankbalance.physics.explore.merit.column_names` when it is ``merit`` with
+    keyword arguments among :data:`NAMED_COLUMNS` (a ``functools.partial``, as the command
+    line and the benchmarks build it), which checks them as ``merit`` does; else by
+    evaluating ``template``.
+
+    Parameters
+    ----------
+    evaluate : callable
+        The figures of merit.
+    template : Candidates
+        One candidate of the problem (:func:`~crankbalance.physics.explore.orders.template`).
+
+    Returns
+    -------
+    int
+        Columns [-].
+    """
+    from . import merit
+
+    if (
+        isinstance(evaluate, functools.partial)
+        and evaluate.func is merit.merit
+        and not evaluate.args
+        and NAMED_COLUMNS.issuperset(evaluate.keywords)
+    ):
+        return len(merit.column_names(template.topology, **evaluate.keywords))
+    return len(evaluate(template))
+
+
 def plan(
     problem: Any,
     evaluate: Callable[[Candidates], Mapping[str, Any]],
@@ -192,8 +230,9 @@ def plan(
     problem : Problem
         What to enumerate.
     evaluate : callable
-        The figures of merit (called once, on :func:`~crankbalance.physics.explore.orders.template`
-        of the problem, to learn the columns).
+        The figures of merit (their columns counted by :func:`column_count`: without an
+        evaluation for ``merit`` itself, else called once on
+        :func:`~crankbalance.physics.explore.orders.template` of the problem).
     chunk : int or None
         Indices (draws) per task [-]; None chooses it (about :data:`TASK_CANDIDATES`
         candidates per task, within :data:`TASK_MEMORY`).
@@ -229,7 +268,7 @@ def plan(
         raise InputError("span", list(span or ()), f"0 <= start <= stop <= {total}")
     template = source.template(problem)
     cylinders = template.topology.cylinders
-    columns = len(evaluate(template)) + 4  # and index, equivalents, order, throws
+    columns = column_count(evaluate, template) + 4  # and index, equivalents, order, throws
     per_candidate = candidate_bytes(cylinders, columns)
     per_order = order_bytes(cylinders, columns)
     if sample is not None:
