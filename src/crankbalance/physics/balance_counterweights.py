@@ -311,7 +311,7 @@ def solve_counterweights(
     moments = mass * options.cg_radius * np.exp(1j * direction)
     missed_force = w2 * np.abs(moments.sum(axis=-1) + target.sum(axis=-1))
     missed_moment = w2 * np.abs((moments * webs.position).sum(axis=-1) + target_couple.sum(axis=-1))
-    return BatchCounterweights(
+    found = BatchCounterweights(
         options.method,
         options.cg_radius,
         webs.number,
@@ -326,6 +326,10 @@ def solve_counterweights(
         below_round_off(missed_force, inputs.force_round_off),
         below_round_off(missed_moment, inputs.moment_round_off),
     )
+    # the record's moments are these (the same expression): kept, not computed again
+    moments.flags.writeable = False
+    found.__dict__["moments"] = moments
+    return found
 
 
 @dataclass(frozen=True)

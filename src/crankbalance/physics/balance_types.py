@@ -11,6 +11,7 @@ counterweights; :mod:`crankbalance.physics.balancing` turns a result of one engi
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, ClassVar, Literal
 
 import numpy as np
@@ -240,10 +241,13 @@ class BatchCounterweights(ResultMixin):
         "missed_moment",
     )
 
-    @property
+    @cached_property
     def moments(self) -> NDArray[np.complex128]:
-        """Complex first moments :math:`m\\rho e^{i\\psi}`, shape (E, W) [kg·m]."""
-        return self.mass * self.cg_radius * np.exp(1j * self.direction)
+        """Complex first moments :math:`m\\rho e^{i\\psi}`, shape (E, W) [kg·m]; computed
+        once per record (or handed in by the solver, which computed them) and read-only."""
+        found = self.mass * self.cg_radius * np.exp(1j * self.direction)
+        found.flags.writeable = False
+        return found
 
 
 @dataclass(frozen=True)
