@@ -249,6 +249,16 @@ class BatchCounterweights(ResultMixin):
         found.flags.writeable = False
         return found
 
+    @cached_property
+    def moment_sums(self) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Each engine's sum of :attr:`moments` [kg·m] and of their moments along the crank,
+        :math:`\\sum m\\rho e^{i\\psi} y` [kg·m²], shapes (E,); computed once per record (or
+        handed in by the solver) and read-only."""
+        sums = (self.moments.sum(axis=-1), (self.moments * self.position).sum(axis=-1))
+        for array in sums:
+            array.flags.writeable = False
+        return sums
+
 
 @dataclass(frozen=True)
 class BatchShafts(ResultMixin):
