@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 
 from crankbalance.io.engine_file import load_engine
-from crankbalance.physics.balance_solver import model_input
+from crankbalance.physics.balance_solver import model_input, solve
 from crankbalance.physics.balancing import CounterweightOptions, ShaftOptions, balance
 from crankbalance.studies.build import build_model
 from crankbalance.studies.engine import balance_options
@@ -81,3 +81,27 @@ def test_a_result_owns_its_arrays() -> None:
         array[...] = 0
     again = balance(model, CounterweightOptions(cg_radius=0.04))
     assert again.counterweights is not None and again.counterweights.position.any()
+
+
+@pytest.mark.parametrize("variant", VARIANTS)
+def test_the_counterweights_moments_are_computed_once_read_only(variant: dict) -> None:
+    """``BatchCounterweights.moments`` and ``moment_sums`` are kept by the record (the solver
+    hands over the ones it computed): the same arrays on every access, read-only, every bit
+    as their formulas."""
+    model, _ = _fresh("v8-crossplane")
+    options = dataclasses.replace(CounterweightOptions(cg_radius=0.04), **variant)
+    cw = solve(model_input(model, 8), options).counterweights
+    assert cw is not None
+    assert cw.moments is cw.moments
+    assert not cw.moments.flags.writeable
+    formula = cw.mass * cw.cg_radius * np.exp(1j * cw.direction)
+    assert cw.moments.tobytes() == formula.tobytes()
+    total, couple = cw.moment_sums
+    assert cw.moment_sums is cw.moment_sums
+    assert not total.flags.writeable and not couple.flags.writeable
+    assert total.tobytes() == formula.sum(axis=-1).tobytes()
+    assert couple.tobytes() == (formula * cw.position).sum(axis=-1).tobytes()
+    fresh = dataclasses.replace(cw)  # a record built anew computes them on first access
+    assert "moments" not in vars(fresh) and "moment_sums" not in vars(fresh)
+    assert fresh.moments.tobytes() == formula.tobytes() and fresh.moments is fresh.moments
+    assert [a.tobytes() for a in fresh.moment_sums] == [total.tobytes(), couple.tobytes()]

@@ -265,9 +265,10 @@ def solve_counterweights(
                 continue
             equations = _equations(inputs, webs, options, scope, group)
             a, side = equations.a, equations.side
-            rhs: list[NDArray] = []
+            b = np.empty((sub.size, a.shape[0]), complex)  # (E, Q), column by column
             sums = []
-            for (_, web_mask), part_throws in zip(equations.parts, equations.throws, strict=True):
+            parts = zip(equations.parts, equations.throws, strict=True)
+            for q, ((_, web_mask), part_throws) in enumerate(parts):
                 # np.take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
@@ -275,8 +276,8 @@ def solve_counterweights(
                 force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
                 couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
-                rhs += [-force, -couple / inputs.length[sub]]
-            b = np.stack(rhs, axis=-1)  # (E, Q)
+                b[:, 2 * q] = -force
+                b[:, 2 * q + 1] = -couple / inputs.length[sub]
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
             live = ~still
@@ -309,9 +310,10 @@ def solve_counterweights(
     # force and couple (zero when they reach it)
     w2 = inputs.speed**2
     moments = mass * options.cg_radius * np.exp(1j * direction)
-    missed_force = w2 * np.abs(moments.sum(axis=-1) + target.sum(axis=-1))
-    missed_moment = w2 * np.abs((moments * webs.position).sum(axis=-1) + target_couple.sum(axis=-1))
-    return BatchCounterweights(
+    totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
+    missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))
+    missed_moment = w2 * np.abs(totals[1] + target_couple.sum(axis=-1))
+    found = BatchCounterweights(
         options.method,
         options.cg_radius,
         webs.number,
@@ -326,6 +328,13 @@ def solve_counterweights(
         below_round_off(missed_force, inputs.force_round_off),
         below_round_off(missed_moment, inputs.moment_round_off),
     )
+    # the record's moments and their sums are these (the same expressions): kept, not
+    # computed again
+    for array in (moments, *totals):
+        array.flags.writeable = False
+    found.__dict__["moments"] = moments
+    found.__dict__["moment_sums"] = totals
+    return found
 
 
 @dataclass(frozen=True)

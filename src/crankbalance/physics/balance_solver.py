@@ -530,8 +530,14 @@ def _add_balancing(
     cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
     first_order: list[tuple[NDArray, NDArray]] = []  # the counterweights beyond the share
     if cw is not None and share is not None:
-        rotating_after[:, 0] += w2 * share.sum(axis=-1)
-        rotating_after[:, 1] += w2 * (share * cw.position).sum(axis=-1)
+        # all of the counterweights the share (no balance factor): their sums are kept
+        total, couple = (
+            cw.moment_sums
+            if share is cw.moments
+            else (share.sum(axis=-1), (share * cw.position).sum(axis=-1))
+        )
+        rotating_after[:, 0] += w2 * total
+        rotating_after[:, 1] += w2 * couple
         if share is not moments:  # (no balance factor: all of it is the share, nothing beyond)
             first_order.append(((cw.moments if moments is None else moments) - share, cw.position))
     if extra is not None:

@@ -11,6 +11,7 @@ counterweights; :mod:`crankbalance.physics.balancing` turns a result of one engi
 from __future__ import annotations
 
 from dataclasses import dataclass, field
+from functools import cached_property
 from typing import Any, ClassVar, Literal
 
 import numpy as np
@@ -240,10 +241,23 @@ class BatchCounterweights(ResultMixin):
         "missed_moment",
     )
 
-    @property
+    @cached_property
     def moments(self) -> NDArray[np.complex128]:
-        """Complex first moments :math:`m\\rho e^{i\\psi}`, shape (E, W) [kg·m]."""
-        return self.mass * self.cg_radius * np.exp(1j * self.direction)
+        """Complex first moments :math:`m\\rho e^{i\\psi}`, shape (E, W) [kg·m]; computed
+        once per record (or handed in by the solver, which computed them) and read-only."""
+        found = self.mass * self.cg_radius * np.exp(1j * self.direction)
+        found.flags.writeable = False
+        return found
+
+    @cached_property
+    def moment_sums(self) -> tuple[NDArray[np.complex128], NDArray[np.complex128]]:
+        """Each engine's sum of :attr:`moments` [kg·m] and of their moments along the crank,
+        :math:`\\sum m\\rho e^{i\\psi} y` [kg·m²], shapes (E,); computed once per record (or
+        handed in by the solver) and read-only."""
+        sums = (self.moments.sum(axis=-1), (self.moments * self.position).sum(axis=-1))
+        for array in sums:
+            array.flags.writeable = False
+        return sums
 
 
 @dataclass(frozen=True)
