@@ -48,9 +48,7 @@ def serve(
     from . import api
 
     api.register(app)
-    app.on_startup(
-        lambda: threading.Thread(target=_warm_up, args=(preset,), daemon=True).start()
-    )
+    app.on_startup(lambda: threading.Thread(target=_warm_up, args=(preset,), daemon=True).start())
     url = f"http://127.0.0.1:{port}/"
     print(f"crankbalance web: starting on {url} (Ctrl+C stops it)", flush=True)
     app.on_startup(
