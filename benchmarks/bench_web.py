@@ -34,6 +34,18 @@ deleted) ends its session with an error: its edit is lost and would be waited fo
 
 Targets (issue 14, item 9; issue 13, "web: edit -> updated figures, 12 cylinders"): first
 load 2 s, preset switch 0.5 s, PNG after the first 1 s, edit -> figure p95 0.15 s.
+
+``--fresh N`` measures instead a freshly started server, N times (issue 28, item 8): the
+browser is started first, then ``crankbalance web``; timed from the server's start (its
+warm-up included) to the first page on the crossplane V8 shown with its results (target
+2 s) and to its 3-D crank drawn (3 s); then, on that page, the shop example with two
+readings (examples/v8_parts.csv, the settings of examples/v8_shop.py): from the click on
+Run to the ISO verdict shown (2 s; the first study of the server's worker pool). The
+reference, measured in the same run: ``crankbalance analyze v8-crossplane`` in a fresh
+interpreter (the command line doing the same first study), median of N. ``--load K``
+keeps K ``yes > /dev/null`` processes running during the whole run (a loaded machine).
+
+    python benchmarks/bench_web.py --fresh 5 [--load 2]
 """
 
 from __future__ import annotations
@@ -42,7 +54,10 @@ import argparse
 import asyncio
 import os
 import statistics
+import subprocess
+import sys
 import time
+from pathlib import Path
 from typing import Any
 
 from crankbalance.output.render import CHROMIUM_FLAGS
@@ -268,6 +283,104 @@ def png_reference(count: int) -> dict[str, list[float]]:
     return times
 
 
+FRESH_ENGINE = "v8-crossplane"
+PARTS = Path(__file__).resolve().parents[1] / "examples" / "v8_parts.csv"
+#: the shop example's settings as typed (those of examples/v8_shop.py; tests/web/test_web_shop.py)
+SHOP_TYPED = {
+    "reading_1": "12.5 g @ 40 mm, 35 deg",
+    "reading_2": "8 g @ 40 mm, 200 deg",
+    "measuring_planes": "0 mm, 400 mm",
+    "correction_planes": "50 mm, 350 mm",
+    "hole_radius": "45 mm",
+    "rotor_mass": "25 kg",
+    "bearings": "-20 mm, 420 mm",
+}
+#: the open tab panel has slid into place (tests/web/test_web_screens.SETTLED)
+SETTLED = """() => {
+    const shown = [...document.querySelectorAll('.q-tab-panel')]
+        .filter((p) => p.offsetParent !== null);
+    if (shown.length !== 1) return false;
+    if (document.querySelector('[class*="q-transition--"][class*="-active"]')) return false;
+    const panel = shown[0].getBoundingClientRect();
+    const home = shown[0].parentElement.getBoundingClientRect();
+    return Math.abs(panel.left - home.left) < 0.5;
+}"""
+VERDICT = """() => {
+    const v = document.querySelector('[data-testid=shop-verdict]');
+    return v && v.offsetParent !== null && /G\\d/.test(v.textContent);
+}"""
+
+
+async def fresh_server(browser: Any) -> tuple[float, float, float]:
+    """One freshly started server: [s] from its start to the first page shown with its
+    results, to its 3-D crank drawn, and from Run to the shop example's verdict."""
+    from crankbalance.web.server import running_server
+
+    t0 = time.perf_counter()
+    with running_server(timeout=GUARD_MS / 1000) as url:
+        page = await new_page(browser, url)
+        await page.goto(f"{url}/?preset={FRESH_ENGINE}", wait_until="commit")
+        await page.wait_for_function(SHOWN, polling=POLL)
+        shown = time.perf_counter() - t0
+        await page.wait_for_function(DRAWN, polling=POLL)
+        drawn = time.perf_counter() - t0
+        await page.wait_for_function("() => window.socket && window.socket.connected")
+        await page.get_by_role("tab", name="Balance shop", exact=True).click()
+        await page.wait_for_function(SETTLED, polling=POLL)
+        # the example's parts as "Load example" puts them (a click during the tab's opening
+        # was lost once: typing them needs no click)
+        await page.locator("[data-testid=shop-parts]").first.fill(PARTS.read_text(encoding="utf-8"))
+        for key, value in SHOP_TYPED.items():
+            await page.locator(f"[data-testid=shop-{key}]").first.fill(value)
+        t1 = time.perf_counter()
+        await page.get_by_role("button", name="Run", exact=True).click()
+        await page.wait_for_function(VERDICT, polling=POLL)
+        shop = time.perf_counter() - t1
+        await page.close()
+    return shown, drawn, shop
+
+
+async def run_fresh(count: int) -> list[tuple[float, float, float]]:
+    from playwright.async_api import async_playwright
+
+    async with async_playwright() as p:
+        browser = await p.chromium.launch(executable_path=CHROMIUM, args=list(CHROMIUM_FLAGS))
+        times = [await fresh_server(browser) for _ in range(count)]
+        await browser.close()
+    return times
+
+
+def cli_reference(count: int) -> list[float]:
+    """``crankbalance analyze v8-crossplane`` in a fresh interpreter, ``count`` times [s]."""
+    command = [sys.executable, "-m", "crankbalance", "analyze", FRESH_ENGINE]
+    times = []
+    for _ in range(count):
+        t0 = time.perf_counter()
+        subprocess.run(command, check=True, stdout=subprocess.DEVNULL)
+        times.append(time.perf_counter() - t0)
+    return times
+
+
+def fresh_main(count: int) -> None:
+    load_before = os.getloadavg()[0]
+    ref = statistics.median(cli_reference(count))
+    times = asyncio.run(run_fresh(count))
+    print(
+        f"fresh server, {FRESH_ENGINE}, {count} runs; load average {load_before:.1f} before, "
+        f"{os.getloadavg()[0]:.1f} after ({os.cpu_count()} cores)"
+    )
+    print(f"reference: crankbalance analyze {FRESH_ENGINE}, fresh interpreter, median {ref:.3f} s")
+    print(f"{'measure (median) [s]':50s} {'measured':>9s} {'target':>7s} {'ratio to ref':>12s}")
+    labels = (
+        ("server start -> first results shown", 2.0),
+        ("server start -> 3-D crank drawn", 3.0),
+        ("shop example, two readings: Run -> verdict", 2.0),
+    )
+    for (label, target), values in zip(labels, zip(*times, strict=True), strict=True):
+        value = statistics.median(values)
+        print(f"{label:50s} {value:9.3f} {target:7.2f} {value / ref:12.1f}")
+
+
 def percentile(values: list[float], q: float) -> float:
     if not values:
         return float("nan")
@@ -276,8 +389,6 @@ def percentile(values: list[float], q: float) -> float:
 
 
 def main() -> None:
-    from crankbalance.web.server import running_server
-
     parser = argparse.ArgumentParser(description=(__doc__ or "").splitlines()[0])
     parser.add_argument("--repeat", type=int, default=5)
     parser.add_argument("--edits", type=int, default=20)
@@ -287,7 +398,24 @@ def main() -> None:
         action="store_true",
         help="only the edits of --sessions pages at once (no loads, switches or PNGs)",
     )
+    parser.add_argument("--fresh", type=int, default=0, help="N freshly started servers")
+    parser.add_argument("--load", type=int, default=0, help="K `yes` processes meanwhile")
     args = parser.parse_args()
+    loaders = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(args.load)]
+    try:
+        if args.fresh:
+            fresh_main(args.fresh)
+        else:
+            warm_main(args)
+    finally:
+        for proc in loaders:
+            proc.kill()
+            proc.wait()
+
+
+def warm_main(args: argparse.Namespace) -> None:
+    from crankbalance.web.server import running_server
+
     load_before = os.getloadavg()[0]
     ref = reference(args.edits)
     png_ref = {} if args.sessions_only else png_reference(args.repeat)

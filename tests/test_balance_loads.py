@@ -354,3 +354,25 @@ def test_summary_of_an_engine_without_free_first_order() -> None:
     assert s.suggested == s.lowest_load and s.warning == ""
     loads = [c.metrics("indeterminate")["largest_load_N"] for c in sweep.cases]
     assert loads[s.suggested] == min(loads)
+
+
+def test_sweep_figure_labels_every_case_of_the_peak_bars() -> None:
+    """The peak-load bars (issue 28, item 4): one bar per case in each bearing's group, each
+    case named in the legend (pattern and balance factor), its height the case's peaks."""
+    pytest.importorskip("plotly")
+    from crankbalance.output.figures.loads import bearing_sweep_figure
+
+    sweep = bearing_sweep(
+        "v8-crossplane", {"patterns": ["all", "none"], "balance_factors": [0.4, 0.6]}, FAST
+    )
+    fig = bearing_sweep_figure(sweep)
+    bars = [t for t in fig.data if t.type == "bar"]
+    data = sweep.to_dict()
+    assert [b.name for b in bars] == ["peak: all, f_b 0.4", "peak: all, f_b 0.6", "peak: none"]
+    assert all(b.showlegend is not False for b in bars)
+    assert fig.layout.barmode == "group"
+    for bar, case in zip(bars, data["cases"], strict=True):
+        peaks = [b["max_load_N"] for b in case["models"]["indeterminate"]["bearings"]]
+        assert list(bar.y) == pytest.approx(peaks)
+    alpha = [float(b.marker.color.rsplit(",", 1)[1].rstrip(")")) for b in bars]
+    assert alpha[0] < alpha[1] == alpha[2] == 1.0  # lighter for the smaller f_b

@@ -419,6 +419,55 @@ def test_counterweight_figures_match_optimum() -> None:
     assert cg.y[0] == pytest.approx(float(props.cg_radius) * 1e3)
 
 
+def test_counterweight_drawing_has_the_crank_parts_at_their_radii() -> None:
+    """A design for an engine is drawn with its journal about the axis, its crankpin
+    opposite the counterweight at the crank radius and the radial limit (issue 28, item 4):
+    in the figure every edge shows (``plot`` of the study's result)."""
+    from crankbalance import plot
+    from crankbalance.schema.settings import CounterweightDesignOptions, parse_options
+    from crankbalance.studies.counterweight import crank_outline, design
+    from crankbalance.studies.engine import as_model
+
+    settings = parse_options(
+        CounterweightDesignOptions,
+        {
+            "web_radius": "20 mm",
+            "rectangle_height": "20 mm",
+            "trapezoid_angle": "0 deg",
+            "segment_radius": "60 mm",
+            "segment_angle": "120 deg",
+        },
+    )
+    result = design("inline4", settings)
+    model = as_model("inline4")
+    r = model.crank_radius * 1e3
+    assert result.crank == crank_outline("inline4")
+    (fig,) = plot(result)
+
+    def trace(prefix: str):
+        (found,) = [t for t in fig.data if t.name.startswith(prefix)]
+        return np.asarray(found.x, dtype=float), np.asarray(found.y, dtype=float)
+
+    x, y = trace("main journal")
+    assert np.hypot(x, y) == pytest.approx(result.crank.journal_diameter / 2 * 1e3)
+    x, y = trace("crankpin")
+    assert np.hypot(x, y + r) == pytest.approx(result.crank.pin_diameter / 2 * 1e3)
+    assert result.crank.pin_diameter == pytest.approx(1.1 * model.crank_radius)
+    x, y = trace("radial limit")
+    space = (model.rod_length - model.crank_radius) * 1e3
+    assert np.hypot(x, y) == pytest.approx(space)
+    assert (
+        "rod length - crank radius" in [t.name for t in fig.data if t.name.startswith("radial")][0]
+    )
+    cg = [t for t in fig.data if t.name.startswith("CG")][0]
+    assert cg.y[0] > 0 > -r, "the crankpin is drawn opposite the counterweight"
+    # the drawing reaches the crankpin's far edge and the limit
+    reach = max(space, r + result.crank.pin_diameter / 2 * 1e3)
+    assert fig.layout.xaxis.range[1] >= reach
+    typed = crank_outline("inline4", 0.07)
+    assert (typed.radial_limit, typed.limit_source) == (0.07, "typed")
+
+
 def test_shaft_figures_match_study() -> None:
     from crankbalance.physics.balance_shaft import BalanceShaft, inline4_study, shaft_response
     from crankbalance.physics.beam import ShaftSection

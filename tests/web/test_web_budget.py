@@ -300,3 +300,16 @@ async def test_the_pareto_cloud_is_thinned(user: User, form: Form, jobs: list[po
     x = cloud["x"]  # plotly's typed array: base64 of float64
     shown = len(x) if isinstance(x, list | tuple) else len(base64.b64decode(x["bdata"])) // 8
     assert shown == PARETO_CLOUD
+
+
+@pytest.mark.anyio
+async def test_a_worker_starts_with_the_shop_imported() -> None:
+    """The fork server imports the shop's study and its MILP solver (pool.PRELOAD), so that
+    a first shop run does not import them (issue 28, item 8)."""
+    loaded = await pool.run(
+        pool.Job("imports"),
+        eval,
+        "[m in __import__('sys').modules for m in "
+        "('crankbalance.studies.shop', 'scipy.optimize', 'crankbalance.io.parts_file')]",
+    )
+    assert loaded == [True, True, True]

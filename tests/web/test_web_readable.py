@@ -19,7 +19,12 @@ expect = playwright_api.expect
 import plotly.graph_objects as go  # noqa: E402
 from plotly.subplots import make_subplots  # noqa: E402
 
-from crankbalance.web.widgets import ALL_ZERO, MIN_SPAN_SHARE, all_zero, value_ranges  # noqa: E402
+from crankbalance.output.figures.common import (  # noqa: E402
+    ALL_ZERO,
+    MIN_SPAN_SHARE,
+    all_zero,
+    value_ranges,
+)
 
 from .test_web_explore import connected, open_tab  # noqa: E402
 

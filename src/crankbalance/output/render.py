@@ -39,6 +39,7 @@ from pathlib import Path
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..errors import InputError
+from .figures.common import readable
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -211,6 +212,7 @@ def to_image(
     """
     if fmt not in ("png", "svg"):
         raise InputError("format", fmt, "'png' or 'svg'")
+    fig = readable(fig)
     layout = fig.layout
     opts = {
         "format": fmt,
@@ -232,7 +234,7 @@ def to_html(
 
     return str(
         pio.to_html(
-            fig,
+            readable(fig),
             include_plotlyjs=include_plotlyjs,
             full_html=full_html,
             div_id=div_id,

@@ -33,6 +33,7 @@ from .engine import EngineLike, engine_label
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..io.cad import MeshMassProperties
+    from ..physics.model import EngineModel
 
 #: the settings that may state a counterweight's requirement (:func:`requirement`)
 RequirementSettings = CounterweightRequirementOptions | CounterweightDesignOptions
@@ -263,6 +264,58 @@ def optimize(
     return result
 
 
+# --------------------------------------------------------------------------- the crank
+def radial_space(model: EngineModel) -> float:
+    """The radial space the engine allows a crank counterweight [m]: the wrist pin's distance
+    from the crank axis at bottom dead centre, rod length - crank radius (the piston skirt
+    below the pin and a running clearance take more; the designer's own limit wins)."""
+    return float(model.rod_length) - float(model.crank_radius)
+
+
+@dataclass(frozen=True)
+class CrankOutline:
+    """The parts of the crank that give a counterweight drawing its scale
+    (:func:`crankbalance.output.figures.counterweight.counterweight_profile`).
+
+    Attributes
+    ----------
+    crank_radius : float
+        Crank radius r, the crankpin's centre from the crank axis [m].
+    pin_diameter, journal_diameter : float
+        Diameters of the crankpin and the main journal [m]: the crank studies' defaults
+        (1.1 r and 1.3 r, :data:`crankbalance.studies.crank.DEFAULT_PROPORTIONS`).
+    radial_limit : float
+        The largest radial space the counterweight may take [m].
+    limit_source : str
+        Where the limit comes from: "typed" (*Largest radial space*) or "engine" (rod
+        length - crank radius, :func:`radial_space`).
+    """
+
+    crank_radius: float
+    pin_diameter: float
+    journal_diameter: float
+    radial_limit: float
+    limit_source: str
+
+
+def crank_outline(engine: EngineLike, max_radius: float | None = None) -> CrankOutline:
+    """The crank's outline of ``engine`` for a counterweight drawing: its crankpin and
+    journal, and the radial limit ``max_radius`` [m] when typed, else the engine's
+    :func:`radial_space`."""
+    from .crank import DEFAULT_PROPORTIONS
+    from .engine import as_model
+
+    model = as_model(engine)
+    r = float(model.crank_radius)
+    return CrankOutline(
+        crank_radius=r,
+        pin_diameter=DEFAULT_PROPORTIONS["pin_diameter"] * r,
+        journal_diameter=DEFAULT_PROPORTIONS["journal_diameter"] * r,
+        radial_limit=radial_space(model) if max_radius is None else float(max_radius),
+        limit_source="engine" if max_radius is None else "typed",
+    )
+
+
 # --------------------------------------------------------------------------- show
 @dataclass(frozen=True, repr=False)
 class DesignResult(ResultMixin):
@@ -274,11 +327,15 @@ class DesignResult(ResultMixin):
         First moment m_c r_c it is sized or checked for [kg m].
     design : CounterweightDesign
     properties : CounterweightProperties
+    crank : CrankOutline, optional
+        The engine's crankpin, journal and radial limit, when the design is for an engine
+        (drawn with the profile).
     """
 
     required: float | None
     design: CounterweightDesign
     properties: CounterweightProperties
+    crank: CrankOutline | None = None
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.counterweight/2`` (mode ``design``)."""
@@ -337,7 +394,8 @@ def design(engine: EngineLike | None, settings: CounterweightDesignOptions) -> D
     else:
         made = CounterweightDesign(**values, density=o.density)
     props = made.properties(required)
-    return DesignResult(required, made, props)
+    crank = None if engine is None else crank_outline(engine)
+    return DesignResult(required, made, props, crank)
 
 
 def show(engine: EngineLike | None, settings: CounterweightDesignOptions) -> DesignResult:

@@ -98,8 +98,25 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
   background-size: 200% 100%; animation: cb-slide 1s linear infinite; }
 @keyframes cb-slide { from { background-position: 100% 0; } to { background-position: -100% 0; } }
 /* narrow screens: one column, nothing wider than the screen */
+/* a table wider than its box scrolls sideways; TABLE_CUE_JS marks it while more of it is to
+   the right (data-cb-more), and a shaded edge with an arrow says so */
+.q-table__container[data-cb-more] { position: relative; }
+.q-table__container[data-cb-more]::after { content: "\\2192"; position: absolute; top: 0;
+  right: 0; bottom: 0; width: 28px; pointer-events: none; z-index: 2; display: flex;
+  align-items: flex-start; justify-content: center; padding-top: 4px; color: #263238;
+  font-size: 18px; font-weight: bold;
+  background: linear-gradient(to right, rgba(255,255,255,0), rgba(69,90,100,0.35)); }
 @media (max-width: 600px) {
-  .q-header { flex-wrap: wrap; row-gap: 4px; }
+  /* the header in two short lines (issue 28: it took 172 of 844 px) */
+  .q-header { flex-wrap: wrap; row-gap: 0; column-gap: 6px !important; padding: 2px 8px; }
+  .q-header .text-h6 { font-size: 1rem; line-height: 1.75rem; }
+  .q-header .q-select { width: 10.5rem !important; }
+  .q-header .q-select .q-field__label { display: none; }
+  .q-header .q-select .q-field__native { padding-top: 0; padding-bottom: 0; }
+  .q-header .q-btn { padding: 0 4px; min-height: 28px; font-size: 12px; }
+  .q-header .q-space { display: none; }
+  .q-header [data-testid=status] { width: 100%; font-size: 12px; line-height: 1.3;
+    white-space: nowrap; overflow: hidden; text-overflow: ellipsis; }
   .q-tab-panel { padding: 8px 4px; }
   .q-tab-panel .nicegui-grid { grid-template-columns: minmax(0, 1fr) !important; width: 100%; }
   .q-tab-panel .nicegui-row { flex-direction: column; align-items: stretch; }
@@ -132,6 +149,29 @@ TOASTS_JS = """
     };
   };
   hook();
+})();
+</script>
+"""
+#: the sideways-scroll cue of tables (:data:`CSS`): every table container whose scrolling
+#: part has more to the right than it shows gets ``data-cb-more`` (checked as the page
+#: changes, on resizes and as the table is scrolled)
+TABLE_CUE_JS = """
+<script>
+(() => {
+  let pending = false;
+  const cue = () => {
+    pending = false;
+    for (const box of document.querySelectorAll('.q-table__container')) {
+      const middle = box.querySelector('.q-table__middle') || box;
+      const more = middle.scrollWidth - middle.clientWidth - middle.scrollLeft > 1;
+      if (more !== box.hasAttribute('data-cb-more')) box.toggleAttribute('data-cb-more', more);
+    }
+  };
+  const later = () => { if (!pending) { pending = true; requestAnimationFrame(cue); } };
+  new MutationObserver(later).observe(document.body, {childList: true, subtree: true});
+  window.addEventListener('resize', later);
+  document.addEventListener('scroll', later, true);
+  later();
 })();
 </script>
 """
@@ -252,6 +292,7 @@ class Page:
         ui.add_css(CSS)
         ui.add_body_html(BUSY_JS)
         ui.add_body_html(TOASTS_JS)
+        ui.add_body_html(TABLE_CUE_JS)
         with ui.header().classes("items-center gap-4 bg-blue-grey-9"):
             ui.label("crankbalance").classes("text-h6")
             self.preset_select = (

@@ -48,8 +48,16 @@ NICE = 5
 #: address space of one worker [bytes]: the work budgets keep the largest study near 1.5 GB
 #: (docs/web.md, "Studies: budget, workers, cancel"); a run past this ends as out of memory
 MEMORY_LIMIT = 6 * 2**30
-#: modules the fork server imports once, so that a worker starts without importing them
-PRELOAD = ["crankbalance.web.studies"]
+#: modules the fork server imports once, so that a worker starts without importing them:
+#: the tabs' study functions, and the balance shop's study with its MILP solver (scipy's
+#: ``milp``) and parts reader, which a first shop run spent about 0.45 s importing on an
+#: idle machine (issue 28, item 8)
+PRELOAD = [
+    "crankbalance.web.studies",
+    "crankbalance.studies.shop",
+    "crankbalance.io.parts_file",
+    "scipy.optimize",
+]
 
 _context: Any = None
 #: in a worker process: the sending end of its pipe, for :func:`report`

@@ -45,13 +45,10 @@ def serve(
     """
     from nicegui import app, ui
 
-    from . import api, pool
+    from . import api
 
     api.register(app)
-    app.on_startup(
-        lambda: threading.Thread(target=webapp.warm_up, args=(preset,), daemon=True).start()
-    )
-    app.on_startup(lambda: threading.Thread(target=pool.warm_up, daemon=True).start())
+    app.on_startup(lambda: threading.Thread(target=_warm_up, args=(preset,), daemon=True).start())
     url = f"http://127.0.0.1:{port}/"
     print(f"crankbalance web: starting on {url} (Ctrl+C stops it)", flush=True)
     app.on_startup(
@@ -76,6 +73,18 @@ def serve(
         http=head_deadline_protocol(head_timeout),
         **options,
     )
+
+
+def _warm_up(preset: str) -> None:
+    """The server's warm-up, in the background as it starts: first what the first page
+    needs (:func:`crankbalance.web.app.warm_up`: the physics and plotly's figure classes),
+    then the worker pool's fork server (:func:`crankbalance.web.pool.warm_up`, which imports
+    :data:`~crankbalance.web.pool.PRELOAD` in a process of its own): on a two-core machine
+    the pool's imports no longer compete with the first page's."""
+    from . import pool
+
+    webapp.warm_up(preset)
+    pool.warm_up()
 
 
 #: how long [s] the "ready" line waits for the server's socket before it gives up (silently)

@@ -14,16 +14,10 @@ from typing import Any
 from nicegui import run, ui
 
 from ..errors import InputError
+from ..studies.counterweight import crank_outline, radial_space
 from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, plot_or_none, send_download
-
-
-def radial_space(model: Any) -> float:
-    """The radial space the engine allows a crank counterweight [m]: the wrist pin's distance
-    from the crank axis at bottom dead centre, rod length - crank radius (the piston skirt
-    below the pin and a running clearance take more; the designer's own limit wins)."""
-    return float(model.rod_length) - float(model.crank_radius)
 
 
 def space_warnings(optimum: Any, limit: float) -> list[str]:
@@ -58,6 +52,8 @@ class CounterweightTab(StudyTab):
     what = "the counterweight optimiser"
     prefixes = ("cw_",)
     optimum: Any = None
+    #: the crankpin, journal and radial limit the shown designs are drawn with
+    crank: Any = None
 
     def build(self) -> None:
         with ui.row().classes("w-full items-start gap-4"):
@@ -110,7 +106,7 @@ class CounterweightTab(StudyTab):
             self.card(
                 "profile",
                 "Chosen design to scale",
-                lambda: plot_or_none("counterweight_profile", self._design()),
+                lambda: plot_or_none("counterweight_profile", self._design(), self.crank),
             )
 
     def show(self, c: Any) -> None:
@@ -132,6 +128,7 @@ class CounterweightTab(StudyTab):
 
     def clear(self) -> None:
         self.optimum = None
+        self.crank = None
         self.cw_summary.set_content("")
         for card in self.cards:
             card.refresh()
@@ -170,6 +167,8 @@ class CounterweightTab(StudyTab):
         if not self.owns(started):  # the engine or a setting was edited meanwhile
             return
         self.optimum = optimum
+        typed = str(self.page.project.settings.get("cw_max_radius", "")).strip()
+        self.crank = crank_outline(c.analysis.model, o.max_radius if typed else None)
         self.cw_choice.set_options(studies.design_choices(optimum), value="least mass")
         rows = [optimum.row(optimum.least_mass), optimum.row(optimum.least_radius)]
         text = [

@@ -18,6 +18,7 @@ from nicegui import run, ui
 
 from ..errors import InputError
 from ..output import figures, render
+from ..output.figures.common import ALL_ZERO, all_zero, value_ranges
 from ..output.format import number
 from ..schema.core import Schema, allowed, default_text
 from .exports import figure_csv, figure_json
@@ -47,12 +48,17 @@ DEFAULT_HEIGHT = 450
 #: subplots side by side keep at least this width per column [px] and scroll in their card
 PHONE_LEGEND_LINE = 26
 PHONE_COLUMN = 280
+#: plotly's top margin of a figure that sets none, and the height a wrapped title's line
+#: adds to it [px]
+DEFAULT_TOP_MARGIN = 100
+TITLE_LINE_PX = 24
 #: characters of a figure's title line shown on one line (longer titles wrap at a space;
 #: on a phone the title's font is smaller, so that this many fit the width)
 TITLE_LINE = 48
 #: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
 FIGURE_CSS = """
 .cb-figure-box { width: 100%; overflow-x: auto; }
+/* subplots side by side are stacked on a phone (phone_stack, FIGURE_JS) */
 .cb-figure { height: var(--cb-height); }
 @media (max-width: 600px) {
   .cb-figure { height: var(--cb-phone-height) !important; min-width: var(--cb-phone-width); }
@@ -76,7 +82,24 @@ FIGURE_JS = """
     const plot = window.getElement && getElement(Number(el.id.replace(/^c/, "")));
     if (plot && plot.Plotly) plot.Plotly.Plots.resize(el);
   };
-  const observer = new ResizeObserver((entries) => entries.forEach((e) => resize(e.target)));
+  // subplots side by side stacked on a phone (the relayouts of phone_stack, in the layout's
+  // meta): applied when the plot is drawn or the width crosses 600 px, idempotent
+  const narrow = window.matchMedia("(max-width: 600px)");
+  const value = (layout, key) => key.split(".").flatMap((p) => p.split("["))
+    .map((p) => p.replace("]", "")).reduce((v, k) => (v == null ? v : v[k]), layout);
+  const stack = (el) => {
+    const meta = el.layout && el.layout.meta && el.layout.meta.cbStack;
+    if (!meta || !el._fullLayout || el.offsetParent === null) return;
+    const want = narrow.matches ? meta.phone : meta.wide;
+    const same = Object.entries(want).every(
+      ([k, v]) => JSON.stringify(value(el.layout, k)) === JSON.stringify(v));
+    if (same) return;
+    const plot = window.getElement && getElement(Number(el.id.replace(/^c/, "")));
+    if (plot && plot.Plotly) plot.Plotly.relayout(el, want);
+  };
+  const observer = new ResizeObserver((entries) => entries.forEach((e) => {
+    stack(e.target); resize(e.target);
+  }));
   const plots = document.getElementsByClassName("cb-figure");
   const watched = new WeakSet();
   let pending = false;
@@ -84,6 +107,7 @@ FIGURE_JS = """
     pending = false;
     for (const el of plots) {
       if (!watched.has(el)) { watched.add(el); observer.observe(el); }
+      stack(el);
     }
   };
   new MutationObserver(() => {
@@ -93,74 +117,6 @@ FIGURE_JS = """
 })();
 </script>
 """
-
-#: the smallest span of a figure's value axis, as a share of the largest magnitude on it:
-#: the resolution of the page's 5 significant digits (:func:`fmt_g`); a curve that varies
-#: less (0.0004 % in issue 28) is drawn flat in the middle of that span instead of being
-#: stretched over the axis, which drew an "optimum" out of round-off
-MIN_SPAN_SHARE = 1e-4
-#: the card's note over a figure whose every value is 0 (drawn, but nothing to see)
-ALL_ZERO = "0 everywhere: every value of this figure is zero (nothing left to balance)."
-#: 2-D traces whose values are ``y`` (cartesian) or ``r`` (polar)
-CARTESIAN = ("scatter", "scattergl", "bar")
-POLAR = ("scatterpolar", "barpolar")
-
-
-def _values(trace: Any) -> Any | None:
-    """The finite values of a 2-D trace [its unit], None for any other trace (3-D, maps)."""
-    import numpy as np
-
-    kind = trace.type or "scatter"
-    data = trace.y if kind in CARTESIAN else trace.r if kind in POLAR else None
-    if data is None:
-        return None
-    try:
-        values = np.asarray(data, dtype=float).ravel()
-    except (TypeError, ValueError):  # categories on the value axis
-        return None
-    return values[np.isfinite(values)]
-
-
-def all_zero(figure: Any) -> bool:
-    """Whether every value of the figure's 2-D traces is 0 (and it has only such traces)."""
-    found = []
-    for trace in figure.data:
-        values = _values(trace)
-        if values is None:
-            return False
-        found.append(values)
-    return any(v.size for v in found) and all(not v.any() for v in found)
-
-
-def value_ranges(figure: Any, layout: dict[str, Any]) -> dict[str, list[float]]:
-    """The ranges to give the value axes of ``figure``'s line traces whose values vary by
-    less than :data:`MIN_SPAN_SHARE` of their magnitude (axis key of the layout -> range):
-    that span, centred on the values. Axes with bars (their range includes 0), a range or a
-    log scale of their own are left as they are."""
-    import numpy as np
-
-    lines: dict[str, list[Any]] = {}
-    bars: set[str] = set()
-    for trace in figure.data:
-        if (trace.type or "scatter") not in ("scatter", "scattergl"):
-            if trace.type == "bar":
-                bars.add(f"yaxis{(trace.yaxis or 'y')[1:]}")
-            continue
-        values = _values(trace)
-        if values is not None and values.size:
-            lines.setdefault(f"yaxis{(trace.yaxis or 'y')[1:]}", []).append(values)
-    out = {}
-    for key, parts in lines.items():
-        axis = layout.get(key) or {}
-        if key in bars or axis.get("range") is not None or axis.get("type") == "log":
-            continue
-        values = np.concatenate(parts)
-        low, high = float(values.min()), float(values.max())
-        span = MIN_SPAN_SHARE * max(abs(low), abs(high))
-        if span > 0 and high - low < span:
-            middle = 0.5 * (low + high)
-            out[key] = [middle - 0.5 * span, middle + 0.5 * span]
-    return out
 
 
 def button_row() -> Any:
@@ -187,6 +143,70 @@ def subplot_columns(layout: dict[str, Any]) -> int:
         if key.startswith("xaxis") and isinstance(axis, dict)
     }
     return max(1, len(starts))
+
+
+#: the share of a stacked subplot's slot kept free below it (its tick labels and the next
+#: subplot's title) on a phone
+PHONE_STACK_GAP = 0.3
+
+
+def phone_stack(layout: dict[str, Any]) -> dict[str, dict[str, Any]] | None:
+    """For a figure with subplots side by side (:func:`subplot_columns` above 1): the
+    relayouts that stack them in one column on a phone, in reading order (row by row, left
+    to right), and that put them back (``{"phone": {...}, "wide": {...}}``, plotly's
+    ``relayout`` keys: the axes' domains and the subplot titles' positions); None for one
+    column. The page applies them as its width crosses 600 px (:data:`FIGURE_JS`)."""
+    pairs = []
+    for key, axis in layout.items():
+        if not (key.startswith("xaxis") and isinstance(axis, dict)):
+            continue
+        y_axis = layout.get("y" + key[1:])
+        if not isinstance(y_axis, dict):
+            continue
+        x_domain = [float(v) for v in axis.get("domain", [0, 1])]
+        y_domain = [float(v) for v in y_axis.get("domain", [0, 1])]
+        pairs.append((key[5:], x_domain, y_domain))
+    columns = sorted({round(x[0], 3) for _, x, _ in pairs})
+    rows = sorted({round(y[1], 3) for _, _, y in pairs}, reverse=True)  # top row first
+    if len(columns) < 2:
+        return None
+    slots = len(columns) * len(rows)
+    phone: dict[str, Any] = {}
+    wide: dict[str, Any] = {}
+    moved = {}  # (column's centre, row's top) -> (new centre, new top) of a subplot title
+    for suffix, x, y in pairs:
+        slot = rows.index(round(y[1], 3)) * len(columns) + columns.index(round(x[0], 3))
+        top = 1.0 - slot / slots
+        bottom = top - (1.0 - PHONE_STACK_GAP) / slots
+        phone[f"xaxis{suffix}.domain"], wide[f"xaxis{suffix}.domain"] = [0.0, 1.0], x
+        phone[f"yaxis{suffix}.domain"], wide[f"yaxis{suffix}.domain"] = [bottom, top], y
+        moved[(round((x[0] + x[1]) / 2, 3), round(y[1], 3))] = (0.5, top)
+    for k, note in enumerate(layout.get("annotations") or []):
+        if note.get("xref") != "paper" or note.get("yref") != "paper":
+            continue
+        place = (round(float(note.get("x", -1)), 3), round(float(note.get("y", -1)), 3))
+        if place in moved:
+            phone[f"annotations[{k}].x"], phone[f"annotations[{k}].y"] = moved[place]
+            wide[f"annotations[{k}].x"], wide[f"annotations[{k}].y"] = note["x"], note["y"]
+    return {"phone": phone, "wide": wide}
+
+
+def title_layout(layout: dict[str, Any]) -> dict[str, Any]:
+    """The title and top margin of a figure card's layout: the title wrapped
+    (:func:`wrap_title`), and the plot moved down by a line for each line the wrapping
+    added, so that the title never sits over the subplots' own titles ("bearing 1" of the
+    bearing loads, issue 28)."""
+    title = layout.get("title")
+    if not (isinstance(title, dict) and isinstance(title.get("text"), str)):
+        return {}
+    wrapped = wrap_title(title["text"])
+    out: dict[str, Any] = {"title": {**title, "text": wrapped}}
+    added = wrapped.count("<br>") - title["text"].count("<br>")
+    if added:
+        margin = layout.get("margin") or {}
+        top = margin.get("t", DEFAULT_TOP_MARGIN)
+        out["margin"] = {**margin, "t": top + TITLE_LINE_PX * added}
+    return out
 
 
 def wrap_title(text: str, width: int = TITLE_LINE) -> str:
@@ -324,15 +344,19 @@ class FigureCard:
         for key, span in value_ranges(self.figure, layout).items():
             layout[key] = {**layout.get(key, {}), "range": span, "autorange": False}
         layout["legend"] = {**layout.get("legend", {}), **LEGEND}
-        title = layout.get("title")
-        if isinstance(title, dict) and isinstance(title.get("text"), str):
-            layout["title"] = {**title, "text": wrap_title(title["text"])}
+        layout.update(title_layout(layout))
         # the height goes to the element (CSS), so that a phone can make room for the legend
         height = int(layout.pop("height", None) or DEFAULT_HEIGHT)
-        phone = height + PHONE_LEGEND_LINE * legend_entries(shown.get("data", []))
+        # subplots side by side are stacked on a phone (FIGURE_JS applies the relayouts kept
+        # in the layout's meta); the figure grows by a row's height for each column
+        stack = phone_stack(layout)
+        columns = subplot_columns(layout) if stack else 1
+        if stack:
+            layout["meta"] = {**(layout.get("meta") or {}), "cbStack": stack}
+        phone = height * columns + PHONE_LEGEND_LINE * legend_entries(shown.get("data", []))
         self.plot.style(
             f"--cb-height: {height}px; --cb-phone-height: {phone}px; "
-            f"--cb-phone-width: {PHONE_COLUMN * subplot_columns(layout)}px"
+            f"--cb-phone-width: {PHONE_COLUMN}px"
         )
         shown["layout"] = layout
         shown["config"] = FIGURE_CONFIG

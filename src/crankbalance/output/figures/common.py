@@ -99,6 +99,108 @@ def figure_title(main: str, engine: str | None = None, note: str | None = None) 
     return f"{main}<br><sup>{' · '.join(second)}</sup>"
 
 
+#: the smallest span of a figure's value axis, as a share of the largest magnitude on it:
+#: the resolution of 5 significant digits (the web page's and the reports'); a curve that varies
+#: less (0.0004 % in issue 28) is drawn flat in the middle of that span instead of being
+#: stretched over the axis, which drew an "optimum" out of round-off
+MIN_SPAN_SHARE = 1e-4
+#: the note over a figure whose every value is 0 (drawn, but nothing to see): the web's
+#: figure cards show it above the plot, :func:`readable` adds it to the figure
+ALL_ZERO = "0 everywhere: every value of this figure is zero (nothing left to balance)."
+#: 2-D traces whose values are ``y`` (cartesian) or ``r`` (polar)
+CARTESIAN = ("scatter", "scattergl", "bar")
+POLAR = ("scatterpolar", "barpolar")
+
+
+def _values(trace: Any) -> Any | None:
+    """The finite values of a 2-D trace [its unit], None for any other trace (3-D, maps)."""
+
+    kind = trace.type or "scatter"
+    data = trace.y if kind in CARTESIAN else trace.r if kind in POLAR else None
+    if data is None:
+        return None
+    try:
+        values = np.asarray(data, dtype=float).ravel()
+    except (TypeError, ValueError):  # categories on the value axis
+        return None
+    return values[np.isfinite(values)]
+
+
+def all_zero(figure: Any) -> bool:
+    """Whether every value of the figure's 2-D traces is 0 (and it has only such traces)."""
+    found = []
+    for trace in figure.data:
+        values = _values(trace)
+        if values is None:
+            return False
+        found.append(values)
+    return any(v.size for v in found) and all(not v.any() for v in found)
+
+
+def value_ranges(figure: Any, layout: dict[str, Any] | None = None) -> dict[str, list[float]]:
+    """The ranges to give the value axes of ``figure``'s line traces whose values vary by
+    less than :data:`MIN_SPAN_SHARE` of their magnitude (axis key of the layout -> range):
+    that span, centred on the values. Axes with bars (their range includes 0), a range or a
+    log scale of their own are left as they are. ``layout`` is the figure's layout as a
+    dict (by default its own)."""
+    if layout is None:
+        layout = figure.layout.to_plotly_json()
+
+    lines: dict[str, list[Any]] = {}
+    bars: set[str] = set()
+    for trace in figure.data:
+        if (trace.type or "scatter") not in ("scatter", "scattergl"):
+            if trace.type == "bar":
+                bars.add(f"yaxis{(trace.yaxis or 'y')[1:]}")
+            continue
+        values = _values(trace)
+        if values is not None and values.size:
+            lines.setdefault(f"yaxis{(trace.yaxis or 'y')[1:]}", []).append(values)
+    out = {}
+    for key, parts in lines.items():
+        axis = layout.get(key) or {}
+        if key in bars or axis.get("range") is not None or axis.get("type") == "log":
+            continue
+        values = np.concatenate(parts)
+        low, high = float(values.min()), float(values.max())
+        span = MIN_SPAN_SHARE * max(abs(low), abs(high))
+        if span > 0 and high - low < span:
+            middle = 0.5 * (low + high)
+            out[key] = [middle - 0.5 * span, middle + 0.5 * span]
+    return out
+
+
+def readable(fig: go.Figure) -> go.Figure:
+    """The figure as every edge shows it (the command line's and the reports' images and
+    HTML through :mod:`crankbalance.output.render`; the web's figure cards apply the same
+    :func:`value_ranges` and :func:`all_zero`): a value axis whose lines vary by less than
+    :data:`MIN_SPAN_SHARE` of their magnitude gets that span, and a 2-D figure whose every
+    value is 0 says :data:`ALL_ZERO` at its top. ``fig`` itself is left unchanged (a copy is
+    returned when something changes).
+    """
+    ranges = value_ranges(fig)
+    zero = all_zero(fig) and not any(
+        "everywhere" in str(a.text or "") for a in fig.layout.annotations or ()
+    )
+    if not ranges and not zero:
+        return fig
+    out = plotly_go().Figure(fig)
+    for key, span in ranges.items():
+        out.layout[key].update(range=span, autorange=False)
+    if zero:
+        out.add_annotation(
+            text=ALL_ZERO,
+            showarrow=False,
+            xref="paper",
+            yref="paper",
+            x=0.5,
+            y=1.0,
+            yanchor="bottom",
+            font={"color": COLORS["before"]},
+        )
+    return out
+
+
 def note_if_zero(
     fig: go.Figure, values: ArrayLike, unit: str, row: int, col: int, ref: str
 ) -> None:

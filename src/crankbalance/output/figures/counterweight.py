@@ -4,7 +4,8 @@ the designs found and their Pareto front, and one counterweight's profile to sca
 Public functions
 ----------------
 - ``pareto_front(optimum, max_points=4000) -> Figure``  (counterweight.CounterweightOptimum)
-- ``counterweight_profile(design) -> Figure``             (counterweight.CounterweightDesign)
+- ``counterweight_profile(design, crank=None) -> Figure`` (counterweight.CounterweightDesign,
+  with the engine's crankpin, journal and radial limit: studies.counterweight.CrankOutline)
 """
 
 from __future__ import annotations
@@ -20,6 +21,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
     from ...physics.counterweight import CounterweightDesign
     from ...physics.counterweight_optimize import CounterweightOptimum
+    from ...studies.counterweight import CrankOutline
 
 
 def pareto_front(optimum: CounterweightOptimum, max_points: int = 4000) -> go.Figure:
@@ -82,10 +84,15 @@ def pareto_front(optimum: CounterweightOptimum, max_points: int = 4000) -> go.Fi
     return fig
 
 
-def counterweight_profile(design: CounterweightDesign) -> go.Figure:
+def counterweight_profile(
+    design: CounterweightDesign, crank: CrankOutline | None = None
+) -> go.Figure:
     """The counterweight profile drawn to scale (mm): the outline, the web circle it sits on,
     the crank axis and the centre of gravity
-    (:class:`~crankbalance.physics.counterweight.CounterweightDesign`)."""
+    (:class:`~crankbalance.physics.counterweight.CounterweightDesign`); with ``crank``
+    (:class:`~crankbalance.studies.counterweight.CrankOutline`) also the parts that give it
+    its scale: the main journal about the axis, the crankpin opposite the counterweight at
+    the crank radius and the radial limit."""
     go = plotly_go()
     props = design.properties()
     fig = go.Figure()
@@ -125,10 +132,53 @@ def counterweight_profile(design: CounterweightDesign) -> go.Figure:
             marker={"color": COLORS["after"], "size": 10, "symbol": "x"},
         )
     )
+    reach = max(float(props.outer_radius) * 1e3, r)
+    if crank is not None:
+        reach = max(reach, _crank_parts(fig, crank))
     return web_drawing(
         fig,
-        1.1 * max(float(props.outer_radius) * 1e3, r),
+        1.1 * reach,
         f"Counterweight: {float(props.mass) * 1e3:.1f} g, thickness "
         f"{design.thickness * 1e3:.2f} mm, outer radius "
         f"{float(props.outer_radius) * 1e3:.2f} mm",
     )
+
+
+def _crank_parts(fig: go.Figure, crank: CrankOutline) -> float:
+    """Draw the journal, the crankpin (at -y, opposite the counterweight) and the radial
+    limit of ``crank`` into ``fig``; the largest radius drawn [mm]."""
+    go = plotly_go()
+    ring = np.linspace(0, 2 * np.pi, 181)
+    r = crank.crank_radius * 1e3
+    steel = {"color": "#34495e", "width": 1.5}
+    for name, radius, centre in (
+        (f"main journal ⌀ {crank.journal_diameter * 1e3:.1f} mm", crank.journal_diameter / 2, 0.0),
+        (
+            f"crankpin ⌀ {crank.pin_diameter * 1e3:.1f} mm at r = {r:.1f} mm",
+            crank.pin_diameter / 2,
+            -r,
+        ),
+    ):
+        fig.add_trace(
+            go.Scatter(
+                x=radius * 1e3 * np.cos(ring),
+                y=centre + radius * 1e3 * np.sin(ring),
+                mode="lines",
+                fill="toself",
+                fillcolor="rgba(52,73,94,0.25)",
+                name=name,
+                line=steel,
+            )
+        )
+    limit = crank.radial_limit * 1e3
+    why = "typed" if crank.limit_source == "typed" else "rod length - crank radius"
+    fig.add_trace(
+        go.Scatter(
+            x=limit * np.cos(ring),
+            y=limit * np.sin(ring),
+            mode="lines",
+            name=f"radial limit {limit:.1f} mm ({why})",
+            line={"color": COLORS["before"], "dash": "dot", "width": 1.5},
+        )
+    )
+    return max(limit, r + crank.pin_diameter * 1e3 / 2)

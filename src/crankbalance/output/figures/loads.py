@@ -66,7 +66,7 @@ def bearing_loads_figure(
         vertical_spacing=0.14,
         horizontal_spacing=0.03,
         subplot_titles=[f"bearing {k + 1}" for k in range(cols)]
-        + [f"bending moment at the journals ({model} crank)"],
+        + ["bending moment at the journals"],  # the crank model is in the title
     )
     reach = max(float(np.abs(s.results[model].load).max()) for s in many) * 1.1 or 1.0
     for n, (study, name) in enumerate(zip(many, names, strict=True)):
@@ -150,8 +150,8 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
     friction of all main bearings, the largest bending moment at a journal, the
     counterweight mass and the free first-order force and couple left against the balance
     factor, one line per pattern (``none`` a dotted
-    level), and the peak load of every bearing per case (bars), all of the sweep's crank
-    model."""
+    level), and the peak load of every bearing per case (one bar per case in each bearing's
+    group, every case in the legend), all of the sweep's crank model."""
     go = plotly_go()
     model = sweep.options.crank_model
     data = sweep.to_dict()
@@ -193,17 +193,28 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
                 col=1 + p % 2,
             )
     bearings = [b["bearing"] for b in data["cases"][0]["models"][model]["bearings"]]
-    for case in data["cases"]:
-        label = case["pattern"] + (
-            "" if case["balance_factor"] is None else f", f_b {case['balance_factor']:.3g}"
+    # one bar per case in each bearing's group, each case in the legend (its pattern's
+    # colour, lighter for a smaller balance factor): the bars say which case they are
+    for n, case in enumerate(data["cases"]):
+        f_b = case["balance_factor"]
+        label = case["pattern"] + ("" if f_b is None else f", f_b {f_b:.3g}")
+        shade = (
+            1.0
+            if f_b is None or len(factors) < 2
+            else 0.35 + 0.65 * ((float(f_b) - span[0]) / ((span[1] - span[0]) or 1.0))
         )
         fig.add_trace(
             go.Bar(
                 x=[f"bearing {k}" for k in bearings],
                 y=[b["max_load_N"] for b in case["models"][model]["bearings"]],
-                name=label,
-                showlegend=False,
-                marker={"color": ORDER_COLORS[patterns.index(case["pattern"]) % len(ORDER_COLORS)]},
+                name=f"peak: {label}",
+                legendgroup="peak",
+                legendgrouptitle_text="peak load per case" if n == 0 else None,
+                marker={
+                    "color": _shaded(
+                        ORDER_COLORS[patterns.index(case["pattern"]) % len(ORDER_COLORS)], shade
+                    )
+                },
                 hovertemplate=f"{label}<br>%{{x}}<br>peak %{{y:.4g}} N<extra></extra>",
             ),
             row=4,
@@ -228,3 +239,9 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         ),
     )
     return fig
+
+
+def _shaded(color: str, alpha: float) -> str:
+    """A ``#rrggbb`` colour at ``alpha`` (also in the legend's swatch, unlike an opacity)."""
+    red, green, blue = (int(color[k : k + 2], 16) for k in (1, 3, 5))
+    return f"rgba({red},{green},{blue},{alpha:.3f})"

@@ -80,7 +80,7 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     ),
     "RebalanceResult": (lambda r: rebalance_unbalance(r.study), lambda r: _drilling_plans(r.study)),
     "OptimizeResult": (lambda r: pareto_front(r.optimum),),
-    "DesignResult": (lambda r: counterweight_profile(r.design),),
+    "DesignResult": (lambda r: counterweight_profile(r.design, r.crank),),
     "PlacementResult": (lambda r: [shaft_study(s) for s in r.studies],),
     "CheckResult": (lambda r: shaft_response_figure(r.response, r.design),),
     "BenchStudy": (lambda r: [bench_figure(run) for run in r.runs],),
