@@ -1,5 +1,5 @@
 """Issue 28 item 6 without a browser: the report's 3-D crank prints as its flat views
-(``figures.crank_views``: the 3-D figure's own points in three projections), the WebGL
+(``figures.crank_flat``: the 3-D figure's own points in three projections), the WebGL
 scene is on screen only, and ``report_bytes`` gives the command line's and the web's bytes."""
 
 from __future__ import annotations
@@ -11,7 +11,7 @@ pytest.importorskip("plotly")
 
 from crankbalance.errors import InputError  # noqa: E402
 from crankbalance.output.figures.crank3d import crank_3d  # noqa: E402
-from crankbalance.output.figures.crank_views import VIEWS, crank_views  # noqa: E402
+from crankbalance.output.figures.crank_flat import VIEWS, crank_views  # noqa: E402
 from crankbalance.output.html import CSS  # noqa: E402
 from crankbalance.output.report import build_report, report_bytes, report_html  # noqa: E402
 from crankbalance.studies.engine import balance_engine  # noqa: E402

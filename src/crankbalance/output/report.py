@@ -30,7 +30,7 @@ Public functions
 
 The 3-D crank is a WebGL scene that a browser does not print: the interactive page shows it
 on screen only and prints the same crank drawn flat in three views
-(:func:`crankbalance.output.figures.crank_views.crank_views`); the PDF has both as images.
+(:func:`crankbalance.output.figures.crank_flat.crank_views`); the PDF has both as images.
 """
 
 from __future__ import annotations
@@ -59,7 +59,7 @@ if TYPE_CHECKING:  # pragma: no cover
 
 REPORT_SCHEMA = "crankbalance.report/4"
 #: the report's figures that are WebGL scenes: on screen only in the interactive page (a
-#: browser does not print them; the flat views of :mod:`.figures.crank_views` print instead)
+#: browser does not print them; the flat views of :mod:`.figures.crank_flat` print instead)
 SCREEN_ONLY_FIGURES = frozenset({"crank"})
 #: the file formats of a report (:func:`report_bytes`), by file suffix
 REPORT_FORMATS = ("html", "pdf")
@@ -181,7 +181,7 @@ def report_figures(report: Report) -> list[tuple[str, str, go.Figure]]:
     """(id, caption, figure) of every figure in the report."""
     from .figures.balancing import residuals_bar
     from .figures.crank3d import crank_3d
-    from .figures.crank_views import crank_views
+    from .figures.crank_flat import crank_views
     from .figures.engine import curves_figure, orders_bar, polar_figure
 
     a, s = report.analysis, report.study

@@ -13,7 +13,7 @@ module                    figures of
 :mod:`.engine`            the engine analysis: orders bar, curves, polar diagram
 :mod:`.balancing`         the engine after balancing: residuals, the balanced curves
 :mod:`.crank3d`           the 3-D crank (analysis and balancing) and its framing
-:mod:`.crank_views`       the 3-D crank drawn flat in three views, for print
+:mod:`.crank_flat`        the 3-D crank drawn flat in three views, for print
 :mod:`.single`            the single cylinder, the balance-factor sweep, the drilling plan
 :mod:`.counterweight`     the counterweight design and optimisation
 :mod:`.shaft`             the balance shafts
@@ -49,7 +49,7 @@ from __future__ import annotations
 from .balancing import BalancedCurves, balanced_curves, residuals_bar
 from .counterweight import counterweight_profile, pareto_front
 from .crank3d import crank_3d
-from .crank_views import crank_views
+from .crank_flat import crank_views
 from .engine import curves_figure, orders_bar, polar_figure
 from .explore import explore_candidate, explore_scatter
 from .loads import bearing_loads_figure, bearing_sweep_figure
