@@ -38,6 +38,7 @@ NO_SPACE = os.strerror(errno.ENOSPC)
 
 # --------------------------------------------------------------------------- the writers
 CW = ["counterweight", "export", *ROW2, "--thickness", "5 mm", "-o"]
+CW_PLOT = ["counterweight", "show", *ROW2, "--thickness", "5 mm", "--plot"]
 BENCH = ["bench", "--friction-coefficient", "0.5", "--speed", "1000 rpm"]
 BENCH += ["--ramp-time", "0.3 s", "--hold-time", "0.2 s", "--history"]
 NO_CAD = importlib.util.find_spec("build123d") is None
@@ -54,6 +55,7 @@ WRITERS = {
     "counterweight-dxf": ("cw.dxf", CW, 0),
     "counterweight-stl": ("cw.stl", CW, 0),
     "counterweight-step": ("cw.step", CW, 0),
+    "counterweight-plot-html": ("cw.html", CW_PLOT, 0),
     "plot-html": ("orders.html", ["plot", "orders", "inline3", "-o"], 0),
     "plot-png": ("orders.png", ["plot", "orders", "inline3", "-o"], 0),
     "report-html": ("report.html", ["report", "inline3", "-o"], 0),

@@ -626,3 +626,30 @@ def test_requirement_from_the_balancing_solver(capsys):
         capsys,
     )
     assert code == 0 and "100%" in out
+
+
+def test_cli_show_plot_writes_the_figure_of_the_api(tmp_path, capsys):
+    """``counterweight show --plot`` writes the figure ``crankbalance.plot`` gives for the
+    same design (the profile with the engine's crankpin, journal and radial limit); another
+    kind of file is refused before any work."""
+    import json
+    import re
+    from pathlib import Path
+
+    import crankbalance
+
+    engine = str(Path(__file__).resolve().parents[1] / "examples" / "paper_inline3.toml")
+    shape = [*ROW2[:-2], "--segment-angle", "85 deg"]
+    target = tmp_path / "cw.html"
+    code, _, err = _run(["show", "--engine", engine, *shape, "--plot", str(target)], capsys)
+    assert code == 0 and f"wrote {target}" in err
+    pairs = zip(shape[::2], shape[1::2], strict=True)
+    values = {option[2:].replace("-", "_"): value for option, value in pairs}
+    (figure,) = crankbalance.plot(crankbalance.run("counterweight-show", engine, values))
+    html = target.read_text(encoding="utf-8")
+    assert figure.layout.title.text in html
+    names = [json.loads(f'"{n}"') for n in re.findall(r'"name":"((?:[^"\\]|\\.)*)"', html)]
+    assert [t.name for t in figure.data] == names
+    wrong = tmp_path / "cw.txt"
+    code, _, err = _run(["show", *ROW2, "--thickness", "5 mm", "--plot", str(wrong)], capsys)
+    assert code == 2 and "--plot" in err and not wrong.exists()

@@ -49,6 +49,7 @@ SPECIAL = {
     "torsional-plot-html": whole_html,
     "plot-html": whole_html,
     "report-html": whole_html,
+    "counterweight-plot-html": whole_html,
     "counterweight-svg": lambda data: b"<svg" in data and data.rstrip().endswith(b"</svg>"),
     "bench-history-csv": lambda data: (
         data.startswith(b"time_s,speed_rpm,") and data.endswith(b"\n") and data.count(b"\n") > 2

@@ -385,7 +385,13 @@ COMMAND_TABLE: dict[str, Command] = {
         ["counterweight", "show"],
         [],
         ["--first-moment", "7880 g*mm", *PROFILE_BASE],
-        {**REQUIREMENT, **PROFILE, "--density": quantity("density"), "--format": FORMATS},
+        {
+            **REQUIREMENT,
+            **PROFILE,
+            "--density": quantity("density"),
+            "--plot": ["OUT/x.html", "OUT/x.txt", "/no/such/folder/x.svg", "OUT", ""],
+            "--format": FORMATS,
+        },
     ),
     "counterweight export": Command(
         ["counterweight", "export"],

@@ -28,6 +28,7 @@ from ._common import (
     study_options,
     typed,
 )
+from .plot import check_figure, write_figure
 
 
 def _engine_option(f: Any) -> Any:
@@ -110,10 +111,22 @@ def optimize(engine: str | None, quiet: bool, fmt: str, **values: Any) -> None:
 @counterweight.command()
 @_engine_option
 @study_options("counterweight-show")
+@click.option(
+    "--plot",
+    type=click.Path(dir_okay=False),
+    help="The design's profile to scale, with the crankpin, journal and radial limit of "
+    "--engine (.png, .svg or .html).",
+)
 @format_option(("table", "json"))
-def show(engine: str | None, fmt: str, **values: Any) -> None:
+def show(engine: str | None, fmt: str, plot: str | None, **values: Any) -> None:
     """Mass properties of one counterweight design."""
+    if plot is not None:
+        check_figure(plot)
     result = run_study("counterweight-show", engine, values)
+    if plot is not None:
+        from ..output.figures.study import plot as figures_of
+
+        write_figure(plot, figures_of(result)[0])
     if fmt == "json":
         click.echo(json_text(result.to_dict()))
         return
