@@ -3,11 +3,15 @@ site's build executes with myst-nb) run here in a real Jupyter kernel, in their 
 the build runs them, and what each computes is checked against the API called in this
 process: a broken or stale tutorial fails the suite, not only the site's build.
 
-A last cell, added to each notebook here, prints the tutorial's values as JSON."""
+A last cell, added to each notebook here, prints the tutorial's values as JSON. The kernel's
+temporary folder (``TMPDIR``) is a fresh folder of the test's: a tutorial that leaves a
+scratch file or folder behind (as ``tempfile.mkdtemp`` did in ``/tmp`` at every build) fails
+its test."""
 
 from __future__ import annotations
 
 import json
+import os
 import re
 from pathlib import Path
 from typing import Any
@@ -29,11 +33,16 @@ NAMES = ("first_engine", "crossplane_flatplane", "single_rebalance", "explorer_s
 CELL_GUARD = 600
 
 
-def _execute(name: str, probe: str) -> tuple[Any, dict[str, Any]]:
-    """Run tutorial ``name`` with ``probe`` as its last cell; its cells and the probe's JSON."""
+def _execute(name: str, probe: str, scratch: Path) -> tuple[Any, dict[str, Any]]:
+    """Run tutorial ``name`` with ``probe`` as its last cell, in a kernel whose temporary
+    folder is the empty folder ``scratch``; its cells and the probe's JSON. Fails if the run
+    leaves anything in ``scratch``."""
     text = (TUTORIALS / f"{name}.md").read_text(encoding="utf-8")
     notebook = myst_nb_read.read_myst_markdown_notebook(text)
-    last = f"import json\nprint(json.dumps({probe}))"
+    last = (
+        "import json, tempfile\n"
+        f"print(json.dumps({{'probe': {probe}, 'tmp': tempfile.gettempdir()}}))"
+    )
     notebook.cells.append(nbformat.v4.new_code_cell(last))
     client = nbclient.NotebookClient(
         notebook,
@@ -41,9 +50,19 @@ def _execute(name: str, probe: str) -> tuple[Any, dict[str, Any]]:
         kernel_name="python3",
         resources={"metadata": {"path": str(TUTORIALS)}},
     )
-    client.execute()
+    client.execute(env={**os.environ, "TMPDIR": str(scratch)})
     (printed,) = [o for o in notebook.cells[-1].outputs if o.get("name") == "stdout"]
-    return notebook, json.loads(printed["text"])
+    got = json.loads(printed["text"])
+    assert got["tmp"] == str(scratch), "the kernel's temporary folder is the test's"
+    assert sorted(p.name for p in scratch.iterdir()) == [], f"{name} leaves files in TMPDIR"
+    return notebook, got["probe"]
+
+
+def _scratch(tmp_path: Path) -> Path:
+    """An empty folder for a kernel's temporary files."""
+    folder = tmp_path / "kernel-tmp"
+    folder.mkdir()
+    return folder
 
 
 def _outputs(notebook: Any, kind: str) -> list[str]:
@@ -65,14 +84,16 @@ def test_every_tutorial_is_in_the_site() -> None:
         assert f"tutorials/{name}\n" in index, f"{name} is not in the toctree of docs/index.md"
 
 
-def test_first_engine() -> None:
+def test_first_engine(tmp_path: Path) -> None:
     notebook, got = _execute(
         "first_engine",
-        "{'file': str(engine_file), 'force': list(forces.force_amplitude), "
+        "{'file': ENGINE, 'force': list(forces.force_amplitude), "
         "'moment': list(forces.moment_amplitude), 'balance': balance, 'half': half, "
         "'figures': len(figures)}",
+        _scratch(tmp_path),
     )
-    engine_file = Path(got["file"])
+    engine_file = tmp_path / "triple.toml"  # the notebook's, removed with its scratch folder
+    engine_file.write_text(got["file"], encoding="utf-8")
     analysis = crankbalance.analyze(engine_file)
     assert got["force"] == list(analysis.forces.force_amplitude)
     assert got["moment"] == list(analysis.forces.moment_amplitude)
@@ -93,12 +114,13 @@ def test_first_engine() -> None:
     assert len(_outputs(notebook, "application/vnd.plotly.v1+json")) == 2, "two figures shown"
 
 
-def test_crossplane_against_flatplane() -> None:
+def test_crossplane_against_flatplane(tmp_path: Path) -> None:
     notebook, got = _execute(
         "crossplane_flatplane",
         "{name: {'force': list(a.forces.force_amplitude), 'moment': "
         "list(a.forces.moment_amplitude)} for name, a in analyses.items()} | "
         "{'needs': needs}",
+        _scratch(tmp_path),
     )
     for name, preset in (("crossplane", "v8-crossplane"), ("flat-plane", "v8-flatplane")):
         forces = crankbalance.analyze(preset).forces
@@ -122,13 +144,15 @@ def test_crossplane_against_flatplane() -> None:
     assert len(_outputs(notebook, "application/vnd.plotly.v1+json")) == 3
 
 
-def test_single_rebalanced_after_a_lighter_piston() -> None:
+def test_single_rebalanced_after_a_lighter_piston(tmp_path: Path) -> None:
     notebook, got = _execute(
-        "single_rebalance", "{'file': str(parts_file), 'stock': stock, 'light': light}"
+        "single_rebalance", "{'file': PARTS, 'stock': stock, 'light': light}", _scratch(tmp_path)
     )
+    parts_file = tmp_path / "light_piston.toml"  # the notebook's, removed with its scratch
+    parts_file.write_text(got["file"], encoding="utf-8")
     from crankbalance.physics.single_cylinder import balance_factor_from_mass_properties
 
-    result = crankbalance.run("rebalance", None, {"parts": got["file"]}).to_dict()
+    result = crankbalance.run("rebalance", None, {"parts": str(parts_file)}).to_dict()
     (case,) = result["cases"]
     assert got["stock"] == pytest.approx(case["original_balance_factor"], rel=1e-9)
     assert got["stock"] == pytest.approx(0.6379, abs=5e-5), "the factory's, Hoem and Røsholm"
@@ -147,13 +171,14 @@ def test_single_rebalanced_after_a_lighter_piston() -> None:
     assert len(_outputs(notebook, "application/vnd.plotly.v1+json")) == 1
 
 
-def test_explorer_and_shop() -> None:
+def test_explorer_and_shop(tmp_path: Path) -> None:
     notebook, got = _execute(
         "explorer_shop",
         "{'top': [{k: row[k] for k in ('firing_order', *search.objectives)} for row in top], "
         "'counts': counts, 'ids': [list(i) for i in matching.ids], "
         "'spread': [matching.reciprocating_spread, matching.rotating_spread], "
         "'bob': [float(w) for w in bob.bob_weight]}",
+        _scratch(tmp_path),
     )
     search = crankbalance.run(
         "explore", None, {"layout": "inline", "cylinders": 5, "strokes": 4, "top": 5}
