@@ -249,6 +249,7 @@ STUDIES: dict[str, Study] = {
             "CounterweightDesignOptions",
             "optional",
             fields=_DESIGN,
+            edge=("format", "plot"),
         ),
         Study(
             "shaft-inline4",
