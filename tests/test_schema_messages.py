@@ -179,3 +179,57 @@ def test_the_web_form_warns_with_the_schema_s_notes() -> None:
     project.set("rod_length", "250 mm")
     assert project.warnings["rod_length"].startswith("Warning: the rod is 5.81 crank radii")
     assert project.spec is not None and not project.errors  # a warning is not an error
+
+
+#: every field of three lengths x, y, z (a point or a box's edges): one declaration
+#: (schema.core.three_lengths), so one set of words and messages
+THREE_LENGTHS = [
+    ("CrankTrain", "moment_point"),
+    ("Mount", "position"),
+    ("PowertrainEstimate", "block_size"),
+    ("PowertrainEstimate", "block_center"),
+    ("PowertrainEstimate", "gearbox_size"),
+    ("PowertrainEstimate", "gearbox_center"),
+    ("Powertrain", "cg"),
+    ("AnalysisOptions", "moment_point"),
+    ("MountsOptions", "point"),
+]
+
+
+@pytest.mark.parametrize(("schema", "name"), THREE_LENGTHS)
+def test_fields_of_three_lengths_are_one_declaration(schema: str, name: str) -> None:
+    from crankbalance.schema import engine, settings
+    from crankbalance.schema.core import allowed, three_lengths
+
+    spec = getattr(engine, schema, None) or getattr(settings, schema)
+    got = spec.FIELDS[name]
+    edges = {"gt": 0.0} if name.endswith("_size") else {}  # a box's edges: above zero
+    made = three_lengths(got.title, got.description, default=got.default, hint=got.hint, **edges)
+    assert repr(got) == repr(made)
+    assert got.hint.startswith("x, y, z, e.g. ")
+    assert allowed(got).startswith("3 values, each ")
+
+
+@pytest.mark.parametrize(
+    ("where", "value", "message"),
+    [
+        ("option", "1 mm, 2 mm", "--moment-point = ['1 mm', '2 mm']: needs exactly 3 entries"),
+        ("option", "1 mm, 2 mm, 3 mm, 4 mm", "--moment-point = '4 entries': takes exactly 3"),
+        ("option", "1 mm, 2 kg, 3 mm", "--moment-point = '2 kg': has the wrong unit for a length"),
+        ("file", ["1 mm", "2 mm"], "crank_train.moment_point = ['1 mm', '2 mm']: needs exactly 3"),
+        ("file", ["1 mm", "2 kg", "0"], "crank_train.moment_point[1] = '2 kg': has the wrong unit"),
+    ],
+)
+def test_a_point_of_three_lengths_is_named_as_written(
+    where: str, value: Any, message: str, capsys: pytest.CaptureFixture[str]
+) -> None:
+    if where == "option":
+        code, _, err = run_cli(["analyze", "inline4", "--moment-point", value], capsys)
+    else:
+        data = inline4()
+        data["crank_train"]["moment_point"] = value
+        with pytest.raises(InputError) as error:
+            spec_from_dict(data)
+        code, err = 2, f"error: {error.value}\n"
+    assert code == 2 and err.startswith(f"error: {message}"), err
+    assert err.count("\n") == 1

@@ -274,6 +274,46 @@ def entry(kind: str, **options: Any) -> Field:
     return spec
 
 
+def three_lengths(
+    title: str,
+    description: str,
+    *,
+    default: Any = None,
+    hint: str = "x, y, z, e.g. 0 mm, 40 mm, 120 mm",
+    **item: Any,
+) -> Any:
+    """Declare a field of three lengths x, y, z (a point, or a box's edges): a list of
+    exactly three entries, each a length with a unit checked in size against the physical
+    range of a length; a refusal names the field as written (``--moment-point``,
+    ``crank_train.moment_point[2]``).
+
+    Parameters
+    ----------
+    title, description, hint : str
+        As :func:`field`'s.
+    default : optional
+        None (the field may be left out) unless given; :data:`REQUIRED` when it must be.
+    **item
+        The options of each entry (:func:`entry`): none for a point (zero or a length of
+        either sign), ``gt=0.0`` for a size.
+
+    Returns
+    -------
+    Field
+        For the class body of a :class:`Schema`.
+    """
+    return field(
+        "list",
+        default=default,
+        item=entry("length", **(item or {"zero": True})),
+        min_items=3,
+        max_items=3,
+        title=title,
+        description=description,
+        hint=hint,
+    )
+
+
 class FieldProblem(ValueError):
     """A failed check across fields, raised by :meth:`Schema.check`: ``field`` is relative
     to the schema raising it, or dotted from the root when it holds a dot."""
@@ -706,13 +746,15 @@ def _list(spec: Field, raw: Any, source: Source, name: Namer, path: tuple[str | 
         raw = [part.strip() for part in raw.split(",")] if raw.strip() else []
     if not isinstance(raw, (list, tuple)):
         raise InputError(name(path), raw, f"must be a list ({allowed(spec)})")
+    exactly = spec.min_items == spec.max_items  # "exactly 3 entries", not "at least 3"
     if spec.max_items is not None and len(raw) > spec.max_items:
-        words = f"takes at most {spec.max_items} entries"
+        words = f"takes {'exactly' if exactly else 'at most'} {spec.max_items} entries"
         if spec.words:  # a list described in words of its own ("at most 64 files, ...")
             words = f"must be {spec.words}"
         raise InputError(name(path), f"{len(raw)} entries", words)
     if len(raw) < spec.min_items:
-        raise InputError(name(path), raw, f"needs at least {spec.min_items} entries")
+        words = f"needs {'exactly' if exactly else 'at least'} {spec.min_items} entries"
+        raise InputError(name(path), raw, words)
     assert spec.item is not None
     item_name = name if spec.item.kind == "table" else _item_namer(name, path)
     return [_value(spec.item, v, source, item_name, (*path, k)) for k, v in enumerate(raw)]
@@ -763,9 +805,11 @@ def allowed(spec: Field) -> str:
     if spec.kind == "list":
         assert spec.item is not None
         count = (
-            f"{spec.min_items} to {spec.max_items}"
-            if spec.max_items is not None
-            else f"at least {spec.min_items}"
+            f"at least {spec.min_items}"
+            if spec.max_items is None
+            else str(spec.min_items)
+            if spec.min_items == spec.max_items
+            else f"{spec.min_items} to {spec.max_items}"
         )
         what = "entries" if spec.item.kind == "table" else "values"
         return f"{count} {what}, each {allowed(spec.item)}"

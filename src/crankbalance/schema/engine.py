@@ -28,6 +28,7 @@ from .core import (
     entry,
     field,
     parse_in_range,
+    three_lengths,
 )
 
 __all__ = [
@@ -410,18 +411,12 @@ class CrankTrain(_EngineTable):
         "the engine's centre of mass or mount centre), on the crank axis; a point off the "
         "axis is moment_point.",
     )
-    moment_point: list[float] | None = field(
-        "list",
-        default=None,
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title="Moment point",
-        description="The point moments (the roll moment about y included) are taken about, "
-        "x, y, z: y along +y from the crank's mid-point, x across, z along the cylinder axis "
-        "of an in-line engine (e.g. a mount centre or the engine's centre of mass); not "
-        "together with moment_reference, which is the point (0, moment_reference, 0).",
-        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
+    moment_point: list[float] | None = three_lengths(
+        "Moment point",
+        "The point moments (the roll moment about y included) are taken about, x, y, z: y "
+        "along +y from the crank's mid-point, x across, z along the cylinder axis of an "
+        "in-line engine (e.g. a mount centre or the engine's centre of mass); not together "
+        "with moment_reference, which is the point (0, moment_reference, 0).",
     )
 
     def check(self) -> None:
@@ -1046,14 +1041,11 @@ class Mount(_EngineTable):
         title="Mount name",
         description="Its name in the tables; empty: mount 1, mount 2, ... in order.",
     )
-    position: list[float] = field(
-        "list",
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title="Mount position",
-        description="Its elastic centre x, y, z from the crank's reference point "
+    position: list[float] = three_lengths(
+        "Mount position",
+        "Its elastic centre x, y, z from the crank's reference point "
         "(crank_train.moment_point), in the engine axes.",
+        default=REQUIRED,
         hint="x, y, z, e.g. -250 mm, 180 mm, 120 mm",
     )
     stiffness: list[float] = field(
@@ -1089,27 +1081,20 @@ class Mount(_EngineTable):
 
 
 def _box(part: str, what: str, optional: bool = False) -> Any:
-    return field(
-        "list",
+    return three_lengths(
+        f"{part} size",
+        f"The {what} as a solid box of uniform density: its edges along x, y, z.",
         default=None if optional else REQUIRED,
-        item=entry("length", gt=0.0),
-        min_items=3,
-        max_items=3,
-        title=f"{part} size",
-        description=f"The {what} as a solid box of uniform density: its edges along x, y, z.",
         hint="x, y, z, e.g. 400 mm, 450 mm, 500 mm",
+        gt=0.0,
     )
 
 
 def _centre(part: str, what: str, optional: bool = False) -> Any:
-    return field(
-        "list",
+    return three_lengths(
+        f"{part} centre",
+        f"The centre of the {what}'s box x, y, z from the crank's reference point.",
         default=None if optional else REQUIRED,
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title=f"{part} centre",
-        description=f"The centre of the {what}'s box x, y, z from the crank's reference point.",
         hint="x, y, z, e.g. 0 mm, 0 mm, 150 mm",
     )
 
@@ -1165,14 +1150,9 @@ class Powertrain(_EngineTable):
         "(with cg and inertia; or a [powertrain.estimate] table instead of the three).",
         hint="e.g. 180 kg",
     )
-    cg: list[float] | None = field(
-        "list",
-        default=None,
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title="Centre of gravity",
-        description="Its centre of gravity x, y, z from the crank's reference point.",
+    cg: list[float] | None = three_lengths(
+        "Centre of gravity",
+        "Its centre of gravity x, y, z from the crank's reference point.",
         hint="x, y, z, e.g. 0 mm, 150 mm, 60 mm",
     )
     inertia: list[float] | None = field(

@@ -43,7 +43,7 @@ from ..physics.limits import (
 from ..units import RANGES as units_ranges
 from ..units import format_quantity, parse_factor, parse_quantity, range_si
 from . import core
-from .core import FieldProblem, Schema, entry, field
+from .core import FieldProblem, Schema, entry, field, three_lengths
 
 #: the balance factors every study accepts (share of the reciprocating mass) [-]
 BALANCE_FACTOR_LIMITS = BALANCE_FACTOR_RANGE
@@ -465,18 +465,12 @@ class AnalysisOptions(StudyOptions):
         ge=1,
         le=MAX_ORDER,
     )
-    moment_point: list[float] | None = field(
-        "list",
-        default=None,
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title="Moment point",
-        description="The point the moments (the roll moment included) are taken about, x, y, "
-        "z: y along the crank from its mid-point, x across, z along the cylinder axis of an "
-        "in-line engine (e.g. a mount centre or the engine's centre of mass); empty: the "
-        "engine file's (crank_train.moment_point or moment_reference).",
-        hint="x, y, z, e.g. 0 mm, 40 mm, 120 mm",
+    moment_point: list[float] | None = three_lengths(
+        "Moment point",
+        "The point the moments (the roll moment included) are taken about, x, y, z: y along "
+        "the crank from its mid-point, x across, z along the cylinder axis of an in-line "
+        "engine (e.g. a mount centre or the engine's centre of mass); empty: the engine "
+        "file's (crank_train.moment_point or moment_reference).",
     )
 
 
@@ -2435,15 +2429,10 @@ class MountsOptions(CombustionOptions):
         "balanced: the crank's counterweights carry the rotating masses (no rotating force "
         "reaches the mounts); bare: the bare crank's rotating force and moment are applied.",
     )
-    point: list[float] | None = field(
-        "list",
-        default=None,
-        item=entry("length", zero=True),
-        min_items=3,
-        max_items=3,
-        title="Point shown",
-        description="A point of the powertrain (x, y, z from the reference point) whose "
-        "largest displacement per order is shown; empty: the centre of gravity.",
+    point: list[float] | None = three_lengths(
+        "Point shown",
+        "A point of the powertrain (x, y, z from the reference point) whose largest "
+        "displacement per order is shown; empty: the centre of gravity.",
     )
     gas_torque: bool = field(
         "flag",
