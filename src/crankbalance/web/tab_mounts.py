@@ -22,7 +22,12 @@ from typing import Any
 
 from nicegui import ui
 
-from ..output.figures.mounts import mode_shapes_figure, mounts_figure, mounts_layout_figure
+from ..output.figures.mounts import (
+    mode_play_script,
+    mode_shapes_figure,
+    mounts_figure,
+    mounts_layout_figure,
+)
 from ..output.format import number
 from ..schema.settings import MountsOptions, field_kind
 from .widgets import StudyTab, TabSettingsMixin, button_row, from_schema, schema_choices
@@ -207,7 +212,17 @@ class MountsTab(TabSettingsMixin, StudyTab):
                     .mark("mounts-orders-table")
                 )
         self.card("mounts-layout", "Mount layout with the powertrain", self._layout)
-        self.card("mounts-modes", "Mode shapes", self._modes)
+        modes = self.card("mounts-modes", "Mode shapes", self._modes)
+        with modes.card, button_row():
+            # the chosen mode's motion (issue 28, item 4): the figure's frames, run here so
+            # that an interrupted animation's rejected promise is caught
+            for label, play in (("▶ Play the mode", True), ("❚❚ Pause", False)):
+                ui.button(
+                    label,
+                    on_click=lambda p=play: ui.run_javascript(mode_play_script(modes.plot.id, p)),
+                ).props(
+                    f"outline dense data-testid=mounts-modes-{'play' if play else 'pause'}"
+                ).mark(f"mounts-modes-{'play' if play else 'pause'}")
         self.card("mounts-forces", "Campbell diagram and mount forces over speed", self._forces)
 
     # ------------------------------------------------------------------ the engine
@@ -265,7 +280,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
         return None if self.study is None else mounts_layout_figure(self.study)
 
     def _modes(self) -> Any | None:
-        return None if self.study is None else mode_shapes_figure(self.study)
+        return None if self.study is None else mode_shapes_figure(self.study, animate=True)
 
     def _forces(self) -> Any | None:
         return None if self.study is None else mounts_figure(self.study)
