@@ -211,6 +211,8 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
         expect(page.locator("[data-testid=status]").first).to_contain_text("Inline-4 transverse")
         for key, value in TYPED.items():
             page.locator(f"[data-testid=mounts-{key}]").first.fill(value)
+        play = page.locator("[data-testid=mounts-modes-play]").first
+        expect(play).to_be_hidden()  # nothing to play before a run
         page.locator(".q-tab-panel:visible").get_by_role("button", name="Run", exact=True).click()
         summary = page.locator("[data-testid=mounts-summary]").first
         expect(summary).to_contain_text(f"{angle} deg")
@@ -239,7 +241,7 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
             "el => JSON.stringify(el.data.find((t, i) => i > 0 && t.visible === true).x)"
         )
         expect(modes_plot.locator(".slider-container")).to_have_count(1)
-        page.locator("[data-testid=mounts-modes-play]").first.click()
+        play.click()
         modes_plot.evaluate(
             """(el, first) => new Promise((done) => {
                 const moved = () =>
@@ -262,6 +264,7 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
         expect(
             page.locator("[data-testid=mounts-modes-table]").first.locator("tbody tr")
         ).to_have_count(0)
+        expect(play).to_be_hidden()  # cleared with the result
         assert not [e for e in errors if "Resize must be passed" not in e], errors
     finally:
         page.close()

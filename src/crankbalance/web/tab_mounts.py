@@ -213,7 +213,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
                 )
         self.card("mounts-layout", "Mount layout with the powertrain", self._layout)
         modes = self.card("mounts-modes", "Mode shapes", self._modes)
-        with modes.card, button_row():
+        with modes.card, button_row() as self.play_row:
             # the chosen mode's motion (issue 28, item 4): the figure's frames, run here so
             # that an interrupted animation's rejected promise is caught
             for label, play in (("▶ Play the mode", True), ("❚❚ Pause", False)):
@@ -223,6 +223,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
                 ).props(
                     f"outline dense data-testid=mounts-modes-{'play' if play else 'pause'}"
                 ).mark(f"mounts-modes-{'play' if play else 'pause'}")
+        self.play_row.set_visibility(False)  # shown with a result
         self.card("mounts-forces", "Campbell diagram and mount forces over speed", self._forces)
 
     # ------------------------------------------------------------------ the engine
@@ -256,6 +257,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
     # ------------------------------------------------------------------ StudyTab
     def clear(self) -> None:
         self.study = None
+        self.play_row.set_visibility(False)  # nothing to play without a figure
         self.summary.set_content("")
         for table in (self.modes_table, self.orders_table):
             table.rows = []
@@ -273,6 +275,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
         self.modes_table.update()
         self.orders_table.rows = order_rows(data)
         self.orders_table.update()
+        self.play_row.set_visibility(True)
         for card in self.cards:
             card.refresh()
 
