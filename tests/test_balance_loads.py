@@ -356,9 +356,10 @@ def test_summary_of_an_engine_without_free_first_order() -> None:
     assert loads[s.suggested] == min(loads)
 
 
-def test_sweep_figure_labels_every_case_of_the_peak_bars() -> None:
-    """The peak-load bars (issue 28, item 4): one bar per case in each bearing's group, each
-    case named in the legend (pattern and balance factor), its height the case's peaks."""
+def test_sweep_figure_groups_the_peak_bars_per_balance_factor() -> None:
+    """The peak-load bars (issue 28, item 4): grouped per balance factor, the factor on the
+    axis under its pattern, one bar per bearing named in the legend, its heights that
+    bearing's peak in each case; the axes say what they are, with units."""
     pytest.importorskip("plotly")
     from crankbalance.output.figures.loads import bearing_sweep_figure
 
@@ -368,11 +369,21 @@ def test_sweep_figure_labels_every_case_of_the_peak_bars() -> None:
     fig = bearing_sweep_figure(sweep)
     bars = [t for t in fig.data if t.type == "bar"]
     data = sweep.to_dict()
-    assert [b.name for b in bars] == ["peak: all, f_b 0.4", "peak: all, f_b 0.6", "peak: none"]
+    bearings = data["cases"][0]["models"]["indeterminate"]["bearings"]
+    assert [b.name for b in bars] == [f"bearing {b['bearing']}" for b in bearings]
     assert all(b.showlegend is not False for b in bars)
     assert fig.layout.barmode == "group"
-    for bar, case in zip(bars, data["cases"], strict=True):
-        peaks = [b["max_load_N"] for b in case["models"]["indeterminate"]["bearings"]]
+    for k, bar in enumerate(bars):
+        assert [list(level) for level in bar.x] == [
+            ["all", "all", "none"],
+            ["f_b 0.4", "f_b 0.6", "no counterweights"],
+        ]
+        peaks = [c["models"]["indeterminate"]["bearings"][k]["max_load_N"] for c in data["cases"]]
         assert list(bar.y) == pytest.approx(peaks)
-    alpha = [float(b.marker.color.rsplit(",", 1)[1].rstrip(")")) for b in bars]
-    assert alpha[0] < alpha[1] == alpha[2] == 1.0  # lighter for the smaller f_b
+    n = bars[0].xaxis[1:]
+    assert fig.layout[f"xaxis{n}"].title.text.startswith("balance factor f_b [-]")
+    assert fig.layout[f"yaxis{n}"].title.text == "peak bearing load [N]"
+    one = bearing_sweep_figure(
+        bearing_sweep("v8-crossplane", {"patterns": ["all"], "balance_factors": [0.4, 0.6]}, FAST)
+    )
+    assert list(next(t for t in one.data if t.type == "bar").x) == ["f_b 0.4", "f_b 0.6"]

@@ -172,3 +172,94 @@ def test_the_table_names_its_columns_in_words(server: str, browser) -> None:
         expect(note).to_contain_text("give this same engine")
     finally:
         page.close()
+
+
+def test_ties_are_told_apart_by_what_differs() -> None:
+    """The inline-6's eight orders without free forces or moments tie (issue 28, item 4):
+    :func:`tied` finds them, :func:`tie_columns` gives what differs (successive firings on
+    neighbouring throws, the linear mode's torsional excitation of orders 0.5 to 2.5), and
+    the V8's per bank; the inline-4's two tied orders differ in nothing computed."""
+    from crankbalance.schema.settings import ExploreOptions, parse_options
+    from crankbalance.studies.explorer import explore
+    from crankbalance.web.tab_explore import tie_columns, tied
+
+    def top(**given):
+        o = parse_options(ExploreOptions, {"top": 20, **given})
+        rows = explore(None, o, figure_points=1000).figure.top
+        problem = orders.problem(o.layout, o.cylinders, o.strokes, o.bank_angle)
+        return rows, problem
+
+    rows, problem = top(layout="inline", cylinders=6)
+    assert tied(rows, problem, 20) == 8
+    apart = tie_columns(rows, problem, 8)
+    sequences = ["-".join(map(str, rows["firing_order"][k])) for k in range(8)]
+    neighbours = dict(zip(sequences, apart["neighbours"], strict=True))
+    assert neighbours["1-5-3-6-2-4"] == "0" and neighbours["1-2-3-6-5-4"] == "4"
+    assert set(apart) == {"neighbours", "X0.5", "X1.5", "X2.5"}
+    assert "banks" not in apart  # one bank
+    rows, problem = top(layout="vee", cylinders=8, bank_angle="90 deg")
+    n = tied(rows, problem, 20)
+    assert n > 1 and len(set(tie_columns(rows, problem, n)["banks"])) == n
+    rows, problem = top(layout="inline", cylinders=4)
+    assert tied(rows, problem, 20) == 2 and tie_columns(rows, problem, 2) == {}
+    assert tied(rows, problem, 1) == 1
+
+
+def test_a_balanced_candidate_says_why_its_plot_is_empty() -> None:
+    """explore_candidate of a crank with no free force or moment writes why it is empty."""
+    from crankbalance.output.figures.explore import BALANCED, explore_candidate
+
+    row = {"firing_order": [1, 5, 3, 6, 2, 4]}
+    row |= {
+        f"{k}{n}{p}_{u}": 0.0
+        for k, u in (("F", "N"), ("M", "Nm"))
+        for n in (1, 2, 3, 4)
+        for p in "fb"
+    }
+    texts = [a.text for a in explore_candidate(row).layout.annotations]
+    assert BALANCED.format(orders=4) in texts
+    row["M1f_Nm"] = 3.0
+    assert BALANCED.format(orders=4) not in [
+        a.text for a in explore_candidate(row).layout.annotations
+    ]
+
+
+@pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
+def test_inline6_ties_are_explained_in_the_page(
+    server: str, browser, width: int, height: int
+) -> None:
+    """The inline-6's tied orders in the page: the note says they are equivalent in free
+    forces and moments and names what tells them apart; the table has those columns (the
+    classic 1-5-3-6-2-4 fires no neighbouring throws in succession); the chosen balanced
+    candidate's figure says why it is empty."""
+    page = browser.new_page(viewport={"width": width, "height": height})
+    errors: list[str] = []
+    page.on("pageerror", lambda e: errors.append(str(e)))
+    try:
+        page.goto(server + "/")
+        expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+        connected(page)
+        open_tab(page, "Explorer")
+        field = page.locator("[data-testid=explore-cylinders]").first
+        field.fill("6")
+        expect(field).to_have_value("6")
+        page.get_by_role("button", name="Explore").click()
+        summary = page.locator("[data-testid=explore-summary]").first
+        expect(summary).to_contain_text("64 distinct engines")
+        ties = page.locator("[data-testid=explore-ties]").first
+        expect(ties).to_contain_text("Rows 1 to 8 tie")
+        expect(ties).to_contain_text("equivalent in free forces and moments")
+        expect(ties).to_contain_text("main-bearing load proxy")
+        head = page.locator("[data-testid=explore-table] thead").first
+        expect(head).to_contain_text("successive firings on neighbouring throws")
+        expect(head).to_contain_text("torsional excitation, order 1.5, linear mode [-]")
+        row = page.locator("[data-testid=explore-table] tbody tr", has_text="1-5-3-6-2-4").first
+        expect(row.locator("td").nth(4)).to_have_text("0")  # after "orders giving it"
+        card = page.locator(".q-card", has_text="Chosen candidate").first
+        expect(card).to_contain_text("0 everywhere")
+        figure = page.locator("[data-testid=figure-explore-candidate]").first
+        expect(figure.locator(".annotation-text", has_text="balanced in them")).to_have_count(1)
+        shoot(page, f"explore-ties-{width}x{height}")
+        assert not errors, errors
+    finally:
+        page.close()

@@ -2,7 +2,8 @@
 preset, eight and four counterweights and none at two balance factors, a run; the table's
 rows are those :func:`crankbalance.studies.balance_loads.bearing_sweep` computes for the
 same settings; both figures are drawn; a bad pattern is named beside its field and clears
-the result; another engine clears it too.
+the result; another engine clears it too; the sweep figure's peak loads are grouped per
+balance factor, one bar per bearing (issue 28, item 4).
 
 Screenshots at 1280x800 and 390x844 go to ``artifacts/screenshots/`` (ignored by git).
 Every wait is a wait for a state of the page with the hang guard of ``conftest.py``.
@@ -123,6 +124,21 @@ def test_loads_table_and_figures(server: str, browser, width: int, height: int) 
         for name in ("loads-polar", "loads-sweep"):
             figure = page.locator(f"[data-testid=figure-{name}]").first
             expect(figure.locator(".main-svg").first).to_be_attached()
+        # the peak loads grouped per balance factor (issue 28, item 4): the factor on the
+        # axis under its pattern, one bar per bearing named in the legend, axes in words
+        sweep = page.locator("[data-testid=figure-loads-sweep]").first
+        expect(sweep.locator(".legendtext", has_text="bearing 5")).to_have_count(1)
+        bars = sweep.evaluate(
+            "el => el.data.filter(t => t.type === 'bar').map(t => [t.name, t.x[1]])"
+        )
+        assert [b[0] for b in bars] == [f"bearing {k}" for k in range(1, 6)]
+        assert bars[0][1] == ["f_b 0", "f_b 0.5", "f_b 0", "f_b 0.5", "no counterweights"]
+        titles = sweep.evaluate(
+            "el => Array.from(el.querySelectorAll('.g-xtitle text, .g-ytitle text, "
+            "[class*=title] text')).map(t => t.textContent)"
+        )
+        assert any("balance factor f_b [-]" in t for t in titles), titles
+        assert "peak bearing load [N]" in titles, titles
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"loads-{width}x{height}.png"), full_page=True)
         # a bad pattern: named beside its field in the field's words; the result is gone

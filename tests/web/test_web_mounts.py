@@ -98,6 +98,42 @@ def test_tables_are_the_studys_json() -> None:
     assert f"**{angle} deg**" in summary_text(data)
 
 
+def test_mode_shapes_animate_in_the_web_and_stay_static_for_reports() -> None:
+    """The web's mode shapes move (issue 28, item 4): one frame per phase of a cycle, frame
+    0 the static drawing, half a cycle the mirror image through the layout at rest; a phase
+    slider, the page's Play runs them; the static figure (reports, ``--plot``) has no
+    frames."""
+    import numpy as np
+
+    from crankbalance.output.figures.mounts import (
+        MODE_CYCLES,
+        MODE_FRAMES,
+        mode_play_script,
+        mode_shapes_figure,
+    )
+    from crankbalance.web.tab_mounts import mounts_study
+
+    result = mounts_study(str(CAR), dict(TYPED))
+    static = mode_shapes_figure(result)
+    assert not static.frames and not static.layout.sliders
+    moving = mode_shapes_figure(result, animate=True)
+    assert len(moving.frames) == MODE_FRAMES == len(moving.layout.sliders[0].steps)
+    assert len(moving.layout.updatemenus) == 1  # the mode menu; Play is the page's
+    assert f"Array({MODE_CYCLES})" in mode_play_script(7, True)
+    assert "[null]" in mode_play_script(7, False)
+
+    def coords(trace) -> np.ndarray:
+        return np.array([v for v in trace.x if v is not None], dtype=float)
+
+    rest = coords(static.data[0])
+    half = moving.frames[MODE_FRAMES // 2]
+    for k in range(1, 13):  # two traces per mode, six modes
+        assert coords(moving.frames[0].data[k - 1]) == pytest.approx(coords(static.data[k]))
+    shown = coords(static.data[1])
+    assert coords(half.data[0]) == pytest.approx(2 * rest - shown)
+    assert list(moving.frames[0].traces) == list(range(1, 13))
+
+
 @pytest.mark.anyio
 async def test_mounts_tab_needs_a_powertrain_then_runs(user, form) -> None:
     """The default preset has no [powertrain]: the tab says so; the example's button loads
@@ -175,6 +211,8 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
         expect(page.locator("[data-testid=status]").first).to_contain_text("Inline-4 transverse")
         for key, value in TYPED.items():
             page.locator(f"[data-testid=mounts-{key}]").first.fill(value)
+        play = page.locator("[data-testid=mounts-modes-play]").first
+        expect(play).to_be_hidden()  # nothing to play before a run
         page.locator(".q-tab-panel:visible").get_by_role("button", name="Run", exact=True).click()
         summary = page.locator("[data-testid=mounts-summary]").first
         expect(summary).to_contain_text(f"{angle} deg")
@@ -197,6 +235,25 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
                 .filter((e) => e.offsetParent !== null)
                 .every((e) => e.querySelector('.main-svg') && e.data && e.data.length > 0)"""
         )
+        # the chosen mode moves (issue 28, item 4): Play changes its drawn coordinates
+        modes_plot = page.locator("[data-testid=figure-mounts-modes]").first
+        first = modes_plot.evaluate(
+            "el => JSON.stringify(el.data.find((t, i) => i > 0 && t.visible === true).x)"
+        )
+        expect(modes_plot.locator(".slider-container")).to_have_count(1)
+        play.click()
+        modes_plot.evaluate(
+            """(el, first) => new Promise((done) => {
+                const moved = () =>
+                    JSON.stringify(el.data.find((t, i) => i > 0 && t.visible === true).x)
+                    !== first;
+                if (moved()) return done();
+                el.on('plotly_animated', () => moved() && done());
+                el.on('plotly_animatingframe', () => moved() && done());
+            })""",
+            first,
+        )
+        page.locator("[data-testid=mounts-modes-pause]").first.click()
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"mounts_{width}x{height}.png"), full_page=True)
         # a bad setting: beside its field in the field's words; the result is gone
@@ -207,6 +264,7 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
         expect(
             page.locator("[data-testid=mounts-modes-table]").first.locator("tbody tr")
         ).to_have_count(0)
+        expect(play).to_be_hidden()  # cleared with the result
         assert not [e for e in errors if "Resize must be passed" not in e], errors
     finally:
         page.close()

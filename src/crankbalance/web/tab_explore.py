@@ -80,6 +80,106 @@ EQUIVALENTS_NOTE = (
 )
 
 
+#: what the table says of its first rows when they tie on every free force and moment
+TIE_NOTE = (
+    "**Rows 1 to {n} tie**: these firing orders are equivalent in free forces and moments "
+    "(every order up to {orders}, forward and backward, equal within round-off) and so in "
+    "the balancing columns; what tells them apart is the firing sequence, in the columns "
+    "after *orders giving it*: {columns}."
+)
+#: the note of tied rows that nothing computed tells apart
+TIE_SAME = (
+    "**Rows 1 to {n} tie**: these firing orders are equivalent in free forces and moments "
+    "(every order up to {orders}, forward and backward, equal within round-off) and so in "
+    "the balancing columns; neither the successive firings on neighbouring throws, the "
+    "firing sequence per bank nor the torsional excitation of the minor orders (linear mode "
+    "shape) tells them apart."
+)
+#: the tie-breaking columns: key -> (label, what the note says of it)
+TIE_COLUMNS = {
+    "neighbours": (
+        "successive firings on neighbouring throws",
+        "*successive firings on neighbouring throws* (a main-bearing load proxy: the "
+        "bearing between two throws fired one after the other is loaded twice in a row; "
+        "fewer is kinder to the main bearings)",
+    ),
+    "banks": ("firing sequence per bank", "*the firing sequence per bank*"),
+    "linear": (
+        "torsional excitation, order {k}, linear mode [-]",
+        "*the torsional excitation of the minor orders below the first major one* with a "
+        "linear mode shape (1 at cylinder 1 down to 1/C at the last, the crank's first "
+        "torsional mode with its node beyond the flywheel; with equal weights every even "
+        "firing order has the same excitation), where the tied orders differ",
+    ),
+}
+#: bank names of the tie-breaking column, by increasing bank angle
+BANK_NAMES = "ABCDEFGH"
+
+
+def tied(rows: dict[str, Any], problem: Any, shown: int) -> int:
+    """How many of the first ``shown`` rows of the explorer's ``rows`` (by the table's key)
+    tie with the first on every free force and moment column (``F<n>``, ``M<n>`` and their
+    forward and backward parts): equal within the round-off of
+    :func:`crankbalance.physics.explore.rank.tolerances` for ``problem``'s engine. 1 when
+    the second row differs (or there is one row)."""
+    from ..physics.explore import rank
+
+    names = [n for n in rows if FREE_COLUMN.match(n)]
+    shown = min(shown, np.asarray(rows["index"]).size)
+    if shown < 2 or not names:
+        return min(shown, 1)
+    values = np.array([np.asarray(rows[n][:shown], dtype=float) for n in names]).T
+    tolerance = rank.tolerances(names, problem.topology)
+    same = np.all(np.abs(values - values[0]) <= tolerance, axis=1)
+    return int(shown if same.all() else np.argmin(same))
+
+
+def tie_columns(rows: dict[str, Any], problem: Any, n: int) -> dict[str, list[str]]:
+    """What tells the first ``n`` tied rows apart (:func:`tied`), as the table's texts per
+    column (:data:`TIE_COLUMNS`; only the columns whose texts differ among them): the
+    successive firings on neighbouring throws, the firing sequence per bank (engines of
+    several banks), and the torsional excitation with a linear mode shape of each minor
+    order below the first major one (per
+    :func:`crankbalance.physics.explore.merit.torsional_excitation`) where the rows differ.
+    Each row's fire angles come from its candidate (``orders.chunk`` of its index)."""
+    from ..physics.explore import merit
+    from ..physics.explore import orders as enumeration
+    from ..results import ROUND_OFF
+
+    topology = problem.topology
+    slot = np.unique(topology.throw_position, return_inverse=True)[1].reshape(-1)
+    throw = slot[np.asarray(topology.cylinder_throw)]  # each cylinder's place along the crank
+    banks = np.unique(topology.cylinder_bank, return_inverse=True)[1].reshape(-1)
+    sequences = [[int(c) for c in rows["firing_order"][k]] for k in range(n)]
+    out: dict[str, list[str]] = {"neighbours": []}
+    for seq in sequences:
+        pairs = zip(seq, seq[1:] + seq[:1], strict=True)
+        out["neighbours"].append(str(sum(abs(throw[a - 1] - throw[b - 1]) == 1 for a, b in pairs)))
+    if banks.max() > 0:
+        out["banks"] = [
+            ", ".join(
+                f"{BANK_NAMES[b]} {'-'.join(str(c) for c in seq if banks[c - 1] == b)}"
+                for b in range(int(banks.max()) + 1)
+            )
+            for seq in sequences
+        ]
+    fire = np.concatenate(
+        [
+            enumeration.chunk(problem, i, i + 1).fire_angle
+            for i in (int(v) for v in rows["index"][:n])
+        ]
+    )
+    ks = merit.torsion_orders(int(problem.strokes), 8)
+    uniform = merit.torsional_excitation(fire[:1], np.ones(fire.shape[1]), ks)[0]
+    major = ks[np.flatnonzero(uniform >= 1 - 1e-9)]
+    low = ks[ks < major[0]] if major.size else ks
+    linear = merit.torsional_excitation(fire, merit.mode_weights(topology, "linear"), low)
+    for j, k in enumerate(low):
+        if np.ptp(linear[:, j]) > ROUND_OFF:
+            out[f"X{k:g}"] = [f"{v:.3f}" for v in linear[:, j]]
+    return {key: texts for key, texts in out.items() if len(set(texts)) > 1}
+
+
 def column_words(name: str) -> str:
     """An explorer column in words with its unit: ``M1_Nm`` -> ``free moment, order 1
     [N·m]``, ``X1p5`` -> ``torsional excitation, order 1.5``."""
@@ -225,6 +325,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
                     .mark("explore-table")
                 )
                 self.table.on("rowClick", self.on_row)
+                self.ties = ui.markdown("").props("data-testid=explore-ties").mark("explore-ties")
                 ui.markdown(EQUIVALENTS_NOTE).classes("text-grey-7").mark("explore-equivalents")
                 ui.label("Click a row (or a point) to load that engine in the form.").classes(
                     "text-grey-7"
@@ -245,6 +346,7 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         self.result = None
         self.chosen = None
         self.summary.set_content("")
+        self.ties.set_content("")
         self.table.rows = []
         self.table.update()
         for card in self.cards:
@@ -296,11 +398,36 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     def _fill_table(self) -> None:
         rows = self.result.top if self.result is not None and self.result.rows else {}
         names = list(dict.fromkeys([*self.objectives, KEY]))
+        shown = min(self.top, rows["index"].size if rows else 0)
+        tie = tied(rows, self.problem, shown) if rows else 0
+        apart = tie_columns(rows, self.problem, tie) if tie > 1 else {}
+        highest = max((int(m[2]) for m in map(FREE_COLUMN.match, rows) if m), default=0)
+        what = "; ".join(
+            dict.fromkeys(TIE_COLUMNS["linear" if k[0] == "X" else k][1] for k in apart)
+        )
+        self.ties.set_content(
+            ""
+            if tie < 2
+            else (TIE_NOTE if apart else TIE_SAME).format(n=tie, orders=highest, columns=what)
+        )
         self.table.columns = [
             {"name": "rank", "label": "#", "field": "rank"},
             {"name": "order", "label": "firing order", "field": "order", "align": "left"},
             {"name": "throws", "label": "throws [deg]", "field": "throws", "align": "left"},
             {"name": "equivalents", "label": "orders giving it", "field": "equivalents"},
+            *(
+                {
+                    "name": f"tie-{key}",
+                    "label": (
+                        TIE_COLUMNS["linear"][0].format(k=key[1:])
+                        if key[0] == "X"
+                        else TIE_COLUMNS[key][0]
+                    ),
+                    "field": f"tie-{key}",
+                    "align": "left" if key == "banks" else "right",
+                }
+                for key in apart
+            ),
             *({"name": n, "label": column_words(n), "field": n} for n in names),
         ]
         self.table.rows = [
@@ -313,8 +440,9 @@ class ExploreTab(TabSettingsMixin, StudyTab):
                 ),
                 "equivalents": int(rows["equivalents"][k]),
                 **{n: fmt_g(rows[n][k]) for n in names},
+                **{f"tie-{key}": (texts[k : k + 1] or [""])[0] for key, texts in apart.items()},
             }
-            for k in range(min(self.top, rows["index"].size if rows else 0))
+            for k in range(shown)
         ]
         self.table.update()
 

@@ -22,7 +22,12 @@ from typing import Any
 
 from nicegui import ui
 
-from ..output.figures.mounts import mode_shapes_figure, mounts_figure, mounts_layout_figure
+from ..output.figures.mounts import (
+    mode_play_script,
+    mode_shapes_figure,
+    mounts_figure,
+    mounts_layout_figure,
+)
 from ..output.format import number
 from ..schema.settings import MountsOptions, field_kind
 from .widgets import StudyTab, TabSettingsMixin, button_row, from_schema, schema_choices
@@ -207,7 +212,18 @@ class MountsTab(TabSettingsMixin, StudyTab):
                     .mark("mounts-orders-table")
                 )
         self.card("mounts-layout", "Mount layout with the powertrain", self._layout)
-        self.card("mounts-modes", "Mode shapes", self._modes)
+        modes = self.card("mounts-modes", "Mode shapes", self._modes)
+        with modes.card, button_row() as self.play_row:
+            # the chosen mode's motion (issue 28, item 4): the figure's frames, run here so
+            # that an interrupted animation's rejected promise is caught
+            for label, play in (("▶ Play the mode", True), ("❚❚ Pause", False)):
+                ui.button(
+                    label,
+                    on_click=lambda p=play: ui.run_javascript(mode_play_script(modes.plot.id, p)),
+                ).props(
+                    f"outline dense data-testid=mounts-modes-{'play' if play else 'pause'}"
+                ).mark(f"mounts-modes-{'play' if play else 'pause'}")
+        self.play_row.set_visibility(False)  # shown with a result
         self.card("mounts-forces", "Campbell diagram and mount forces over speed", self._forces)
 
     # ------------------------------------------------------------------ the engine
@@ -241,6 +257,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
     # ------------------------------------------------------------------ StudyTab
     def clear(self) -> None:
         self.study = None
+        self.play_row.set_visibility(False)  # nothing to play without a figure
         self.summary.set_content("")
         for table in (self.modes_table, self.orders_table):
             table.rows = []
@@ -258,6 +275,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
         self.modes_table.update()
         self.orders_table.rows = order_rows(data)
         self.orders_table.update()
+        self.play_row.set_visibility(True)
         for card in self.cards:
             card.refresh()
 
@@ -265,7 +283,7 @@ class MountsTab(TabSettingsMixin, StudyTab):
         return None if self.study is None else mounts_layout_figure(self.study)
 
     def _modes(self) -> Any | None:
-        return None if self.study is None else mode_shapes_figure(self.study)
+        return None if self.study is None else mode_shapes_figure(self.study, animate=True)
 
     def _forces(self) -> Any | None:
         return None if self.study is None else mounts_figure(self.study)

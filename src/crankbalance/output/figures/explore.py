@@ -26,6 +26,11 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: most candidates an explorer scatter draws (the best by the top-N key and the Pareto set)
 EXPLORE_POINTS = 50_000
+#: what :func:`explore_candidate` writes over its bars when every one is zero
+BALANCED = (
+    "0 everywhere: no free force or moment of orders 1 to {orders}<br>"
+    "(this crank is balanced in them: nothing to draw)"
+)
 
 
 def _column_label(name: str) -> str:
@@ -113,8 +118,9 @@ def explore_scatter(
 
 def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
     """One explorer candidate's leading figures: free force and free moment of orders 1 to
-    ``orders`` (forward and backward stacked), the firing order in the title. ``row`` is one
-    row of the explorer's columns (scalars, or arrays of one element)."""
+    ``orders`` (forward and backward stacked), the firing order in the title; a crank
+    balanced in all of them gets :data:`BALANCED` written over its empty axes. ``row`` is
+    one row of the explorer's columns (scalars, or arrays of one element)."""
     go = plotly_go()
     fig = make_subplots(rows=1, cols=2, subplot_titles=("free force [N]", "free moment [N·m]"))
 
@@ -137,6 +143,16 @@ def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
                 col=col,
             )
     fig.update_xaxes(title_text="order")
+    if not any(v for trace in fig.data for v in trace.y):  # a balanced crank: say why empty
+        fig.add_annotation(
+            text=BALANCED.format(orders=found[-1] if found else orders),
+            xref="paper",
+            yref="paper",
+            x=0.5,
+            y=0.5,
+            showarrow=False,
+            bgcolor="white",
+        )
     order = "-".join(str(int(c)) for c in np.asarray(row["firing_order"]).reshape(-1))
     fig.update_layout(
         template=TEMPLATE,

@@ -12,7 +12,7 @@ Public functions
 from __future__ import annotations
 
 import math
-from typing import TYPE_CHECKING
+from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
@@ -150,8 +150,9 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
     friction of all main bearings, the largest bending moment at a journal, the
     counterweight mass and the free first-order force and couple left against the balance
     factor, one line per pattern (``none`` a dotted
-    level), and the peak load of every bearing per case (one bar per case in each bearing's
-    group, every case in the legend), all of the sweep's crank model."""
+    level), and the peak load of every main bearing per balance factor (the factors on the
+    axis, under their pattern when there are several: :func:`peak_axis`; one bar per
+    bearing, each bearing in the legend), all of the sweep's crank model."""
     go = plotly_go()
     model = sweep.options.crank_model
     data = sweep.to_dict()
@@ -163,7 +164,7 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         vertical_spacing=0.1,
         horizontal_spacing=0.1,
         subplot_titles=[title for _, title in SWEEP_PANELS]
-        + [f"peak load of each bearing per case ({model} crank)"],
+        + [f"peak load of each main bearing<br>per balance factor ({model} crank)"],
     )
     factors = [float(f) for f in sweep.options.balance_factors]
     span = [min(factors), max(factors)] if factors else [0.0, 1.0]
@@ -192,30 +193,21 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
                 row=1 + p // 2,
                 col=1 + p % 2,
             )
-    bearings = [b["bearing"] for b in data["cases"][0]["models"][model]["bearings"]]
-    # one bar per case in each bearing's group, each case in the legend (its pattern's
-    # colour, lighter for a smaller balance factor): the bars say which case they are
-    for n, case in enumerate(data["cases"]):
-        f_b = case["balance_factor"]
-        label = case["pattern"] + ("" if f_b is None else f", f_b {f_b:.3g}")
-        shade = (
-            1.0
-            if f_b is None or len(factors) < 2
-            else 0.35 + 0.65 * ((float(f_b) - span[0]) / ((span[1] - span[0]) or 1.0))
-        )
+    # the peaks grouped per balance factor (the user compares factors): the factor on the
+    # axis (under its pattern when the sweep has several), one bar per bearing
+    x = peak_axis(data["cases"], several=len(patterns) > 1)
+    bearings = data["cases"][0]["models"][model]["bearings"]
+    for k, bearing in enumerate(bearings):
+        name = f"bearing {bearing['bearing']}"
         fig.add_trace(
             go.Bar(
-                x=[f"bearing {k}" for k in bearings],
-                y=[b["max_load_N"] for b in case["models"][model]["bearings"]],
-                name=f"peak: {label}",
+                x=x,
+                y=[c["models"][model]["bearings"][k]["max_load_N"] for c in data["cases"]],
+                name=name,
                 legendgroup="peak",
-                legendgrouptitle_text="peak load per case" if n == 0 else None,
-                marker={
-                    "color": _shaded(
-                        ORDER_COLORS[patterns.index(case["pattern"]) % len(ORDER_COLORS)], shade
-                    )
-                },
-                hovertemplate=f"{label}<br>%{{x}}<br>peak %{{y:.4g}} N<extra></extra>",
+                legendgrouptitle_text="peak load of" if k == 0 else None,
+                marker={"color": ORDER_COLORS[k % len(ORDER_COLORS)]},
+                hovertemplate=f"{name}<br>%{{x}}<br>peak %{{y:.4g}} N<extra></extra>",
             ),
             row=4,
             col=1,
@@ -224,7 +216,13 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         fig.update_xaxes(title_text="balance factor", row=1 + p // 2, col=1 + p % 2)
         unit = title.split(" [")[-1].rstrip("]")
         fig.update_yaxes(title_text=unit, row=1 + p // 2, col=1 + p % 2)
-    fig.update_yaxes(title_text="N", row=4, col=1)
+    fig.update_xaxes(
+        title_text="balance factor f_b [-]"
+        + ("<br>under its counterweight pattern" if len(patterns) > 1 else ""),
+        row=4,
+        col=1,
+    )
+    fig.update_yaxes(title_text="peak bearing load [N]", row=4, col=1)
     speed = data["settings"]["speed_rad_s"] * 30 / math.pi
     fig.update_layout(
         template=TEMPLATE,
@@ -241,7 +239,14 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
     return fig
 
 
-def _shaded(color: str, alpha: float) -> str:
-    """A ``#rrggbb`` colour at ``alpha`` (also in the legend's swatch, unlike an opacity)."""
-    red, green, blue = (int(color[k : k + 2], 16) for k in (1, 3, 5))
-    return f"rgba({red},{green},{blue},{alpha:.3f})"
+def peak_axis(cases: list[dict[str, Any]], several: bool) -> list[Any]:
+    """The category axis of the sweep's peak-load bars: each case's balance factor
+    (``f_b 0.5``; ``no counterweights`` for the pattern ``none``), under its pattern (a
+    two-level axis, plotly's multicategory) when the sweep has ``several`` patterns."""
+    factors = [
+        "no counterweights" if c["balance_factor"] is None else f"f_b {c['balance_factor']:.3g}"
+        for c in cases
+    ]
+    if not several:
+        return factors
+    return [[c["pattern"] for c in cases], factors]

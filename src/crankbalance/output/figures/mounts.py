@@ -28,6 +28,11 @@ _DASHES = ("solid", "dash", "dot", "dashdot", "longdash", "longdashdot")
 #: mounts, the centre of gravity and the reference point): shapes are drawn to scale, not
 #: to size (a mode has no amplitude of its own)
 MODE_DRAWN = 0.2
+#: frames of one cycle of a mode's motion in the animated mode shapes (the web app)
+MODE_FRAMES = 24
+#: cycles the animation's Play button runs, and each frame's duration [ms]
+MODE_CYCLES = 4
+MODE_FRAME_MS = 60
 #: length of a mount's compression-axis stroke in the layout, as a share of its size
 AXIS_DRAWN = 0.12
 _MM = 1000.0
@@ -255,36 +260,36 @@ def mounts_layout_figure(result: MountsResult) -> go.Figure:
     return fig
 
 
-def mode_shapes_figure(result: MountsResult) -> go.Figure:
+def mode_shapes_figure(result: MountsResult, animate: bool = False) -> go.Figure:
     """The six rigid-body modes drawn (3-D, engine axes, mm): the layout at rest (grey) and
     displaced by each mode (the mounts and the centre of gravity joined as in
     :func:`mounts_layout_figure`, a stroke from rest to the displaced point at each), one mode at a
     time (a menu picks it; the roll mode first). Displacements are to scale, not to size:
-    the largest of each mode is :data:`MODE_DRAWN` of the layout's size."""
+    the largest of each mode is :data:`MODE_DRAWN` of the layout's size.
+
+    With ``animate`` (the web app) the chosen mode also moves: :data:`MODE_FRAMES` frames
+    of one cycle of the motion (the displacement times cos 2πk/N, frame 0 the static
+    drawing), a slider of the phase, and the scene's axes fixed to the largest excursion of
+    every mode (a moving shape does not rescale it); the page's *Play* and *Pause* run the
+    frames (:func:`mode_play_script`). Without it (reports, ``--plot``) the drawing is
+    static.
+    """
     go = plotly_go()
     pt, modes = result.powertrain, result.modes
     cg = np.asarray(pt.cg, dtype=float)
     body = np.array([*(m.position for m in pt.mounts), cg], dtype=float)  # mounts, then G
     size = _size(_layout_points(result))
     names = [m.name for m in pt.mounts] + ["G"]
-
-    def frame(p: np.ndarray) -> tuple[list[float | None], ...]:
-        """Lines from G (last point) to each mount, in mm (None breaks the line)."""
-        xs: list[float | None] = []
-        ys: list[float | None] = []
-        zs: list[float | None] = []
-        for i in range(len(p) - 1):
-            for q in (p[-1], p[i]):
-                xs.append(q[0] * _MM)
-                ys.append(q[1] * _MM)
-                zs.append(q[2] * _MM)
-            xs.append(None)
-            ys.append(None)
-            zs.append(None)
-        return xs, ys, zs
+    # each mode's displacement of the mounts and G as drawn [m] (the largest MODE_DRAWN of
+    # the layout's size)
+    drawn = []
+    for r in range(6):
+        moved = np.array([point_map(cg, p) @ modes.shapes[:, r] for p in body])
+        largest = float(np.linalg.norm(moved, axis=1).max())
+        drawn.append(moved * (MODE_DRAWN * size / largest if largest > 0 else 0.0))
 
     fig = go.Figure()
-    x0, y0, z0 = frame(body)
+    x0, y0, z0 = _mode_frame(body)
     fig.add_trace(
         go.Scatter3d(
             x=x0, y=y0, z=z0, mode="lines", name="at rest", line={"color": "#bbbbbb", "width": 4}
@@ -293,17 +298,11 @@ def mode_shapes_figure(result: MountsResult) -> go.Figure:
     traces_per_mode = 2
     first = modes.roll_mode
     for r in range(6):
-        moved = np.array([point_map(cg, p) @ modes.shapes[:, r] for p in body])
-        largest = float(np.linalg.norm(moved, axis=1).max())
-        scale = MODE_DRAWN * size / largest if largest > 0 else 0.0
-        shown = body + scale * moved
-        xs, ys, zs = frame(shown)
+        frame, strokes = _mode_lines(body, body + drawn[r])
         label = f"mode {r + 1}: {modes.frequencies[r]:.3g} Hz"
         fig.add_trace(
             go.Scatter3d(
-                x=xs,
-                y=ys,
-                z=zs,
+                **frame,
                 mode="lines",
                 name=label,
                 visible=r == first,
@@ -311,18 +310,9 @@ def mode_shapes_figure(result: MountsResult) -> go.Figure:
                 hoverinfo="skip",
             )
         )
-        ax: list[float | None] = []
-        ay: list[float | None] = []
-        az: list[float | None] = []
-        for p, q in zip(body, shown, strict=True):
-            ax += [p[0] * _MM, q[0] * _MM, None]
-            ay += [p[1] * _MM, q[1] * _MM, None]
-            az += [p[2] * _MM, q[2] * _MM, None]
         fig.add_trace(
             go.Scatter3d(
-                x=ax,
-                y=ay,
-                z=az,
+                **strokes,
                 mode="lines+markers",
                 name=f"mode {r + 1}: motion of the mounts and G",
                 visible=r == first,
@@ -366,7 +356,116 @@ def mode_shapes_figure(result: MountsResult) -> go.Figure:
             }
         ],
     )
+    if animate:
+        _animate_modes(fig, body, drawn)
     return fig
+
+
+def mode_play_script(element: int, play: bool) -> str:
+    """The JavaScript that plays (:data:`MODE_CYCLES` cycles of :data:`MODE_FRAME_MS` ms
+    frames) or pauses the animated mode shapes drawn by NiceGUI's plotly element of id
+    ``element``. Plotly rejects the promise of an animation that another one interrupts
+    (*Pause*, the slider, a new figure); the script catches it, so that no unhandled
+    rejection reaches the page."""
+    if play:
+        frames = (
+            f"[...Array({MODE_CYCLES})].flatMap(() => el._transitionData._frames.map((f) => "
+            "f.name))"
+        )
+        options = (
+            f"{{mode: 'immediate', frame: {{duration: {MODE_FRAME_MS}, redraw: true}}, "
+            "transition: {duration: 0}}"
+        )
+    else:
+        frames, options = "[null]", "{mode: 'immediate', frame: {duration: 0}}"
+    return (
+        f"const plot = getElement({int(element)}); const el = plot && plot.$el; "
+        "if (plot && plot.Plotly && el._transitionData && el._transitionData._frames.length) "
+        f"plot.Plotly.animate(el, {frames}, {options}).catch(() => {{}});"
+    )
+
+
+def _mode_frame(p: np.ndarray) -> tuple[list[float | None], ...]:
+    """Lines from G (the last point) to each mount, in mm (None breaks the line)."""
+    xs: list[float | None] = []
+    ys: list[float | None] = []
+    zs: list[float | None] = []
+    for i in range(len(p) - 1):
+        for q in (p[-1], p[i]):
+            xs.append(q[0] * _MM)
+            ys.append(q[1] * _MM)
+            zs.append(q[2] * _MM)
+        xs.append(None)
+        ys.append(None)
+        zs.append(None)
+    return xs, ys, zs
+
+
+def _mode_lines(
+    body: np.ndarray, shown: np.ndarray
+) -> tuple[dict[str, list[float | None]], dict[str, list[float | None]]]:
+    """The coordinates [mm] of a mode's two traces: the layout displaced to ``shown`` and
+    the strokes from rest (``body``) to it."""
+    xs, ys, zs = _mode_frame(shown)
+    ax: list[float | None] = []
+    ay: list[float | None] = []
+    az: list[float | None] = []
+    for p, q in zip(body, shown, strict=True):
+        ax += [p[0] * _MM, q[0] * _MM, None]
+        ay += [p[1] * _MM, q[1] * _MM, None]
+        az += [p[2] * _MM, q[2] * _MM, None]
+    return {"x": xs, "y": ys, "z": zs}, {"x": ax, "y": ay, "z": az}
+
+
+def _animate_modes(fig: go.Figure, body: np.ndarray, drawn: list[np.ndarray]) -> None:
+    """Frames of one cycle of every mode's motion (:func:`mode_shapes_figure`), the phase
+    slider and the scene's fixed axes."""
+    go = plotly_go()
+    frames, steps = [], []
+    for k in range(MODE_FRAMES):
+        phase = 2 * math.pi * k / MODE_FRAMES
+        data = []
+        for moved in drawn:
+            frame, strokes = _mode_lines(body, body + math.cos(phase) * moved)
+            data += [go.Scatter3d(**frame), go.Scatter3d(**strokes)]
+        name = f"{math.degrees(phase):.0f}"
+        frames.append(go.Frame(data=data, traces=list(range(1, 1 + len(data))), name=name))
+        steps.append(
+            {
+                "label": f"{name}°",
+                "method": "animate",
+                "args": [[name], {"mode": "immediate", "frame": {"duration": 0, "redraw": True}}],
+            }
+        )
+    fig.frames = frames
+    fig.update_layout(
+        sliders=[
+            {
+                "steps": steps,
+                "currentvalue": {"prefix": "phase of the motion "},
+                "x": 0.3,
+                "len": 0.7,
+                "y": 0,
+                "yanchor": "top",
+                "pad": {"t": 10},
+            }
+        ],
+        margin={"l": 0, "r": 0, "t": 90, "b": 90},
+        height=640,
+    )
+    # the scene's axes fixed to every mode's largest excursion (mm), in proportion
+    points = np.concatenate([body, *(body + m for m in drawn), *(body - m for m in drawn)])
+    low, high = points.min(axis=0) * _MM, points.max(axis=0) * _MM
+    pad = 0.05 * float(max((high - low).max(), 1.0))
+    low, high = low - pad, high + pad
+    span = high - low
+    fig.update_layout(
+        scene={
+            **{f"{a}axis": {"range": [low[i], high[i]]} for i, a in enumerate("xyz")},
+            "aspectmode": "manual",
+            "aspectratio": dict(zip("xyz", span / span.max(), strict=True)),
+        }
+    )
 
 
 def _largest(fig: go.Figure, result: MountsResult, rpm: np.ndarray) -> None:
