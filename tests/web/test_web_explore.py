@@ -141,7 +141,8 @@ def test_pareto_ties_within_round_off_are_kept_as_the_command_line_keeps_them(
 
 def test_every_explorer_column_has_words() -> None:
     """The table names its columns in words with their unit, never the raw name."""
-    from crankbalance.web.tab_explore import _columns, column_words
+    from crankbalance.output.figures.explore import column_words
+    from crankbalance.web.tab_explore import _columns
 
     for name in _columns():
         assert column_words(name) != name, name

@@ -18,7 +18,6 @@ from __future__ import annotations
 
 import functools
 import math
-import re
 import threading
 from typing import Any
 
@@ -26,7 +25,7 @@ import numpy as np
 from nicegui import ui
 
 from ..errors import InputError
-from ..output.figures.explore import explore_candidate, explore_scatter
+from ..output.figures.explore import FREE_COLUMN, column_words, explore_candidate, explore_scatter
 from ..schema.settings import ExploreOptions
 from . import studies
 from .widgets import StudyTab, TabSettingsMixin, fmt_g, from_schema, schema_choices
@@ -55,23 +54,6 @@ CHOICES = {
 }
 #: the table's key: the largest moment left after crank counterweights
 KEY = "residual_M_Nm"
-#: the explorer's columns without an order, in words (docs/explorer.md's table of columns)
-COLUMN_WORDS = {
-    "Frot_N": "force of the rotating masses (no counterweights)",
-    "Mrot_Nm": "couple of the rotating masses (no counterweights)",
-    "cw_mass_kg": "counterweight mass",
-    "shafts": "balance shafts needed",
-    "shaft_mass_kg": "balance-shaft mass",
-    "residual_F_N": "largest force left after balancing",
-    "residual_M_Nm": "largest moment left after balancing",
-    "mirror_rad": "distance of the crank from its mirror image",
-    "interval_dev_rad": "firing intervals' deviation from even",
-    "bank_interval_dev_rad": "worst bank's firing intervals' deviation from even",
-}
-#: an explorer column's unit suffix -> its unit as shown
-UNITS = (("_Nm", "N·m"), ("_N", "N"), ("_kg", "kg"), ("_rad", "rad"))
-#: a free force's or moment's column: ``F2_N``, ``M1f_Nm`` (f forward, b backward)
-FREE_COLUMN = re.compile(r"^([FM])(\d+)([fb]?)_(N|Nm)$")
 #: what the table's column ``equiv`` counts
 EQUIVALENTS_NOTE = (
     "*Orders giving it*: how many firing orders of the problem give this same engine "
@@ -178,23 +160,6 @@ def tie_columns(rows: dict[str, Any], problem: Any, n: int) -> dict[str, list[st
         if np.ptp(linear[:, j]) > ROUND_OFF:
             out[f"X{k:g}"] = [f"{v:.3f}" for v in linear[:, j]]
     return {key: texts for key, texts in out.items() if len(set(texts)) > 1}
-
-
-def column_words(name: str) -> str:
-    """An explorer column in words with its unit: ``M1_Nm`` -> ``free moment, order 1
-    [N·m]``, ``X1p5`` -> ``torsional excitation, order 1.5``."""
-    unit = next((u for suffix, u in UNITS if name.endswith(suffix)), "")
-    free = FREE_COLUMN.match(name)
-    if free:
-        kind, order, part, _ = free.groups()
-        what = "free force" if kind == "F" else "free moment"
-        part = {"f": ", forward", "b": ", backward", "": ""}[part]
-        words = f"{what}, order {order}{part}"
-    elif re.fullmatch(r"X\d+(p\d+)?", name):
-        words = f"torsional excitation, order {name[1:].replace('p', '.')}"
-    else:
-        words = COLUMN_WORDS.get(name, name)
-    return f"{words} [{unit}]" if unit else words
 
 
 @functools.lru_cache(maxsize=8)

@@ -8,11 +8,13 @@ Public functions
 - ``explore_candidate(row, orders=4) -> Figure``    one candidate's free forces and moments
 - ``explore_points(*parts) -> dict``                the rows a scatter draws, each once
 - ``explore_hover(rows, names) -> list[str]``       the hover text of each row
+- ``column_words(name) -> str``                     an explorer column in words with its unit
 """
 
 from __future__ import annotations
 
 import math
+import re
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -33,12 +35,40 @@ BALANCED = (
 )
 
 
-def _column_label(name: str) -> str:
-    """An explorer column as an axis title: ``F2_N`` -> ``F2 [N]``, ``M1_Nm`` -> ``M1 [N·m]``."""
-    for suffix, unit in (("_Nm", "N·m"), ("_N", "N"), ("_kg", "kg"), ("_rad", "rad")):
-        if name.endswith(suffix):
-            return f"{name[: -len(suffix)]} [{unit}]"
-    return name
+#: the explorer's columns without an order, in words (docs/explorer.md's table of columns)
+COLUMN_WORDS = {
+    "Frot_N": "force of the rotating masses (no counterweights)",
+    "Mrot_Nm": "couple of the rotating masses (no counterweights)",
+    "cw_mass_kg": "counterweight mass",
+    "shafts": "balance shafts needed",
+    "shaft_mass_kg": "balance-shaft mass",
+    "residual_F_N": "largest force left after balancing",
+    "residual_M_Nm": "largest moment left after balancing",
+    "mirror_rad": "distance of the crank from its mirror image",
+    "interval_dev_rad": "firing intervals' deviation from even",
+    "bank_interval_dev_rad": "worst bank's firing intervals' deviation from even",
+}
+#: an explorer column's unit suffix -> its unit as shown
+UNITS = (("_Nm", "N·m"), ("_N", "N"), ("_kg", "kg"), ("_rad", "rad"))
+#: a free force's or moment's column: ``F2_N``, ``M1f_Nm`` (f forward, b backward)
+FREE_COLUMN = re.compile(r"^([FM])(\d+)([fb]?)_(N|Nm)$")
+
+
+def column_words(name: str) -> str:
+    """An explorer column in words with its unit: ``M1_Nm`` -> ``free moment, order 1
+    [N·m]``, ``X1p5`` -> ``torsional excitation, order 1.5``."""
+    unit = next((u for suffix, u in UNITS if name.endswith(suffix)), "")
+    free = FREE_COLUMN.match(name)
+    if free:
+        kind, order, part, _ = free.groups()
+        what = "free force" if kind == "F" else "free moment"
+        part = {"f": ", forward", "b": ", backward", "": ""}[part]
+        words = f"{what}, order {order}{part}"
+    elif re.fullmatch(r"X\d+(p\d+)?", name):
+        words = f"torsional excitation, order {name[1:].replace('p', '.')}"
+    else:
+        words = COLUMN_WORDS.get(name, name)
+    return f"{words} [{unit}]" if unit else words
 
 
 def explore_points(*parts: dict[str, Any]) -> dict[str, NDArray[Any]]:
@@ -106,12 +136,12 @@ def explore_scatter(
                 marker={"color": color, "size": size, "line": {"width": 0}},
             )
         )
-    fig.update_xaxes(title_text=_column_label(x))
-    fig.update_yaxes(title_text=_column_label(y))
+    fig.update_xaxes(title_text=column_words(x))
+    fig.update_yaxes(title_text=column_words(y))
     fig.update_layout(
         template=TEMPLATE,
         legend={"orientation": "h", "y": -0.2},
-        title=figure_title(title, note=f"{x} against {y}, both minimised"),
+        title=figure_title(title, note="both objectives minimised"),
     )
     return fig
 
