@@ -78,6 +78,10 @@ def test_the_scatters_points_are_the_runs_rows(tmp_path: Path) -> None:
     degrees = ", ".join(f"{math.degrees(a) % 360:.0f}" for a in rows["throw_angle_rad"][first])
     assert f"throws [deg]: {degrees}" in text
     assert f"F2_N = {rows['F2_N'][first]:.5g}" in text
+    # the axes name their objectives in words, as the web's table does, never raw
+    assert fig.layout.xaxis.title.text == "free force, order 2 [N]"
+    assert fig.layout.yaxis.title.text == "free moment, order 2 [N·m]"
+    assert "_N" not in fig.layout.title.text
 
 
 def test_a_short_top_list_draws_the_top_and_the_pareto_set(tmp_path: Path) -> None:
