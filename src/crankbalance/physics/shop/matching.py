@@ -117,8 +117,9 @@ GRID_STEPS = (1e-3, 1e-4, 1e-5, 1e-6)
 #: how far from a whole number of steps a mass may lie (float rounding of the file's
 #: decimals) and still be on the grid [steps]
 GRID_TOLERANCE = 1e-6
-#: the bounds given to the MILP are lowered by this relative margin, so that rounding in
-#: their computation never cuts off an optimum
+#: the bounds given to the MILP are lowered by this share of themselves, so that rounding
+#: in their computation never cuts off an optimum (a sum's rounding, about 1e-16 kg, lies
+#: far within HiGHS's feasibility tolerance of the rows, 1e-7 g)
 _BOUND_MARGIN = 1e-9
 
 
