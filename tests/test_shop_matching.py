@@ -8,6 +8,7 @@ import pytest
 
 from crankbalance.errors import InputError
 from crankbalance.io.parts_file import load_parts_file
+from crankbalance.physics.shop import matching
 from crankbalance.physics.shop.matching import (
     Inventory,
     PartKind,
@@ -87,7 +88,9 @@ CASES = [
     (1, (4, 4, 4), 4),
     (2, (4, 5, 4), 4),  # a spare of the rod-like kind
     (3, (5, 4, 4), 4),  # a spare of the first kind (the symmetry-breaking one)
-    (4, (3, 3, 3, 3), 3),
+    (4, (3, 3, 3, 3), 3),  # three kinds with a reciprocating share: the scale-step bound
+    (5, (4, 4, 5), 4),  # a spare of the rotating-only kind
+    (6, (3, 3, 3, 3, 3), 3),  # three kinds vary in either share
 ]
 
 
@@ -135,6 +138,73 @@ def test_objective_value_of_a_result_is_consistent() -> None:
     assert matched.reciprocating == pytest.approx(rec)
 
 
+SHAPES = [
+    ((4, 4, 4), 4),
+    ((4, 5, 4), 4),
+    ((5, 4, 4), 4),
+    ((3, 3, 3, 3), 3),
+    ((4, 4, 5), 4),
+    ((3, 4, 3, 3), 3),
+    ((4, 4), 4),
+    ((5, 5), 4),
+]
+
+
+@pytest.mark.parametrize(("counts", "cylinders"), SHAPES)
+def test_the_spread_bounds_hold_and_are_exact_where_sorting_solves(
+    counts: tuple[int, ...], cylinders: int
+) -> None:
+    """The MILP's bound on each share's spread (_spread_bounds) is never above the least
+    spread of that share over every assignment (exhaustive, weights (1, 0) and (0, 1)),
+    on the 0.1 g grid and off it; where one or two kinds vary without spares (sorting
+    solves it) it equals that least spread."""
+    for seed in range(4):
+        for grid in (True, False):
+            inventory = random_inventory(seed, counts, cylinders)
+            if not grid:  # the masses off any decimal step
+                rng = np.random.default_rng(100 + seed)
+                inventory = Inventory(
+                    tuple(
+                        PartKind(
+                            k.name,
+                            k.ids,
+                            k.reciprocating * (1 + 1e-4 * rng.random(k.count)),
+                            k.rotating * (1 + 1e-4 * rng.random(k.count)),
+                        )
+                        for k in inventory.kinds
+                    ),
+                    inventory.reciprocating_allowance,
+                    inventory.rotating_allowance,
+                )
+            bounds = matching._spread_bounds(inventory, cylinders)
+            shares = zip(bounds, ((1.0, 0.0), (0.0, 1.0)), strict=True)
+            for share, (bound, weights) in enumerate(shares):
+                full = match_parts(inventory, cylinders, "exhaustive", "spread", weights=weights)
+                assert bound <= full.objective_value * (1 + 1e-12)
+                name = ("reciprocating", "rotating")[share]
+                varying = [k for k in inventory.kinds if np.ptp(getattr(k, name)) > 0]
+                sorting = len(varying) == 1 or (
+                    len(varying) == 2 and all(k.count == cylinders for k in varying)
+                )
+                if sorting:
+                    assert bound == pytest.approx(full.objective_value, rel=1e-8)
+
+
+def test_the_scale_step_bound() -> None:
+    """Three kinds vary, on a 0.1 g grid: 0.5 + 0.6 + 1 + 2 + 0.1 + 0.3 g is 45 steps,
+    which do not divide among 2 cylinders, so the sets cannot weigh the same: the spread
+    is at least 0.1 g (the optimum is 0.7 g: 0.6 + 1 + 0.3 against 0.5 + 2 + 0.1). A
+    total that divides (44 steps) or a mass off the grid (0.2001 g) gives no bound."""
+    odd = Inventory((kind("a", [0.5, 0.6]), kind("b", [1.0, 2.0]), kind("c", [0.1, 0.3])))
+    assert matching._spread_bounds(odd, 2)[0] / G == pytest.approx(0.1, rel=1e-6)
+    matched = match_parts(odd, 2, "milp")
+    assert matched.optimal and matched.objective_value / G == pytest.approx(0.7)
+    even = Inventory((kind("a", [0.5, 0.6]), kind("b", [1.0, 2.0]), kind("c", [0.1, 0.2])))
+    assert matching._spread_bounds(even, 2) == (0.0, 0.0)
+    off = Inventory((kind("a", [0.5, 0.6]), kind("b", [1.0, 2.0]), kind("c", [0.1, 0.2001])))
+    assert matching._spread_bounds(off, 2) == (0.0, 0.0)
+
+
 def test_v8_example_matching() -> None:
     """The example V8 parts: the matched sets spread no more than the sets as listed,
     and (found with a proven bound) no less than the bound."""
@@ -147,6 +217,23 @@ def test_v8_example_matching() -> None:
     assert all(len(set(row.tolist())) == 8 for row in matched.part)
     machined = machine_to_lightest(inventory, 8)
     assert machined.removed_total > 0
+
+
+def test_the_v8_example_is_proven_by_its_bounds() -> None:
+    """The example's parts (docs/balance_shop.md, "Matching"): the rotating spread is
+    that of the rods' big ends against the shells, heaviest with lightest (5.3 g); the
+    reciprocating total, 6904.7 g, does not divide by 8 on the 0.1 g scale (0.1 g). Their
+    sum is the optimum the MILP proves, 5.4 g: the relaxation's bound at the root is
+    the optimum (before the bounds, HiGHS spent about 5 s of CPU raising it from 0)."""
+    inventory = load_parts_file(EXAMPLES / "v8_parts.csv").per_rod(np.arange(8) // 2)
+    rec, rot = matching._spread_bounds(inventory, 8)
+    assert rec / G == pytest.approx(0.1, rel=1e-6)
+    assert rot / G == pytest.approx(5.3, rel=1e-6)
+    matched = match_parts(inventory, 8, "milp", time_limit=120.0)
+    assert matched.optimal and matched.status == "proven optimal"
+    assert matched.objective_value / G == pytest.approx(5.4)
+    assert matched.reciprocating_spread / G == pytest.approx(0.1)
+    assert matched.rotating_spread / G == pytest.approx(5.3)
 
 
 def test_bad_input() -> None:

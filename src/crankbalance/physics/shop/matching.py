@@ -17,7 +17,12 @@ Methods, all exact for the objective they state:
     binary :math:`x_{kic}` (part i of kind k in cylinder c), one part of each kind per
     cylinder, each part at most once, bounds :math:`L \le W_c \le U` and the objective
     :math:`U - L`. Cylinders are interchangeable for a spread, so the parts of the first
-    kind are taken in increasing index along the cylinders (symmetry breaking).
+    kind are taken in increasing index along the cylinders (symmetry breaking). Each
+    share's spread is bounded below, :math:`U - L \ge` the least spread of that share on
+    its own (exact by sorting when one or two kinds vary, no spares; with more, a scale
+    step when the parts are weighed to a decimal step and the total does not divide
+    evenly): without it the relaxation's bound is 0 and HiGHS spent seconds proving
+    what the bound gives at the root (``docs/balance_shop.md``, "Matching").
 ``"milp"`` with ``objective="free"``
     Least free forces and couples the sets cause in the running engine, orders 1 to
     ``orders``, with the crank balanced for the mean set (one bob-weight per pin, rotating
@@ -106,6 +111,16 @@ OBJECTIVES = ("spread", "variance", "free", "journal")
 #: sides of the polygon that measures a phasor's magnitude in the free-force objective
 POLYGON_SIDES = 16
 METHODS = ("milp", "pairing", "exhaustive", "as-listed")
+#: the decimal steps [kg] a parts file's masses may be weighed to, coarsest first (1 g down
+#: to 1 mg): the MILP's bound on a spread of many kinds (``_spread_bounds``)
+GRID_STEPS = (1e-3, 1e-4, 1e-5, 1e-6)
+#: how far from a whole number of steps a mass may lie (float rounding of the file's
+#: decimals) and still be on the grid [steps]
+GRID_TOLERANCE = 1e-6
+#: the bounds given to the MILP are lowered by this share of themselves, so that rounding
+#: in their computation never cuts off an optimum (a sum's rounding, about 1e-16 kg, lies
+#: far within HiGHS's feasibility tolerance of the rows, 1e-7 g)
+_BOUND_MARGIN = 1e-9
 
 
 @dataclass(frozen=True)
@@ -943,12 +958,13 @@ def _milp_nonzeros(inventory: Inventory, cylinders: int, basis: Basis) -> int:
     """The most nonzeros the MILP's constraint matrix can have, counted before it is built."""
     n_x = cylinders * sum(kind.count for kind in inventory.kinds)
     assignment = 2 * n_x  # one part of each kind per cylinder; each part at most once
+    spread = 4 * (n_x + cylinders) + 4  # W_c <= U, W_c >= L per share; U - L >= bound
     if isinstance(basis, JournalBasis):  # the spread's rows; B_t <= U, B_t >= L; symmetry
         journals = 2 * (n_x + basis.throws) + 2 * inventory.kinds[0].count * cylinders
-        return assignment + 4 * (n_x + cylinders) + journals
-    if basis is None:  # W_c <= U and W_c >= L per share and cylinder; the symmetry rows
+        return assignment + spread + journals
+    if basis is None:  # the spread's rows; the symmetry rows
         symmetry = 2 * inventory.kinds[0].count * max(cylinders - 1, 0)
-        return assignment + 4 * (n_x + cylinders) + symmetry
+        return assignment + spread + symmetry
     return assignment + basis.constant.size * POLYGON_SIDES * (n_x + 1)
 
 
@@ -1075,8 +1091,9 @@ def _spread_rows(
     rows: _Rows,
     symmetry: bool = True,
 ) -> tuple[float, NDArray[np.float64], bool]:
-    """Rows of the spread: L <= W_c <= U per share; the symmetry breaking (``symmetry``:
-    the cylinders are interchangeable); the costs of (U_rec, L_rec, U_rot, L_rot)."""
+    """Rows of the spread: L <= W_c <= U per share; U - L at least the share's bound
+    (:func:`_spread_bounds`); the symmetry breaking (``symmetry``: the cylinders are
+    interchangeable); the costs of (U_rec, L_rec, U_rot, L_rot)."""
     kinds = inventory.kinds
     scale = 1000.0  # grams: the set weights are hundreds, the spreads single units
     cylinder = np.arange(c_count)
@@ -1108,8 +1125,60 @@ def _spread_rows(
         for c in range(c_count - 1):
             rows.entries(first + c, index * c_count + c, index.astype(float))
             rows.entries(first + c, index * c_count + c + 1, -index.astype(float))
+    # the spread of each share is at least its bound (_spread_bounds): U - L >= bound
+    least = scale * np.asarray(_spread_bounds(inventory, c_count))
+    first = rows.block(2, least, np.inf)
+    for s in range(2):
+        rows.entries(first + s, [n_x + 2 * s, n_x + 2 * s + 1], [1.0, -1.0])
     w_rec, w_rot = weights
     return scale, np.array([w_rec, -w_rec, w_rot, -w_rot]), fixed
+
+
+def _spread_bounds(inventory: Inventory, cylinders: int) -> tuple[float, float]:
+    """Lower bounds of the reciprocating and of the rotating spread over every assignment
+    [kg], each share on its own (a bound of the weighted spread: its two terms weighted).
+
+    Only the kinds whose share differs between their parts move the spread of a share:
+    with none, the spread is 0; with one, the least spread is that of the closest
+    ``cylinders`` parts in sorted order; with two and no spares, that of the heaviest part
+    of one kind with the lightest of the other (sorted against reverse-sorted: the pairing
+    that both lowers the heaviest sum and raises the lightest as far as any can). With
+    more kinds, when every share is a whole multiple of a decimal step q (the scale's
+    resolution: every part weighed to 0.1 g) and no varying kind has spares, the sets'
+    total is fixed, so the sets are all equal only if the total divides evenly: when it
+    does not, the spread is at least q. Otherwise the bound is 0."""
+    bounds = []
+    for share in ("reciprocating", "rotating"):
+        values = [getattr(k, share) for k in inventory.kinds]
+        varying = [v for v in values if np.ptp(v) > 0]
+        bound = 0.0
+        if len(varying) == 1:
+            ordered = np.sort(varying[0])
+            bound = float(
+                np.min(ordered[cylinders - 1 :] - ordered[: ordered.size - cylinders + 1])
+            )
+        elif len(varying) == 2 and all(v.size == cylinders for v in varying):
+            bound = float(np.ptp(np.sort(varying[0]) + np.sort(varying[1])[::-1]))
+        elif varying and all(v.size == cylinders for v in varying):
+            bound = _grid_bound(varying, cylinders)
+        bounds.append(max(bound * (1 - _BOUND_MARGIN), 0.0))
+    return bounds[0], bounds[1]
+
+
+def _grid_bound(values: list[NDArray[np.float64]], cylinders: int) -> float:
+    """The least spread above 0 of sums on a grid (see :func:`_spread_bounds`): the
+    coarsest decimal step q in :data:`GRID_STEPS` of which every value is a whole
+    multiple (within :data:`GRID_TOLERANCE` of a step), and, when the sets' total in
+    steps does not divide by ``cylinders``, q less twice the most a set's sum can lie off
+    the grid (the sets' sums, rounded to the grid, differ by a step at least); else 0."""
+    for step in GRID_STEPS:
+        off = [np.abs(v / step - np.round(v / step)) for v in values]
+        if max(float(np.max(o)) for o in off) <= GRID_TOLERANCE:
+            total = sum(int(np.sum(np.round(v / step))) for v in values)
+            if total % cylinders == 0:
+                return 0.0
+            return step * (1.0 - 2.0 * sum(float(np.max(o)) for o in off))
+    return 0.0
 
 
 def _journal_rows(
