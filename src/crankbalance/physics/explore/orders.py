@@ -836,18 +836,49 @@ def chunk(problem: Problem, start: int, stop: int) -> Candidates:
     total = count(problem)
     if not 0 <= start <= stop <= total:
         raise InputError("chunk", (start, stop), f"0 <= start <= stop <= {total}")
-    index, slots, rot = _consistent(problem, start, stop)
-    fire, throw, ok = _crank(problem, slots, rot)
-    index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
-    images = _orbit(problem, slots, rot, index)
-    keep = np.min(images, axis=1) == index
+    return _canonical(problem, *_consistent(problem, start, stop))
+
+
+def _canonical(
+    problem: Problem, index: NDArray[np.int64], slots: NDArray[np.int64], rot: NDArray[np.int64]
+) -> Candidates:
+    """The candidates among the rows (indices, slots, rotations) that the crank family
+    and the fixed crank allow and that are the canonical description of their engine."""
+    if _every_crank_allowed(problem):  # the cranks of the canonical rows only
+        images = _orbit(problem, slots, rot, index)
+        keep = np.min(images, axis=1) == index
+        index, slots, rot, images = index[keep], slots[keep], rot[keep], images[keep]
+        fire, throw, _ = _crank(problem, slots, rot)
+    else:
+        fire, throw, ok = _crank(problem, slots, rot)
+        index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
+        images = _orbit(problem, slots, rot, index)
+        keep = np.min(images, axis=1) == index
+        index, slots, fire, throw, images = (
+            index[keep],
+            slots[keep],
+            fire[keep],
+            throw[keep],
+            images[keep],
+        )
     return Candidates(
         topology=problem.topology,
-        throw_angle=throw[keep],
-        firing_order=np.argsort(slots[keep], axis=1) + 1,
-        fire_angle=fire[keep],
-        equivalents=_distinct(images[keep]),
-        index=index[keep],
+        throw_angle=throw,
+        firing_order=np.argsort(slots, axis=1) + 1,
+        fire_angle=fire,
+        equivalents=_distinct(images),
+        index=index,
+    )
+
+
+def _every_crank_allowed(problem: Problem) -> bool:
+    """Whether :func:`_crank` allows every row: no pin shared, every crank of the
+    family, no fixed crank (so :func:`chunk` derives the cranks of the rows it keeps
+    only; a row's crank is computed on its own, the same bits either way)."""
+    return (
+        problem.crank not in ("flat", "cross")
+        and problem.fixed_throw_angles is None
+        and _pins_alone(problem._plan)
     )
 
 
@@ -895,19 +926,7 @@ def at(problem: Problem, index: ArrayLike) -> Candidates:
             order = np.argsort(slots[:, group], axis=1)
             placed = np.take_along_axis(angle[:, group], order, axis=1)
             reached &= np.all(_gap(np.diff(placed, axis=1)) < _TOL, axis=1)
-    index, slots, rot = index[reached], slots[reached], rot[reached]
-    fire, throw, ok = _crank(problem, slots, rot)
-    index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
-    images = _orbit(problem, slots, rot, index)
-    keep = np.min(images, axis=1) == index
-    return Candidates(
-        topology=problem.topology,
-        throw_angle=throw[keep],
-        firing_order=np.argsort(slots[keep], axis=1) + 1,
-        fire_angle=fire[keep],
-        equivalents=_distinct(images[keep]),
-        index=index[keep],
-    )
+    return _canonical(problem, index[reached], slots[reached], rot[reached])
 
 
 def _orbit(

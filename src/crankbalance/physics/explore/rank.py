@@ -434,6 +434,12 @@ def pareto(values: ArrayLike, tolerance: ArrayLike = 0.0) -> NDArray[np.bool_]:
     tol = np.broadcast_to(np.asarray(tolerance, dtype=float), (v.shape[1],))
     if not (np.isfinite(tol).all() and (tol >= 0).all()):
         raise InputError("tolerance", tol.tolist(), "finite numbers of 0 or more")
+    if v.shape[0] > 1 and v.shape[1]:
+        # equal neighbours first (the explorer's candidates come crank by crank, and the
+        # candidates of one crank have equal forces and moments): one row per run sorted
+        run = np.r_[True, np.any(v[1:] != v[:-1], axis=1)]
+        if not run.all():
+            return pareto(v[run], tol)[np.cumsum(run) - 1]
     order = np.lexsort(v.T[::-1]) if v.shape[1] else np.arange(v.shape[0])
     sorted_v = v[order]
     if v.shape[0] > 1 and v.shape[1]:
@@ -519,4 +525,9 @@ def top(
         raise InputError(field, n, "an integer of 1 or more")
     column = np.asarray(values[column_name(key, values, field)], dtype=float)
     tie = np.arange(column.size) if index is None else np.asarray(index)
+    if n < column.size:  # only the rows up to the n-th smallest value can be among them
+        nth = np.partition(column, n - 1)[n - 1]
+        if not np.isnan(nth):
+            near = np.flatnonzero(column <= nth)
+            return near[np.lexsort((tie[near], column[near]))[:n]]
     return np.lexsort((tie, column))[:n]
