@@ -244,12 +244,31 @@ def distinct_rows(rows: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]
     size = a.dtype.itemsize
     bits = a.reshape(a.shape[0], -1).view(f"u{size}" if size in (1, 2, 4, 8) else np.uint8)
     run = np.flatnonzero(np.r_[True, np.any(bits[1:] != bits[:-1], axis=1)])
+    lengths = np.diff(np.r_[run, a.shape[0]])
+    if _increasing(a.reshape(a.shape[0], -1)[run]):  # sorted already: each run is a row
+        return run.astype(np.int64), np.repeat(np.arange(run.size, dtype=np.int64), lengths)
     _, first, inverse = np.unique(key[run], return_index=True, return_inverse=True)
     order = np.argsort(first)  # distinct rows in the order they first appear
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
     of_run = rank[inverse.reshape(-1)].astype(np.int64)
-    return run[first[order]].astype(np.int64), np.repeat(of_run, np.diff(np.r_[run, a.shape[0]]))
+    return run[first[order]].astype(np.int64), np.repeat(of_run, lengths)
+
+
+def _increasing(rows: NDArray) -> bool:
+    """Whether each row is lexicographically greater than the one before it, by value (so
+    no two rows are equal, in value or in bits)."""
+    if rows.shape[0] < 2:
+        return True
+    differ = rows[1:] != rows[:-1]
+    at = differ.argmax(axis=1)[:, None]  # the first column where two neighbours differ
+    after = np.take_along_axis(rows[1:], at, axis=1)
+    return bool(
+        np.all(
+            np.take_along_axis(differ, at, axis=1)
+            & (after > np.take_along_axis(rows[:-1], at, axis=1))
+        )
+    )
 
 
 def order_name(order: float) -> str:
