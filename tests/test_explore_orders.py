@@ -426,10 +426,12 @@ def test_the_orbit_table_gives_what_each_range_computes(
     args: dict, monkeypatch: pytest.MonkeyPatch
 ) -> None:
     """A problem of at most ORBIT_TABLE indices looks its equivalences up in a table made
-    once: the same candidates, equivalents and order as computed range by range."""
+    once (in pieces of ORBIT_PIECE indices): the same candidates, equivalents and order as
+    computed range by range."""
     problem = orders.problem(**args)
     total = orders.count(problem)
     assert total <= orders.ORBIT_TABLE
+    monkeypatch.setattr(orders, "ORBIT_PIECE", 37)  # the table made in pieces
     idx = np.unique(np.random.default_rng(0).integers(0, total, 40))
     looked_up = [
         orders.chunk(problem, 0, total),

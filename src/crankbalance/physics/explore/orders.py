@@ -873,6 +873,8 @@ def _canonical(
 #: table made once per problem (9 bytes an index: 363 kB for 8! = 40 320 indices); a
 #: larger problem computes them for each range
 ORBIT_TABLE = 40_320
+#: indices of the orbit table computed at once (its temporaries: under 5 MB)
+ORBIT_PIECE = 8192
 
 
 def _equivalences(
@@ -895,10 +897,15 @@ def _orbit_table(problem: Problem) -> tuple[NDArray[np.bool_], NDArray[np.int64]
     """:func:`_equivalences` of every index of the problem (its rows unranked), computed
     once, read-only; the rows a crank family or a fixed crank does not allow are never
     looked up."""
-    index = np.arange(count(problem), dtype=np.int64)
-    slots, rot = _unrank(problem._plan, index)
-    images = _orbit(problem, slots, rot, index)
-    canonical, equivalents = np.min(images, axis=1) == index, _distinct(images)
+    total = count(problem)
+    canonical = np.empty(total, dtype=bool)
+    equivalents = np.empty(total, dtype=np.int64)
+    for start in range(0, total, ORBIT_PIECE):  # bounded temporaries
+        index = np.arange(start, min(start + ORBIT_PIECE, total), dtype=np.int64)
+        slots, rot = _unrank(problem._plan, index)
+        images = _orbit(problem, slots, rot, index)
+        canonical[index] = np.min(images, axis=1) == index
+        equivalents[index] = _distinct(images)
     canonical.flags.writeable = False
     equivalents.flags.writeable = False
     return canonical, equivalents
