@@ -128,6 +128,11 @@ def main() -> None:
         assert np.allclose(mine[name], value, rtol=1e-9, atol=1e-9 * force), name
     run(problem, evaluate, keep=keep)  # warm up
     wall, cpu, result = best(lambda: run(problem, evaluate, keep=keep), args.repeat)
+    # glibc maps a large block afresh on every call (its pages faulted in each time) until
+    # a freed mapping raises its threshold, which depends on what the process did before:
+    # the floor's temporaries (645 kB) took 0.98 or 1.4-1.6 ms by that alone. A freed
+    # 8 MB block puts them on the heap: the floor at its fastest, the stricter reference
+    np.ones(2**20).sum()
     f_wall, f_cpu, _ = best(floor_all_orders(cands), max(args.repeat, 20))
     c_wall, c_cpu, _ = best(reference, max(args.repeat, 20))
     print(f"load average (1 min) {os.getloadavg()[0]:.2f} on {os.cpu_count()} CPUs; BLAS 1 thread")

@@ -134,3 +134,22 @@ def test_rank_deficient_counterweight_systems_are_solved_together_as_lstsq_would
     for i in range(60):
         expected, *_ = np.linalg.lstsq(matrix[i], rhs[i], rcond=ROUND_OFF)
         assert np.allclose([x1[i], x2[i]], expected, rtol=1e-12, atol=1e-12), i
+
+
+def test_distinct_rows_of_runs_of_equal_neighbours() -> None:
+    """Rows in runs (a slice crank by crank, sorted fire angles): the same positions as a
+    sort of every row, written here with numpy's unique, bit for bit."""
+    rng = np.random.default_rng(3)
+    base = np.array([[0.0, 1.0], [-0.0, 1.0], [2.0, 0.5], [1.0, 2.0]])
+    for trial in range(100):
+        rows = base[np.repeat(rng.integers(0, 4, 12), rng.integers(1, 4, 12))]
+        if trial % 2:  # sorted by value, as a slice crank by crank (-0.0 beside 0.0)
+            rows = rows[np.lexsort(rows.T[::-1])]
+        key = np.ascontiguousarray(rows).view(np.dtype((np.void, 16))).ravel()
+        _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+        seen = np.argsort(first)
+        rank = np.empty_like(seen)
+        rank[seen] = np.arange(seen.size)
+        got_first, got_inverse = distinct_rows(rows)
+        assert got_first.tolist() == first[seen].tolist()
+        assert got_inverse.tolist() == rank[inverse].tolist()

@@ -410,3 +410,41 @@ def test_bad_chunk_and_order() -> None:
         orders.equivalent_orders(p, (1, 2, 3))
     with pytest.raises(InputError, match="crankpin"):
         orders.equivalent_orders(p, (1, 2, 3, 4, 5, 6, 7, 8))
+
+
+@pytest.mark.parametrize(
+    "args",
+    [
+        dict(layout="inline", cylinders=6, strokes=4, reversal=True),
+        dict(layout="inline", cylinders=8, strokes=4, crank="cross"),
+        dict(layout="vee", cylinders=8, strokes=4, bank_angle=V90),
+        dict(layout="inline", cylinders=4, strokes=4, fixed_throw_angles=[0, math.pi, math.pi, 0]),
+        dict(layout="inline", cylinders=5, strokes=2, mirror=False),
+    ],
+)
+def test_the_orbit_table_gives_what_each_range_computes(
+    args: dict, monkeypatch: pytest.MonkeyPatch
+) -> None:
+    """A problem of at most ORBIT_TABLE indices looks its equivalences up in a table made
+    once (in pieces of ORBIT_PIECE indices): the same candidates, equivalents and order as
+    computed range by range."""
+    problem = orders.problem(**args)
+    total = orders.count(problem)
+    assert total <= orders.ORBIT_TABLE
+    monkeypatch.setattr(orders, "ORBIT_PIECE", 37)  # the table made in pieces
+    idx = np.unique(np.random.default_rng(0).integers(0, total, 40))
+    looked_up = [
+        orders.chunk(problem, 0, total),
+        orders.chunk(problem, 1, total // 2),
+        orders.at(problem, idx),
+    ]
+    monkeypatch.setattr(orders, "ORBIT_TABLE", 0)
+    computed = [
+        orders.chunk(problem, 0, total),
+        orders.chunk(problem, 1, total // 2),
+        orders.at(problem, idx),
+    ]
+    for a, b in zip(looked_up, computed, strict=True):
+        for name in ("throw_angle", "firing_order", "fire_angle", "equivalents", "index"):
+            assert np.array_equal(getattr(a, name), getattr(b, name)), name
+    assert looked_up[0].size > 0

@@ -256,7 +256,6 @@ def explore(
         Rows to keep for a figure (by the top-N key) beside the top-N list; 0 for none.
     """
     from ..physics.explore import merit, rank
-    from ..physics.explore import orders as enumeration
     from ..physics.explore.work import plan
 
     o = settings
@@ -275,7 +274,8 @@ def explore(
         mode_shape=mode_shape(o.mode_shape),
         orders=o.orders,
     )
-    columns = list(evaluate(enumeration.template(problem)))
+    # the columns merit gives, named without evaluating a candidate (the same checks)
+    columns = merit.column_names(problem.topology, **evaluate.keywords)
     names = [name.strip() for name in o.objectives.split(",")]
     if not all(names):  # an empty name was dropped without a word ("" left no front at all)
         raise InputError("objectives", o.objectives, "column names separated by commas, none empty")

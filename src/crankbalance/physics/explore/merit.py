@@ -132,8 +132,16 @@ def merit(
     cranks = candidates if first.size == candidates.size else candidates.take(first)
 
     def each(columns: dict[str, NDArray]) -> dict[str, NDArray]:
-        """Every candidate's row of columns computed per distinct crank."""
-        return columns if cranks is candidates else {k: v[crank_of] for k, v in columns.items()}
+        """Every candidate's row of columns computed per distinct crank (the columns of
+        one dtype taken at once, as the rows of one array)."""
+        if cranks is candidates:
+            return columns
+        out: dict[str, NDArray] = {}
+        for dtype in {v.dtype for v in columns.values()}:
+            names = [k for k, v in columns.items() if v.dtype == dtype]
+            rows = np.stack([columns[k] for k in names]).take(crank_of, axis=1)
+            out.update(zip(names, rows, strict=True))
+        return {k: out[k] for k in columns}
 
     free, shared = _free_columns(cranks, int(orders))
     out = each(free | {"mirror_rad": mirror_asymmetry(cranks.throw_angle)})
@@ -230,11 +238,37 @@ def distinct_rows(rows: ArrayLike) -> tuple[NDArray[np.int64], NDArray[np.int64]
     if a.shape[0] <= 1:
         return np.arange(a.shape[0]), np.zeros(a.shape[0], dtype=np.int64)
     key = a.view(np.dtype((np.void, a.dtype.itemsize * a.shape[1]))).ravel()
-    _, first, inverse = np.unique(key, return_index=True, return_inverse=True)
+    # runs of equal neighbours first (the explorer's slices come crank by crank, the
+    # sorted fire angles of even firing are all alike): the sort sees one row per run;
+    # a row's first appearance is the start of its first run
+    size = a.dtype.itemsize
+    bits = a.reshape(a.shape[0], -1).view(f"u{size}" if size in (1, 2, 4, 8) else np.uint8)
+    run = np.flatnonzero(np.r_[True, np.any(bits[1:] != bits[:-1], axis=1)])
+    lengths = np.diff(np.r_[run, a.shape[0]])
+    if _increasing(a.reshape(a.shape[0], -1)[run]):  # sorted already: each run is a row
+        return run.astype(np.int64), np.repeat(np.arange(run.size, dtype=np.int64), lengths)
+    _, first, inverse = np.unique(key[run], return_index=True, return_inverse=True)
     order = np.argsort(first)  # distinct rows in the order they first appear
     rank = np.empty_like(order)
     rank[order] = np.arange(order.size)
-    return first[order].astype(np.int64), rank[inverse.reshape(-1)].astype(np.int64)
+    of_run = rank[inverse.reshape(-1)].astype(np.int64)
+    return run[first[order]].astype(np.int64), np.repeat(of_run, lengths)
+
+
+def _increasing(rows: NDArray) -> bool:
+    """Whether each row is lexicographically greater than the one before it, by value (so
+    no two rows are equal, in value or in bits)."""
+    if rows.shape[0] < 2:
+        return True
+    differ = rows[1:] != rows[:-1]
+    at = differ.argmax(axis=1)[:, None]  # the first column where two neighbours differ
+    after = np.take_along_axis(rows[1:], at, axis=1)
+    return bool(
+        np.all(
+            np.take_along_axis(differ, at, axis=1)
+            & (after > np.take_along_axis(rows[:-1], at, axis=1))
+        )
+    )
 
 
 def order_name(order: float) -> str:
@@ -361,17 +395,25 @@ def _free_columns(
         f = batch_free_forces(batch, orders)
         force, moment = (level[:, None] for level in round_off(batch))
         shared = (batch, f) if orders >= 2 else None
+    sizes = {}
+    for name, fwd, bwd, level in (
+        ("F", f.force_forward, f.force_backward, force),
+        ("M", f.couple_forward, f.couple_backward, moment),
+    ):
+        # every order at once, order by order in rows: |phasor|, zero at most the level
+        # (the bits of np.abs(below_round_off(...)) of each column)
+        forward = np.abs(fwd[:, :orders].T, order="C")
+        backward = np.abs(bwd[:, :orders].T, order="C")
+        forward[forward <= level[:, 0]] = 0.0
+        backward[backward <= level[:, 0]] = 0.0
+        sizes[name] = (forward + backward, forward, backward)
     out: dict[str, NDArray] = {}
     for n in range(orders):
-        for name, unit, fwd, bwd, level in (
-            ("F", "N", f.force_forward, f.force_backward, force),
-            ("M", "Nm", f.couple_forward, f.couple_backward, moment),
-        ):
-            forward = np.abs(below_round_off(fwd[:, n], level[:, 0]))
-            backward = np.abs(below_round_off(bwd[:, n], level[:, 0]))
-            out[f"{name}{n + 1}_{unit}"] = forward + backward
-            out[f"{name}{n + 1}f_{unit}"] = forward
-            out[f"{name}{n + 1}b_{unit}"] = backward
+        for name, unit in (("F", "N"), ("M", "Nm")):
+            total, forward, backward = sizes[name]
+            out[f"{name}{n + 1}_{unit}"] = total[n]
+            out[f"{name}{n + 1}f_{unit}"] = forward[n]
+            out[f"{name}{n + 1}b_{unit}"] = backward[n]
     out["Frot_N"] = np.abs(below_round_off(f.rotating_force, force[:, 0]))
     out["Mrot_Nm"] = np.abs(below_round_off(f.rotating_couple, moment[:, 0]))
     return out, shared

@@ -836,18 +836,89 @@ def chunk(problem: Problem, start: int, stop: int) -> Candidates:
     total = count(problem)
     if not 0 <= start <= stop <= total:
         raise InputError("chunk", (start, stop), f"0 <= start <= stop <= {total}")
-    index, slots, rot = _consistent(problem, start, stop)
-    fire, throw, ok = _crank(problem, slots, rot)
-    index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
-    images = _orbit(problem, slots, rot, index)
-    keep = np.min(images, axis=1) == index
+    return _canonical(problem, *_consistent(problem, start, stop))
+
+
+def _canonical(
+    problem: Problem, index: NDArray[np.int64], slots: NDArray[np.int64], rot: NDArray[np.int64]
+) -> Candidates:
+    """The candidates among the rows (indices, slots, rotations) that the crank family
+    and the fixed crank allow and that are the canonical description of their engine."""
+    if _every_crank_allowed(problem):  # the cranks of the canonical rows only
+        keep, equivalents = _equivalences(problem, slots, rot, index)
+        index, slots, rot, equivalents = index[keep], slots[keep], rot[keep], equivalents[keep]
+        fire, throw, _ = _crank(problem, slots, rot)
+    else:
+        fire, throw, ok = _crank(problem, slots, rot)
+        index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
+        keep, equivalents = _equivalences(problem, slots, rot, index)
+        index, slots, fire, throw, equivalents = (
+            index[keep],
+            slots[keep],
+            fire[keep],
+            throw[keep],
+            equivalents[keep],
+        )
     return Candidates(
         topology=problem.topology,
-        throw_angle=throw[keep],
-        firing_order=np.argsort(slots[keep], axis=1) + 1,
-        fire_angle=fire[keep],
-        equivalents=_distinct(images[keep]),
-        index=index[keep],
+        throw_angle=throw,
+        firing_order=np.argsort(slots, axis=1) + 1,
+        fire_angle=fire,
+        equivalents=equivalents,
+        index=index,
+    )
+
+
+#: most indices of a problem whose equivalences (:func:`_equivalences`) are looked up in a
+#: table made once per problem (9 bytes an index: 363 kB for 8! = 40 320 indices); a
+#: larger problem computes them for each range
+ORBIT_TABLE = 40_320
+#: indices of the orbit table computed at once (its temporaries: under 5 MB)
+ORBIT_PIECE = 8192
+
+
+def _equivalences(
+    problem: Problem, slots: NDArray[np.int64], rot: NDArray[np.int64], index: NDArray[np.int64]
+) -> tuple[NDArray[np.bool_], NDArray[np.int64]]:
+    """Whether each allowed row is the canonical description of its engine (no
+    equivalent description has a smaller index), and how many distinct descriptions it
+    has: from :func:`_orbit` of the rows, or, for a problem of at most
+    :data:`ORBIT_TABLE` indices, looked up in :func:`_orbit_table` (the same numbers:
+    each row's images depend on that row alone)."""
+    table = _orbit_table(problem) if count(problem) <= ORBIT_TABLE else None
+    if table is not None:
+        return table[0][index], table[1][index]
+    images = _orbit(problem, slots, rot, index)
+    return np.min(images, axis=1) == index, _distinct(images)
+
+
+@functools.lru_cache(maxsize=16)
+def _orbit_table(problem: Problem) -> tuple[NDArray[np.bool_], NDArray[np.int64]]:
+    """:func:`_equivalences` of every index of the problem (its rows unranked), computed
+    once, read-only; the rows a crank family or a fixed crank does not allow are never
+    looked up."""
+    total = count(problem)
+    canonical = np.empty(total, dtype=bool)
+    equivalents = np.empty(total, dtype=np.int64)
+    for start in range(0, total, ORBIT_PIECE):  # bounded temporaries
+        index = np.arange(start, min(start + ORBIT_PIECE, total), dtype=np.int64)
+        slots, rot = _unrank(problem._plan, index)
+        images = _orbit(problem, slots, rot, index)
+        canonical[index] = np.min(images, axis=1) == index
+        equivalents[index] = _distinct(images)
+    canonical.flags.writeable = False
+    equivalents.flags.writeable = False
+    return canonical, equivalents
+
+
+def _every_crank_allowed(problem: Problem) -> bool:
+    """Whether :func:`_crank` allows every row: no pin shared, every crank of the
+    family, no fixed crank (so :func:`chunk` derives the cranks of the rows it keeps
+    only; a row's crank is computed on its own, the same bits either way)."""
+    return (
+        problem.crank not in ("flat", "cross")
+        and problem.fixed_throw_angles is None
+        and _pins_alone(problem._plan)
     )
 
 
@@ -895,19 +966,7 @@ def at(problem: Problem, index: ArrayLike) -> Candidates:
             order = np.argsort(slots[:, group], axis=1)
             placed = np.take_along_axis(angle[:, group], order, axis=1)
             reached &= np.all(_gap(np.diff(placed, axis=1)) < _TOL, axis=1)
-    index, slots, rot = index[reached], slots[reached], rot[reached]
-    fire, throw, ok = _crank(problem, slots, rot)
-    index, slots, rot, fire, throw = index[ok], slots[ok], rot[ok], fire[ok], throw[ok]
-    images = _orbit(problem, slots, rot, index)
-    keep = np.min(images, axis=1) == index
-    return Candidates(
-        topology=problem.topology,
-        throw_angle=throw[keep],
-        firing_order=np.argsort(slots[keep], axis=1) + 1,
-        fire_angle=fire[keep],
-        equivalents=_distinct(images[keep]),
-        index=index[keep],
-    )
+    return _canonical(problem, index[reached], slots[reached], rot[reached])
 
 
 def _orbit(

@@ -450,15 +450,34 @@ def pareto(values: ArrayLike, tolerance: ArrayLike = 0.0) -> NDArray[np.bool_]:
     for start in range(0, v.shape[0], BLOCK):
         block = sorted_v[start : start + BLOCK]
         alive = np.flatnonzero(~_dominated(block, front, tol))
-        alive = alive[~_dominated(block[alive], block[alive], tol)]
+        alive = alive[~_dominated_within(block[alive], tol)]
         kept.append(start + alive)
         front = np.concatenate([front, block[alive]])
     rows = np.concatenate(kept) if kept else np.zeros(0, np.int64)
     if tol.any():  # a row dominated by one after it in the sort
-        rows = rows[~_dominated(front, front, tol)]
+        rows = rows[~_dominated_within(front, tol)]
     keep = np.zeros(v.shape[0], bool)
     keep[order[rows]] = True
     return keep
+
+
+#: :func:`_dominated_within` compares every row first with each objective's smallest row
+#: and every PROBE-th row
+PROBE = 16
+
+
+def _dominated_within(rows: NDArray, tol: NDArray) -> NDArray[np.bool_]:
+    """``_dominated(rows, rows, tol)``, the rows first compared with a few of them (each
+    objective's smallest row and every :data:`PROBE`-th row: strong ones, the rows being
+    sorted), and only those none of these dominates compared with all (the same answer: a
+    row is dominated when one of the rows dominates it)."""
+    if rows.shape[0] <= PROBE:
+        return _dominated(rows, rows, tol)
+    probe = np.unique(np.r_[np.argmin(rows, axis=0), np.arange(0, rows.shape[0], PROBE)])
+    out = _dominated(rows, rows[probe], tol)
+    rest = np.flatnonzero(~out)
+    out[rest] = _dominated(rows[rest], rows, tol)
+    return out
 
 
 def _dominated(rows: NDArray, by: NDArray, tol: NDArray) -> NDArray[np.bool_]:
