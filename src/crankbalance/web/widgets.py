@@ -57,7 +57,12 @@ TITLE_LINE_PX = 24
 TITLE_LINE = 48
 #: the figure sizes of :class:`FigureCard` (added to the page once, by the Engine tab)
 FIGURE_CSS = """
-.cb-figure-box { width: 100%; overflow-x: auto; }
+.cb-figure-box { width: 100%; overflow-x: auto; position: relative; }
+/* a 3-D figure's still picture (FigureCard.preview) over its plot until plotly.js has
+   drawn the scene (its WebGL container exists) */
+.cb-preview { position: absolute; left: 0; right: 0; top: 50px; bottom: 40px;
+  pointer-events: none; }
+.cb-figure-box:has(.gl-container) > .cb-preview { display: none; }
 /* subplots side by side are stacked on a phone (phone_stack, FIGURE_JS) */
 .cb-figure { height: var(--cb-height); }
 @media (max-width: 600px) {
@@ -305,6 +310,10 @@ class FigureCard:
         self.draw_later: Any | None = None
         #: the figure the browser has (JSON), sent again only when it changes
         self.sent: str | None = None
+        #: the still picture of a 3-D figure shown until the browser has drawn it
+        #: (:func:`~crankbalance.output.figures.crank3d_preview.scene_svg`), made only for
+        #: a figure held back while the page is built
+        self.preview: Any | None = None
         with ui.card().classes("w-full") as self.card:
             with ui.element("div").classes(
                 "w-full flex flex-wrap items-center justify-between gap-1"
@@ -317,7 +326,7 @@ class FigureCard:
                             "flat dense size=sm"
                         ).mark(f"download-{name}-{fmt}")
             self.note = ui.label("").classes("text-grey-7")
-            with ui.element("div").classes("cb-figure-box"):
+            with ui.element("div").classes("cb-figure-box") as self.box:
                 self.plot = (
                     ui.plotly({"data": [], "layout": {}, "config": FIGURE_CONFIG})
                     .classes("w-full cb-figure")
@@ -372,12 +381,30 @@ class FigureCard:
             # first, the 3-D scene (software WebGL: the heaviest drawing of the page) after
             self.held = shown
             self.note.set_text(DRAWING)
+            self.show_preview(shown)
             if self.draw_later is None:
                 with self.card:
                     self.draw_later = ui.timer(0, self.draw_held, once=True)
             return
         self.held = None
         self.plot.update_figure(shown)
+
+    def show_preview(self, shown: dict[str, Any]) -> None:
+        """Show the still picture of the 3-D figure ``shown`` (plotly JSON) in its place,
+        sent with the page; the page's CSS hides it once plotly.js has drawn the scene."""
+        from ..output.figures.crank3d_preview import scene_svg
+
+        picture = scene_svg(shown)
+        if self.preview is None:
+            with self.box:
+                self.preview = (
+                    ui.html(picture, sanitize=False)  # made here, from numbers and colours
+                    .classes("cb-preview")
+                    .props(f"data-testid=preview-{self.name}")
+                    .mark(f"preview-{self.name}")
+                )
+        else:
+            self.preview.set_content(picture)
 
     def draw_held(self) -> None:
         """Send the figure held back while the page was built (runs once the browser has
