@@ -369,6 +369,7 @@ COMMAND_TABLE: dict[str, Command] = {
             "--density": quantity("density", "8000 kg/m^3"),
             "--max-mass": quantity("mass", "400 g"),
             "--max-radius": quantity("length", "80 mm"),
+            "--journal-diameter": quantity("length", "20 mm", "52 mm"),
             "--min-balance": number("100"),
             "--radius-measure": ["true", "paper", *CHOICE],
             "--inertia": [FLAG],

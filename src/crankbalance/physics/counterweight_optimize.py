@@ -115,6 +115,61 @@ def parse_bounds(
     return out
 
 
+def clear_of_journal(
+    bounds: Mapping[str, float | tuple[float, float] | Sequence[float]] | None,
+    journal_radius: float,
+) -> dict[str, float | tuple[float, float]]:
+    """The bounds with the web circle kept clear of the main journal.
+
+    The counterweight's profile leaves out the web circle of radius r_cw about the crank
+    axis (:mod:`crankbalance.physics.counterweight`), which is where the main journal
+    sits: a counterweight is clear of the journal exactly when r_cw is at least the
+    journal's radius. (The crankpin lies opposite, below the axis, where the profile has
+    nothing.) A web radius not given is searched from the journal's radius up, over a
+    range as wide as its default one: ``(max(lo, rj), max(hi, max(lo, rj) + hi - lo))``
+    for the default ``(lo, hi)`` of :data:`DEFAULT_BOUNDS`.
+
+    Parameters
+    ----------
+    bounds : mapping or None
+        Parameter name -> ``(low, high)`` or a fixed value [m or rad], as for
+        :func:`parse_bounds`; left unchanged but for ``web_radius``.
+    journal_radius : float
+        Radius of the main journal the web circle must clear [m].
+
+    Returns
+    -------
+    dict
+        The bounds given, with ``web_radius`` added when it was not given.
+
+    Raises
+    ------
+    InputError
+        ``journal_radius`` not a positive finite length, or a given web radius (its lower
+        end for a range) below it, naming ``web_radius``.
+    """
+    rj = check_positive_number("journal_radius", journal_radius)
+    out: dict[str, float | tuple[float, float]] = {
+        name: value if isinstance(value, (int, float)) else (float(value[0]), float(value[1]))
+        for name, value in (bounds or {}).items()
+    }
+    given = out.get("web_radius")
+    if given is None:
+        lo, hi = DEFAULT_BOUNDS["web_radius"]
+        low = max(lo, rj)
+        out["web_radius"] = (low, max(hi, low + hi - lo))
+        return out
+    low_given = float(given) if isinstance(given, (int, float)) else given[0]
+    if low_given < rj:
+        raise InputError(
+            "web_radius",
+            given,
+            f"must be at least the main journal's radius, {rj * 1e3:.4g} mm, or the "
+            "counterweight overlaps the journal",
+        )
+    return out
+
+
 @dataclass(frozen=True)
 class OptimizationProgress:
     """State passed to the ``callback`` of :func:`optimize_counterweight` after each iteration.

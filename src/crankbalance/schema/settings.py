@@ -609,6 +609,15 @@ class CounterweightOptimizeOptions(CounterweightOptions, CounterweightRequiremen
     segment_radius: str | None = _profile("Segment radius R_cw", "LENGTH [mm]")
     segment_angle: str | None = _profile("Segment angle alpha", "ANGLE [°]")
     thickness: str | None = _profile("Thickness t_cw", "LENGTH [mm]")
+    journal_diameter: float | None = quantity(
+        "length",
+        None,
+        "Main journal diameter",
+        "The web circle r_cw must clear the main journal: r_cw is searched from half this "
+        "diameter up; empty: the engine's journal (1.3 x crank radius) with an engine, else "
+        "no limit.",
+        hint="e.g. 52 mm",
+    )
     radius_measure: Literal["true", "paper"] = choice(
         "true",
         ("true", "paper"),

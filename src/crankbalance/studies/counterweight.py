@@ -228,9 +228,15 @@ def optimize(
     (:func:`~crankbalance.physics.counterweight_optimize.optimize_counterweight`, with
     :data:`~crankbalance.schema.settings.COUNTERWEIGHT_CHILDREN` designs per round):
     each profile parameter given as a value is fixed, as ``LOW..HIGH`` free in that range,
-    not given free in the optimiser's range; ``pareto`` designs of the front are listed,
-    evenly spread. ``progress`` is called after each round."""
-    from ..physics.counterweight_optimize import DEFAULT_BOUNDS, optimize_counterweight
+    not given free in the optimiser's range; the web circle r_cw clears the main journal
+    (``journal_diameter``, else the engine's, :func:`crank_outline`;
+    :func:`~crankbalance.physics.counterweight_optimize.clear_of_journal`); ``pareto``
+    designs of the front are listed, evenly spread. ``progress`` is called after each round."""
+    from ..physics.counterweight_optimize import (
+        DEFAULT_BOUNDS,
+        clear_of_journal,
+        optimize_counterweight,
+    )
 
     o = settings
     required = _required(engine, o)
@@ -239,6 +245,16 @@ def optimize(
         text = getattr(o, name)
         if text is not None:
             bounds[name] = value_or_range(name, text)
+    journal = (
+        o.journal_diameter
+        if o.journal_diameter is not None or engine is None
+        else crank_outline(engine).journal_diameter
+    )
+    if journal is not None:  # the web circle clears the main journal
+        try:
+            bounds = clear_of_journal(bounds, journal / 2)
+        except InputError as error:
+            raise InputError("web_radius", o.web_radius, error.allowed) from None
     res = optimize_counterweight(
         required,
         bounds,

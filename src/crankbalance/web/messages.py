@@ -23,6 +23,14 @@ if TYPE_CHECKING:
 UNTYPED = frozenset({"correction"})
 
 
+def named(name: str) -> str:
+    """The pattern of a library argument ``name`` where a message names it: a name with an
+    underscore anywhere (``web_thickness``), a plain word only as a name is written in a
+    message, before ``=`` or ``:`` (``holes: 25``), so that the words of a sentence stay
+    (``axial holes at ...`` is not ``axial Holes per web at ...``)."""
+    return rf"\b{name}\b" if "_" in name else rf"\b{name}\b(?=\s*[=:])"
+
+
 def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[str | None, str]:
     """(the setting key the message belongs to, or None; the message in the form's words).
 
@@ -35,7 +43,7 @@ def in_words(error: InputError, aliases: dict[str, str] | None = None) -> tuple[
     text = error.allowed
     for name, setting in aliases.items():  # library names inside the text, as labelled
         if setting in SETTING_FIELDS:
-            text = re.sub(rf"\b{name}\b", SETTING_FIELDS[setting][0], text)
+            text = re.sub(named(name), SETTING_FIELDS[setting][0], text)
     if key in SETTING_FIELDS:
         return key, worded(key, value, text)
     return None, text if value is None else f"{value!r}: {text}"

@@ -146,6 +146,8 @@ class CounterweightTab(StudyTab):
         self.cw_progress.set_text("optimising … starting")
         try:
             required, o = studies.counterweight_inputs(c, settings)  # and the work budget
+            # the web circle clears the engine's main journal, as the drawing shows it
+            o = o.replace(journal_diameter=crank_outline(c.analysis.model).journal_diameter)
             self.cw_summary.set_content("")
             optimum = await self.in_worker(
                 self.what, studies.optimise, required, o, progress=self.show_progress
@@ -173,7 +175,10 @@ class CounterweightTab(StudyTab):
         rows = [optimum.row(optimum.least_mass), optimum.row(optimum.least_radius)]
         text = [
             f"{len(optimum.designs)} feasible designs, {len(optimum.pareto)} on the "
-            f"Pareto front, {optimum.nfev} evaluated in {optimum.elapsed:.2f} s"
+            f"Pareto front, {optimum.nfev} evaluated in {optimum.elapsed:.2f} s",
+            f"Web circle radius r_cw from {self.crank.journal_diameter * 500:.1f} mm, the "
+            f"main journal's radius (⌀ {self.crank.journal_diameter * 1e3:.1f} mm): every "
+            "design clears the journal",
         ]
         for label, row in zip(("Least mass", "Least radius"), rows, strict=True):
             text.append(
