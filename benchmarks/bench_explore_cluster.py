@@ -31,7 +31,9 @@ where the time goes: the workers' CPU against the in-process CPU is the cluster'
 overhead (scheduling, pickling, the imports); the in-process CPU against its elapsed time
 is the share of a core the machine gave it. ``--load K`` keeps K ``yes > /dev/null``
 processes running during the whole benchmark (a loaded machine); ``--chunk N`` sets the
-indices per task of every run (default: chosen by the run).
+indices per task of every run (default: chosen by the run); ``--dask-environ`` starts the
+kept cluster with dask's own worker environment (``MALLOC_TRIM_THRESHOLD_=65536``, as
+before round six) instead of ``local_cluster``'s.
 """
 
 from __future__ import annotations
@@ -95,6 +97,11 @@ def main() -> None:
     parser.add_argument("--repeat", type=int, default=2)
     parser.add_argument("--load", type=int, default=0, help="K `yes` processes meanwhile")
     parser.add_argument("--chunk", type=int, default=None, help="indices per task")
+    parser.add_argument(
+        "--dask-environ",
+        action="store_true",
+        help="the kept cluster with dask's own worker environment (MALLOC_TRIM_THRESHOLD_)",
+    )
     args = parser.parse_args()
     loaders = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(args.load)]
     try:
@@ -121,11 +128,20 @@ def measure(args: argparse.Namespace) -> None:
         f"12-cylinder two-stroke in-line, {total:,} firing orders; slice of {size:,} indices "
         f"(sized to {args.seconds:g} s in process: {CALIBRATION:,} took {wall:.2f} s, "
         f"{cpu:.2f} s CPU); load average (1 min) {load:.2f} on {os.cpu_count()} CPUs; "
-        f"BLAS 1 thread; {args.load} `yes` beside; chunk {args.chunk or 'chosen by the run'}"
+        f"BLAS 1 thread; {args.load} `yes` beside; chunk {args.chunk or 'chosen by the run'}; "
+        f"kept cluster: {'dask' if args.dask_environ else 'local_cluster'} environment"
     )
     rows: list[tuple[str, float, float, float, float, Any]] = []
     start = time.perf_counter()
-    with local_cluster(args.workers) as cluster:
+    if args.dask_environ:  # as before issue 30's round six: dask's own environment
+        from dask.distributed import LocalCluster
+
+        kept = LocalCluster(
+            n_workers=args.workers, threads_per_worker=1, dashboard_address=None, silence_logs=50
+        )
+    else:
+        kept = local_cluster(args.workers)
+    with kept as cluster:
         address = cluster.scheduler_address
         with Client(address) as client:
             client.wait_for_workers(args.workers)
