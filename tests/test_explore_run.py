@@ -12,6 +12,7 @@ import functools
 import io
 import itertools
 import math
+import os
 import sys
 from pathlib import Path
 from typing import Any
@@ -22,11 +23,20 @@ import pytest
 from crankbalance.errors import InputError
 from crankbalance.io.engine_file import load_engine
 from crankbalance.io.parquet import read_parquet
-from crankbalance.physics.explore import merit, orders
+from crankbalance.physics.explore import merit, orders, work
 from crankbalance.physics.explore.candidates import Candidates
 from crankbalance.physics.shaking import batch_amplitudes
 from crankbalance.studies.build import build_model
-from crankbalance.studies.explore import ChunkError, Keep, Sample, progress_line, run, tasks
+from crankbalance.studies.explore import (
+    ChunkError,
+    Keep,
+    Sample,
+    local_cluster,
+    progress_line,
+    run,
+    spread,
+    tasks,
+)
 
 from .conftest import hang_guard
 
@@ -203,21 +213,33 @@ def test_dask_local_cluster_gives_exactly_the_in_process_result(tmp_path: Path) 
 def test_an_existing_cluster_by_its_address() -> None:
     """The real enumeration and figures of merit (balancing included) on a cluster given
     by its address: the result of the run in this process."""
-    from dask.distributed import LocalCluster
-
     problem = orders.problem("inline", 6, 4)
     evaluate = functools.partial(merit.merit, target="counterweights", balance_factor=0.5)
     keep = Keep(objectives=("M1_Nm", "M2_Nm", "cw_mass_kg"), key="residual_M_Nm", n=9)
     here = run(problem, evaluate, chunk=16, keep=keep)
-    with (
-        hang_guard(600),
-        LocalCluster(n_workers=1, threads_per_worker=1, dashboard_address=None) as cluster,
-    ):
+    with hang_guard(600), local_cluster(1) as cluster:
         address = cluster.scheduler_address
         there = run(problem, evaluate, chunk=16, keep=keep, scheduler=address)
     assert here.candidates == there.candidates == orders.chunk(problem, 0, 120).size
     _same(here.pareto, there.pareto)
     _same(here.top, there.top)
+
+
+@pytest.mark.slow
+def test_the_workers_of_a_local_cluster_keep_glibcs_memory_trimming(
+    monkeypatch: pytest.MonkeyPatch,
+) -> None:
+    """dask's nanny gives its workers MALLOC_TRIM_THRESHOLD_=65536 (a task then costs half
+    its CPU time again in page faults); the workers ``run(..., workers=N)`` starts do not
+    have it, and keep the one-thread BLAS."""
+    from dask.distributed import Client
+
+    monkeypatch.delenv("MALLOC_TRIM_THRESHOLD_", raising=False)
+    with hang_guard(600), local_cluster(1) as cluster, Client(cluster) as client:
+        trim = client.run(os.environ.get, "MALLOC_TRIM_THRESHOLD_")
+        threads = client.run(os.environ.get, "OPENBLAS_NUM_THREADS")
+    assert list(trim.values()) == [None]
+    assert list(threads.values()) == ["1"]
 
 
 def test_a_failing_chunk_names_its_candidates_and_leaves_no_file(tmp_path: Path) -> None:
@@ -280,3 +302,22 @@ def test_progress_line_and_bad_settings() -> None:
         run(None, shaking, source=SixOrders, workers=2, scheduler="tcp://127.0.0.1:1")
     with pytest.raises(InputError, match="chunk"):
         run(None, shaking, source=SixOrders, chunk=0)
+
+
+def test_a_run_on_dask_chooses_larger_tasks_but_enough_of_them() -> None:
+    """On dask (``spread`` workers) the chosen chunk holds about DASK_TASK_CANDIDATES
+    candidates, at least DASK_TASKS_PER_WORKER tasks per worker, never fewer candidates than
+    in process; a given chunk is kept."""
+    problem = orders.problem("inline", 12, 2)  # every index a candidate
+    evaluate = functools.partial(merit.merit, target="counterweights")
+    big, mid, small = (0, 2_000_000), (0, 100_000), (0, 20_000)
+    assert work.plan(problem, evaluate, span=big).chunk == work.TASK_CANDIDATES
+    assert work.plan(problem, evaluate, span=big, spread=2).chunk == work.DASK_TASK_CANDIDATES
+    assert work.plan(problem, evaluate, span=mid, spread=2).chunk == 12_500  # 8 tasks
+    assert work.plan(problem, evaluate, span=small, spread=2).chunk == work.TASK_CANDIDATES
+    assert work.plan(problem, evaluate, span=big, spread=2, chunk=1000).chunk == 1000
+    many = Sample(draws=1_000_000, seed=1)
+    assert work.plan(problem, evaluate, sample=many).chunk == work.TASK_CANDIDATES
+    assert work.plan(problem, evaluate, sample=many, spread=2).chunk == work.DASK_TASK_CANDIDATES
+    assert (spread(None, None), spread(None, 3)) == (0, 3)
+    assert spread("tcp://127.0.0.1:8786", None) == work.SCHEDULER_WORKERS

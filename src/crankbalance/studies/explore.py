@@ -46,7 +46,9 @@ from ..physics.explore.work import (
     CONNECT_TIMEOUT,
     FIGURES_ROWS,
     FIGURES_SLICE,
+    SCHEDULER_WORKERS,
     TASK_CANDIDATES,
+    WORKER_ENVIRON,
     plan,
 )
 
@@ -503,7 +505,7 @@ def _on_dask(
 def _client(stack: ExitStack, scheduler: str | None, workers: int | None, timeout: float) -> Any:
     """A dask client: to ``scheduler`` (which must answer within ``timeout`` seconds), or
     to a new LocalCluster of ``workers`` processes."""
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
 
     if scheduler is not None:
         _reach(scheduler, timeout)
@@ -513,16 +515,61 @@ def _client(stack: ExitStack, scheduler: str | None, workers: int | None, timeou
             raise InputError(
                 "scheduler", scheduler, f"the address of a running dask scheduler ({error})"
             ) from None
-    cluster = stack.enter_context(
-        LocalCluster(
+    cluster = stack.enter_context(local_cluster(workers))
+    return stack.enter_context(Client(cluster))
+
+
+def spread(scheduler: str | None, workers: int | None) -> int:
+    """The workers a run's tasks are spread over, for the choice of its chunk
+    (:func:`~crankbalance.physics.explore.work.plan`): 0 in this process, ``workers`` on a
+    LocalCluster, :data:`~crankbalance.physics.explore.work.SCHEDULER_WORKERS` on a
+    cluster given by its address (the run plans before it connects).
+
+    Parameters
+    ----------
+    scheduler : str or None
+        Address of a running dask scheduler.
+    workers : int or None
+        Worker processes of a LocalCluster started for the run [-].
+
+    Returns
+    -------
+    int
+        Workers [-].
+    """
+    if scheduler is not None:
+        return SCHEDULER_WORKERS
+    return workers or 0
+
+
+def local_cluster(workers: int | None) -> Any:
+    """A ``dask.distributed.LocalCluster`` of ``workers`` processes of one thread each, as
+    ``run(..., workers=N)`` starts it: no dashboard, quiet logs, and the workers'
+    environment :data:`~crankbalance.physics.explore.work.WORKER_ENVIRON` (glibc's own
+    memory trimming instead of dask's, which costs a task half its CPU time again).
+
+    Parameters
+    ----------
+    workers : int or None
+        Worker processes [-]; None lets dask choose (one per core).
+
+    Returns
+    -------
+    LocalCluster
+        The started cluster (a context manager that stops it).
+    """
+    import dask
+    from dask.distributed import LocalCluster
+
+    environ = {f"distributed.nanny.pre-spawn-environ.{k}": v for k, v in WORKER_ENVIRON.items()}
+    with dask.config.set(environ):  # read when each worker's nanny is made
+        return LocalCluster(
             n_workers=workers,
             threads_per_worker=1,
             processes=True,
             dashboard_address=None,
             silence_logs=50,  # logging.CRITICAL: no tracebacks of the shutdown
         )
-    )
-    return stack.enter_context(Client(cluster))
 
 
 def _reach(scheduler: str, timeout: float) -> None:
@@ -679,7 +726,15 @@ def run(
         raise InputError("connect_timeout", connect_timeout, "a positive number of seconds")
     enumeration = _enumeration(source)
     total = int(enumeration.count(problem))
-    work_of = plan(problem, evaluate, chunk=chunk, sample=sample, span=span, source=enumeration)
+    work_of = plan(
+        problem,
+        evaluate,
+        chunk=chunk,
+        sample=sample,
+        span=span,
+        source=enumeration,
+        spread=spread(scheduler, workers),
+    )
     todo = tasks(total, work_of.chunk, sample, span)
     if output is not None and not len(todo):
         raise InputError("output", output, "a run with at least one candidate to write")

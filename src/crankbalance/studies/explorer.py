@@ -26,7 +26,7 @@ from ..errors import InputError
 from ..results import ResultMixin, key_label, require_finite, shown, to_jsonable
 from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
-from .explore import Keep, RunResult, Sample, progress_line, run
+from .explore import Keep, RunResult, Sample, progress_line, run, spread
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..physics.explore.orders import Problem
@@ -289,7 +289,9 @@ def explore(
     select = None if o.filter is None else rank.parse_filter(o.filter, columns, "filter")
     sample = None if o.sample is None else Sample(draws=o.sample, seed=o.seed)
     # the work of the run, before any enumeration, draw or task list (explore.work)
-    work = plan(problem, evaluate, chunk=o.chunk, sample=sample)
+    work = plan(
+        problem, evaluate, chunk=o.chunk, sample=sample, spread=spread(o.scheduler, o.workers)
+    )
     if sample is None and work.exact and work.candidates == 0:
         raise InputError(
             "cylinders",

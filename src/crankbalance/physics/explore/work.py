@@ -48,6 +48,19 @@ TASK_MEMORY = 512 * 2**20
 #: candidates per task of the chosen chunk: a task's own cost (about a millisecond) is
 #: small beside them, and its arrays stay tens of MB
 TASK_CANDIDATES = 8192
+#: candidates per task of the chosen chunk of a run on dask (``--workers``,
+#: ``--scheduler``): about a second of one core for the 12-cylinder two-stroke with
+#: counterweights (issue 30), so that the scheduling, the result's transfer and the merge
+#: in the driver stay small (46 tasks of 8 192 candidates on a LocalCluster of 2 took
+#: 1.13-1.15 times the CPU time in process, the chosen chunk 1.09-1.13; load 17-43)
+DASK_TASK_CANDIDATES = 8 * TASK_CANDIDATES
+#: tasks per worker a run on dask has at least, when its indices give more than one
+#: in-process chunk per task: the workers finish within about a quarter of a task of each
+#: other
+DASK_TASKS_PER_WORKER = 4
+#: workers a cluster given by its address (``--scheduler``) is taken to have when the
+#: chunk is chosen (the run plans before it connects); give ``--chunk`` for a larger one
+SCHEDULER_WORKERS = 8
 #: distinct cranks whose figures of merit (free forces, balancing) a task computes at
 #: once: 512 candidates was measured fastest, or within 15 % of it, for 4 to 20 cylinders
 #: and 1 to 64 orders, when the figures were computed per candidate with matrix products
@@ -64,6 +77,14 @@ FIGURES_ROWS = 4096
 LARGEST_CHUNK = math.factorial(20)
 #: seconds a dask scheduler has to answer (``--connect-timeout``; 0.1 s to 120 s) [s]
 CONNECT_TIMEOUT = 5.0
+#: the environment dask's nanny gives the worker processes of a LocalCluster the run
+#: starts, over its defaults (``distributed.nanny.pre-spawn-environ``; None removes a
+#: variable). dask sets MALLOC_TRIM_THRESHOLD_=65536, which makes glibc give freed memory
+#: back at once (and keep every array above 128 KiB in an mmap of its own) and fault it in
+#: again: a task of the 12-cylinder two-stroke took 3.6 times the page faults and 1.5
+#: times the CPU time (issue 30); the workers keep glibc's default, as this process does.
+#: OMP, MKL and OpenBLAS stay at one thread per worker (dask's defaults).
+WORKER_ENVIRON: dict[str, str | None] = {"MALLOC_TRIM_THRESHOLD_": None}
 
 # The memory of a task, measured with tracemalloc (in-line 4 to 20, vee 16 and W18 split,
 # boxer 12; 1 to 64 orders; targets none to secondary), bounded from above:
@@ -222,6 +243,7 @@ def plan(
     sample: Any = None,
     span: tuple[int, int] | None = None,
     source: Any = None,
+    spread: int = 0,
 ) -> Work:
     """The work of a run, checked against the limits, with its chunk.
 
@@ -243,6 +265,11 @@ def plan(
     source : module or None
         The enumeration (``count``, ``size``, ``template``); default
         :mod:`crankbalance.physics.explore.orders`.
+    spread : int
+        Workers the tasks are spread over on dask [-]; 0 (default) for a run in this
+        process. On dask the chosen chunk holds about :data:`DASK_TASK_CANDIDATES`
+        candidates, but gives at least :data:`DASK_TASKS_PER_WORKER` tasks per worker, and
+        never fewer candidates than the chunk in process.
 
     Returns
     -------
@@ -272,7 +299,7 @@ def plan(
     per_candidate = candidate_bytes(cylinders, columns)
     per_order = order_bytes(cylinders, columns)
     if sample is not None:
-        return _sampled(sample.draws, chunk, per_candidate, per_order, cylinders)
+        return _sampled(sample.draws, chunk, per_candidate, per_order, cylinders, spread)
     size = source.size(problem, low, high)
     indices = high - low
     work = size.orders + size.prefixes // PREFIXES_PER_CANDIDATE
@@ -304,7 +331,11 @@ def plan(
     most = _largest(task_bytes, max(indices, 1))
     least = -(-indices // MAX_TASKS)
     if chunk is None:
-        wanted = -(-TASK_CANDIDATES * indices // size.orders) if size.orders else indices
+        wanted = _wanted(TASK_CANDIDATES, indices, size.orders)
+        if spread > 0:
+            spread_chunk = -(-indices // (DASK_TASKS_PER_WORKER * spread))
+            larger = _wanted(DASK_TASK_CANDIDATES, indices, size.orders)
+            wanted = max(wanted, min(larger, spread_chunk))
         chosen = max(min(wanted, most, max(indices, 1)), least, 1)
         field, value = ("span", list(span)) if span is not None else ("cylinders", cylinders)
         chunk = _bounded(chosen, least, most, indices, field, value)
@@ -322,8 +353,14 @@ def plan(
     )
 
 
+def _wanted(per_task: int, indices: int, candidates: int) -> int:
+    """The indices of a chunk holding about ``per_task`` of the ``candidates`` among
+    ``indices`` (all of them when there is no candidate)."""
+    return -(-per_task * indices // candidates) if candidates else indices
+
+
 def _sampled(
-    draws: int, chunk: int | None, per_candidate: int, per_order: int, cylinders: int
+    draws: int, chunk: int | None, per_candidate: int, per_order: int, cylinders: int, spread: int
 ) -> Work:
     """The work of a random search of ``draws`` draws."""
     if not 1 <= draws <= MAX_DRAWS:
@@ -342,7 +379,11 @@ def _sampled(
     most = _largest(task_bytes, draws)
     least = -(-draws // MAX_TASKS)
     if chunk is None:
-        chosen = max(min(TASK_CANDIDATES, most), least)
+        wanted = TASK_CANDIDATES
+        if spread > 0:
+            spread_chunk = -(-draws // (DASK_TASKS_PER_WORKER * spread))
+            wanted = max(wanted, min(DASK_TASK_CANDIDATES, spread_chunk))
+        chosen = max(min(wanted, most), least)
         chunk = _bounded(chosen, least, most, draws, "sample", draws)
     else:
         chunk = _bounded(chunk, least, most, draws, "chunk", chunk)
