@@ -38,7 +38,13 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..results import ROUND_OFF, below_round_off
-from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
+from .balance_types import (
+    BatchCounterweights,
+    CounterweightOptions,
+    EngineFailed,
+    SolverInput,
+    record,
+)
 
 
 # --------------------------------------------------------------------------- the webs
@@ -206,6 +212,10 @@ def _parts(
 
 
 # --------------------------------------------------------------------------- counterweights
+_FIRST = np.zeros(1, np.intp)  # the one column of a whole crank's target (E, 1)
+_FIRST.flags.writeable = False
+
+
 def solve_counterweights(
     inputs: SolverInput,
     webs: Webs,
@@ -268,16 +278,17 @@ def solve_counterweights(
             b = np.empty((sub.size, a.shape[0]), complex)  # (E, Q), column by column
             sums = []
             parts = zip(equations.parts, equations.throws, strict=True)
+            own, own_couple, own_length = target[sub], target_couple[sub], inputs.length[sub]
             for q, ((_, web_mask), part_throws) in enumerate(parts):
-                # np.take keeps each engine's row in one piece (a[:, mask] would not), so
+                # take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
-                throws = part_throws if target.shape[-1] > 1 else [0]
-                force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
-                couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
+                throws = part_throws if target.shape[-1] > 1 else _FIRST
+                force = own.take(throws, axis=-1).sum(axis=-1)
+                couple = own_couple.take(throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
                 b[:, 2 * q] = -force
-                b[:, 2 * q + 1] = -couple / inputs.length[sub]
+                b[:, 2 * q + 1] = -couple / own_length
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
             live = ~still
@@ -313,7 +324,8 @@ def solve_counterweights(
     totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
     missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))
     missed_moment = w2 * np.abs(totals[1] + target_couple.sum(axis=-1))
-    found = BatchCounterweights(
+    found = record(
+        BatchCounterweights,
         options.method,
         options.cg_radius,
         webs.number,
@@ -514,7 +526,7 @@ def _optimal_patterns(
     for these arguments, when kept). Otherwise, engine by engine, an angle scan and a
     bounded refinement (:func:`optimal_pattern_scan`).
     """
-    if np.any(side == 0):
+    if factors is None and np.any(side == 0):  # (kept factors: no web in the mid-plane)
         found = [optimal_pattern_scan(a, b[i], opposite[i], side) for i in range(len(b))]
         return np.array([f[0] for f in found]), np.array([f[1] for f in found])
     if factors is None:

@@ -44,6 +44,7 @@ Options, input and results are in :mod:`crankbalance.physics.balance_types`.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from typing import Any, TypeVar
 
@@ -61,6 +62,7 @@ from .balance_types import (
     CounterweightOptions,
     ShaftOptions,
     SolverInput,
+    record,
 )
 from .model import EngineBatch, EngineModel
 from .shaking import (
@@ -403,7 +405,7 @@ def solve(
         secondary_set = _shaft_set(2, secondary, shafts)
 
     residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set, moments)
-    return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
+    return record(BatchBalance, cw, extra, primary_set, secondary_set, share, residuals)
 
 
 def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
@@ -611,15 +613,14 @@ def balance_residuals(
     moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
     force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
     moment_forward, moment_backward = each[:, 1, 0], each[:, 1, 1]
-    targeted = np.array(
-        [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
+    components, targeted = _components(
+        orders, cw is not None, primary is not None, secondary is not None
     )
-    balanced = np.all(
-        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
-        axis=-1,
+    balanced = (~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit))).all(
+        axis=-1
     )
-    components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
-    return BatchResiduals(
+    return record(
+        BatchResiduals,
         components,
         targeted,
         force_before,
@@ -632,6 +633,17 @@ def balance_residuals(
         moment_backward,
         balanced,
     )
+
+
+@functools.lru_cache(maxsize=256)
+def _components(
+    orders: int, counterweights: bool, primary: bool, secondary: bool
+) -> tuple[tuple[str, ...], NDArray[np.bool_]]:
+    """The residuals' components (``"rotating"``, ``"order1"``, ...) and which of them the
+    masses asked for target (read-only), for ``orders`` orders."""
+    targeted = np.array([counterweights, primary, secondary] + [False] * (orders - 2))
+    targeted.flags.writeable = False
+    return ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1)), targeted
 
 
 def _residual_start(inputs: SolverInput) -> tuple[NDArray, NDArray, NDArray, NDArray]:

@@ -40,6 +40,7 @@ from .balance_types import (
     CounterweightOptions,
     EngineFailed,
     ShaftOptions,
+    record,
 )
 from .model import EngineModel
 
@@ -456,7 +457,7 @@ def _one_engine(
         )
     r = found.residuals
     residuals = tuple(
-        ComponentResidual(name, *row)
+        record(ComponentResidual, name, *row)
         for name, *row in zip(
             r.components,
             r.targeted.tolist(),
@@ -479,7 +480,8 @@ def _one_engine(
             'angle = "optimal" or method = "individual" can'
         )
     share = None if found.rotating_share is None else found.rotating_share[0]
-    return BalanceResult(
+    return record(
+        BalanceResult,
         cw,
         extra,
         _shafts_of(found.primary),
@@ -545,7 +547,9 @@ def what_is_left(
                     else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
                 )
                 step = next_step(c.component, order, rotation, counterweights, primary, missed)
-                out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
+                out.append(
+                    record(Remaining, c.component, order, quantity, rotation, amount, text, step)
+                )
     return tuple(out)
 
 
@@ -558,7 +562,8 @@ def _counterweights_of(found: BatchCounterweights) -> Counterweights:
     elif found.flipped[0]:
         note = "the counterweights point toward their crankpins (the pattern was flipped)"
     pattern = found.method == "pattern" and not already
-    return Counterweights(
+    return record(
+        Counterweights,
         found.method,
         "halves" if found.halves[0] else "whole",
         found.cg_radius,
