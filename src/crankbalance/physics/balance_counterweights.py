@@ -37,13 +37,12 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, below_round_off
+from ..results import ROUND_OFF, below_round_off, record
 from .balance_types import (
     BatchCounterweights,
     CounterweightOptions,
     EngineFailed,
     SolverInput,
-    record,
 )
 
 

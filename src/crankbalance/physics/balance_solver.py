@@ -52,7 +52,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, engine_scales
+from ..results import ROUND_OFF, engine_scales, record
 from .balance_counterweights import Webs, solve_counterweights, web_geometry
 from .balance_types import (
     BatchBalance,
@@ -62,7 +62,6 @@ from .balance_types import (
     CounterweightOptions,
     ShaftOptions,
     SolverInput,
-    record,
 )
 from .model import EngineBatch, EngineModel
 from .shaking import (

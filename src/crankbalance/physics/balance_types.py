@@ -10,9 +10,9 @@ counterweights; :mod:`crankbalance.physics.balancing` turns a result of one engi
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field, fields
+from dataclasses import dataclass, field
 from functools import cached_property
-from typing import Any, ClassVar, Literal, TypeVar
+from typing import Any, ClassVar, Literal
 
 import numpy as np
 from numpy.typing import NDArray
@@ -24,23 +24,6 @@ from .shaking import BatchFreeForces
 Method = Literal["pattern", "individual"]
 Scope = Literal["auto", "whole", "halves"]
 Arrangement = Literal["pair", "counter-rotating"]
-_Record = TypeVar("_Record")
-_FIELD_NAMES: dict[type, tuple[str, ...]] = {}
-
-
-def record(cls: type[_Record], *values: object) -> _Record:
-    """A frozen dataclass ``cls`` (without ``__post_init__``) of ``values``, every field in
-    its order, built without its generated ``__init__``: the same record (equal, same
-    repr and pickle), for the solver's records of one engine, built on every solve (the
-    frozen ``__init__`` sets each field through ``object.__setattr__``)."""
-    names = _FIELD_NAMES.get(cls)
-    if names is None:
-        names = _FIELD_NAMES[cls] = tuple(f.name for f in fields(cls))  # type: ignore[arg-type]
-    if len(values) != len(names):
-        raise TypeError(f"{cls.__name__} takes {len(names)} fields, not {len(values)}")
-    found = object.__new__(cls)
-    found.__dict__.update(zip(names, values, strict=True))
-    return found
 
 
 # --------------------------------------------------------------------------- options

@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..results import ROUND_OFF, ResultMixin, engine_scales
+from ..results import ROUND_OFF, ResultMixin, engine_scales, record
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import Remaining, next_step
 from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
@@ -40,7 +40,6 @@ from .balance_types import (
     CounterweightOptions,
     EngineFailed,
     ShaftOptions,
-    record,
 )
 from .model import EngineModel
 
