@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, below_round_off, record
+from ..results import ROUND_OFF, record
 from .balance_types import (
     BatchCounterweights,
     CounterweightOptions,
@@ -336,8 +336,9 @@ def solve_counterweights(
         halves.copy(),
         flipped,
         already,
-        below_round_off(missed_force, inputs.force_round_off),
-        below_round_off(missed_moment, inputs.moment_round_off),
+        # below_round_off of sizes (their own sizes)
+        np.where(missed_force <= inputs.force_round_off, 0.0, missed_force),
+        np.where(missed_moment <= inputs.moment_round_off, 0.0, missed_moment),
     )
     # the record's moments and their sums are these (the same expressions): kept, not
     # computed again
@@ -502,8 +503,8 @@ def _pattern_moments(
     """First moment :math:`m_c r_c` of the pattern at one angle per engine (least squares
     with one real unknown): a (Q, W), b (E, Q), opposite (E, W), side (W,), alpha (E,)."""
     coeff = _coefficients(np.exp(1j * (opposite + side * alpha[:, None])), a)
-    num = np.real(np.sum(np.conj(coeff) * b, axis=-1))
-    den = np.sum(np.abs(coeff) ** 2, axis=-1)
+    num = (np.conj(coeff) * b).sum(axis=-1).real
+    den = (np.abs(coeff) ** 2).sum(axis=-1)
     safe = den > _floor(a)
     return np.where(safe, num / np.where(safe, den, 1.0), 0.0)
 
@@ -580,8 +581,8 @@ def _factor2(matrix: NDArray) -> _Factors:
 def _solve2(factors: _Factors, rhs: NDArray) -> tuple[NDArray, NDArray]:
     """:func:`_lstsq2` of the systems of ``factors`` (:func:`_factor2`) for ``rhs`` (E, R)."""
     matrix, q1, r12, u, den2, den1, bad = factors
-    x2 = np.sum(u * rhs, axis=-1) / den2
-    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / den1
+    x2 = (u * rhs).sum(axis=-1) / den2
+    x1 = ((q1 * rhs).sum(axis=-1) - r12 * x2) / den1
     if bad.size:  # the least-norm solutions of all of them at once (issue 30)
         x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2

@@ -412,7 +412,7 @@ def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
     (``"halves"``, paper section 3.1). ``"auto"`` balances the crank as a whole, so a
     crank already balanced as a whole gets no counterweights (issue 27: the V12 and
     flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there)."""
-    return np.full(inputs.size, scope == "halves")
+    return (np.ones if scope == "halves" else np.zeros)(inputs.size, bool)
 
 
 # --------------------------------------------------------------------------- shafts

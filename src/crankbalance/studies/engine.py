@@ -576,7 +576,7 @@ def balance_engine(
         from ..physics.balance_check import verify as time_domain
 
         checked = time_domain(model, result)
-    return BalanceStudy(model, result, checked)
+    return record(BalanceStudy, model, result, checked)
 
 
 # --------------------------------------------------------------------------- the two studies
