@@ -266,7 +266,7 @@ def solve_counterweights(
     alpha = np.zeros(n)
     flipped = np.zeros(n, bool)
     already = np.zeros(n, bool)
-    first = inputs.force_round_off / inputs.speed**2  # first moments at round-off [kg·m]
+    first = inputs.force_round_off / inputs.speed_squared  # first moments at round-off [kg·m]
     for group in webs.groups:
         for scope in ("whole", "halves"):
             sub = group[halves[group] == (scope == "halves")]
@@ -318,7 +318,7 @@ def solve_counterweights(
             flipped[engines] = flip
     # what the counterweights leave of their target, the whole crank's crank-speed forward
     # force and couple (zero when they reach it)
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     moments = mass * options.cg_radius * np.exp(1j * direction)
     totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
     missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))

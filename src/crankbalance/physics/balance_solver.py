@@ -316,7 +316,7 @@ def solve(
             "crank to take the co-rotating half",
         )
     forces = inputs.forces
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     cw: BatchCounterweights | None = None
     share: NDArray[np.complex128] | None = None
     extra: BatchCounterweights | None = None
@@ -525,7 +525,7 @@ def _add_balancing(
     solver has them, less the share) and the extra counterweights to the first order, the
     shafts to their order. Returns views of the after parts: rotating force and couple
     (E,), forward and backward forces, forward and backward couples (E, K)."""
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     rotating_after = parts[:, :, 2, 0]  # (E, 2): the rotating masses' force and couple
     fwd, bwd = parts[:, 0, 2, 1:], parts[:, 0, 3, 1:]
     cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
