@@ -133,31 +133,6 @@ def round_off(engine: EngineScales[Scalar]) -> tuple[Scalar, Scalar]:
     return ROUND_OFF * force, ROUND_OFF * force * length
 
 
-_Record = TypeVar("_Record")
-_FIELD_NAMES: dict[type, tuple[str, ...]] = {}
-
-
-def record(cls: type[_Record], *values: object) -> _Record:
-    """A frozen dataclass ``cls`` (without ``__post_init__``) of ``values``, every field in
-    its order, built without its generated ``__init__``: the same record (equal, same
-    repr and pickle). For the records of one engine's analysis and balancing, built on
-    every call (a frozen ``__init__`` sets each field through ``object.__setattr__``).
-
-    Raises
-    ------
-    TypeError
-        When ``values`` are not one per field.
-    """
-    names = _FIELD_NAMES.get(cls)
-    if names is None:
-        names = _FIELD_NAMES[cls] = tuple(f.name for f in dataclasses.fields(cls))  # type: ignore[arg-type]
-    if len(values) != len(names):
-        raise TypeError(f"{cls.__name__} takes {len(names)} fields, not {len(values)}")
-    found = object.__new__(cls)
-    found.__dict__.update(zip(names, values, strict=True))
-    return found
-
-
 def below_round_off(value: ArrayLike, level: ArrayLike) -> NDArray[Any]:
     """``value`` with every entry whose size is at most ``level`` set to exactly zero.
 

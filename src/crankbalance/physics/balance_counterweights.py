@@ -37,13 +37,8 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, record
-from .balance_types import (
-    BatchCounterweights,
-    CounterweightOptions,
-    EngineFailed,
-    SolverInput,
-)
+from ..results import ROUND_OFF
+from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
 
 
 # --------------------------------------------------------------------------- the webs
@@ -323,8 +318,7 @@ def solve_counterweights(
     totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
     missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))
     missed_moment = w2 * np.abs(totals[1] + target_couple.sum(axis=-1))
-    found = record(
-        BatchCounterweights,
+    found = BatchCounterweights(
         options.method,
         options.cg_radius,
         webs.number,

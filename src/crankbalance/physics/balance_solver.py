@@ -52,7 +52,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, engine_scales, record
+from ..results import ROUND_OFF, engine_scales
 from .balance_counterweights import Webs, solve_counterweights, web_geometry
 from .balance_types import (
     BatchBalance,
@@ -404,7 +404,7 @@ def solve(
         secondary_set = _shaft_set(2, secondary, shafts)
 
     residuals = balance_residuals(inputs, cw, share, extra, primary_set, secondary_set, moments)
-    return record(BatchBalance, cw, extra, primary_set, secondary_set, share, residuals)
+    return BatchBalance(cw, extra, primary_set, secondary_set, share, residuals)
 
 
 def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
@@ -615,11 +615,11 @@ def balance_residuals(
     components, targeted = _components(
         orders, cw is not None, primary is not None, secondary is not None
     )
-    balanced = (~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit))).all(
-        axis=-1
+    balanced = np.all(
+        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
+        axis=-1,
     )
-    return record(
-        BatchResiduals,
+    return BatchResiduals(
         components,
         targeted,
         force_before,

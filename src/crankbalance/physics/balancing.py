@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..results import ROUND_OFF, ResultMixin, engine_scales, record
+from ..results import ROUND_OFF, ResultMixin, engine_scales
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import Remaining, next_step
 from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
@@ -456,7 +456,7 @@ def _one_engine(
         )
     r = found.residuals
     residuals = tuple(
-        record(ComponentResidual, name, *row)
+        ComponentResidual(name, *row)
         for name, *row in zip(
             r.components,
             r.targeted.tolist(),
@@ -479,8 +479,7 @@ def _one_engine(
             'angle = "optimal" or method = "individual" can'
         )
     share = None if found.rotating_share is None else found.rotating_share[0]
-    return record(
-        BalanceResult,
+    return BalanceResult(
         cw,
         extra,
         _shafts_of(found.primary),
@@ -542,9 +541,7 @@ def what_is_left(
                 else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
             )
             step = next_step(c.component, order, rotation, counterweights, primary, missed)
-            out.append(
-                record(Remaining, c.component, order, quantity, rotation, amount, text, step)
-            )
+            out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
     return tuple(out)
 
 
@@ -557,8 +554,7 @@ def _counterweights_of(found: BatchCounterweights) -> Counterweights:
     elif found.flipped[0]:
         note = "the counterweights point toward their crankpins (the pattern was flipped)"
     pattern = found.method == "pattern" and not already
-    return record(
-        Counterweights,
+    return Counterweights(
         found.method,
         "halves" if found.halves[0] else "whole",
         found.cg_radius,

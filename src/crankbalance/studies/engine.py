@@ -16,7 +16,7 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
-from ..results import ResultMixin, record, round_off, to_jsonable
+from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
 from .build import build_model
@@ -199,17 +199,16 @@ def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
     )
     v[np.abs(v) <= level] = 0.0  # below_round_off's rule, in place on this own copy
     rotating_force, rotating_couple, rotating_roll = v[-3:].tolist()
-    return record(  # FreeForces' fields in their order
-        FreeForces,
-        f.orders,
-        v[:k],  # force_forward
-        v[k : 2 * k],  # force_backward
-        v[2 * k : 3 * k],  # couple_forward
-        v[3 * k : 4 * k],  # couple_backward
-        rotating_force,
-        rotating_couple,
-        v[4 * k : 5 * k],  # roll
-        rotating_roll,
+    return FreeForces(
+        orders=f.orders,
+        force_forward=v[:k],
+        force_backward=v[k : 2 * k],
+        couple_forward=v[2 * k : 3 * k],
+        couple_backward=v[3 * k : 4 * k],
+        rotating_force=rotating_force,
+        rotating_couple=rotating_couple,
+        roll=v[4 * k : 5 * k],
+        rotating_roll=rotating_roll,
     )
 
 
@@ -333,7 +332,7 @@ def analyze(
         if len(point) != 3 or not all(math.isfinite(v) for v in point):
             raise InputError("moment_point", moment_point, "three finite lengths x, y, z [m]")
         model = with_moment_point(model, point)
-    return record(Analysis, model, without_round_off(model, free_forces(model, orders)))
+    return Analysis(model=model, forces=without_round_off(model, free_forces(model, orders)))
 
 
 # --------------------------------------------------------------------------- balancing study
@@ -576,7 +575,7 @@ def balance_engine(
         from ..physics.balance_check import verify as time_domain
 
         checked = time_domain(model, result)
-    return record(BalanceStudy, model, result, checked)
+    return BalanceStudy(model, result, checked)
 
 
 # --------------------------------------------------------------------------- the two studies
