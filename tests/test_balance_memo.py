@@ -105,3 +105,11 @@ def test_the_counterweights_moments_are_computed_once_read_only(variant: dict) -
     assert "moments" not in vars(fresh) and "moment_sums" not in vars(fresh)
     assert fresh.moments.tobytes() == formula.tobytes() and fresh.moments is fresh.moments
     assert [a.tobytes() for a in fresh.moment_sums] == [total.tobytes(), couple.tobytes()]
+
+
+def test_the_squared_speed_is_kept_by_the_input_read_only() -> None:
+    inputs = model_input(build_model(load_engine("v8-crossplane")), 8)
+    kept = inputs.speed_squared
+    assert kept is inputs.speed_squared  # computed once
+    assert np.array_equal(kept, inputs.speed**2)
+    assert not kept.flags.writeable

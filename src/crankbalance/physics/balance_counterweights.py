@@ -37,7 +37,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
-from ..results import ROUND_OFF, below_round_off
+from ..results import ROUND_OFF
 from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
 
 
@@ -206,6 +206,10 @@ def _parts(
 
 
 # --------------------------------------------------------------------------- counterweights
+_FIRST = np.zeros(1, np.intp)  # the one column of a whole crank's target (E, 1)
+_FIRST.flags.writeable = False
+
+
 def solve_counterweights(
     inputs: SolverInput,
     webs: Webs,
@@ -257,7 +261,7 @@ def solve_counterweights(
     alpha = np.zeros(n)
     flipped = np.zeros(n, bool)
     already = np.zeros(n, bool)
-    first = inputs.force_round_off / inputs.speed**2  # first moments at round-off [kg·m]
+    first = inputs.force_round_off / inputs.speed_squared  # first moments at round-off [kg·m]
     for group in webs.groups:
         for scope in ("whole", "halves"):
             sub = group[halves[group] == (scope == "halves")]
@@ -268,16 +272,17 @@ def solve_counterweights(
             b = np.empty((sub.size, a.shape[0]), complex)  # (E, Q), column by column
             sums = []
             parts = zip(equations.parts, equations.throws, strict=True)
+            own, own_couple, own_length = target[sub], target_couple[sub], inputs.length[sub]
             for q, ((_, web_mask), part_throws) in enumerate(parts):
-                # np.take keeps each engine's row in one piece (a[:, mask] would not), so
+                # take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
-                throws = part_throws if target.shape[-1] > 1 else [0]
-                force = np.take(target[sub], throws, axis=-1).sum(axis=-1)
-                couple = np.take(target_couple[sub], throws, axis=-1).sum(axis=-1)
+                throws = part_throws if target.shape[-1] > 1 else _FIRST
+                force = own.take(throws, axis=-1).sum(axis=-1)
+                couple = own_couple.take(throws, axis=-1).sum(axis=-1)
                 sums.append((web_mask, force, couple))
                 b[:, 2 * q] = -force
-                b[:, 2 * q + 1] = -couple / inputs.length[sub]
+                b[:, 2 * q + 1] = -couple / own_length
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
             live = ~still
@@ -308,7 +313,7 @@ def solve_counterweights(
             flipped[engines] = flip
     # what the counterweights leave of their target, the whole crank's crank-speed forward
     # force and couple (zero when they reach it)
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     moments = mass * options.cg_radius * np.exp(1j * direction)
     totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
     missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))
@@ -325,8 +330,9 @@ def solve_counterweights(
         halves.copy(),
         flipped,
         already,
-        below_round_off(missed_force, inputs.force_round_off),
-        below_round_off(missed_moment, inputs.moment_round_off),
+        # below_round_off of sizes (their own sizes)
+        np.where(missed_force <= inputs.force_round_off, 0.0, missed_force),
+        np.where(missed_moment <= inputs.moment_round_off, 0.0, missed_moment),
     )
     # the record's moments and their sums are these (the same expressions): kept, not
     # computed again
@@ -491,8 +497,8 @@ def _pattern_moments(
     """First moment :math:`m_c r_c` of the pattern at one angle per engine (least squares
     with one real unknown): a (Q, W), b (E, Q), opposite (E, W), side (W,), alpha (E,)."""
     coeff = _coefficients(np.exp(1j * (opposite + side * alpha[:, None])), a)
-    num = np.real(np.sum(np.conj(coeff) * b, axis=-1))
-    den = np.sum(np.abs(coeff) ** 2, axis=-1)
+    num = (np.conj(coeff) * b).sum(axis=-1).real
+    den = (np.abs(coeff) ** 2).sum(axis=-1)
     safe = den > _floor(a)
     return np.where(safe, num / np.where(safe, den, 1.0), 0.0)
 
@@ -514,7 +520,7 @@ def _optimal_patterns(
     for these arguments, when kept). Otherwise, engine by engine, an angle scan and a
     bounded refinement (:func:`optimal_pattern_scan`).
     """
-    if np.any(side == 0):
+    if factors is None and np.any(side == 0):  # (kept factors: no web in the mid-plane)
         found = [optimal_pattern_scan(a, b[i], opposite[i], side) for i in range(len(b))]
         return np.array([f[0] for f in found]), np.array([f[1] for f in found])
     if factors is None:
@@ -569,8 +575,8 @@ def _factor2(matrix: NDArray) -> _Factors:
 def _solve2(factors: _Factors, rhs: NDArray) -> tuple[NDArray, NDArray]:
     """:func:`_lstsq2` of the systems of ``factors`` (:func:`_factor2`) for ``rhs`` (E, R)."""
     matrix, q1, r12, u, den2, den1, bad = factors
-    x2 = np.sum(u * rhs, axis=-1) / den2
-    x1 = (np.sum(q1 * rhs, axis=-1) - r12 * x2) / den1
+    x2 = (u * rhs).sum(axis=-1) / den2
+    x1 = ((q1 * rhs).sum(axis=-1) - r12 * x2) / den1
     if bad.size:  # the least-norm solutions of all of them at once (issue 30)
         x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2

@@ -44,6 +44,7 @@ Options, input and results are in :mod:`crankbalance.physics.balance_types`.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import replace
 from typing import Any, TypeVar
 
@@ -315,7 +316,7 @@ def solve(
             "crank to take the co-rotating half",
         )
     forces = inputs.forces
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     cw: BatchCounterweights | None = None
     share: NDArray[np.complex128] | None = None
     extra: BatchCounterweights | None = None
@@ -411,7 +412,7 @@ def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
     (``"halves"``, paper section 3.1). ``"auto"`` balances the crank as a whole, so a
     crank already balanced as a whole gets no counterweights (issue 27: the V12 and
     flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there)."""
-    return np.full(inputs.size, scope == "halves")
+    return (np.ones if scope == "halves" else np.zeros)(inputs.size, bool)
 
 
 # --------------------------------------------------------------------------- shafts
@@ -524,7 +525,7 @@ def _add_balancing(
     solver has them, less the share) and the extra counterweights to the first order, the
     shafts to their order. Returns views of the after parts: rotating force and couple
     (E,), forward and backward forces, forward and backward couples (E, K)."""
-    w2 = inputs.speed**2
+    w2 = inputs.speed_squared
     rotating_after = parts[:, :, 2, 0]  # (E, 2): the rotating masses' force and couple
     fwd, bwd = parts[:, 0, 2, 1:], parts[:, 0, 3, 1:]
     cfwd, cbwd = parts[:, 1, 2, 1:], parts[:, 1, 3, 1:]
@@ -611,14 +612,13 @@ def balance_residuals(
     moment_before, moment_after = both[:, 1, 0], both[:, 1, 1]
     force_forward, force_backward = each[:, 0, 0], each[:, 0, 1]
     moment_forward, moment_backward = each[:, 1, 0], each[:, 1, 1]
-    targeted = np.array(
-        [cw is not None, primary is not None, secondary is not None] + [False] * (orders - 2)
+    components, targeted = _components(
+        orders, cw is not None, primary is not None, secondary is not None
     )
     balanced = np.all(
         ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
         axis=-1,
     )
-    components = ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1))
     return BatchResiduals(
         components,
         targeted,
@@ -632,6 +632,17 @@ def balance_residuals(
         moment_backward,
         balanced,
     )
+
+
+@functools.lru_cache(maxsize=256)
+def _components(
+    orders: int, counterweights: bool, primary: bool, secondary: bool
+) -> tuple[tuple[str, ...], NDArray[np.bool_]]:
+    """The residuals' components (``"rotating"``, ``"order1"``, ...) and which of them the
+    masses asked for target (read-only), for ``orders`` orders."""
+    targeted = np.array([counterweights, primary, secondary] + [False] * (orders - 2))
+    targeted.flags.writeable = False
+    return ("rotating",) + tuple(f"order{k}" for k in range(1, orders + 1)), targeted
 
 
 def _residual_start(inputs: SolverInput) -> tuple[NDArray, NDArray, NDArray, NDArray]:

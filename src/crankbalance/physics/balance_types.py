@@ -156,6 +156,14 @@ class SolverInput:
         """Number of engines E."""
         return int(self.speed.size)
 
+    @cached_property
+    def speed_squared(self) -> NDArray[np.float64]:
+        """``speed**2`` of every engine, shape (E,) [rad²/s²]: computed once per input
+        (one engine's is kept by its model), read-only."""
+        found = self.speed**2
+        found.flags.writeable = False
+        return found
+
 
 # --------------------------------------------------------------------------- errors
 class EngineFailed(Exception):

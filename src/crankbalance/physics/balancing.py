@@ -520,32 +520,28 @@ def what_is_left(
     """
     out: list[Remaining] = []
     for c in residuals:
-        if (
-            max(
-                c.force_forward_after,
-                c.force_backward_after,
-                c.moment_forward_after,
-                c.moment_backward_after,
-            )
-            <= 0.0
-        ):
+        ff, fb = c.force_forward_after, c.force_backward_after
+        mf, mb = c.moment_forward_after, c.moment_backward_after
+        if max(ff, fb, mf, mb) <= 0.0:
             continue  # nothing left of this component
-        order = 1 if c.component == "rotating" else int(c.component.removeprefix("order"))
-        for quantity, unit, forward, backward in (
-            ("force", "N", c.force_forward_after, c.force_backward_after),
-            ("couple", "N·m", c.moment_forward_after, c.moment_backward_after),
-        ):
-            for rotation, amount in (("forward", forward), ("backward", backward)):
-                if amount <= 0.0:
-                    continue
-                source = "the rotating masses'" if c.component == "rotating" else f"order-{order}"
-                text = (
-                    f"{source} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
-                    if c.component == "rotating"
-                    else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
-                )
-                step = next_step(c.component, order, rotation, counterweights, primary, missed)
-                out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
+        sizes = (
+            ("force", "N", "forward", ff),
+            ("force", "N", "backward", fb),
+            ("couple", "N·m", "forward", mf),
+            ("couple", "N·m", "backward", mb),
+        )
+        rotating = c.component == "rotating"
+        order = 1 if rotating else int(c.component.removeprefix("order"))
+        for quantity, unit, rotation, amount in sizes:
+            if amount <= 0.0:
+                continue
+            text = (
+                f"the rotating masses' {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+                if rotating
+                else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+            )
+            step = next_step(c.component, order, rotation, counterweights, primary, missed)
+            out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
     return tuple(out)
 
 

@@ -551,7 +551,7 @@ def balance_engine(
 
     from ..physics.balancing import balance
 
-    orders = parse_options(AnalysisOptions, {"orders": orders}).orders
+    orders = _orders(orders) if type(orders) is int else _orders.__wrapped__(orders)
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
     model = build_model(spec)
     cw, primary, secondary = balance_options(spec)
