@@ -14,6 +14,7 @@ import itertools
 import math
 import os
 import sys
+import warnings
 from pathlib import Path
 from typing import Any
 
@@ -240,6 +241,32 @@ def test_the_workers_of_a_local_cluster_keep_glibcs_memory_trimming(
         threads = client.run(os.environ.get, "OPENBLAS_NUM_THREADS")
     assert list(trim.values()) == [None]
     assert list(threads.values()) == ["1"]
+
+
+@pytest.mark.slow
+def test_a_local_cluster_does_not_take_a_fixed_port() -> None:
+    """The cluster a run starts binds its scheduler's HTTP server to a free port of this
+    host: with port 8787 (dask's default) held by another program (a user's own dask
+    dashboard, or a second run on the machine) it starts without a warning (a warning is an
+    error in this suite, and it reached the user's terminal)."""
+    import socket
+
+    holder = socket.socket()
+    try:
+        holder.bind(("", 8787))
+        holder.listen()
+    except OSError:  # another program holds it already: the case under test
+        pass
+    try:
+        with hang_guard(600), warnings.catch_warnings():
+            warnings.simplefilter("error")
+            with local_cluster(1) as cluster:
+                port = cluster.scheduler.http_server.port
+                host = cluster.scheduler.http_server.address
+    finally:
+        holder.close()
+    assert port != 8787
+    assert host == "127.0.0.1"
 
 
 def test_a_failing_chunk_names_its_candidates_and_leaves_no_file(tmp_path: Path) -> None:

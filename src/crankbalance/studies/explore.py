@@ -544,7 +544,8 @@ def spread(scheduler: str | None, workers: int | None) -> int:
 
 def local_cluster(workers: int | None) -> Any:
     """A ``dask.distributed.LocalCluster`` of ``workers`` processes of one thread each, as
-    ``run(..., workers=N)`` starts it: no dashboard, quiet logs, and the workers'
+    ``run(..., workers=N)`` starts it: no dashboard (the scheduler's HTTP server on a free
+    port of this host, not dask's fixed 8787), quiet logs, and the workers'
     environment :data:`~crankbalance.physics.explore.work.WORKER_ENVIRON` (glibc's own
     memory trimming instead of dask's, which costs a task half its CPU time again).
 
@@ -568,6 +569,10 @@ def local_cluster(workers: int | None) -> Any:
             threads_per_worker=1,
             processes=True,
             dashboard_address=None,
+            # the scheduler's HTTP server (health and metrics, no dashboard) on a free port
+            # of this host: dask's default 8787 warns, or clashes, when another cluster or
+            # dashboard holds it
+            scheduler_kwargs={"dashboard_address": "127.0.0.1:0"},
             silence_logs=50,  # logging.CRITICAL: no tracebacks of the shutdown
         )
 
