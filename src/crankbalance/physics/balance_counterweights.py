@@ -262,9 +262,14 @@ def solve_counterweights(
     flipped = np.zeros(n, bool)
     already = np.zeros(n, bool)
     first = inputs.force_round_off / inputs.speed_squared  # first moments at round-off [kg·m]
+    # the scopes the engines ask for: an engine balanced as a whole takes the whole
+    # crank's equations, the others each half's (a batch of one asks for one)
+    in_halves = int(np.count_nonzero(halves))
+    scopes = ("whole",) if in_halves == 0 else ("halves",) if in_halves == n else None
+    solved = False  # whether any engine got counterweights (else their moments are zero)
     for group in webs.groups:
-        for scope in ("whole", "halves"):
-            sub = group[halves[group] == (scope == "halves")]
+        for scope in scopes or ("whole", "halves"):
+            sub = group if scopes else group[halves[group] == (scope == "halves")]
             if not sub.size:
                 continue
             equations = _equations(inputs, webs, options, scope, group)
@@ -272,24 +277,32 @@ def solve_counterweights(
             b = np.empty((sub.size, a.shape[0]), complex)  # (E, Q), column by column
             sums = []
             parts = zip(equations.parts, equations.throws, strict=True)
-            own, own_couple, own_length = target[sub], target_couple[sub], inputs.length[sub]
+            if sub.size == n:  # every engine, in order (one group, one scope)
+                own, own_couple, own_length = target, target_couple, inputs.length
+            else:
+                own, own_couple, own_length = target[sub], target_couple[sub], inputs.length[sub]
             for q, ((_, web_mask), part_throws) in enumerate(parts):
                 # take keeps each engine's row in one piece (a[:, mask] would not), so
                 # its sum runs alike in a batch of one and of thousands
                 # (a whole crank's target (E, 1) is its own sum)
                 throws = part_throws if target.shape[-1] > 1 else _FIRST
-                force = own.take(throws, axis=-1).sum(axis=-1)
-                couple = own_couple.take(throws, axis=-1).sum(axis=-1)
+                force = np.add.reduce(own.take(throws, axis=-1), -1)
+                couple = np.add.reduce(own_couple.take(throws, axis=-1), -1)
                 sums.append((web_mask, force, couple))
                 b[:, 2 * q] = -force
                 b[:, 2 * q + 1] = -couple / own_length
             still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
             already[sub] = still
-            live = ~still
-            if not live.any():
+            balanced = int(np.count_nonzero(still))
+            if balanced == sub.size:
                 continue
+            live = None if balanced == 0 else ~still  # None: every engine of sub
             _check_planes(inputs, webs, options, sub, live, sums, equations.planes)
-            engines, b = sub[live], b[live]
+            if live is None:
+                engines = sub
+            else:
+                engines, b = sub[live], b[live]
+            solved = True
             if options.method == "individual":
                 # least sum |v|^2 among the exact solutions
                 pinv = equations.pinv  # (W, Q)
@@ -314,10 +327,14 @@ def solve_counterweights(
     # what the counterweights leave of their target, the whole crank's crank-speed forward
     # force and couple (zero when they reach it)
     w2 = inputs.speed_squared
-    moments = mass * options.cg_radius * np.exp(1j * direction)
-    totals = (moments.sum(axis=-1), (moments * webs.position).sum(axis=-1))
-    missed_force = w2 * np.abs(totals[0] + target.sum(axis=-1))
-    missed_moment = w2 * np.abs(totals[1] + target_couple.sum(axis=-1))
+    if solved:
+        moments = mass * options.cg_radius * np.exp(1j * direction)
+        totals = (np.add.reduce(moments, -1), np.add.reduce(moments * webs.position, -1))
+    else:  # no mass anywhere: the same zeros (+0) the expressions above give
+        moments = np.zeros((n, count), complex)
+        totals = (np.zeros(n, complex), np.zeros(n, complex))
+    missed_force = w2 * np.abs(totals[0] + np.add.reduce(target, -1))
+    missed_moment = w2 * np.abs(totals[1] + np.add.reduce(target_couple, -1))
     found = BatchCounterweights(
         options.method,
         options.cg_radius,
@@ -449,14 +466,14 @@ def _check_planes(
     webs: Webs,
     options: CounterweightOptions,
     sub: NDArray,
-    live: NDArray,
+    live: NDArray | None,
     sums: list[tuple[NDArray, NDArray, NDArray]],
     planes: list[str],
 ) -> None:
     """A part without counterweight, or all its counterweights in one plane while a
     couple is to be cancelled: :class:`EngineFailed` naming the first such engine
-    (``planes``: each part's, :class:`_Equations`)."""
-    couple_first = inputs.moment_round_off[sub] / inputs.speed[sub] ** 2  # [kg·m²]
+    (``planes``: each part's, :class:`_Equations`; ``live``: the engines of ``sub`` to
+    check, None for all)."""
     for (web_mask, force, couple), kind in zip(sums, planes, strict=True):
         if kind == "none":
             raise EngineFailed(
@@ -465,11 +482,14 @@ def _check_planes(
                     list(options.webs or []),
                     "a part of the crank that needs balancing has no counterweight",
                 ),
-                int(sub[live][0]),
+                int(sub[0] if live is None else sub[live][0]),
             )
         if kind == "one":
+            couple_first = inputs.moment_round_off[sub] / inputs.speed[sub] ** 2  # [kg·m²]
             plane = webs.position[sub, np.flatnonzero(web_mask)[0]]
-            bad = live & (np.abs(couple - plane * force) > couple_first)
+            bad = np.abs(couple - plane * force) > couple_first
+            if live is not None:
+                bad &= live
             if bad.any():
                 i = int(np.flatnonzero(bad)[0])
                 raise EngineFailed(
@@ -575,8 +595,8 @@ def _factor2(matrix: NDArray) -> _Factors:
 def _solve2(factors: _Factors, rhs: NDArray) -> tuple[NDArray, NDArray]:
     """:func:`_lstsq2` of the systems of ``factors`` (:func:`_factor2`) for ``rhs`` (E, R)."""
     matrix, q1, r12, u, den2, den1, bad = factors
-    x2 = (u * rhs).sum(axis=-1) / den2
-    x1 = ((q1 * rhs).sum(axis=-1) - r12 * x2) / den1
+    x2 = np.add.reduce(u * rhs, -1) / den2
+    x1 = (np.add.reduce(q1 * rhs, -1) - r12 * x2) / den1
     if bad.size:  # the least-norm solutions of all of them at once (issue 30)
         x1[bad], x2[bad] = _least_norm2(matrix[bad], rhs[bad])
     return x1, x2
