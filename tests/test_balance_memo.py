@@ -65,9 +65,10 @@ def test_the_solver_input_is_kept_by_the_model_read_only() -> None:
             assert not value.flags.writeable
     balance(model, CounterweightOptions(cg_radius=0.04))
     kinds = {key[0] for key in first.memo}  # kept for the next call, read-only
-    assert kinds == {"webs", "equations", "pattern", "residuals"}
+    assert kinds == {"webs", "equations", "pattern", "residuals", "halves"}
     webs = next(v for k, v in first.memo.items() if k[0] == "webs")
     assert not webs.position.flags.writeable
+    assert not first.memo[("halves", False)].flags.writeable
     assert not any(a.flags.writeable for a in first.memo[("residuals",)])
 
 

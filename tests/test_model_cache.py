@@ -12,7 +12,7 @@ import pytest
 from crankbalance.io.engine_file import load_engine
 from crankbalance.physics.shaking import cylinder_coefficients, free_forces, roll_phasors
 from crankbalance.studies.build import build_model
-from crankbalance.studies.engine import analyze
+from crankbalance.studies.engine import analyze, balance_options
 
 
 def test_an_equal_spec_gets_the_same_model() -> None:
@@ -30,6 +30,17 @@ def test_a_changed_spec_gets_its_own_model() -> None:
     assert hash(faster) != hash(spec)
     assert build_model(faster).speed == 2 * model.speed
     assert build_model(spec) is model
+
+
+def test_an_equal_spec_gets_the_same_balancing_options_a_changed_one_its_own() -> None:
+    spec = load_engine("paper-inline3")  # a preset with a [counterweights] table
+    first = balance_options(spec)
+    assert balance_options(load_engine("paper-inline3")) is first  # frozen options, kept
+    counterweights = spec.counterweights
+    assert counterweights is not None
+    wider = spec.replace(counterweights=counterweights.replace(cg_radius=0.06))
+    assert balance_options(wider)[0].cg_radius == 0.06
+    assert first[0].cg_radius == counterweights.cg_radius  # the kept ones did not change
 
 
 def test_a_kept_model_cannot_be_changed_in_place() -> None:

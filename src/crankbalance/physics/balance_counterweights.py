@@ -291,7 +291,7 @@ def solve_counterweights(
                 sums.append((web_mask, force, couple))
                 b[:, 2 * q] = -force
                 b[:, 2 * q + 1] = -couple / own_length
-            still = np.abs(b).max(axis=-1, initial=0.0) <= first[sub]
+            still = np.maximum.reduce(np.abs(b), -1, initial=0.0) <= first[sub]
             already[sub] = still
             balanced = int(np.count_nonzero(still))
             if balanced == sub.size:

@@ -411,8 +411,14 @@ def _halves(inputs: SolverInput, scope: str) -> NDArray[np.bool_]:
     """Whether each engine's crank halves are balanced on their own: only when asked
     (``"halves"``, paper section 3.1). ``"auto"`` balances the crank as a whole, so a
     crank already balanced as a whole gets no counterweights (issue 27: the V12 and
-    flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there)."""
-    return (np.ones if scope == "halves" else np.zeros)(inputs.size, bool)
+    flat-6 were given 7-50 kg by the old ``"auto"``, which took halves there). Kept by
+    the input (read-only)."""
+    key = ("halves", scope == "halves")
+    found: NDArray[np.bool_] | None = inputs.memo.get(key)
+    if found is None:
+        found = inputs.memo[key] = np.full(inputs.size, scope == "halves")
+        found.flags.writeable = False
+    return found
 
 
 # --------------------------------------------------------------------------- shafts
@@ -615,9 +621,8 @@ def balance_residuals(
     components, targeted = _components(
         orders, cw is not None, primary is not None, secondary is not None
     )
-    balanced = np.all(
-        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)),
-        axis=-1,
+    balanced = np.logical_and.reduce(  # np.all without its Python wrapper
+        ~targeted | ((force_after <= force_limit) & (moment_after <= moment_limit)), -1
     )
     return BatchResiduals(
         components,

@@ -8,6 +8,7 @@ import math
 import os
 from collections.abc import Sequence
 from dataclasses import dataclass
+from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -19,7 +20,7 @@ from ..physics.shaking import Curves, FreeForces, curves, free_forces
 from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
-from .build import build_model
+from .build import BUILD_CACHE, build_model
 
 if TYPE_CHECKING:  # the verification and the solver are imported when asked for
     from numpy.typing import ArrayLike, NDArray
@@ -345,8 +346,18 @@ def balance_options(
     """Solver options from an engine spec's [counterweights] and [balance_shafts] tables.
 
     Without a [counterweights] table the crank gets counterweights on every web at the
-    crank radius, at the optimal angle (least mass), with no balance factor.
+    crank radius, at the optimal angle (least mass), with no balance factor. The options
+    are frozen: an equal spec among the last :data:`~crankbalance.studies.build.BUILD_CACHE`
+    seen gets the same ones.
     """
+    return _balance_options(spec)
+
+
+@functools.lru_cache(maxsize=BUILD_CACHE)
+def _balance_options(
+    spec: EngineSpec,
+) -> tuple[CounterweightOptions, ShaftOptions | None, ShaftOptions | None]:
+    """:func:`balance_options`, kept by the spec (as its built model is, issue 30)."""
     from ..physics.balancing import CounterweightOptions, ShaftOptions
 
     c = spec.counterweights
@@ -525,6 +536,16 @@ def verification_dict(verification: Verification) -> dict[str, Any]:
     }
 
 
+@functools.cache
+def _balancing() -> ModuleType:
+    """:mod:`crankbalance.physics.balancing`, imported at the first balancing (not on the
+    analysis path) and then read from here: a relative import statement costs about 1 us a
+    call."""
+    from ..physics import balancing
+
+    return balancing
+
+
 def balance_engine(
     engine: str | os.PathLike[str] | EngineSpec,
     orders: int = 8,
@@ -549,8 +570,7 @@ def balance_engine(
     """
     import dataclasses
 
-    from ..physics.balancing import balance
-
+    balance = _balancing().balance
     orders = _orders(orders) if type(orders) is int else _orders.__wrapped__(orders)
     spec = engine if isinstance(engine, EngineSpec) else load_engine(engine)
     model = build_model(spec)
