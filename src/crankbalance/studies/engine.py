@@ -182,24 +182,29 @@ def without_round_off(model: EngineModel, forces: FreeForces) -> FreeForces:
     them. The levels are the model's own, kept by it
     (:attr:`~crankbalance.physics.model.EngineModel.derived`)."""
     f, k = forces, forces.orders.size
-    level = model.derived.get(("round_off", k))
-    if level is None:  # each value's level, in the order of the values below
+    kept = model.derived.get(("round_off", k))
+    if kept is None:  # each array value's level, in the order of the values below
         force, moment = round_off(model)
-        level = np.repeat([force, moment, force, moment], [2 * k, 3 * k, 1, 2])
+        level = np.repeat([force, force, moment, moment, moment], k)
         level.flags.writeable = False
-        model.derived[("round_off", k)] = level
+        kept = model.derived[("round_off", k)] = (level, float(force), float(moment))
+    level, force_level, moment_level = kept
     v = np.concatenate(
-        (
-            f.force_forward,
-            f.force_backward,
-            f.couple_forward,
-            f.couple_backward,
-            f.roll,
-            (f.rotating_force, f.rotating_couple, f.rotating_roll),
-        )
+        (f.force_forward, f.force_backward, f.couple_forward, f.couple_backward, f.roll)
     )
     v[np.abs(v) <= level] = 0.0  # below_round_off's rule, in place on this own copy
-    rotating_force, rotating_couple, rotating_roll = v[-3:].tolist()
+    # the three rotating values by the same rule, as Python numbers (abs: the same hypot)
+    rotating_force, rotating_couple, rotating_roll = (
+        f.rotating_force,
+        f.rotating_couple,
+        f.rotating_roll,
+    )
+    if abs(rotating_force) <= force_level:
+        rotating_force = 0j
+    if abs(rotating_couple) <= moment_level:
+        rotating_couple = 0j
+    if abs(rotating_roll) <= moment_level:
+        rotating_roll = 0j
     return FreeForces(
         orders=f.orders,
         force_forward=v[:k],
