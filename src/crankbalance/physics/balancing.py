@@ -456,8 +456,8 @@ def _one_engine(
         )
     r = found.residuals
     residuals = tuple(
-        ComponentResidual(name, *row)
-        for name, *row in zip(
+        ComponentResidual(*row)  # (name, targeted, the eight sizes)
+        for row in zip(
             r.components,
             r.targeted.tolist(),
             r.force_before[0].tolist(),
