@@ -417,6 +417,14 @@ def test_counterweight_figures_match_optimum() -> None:
     assert area == pytest.approx(float(props.area) * 1e6, rel=1e-3), "drawn to scale"
     cg = [t for t in prof.data if t.name.startswith("CG")][0]
     assert cg.y[0] == pytest.approx(float(props.cg_radius) * 1e3)
+    # a front larger than the points drawn: evenly along it, both ends, the whole count named
+    small = pareto_front(o, max_points=5)
+    assert o.pareto.size > 5
+    drawn = [t for t in small.data if t.name.startswith("Pareto")][0]
+    assert drawn.name == f"Pareto front ({o.pareto.size}, 5 drawn)"
+    assert np.asarray(drawn.x).size == 5
+    ends = o.pareto[[0, -1]]
+    assert np.asarray(drawn.y)[[0, -1]] == pytest.approx(o.mass[ends] * 1e3)
 
 
 def test_counterweight_drawing_has_the_crank_parts_at_their_radii() -> None:

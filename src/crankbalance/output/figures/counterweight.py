@@ -26,9 +26,12 @@ if TYPE_CHECKING:  # pragma: no cover
 
 def pareto_front(optimum: CounterweightOptimum, max_points: int = 4000) -> go.Figure:
     """Counterweight designs: every feasible design found (a sample of at most
-    ``max_points``), the Pareto front of mass versus radial space, and the least-mass and
-    least-radius designs
-    (:class:`~crankbalance.physics.counterweight_optimize.CounterweightOptimum`)."""
+    ``max_points``), the Pareto front of mass versus radial space (at most ``max_points`` of
+    it, evenly along the front and both its ends: a run of the budget's size has a front of
+    about 100 000 designs, which no browser draws as SVG markers in good time), and the
+    least-mass and least-radius designs
+    (:class:`~crankbalance.physics.counterweight_optimize.CounterweightOptimum`); each
+    legend gives the whole number."""
     go = plotly_go()
     radius = np.asarray(optimum.radius) * 1e3
     mass = np.asarray(optimum.mass) * 1e3
@@ -50,12 +53,16 @@ def pareto_front(optimum: CounterweightOptimum, max_points: int = 4000) -> go.Fi
             )
         )
     front = np.asarray(optimum.pareto, dtype=int)
+    drawn = front
+    if front.size > max_points:  # evenly along the front, its two ends kept
+        drawn = front[np.unique(np.linspace(0, front.size - 1, max_points).round().astype(int))]
     fig.add_trace(
         go.Scatter(
-            x=radius[front],
-            y=mass[front],
+            x=radius[drawn],
+            y=mass[drawn],
             mode="lines+markers",
-            name=f"Pareto front ({front.size})",
+            name=f"Pareto front ({front.size}"
+            + (f", {drawn.size} drawn)" if drawn.size < front.size else ")"),
             line={"color": COLORS["forward"], "width": 2},
             marker={"size": 5},
         )
