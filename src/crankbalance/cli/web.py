@@ -32,7 +32,18 @@ def web(port: int, preset: str, show: bool) -> None:
 
     if preset not in list_presets():
         raise InputError("--preset", preset, "unknown preset; `crankbalance presets` lists them")
-    require_extra("web")
+    import importlib.util
+
+    from ..web.startup import import_nicegui
+
+    try:
+        import_nicegui()  # first, without the socket.io clients (web/startup.py)
+    except ImportError:
+        pass  # said by require_extra below
+    # kaleido is looked for, not imported: the server imports it when a PDF is asked for
+    require_extra("web", "nicegui", "plotly")
+    if importlib.util.find_spec("kaleido") is None:
+        require_extra("web", "kaleido")
     from ..web.server import serve
 
     serve(port=port, preset=preset, show=show)

@@ -12,13 +12,17 @@ import sys
 import threading
 import time
 import urllib.request
-from collections.abc import Iterator
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from pathlib import Path
 from typing import Any
 
-from . import app as webapp
-from .http_guard import HEAD_TIMEOUT, head_deadline_protocol
+from .startup import import_nicegui
+
+import_nicegui()  # before any module of NiceGUI: see .startup
+
+from . import app as webapp  # noqa: E402
+from .http_guard import HEAD_TIMEOUT, head_deadline_protocol  # noqa: E402
 
 #: the CSS NiceGUI's Tailwind runtime generates for this page, captured in a browser by
 #: ``tests/web/tailwind_css.py`` (see docs/web.md, "Speed"); served in its place
@@ -48,7 +52,10 @@ def serve(
     from . import api
 
     api.register(app)
-    app.on_startup(lambda: threading.Thread(target=_warm_up, args=(preset,), daemon=True).start())
+    app.on_startup(
+        lambda: threading.Thread(target=webapp.warm_up, args=(preset,), daemon=True).start()
+    )
+    app.on_connect(pool_starter())
     url = f"http://127.0.0.1:{port}/"
     print(f"crankbalance web: starting on {url} (Ctrl+C stops it)", flush=True)
     app.on_startup(
@@ -75,16 +82,24 @@ def serve(
     )
 
 
-def _warm_up(preset: str) -> None:
-    """The server's warm-up, in the background as it starts: first what the first page
-    needs (:func:`crankbalance.web.app.warm_up`: the physics and plotly's figure classes),
-    then the worker pool's fork server (:func:`crankbalance.web.pool.warm_up`, which imports
-    :data:`~crankbalance.web.pool.PRELOAD` in a process of its own): on a two-core machine
-    the pool's imports no longer compete with the first page's."""
-    from . import pool
+def pool_starter() -> Callable[[], None]:
+    """The server's handler of a browser's connection (its page's websocket): at the first,
+    it starts the worker pool's fork server (:func:`crankbalance.web.pool.warm_up`, which
+    imports :data:`~crankbalance.web.pool.PRELOAD` in a process of its own, about 0.6 s of
+    CPU), in a thread; later connections do nothing. A page's websocket connects once the
+    page has been sent and its scripts have run, so on a two-core machine the pool's imports
+    no longer compete with a fresh server's first page (before, they ran as the browser
+    loaded it); a study asked for before (the API) starts the pool itself."""
+    started = threading.Event()
 
-    webapp.warm_up(preset)
-    pool.warm_up()
+    def on_connect() -> None:
+        if not started.is_set():
+            started.set()
+            from . import pool
+
+            threading.Thread(target=pool.warm_up, daemon=True).start()
+
+    return on_connect
 
 
 #: how long [s] the "ready" line waits for the server's socket before it gives up (silently)
