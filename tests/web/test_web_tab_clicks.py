@@ -113,6 +113,9 @@ def _open(page: Any, server: str, preset: str) -> tuple[HeldServer, list[str]]:
     held = HeldServer(page)
     page.goto(f"{server}/?preset={preset}")
     expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
+    # the page's socket is connected (its server part answered the handshake): what is
+    # held from now on are answers, not the connection itself
+    page.wait_for_function("() => window.did_handshake === true")
     return held, errors
 
 
