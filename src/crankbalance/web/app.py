@@ -40,7 +40,7 @@ from .tab_results import ResultsTab, order_rows
 from .tab_shaft import ShaftTab
 from .tab_shop import ShopTab
 from .tab_single import SingleTab
-from .widgets import Tab, send_download
+from .widgets import SHOW_TAB_JS, Tab, TabBar, TabPanels, send_download
 
 log = logging.getLogger("crankbalance.web")
 #: the preset a page opens on unless the server is given another (``crankbalance web
@@ -337,12 +337,11 @@ class Page:
             .props("data-testid=general-error")
             .mark("general-error")
         )
-        with ui.tabs().classes("w-full") as self.tab_bar:
+        # switched in the browser at once, the server told afterwards (:class:`TabBar`)
+        with TabBar().classes("w-full") as self.tab_bar:
             for name, label in TABS:
                 ui.tab(name, label=label).mark(f"tab-{name}")
-        with ui.tab_panels(self.tab_bar, value="engine", on_change=self.on_tab).classes(
-            "w-full"
-        ) as self.panels:
+        with TabPanels(value="engine").classes("w-full") as self.panels:
             for index, (name, _label) in enumerate(TABS):
                 with ui.tab_panel(name):
                     if name in RESULT_TABS:
@@ -366,6 +365,12 @@ class Page:
                                 ui.spinner(size="md")
                                 ui.label(OPENING)
                     self._nav(index)
+        self.tab_bar.set_value("engine")
+        self.tab_bar.on_value_change(self.on_tab)
+        self.tab_bar.on(
+            "update:model-value",
+            js_handler=SHOW_TAB_JS.format(tabs=self.tab_bar.id, panels=self.panels.id),
+        )
         self.update_all()
         if self.startup_message:
             self.general.set_text(self.startup_message)
@@ -478,9 +483,15 @@ class Page:
             self.setting_preset = False
 
     def on_tab(self, event: Any) -> None:
+        """The tab bar's value changed: a click in the browser, which shows the tab already
+        (the panels follow without being sent back), or :meth:`go`. The tab is built if it
+        is new and its stale cards redrawn; the clicks of a fast user arrive in their order,
+        each tab opened ends built, and the last one is the one shown."""
+        name = str(event.value)
+        self.panels.shown(name)
         ui.run_javascript(DISMISS_TOASTS)  # the toasts of the tab left close with it
-        self.open_tab(str(event.value))
-        self.refresh_cards(str(event.value))
+        self.open_tab(name)
+        self.refresh_cards(name)
 
     def open_tab(self, name: str) -> None:
         """Build a tab's content the first time it is opened, showing the project as it is:
@@ -504,7 +515,10 @@ class Page:
         self.show_state()
 
     def go(self, tab: str) -> None:
+        """The server switches the tab (a button): the panels' and the tab bar's values are
+        sent to the browser, the panels' first (:meth:`on_tab` then finds them shown)."""
         self.panels.set_value(tab)
+        self.tab_bar.set_value(tab)
 
     def compute_results(self) -> None:
         self.recompute()

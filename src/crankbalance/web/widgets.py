@@ -124,6 +124,51 @@ FIGURE_JS = """
 """
 
 
+#: (browser) a click on a tab shows its panel at once: the tab bar's new value is set on the
+#: tab bar and on the panels in the browser, before the server hears of it (``{panels}``:
+#: the panels' element id). The value NiceGUI sets for a value not looped back is the
+#: event's argument list; the tab bar needs the name itself.
+SHOW_TAB_JS = """(name) => {{
+  for (const id of [{tabs}, {panels}]) {{
+    const element = mounted_app.elements[id];
+    if (element) element.props["model-value"] = name;
+  }}
+}}"""
+
+
+class TabBar(ui.tabs):
+    """The page's tab bar, its value held in the browser (NiceGUI's ``LOOPBACK = False``, as
+    for a text field): a click switches the tab at once and the server is told afterwards,
+    never sending the value back, so a second click before the server answers the first is
+    not lost (with the value looped back the tab shown changed only with the server's
+    answer, and a click on the tab still shown as current changed nothing)."""
+
+    LOOPBACK = False
+
+
+class TabPanels(ui.tab_panels):
+    """The panels of :class:`TabBar`, switched in the browser with it (:data:`SHOW_TAB_JS`).
+    The server follows the browser (:meth:`shown`) without sending the value back; it sends
+    a value only when it switches the tab itself (:meth:`set_value`, e.g. *Compute
+    results*)."""
+
+    LOOPBACK = False
+
+    def shown(self, name: str) -> None:
+        """The browser shows panel ``name`` already (the tab bar's click): hold it as the
+        value without sending it (as NiceGUI does for a value the browser sent), and keep
+        the browser's own value if the element is sent again for another reason. A value
+        the server has just set (:meth:`set_value`, still to be sent) stays to be sent."""
+        if self.value == name:
+            return
+        self._send_update_on_value_change = False
+        try:
+            self.set_value(name)
+        finally:
+            self._send_update_on_value_change = True
+        self._client_value = name
+
+
 def button_row() -> Any:
     """A row of buttons that wraps (and stays a row on a phone, where the page's rows turn
     into columns)."""
