@@ -1,5 +1,5 @@
-"""Web app, the Results and Engine tabs' balancing text as Markdown (issue 28 screenshot
-review): the "What is left" list, and a crank balanced as a whole."""
+"""Web app, the text of the Results, Engine and Single cylinder tabs as Markdown (issue 28
+screenshot review): the "What is left" list, a crank balanced as a whole, f_b."""
 
 from __future__ import annotations
 
@@ -48,3 +48,40 @@ def test_counterweights_with_mass_keep_their_rows(inline4: dict) -> None:
     }
     assert [r["mass"] for r in balance_rows(b)] == ["125 g"] * 8
     assert "**Crank counterweights:** 8, 1000 g in all (pattern)" in balance_lines(b)
+
+
+def markdown_html(content: str) -> str:
+    """``content`` as ``ui.markdown`` shows it (NiceGUI's own converter and extras)."""
+    from nicegui import ui
+    from nicegui.elements.markdown import prepare_content
+
+    return prepare_content(content, " ".join(ui.markdown.default_extras))
+
+
+def test_f_b_is_not_italics_in_the_single_cylinder_cards() -> None:
+    """Two f_b in one line of Markdown made the text between them italic (and ate the
+    underscores): the web writes the balance factor's symbol escaped."""
+    from types import SimpleNamespace
+
+    from crankbalance.web.tab_single import rebalance_summary, single_summary
+
+    study = SimpleNamespace(
+        primary_force=10550.0,
+        balance_factor=0.5,
+        peak_resultant=8405.3,
+        in_line_amplitude=8405.3,
+        transverse_amplitude=5275.0,
+        optimum_balance_factor=0.61,
+        optimum_peak_resultant=8000.0,
+    )
+    reb = SimpleNamespace(
+        unbalance=1e-3,
+        achieved_balance_factor=0.5,
+        residual=1e-6,
+        passed=True,
+        status="optimal",
+        bob_weight=1.2,
+    )
+    for html in (markdown_html(single_summary(study)), markdown_html(rebalance_summary(reb))):
+        assert "<em>" not in html and "f_b" in html
+    assert markdown_html(single_summary(study)).count("f_b") == 2
