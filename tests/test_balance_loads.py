@@ -387,3 +387,12 @@ def test_sweep_figure_groups_the_peak_bars_per_balance_factor() -> None:
         bearing_sweep("v8-crossplane", {"patterns": ["all"], "balance_factors": [0.4, 0.6]}, FAST)
     )
     assert list(next(t for t in one.data if t.type == "bar").x) == ["f_b 0.4", "f_b 0.6"]
+
+
+def test_summary_text_has_no_e_notation() -> None:
+    """The single cylinder's bare crank leaves a free first-order force of about 10.7 kN:
+    the warning says 10712 N (the output vocabulary), not 1.071e+04 N."""
+    sweep = bearing_sweep("single", {"balance_factors": [0.0, 0.5, 1.0]}, FAST)
+    s = sweep.summary()
+    assert s.warning and "first-order force of 10712 N" in s.warning
+    assert not any("e+" in line for line in s.text)

@@ -566,3 +566,21 @@ def test_crank_3d_takes_an_analysis_or_a_balancing_study() -> None:
     assert crank_3d(b).to_dict() == crank_3d(b.model, b).to_dict()
     assert crank_3d(a).to_dict() == crank_3d(a.model).to_dict()
     assert crank_3d(b).to_dict() != crank_3d(b.model).to_dict()
+
+
+def test_polar_titles_and_legends_in_the_output_vocabulary(inline4: tuple) -> None:
+    """Numbers in the polar figures' titles and legends as the results print them (5
+    significant digits, whole from 10^5): the inline-4's second-order force is 12804 N, not
+    1.28e+04 N; the single cylinder's primary force 32490 N, not 3.249e+04 N."""
+    from crankbalance.physics.single_cylinder import balance_factor_study
+
+    a, _ = inline4
+    fig = polar_figure(a, 2, "force")
+    assert fig.layout.title.text.startswith("Order 2 force: amplitude 12804 N")
+    assert "at crank angle 0: 12804 N" in [t.name for t in fig.data]
+    s = balance_factor_study(0.3, 0.03, 1900.0, 0.5, rod_length=0.12)
+    figures = (single_cylinder_polar(s), single_cylinder_forces(s), balance_factor_sweep(s))
+    assert "primary force P = 32490 N (no balance)" in [t.name for t in figures[0].data]
+    for g in (fig, *figures):
+        words = [g.layout.title.text, *(t.name for t in g.data)]
+        assert not any("e+" in w for w in words), words

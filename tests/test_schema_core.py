@@ -229,3 +229,24 @@ def test_values_pickling_and_copies() -> None:
     assert hash(e) == hash(Example.parse(e.to_data()))
     with pytest.raises(AttributeError, match="frozen"):
         e.radius = 1.0  # type: ignore[misc]
+
+
+def test_hints_say_the_kind_in_words_and_round_a_limit_outward() -> None:
+    """A kind's identifier in words ("a specific energy", not "a specific_energy"); a
+    limit of 0.001 rad shown in degrees reads 0.0573 deg, not 0.0572958 deg, rounded
+    outward (a lower limit up, an upper one down) so that the words stay true."""
+
+    class Burn(Schema):
+        """A burn."""
+
+        duration: float = field("angle", default=0.5, ge=0.001, le=math.pi)
+        sweep: float = field("angle", default=0.5, ge=0.0, le=1.0)
+        heat: float = field("specific_energy", default=4.4e7, ge=1e6, le=2e8)
+
+    assert allowed(Burn.FIELDS["duration"]).endswith("from 0.0573 deg to 180 deg")
+    assert allowed(Burn.FIELDS["sweep"]).endswith("from 0 deg to 57.29 deg")  # 57.2958 down
+    assert allowed(Burn.FIELDS["heat"]).startswith("a specific energy with a unit")
+    # a value just below the rounded lower limit is refused, the words hold
+    with pytest.raises(InputError) as caught:
+        Burn.parse({"duration": "0.0572 deg"})
+    assert "must be an angle" in str(caught.value)

@@ -69,9 +69,9 @@ def test_balancing_card_lists_every_part_and_what_is_left() -> None:
     assert [r["angle"] for r in webs] == [
         f"{w['direction_deg']:g}°" for w in b["counterweight"]["webs"]
     ]
-    assert left_lines(b)[1] == "- nothing: no free force or moment is left up to this order"
+    assert left_lines(b)[2] == "- nothing: no free force or moment is left up to this order"
     left = left_lines(Project.from_preset("v6-60").compute().study.to_dict())
-    assert left[1].startswith("- order 1 couple, forward-rotating: 1741 N·m → a balance factor")
+    assert left[2].startswith("- order 1 couple, forward-rotating: 1741 N·m → a balance factor")
 
 
 async def test_balancing_card_on_the_page(user: User, form) -> None:

@@ -791,10 +791,24 @@ def _check_bounds(spec: Field, value: float, raw: Any, where: str) -> None:
 
 
 # --------------------------------------------------------------------------- words
-def _show(spec: Field, value: float) -> str:
-    if spec.quantity is not None:
-        return format_quantity(float(value), spec.kind, digits=6)
-    return str(value) if isinstance(value, int) else f"{value:g}"
+#: significant digits of a limit in its display unit: a limit that needs more is rounded
+#: to this many, outward (a lower limit up, an upper one down) so the words stay true
+#: (0.001 rad reads "0.0573 deg", not "0.0572958 deg")
+LIMIT_DIGITS = 4
+
+
+def _show(spec: Field, value: float, side: int = 0) -> str:
+    """A limit as written in a hint; ``side`` -1 for a lower limit, +1 for an upper one."""
+    if spec.quantity is None:
+        return str(value) if isinstance(value, int) else f"{value:g}"
+    exact = format_quantity(float(value), spec.kind, digits=6)
+    shown, unit = exact.split(" ", 1)
+    x = float(shown)
+    if x == 0 or float(f"{x:.{LIMIT_DIGITS}g}") == x:
+        return exact
+    step = 10.0 ** (math.floor(math.log10(abs(x))) - LIMIT_DIGITS + 1)
+    rounded = {-1: math.ceil, 1: math.floor}.get(side, round)(x / step) * step
+    return f"{rounded:.{LIMIT_DIGITS}g} {unit}"
 
 
 def allowed(spec: Field) -> str:
@@ -824,7 +838,8 @@ def allowed(spec: Field) -> str:
     if spec.quantity is not None:
         example = spec.example or KINDS[spec.kind][2]
         article = "an" if spec.kind[0] in "aeiou" else "a"
-        what = f"{article} {spec.kind} with a unit, e.g. '{example}',"
+        kind = spec.kind.replace("_", " ")  # the kind in words: "a specific energy"
+        what = f"{article} {kind} with a unit, e.g. '{example}',"
         if spec.in_size:
             return _in_size_words(spec, what)
     else:
@@ -851,12 +866,12 @@ def _in_size_words(spec: Field, what: str) -> str:
 def _between(spec: Field, what: str) -> str:
     low, high = spec.low, spec.high
     if low is not None and high is not None and not spec.low_open and not spec.high_open:
-        return f"{what} from {_show(spec, low)} to {_show(spec, high)}"
+        return f"{what} from {_show(spec, low, -1)} to {_show(spec, high, 1)}"
     parts = []
     if low is not None:
-        parts.append(f"{'greater than' if spec.low_open else 'at least'} {_show(spec, low)}")
+        parts.append(f"{'greater than' if spec.low_open else 'at least'} {_show(spec, low, -1)}")
     if high is not None:
-        parts.append(f"{'less than' if spec.high_open else 'at most'} {_show(spec, high)}")
+        parts.append(f"{'less than' if spec.high_open else 'at most'} {_show(spec, high, 1)}")
     return what.rstrip(",") + (", " + " and ".join(parts) if parts else "")
 
 

@@ -31,7 +31,7 @@ from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics.model import EngineModel
-from ..results import ResultMixin, round_off, to_jsonable
+from ..results import ResultMixin, number, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import (
     MAX_SWEEP_WORK,
@@ -271,9 +271,9 @@ def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
     load = chosen.metrics(model)
     text = [
         f"Suggested: {chosen.label} (least free first-order force left, then couple, then "
-        f"peak bearing load): {load['largest_load_N']:.5g} N on bearing "
-        f"{load['worst_bearing']}, free first-order force {values[suggested, 0]:.4g} N and "
-        f"couple {values[suggested, 1]:.4g} N·m left."
+        f"peak bearing load): {number(load['largest_load_N'], 5)} N on bearing "
+        f"{load['worst_bearing']}, free first-order force {number(values[suggested, 0])} N and "
+        f"couple {number(values[suggested, 1])} N·m left."
     ]
     for r in chosen.study.balance.remaining:
         if r.order == 1:  # higher orders: the same for every case (no counterweight acts)
@@ -287,10 +287,10 @@ def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
     if any(values[lowest, k] > values[suggested, k] + tie[k] for k in (0, 1)):
         low = cases[lowest]
         warning = (
-            f"the lowest peak bearing load, {low.label} ({loads[lowest]:.5g} N), leaves a free "
-            f"first-order force of {values[lowest, 0]:.4g} N and couple of "
-            f"{values[lowest, 1]:.4g} N·m, where {chosen.label} leaves "
-            f"{values[suggested, 0]:.4g} N and {values[suggested, 1]:.4g} N·m"
+            f"the lowest peak bearing load, {low.label} ({number(loads[lowest], 5)} N), leaves "
+            f"a free first-order force of {number(values[lowest, 0])} N and couple of "
+            f"{number(values[lowest, 1])} N·m, where {chosen.label} leaves "
+            f"{number(values[suggested, 0])} N and {number(values[suggested, 1])} N·m"
         )
         text.append(f"Warning: {warning}.")
     return SweepSummary(pareto, suggested, lowest, tuple(text), warning)

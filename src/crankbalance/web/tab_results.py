@@ -165,15 +165,34 @@ def _mass(kg: float) -> str:
     return text(kg, "mass", 5)
 
 
+def none_needed(b: dict[str, Any], key: str = "counterweight") -> str | None:
+    """Why the crank needs no counterweights, when the balancing put none on it (``key``'s
+    webs all of mass 0: a crank balanced as a whole, as an inline-4), else None: the
+    balancing's own note ("no counterweights: ...") up to its first ";", else the
+    counterweights' note."""
+    cw = b.get(key)
+    if not cw or not cw.get("webs") or any(web["mass_kg"] for web in cw["webs"]):
+        return None
+    for note in b.get("notes") or []:
+        if note.startswith("no counterweights: "):
+            return note.removeprefix("no counterweights: ").split(";")[0]
+    return str(cw.get("note") or "the balancing put no mass on them")
+
+
 def balance_rows(b: dict[str, Any]) -> list[dict[str, Any]]:
     """The balancing card's rows of a balance result (``BalanceStudy.to_dict``): each crank
     counterweight (its web, throw, position along the crank, mass, CG radius, direction)
     and each mass of each balance shaft (its shaft's rotation and speed, position, mass,
-    CG radius, phase); angles at crank angle 0, degrees from the first cylinder's pin."""
+    CG radius, phase); angles at crank angle 0, degrees from the first cylinder's pin.
+    Counterweights of mass 0 (:func:`none_needed`) are one row "none needed"."""
     rows: list[dict[str, Any]] = []
     for key, label in (("counterweight", "Counterweight"), ("extra_counterweights", "Extra")):
         cw = b.get(key)
         if not cw:
+            continue
+        if none_needed(b, key) is not None:
+            blank = dict.fromkeys(("position", "radius", "angle"), "")
+            rows.append({"part": f"{label}s", "mass": "none needed", **blank})
             continue
         for web in cw.get("webs", []):
             rows.append(
@@ -213,7 +232,10 @@ def balance_lines(b: dict[str, Any]) -> list[str]:
         "forces left scale with its square)"
     ]
     cw = b["counterweight"]
-    if cw and cw.get("webs"):
+    reason = none_needed(b)
+    if reason is not None:
+        lines.append(f"**Crank counterweights:** none needed ({reason})")
+    elif cw and cw.get("webs"):
         lines.append(
             f"**Crank counterweights:** {len(cw['webs'])}, "
             f"{_mass(cw['total_mass_kg'])} in all ({cw['method']})"
@@ -240,13 +262,14 @@ def balance_lines(b: dict[str, Any]) -> list[str]:
 def left_lines(b: dict[str, Any]) -> list[str]:
     """ "What is left" after the balancing (``remaining`` of the balance result): each free
     component that stays, and what would remove it; then the balancing's notes."""
-    lines = ["**What is left**"]
+    lines = ["**What is left**", ""]  # a blank line: Markdown starts the list after it
     remaining = b.get("remaining") or []
     for item in remaining:
         lines.append(f"- {item['text']} → {item['next_step']}")
     if not remaining:
         lines.append("- nothing: no free force or moment is left up to this order")
-    lines += [f"_{n}_" for n in b["notes"]]
+    for note in b["notes"]:  # each its own paragraph, not the last item's continuation
+        lines += ["", f"_{note}_"]
     return lines
 
 

@@ -16,11 +16,13 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
+import numpy as np
 from nicegui import run, ui
 
 from ..errors import InputError
 from ..output.figures.shop import hole_plan
-from ..output.format import text
+from ..output.format import plural, text
+from ..results import ROUND_OFF, below_round_off
 from ..schema.settings import ShopOptions
 from .widgets import (
     StudyTab,
@@ -33,6 +35,9 @@ from .widgets import (
 
 #: the worked example's parts file (docs/balance_shop.md)
 EXAMPLE = Path(__file__).resolve().parents[3] / "examples" / "v8_parts.csv"
+#: the first line of the example (a comment naming the V8 it weighs): parts that start
+#: with it are the example's (:func:`parts_summary`)
+EXAMPLE_HEADER = "# Parts of a 90 deg V8"
 #: the tab's settings: key -> (label, default, hint); "parts" is the pasted parts file
 SETTINGS: dict[str, tuple[str, str, str]] = {
     # the parts file and the two readings are the page's own inputs (the command line reads
@@ -106,6 +111,35 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
             raise InputError(f"reading_{index}", error.value, error.allowed) from None
         raise
     return inventory, options
+
+
+def spread_text(spread: float, masses: Any) -> str:
+    """A matched sets' spread [kg] as shown: 0 g when it is round-off of the sets' masses
+    (``ROUND_OFF`` times the heaviest, :func:`crankbalance.results.below_round_off`), as
+    sets of equal masses whose difference is 2.22e-13 g."""
+    level = ROUND_OFF * float(np.max(np.abs(masses)))
+    return text(float(below_round_off(spread, level)), "mass", 4)
+
+
+def parts_summary(p: Any, example: bool) -> str:
+    """The shop's summary of a parts study ``p`` (``PartsStudy``): the engine, the matching
+    and its spreads, the material to remove; with ``example`` (the parts are the worked
+    example's, a V8's) on an engine of another cylinder count, how many of its sets it uses."""
+    m = p.matching
+    line = (
+        f"{p.engine}: {plural(p.cylinders, 'cylinder')}, matching {m.method} ({m.status}); "
+        f"spread {spread_text(m.reciprocating_spread, m.reciprocating)} reciprocating, "
+        f"{spread_text(m.rotating_spread, m.rotating)} rotating; material to remove "
+        f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
+        f"{text(p.machined.removed_total, 'mass', 4)})."
+    )
+    sets = min(kind.count for kind in p.inventory.kinds)
+    if example and sets != p.cylinders:
+        line += (
+            f"  \nThe example's parts are a V8's: {p.cylinders} of its {sets} sets used "
+            "(paste this engine's own parts)."
+        )
+    return line
 
 
 class ShopTab(TabSettingsMixin, StudyTab):
@@ -194,13 +228,8 @@ class ShopTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         p = self.study.parts
         m, b = p.matching, p.bob_weights
-        self.summary.set_content(
-            f"{p.engine}: {p.cylinders} cylinders, matching {m.method} ({m.status}); spread "
-            f"{text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
-            f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
-            f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
-            f"{text(p.machined.removed_total, 'mass', 4)})."
-        )
+        example = str(self.fields["parts"].value or "").startswith(EXAMPLE_HEADER)
+        self.summary.set_content(parts_summary(p, example))
         self.sets.columns = [
             {"name": "cylinder", "label": "cylinder", "field": "cylinder"},
             *({"name": k, "label": k, "field": k, "align": "left"} for k in m.kinds),

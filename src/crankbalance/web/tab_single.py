@@ -51,6 +51,34 @@ PASS_COLUMNS = [
 ]
 
 
+#: the balance factor's symbol in Markdown: an escaped underscore (two bare ones in a
+#: line turn the text between them into italics)
+F_B = "f\\_b"
+
+
+def single_summary(study: Any) -> str:
+    """The single-cylinder card's Markdown: the primary force, the peak resultant at the
+    balance factor and its parts, and the balance factor of least peak."""
+    return (
+        f"Primary force **{study.primary_force:.1f} N**; with {F_B} = "
+        f"{study.balance_factor:g}: peak resultant **{study.peak_resultant:.1f} N** "
+        f"(in-line {study.in_line_amplitude:.1f} N, transverse "
+        f"{study.transverse_amplitude:.1f} N)  \nLeast peak at {F_B} = "
+        f"**{study.optimum_balance_factor:.3f}** ({study.optimum_peak_resultant:.1f} N)"
+    )
+
+
+def rebalance_summary(reb: Any) -> str:
+    """The rebalancing card's Markdown: the unbalance to remove, the balance factor
+    achieved, the residual and the bob-weight."""
+    return (
+        f"Unbalance to remove **{reb.unbalance * 1e6:.1f} g·mm**; achieved {F_B} "
+        f"{reb.achieved_balance_factor:.3f}; residual {reb.residual * 1e6:.2f} g·mm "
+        f"({'within' if reb.passed else 'outside'} tolerance, {reb.status})  \n"
+        f"Bob-weight {reb.bob_weight * 1e3:.1f} g"
+    )
+
+
 def depth_words(holes: Any) -> str:
     """What the depths of the plan are read to: "to the tip (118° drill point)" or "to the
     shoulder (...)" for a pointed drill, "(flat-bottomed)" for a 180° point."""
@@ -277,17 +305,11 @@ class SingleTab(StudyTab):
             return
         study, iso, reb = done
         self.result, self.rebalanced = study, reb
-        self.single_summary.set_content(
-            f"Primary force **{study.primary_force:.1f} N**; with f_b = "
-            f"{study.balance_factor:g}: peak resultant **{study.peak_resultant:.1f} N** "
-            f"(in-line {study.in_line_amplitude:.1f} N, transverse "
-            f"{study.transverse_amplitude:.1f} N)  \nLeast peak at f_b = "
-            f"**{study.optimum_balance_factor:.3f}** ({study.optimum_peak_resultant:.1f} N)"
-        )
+        self.single_summary.set_content(single_summary(study))
         verdict = iso["verdict"]
         self.iso_summary.set_content(
             f"{iso['grade'].name} at {iso['speed'] * 30 / 3.141592653589793:.0f} rpm, rotor "
-            f"{iso['rotor_mass']:.3f} kg: U_per = **{iso['permissible'] * 1e6:.2f} g·mm**"
+            f"{iso['rotor_mass']:.3f} kg: U\\_per = **{iso['permissible'] * 1e6:.2f} g·mm**"
             + (
                 ""
                 if verdict is None
@@ -296,12 +318,7 @@ class SingleTab(StudyTab):
             )
         )
         self.iso_note.set_content(rotor_mass_note(iso, str(s.get("sc_rotor_mass", ""))))
-        self.rebalance_summary.set_content(
-            f"Unbalance to remove **{reb.unbalance * 1e6:.1f} g·mm**; achieved f_b "
-            f"{reb.achieved_balance_factor:.3f}; residual {reb.residual * 1e6:.2f} g·mm "
-            f"({'within' if reb.passed else 'outside'} tolerance, {reb.status})  \n"
-            f"Bob-weight {reb.bob_weight * 1e3:.1f} g"
-        )
+        self.rebalance_summary.set_content(rebalance_summary(reb))
         lines = [f"**{what}:** {value}" if what else value for what, value in drilling_plan(reb)]
         self.plan.set_content("  \n".join(lines))
         self.passes.columns = pass_columns(reb.correction)

@@ -27,7 +27,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
-from ...results import round_off
+from ...results import number, round_off
 from ..format import moment_point
 from .balancing import balanced_curves
 from .common import (
@@ -345,9 +345,9 @@ def polar_figure(
             )
         )
 
-    arrow(0j, fwd, f"forward |F+| = {abs(fwd):.4g} {unit}", COLORS["forward"])
-    arrow(fwd, fwd + bwd, f"backward |F-| = {abs(bwd):.4g} {unit}", COLORS["backward"])
-    arrow(0j, fwd + bwd, f"at crank angle 0: {abs(fwd + bwd):.4g} {unit}", COLORS["after"])
+    arrow(0j, fwd, f"forward |F+| = {number(abs(fwd), 5)} {unit}", COLORS["forward"])
+    arrow(fwd, fwd + bwd, f"backward |F-| = {number(abs(bwd), 5)} {unit}", COLORS["backward"])
+    arrow(0j, fwd + bwd, f"at crank angle 0: {number(abs(fwd + bwd), 5)} {unit}", COLORS["after"])
     amplitude = abs(fwd) + abs(bwd)
     reach = 1.15 * amplitude if amplitude > 0 else _zero_reach(analysis, quantity, tiny)
     fig.update_xaxes(title_text=f"x [{unit}]", range=[-reach, reach], zeroline=True)
@@ -359,7 +359,7 @@ def polar_figure(
         scaleratio=1,
     )
     word = "force" if quantity == "force" else "moment"
-    size = f"{amplitude:.4g} {unit}" if amplitude > 0 else f"0 {unit} (balanced)"
+    size = f"{number(amplitude, 5)} {unit}" if amplitude > 0 else f"0 {unit} (balanced)"
     fig.update_layout(
         template=TEMPLATE,
         width=None,

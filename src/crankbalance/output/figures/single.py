@@ -19,6 +19,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ...errors import InputError
+from ...results import number
 from ..format import depth_read_to
 from .common import COLORS, TEMPLATE, figure_title, plotly_go, web_drawing
 
@@ -54,7 +55,7 @@ def single_cylinder_forces(study: BalanceFactorStudy) -> go.Figure:
         template=TEMPLATE,
         hovermode="x unified",
         title=f"Single cylinder, balance factor {study.balance_factor:.0%}: "
-        f"peak resultant {study.peak_resultant:.4g} N",
+        f"peak resultant {number(study.peak_resultant, 5)} N",
         legend={"orientation": "h", "y": -0.2},
     )
     return fig
@@ -85,7 +86,7 @@ def single_cylinder_polar(study: BalanceFactorStudy) -> go.Figure:
             x=peak * np.sin(ring),
             y=peak * np.cos(ring),
             mode="lines",
-            name=f"peak resultant {peak:.4g} N",
+            name=f"peak resultant {number(peak, 5)} N",
             line={"color": COLORS["before"], "dash": "dot"},
         )
     )
@@ -95,7 +96,7 @@ def single_cylinder_polar(study: BalanceFactorStudy) -> go.Figure:
             x=p * np.sin(ring),
             y=p * np.cos(ring),
             mode="lines",
-            name=f"primary force P = {p:.4g} N (no balance)",
+            name=f"primary force P = {number(p, 5)} N (no balance)",
             line={"color": COLORS["forward"], "dash": "dash", "width": 1},
         )
     )
@@ -130,7 +131,7 @@ def balance_factor_sweep(study: BalanceFactorStudy) -> go.Figure:
             y=[study.optimum_peak_resultant],
             mode="markers",
             name=f"optimum {study.optimum_balance_factor:.1%}: "
-            f"{study.optimum_peak_resultant:.4g} N",
+            f"{number(study.optimum_peak_resultant, 5)} N",
             marker={"color": COLORS["counterweight"], "size": 12},
         )
     )
@@ -139,7 +140,7 @@ def balance_factor_sweep(study: BalanceFactorStudy) -> go.Figure:
             x=[100 * study.balance_factor],
             y=[study.peak_resultant],
             mode="markers",
-            name=f"studied {study.balance_factor:.1%}: {study.peak_resultant:.4g} N",
+            name=f"studied {study.balance_factor:.1%}: {number(study.peak_resultant, 5)} N",
             marker={"color": COLORS["after"], "size": 12, "symbol": "diamond"},
         )
     )
