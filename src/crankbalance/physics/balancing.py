@@ -29,7 +29,7 @@ from dataclasses import dataclass, field
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
-from ..results import ROUND_OFF, ResultMixin, engine_scales
+from ..results import ROUND_OFF, ResultMixin, engine_scales, number
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import Remaining, next_step
 from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
@@ -535,10 +535,13 @@ def what_is_left(
         for quantity, unit, rotation, amount in sizes:
             if amount <= 0.0:
                 continue
+            # results.number's 4 digits (10 000 and more whole, never 1.28e+04); its
+            # plain format below that, which it equals there, spares the solver's path
+            shown = f"{amount:.4g}" if amount < 1e4 else number(amount)
             text = (
-                f"the rotating masses' {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+                f"the rotating masses' {quantity}, {rotation}-rotating: {shown} {unit}"
                 if rotating
-                else f"order {order} {quantity}, {rotation}-rotating: {amount:.4g} {unit}"
+                else f"order {order} {quantity}, {rotation}-rotating: {shown} {unit}"
             )
             step = next_step(c.component, order, rotation, counterweights, primary, missed)
             out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
