@@ -387,3 +387,25 @@ def test_sweep_figure_groups_the_peak_bars_per_balance_factor() -> None:
         bearing_sweep("v8-crossplane", {"patterns": ["all"], "balance_factors": [0.4, 0.6]}, FAST)
     )
     assert list(next(t for t in one.data if t.type == "bar").x) == ["f_b 0.4", "f_b 0.6"]
+
+
+def test_sweep_figure_says_a_flat_zero_and_heads_the_lines_apart() -> None:
+    """The inline-4 has no first-order force or couple left: those panels say "0 ...
+    everywhere" (issue 28 review, finding 15); the pattern's line entry ("all") stands under
+    its own legend heading, apart from the bearings' "peak load of"."""
+    pytest.importorskip("plotly")
+    from crankbalance.output.figures.loads import PATTERN_HEADING, bearing_sweep_figure
+
+    fig = bearing_sweep_figure(
+        bearing_sweep("inline4", {"patterns": ["all"], "balance_factors": [0.0, 0.5]}, FAST)
+    )
+    notes = [(a.text, a.xref) for a in fig.layout.annotations if "everywhere" in a.text]
+    assert notes == [
+        ("0 N everywhere<br>(balanced)", "x5 domain"),
+        ("0 N·m everywhere<br>(balanced)", "x6 domain"),
+    ]
+    shown = [t for t in fig.data if t.showlegend is not False]
+    assert [(t.name, t.legendgrouptitle.text) for t in shown[:2]] == [
+        ("all", PATTERN_HEADING),
+        ("bearing 1", "peak load of"),
+    ]
