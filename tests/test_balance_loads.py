@@ -409,3 +409,18 @@ def test_sweep_figure_says_a_flat_zero_and_heads_the_lines_apart() -> None:
         ("all", PATTERN_HEADING),
         ("bearing 1", "peak load of"),
     ]
+
+
+def test_sweep_figure_panel_titles_are_one_line() -> None:
+    """Stacked on a phone, a two-line panel title ran into the x-axis title of the panel
+    above (the couple's "balance factor" into "peak load of each main bearing", issue 28
+    review, finding 19): every panel title is one line."""
+    pytest.importorskip("plotly")
+    from crankbalance.output.figures.loads import SWEEP_PANELS, bearing_sweep_figure
+
+    fig = bearing_sweep_figure(
+        bearing_sweep("inline4", {"patterns": ["all"], "balance_factors": [0.5]}, FAST)
+    )
+    titles = [a.text for a in fig.layout.annotations if a.yref == "paper"]
+    assert titles == [t for _, t in SWEEP_PANELS] + ["peak load of each main bearing"]
+    assert "indeterminate crank" in fig.layout.title.text  # the crank model, said once

@@ -174,8 +174,10 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         row_heights=[0.2, 0.2, 0.2, 0.4],
         vertical_spacing=0.1,
         horizontal_spacing=0.1,
-        subplot_titles=[title for _, title in SWEEP_PANELS]
-        + [f"peak load of each main bearing<br>per balance factor ({model} crank)"],
+        # one line each: stacked on a phone, a second line ran into the x-axis title
+        # ("balance factor") of the panel above; the crank model is in the figure's title,
+        # the balance factor on the axis
+        subplot_titles=[title for _, title in SWEEP_PANELS] + ["peak load of each main bearing"],
     )
     factors = [float(f) for f in sweep.options.balance_factors]
     span = [min(factors), max(factors)] if factors else [0.0, 1.0]
