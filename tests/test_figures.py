@@ -68,9 +68,9 @@ def test_orders_bar_panels_say_their_unit_in_their_title(inline4: tuple) -> None
     fig = orders_bar(inline4[0])
     titles = [a.text for a in fig.layout.annotations if a.yref == "paper"][:3]
     assert titles == [
-        "Free forces (x, z) [N]",
-        "Free moments (x, z) [N·m]",
-        "Roll moment (y) [N·m]",
+        "Free forces<br>(x, z) [N]",
+        "Free moments<br>(x, z) [N·m]",
+        "Roll moment<br>(y) [N·m]",
     ]
     for key in ("yaxis", "yaxis2", "yaxis3"):
         assert fig.layout[key].title.text is None, key

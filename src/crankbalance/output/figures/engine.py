@@ -76,6 +76,15 @@ def leading_quantity(analysis: Analysis) -> Quantity:
 #: for the value axis's tick labels (the panels have no axis title: the unit is in the
 #: panel's title)
 ORDERS_BAR_GAP = 0.1
+#: the top margin of :func:`orders_bar` [px]: its title (two lines) over its panels'
+#: two-line titles
+ORDERS_BAR_TOP = 140
+#: the titles of :func:`orders_bar`'s panels, each with its unit
+ORDERS_BAR_TITLES = (
+    "Free forces<br>(x, z) [N]",
+    "Free moments<br>(x, z) [N·m]",
+    "Roll moment<br>(y) [N·m]",
+)
 
 
 def orders_bar(analysis: Analysis) -> go.Figure:
@@ -96,11 +105,8 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         # the unit in each panel's title, no value-axis title: three panels side by side in
         # a half-width web card (560 px at 1280) left no room between them for one, and the
         # roll panel's "amplitude [N·m]" was drawn over the moment panel's last bar
-        subplot_titles=(
-            "Free forces (x, z) [N]",
-            "Free moments (x, z) [N·m]",
-            "Roll moment (y) [N·m]",
-        ),
+        # (two lines each: one line of three titles runs into its neighbours at that width)
+        subplot_titles=ORDERS_BAR_TITLES,
         horizontal_spacing=ORDERS_BAR_GAP,
     )
     labels = [str(int(n)) for n in f.orders] + ["rot"]
@@ -169,6 +175,7 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         template=TEMPLATE,
         title=figure_title("Free forces and moments by order", analysis.model.name),
         legend={"orientation": "h", "y": -0.2},
+        margin={"t": ORDERS_BAR_TOP},  # room for the title over the panels' two-line titles
     )
     return fig
 
