@@ -396,3 +396,40 @@ def test_summary_text_has_no_e_notation() -> None:
     s = sweep.summary()
     assert s.warning and "first-order force of 10712 N" in s.warning
     assert not any("e+" in line for line in s.text)
+
+
+def test_sweep_figure_says_a_flat_zero_and_heads_the_lines_apart() -> None:
+    """The inline-4 has no first-order force or couple left: those panels say "0 ...
+    everywhere" (issue 28 review, finding 15); the pattern's line entry ("all") stands under
+    its own legend heading, apart from the bearings' "peak load of"."""
+    pytest.importorskip("plotly")
+    from crankbalance.output.figures.loads import PATTERN_HEADING, bearing_sweep_figure
+
+    fig = bearing_sweep_figure(
+        bearing_sweep("inline4", {"patterns": ["all"], "balance_factors": [0.0, 0.5]}, FAST)
+    )
+    notes = [(a.text, a.xref) for a in fig.layout.annotations if "everywhere" in a.text]
+    assert notes == [
+        ("0 N everywhere<br>(balanced)", "x5 domain"),
+        ("0 N·m everywhere<br>(balanced)", "x6 domain"),
+    ]
+    shown = [t for t in fig.data if t.showlegend is not False]
+    assert [(t.name, t.legendgrouptitle.text) for t in shown[:2]] == [
+        ("all", PATTERN_HEADING),
+        ("bearing 1", "peak load of"),
+    ]
+
+
+def test_sweep_figure_panel_titles_are_one_line() -> None:
+    """Stacked on a phone, a two-line panel title ran into the x-axis title of the panel
+    above (the couple's "balance factor" into "peak load of each main bearing", issue 28
+    review, finding 19): every panel title is one line."""
+    pytest.importorskip("plotly")
+    from crankbalance.output.figures.loads import SWEEP_PANELS, bearing_sweep_figure
+
+    fig = bearing_sweep_figure(
+        bearing_sweep("inline4", {"patterns": ["all"], "balance_factors": [0.5]}, FAST)
+    )
+    titles = [a.text for a in fig.layout.annotations if a.yref == "paper"]
+    assert titles == [t for _, t in SWEEP_PANELS] + ["peak load of each main bearing"]
+    assert "indeterminate crank" in fig.layout.title.text  # the crank model, said once

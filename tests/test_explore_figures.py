@@ -112,6 +112,9 @@ def test_candidate_bars_are_its_forces_and_moments() -> None:
     assert bars[("forward", "x")][1] > 0  # the flat inline-4's second-order force
     order = "-".join(str(c) for c in candidates.firing_order[i])
     assert order in fig.layout.title.text
+    # the flat inline-4 has no free moment: that subplot says so, the force subplot not
+    notes = [(a.text, a.xref) for a in fig.layout.annotations if "everywhere" in a.text]
+    assert notes == [("0 N·m everywhere<br>(balanced)", "x2 domain")]
 
 
 def test_plot_option_writes_the_runs_rows(

@@ -47,3 +47,15 @@ def test_the_zero_note_is_not_said_twice() -> None:
     fig = go.Figure(go.Bar(x=["1"], y=[0.0]))
     fig.add_annotation(text="0 N everywhere<br>(balanced)", showarrow=False)
     assert len(readable(fig).layout.annotations) == 1
+
+
+def test_a_scatter_of_values_is_not_zero_while_its_x_is_not() -> None:
+    """Candidates at M1 = 0, 1974 and 3948 N·m with M2 = 0 each (the explorer's inline-4
+    over M1, M2) are not "0 everywhere"; a line at 0 over its crank angle is, and so is a
+    scatter of values at (0, 0)."""
+    from crankbalance.output.figures.common import all_zero
+
+    candidates = go.Scatter(x=[0.0, 1973.9, 3947.8], y=[0.0, 0.0, 0.0], mode="markers")
+    assert not all_zero(go.Figure(candidates))
+    assert all_zero(go.Figure(go.Scatter(x=[0.0, 360.0, 720.0], y=[0.0, 0.0, 0.0])))
+    assert all_zero(go.Figure(go.Scatter(x=[0.0], y=[0.0], mode="markers")))

@@ -61,6 +61,21 @@ def test_orders_bar_heights_equal_api(inline4: tuple) -> None:
     assert np.argmax(height_f[:-1]) == 1
 
 
+def test_orders_bar_panels_say_their_unit_in_their_title(inline4: tuple) -> None:
+    """Three panels side by side: no value-axis title between them (the roll panel's was
+    drawn over the moment panel's last bar in a half-width card at 1280 px); each panel's
+    title gives its unit instead."""
+    fig = orders_bar(inline4[0])
+    titles = [a.text for a in fig.layout.annotations if a.yref == "paper"][:3]
+    assert titles == [
+        "Free forces<br>(x, z) [N]",
+        "Free moments<br>(x, z) [N·m]",
+        "Roll moment<br>(y) [N·m]",
+    ]
+    for key in ("yaxis", "yaxis2", "yaxis3"):
+        assert fig.layout[key].title.text is None, key
+
+
 def test_orders_bar_drops_roundoff(paper: tuple) -> None:
     """Inline-3: the free forces cancel; round-off (~1e-12 N) is drawn as exactly zero."""
     a, _ = paper

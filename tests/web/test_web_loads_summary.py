@@ -44,6 +44,10 @@ async def test_loads_summary_warning_and_marks(user, form) -> None:
     assert "bg-orange-2" in warning.classes
     table = form.element("loads-cases")
     assert [c["name"] for c in table.columns] == [key for key, _ in COLUMNS] + ["mark"]
+    # every short column name is explained in the line under the table ("pattern" is a word)
+    note = form.text("loads-columns")
+    for _, label in COLUMNS[1:]:
+        assert f"{label}: " in note or f"{label}, " in note, label
     marks = [row["mark"] for row in form.rows("loads-cases")]
     for n, mark in enumerate(marks):
         assert ("suggested" in mark) == (n == summary["suggested"]), (n, mark)

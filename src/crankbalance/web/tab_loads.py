@@ -26,6 +26,16 @@ from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
 from ..schema.settings import BearingOptions, BearingSweepOptions
 from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 
+#: the line under the table that says what its short column names are
+#: (:data:`crankbalance.studies.balance_loads.COLUMNS`)
+COLUMN_NOTE = (
+    "f_b: balance factor; CW kg: counterweight mass; worst: the bearing of the largest peak "
+    "load; max N, mean N: its peak and mean load; journal N·m, pin N·m: the largest bending "
+    "moment at a journal, at a crankpin; friction W: Coulomb friction of all main bearings; "
+    "Frot N, Mrot N·m: force and couple of the rotating masses left after balancing; "
+    "F1+ N, F1- N, M1+ N·m, M1- N·m: the first-order free force and couple left, forward (+) "
+    "and backward (-) rotating."
+)
 #: the schema's default of the gas forces (the page's select says on or off)
 GAS_DEFAULT = bool(BearingOptions.FIELDS["gas"].default)
 #: the tab's settings: key -> (label, default, hint), each starting at the schema's default
@@ -125,6 +135,7 @@ class LoadsTab(TabSettingsMixin, StudyTab):
                     .props("dense flat data-testid=loads-cases")
                     .mark("loads-cases")
                 )
+                ui.label(COLUMN_NOTE).classes("text-caption text-grey-7").mark("loads-columns")
         self.card("loads-polar", "Polar load diagrams (middle balance factor)", self._polar)
         self.card("loads-sweep", "Loads, friction and bending against balance", self._sweep)
 

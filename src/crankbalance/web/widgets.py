@@ -10,6 +10,7 @@ from __future__ import annotations
 
 import json
 import logging
+import re
 from abc import ABC, abstractmethod
 from collections.abc import Callable, Coroutine, Mapping, Sequence
 from typing import TYPE_CHECKING, Any, Literal
@@ -259,6 +260,26 @@ def title_layout(layout: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
+def _title_words(text: str) -> list[str]:
+    """The words of a title, lower case, without "and" ("before/after" and "before and
+    after" are the same words)."""
+    return [w for w in re.findall(r"[a-z0-9]+", text.lower()) if w != "and"]
+
+
+def without_card_title(text: str, card: str) -> str:
+    """A figure's title as its card shows it: the first line dropped when the card's own
+    title already says it (the same words, or one's words the start of the other's:
+    "Drilling plan" under "Drilling plan to scale"), any second line (the engine, a note)
+    kept; any other title as it is. The command line's and the reports' figures keep their
+    titles (they have no card)."""
+    first, _, rest = text.partition("<br>")
+    mine, theirs = _title_words(first), _title_words(card)
+    short = min(len(mine), len(theirs))
+    if short and mine[:short] == theirs[:short]:
+        return rest
+    return text
+
+
 def wrap_title(text: str, width: int = TITLE_LINE) -> str:
     """A figure title whose first line is longer than ``width`` characters, broken at the
     last space before it (plotly does not wrap titles; a phone would cut them)."""
@@ -398,6 +419,9 @@ class FigureCard:
         for key, span in value_ranges(self.figure, layout).items():
             layout[key] = {**layout.get(key, {}), "range": span, "autorange": False}
         layout["legend"] = {**layout.get("legend", {}), **LEGEND}
+        title = layout.get("title")
+        if isinstance(title, dict) and isinstance(title.get("text"), str):
+            layout["title"] = {**title, "text": without_card_title(title["text"], self.title)}
         layout.update(title_layout(layout))
         # the height goes to the element (CSS), so that a phone can make room for the legend
         height = int(layout.pop("height", None) or DEFAULT_HEIGHT)

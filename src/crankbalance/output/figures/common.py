@@ -126,14 +126,33 @@ def _values(trace: Any) -> Any | None:
     return values[np.isfinite(values)]
 
 
+def _scattered(trace: Any) -> Any | None:
+    """The finite ``x`` of a scatter of values (markers only: each point a pair of values,
+    e.g. the explorer's candidates over two objectives), None for any other trace (a line
+    over an independent variable, bars over categories: their x is not a value)."""
+    if (trace.type or "scatter") not in ("scatter", "scattergl") or trace.mode != "markers":
+        return None
+    try:
+        values = np.asarray(trace.x, dtype=float).ravel()
+    except (TypeError, ValueError):  # categories
+        return None
+    return values[np.isfinite(values)]
+
+
 def all_zero(figure: Any) -> bool:
-    """Whether every value of the figure's 2-D traces is 0 (and it has only such traces)."""
+    """Whether every value of the figure's 2-D traces is 0 (and it has only such traces):
+    the ``y`` (or ``r``) of each, and the ``x`` of a scatter of values (markers only,
+    :func:`_scattered`), so that candidates at M1 = 1974 N·m and M2 = 0 are not "0
+    everywhere"."""
     found = []
     for trace in figure.data:
         values = _values(trace)
         if values is None:
             return False
         found.append(values)
+        x = _scattered(trace)
+        if x is not None:
+            found.append(x)
     return any(v.size for v in found) and all(not v.any() for v in found)
 
 

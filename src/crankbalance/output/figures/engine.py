@@ -72,6 +72,21 @@ def leading_quantity(analysis: Analysis) -> Quantity:
     return "force"
 
 
+#: the gap between the panels of :func:`orders_bar`, a share of the figure's width: room
+#: for the value axis's tick labels (the panels have no axis title: the unit is in the
+#: panel's title)
+ORDERS_BAR_GAP = 0.1
+#: the top margin of :func:`orders_bar` [px]: its title (two lines) over its panels'
+#: two-line titles
+ORDERS_BAR_TOP = 140
+#: the titles of :func:`orders_bar`'s panels, each with its unit
+ORDERS_BAR_TITLES = (
+    "Free forces<br>(x, z) [N]",
+    "Free moments<br>(x, z) [N·m]",
+    "Roll moment<br>(y) [N·m]",
+)
+
+
 def orders_bar(analysis: Analysis) -> go.Figure:
     """Force and moment amplitudes per order, forward and backward phasors stacked, and the
     roll moment's.
@@ -80,14 +95,19 @@ def orders_bar(analysis: Analysis) -> go.Figure:
     magnitude over a revolution, ``analysis.forces.force_amplitude``); the rotating masses
     of the bare crank are shown as an extra forward bar labelled "rot". The third panel is
     the sixth component, the roll moment about y (``analysis.forces.roll_amplitude``, a
-    real curve of each order: one bar).
+    real curve of each order: one bar). Each panel's title gives its unit; the value axes
+    have no title of their own (no room between three panels in a half-width web card).
     """
     f = analysis.forces
     fig = make_subplots(
         rows=1,
         cols=3,
-        subplot_titles=("Free forces (x, z)", "Free moments (x, z)", "Roll moment (y)"),
-        horizontal_spacing=0.08,
+        # the unit in each panel's title, no value-axis title: three panels side by side in
+        # a half-width web card (560 px at 1280) left no room between them for one, and the
+        # roll panel's "amplitude [N·m]" was drawn over the moment panel's last bar
+        # (two lines each: one line of three titles runs into its neighbours at that width)
+        subplot_titles=ORDERS_BAR_TITLES,
+        horizontal_spacing=ORDERS_BAR_GAP,
     )
     labels = [str(int(n)) for n in f.orders] + ["rot"]
     tf, tm = round_off(analysis.model)  # as Analysis.to_dict
@@ -134,7 +154,6 @@ def orders_bar(analysis: Analysis) -> go.Figure:
             row=1,
             col=col,
         )
-        fig.update_yaxes(title_text=f"amplitude [{unit}]", row=1, col=col)
         fig.update_xaxes(title_text="order", type="category", row=1, col=col)
     roll = zero_below(np.append(f.roll_amplitude, abs(f.rotating_roll)), tm)
     note_if_zero(fig, roll, "N·m", 1, 3, "3")
@@ -150,13 +169,13 @@ def orders_bar(analysis: Analysis) -> go.Figure:
         row=1,
         col=3,
     )
-    fig.update_yaxes(title_text="amplitude [N·m]", row=1, col=3)
     fig.update_xaxes(title_text="order", type="category", row=1, col=3)
     fig.update_layout(
         barmode="stack",
         template=TEMPLATE,
         title=figure_title("Free forces and moments by order", analysis.model.name),
         legend={"orientation": "h", "y": -0.2},
+        margin={"t": ORDERS_BAR_TOP},  # room for the title over the panels' two-line titles
     )
     return fig
 

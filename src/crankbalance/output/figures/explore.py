@@ -20,7 +20,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 from numpy.typing import NDArray
 
-from .common import COLORS, TEMPLATE, figure_title, make_subplots, plotly_go
+from .common import COLORS, TEMPLATE, figure_title, make_subplots, note_if_zero, plotly_go
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -149,8 +149,10 @@ def explore_scatter(
 def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
     """One explorer candidate's leading figures: free force and free moment of orders 1 to
     ``orders`` (forward and backward stacked), the firing order in the title; a crank
-    balanced in all of them gets :data:`BALANCED` written over its empty axes. ``row`` is
-    one row of the explorer's columns (scalars, or arrays of one element)."""
+    balanced in all of them gets :data:`BALANCED` written over its empty axes, one balanced
+    in its forces or its moments only gets "0 N everywhere" (or N·m) in that subplot
+    (:func:`~crankbalance.output.figures.common.note_if_zero`). ``row`` is one row of the
+    explorer's columns (scalars, or arrays of one element)."""
     go = plotly_go()
     fig = make_subplots(rows=1, cols=2, subplot_titles=("free force [N]", "free moment [N·m]"))
 
@@ -173,7 +175,11 @@ def explore_candidate(row: dict[str, Any], orders: int = 4) -> go.Figure:
                 col=col,
             )
     fig.update_xaxes(title_text="order")
-    if not any(v for trace in fig.data for v in trace.y):  # a balanced crank: say why empty
+    if any(v for trace in fig.data for v in trace.y):  # an empty subplot says why
+        for col, unit in ((1, "N"), (2, "N·m")):
+            bars = [v for trace in fig.data[2 * col - 2 : 2 * col] for v in trace.y]
+            note_if_zero(fig, bars, unit, 1, col, "" if col == 1 else "2")
+    else:  # a balanced crank: say why empty
         fig.add_annotation(
             text=BALANCED.format(orders=found[-1] if found else orders),
             xref="paper",

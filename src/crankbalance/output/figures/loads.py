@@ -17,7 +17,15 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from ...errors import InputError
-from .common import COLORS, ORDER_COLORS, TEMPLATE, figure_title, make_subplots, plotly_go
+from .common import (
+    COLORS,
+    ORDER_COLORS,
+    TEMPLATE,
+    figure_title,
+    make_subplots,
+    note_if_zero,
+    plotly_go,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -142,6 +150,9 @@ SWEEP_PANELS = (
     ("first_order_force_N", "free first-order force left [N]"),
     ("first_order_moment_Nm", "free first-order couple left [N·m]"),
 )
+#: the legend's heading of the lines of :func:`bearing_sweep_figure` (one per counterweight
+#: pattern), apart from the bars' "peak load of" bearing 1, 2, ...
+PATTERN_HEADING = "counterweight pattern (lines)"
 
 
 def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
@@ -163,12 +174,15 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         row_heights=[0.2, 0.2, 0.2, 0.4],
         vertical_spacing=0.1,
         horizontal_spacing=0.1,
-        subplot_titles=[title for _, title in SWEEP_PANELS]
-        + [f"peak load of each main bearing<br>per balance factor ({model} crank)"],
+        # one line each: stacked on a phone, a second line ran into the x-axis title
+        # ("balance factor") of the panel above; the crank model is in the figure's title,
+        # the balance factor on the axis
+        subplot_titles=[title for _, title in SWEEP_PANELS] + ["peak load of each main bearing"],
     )
     factors = [float(f) for f in sweep.options.balance_factors]
     span = [min(factors), max(factors)] if factors else [0.0, 1.0]
     patterns = list(dict.fromkeys(case["pattern"] for case in data["cases"]))
+    drawn: list[list[float]] = [[] for _ in SWEEP_PANELS]  # every value of each panel
     for n, pattern in enumerate(patterns):
         cases = [c for c in data["cases"] if c["pattern"] == pattern]
         color = ORDER_COLORS[n % len(ORDER_COLORS)]
@@ -178,6 +192,7 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
                 c[key] if key in c else c["free_forces"].get(key, c["models"][model].get(key))
                 for c in cases
             ]
+            drawn[p] += values
             fig.add_trace(
                 go.Scatter(
                     x=span if none else [c["balance_factor"] for c in cases],
@@ -185,6 +200,8 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
                     mode="lines" if none else "lines+markers",
                     name=pattern,
                     legendgroup=pattern,
+                    # the lines' entries under their own heading, apart from the bearings'
+                    legendgrouptitle_text=PATTERN_HEADING if n == 0 else None,
                     showlegend=p == 0,
                     line={"color": color, "dash": "dot" if none else "solid"},
                     hovertemplate=f"{pattern}<br>balance factor %{{x:.3g}}<br>"
@@ -216,6 +233,8 @@ def bearing_sweep_figure(sweep: SweepStudy) -> go.Figure:
         fig.update_xaxes(title_text="balance factor", row=1 + p // 2, col=1 + p % 2)
         unit = title.split(" [")[-1].rstrip("]")
         fig.update_yaxes(title_text=unit, row=1 + p // 2, col=1 + p % 2)
+        # a flat 0 (no first-order force on an inline-4) says so, not an empty -1..1 axis
+        note_if_zero(fig, drawn[p], unit, 1 + p // 2, 1 + p % 2, "" if p == 0 else str(p + 1))
     fig.update_xaxes(
         title_text="balance factor f_b [-]"
         + ("<br>under its counterweight pattern" if len(patterns) > 1 else ""),
