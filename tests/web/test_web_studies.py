@@ -20,6 +20,7 @@ async def test_counterweight_design_tab(user: User, form) -> None:
     cw = balance_engine("paper-inline3").result.counterweights
     # first moment m_c r_c of Table 2's counterweight: 1.2413 kg x 30 mm = 37239 g*mm
     assert f"{cw.mass.max() * cw.cg_radius * 1e6:.0f} g·mm" in required, required
+    assert "from the balancing" in required, required
     form.set("setting-cw_iterations", "3")
     form.set("setting-cw_population", "256")
     form.set("setting-cw_max_radius", "120 mm")
@@ -37,6 +38,16 @@ async def test_counterweight_design_tab(user: User, form) -> None:
     assert "SECTION" in dxf
     stl = await form.download("export-stl")
     assert len(stl) > 84
+
+
+async def test_counterweight_requirement_of_the_halves(user: User, form) -> None:
+    """A crank balanced as a whole (the flat inline-4: no counterweights from the
+    balancing) takes each half balanced on its own, and the tab says so."""
+    await user.open("/?preset=inline4")
+    form.open("counterweight")
+    required = form.text("cw-requirement")
+    assert "each half of the crank balanced on its own" in required, required
+    assert "from the balancing" not in required, required
 
 
 async def test_counterweight_bad_constraint(user: User, form) -> None:
