@@ -498,6 +498,9 @@ def test_shaft_figures_match_study() -> None:
     section = ShaftSection(outer_diameter=0.028)
     st = inline4_study(2e-4, 1300.0, 0.3, section)
     fig = shaft_study(st)
+    assert "inline4" not in fig.layout.title.text  # the study's case is not the engine
+    named = shaft_study(st, "Single cylinder", "free second-order force of 3081 N")
+    assert "Single cylinder · free second-order force of 3081 N" in named.layout.title.text
     # legend at the bottom of the figure, below every axis title; x titles on the lower row
     assert fig.layout.legend.yref == "container" and fig.layout.legend.yanchor == "bottom"
     assert fig.layout.xaxis.title.text is None and fig.layout.xaxis3.title.text

@@ -52,7 +52,7 @@ def test_explore_and_load_a_candidate(server: str, browser, width: int, height: 
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     try:
-        page.goto(server + "/")
+        page.goto(server + "/?preset=inline4")  # the explorer starts from the engine
         expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
         explore_inline4(page)
         problem = orders.problem("inline", 4, 4)
@@ -156,7 +156,7 @@ def test_the_table_names_its_columns_in_words(server: str, browser) -> None:
     ``residual_M_Nm``) and says what the count of orders giving the same engine is."""
     page = browser.new_page(viewport={"width": 1280, "height": 800})
     try:
-        page.goto(server + "/")
+        page.goto(server + "/?preset=inline4")  # the explorer starts from the engine
         expect(page.locator("[data-testid=status]").first).to_contain_text("Results of:")
         explore_inline4(page)
         head = page.locator("[data-testid=explore-table] thead").first

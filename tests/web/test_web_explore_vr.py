@@ -47,7 +47,7 @@ def test_a_vr_row_loads_with_its_bank_angle(server: str, browser) -> None:
     errors: list[str] = []
     page.on("pageerror", lambda e: errors.append(str(e)))
     try:
-        page.goto(server + "/")
+        page.goto(server + "/?preset=inline4")  # the explorer starts from its 4 cylinders
         status = page.locator("[data-testid=status]").first
         expect(status).to_contain_text("Results of:")
         page.wait_for_function("() => window.socket && window.socket.connected")

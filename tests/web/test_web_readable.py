@@ -57,7 +57,7 @@ def test_a_balanced_candidate_says_0_everywhere(server: str, browser: Any) -> No
     of orders 1 to 4: its card says so above the empty bars; the inline-4's does not."""
     page = browser.new_page(viewport={"width": 1280, "height": 800})
     try:
-        page.goto(server + "/")
+        page.goto(server + "/?preset=inline4")  # the explorer starts from the engine
         connected(page)
         open_tab(page, "Explorer")
         card = page.locator(".q-card", has=page.locator("[data-testid=figure-explore-candidate]"))

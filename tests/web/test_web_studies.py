@@ -8,7 +8,7 @@ from nicegui.testing.user import User
 
 from crankbalance.physics.tolerance import permissible_unbalance
 from crankbalance.studies.cylinder import cylinder_study
-from crankbalance.studies.engine import balance_engine
+from crankbalance.studies.engine import analyze, balance_engine
 
 pytestmark = pytest.mark.anyio
 
@@ -20,6 +20,7 @@ async def test_counterweight_design_tab(user: User, form) -> None:
     cw = balance_engine("paper-inline3").result.counterweights
     # first moment m_c r_c of Table 2's counterweight: 1.2413 kg x 30 mm = 37239 g*mm
     assert f"{cw.mass.max() * cw.cg_radius * 1e6:.0f} g·mm" in required, required
+    assert "from the balancing" in required, required
     form.set("setting-cw_iterations", "3")
     form.set("setting-cw_population", "256")
     form.set("setting-cw_max_radius", "120 mm")
@@ -37,6 +38,16 @@ async def test_counterweight_design_tab(user: User, form) -> None:
     assert "SECTION" in dxf
     stl = await form.download("export-stl")
     assert len(stl) > 84
+
+
+async def test_counterweight_requirement_of_the_halves(user: User, form) -> None:
+    """A crank balanced as a whole (the flat inline-4: no counterweights from the
+    balancing) takes each half balanced on its own, and the tab says so."""
+    await user.open("/?preset=inline4")
+    form.open("counterweight")
+    required = form.text("cw-requirement")
+    assert "each half of the crank balanced on its own" in required, required
+    assert "from the balancing" not in required, required
 
 
 async def test_counterweight_bad_constraint(user: User, form) -> None:
@@ -98,6 +109,36 @@ async def test_balance_shaft_tab(user: User, form) -> None:
     form.set("setting-bs_diameter", "-3 mm")
     user.find(marker="run-shaft").click()
     await form.until(lambda: form.error("setting-bs_diameter"))
+
+
+async def test_balance_shaft_words_and_figure_title(user: User, form) -> None:
+    """The free force in the output vocabulary (no e-notation); the figure's title names
+    the engine and the force the shaft balances, not the study's internal case."""
+    await user.open("/?preset=inline4")
+    form.open("shaft")
+    force = analyze("inline4").to_dict()["free_forces"][1]["amplitude_N"]
+    assert f"free second-order force of {force:.0f} N" in form.text("shaft-applies")
+    user.find(marker="run-shaft").click()
+    await form.until(lambda: "optimum" in form.text("shaft-summary"))
+    title = form.element("figure-shaft").figure["layout"]["title"]["text"]
+    assert "(inline4)" not in title and f"second-order force of {force:.0f} N" in title, title
+    assert balance_engine("inline4").model.name.split()[0] in title, title
+    assert form.text("shaft-not-applicable") == ""
+
+
+async def test_balance_shaft_refusal_said_once(user: User, form) -> None:
+    """An engine the study does not apply to: the red line says why, no toast repeats it,
+    and the figure card says "not applicable" with the reason instead of an empty box."""
+    await user.open("/?preset=v8-crossplane")
+    form.open("shaft")
+    user.find(marker="run-shaft").click()
+    await form.until(lambda: form.text("shaft-not-applicable"))
+    assert "does not apply" in form.text("shaft-applies")
+    note = form.text("shaft-not-applicable")
+    assert note.startswith("not applicable: Its free first-order effect is a moment of"), note
+    assert "e+" not in form.text("shaft-applies")
+    assert not [m for m in user.notify.messages if "does not apply" in m]
+    assert not form.find_hidden("figure-shaft").visible
 
 
 async def test_performance_tab(user: User, form) -> None:

@@ -178,22 +178,24 @@ def _run(name: str, engine: Any, values: dict[str, Any], prefix: str) -> Any:
 
 
 # --------------------------------------------------------------------------- counterweight
-def counterweight_requirement(computed: Computation) -> tuple[float, float, float]:
-    """(first moment m_c r_c [kg m], counterweight mass [kg], CG radius [m]) of the heaviest
-    crank counterweight found by the balancing solver; for a crank balanced as a whole
-    (which the balancing leaves without counterweights), that of each half balanced on its
-    own, as the command line's ``counterweight optimize --engine`` takes it."""
+def counterweight_requirement(computed: Computation) -> tuple[float, float, float, bool]:
+    """(first moment m_c r_c [kg m], counterweight mass [kg], CG radius [m], whether it is
+    that of the halves) of the heaviest crank counterweight found by the balancing solver;
+    for a crank balanced as a whole (which the balancing leaves without counterweights),
+    that of each half balanced on its own, as the command line's ``counterweight optimize
+    --engine`` takes it (the last item True)."""
     from ..studies.engine import balance_engine
     from ..studies.requirements import counterweight_requirement as requirement
 
     study = computed.study
+    halves = False
     try:
         moment = requirement(study)
     except InputError:
         study = balance_engine(computed.spec, halves_if_balanced=True)
-        moment = requirement(study)
+        moment, halves = requirement(study), True
     radius = float(study.result.counterweights.cg_radius)
-    return moment, moment / radius, radius
+    return moment, moment / radius, radius, halves
 
 
 def counterweight_inputs(computed: Computation, settings: dict[str, Any]) -> tuple[float, Any]:
@@ -202,7 +204,7 @@ def counterweight_inputs(computed: Computation, settings: dict[str, Any]) -> tup
     ``counterweight-optimize``, its work budget checked), before it starts."""
     from ..studies.registry import parse, study
 
-    required, _mass, _radius = counterweight_requirement(computed)
+    required = counterweight_requirement(computed)[0]
     options(settings, CounterweightOptions)  # the form's own checks, named by its keys
     values = _texts(settings, "cw_", CounterweightOptions)
     values["first_moment"] = f"{required!r} kg*m"  # the balancing's, read back exactly

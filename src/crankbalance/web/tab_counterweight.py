@@ -19,6 +19,13 @@ from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, plot_or_none, send_download
 
+#: where the requirement comes from when the balancing needs no counterweights (a crank
+#: balanced as a whole, e.g. a flat inline-4)
+HALVES = (
+    "each half of the crank balanced on its own, as `counterweight optimize --engine` takes "
+    "it: the crank balanced as a whole needs no counterweights"
+)
+
 
 def space_warnings(optimum: Any, limit: float) -> list[str]:
     """Warnings for the shown designs whose outer radius exceeds the engine's space."""
@@ -112,10 +119,11 @@ class CounterweightTab(StudyTab):
     def show(self, c: Any) -> None:
         super().show(c)
         try:
-            moment, mass, radius = studies.counterweight_requirement(c)
+            moment, mass, radius, halves = studies.counterweight_requirement(c)
+            source = HALVES if halves else "from the balancing"
             self.cw_requirement.set_content(
                 f"Required first moment **{moment * 1e6:.0f} g·mm** "
-                f"({mass * 1e3:.1f} g at {radius * 1e3:g} mm, from the balancing)"
+                f"({mass * 1e3:.1f} g at {radius * 1e3:g} mm, {source})"
             )
         except InputError as error:
             self.cw_requirement.set_content(f"No counterweight requirement: {error.allowed}")

@@ -9,6 +9,11 @@ changed the result is cleared and the tab says to re-run. The run is
 of the enumeration (``orders.PLAIN``), for problems of at most :data:`MAX_INDICES` firing
 orders; larger ones are for ``crankbalance explore --workers N``.
 
+The problem starts from the page's engine when the tab is opened (:func:`engine_problem`:
+its layout, cylinders, strokes and bank angle, where the explorer enumerates that layout in
+the page's budget; else the schema's defaults, and one line says why), and a line above the
+settings says which problem is explored and whether it is the page's engine's.
+
 A click on a row of the table (or on a point of the scatter) loads that candidate as the
 current engine: the form's layout, cylinders, strokes, bank angle, firing order and throw
 angles are set, the rest of the engine (masses, geometry) is kept.
@@ -207,6 +212,56 @@ def parse(texts: dict[str, str]) -> tuple[Any, tuple[str, str], ExploreOptions, 
     return problem, (x, y), o, o.top, o.bank_angle
 
 
+#: the settings of the problem that :func:`engine_problem` takes from the page's engine
+PROBLEM_KEYS = ("layout", "cylinders", "strokes", "bank_angle")
+#: layouts with a bank angle (the explorer's)
+BANKED = ("vee", "w", "vr")
+
+
+def engine_problem(spec: Any) -> tuple[dict[str, str] | None, str]:
+    """The texts of :data:`PROBLEM_KEYS` of the engine ``spec`` (an
+    :class:`~crankbalance.schema.engine.EngineSpec`) for the explorer, and None with the
+    reason in words when the explorer cannot explore that engine's problem here (a layout
+    it does not enumerate, or more than :data:`MAX_INDICES` firing orders)."""
+    from ..physics.explore import orders
+
+    train = spec.crank_train
+    layout = str(train.layout)
+    if layout not in CHOICES["layout"]:
+        return None, (
+            f"the explorer enumerates {', '.join(CHOICES['layout'])} cranks, not a {layout} one"
+        )
+    bank = train.bank_angle if layout in BANKED else None
+    texts = {
+        "layout": layout,
+        "cylinders": str(int(train.cylinders)),
+        "strokes": str(int(train.strokes)),
+        "bank_angle": "" if bank is None else f"{math.degrees(bank):.6g} deg",
+    }
+    try:
+        problem = orders.problem(layout, int(train.cylinders), int(train.strokes), bank)
+    except InputError as error:
+        return None, f"the explorer cannot take it ({error})"
+    total = orders.count(problem)
+    if total > MAX_INDICES:
+        return None, (
+            f"its {total:,} firing orders are more than the {MAX_INDICES:,} the web app "
+            "explores (`crankbalance explore --workers N` runs it)"
+        )
+    return texts, ""
+
+
+def problem_words(texts: dict[str, str]) -> str:
+    """The problem of the tab's texts in words: ``vee, 8 cylinders, 4-stroke, bank angle
+    90 deg``."""
+    words = [texts.get("layout", "").strip(), f"{texts.get('cylinders', '').strip()} cylinders"]
+    words.append(f"{texts.get('strokes', '').strip()}-stroke")
+    bank = texts.get("bank_angle", "").strip()
+    if bank and texts.get("layout", "").strip() in BANKED:
+        words.append(f"bank angle {bank}")
+    return ", ".join(words)
+
+
 def _in_maker_numbers(train: dict[str, Any], order: list[int]) -> list[int]:
     """The candidate's order (crankbalance's numbering) in the engine's maker's numbering
     when the engine file has one (``numbering`` or ``maker_numbers``), else unchanged."""
@@ -271,10 +326,16 @@ class ExploreTab(TabSettingsMixin, StudyTab):
     bank_angle: float | None = None
     top = 20
 
+    #: why the page's engine's problem was not taken when the tab was opened ("" if it was)
+    not_taken = ""
+
     def build(self) -> None:
         # the explorer's modules and columns load in a thread: on the event loop their
         # first import (seconds on a busy machine) would stall every page of the server
         threading.Thread(target=_columns, daemon=True).start()
+        self.problem_line = (
+            ui.markdown("").props("data-testid=explore-problem").mark("explore-problem")
+        )
         with ui.row().classes("w-full items-start gap-4"):
             self.settings_card("Problem", "w-64", run_label="Explore")
             with ui.card().classes("min-w-0").style("flex: 1 1 0"):
@@ -299,10 +360,50 @@ class ExploreTab(TabSettingsMixin, StudyTab):
             scatter = self.card("explore-scatter", "Candidates and Pareto set", self._scatter)
             self.card("explore-candidate", "Chosen candidate", self._candidate)
         scatter.plot.on("plotly_click", self.on_point)
+        self.take_engine_problem()
+
+    def take_engine_problem(self) -> None:
+        """Start the problem from the page's engine (:func:`engine_problem`), else keep the
+        schema's defaults and remember why."""
+        spec = self.page.project.spec
+        if spec is None:
+            self.say_problem()
+            return
+        texts, self.not_taken = engine_problem(spec)
+        for key, text in (texts or {}).items():
+            self.fields[key].value = text  # its on_change stores the text
+            self.texts[key] = text
+        self.say_problem()
+
+    def say_problem(self) -> None:
+        """The line that says which problem the tab explores and whether it is the page's
+        engine's."""
+        spec = self.page.project.spec
+        shown = f"Explores **{problem_words(self.texts)}**"
+        if spec is None:
+            self.problem_line.set_content(f"{shown}.")
+            return
+        texts, why = engine_problem(spec)
+        name = spec.name
+        if texts is not None and all(self.texts.get(k, "").strip() == v for k, v in texts.items()):
+            self.problem_line.set_content(f"{shown}: the crank of this page's engine ({name}).")
+        elif texts is None:
+            self.problem_line.set_content(f"{shown}, not this page's engine ({name}): {why}.")
+        else:
+            self.problem_line.set_content(
+                f"{shown}, not this page's engine ({name}: {problem_words(texts)})."
+            )
+
+    def settings_changed(self) -> None:
+        super().settings_changed()
+        if hasattr(self, "problem_line"):
+            self.say_problem()
 
     # ------------------------------------------------------------------ StudyTab
     def show(self, c: Any) -> None:
-        """The engine's changes do not touch the result: it belongs to the tab's settings."""
+        """The engine's changes do not touch the result: it belongs to the tab's settings
+        (the line above the settings says whether they are the new engine's)."""
+        self.say_problem()
 
     def reset(self) -> None:
         """A new project (or a candidate loaded from here) keeps the explorer's result."""

@@ -10,6 +10,10 @@ from nicegui import ui
 from .form import MASS_FIELDS
 from .widgets import Tab, distinct
 
+#: the labels of the tab's two choices
+MASS_MODE_LABEL = "Masses given as"
+CONROD_SPLIT_LABEL = "Conrod split by"
+
 
 class MassesTab(Tab):
     name = "masses"
@@ -19,12 +23,17 @@ class MassesTab(Tab):
         with ui.row().classes("w-full items-start gap-6"):
             with ui.card():
                 ui.label("Masses of the crank mechanism").classes("text-subtitle1")
-                with ui.row():
+                # two choices, each on its own row with its label (on one row at 1280 px
+                # their four buttons read as one group)
+                with ui.row().classes("items-center gap-2"):
+                    ui.label(MASS_MODE_LABEL).classes("text-grey-8").mark("mass-mode-label")
                     ui.radio(
                         {"parts": "Parts", "totals": "Totals"},
                         value=page.project.settings["mass_mode"],
                         on_change=lambda e: page.on_mode("mass_mode", e.value),
                     ).props("inline").mark("mass-mode")
+                with ui.row().classes("items-center gap-2"):
+                    ui.label(CONROD_SPLIT_LABEL).classes("text-grey-8").mark("conrod-split-label")
                     ui.radio(
                         {"fraction": "Conrod rotating fraction", "cg": "Conrod CG from big end"},
                         value=page.project.settings["conrod_split"],

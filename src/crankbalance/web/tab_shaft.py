@@ -14,6 +14,7 @@ from typing import Any
 from nicegui import ui
 
 from ..errors import InputError
+from ..output.format import text
 from ..schema.settings import ShaftPlacementOptions
 from . import studies
 from .messages import show_error
@@ -42,14 +43,19 @@ def applicability(analysis: Any) -> tuple[bool, str]:
     moment = float(row["free_moments"][order - 1]["amplitude_Nm"])
     name = ORDER_NAMES[order]
     if moment > 0:
-        also = f" (and a free force of {force:.4g} N)" if force > 0 else ""
+        also = f" (and a free force of {text(force, 'force', 5)})" if force > 0 else ""
         return False, (
             f"**The placement study does not apply to this engine.** Its free {name} effect "
-            f"is a moment of {moment:.4g} N·m{also}: a shaft cancels it with two masses in "
-            "opposition at its ends, not with the one unbalance mass between end bearings "
-            "whose position this study (Kim 2018) finds."
+            f"is a moment of {text(moment, 'moment', 5)}{also}: a shaft cancels it with two "
+            "masses in opposition at its ends, not with the one unbalance mass between end "
+            "bearings whose position this study (Kim 2018) finds."
         )
-    return True, f"For this engine's free {name} force of {force:.4g} N."
+    return True, f"For this engine's free {name} force of {text(force, 'force', 5)}."
+
+
+def reason(why: str) -> str:
+    """The reason of :func:`applicability`'s words, without their bold lead sentence."""
+    return why.split("**")[-1].strip()
 
 
 class ShaftTab(StudyTab):
@@ -72,7 +78,20 @@ class ShaftTab(StudyTab):
                 self.rerun_note()
                 self.applies = ui.markdown("").mark("shaft-applies")
                 self.shaft_summary = ui.markdown("").mark("shaft-summary")
-        self.card("shaft", "Placement study", lambda: plot_or_none("shaft_study", self.result))
+        self.card("shaft", "Placement study", self.figure).note.mark("shaft-not-applicable")
+
+    def figure(self) -> Any | None:
+        """The placement study's figure, titled with the engine and the free force the shaft
+        balances; none (and a "not applicable" line in its card) when the study does not
+        apply to the engine."""
+        card = self.cards[0]
+        c = self.page.project.computed
+        ok, why = (True, "") if c is None else applicability(c.analysis)
+        card.note.set_text("" if ok else f"not applicable: {reason(why)}")
+        if not ok or self.result is None or c is None:
+            return None
+        balances = why.removeprefix("For this engine's ").rstrip(".")
+        return plot_or_none("shaft_study", self.result, c.analysis.model.name, balances)
 
     def show(self, c: Any) -> None:
         super().show(c)
@@ -101,9 +120,8 @@ class ShaftTab(StudyTab):
             return
         ok, why = applicability(c.analysis)
         self.applies.set_content(why)
-        if not ok:
+        if not ok:  # said once, in the red line (a toast would repeat it and cover it)
             self._clear()
-            ui.notify("The placement study does not apply to this engine", type="warning")
             return
         started = self.stamp()
         settings = dict(self.page.project.settings)
@@ -112,10 +130,9 @@ class ShaftTab(StudyTab):
             done = await self.in_worker(self.what, studies.shaft_placement, c, settings)
         except InputError as error:
             if error.field == "engine":  # the balancing leaves no unbalance for a shaft
-                self._clear(
-                    f"**The placement study does not apply to this engine:** "
-                    f"{error.allowed} (the crank counterweights cancel it)."
-                )
+                why = f"{error.allowed} (the crank counterweights cancel it)"
+                self._clear(f"**The placement study does not apply to this engine:** {why}.")
+                self.cards[0].note.set_text(f"not applicable: {why}")
                 return
             self._clear(show_error(self.page, error, ALIASES))
             return

@@ -3,7 +3,7 @@ placement study and the deflection of one shaft.
 
 Public functions
 ----------------
-- ``shaft_study(study) -> Figure``                  (balance_shaft placement studies)
+- ``shaft_study(study, engine=None, note=None) -> Figure``  (balance_shaft placement studies)
 - ``shaft_response_figure(response, shaft=None) -> Figure``  (balance_shaft.ShaftResponse)
 """
 
@@ -13,7 +13,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
+from .common import COLORS, ORDER_COLORS, TEMPLATE, figure_title, make_subplots, plotly_go
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -21,11 +21,16 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...physics.balance_shaft import BalanceShaft, PlacementStudy, ShaftResponse
 
 
-def shaft_study(study: PlacementStudy) -> go.Figure:
+def shaft_study(
+    study: PlacementStudy, engine: str | None = None, note: str | None = None
+) -> go.Figure:
     """Balance-shaft placement study (Kim 2018, Figs. 6-9): bearing loads, bending measure
     and first bending frequency along the design variable, and the normalised measures with
     the objective J and its optimum
-    (:class:`~crankbalance.physics.balance_shaft.PlacementStudy`)."""
+    (:class:`~crankbalance.physics.balance_shaft.PlacementStudy`). The subtitle names the
+    ``engine`` and ``note`` (what the shaft balances); an inline-3 study names its rotor
+    type. The study's internal case (``inline4``: the model of the study) is not the
+    engine and is not shown."""
     go = plotly_go()
     x = 100 * np.asarray(study.positions)
     fig = make_subplots(
@@ -90,9 +95,16 @@ def shaft_study(study: PlacementStudy) -> go.Figure:
             "x": 0.5,
             "xanchor": "center",
         },
-        title=f"Balance-shaft placement study ({study.case})",
+        title=figure_title("Balance-shaft placement study", engine, _note(study, note)),
     )
     return fig
+
+
+def _note(study: PlacementStudy, note: str | None) -> str | None:
+    """The subtitle's note: ``note``, with the rotor type of an inline-3 study."""
+    rotor = study.case.partition("inline3-")[2]
+    words = [w for w in (note, f"rotor type {rotor}" if rotor else None) if w]
+    return " · ".join(words) or None
 
 
 def shaft_response_figure(response: ShaftResponse, shaft: BalanceShaft | None = None) -> go.Figure:

@@ -41,6 +41,13 @@ def _drilling_plans(study: Any) -> list[Any]:
     ]
 
 
+def _shaft_note(result: Any) -> str | None:
+    """What a shaft of ``shaft-inline4``/``shaft-inline3`` balances: its order (from the
+    engine), none when the unbalance was given."""
+    order = result.requirement.order
+    return f"order-{order} shaft" if order else None
+
+
 def _explore_scatter(result: Any) -> Any:
     """The candidates over the first two objectives, the Pareto set highlighted (the
     figure of ``crankbalance explore --plot``): the rows of the run's figure when it kept
@@ -81,7 +88,9 @@ FIGURES: dict[str, tuple[Callable[[Any], Any], ...]] = {
     "RebalanceResult": (lambda r: rebalance_unbalance(r.study), lambda r: _drilling_plans(r.study)),
     "OptimizeResult": (lambda r: pareto_front(r.optimum),),
     "DesignResult": (lambda r: counterweight_profile(r.design, r.crank),),
-    "PlacementResult": (lambda r: [shaft_study(s) for s in r.studies],),
+    "PlacementResult": (
+        lambda r: [shaft_study(s, r.requirement.engine, _shaft_note(r)) for s in r.studies],
+    ),
     "CheckResult": (lambda r: shaft_response_figure(r.response, r.design),),
     "BenchStudy": (lambda r: [bench_figure(run) for run in r.runs],),
     "CycleStudy": (lambda r: engine_torque_figure(r.result),),
