@@ -221,8 +221,8 @@ def test_balance_table_says_what_is_left(capsys: pytest.CaptureFixture[str]) -> 
 
 def test_what_is_left_is_written_in_the_output_vocabulary() -> None:
     """Each line of ``remaining`` gives its amount as ``results.number`` writes it: four
-    significant digits, 10 000 and more whole (the single's free primary, 10 712 N, was
-    '1.071e+04 N' on every edge that shows the line)."""
+    significant digits, 10 000 and more whole (the W12's free secondary force, 14 369 N,
+    was '1.437e+04 N' on every edge that shows the line)."""
     from crankbalance.results import number
     from crankbalance.studies.engine import balance_engine
 
@@ -231,5 +231,5 @@ def test_what_is_left_is_written_in_the_output_vocabulary() -> None:
             unit = "N" if line.quantity == "force" else "N·m"
             assert line.text.endswith(f": {number(line.amount)} {unit}"), line.text
             assert "e+" not in line.text, line.text
-    big = [r for r in balance_engine("single").result.remaining if r.amount >= 1e4]
-    assert big, "the single's free primary exceeds 10 000 N"
+    big = [r for r in balance_engine("w12").result.remaining if r.amount >= 1e4]
+    assert big, "the W12's free secondary force exceeds 10 000 N"

@@ -128,6 +128,9 @@ def test_pareto_ties_within_round_off_are_kept_as_the_command_line_keeps_them(
         page.goto(server + "/")
         connected(page)
         open_tab(page, "Explorer")
+        # the tab has taken its problem from the page's engine (the paper's inline-3)
+        problem = page.locator("[data-testid=explore-problem]").first
+        expect(problem).to_contain_text("inline, 3 cylinders")
         for key, value in (("cylinders", "5"), ("x", "M1"), ("y", "M2")):
             field = page.locator(f"[data-testid=explore-{key}]").first
             field.fill(value)
