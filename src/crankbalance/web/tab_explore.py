@@ -336,8 +336,10 @@ class ExploreTab(TabSettingsMixin, StudyTab):
         self.problem_line = (
             ui.markdown("").props("data-testid=explore-problem").mark("explore-problem")
         )
+        spec = self.page.project.spec
+        starts, self.not_taken = engine_problem(spec) if spec is not None else (None, "")
         with ui.row().classes("w-full items-start gap-4"):
-            self.settings_card("Problem", "w-64", run_label="Explore")
+            self.settings_card("Problem", "w-64", run_label="Explore", starts=starts)
             with ui.card().classes("min-w-0").style("flex: 1 1 0"):
                 ui.label("Results").classes("text-subtitle1")
                 self.rerun_note()
@@ -360,19 +362,6 @@ class ExploreTab(TabSettingsMixin, StudyTab):
             scatter = self.card("explore-scatter", "Candidates and Pareto set", self._scatter)
             self.card("explore-candidate", "Chosen candidate", self._candidate)
         scatter.plot.on("plotly_click", self.on_point)
-        self.take_engine_problem()
-
-    def take_engine_problem(self) -> None:
-        """Start the problem from the page's engine (:func:`engine_problem`), else keep the
-        schema's defaults and remember why."""
-        spec = self.page.project.spec
-        if spec is None:
-            self.say_problem()
-            return
-        texts, self.not_taken = engine_problem(spec)
-        for key, text in (texts or {}).items():
-            self.fields[key].value = text  # its on_change stores the text
-            self.texts[key] = text
         self.say_problem()
 
     def say_problem(self) -> None:

@@ -822,16 +822,19 @@ class TabSettingsMixin:
         width: str,
         run_label: str = "Run",
         before_run: Callable[[], object] | None = None,
+        starts: Mapping[str, str] | None = None,
     ) -> None:
         """The card of the tab's settings, in the current layout element: an input per
-        setting of :attr:`settings_table` (with its default text), then a row of
-        ``before_run``'s buttons, the run button (:meth:`run`) and the busy spinner."""
-        self.texts = {k: v[1] for k, v in self.settings_table.items()}
+        setting of :attr:`settings_table` (with its default text, or its text of ``starts``:
+        an input is made with the text it starts from, never set after it is sent, which
+        could overwrite what the user types into it first), then a row of ``before_run``'s
+        buttons, the run button (:meth:`run`) and the busy spinner."""
+        self.texts = {k: (starts or {}).get(k, v[1]) for k, v in self.settings_table.items()}
         self.fields = {}
         with ui.card().classes(width):
             ui.label(title).classes("text-subtitle1")
-            for key, (label, default, hint) in self.settings_table.items():
-                self.field(key, label, default, hint)
+            for key, (label, _default, hint) in self.settings_table.items():
+                self.field(key, label, self.texts[key], hint)
             with ui.row().classes("items-center gap-2"):
                 if before_run is not None:
                     before_run()
