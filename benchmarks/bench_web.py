@@ -64,6 +64,11 @@ from typing import Any
 
 from crankbalance.output.render import CHROMIUM_FLAGS
 
+# the page's states and the shop example as typed are the browser tests' (tests/web), once
+sys.path.insert(0, str(Path(__file__).resolve().parents[1]))
+from tests.web.test_web_screens import SETTLED  # noqa: E402
+from tests.web.test_web_shop import TYPED as SHOP_TYPED  # noqa: E402
+
 CHROMIUM = "/usr/bin/chromium"
 ENGINE = "v12-60"
 #: the header's update count (every processed edit raises it) and state
@@ -287,26 +292,6 @@ def png_reference(count: int) -> dict[str, list[float]]:
 
 FRESH_ENGINE = "v8-crossplane"
 PARTS = Path(__file__).resolve().parents[1] / "examples" / "v8_parts.csv"
-#: the shop example's settings as typed (those of examples/v8_shop.py; tests/web/test_web_shop.py)
-SHOP_TYPED = {
-    "reading_1": "12.5 g @ 40 mm, 35 deg",
-    "reading_2": "8 g @ 40 mm, 200 deg",
-    "measuring_planes": "0 mm, 400 mm",
-    "correction_planes": "50 mm, 350 mm",
-    "hole_radius": "45 mm",
-    "rotor_mass": "25 kg",
-    "bearings": "-20 mm, 420 mm",
-}
-#: the open tab panel has slid into place (tests/web/test_web_screens.SETTLED)
-SETTLED = """() => {
-    const shown = [...document.querySelectorAll('.q-tab-panel')]
-        .filter((p) => p.offsetParent !== null);
-    if (shown.length !== 1) return false;
-    if (document.querySelector('[class*="q-transition--"][class*="-active"]')) return false;
-    const panel = shown[0].getBoundingClientRect();
-    const home = shown[0].parentElement.getBoundingClientRect();
-    return Math.abs(panel.left - home.left) < 0.5;
-}"""
 #: the 3-D crank is seen: drawn by plotly.js (its WebGL scene and data), or its still picture
 #: (``FigureCard.preview``, sent with the page until the scene is drawn) displayed with its
 #: lines, the page painted
