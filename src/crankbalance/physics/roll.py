@@ -89,32 +89,50 @@ def roll_coefficients(
     -------
     ndarray of complex, shape (K,)
         :math:`d_n` of orders 1..K, :math:`M_y = m r^2\omega^2\,\mathrm{Re}\sum_n d_n
-        e^{in\psi}` [-]; read-only (cached).
+        e^{in\psi}` [-]; read-only (cached). The row of :func:`roll_harmonics` for one pair.
+    """
+    out = roll_harmonics(np.array([rod_ratio]), np.array([offset_ratio]), orders, kinematics)[0]
+    out.flags.writeable = False
+    return out
+
+
+def roll_harmonics(
+    rod_ratio: NDArray[np.float64],
+    offset_ratio: NDArray[np.float64],
+    orders: int,
+    kinematics: KinematicsModel = "exact",
+) -> NDArray[np.complex128]:
+    r"""Harmonics :math:`d_n` of the roll moment of many pistons at once: one row per pair
+    of rod ratio and offset (shapes (P,) each; the rows of :func:`roll_coefficients`).
+
+    Returns
+    -------
+    ndarray of complex, shape (P, K)
+        :math:`d_n` of orders 1..K of each pair [-].
 
     Notes
     -----
     The discrete Fourier transform of :math:`-f(\psi)(\epsilon + s'(\psi))` over
-    :func:`_samples` equally spaced angles, :math:`f = -\ddot s/(r\omega^2)`. The exact
-    harmonics decay like :math:`\lambda^n`; the series' products are trigonometric
-    polynomials of at most twice their highest order, which those samples resolve exactly.
+    :func:`_samples` equally spaced angles, :math:`f = -\ddot s/(r\omega^2)`, every pair's
+    samples transformed by one call. The exact harmonics decay like :math:`\lambda^n`; the
+    series' products are trigonometric polynomials of at most twice their highest order,
+    which those samples resolve exactly.
     """
     n = _samples(int(orders))
     psi = 2.0 * np.pi * np.arange(n) / n
-    eps = float(offset_ratio)
+    lam = np.asarray(rod_ratio, dtype=float)[:, None]
+    eps = np.asarray(offset_ratio, dtype=float)[:, None]
     if kinematics == "exact":
-        lam = float(rod_ratio)
         force = -piston_acceleration(psi, 1.0, 1.0 / lam, eps)
         rate = piston_velocity(psi, 1.0, 1.0 / lam, eps)
     else:
-        c = harmonic_coefficients(rod_ratio, int(orders) + SERIES_ORDERS, 0.0, kinematics)
-        k = np.arange(1, c.size + 1)
-        turn = np.exp(1j * np.outer(psi, k))
-        force = (turn @ c).real
-        rate = (turn @ (1j * c / k)).real  # s = Re sum c_k/k^2 e^{ik psi}
-    spectrum = np.fft.fft(-force * (eps + rate)) * (2.0 / n)
-    out = np.array(spectrum[1 : int(orders) + 1])
-    out.flags.writeable = False
-    return out
+        c = harmonic_coefficients(lam[:, 0], int(orders) + SERIES_ORDERS, 0.0, kinematics)
+        k = np.arange(1, c.shape[-1] + 1)
+        turn = np.exp(1j * np.outer(k, psi))
+        force = (c @ turn).real
+        rate = ((1j * c / k) @ turn).real  # s = Re sum c_k/k^2 e^{ik psi}
+    spectrum = np.fft.fft(-force * (eps + rate), axis=-1) * (2.0 / n)
+    return np.array(spectrum[:, 1 : int(orders) + 1])
 
 
 def articulated_roll(

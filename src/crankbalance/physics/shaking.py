@@ -54,7 +54,7 @@ from .kinematics import (
     piston_velocity,
 )
 from .model import EngineBatch, EngineModel
-from .roll import articulated_roll, articulated_roll_curve, roll_coefficients
+from .roll import articulated_roll, articulated_roll_curve, roll_coefficients, roll_harmonics
 
 
 @dataclass(frozen=True)
@@ -334,21 +334,23 @@ def roll_rows(
 
     Returns
     -------
-    ndarray of complex, shape (K,) or (E, C, K)
+    ndarray of complex, shape (K,), (E, 1, K) or (E, C, K)
         One row for all when every engine and cylinder shares its rod ratio and offset
-        (read-only, from the cache), else each cylinder's row; each distinct pair of rod
-        ratio and offset computed once [-].
+        (read-only, from the cache); one row per engine when its cylinders share one
+        offset; else each cylinder's row, each distinct pair of rod ratio and offset
+        computed once (all rows by one transform) [-].
     """
     ratio = np.asarray(offset_ratio, dtype=float)
     lam = np.broadcast_to(np.asarray(rod_ratio, dtype=float)[:, None], ratio.shape)
     if np.all(lam == lam.flat[0]) and np.all(ratio == ratio.flat[0]):  # one row for all
         return roll_coefficients(float(lam.flat[0]), float(ratio.flat[0]), orders, kinematics)
-    # each distinct (rod ratio, offset) once, from the cache
+    if np.all(ratio == ratio[:, :1]):  # one offset per engine: one row per engine
+        return roll_harmonics(lam[:, 0], ratio[:, 0], orders, kinematics)[:, None, :]
+    # each distinct (rod ratio, offset) once
     pairs = np.stack([lam.reshape(-1), ratio.reshape(-1)], axis=-1)
     shared, index = np.unique(pairs, axis=0, return_inverse=True)
-    return np.stack([roll_coefficients(float(a), float(e), orders, kinematics) for a, e in shared])[
-        index.reshape(-1)
-    ].reshape(*ratio.shape, orders)
+    rows = roll_harmonics(shared[:, 0], shared[:, 1], orders, kinematics)
+    return rows[index.reshape(-1)].reshape(*ratio.shape, orders)
 
 
 def _roll_sum(
