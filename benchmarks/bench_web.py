@@ -47,7 +47,14 @@ study of the server's worker pool). The reference, measured in the same run:
 same first study), median of N. ``--load K`` keeps K ``yes > /dev/null`` processes
 running during the whole run (a loaded machine).
 
-    python benchmarks/bench_web.py --fresh 5 [--load 2]
+As in ``bench_cold_start.py``: Python reads the compiled bytecode of an installed package
+(pip writes it on installation); where ``PYTHONDONTWRITEBYTECODE`` is set, a source
+checkout would be compiled at every start of the server (about 0.13 s of its imports and
+more of its warm-up on this machine). So with ``--fresh`` the server and the reference run
+with a bytecode cache of their own in a temporary folder (``PYTHONPYCACHEPREFIX``), filled
+by one start of each before the clock; ``--as-is`` keeps the environment as it is.
+
+    python benchmarks/bench_web.py --fresh 5 [--load 2] [--as-is]
 """
 
 from __future__ import annotations
@@ -58,6 +65,7 @@ import os
 import statistics
 import subprocess
 import sys
+import tempfile
 import time
 from pathlib import Path
 from typing import Any
@@ -361,13 +369,20 @@ def cli_reference(count: int) -> list[float]:
     return times
 
 
-def fresh_main(count: int) -> None:
-    load_before = os.getloadavg()[0]
-    ref = statistics.median(cli_reference(count))
-    times = asyncio.run(run_fresh(count))
+def fresh_main(count: int, as_is: bool) -> None:
+    with tempfile.TemporaryDirectory(prefix="crankbalance-pycache-") as cache:
+        if not as_is:  # the server (running_server) and the reference inherit os.environ
+            os.environ.pop("PYTHONDONTWRITEBYTECODE", None)
+            os.environ["PYTHONPYCACHEPREFIX"] = cache
+            cli_reference(1)  # the bytecode written, not timed
+            asyncio.run(run_fresh(1))
+        load_before = os.getloadavg()[0]
+        ref = statistics.median(cli_reference(count))
+        times = asyncio.run(run_fresh(count))
+    bytecode = "as the environment is" if as_is else "bytecode cached"
     print(
-        f"fresh server, {FRESH_ENGINE}, {count} runs; load average {load_before:.1f} before, "
-        f"{os.getloadavg()[0]:.1f} after ({os.cpu_count()} cores)"
+        f"fresh server, {FRESH_ENGINE}, {count} runs ({bytecode}); load average "
+        f"{load_before:.1f} before, {os.getloadavg()[0]:.1f} after ({os.cpu_count()} cores)"
     )
     print(f"reference: crankbalance analyze {FRESH_ENGINE}, fresh interpreter, median {ref:.3f} s")
     print(f"{'measure (median) [s]':50s} {'measured':>9s} {'target':>7s} {'ratio to ref':>12s}")
@@ -402,11 +417,14 @@ def main() -> None:
     )
     parser.add_argument("--fresh", type=int, default=0, help="N freshly started servers")
     parser.add_argument("--load", type=int, default=0, help="K `yes` processes meanwhile")
+    parser.add_argument(
+        "--as-is", action="store_true", help="with --fresh: no bytecode cache of our own"
+    )
     args = parser.parse_args()
     loaders = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(args.load)]
     try:
         if args.fresh:
-            fresh_main(args.fresh)
+            fresh_main(args.fresh, args.as_is)
         else:
             warm_main(args)
     finally:
