@@ -36,15 +36,15 @@ Targets (issue 14, item 9; issue 13, "web: edit -> updated figures, 12 cylinders
 load 2 s, preset switch 0.5 s, PNG after the first 1 s, edit -> figure p95 0.15 s.
 
 ``--fresh N`` measures instead a freshly started server, N times (issue 28, item 8): the
-browser is started first, then ``crankbalance web``; timed from the server's start (its
-warm-up included) to the first page on the crossplane V8 shown with its results (target
-2 s), to its 3-D crank seen (3 s: its still picture, sent with the page, or the scene
-drawn) and to the scene drawn by plotly.js in WebGL (no target); then, on that page, the
-shop example with two readings (examples/v8_parts.csv, the settings of
-examples/v8_shop.py): from the click on Run to the ISO verdict shown (2 s; the first
-study of the server's worker pool). The reference, measured in the same run:
-``crankbalance analyze v8-crossplane`` in a fresh interpreter (the command line doing the
-same first study), median of N. ``--load K`` keeps K ``yes > /dev/null`` processes
+browser is started and a tab opened first, then ``crankbalance web``; timed from the
+server's start (its warm-up included) to the first page on the crossplane V8 shown with
+its results (target 2 s), to its 3-D crank seen (3 s: its still picture, sent with the
+page, or the scene drawn) and to the scene drawn by plotly.js in WebGL (no target);
+then, on that page, the shop example with two readings (examples/v8_parts.csv, the
+settings of examples/v8_shop.py): from the click on Run to the ISO verdict shown (2 s;
+the first study of the server's worker pool). The reference, measured in the same run:
+``crankbalance analyze v8-crossplane`` in a fresh interpreter (the command line doing
+the same first study), median of N. ``--load K`` keeps K ``yes > /dev/null`` processes
 running during the whole run (a loaded machine).
 
 As in ``bench_cold_start.py``: Python reads the compiled bytecode of an installed package
@@ -322,9 +322,9 @@ async def fresh_server(browser: Any) -> tuple[float, float, float, float]:
     to the scene drawn by plotly.js (WebGL), and from Run to the shop example's verdict."""
     from crankbalance.web.server import running_server
 
+    page = await new_page(browser, "")  # a browser tab open before the server starts
     t0 = time.perf_counter()
     with running_server(timeout=GUARD_MS / 1000) as url:
-        page = await new_page(browser, url)
         await page.goto(f"{url}/?preset={FRESH_ENGINE}", wait_until="commit")
         await page.wait_for_function(SHOWN, polling=POLL)
         shown = time.perf_counter() - t0
