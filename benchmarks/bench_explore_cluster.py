@@ -46,12 +46,12 @@ for _name in ("OPENBLAS_NUM_THREADS", "OMP_NUM_THREADS", "MKL_NUM_THREADS"):
 import argparse  # noqa: E402
 import functools  # noqa: E402
 import resource  # noqa: E402
-import subprocess  # noqa: E402
 import time  # noqa: E402
 from collections.abc import Callable  # noqa: E402
 from typing import Any  # noqa: E402
 
 import numpy as np  # noqa: E402
+from _load import cpu_load  # noqa: E402
 
 from crankbalance.physics.explore import merit, orders  # noqa: E402
 from crankbalance.studies.explore import Keep, evaluate_task, local_cluster, run  # noqa: E402
@@ -103,13 +103,8 @@ def main() -> None:
         help="the kept cluster with dask's own worker environment (MALLOC_TRIM_THRESHOLD_)",
     )
     args = parser.parse_args()
-    loaders = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(args.load)]
-    try:
+    with cpu_load(args.load):
         measure(args)
-    finally:
-        for proc in loaders:
-            proc.kill()
-            proc.wait()
 
 
 def measure(args: argparse.Namespace) -> None:

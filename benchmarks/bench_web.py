@@ -70,6 +70,8 @@ import time
 from pathlib import Path
 from typing import Any
 
+from _load import cpu_load
+
 from crankbalance.output.render import CHROMIUM_FLAGS
 
 # the page's states and the shop example as typed are the browser tests' (tests/web), once
@@ -421,16 +423,11 @@ def main() -> None:
         "--as-is", action="store_true", help="with --fresh: no bytecode cache of our own"
     )
     args = parser.parse_args()
-    loaders = [subprocess.Popen(["yes"], stdout=subprocess.DEVNULL) for _ in range(args.load)]
-    try:
+    with cpu_load(args.load):
         if args.fresh:
             fresh_main(args.fresh, args.as_is)
         else:
             warm_main(args)
-    finally:
-        for proc in loaders:
-            proc.kill()
-            proc.wait()
 
 
 def warm_main(args: argparse.Namespace) -> None:
