@@ -1,6 +1,7 @@
 """A fresh server's start (issue 28, item 8): NiceGUI imported without the socket.io
-clients' libraries (``web/startup.py``), the worker pool's fork server started at the first
-browser's connection (``server.pool_starter``). docs/web.md, "A freshly started server"."""
+clients' libraries and engine.io's Tornado driver (``web/startup.py``), the worker pool's
+fork server started at the first browser's connection (``server.pool_starter``).
+docs/web.md, "A freshly started server"."""
 
 from __future__ import annotations
 
@@ -13,15 +14,15 @@ import pytest
 
 pytest.importorskip("nicegui")
 
-from crankbalance.web import pool, server  # noqa: E402
+from crankbalance.web import pool, server, startup  # noqa: E402
 
 from .conftest import HANG_GUARD  # noqa: E402
 
 
 def test_the_server_imports_nicegui_without_the_socketio_clients() -> None:
-    held = [m for m in ("aiohttp", "requests") if importlib.util.find_spec(m) is not None]
+    held = [m for m in startup.CLIENT_MODULES if importlib.util.find_spec(m) is not None]
     if not held:
-        pytest.skip("neither aiohttp nor requests is installed: nothing to hold back")
+        pytest.skip(f"none of {startup.CLIENT_MODULES} is installed: nothing to hold back")
     code = (
         "import sys; import crankbalance.web.server; "
         f"print(sorted(m for m in {held!r} if m in sys.modules)); "
