@@ -103,7 +103,18 @@ def roll_harmonics(
     kinematics: KinematicsModel = "exact",
 ) -> NDArray[np.complex128]:
     r"""Harmonics :math:`d_n` of the roll moment of many pistons at once: one row per pair
-    of rod ratio and offset (shapes (P,) each; the rows of :func:`roll_coefficients`).
+    of rod ratio and offset (the rows of :func:`roll_coefficients`).
+
+    Parameters
+    ----------
+    rod_ratio : ndarray, shape (P,)
+        :math:`\lambda = r/l` of each pair [-].
+    offset_ratio : ndarray, shape (P,)
+        :math:`e/r` of each pair [-].
+    orders : int
+        Highest order K [-].
+    kinematics : {"exact", "series", "first-order"}
+        As :func:`roll_coefficients`.
 
     Returns
     -------
