@@ -73,6 +73,21 @@ def panel_titles_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
         assert whole["y"] <= box["y"]
 
 
+def labels_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
+    """No two texts of the hole plan (panel titles with the holes' angles, the "0° (crankpin
+    1)" marks, the figure's title) intersect as the browser lays them out (review findings
+    12 and 23: "213.3°" was drawn over "26.5°"), and the x axis ticks stay within ±100 mm
+    for the example's 45 mm hole circle (they ran to ±250 mm)."""
+    texts = figure.locator(".annotation-text, .textpoint text, .gtitle")
+    boxes = [texts.nth(k).bounding_box() for k in range(texts.count())]
+    assert len(boxes) >= 5 and None not in boxes, boxes
+    for k, a in enumerate(boxes):
+        for b in boxes[k + 1 :]:
+            assert not _overlap(a, b), (a, b)
+    ticks = figure.locator(".xtick text").all_text_contents()
+    assert ticks and all(abs(float(t.replace("\u2212", "-"))) <= 100 for t in ticks), ticks
+
+
 def open_tab(page, name: str) -> None:
     """Open a tab and wait until its panel has slid into place (a click during the slide,
     on "Load example", was lost once under load)."""
@@ -131,6 +146,7 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
         holes = page.locator("[data-testid=figure-shop-holes]").first
         expect(holes.locator(".main-svg").first).to_be_attached()
         panel_titles_stay_apart(holes)
+        labels_stay_apart(holes)
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
         with page.expect_download() as download:
