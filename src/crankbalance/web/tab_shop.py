@@ -121,10 +121,42 @@ def spread_text(spread: float, masses: Any) -> str:
     return text(float(below_round_off(spread, level)), "mass", 4)
 
 
-def parts_summary(p: Any, example: bool) -> str:
+def example_name(parts: str) -> str | None:
+    """The engine the pasted ``parts`` are the worked example of, from the example's first
+    line ("Parts of a 90 deg V8 (small-block, 4.030 in bore, 5.7 in rods)"); None when
+    they are the user's own."""
+    if not parts.startswith(EXAMPLE_HEADER):
+        return None
+    return parts.splitlines()[0].lstrip("# ").split(", weighed")[0]
+
+
+def fit_words(sets: int, cylinders: int, example: str | None) -> str:
+    """Before the run, what the shop will do with parts that make ``sets`` sets (the fewest
+    parts of a kind) on an engine of ``cylinders``: "" when they fit; on another engine
+    that the example is another engine's (``example``: :func:`example_name`), and that the
+    sets beyond the cylinders stay spare, or that the parts are too few."""
+    if sets == cylinders:
+        return ""
+    words = f"The example: {example[0].lower()}{example[1:]}. " if example else ""
+    words += f"This engine has {plural(cylinders, 'cylinder')}: "
+    if sets > cylinders:
+        words += (
+            f"the shop matches {plural(cylinders, 'set')} from parts for {sets}, "
+            "the other parts stay spare (the result lists them)"
+        )
+    else:
+        words += f"the parts make {plural(sets, 'set')} only, too few to run"
+    return words + ("; paste this engine's own parts." if example else ".")
+
+
+def parts_summary(p: Any, example: str | None) -> str:
     """The shop's summary of a parts study ``p`` (``PartsStudy``): the engine, the matching
-    and its spreads, the material to remove; with ``example`` (the parts are the worked
-    example's, a V8's) on an engine of another cylinder count, how many of its sets it uses."""
+    and its spreads, the material to remove; the parts in no set (the command line's words,
+    :func:`~crankbalance.studies.shop.spares_words`); and, with ``example`` (the parts are
+    the worked example's, :func:`example_name`) on an engine of another cylinder count,
+    whose parts they are."""
+    from ..studies.shop import spares_words
+
     m = p.matching
     line = (
         f"{p.engine}: {plural(p.cylinders, 'cylinder')}, matching {m.method} ({m.status}); "
@@ -133,12 +165,13 @@ def parts_summary(p: Any, example: bool) -> str:
         f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
         f"{text(p.machined.removed_total, 'mass', 4)})."
     )
-    sets = min(kind.count for kind in p.inventory.kinds)
-    if example and sets != p.cylinders:
-        line += (
-            f"  \nThe example's parts are a V8's: {p.cylinders} of its {sets} sets used "
-            "(paste this engine's own parts)."
-        )
+    spares = spares_words(p)
+    if spares:
+        line += f"  \n{spares}."
+        if example:
+            line += (
+                f"  \nThe example is not this engine's: {example}; paste this engine's own parts."
+            )
     return line
 
 
@@ -186,6 +219,17 @@ class ShopTab(TabSettingsMixin, StudyTab):
                 ui.label("Bob-weights per crankpin").classes("text-subtitle2")
                 self.bobs = self._table("shop-bobweights", "pin")
         self.card("shop-holes", "Hole plan", self._holes)
+        # what the shop will do with these parts on this engine, below the parts (before Run)
+        parts = self.fields["parts"]
+        card = parts.parent_slot.parent
+        self.fit = (
+            ui.label("")
+            .classes("text-orange-10 text-body2")
+            .props("data-testid=shop-fit")
+            .mark("shop-fit")
+        )
+        self.fit.move(card, target_index=card.default_slot.children.index(parts) + 1)
+        self.show_fit()
 
     def _table(self, testid: str, key: str) -> Any:
         return (
@@ -202,6 +246,35 @@ class ShopTab(TabSettingsMixin, StudyTab):
         self.fields["parts"].set_value(EXAMPLE.read_text(encoding="utf-8"))
 
     # ------------------------------------------------------------------ settings
+    def show_fit(self) -> None:
+        """Below the parts, before the run: whether the pasted parts fit the form's engine
+        (:func:`fit_words`; nothing while either is missing or the parts are unreadable)."""
+        from ..io.parts_file import parts_from_csv
+
+        words = ""
+        c = self.page.project.computed
+        model = None if c is None or c.analysis is None else c.analysis.model
+        parts = self.texts.get("parts", "").strip()
+        if model is not None and parts:
+            try:
+                inventory = parts_from_csv(parts, source="parts")
+            except InputError:
+                inventory = None
+            if inventory is not None and inventory.kinds:
+                sets = min(kind.count for kind in inventory.kinds)
+                words = fit_words(sets, model.cylinders, example_name(parts))
+        self.fit.set_text(words)
+        self.fit.set_visibility(bool(words))
+
+    def check(self) -> Any | None:
+        parsed = super().check()
+        self.show_fit()
+        return parsed
+
+    def show(self, c: Any) -> None:
+        super().show(c)
+        self.show_fit()
+
     def show_error(self, error: InputError) -> None:
         if error.field in self.fields and error.field != "parts":
             super().show_error(error)
@@ -228,7 +301,7 @@ class ShopTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         p = self.study.parts
         m, b = p.matching, p.bob_weights
-        example = str(self.fields["parts"].value or "").startswith(EXAMPLE_HEADER)
+        example = example_name(str(self.fields["parts"].value or ""))
         self.summary.set_content(parts_summary(p, example))
         self.sets.columns = [
             {"name": "cylinder", "label": "cylinder", "field": "cylinder"},
