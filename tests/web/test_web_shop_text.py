@@ -87,8 +87,8 @@ def test_before_the_run_the_tab_says_what_the_parts_make_on_this_engine() -> Non
 
 def test_a_spread_of_round_off_reads_0_g(options: ShopOptions) -> None:
     """The V6's six lightest reciprocating sets are all 863.7 g: a spread of 2.22e-13 g is
-    float round-off and reads 0 g."""
+    float round-off and reads 0 g (the matching sets it to 0: tests/test_shop_matching.py)."""
     p = shop_study("v6-60", PARTS, options).parts
-    assert 0 < p.matching.reciprocating_spread < 1e-12
+    assert p.matching.reciprocating_spread == 0
     assert "spread 0 g reciprocating" in parts_summary(p, example_name(TEXT))
     assert "e-" not in parts_summary(p, example_name(TEXT))

@@ -16,13 +16,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from nicegui import run, ui
 
 from ..errors import InputError
 from ..output.figures.shop import hole_plan
 from ..output.format import plural, text
-from ..results import ROUND_OFF, below_round_off
 from ..schema.settings import ShopOptions
 from .widgets import (
     StudyTab,
@@ -113,14 +111,6 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     return inventory, options
 
 
-def spread_text(spread: float, masses: Any) -> str:
-    """A matched sets' spread [kg] as shown: 0 g when it is round-off of the sets' masses
-    (``ROUND_OFF`` times the heaviest, :func:`crankbalance.results.below_round_off`), as
-    sets of equal masses whose difference is 2.22e-13 g."""
-    level = ROUND_OFF * float(np.max(np.abs(masses)))
-    return text(float(below_round_off(spread, level)), "mass", 4)
-
-
 def example_name(parts: str) -> str | None:
     """The engine the pasted ``parts`` are the worked example of, from the example's first
     line ("Parts of a 90 deg V8 (small-block, 4.030 in bore, 5.7 in rods)"); None when
@@ -160,8 +150,8 @@ def parts_summary(p: Any, example: str | None) -> str:
     m = p.matching
     line = (
         f"{p.engine}: {plural(p.cylinders, 'cylinder')}, matching {m.method} ({m.status}); "
-        f"spread {spread_text(m.reciprocating_spread, m.reciprocating)} reciprocating, "
-        f"{spread_text(m.rotating_spread, m.rotating)} rotating; material to remove "
+        f"spread {text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
+        f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
         f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
         f"{text(p.machined.removed_total, 'mass', 4)})."
     )
