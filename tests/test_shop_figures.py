@@ -168,3 +168,42 @@ def test_the_shop_sheet_draws_the_matched_sets_before_the_hole_plan(folder: Path
     sets, holes = page.index('id="figure-sets"'), page.index('id="figure-holes"')
     assert page.count("plotly.js v") == 1 and sets < page.index("plotly.js v") < holes
     assert "Matched sets and their spread" in page
+
+
+def test_the_hole_plan_spans_its_drawing_and_lists_the_angles() -> None:
+    """Review findings 12 and 23 (issue 28): the V8 example's plan (a 45 mm hole circle)
+    had axes of ±250 mm at 1280 px and ±600 mm at 390 px (equal aspect widened the range of
+    the longer side), and its angle labels lay on one another ("213.3°" over "26.5°").
+    Each panel now spans the hole circle and a margin, equal aspect kept by shrinking the
+    panel (constrain "domain"), and each panel's title lists its holes' angles: no label
+    sits beside a hole on the drawing."""
+    from crankbalance.output.figures.shop import HOLE_MARGIN, hole_angles, hole_plan
+    from crankbalance.schema.settings import ShopOptions, parse_options
+    from crankbalance.studies.shop import hole_plan as plan_study
+
+    from .test_study_contract import PLAN
+
+    given = {k.replace("-", "_"): v for k, v in PLAN.items()}
+    result = plan_study(parse_options(ShopOptions, {**given, "speed": "6000 rpm"}))
+    figure = hole_plan(result)
+    layout = figure.layout
+    for row, holes in enumerate(result.holes, start=1):
+        reach = HOLE_MARGIN * (holes.radius + holes.diameter / 2) * 1e3
+        suffix = "" if row == 1 else str(row)
+        for axis in (layout[f"xaxis{suffix}"], layout[f"yaxis{suffix}"]):
+            assert axis.range == (-reach, reach) and axis.constrain == "domain"
+        assert reach < 100  # a 45 mm hole circle and 8 mm holes: about ±61 mm
+        assert layout[f"yaxis{suffix}"].scaleanchor == f"x{suffix}"
+        title = layout.annotations[row - 1].text
+        for angle in holes.angles:
+            assert f"{np.degrees(angle) % 360:.1f}°" in title, title
+        assert hole_angles(holes.angles) in title
+    texts = [t.text for t in figure.data if t.mode == "text"]
+    assert texts == [("0° (crankpin 1)",)] * 2  # no hole's label on the drawing
+
+
+def test_hole_angles_wrap_four_to_a_line() -> None:
+    from crankbalance.output.figures.shop import hole_angles
+
+    angles = np.radians([10.0, 20.0, 30.0, 40.0, 370.0])
+    assert hole_angles(angles) == "at 10.0°, 20.0°, 30.0°, 40.0°,<br>10.0°"

@@ -73,6 +73,21 @@ def panel_titles_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
         assert whole["y"] <= box["y"]
 
 
+def labels_stay_apart(figure) -> None:  # type: ignore[no-untyped-def]
+    """No two texts of the hole plan (panel titles with the holes' angles, the "0° (crankpin
+    1)" marks, the figure's title) intersect as the browser lays them out (review findings
+    12 and 23: "213.3°" was drawn over "26.5°"), and the x axis ticks stay within ±100 mm
+    for the example's 45 mm hole circle (they ran to ±250 mm)."""
+    texts = figure.locator(".annotation-text, .textpoint text, .gtitle")
+    boxes = [texts.nth(k).bounding_box() for k in range(texts.count())]
+    assert len(boxes) >= 5 and None not in boxes, boxes
+    for k, a in enumerate(boxes):
+        for b in boxes[k + 1 :]:
+            assert not _overlap(a, b), (a, b)
+    ticks = figure.locator(".xtick text").all_text_contents()
+    assert ticks and all(abs(float(t.replace("\u2212", "-"))) <= 100 for t in ticks), ticks
+
+
 def open_tab(page, name: str) -> None:
     """Open a tab and wait until its panel has slid into place (a click during the slide,
     on "Load example", was lost once under load)."""
@@ -104,6 +119,38 @@ async def test_shop_result_cleared_when_the_engine_changes(user, form) -> None:
     assert form.text("shop-verdict") == ""
 
 
+@pytest.mark.anyio
+async def test_the_example_on_an_inline_4_says_whose_parts_and_which_are_spare(user, form) -> None:
+    """Review findings 12 and 28: "Load example" filled a V8's parts into any engine and the
+    inline-4 ran on 4 of its 8 sets without a word. Below the parts, before the run, the tab
+    names the example's V8 and says the engine takes 4 sets; the result names the spares in
+    the command line's words (studies.shop.spares_words)."""
+    from crankbalance.studies.shop import spares_words
+
+    await user.open("/?preset=inline4")
+    await form.until(lambda: form.element("status").text.startswith("Results of"), "the engine")
+    form.open("shop")
+    note = form.find_hidden("shop-fit")
+    assert not note.visible  # no parts yet
+    user.find(marker="shop-example").click()
+    await form.until(lambda: note.visible, "the note on the example")
+    assert note.text.startswith("The example: parts of a 90 deg V8 (small-block")
+    assert "This engine has 4 cylinders: the shop matches 4 sets from parts for 8" in note.text
+    card = form.element("shop-parts").parent_slot.parent
+    children = card.default_slot.children
+    assert children.index(note) == children.index(form.element("shop-parts")) + 1
+    user.find(marker="shop-run").click()
+    await form.until(lambda: "spares, in no set" in form.text("shop-summary"), "the shop study")
+    options = parse_options(ShopOptions, {"fraction": "0.5"})
+    spares = spares_words(shop_study("inline4", PARTS, options).parts)
+    assert spares in form.text("shop-summary")
+    assert "The example is not this engine's: Parts of a 90 deg V8" in form.text("shop-summary")
+    # the engine's own count of parts: the note goes
+    own = "part,id,mass [g]\n" + "".join(f"piston,P{k},480\n" for k in range(1, 5))
+    form.set("shop-parts", own)
+    await form.until(lambda: not note.visible, "the note gone")
+
+
 @pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
 def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, height: int) -> None:
     bobs, verdict = expected()
@@ -131,6 +178,7 @@ def test_shop_bobweights_holes_and_verdict(server: str, browser, width: int, hei
         holes = page.locator("[data-testid=figure-shop-holes]").first
         expect(holes.locator(".main-svg").first).to_be_attached()
         panel_titles_stay_apart(holes)
+        labels_stay_apart(holes)
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"shop-{width}x{height}.png"), full_page=True)
         with page.expect_download() as download:

@@ -84,6 +84,17 @@ def match(engine: str, fmt: str, **values: Any) -> None:
     )
     click.echo(f"every part machined to the lightest: remove {_g(study.machined.removed_total)}")
     _echo_journals(study)
+    _echo_spares(study)
+
+
+def _echo_spares(study: Any) -> None:
+    """The parts in no set, when the parts file lists more than the engine's cylinders
+    (:func:`studies.shop.spares_words`, the web's words)."""
+    from ..studies.shop import spares_words
+
+    spares = spares_words(study)
+    if spares:
+        click.echo(spares)
 
 
 def _echo_journals(study: Any) -> None:
@@ -126,6 +137,7 @@ def bobweights(engine: str, fmt: str, **values: Any) -> None:
     m = study.matching
     click.echo(f"\nsets matched by {m.method} ({m.status})")
     _echo_journals(study)
+    _echo_spares(study)
     click.echo(
         f"fraction {b.fraction:g} at {text(study.crank_radius, 'length')}: leaves "
         + "; ".join(

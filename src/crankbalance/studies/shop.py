@@ -18,7 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
-from ..output.format import keyed
+from ..output.format import keyed, plural
 from ..physics.model import EngineModel
 from ..physics.shop.bobweights import BobWeights, RemainingForces, bob_weights, remaining_forces
 from ..physics.shop.holes import DrillingPlan, drilling_plan
@@ -198,6 +198,28 @@ def parts_study(
         bob_weights=bob_weights(model, options.fraction, matched.rotating, matched.reciprocating),
         remaining=remaining_forces(model, options.fraction, matched.reciprocating),
         journals=journals,
+    )
+
+
+def spares_words(study: PartsStudy) -> str:
+    """The parts the matching left out of every set, in words ("" when every part is in a
+    set): a parts file may list more parts of a kind than the engine has cylinders (the
+    spares stay on the shelf, docs/balance_shop.md "Parts and matching"), and the command
+    line (``crankbalance shop match``), the result's headline and the web's Balance shop
+    tab say which, in these words: "4 cylinders: 4 parts of each kind in the sets; spares,
+    in no set: piston P3, P5, P7, P8; ..."."""
+    m = study.matching
+    left = []
+    for kind in study.inventory.kinds:
+        used = {int(i) for i in m.part[m.kinds.index(kind.name)]}
+        spare = [mark for i, mark in enumerate(kind.ids) if i not in used]
+        if spare:
+            left.append(f"{kind.name} {', '.join(spare)}")
+    if not left:
+        return ""
+    return (
+        f"{plural(study.cylinders, 'cylinder')}: {plural(study.cylinders, 'part')} of each "
+        f"kind in the sets; spares, in no set: {'; '.join(left)}"
     )
 
 
@@ -649,6 +671,7 @@ class ShopResult(ResultMixin):
                 f"{number(m.rotating_spread * 1e3)} g rotating; "
                 f"{number(m.removed_total * 1e3)} g to machine off to even the sets",
                 f"bob-weights per crankpin: {grams(r.bob_weights.bob_weight)}",
+                *filter(None, [spares_words(r)]),
             )
         if isinstance(r, BobWeights):
             return (

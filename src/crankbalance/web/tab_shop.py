@@ -16,13 +16,11 @@ from __future__ import annotations
 from pathlib import Path
 from typing import Any
 
-import numpy as np
 from nicegui import run, ui
 
 from ..errors import InputError
 from ..output.figures.shop import hole_plan
 from ..output.format import plural, text
-from ..results import ROUND_OFF, below_round_off
 from ..schema.settings import ShopOptions
 from .widgets import (
     StudyTab,
@@ -113,32 +111,57 @@ def parse(texts: dict[str, str]) -> tuple[Any, Any]:
     return inventory, options
 
 
-def spread_text(spread: float, masses: Any) -> str:
-    """A matched sets' spread [kg] as shown: 0 g when it is round-off of the sets' masses
-    (``ROUND_OFF`` times the heaviest, :func:`crankbalance.results.below_round_off`), as
-    sets of equal masses whose difference is 2.22e-13 g."""
-    level = ROUND_OFF * float(np.max(np.abs(masses)))
-    return text(float(below_round_off(spread, level)), "mass", 4)
+def example_name(parts: str) -> str | None:
+    """The engine the pasted ``parts`` are the worked example of, from the example's first
+    line ("Parts of a 90 deg V8 (small-block, 4.030 in bore, 5.7 in rods)"); None when
+    they are the user's own."""
+    if not parts.startswith(EXAMPLE_HEADER):
+        return None
+    return parts.splitlines()[0].lstrip("# ").split(", weighed")[0]
 
 
-def parts_summary(p: Any, example: bool) -> str:
+def fit_words(sets: int, cylinders: int, example: str | None) -> str:
+    """Before the run, what the shop will do with parts that make ``sets`` sets (the fewest
+    parts of a kind) on an engine of ``cylinders``: "" when they fit; on another engine
+    that the example is another engine's (``example``: :func:`example_name`), and that the
+    sets beyond the cylinders stay spare, or that the parts are too few."""
+    if sets == cylinders:
+        return ""
+    words = f"The example: {example[0].lower()}{example[1:]}. " if example else ""
+    words += f"This engine has {plural(cylinders, 'cylinder')}: "
+    if sets > cylinders:
+        words += (
+            f"the shop matches {plural(cylinders, 'set')} from parts for {sets}, "
+            "the other parts stay spare (the result lists them)"
+        )
+    else:
+        words += f"the parts make {plural(sets, 'set')} only, too few to run"
+    return words + ("; paste this engine's own parts." if example else ".")
+
+
+def parts_summary(p: Any, example: str | None) -> str:
     """The shop's summary of a parts study ``p`` (``PartsStudy``): the engine, the matching
-    and its spreads, the material to remove; with ``example`` (the parts are the worked
-    example's, a V8's) on an engine of another cylinder count, how many of its sets it uses."""
+    and its spreads, the material to remove; the parts in no set (the command line's words,
+    :func:`~crankbalance.studies.shop.spares_words`); and, with ``example`` (the parts are
+    the worked example's, :func:`example_name`) on an engine of another cylinder count,
+    whose parts they are."""
+    from ..studies.shop import spares_words
+
     m = p.matching
     line = (
         f"{p.engine}: {plural(p.cylinders, 'cylinder')}, matching {m.method} ({m.status}); "
-        f"spread {spread_text(m.reciprocating_spread, m.reciprocating)} reciprocating, "
-        f"{spread_text(m.rotating_spread, m.rotating)} rotating; material to remove "
+        f"spread {text(m.reciprocating_spread, 'mass', 4)} reciprocating, "
+        f"{text(m.rotating_spread, 'mass', 4)} rotating; material to remove "
         f"{text(m.removed_total, 'mass', 4)} (every part machined to the lightest: "
         f"{text(p.machined.removed_total, 'mass', 4)})."
     )
-    sets = min(kind.count for kind in p.inventory.kinds)
-    if example and sets != p.cylinders:
-        line += (
-            f"  \nThe example's parts are a V8's: {p.cylinders} of its {sets} sets used "
-            "(paste this engine's own parts)."
-        )
+    spares = spares_words(p)
+    if spares:
+        line += f"  \n{spares}."
+        if example:
+            line += (
+                f"  \nThe example is not this engine's: {example}; paste this engine's own parts."
+            )
     return line
 
 
@@ -186,6 +209,17 @@ class ShopTab(TabSettingsMixin, StudyTab):
                 ui.label("Bob-weights per crankpin").classes("text-subtitle2")
                 self.bobs = self._table("shop-bobweights", "pin")
         self.card("shop-holes", "Hole plan", self._holes)
+        # what the shop will do with these parts on this engine, below the parts (before Run)
+        parts = self.fields["parts"]
+        card = parts.parent_slot.parent
+        self.fit = (
+            ui.label("")
+            .classes("text-orange-10 text-body2")
+            .props("data-testid=shop-fit")
+            .mark("shop-fit")
+        )
+        self.fit.move(card, target_index=card.default_slot.children.index(parts) + 1)
+        self.show_fit()
 
     def _table(self, testid: str, key: str) -> Any:
         return (
@@ -202,6 +236,35 @@ class ShopTab(TabSettingsMixin, StudyTab):
         self.fields["parts"].set_value(EXAMPLE.read_text(encoding="utf-8"))
 
     # ------------------------------------------------------------------ settings
+    def show_fit(self) -> None:
+        """Below the parts, before the run: whether the pasted parts fit the form's engine
+        (:func:`fit_words`; nothing while either is missing or the parts are unreadable)."""
+        from ..io.parts_file import parts_from_csv
+
+        words = ""
+        c = self.page.project.computed
+        model = None if c is None or c.analysis is None else c.analysis.model
+        parts = self.texts.get("parts", "").strip()
+        if model is not None and parts:
+            try:
+                inventory = parts_from_csv(parts, source="parts")
+            except InputError:
+                inventory = None
+            if inventory is not None and inventory.kinds:
+                sets = min(kind.count for kind in inventory.kinds)
+                words = fit_words(sets, model.cylinders, example_name(parts))
+        self.fit.set_text(words)
+        self.fit.set_visibility(bool(words))
+
+    def check(self) -> Any | None:
+        parsed = super().check()
+        self.show_fit()
+        return parsed
+
+    def show(self, c: Any) -> None:
+        super().show(c)
+        self.show_fit()
+
     def show_error(self, error: InputError) -> None:
         if error.field in self.fields and error.field != "parts":
             super().show_error(error)
@@ -228,7 +291,7 @@ class ShopTab(TabSettingsMixin, StudyTab):
     def show_study(self) -> None:
         p = self.study.parts
         m, b = p.matching, p.bob_weights
-        example = str(self.fields["parts"].value or "").startswith(EXAMPLE_HEADER)
+        example = example_name(str(self.fields["parts"].value or ""))
         self.summary.set_content(parts_summary(p, example))
         self.sets.columns = [
             {"name": "cylinder", "label": "cylinder", "field": "cylinder"},

@@ -29,6 +29,13 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: font size of the hole plan's panel titles [px]
 HOLE_TITLE_SIZE = 12
+#: the hole plan's panel spans this many times the hole circle's outer edge (radius plus
+#: half a hole) each way from the axis [-]
+HOLE_MARGIN = 1.25
+#: height of the hole plan, its two panels stacked [px]
+HOLE_PLAN_HEIGHT = 900
+#: hole angles per line of a hole plan panel's title
+ANGLES_PER_LINE = 4
 
 #: the journals' pairings drawn beside the matched sets (a pairing chosen, not as listed)
 PAIRED = ("milp", "exhaustive", "joint")
@@ -335,26 +342,39 @@ def scatter_histograms(study: ScatterStudy) -> go.Figure:
     return fig
 
 
+def hole_angles(angles: NDArray[np.float64]) -> str:
+    """The angles of a plane's holes [rad] as the hole plan lists them: "at 21.0°, 33.8°",
+    :data:`ANGLES_PER_LINE` to a line."""
+    words = [f"{np.degrees(phi) % 360:.1f}°" for phi in angles]
+    lines = [
+        ", ".join(words[k : k + ANGLES_PER_LINE]) for k in range(0, len(words), ANGLES_PER_LINE)
+    ]
+    return "at " + ",<br>".join(lines)
+
+
 def hole_plan(result: HolePlan) -> go.Figure:
-    """The holes of a two-plane correction to scale (mm), one panel per correction plane,
-    seen along the crank axis: 0° (crankpin 1) straight up, angles counterclockwise as the
-    crank's throw angles; the hole circle, the heavy spot, each hole with its angle and the
-    depth (:class:`~crankbalance.studies.shop.HolePlan`)."""
+    """The holes of a two-plane correction to scale (mm), one panel per correction plane
+    (stacked, so that a phone shows each at its width), seen along the crank axis: 0°
+    (crankpin 1) straight up, angles counterclockwise as the crank's throw angles; the hole
+    circle, the heavy spot and each hole (its angle in the hover). The panel's title lists
+    the holes' angles: holes a pitch apart are closer than their labels are long. Each
+    panel spans the hole circle and the holes plus a margin (:data:`HOLE_MARGIN`) at equal
+    scale in x and y: the panel shrinks to a square, the range stays
+    (:class:`~crankbalance.studies.shop.HolePlan`)."""
     go = plotly_go()
-    # two short lines per panel, so that the two titles stay apart on a phone (a panel is
-    # about 180 px wide there: tests/web/test_web_shop.py measures them at 390 px)
     titles = [
-        f"plane {j + 1} at {p * 1e3:.4g} mm<br>{h.number} × Ø{h.diameter * 1e3:.3g} mm, "
-        f"{h.depth * 1e3:.4g} mm to {h.depth_to}"
+        f"plane {j + 1} at {p * 1e3:.4g} mm: {h.number} × Ø{h.diameter * 1e3:.3g} mm, "
+        f"{h.depth * 1e3:.4g} mm to {h.depth_to}<br>{hole_angles(h.angles)}"
         for j, (p, h) in enumerate(zip(result.plan.correction_planes, result.holes, strict=True))
     ]
-    fig = make_subplots(rows=1, cols=2, subplot_titles=titles, horizontal_spacing=0.14)
-    fig.update_annotations(font={"size": HOLE_TITLE_SIZE})
+    fig = make_subplots(rows=2, cols=1, subplot_titles=titles, vertical_spacing=0.16)
+    # a title's last line clear of the "0° (crankpin 1)" at the top of a full-height panel
+    fig.update_annotations(font={"size": HOLE_TITLE_SIZE}, yshift=8)
     ring = np.linspace(0.0, 2 * np.pi, 91)
     for j, holes in enumerate(result.holes):
-        col = j + 1
+        row = j + 1
         r, d = holes.radius * 1e3, holes.diameter * 1e3
-        reach = 1.3 * (r + d)
+        reach = HOLE_MARGIN * (r + d / 2)
         fig.add_trace(
             go.Scatter(
                 x=r * np.sin(ring),
@@ -365,8 +385,8 @@ def hole_plan(result: HolePlan) -> go.Figure:
                 showlegend=j == 0,
                 hoverinfo="skip",
             ),
-            row=1,
-            col=col,
+            row=row,
+            col=1,
         )
         spot = float(result.plan.remove_angle[j])
         fig.add_trace(
@@ -379,24 +399,23 @@ def hole_plan(result: HolePlan) -> go.Figure:
                 line={"color": COLORS["after"], "width": 2},
                 marker={"symbol": ["cross-thin", "triangle-up"], "size": 10},
             ),
-            row=1,
-            col=col,
+            row=row,
+            col=1,
         )
         fig.add_trace(
             go.Scatter(
                 x=[0.0],
-                y=[reach * 0.95],
+                y=[reach * 0.93],
                 mode="text",
                 text=["0° (crankpin 1)"],
                 showlegend=False,
                 hoverinfo="skip",
             ),
-            row=1,
-            col=col,
+            row=row,
+            col=1,
         )
         for k, phi in enumerate(holes.angles):
             cx, cy = r * np.sin(phi), r * np.cos(phi)
-            label = f"{np.degrees(phi) % 360:.1f}°"
             fig.add_trace(
                 go.Scatter(
                     x=cx + d / 2 * np.sin(ring),
@@ -408,39 +427,30 @@ def hole_plan(result: HolePlan) -> go.Figure:
                     legendgroup="holes",
                     showlegend=j == 0 and k == 0,
                     line={"color": COLORS["forward"], "width": 2},
-                    hovertext=label,
+                    hovertext=f"{np.degrees(phi) % 360:.1f}°",
+                    hoverinfo="text",
                 ),
-                row=1,
-                col=col,
+                row=row,
+                col=1,
             )
-            # neighbouring labels on two radii between the hole circle and the panel's
-            # edge, so that holes a pitch apart do not print their angles on one another
-            at = r + (reach - r) * (0.45 if k % 2 == 0 else 0.85)
-            fig.add_trace(
-                go.Scatter(
-                    x=[at * np.sin(phi)],
-                    y=[at * np.cos(phi)],
-                    mode="text",
-                    text=[label],
-                    showlegend=False,
-                    hoverinfo="skip",
-                ),
-                row=1,
-                col=col,
-            )
-        fig.update_xaxes(title_text="x [mm]", range=[-reach, reach], row=1, col=col)
+        # equal scale: the panel's domain shrinks to a square, the range stays the drawing's
+        fig.update_xaxes(
+            title_text="x [mm]", range=[-reach, reach], constrain="domain", row=row, col=1
+        )
         fig.update_yaxes(
+            title_text="y [mm]",
             range=[-reach, reach],
-            scaleanchor=f"x{col if col > 1 else ''}",
+            constrain="domain",
+            scaleanchor=f"x{row if row > 1 else ''}",
             scaleratio=1,
-            row=1,
-            col=col,
+            row=row,
+            col=1,
         )
     fig.update_layout(
         template=TEMPLATE,
-        height=560,
-        margin={"t": 150},  # the figure's title, then two lines of panel titles
-        legend={"orientation": "h", "y": -0.2},
+        height=HOLE_PLAN_HEIGHT,
+        margin={"t": 110},  # the figure's title, then the first panel's two title lines
+        legend={"orientation": "h", "y": -0.08},
         title=figure_title("Hole plan", note="along the crank axis; angles as the throw angles"),
     )
     return fig

@@ -83,7 +83,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
-from ...results import ResultMixin
+from ...results import ROUND_OFF, ResultMixin, below_round_off
 from ..model import EngineModel
 from ..shaking import free_forces
 from .journals import JournalBasis
@@ -274,10 +274,11 @@ class Matching(ResultMixin):
     reciprocating, rotating : ndarray, shape (C,)
         Set weights per cylinder [kg], allowances included.
     reciprocating_spread, rotating_spread : float
-        Heaviest minus lightest set [kg].
+        Heaviest minus lightest set [kg]; 0 when it is round-off of the sets' weights
+        (at most ``ROUND_OFF`` times the heaviest, :func:`crankbalance.results.below_round_off`).
     remove_reciprocating, remove_rotating : ndarray, shape (C,)
-        Material to remove per set to bring it to the lightest set [kg] (reciprocating:
-        from the piston or the small end; rotating: from the big end).
+        Material to remove per set to bring it to the lightest set [kg], round-off as 0
+        (reciprocating: from the piston or the small end; rotating: from the big end).
     removed_total : float
         Sum of the material to remove [kg].
     free_force, free_couple : ndarray, shape (orders,)
@@ -824,7 +825,12 @@ def _matching(
         force = z[:, 0] + z[:, 1]
         couple = (z[:, 2] + z[:, 3]) * basis.length
     rec, rot = _set_weights(inventory, part)
-    remove_rec, remove_rot = rec - rec.min(), rot - rot.min()
+    # a set's weight is a sum of weighed parts: a difference at the round-off of the
+    # heaviest set is none (the inline-4's sets of 507.2 g differed by 1.1e-16 kg)
+    rec_level = ROUND_OFF * float(np.max(np.abs(rec)))
+    rot_level = ROUND_OFF * float(np.max(np.abs(rot)))
+    remove_rec = below_round_off(rec - rec.min(), rec_level)
+    remove_rot = below_round_off(rot - rot.min(), rot_level)
     ids = tuple(
         tuple(kind.ids[i] for kind, i in zip(inventory.kinds, part[:, c], strict=True))
         for c in range(part.shape[1])
@@ -840,8 +846,8 @@ def _matching(
         ids=ids,
         reciprocating=rec,
         rotating=rot,
-        reciprocating_spread=float(np.ptp(rec)),
-        rotating_spread=float(np.ptp(rot)),
+        reciprocating_spread=float(below_round_off(np.ptp(rec), rec_level)),
+        rotating_spread=float(below_round_off(np.ptp(rot), rot_level)),
         remove_reciprocating=remove_rec,
         remove_rotating=remove_rot,
         removed_total=float(remove_rec.sum() + remove_rot.sum()),
