@@ -208,6 +208,7 @@ async def test_fields_shown_for_the_layouts_they_mean_something_for(user: User, 
         "numbering",
         "bank_offsets",
         "rod_positions",
+        "pin_split",
     }
     form.set("field-rod_positions", "-5 mm, 5 mm, -5 mm, 5 mm")
     form.set("field-bank_angle", "")

@@ -341,9 +341,16 @@ class CrankTrain(_EngineTable):
         default=None,
         zero=True,
         title="Pin split",
-        hint="angle between the two rows' crankpins, e.g. 22 deg (empty: even firing)",
-        description="VR and W from VR banks only: angle between the two rows' crankpins as the "
-        "maker gives it, [0, 180°); default: the split even firing needs.",
+        hint="VR: angle between the two rows' crankpins, e.g. 22 deg (empty: even firing); "
+        "vee: angle by which bank A's pin leads bank B's, e.g. 60 deg for a V6 60° "
+        "(empty: one shared pin)",
+        description="VR and W from VR banks: angle between the two rows' crankpins as the "
+        "maker gives it, [0, 180°); default: the split even firing needs. vee: each throw "
+        "split into two crankpins, one per bank, bank A's pin leading bank B's by this angle "
+        "in the direction of rotation, (-180°, 180°]; each pin is a throw of its own, centred "
+        "under its rod (rod_positions give the pins' axial places); even firing, bank B's "
+        "cylinder of each throw firing one interval after bank A's, needs the firing interval "
+        "minus bank_angle (V6 60°: 60°, V6 90°: 30°); default: one shared pin per throw.",
     )
     bank_offsets: list[float] | None = field(
         "list",
@@ -375,7 +382,8 @@ class CrankTrain(_EngineTable):
         description="Any layout: the axial place of each cylinder's rod on its crankpin, from the "
         "throw's mid-plane along +y, one length per cylinder (side-by-side rods on a "
         "shared pin; a single rod off its throw's centre); default all 0 "
-        "(knife-and-fork or master rods: all in the mid-plane).",
+        "(knife-and-fork or master rods: all in the mid-plane); a vee with pin_split centres "
+        "each rod's own pin there.",
         hint="one per cylinder from the throw's mid-plane, e.g. -10 mm, 10 mm "
         "(side-by-side rods; empty: all 0)",
     )
@@ -610,21 +618,40 @@ class CrankTrain(_EngineTable):
                 raise FieldProblem("vr_angle", "is required for a W from VR banks (w_type = 'vr')")
             if not 0 < math.degrees(self.vr_angle) < 90.0 + 1e-9:
                 raise FieldProblem("vr_angle", "must lie in (0, 90] deg")
-        for key, given in (
-            ("bore_offset", self.bore_offset != 0),
-            ("pin_split", self.pin_split is not None),
-        ):
-            if given and not self.has_vr_rows:
-                raise FieldProblem(
-                    key, "is only used with layout 'vr' or layout 'w' with w_type = 'vr'"
-                )
-        if self.pin_split is not None and self.has_vr_rows:
-            if self.throw_angles is not None:
-                raise FieldProblem(
-                    "pin_split", "give either pin_split or throw_angles (the whole crank), not both"
-                )
-            if not 0 <= math.degrees(self.pin_split) < 180.0:
-                raise FieldProblem("pin_split", "must lie in [0, 180) deg")
+        if self.bore_offset != 0 and not self.has_vr_rows:
+            raise FieldProblem(
+                "bore_offset", "is only used with layout 'vr' or layout 'w' with w_type = 'vr'"
+            )
+        if self.pin_split is None:
+            return
+        if not (self.has_vr_rows or self.layout == "vee"):
+            raise FieldProblem(
+                "pin_split",
+                f"is only used with layout 'vee', 'vr' or 'w' with w_type = 'vr' (not "
+                f"'{self.layout}'"
+                + (", which gives each throw's angle itself)" if self.layout == "custom" else ")"),
+            )
+        if self.throw_angles is not None:
+            raise FieldProblem(
+                "pin_split", "give either pin_split or throw_angles (the whole crank), not both"
+            )
+        split = math.degrees(self.pin_split)
+        if self.has_vr_rows and not 0 <= split < 180.0:
+            raise FieldProblem("pin_split", "must lie in [0, 180) deg for VR rows")
+        if self.layout == "vee" and not -180.0 < split <= 180.0:
+            raise FieldProblem("pin_split", "must lie in (-180, 180] deg for a vee")
+
+    @property
+    def split_vee(self) -> bool:
+        """True for a vee whose throws are split into one pin per bank (``pin_split``)."""
+        return self.layout == "vee" and self.pin_split is not None
+
+    @property
+    def throw_total(self) -> int:
+        """Number of crank throws (a split pin is a throw of its own)."""
+        if self.throw:
+            return len(self.throw)
+        return throw_count(self.layout, self.cylinder_count, self.w_type, self.split_vee)
 
     @property
     def cylinder_count(self) -> int:
@@ -673,10 +700,10 @@ def _check_articulated(ct: CrankTrain) -> None:
 BANKS: dict[str, int] = {"vee": 2, "boxer": 2, "w": 3}
 
 
-def throw_count(layout: str, cylinders: int, w_type: str | None = None) -> int:
+def throw_count(layout: str, cylinders: int, w_type: str | None = None, split: bool = False) -> int:
     """Number of crank throws of a standard layout (``w_type`` "vr": a W from VR banks,
-    one throw per cylinder)."""
-    if layout == "w" and w_type == "vr":
+    one throw per cylinder; ``split``: a vee with split pins, one pin per cylinder)."""
+    if (layout == "w" and w_type == "vr") or (layout == "vee" and split):
         return cylinders
     return {
         "inline": cylinders,
@@ -1319,7 +1346,7 @@ class EngineSpec(_EngineTable):
     def check(self) -> None:
         ct = self.crank_train
         n_cyl = ct.cylinder_count
-        n_throw = len(ct.throw) if ct.throw else throw_count(ct.layout, n_cyl, ct.w_type)
+        n_throw = ct.throw_total
         for k, item in enumerate(self.masses.override):
             for number in item.cylinders or []:
                 if not 1 <= number <= n_cyl:

@@ -60,7 +60,9 @@ def _build(spec: EngineSpec) -> EngineModel:
     for c, t in enumerate(cylinder_throw):  # every big end on the pin turns with it
         if from_parts[t]:
             rot[t] += big_ends[c]
-    axial = np.zeros(n) if ct.rod_positions is None else np.array(ct.rod_positions, dtype=float)
+    axial = _rod_positions(spec, n)
+    if ct.split_vee:  # each rod sits in the middle of its own pin, placed by its position
+        axial = np.zeros(n)
     missing = np.flatnonzero((axial != 0) & ~np.array(_has_conrod(spec, n)))
     if missing.size:
         c = int(missing[0])
@@ -129,6 +131,12 @@ def cylinder_offsets(spec: EngineSpec) -> NDArray[np.float64]:
     return out
 
 
+def _rod_positions(spec: EngineSpec, n: int) -> NDArray:
+    """Each cylinder's ``rod_positions`` entry [m] (0 when not given)."""
+    rods = spec.crank_train.rod_positions
+    return np.zeros(n) if rods is None else np.array(rods, dtype=float)
+
+
 def _has_conrod(spec: EngineSpec, n: int) -> list[bool]:
     return [row["conrod"] is not None for row in _overrides(spec, "cylinders", n)]
 
@@ -144,13 +152,30 @@ def _layout(spec: EngineSpec) -> tuple[NDArray, NDArray, NDArray]:
             np.array([k for k, t in enumerate(ct.throw) for _ in t.banks]),
             np.array([b for t in ct.throw for b in t.banks], dtype=float),
         )
-    return standard_layout(
+    positions, cylinder_throw, banks = standard_layout(
         ct.layout,
         ct.cylinder_count,
         ct.bank_angle or 0.0,
         ct.crank_pitch or 0.0,
         ct.vr_angle if ct.layout == "w" and ct.has_vr_rows else None,
     )
+    if ct.split_vee:
+        return _split_pins(positions, cylinder_throw, banks, _rod_positions(spec, banks.size))
+    return positions, cylinder_throw, banks
+
+
+def _split_pins(
+    positions: NDArray, cylinder_throw: NDArray, banks: NDArray, rods: NDArray
+) -> tuple[NDArray, NDArray, NDArray]:
+    """A vee's throws split into one pin per cylinder (``pin_split``): each pin centred
+    under its rod (its throw's position plus its ``rod_positions`` entry), the pins
+    numbered along the crank, throw after throw and within a throw by position (bank A
+    first where the two coincide)."""
+    pin_at = positions[cylinder_throw] + rods
+    order = np.lexsort((banks, pin_at, cylinder_throw))  # throw, position, bank A first
+    pin_of = np.empty(banks.size, dtype=np.int64)
+    pin_of[order] = np.arange(banks.size)
+    return pin_at[order], pin_of, banks
 
 
 def _throw_angles(
@@ -164,6 +189,8 @@ def _throw_angles(
         return np.array(ct.throw_angles, dtype=float)
     if ct.has_vr_rows and ct.pin_split is not None:
         return _vr_pin_split_angles(spec, banks)
+    if ct.split_vee:
+        return _vee_pin_split_angles(spec, cylinder_throw, banks, offsets)
     if throws == 1:
         return np.zeros(1)
     n = cylinder_throw.size
@@ -236,7 +263,7 @@ def _check_given_crank(
     throws, one throw, VR rows' ``pin_split``) must be one that crank fires in
     (:func:`numbering.check_firing_order`)."""
     ct = spec.crank_train
-    split = ct.has_vr_rows and ct.pin_split is not None
+    split = ct.pin_split is not None  # VR rows or a vee with split pins
     derived = ct.layout != "custom" and ct.throw_angles is None and not split and throws > 1
     order = firing_order(spec)
     if order is None or derived:
@@ -286,6 +313,41 @@ def _vr_pin_split_angles(spec: EngineSpec, banks: NDArray) -> NDArray:
     raw = banks - rows * narrow / 2 + rows * ct.pin_split / 2 - fire_time
     first = (firing_order(spec) or [1])[0] - 1
     return np.mod(raw + (banks[first] - fire_time[first] - raw[first]), 2 * np.pi)
+
+
+def _vee_pin_split_angles(
+    spec: EngineSpec, cylinder_throw: NDArray, banks: NDArray, offsets: NDArray
+) -> NDArray:
+    """Pin angles of a vee whose throws are split by ``pin_split`` (one pin per cylinder,
+    ``cylinder_throw`` its pin).
+
+    Each cylinder's even-firing angle is the one a standard vee gives it,
+    beta + psi - t (bank, offset's TDC angle, firing time, as :func:`_throw_angles`); the
+    two cylinders k and k + T of standard throw k (banks A and B) sit ``pin_split / 2``
+    either side of the middle of their even-firing angles, A's pin ahead: A at
+    m + s / 2 and B at m - s / 2 with m = a_A - s_k / 2 and s_k = a_A - a_B wrapped to
+    (-pi, pi]; the whole crank is then turned so that the first cylinder to fire has its
+    even-firing angle. The firing is even only when ``pin_split`` is s_k for every throw:
+    the interval minus the bank angle when B fires one interval after A on every throw
+    (docs/engine_file.md, "Split crankpins in a vee")."""
+    ct = spec.crank_train
+    assert ct.pin_split is not None
+    n = banks.size
+    t = n // 2
+    fire_time = _fire_times(spec)
+    tdc = tdc_angle(offsets, ct.crank_radius, ct.rod_length)
+    order = firing_order(spec) or [1]
+    first = int(order[0]) - 1
+    even = banks + (tdc - tdc[first]) - fire_time
+    a, b = even[:t], even[t:]
+    need = np.remainder(a - b + np.pi, 2 * np.pi) - np.pi  # s_k in [-pi, pi)
+    need = np.where(need == -np.pi, np.pi, need)
+    middle = a - need / 2
+    cylinder_angle = np.concatenate((middle + ct.pin_split / 2, middle - ct.pin_split / 2))
+    cylinder_angle += even[first] - cylinder_angle[first]
+    angles = np.empty(n)
+    angles[cylinder_throw] = np.mod(cylinder_angle, 2 * np.pi)
+    return angles
 
 
 # --------------------------------------------------------------------------- masses

@@ -53,7 +53,7 @@ from urllib.parse import urlsplit
 
 from ..errors import InputError
 from ..io.engine_file import list_presets, load_engine
-from ..schema.engine import EngineSpec, throw_count
+from ..schema.engine import EngineSpec
 from ..studies.engine import analyze, balance_engine
 from ..studies.registry import STUDIES, Study, study
 from . import studies
@@ -162,11 +162,7 @@ def check_work(spec: EngineSpec, orders: int = ORDERS) -> None:
     :data:`MAX_WORK`, before any computing."""
     train = spec.crank_train
     cylinders = train.cylinder_count
-    throws = (
-        len(train.throw)
-        if train.throw is not None
-        else throw_count(train.layout, cylinders, train.w_type)
-    )
+    throws = train.throw_total
     work = (cylinders + throws) * orders
     if work > MAX_WORK:
         raise InputError(

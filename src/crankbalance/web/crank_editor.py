@@ -1,12 +1,13 @@
 """The crank editor of the Engine tab: throw angles, custom throws and mass overrides.
 
-Engines whose crank does not follow from the firing order (odd-fire V6/V10, a split-pin
-V6, a crossplane inline-4) need ``crank_train.throw_angles`` or custom throws
-(``[[crank_train.throw]]``); cylinders or throws whose parts differ need
-``[[masses.override]]``. This editor shows them as rows of inputs; the texts live in the
-:class:`~.project.Project` (``throw_angles``, ``throws``, ``overrides``), which turns them
-into the engine file and names a bad cell by its key (``throw.2.banks``), so its message
-is shown under that cell. The 3-D view follows through the page's update.
+Engines whose crank does not follow from the firing order (odd-fire V6/V10, a crossplane
+inline-4) need ``crank_train.throw_angles`` or custom throws (``[[crank_train.throw]]``); a
+split-pin vee needs neither (the Engine tab's Pin split field); cylinders or throws whose
+parts differ need ``[[masses.override]]``. This editor shows them as rows of inputs; the
+texts live in the :class:`~.project.Project` (``throw_angles``, ``throws``,
+``overrides``), which turns them into the engine file and names a bad cell by its key
+(``throw.2.banks``), so its message is shown under that cell. The 3-D view follows
+through the page's update.
 """
 
 from __future__ import annotations
@@ -55,9 +56,9 @@ class CrankEditor:
             ui.label("Crank editor").classes("text-subtitle1")
             ui.label(
                 "Give the throw angles when the crank does not follow from the firing order "
-                "(odd-fire V6/V10, crossplane inline-4), custom throws for any other crank "
-                "(a split-pin V6: one cylinder per throw), and masses that differ for some "
-                "cylinders or throws."
+                "(odd-fire V6/V10, crossplane inline-4), custom throws for any other crank, "
+                "and masses that differ for some cylinders or throws. A split-pin vee needs "
+                "neither: give its Pin split (and the rods' positions) in the engine's fields."
             ).classes("text-caption text-grey-8")
             self.body = ui.column().classes("w-full gap-2")
         self.rebuild()
@@ -189,7 +190,9 @@ class CrankEditor:
             return 0
         texts = self.project.texts
         w_type = texts.get("w_type", "").strip() or None  # a field of the Engine tab
-        return throw_count(texts.get("layout", "inline"), max(cylinders, 0), w_type)
+        layout = texts.get("layout", "inline")
+        split = layout == "vee" and bool(texts.get("pin_split", "").strip())
+        return throw_count(layout, max(cylinders, 0), w_type, split)
 
     def give_angles(self, on: bool) -> None:
         """Switch the throw angles on (filled with the crank of the last valid engine,
@@ -224,12 +227,40 @@ class CrankEditor:
             for t in range(len(model.throw_angle))
         ]
         p.throw_angles = None
+        self._renumber(model)
         # the throws carry their positions and banks: the crank pitch and the bank angle
-        # describe nothing of a custom crank (a saved file holds neither)
-        for key, value in (("layout", "custom"), ("bank_angle", ""), ("crank_pitch", "")):
+        # describe nothing of a custom crank (a saved file holds neither); a split vee's pins
+        # carry its pin split and its rods' positions (each rod centred on its own pin)
+        cleared = ["bank_angle", "crank_pitch"]
+        if p.texts.get("layout") == "vee" and p.texts.get("pin_split", "").strip():
+            cleared += ["pin_split", "rod_positions"]
+        for key, value in [("layout", "custom"), *((k, "") for k in cleared)]:
             p.texts[key] = value  # first: the inputs' change events then find nothing new
             self.page.inputs[key].set_value(value)
         self.changed()
+
+    def _renumber(self, model: Any) -> None:
+        """Custom throws number their cylinders throw after throw: a given firing order
+        (in crankbalance's numbers) is rewritten in the new numbers, a maker's numbering
+        becomes the maker's numbers of the new cylinders (the order typed in them stays)."""
+        texts = self.project.texts
+        new: dict[int, int] = {}  # old cylinder index -> new number
+        for t in range(model.throws):
+            for c in range(model.cylinders):
+                if model.cylinder_throw[c] == t:
+                    new[c] = len(new) + 1
+        changed: dict[str, str] = {}
+        if model.maker_number is not None:
+            maker = [0] * model.cylinders
+            for c, m in enumerate(model.maker_number):
+                maker[m - 1] = new[c]
+            changed = {"maker_numbers": ", ".join(map(str, maker)), "numbering": ""}
+        elif texts.get("firing_order", "").strip():
+            changed = {"firing_order": ", ".join(str(new[c - 1]) for c in model.firing_order)}
+        for key, value in changed.items():
+            texts[key] = value
+            element = self.page.inputs[key]
+            element.set_value((value or None) if isinstance(element, ui.select) else value)
 
     def add_throw(self) -> None:
         p = self.project

@@ -161,7 +161,7 @@ DETAIL_FIELDS: tuple[FormField, ...] = (
     _F("w_type", ("crank_train", "w_type"), layouts=("w",)),
     _F("vr_angle", ("crank_train", "vr_angle"), group="w-vr", layouts=("w",)),
     _F("bore_offset", ("crank_train", "bore_offset"), group="vr-rows", layouts=("vr", "w")),
-    _F("pin_split", ("crank_train", "pin_split"), group="vr-rows", layouts=("vr", "w")),
+    _F("pin_split", ("crank_train", "pin_split"), group="split", layouts=("vr", "w", "vee")),
     # the schema takes any scheme's name as text; the form offers the schemes there are
     _F("numbering", ("crank_train", "numbering"), options=tuple(SCHEMES), layouts=("vee", "boxer")),
     _F("maker_numbers", ("crank_train", "maker_numbers")),

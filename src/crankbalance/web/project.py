@@ -234,13 +234,16 @@ class Project:
 
     def _means_something(self, f: FormField) -> bool:
         """Whether a detail field means something for the layout (and W type) in the form:
-        the VR rows' fields for layout vr and a W from VR banks, the VR angle for the latter."""
+        the VR rows' fields for layout vr and a W from VR banks (the pin split for a vee
+        too), the VR angle for the latter."""
         layout = self.texts.get("layout")
         w_vr = layout == "w" and self.texts.get("w_type") == "vr"
         if f.group == "w-vr":
             return w_vr
         if f.group == "vr-rows":
             return layout == "vr" or w_vr
+        if f.group == "split":  # VR rows' pins, or a vee's throws split into two pins
+            return layout in ("vr", "vee") or w_vr
         if f.group == "banks":  # a W from VR banks gives its offsets per cylinder
             return layout in f.layouts and not w_vr
         return layout in f.layouts
