@@ -145,3 +145,16 @@ def test_mode_shapes_legend_names_the_mode_shown_and_stays_inside(result: Any) -
     assert slider.x > 0 and slider.x + slider.len < 1  # "0°" and "345°" not cut
     assert fig.layout.margin.r > 0  # the mode menu inside the figure's right edge
 
+
+def test_the_3d_figures_on_a_phone(result: Any) -> None:
+    pytest.importorskip("nicegui")
+    from crankbalance.web.tab_mounts import CAMERA_EYE, PHONE_CAMERA, on_a_phone
+    from crankbalance.web.widgets import PHONE_LEGEND_LINE
+
+    fig = on_a_phone(mode_shapes_figure(result, animate=True), PHONE_CAMERA["modes"])
+    stack = fig.layout.meta["cbStack"]
+    assert stack["wide"]["scene.camera.eye"] == CAMERA_EYE
+    assert stack["phone"]["scene.camera.eye"]["x"] > CAMERA_EYE["x"]
+    # the legend (three lines on a phone) below the phase slider
+    assert stack["phone"]["margin.b"] == fig.layout.margin.b + 3 * PHONE_LEGEND_LINE
+    assert stack["wide"]["margin.b"] == fig.layout.margin.b
