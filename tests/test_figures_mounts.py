@@ -21,6 +21,7 @@ from crankbalance.output.figures.mounts import (
 
 ROOT = Path(__file__).resolve().parents[1]
 CAR = ROOT / "examples" / "mounts_inline4_car.toml"
+BIKE = ROOT / "examples" / "mounts_vtwin_motorcycle.toml"
 #: plotly's defaults where a figure sets none: height, top and bottom margins [px]
 HEIGHT, TOP, BOTTOM = 450, 100, 80
 #: the height of a line of text as a share of its font size, and a title's free space [px]
@@ -111,10 +112,18 @@ def _boxes(fig: Any) -> tuple[list[tuple[str, float, float]], list[tuple[str, fl
     return titles, plots
 
 
-def test_no_title_overlaps_another_or_a_plot(result: Any) -> None:
-    titles, plots = _boxes(mounts_figure(result))
-    assert len(plots) == 2
-    height = mounts_figure(result).layout.height or HEIGHT
+@pytest.mark.parametrize("compared", [False, True])
+def test_no_title_overlaps_another_or_a_plot(result: Any, compared: bool) -> None:
+    """Two rows, and three with a comparison of balancing choices."""
+    if compared:
+        from crankbalance.studies.registry import run
+
+        settings = {"speed_samples": "40", "orders": "2", "compare_balance_factors": "0,0.5"}
+        result = run("mounts", str(BIKE), settings, naming=str)
+    fig = mounts_figure(result)
+    titles, plots = _boxes(fig)
+    assert len(plots) == (3 if compared else 2)
+    height = fig.layout.height or HEIGHT
     for k, (name, low, high) in enumerate(titles):
         assert 0 <= low < high <= height, name
         for other, b, t in titles[k + 1 :]:
