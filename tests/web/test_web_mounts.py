@@ -191,6 +191,26 @@ playwright_api = pytest.importorskip("playwright.sync_api")
 expect = playwright_api.expect
 
 
+#: (browser) the plot drawn at its box's width (after a resize: the page's phone relayouts
+#: come first, FIGURE_JS)
+REDRAWN = """(el) => new Promise((done) => {
+    const drawn = () => el._fullLayout
+        && Math.abs(el._fullLayout.width - el.getBoundingClientRect().width) < 1;
+    if (drawn()) return done();
+    el.on('plotly_afterplot', () => drawn() && done());
+})"""
+#: (browser) the mode shapes' legend below the phase slider, the slider and the mode menu
+#: inside the figure
+APART = """(el) => {
+    const box = (s) => el.querySelector(s).getBoundingClientRect();
+    const figure = el.getBoundingClientRect();
+    const legend = box('.legend'), slider = box('.slider-container');
+    const menu = box('.updatemenu-container');
+    return legend.top >= slider.bottom - 1 && slider.left >= figure.left
+        && slider.right <= figure.right && menu.right <= figure.right;
+}"""
+
+
 @pytest.mark.parametrize(("width", "height"), [(1280, 800), (390, 844)])
 def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int) -> None:
     """The car example loaded from the tab, run, its tables equal to the command line's
@@ -254,6 +274,15 @@ def test_mounts_tab_in_the_browser(server: str, browser, width: int, height: int
             first,
         )
         page.locator("[data-testid=mounts-modes-pause]").first.click()
+        # the legend below the phase slider's ticks, the slider and the mode menu inside the
+        # figure (review findings 13 and 23; on a phone the page's relayouts of on_a_phone),
+        # at this width, after a change to the other width and back
+        other = {"width": 390, "height": 844} if width > 600 else {"width": 1280, "height": 800}
+        for size in (None, other, {"width": width, "height": height}):
+            if size is not None:
+                page.set_viewport_size(size)
+            modes_plot.evaluate(REDRAWN)
+            assert modes_plot.evaluate(APART), size
         SHOTS.mkdir(parents=True, exist_ok=True)
         page.screenshot(path=str(SHOTS / f"mounts_{width}x{height}.png"), full_page=True)
         # a bad setting: beside its field in the field's words; the result is gone

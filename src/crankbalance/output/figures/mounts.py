@@ -36,40 +36,78 @@ MODE_FRAME_MS = 60
 #: length of a mount's compression-axis stroke in the layout, as a share of its size
 AXIS_DRAWN = 0.12
 _MM = 1000.0
+#: one colour per rigid-body mode (the Campbell diagram and the mode shapes), apart from
+#: the orders' colours (:data:`~.common.ORDER_COLORS`) of the same figure
+MODE_COLORS = ("#1b9e77", "#7570b3", "#e7298a", "#e6ab02", "#a6761d", "#666666")
+#: the Campbell diagram's range of frequencies: up to this times the highest mode
+CAMPBELL_TOP = 1.6
+#: the height of each row of :func:`mounts_figure` and the gap between rows, which holds
+#: the row's title [px]
+ROW_PX = 300
+ROW_GAP_PX = 60
+#: the top and bottom margins of :func:`mounts_figure` (the title; the speed axis) [px]
+MARGIN_TOP = 110
+MARGIN_BOTTOM = 70
+#: the side margins of the 3-D figures [px]: the mode menu and the phase slider's end
+#: labels inside the figure
+SIDE_PX = 20
+#: the leader of a name in the layout figure: its run up and aside [px]
+LABEL_PX = 28
 
 
 def mounts_figure(result: MountsResult) -> go.Figure:
     """Top, the Campbell diagram: the six natural frequencies [Hz] of the powertrain on its
-    mounts and the engine-order lines f = n · rpm / 60 over the speed range, a marker at
-    every crossing; middle, the largest force of each mount over a cycle [N] against speed,
-    one line per mount (dash) and order (colour); with a comparison of balancing choices or
-    an optimisation, a third row: the largest force of any mount and order against speed,
-    for the mounts as given, each choice and the optimised mounts."""
+    mounts (one colour and legend entry per mode, :data:`MODE_COLORS`) and the engine-order
+    lines f = n · rpm / 60 over the speed range (each in its order's colour of the forces
+    below, labelled "order n" at its end, cut where it leaves the diagram's range: up to
+    :data:`CAMPBELL_TOP` times the highest mode; an order above that range over the whole
+    speed range is named in the diagram's title instead), a marker at every crossing;
+    middle, the largest force of each mount over a cycle [N] against speed, one line per
+    mount (dash) and order (colour); with a comparison of balancing choices or an
+    optimisation, a third row: the largest force of any mount and order against speed, for
+    the mounts as given, each choice and the optimised mounts. Each row is :data:`ROW_PX`
+    high, the rows :data:`ROW_GAP_PX` apart (their titles clear of the row above)."""
     go = plotly_go()
     response, modes = result.response, result.modes
     rpm = np.asarray(response.speeds) * 30 / math.pi
     extra = bool(result.comparison) or result.optimum_response is not None
+    top = float(max(modes.frequencies.max(), 1.0)) * CAMPBELL_TOP
+    lines = {n: order_line(float(n), float(rpm[0]), float(rpm[-1]), top) for n in response.orders}
+    above = [f"{n:g}" for n, line in lines.items() if line is None]
+    campbell = "Campbell diagram"  # short enough for a phone; the modes are in the legend
+    if above:
+        orders = f"order{'s' if len(above) > 1 else ''} {', '.join(above)}"
+        campbell += f"<br><sub>{orders} above every mode</sub>"
+    rows = 3 if extra else 2
+    plot = rows * ROW_PX + (rows - 1) * ROW_GAP_PX
     fig = make_subplots(
-        rows=3 if extra else 2,
+        rows=rows,
         cols=1,
         shared_xaxes=True,
-        vertical_spacing=0.08,
+        vertical_spacing=ROW_GAP_PX / plot,
         subplot_titles=(
-            "Campbell diagram: rigid-body modes",
+            campbell,
             "Force transmitted by each mount",
-            *(["Largest mount force (every mount and order)"] if extra else []),
+            *(["Largest force of any mount and order"] if extra else []),
         ),
     )
-    for n in response.orders:
+    for k, n in enumerate(response.orders):
+        line = lines[n]
+        if line is None:
+            continue
+        (x0, y0), (x1, y1) = line
         fig.add_trace(
             go.Scatter(
-                x=[rpm[0], rpm[-1]],
-                y=[n * rpm[0] / 60, n * rpm[-1] / 60],
-                mode="lines",
-                name=f"order {n}",
+                x=[x0, x1],
+                y=[y0, y1],
+                mode="lines+text",
+                name=f"order {n:g}",
                 showlegend=False,
-                line={"color": COLORS["before"], "width": 1},
-                hovertemplate=f"order {n}<extra></extra>",
+                text=["", f"order {n:g}"],
+                textposition=_order_label(x1, y1, float(rpm[0]), float(rpm[-1]), top),
+                textfont={"color": ORDER_COLORS[k % len(ORDER_COLORS)]},
+                line={"color": ORDER_COLORS[k % len(ORDER_COLORS)], "width": 1.5},
+                hovertemplate=f"order {n:g}<extra></extra>",
             ),
             row=1,
             col=1,
@@ -80,9 +118,8 @@ def mounts_figure(result: MountsResult) -> go.Figure:
                 x=[rpm[0], rpm[-1]],
                 y=[f, f],
                 mode="lines",
-                name=f"mode {r + 1}",
-                showlegend=False,
-                line={"color": COLORS["after"], "width": 1.5},
+                name=f"mode {r + 1}: {f:.3g} Hz, {_most(modes.energy[r])}",
+                line={"color": MODE_COLORS[r % len(MODE_COLORS)], "width": 2},
                 hovertemplate=f"mode {r + 1}: {f:.2f} Hz<extra></extra>",
             ),
             row=1,
@@ -96,14 +133,13 @@ def mounts_figure(result: MountsResult) -> go.Figure:
                 mode="markers",
                 name="crossings",
                 showlegend=False,
-                marker={"color": COLORS["after"], "size": 8},
-                text=[f"mode {c.mode + 1}, order {c.order}" for c in result.crossings],
+                marker={"color": COLORS["total"], "size": 8},
+                text=[f"mode {c.mode + 1}, order {c.order:g}" for c in result.crossings],
                 hovertemplate="%{text}: %{x:.0f} rpm<extra></extra>",
             ),
             row=1,
             col=1,
         )
-    top = float(max(modes.frequencies.max(), 1.0)) * 1.6
     fig.update_yaxes(title_text="frequency [Hz]", range=[0, top], row=1, col=1)
     for k, n in enumerate(response.orders):
         color = ORDER_COLORS[k % len(ORDER_COLORS)]
@@ -113,7 +149,7 @@ def mounts_figure(result: MountsResult) -> go.Figure:
                     x=rpm,
                     y=response.mount_peak[:, k, i],
                     mode="lines",
-                    name=f"{mount.name}, order {n}",
+                    name=f"{mount.name}, order {n:g}",
                     line={"color": color, "dash": _DASHES[i % len(_DASHES)]},
                 ),
                 row=2,
@@ -122,9 +158,42 @@ def mounts_figure(result: MountsResult) -> go.Figure:
     fig.update_yaxes(title_text="force [N]", row=2, col=1)
     if extra:
         _largest(fig, result, rpm)
-    fig.update_xaxes(title_text="speed [rpm]", row=3 if extra else 2, col=1)
-    fig.update_layout(template=TEMPLATE, title=f"{result.name}: the powertrain on its mounts")
+    fig.update_xaxes(range=[rpm[0], rpm[-1]])
+    fig.update_xaxes(title_text="speed [rpm]", row=rows, col=1)
+    fig.update_layout(
+        template=TEMPLATE,
+        title=f"{result.name}: the powertrain on its mounts",
+        height=plot + MARGIN_TOP + MARGIN_BOTTOM,
+        margin={"l": 70, "r": 30, "t": MARGIN_TOP, "b": MARGIN_BOTTOM},
+    )
     return fig
+
+
+def order_line(
+    order: float, low: float, high: float, top: float
+) -> tuple[tuple[float, float], tuple[float, float]] | None:
+    """The engine-order line f = n · rpm / 60 [Hz] of the Campbell diagram from ``low`` to
+    ``high`` [rpm], cut where it reaches the diagram's ``top`` [Hz]: its two ends (rpm, Hz),
+    or None when the line lies above ``top`` over the whole range."""
+    start = order * low / 60
+    if start >= top:
+        return None
+    end = min(high, 60 * top / order) if order > 0 else high
+    return (low, start), (end, order * end / 60)
+
+
+def _order_label(x: float, y: float, low: float, high: float, top: float) -> str:
+    """Where an order line's label goes from its end (``x`` rpm, ``y`` Hz), inside the
+    diagram and off the line: below and right of an end at the top (below and left near
+    the highest speed), above and left of an end at the highest speed."""
+    if y < top * (1 - 1e-9):
+        return "top left"
+    return "bottom right" if x < low + 0.8 * (high - low) else "bottom left"
+
+
+def _most(energy: np.ndarray) -> str:
+    """The coordinate that holds the most of a mode's kinetic energy."""
+    return ("x", "y", "z", "roll", "pitch", "yaw")[int(np.argmax(energy))]
 
 
 def _layout_points(result: MountsResult) -> np.ndarray:
@@ -216,7 +285,7 @@ def mounts_layout_figure(result: MountsResult) -> go.Figure:
             x=[m.position[0] * _MM for m in pt.mounts],
             y=[m.position[1] * _MM for m in pt.mounts],
             z=[m.position[2] * _MM for m in pt.mounts],
-            mode="markers+text",
+            mode="markers",
             name="mounts",
             text=[m.name for m in pt.mounts],
             marker={"size": 6, "color": COLORS["forward"]},
@@ -228,7 +297,7 @@ def mounts_layout_figure(result: MountsResult) -> go.Figure:
             x=[cg[0] * _MM],
             y=[cg[1] * _MM],
             z=[cg[2] * _MM],
-            mode="markers+text",
+            mode="markers",
             name=f"centre of gravity ({pt.mass:.4g} kg)",
             text=["G"],
             marker={"size": 7, "color": COLORS["total"], "symbol": "diamond"},
@@ -253,11 +322,35 @@ def mounts_layout_figure(result: MountsResult) -> go.Figure:
     fig.update_layout(
         template=TEMPLATE,
         title=f"{result.name}: mounts, centre of gravity, crank axis",
-        scene=_scene(),
+        scene={**_scene(), "annotations": _labels(pt)},
         height=560,
-        margin={"l": 0, "r": 0, "t": 60, "b": 0},
+        margin={"l": SIDE_PX, "r": SIDE_PX, "t": 60, "b": 0},
     )
     return fig
+
+
+def _labels(pt: Any) -> list[dict[str, Any]]:
+    """The names of the mounts and G as the scene's annotations: drawn over the scene (a
+    text of the scene itself is hidden behind any line in front of it), each on a short
+    leader above its point, alternately left and right so that neighbours' names part."""
+    points = [(m.name, m.position) for m in pt.mounts] + [("G", pt.cg)]
+    return [
+        {
+            "x": p[0] * _MM,
+            "y": p[1] * _MM,
+            "z": p[2] * _MM,
+            "text": name,
+            "showarrow": True,
+            "arrowhead": 0,
+            "arrowwidth": 1,
+            "arrowcolor": COLORS["before"],
+            "ax": LABEL_PX if k % 2 else -LABEL_PX,
+            "ay": -LABEL_PX,
+            "bgcolor": "rgba(255, 255, 255, 0.85)",
+            "font": {"size": 12},
+        }
+        for k, (name, p) in enumerate(points)
+    ]
 
 
 def mode_shapes_figure(result: MountsResult, animate: bool = False) -> go.Figure:
@@ -306,7 +399,8 @@ def mode_shapes_figure(result: MountsResult, animate: bool = False) -> go.Figure
                 mode="lines",
                 name=label,
                 visible=r == first,
-                line={"color": ORDER_COLORS[r % len(ORDER_COLORS)], "width": 6},
+                showlegend=r == first,
+                line={"color": MODE_COLORS[r % len(MODE_COLORS)], "width": 6},
                 hoverinfo="skip",
             )
         )
@@ -316,6 +410,7 @@ def mode_shapes_figure(result: MountsResult, animate: bool = False) -> go.Figure
                 mode="lines+markers",
                 name=f"mode {r + 1}: motion of the mounts and G",
                 visible=r == first,
+                showlegend=r == first,
                 line={"color": COLORS["total"], "width": 3},
                 marker={"size": [0, 5, 0] * len(body), "color": COLORS["total"]},
                 text=[n for n in names for _ in range(3)],
@@ -326,25 +421,26 @@ def mode_shapes_figure(result: MountsResult, animate: bool = False) -> go.Figure
     for r in range(6):
         visible = [True] + [k // traces_per_mode == r for k in range(traces_per_mode * 6)]
         energy = modes.energy[r]
-        most = ("x", "y", "z", "roll", "pitch", "yaw")[int(np.argmax(energy))]
+        most = _most(energy)
         buttons.append(
             {
                 "label": f"mode {r + 1}: {modes.frequencies[r]:.3g} Hz, {most}",
                 "method": "update",
+                # the legend names the mode shown only (a phone makes room for each entry)
                 "args": [
-                    {"visible": visible},
+                    {"visible": visible, "showlegend": visible},
                     {"title.text": f"{result.name}: mode {r + 1} ({most} {energy.max():.0f} %)"},
                 ],
             }
         )
     energy = modes.energy[first]
-    most = ("x", "y", "z", "roll", "pitch", "yaw")[int(np.argmax(energy))]
+    most = _most(energy)
     fig.update_layout(
         template=TEMPLATE,
         title=f"{result.name}: mode {first + 1} ({most} {energy.max():.0f} %)",
         scene=_scene(),
         height=560,
-        margin={"l": 0, "r": 0, "t": 90, "b": 0},
+        margin={"l": SIDE_PX, "r": SIDE_PX, "t": 90, "b": 0},
         updatemenus=[
             {
                 "buttons": buttons,
@@ -443,14 +539,15 @@ def _animate_modes(fig: go.Figure, body: np.ndarray, drawn: list[np.ndarray]) ->
             {
                 "steps": steps,
                 "currentvalue": {"prefix": "phase of the motion "},
-                "x": 0.3,
-                "len": 0.7,
+                # the end ticks' labels inside the figure
+                "x": 0.02,
+                "len": 0.94,
                 "y": 0,
                 "yanchor": "top",
                 "pad": {"t": 10},
             }
         ],
-        margin={"l": 0, "r": 0, "t": 90, "b": 90},
+        margin={"l": SIDE_PX, "r": SIDE_PX, "t": 90, "b": 90},
         height=640,
     )
     # the scene's axes fixed to every mode's largest excursion (mm), in proportion
