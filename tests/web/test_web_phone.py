@@ -16,7 +16,7 @@ pytest.importorskip("playwright.sync_api")
 
 from plotly.subplots import make_subplots  # noqa: E402
 
-from crankbalance.web.widgets import phone_stack  # noqa: E402
+from crankbalance.web.widgets import legend_entries, phone_stack  # noqa: E402
 
 from .conftest import DRAWN  # noqa: E402
 from .test_web_explore import connected, open_tab  # noqa: E402
@@ -28,6 +28,22 @@ PHONE_HEADER = 100
 #: the figures of the Results tab whose subplots stand side by side on a wide screen
 SIDE_BY_SIDE = """() => [...document.querySelectorAll('.cb-figure')]
     .filter((e) => e.offsetParent !== null && e.layout?.meta?.cbStack)"""
+
+
+def test_a_hidden_trace_has_no_legend_entry() -> None:
+    """The phone's legend lines are counted for the traces plotly lists: a trace hidden by
+    a menu (``visible=False``) has no entry, one shown in the legend only has one, and
+    traces of one legend group share one."""
+    data = [
+        {"name": "mode 1"},
+        {"name": "mode 2", "visible": False},
+        {"name": "mode 3", "visible": "legendonly"},
+        {"name": "order 1", "legendgroup": "o1"},
+        {"name": "order 1", "legendgroup": "o1"},
+        {"name": "no entry", "showlegend": False},
+        {"name": ""},
+    ]
+    assert legend_entries(data) == 3
 
 
 def test_phone_stack_moves_columns_into_rows_and_back() -> None:

@@ -177,10 +177,13 @@ def button_row() -> Any:
 
 
 def legend_entries(data: list[dict[str, Any]]) -> int:
-    """How many entries the legend of a figure (its traces as plotly JSON) shows."""
+    """How many entries the legend of a figure (its traces as plotly JSON) shows: a hidden
+    trace (``visible=False``, e.g. another mode of a menu) has none; ``"legendonly"`` has."""
     groups = set()
     for trace in data:
-        if trace.get("showlegend") is False or not trace.get("name"):
+        if trace.get("showlegend") is False or trace.get("visible") is False:
+            continue
+        if not trace.get("name"):
             continue
         groups.add(trace.get("legendgroup") or id(trace))
     return len(groups)
