@@ -151,5 +151,11 @@ async def test_performance_tab(user: User, form) -> None:
     assert [r["balance_factor"] for r in rows] == ["0", "0.5", "1"]
     assert all(float(r["friction_torque"]) > 0 for r in rows)
     assert form.element("figure-sensitivity").visible
+    # the bore, peak pressure and journal it assumed: the single's estimate, as Crank loads
+    # takes them (bore = stroke 62 mm, journal 1.3 x 31 mm), and why its peak bearing load
+    # is another quantity than Crank loads' max N
+    assumed = form.text("performance-assumed").replace("\\*", "*")  # Markdown-escaped
+    assert "bore 62 mm*" in assumed and "main journal 40.3 mm*" in assumed, assumed
+    assert "peak pressure" in assumed and "another quantity" in assumed, assumed
     form.set("setting-pf_balance_factors", "0, x")
     assert form.error("setting-pf_balance_factors")

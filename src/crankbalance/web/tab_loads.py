@@ -30,7 +30,9 @@ from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 #: (:data:`crankbalance.studies.balance_loads.COLUMNS`)
 COLUMN_NOTE = (
     "f_b: balance factor; CW kg: counterweight mass; worst: the bearing of the largest peak "
-    "load; max N, mean N: its peak and mean load; journal N·m, pin N·m: the largest bending "
+    "load; max N, mean N: its peak and mean load (each throw's load shared among the main "
+    "bearings on either side of it; the Performance tab's peak bearing load is one "
+    "cylinder's whole load on one bearing); journal N·m, pin N·m: the largest bending "
     "moment at a journal, at a crankpin; friction W: Coulomb friction of all main bearings; "
     "Frot N, Mrot N·m: force and couple of the rotating masses left after balancing; "
     "F1+ N, F1- N, M1+ N·m, M1- N·m: the first-order free force and couple left, forward (+) "
