@@ -24,6 +24,7 @@ from nicegui import ui
 from ..errors import InputError
 from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
 from ..schema.settings import BearingOptions, BearingSweepOptions
+from .form import label_of
 from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 
 #: the line under the table that says what its short column names are
@@ -173,8 +174,10 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         lowest = rows[summary["lowest_load"]]
         s = data["settings"]
         assumed = assumed_text(s).replace("*", "\\*")  # a star marks the engine's values
-        # the study's summary (the suggested case, the Pareto set), its warning highlighted
-        lines = [t for t in summary["text"] if not t.startswith("Warning: ")]
+        # the study's summary (the suggested case, the Pareto set), its warning highlighted;
+        # a next step names the balance factor as the Engine form does
+        words = self.study.summary(label_of("counterweights.balance_factor")).text
+        lines = [t for t in words if not t.startswith("Warning: ")]
         self.summary.set_content(
             f"{data['engine']['name']}: {len(rows)} cases, {data['crank_model']} crank, "
             f"{'gas and inertia' if s['gas'] else 'inertia only'}.\n\n"
