@@ -114,3 +114,16 @@ def test_crank_loads_summary_names_the_form_field() -> None:
     web = " ".join(study.summary(label_of("counterweights.balance_factor")).text)
     assert "(Balance factor 0.5; now 0)" in web and "--balance-factor" not in web
     assert "(--balance-factor 0.5; now 0)" in " ".join(study.to_dict()["summary"]["text"])
+
+
+def test_single_cylinder_states_the_engines_balance_factor() -> None:
+    """Review finding 29: the tab's study (0.5 by default) and the engine's balancing (its
+    own factor, the Results tab's) are named apart, or said to be the same."""
+    from crankbalance.web.tab_single import engine_factor_note
+
+    apart = engine_factor_note(0.0, 0.5)
+    assert "This study is at f\\_b = 0.5" in apart and "balanced at f\\_b = 0 " in apart
+    assert "two different balancings" in apart and "f_b = 0.5" in markdown_html(apart)
+    same = engine_factor_note(0.5, 0.5)
+    assert same.startswith("This study's f\\_b = 0.5 is the engine's own")
+    assert "no crank counterweights" in engine_factor_note(None, 0.5)

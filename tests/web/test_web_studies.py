@@ -76,6 +76,10 @@ async def test_single_cylinder_tab(user: User, form) -> None:
     summary = form.text("single-summary")
     assert f"{ref.peak_resultant:.1f} N" in summary, (summary, ref.peak_resultant)
     assert f"{ref.optimum_balance_factor:.3f}" in summary
+    # review finding 29: the engine itself is balanced at its own factor (0 for the
+    # single), which the Results tab shows; the card says both
+    assert "This study is at f\\_b = 0.6" in summary, summary
+    assert "the engine is balanced at f\\_b = 0 (the Engine form's" in summary, summary
     iso = form.text("iso-summary")
     mass = float(spec_study.model.throw_rotating_mass.sum())
     u_per = permissible_unbalance("G6.3", mass, spec_study.model.speed)
