@@ -207,7 +207,10 @@ class SingleTab(StudyTab):
                         "run-single"
                     )
                     self.cancel_button()
-                self.single_summary = ui.markdown("").mark("single-summary")
+                # at most 40 rem wide: the note on the engine's balance factor wraps
+                self.single_summary = (
+                    ui.markdown("").style("max-width: 40rem").mark("single-summary")
+                )
             with ui.card():
                 ui.label("ISO 21940-11 check").classes("text-subtitle1")
                 self.settings("sc_grade", "sc_rotor_mass", "sc_residual")
