@@ -83,6 +83,16 @@ async def test_balancing_card_on_the_page(user: User, form) -> None:
     assert "Balanced for **6000 rpm**" in form.text("balance-summary")
 
 
+async def test_what_is_left_names_the_form_field(user: User, form) -> None:
+    """The V8 at balance factor 0: the next step names the Engine form's field, not the
+    command line's option (review finding 18)."""
+    await user.open("/?preset=v8-crossplane")
+    await form.see("What is left")
+    left = form.text("balance-left")
+    assert "a balance factor of 0.5 (Balance factor 0.5; now 0)" in left, left
+    assert "--balance-factor" not in left
+
+
 async def test_preset_menu_says_edited_and_loads_again(user: User, form) -> None:
     await user.open("/?preset=inline4")
     menu = form.element("preset")

@@ -85,3 +85,45 @@ def test_f_b_is_not_italics_in_the_single_cylinder_cards() -> None:
     for html in (markdown_html(single_summary(study)), markdown_html(rebalance_summary(reb))):
         assert "<em>" not in html and "f_b" in html
     assert markdown_html(single_summary(study)).count("f_b") == 2
+
+
+def test_what_is_left_names_the_balance_factor_as_each_surface_does() -> None:
+    """Review finding 18: the crossplane V8 at balance factor 0 keeps its forward primary
+    couple; the next step names the setting as the reader's surface does: the JSON and the
+    command line the option, the web the Engine form's field (one text, the name passed
+    in)."""
+    from crankbalance.web.form import label_of
+
+    study = Project.from_preset("v8-crossplane").compute().study
+    label = label_of("counterweights.balance_factor")
+    assert label == "Balance factor"
+    cli = study.to_dict()["remaining"][0]["next_step"]
+    web = study.to_dict(factor_name=label)["remaining"][0]["next_step"]
+    assert "(--balance-factor 0.5; now 0)" in cli
+    assert "(Balance factor 0.5; now 0)" in web and "--" not in web
+    assert web.replace(label, "--balance-factor") == cli  # the same text otherwise
+
+
+def test_crank_loads_summary_names_the_form_field() -> None:
+    """The Crank loads tab's summary says its next step in the web's words (the tab calls
+    SweepStudy.summary with the form's label); the JSON keeps the option."""
+    from crankbalance.studies.balance_loads import bearing_sweep
+    from crankbalance.web.form import label_of
+
+    study = bearing_sweep("single", {"patterns": ["all"], "balance_factors": [0.0]})
+    web = " ".join(study.summary(label_of("counterweights.balance_factor")).text)
+    assert "(Balance factor 0.5; now 0)" in web and "--balance-factor" not in web
+    assert "(--balance-factor 0.5; now 0)" in " ".join(study.to_dict()["summary"]["text"])
+
+
+def test_single_cylinder_states_the_engines_balance_factor() -> None:
+    """Review finding 29: the tab's study (0.5 by default) and the engine's balancing (its
+    own factor, the Results tab's) are named apart, or said to be the same."""
+    from crankbalance.web.tab_single import engine_factor_note
+
+    apart = engine_factor_note(0.0, 0.5)
+    assert "This study is at f\\_b = 0.5" in apart and "balanced at f\\_b = 0 " in apart
+    assert "two different balancings" in apart and "f_b = 0.5" in markdown_html(apart)
+    same = engine_factor_note(0.5, 0.5)
+    assert same.startswith("This study's f\\_b = 0.5 is the engine's own")
+    assert "no crank counterweights" in engine_factor_note(None, 0.5)

@@ -76,6 +76,10 @@ async def test_single_cylinder_tab(user: User, form) -> None:
     summary = form.text("single-summary")
     assert f"{ref.peak_resultant:.1f} N" in summary, (summary, ref.peak_resultant)
     assert f"{ref.optimum_balance_factor:.3f}" in summary
+    # review finding 29: the engine itself is balanced at its own factor (0 for the
+    # single), which the Results tab shows; the card says both
+    assert "This study is at f\\_b = 0.6" in summary, summary
+    assert "the engine is balanced at f\\_b = 0 (the Engine form's" in summary, summary
     iso = form.text("iso-summary")
     mass = float(spec_study.model.throw_rotating_mass.sum())
     u_per = permissible_unbalance("G6.3", mass, spec_study.model.speed)
@@ -151,5 +155,11 @@ async def test_performance_tab(user: User, form) -> None:
     assert [r["balance_factor"] for r in rows] == ["0", "0.5", "1"]
     assert all(float(r["friction_torque"]) > 0 for r in rows)
     assert form.element("figure-sensitivity").visible
+    # the bore, peak pressure and journal it assumed: the single's estimate, as Crank loads
+    # takes them (bore = stroke 62 mm, journal 1.3 x 31 mm), and why its peak bearing load
+    # is another quantity than Crank loads' max N
+    assumed = form.text("performance-assumed").replace("\\*", "*")  # Markdown-escaped
+    assert "bore 62 mm*" in assumed and "main journal 40.3 mm*" in assumed, assumed
+    assert "peak pressure" in assumed and "another quantity" in assumed, assumed
     form.set("setting-pf_balance_factors", "0, x")
     assert form.error("setting-pf_balance_factors")

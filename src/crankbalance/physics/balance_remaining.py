@@ -11,6 +11,12 @@ from dataclasses import dataclass
 from ..results import ResultMixin
 from .balance_types import CounterweightOptions, ShaftOptions
 
+#: how the command line (and the JSON's ``next_step``) names the balance factor in a next
+#: step; the web passes its form's label instead (:func:`step_words`)
+FACTOR_OPTION = "--balance-factor"
+#: where a next step's words name the balance factor setting (:attr:`Remaining.step_format`)
+NAME = "{name}"
+
 
 @dataclass(frozen=True)
 class Remaining(ResultMixin):
@@ -34,7 +40,10 @@ class Remaining(ResultMixin):
         What remains, in words, with its amount and unit.
     next_step : str
         What would remove it: a balance factor, a balance shaft, a counterweight pattern
-        or another crank.
+        or another crank, in the command line's words (:data:`FACTOR_OPTION`).
+    step_format : str
+        The same with :data:`NAME` where the balance factor setting is named, for
+        :func:`step_words` (each surface names it its own way).
     """
 
     component: str
@@ -44,6 +53,27 @@ class Remaining(ResultMixin):
     amount: float
     text: str
     next_step: str
+    step_format: str = ""
+
+
+def step_words(step_format: str, name: str) -> str:
+    """A next step in the words of the reader's surface.
+
+    Parameters
+    ----------
+    step_format : str
+        The next step with :data:`NAME` for the balance factor setting
+        (:attr:`Remaining.step_format`).
+    name : str
+        How the surface names that setting: the command line's option
+        :data:`FACTOR_OPTION`, the web form's label "Balance factor".
+
+    Returns
+    -------
+    str
+        The next step with ``name`` in place.
+    """
+    return step_format.replace(NAME, name)
 
 
 def next_step(
@@ -75,7 +105,8 @@ def next_step(
     -------
     str
         The next step, in words: a balance factor, a balance shaft, a counterweight
-        pattern or another crank.
+        pattern or another crank; :data:`NAME` where it names the balance factor setting
+        (:func:`step_words` puts the surface's name there).
     """
     reach = (
         'crank counterweights that reach their target (angle = "optimal" or method = "individual")'
@@ -85,7 +116,7 @@ def next_step(
     if order == 1 and rotation == "forward":
         if counterweights is None:
             return (
-                "crank counterweights with a balance factor of 0.5 (--balance-factor 0.5), "
+                f"crank counterweights with a balance factor of 0.5 ({NAME} 0.5), "
                 "or a co-rotating primary balance shaft"
             )
         factor = counterweights.balance_factor
@@ -93,7 +124,7 @@ def next_step(
             return reach
         if factor != 0.5:
             return (
-                f"a balance factor of 0.5 (--balance-factor 0.5; now {factor:g}) puts the "
+                f"a balance factor of 0.5 ({NAME} 0.5; now {factor:g}) puts the "
                 "forward primary on the crank counterweights, or a co-rotating primary "
                 "balance shaft"
             )

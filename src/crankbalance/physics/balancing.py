@@ -31,7 +31,7 @@ from numpy.typing import ArrayLike, NDArray
 
 from ..results import ROUND_OFF, ResultMixin, engine_scales, number
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
-from .balance_remaining import Remaining, next_step
+from .balance_remaining import FACTOR_OPTION, Remaining, next_step, step_words
 from .balance_solver import CHECK_TOLERANCE, model_input, solve, throw_unbalance
 from .balance_types import (
     BatchBalance,
@@ -544,7 +544,18 @@ def what_is_left(
                 else f"order {order} {quantity}, {rotation}-rotating: {shown} {unit}"
             )
             step = next_step(c.component, order, rotation, counterweights, primary, missed)
-            out.append(Remaining(c.component, order, quantity, rotation, amount, text, step))
+            out.append(
+                Remaining(
+                    c.component,
+                    order,
+                    quantity,
+                    rotation,
+                    amount,
+                    text,
+                    step_words(step, FACTOR_OPTION),
+                    step,
+                )
+            )
     return tuple(out)
 
 

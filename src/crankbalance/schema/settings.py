@@ -807,8 +807,9 @@ class PerformanceOptions(StudyOptions):
         "length",
         None,
         "Bore",
-        "Cylinder bore, for the gas force.",
-        hint="empty: 76.8 mm, the one-cylinder studies' (cycle, sensitivity)",
+        "Cylinder bore, for the gas force; empty: the engine's estimate, a square engine "
+        "(bore = stroke), as Crank loads and bearings take it.",
+        hint="empty: the engine's estimate, bore = stroke",
     )
     balance_factors: list[float] = _balance_factors(
         [0.0, 0.25, 0.5, 0.75, 1.0],
@@ -829,12 +830,13 @@ class PerformanceOptions(StudyOptions):
         "Coulomb friction coefficient of the main bearings.",
         hint="e.g. 0.005",
     )
-    journal_diameter: float = quantity(
+    journal_diameter: float | None = quantity(
         "length",
-        0.03,
+        None,
         "Main journal diameter",
-        "Diameter of the main journals, the friction's lever arm.",
-        hint="e.g. 30 mm",
+        "Diameter of the main journals, the friction's lever arm; empty: the engine's "
+        "estimate, 1.3 x crank radius, as Crank loads and bearings take it.",
+        hint="empty: the engine's estimate, 1.3 x crank radius",
     )
 
 
@@ -1204,9 +1206,10 @@ class CycleOptions(CombustionOptions):
     whole engine (an engine without ``cylinder``: every cylinder firing), its gas pressure
     (the Wiebe model, or tables: one for every cylinder or one per cylinder) and the
     flywheel. With an engine, stroke, conrod length, reciprocating mass, speed and strokes
-    are the engine's unless given (:meth:`~crankbalance.schema.core.Schema.given`); the bore
-    of one cylinder is the thesis' 76.8 mm unless given, that of the whole engine the
-    stroke (a square engine)."""
+    are the engine's unless given (:meth:`~crankbalance.schema.core.Schema.given`), and so
+    are the bore and main journal (the engine's estimate,
+    :func:`crankbalance.studies.performance.engine_estimate`: bore = stroke, journal 1.3 x
+    crank radius, as ``bearings``); without an engine they are the thesis' single's."""
 
     cylinder: int | None = whole(
         None,
@@ -1215,7 +1218,13 @@ class CycleOptions(CombustionOptions):
         ge=1,
         le=10_000,
     )
-    bore: float = quantity("length", 0.0768, "Bore", "Cylinder bore.")
+    bore: float = quantity(
+        "length",
+        0.0768,
+        "Bore",
+        "Cylinder bore; not given: with an engine its estimate (bore = stroke, as "
+        "bearings), else the thesis' 76.8 mm.",
+    )
     stroke: float = quantity("length", 0.0538, "Stroke", "Piston stroke, twice the crank radius.")
     rod_length: float = quantity(
         "length", 0.1035, "Conrod length", "Centre distance of the conrod."
@@ -1235,7 +1244,8 @@ class CycleOptions(CombustionOptions):
         "length",
         0.03,
         "Main journal diameter",
-        "Diameter of the main journal, the friction's lever arm.",
+        "Diameter of the main journal, the friction's lever arm; not given: with an engine "
+        "its estimate (1.3 x crank radius, as bearings), else the thesis' 30 mm.",
     )
     friction_coefficient: float = _friction(
         0.005, "Friction coefficient", "Coulomb friction coefficient of the main bearing."

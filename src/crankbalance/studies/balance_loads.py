@@ -30,6 +30,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..physics.balance_remaining import FACTOR_OPTION, step_words
 from ..physics.model import EngineModel
 from ..results import ResultMixin, number, round_off, to_jsonable
 from ..schema.engine import EngineSpec
@@ -233,7 +234,9 @@ def tie_levels(values: NDArray[np.float64], model: EngineModel) -> NDArray[np.fl
     return np.maximum(TIE * np.abs(values).max(axis=0), (force, moment, 0.0))
 
 
-def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
+def summarize(
+    cases: Sequence[SweepCase], model: str, factor_name: str = FACTOR_OPTION
+) -> SweepSummary:
     """Weigh the cases of a sweep: their Pareto set over the peak bearing load and the free
     first-order force and couple left, the suggested case by the stated order of criteria,
     and the summary in words.
@@ -244,6 +247,9 @@ def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
         The sweep's cases (at least one).
     model : str
         The crank model whose peak bearing load counts.
+    factor_name : str, optional
+        How the reader's surface names the balance factor in a next step (the command
+        line's option; the web's form label).
 
     Returns
     -------
@@ -277,7 +283,9 @@ def summarize(cases: Sequence[SweepCase], model: str) -> SweepSummary:
     ]
     for r in chosen.study.balance.remaining:
         if r.order == 1:  # higher orders: the same for every case (no counterweight acts)
-            text.append(f"It leaves the {r.text}; next step: {r.next_step}.")
+            text.append(
+                f"It leaves the {r.text}; next step: {step_words(r.step_format, factor_name)}."
+            )
     text.append(
         "Pareto set (peak bearing load, free first-order force and couple left): "
         + "; ".join(cases[i].label for i in pareto)
@@ -319,9 +327,10 @@ class SweepStudy(ResultMixin):
         """The cases of one pattern, over the balance factors."""
         return tuple(c for c in self.cases if c.pattern == pattern)
 
-    def summary(self) -> SweepSummary:
-        """The cases weighed (:func:`summarize`) with the sweep's crank model."""
-        return summarize(self.cases, self.options.crank_model)
+    def summary(self, factor_name: str = FACTOR_OPTION) -> SweepSummary:
+        """The cases weighed (:func:`summarize`) with the sweep's crank model, a next step
+        naming the balance factor ``factor_name``."""
+        return summarize(self.cases, self.options.crank_model, factor_name)
 
     def headline(self) -> tuple[str, ...]:
         """The suggested case and the Pareto set, in words (:meth:`summary`)."""

@@ -41,6 +41,8 @@ from .performance import (
     combustion_summary,
     cycle_cylinder,
     cycle_model,
+    engine_estimate,
+    peak_pressure,
     pressure_source,
 )
 
@@ -232,6 +234,12 @@ def _cylinder(
                 model, crank_radius=own.get("crank_radius"), rod_length=own.get("rod_length")
             ),
         )
+        # the bore and journal the engine suggests where the settings are empty (the same
+        # as bearings and the web's Crank loads: studies.performance.engine_estimate)
+        estimate = engine_estimate(cycle_model(model, crank_radius=own.get("crank_radius")))
+        for name in ("bore", "journal_diameter"):
+            if name not in typed:
+                settings[name] = getattr(estimate, name)
         cylinder = cycle_cylinder(
             model,
             number,
@@ -244,6 +252,35 @@ def _cylinder(
     pressure = pressure_source(o, 1, strokes)
     assert not isinstance(pressure, list)  # one cylinder: one source
     return cylinder, pressure, speed, strokes, inertia
+
+
+def estimated(engine: EngineLike | None, o: CycleOptions) -> list[str]:
+    """The settings of one cylinder's cycle taken from the engine's estimate
+    (:func:`~crankbalance.studies.performance.engine_estimate`): ``bore`` and
+    ``journal_diameter`` where an engine is studied and they are not given."""
+    typed = given(o)
+    if engine is None:
+        return []
+    return [name for name in ("bore", "journal_diameter") if name not in typed]
+
+
+def assumed(
+    engine: EngineLike | None,
+    o: CycleOptions,
+    cylinder: CylinderSpec,
+    pressure: PressureSource,
+    strokes: int,
+) -> dict[str, Any]:
+    """The bore, peak cylinder pressure and main journal one cylinder's cycle assumed, with
+    the settings among them that are the engine's estimate (``estimated``), as the JSON of
+    ``cycle --cylinder`` and ``sensitivity`` shows them (:func:`~crankbalance.studies.
+    performance.assumption_text` says them in words)."""
+    return {
+        "bore_m": cylinder.bore,
+        "peak_pressure_Pa": peak_pressure(cylinder, pressure, strokes),
+        "journal_diameter_m": cylinder.journal_diameter,
+        "estimated": estimated(engine, o),
+    }
 
 
 def _flywheel(
@@ -349,6 +386,7 @@ def _one_cylinder(engine: EngineLike | None, o: CycleOptions) -> CycleStudy:
     }
     payload = {
         "cylinder": keyed(cylinder.to_dict(), CYLINDER_KEYS),
+        "assumed": assumed(engine, o, cylinder, pressure, strokes),
         "crank_inertia_from": inertia_from(o, engine),
         "combustion": combustion_summary(o),
         "speed_rad_s": speed,
@@ -514,6 +552,16 @@ class SensitivityStudy(ResultMixin):
     rows: list[list[float]]
     flywheel_inertia: float = 0.0
 
+    def assumption(self) -> str:
+        """The bore, peak cylinder pressure and main journal the sweep assumed, in words
+        (:func:`~crankbalance.studies.performance.assumption_text`)."""
+        from .performance import assumption_text
+
+        a = self.payload["assumed"]
+        return assumption_text(
+            a["bore_m"], a["peak_pressure_Pa"], a["journal_diameter_m"], a["estimated"]
+        )
+
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.sensitivity/2``."""
         out = to_jsonable({"schema": SENSITIVITY_SCHEMA, **self.payload})
@@ -562,6 +610,7 @@ def sensitivity(
     payload = {
         "speed_rad_s": speed,
         "strokes": strokes,
+        "assumed": assumed(engine, o, cylinder, pressure, strokes),
         "crank_inertia_kg_m2": cylinder.crank_inertia,
         "crank_inertia_from": inertia_from(o, engine),
         "combustion": combustion_summary(o),

@@ -15,6 +15,7 @@ import numpy as np
 
 from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
+from ..physics.balance_remaining import FACTOR_OPTION, step_words
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
 from ..results import ResultMixin, round_off, to_jsonable
@@ -404,8 +405,10 @@ class BalanceStudy(ResultMixin):
         """Each component's free force and moment before and after balancing."""
         return "components"
 
-    def to_dict(self) -> dict[str, Any]:
-        """The JSON contract ``crankbalance.balance/2`` (docs/json.md)."""
+    def to_dict(self, factor_name: str = FACTOR_OPTION) -> dict[str, Any]:
+        """The JSON contract ``crankbalance.balance/2`` (docs/json.md); each next step of
+        ``remaining`` names the balance factor setting ``factor_name`` (the command line's
+        option; the web passes its form's label)."""
         res, m = self.result, self.model
         components = {c.component: c for c in res.residuals}
 
@@ -504,7 +507,7 @@ class BalanceStudy(ResultMixin):
                     "amount": r.amount,
                     "unit": "N" if r.quantity == "force" else "N·m",
                     "text": r.text,
-                    "next_step": r.next_step,
+                    "next_step": step_words(r.step_format, factor_name),
                 }
                 for r in res.remaining
             ],

@@ -51,8 +51,10 @@ from .engine import BalanceStudy, balance_engine, engine_summary
 from .performance import (
     WIEBE_OPTIONS,
     arithmetic_checked,
+    assumption_text,
     combustion_summary,
     combustion_text,
+    engine_estimate,
     pressure_source,
 )
 
@@ -184,6 +186,8 @@ class BearingStudy(ResultMixin):
                 "strokes": int(self.cycle.strokes),
                 "gas": o.gas,
                 "bore_m": self.bore,
+                "bore_from": "engine" if o.bore is None else "typed",
+                "peak_pressure_Pa": float(self.cycle.pressure.max()) if o.gas else None,
                 "crank_inertia_kg_m2": self.crank_inertia,
                 "crank_inertia_from": "engine" if o.crank_inertia is None else "typed",
                 "combustion": combustion_summary(o) if o.gas else None,
@@ -376,7 +380,7 @@ def _bearing_loads(
     )
     section = crank_section(dimensions, o)
     inertia = o.crank_inertia if o.crank_inertia is not None else rotating_inertia(model)
-    bore = o.bore if o.bore is not None else 2.0 * model.crank_radius
+    bore = o.bore if o.bore is not None else engine_estimate(model).bore
     bearings = (
         np.asarray(o.bearing, dtype=float)
         if o.bearing is not None
@@ -482,18 +486,27 @@ def _check_contact_size(samples: int, strokes: int, bearings: int) -> None:
 
 
 def assumed_text(s: dict[str, Any]) -> str:
-    """One line of what the study took for the crank, the flywheel and the combustion
-    (typed, or the engine's: the same for every study, docs/main_bearings.md)."""
+    """One line of what the study took for the crank, the flywheel, the bore, the peak
+    cylinder pressure and the combustion (typed, or the engine's: the same for every study,
+    docs/main_bearings.md; the bore, pressure and journal in the words of
+    :func:`~crankbalance.studies.performance.assumption_text`, as the Performance tab)."""
     typed = set(s["dimensions_typed"])
 
     def mm(name: str) -> str:
         return f"{s[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
 
     combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
+    estimated = [name for name in ("journal_diameter",) if name not in typed]
+    if s["bore_from"] == "engine":
+        estimated.append("bore")
+    cylinder = assumption_text(
+        s["bore_m"], s["peak_pressure_Pa"], s["journal_diameter_m"], estimated, note=False
+    )
     return (
         f"crank + flywheel {text(s['crank_inertia_kg_m2'], 'inertia')}"
         + ("*" if s["crank_inertia_from"] == "engine" else "")
-        + f"; journal {mm('journal_diameter')}, pin {mm('pin_diameter')}, web "
+        + f"; {cylinder}, pin {mm('pin_diameter')}, web "
         f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "
-        "(* the engine's, as every study assumes)"
+        "(* the engine's, as every study assumes: bore = stroke, journal "
+        f"{DEFAULT_PROPORTIONS['journal_diameter']:g} x crank radius)"
     )

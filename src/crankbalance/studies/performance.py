@@ -6,6 +6,10 @@
   their cylinder here; its flywheel sizing (:func:`size_cylinder_flywheel`);
 * the whole engine (:func:`cycle_model`, :func:`whole_engine_cycle`): every cylinder
   firing (:mod:`crankbalance.physics.engine_cycle_all`), for ``cycle --engine``;
+* :func:`engine_estimate`, the bore and main journal a study takes for an engine whose
+  setting is left empty (``cycle --cylinder``, ``sensitivity``, the web's Performance tab,
+  ``bearings`` and the web's Crank loads: one answer), :func:`peak_pressure` and
+  :func:`assumption_text`, the bore, peak pressure and journal a study assumed in words;
 * :func:`arithmetic_checked`, the last net of every study of an engine cycle (``cycle``,
   ``sensitivity``, ``bearings``, ``bearings-sweep``, ``torsional``): a floating-point
   overflow, invalid operation or division by zero becomes one :class:`InputError` naming
@@ -16,7 +20,7 @@ from __future__ import annotations
 
 import contextlib
 import dataclasses
-from collections.abc import Iterator
+from collections.abc import Iterable, Iterator
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -30,6 +34,83 @@ from .cylinder import cylinder_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..schema.settings import CombustionOptions
+
+
+@dataclass(frozen=True)
+class EngineEstimate:
+    """What a study takes for an engine where its setting is left empty.
+
+    Attributes
+    ----------
+    bore : float
+        Cylinder bore: a square engine, bore = stroke = 2 r [m].
+    journal_diameter : float
+        Main journal diameter: the automotive proportion of the crank radius r
+        (:data:`crankbalance.studies.crank.DEFAULT_PROPORTIONS`, 1.3 r) [m].
+    """
+
+    bore: float
+    journal_diameter: float
+
+
+def engine_estimate(model: EngineModel) -> EngineEstimate:
+    """The engine's estimate of its bore and main journal diameter (:class:`EngineEstimate`),
+    the one every study takes for a setting left empty: ``bearings``, ``bearings-sweep``
+    and ``torsional`` (the crank's journal), ``cycle`` and ``sensitivity`` with an engine."""
+    from .crank import DEFAULT_PROPORTIONS
+
+    r = float(model.crank_radius)
+    return EngineEstimate(
+        bore=2.0 * r, journal_diameter=DEFAULT_PROPORTIONS["journal_diameter"] * r
+    )
+
+
+def peak_pressure(cylinder: CylinderSpec, pressure: PressureSource, strokes: int) -> float:
+    """The largest absolute cylinder pressure of one working cycle of ``cylinder`` with its
+    gas ``pressure`` (the Wiebe model or a table), sampled every half degree [Pa]."""
+    from ..physics.engine_cycle import cylinder_pressure
+
+    angle = np.linspace(0.0, strokes * np.pi, 360 * strokes, endpoint=False)
+    return float(cylinder_pressure(angle, cylinder, pressure, strokes).max())
+
+
+def assumption_text(
+    bore: float, peak: float | None, journal: float, estimated: Iterable[str], note: bool = True
+) -> str:
+    """The bore [m], peak cylinder pressure [Pa] (None: no gas forces) and main journal
+    diameter [m] a study assumed, in words, each of ``estimated`` (``"bore"``,
+    ``"journal_diameter"``) marked as the engine's estimate (:func:`engine_estimate`) with a
+    star, and (``note``) what the star means; the same words for every study that has them
+    (``cycle --cylinder``, ``sensitivity`` and the web's Performance tab, ``bearings``,
+    ``bearings-sweep`` and the web's Crank loads)."""
+    marked = set(estimated)
+
+    def star(name: str) -> str:
+        return "*" if name in marked else ""
+
+    pressure = "no gas forces" if peak is None else f"peak pressure {peak / 1e5:.4g} bar"
+    from .crank import DEFAULT_PROPORTIONS
+
+    share = DEFAULT_PROPORTIONS["journal_diameter"]
+    meaning = (
+        f" (* the engine's estimate: bore = stroke, journal {share:g} x crank radius)"
+        if marked and note
+        else ""
+    )
+    return (
+        f"bore {bore * 1e3:.4g} mm{star('bore')}, {pressure}, main journal "
+        f"{journal * 1e3:.4g} mm{star('journal_diameter')}{meaning}"
+    )
+
+
+#: what the one-cylinder studies' peak bearing load is, beside the bearing-load studies'
+#: (the web's Performance and Crank loads tabs say it under their tables)
+PEAK_BEARING_WORDS = (
+    "Peak bearing N: the whole load of one cylinder (gas, inertia and its counterweight) on "
+    "one main bearing; Crank loads shares each throw's load among the main bearings on "
+    "either side of it (a single cylinder's two bearings carry half each), so its max N is "
+    "another quantity"
+)
 
 
 def cycle_cylinder(

@@ -356,10 +356,10 @@ def shaft_placement(computed: Computation, settings: dict[str, Any]) -> tuple[An
 def performance_study(computed: Computation, settings: dict[str, Any]) -> Any:
     """Friction, bearing loads and shaking against the balance factor (Hoem and Røsholm
     2016, Sec. 5) for cylinder 1 of the engine: the study ``sensitivity`` with the tab's
-    settings; its result (every indicator over the balance factors)."""
+    settings (every indicator over the balance factors, and what it assumed)."""
     options(settings, PerformanceOptions)
     values = _texts(settings, "pf_", PerformanceOptions)
-    return _run("sensitivity", computed.spec, values, "pf_").result
+    return _run("sensitivity", computed.spec, values, "pf_")
 
 
 # --------------------------------------------------------------------------- explorer

@@ -24,13 +24,16 @@ from nicegui import ui
 from ..errors import InputError
 from ..output.figures.loads import bearing_loads_figure, bearing_sweep_figure
 from ..schema.settings import BearingOptions, BearingSweepOptions
+from .form import label_of
 from .widgets import StudyTab, TabSettingsMixin, from_schema, schema_choices
 
 #: the line under the table that says what its short column names are
 #: (:data:`crankbalance.studies.balance_loads.COLUMNS`)
 COLUMN_NOTE = (
     "f_b: balance factor; CW kg: counterweight mass; worst: the bearing of the largest peak "
-    "load; max N, mean N: its peak and mean load; journal N·m, pin N·m: the largest bending "
+    "load; max N, mean N: its peak and mean load (each throw's load shared among the main "
+    "bearings on either side of it; the Performance tab's peak bearing load is one "
+    "cylinder's whole load on one bearing); journal N·m, pin N·m: the largest bending "
     "moment at a journal, at a crankpin; friction W: Coulomb friction of all main bearings; "
     "Frot N, Mrot N·m: force and couple of the rotating masses left after balancing; "
     "F1+ N, F1- N, M1+ N·m, M1- N·m: the first-order free force and couple left, forward (+) "
@@ -171,8 +174,10 @@ class LoadsTab(TabSettingsMixin, StudyTab):
         lowest = rows[summary["lowest_load"]]
         s = data["settings"]
         assumed = assumed_text(s).replace("*", "\\*")  # a star marks the engine's values
-        # the study's summary (the suggested case, the Pareto set), its warning highlighted
-        lines = [t for t in summary["text"] if not t.startswith("Warning: ")]
+        # the study's summary (the suggested case, the Pareto set), its warning highlighted;
+        # a next step names the balance factor as the Engine form does
+        words = self.study.summary(label_of("counterweights.balance_factor")).text
+        lines = [t for t in words if not t.startswith("Warning: ")]
         self.summary.set_content(
             f"{data['engine']['name']}: {len(rows)} cases, {data['crank_model']} crank, "
             f"{'gas and inertia' if s['gas'] else 'inertia only'}.\n\n"

@@ -9,6 +9,7 @@ from nicegui import ui
 
 from ..errors import InputError
 from ..schema.settings import PerformanceOptions
+from ..studies.performance import PEAK_BEARING_WORDS
 from . import studies
 from .messages import show_error
 from .widgets import CANCELLED, StudyTab, button_row, fmt_g, plot_or_none
@@ -38,6 +39,7 @@ class PerformanceTab(StudyTab):
                     self.cancel_button()
             with ui.card().classes("grow"):
                 self.rerun_note()
+                self.assumed = ui.markdown("").mark("performance-assumed")
                 self.performance_table = (
                     ui.table(
                         columns=[
@@ -65,6 +67,7 @@ class PerformanceTab(StudyTab):
 
     def clear(self) -> None:
         self.result = None
+        self.assumed.set_content("")
         self.performance_table.rows = []
         self.performance_table.update()
         for card in self.cards:
@@ -78,16 +81,19 @@ class PerformanceTab(StudyTab):
         started = self.stamp()
         try:
             studies.options(settings, PerformanceOptions)  # its limits, before it starts
-            result = await self.in_worker(self.what, studies.performance_study, c, settings)
+            study = await self.in_worker(self.what, studies.performance_study, c, settings)
         except InputError as error:
             show_error(self.page, error)
             return
-        if result is None:
+        if study is None:
             ui.notify(CANCELLED, type="warning")
             return
         if not self.owns(started):  # the engine or a setting was edited meanwhile
             return
-        self.result = result
+        self.assumed.set_content(
+            f"Assumed: {study.assumption()}.\n\n{PEAK_BEARING_WORDS}".replace("*", "\\*")
+        )
+        self.result = result = study.result
         rows = []
         for k, fb in enumerate(result.balance_factors):
             rows.append(

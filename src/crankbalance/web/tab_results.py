@@ -13,6 +13,7 @@ from ..output.figures.balancing import residuals_bar
 from ..output.figures.common import Quantity, roundoff_levels
 from ..output.figures.engine import curves_figure, leading_quantity, orders_bar, polar_figure
 from ..output.format import text
+from .form import label_of
 from .widgets import FigureCard, Tab, button_row, fmt_g
 
 
@@ -417,7 +418,8 @@ class ResultsTab(Tab):
             self.curve_quantity.set_value(quantity)
             self.polar_order.set_value(order)
         self.quiet = False
-        b = c.study.to_dict()
+        # a next step of "What is left" names the balance factor as the Engine form does
+        b = c.study.to_dict(factor_name=label_of("counterweights.balance_factor"))
         self.balance_table.rows = balance_rows(b)
         self.balance_table.update()
         self.balance_summary.set_content("  \n".join(balance_lines(b)))

@@ -68,6 +68,26 @@ def single_summary(study: Any) -> str:
     )
 
 
+def engine_factor_note(engine_factor: float | None, study_factor: float) -> str:
+    """Beside the study: the balance factor the engine itself is balanced at (the Engine
+    form's *Balance factor*, which the Results tab shows; None: no crank counterweights)
+    and this study's, so two balancings of one crank are not read as one (docs/web.md,
+    "Single cylinder tab")."""
+    if engine_factor is None:
+        engine = "the engine has no crank counterweights (Results tab)"
+    else:
+        engine = (
+            f"the engine is balanced at {F_B} = {engine_factor:g} (the Engine form's "
+            "*Balance factor*, shown in the Results tab)"
+        )
+    if engine_factor is not None and math.isclose(engine_factor, study_factor):
+        return f"This study's {F_B} = {study_factor:g} is the engine's own: {engine}."
+    return (
+        f"This study is at {F_B} = {study_factor:g} (this tab's *Balance factor*); {engine}: "
+        "two different balancings of the same crank."
+    )
+
+
 def rebalance_summary(reb: Any) -> str:
     """The rebalancing card's Markdown: the unbalance to remove, the balance factor
     achieved, the residual and the bob-weight."""
@@ -187,7 +207,10 @@ class SingleTab(StudyTab):
                         "run-single"
                     )
                     self.cancel_button()
-                self.single_summary = ui.markdown("").mark("single-summary")
+                # at most 40 rem wide: the note on the engine's balance factor wraps
+                self.single_summary = (
+                    ui.markdown("").style("max-width: 40rem").mark("single-summary")
+                )
             with ui.card():
                 ui.label("ISO 21940-11 check").classes("text-subtitle1")
                 self.settings("sc_grade", "sc_rotor_mass", "sc_residual")
@@ -305,7 +328,13 @@ class SingleTab(StudyTab):
             return
         study, iso, reb = done
         self.result, self.rebalanced = study, reb
-        self.single_summary.set_content(single_summary(study))
+        from ..studies.engine import balance_options
+
+        counterweights = balance_options(c.spec)[0]
+        factor = None if counterweights is None else float(counterweights.balance_factor)
+        self.single_summary.set_content(
+            f"{single_summary(study)}\n\n{engine_factor_note(factor, study.balance_factor)}"
+        )
         verdict = iso["verdict"]
         self.iso_summary.set_content(
             f"{iso['grade'].name} at {iso['speed'] * 30 / 3.141592653589793:.0f} rpm, rotor "
