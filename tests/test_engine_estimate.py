@@ -61,3 +61,26 @@ def test_typed_settings_are_not_estimates() -> None:
     # without an engine: the thesis' single, nothing estimated
     alone = run("sensitivity", None, {}).to_dict()["assumed"]
     assert alone["bore_m"] == pytest.approx(0.0768) and alone["estimated"] == []
+
+
+@pytest.mark.parametrize(
+    "words",
+    [
+        ["sensitivity", "--engine", "single", "--balance-factors", "0"],
+        ["cycle", "--engine", "single", "--cylinder", "1"],
+    ],
+)
+def test_the_command_line_says_what_it_assumed(words: list[str]) -> None:
+    """The text output of ``sensitivity`` and ``cycle --cylinder`` prints the line the web's
+    Performance tab prints: the same words from the same values."""
+    from click.testing import CliRunner
+
+    from crankbalance.cli import cli
+    from crankbalance.studies.cycle import assumption_words
+
+    result = CliRunner().invoke(cli, words)
+    assert result.exit_code == 0, result.output
+    expected = assumption_words(
+        run("sensitivity", "single", {"balance_factors": ["0"]}).to_dict()["assumed"]
+    )
+    assert f"Assumed: {expected}" in result.output.splitlines()

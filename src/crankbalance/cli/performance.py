@@ -226,6 +226,10 @@ def _echo_cycle(payload: dict[str, Any], flywheel_inertia: float = 0.0) -> None:
             f"balance factor {number(payload['cylinder']['balance_factor'])}"
         )
     click.echo(_assumed_text(payload, flywheel_inertia))
+    if "assumed" in payload:  # one cylinder
+        from ..studies.cycle import assumption_words
+
+        click.echo(f"Assumed: {assumption_words(payload['assumed'])}")
     values = dict(payload["summary"])
     values.update(payload.get("flywheel") or {})
     echo_table(["quantity", "value"], [summary_row(k, v) for k, v in values.items()])
@@ -306,4 +310,5 @@ def sensitivity(fmt: str, engine: str | None, **values: Any) -> None:
             "shake N",
         ]
         click.echo(_assumed_text(study.payload, study.flywheel_inertia))
+        click.echo(f"Assumed: {study.assumption()}")
         echo_table(short, [[number(v) for v in row] for row in study.rows])

@@ -16,7 +16,7 @@ from __future__ import annotations
 
 import contextlib
 import math
-from collections.abc import Callable, Iterator
+from collections.abc import Callable, Iterator, Mapping
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
@@ -262,6 +262,18 @@ def estimated(engine: EngineLike | None, o: CycleOptions) -> list[str]:
     if engine is None:
         return []
     return [name for name in ("bore", "journal_diameter") if name not in typed]
+
+
+def assumption_words(assumed: Mapping[str, Any]) -> str:
+    """What :func:`assumed` gives, in words
+    (:func:`~crankbalance.studies.performance.assumption_text`): the line of the web's
+    Performance tab and of the text output of ``sensitivity`` and ``cycle --cylinder``."""
+    from .performance import assumption_text
+
+    a = assumed
+    return assumption_text(
+        a["bore_m"], a["peak_pressure_Pa"], a["journal_diameter_m"], a["estimated"]
+    )
 
 
 def assumed(
@@ -554,13 +566,8 @@ class SensitivityStudy(ResultMixin):
 
     def assumption(self) -> str:
         """The bore, peak cylinder pressure and main journal the sweep assumed, in words
-        (:func:`~crankbalance.studies.performance.assumption_text`)."""
-        from .performance import assumption_text
-
-        a = self.payload["assumed"]
-        return assumption_text(
-            a["bore_m"], a["peak_pressure_Pa"], a["journal_diameter_m"], a["estimated"]
-        )
+        (:func:`assumption_words`)."""
+        return assumption_words(self.payload["assumed"])
 
     def to_dict(self) -> dict[str, Any]:
         """The JSON contract ``crankbalance.sensitivity/2``."""

@@ -493,7 +493,7 @@ def assumed_text(s: dict[str, Any]) -> str:
     typed = set(s["dimensions_typed"])
 
     def mm(name: str) -> str:
-        return f"{s[name + '_m'] * 1e3:.4g}" + ("" if name in typed else "*")
+        return f"{s[name + '_m'] * 1e3:.4g} mm" + ("" if name in typed else "*")
 
     combustion = f"; {combustion_text(s['combustion'])}" if s["gas"] else ""
     estimated = [name for name in ("journal_diameter",) if name not in typed]
@@ -506,7 +506,7 @@ def assumed_text(s: dict[str, Any]) -> str:
         f"crank + flywheel {text(s['crank_inertia_kg_m2'], 'inertia')}"
         + ("*" if s["crank_inertia_from"] == "engine" else "")
         + f"; {cylinder}, pin {mm('pin_diameter')}, web "
-        f"{mm('web_thickness')} x {mm('web_width')} mm{combustion} "
+        f"{mm('web_thickness')} x {mm('web_width')}{combustion} "
         "(* the engine's, as every study assumes: bore = stroke, journal "
         f"{DEFAULT_PROPORTIONS['journal_diameter']:g} x crank radius)"
     )
