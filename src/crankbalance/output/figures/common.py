@@ -238,10 +238,18 @@ def note_if_zero(
     )
 
 
+#: the side margins of a to-scale drawing [px] (plotly's default is 80 on each side): room
+#: for the y axis's title and tick labels on the left, none needed on the right; on a phone
+#: the drawing is then 240 px wide instead of 158 px
+DRAWING_MARGIN = {"l": 60, "r": 20}
+
+
 def web_drawing(fig: go.Figure, reach: float, title: str) -> go.Figure:
     """Finish a to-scale drawing of one crank web seen along the crank axis (the
     counterweight profile, the drilling plan): the crank axis marked at the origin, x and
-    y in mm on equal scales over ``[-reach, reach]``, the legend below.
+    y in mm on equal scales over exactly ``[-reach, reach]`` (the plot a square in the space
+    the figure has, never a range widened to fill it), narrow side margins
+    (:data:`DRAWING_MARGIN`), the legend below.
 
     Parameters
     ----------
@@ -266,7 +274,20 @@ def web_drawing(fig: go.Figure, reach: float, title: str) -> go.Figure:
             marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
         )
     )
-    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
-    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
-    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2}, title=title)
+    # constrain="domain": the plot shrinks to a square instead of widening one axis's range
+    # (a wide plot drew ±250 mm around a ±112 mm drawing, a narrow one the same upright)
+    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach], constrain="domain")
+    fig.update_yaxes(
+        title_text="y [mm]",
+        range=[-reach, reach],
+        scaleanchor="x",
+        scaleratio=1,
+        constrain="domain",
+    )
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=title,
+        margin=DRAWING_MARGIN,
+    )
     return fig
