@@ -85,3 +85,19 @@ def test_other_figures_keep_the_round_off_span() -> None:
     fig = go.Figure(go.Scatter(y=[100.0, 100.15]))
     assert readable(fig) is fig
     assert span_share(fig.to_plotly_json()["layout"]) == MIN_SPAN_SHARE
+
+
+def test_one_circle_for_every_drawing() -> None:
+    """``common.circle``: the web circle, journal, crankpin and radial limit of the
+    counterweight drawing, the single cylinder's force circles (from the top, clockwise, as
+    the crank angle) and its axial holes."""
+    from crankbalance.output.figures.common import circle
+
+    x, y = circle(2.0, (1.0, -1.0), points=5)
+    assert np.allclose(x, [3.0, 1.0, -1.0, 1.0, 3.0]) and np.allclose(
+        y, [-1.0, 1.0, -1.0, -3.0, -1.0]
+    )
+    x, y = circle(2.0, points=5, from_top=True)
+    assert np.allclose(x, [0.0, 2.0, 0.0, -2.0, 0.0]) and np.allclose(y, [2.0, 0.0, -2.0, 0.0, 2.0])
+    assert np.hypot(*circle(7.5)) == pytest.approx(7.5)
+    assert circle(1.0)[0].size == 181

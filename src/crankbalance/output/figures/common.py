@@ -268,6 +268,37 @@ def note_if_zero(
     )
 
 
+def circle(
+    radius: float,
+    centre: tuple[float, float] = (0.0, 0.0),
+    points: int = 181,
+    from_top: bool = False,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ``x`` and ``y`` of a closed circle of ``radius`` about ``centre`` drawn as a line
+    of ``points`` points (the first repeated at the end), in the unit of its arguments.
+
+    Parameters
+    ----------
+    radius : float
+        Radius of the circle [the drawing's unit, e.g. mm or N].
+    centre : tuple of float
+        Its centre (x, y) [same unit].
+    points : int
+        Points along it, the first and last the same.
+    from_top : bool
+        False: from +x, anticlockwise (x = r cos t, y = r sin t); True: from +y, clockwise,
+        as a crank angle is drawn from top dead centre (x = r sin t, y = r cos t).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``x`` and ``y`` [same unit].
+    """
+    turn = np.linspace(0, 2 * np.pi, points)
+    across, along = (np.sin(turn), np.cos(turn)) if from_top else (np.cos(turn), np.sin(turn))
+    return centre[0] + radius * across, centre[1] + radius * along
+
+
 #: the side margins of a to-scale drawing [px] (plotly's default is 80 on each side): room
 #: for the y axis's title and tick labels on the left, none needed on the right; on a phone
 #: the drawing is then 240 px wide instead of 158 px
