@@ -97,6 +97,9 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
   z-index: 9999; background: linear-gradient(90deg, #ffb300 30%, transparent 30%);
   background-size: 200% 100%; animation: cb-slide 1s linear infinite; }
 @keyframes cb-slide { from { background-position: 100% 0; } to { background-position: -100% 0; } }
+/* the tab bar: tabs narrower than Quasar's (16 px each side) so that all eleven fit a
+   1280 px screen (MOUNTS was behind the scroll arrow); a narrower screen scrolls them */
+.q-tabs .q-tab { padding: 0 8px; }
 /* narrow screens: one column, nothing wider than the screen */
 /* a table wider than its box scrolls sideways; TABLE_CUE_JS marks it while more of it is to
    the right (data-cb-more), and a shaded edge with an arrow says so */
@@ -119,7 +122,10 @@ body.cb-busy #cb-busy { display: block; position: fixed; top: 0; left: 0; right:
     white-space: nowrap; overflow: hidden; text-overflow: ellipsis; }
   .q-tab-panel { padding: 8px 4px; }
   .q-tab-panel .nicegui-grid { grid-template-columns: minmax(0, 1fr) !important; width: 100%; }
-  .q-tab-panel .nicegui-row { flex-direction: column; align-items: stretch; }
+  /* one line (no wrap): a wrapping column sizes its line, and so every stretched item, by
+     the widest content, and a figure still as wide as before a resize from a wide window
+     held the Engine tab's key results and 3-D crank 650 px wide on a 390 px screen */
+  .q-tab-panel .nicegui-row { flex-direction: column; flex-wrap: nowrap; align-items: stretch; }
   .q-tab-panel .q-card, .q-tab-panel .w-64, .q-tab-panel .w-48, .q-tab-panel .w-96 {
     width: 100% !important; min-width: 0 !important; max-width: 100%; }
   .q-tab-panel [class*="min-w-"] { min-width: 0 !important; width: 100%; }

@@ -104,6 +104,16 @@ def figure_title(main: str, engine: str | None = None, note: str | None = None) 
 #: less (0.0004 % in issue 28) is drawn flat in the middle of that span instead of being
 #: stretched over the axis, which drew an "optimum" out of round-off
 MIN_SPAN_SHARE = 1e-4
+#: the key of a figure's ``layout.meta`` (a dict) that gives the figure a larger minimum span
+#: share of its own (:func:`min_span`, read by :func:`value_ranges`)
+MIN_SPAN_KEY = "min_span_share"
+#: the smallest span of the performance studies' trends over the balance factor, as a share
+#: of the largest magnitude on the axis: 1 %, below the accuracy of the friction, bearing and
+#: gas-force models behind them (a few per cent); a panel whose line crosses its whole
+#: height then always means a change of at least 1 %, and the 0.1-0.15 % spreads of an
+#: inline-4's speed fluctuation and peak net torque (issue 28's review) are drawn as the
+#: near-flat lines they are instead of a slope with an "optimum"
+PERFORMANCE_MIN_SPAN_SHARE = 0.01
 #: the note over a figure whose every value is 0 (drawn, but nothing to see): the web's
 #: figure cards show it above the plot, :func:`readable` adds it to the figure
 ALL_ZERO = "0 everywhere: every value of this figure is zero (nothing left to balance)."
@@ -156,14 +166,34 @@ def all_zero(figure: Any) -> bool:
     return any(v.size for v in found) and all(not v.any() for v in found)
 
 
+def min_span(fig: go.Figure, share: float) -> go.Figure:
+    """Give ``fig`` a minimum span share of its own for its value axes (instead of
+    :data:`MIN_SPAN_SHARE`; e.g. :data:`PERFORMANCE_MIN_SPAN_SHARE`), kept in its
+    ``layout.meta`` so that every edge applying :func:`value_ranges` uses it; ``fig``
+    changed in place and returned."""
+    meta = fig.layout.meta if isinstance(fig.layout.meta, dict) else {}
+    fig.update_layout(meta={**meta, MIN_SPAN_KEY: share})
+    return fig
+
+
+def span_share(layout: dict[str, Any]) -> float:
+    """The minimum span share of a figure's value axes: its own (:func:`min_span`) or
+    :data:`MIN_SPAN_SHARE`. ``layout`` is the figure's layout as a dict."""
+    meta = layout.get("meta")
+    own = meta.get(MIN_SPAN_KEY) if isinstance(meta, dict) else None
+    return MIN_SPAN_SHARE if own is None else float(own)
+
+
 def value_ranges(figure: Any, layout: dict[str, Any] | None = None) -> dict[str, list[float]]:
     """The ranges to give the value axes of ``figure``'s line traces whose values vary by
-    less than :data:`MIN_SPAN_SHARE` of their magnitude (axis key of the layout -> range):
+    less than the figure's minimum span share (:func:`span_share`: :data:`MIN_SPAN_SHARE`
+    unless the figure gives its own) of their magnitude (axis key of the layout -> range):
     that span, centred on the values. Axes with bars (their range includes 0), a range or a
     log scale of their own are left as they are. ``layout`` is the figure's layout as a
     dict (by default its own)."""
     if layout is None:
         layout = figure.layout.to_plotly_json()
+    share = span_share(layout)
 
     lines: dict[str, list[Any]] = {}
     bars: set[str] = set()
@@ -182,7 +212,7 @@ def value_ranges(figure: Any, layout: dict[str, Any] | None = None) -> dict[str,
             continue
         values = np.concatenate(parts)
         low, high = float(values.min()), float(values.max())
-        span = MIN_SPAN_SHARE * max(abs(low), abs(high))
+        span = share * max(abs(low), abs(high))
         if span > 0 and high - low < span:
             middle = 0.5 * (low + high)
             out[key] = [middle - 0.5 * span, middle + 0.5 * span]
@@ -193,9 +223,9 @@ def readable(fig: go.Figure) -> go.Figure:
     """The figure as every edge shows it (the command line's and the reports' images and
     HTML through :mod:`crankbalance.output.render`; the web's figure cards apply the same
     :func:`value_ranges` and :func:`all_zero`): a value axis whose lines vary by less than
-    :data:`MIN_SPAN_SHARE` of their magnitude gets that span, and a 2-D figure whose every
-    value is 0 says :data:`ALL_ZERO` at its top. ``fig`` itself is left unchanged (a copy is
-    returned when something changes).
+    the figure's minimum span share (:func:`span_share`) of their magnitude gets that span,
+    and a 2-D figure whose every value is 0 says :data:`ALL_ZERO` at its top. ``fig``
+    itself is left unchanged (a copy is returned when something changes).
     """
     ranges = value_ranges(fig)
     zero = all_zero(fig) and not any(
@@ -238,10 +268,49 @@ def note_if_zero(
     )
 
 
+def circle(
+    radius: float,
+    centre: tuple[float, float] = (0.0, 0.0),
+    points: int = 181,
+    from_top: bool = False,
+) -> tuple[NDArray[np.float64], NDArray[np.float64]]:
+    """The ``x`` and ``y`` of a closed circle of ``radius`` about ``centre`` drawn as a line
+    of ``points`` points (the first repeated at the end), in the unit of its arguments.
+
+    Parameters
+    ----------
+    radius : float
+        Radius of the circle [the drawing's unit, e.g. mm or N].
+    centre : tuple of float
+        Its centre (x, y) [same unit].
+    points : int
+        Points along it, the first and last the same.
+    from_top : bool
+        False: from +x, anticlockwise (x = r cos t, y = r sin t); True: from +y, clockwise,
+        as a crank angle is drawn from top dead centre (x = r sin t, y = r cos t).
+
+    Returns
+    -------
+    tuple of numpy.ndarray
+        ``x`` and ``y`` [same unit].
+    """
+    turn = np.linspace(0, 2 * np.pi, points)
+    across, along = (np.sin(turn), np.cos(turn)) if from_top else (np.cos(turn), np.sin(turn))
+    return centre[0] + radius * across, centre[1] + radius * along
+
+
+#: the side margins of a to-scale drawing [px] (plotly's default is 80 on each side): room
+#: for the y axis's title and tick labels on the left, none needed on the right; on a phone
+#: the drawing is then 240 px wide instead of 158 px
+DRAWING_MARGIN = {"l": 60, "r": 20}
+
+
 def web_drawing(fig: go.Figure, reach: float, title: str) -> go.Figure:
     """Finish a to-scale drawing of one crank web seen along the crank axis (the
     counterweight profile, the drilling plan): the crank axis marked at the origin, x and
-    y in mm on equal scales over ``[-reach, reach]``, the legend below.
+    y in mm on equal scales over exactly ``[-reach, reach]`` (the plot a square in the space
+    the figure has, never a range widened to fill it), narrow side margins
+    (:data:`DRAWING_MARGIN`), the legend below.
 
     Parameters
     ----------
@@ -266,7 +335,20 @@ def web_drawing(fig: go.Figure, reach: float, title: str) -> go.Figure:
             marker={"color": "black", "size": 10, "symbol": "cross-thin", "line": {"width": 2}},
         )
     )
-    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach])
-    fig.update_yaxes(title_text="y [mm]", range=[-reach, reach], scaleanchor="x", scaleratio=1)
-    fig.update_layout(template=TEMPLATE, legend={"orientation": "h", "y": -0.2}, title=title)
+    # constrain="domain": the plot shrinks to a square instead of widening one axis's range
+    # (a wide plot drew ±250 mm around a ±112 mm drawing, a narrow one the same upright)
+    fig.update_xaxes(title_text="x [mm]", range=[-reach, reach], constrain="domain")
+    fig.update_yaxes(
+        title_text="y [mm]",
+        range=[-reach, reach],
+        scaleanchor="x",
+        scaleratio=1,
+        constrain="domain",
+    )
+    fig.update_layout(
+        template=TEMPLATE,
+        legend={"orientation": "h", "y": -0.2},
+        title=title,
+        margin=DRAWING_MARGIN,
+    )
     return fig

@@ -14,7 +14,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from .common import COLORS, TEMPLATE, plotly_go, web_drawing
+from .common import COLORS, TEMPLATE, circle, plotly_go, web_drawing
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -118,12 +118,12 @@ def counterweight_profile(
                 line={"color": "black", "width": 1.5},
             )
         )
-    ring = np.linspace(0, 2 * np.pi, 181)
     r = design.web_radius * 1e3
+    x, y = circle(r)
     fig.add_trace(
         go.Scatter(
-            x=r * np.cos(ring),
-            y=r * np.sin(ring),
+            x=x,
+            y=y,
             mode="lines",
             name=f"web circle r_cw = {r:.2f} mm",
             line={"color": "#c0392b", "dash": "dash", "width": 1},
@@ -155,7 +155,6 @@ def _crank_parts(fig: go.Figure, crank: CrankOutline) -> float:
     """Draw the journal, the crankpin (at -y, opposite the counterweight) and the radial
     limit of ``crank`` into ``fig``; the largest radius drawn [mm]."""
     go = plotly_go()
-    ring = np.linspace(0, 2 * np.pi, 181)
     r = crank.crank_radius * 1e3
     steel = {"color": "#34495e", "width": 1.5}
     for name, radius, centre in (
@@ -166,10 +165,11 @@ def _crank_parts(fig: go.Figure, crank: CrankOutline) -> float:
             -r,
         ),
     ):
+        x, y = circle(radius * 1e3, (0.0, centre))
         fig.add_trace(
             go.Scatter(
-                x=radius * 1e3 * np.cos(ring),
-                y=centre + radius * 1e3 * np.sin(ring),
+                x=x,
+                y=y,
                 mode="lines",
                 fill="toself",
                 fillcolor="rgba(52,73,94,0.25)",
@@ -179,10 +179,11 @@ def _crank_parts(fig: go.Figure, crank: CrankOutline) -> float:
         )
     limit = crank.radial_limit * 1e3
     why = "typed" if crank.limit_source == "typed" else "rod length - crank radius"
+    x, y = circle(limit)
     fig.add_trace(
         go.Scatter(
-            x=limit * np.cos(ring),
-            y=limit * np.sin(ring),
+            x=x,
+            y=y,
             mode="lines",
             name=f"radial limit {limit:.1f} mm ({why})",
             line={"color": COLORS["before"], "dash": "dot", "width": 1.5},

@@ -21,7 +21,15 @@ import numpy as np
 from numpy.typing import ArrayLike
 
 from ...errors import InputError
-from .common import COLORS, ORDER_COLORS, TEMPLATE, make_subplots, plotly_go
+from .common import (
+    COLORS,
+    ORDER_COLORS,
+    PERFORMANCE_MIN_SPAN_SHARE,
+    TEMPLATE,
+    make_subplots,
+    min_span,
+    plotly_go,
+)
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -47,7 +55,9 @@ def sensitivity_figure(
     result: SensitivityResult, indicators: tuple[str, ...] | None = None
 ) -> go.Figure:
     """Performance indicators versus balance factor, one line per reciprocating-mass scale
-    (:class:`~crankbalance.physics.engine_cycle.SensitivityResult`)."""
+    (:class:`~crankbalance.physics.engine_cycle.SensitivityResult`); each panel's value axis
+    spans at least :data:`~crankbalance.output.figures.common.PERFORMANCE_MIN_SPAN_SHARE`
+    (1 %) of its largest value (:func:`~crankbalance.output.figures.common.min_span`)."""
     go = plotly_go()
     names = indicators or (
         "mean_friction_torque",
@@ -97,7 +107,7 @@ def sensitivity_figure(
         legend={"orientation": "h", "y": -0.08},
         title=f"Performance versus balance factor at {result.speed * 30 / math.pi:.0f} rpm",
     )
-    return fig
+    return min_span(fig, PERFORMANCE_MIN_SPAN_SHARE)
 
 
 def _stacked_figure(

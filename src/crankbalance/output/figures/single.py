@@ -21,7 +21,7 @@ from numpy.typing import NDArray
 from ...errors import InputError
 from ...results import number
 from ..format import depth_read_to
-from .common import COLORS, TEMPLATE, figure_title, plotly_go, web_drawing
+from .common import COLORS, TEMPLATE, circle, figure_title, plotly_go, web_drawing
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -79,22 +79,23 @@ def single_cylinder_polar(study: BalanceFactorStudy) -> go.Figure:
             "in-line %{y:.4g} N<extra></extra>",
         )
     )
-    ring = np.linspace(0, 2 * np.pi, 181)
     peak = study.peak_resultant
+    x, y = circle(peak, from_top=True)
     fig.add_trace(
         go.Scatter(
-            x=peak * np.sin(ring),
-            y=peak * np.cos(ring),
+            x=x,
+            y=y,
             mode="lines",
             name=f"peak resultant {number(peak, 5)} N",
             line={"color": COLORS["before"], "dash": "dot"},
         )
     )
     p = study.primary_force
+    x, y = circle(p, from_top=True)
     fig.add_trace(
         go.Scatter(
-            x=p * np.sin(ring),
-            y=p * np.cos(ring),
+            x=x,
+            y=y,
             mode="lines",
             name=f"primary force P = {number(p, 5)} N (no balance)",
             line={"color": COLORS["forward"], "dash": "dash", "width": 1},
@@ -198,7 +199,6 @@ def drilling_plan(result: RebalanceResult, crank_radius: float) -> go.Figure:
     fig = go.Figure()
     outer = rh + 1.5 * d
     arc = np.radians(np.linspace(120.0, 240.0, 61)) + np.pi / 2  # around straight down
-    ring = np.linspace(0, 2 * np.pi, 73)
     fig.add_trace(
         go.Scatter(
             x=np.concatenate([[0.0], outer * np.cos(arc), [0.0]]),
@@ -217,7 +217,7 @@ def drilling_plan(result: RebalanceResult, crank_radius: float) -> go.Figure:
         for k, phi in enumerate(spread):
             cx, cy = rh * np.sin(phi), -rh * np.cos(phi)
             if holes.direction == "axial":
-                x, y = cx + d / 2 * np.cos(ring), cy + d / 2 * np.sin(ring)
+                x, y = circle(d / 2, (cx, cy), points=73)
             else:  # drilled inward from the rim: the hole seen from the side, its point too
                 x, y = _radial_hole(holes, depth, rh, phi)
             fig.add_trace(
