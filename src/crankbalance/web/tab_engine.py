@@ -33,8 +33,10 @@ DETAIL_WORDS = (
     "(added to the wrist-pin offset); rod positions place each rod along its crankpin "
     "(side-by-side rods on a shared pin make a rocking couple); moments are taken about the "
     "moment reference. A VR engine, or a W from two VR banks (W type vr), has its rows' bore "
-    "offset and pin split; a radial engine gets master-and-link rods from the link pin "
-    "radius and link rod length. Fields of other layouts are hidden while empty."
+    "offset and pin split; a vee's pin split splits each crankpin in two, one per bank, "
+    "placed along the crank by the rod positions; a radial engine gets master-and-link rods "
+    "from the link pin radius and link rod length. Fields of other layouts are hidden while "
+    "empty."
 )
 
 

@@ -16,7 +16,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from .common import COLORS, TEMPLATE, figure_title, make_subplots, plotly_go
+from .common import COLORS, TEMPLATE, circle, figure_title, make_subplots, plotly_go
 
 if TYPE_CHECKING:  # pragma: no cover
     import plotly.graph_objects as go
@@ -29,6 +29,9 @@ if TYPE_CHECKING:  # pragma: no cover
 
 #: font size of the hole plan's panel titles [px]
 HOLE_TITLE_SIZE = 12
+#: points of each circle of the hole plan (the hole circle and every hole)
+RING_POINTS = 91
+
 #: the hole plan's panel spans this many times the hole circle's outer edge (radius plus
 #: half a hole) each way from the axis [-]
 HOLE_MARGIN = 1.25
@@ -370,15 +373,15 @@ def hole_plan(result: HolePlan) -> go.Figure:
     fig = make_subplots(rows=2, cols=1, subplot_titles=titles, vertical_spacing=0.16)
     # a title's last line clear of the "0° (crankpin 1)" at the top of a full-height panel
     fig.update_annotations(font={"size": HOLE_TITLE_SIZE}, yshift=8)
-    ring = np.linspace(0.0, 2 * np.pi, 91)
     for j, holes in enumerate(result.holes):
         row = j + 1
         r, d = holes.radius * 1e3, holes.diameter * 1e3
         reach = HOLE_MARGIN * (r + d / 2)
+        x, y = circle(r, points=RING_POINTS, from_top=True)
         fig.add_trace(
             go.Scatter(
-                x=r * np.sin(ring),
-                y=r * np.cos(ring),
+                x=x,
+                y=y,
                 mode="lines",
                 name="hole circle",
                 line={"color": COLORS["crank"], "dash": "dot", "width": 1},
@@ -415,11 +418,11 @@ def hole_plan(result: HolePlan) -> go.Figure:
             col=1,
         )
         for k, phi in enumerate(holes.angles):
-            cx, cy = r * np.sin(phi), r * np.cos(phi)
+            x, y = circle(d / 2, (r * np.sin(phi), r * np.cos(phi)), RING_POINTS, from_top=True)
             fig.add_trace(
                 go.Scatter(
-                    x=cx + d / 2 * np.sin(ring),
-                    y=cy + d / 2 * np.cos(ring),
+                    x=x,
+                    y=y,
                     mode="lines",
                     fill="toself",
                     fillcolor="white",
