@@ -139,3 +139,29 @@ def test_a_wrapped_title_moves_the_plot_down() -> None:
     assert out["title"]["text"].count("<br>") == 2
     assert out["margin"]["t"] == DEFAULT_TOP_MARGIN + TITLE_LINE_PX
     assert "margin" not in title_layout({"title": {"text": "Short<br><sup>V8</sup>"}})
+
+
+#: a phone's browser as Quasar tells one (its platform detection reads the user agent)
+PHONE_AGENT = (
+    "Mozilla/5.0 (Linux; Android 14; Pixel 8) AppleWebKit/537.36 (KHTML, like Gecko) "
+    "Chrome/120.0 Mobile Safari/537.36"
+)
+
+
+def test_the_tab_bar_shows_its_scroll_arrows_on_a_touch_phone(server: str, browser: Any) -> None:
+    """On a touch phone Quasar hides a tab bar's scroll arrows unless asked
+    (``mobile-arrows``): the tabs past the right edge then have no cue."""
+    context = browser.new_context(
+        viewport=PHONE, user_agent=PHONE_AGENT, is_mobile=True, has_touch=True
+    )
+    page = context.new_page()
+    try:
+        page.goto(server + "/")
+        connected(page)
+        assert page.evaluate("() => window.Quasar.Platform.is.mobile === true")
+        page.wait_for_function(
+            """() => [...document.querySelectorAll('.q-tabs__arrow--right')].some(
+                (a) => a.offsetParent !== null && !a.classList.contains('q-tabs__arrow--faded'))"""
+        )
+    finally:
+        context.close()

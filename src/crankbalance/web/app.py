@@ -344,7 +344,7 @@ class Page:
             .mark("general-error")
         )
         # switched in the browser at once, the server told afterwards (:class:`TabBar`)
-        with TabBar().classes("w-full") as self.tab_bar:
+        with TabBar().classes("w-full").props("mobile-arrows") as self.tab_bar:
             for name, label in TABS:
                 ui.tab(name, label=label).mark(f"tab-{name}")
         with TabPanels(value="engine").classes("w-full") as self.panels:
