@@ -157,13 +157,15 @@ def test_mode_shapes_legend_names_the_mode_shown_and_stays_inside(result: Any) -
 
 def test_the_3d_figures_on_a_phone(result: Any) -> None:
     pytest.importorskip("nicegui")
-    from crankbalance.web.tab_mounts import CAMERA_EYE, PHONE_CAMERA, on_a_phone
-    from crankbalance.web.widgets import PHONE_LEGEND_LINE
+    from crankbalance.web.tab_mounts import PHONE_CAMERA
+    from crankbalance.web.widgets import PHONE_LEGEND_LINE, PLOTLY_EYE, on_a_phone
 
-    fig = on_a_phone(mode_shapes_figure(result, animate=True), PHONE_CAMERA["modes"])
+    fig = on_a_phone(
+        mode_shapes_figure(result, animate=True), PHONE_CAMERA["modes"], legend_below=True
+    )
     stack = fig.layout.meta["cbStack"]
-    assert stack["wide"]["scene.camera.eye"] == CAMERA_EYE
-    assert stack["phone"]["scene.camera.eye"]["x"] > CAMERA_EYE["x"]
+    assert stack["wide"]["scene.camera.eye"] == PLOTLY_EYE
+    assert stack["phone"]["scene.camera.eye"]["x"] > PLOTLY_EYE["x"]
     # the legend (three lines on a phone) below the phase slider
     assert stack["phone"]["margin.b"] == fig.layout.margin.b + 3 * PHONE_LEGEND_LINE
     assert stack["wide"]["margin.b"] == fig.layout.margin.b

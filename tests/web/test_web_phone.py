@@ -165,3 +165,23 @@ def test_the_tab_bar_shows_its_scroll_arrows_on_a_touch_phone(server: str, brows
         )
     finally:
         context.close()
+
+
+def test_the_3d_crank_stands_farther_out_on_a_phone() -> None:
+    """The 3-D crank's camera is fitted to a wide figure; on a phone (the page's relayout
+    below 600 px) it stands ``PHONE_CRANK_CAMERA`` times farther out, so that the narrow
+    scene keeps its tick labels, and goes back on a wide screen."""
+    from crankbalance.output.figures.crank3d import crank_3d
+    from crankbalance.studies.engine import balance_engine
+    from crankbalance.web.tab_engine import PHONE_CRANK_CAMERA
+    from crankbalance.web.widgets import on_a_phone
+
+    study = balance_engine("v12-60")
+    figure = crank_3d(study.model, study)
+    fitted = figure.layout.scene.camera.eye.to_plotly_json()
+    stack = on_a_phone(figure, PHONE_CRANK_CAMERA).layout.meta["cbStack"]
+    assert stack["wide"] == {"scene.camera.eye": fitted}
+    assert stack["phone"]["scene.camera.eye"] == pytest.approx(
+        {k: v * PHONE_CRANK_CAMERA for k, v in fitted.items()}
+    )
+    assert PHONE_CRANK_CAMERA > 1

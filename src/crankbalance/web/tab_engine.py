@@ -10,7 +10,12 @@ from ..output.figures.crank3d import crank_3d
 from .crank_editor import CrankEditor
 from .form import BALANCING_FIELDS, DETAIL_FIELDS, ENGINE_FIELDS, FIELD_BY_KEY
 from .tab_results import balance_lines
-from .widgets import FIGURE_CSS, FIGURE_JS, Tab
+from .widgets import FIGURE_CSS, FIGURE_JS, Tab, on_a_phone
+
+#: on a phone (below 600 px) the 3-D crank's camera stands this much farther out than its
+#: fitted one (fitted to a wide figure: a phone's narrow scene cut the tick labels at the
+#: left)
+PHONE_CRANK_CAMERA = 1.5
 
 #: the key results beside the form list at most this many components the balancing leaves
 #: (the largest first, as the balance result orders them; the Results tab has them all)
@@ -168,4 +173,4 @@ class EngineTab(Tab):
         c = self.page.project.computed
         if c is None:
             return None
-        return crank_3d(c.analysis.model, c.study)
+        return on_a_phone(crank_3d(c.analysis.model, c.study), PHONE_CRANK_CAMERA)

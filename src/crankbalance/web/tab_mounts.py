@@ -31,12 +31,11 @@ from ..output.figures.mounts import (
 from ..output.format import number
 from ..schema.settings import MountsOptions, field_kind
 from .widgets import (
-    PHONE_LEGEND_LINE,
     StudyTab,
     TabSettingsMixin,
     button_row,
     from_schema,
-    legend_entries,
+    on_a_phone,
     schema_choices,
 )
 
@@ -66,31 +65,11 @@ ENERGY: tuple[tuple[str, str], ...] = tuple(
 )
 
 
-#: plotly's camera of a 3-D scene that sets none (its eye, in the scene's units)
-CAMERA_EYE = {"x": 1.25, "y": 1.25, "z": 1.25}
 #: on a phone (below 600 px) the 3-D figures' camera stands this much farther out: plotly
 #: fits a scene to its height, and a phone's narrow figure cut the axes at both sides (the
 #: layout, drawn to the data's proportions with the long crank axis across the view, needs
 #: more than the mode shapes in their box)
 PHONE_CAMERA = {"layout": 2.0, "modes": 1.5}
-
-
-def on_a_phone(figure: Any, camera: float) -> Any:
-    """A 3-D figure of the tab with its relayouts for a phone (the camera ``camera`` times
-    farther out, :data:`PHONE_CAMERA`; the bottom margin one legend line higher for each
-    legend entry, so that the legend a phone wraps to a line per entry stays below the scene
-    and the phase slider) and back, applied by the page as its width crosses 600 px
-    (:data:`~.widgets.FIGURE_JS`, the layout's ``meta.cbStack`` that
-    :func:`~.widgets.phone_stack` fills for subplots side by side)."""
-    eye = {k: v * camera for k, v in CAMERA_EYE.items()}
-    phone: dict[str, Any] = {"scene.camera.eye": eye}
-    wide: dict[str, Any] = {"scene.camera.eye": dict(CAMERA_EYE)}
-    bottom = int(figure.layout.margin.b or 0)
-    entries = legend_entries(figure.to_plotly_json()["data"])
-    phone["margin.b"] = bottom + PHONE_LEGEND_LINE * entries
-    wide["margin.b"] = bottom
-    figure.update_layout(meta={"cbStack": {"phone": phone, "wide": wide}})
-    return figure
 
 
 def _split(text: str) -> list[str]:
@@ -318,13 +297,17 @@ class MountsTab(TabSettingsMixin, StudyTab):
         return (
             None
             if self.study is None
-            else on_a_phone(mounts_layout_figure(self.study), PHONE_CAMERA["layout"])
+            else on_a_phone(
+                mounts_layout_figure(self.study), PHONE_CAMERA["layout"], legend_below=True
+            )
         )
 
     def _modes(self) -> Any | None:
         if self.study is None:
             return None
-        return on_a_phone(mode_shapes_figure(self.study, animate=True), PHONE_CAMERA["modes"])
+        return on_a_phone(
+            mode_shapes_figure(self.study, animate=True), PHONE_CAMERA["modes"], legend_below=True
+        )
 
     def _forces(self) -> Any | None:
         return None if self.study is None else mounts_figure(self.study)

@@ -189,6 +189,33 @@ def legend_entries(data: list[dict[str, Any]]) -> int:
     return len(groups)
 
 
+#: plotly's camera eye when a 3-D figure gives none
+PLOTLY_EYE = {"x": 1.25, "y": 1.25, "z": 1.25}
+
+
+def on_a_phone(figure: Any, camera: float, legend_below: bool = False) -> Any:
+    """A 3-D figure with its relayouts for a phone and back, applied by the page as its width
+    crosses 600 px (:data:`FIGURE_JS`, the layout's ``meta.cbStack`` that
+    :func:`phone_stack` fills for subplots side by side): the camera ``camera`` times
+    farther out than the figure's own (a narrow scene cut its tick labels), and with
+    ``legend_below`` the bottom margin one legend line higher for each legend entry (a phone
+    wraps the legend to a line per entry, which must stay below the scene and a slider)."""
+    own = figure.layout.scene.camera.eye
+    eye = {
+        k: own[k] if own is not None and own[k] is not None else v for k, v in PLOTLY_EYE.items()
+    }
+    phone: dict[str, Any] = {"scene.camera.eye": {k: v * camera for k, v in eye.items()}}
+    wide: dict[str, Any] = {"scene.camera.eye": eye}
+    if legend_below:
+        bottom = int(figure.layout.margin.b or 0)
+        phone["margin.b"] = bottom + PHONE_LEGEND_LINE * legend_entries(
+            figure.to_plotly_json()["data"]
+        )
+        wide["margin.b"] = bottom
+    figure.update_layout(meta={"cbStack": {"phone": phone, "wide": wide}})
+    return figure
+
+
 def subplot_columns(layout: dict[str, Any]) -> int:
     """How many subplots stand side by side (distinct x domains of the 2-D axes)."""
     starts = {
