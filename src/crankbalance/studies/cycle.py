@@ -285,8 +285,8 @@ def assumed(
 ) -> dict[str, Any]:
     """The bore, peak cylinder pressure and main journal one cylinder's cycle assumed, with
     the settings among them that are the engine's estimate (``estimated``), as the JSON of
-    ``cycle --cylinder`` and ``sensitivity`` shows them (:func:`~crankbalance.studies.
-    performance.assumption_text` says them in words)."""
+    ``cycle --cylinder`` and ``sensitivity`` shows them (:func:`assumption_words` says
+    them in words)."""
     return {
         "bore_m": cylinder.bore,
         "peak_pressure_Pa": peak_pressure(cylinder, pressure, strokes),
