@@ -37,3 +37,21 @@ GAMMA_RANGE = (1.01, 1.67)
 MAX_FLUCTUATION_TARGET = 0.2
 #: the smallest one [-] (below, the inertia found is beyond any machine)
 MIN_FLUCTUATION_TARGET = 1e-6
+
+# the firing-order explorer's bounds of work (crankbalance.physics.explore.work), which
+# the explorer's settings check too
+#: candidates one run may evaluate: about 4 hours of one process at the 3 300 candidates/s
+#: measured for the 12-cylinder two-stroke (benchmarks/bench_explore.py); every
+#: 12-cylinder enumeration (39.9 million indices) fits, a 13-cylinder one (479 million)
+#: does not
+MAX_CANDIDATES = 50_000_000
+
+#: the cost of one random draw, in indices of a range: measured 7 to 24 when each draw was
+#: its own enumeration call, about 0.5 since orders.at takes them all at once (issue 30);
+#: kept as an upper bound (docs/explorer.md)
+DRAW_COST = 20
+#: random draws one run may make (``--sample``): the time of :data:`MAX_CANDIDATES`
+MAX_DRAWS = MAX_CANDIDATES // DRAW_COST
+
+#: the largest chunk [indices]: the largest index space, 20!
+LARGEST_CHUNK = math.factorial(20)

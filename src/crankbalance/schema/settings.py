@@ -30,13 +30,14 @@ from collections.abc import Callable, Mapping
 from typing import Any, Literal, TypeVar, get_args
 
 from ..errors import InputError
-from ..physics.explore.work import LARGEST_CHUNK, MAX_DRAWS
 from ..physics.limits import (
     BALANCE_FACTOR_RANGE,
     BURN_DURATION_RANGE,
     BURN_ENDS,
     GAMMA_RANGE,
     IGNITION_RANGE,
+    LARGEST_CHUNK,
+    MAX_DRAWS,
     MAX_FLUCTUATION_TARGET,
     MIN_FLUCTUATION_TARGET,
 )

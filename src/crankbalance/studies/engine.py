@@ -15,7 +15,6 @@ import numpy as np
 
 from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
-from ..physics.balance_remaining import FACTOR_OPTION, step_words
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
 from ..results import ResultMixin, round_off, to_jsonable
@@ -405,10 +404,13 @@ class BalanceStudy(ResultMixin):
         """Each component's free force and moment before and after balancing."""
         return "components"
 
-    def to_dict(self, factor_name: str = FACTOR_OPTION) -> dict[str, Any]:
+    def to_dict(self, factor_name: str | None = None) -> dict[str, Any]:
         """The JSON contract ``crankbalance.balance/2`` (docs/json.md); each next step of
-        ``remaining`` names the balance factor setting ``factor_name`` (the command line's
-        option; the web passes its form's label)."""
+        ``remaining`` names the balance factor setting ``factor_name`` (None: the command
+        line's option, ``--balance-factor``; the web passes its form's label)."""
+        from ..physics.balance_remaining import FACTOR_OPTION, step_words
+
+        name = FACTOR_OPTION if factor_name is None else factor_name
         res, m = self.result, self.model
         components = {c.component: c for c in res.residuals}
 
@@ -507,7 +509,7 @@ class BalanceStudy(ResultMixin):
                     "amount": r.amount,
                     "unit": "N" if r.quantity == "force" else "N·m",
                     "text": r.text,
-                    "next_step": step_words(r.step_format, factor_name),
+                    "next_step": step_words(r.step_format, name),
                 }
                 for r in res.remaining
             ],

@@ -22,25 +22,15 @@ from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ...errors import InputError
+from ..limits import DRAW_COST, LARGEST_CHUNK, MAX_CANDIDATES, MAX_DRAWS  # noqa: F401 (its own)
 
 if TYPE_CHECKING:
     from .candidates import Candidates
 
-#: candidates one run may evaluate: about 4 hours of one process at the 3 300 candidates/s
-#: measured for the 12-cylinder two-stroke (benchmarks/bench_explore.py); every
-#: 12-cylinder enumeration (39.9 million indices) fits, a 13-cylinder one (479 million)
-#: does not
-MAX_CANDIDATES = 50_000_000
 #: prefixes of the enumeration that cost as much as one candidate's figures of merit
 #: (measured: 1.9 million prefixes/s against 3 300 to 8 800 candidates/s); a run's work is
 #: its candidates plus its prefixes divided by this, against :data:`MAX_CANDIDATES`
 PREFIXES_PER_CANDIDATE = 500
-#: the cost of one random draw, in indices of a range: measured 7 to 24 when each draw was
-#: its own enumeration call, about 0.5 since orders.at takes them all at once (issue 30);
-#: kept as an upper bound (docs/explorer.md)
-DRAW_COST = 20
-#: random draws one run may make (``--sample``): the time of :data:`MAX_CANDIDATES`
-MAX_DRAWS = MAX_CANDIDATES // DRAW_COST
 #: tasks of one run (each costs about a millisecond besides its candidates, more on dask)
 MAX_TASKS = 100_000
 #: memory one task may use [bytes]
@@ -73,8 +63,6 @@ FIGURES_SLICE = 1024
 #: cranks (issue 30: each crank's figures once per task, and few slices, each with its
 #: fixed cost) up to FIGURES_SLICE distinct cranks and this many candidates
 FIGURES_ROWS = 4096
-#: the largest chunk [indices]: the largest index space, 20!
-LARGEST_CHUNK = math.factorial(20)
 #: seconds a dask scheduler has to answer (``--connect-timeout``; 0.1 s to 120 s) [s]
 CONNECT_TIMEOUT = 5.0
 #: the environment dask's nanny gives the worker processes of a LocalCluster the run
