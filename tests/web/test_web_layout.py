@@ -16,9 +16,8 @@ pytest.importorskip("nicegui")
 pytest.importorskip("playwright.sync_api")
 
 from .conftest import DRAWN  # noqa: E402
-from .test_web_explore import connected  # noqa: E402
+from .test_web_phone import PHONE, shown_page  # noqa: E402
 
-PHONE = {"width": 390, "height": 844}
 DESKTOP = {"width": 1280, "height": 800}
 #: [label, left, right] of every tab of the tab bar
 TAB_BOXES = """() => [...document.querySelectorAll('.q-tabs .q-tab')].map((t) => {
@@ -39,14 +38,7 @@ CRANK_DRAWN = (
 
 
 def engine_page(browser: Any, server: str, viewport: dict[str, int]) -> Any:
-    page = browser.new_page(viewport=viewport)
-    page.goto(server + "/?preset=inline4")
-    connected(page)
-    page.wait_for_function(
-        "() => document.querySelector('[data-testid=status]')?.dataset.state === 'current'"
-    )
-    page.wait_for_function(CRANK_DRAWN)
-    return page
+    return shown_page(browser, server, viewport, "inline4", drawn=CRANK_DRAWN)
 
 
 def test_every_tab_within_1280(server: str, browser: Any) -> None:

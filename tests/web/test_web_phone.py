@@ -63,16 +63,30 @@ def test_phone_stack_moves_columns_into_rows_and_back() -> None:
     assert phone_stack(make_subplots(rows=2, cols=1).to_plotly_json()["layout"]) is None
 
 
-def results(browser: Any, server: str, viewport: dict[str, int]) -> Any:
+def shown_page(
+    browser: Any,
+    server: str,
+    viewport: dict[str, int],
+    preset: str,
+    tab: str | None = None,
+    drawn: str = DRAWN,
+) -> Any:
+    """A new page on ``preset`` at ``viewport``, connected, on ``tab`` (None: the first),
+    its results current and its figures drawn (``drawn``)."""
     page = browser.new_page(viewport=viewport)
-    page.goto(server + "/?preset=v8-crossplane")
+    page.goto(f"{server}/?preset={preset}")
     connected(page)
-    open_tab(page, "Results")
+    if tab is not None:
+        open_tab(page, tab)
     page.wait_for_function(
         "() => document.querySelector('[data-testid=status]')?.dataset.state === 'current'"
     )
-    page.wait_for_function(DRAWN)
+    page.wait_for_function(drawn)
     return page
+
+
+def results(browser: Any, server: str, viewport: dict[str, int]) -> Any:
+    return shown_page(browser, server, viewport, "v8-crossplane", "Results")
 
 
 def test_compact_header_and_table_scroll_cue(server: str, browser: Any) -> None:
