@@ -25,7 +25,7 @@ PHYSICS = tuple(
     )
 )
 #: the modules of crankbalance a physics module may import (beside physics itself)
-BASE = {"errors", "results"}
+BASE = {"errors", "records", "results"}
 #: third-party packages that are edges (units, figures, web, command line)
 EDGE_PACKAGES = {"pint", "plotly", "nicegui", "click", "matplotlib", "pydantic", "kaleido"}
 

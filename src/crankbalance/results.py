@@ -11,6 +11,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from .errors import ResultError
+from .records import record
 
 #: significant digits kept in JSON: enough for any measured input, none of the float noise
 JSON_DIGITS = 12
@@ -340,7 +341,7 @@ def shown(value: Any, kind: str = "") -> str:
     return str(value)
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Table:
     """A table of a result's display: its caption, the column labels (unit in brackets)
     and the rows as text; ``more`` rows are left out (:data:`DISPLAY_ROWS`)."""
@@ -351,7 +352,7 @@ class Table:
     more: int = 0
 
 
-@dataclasses.dataclass(frozen=True)
+@record
 class Summary:
     """What a result shows in a notebook: a title, its verdicts (sentences), its values
     (label with unit, value), its tables (the first is the one the ``repr`` shows) and its

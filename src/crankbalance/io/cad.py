@@ -16,7 +16,6 @@ from __future__ import annotations
 import math
 import tempfile
 from collections.abc import Sequence
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Literal
 
@@ -31,6 +30,7 @@ from ..physics.counterweight import (
     profile_boundary,
     profile_section,
 )
+from ..records import record
 from ..results import ResultMixin
 from .files import write_atomic
 
@@ -345,7 +345,7 @@ def export_counterweight(
     return path
 
 
-@dataclass(frozen=True)
+@record
 class MeshMassProperties(ResultMixin):
     """Mass properties of a CAD part read back from STL/STEP (SI).
 

@@ -44,7 +44,6 @@ import csv
 import math
 import os
 import re
-from dataclasses import dataclass
 from pathlib import Path
 from typing import Any
 
@@ -52,6 +51,7 @@ import numpy as np
 
 from ..errors import InputError
 from ..physics.shop.matching import Inventory, PartKind
+from ..records import record
 from ..schema.engine import MAX_QUANTITY_CHARS, parse_in_range
 from .reading import parse_toml, read_text
 
@@ -87,7 +87,7 @@ _MASS_COLUMNS = ("mass", "big_end", "small_end")
 _CONTROL = re.compile(r"[\x00-\x08\x0b-\x1f\x7f]")
 
 
-@dataclass(frozen=True)
+@record
 class _Part:
     kind: str
     mark: str

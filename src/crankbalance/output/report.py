@@ -39,11 +39,11 @@ import datetime as _dt
 import html as _html
 import json
 import os
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
+from ..records import record
 from ..results import to_jsonable
 from .format import angle, convert, moment_point
 from .html import figure_html, fmt, page, table
@@ -65,7 +65,7 @@ SCREEN_ONLY_FIGURES = frozenset({"crank"})
 REPORT_FORMATS = ("html", "pdf")
 
 
-@dataclass(frozen=True)
+@record
 class Report:
     """What a report shows: the analysis and balancing results and the settings."""
 

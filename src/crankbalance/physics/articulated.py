@@ -49,12 +49,13 @@ the full geometry, :class:`ArticulatedRods`, which every function here takes.
 
 from __future__ import annotations
 
-from dataclasses import dataclass, replace
+from dataclasses import replace
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 
 #: Samples per revolution the Fourier analysis starts with; doubled until the spectrum
@@ -67,7 +68,7 @@ MAX_SAMPLES = 8192
 ALIAS_TOLERANCE = 1e-14
 
 
-@dataclass(frozen=True)
+@record
 class ArticulatedRods(ResultMixin):
     r"""Geometry of a master-and-link rod assembly on one crankpin.
 
@@ -153,7 +154,7 @@ def _check_rows(obj: object, names: tuple[str, ...], count: int) -> None:
             raise InputError(name, value.tolist(), "must be finite numbers")
 
 
-@dataclass(frozen=True)
+@record
 class Articulation(ResultMixin):
     r"""The master-and-link rods of an engine model: what its other fields do not hold.
 
@@ -259,7 +260,7 @@ def default_link_pin_angles(bank_angle: ArrayLike, master: int) -> NDArray[np.fl
     return np.where(np.isclose(gamma, -np.pi), np.pi, gamma)
 
 
-@dataclass(frozen=True)
+@record
 class ArticulatedMotion(ResultMixin):
     """Exact motion of every big end and piston of an articulated rod assembly.
 
@@ -412,7 +413,7 @@ def reach_problem(rods: ArticulatedRods) -> int | None:
     return int(short[0]) if short.size else None
 
 
-@dataclass(frozen=True)
+@record
 class DeadCentres(ResultMixin):
     """Top and bottom dead centre and stroke of every piston of an articulated assembly.
 
@@ -493,7 +494,7 @@ def _refine(rods: ArticulatedRods, angle: NDArray) -> NDArray:
     return theta
 
 
-@dataclass(frozen=True)
+@record
 class ArticulatedHarmonics(ResultMixin):
     r"""Harmonics of the inertia forces of an articulated assembly, per kilogram.
 

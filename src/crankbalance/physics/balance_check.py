@@ -20,12 +20,11 @@ runs only when asked: ``balance_engine(..., verify=True)`` and ``crankbalance ba
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin, below_round_off, round_off
 from .balancing import BalanceResult, ComponentResidual, point_mass_history
 from .model import EngineModel
@@ -35,7 +34,7 @@ from .shaking import exact_time_domain, free_forces, phasor_curve
 SAMPLES = 256
 
 
-@dataclass(frozen=True)
+@record
 class Verification(ResultMixin):
     """The time-domain amplitudes of a balancing result and how far they are from the
     solver's.

@@ -30,13 +30,13 @@ equations per group); each engine's numbers are computed on its own row
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ROUND_OFF
 from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
 
@@ -111,7 +111,7 @@ def crank_middle(throw_position: NDArray) -> float:
     return 0.5 * float(throw_position.min() + throw_position.max())
 
 
-@dataclass(frozen=True)
+@record
 class Webs:
     """The counterweight webs of E engines of one layout.
 
@@ -360,7 +360,7 @@ def solve_counterweights(
     return found
 
 
-@dataclass(frozen=True)
+@record
 class _Equations:
     """The counterweight equations of the engines of one group balanced as one scope says
     (:func:`_equations`): the same for every engine of the group.

@@ -6,8 +6,7 @@ result; the balance table and JSON (``remaining``) show them.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
+from ..records import record
 from ..results import ResultMixin
 from .balance_types import CounterweightOptions, ShaftOptions
 
@@ -18,7 +17,7 @@ FACTOR_OPTION = "--balance-factor"
 NAME = "{name}"
 
 
-@dataclass(frozen=True)
+@record
 class Remaining(ResultMixin):
     """One free force or couple a balancing result leaves, in words, with the next step
     that would remove it.

@@ -40,13 +40,14 @@ balance shaft module", Mech. Sci. 9 (2018) 259, Eqs. 3-13, 17-25.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ResultMixin
 from .beam import (
     DEFAULT_ELEMENTS,
@@ -83,7 +84,7 @@ def _check_positions(name: str, values: tuple[float, ...], length: float) -> Non
             )
 
 
-@dataclass(frozen=True)
+@record
 class BalanceShaft(ResultMixin):
     """A balance shaft: length, section, bearings and unbalance masses.
 
@@ -166,7 +167,7 @@ class BalanceShaft(ResultMixin):
             check_positive("bearing_stiffness", self.bearing_stiffness)
 
 
-@dataclass(frozen=True)
+@record
 class ShaftResponse(ResultMixin):
     """State variables of one balance shaft at its speed.
 
@@ -221,7 +222,7 @@ class ShaftResponse(ResultMixin):
         return angle, force
 
 
-@dataclass(frozen=True)
+@record
 class _Evaluation:
     reactions: NDArray  # complex (..., nb)
     x: NDArray
@@ -358,7 +359,7 @@ def shaft_response(
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class DesignChecks(ResultMixin):
     """Pass/fail of the checks a designer needs, with the numbers behind them.
 
@@ -577,7 +578,7 @@ def inline4_closed_form(position: ArrayLike) -> tuple[NDArray, NDArray]:
     return xi * (1 - xi) * (1 + xi * (1 - xi)), np.abs(1 - 2 * xi)
 
 
-@dataclass(frozen=True)
+@record
 class PlacementStudy(ResultMixin):
     """State variables, normalised objective and optimum along one design variable.
 

@@ -10,7 +10,7 @@ counterweights; :mod:`crankbalance.physics.balancing` turns a result of one engi
 
 from __future__ import annotations
 
-from dataclasses import dataclass, field
+from dataclasses import field
 from functools import cached_property
 from typing import Any, ClassVar, Literal
 
@@ -18,6 +18,7 @@ import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 from .shaking import BatchFreeForces
 
@@ -27,7 +28,7 @@ Arrangement = Literal["pair", "counter-rotating"]
 
 
 # --------------------------------------------------------------------------- options
-@dataclass(frozen=True)
+@record
 class CounterweightOptions:
     """Crank counterweights: web pattern, CG radius, angle, balance factor, scope.
 
@@ -76,7 +77,7 @@ class CounterweightOptions:
     web_offset: float | None = None
 
 
-@dataclass(frozen=True)
+@record
 class ShaftOptions:
     """Balance shafts of one order: ``pair`` (co- and counter-rotating) or a single
     ``counter-rotating`` shaft; CG radius of their masses and distance between the outer
@@ -103,7 +104,7 @@ class ShaftOptions:
 
 
 # --------------------------------------------------------------------------- the input
-@dataclass(frozen=True)
+@record
 class SolverInput:
     """What the solver needs of E engines of one layout: arrays with a leading engine
     axis (E = 1 for one engine). Build it with
@@ -185,7 +186,7 @@ class EngineFailed(Exception):
 
 
 # --------------------------------------------------------------------------- results
-@dataclass(frozen=True)
+@record
 class BatchCounterweights(ResultMixin):
     """Crank counterweights of E engines (W per engine; one engine's are
     :class:`crankbalance.physics.balancing.Counterweights`).
@@ -268,7 +269,7 @@ class BatchCounterweights(ResultMixin):
         return sums
 
 
-@dataclass(frozen=True)
+@record
 class BatchShafts(ResultMixin):
     """The balance shafts of one order of E engines (one engine's are
     :class:`crankbalance.physics.balancing.ShaftSet`).
@@ -317,7 +318,7 @@ class BatchShafts(ResultMixin):
         return self.mass.max(axis=-1)
 
 
-@dataclass(frozen=True)
+@record
 class BatchResiduals(ResultMixin):
     """What the balancing masses of E engines leave, component by component
     (:func:`crankbalance.physics.balance_solver.balance_residuals`).
@@ -375,7 +376,7 @@ class BatchResiduals(ResultMixin):
         return self.components.index(component)
 
 
-@dataclass(frozen=True)
+@record
 class BatchBalance(ResultMixin):
     """Counterweights, balance shafts and residuals of E engines
     (:func:`crankbalance.physics.balance_solver.solve`).

@@ -24,11 +24,12 @@ and the counterweight mass of the pattern versus its angle
 from __future__ import annotations
 
 from collections.abc import Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..records import record
 from ..results import ROUND_OFF, ResultMixin, engine_scales, number
 from .balance_counterweights import crank_middle, pattern_masses, throw_pitch, web_sides
 from .balance_remaining import FACTOR_OPTION, Remaining, next_step, step_words
@@ -64,7 +65,7 @@ __all__ = [
 
 
 # --------------------------------------------------------------------------- results
-@dataclass(frozen=True)
+@record
 class Counterweights(ResultMixin):
     """Crank counterweights found by the solver.
 
@@ -117,7 +118,7 @@ class Counterweights(ResultMixin):
         return self.mass * self.cg_radius * np.exp(1j * self.direction)
 
 
-@dataclass(frozen=True)
+@record
 class ShaftMass(ResultMixin):
     """One point mass of a balance shaft.
 
@@ -136,7 +137,7 @@ class ShaftMass(ResultMixin):
     phase: float
 
 
-@dataclass(frozen=True)
+@record
 class Shaft(ResultMixin):
     """One balance shaft: order (1 or 2), sense (+1 co-rotating, -1 counter-rotating),
     the CG radius of its masses and the masses (axial position [m], mass [kg], phase at
@@ -168,7 +169,7 @@ class Shaft(ResultMixin):
         return max((m.mass for m in self.masses), default=0.0)
 
 
-@dataclass(frozen=True)
+@record
 class ShaftSet(ResultMixin):
     """The balance shafts of one order.
 
@@ -190,7 +191,7 @@ class ShaftSet(ResultMixin):
     shafts: tuple[Shaft, ...]
 
 
-@dataclass(frozen=True)
+@record
 class ComponentResidual(ResultMixin):
     """Amplitude of one component before and after balancing.
 
@@ -225,7 +226,7 @@ class ComponentResidual(ResultMixin):
     moment_backward_after: float
 
 
-@dataclass(frozen=True)
+@record
 class BalanceResult(ResultMixin):
     """Everything the solver found, with the residual of each component (from the phasor
     solution; :func:`crankbalance.physics.balance_check.verify` checks it in the time
@@ -679,7 +680,7 @@ def point_mass_history(
 
 
 # --------------------------------------------------------------------------- the angle
-@dataclass(frozen=True)
+@record
 class AngleSweep(ResultMixin):
     """Counterweight mass of the paper's equal-mass pattern versus its angle.
 

@@ -31,13 +31,13 @@ G. R. Cowper, "The shear coefficient in Timoshenko's beam theory", J. Appl. Mech
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ResultMixin
 
 BeamTheory = Literal["euler-bernoulli", "timoshenko"]
@@ -55,7 +55,7 @@ DEFAULT_POINTS = 201
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class ShaftSection(ResultMixin):
     """Uniform circular shaft section and its material.
 

@@ -37,12 +37,12 @@ References
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, NamedTuple
 
 import numpy as np
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 
 ArrayLike = Any
@@ -494,7 +494,7 @@ def _check_material(thickness: ArrayLike, density: ArrayLike) -> None:
             raise InputError(name, first, "must be a finite number greater than zero")
 
 
-@dataclass(frozen=True)
+@record
 class CounterweightProperties(ResultMixin):
     """Mass properties of one counterweight or of many (array fields broadcast together).
 
@@ -740,7 +740,7 @@ def required_first_moment(counterweights: Any, web: int | None = None) -> float:
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class CounterweightDesign(ResultMixin):
     """One counterweight: its profile parameters, thickness and material.
 
@@ -847,7 +847,7 @@ class CounterweightDesign(ResultMixin):
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class BoundaryLine:
     """A straight piece of the profile boundary from ``start`` to ``end`` (x, y) [m].
 
@@ -861,7 +861,7 @@ class BoundaryLine:
     end: tuple[float, float]
 
 
-@dataclass(frozen=True)
+@record
 class BoundaryArc:
     """A circular piece of the profile boundary: ``centre`` (x, y) [m], ``radius`` [m],
     from ``start_angle`` to ``end_angle`` [rad], counter-clockwise if ``ccw``.

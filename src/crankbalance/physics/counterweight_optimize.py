@@ -19,12 +19,12 @@ from __future__ import annotations
 import math
 import time
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 from .counterweight import (
     DEFAULT_DENSITY,
@@ -170,7 +170,7 @@ def clear_of_journal(
     return out
 
 
-@dataclass(frozen=True)
+@record
 class OptimizationProgress:
     """State passed to the ``callback`` of :func:`optimize_counterweight` after each iteration.
 
@@ -193,7 +193,7 @@ class OptimizationProgress:
     elapsed: float
 
 
-@dataclass(frozen=True)
+@record
 class CounterweightOptimum(ResultMixin):
     """Result of :func:`optimize_counterweight` (shaped like ``scipy.optimize.OptimizeResult``).
 

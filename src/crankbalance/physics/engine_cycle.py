@@ -38,13 +38,14 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_finite, check_nonnegative, check_positive, check_range
+from ..records import record
 from ..results import ResultMixin
 from . import kinematics
 from .firing import check_strokes
@@ -64,7 +65,7 @@ Strokes = Literal[2, 4]
 # ======================================================================================
 
 
-@dataclass(frozen=True)
+@record
 class CylinderSpec(ResultMixin):
     """One cylinder of a single-cylinder (or per-cylinder) engine-cycle model.
 
@@ -264,7 +265,7 @@ def wiebe_burn_fraction(
     return 1.0 - np.exp(-efficiency_factor * phase ** (form_factor + 1.0))
 
 
-@dataclass(frozen=True)
+@record
 class WiebeCombustion(ResultMixin):
     """Single-zone Wiebe heat-release model of the cylinder pressure.
 
@@ -511,7 +512,7 @@ def tabulated_pressure(
 PressureSource = WiebeCombustion | tuple[NDArray, NDArray]
 
 
-@dataclass(frozen=True)
+@record
 class CycleResult(ResultMixin):
     r"""Result of :func:`engine_cycle` (arrays over the crank angle of one cycle).
 
@@ -762,7 +763,7 @@ def engine_cycle(
     )
 
 
-@dataclass(frozen=True)
+@record
 class CylinderForces(ResultMixin):
     r"""The forces of one cylinder's crank train over the crank angle (:func:`cylinder_forces`).
 
@@ -965,7 +966,7 @@ def speed_from_energy(work: NDArray, inertia: NDArray, mean_speed: float, step: 
 # ======================================================================================
 
 
-@dataclass(frozen=True)
+@record
 class SensitivityResult(ResultMixin):
     """Result of :func:`balance_sensitivity`; every indicator has shape
     ``(len(mass_scales), len(balance_factors))``.

@@ -36,12 +36,13 @@ energy method); Heywood (1988), Sec. 9.2 (the Wiebe model).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ResultMixin
 from .engine_cycle import (
     CylinderSpec,
@@ -137,7 +138,7 @@ def energy_excursion(angle: ArrayLike, torque: ArrayLike) -> float:
     return float(np.ptp(energy))
 
 
-@dataclass(frozen=True)
+@record
 class EngineCycleResult(ResultMixin):
     r"""Result of :func:`engine_cycle_all`: the whole engine over one working cycle.
 

@@ -36,18 +36,18 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 
 #: angles closer than this are the same top dead centre [rad]
 SAME_ANGLE = 1e-7
 
 
-@dataclass(frozen=True)
+@record
 class Scheme:
     """A maker's numbering rule for one layout.
 

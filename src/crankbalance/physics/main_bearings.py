@@ -46,13 +46,14 @@ three-moment equation, singularity functions); Hoem and Røsholm (2016), Sec. 4.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ROUND_OFF, ResultMixin, below_round_off
 from .beam import bending_moment_at
 from .friction import friction_torque, petroff_torque
@@ -71,7 +72,7 @@ PLANE_TOLERANCE = 1e-6
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class CrankLoads(ResultMixin):
     """Point loads on the crank over the cycle (input of the two crank models).
 
@@ -298,7 +299,7 @@ def _check_bearing_positions(bearings: ArrayLike) -> NDArray:
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class CrankSection(ResultMixin):
     r"""Dimensions and material of a crank, for its equivalent bending stiffness.
 
@@ -376,7 +377,7 @@ class CrankSection(ResultMixin):
         return min(h / compliance, self.journal_stiffness)
 
 
-@dataclass(frozen=True)
+@record
 class CrankStiffness(ResultMixin):
     """Piecewise-constant bending stiffness along the crank.
 
@@ -888,7 +889,7 @@ def clearance_reactions(
 # --------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class BearingFriction(ResultMixin):
     r"""Friction of each main bearing over the cycle (:mod:`crankbalance.physics.friction`).
 
@@ -913,7 +914,7 @@ class BearingFriction(ResultMixin):
     petroff_power: NDArray[np.float64] | None = None
 
 
-@dataclass(frozen=True)
+@record
 class MainBearingLoads(ResultMixin):
     r"""Main-bearing loads and crank bending of one crank model over the cycle.
 

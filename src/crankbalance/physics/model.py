@@ -31,7 +31,7 @@ throws at the same axial place (one pin, or a pin split in two).
 from __future__ import annotations
 
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field, fields, replace
+from dataclasses import field, fields, replace
 from functools import cached_property
 from typing import TYPE_CHECKING, Any, ClassVar
 
@@ -39,6 +39,7 @@ import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 
 if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
@@ -47,7 +48,7 @@ from .firing import firing_angles
 from .kinematics import KinematicsModel
 
 
-@dataclass(frozen=True)
+@record
 class ConrodSplit(ResultMixin):
     r"""Two-mass equivalent of one conrod (mass and centre of gravity kept).
 
@@ -98,7 +99,7 @@ def _read_only(array: NDArray[Any]) -> NDArray[Any]:
     return array
 
 
-@dataclass(frozen=True)
+@record
 class EngineModel:
     """An engine as SI arrays: the input of every physics function.
 
@@ -469,7 +470,7 @@ def _vr_layout(
 
 
 # --------------------------------------------------------------------------- batches
-@dataclass(frozen=True)
+@record
 class EngineBatch:
     """Many engines of one topology: arrays with a leading engine axis (E engines).
 

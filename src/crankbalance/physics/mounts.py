@@ -45,12 +45,13 @@ of freedom model, hysteretic and viscous mounts).
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 
 #: Standard gravity [m/s²].
@@ -69,7 +70,7 @@ COORDINATES = ("x", "y", "z", "roll_x", "roll_y", "roll_z")
 ENERGY_NAMES = ("x", "y", "z", "roll", "pitch", "yaw")
 
 
-@dataclass(frozen=True)
+@record
 class Mount(ResultMixin):
     """One elastic mount.
 
@@ -176,7 +177,7 @@ def inertia_tensor(moments: ArrayLike, products: ArrayLike = (0.0, 0.0, 0.0)) ->
     return np.array([[ixx, ixy, ixz], [ixy, iyy, iyz], [ixz, iyz, izz]])
 
 
-@dataclass(frozen=True)
+@record
 class Powertrain(ResultMixin):
     """The rigid powertrain and its mounts.
 
@@ -338,7 +339,7 @@ def check_held(pt: Powertrain) -> None:
     )
 
 
-@dataclass(frozen=True)
+@record
 class Statics(ResultMixin):
     """The powertrain under its weight and a steady torque.
 
@@ -417,7 +418,7 @@ def torque_roll_axis(inertia: ArrayLike, axis: ArrayLike = (0.0, 1.0, 0.0)) -> N
     return np.asarray(direction if direction @ np.asarray(axis) >= 0 else -direction)
 
 
-@dataclass(frozen=True)
+@record
 class Modes(ResultMixin):
     """The six rigid-body modes on the mounts (undamped).
 
@@ -590,7 +591,7 @@ def response_size(speeds: int, orders: int) -> int:
     return int(speeds) * int(orders)
 
 
-@dataclass(frozen=True)
+@record
 class Response(ResultMixin):
     """The forced response over speed, order by order.
 
@@ -697,7 +698,7 @@ def forced_response(
     return Response(speeds, orders, q, forces, peak_magnitude(forces))
 
 
-@dataclass(frozen=True)
+@record
 class Crossing(ResultMixin):
     """An engine order meeting a natural frequency.
 

@@ -21,16 +21,15 @@ everywhere in :mod:`.mounts`.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
+from ..records import record
 from ..results import ResultMixin
 from .model import EngineModel
 
 
-@dataclass(frozen=True)
+@record
 class Part(ResultMixin):
     """One part of an estimated powertrain.
 

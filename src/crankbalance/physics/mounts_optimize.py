@@ -14,13 +14,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 from .mounts import Mount, Powertrain, Response, check_held, forced_response, modes
 
@@ -36,7 +36,7 @@ OPTIMIZER_POPULATION = 10
 OPTIMIZER_POLISH_ITERATIONS = 50
 
 
-@dataclass(frozen=True)
+@record
 class MountGoals:
     """What the mount optimiser aims at (:func:`optimize_mounts`).
 
@@ -201,7 +201,7 @@ def _holds(pt: Powertrain) -> bool:
     return True
 
 
-@dataclass(frozen=True)
+@record
 class MountOptimum(ResultMixin):
     """The mount optimiser's answer.
 

@@ -25,12 +25,13 @@ from __future__ import annotations
 import math
 from abc import ABC, abstractmethod
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Literal
 
 import numpy as np
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ResultMixin
 from .shop.holes import (
     FLAT_BOTTOM,
@@ -114,7 +115,7 @@ class _Layer(ABC):
         return self.centroid_radius(2.0 * depth)
 
 
-@dataclass(frozen=True)
+@record
 class DrilledHoles(_Layer, ResultMixin):
     r"""Holes drilled into the counterweights, the same set on each web.
 
@@ -330,7 +331,7 @@ class DrilledHoles(_Layer, ResultMixin):
         )
 
 
-@dataclass(frozen=True)
+@record
 class FaceRemoval(_Layer, ResultMixin):
     r"""A layer ground off a counterweight face, the same on each web.
 
@@ -395,7 +396,7 @@ def _check_count(name: str, value: int) -> int:
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class RebalanceIteration(ResultMixin):
     """One pass of steps 3-8 of the rebalancing procedure.
 
@@ -432,7 +433,7 @@ class RebalanceIteration(ResultMixin):
     within_tolerance: bool
 
 
-@dataclass(frozen=True)
+@record
 class RebalanceResult(ResultMixin):
     """Outcome of rebalancing a single-cylinder crank after new parts.
 

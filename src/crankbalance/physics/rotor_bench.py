@@ -30,12 +30,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass, field
+from dataclasses import field
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError, check_finite, check_nonnegative, check_positive, check_range
+from ..records import record
 from ..results import ResultMixin
 from .shop.holes import STEEL_DENSITY
 from .single_cylinder import balance_factor_from_mass_properties, check_mass
@@ -53,7 +54,7 @@ MAX_BENCH_EVALUATIONS = 500_000
 # ======================================================================================
 
 
-@dataclass(frozen=True)
+@record
 class BenchRotor(ResultMixin):
     """A rigid rotor on two journal bearings with Coulomb friction.
 
@@ -203,7 +204,7 @@ def disc_rotor(
     )
 
 
-@dataclass(frozen=True)
+@record
 class BenchSettings(ResultMixin):
     """Run settings of the simulated bench.
 
@@ -254,7 +255,7 @@ class BenchSettings(ResultMixin):
         check_range("rtol", self.rtol, 1e-12, 1e-2)
 
 
-@dataclass(frozen=True)
+@record
 class BenchResult(ResultMixin):
     """Result of :func:`run_bench`.
 
@@ -655,7 +656,7 @@ def stepped_rotor_inertia(
     )
 
 
-@dataclass(frozen=True)
+@record
 class TestRotor(ResultMixin):
     """Disc-on-shaft test rotor with a prescribed inertia (Hoem and Røsholm (2016), Appendix E).
 
@@ -799,7 +800,7 @@ def crankpin_overlap(
     return (main_journal_diameter + crankpin_diameter - stroke) / 2.0
 
 
-@dataclass(frozen=True)
+@record
 class StrokingEffect(ResultMixin):
     """Effect of offset-grinding the crankpin to a smaller diameter.
 

@@ -38,12 +38,11 @@ which the articulated rods enter through the same coefficients.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 from .kinematics import (
     CHUNK,
@@ -57,7 +56,7 @@ from .model import EngineBatch, EngineModel
 from .roll import articulated_roll, articulated_roll_curve, roll_coefficients, roll_harmonics
 
 
-@dataclass(frozen=True)
+@record
 class FreeForces(ResultMixin):
     r"""Free forces and moments of one engine by order (phasors at crank angle 0).
 
@@ -506,7 +505,7 @@ def rotating_phasors(
     return force, couple
 
 
-@dataclass(frozen=True)
+@record
 class BatchFreeForces(ResultMixin):
     r"""Free forces and moments of a batch of engines by order (:class:`FreeForces`, with a
     leading engine axis).
@@ -843,7 +842,7 @@ def batch_amplitudes(
 
 
 # --------------------------------------------------------------------------- curves
-@dataclass(frozen=True)
+@record
 class Curves(ResultMixin):
     """Forces [N] and moments [N·m] versus crank angle of the first throw [rad].
 

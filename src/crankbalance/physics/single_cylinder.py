@@ -34,12 +34,12 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError, check_positive, check_range
+from ..records import record
 from ..results import ResultMixin
 from .kinematics import KINEMATICS_MODELS, KinematicsModel, piston_acceleration
 from .limits import BALANCE_FACTOR_RANGE as BALANCE_FACTOR_RANGE
@@ -381,7 +381,7 @@ def sum_parts(parts: dict[str, float], field_name: str = "parts") -> float:
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
+@record
 class BalanceFactorStudy(ResultMixin):
     """Forces of one cylinder over a revolution for one balance factor, and the sweep.
 

@@ -32,16 +32,16 @@ Allocation to two planes (the rule used here, see ``docs/single_cylinder.md``):
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from ..errors import InputError, check_positive
+from ..records import record
 from ..results import ResultMixin
 
 #: Lower and upper share of U_per one bearing plane may receive (ISO 21940-11, clause 7).
 PLANE_SHARE_LIMITS: tuple[float, float] = (0.3, 0.7)
 
 
-@dataclass(frozen=True)
+@record
 class BalanceGrade(ResultMixin):
     """One balance quality grade and the rotor types it is recommended for.
 
@@ -263,7 +263,7 @@ def specific_unbalance(grade: str | float, speed: float) -> float:
     return item.value / speed
 
 
-@dataclass(frozen=True)
+@record
 class PlaneAllocation(ResultMixin):
     """Permissible residual unbalance split between two planes.
 
@@ -378,7 +378,7 @@ def allocate_to_planes(
     )
 
 
-@dataclass(frozen=True)
+@record
 class ToleranceVerdict(ResultMixin):
     """Pass/fail of a measured residual unbalance against its permissible value.
 

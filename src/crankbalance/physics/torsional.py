@@ -47,7 +47,7 @@ Maass (1985) (the torsional system of a multi-cylinder engine); Heywood (1988), 
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 import numpy as np
@@ -55,6 +55,7 @@ from numpy.typing import ArrayLike, NDArray
 from scipy import linalg
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin
 from .kinematics import piston_velocity
 from .main_bearings import crank_planes
@@ -131,7 +132,7 @@ def chain_matrices(
     return np.diag(j), assemble(k), assemble(c) + np.diag(ca)
 
 
-@dataclass(frozen=True)
+@record
 class TorsionalModes(ResultMixin):
     """Result of :func:`natural_modes`: undamped natural frequencies and mode shapes.
 
@@ -363,7 +364,7 @@ def carter_stiffness(
     return float(shear_modulus * math.pi * polar_j / (32.0 * length))
 
 
-@dataclass(frozen=True)
+@record
 class CrankTrain(ResultMixin):
     """Result of :func:`crank_train`: the lumped chain of an engine's crank train.
 
@@ -554,7 +555,7 @@ def order_harmonics(
     return np.asarray(np.asarray(values, dtype=float) @ basis * (2.0 / theta.size), dtype=complex)
 
 
-@dataclass(frozen=True)
+@record
 class EngineExcitation(ResultMixin):
     r"""Result of :func:`engine_excitation`: torque harmonics of every cylinder by order.
 
@@ -669,7 +670,7 @@ def engine_excitation(
     )
 
 
-@dataclass(frozen=True)
+@record
 class ForcedResponse(ResultMixin):
     r"""Result of :func:`forced_response`: steady state, order by order, over speed.
 
@@ -882,7 +883,7 @@ def order_vector_sum(
     return np.abs(np.exp(-1j * np.outer(n, t)) @ beta)
 
 
-@dataclass(frozen=True)
+@record
 class ResonanceCheck(ResultMixin):
     """One crossing of an engine order with a natural frequency, and the response there.
 
@@ -917,7 +918,7 @@ class ResonanceCheck(ResultMixin):
     damper_power: float
 
 
-@dataclass(frozen=True)
+@record
 class TorsionalStudy(ResultMixin):
     """Result of :func:`torsional_study`: the torsional model of an engine's crank train.
 

@@ -23,7 +23,6 @@ from __future__ import annotations
 
 import os
 from collections.abc import Callable, Mapping, Sequence
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -32,6 +31,7 @@ from numpy.typing import NDArray
 from ..errors import InputError
 from ..physics.balance_remaining import FACTOR_OPTION, step_words
 from ..physics.model import EngineModel
+from ..records import record
 from ..results import ResultMixin, number, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import (
@@ -86,7 +86,7 @@ def case_rows(data: dict[str, Any]) -> list[list[Any]]:
     return rows
 
 
-@dataclass(frozen=True)
+@record
 class SweepCase:
     """One pattern at one balance factor.
 
@@ -183,7 +183,7 @@ class SweepCase:
         return f"{self.pattern} at balance factor {self.balance_factor:g}"
 
 
-@dataclass(frozen=True)
+@record
 class SweepSummary(ResultMixin):
     """What the summary of a sweep says (docs/main_bearings.md, "Which case the summary
     names").
@@ -304,7 +304,7 @@ def summarize(
     return SweepSummary(pareto, suggested, lowest, tuple(text), warning)
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class SweepStudy(ResultMixin):
     """Bearing loads of one engine over counterweight patterns and balance factors (see
     :func:`bearing_sweep`).

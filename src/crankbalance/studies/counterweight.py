@@ -14,12 +14,12 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from ..physics.counterweight import CounterweightDesign, CounterweightProperties
 from ..physics.counterweight_optimize import CounterweightOptimum, OptimizationProgress
+from ..records import record
 from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import (
     COUNTERWEIGHT_CHILDREN,
@@ -147,7 +147,7 @@ def value_or_range(name: str, text: str) -> float | tuple[float, float]:
 
 
 # --------------------------------------------------------------------------- optimize
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class OptimizeResult(ResultMixin):
     """A counterweight optimisation: the requirement, its settings, the parameter bounds
     searched and the optimiser's result, with the Pareto designs listed.
@@ -288,7 +288,7 @@ def radial_space(model: EngineModel) -> float:
     return float(model.rod_length) - float(model.crank_radius)
 
 
-@dataclass(frozen=True)
+@record
 class CrankOutline:
     """The parts of the crank that give a counterweight drawing its scale
     (:func:`crankbalance.output.figures.counterweight.counterweight_profile`).
@@ -333,7 +333,7 @@ def crank_outline(engine: EngineLike, max_radius: float | None = None) -> CrankO
 
 
 # --------------------------------------------------------------------------- show
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class DesignResult(ResultMixin):
     """One counterweight design and its mass properties.
 
@@ -434,7 +434,7 @@ PART_KEYS: dict[str, str | tuple[str, float]] = {
 }
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class PartResult(ResultMixin):
     """The mass properties of a CAD part about the crank axis, against a requirement.
 

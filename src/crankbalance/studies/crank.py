@@ -21,7 +21,6 @@ stiffness and the same front end, throws and flywheel as its chain; the whole-en
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -29,6 +28,7 @@ from numpy.typing import ArrayLike
 
 from ..errors import InputError
 from ..physics.model import EngineModel
+from ..records import record
 from ..schema.engine import EngineSpec
 from ..schema.settings import DEFAULT_FLYWHEEL_INERTIA, DEFAULT_FRONT_INERTIA
 from .build import build_model
@@ -58,7 +58,7 @@ def web_offset(spec: EngineSpec, model: EngineModel | None = None) -> float:
     return float(default_web_offset(model if model is not None else build_model(spec)))
 
 
-@dataclass(frozen=True)
+@record
 class CrankDimensions:
     """The crank's dimensions a study used (typed, or from :func:`crank_dimensions`).
 

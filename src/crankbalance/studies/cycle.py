@@ -17,7 +17,6 @@ from __future__ import annotations
 import contextlib
 import math
 from collections.abc import Callable, Iterator, Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -35,6 +34,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ..physics.engine_cycle import CycleResult, CylinderSpec, PressureSource, SensitivityResult
     from ..physics.engine_cycle_all import EngineCycleResult
 
+from ..records import record
 from .performance import (
     WIEBE_OPTIONS,
     arithmetic_checked,
@@ -309,7 +309,7 @@ def _flywheel(
     }
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class CycleStudy(ResultMixin):
     """One working cycle, of one cylinder or of the whole engine.
 
@@ -540,7 +540,7 @@ SENSITIVITY_KEYS = tuple(
 )
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class SensitivityStudy(ResultMixin):
     """The cycle of one cylinder over balance factors and reciprocating-mass scales.
 

@@ -13,7 +13,6 @@ cylinder's own.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -28,11 +27,12 @@ from ..physics.single_cylinder import (
     counterweight_moment,
 )
 from ..physics.tolerance import BalanceGrade, ToleranceVerdict
+from ..records import record
 from ..results import ResultMixin
 from ..schema.settings import RebalanceOptions, SingleCylinderOptions
 
 
-@dataclass(frozen=True)
+@record
 class Cylinder(ResultMixin):
     """The masses and geometry of one cylinder of an engine, in SI.
 
@@ -132,7 +132,7 @@ def cylinder_study(
     )
 
 
-@dataclass(frozen=True)
+@record
 class IsoCheck(ResultMixin):
     """ISO 21940-11 permissible residual unbalance of an engine's crank at its speed."""
 

@@ -7,7 +7,6 @@ import functools
 import math
 import os
 from collections.abc import Sequence
-from dataclasses import dataclass
 from types import ModuleType
 from typing import TYPE_CHECKING, Any
 
@@ -17,6 +16,7 @@ from ..io.engine_file import load_engine
 from ..output.format import keyed, moment_point, text
 from ..physics.model import EngineModel, with_moment_point
 from ..physics.shaking import Curves, FreeForces, curves, free_forces
+from ..records import record
 from ..results import ResultMixin, round_off, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import AnalysisOptions, parse_options
@@ -66,7 +66,7 @@ def engine_label(engine: EngineLike) -> str:
     return str(engine)
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class Analysis(ResultMixin):
     """Free forces and moments of one engine (see :func:`analyze`); a force or moment at
     most the engine's round-off is exactly zero (:func:`without_round_off`)."""
@@ -391,7 +391,7 @@ def _balance_options(
     return cw, primary, secondary
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class BalanceStudy(ResultMixin):
     """Counterweights and balance shafts of one engine (see :func:`balance_engine`), and
     the time-domain verification when it was asked for."""

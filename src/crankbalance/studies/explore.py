@@ -34,7 +34,6 @@ import time
 from collections import deque
 from collections.abc import Callable, Generator, Iterable, Mapping, Sequence
 from contextlib import ExitStack
-from dataclasses import dataclass
 from typing import IO, TYPE_CHECKING, Any, Protocol, overload
 
 import numpy as np
@@ -51,6 +50,7 @@ from ..physics.explore.work import (
     WORKER_ENVIRON,
     plan,
 )
+from ..records import record
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..physics.explore.orders import Size
@@ -94,7 +94,7 @@ class Enumeration(Protocol):
         ...
 
 
-@dataclass(frozen=True)
+@record
 class Keep:
     """What stays in memory: the Pareto set over ``objectives`` (all minimised,
     :func:`crankbalance.physics.explore.rank.pareto`) and the ``n`` rows of smallest ``key`` (ties
@@ -120,7 +120,7 @@ class Keep:
     tolerance: tuple[float, ...] = ()
 
 
-@dataclass(frozen=True)
+@record
 class Sample:
     """A random search: ``draws`` indices drawn uniformly, with replacement, from
     ``[0, count)`` with the seed ``seed`` (duplicates are evaluated once).
@@ -142,7 +142,7 @@ class Sample:
     seed: int = 0
 
 
-@dataclass(frozen=True)
+@record
 class RunResult:
     """What a run keeps.
 
@@ -176,7 +176,7 @@ class RunResult:
     seconds: float
 
 
-@dataclass(frozen=True)
+@record
 class _Part:
     """What one task sends back."""
 

@@ -16,13 +16,13 @@ import functools
 import math
 import re
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
 from numpy.typing import NDArray
 
 from ..errors import InputError
+from ..records import record
 from ..results import ResultMixin, key_label, require_finite, shown, to_jsonable
 from ..schema.settings import ExploreOptions, given
 from .engine import EngineLike, engine_label
@@ -123,7 +123,7 @@ def records(
     return out
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ExploreResult(ResultMixin):
     """One run of the explorer.
 

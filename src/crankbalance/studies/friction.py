@@ -7,13 +7,14 @@ torque of a rotor on the bench (``bench``)."""
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import Any
 
 from ..errors import InputError
 from ..output.format import keyed
 from ..physics import friction as fr
 from ..physics.rotor_bench import BenchResult, BenchRotor
+from ..records import record
 from ..results import ResultMixin, require_finite, to_jsonable
 from ..schema.settings import BenchOptions, FrictionOptions, given
 
@@ -42,7 +43,7 @@ def _checked(payload: dict[str, Any]) -> dict[str, Any]:
     return out
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class FrictionResult(ResultMixin):
     """The friction of one bearing.
 
@@ -167,7 +168,7 @@ def friction(settings: FrictionOptions) -> FrictionResult:
     return result
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class BenchStudy(ResultMixin):
     """Runs of the simulated rotor test bench, one per set speed.
 

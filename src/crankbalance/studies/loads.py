@@ -15,7 +15,6 @@ from __future__ import annotations
 import dataclasses
 import os
 from collections.abc import Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -36,6 +35,7 @@ from ..physics.main_bearings import (
     main_bearing_loads,
 )
 from ..physics.model import EngineModel
+from ..records import record
 from ..results import ResultMixin, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.settings import MIN_SAMPLES, BearingOptions, given, parse_options
@@ -72,7 +72,7 @@ STIFFNESS_NOTE = (
 )
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class BearingStudy(ResultMixin):
     """Main-bearing loads of one engine over its cycle, both crank models (see
     :func:`bearing_loads`).

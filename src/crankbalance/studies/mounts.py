@@ -13,7 +13,6 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -25,6 +24,7 @@ from ..physics import mounts_estimate as pe
 from ..physics import mounts_optimize as po
 from ..physics.model import EngineModel
 from ..physics.shaking import FreeForces
+from ..records import record
 from ..results import ResultMixin, to_jsonable
 from ..schema.engine import EngineSpec
 from ..schema.engine import Powertrain as PowertrainTable
@@ -124,7 +124,7 @@ def engine_loads(forces: FreeForces, rotating: str) -> NDArray[np.complex128]:
     return pm.order_loads(ff, forces.force_backward, cf, forces.couple_backward, roll)
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class MountsResult(ResultMixin):
     """The mount study of one engine.
 
@@ -585,7 +585,7 @@ def balanced_forces(
     )
 
 
-@dataclass(frozen=True)
+@record
 class Choice:
     """One balancing choice of a comparison at the mounts.
 

@@ -21,7 +21,6 @@ from __future__ import annotations
 import contextlib
 import dataclasses
 from collections.abc import Iterable, Iterator
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -30,13 +29,14 @@ from ..physics import kinematics
 from ..physics.engine_cycle import CycleResult, CylinderSpec, PressureSource, engine_cycle
 from ..physics.engine_cycle_all import EngineCycleResult, engine_cycle_all, flywheel_inertia
 from ..physics.model import EngineModel
+from ..records import record
 from .cylinder import cylinder_of
 
 if TYPE_CHECKING:  # pragma: no cover
     from ..schema.settings import CombustionOptions
 
 
-@dataclass(frozen=True)
+@record
 class EngineEstimate:
     """What a study takes for an engine where its setting is left empty.
 
@@ -225,7 +225,7 @@ def whole_engine_cycle(
         )
 
 
-@dataclass(frozen=True)
+@record
 class FlywheelSizing:
     """The rotating inertia one cylinder's cycle needs for a target speed fluctuation.
 

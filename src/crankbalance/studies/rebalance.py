@@ -11,16 +11,16 @@ balance factor. The ``rebalance`` command merges its options over the file and c
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 
 from ..errors import InputError
 from ..io.rebalance_file import Correction, Parts, RebalanceFile, Tolerance
 from ..physics.rebalancing import DrilledHoles, FaceRemoval, RebalanceResult, rebalance
 from ..physics.shop.holes import FLAT_BOTTOM, STEEL_DENSITY
+from ..records import record
 from ..results import ResultMixin
 
 
-@dataclass(frozen=True)
+@record
 class PartsSummary(ResultMixin):
     """One side (old or new parts) of a rebalancing, in SI.
 
@@ -40,7 +40,7 @@ class PartsSummary(ResultMixin):
     reciprocating_parts: dict[str, float]
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class RebalanceStudy(ResultMixin):
     """The rebalancing of one crank for each target balance factor.
 

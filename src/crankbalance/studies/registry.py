@@ -21,10 +21,11 @@ from __future__ import annotations
 import importlib
 from collections.abc import Callable, Iterable, Iterator, Mapping
 from contextlib import contextmanager
-from dataclasses import dataclass, field
+from dataclasses import field
 from typing import TYPE_CHECKING, Any, Literal
 
 from ..errors import InputError
+from ..records import record
 
 if TYPE_CHECKING:
     from ..schema.settings import StudyOptions
@@ -34,7 +35,7 @@ if TYPE_CHECKING:
 EngineUse = Literal["required", "optional", "none"]
 
 
-@dataclass(frozen=True)
+@record
 class Study:
     """One study of the registry.
 

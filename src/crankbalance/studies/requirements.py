@@ -7,7 +7,6 @@ so the command line, the web application and the report size the same parts.
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
@@ -15,6 +14,7 @@ import numpy as np
 from ..errors import InputError
 from ..physics.balancing import ShaftOptions
 from ..physics.counterweight import required_first_moment
+from ..records import record
 from ..results import ResultMixin
 from ..schema.engine import EngineSpec
 from .engine import Analysis, BalanceStudy, EngineLike, balance_engine
@@ -33,7 +33,7 @@ def counterweight_requirement(study: BalanceStudy, web: int | None = None) -> fl
     return required_first_moment(counterweights, web)
 
 
-@dataclass(frozen=True)
+@record
 class ShaftRequirement(ResultMixin):
     """The unbalance one balance shaft must carry.
 

@@ -11,7 +11,6 @@ balancing of the study's engine
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any, cast
 
 import numpy as np
@@ -28,6 +27,7 @@ from ..physics.balance_shaft import (
     ShaftResponse,
 )
 from ..physics.beam import BeamTheory, ShaftSection
+from ..records import record
 from ..results import ResultMixin, to_jsonable
 from ..schema.settings import ShaftCheckOptions, ShaftSectionOptions, ShaftStudyOptions, given
 from .engine import EngineLike, engine_label
@@ -96,7 +96,7 @@ def section(o: ShaftSectionOptions) -> ShaftSection:
     )
 
 
-@dataclass(frozen=True)
+@record
 class Requirement:
     """The unbalance a shaft carries [kg m] at its speed [rad/s], its order, and the engine
     it comes from (None when given)."""
@@ -198,7 +198,7 @@ def study_json(study: PlacementStudy) -> dict[str, Any]:
     }
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class PlacementResult(ResultMixin):
     """The placement studies of one shaft: one for inline4, one per rotor type for inline3.
 
@@ -281,7 +281,7 @@ def inline3(engine: EngineLike | None, settings: ShaftStudyOptions) -> Placement
     return result
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class CheckResult(ResultMixin):
     """One shaft layout, its state variables and its design checks."""
 

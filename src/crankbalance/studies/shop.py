@@ -11,7 +11,6 @@ from __future__ import annotations
 
 import dataclasses
 import os
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -39,6 +38,7 @@ from ..physics.shop.planes import (
     reading_unbalance,
 )
 from ..physics.shop.scatter import PartScatter, ScatterStudy, scatter_study
+from ..records import record
 from ..results import ResultMixin, number, to_jsonable
 from ..schema.settings import ShopOptions
 
@@ -49,7 +49,7 @@ if TYPE_CHECKING:  # pragma: no cover
     EngineSource = str | os.PathLike[str] | EngineSpec
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class PartsStudy(ResultMixin):
     """Matched sets and bob-weights of an engine's weighed parts.
 
@@ -93,7 +93,7 @@ class PartsStudy(ResultMixin):
     journals: JournalPairing
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class HolePlan(ResultMixin):
     """A two-plane reading turned into holes per correction plane, and the ISO check.
 
@@ -130,7 +130,7 @@ class HolePlan(ResultMixin):
     center_of_mass: float
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ShopStudy(ResultMixin):
     """Everything the shop sheet shows: the parts study and, with readings, the hole plan.
 
@@ -637,7 +637,7 @@ def shop_json(result: Any, path: str = "") -> Any:
 PLAN_NAMES = {name: "--" + name.replace("_", "-") for name in PLAN_SETTINGS.values()}
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ShopResult(ResultMixin):
     """One result of the balance shop and its JSON schema.
 

@@ -12,13 +12,13 @@ answers it, the web application shows it.
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 from ..errors import InputError
 from ..physics import single_cylinder as sc
 from ..physics import tolerance as tl
+from ..records import record
 from ..results import ResultMixin, number, require_finite, to_jsonable
 from ..schema.settings import (
     BalanceFactorOptions,
@@ -58,7 +58,7 @@ def _checked(payload: dict[str, Any]) -> dict[str, Any]:
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class BalanceFactorResult(ResultMixin):
     """The balance factor of a crank, its bob-weight and the single-cylinder force study.
 
@@ -244,7 +244,7 @@ def balance_factor(
 # ---------------------------------------------------------------------------------------
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class RebalanceResult(ResultMixin):
     """The rebalancing of one crank for each target balance factor
     (:class:`~crankbalance.studies.rebalance.RebalanceStudy`)."""
@@ -520,7 +520,7 @@ def _case_json(res: rb.RebalanceResult) -> dict[str, Any]:
 PLANE_SETTINGS = ("bearing_a", "bearing_b", "center_of_mass", "plane_1", "plane_2")
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class ToleranceResult(ResultMixin):
     """ISO 21940-11 permissible residual unbalance, its split between two correction planes
     and the verdict on a measured residual; or, for ``list_grades``, the grades.

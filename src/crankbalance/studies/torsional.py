@@ -13,7 +13,6 @@ and the sweep. Crank dimensions not given are those every study assumes
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
@@ -21,6 +20,7 @@ import numpy as np
 from ..errors import InputError
 from ..physics import torsional as tv
 from ..physics.model import EngineModel
+from ..records import record
 from ..results import ResultMixin, to_jsonable
 from ..schema.settings import TorsionalOptions, default_text, given
 from .engine import EngineLike, engine_label
@@ -48,7 +48,7 @@ def _shown(o: TorsionalOptions, name: str) -> Any:
     return default_text(TorsionalOptions, name)
 
 
-@dataclass(frozen=True, repr=False)
+@record(repr=False)
 class TorsionalResult(ResultMixin):
     """The torsional study of one engine.
 

@@ -17,11 +17,11 @@ Nothing here imports NiceGUI.
 from __future__ import annotations
 
 import re
-from dataclasses import dataclass
 from typing import Any, Literal
 
 from ..errors import InputError
 from ..physics.firing import SCHEMES
+from ..records import record
 from ..schema.core import Field, Schema, default_text, parse_value
 from ..schema.engine import EngineSpec
 
@@ -65,7 +65,7 @@ def _kind(spec: Field) -> Kind:
     return kinds.get(spec.kind, "text")
 
 
-@dataclass(frozen=True)
+@record
 class FormField:
     """One input of the form, bound to ``path`` in the engine file; label, hint, kind and
     options come from the schema's field :attr:`spec` (:func:`form_field`)."""

@@ -14,13 +14,13 @@ Public functions
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass
 from typing import TYPE_CHECKING
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ...results import ResultMixin, round_off
 from .common import (
     COLORS,
@@ -38,7 +38,7 @@ if TYPE_CHECKING:  # pragma: no cover
     from ...studies.engine import Analysis, BalanceStudy
 
 
-@dataclass(frozen=True)
+@record
 class BalancedCurves(ResultMixin):
     """Whole-engine force [N] and moment [N·m] versus crank angle [rad], before and after
     balancing: reciprocating masses (exact or series, as the model says), rotating masses,

@@ -2,15 +2,14 @@
 
 from __future__ import annotations
 
-from dataclasses import dataclass
-
 import numpy as np
 from numpy.typing import NDArray
 
+from ...records import record
 from ..model import EngineModel
 
 
-@dataclass(frozen=True)
+@record
 class Candidates:
     """B candidate engines of one topology: one crank and one firing order each.
 

@@ -29,13 +29,13 @@ import functools
 import itertools
 import math
 from collections.abc import Iterator, Sequence
-from dataclasses import dataclass
 from functools import cached_property
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ..kinematics import KinematicsModel
 from ..model import EngineModel, standard_layout, tdc_angle
 from .candidates import Candidates
@@ -74,7 +74,7 @@ def _gap(a: NDArray[np.float64]) -> NDArray[np.float64]:
     return np.abs(np.remainder(a + np.pi, 2 * np.pi) - np.pi)
 
 
-@dataclass(frozen=True, eq=False)
+@record(eq=False)
 class Problem:
     """What to enumerate: a topology, its cycle and firing intervals, the crank family.
 
@@ -133,7 +133,7 @@ class Problem:
         return np.asarray(t.cylinder_bank + (psi - psi[0]), dtype=float)
 
 
-@dataclass(frozen=True)
+@record
 class _Plan:
     cylinders: int
     factorial: NDArray[np.int64]  # (C-1,) (C-2-k)! for Lehmer digit k
@@ -606,7 +606,7 @@ def _consistent(
     )
 
 
-@dataclass(frozen=True)
+@record
 class Size:
     """How large the enumeration of a range of indices is, known before it is listed.
 

@@ -27,13 +27,13 @@ import math
 import operator
 import re
 from collections.abc import Callable, Iterable, Mapping
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ...results import ROUND_OFF, EngineScales, round_off
 
 #: the unit suffixes a column name may be written without
@@ -145,7 +145,7 @@ def _short(columns: list[str]) -> list[str]:
     return out
 
 
-@dataclass(frozen=True)
+@record
 class Filter:
     """A parsed filter: call it on the columns to get the mask of the rows it keeps.
 

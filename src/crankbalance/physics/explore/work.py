@@ -18,10 +18,10 @@ from __future__ import annotations
 import functools
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
 from ...errors import InputError
+from ...records import record
 from ..limits import DRAW_COST, LARGEST_CHUNK, MAX_CANDIDATES, MAX_DRAWS  # noqa: F401 (its own)
 
 if TYPE_CHECKING:
@@ -91,7 +91,7 @@ ORDER_BYTES = 64
 PREFIX_BYTES = 96
 
 
-@dataclass(frozen=True)
+@record
 class Work:
     """What a run will cause, worked out before it starts (:func:`plan`).
 

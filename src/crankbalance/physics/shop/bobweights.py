@@ -30,12 +30,12 @@ follow Den Hartog (1956) ch. 5 and Taylor (1985) ch. 8.
 from __future__ import annotations
 
 import dataclasses
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ...results import ResultMixin
 from ..model import EngineModel
 from ..shaking import free_forces
@@ -46,7 +46,7 @@ from ..single_cylinder import bob_weight, check_balance_factor
 NO_EFFECT = 1e-9
 
 
-@dataclass(frozen=True)
+@record
 class BobWeights(ResultMixin):
     """Bob-weight of every crankpin (throw) of a crank.
 
@@ -153,7 +153,7 @@ def bob_weights(
     return BobWeights(float(fraction), rods, rot_pin, rec_pin, np.array(weights))
 
 
-@dataclass(frozen=True)
+@record
 class RemainingForces(ResultMixin):
     r"""Free forces and couples of an engine whose crank was balanced with given bob-weights.
 

@@ -54,13 +54,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError, check_nonnegative, check_positive
+from ...records import record
 from ...results import ResultMixin
 
 #: Density of crankshaft steel used when none is given [kg/m^3] (Hoem and Røsholm (2016),
@@ -221,7 +221,7 @@ def _check_direction(direction: str) -> None:
         raise InputError("direction", direction, "must be 'axial' or 'radial'")
 
 
-@dataclass(frozen=True)
+@record
 class HoleGeometry(ResultMixin):
     """Volume and centroid of drilled holes (arrays the shape of the depth given).
 
@@ -335,7 +335,7 @@ def depth_for_volume(
     return 0.0 if depth_to == "shoulder" else (3.0 * volume * h**2 / area) ** (1.0 / 3.0)
 
 
-@dataclass(frozen=True)
+@record
 class HoleMass(ResultMixin):
     """Mass properties of drilled holes about the crank axis (arrays the shape of the depth).
 
@@ -423,7 +423,7 @@ def hole_mass_properties(
     )
 
 
-@dataclass(frozen=True)
+@record
 class DrillingPlan(ResultMixin):
     """Holes (or heavy-metal slugs) that correct an unbalance in one correction plane.
 

@@ -34,12 +34,12 @@ import itertools
 import math
 import time
 from collections.abc import Iterator
-from dataclasses import dataclass
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ...results import ResultMixin
 
 #: most groupings the exhaustive pairing visits (a V12's 10 395; a V16 has 2 027 025)
@@ -50,7 +50,7 @@ PAIRING_METHODS = ("milp", "exhaustive", "as-listed")
 _SCALE = 1000.0
 
 
-@dataclass(frozen=True)
+@record
 class JournalBasis(ResultMixin):
     """What the journals' bob-weights take from an engine: which journal each cylinder's
     rod is on, and the fraction of the reciprocating share in the bob-weights.
@@ -88,7 +88,7 @@ class JournalBasis(ResultMixin):
         return out
 
 
-@dataclass(frozen=True)
+@record
 class JournalPairing(ResultMixin):
     """Matched sets on the journals, and the journals' bob-weights.
 

@@ -76,13 +76,14 @@ from __future__ import annotations
 import itertools
 import math
 import time
-from dataclasses import dataclass, field, replace
+from dataclasses import field, replace
 from typing import Any
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError
+from ...records import record
 from ...results import ROUND_OFF, ResultMixin, below_round_off
 from ..model import EngineModel
 from ..shaking import free_forces
@@ -123,7 +124,7 @@ GRID_TOLERANCE = 1e-6
 _BOUND_MARGIN = 1e-9
 
 
-@dataclass(frozen=True)
+@record
 class PartKind(ResultMixin):
     """One kind of weighed part, each part with its reciprocating and rotating share.
 
@@ -150,7 +151,7 @@ class PartKind(ResultMixin):
         return len(self.ids)
 
 
-@dataclass(frozen=True)
+@record
 class Inventory(ResultMixin):
     """Every weighed part of an engine, by kind, and the allowances added to every set.
 
@@ -246,7 +247,7 @@ class Inventory(ResultMixin):
                 )
 
 
-@dataclass(frozen=True)
+@record
 class Matching(ResultMixin):
     """Parts matched to cylinders, the set weights and the material to remove per set.
 
@@ -314,7 +315,7 @@ class Matching(ResultMixin):
     gap: float | None = 0.0
 
 
-@dataclass(frozen=True)
+@record
 class _Clock:
     """The time limit of one matching, started when it was called."""
 
@@ -362,7 +363,7 @@ def _means(inventory: Inventory) -> tuple[float, float]:
     return rec, rot
 
 
-@dataclass(frozen=True)
+@record
 class FreeForceBasis(ResultMixin):
     """The free-force phasors of the sets, linear in the parts' masses.
 
@@ -1260,7 +1261,7 @@ def _free_rows(
     return 1.0, np.ones(components), False
 
 
-@dataclass(frozen=True)
+@record
 class MachineToLightest(ResultMixin):
     """Every part used machined to the lightest of its kind (share by share).
 

@@ -38,13 +38,13 @@ more runs give its least-squares estimate (Goodman 1964).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError, check_positive
+from ...records import record
 from ...results import ResultMixin
 from ..tolerance import (
     PlaneAllocation,
@@ -184,7 +184,7 @@ def rigid_influence(measuring_planes: ArrayLike, correction_planes: ArrayLike) -
     return transfer_matrix(correction_planes, measuring_planes).astype(complex)
 
 
-@dataclass(frozen=True)
+@record
 class TwoPlanePlan(ResultMixin):
     """The correction two correction planes need, from one two-plane reading.
 
@@ -455,7 +455,7 @@ def second_reading(plan: TwoPlanePlan, applied: ArrayLike, reading: ArrayLike) -
     )
 
 
-@dataclass(frozen=True)
+@record
 class PlaneCheck(ResultMixin):
     """ISO 21940-11 check of the residual unbalance in two correction planes.
 

@@ -43,13 +43,13 @@ samples runs in the memory of one chunk. A seed makes it reproducible (numpy's P
 
 from __future__ import annotations
 
-from dataclasses import dataclass
 from typing import Literal
 
 import numpy as np
 from numpy.typing import ArrayLike, NDArray
 
 from ...errors import InputError, check_nonnegative
+from ...records import record
 from ...results import ResultMixin
 from ..model import EngineModel
 from ..shaking import cylinder_coefficients, reciprocating_phasors
@@ -103,7 +103,7 @@ MAX_COUNT = 64
 MAX_CHUNK_NUMBERS = 2**25
 
 
-@dataclass(frozen=True)
+@record
 class PartScatter:
     """Scatter of one part type, one or more parts per cylinder.
 
@@ -214,7 +214,7 @@ def _source_variances(
     return names, var
 
 
-@dataclass(frozen=True)
+@record
 class ScatterStudy(ResultMixin):
     """Distribution of the residual unbalance and free forces that part scatter leaves.
 

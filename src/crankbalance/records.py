@@ -1,0 +1,224 @@
+"""Frozen records: :func:`dataclasses.dataclass` with ``frozen=True``, made without
+compiling code at import.
+
+Every result, model and option set of crankbalance is a frozen record: its fields are
+given once, compared by value and never changed afterwards. A frozen dataclass of
+Python 3.11 writes the source text of five or six methods per class (``__init__``,
+``__repr__``, ``__eq__``, ``__hash__``, ``__setattr__``, ``__delattr__``) and compiles it
+while its module is imported: 0.3 to 1.9 ms a class, 8 ms of every ``crankbalance
+analyze`` and 17 ms of every ``balance`` on the reference machine, about a tenth of their
+cold start (issue 30, docs/performance.md, "Round nine").
+
+:func:`record` keeps the dataclass (``dataclasses.fields``, ``replace``, ``asdict`` and
+``is_dataclass`` work as before: the fields are processed by :mod:`dataclasses` itself)
+and gives it the same methods as plain functions shared by every record, which read the
+fields' order, defaults and flags from the class (``__record__``). What they do is the
+dataclass's:
+
+- ``__init__`` takes the fields in order, by position or by name, fills defaults and
+  default factories, and calls ``__post_init__`` when the class has one;
+- assigning or deleting a field raises :class:`dataclasses.FrozenInstanceError`;
+- ``__eq__`` compares the tuples of the fields with ``compare=True`` of two records of
+  the same class; ``__hash__`` hashes those with ``hash`` (or ``compare``) true;
+- ``__repr__`` shows the fields with ``repr=True``;
+- a method the class body defines itself is kept.
+
+A record's constructor takes a few microseconds more than the compiled one (a Python
+loop over the fields): records are made once per study or per batch, never per sample.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import reprlib
+from collections.abc import Callable
+from typing import Any, TypeVar, dataclass_transform, overload
+
+_T = TypeVar("_T", bound=type)
+
+
+class _Spec:
+    """What the shared methods read of one record class."""
+
+    __slots__ = (
+        *("cls", "fields", "names", "known", "order", "defaults", "factories"),
+        *("compared", "hashed", "shown", "post_init"),
+    )
+
+    def __init__(self, cls: type) -> None:
+        fields = dataclasses.fields(cls)
+        missing = dataclasses.MISSING
+        self.cls = cls
+        self.fields = frozenset(f.name for f in fields)
+        #: the arguments of ``__init__``, in order
+        self.names = tuple(f.name for f in fields if f.init)
+        self.known = frozenset(self.names)
+        #: every field ``__init__`` sets, in order (a field with ``init=False`` and no
+        #: default is left to ``__post_init__``, as a dataclass leaves it)
+        self.order = tuple(
+            f.name
+            for f in fields
+            if f.init or f.default is not missing or f.default_factory is not missing
+        )
+        self.defaults = {f.name: f.default for f in fields if f.default is not missing}
+        self.factories = {
+            f.name: f.default_factory for f in fields if f.default_factory is not missing
+        }
+        self.compared = tuple(f.name for f in fields if f.compare)
+        self.hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
+        self.shown = tuple(f.name for f in fields if f.repr)
+        self.post_init = hasattr(cls, "__post_init__")
+
+
+def _init(self: Any, *args: Any, **kwargs: Any) -> None:
+    spec: _Spec = type(self).__record__
+    names = spec.names
+    title = type(self).__qualname__
+    if len(args) > len(names):
+        raise TypeError(
+            f"{title}() takes {len(names)} positional arguments but {len(args)} were given"
+        )
+    values = dict(zip(names, args, strict=False))
+    if kwargs:
+        unknown = kwargs.keys() - spec.known
+        if unknown:
+            raise TypeError(f"{title}() got an unexpected keyword argument {min(unknown)!r}")
+        twice = kwargs.keys() & values.keys()
+        if twice:
+            raise TypeError(f"{title}() got multiple values for argument {min(twice)!r}")
+        values.update(kwargs)
+    state = self.__dict__
+    for name in spec.order:
+        if name in values:
+            state[name] = values[name]
+        elif name in spec.defaults:
+            state[name] = spec.defaults[name]
+        elif name in spec.factories:
+            state[name] = spec.factories[name]()
+        else:
+            raise TypeError(f"{title}() missing a required argument: {name!r}")
+    if spec.post_init:
+        self.__post_init__()
+
+
+def _setattr(self: Any, name: str, value: Any) -> None:
+    spec: _Spec = type(self).__record__
+    if type(self) is spec.cls or name in spec.fields:
+        raise dataclasses.FrozenInstanceError(f"cannot assign to field {name!r}")
+    object.__setattr__(self, name, value)
+
+
+def _delattr(self: Any, name: str) -> None:
+    spec: _Spec = type(self).__record__
+    if type(self) is spec.cls or name in spec.fields:
+        raise dataclasses.FrozenInstanceError(f"cannot delete field {name!r}")
+    object.__delattr__(self, name)
+
+
+def _eq(self: Any, other: Any) -> Any:
+    if other.__class__ is not self.__class__:
+        return NotImplemented
+    names = self.__record__.compared
+    return tuple(getattr(self, n) for n in names) == tuple(getattr(other, n) for n in names)
+
+
+def _hash(self: Any) -> int:
+    return hash(tuple(getattr(self, n) for n in self.__record__.hashed))
+
+
+@reprlib.recursive_repr()
+def _repr(self: Any) -> str:
+    shown = ", ".join(f"{n}={getattr(self, n)!r}" for n in self.__record__.shown)
+    return f"{self.__class__.__qualname__}({shown})"
+
+
+class _Signature:
+    """A record class's signature (:func:`inspect.signature`, ``help``), made when asked:
+    building it at import would cost what :func:`record` saves."""
+
+    def __get__(self, instance: Any, owner: type) -> Any:
+        import inspect
+
+        spec: _Spec = getattr(owner, "__record__")  # noqa: B009 (set by record, unknown to mypy)
+        kind = inspect.Parameter.POSITIONAL_OR_KEYWORD
+        parameters = []
+        for f in dataclasses.fields(owner):
+            if not f.init:
+                continue
+            default: Any = inspect.Parameter.empty
+            if f.name in spec.defaults:
+                default = spec.defaults[f.name]
+            elif f.name in spec.factories:
+                default = _FACTORY
+            parameters.append(inspect.Parameter(f.name, kind, default=default, annotation=f.type))
+        return inspect.Signature(parameters, return_annotation=None)
+
+
+class _Factory:
+    """The default shown for a field with a default factory, as a dataclass shows it."""
+
+    def __repr__(self) -> str:
+        return "<factory>"
+
+
+_FACTORY = _Factory()
+
+
+_SIGNATURE = _Signature()
+
+
+def _make(cls: _T, show: bool, compare: bool) -> _T:
+    """Process ``cls``'s fields with :mod:`dataclasses` (no method: nothing compiled), then
+    give it the shared methods it does not define itself."""
+    body = dict(cls.__dict__)
+    dataclasses.dataclass(init=False, repr=False, eq=False)(cls)  # the same class, with fields
+    setattr(cls, "__record__", _Spec(cls))  # noqa: B010 (a name mypy does not know)
+    methods: dict[str, Any] = {
+        "__init__": _init,
+        "__setattr__": _setattr,
+        "__delattr__": _delattr,
+        "__signature__": _SIGNATURE,
+    }
+    if show:
+        methods["__repr__"] = _repr
+    if compare:
+        methods["__eq__"] = _eq
+        methods["__hash__"] = _hash
+    for name, method in methods.items():
+        # a method of the class body stays; a __hash__ that Python set to None because
+        # the body defines __eq__ is not the body's (a dataclass replaces it too)
+        if name not in body or (name == "__hash__" and body[name] is None and "__eq__" in body):
+            setattr(cls, name, method)
+    if body.get("__doc__") is None:
+        cls.__doc__ = None  # not the signature dataclasses wrote before the fields' __init__
+    return cls
+
+
+@overload
+def record(cls: _T, /) -> _T: ...
+
+
+@overload
+def record(*, repr: bool = True, eq: bool = True) -> Callable[[_T], _T]: ...
+
+
+@dataclass_transform(frozen_default=True, field_specifiers=(dataclasses.field,))
+def record(cls: Any = None, /, *, repr: bool = True, eq: bool = True) -> Any:
+    """A frozen dataclass (``@dataclass(frozen=True)``) without compiled methods.
+
+    Parameters
+    ----------
+    cls : type
+        The class, when used bare: ``@record``.
+    repr : bool
+        Give the class a ``__repr__`` of its fields (``@record(repr=False)``: the class
+        keeps ``object``'s or its own).
+    eq : bool
+        Compare and hash by the fields (``@record(eq=False)``: by identity, as a record
+        whose fields hold arrays may rather be).
+    """
+
+    def wrap(cls: _T) -> _T:
+        return _make(cls, repr, eq)
+
+    return wrap if cls is None else wrap(cls)
