@@ -99,9 +99,9 @@ _OPTIONS: dict[str, Any] = {
 
 class Field:
     """The description of one input field (see :func:`field`): a frozen record (a plain
-    class: a dataclass would import :mod:`inspect` for every command)."""
+    class, its attributes set at once: the settings schema makes about 340 of them at
+    every start of the command line)."""
 
-    __slots__ = ("kind", *_OPTIONS, "quantity", "in_size")
     kind: str
     default: Any
     title: str
@@ -135,13 +135,13 @@ class Field:
         unknown = options.keys() - _OPTIONS.keys()
         if unknown:
             raise TypeError(f"Field has no option {sorted(unknown)[0]}")
-        put = object.__setattr__
-        put(self, "kind", kind)
-        for key, default in _OPTIONS.items():
-            put(self, key, options.get(key, default))
+        state = self.__dict__
+        state.update(_OPTIONS)
+        state.update(options)
         quantity = kind if kind in KINDS else None  # read on every value: computed once
-        put(self, "quantity", quantity)
-        put(self, "in_size", quantity is not None and self.high is None and self.low in (None, 0))
+        state["kind"] = kind
+        state["quantity"] = quantity
+        state["in_size"] = quantity is not None and self.high is None and self.low in (None, 0)
 
     def __setattr__(self, key: str, value: Any) -> None:
         raise AttributeError("Field is frozen: use replace()")
