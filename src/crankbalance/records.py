@@ -32,7 +32,7 @@ from __future__ import annotations
 import dataclasses
 import reprlib
 from collections.abc import Callable
-from typing import Any, TypeVar, dataclass_transform, overload
+from typing import Any, NoReturn, TypeVar, dataclass_transform, overload
 
 _T = TypeVar("_T", bound=type)
 
@@ -41,7 +41,7 @@ class _Spec:
     """What the shared methods read of one record class."""
 
     __slots__ = (
-        *("cls", "fields", "names", "known", "order", "defaults", "factories"),
+        *("cls", "fields", "names", "known", "required", "defaults", "factories"),
         *("compared", "hashed", "shown", "post_init"),
     )
 
@@ -53,17 +53,14 @@ class _Spec:
         #: the arguments of ``__init__``, in order
         self.names = tuple(f.name for f in fields if f.init)
         self.known = frozenset(self.names)
-        #: every field ``__init__`` sets, in order (a field with ``init=False`` and no
-        #: default is left to ``__post_init__``, as a dataclass leaves it)
-        self.order = tuple(
-            f.name
-            for f in fields
-            if f.init or f.default is not missing or f.default_factory is not missing
-        )
+        #: every default (of a field with ``init=False`` too, which ``__init__`` sets; one
+        #: with neither default nor factory is left to ``__post_init__``, as a dataclass
+        #: leaves it)
         self.defaults = {f.name: f.default for f in fields if f.default is not missing}
         self.factories = {
             f.name: f.default_factory for f in fields if f.default_factory is not missing
         }
+        self.required = self.known - self.defaults.keys() - self.factories.keys()
         self.compared = tuple(f.name for f in fields if f.compare)
         self.hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
         self.shown = tuple(f.name for f in fields if f.repr)
@@ -72,33 +69,41 @@ class _Spec:
 
 def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     spec: _Spec = type(self).__record__
-    names = spec.names
-    title = type(self).__qualname__
-    if len(args) > len(names):
-        raise TypeError(
-            f"{title}() takes {len(names)} positional arguments but {len(args)} were given"
-        )
-    values = dict(zip(names, args, strict=False))
-    if kwargs:
-        unknown = kwargs.keys() - spec.known
-        if unknown:
-            raise TypeError(f"{title}() got an unexpected keyword argument {min(unknown)!r}")
-        twice = kwargs.keys() & values.keys()
-        if twice:
-            raise TypeError(f"{title}() got multiple values for argument {min(twice)!r}")
-        values.update(kwargs)
+    given = kwargs
+    if args:
+        given = dict(zip(spec.names, args, strict=False))
+        if len(args) > len(spec.names) or not given.keys().isdisjoint(kwargs):
+            _refuse(type(self), args, kwargs)
+        given.update(kwargs)
+    keys = given.keys()
+    if not (keys <= spec.known and keys >= spec.required):
+        _refuse(type(self), args, kwargs)
     state = self.__dict__
-    for name in spec.order:
-        if name in values:
-            state[name] = values[name]
-        elif name in spec.defaults:
-            state[name] = spec.defaults[name]
-        elif name in spec.factories:
-            state[name] = spec.factories[name]()
-        else:
-            raise TypeError(f"{title}() missing a required argument: {name!r}")
+    state.update(spec.defaults)
+    state.update(given)
+    for name, factory in spec.factories.items():
+        if name not in given:
+            state[name] = factory()
     if spec.post_init:
         self.__post_init__()
+
+
+def _refuse(cls: type, args: tuple[Any, ...], kwargs: dict[str, Any]) -> NoReturn:
+    """The :class:`TypeError` a dataclass's ``__init__`` raises for these arguments."""
+    spec: _Spec = getattr(cls, "__record__")  # noqa: B009 (set by record, unknown to mypy)
+    title = f"{cls.__qualname__}()"
+    if len(args) > len(spec.names):
+        raise TypeError(
+            f"{title} takes {len(spec.names)} positional arguments but {len(args)} were given"
+        )
+    for name in spec.names[: len(args)]:
+        if name in kwargs:
+            raise TypeError(f"{title} got multiple values for argument {name!r}")
+    for name in kwargs:
+        if name not in spec.known:
+            raise TypeError(f"{title} got an unexpected keyword argument {name!r}")
+    absent = [n for n in spec.names[len(args) :] if n in spec.required and n not in kwargs]
+    raise TypeError(f"{title} missing a required argument: {absent[0]!r}")
 
 
 def _setattr(self: Any, name: str, value: Any) -> None:
