@@ -255,6 +255,11 @@ def test_cli_loads_only_the_packages_it_needs(command: str | None) -> None:
 #: needs (``importlib.resources`` brought zipfile and tempfile, ``secrets`` random,
 #: ``pathlib`` urllib and ipaddress: io.files imports it on the first write)
 CLI_MODULES_UNLOADED = (
+    # the other studies' settings schemas (about 3 ms of a cold start, issue 30)
+    *(
+        f"crankbalance.schema.settings.{family}"
+        for family in ("counterweight", "single", "shaft", "cycle", "crank", "shop", "explore")
+    ),
     "crankbalance.physics.engine_cycle",
     "crankbalance.physics.engine_cycle_all",
     "crankbalance.physics.single_cylinder",

@@ -119,15 +119,8 @@ def engine_file_doc(text: str) -> str:
 
 
 def _studies() -> list[type[settings.StudyOptions]]:
-    """The settings schemas, in the order of :mod:`crankbalance.schema.settings`."""
-    found = [
-        value
-        for value in vars(settings).values()
-        if isinstance(value, type)
-        and issubclass(value, settings.StudyOptions)
-        and value is not settings.StudyOptions
-    ]
-    return found
+    """The settings schemas, in the order of :data:`crankbalance.schema.settings.MODELS`."""
+    return settings.models()
 
 
 def settings_doc() -> str:
