@@ -260,6 +260,7 @@ CLI_MODULES_UNLOADED = (
         f"crankbalance.schema.settings.{family}"
         for family in ("counterweight", "single", "shaft", "cycle", "crank", "shop", "explore")
     ),
+    "numpy.typing",  # annotations only (0.6 ms: its docstrings are parsed at import)
     "crankbalance.physics.engine_cycle",
     "crankbalance.physics.engine_cycle_all",
     "crankbalance.physics.single_cylinder",

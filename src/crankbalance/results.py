@@ -5,13 +5,18 @@ from __future__ import annotations
 
 import dataclasses
 import math
-from typing import Any, Protocol, TypeVar, overload
+from typing import TYPE_CHECKING, Any, Protocol, TypeVar, overload
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 from .errors import ResultError
 from .records import record
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import ArrayLike, NDArray
+
+    #: the scalars of a batch of engines, one per engine
+    Batch = NDArray[np.float64]
 
 #: significant digits kept in JSON: enough for any measured input, none of the float noise
 JSON_DIGITS = 12
@@ -57,9 +62,7 @@ UNITS: dict[str, tuple[str, float]] = {
 
 
 #: a scalar of an engine (float) or of each engine of a batch (ndarray, shape (E,))
-Scalar = TypeVar("Scalar", float, NDArray[np.float64], covariant=True)
-#: the scalars of a batch of engines, one per engine
-Batch = NDArray[np.float64]
+Scalar = TypeVar("Scalar", float, "NDArray[np.float64]", covariant=True)
 
 
 class EngineScales(Protocol[Scalar]):

@@ -31,14 +31,21 @@ equations per group); each engine's numbers are computed on its own row
 from __future__ import annotations
 
 from functools import cached_property
+from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..records import record
 from ..results import ROUND_OFF
 from .balance_types import BatchCounterweights, CounterweightOptions, EngineFailed, SolverInput
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import ArrayLike, NDArray
+
+    #: :func:`_factor2` of systems (E, R, 2): the matrix, q1 (E, R), r12 (E,), u (E, R),
+    #: the divisors of x2 and x1 (E,), and the systems that need their least-norm solution
+    _Factors = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
 
 
 # --------------------------------------------------------------------------- the webs
@@ -560,11 +567,6 @@ def _pattern_factors(a: NDArray, opposite: NDArray, side: NDArray) -> _Factors:
         axis=-1,
     )
     return _factor2(matrix)
-
-
-#: :func:`_factor2` of systems (E, R, 2): the matrix, q1 (E, R), r12 (E,), u (E, R), the
-#: divisors of x2 and x1 (E,), and the systems that need their least-norm solution
-_Factors = tuple[NDArray, NDArray, NDArray, NDArray, NDArray, NDArray, NDArray]
 
 
 def _lstsq2(matrix: NDArray, rhs: NDArray) -> tuple[NDArray, NDArray]:

@@ -46,10 +46,9 @@ from __future__ import annotations
 
 import functools
 from dataclasses import replace
-from typing import Any, TypeVar
+from typing import TYPE_CHECKING, Any, TypeVar
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..results import ROUND_OFF, engine_scales
@@ -71,6 +70,9 @@ from .shaking import (
     cylinder_coefficients,
     free_forces,
 )
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import NDArray
 
 _Record = TypeVar("_Record", SolverInput, BatchFreeForces)
 

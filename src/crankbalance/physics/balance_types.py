@@ -12,15 +12,17 @@ from __future__ import annotations
 
 from dataclasses import field
 from functools import cached_property
-from typing import Any, ClassVar, Literal
+from typing import TYPE_CHECKING, Any, ClassVar, Literal
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..records import record
 from ..results import ResultMixin
 from .shaking import BatchFreeForces
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import NDArray
 
 Method = Literal["pattern", "individual"]
 Scope = Literal["auto", "whole", "halves"]

@@ -25,9 +25,9 @@ from __future__ import annotations
 
 from collections.abc import Sequence
 from dataclasses import field
+from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 from ..records import record
 from ..results import ROUND_OFF, ResultMixin, engine_scales, number
@@ -43,6 +43,9 @@ from .balance_types import (
     ShaftOptions,
 )
 from .model import EngineModel
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import ArrayLike, NDArray
 
 __all__ = [
     "AngleSweep",

@@ -14,10 +14,12 @@ and many engines are evaluated at once.
 from __future__ import annotations
 
 import functools
-from typing import Literal
+from typing import TYPE_CHECKING, Literal
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import ArrayLike, NDArray
 
 KinematicsModel = Literal["exact", "series", "first-order"]
 KINEMATICS_MODELS: tuple[str, ...] = ("exact", "series", "first-order")

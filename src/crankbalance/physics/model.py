@@ -36,13 +36,14 @@ from functools import cached_property
 from typing import TYPE_CHECKING, Any, ClassVar
 
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..records import record
 from ..results import ResultMixin
 
 if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from numpy.typing import ArrayLike, NDArray
+
     from .articulated import ArticulatedRods, Articulation
 from .firing import firing_angles
 from .kinematics import KinematicsModel

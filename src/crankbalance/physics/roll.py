@@ -39,9 +39,10 @@ import functools
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
 
 if TYPE_CHECKING:  # the master-and-link rods are imported where they are used
+    from numpy.typing import NDArray
+
     from .articulated import ArticulatedRods
 
 from .kinematics import (

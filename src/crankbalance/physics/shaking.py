@@ -38,8 +38,9 @@ which the articulated rods enter through the same coefficients.
 
 from __future__ import annotations
 
+from typing import TYPE_CHECKING
+
 import numpy as np
-from numpy.typing import ArrayLike, NDArray
 
 from ..errors import InputError
 from ..records import record
@@ -54,6 +55,9 @@ from .kinematics import (
 )
 from .model import EngineBatch, EngineModel
 from .roll import articulated_roll, articulated_roll_curve, roll_coefficients, roll_harmonics
+
+if TYPE_CHECKING:  # annotations only: numpy.typing costs every command's start
+    from numpy.typing import ArrayLike, NDArray
 
 
 @record

@@ -14,7 +14,6 @@ import math
 from typing import TYPE_CHECKING
 
 import numpy as np
-from numpy.typing import NDArray
 
 from ..errors import InputError
 from ..physics.firing import check_firing_order, firing_tdc_angles, to_crankbalance_order
@@ -22,6 +21,8 @@ from ..physics.model import ConrodSplit, EngineModel, standard_layout, tdc_angle
 from ..schema.engine import EngineSpec
 
 if TYPE_CHECKING:  # imported where a spec has master-and-link rods
+    from numpy.typing import NDArray
+
     from ..physics.articulated import Articulation
 
 #: built models kept for the specs seen last (a spec is frozen and hashable, a model frozen
