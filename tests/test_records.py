@@ -149,6 +149,24 @@ def test_eq_false_compares_by_identity_and_repr_false_keeps_objects() -> None:
         assert repr(a).startswith("<")
 
 
+def _labelled() -> type:
+    class Labelled:
+        """A record with a field left out of __init__ that has a default."""
+
+        a: int
+        b: int = 0
+        label: str = dataclasses.field(default="set", init=False)
+
+    return Labelled
+
+
+@pytest.mark.parametrize("args", [(1, 2), (1,)], ids=["every field by position", "one"])
+def test_a_field_left_out_of_init_takes_its_default(args: tuple[int, ...]) -> None:
+    reference, ours = _both(_labelled)
+    assert dataclasses.asdict(reference(*args)) == dataclasses.asdict(ours(*args))
+    assert ours(*args).label == "set"
+
+
 def test_post_init_and_a_field_left_out_of_init() -> None:
     reference, ours = _both(_checked)
     assert reference(3).doubled == ours(3).doubled == 6

@@ -41,7 +41,7 @@ class _Spec:
     """What the shared methods read of one record class."""
 
     __slots__ = (
-        *("cls", "fields", "names", "known", "required", "defaults", "factories"),
+        *("cls", "fields", "names", "known", "required", "defaults", "unset", "factories"),
         *("compared", "hashed", "shown", "post_init"),
     )
 
@@ -61,6 +61,8 @@ class _Spec:
             f.name: f.default_factory for f in fields if f.default_factory is not missing
         }
         self.required = self.known - self.defaults.keys() - self.factories.keys()
+        #: the defaults of the fields ``__init__`` does not take
+        self.unset = {k: v for k, v in self.defaults.items() if k not in self.known}
         self.compared = tuple(f.name for f in fields if f.compare)
         self.hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
         self.shown = tuple(f.name for f in fields if f.repr)
@@ -69,21 +71,27 @@ class _Spec:
 
 def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     spec: _Spec = type(self).__record__
-    given = kwargs
-    if args:
-        given = dict(zip(spec.names, args, strict=False))
-        if len(args) > len(spec.names) or not given.keys().isdisjoint(kwargs):
-            _refuse(type(self), args, kwargs)
-        given.update(kwargs)
-    keys = given.keys()
-    if not (keys <= spec.known and keys >= spec.required):
-        _refuse(type(self), args, kwargs)
     state = self.__dict__
-    state.update(spec.defaults)
-    state.update(given)
-    for name, factory in spec.factories.items():
-        if name not in given:
-            state[name] = factory()
+    if not kwargs and len(args) == len(spec.names):  # every field by position
+        state.update(zip(spec.names, args, strict=True))
+        state.update(spec.unset)
+        given: Any = spec.known
+    else:
+        given = kwargs
+        if args:
+            given = dict(zip(spec.names, args, strict=False))
+            if len(args) > len(spec.names) or not given.keys().isdisjoint(kwargs):
+                _refuse(type(self), args, kwargs)
+            given.update(kwargs)
+        keys = given.keys()
+        if not (keys <= spec.known and keys >= spec.required):
+            _refuse(type(self), args, kwargs)
+        state.update(spec.defaults)
+        state.update(given)
+    if spec.factories:
+        for name, factory in spec.factories.items():
+            if name not in given:
+                state[name] = factory()
     if spec.post_init:
         self.__post_init__()
 
