@@ -41,7 +41,8 @@ class _Spec:
     """What the shared methods read of one record class."""
 
     __slots__ = (
-        *("cls", "fields", "names", "known", "required", "defaults", "unset", "factories"),
+        *("cls", "fields", "names", "known", "required", "least", "defaults", "unset"),
+        "factories",
         *("compared", "hashed", "shown", "post_init"),
     )
 
@@ -63,6 +64,8 @@ class _Spec:
         self.required = self.known - self.defaults.keys() - self.factories.keys()
         #: the defaults of the fields ``__init__`` does not take
         self.unset = {k: v for k, v in self.defaults.items() if k not in self.known}
+        #: the fewest arguments by position that give every required field
+        self.least = max((self.names.index(n) + 1 for n in self.required), default=0)
         self.compared = tuple(f.name for f in fields if f.compare)
         self.hashed = tuple(f.name for f in fields if (f.compare if f.hash is None else f.hash))
         self.shown = tuple(f.name for f in fields if f.repr)
@@ -72,15 +75,16 @@ class _Spec:
 def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     spec: _Spec = type(self).__record__
     state = self.__dict__
-    if not kwargs and len(args) == len(spec.names):  # every field by position
-        state.update(zip(spec.names, args, strict=True))
-        state.update(spec.unset)
-        given: Any = spec.known
+    count = len(args)
+    if not kwargs and spec.least <= count <= len(spec.names):  # the fields in order
+        state.update(spec.defaults if count < len(spec.names) else spec.unset)
+        state.update(zip(spec.names, args, strict=False))
+        given: Any = spec.names[:count]
     else:
         given = kwargs
         if args:
             given = dict(zip(spec.names, args, strict=False))
-            if len(args) > len(spec.names) or not given.keys().isdisjoint(kwargs):
+            if count > len(spec.names) or not given.keys().isdisjoint(kwargs):
                 _refuse(type(self), args, kwargs)
             given.update(kwargs)
         keys = given.keys()
