@@ -46,7 +46,12 @@ TARGET_VALIDATE_S = 0.2e-3
 LAYOUTS = {
     "after": (
         "crankbalance.schema.engine",
-        "crankbalance.schema.settings",
+        # every study's schema: the package imports its families on first use (issue 30)
+        ", ".join(
+            f"crankbalance.schema.settings.{family}"
+            for family in ("common", "counterweight", "single", "shaft", "cycle", "crank")
+            + ("shop", "explore")
+        ),
         "crankbalance.physics.engine_cycle, crankbalance.physics.engine_cycle_all, "
         "crankbalance.physics.explore.work, crankbalance.physics.single_cylinder, "
         "crankbalance.physics.firing",
