@@ -76,10 +76,16 @@ def _init(self: Any, *args: Any, **kwargs: Any) -> None:
     spec: _Spec = type(self).__record__
     state = self.__dict__
     count = len(args)
-    if not kwargs and spec.least <= count <= len(spec.names):  # the fields in order
-        state.update(spec.defaults if count < len(spec.names) else spec.unset)
+    given: Any
+    if count == len(spec.names) and not kwargs:  # every field by position
         state.update(zip(spec.names, args, strict=False))
-        given: Any = spec.names[:count]
+        if spec.unset:
+            state.update(spec.unset)
+        given = spec.known
+    elif not kwargs and spec.least <= count < len(spec.names):  # the first ones
+        state.update(spec.defaults)
+        state.update(zip(spec.names, args, strict=False))
+        given = spec.names[:count]
     else:
         given = kwargs
         if args:
